@@ -1,0 +1,57 @@
+// The OpenMesh representation the core works on: a triangle mesh welded by position, with
+// normal, UV and tangent stored per halfedge (that is, per face corner). The corner of face
+// f at vertex v is the halfedge of f that points to v, as OpenMesh's own readers use it.
+#pragma once
+
+#include <OpenMesh/Core/Mesh/TriMesh_ArrayKernelT.hh>
+
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "tangent/tangent.hpp"
+
+namespace tangent {
+
+struct CornerMeshTraits : OpenMesh::DefaultTraits {
+  using Point = OpenMesh::Vec3d;
+  using Normal = OpenMesh::Vec3d;
+  using TexCoord2D = OpenMesh::Vec2d;
+  VertexAttributes(OpenMesh::Attributes::None);
+  HalfedgeAttributes(OpenMesh::Attributes::PrevHalfedge | OpenMesh::Attributes::Normal |
+                     OpenMesh::Attributes::TexCoord2D);
+  EdgeAttributes(OpenMesh::Attributes::None);
+  FaceAttributes(OpenMesh::Attributes::None);
+};
+
+using TriMesh = OpenMesh::TriMesh_ArrayKernelT<CornerMeshTraits>;
+using TangentVec = OpenMesh::Vec4d;
+
+// A welded mesh plus what maps it back to the caller's corners.
+struct CornerMesh {
+  TriMesh mesh;
+  // Tangent per halfedge (xyz, w); filled by computeTangents().
+  OpenMesh::HPropHandleT<TangentVec> tangent;
+  // Halfedge of each input corner (3 per input triangle). Face i is input triangle i.
+  std::vector<OpenMesh::HalfedgeHandle> cornerHalfedge;
+  // Canonical welded vertex of each mesh vertex: faces refused as non-manifold (or with a
+  // repeated vertex) are stored on duplicated vertices, which point back here.
+  std::vector<std::uint32_t> weldedVertex;
+  std::uint64_t nonManifoldFaces = 0;
+
+  CornerMesh();
+  CornerMesh(CornerMesh&&) noexcept;
+  CornerMesh& operator=(CornerMesh&&) noexcept;
+  CornerMesh(const CornerMesh&) = delete;
+  CornerMesh& operator=(const CornerMesh&) = delete;
+  ~CornerMesh();
+};
+
+// Builds a CornerMesh from plain arrays: vertices welded by exact position (+0 and -0 equal),
+// normals and UVs copied to the corners' halfedges. Never drops a face.
+CornerMesh buildCornerMesh(const MeshArrays& arrays);
+
+// Computes the tangent of every corner into mesh.tangent. w follows options.uvOrigin.
+Report computeTangents(CornerMesh& mesh, const Options& options = {});
+
+}  // namespace tangent

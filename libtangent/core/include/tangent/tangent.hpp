@@ -1,0 +1,87 @@
+// libtangent core API: tangent frames for triangle meshes.
+//
+// The core computes and opens no files. Two entry points:
+//  * computeCornerTangents() over plain arrays (positions, normals, UVs, indices in; one
+//    tangent per corner and a Report out) for callers that do not use OpenMesh;
+//  * computeTangents() on a CornerMesh (halfedge_mesh.hpp) for callers that do.
+#pragma once
+
+#include <cstdint>
+#include <span>
+#include <string>
+#include <string_view>
+
+namespace tangent {
+
+// Which algorithm computes the frames.
+enum class Method : std::uint8_t {
+  // Lengyel, "Computing Tangent Space Basis Vectors for an Arbitrary Mesh" (2001):
+  // per-triangle tangent/bitangent from edge and UV deltas, accumulated over the corners of
+  // a vertex that share position, normal, UV and UV orientation, then Gram-Schmidt
+  // orthogonalized against the normal. Weighting is selectable (see Weighting).
+  lengyel,
+  // One frame per face (no smoothing): the triangle's tangent orthogonalized against each
+  // corner's normal. Requires nothing beyond the triangle itself.
+  flat,
+};
+
+// How the triangles around a vertex are weighted when their tangents are accumulated.
+enum class Weighting : std::uint8_t {
+  angle,    // corner angle (default; independent of tessellation)
+  area,     // triangle area in 3D
+  uniform,  // every triangle counts once
+};
+
+// Where the texture's v = 0 lies. It decides the sign of w, never the tangent direction.
+enum class UvOrigin : std::uint8_t {
+  topLeft,     // glTF, DirectX: w is negated relative to the frame on the stored UVs
+  bottomLeft,  // OpenGL, OBJ, MikkTSpace's native convention
+};
+
+struct Options {
+  Method method = Method::lengyel;
+  Weighting weighting = Weighting::angle;
+  UvOrigin uvOrigin = UvOrigin::topLeft;
+};
+
+// What a call did. Every count is of input triangles or corners; nothing is silent.
+struct Report {
+  std::string method;                  // method actually used ("lengyel", "flat")
+  std::string weighting;               // weighting actually used ("angle", ... or "" for flat)
+  std::uint64_t triangles = 0;
+  std::uint64_t corners = 0;
+  std::uint64_t degenerateTriangles = 0;    // zero or non-finite 3D area
+  std::uint64_t zeroUvAreaTriangles = 0;    // zero UV area or collinear UVs
+  std::uint64_t nonFiniteTriangles = 0;     // NaN/Inf in a position or UV of the triangle
+  std::uint64_t mirroredCorners = 0;        // corners whose output w is -1
+  std::uint64_t splitVertices = 0;          // extra vertices needed: corners of one input
+                                            // vertex that got different frames
+  std::uint64_t nonManifoldFaces = 0;       // faces OpenMesh refused; kept on own vertices
+  std::uint64_t invalidNormals = 0;         // corners with zero/non-finite normal (replaced)
+  std::uint64_t fallbackFromNeighbours = 0; // corners with no usable triangle, frame taken
+                                            // from other corners of the vertex or its 1-ring
+  std::uint64_t fallbackFixed = 0;          // corners given a fixed frame perpendicular to N
+};
+
+std::string_view toString(Method method);
+std::string_view toString(Weighting weighting);
+// Parse a name as accepted on the command line; false if unknown.
+bool parseMethod(std::string_view name, Method& method);
+bool parseWeighting(std::string_view name, Weighting& weighting);
+
+// Plain-array input. Corners are the entries of `indices`, three per triangle.
+struct MeshArrays {
+  std::span<const float> positions;       // 3 per vertex
+  std::span<const float> normals;         // 3 per vertex
+  std::span<const float> uvs;             // 2 per vertex
+  std::span<const std::uint32_t> indices; // 3 per triangle
+};
+
+// Computes one tangent (x, y, z, w) per corner into cornerTangents (4 floats per corner).
+// xyz is unit length and orthogonal to the corner's normal, w is exactly +1 or -1, and every
+// value is finite, whatever the input. Throws std::invalid_argument when the array sizes
+// disagree or an index is out of range.
+Report computeCornerTangents(const MeshArrays& mesh, std::span<float> cornerTangents,
+                             const Options& options = {});
+
+}  // namespace tangent

@@ -1,0 +1,42 @@
+#include "tangent/tangent.hpp"
+
+namespace tangent {
+
+std::string_view toString(Method method) {
+  switch (method) {
+    case Method::lengyel: return "lengyel";
+    case Method::flat: return "flat";
+  }
+  return "unknown";
+}
+
+std::string_view toString(Weighting weighting) {
+  switch (weighting) {
+    case Weighting::angle: return "angle";
+    case Weighting::area: return "area";
+    case Weighting::uniform: return "uniform";
+  }
+  return "unknown";
+}
+
+bool parseMethod(std::string_view name, Method& method) {
+  for (Method candidate : {Method::lengyel, Method::flat}) {
+    if (toString(candidate) == name) {
+      method = candidate;
+      return true;
+    }
+  }
+  return false;
+}
+
+bool parseWeighting(std::string_view name, Weighting& weighting) {
+  for (Weighting candidate : {Weighting::angle, Weighting::area, Weighting::uniform}) {
+    if (toString(candidate) == name) {
+      weighting = candidate;
+      return true;
+    }
+  }
+  return false;
+}
+
+}  // namespace tangent

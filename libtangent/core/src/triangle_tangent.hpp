@@ -1,0 +1,39 @@
+// Per-triangle tangent directions from edge and UV deltas.
+// Source: E. Lengyel, "Computing Tangent Space Basis Vectors for an Arbitrary Mesh", 2001.
+// Solving [e1 e2] = [dP/du dP/dv] [du1 du2; dv1 dv2] gives
+//   dP/du = (e1 dv2 - e2 dv1) / det,  dP/dv = (e2 du1 - e1 du2) / det,  det = du1 dv2 - du2 dv1.
+// Only directions are kept: the sign of det carries the UV orientation, the magnitudes are
+// dropped so that tiny or huge UV scales cannot overflow or underflow later sums.
+#pragma once
+
+#include <array>
+
+#include "tangent/halfedge_mesh.hpp"
+
+namespace tangent::detail {
+
+using Vec3 = OpenMesh::Vec3d;
+using Vec2 = OpenMesh::Vec2d;
+
+enum class TriangleKind : std::uint8_t { usable, degenerate, zeroUvArea, nonFinite };
+
+struct TriangleTangent {
+  Vec3 tangent{0, 0, 0};     // unit dP/du (zero unless usable)
+  Vec3 bitangent{0, 0, 0};   // unit dP/dv (zero unless usable)
+  Vec3 faceNormal{0, 0, 0};  // unit geometric normal (zero when degenerate)
+  double area = 0;           // 3D area
+  int orientation = 0;       // sign of the UV area; 0 unless usable
+  TriangleKind kind = TriangleKind::degenerate;
+};
+
+// Evaluates the triangle starting from a canonical corner (the smallest by bit pattern), so
+// that rotating the corner order never changes a bit of the result.
+TriangleTangent triangleTangent(const std::array<Vec3, 3>& positions, const std::array<Vec2, 3>& uvs);
+
+// Interior angle at corner `corner` (0..2), in radians; 0 for a zero-length edge.
+double cornerAngle(const std::array<Vec3, 3>& positions, int corner);
+
+// A unit vector perpendicular to the unit vector n, fixed for a given n.
+Vec3 fixedPerpendicular(const Vec3& n);
+
+}  // namespace tangent::detail

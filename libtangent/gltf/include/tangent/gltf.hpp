@@ -1,0 +1,64 @@
+// glTF adapter: reads .gltf/.glb (and OBJ/PLY/OFF through OpenMesh's readers), bakes TANGENT
+// into the primitives that need it, writes glTF atomically. Layer above the core.
+#pragma once
+
+#include <cstdint>
+#include <filesystem>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "tangent/tangent.hpp"
+
+namespace tangent::gltf {
+
+// Any problem with an input file: the message names file, mesh, primitive and accessor.
+class InputError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+struct BakeOptions {
+  Options tangents;         // method, weighting (uvOrigin is always topLeft for glTF)
+  bool all = false;         // every triangle primitive, not only those with a normalTexture
+  bool overwrite = false;   // recompute valid existing TANGENT too
+};
+
+// What happened to one primitive.
+struct PrimitiveResult {
+  int mesh = 0;
+  int primitive = 0;
+  std::string meshName;
+  std::string action;       // "baked", "kept", "skipped"
+  std::string reason;       // why (always set)
+  int texCoord = -1;        // UV set used, -1 when none
+  std::uint64_t verticesIn = 0;
+  std::uint64_t verticesOut = 0;
+  Report tangents;          // core report, when baked
+};
+
+struct BakeResult {
+  std::vector<PrimitiveResult> primitives;
+  std::vector<std::string> warnings;
+  std::uint64_t bytesWritten = 0;
+};
+
+// Reads `input`, bakes, writes `output` (.glb or .gltf + .bin beside it). The input is never
+// written to; outputs appear complete or not at all. Throws InputError on bad input and
+// std::runtime_error on I/O failure.
+BakeResult bakeFile(const std::filesystem::path& input, const std::filesystem::path& output,
+                    const BakeOptions& options);
+
+// The output path bake uses for `input` in `outputDir` (OBJ/PLY/OFF become .glb).
+std::filesystem::path outputPathFor(const std::filesystem::path& input, const std::filesystem::path& outputDir);
+
+// Meshes, primitives, attributes, and which need tangents and why, as JSON.
+nlohmann::ordered_json describeFile(const std::filesystem::path& input);
+
+// Result of a bake as the JSON written by `tangent bake --report`.
+nlohmann::ordered_json toJson(const BakeResult& result);
+nlohmann::ordered_json toJson(const Report& report);
+
+}  // namespace tangent::gltf

@@ -1,0 +1,220 @@
+#include "accessors.hpp"
+
+#include <algorithm>
+#include <cstring>
+
+#include "tangent/gltf.hpp"
+
+namespace tangent::gltf::detail {
+
+int componentCount(int type) {
+  switch (type) {
+    case TINYGLTF_TYPE_SCALAR: return 1;
+    case TINYGLTF_TYPE_VEC2: return 2;
+    case TINYGLTF_TYPE_VEC3: return 3;
+    case TINYGLTF_TYPE_VEC4: return 4;
+    case TINYGLTF_TYPE_MAT2: return 4;
+    case TINYGLTF_TYPE_MAT3: return 9;
+    case TINYGLTF_TYPE_MAT4: return 16;
+    default: return 0;
+  }
+}
+
+std::size_t componentBytes(int componentType) {
+  switch (componentType) {
+    case TINYGLTF_COMPONENT_TYPE_BYTE:
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: return 1;
+    case TINYGLTF_COMPONENT_TYPE_SHORT:
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: return 2;
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT:
+    case TINYGLTF_COMPONENT_TYPE_FLOAT: return 4;
+    default: return 0;  // INT (5124) and DOUBLE are not valid in glTF 2.0 accessors
+  }
+}
+
+const char* typeName(int type) {
+  switch (type) {
+    case TINYGLTF_TYPE_SCALAR: return "SCALAR";
+    case TINYGLTF_TYPE_VEC2: return "VEC2";
+    case TINYGLTF_TYPE_VEC3: return "VEC3";
+    case TINYGLTF_TYPE_VEC4: return "VEC4";
+    case TINYGLTF_TYPE_MAT2: return "MAT2";
+    case TINYGLTF_TYPE_MAT3: return "MAT3";
+    case TINYGLTF_TYPE_MAT4: return "MAT4";
+    default: return "unknown type";
+  }
+}
+
+const char* componentTypeName(int componentType) {
+  switch (componentType) {
+    case TINYGLTF_COMPONENT_TYPE_BYTE: return "BYTE";
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: return "UNSIGNED_BYTE";
+    case TINYGLTF_COMPONENT_TYPE_SHORT: return "SHORT";
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: return "UNSIGNED_SHORT";
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT: return "UNSIGNED_INT";
+    case TINYGLTF_COMPONENT_TYPE_FLOAT: return "FLOAT";
+    default: return "unknown component type";
+  }
+}
+
+namespace {
+
+[[noreturn]] void fail(const std::string& where, int accessorIndex, const std::string& what) {
+  throw InputError(where + " (accessor " + std::to_string(accessorIndex) + "): " + what);
+}
+
+// Bytes [offset, offset + length) of bufferView `viewIndex`, checked against its buffer.
+const std::uint8_t* viewRange(const tinygltf::Model& model, int viewIndex, std::size_t offset, std::size_t length,
+                              const std::string& where, int accessorIndex, const char* role) {
+  if (viewIndex < 0 || viewIndex >= static_cast<int>(model.bufferViews.size()))
+    fail(where, accessorIndex, std::string(role) + " bufferView " + std::to_string(viewIndex) + " does not exist");
+  const tinygltf::BufferView& view = model.bufferViews[viewIndex];
+  if (view.buffer < 0 || view.buffer >= static_cast<int>(model.buffers.size()))
+    fail(where, accessorIndex, "bufferView " + std::to_string(viewIndex) + " names buffer " + std::to_string(view.buffer) +
+                                   ", which does not exist");
+  const auto& buffer = model.buffers[view.buffer].data;
+  if (view.byteOffset > buffer.size() || view.byteLength > buffer.size() - view.byteOffset)
+    fail(where, accessorIndex, "bufferView " + std::to_string(viewIndex) + " (offset " + std::to_string(view.byteOffset) +
+                                   ", length " + std::to_string(view.byteLength) + ") lies outside buffer " +
+                                   std::to_string(view.buffer) + " (" + std::to_string(buffer.size()) + " bytes loaded)");
+  if (offset > view.byteLength || length > view.byteLength - offset)
+    fail(where, accessorIndex, std::string(role) + " data (offset " + std::to_string(offset) + ", " + std::to_string(length) +
+                                   " bytes) overruns bufferView " + std::to_string(viewIndex) + " (" +
+                                   std::to_string(view.byteLength) + " bytes)");
+  return buffer.data() + view.byteOffset + offset;
+}
+
+std::uint32_t readUnsigned(const std::uint8_t* p, int componentType) {
+  switch (componentType) {
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: return *p;
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: {
+      std::uint16_t v;
+      std::memcpy(&v, p, 2);
+      return v;
+    }
+    default: {
+      std::uint32_t v;
+      std::memcpy(&v, p, 4);
+      return v;
+    }
+  }
+}
+
+}  // namespace
+
+AccessorData readAccessor(const tinygltf::Model& model, int accessorIndex, const std::string& where) {
+  if (accessorIndex < 0 || accessorIndex >= static_cast<int>(model.accessors.size()))
+    fail(where, accessorIndex, "accessor does not exist (the file has " + std::to_string(model.accessors.size()) + ")");
+  const tinygltf::Accessor& accessor = model.accessors[accessorIndex];
+  AccessorData data;
+  data.componentType = accessor.componentType;
+  data.type = accessor.type;
+  data.normalized = accessor.normalized;
+  data.components = componentCount(accessor.type);
+  data.componentSize = componentBytes(accessor.componentType);
+  data.count = accessor.count;
+  if (data.components == 0) fail(where, accessorIndex, "invalid type " + std::to_string(accessor.type));
+  if (data.componentSize == 0) fail(where, accessorIndex, "invalid componentType " + std::to_string(accessor.componentType));
+  if (data.count == 0) fail(where, accessorIndex, "count is 0");
+  if (data.count > (std::size_t(1) << 31) / data.elementSize()) fail(where, accessorIndex, "count is implausibly large");
+  const std::size_t elementSize = data.elementSize();
+  data.bytes.assign(data.count * elementSize, 0);
+
+  if (accessor.bufferView >= 0) {
+    if (static_cast<std::size_t>(accessor.bufferView) < model.bufferViews.size()) {
+      const auto& view = model.bufferViews[accessor.bufferView];
+      std::size_t stride = view.byteStride == 0 ? elementSize : view.byteStride;
+      if (view.byteStride != 0 && (view.byteStride < elementSize || view.byteStride % data.componentSize != 0))
+        fail(where, accessorIndex, "byteStride " + std::to_string(view.byteStride) + " does not fit " +
+                                       std::to_string(elementSize) + "-byte elements");
+      if (accessor.byteOffset % data.componentSize != 0)
+        fail(where, accessorIndex, "byteOffset " + std::to_string(accessor.byteOffset) + " is not a multiple of the component size");
+      const std::size_t span = stride * (data.count - 1) + elementSize;
+      const std::uint8_t* source = viewRange(model, accessor.bufferView, accessor.byteOffset, span, where, accessorIndex, "element");
+      for (std::size_t i = 0; i < data.count; ++i) std::memcpy(&data.bytes[i * elementSize], source + i * stride, elementSize);
+    } else {
+      fail(where, accessorIndex, "bufferView " + std::to_string(accessor.bufferView) + " does not exist");
+    }
+  }
+
+  if (accessor.sparse.isSparse) {
+    const auto& sparse = accessor.sparse;
+    if (sparse.count <= 0 || static_cast<std::size_t>(sparse.count) > data.count)
+      fail(where, accessorIndex, "sparse.count " + std::to_string(sparse.count) + " is not in 1.." + std::to_string(data.count));
+    const int indexType = sparse.indices.componentType;
+    const std::size_t indexSize = componentBytes(indexType);
+    if (indexType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE && indexType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT &&
+        indexType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT)
+      fail(where, accessorIndex, "sparse.indices.componentType must be an unsigned integer type");
+    const std::size_t sparseCount = static_cast<std::size_t>(sparse.count);
+    const std::uint8_t* indices = viewRange(model, sparse.indices.bufferView, static_cast<std::size_t>(sparse.indices.byteOffset),
+                                            sparseCount * indexSize, where, accessorIndex, "sparse index");
+    const std::uint8_t* values = viewRange(model, sparse.values.bufferView, static_cast<std::size_t>(sparse.values.byteOffset),
+                                           sparseCount * elementSize, where, accessorIndex, "sparse value");
+    for (std::size_t i = 0; i < sparseCount; ++i) {
+      const std::uint32_t target = readUnsigned(indices + i * indexSize, indexType);
+      if (target >= data.count)
+        fail(where, accessorIndex, "sparse index " + std::to_string(target) + " is out of range (count " + std::to_string(data.count) + ")");
+      std::memcpy(&data.bytes[target * elementSize], values + i * elementSize, elementSize);
+    }
+  }
+  return data;
+}
+
+std::vector<float> toFloats(const AccessorData& data) {
+  const std::size_t n = data.count * data.components;
+  std::vector<float> out(n);
+  const std::uint8_t* p = data.bytes.data();
+  for (std::size_t i = 0; i < n; ++i, p += data.componentSize) {
+    float value = 0;
+    switch (data.componentType) {
+      case TINYGLTF_COMPONENT_TYPE_FLOAT: std::memcpy(&value, p, 4); break;
+      case TINYGLTF_COMPONENT_TYPE_BYTE: {
+        const auto c = static_cast<std::int8_t>(*p);
+        value = data.normalized ? std::max(c / 127.0f, -1.0f) : c;
+        break;
+      }
+      case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: value = data.normalized ? *p / 255.0f : *p; break;
+      case TINYGLTF_COMPONENT_TYPE_SHORT: {
+        std::int16_t c;
+        std::memcpy(&c, p, 2);
+        value = data.normalized ? std::max(c / 32767.0f, -1.0f) : c;
+        break;
+      }
+      case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: {
+        std::uint16_t c;
+        std::memcpy(&c, p, 2);
+        value = data.normalized ? c / 65535.0f : c;
+        break;
+      }
+      case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT: {
+        std::uint32_t c;
+        std::memcpy(&c, p, 4);
+        value = static_cast<float>(c);
+        break;
+      }
+      default: break;
+    }
+    out[i] = value;
+  }
+  return out;
+}
+
+std::vector<std::uint32_t> toIndices(const AccessorData& data, std::size_t vertexCount, const std::string& where) {
+  if (data.type != TINYGLTF_TYPE_SCALAR ||
+      (data.componentType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE &&
+       data.componentType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT &&
+       data.componentType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT))
+    throw InputError(where + ": indices must be SCALAR of UNSIGNED_BYTE, UNSIGNED_SHORT or UNSIGNED_INT, not " +
+                     typeName(data.type) + " of " + componentTypeName(data.componentType));
+  std::vector<std::uint32_t> out(data.count);
+  for (std::size_t i = 0; i < data.count; ++i) {
+    out[i] = readUnsigned(&data.bytes[i * data.componentSize], data.componentType);
+    if (out[i] >= vertexCount)
+      throw InputError(where + ": index " + std::to_string(out[i]) + " at position " + std::to_string(i) +
+                       " is out of range (the primitive has " + std::to_string(vertexCount) + " vertices)");
+  }
+  return out;
+}
+
+}  // namespace tangent::gltf::detail

@@ -1,0 +1,40 @@
+// Decoding glTF accessors (glTF 2.0 spec, section 3.6 "Binary Data Storage"): byteStride,
+// normalized and plain integer components (KHR_mesh_quantization), sparse substitution,
+// accessors without a bufferView (zeros). Every bound is checked; errors name the accessor.
+#pragma once
+
+#include <tiny_gltf.h>
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace tangent::gltf::detail {
+
+// An accessor's elements, tightly packed, sparse values applied.
+struct AccessorData {
+  int componentType = 0;
+  int type = 0;
+  bool normalized = false;
+  int components = 0;
+  std::size_t componentSize = 0;
+  std::size_t count = 0;
+  std::vector<std::uint8_t> bytes;  // count * components * componentSize
+  std::size_t elementSize() const { return components * componentSize; }
+};
+
+int componentCount(int type);          // 0 when unknown
+std::size_t componentBytes(int componentType);  // 0 when unknown
+const char* typeName(int type);
+const char* componentTypeName(int componentType);
+
+// `where` prefixes every error message ("file.glb: mesh 0 primitive 0: NORMAL").
+AccessorData readAccessor(const tinygltf::Model& model, int accessorIndex, const std::string& where);
+
+// Element values as floats; normalized integers follow the spec's decoding (max(c / 127, -1)...).
+std::vector<float> toFloats(const AccessorData& data);
+
+// Index values; checks the component type is an unsigned integer and each value < vertexCount.
+std::vector<std::uint32_t> toIndices(const AccessorData& data, std::size_t vertexCount, const std::string& where);
+
+}  // namespace tangent::gltf::detail

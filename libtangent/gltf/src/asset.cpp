@@ -1,0 +1,139 @@
+#include "asset.hpp"
+
+#include <algorithm>
+#include <cstring>
+#include <fstream>
+#include <iterator>
+
+#include "tangent/gltf.hpp"
+
+namespace tangent::gltf::detail {
+namespace {
+
+constexpr std::uint32_t kGlbMagic = 0x46546C67;      // "glTF"
+constexpr std::uint32_t kChunkJson = 0x4E4F534A;     // "JSON"
+constexpr std::uint32_t kChunkBin = 0x004E4942;      // "BIN\0"
+
+std::uint32_t readU32(const std::uint8_t* p) {
+  std::uint32_t v;
+  std::memcpy(&v, p, 4);
+  return v;
+}
+
+void appendU32(std::vector<std::uint8_t>& out, std::uint32_t v) {
+  const auto* p = reinterpret_cast<const std::uint8_t*>(&v);
+  out.insert(out.end(), p, p + 4);
+}
+
+std::vector<std::uint8_t> readFileBytes(const std::filesystem::path& path) {
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(path, ec)) throw InputError(path.string() + ": no such file");
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw InputError(path.string() + ": cannot be opened for reading");
+  return std::vector<std::uint8_t>(std::istreambuf_iterator<char>(in), {});
+}
+
+bool noImageDecoding(tinygltf::Image*, const int, std::string*, std::string*, int, int, const unsigned char*, int, void*) {
+  return true;  // bake carries image bytes through untouched
+}
+
+}  // namespace
+
+bool isMeshFile(const std::filesystem::path& path) {
+  std::string ext = path.extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  return ext == ".obj" || ext == ".ply" || ext == ".off";
+}
+
+void splitGlb(std::span<const std::uint8_t> bytes, const std::string& label, std::string& json,
+              std::span<const std::uint8_t>& bin) {
+  if (bytes.size() < 20) throw InputError(label + ": GLB is truncated (" + std::to_string(bytes.size()) + " bytes)");
+  if (readU32(bytes.data()) != kGlbMagic) throw InputError(label + ": not a GLB file (bad magic)");
+  if (readU32(bytes.data() + 4) != 2) throw InputError(label + ": GLB version " + std::to_string(readU32(bytes.data() + 4)) + " is not 2");
+  const std::uint32_t length = readU32(bytes.data() + 8);
+  if (length > bytes.size()) throw InputError(label + ": GLB header says " + std::to_string(length) + " bytes, file has " + std::to_string(bytes.size()));
+  const std::uint32_t jsonLength = readU32(bytes.data() + 12);
+  if (readU32(bytes.data() + 16) != kChunkJson || jsonLength > length - 20)
+    throw InputError(label + ": GLB first chunk is not a valid JSON chunk");
+  json.assign(reinterpret_cast<const char*>(bytes.data() + 20), jsonLength);
+  bin = {};
+  const std::size_t next = 20 + static_cast<std::size_t>(jsonLength);
+  if (next + 8 <= length && readU32(bytes.data() + next + 4) == kChunkBin) {
+    const std::uint32_t binLength = readU32(bytes.data() + next);
+    if (binLength > length - next - 8) throw InputError(label + ": GLB BIN chunk overruns the file");
+    bin = bytes.subspan(next + 8, binLength);
+  }
+}
+
+std::vector<std::uint8_t> makeGlb(const std::string& json, std::span<const std::uint8_t> bin) {
+  const std::size_t jsonPadded = (json.size() + 3) & ~std::size_t(3);
+  const std::size_t binPadded = (bin.size() + 3) & ~std::size_t(3);
+  const std::size_t total = 12 + 8 + jsonPadded + (bin.empty() ? 0 : 8 + binPadded);
+  std::vector<std::uint8_t> out;
+  out.reserve(total);
+  appendU32(out, kGlbMagic);
+  appendU32(out, 2);
+  appendU32(out, static_cast<std::uint32_t>(total));
+  appendU32(out, static_cast<std::uint32_t>(jsonPadded));
+  appendU32(out, kChunkJson);
+  out.insert(out.end(), json.begin(), json.end());
+  out.resize(out.size() + jsonPadded - json.size(), ' ');
+  if (!bin.empty()) {
+    appendU32(out, static_cast<std::uint32_t>(binPadded));
+    appendU32(out, kChunkBin);
+    out.insert(out.end(), bin.begin(), bin.end());
+    out.resize(out.size() + binPadded - bin.size(), 0);
+  }
+  return out;
+}
+
+Asset loadAsset(const std::filesystem::path& path) {
+  Asset asset;
+  asset.path = path;
+  const std::string label = path.string();
+  std::vector<std::uint8_t> bytes;
+  if (isMeshFile(path)) {
+    if (!std::filesystem::is_regular_file(path)) throw InputError(label + ": no such file");
+    bytes = meshFileToGlb(path);
+    asset.fromMeshFile = true;
+  } else {
+    bytes = readFileBytes(path);
+  }
+  asset.binary = bytes.size() >= 4 && readU32(bytes.data()) == kGlbMagic;
+
+  std::string jsonText;
+  if (asset.binary) {
+    std::span<const std::uint8_t> bin;
+    splitGlb(bytes, label, jsonText, bin);
+  } else {
+    jsonText.assign(bytes.begin(), bytes.end());
+  }
+  try {
+    asset.json = nlohmann::ordered_json::parse(jsonText);
+  } catch (const nlohmann::json::exception& e) {
+    throw InputError(label + ": not valid glTF JSON: " + e.what());
+  }
+  if (!asset.json.is_object()) throw InputError(label + ": glTF JSON must be an object");
+
+  tinygltf::TinyGLTF loader;
+  loader.SetImageLoader(noImageDecoding, nullptr);
+  std::string err, warn;
+  const std::string baseDir = path.parent_path().string();
+  bool ok = false;
+  try {
+    ok = asset.binary ? loader.LoadBinaryFromMemory(&asset.model, &err, &warn, bytes.data(),
+                                                    static_cast<unsigned int>(bytes.size()), baseDir)
+                      : loader.LoadASCIIFromString(&asset.model, &err, &warn, jsonText.data(),
+                                                   static_cast<unsigned int>(jsonText.size()), baseDir);
+  } catch (const std::exception& e) {
+    err = e.what();
+  }
+  if (!ok) {
+    while (!err.empty() && (err.back() == '\n' || err.back() == ' ')) err.pop_back();
+    throw InputError(label + ": cannot be loaded: " + (err.empty() ? std::string("unknown tinygltf error") : err));
+  }
+  if (!warn.empty()) asset.warnings.push_back(label + ": " + warn);
+  return asset;
+}
+
+}  // namespace tangent::gltf::detail

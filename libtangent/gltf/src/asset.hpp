@@ -1,0 +1,39 @@
+// Loading an asset: the original JSON (kept for output, so nothing unmodelled is lost) and
+// tinygltf's model (buffers and accessors for decoding). Images are never decoded.
+#pragma once
+
+#include <tiny_gltf.h>
+
+#include <filesystem>
+#include <nlohmann/json.hpp>
+#include <span>
+#include <string>
+#include <vector>
+
+namespace tangent::gltf::detail {
+
+struct Asset {
+  std::filesystem::path path;   // the input file
+  bool binary = false;          // GLB container
+  bool fromMeshFile = false;    // converted from OBJ/PLY/OFF
+  nlohmann::ordered_json json;  // the document as read
+  tinygltf::Model model;
+  std::vector<std::string> warnings;
+};
+
+bool isMeshFile(const std::filesystem::path& path);  // .obj, .ply, .off
+
+// Throws InputError naming the file on anything unreadable or malformed.
+Asset loadAsset(const std::filesystem::path& path);
+
+// OBJ/PLY/OFF read through OpenMesh, returned as an in-memory GLB (mesh_file.cpp).
+std::vector<std::uint8_t> meshFileToGlb(const std::filesystem::path& path);
+
+// Parses a GLB container; returns the JSON chunk text and the BIN chunk (may be empty).
+void splitGlb(std::span<const std::uint8_t> bytes, const std::string& label, std::string& json,
+              std::span<const std::uint8_t>& bin);
+
+// Builds a GLB container.
+std::vector<std::uint8_t> makeGlb(const std::string& json, std::span<const std::uint8_t> bin);
+
+}  // namespace tangent::gltf::detail

@@ -1,0 +1,470 @@
+// `bake`: TANGENT for the primitives that need it (glTF 2.0 spec 3.7.2.1), vertices split where
+// the corners of one glTF vertex got different frames, every other attribute carried along.
+#include <algorithm>
+#include <bit>
+#include <cmath>
+#include <cstring>
+#include <numeric>
+#include <unordered_map>
+
+#include "accessors.hpp"
+#include "asset.hpp"
+#include "document.hpp"
+#include "primitive.hpp"
+#include "tangent/gltf.hpp"
+
+namespace tangent::gltf {
+namespace {
+
+using detail::AccessorData;
+using Json = nlohmann::ordered_json;
+
+std::vector<std::uint8_t> floatBytes(const std::vector<float>& values) {
+  std::vector<std::uint8_t> bytes(values.size() * sizeof(float));
+  std::memcpy(bytes.data(), values.data(), bytes.size());
+  return bytes;
+}
+
+int accessorOf(const Json& object, const std::string& name) {
+  auto it = object.find(name);
+  return it != object.end() && it->is_number_integer() ? it->get<int>() : -1;
+}
+
+// The values of a VEC2/VEC3 float-like accessor; checks type and count.
+std::vector<float> readVectors(const tinygltf::Model& model, int accessor, int components, std::size_t expectedCount,
+                               const std::string& where) {
+  const AccessorData data = detail::readAccessor(model, accessor, where);
+  if (data.components != components || data.type == TINYGLTF_TYPE_MAT2)
+    throw InputError(where + " (accessor " + std::to_string(accessor) + "): expected VEC" + std::to_string(components) +
+                     ", found " + detail::typeName(data.type));
+  if (expectedCount != 0 && data.count != expectedCount)
+    throw InputError(where + " (accessor " + std::to_string(accessor) + "): has " + std::to_string(data.count) +
+                     " elements, POSITION has " + std::to_string(expectedCount));
+  return detail::toFloats(data);
+}
+
+// KHR_texture_transform: uv' = T * R * S * uv. Rotation and scale change tangent directions.
+void applyTextureTransform(std::vector<float>& uvs, const Json& transform) {
+  double offset[2] = {0, 0}, scale[2] = {1, 1};
+  if (transform.contains("offset") && transform["offset"].size() == 2) {
+    offset[0] = transform["offset"][0].get<double>();
+    offset[1] = transform["offset"][1].get<double>();
+  }
+  if (transform.contains("scale") && transform["scale"].size() == 2) {
+    scale[0] = transform["scale"][0].get<double>();
+    scale[1] = transform["scale"][1].get<double>();
+  }
+  const double rotation = transform.value("rotation", 0.0);
+  const double c = std::cos(rotation), s = std::sin(rotation);
+  for (std::size_t i = 0; i + 1 < uvs.size(); i += 2) {
+    const double u = uvs[i] * scale[0], v = uvs[i + 1] * scale[1];
+    uvs[i] = static_cast<float>(c * u + s * v + offset[0]);
+    uvs[i + 1] = static_cast<float>(-s * u + c * v + offset[1]);
+  }
+}
+
+// Triangle list (3 vertex indices per triangle) from glTF modes 4, 5, 6 (spec 3.7.2.1).
+std::vector<std::uint32_t> triangleList(int mode, const std::vector<std::uint32_t>& vertices) {
+  std::vector<std::uint32_t> out;
+  if (mode == 4) {
+    out.assign(vertices.begin(), vertices.end() - static_cast<std::ptrdiff_t>(vertices.size() % 3));
+    return out;
+  }
+  for (std::size_t i = 0; i + 2 < vertices.size(); ++i) {
+    std::uint32_t a, b, c;
+    if (mode == 5) {
+      a = vertices[i];
+      b = vertices[i + 1 + i % 2];
+      c = vertices[i + 2 - i % 2];
+      if (a == b || b == c || a == c) continue;  // stitching triangles of joined strips draw nothing
+    } else {
+      a = vertices[i + 1];
+      b = vertices[i + 2];
+      c = vertices[0];
+    }
+    out.insert(out.end(), {a, b, c});
+  }
+  return out;
+}
+
+// "" when an existing TANGENT is valid, else what is wrong with it.
+std::string tangentProblem(const AccessorData& data) {
+  if (data.type != TINYGLTF_TYPE_VEC4) return std::string("type is ") + detail::typeName(data.type) + ", not VEC4";
+  double tolerance = 1e-3;
+  if (data.componentType == TINYGLTF_COMPONENT_TYPE_BYTE && data.normalized) tolerance = 2e-2;
+  else if (data.componentType == TINYGLTF_COMPONENT_TYPE_SHORT && data.normalized) tolerance = 2e-3;
+  else if (data.componentType != TINYGLTF_COMPONENT_TYPE_FLOAT)
+    return std::string("component type ") + detail::componentTypeName(data.componentType) + " is not allowed";
+  const std::vector<float> values = detail::toFloats(data);
+  for (std::size_t v = 0; v < data.count; ++v) {
+    const float* t = &values[4 * v];
+    if (!std::isfinite(t[0]) || !std::isfinite(t[1]) || !std::isfinite(t[2]) || !std::isfinite(t[3]))
+      return "vertex " + std::to_string(v) + " is not finite";
+    const double length = std::sqrt(double(t[0]) * t[0] + double(t[1]) * t[1] + double(t[2]) * t[2]);
+    if (std::abs(length - 1.0) > tolerance) return "vertex " + std::to_string(v) + " has |xyz| = " + std::to_string(length);
+    if (t[3] != 1.0f && t[3] != -1.0f) return "vertex " + std::to_string(v) + " has w = " + std::to_string(t[3]);
+  }
+  return "";
+}
+
+struct SplitKey {
+  std::uint32_t vertex;
+  std::uint32_t bits[4];
+  bool operator==(const SplitKey&) const = default;
+};
+struct SplitKeyHash {
+  std::size_t operator()(const SplitKey& k) const noexcept {
+    std::uint64_t h = k.vertex * 0x9E3779B97F4A7C15ull;
+    for (auto b : k.bits) h = (h ^ b) * 0x100000001B3ull;
+    return static_cast<std::size_t>(h);
+  }
+};
+
+// Output vertices: original ones keep their index (first frame seen), split copies follow.
+struct VertexSplit {
+  std::vector<std::uint32_t> source;      // original vertex of each output vertex
+  std::vector<std::int64_t> firstCorner;  // a corner of each output vertex, -1 if unused
+  std::vector<std::uint32_t> cornerVertex;
+  std::vector<float> tangents;            // 4 per output vertex
+};
+
+VertexSplit splitVertices(const std::vector<std::uint32_t>& corners, const std::vector<float>& cornerTangents,
+                          std::size_t vertexCount, const std::vector<float>& normals) {
+  VertexSplit split;
+  split.source.resize(vertexCount);
+  std::iota(split.source.begin(), split.source.end(), 0u);
+  split.firstCorner.assign(vertexCount, -1);
+  split.tangents.assign(vertexCount * 4, 0.0f);
+  split.cornerVertex.resize(corners.size());
+  std::unordered_map<SplitKey, std::uint32_t, SplitKeyHash> extra;
+  for (std::size_t c = 0; c < corners.size(); ++c) {
+    const std::uint32_t v = corners[c];
+    const float* t = &cornerTangents[4 * c];
+    SplitKey key{v, {}};
+    for (int i = 0; i < 4; ++i) key.bits[i] = std::bit_cast<std::uint32_t>(t[i]);
+    if (split.firstCorner[v] < 0) {
+      split.firstCorner[v] = static_cast<std::int64_t>(c);
+      std::copy(t, t + 4, &split.tangents[4 * v]);
+      split.cornerVertex[c] = v;
+      continue;
+    }
+    if (std::memcmp(t, &split.tangents[4 * v], 4 * sizeof(float)) == 0) {
+      split.cornerVertex[c] = v;
+      continue;
+    }
+    auto [it, inserted] = extra.try_emplace(key, static_cast<std::uint32_t>(split.source.size()));
+    if (inserted) {
+      split.source.push_back(v);
+      split.firstCorner.push_back(static_cast<std::int64_t>(c));
+      split.tangents.insert(split.tangents.end(), t, t + 4);
+    }
+    split.cornerVertex[c] = it->second;
+  }
+  // Vertices no triangle uses still need a valid tangent: any unit vector orthogonal to N.
+  for (std::size_t v = 0; v < vertexCount; ++v) {
+    if (split.firstCorner[v] >= 0) continue;
+    const double n[3] = {normals[3 * v], normals[3 * v + 1], normals[3 * v + 2]};
+    const bool alongX = std::abs(n[0]) > 0.9 || !std::isfinite(n[0] + n[1] + n[2]);
+    const double axis[3] = {alongX ? 0.0 : 1.0, alongX ? 1.0 : 0.0, 0.0};
+    double t[3] = {axis[0], axis[1], axis[2]};
+    const double len2 = n[0] * n[0] + n[1] * n[1] + n[2] * n[2];
+    if (std::isfinite(len2) && len2 > 0) {
+      const double d = (n[0] * axis[0] + n[1] * axis[1] + n[2] * axis[2]) / len2;
+      for (int i = 0; i < 3; ++i) t[i] = axis[i] - d * n[i];
+    }
+    const double length = std::sqrt(t[0] * t[0] + t[1] * t[1] + t[2] * t[2]);
+    for (int i = 0; i < 3; ++i) split.tangents[4 * v + i] = static_cast<float>(t[i] / length);
+    split.tangents[4 * v + 3] = 1.0f;
+  }
+  return split;
+}
+
+std::vector<std::uint8_t> gather(const AccessorData& data, const std::vector<std::uint32_t>& source) {
+  const std::size_t size = data.elementSize();
+  std::vector<std::uint8_t> out(source.size() * size);
+  for (std::size_t i = 0; i < source.size(); ++i) std::memcpy(&out[i * size], &data.bytes[source[i] * size], size);
+  return out;
+}
+
+// Accessor JSON for carried data: type, component type, normalization, min/max, name kept.
+Json carriedAccessor(const Json& original, std::size_t count) {
+  Json accessor = Json::object();
+  for (const char* key : {"componentType", "normalized", "type", "min", "max", "name", "extras", "extensions"}) {
+    if (original.contains(key)) accessor[key] = original[key];
+  }
+  accessor["count"] = count;
+  return accessor;
+}
+
+Json floatAccessor(std::size_t count, const char* type) {
+  return Json{{"componentType", TINYGLTF_COMPONENT_TYPE_FLOAT}, {"count", count}, {"type", type}};
+}
+
+class PrimitiveBaker {
+ public:
+  PrimitiveBaker(detail::Asset& asset, detail::OutputDocument& output, const BakeOptions& options)
+      : asset_(asset), output_(output), options_(options) {}
+
+  PrimitiveResult bake(int meshIndex, int primitiveIndex);
+
+ private:
+  detail::Asset& asset_;
+  detail::OutputDocument& output_;
+  const BakeOptions& options_;
+};
+
+PrimitiveResult PrimitiveBaker::bake(int meshIndex, int primitiveIndex) {
+  Json& doc = output_.json();
+  Json& primitive = doc["meshes"][meshIndex]["primitives"][primitiveIndex];
+  const tinygltf::Model& model = asset_.model;
+  const std::string where = asset_.path.string() + ": " + detail::primitiveLabel(doc, meshIndex, primitiveIndex);
+
+  PrimitiveResult result;
+  result.mesh = meshIndex;
+  result.primitive = primitiveIndex;
+  if (doc["meshes"][meshIndex].contains("name")) result.meshName = doc["meshes"][meshIndex]["name"].get<std::string>();
+  result.action = "skipped";
+
+  const detail::PrimitiveNeeds needs = detail::primitiveNeeds(doc, primitive, options_.all || asset_.fromMeshFile);
+  result.reason = needs.why;
+  if (!needs.triangles || needs.compressed || needs.texCoord < 0) return result;
+  result.texCoord = needs.texCoord;
+  if (!primitive.contains("attributes") || !primitive["attributes"].is_object())
+    throw InputError(where + ": has no attributes object");
+  Json& attributes = primitive["attributes"];
+  const int positionAccessor = accessorOf(attributes, "POSITION");
+  const int normalAccessor = accessorOf(attributes, "NORMAL");
+  const std::string uvName = "TEXCOORD_" + std::to_string(needs.texCoord);
+  const int uvAccessor = accessorOf(attributes, uvName);
+  if (positionAccessor < 0) throw InputError(where + ": has no POSITION attribute");
+  if (normalAccessor < 0) {
+    result.reason = "no NORMAL attribute; tangents need normals, primitive left as it is";
+    return result;
+  }
+  if (uvAccessor < 0) {
+    result.reason = needs.why + ", but the primitive has no " + uvName + "; left as it is";
+    return result;
+  }
+  const int existingTangent = accessorOf(attributes, "TANGENT");
+  if (existingTangent >= 0) {
+    const std::string problem = tangentProblem(detail::readAccessor(model, existingTangent, where + ": TANGENT"));
+    if (problem.empty() && !options_.overwrite) {
+      result.action = "kept";
+      result.reason = "valid TANGENT present (use --overwrite to recompute)";
+      return result;
+    }
+    result.reason = problem.empty() ? "TANGENT recomputed (--overwrite)" : "existing TANGENT invalid (" + problem + "); recomputed";
+  }
+
+  const AccessorData positionData = detail::readAccessor(model, positionAccessor, where + ": POSITION");
+  if (positionData.components != 3 || positionData.type != TINYGLTF_TYPE_VEC3)
+    throw InputError(where + ": POSITION (accessor " + std::to_string(positionAccessor) + ") must be VEC3, found " +
+                     detail::typeName(positionData.type));
+  const std::size_t vertexCount = positionData.count;
+  const std::vector<float> positions = detail::toFloats(positionData);
+  const std::vector<float> normals = readVectors(model, normalAccessor, 3, vertexCount, where + ": NORMAL");
+  std::vector<float> uvs = readVectors(model, uvAccessor, 2, vertexCount, where + ": " + uvName);
+  if (needs.hasNormalTexture) {
+    const Json& material = doc["materials"][primitive["material"].get<int>()];
+    const Json& normalTexture = material["normalTexture"];
+    if (normalTexture.contains("extensions") && normalTexture["extensions"].contains("KHR_texture_transform"))
+      applyTextureTransform(uvs, normalTexture["extensions"]["KHR_texture_transform"]);
+  }
+
+  const int mode = primitive.value("mode", 4);
+  std::vector<std::uint32_t> sequence;
+  const int indicesAccessor = accessorOf(primitive, "indices");
+  int indexComponentType = TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT;
+  if (indicesAccessor >= 0) {
+    const AccessorData indexData = detail::readAccessor(model, indicesAccessor, where + ": indices");
+    sequence = detail::toIndices(indexData, vertexCount, where + ": indices (accessor " + std::to_string(indicesAccessor) + ")");
+    indexComponentType = indexData.componentType;
+  } else {
+    sequence.resize(vertexCount);
+    std::iota(sequence.begin(), sequence.end(), 0u);
+  }
+  const std::vector<std::uint32_t> corners = triangleList(mode, sequence);
+  if (corners.empty()) {
+    result.reason = "primitive has no triangles; left as it is";
+    return result;
+  }
+
+  std::vector<float> cornerTangents(corners.size() * 4);
+  Options coreOptions = options_.tangents;
+  coreOptions.uvOrigin = UvOrigin::topLeft;
+  result.tangents = computeCornerTangents({positions, normals, uvs, corners}, cornerTangents, coreOptions);
+  VertexSplit split = splitVertices(corners, cornerTangents, vertexCount, normals);
+  result.verticesIn = vertexCount;
+  result.verticesOut = split.source.size();
+  const bool rebuild = split.source.size() != vertexCount || mode != 4;
+
+  // Morph targets get TANGENT deltas: tangents of the morphed shape minus the base ones.
+  std::vector<std::vector<float>> targetTangentDeltas;
+  if (primitive.contains("targets") && primitive["targets"].is_array()) {
+    for (std::size_t t = 0; t < primitive["targets"].size(); ++t) {
+      const Json& target = primitive["targets"][t];
+      const std::string targetWhere = where + ": target " + std::to_string(t);
+      std::vector<float> morphedPositions = positions, morphedNormals = normals;
+      const int deltaPosition = accessorOf(target, "POSITION");
+      const int deltaNormal = accessorOf(target, "NORMAL");
+      if (deltaPosition >= 0) {
+        const auto delta = readVectors(model, deltaPosition, 3, vertexCount, targetWhere + " POSITION");
+        for (std::size_t i = 0; i < delta.size(); ++i) morphedPositions[i] += delta[i];
+      }
+      if (deltaNormal >= 0) {
+        const auto delta = readVectors(model, deltaNormal, 3, vertexCount, targetWhere + " NORMAL");
+        for (std::size_t i = 0; i < delta.size(); ++i) morphedNormals[i] += delta[i];
+      }
+      std::vector<float> morphedTangents(corners.size() * 4);
+      computeCornerTangents({morphedPositions, morphedNormals, uvs, corners}, morphedTangents, coreOptions);
+      std::vector<float> deltas(split.source.size() * 3, 0.0f);
+      for (std::size_t v = 0; v < split.source.size(); ++v) {
+        if (split.firstCorner[v] < 0) continue;
+        const float* morphed = &morphedTangents[4 * split.firstCorner[v]];
+        for (int i = 0; i < 3; ++i) deltas[3 * v + i] = morphed[i] - split.tangents[4 * v + i];
+      }
+      targetTangentDeltas.push_back(std::move(deltas));
+    }
+  }
+
+  const std::size_t outCount = split.source.size();
+  if (rebuild) {
+    for (auto& [name, accessorRef] : attributes.items()) {
+      if (name == "TANGENT") continue;
+      const int index = accessorRef.get<int>();
+      const AccessorData data = detail::readAccessor(model, index, where + ": " + name);
+      if (data.count != vertexCount)
+        throw InputError(where + ": " + name + " (accessor " + std::to_string(index) + ") has " + std::to_string(data.count) +
+                         " elements, POSITION has " + std::to_string(vertexCount));
+      accessorRef = output_.addAccessor(carriedAccessor(doc["accessors"][index], outCount), gather(data, split.source),
+                                        detail::kArrayBuffer);
+    }
+    if (primitive.contains("targets")) {
+      for (std::size_t t = 0; t < primitive["targets"].size(); ++t) {
+        for (auto& [name, accessorRef] : primitive["targets"][t].items()) {
+          if (name == "TANGENT" || !accessorRef.is_number_integer()) continue;
+          const int index = accessorRef.get<int>();
+          const AccessorData data = detail::readAccessor(model, index, where + ": target " + std::to_string(t) + " " + name);
+          if (data.count != vertexCount)
+            throw InputError(where + ": target " + std::to_string(t) + " " + name + " has " + std::to_string(data.count) +
+                             " elements, POSITION has " + std::to_string(vertexCount));
+          accessorRef = output_.addAccessor(carriedAccessor(doc["accessors"][index], outCount), gather(data, split.source),
+                                            detail::kArrayBuffer);
+        }
+      }
+    }
+    // Indices: the original component type, widened when the split outgrows it (the largest
+    // value of each type is primitive restart and not allowed).
+    if (outCount - 1 >= 255 && indexComponentType == TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE)
+      indexComponentType = TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT;
+    if (outCount - 1 >= 65535 && indexComponentType == TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT)
+      indexComponentType = TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT;
+    const std::size_t indexSize = detail::componentBytes(indexComponentType);
+    std::vector<std::uint8_t> indexBytes(split.cornerVertex.size() * indexSize);
+    for (std::size_t c = 0; c < split.cornerVertex.size(); ++c) {
+      const std::uint32_t value = split.cornerVertex[c];
+      if (indexSize == 1) indexBytes[c] = static_cast<std::uint8_t>(value);
+      else if (indexSize == 2) {
+        const auto v16 = static_cast<std::uint16_t>(value);
+        std::memcpy(&indexBytes[2 * c], &v16, 2);
+      } else std::memcpy(&indexBytes[4 * c], &value, 4);
+    }
+    Json indexAccessor = {{"componentType", indexComponentType}, {"count", split.cornerVertex.size()}, {"type", "SCALAR"}};
+    primitive["indices"] = output_.addAccessor(indexAccessor, std::move(indexBytes), detail::kElementArrayBuffer);
+    if (primitive.contains("mode")) primitive["mode"] = 4;
+  }
+  attributes["TANGENT"] = output_.addAccessor(floatAccessor(outCount, "VEC4"), floatBytes(split.tangents), detail::kArrayBuffer);
+  for (std::size_t t = 0; t < targetTangentDeltas.size(); ++t) {
+    primitive["targets"][t]["TANGENT"] =
+        output_.addAccessor(floatAccessor(outCount, "VEC3"), floatBytes(targetTangentDeltas[t]), detail::kArrayBuffer);
+  }
+  result.action = "baked";
+  if (existingTangent < 0) result.reason = needs.why;
+  return result;
+}
+
+}  // namespace
+
+std::filesystem::path outputPathFor(const std::filesystem::path& input, const std::filesystem::path& outputDir) {
+  std::filesystem::path name = input.filename();
+  if (detail::isMeshFile(input)) name.replace_extension(".glb");
+  return outputDir / name;
+}
+
+BakeResult bakeFile(const std::filesystem::path& input, const std::filesystem::path& output, const BakeOptions& options) {
+  namespace fs = std::filesystem;
+  const std::string outExt = output.extension().string();
+  if (outExt != ".glb" && outExt != ".gltf")
+    throw InputError(output.string() + ": output must end in .glb or .gltf");
+  std::error_code ec;
+  if (fs::exists(output, ec) && fs::equivalent(input, output, ec))
+    throw InputError(output.string() + ": is the input file; bake never writes to its input");
+
+  detail::Asset asset = detail::loadAsset(input);
+  for (const char* list : {"extensionsRequired", "extensionsUsed"}) {
+    if (!asset.json.contains(list)) continue;
+    for (const auto& name : asset.json[list]) {
+      if (name == "EXT_meshopt_compression" || name == "KHR_meshopt_compression")
+        throw InputError(input.string() + ": uses " + name.get<std::string>() + "; decompress it before baking");
+    }
+  }
+  fs::path binPath = output;
+  binPath.replace_extension(".bin");
+  for (const fs::path& used : detail::referencedFiles(asset)) {
+    if ((outExt == ".gltf" && fs::exists(used, ec) && fs::exists(binPath, ec) && fs::equivalent(used, binPath, ec)) ||
+        (fs::exists(used, ec) && fs::exists(output, ec) && fs::equivalent(used, output, ec)))
+      throw InputError(output.string() + ": would overwrite " + used.string() + ", which the input uses");
+  }
+
+  BakeResult result;
+  result.warnings = asset.warnings;
+  detail::OutputDocument document(asset);
+  PrimitiveBaker baker(asset, document, options);
+  Json& doc = document.json();
+  const std::size_t meshCount = doc.contains("meshes") ? doc["meshes"].size() : 0;
+  for (std::size_t m = 0; m < meshCount; ++m) {
+    if (!doc["meshes"][m].contains("primitives")) continue;
+    const std::size_t primitiveCount = doc["meshes"][m]["primitives"].size();
+    for (std::size_t p = 0; p < primitiveCount; ++p) {
+      result.primitives.push_back(baker.bake(static_cast<int>(m), static_cast<int>(p)));
+    }
+  }
+  result.bytesWritten = document.write(output);
+  return result;
+}
+
+nlohmann::ordered_json toJson(const Report& report) {
+  return Json{{"method", report.method},
+              {"weighting", report.weighting},
+              {"triangles", report.triangles},
+              {"corners", report.corners},
+              {"degenerateTriangles", report.degenerateTriangles},
+              {"zeroUvAreaTriangles", report.zeroUvAreaTriangles},
+              {"nonFiniteTriangles", report.nonFiniteTriangles},
+              {"mirroredCorners", report.mirroredCorners},
+              {"splitVertices", report.splitVertices},
+              {"nonManifoldFaces", report.nonManifoldFaces},
+              {"invalidNormals", report.invalidNormals},
+              {"fallbackFromNeighbours", report.fallbackFromNeighbours},
+              {"fallbackFixed", report.fallbackFixed}};
+}
+
+nlohmann::ordered_json toJson(const BakeResult& result) {
+  Json primitives = Json::array();
+  for (const PrimitiveResult& p : result.primitives) {
+    Json entry = {{"mesh", p.mesh}, {"meshName", p.meshName}, {"primitive", p.primitive},
+                  {"action", p.action}, {"reason", p.reason}};
+    if (p.texCoord >= 0) entry["texCoord"] = p.texCoord;
+    if (p.action == "baked") {
+      entry["verticesIn"] = p.verticesIn;
+      entry["verticesOut"] = p.verticesOut;
+      entry["tangents"] = toJson(p.tangents);
+    }
+    primitives.push_back(entry);
+  }
+  Json warnings = Json::array();
+  for (const auto& w : result.warnings) warnings.push_back(w);
+  return Json{{"primitives", primitives}, {"warnings", warnings}, {"bytesWritten", result.bytesWritten}};
+}
+
+}  // namespace tangent::gltf

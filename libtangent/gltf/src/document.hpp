@@ -1,0 +1,53 @@
+// Editing a glTF document for output: new accessors appended, then on finish the accessors and
+// bufferViews the edit orphaned are dropped, every reference renumbered, and all surviving
+// buffer data packed into one buffer (the GLB BIN chunk or one .bin file).
+#pragma once
+
+#include <filesystem>
+#include <nlohmann/json.hpp>
+#include <set>
+#include <span>
+#include <vector>
+
+#include "asset.hpp"
+
+namespace tangent::gltf::detail {
+
+constexpr int kArrayBuffer = 34962;
+constexpr int kElementArrayBuffer = 34963;
+
+class OutputDocument {
+ public:
+  explicit OutputDocument(Asset& asset);
+
+  nlohmann::ordered_json& json() { return asset_.json; }
+
+  // Appends an accessor (its JSON without bufferView/byteOffset) stored in a new bufferView.
+  int addAccessor(nlohmann::ordered_json accessor, std::vector<std::uint8_t> bytes, int target);
+
+  // Writes `output` (.glb, or .gltf plus a .bin beside it) atomically; returns bytes written.
+  std::uint64_t write(const std::filesystem::path& output);
+
+ private:
+  void dropOrphans();
+  std::vector<std::uint8_t> packBuffers();
+  void rebaseUris(const std::filesystem::path& outputDir);
+
+  Asset& asset_;
+  std::set<int> accessorsBefore_;
+  std::set<int> bufferViewsBefore_;
+  std::vector<std::vector<std::uint8_t>> newViewBytes_;  // data of bufferViews added by us
+  std::size_t firstNewView_ = 0;
+};
+
+// Visits every place the document references an accessor / a bufferView by index.
+void forEachAccessorRef(nlohmann::ordered_json& doc, const std::function<void(nlohmann::ordered_json&)>& visit);
+void forEachBufferViewRef(nlohmann::ordered_json& doc, const std::function<void(nlohmann::ordered_json&)>& visit);
+
+// Writes bytes to a temporary file beside `path`, then renames it over `path`.
+void writeFileAtomic(const std::filesystem::path& path, std::span<const std::uint8_t> bytes);
+
+// Files the document reads besides itself (external buffers and images), absolute.
+std::vector<std::filesystem::path> referencedFiles(const Asset& asset);
+
+}  // namespace tangent::gltf::detail

@@ -1,0 +1,330 @@
+#include <unistd.h>
+
+#include <atomic>
+#include <cstdio>
+#include <fstream>
+#include <functional>
+#include <map>
+
+#include "document.hpp"
+#include "tangent/gltf.hpp"
+
+namespace tangent::gltf::detail {
+
+using Json = nlohmann::ordered_json;
+
+namespace {
+
+void visitIfIndex(Json& parent, const char* key, const std::function<void(Json&)>& visit) {
+  if (parent.is_object()) {
+    auto it = parent.find(key);
+    if (it != parent.end() && it->is_number_integer()) visit(*it);
+  }
+}
+
+void visitValuesOf(Json& object, const std::function<void(Json&)>& visit) {
+  if (!object.is_object()) return;
+  for (auto& [name, value] : object.items()) {
+    if (value.is_number_integer()) visit(value);
+  }
+}
+
+// "bufferView" keys anywhere inside an extensions object (e.g. KHR_draco_mesh_compression).
+void visitExtensionBufferViews(Json& node, bool insideExtensions, const std::function<void(Json&)>& visit) {
+  if (node.is_object()) {
+    for (auto& [key, value] : node.items()) {
+      if (insideExtensions && key == "bufferView" && value.is_number_integer()) visit(value);
+      else visitExtensionBufferViews(value, insideExtensions || key == "extensions", visit);
+    }
+  } else if (node.is_array()) {
+    for (auto& value : node) visitExtensionBufferViews(value, insideExtensions, visit);
+  }
+}
+
+std::string percentEncodePath(const std::string& path) {
+  static const char* hex = "0123456789ABCDEF";
+  std::string out;
+  for (unsigned char c : path) {
+    if (std::isalnum(c) || std::string_view("-._~/!$&'()*+,;=:@").find(static_cast<char>(c)) != std::string_view::npos) {
+      out += static_cast<char>(c);
+    } else {
+      out += '%';
+      out += hex[c >> 4];
+      out += hex[c & 15];
+    }
+  }
+  return out;
+}
+
+std::string percentDecode(const std::string& uri) {
+  std::string out;
+  for (std::size_t i = 0; i < uri.size(); ++i) {
+    if (uri[i] == '%' && i + 2 < uri.size() && std::isxdigit(static_cast<unsigned char>(uri[i + 1])) &&
+        std::isxdigit(static_cast<unsigned char>(uri[i + 2]))) {
+      out += static_cast<char>(std::stoi(uri.substr(i + 1, 2), nullptr, 16));
+      i += 2;
+    } else {
+      out += uri[i];
+    }
+  }
+  return out;
+}
+
+bool isRelativeFileUri(const std::string& uri) {
+  return !uri.empty() && uri.rfind("data:", 0) != 0 && uri.find("://") == std::string::npos && uri.front() != '/';
+}
+
+std::set<int> collect(Json& doc, void (*walker)(Json&, const std::function<void(Json&)>&)) {
+  std::set<int> found;
+  walker(doc, [&](Json& ref) { found.insert(ref.get<int>()); });
+  return found;
+}
+
+// Drops array entries whose index is in `orphans` and renumbers the references.
+void dropAndRenumber(Json& doc, const char* arrayName, const std::set<int>& orphans,
+                     void (*walker)(Json&, const std::function<void(Json&)>&)) {
+  if (orphans.empty() || !doc.contains(arrayName)) return;
+  Json& array = doc[arrayName];
+  std::vector<int> newIndex(array.size(), -1);
+  Json kept = Json::array();
+  for (std::size_t i = 0; i < array.size(); ++i) {
+    if (orphans.count(static_cast<int>(i))) continue;
+    newIndex[i] = static_cast<int>(kept.size());
+    kept.push_back(std::move(array[i]));
+  }
+  array = std::move(kept);
+  walker(doc, [&](Json& ref) {
+    const int old = ref.get<int>();
+    if (old >= 0 && old < static_cast<int>(newIndex.size())) ref = newIndex[old];
+  });
+}
+
+}  // namespace
+
+void forEachAccessorRef(Json& doc, const std::function<void(Json&)>& visit) {
+  if (doc.contains("meshes")) {
+    for (auto& mesh : doc["meshes"]) {
+      if (!mesh.contains("primitives")) continue;
+      for (auto& primitive : mesh["primitives"]) {
+        if (primitive.contains("attributes")) visitValuesOf(primitive["attributes"], visit);
+        visitIfIndex(primitive, "indices", visit);
+        if (primitive.contains("targets")) {
+          for (auto& target : primitive["targets"]) visitValuesOf(target, visit);
+        }
+      }
+    }
+  }
+  if (doc.contains("skins")) {
+    for (auto& skin : doc["skins"]) visitIfIndex(skin, "inverseBindMatrices", visit);
+  }
+  if (doc.contains("animations")) {
+    for (auto& animation : doc["animations"]) {
+      if (!animation.contains("samplers")) continue;
+      for (auto& sampler : animation["samplers"]) {
+        visitIfIndex(sampler, "input", visit);
+        visitIfIndex(sampler, "output", visit);
+      }
+    }
+  }
+  if (doc.contains("nodes")) {
+    for (auto& node : doc["nodes"]) {
+      if (node.contains("extensions") && node["extensions"].contains("EXT_mesh_gpu_instancing")) {
+        auto& instancing = node["extensions"]["EXT_mesh_gpu_instancing"];
+        if (instancing.contains("attributes")) visitValuesOf(instancing["attributes"], visit);
+      }
+    }
+  }
+}
+
+void forEachBufferViewRef(Json& doc, const std::function<void(Json&)>& visit) {
+  if (doc.contains("accessors")) {
+    for (auto& accessor : doc["accessors"]) {
+      visitIfIndex(accessor, "bufferView", visit);
+      if (accessor.contains("sparse")) {
+        auto& sparse = accessor["sparse"];
+        if (sparse.contains("indices")) visitIfIndex(sparse["indices"], "bufferView", visit);
+        if (sparse.contains("values")) visitIfIndex(sparse["values"], "bufferView", visit);
+      }
+    }
+  }
+  if (doc.contains("images")) {
+    for (auto& image : doc["images"]) visitIfIndex(image, "bufferView", visit);
+  }
+  visitExtensionBufferViews(doc, false, visit);
+}
+
+OutputDocument::OutputDocument(Asset& asset) : asset_(asset) {
+  accessorsBefore_ = collect(asset_.json, forEachAccessorRef);
+  bufferViewsBefore_ = collect(asset_.json, forEachBufferViewRef);
+  firstNewView_ = asset_.json.contains("bufferViews") ? asset_.json["bufferViews"].size() : 0;
+}
+
+int OutputDocument::addAccessor(Json accessor, std::vector<std::uint8_t> bytes, int target) {
+  Json& doc = asset_.json;
+  if (!doc.contains("bufferViews")) doc["bufferViews"] = Json::array();
+  if (!doc.contains("accessors")) doc["accessors"] = Json::array();
+  Json view = Json::object();
+  view["buffer"] = 0;
+  view["byteLength"] = bytes.size();
+  if (target != 0) view["target"] = target;
+  const int viewIndex = static_cast<int>(doc["bufferViews"].size());
+  doc["bufferViews"].push_back(std::move(view));
+  newViewBytes_.push_back(std::move(bytes));
+  Json placed = Json::object();
+  placed["bufferView"] = viewIndex;
+  for (auto& [key, value] : accessor.items()) placed[key] = value;
+  doc["accessors"].push_back(std::move(placed));
+  return static_cast<int>(doc["accessors"].size()) - 1;
+}
+
+void OutputDocument::dropOrphans() {
+  Json& doc = asset_.json;
+  const std::set<int> accessorsAfter = collect(doc, forEachAccessorRef);
+  std::set<int> orphanAccessors;
+  for (int a : accessorsBefore_) {
+    if (!accessorsAfter.count(a)) orphanAccessors.insert(a);
+  }
+  dropAndRenumber(doc, "accessors", orphanAccessors, forEachAccessorRef);
+
+  const std::set<int> viewsAfter = collect(doc, forEachBufferViewRef);
+  std::set<int> orphanViews;
+  for (int v : bufferViewsBefore_) {
+    if (!viewsAfter.count(v)) orphanViews.insert(v);
+  }
+  // Keep our bookkeeping of new views in step with the renumbering.
+  std::size_t droppedBeforeNew = 0;
+  for (int v : orphanViews) {
+    if (static_cast<std::size_t>(v) < firstNewView_) ++droppedBeforeNew;
+  }
+  dropAndRenumber(doc, "bufferViews", orphanViews, forEachBufferViewRef);
+  firstNewView_ -= droppedBeforeNew;
+}
+
+std::vector<std::uint8_t> OutputDocument::packBuffers() {
+  Json& doc = asset_.json;
+  std::vector<std::uint8_t> packed;
+  if (!doc.contains("bufferViews")) return packed;
+  Json& views = doc["bufferViews"];
+  const auto& buffers = asset_.model.buffers;
+  for (std::size_t i = 0; i < views.size(); ++i) {
+    Json& view = views[i];
+    const std::uint8_t* source = nullptr;
+    std::size_t length = 0;
+    std::size_t alignTo = 0;  // keep the old offset modulo 4 so accessor alignment survives
+    if (i >= firstNewView_) {
+      const auto& bytes = newViewBytes_[i - firstNewView_];
+      source = bytes.data();
+      length = bytes.size();
+    } else {
+      const int bufferIndex = view.value("buffer", 0);
+      const std::size_t offset = view.value("byteOffset", std::size_t(0));
+      length = view.value("byteLength", std::size_t(0));
+      if (bufferIndex < 0 || bufferIndex >= static_cast<int>(buffers.size()) ||
+          offset + length > buffers[bufferIndex].data.size())
+        throw InputError(asset_.path.string() + ": bufferView " + std::to_string(i) + " lies outside its buffer");
+      source = buffers[bufferIndex].data.data() + offset;
+      alignTo = offset % 4;
+    }
+    while (packed.size() % 4 != alignTo) packed.push_back(0);
+    view["buffer"] = 0;
+    if (packed.size() == 0) view.erase("byteOffset");
+    else view["byteOffset"] = packed.size();
+    packed.insert(packed.end(), source, source + length);
+  }
+  while (packed.size() % 4 != 0) packed.push_back(0);
+
+  Json buffer = doc.contains("buffers") && !doc["buffers"].empty() ? doc["buffers"][0] : Json::object();
+  buffer.erase("uri");
+  buffer["byteLength"] = packed.size();
+  doc["buffers"] = Json::array({buffer});
+  if (views.empty()) {
+    doc.erase("bufferViews");
+    doc.erase("buffers");
+  }
+  return packed;
+}
+
+void OutputDocument::rebaseUris(const std::filesystem::path& outputDir) {
+  namespace fs = std::filesystem;
+  const fs::path inputDir = fs::absolute(asset_.path).parent_path();
+  std::error_code ec;
+  if (fs::equivalent(inputDir, outputDir, ec)) return;
+  Json& doc = asset_.json;
+  if (!doc.contains("images")) return;
+  for (auto& image : doc["images"]) {
+    if (!image.contains("uri") || !image["uri"].is_string()) continue;
+    const std::string uri = image["uri"].get<std::string>();
+    if (!isRelativeFileUri(uri)) continue;
+    const fs::path target = (inputDir / percentDecode(uri)).lexically_normal();
+    image["uri"] = percentEncodePath(target.lexically_relative(outputDir).generic_string());
+  }
+}
+
+std::uint64_t OutputDocument::write(const std::filesystem::path& output) {
+  namespace fs = std::filesystem;
+  dropOrphans();
+  std::vector<std::uint8_t> bin = packBuffers();
+  const fs::path outputDir = fs::absolute(output).parent_path();
+  rebaseUris(outputDir);
+  const bool glb = output.extension() == ".glb";
+  Json& doc = asset_.json;
+  if (glb) {
+    const std::vector<std::uint8_t> bytes = makeGlb(doc.dump(), bin);
+    writeFileAtomic(output, bytes);
+    return bytes.size();
+  }
+  std::uint64_t written = 0;
+  if (!bin.empty()) {
+    fs::path binPath = output;
+    binPath.replace_extension(".bin");
+    doc["buffers"][0]["uri"] = percentEncodePath(binPath.filename().string());
+    writeFileAtomic(binPath, bin);
+    written += bin.size();
+  }
+  const std::string text = doc.dump(2) + "\n";
+  writeFileAtomic(output, std::span(reinterpret_cast<const std::uint8_t*>(text.data()), text.size()));
+  return written + text.size();
+}
+
+void writeFileAtomic(const std::filesystem::path& path, std::span<const std::uint8_t> bytes) {
+  namespace fs = std::filesystem;
+  static std::atomic<unsigned> counter{0};
+  const fs::path temp = path.parent_path() / ("." + path.filename().string() + ".tmp-" + std::to_string(::getpid()) + "-" +
+                                              std::to_string(counter++));
+  {
+    std::ofstream out(temp, std::ios::binary | std::ios::trunc);
+    if (!out) throw std::runtime_error(path.string() + ": cannot create " + temp.string());
+    out.write(reinterpret_cast<const char*>(bytes.data()), static_cast<std::streamsize>(bytes.size()));
+    out.flush();
+    if (!out) {
+      out.close();
+      std::error_code ec;
+      fs::remove(temp, ec);
+      throw std::runtime_error(path.string() + ": write failed");
+    }
+  }
+  std::error_code ec;
+  fs::rename(temp, path, ec);
+  if (ec) {
+    std::error_code ignored;
+    fs::remove(temp, ignored);
+    throw std::runtime_error(path.string() + ": cannot rename temporary file into place: " + ec.message());
+  }
+}
+
+std::vector<std::filesystem::path> referencedFiles(const Asset& asset) {
+  namespace fs = std::filesystem;
+  std::vector<fs::path> files;
+  const fs::path dir = fs::absolute(asset.path).parent_path();
+  for (const char* kind : {"buffers", "images"}) {
+    if (!asset.json.contains(kind)) continue;
+    for (const auto& item : asset.json[kind]) {
+      if (!item.contains("uri") || !item["uri"].is_string()) continue;
+      const std::string uri = item["uri"].get<std::string>();
+      if (isRelativeFileUri(uri)) files.push_back((dir / percentDecode(uri)).lexically_normal());
+    }
+  }
+  return files;
+}
+
+}  // namespace tangent::gltf::detail

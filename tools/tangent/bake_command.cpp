@@ -1,0 +1,162 @@
+#include <unistd.h>
+
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+
+#include "commands.hpp"
+#include "tangent/gltf.hpp"
+
+namespace tangent::cli {
+namespace {
+
+const char* kBakeUsage =
+    "usage: tangent bake IN... (-o OUT | --out-dir DIR) [options]\n"
+    "\n"
+    "Computes TANGENT for every triangle primitive whose material has a normalTexture, from the\n"
+    "UV set that texture uses, and writes a new file. Inputs: .gltf, .glb, .obj, .ply, .off\n"
+    "(OBJ/PLY/OFF become .glb; they carry no materials, so all their meshes are baked).\n"
+    "The input is never written to; outputs are written atomically.\n"
+    "\n"
+    "options:\n"
+    "  -o, --output FILE      output file (.glb or .gltf + .bin); one input only\n"
+    "  --out-dir DIR          write each output into DIR under the input's name\n"
+    "  --method NAME          lengyel (default) | flat\n"
+    "  --weighting NAME       angle (default) | area | uniform   (lengyel)\n"
+    "  --all                  bake every triangle primitive, normal texture or not (TEXCOORD_0)\n"
+    "  --overwrite            recompute valid existing TANGENT too\n"
+    "  --report FILE.json     write what was done, per file and primitive\n"
+    "  --quiet                print errors only\n"
+    "  -h, --help             this text\n";
+
+int usageError(const std::string& message) {
+  std::cerr << "tangent bake: " << message << "\n\n" << kBakeUsage;
+  return kExitUsage;
+}
+
+}  // namespace
+
+int bakeCommand(const std::vector<std::string>& args) {
+  namespace fs = std::filesystem;
+  std::vector<fs::path> inputs;
+  fs::path output, outDir, reportPath;
+  gltf::BakeOptions options;
+  bool quiet = false;
+  for (std::size_t i = 0; i < args.size(); ++i) {
+    const std::string& arg = args[i];
+    auto value = [&](const char* name) -> const std::string* {
+      if (i + 1 >= args.size()) return nullptr;
+      (void)name;
+      return &args[++i];
+    };
+    if (arg == "-h" || arg == "--help") {
+      std::cout << kBakeUsage;
+      return kExitOk;
+    } else if (arg == "-o" || arg == "--output") {
+      const std::string* v = value("-o");
+      if (!v) return usageError(arg + " needs a file name");
+      output = *v;
+    } else if (arg == "--out-dir") {
+      const std::string* v = value("--out-dir");
+      if (!v) return usageError("--out-dir needs a directory");
+      outDir = *v;
+    } else if (arg == "--method") {
+      const std::string* v = value("--method");
+      if (!v || !parseMethod(*v, options.tangents.method))
+        return usageError("--method must be lengyel or flat");
+    } else if (arg == "--weighting") {
+      const std::string* v = value("--weighting");
+      if (!v || !parseWeighting(*v, options.tangents.weighting))
+        return usageError("--weighting must be angle, area or uniform");
+    } else if (arg == "--report") {
+      const std::string* v = value("--report");
+      if (!v) return usageError("--report needs a file name");
+      reportPath = *v;
+    } else if (arg == "--all") {
+      options.all = true;
+    } else if (arg == "--overwrite") {
+      options.overwrite = true;
+    } else if (arg == "--quiet" || arg == "-q") {
+      quiet = true;
+    } else if (!arg.empty() && arg[0] == '-') {
+      return usageError("unknown option '" + arg + "'");
+    } else {
+      inputs.emplace_back(arg);
+    }
+  }
+  if (inputs.empty()) return usageError("no input files");
+  if (output.empty() == outDir.empty()) return usageError("give exactly one of -o FILE and --out-dir DIR");
+  if (!output.empty() && inputs.size() > 1) return usageError("-o takes one input; use --out-dir for several");
+  if (!outDir.empty()) {
+    std::error_code ec;
+    fs::create_directories(outDir, ec);
+    if (!fs::is_directory(outDir)) return usageError("--out-dir " + outDir.string() + " is not a directory");
+  }
+
+  const bool progress = !quiet && inputs.size() > 1 && ::isatty(STDERR_FILENO);
+  int failed = 0;
+  nlohmann::ordered_json report = nlohmann::ordered_json::array();
+  for (std::size_t n = 0; n < inputs.size(); ++n) {
+    const fs::path& input = inputs[n];
+    const fs::path target = output.empty() ? gltf::outputPathFor(input, outDir) : output;
+    if (progress) std::cerr << "\r[" << n + 1 << "/" << inputs.size() << "] " << input.filename().string() << "\033[K" << std::flush;
+    nlohmann::ordered_json entry = {{"input", input.string()}, {"output", target.string()}};
+    try {
+      const gltf::BakeResult result = gltf::bakeFile(input, target, options);
+      entry["status"] = "ok";
+      entry.update(gltf::toJson(result));
+      if (!quiet) {
+        if (progress) std::cerr << "\r\033[K";
+        int baked = 0, kept = 0, skipped = 0;
+        std::uint64_t split = 0;
+        for (const auto& p : result.primitives) {
+          baked += p.action == "baked";
+          kept += p.action == "kept";
+          skipped += p.action == "skipped";
+          split += p.action == "baked" ? p.verticesOut - p.verticesIn : 0;
+        }
+        std::cout << input.string() << " -> " << target.string() << ": " << baked << " baked, " << kept << " kept, "
+                  << skipped << " skipped; " << split << " vertices added by splits\n";
+        for (const auto& p : result.primitives) {
+          std::cout << "  mesh " << p.mesh << (p.meshName.empty() ? "" : " '" + p.meshName + "'") << " primitive "
+                    << p.primitive << ": " << p.action << " - " << p.reason;
+          if (p.action == "baked") {
+            const Report& r = p.tangents;
+            std::cout << " [" << r.method << (r.weighting.empty() ? "" : "/" + r.weighting) << ", " << p.verticesIn << " -> "
+                      << p.verticesOut << " vertices, " << r.mirroredCorners << " mirrored corners";
+            if (r.degenerateTriangles) std::cout << ", " << r.degenerateTriangles << " degenerate triangles";
+            if (r.zeroUvAreaTriangles) std::cout << ", " << r.zeroUvAreaTriangles << " zero-UV-area triangles";
+            if (r.nonFiniteTriangles) std::cout << ", " << r.nonFiniteTriangles << " non-finite triangles";
+            if (r.nonManifoldFaces) std::cout << ", " << r.nonManifoldFaces << " non-manifold faces";
+            if (r.invalidNormals) std::cout << ", " << r.invalidNormals << " invalid normals";
+            if (r.fallbackFromNeighbours + r.fallbackFixed)
+              std::cout << ", " << r.fallbackFromNeighbours + r.fallbackFixed << " corners with fallback frames";
+            std::cout << "]";
+          }
+          std::cout << "\n";
+        }
+        for (const auto& w : result.warnings) std::cerr << "warning: " << w << "\n";
+      }
+    } catch (const std::exception& e) {
+      ++failed;
+      if (progress) std::cerr << "\r\033[K";
+      std::cerr << "error: " << e.what() << "\n";
+      entry["status"] = "failed";
+      entry["error"] = e.what();
+    }
+    report.push_back(entry);
+  }
+  if (progress) std::cerr << "\r\033[K";
+  if (!reportPath.empty()) {
+    std::ofstream out(reportPath);
+    out << report.dump(2) << "\n";
+    if (!out) {
+      std::cerr << "error: cannot write report " << reportPath.string() << "\n";
+      return kExitInputFailed;
+    }
+  }
+  if (failed && !quiet && inputs.size() > 1) std::cerr << failed << " of " << inputs.size() << " inputs failed\n";
+  return failed ? kExitInputFailed : kExitOk;
+}
+
+}  // namespace tangent::cli

@@ -1,0 +1,60 @@
+#include <iostream>
+
+#include "commands.hpp"
+#include "tangent/gltf.hpp"
+
+namespace tangent::cli {
+
+int infoCommand(const std::vector<std::string>& args) {
+  std::vector<std::string> inputs;
+  bool json = false;
+  for (const auto& arg : args) {
+    if (arg == "--json") json = true;
+    else if (arg == "-h" || arg == "--help") {
+      std::cout << "usage: tangent info IN... [--json]\n"
+                   "Lists meshes, primitives and attributes, and which primitives need tangents and why.\n";
+      return kExitOk;
+    } else if (!arg.empty() && arg[0] == '-') {
+      std::cerr << "tangent info: unknown option '" << arg << "'\n";
+      return kExitUsage;
+    } else inputs.push_back(arg);
+  }
+  if (inputs.empty()) {
+    std::cerr << "tangent info: no input files\nusage: tangent info IN... [--json]\n";
+    return kExitUsage;
+  }
+  int failed = 0;
+  for (const auto& input : inputs) {
+    try {
+      const auto info = gltf::describeFile(input);
+      if (json) {
+        std::cout << info.dump(2) << "\n";
+        continue;
+      }
+      std::cout << info["file"].get<std::string>() << " (" << info["container"].get<std::string>() << ")\n";
+      for (const auto& mesh : info["meshes"]) {
+        std::cout << "  mesh " << mesh["index"].get<int>();
+        if (mesh.contains("name")) std::cout << " '" << mesh["name"].get<std::string>() << "'";
+        std::cout << "\n";
+        for (const auto& primitive : mesh["primitives"]) {
+          std::cout << "    primitive " << primitive["index"].get<int>() << ": mode " << primitive["mode"].get<int>();
+          if (primitive.contains("material")) std::cout << ", material " << primitive["material"].dump();
+          std::cout << (primitive["needsTangents"].get<bool>() ? ", needs tangents" : ", no tangents needed")
+                    << (primitive["hasTangents"].get<bool>() ? ", has TANGENT" : "") << " - "
+                    << primitive["why"].get<std::string>() << "\n";
+          for (const auto& [name, description] : primitive["attributes"].items())
+            std::cout << "      " << name << ": " << description.get<std::string>() << "\n";
+          if (primitive.contains("morphTargets"))
+            std::cout << "      morph targets: " << primitive["morphTargets"].dump() << "\n";
+        }
+      }
+      for (const auto& w : info["warnings"]) std::cerr << "warning: " << w.get<std::string>() << "\n";
+    } catch (const std::exception& e) {
+      ++failed;
+      std::cerr << "error: " << e.what() << "\n";
+    }
+  }
+  return failed ? kExitInputFailed : kExitOk;
+}
+
+}  // namespace tangent::cli

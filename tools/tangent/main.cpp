@@ -1,0 +1,40 @@
+// `tangent`: bake tangents into glTF, describe assets.
+#include <iostream>
+
+#include "commands.hpp"
+
+namespace {
+
+const char* kUsage =
+    "usage: tangent <command> [options]\n"
+    "\n"
+    "commands:\n"
+    "  bake IN... (-o OUT | --out-dir DIR)   compute TANGENT for primitives with a normal texture\n"
+    "  info IN [--json]                      meshes, primitives, attributes, which need tangents\n"
+    "\n"
+    "'tangent <command> --help' describes a command's options.\n"
+    "exit codes: 0 done, 1 an input failed, 2 usage error\n";
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  std::vector<std::string> args(argv + 1, argv + argc);
+  if (args.empty()) {
+    std::cerr << kUsage;
+    return tangent::cli::kExitUsage;
+  }
+  const std::string command = args.front();
+  args.erase(args.begin());
+  if (command == "--help" || command == "-h" || command == "help") {
+    std::cout << kUsage;
+    return tangent::cli::kExitOk;
+  }
+  if (command == "--version") {
+    std::cout << "tangent 0.1.0\n";
+    return tangent::cli::kExitOk;
+  }
+  if (command == "bake") return tangent::cli::bakeCommand(args);
+  if (command == "info") return tangent::cli::infoCommand(args);
+  std::cerr << "tangent: unknown command '" << command << "'\n" << kUsage;
+  return tangent::cli::kExitUsage;
+}
