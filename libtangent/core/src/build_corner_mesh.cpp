@@ -106,7 +106,8 @@ CornerMesh buildCornerMesh(const MeshArrays& arrays) {
       if (!repeatedVertex) ++result.nonManifoldFaces;
       for (auto& corner : corners) {
         const auto weld = static_cast<std::uint32_t>(corner.idx());
-        corner = mesh.add_vertex(mesh.point(corner));
+        const TriMesh::Point position = mesh.point(corner);  // add_vertex may reallocate the points
+        corner = mesh.add_vertex(position);
         result.weldedVertex.push_back(weld);
       }
       face = mesh.add_face(corners[0], corners[1], corners[2]);

@@ -77,16 +77,25 @@ bool orthonormalize(const Vec3& sum, const Vec3& n, Vec3& out) {
   return true;
 }
 
-// Frame from already-defined groups: their tangents summed in value order and projected.
-bool frameFromCandidates(std::vector<const Group*>& candidates, const Vec3& n, Vec3& tangent, double& w) {
-  if (candidates.empty()) return false;
-  std::sort(candidates.begin(), candidates.end(),
-            [](const Group* a, const Group* b) { return std::tie(a->w, a->tangent[0], a->tangent[1], a->tangent[2]) <
-                                                        std::tie(b->w, b->tangent[0], b->tangent[1], b->tangent[2]); });
-  Vec3 sum(0, 0, 0);
-  for (const Group* g : candidates) sum += g->tangent;
-  if (!orthonormalize(sum, n, tangent)) return false;
-  w = candidates.front()->w;
+// Frame for a corner no usable triangle reached, from already-defined groups: the one whose
+// normal is nearest (then the heaviest, then by value) is copied exactly when its normal is the
+// same, else projected onto n. One candidate, not a sum: opposite frames of a mirrored seam
+// would cancel. This mirrors MikkTSpace, where degenerate corners copy a good neighbour.
+bool frameFromCandidates(const std::vector<const Group*>& candidates, const Group& group, Vec3& tangent, double& w) {
+  const Group* best = nullptr;
+  auto rank = [&](const Group* g) {
+    return std::make_tuple(g->normal | group.normal, g->tangentSum.sqrnorm(), g->tangent[0], g->tangent[1], g->tangent[2], g->w);
+  };
+  for (const Group* candidate : candidates) {
+    if (!best || rank(best) < rank(candidate)) best = candidate;
+  }
+  if (!best) return false;
+  if (std::equal(std::begin(best->key.normal), std::end(best->key.normal), std::begin(group.key.normal))) {
+    tangent = best->tangent;
+  } else if (!orthonormalize(best->tangent, group.normal, tangent)) {
+    return false;
+  }
+  w = best->w;
   return true;
 }
 
@@ -211,7 +220,7 @@ Report computeTangents(CornerMesh& cornerMesh, const Options& options) {
                                     std::equal(std::begin(k.uv), std::end(k.uv), std::begin(group.key.uv));
         if (pass == 1 || sameAttributes) candidates.push_back(&groups[other]);
       }
-      found = frameFromCandidates(candidates, group.normal, group.tangent, group.w);
+      found = frameFromCandidates(candidates, group, group.tangent, group.w);
     }
     if (!found) {
       candidates.clear();
@@ -219,7 +228,7 @@ Report computeTangents(CornerMesh& cornerMesh, const Options& options) {
       for (auto neighbour : mesh.vv_range(vertex)) {
         for (std::uint32_t other : definedAtWeld[cornerMesh.weldedVertex[neighbour.idx()]]) candidates.push_back(&groups[other]);
       }
-      found = frameFromCandidates(candidates, group.normal, group.tangent, group.w);
+      found = frameFromCandidates(candidates, group, group.tangent, group.w);
     }
     if (found) {
       report.fallbackFromNeighbours += groupCornerCount[g];

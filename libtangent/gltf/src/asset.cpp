@@ -37,6 +37,74 @@ bool noImageDecoding(tinygltf::Image*, const int, std::string*, std::string*, in
   return true;  // bake carries image bytes through untouched
 }
 
+using Json = nlohmann::ordered_json;
+
+[[noreturn]] void shapeError(const std::string& label, const std::string& pointer, const char* expected) {
+  throw InputError(label + ": " + pointer + " must be " + expected);
+}
+
+void requireIndex(const Json& object, const char* key, const std::string& label, const std::string& pointer) {
+  if (object.contains(key) && !object[key].is_number_integer()) shapeError(label, pointer + "/" + key, "an integer");
+}
+
+// The parts of the document bake reads or renumbers must have the types the spec gives them,
+// so later code can index them without surprises.
+void checkShape(const Json& doc, const std::string& label) {
+  for (const char* key : {"accessors", "animations", "buffers", "bufferViews", "cameras", "images", "materials", "meshes",
+                          "nodes", "samplers", "scenes", "skins", "textures"}) {
+    if (!doc.contains(key)) continue;
+    if (!doc[key].is_array()) shapeError(label, std::string("/") + key, "an array");
+    for (std::size_t i = 0; i < doc[key].size(); ++i) {
+      if (!doc[key][i].is_object()) shapeError(label, "/" + std::string(key) + "/" + std::to_string(i), "an object");
+    }
+  }
+  for (const char* key : {"extensionsUsed", "extensionsRequired"}) {
+    if (doc.contains(key) && !doc[key].is_array()) shapeError(label, std::string("/") + key, "an array");
+  }
+  const auto indexMap = [&](const Json& map, const std::string& pointer) {
+    if (!map.is_object()) shapeError(label, pointer, "an object");
+    for (const auto& [name, value] : map.items()) {
+      if (!value.is_number_integer()) shapeError(label, pointer + "/" + name, "an accessor index");
+    }
+  };
+  if (doc.contains("meshes")) {
+    for (std::size_t m = 0; m < doc["meshes"].size(); ++m) {
+      const Json& mesh = doc["meshes"][m];
+      const std::string meshPointer = "/meshes/" + std::to_string(m);
+      if (!mesh.contains("primitives") || !mesh["primitives"].is_array()) shapeError(label, meshPointer + "/primitives", "an array");
+      for (std::size_t p = 0; p < mesh["primitives"].size(); ++p) {
+        const Json& primitive = mesh["primitives"][p];
+        const std::string pointer = meshPointer + "/primitives/" + std::to_string(p);
+        if (!primitive.is_object()) shapeError(label, pointer, "an object");
+        if (!primitive.contains("attributes")) shapeError(label, pointer + "/attributes", "present");
+        indexMap(primitive["attributes"], pointer + "/attributes");
+        for (const char* key : {"indices", "material", "mode"}) requireIndex(primitive, key, label, pointer);
+        if (primitive.contains("targets")) {
+          if (!primitive["targets"].is_array()) shapeError(label, pointer + "/targets", "an array");
+          for (std::size_t t = 0; t < primitive["targets"].size(); ++t)
+            indexMap(primitive["targets"][t], pointer + "/targets/" + std::to_string(t));
+        }
+      }
+    }
+  }
+  if (doc.contains("materials")) {
+    for (std::size_t i = 0; i < doc["materials"].size(); ++i) {
+      const Json& material = doc["materials"][i];
+      if (!material.contains("normalTexture")) continue;
+      const std::string pointer = "/materials/" + std::to_string(i) + "/normalTexture";
+      if (!material["normalTexture"].is_object()) shapeError(label, pointer, "an object");
+      requireIndex(material["normalTexture"], "index", label, pointer);
+      requireIndex(material["normalTexture"], "texCoord", label, pointer);
+    }
+  }
+  if (doc.contains("bufferViews")) {
+    for (std::size_t i = 0; i < doc["bufferViews"].size(); ++i) {
+      for (const char* key : {"buffer", "byteOffset", "byteLength", "byteStride"})
+        requireIndex(doc["bufferViews"][i], key, label, "/bufferViews/" + std::to_string(i));
+    }
+  }
+}
+
 }  // namespace
 
 bool isMeshFile(const std::filesystem::path& path) {
@@ -114,6 +182,7 @@ Asset loadAsset(const std::filesystem::path& path) {
     throw InputError(label + ": not valid glTF JSON: " + e.what());
   }
   if (!asset.json.is_object()) throw InputError(label + ": glTF JSON must be an object");
+  checkShape(asset.json, label);
 
   tinygltf::TinyGLTF loader;
   loader.SetImageLoader(noImageDecoding, nullptr);

@@ -63,30 +63,6 @@ void applyTextureTransform(std::vector<float>& uvs, const Json& transform) {
   }
 }
 
-// Triangle list (3 vertex indices per triangle) from glTF modes 4, 5, 6 (spec 3.7.2.1).
-std::vector<std::uint32_t> triangleList(int mode, const std::vector<std::uint32_t>& vertices) {
-  std::vector<std::uint32_t> out;
-  if (mode == 4) {
-    out.assign(vertices.begin(), vertices.end() - static_cast<std::ptrdiff_t>(vertices.size() % 3));
-    return out;
-  }
-  for (std::size_t i = 0; i + 2 < vertices.size(); ++i) {
-    std::uint32_t a, b, c;
-    if (mode == 5) {
-      a = vertices[i];
-      b = vertices[i + 1 + i % 2];
-      c = vertices[i + 2 - i % 2];
-      if (a == b || b == c || a == c) continue;  // stitching triangles of joined strips draw nothing
-    } else {
-      a = vertices[i + 1];
-      b = vertices[i + 2];
-      c = vertices[0];
-    }
-    out.insert(out.end(), {a, b, c});
-  }
-  return out;
-}
-
 // "" when an existing TANGENT is valid, else what is wrong with it.
 std::string tangentProblem(const AccessorData& data) {
   if (data.type != TINYGLTF_TYPE_VEC4) return std::string("type is ") + detail::typeName(data.type) + ", not VEC4";
@@ -283,7 +259,7 @@ PrimitiveResult PrimitiveBaker::bake(int meshIndex, int primitiveIndex) {
     sequence.resize(vertexCount);
     std::iota(sequence.begin(), sequence.end(), 0u);
   }
-  const std::vector<std::uint32_t> corners = triangleList(mode, sequence);
+  const std::vector<std::uint32_t> corners = detail::triangleList(mode, sequence);
   if (corners.empty()) {
     result.reason = "primitive has no triangles; left as it is";
     return result;
@@ -337,7 +313,7 @@ PrimitiveResult PrimitiveBaker::bake(int meshIndex, int primitiveIndex) {
         throw InputError(where + ": " + name + " (accessor " + std::to_string(index) + ") has " + std::to_string(data.count) +
                          " elements, POSITION has " + std::to_string(vertexCount));
       accessorRef = output_.addAccessor(carriedAccessor(doc["accessors"][index], outCount), gather(data, split.source),
-                                        detail::kArrayBuffer);
+                                        data.elementSize(), detail::kArrayBuffer);
     }
     if (primitive.contains("targets")) {
       for (std::size_t t = 0; t < primitive["targets"].size(); ++t) {
@@ -349,7 +325,7 @@ PrimitiveResult PrimitiveBaker::bake(int meshIndex, int primitiveIndex) {
             throw InputError(where + ": target " + std::to_string(t) + " " + name + " has " + std::to_string(data.count) +
                              " elements, POSITION has " + std::to_string(vertexCount));
           accessorRef = output_.addAccessor(carriedAccessor(doc["accessors"][index], outCount), gather(data, split.source),
-                                            detail::kArrayBuffer);
+                                            data.elementSize(), detail::kArrayBuffer);
         }
       }
     }
@@ -370,13 +346,14 @@ PrimitiveResult PrimitiveBaker::bake(int meshIndex, int primitiveIndex) {
       } else std::memcpy(&indexBytes[4 * c], &value, 4);
     }
     Json indexAccessor = {{"componentType", indexComponentType}, {"count", split.cornerVertex.size()}, {"type", "SCALAR"}};
-    primitive["indices"] = output_.addAccessor(indexAccessor, std::move(indexBytes), detail::kElementArrayBuffer);
+    primitive["indices"] = output_.addAccessor(indexAccessor, std::move(indexBytes), indexSize, detail::kElementArrayBuffer);
     if (primitive.contains("mode")) primitive["mode"] = 4;
   }
-  attributes["TANGENT"] = output_.addAccessor(floatAccessor(outCount, "VEC4"), floatBytes(split.tangents), detail::kArrayBuffer);
+  // Inserting "indices" above may have moved the primitive's members: look attributes up again.
+  primitive["attributes"]["TANGENT"] = output_.addAccessor(floatAccessor(outCount, "VEC4"), floatBytes(split.tangents), 16, detail::kArrayBuffer);
   for (std::size_t t = 0; t < targetTangentDeltas.size(); ++t) {
     primitive["targets"][t]["TANGENT"] =
-        output_.addAccessor(floatAccessor(outCount, "VEC3"), floatBytes(targetTangentDeltas[t]), detail::kArrayBuffer);
+        output_.addAccessor(floatAccessor(outCount, "VEC3"), floatBytes(targetTangentDeltas[t]), 12, detail::kArrayBuffer);
   }
   result.action = "baked";
   if (existingTangent < 0) result.reason = needs.why;
@@ -385,13 +362,56 @@ PrimitiveResult PrimitiveBaker::bake(int meshIndex, int primitiveIndex) {
 
 }  // namespace
 
+namespace detail {
+std::vector<std::uint32_t> triangleList(int mode, const std::vector<std::uint32_t>& vertices) {
+  std::vector<std::uint32_t> out;
+  if (mode == 4) {
+    out.assign(vertices.begin(), vertices.end() - static_cast<std::ptrdiff_t>(vertices.size() % 3));
+    return out;
+  }
+  for (std::size_t i = 0; i + 2 < vertices.size(); ++i) {
+    std::uint32_t a, b, c;
+    if (mode == 5) {
+      a = vertices[i];
+      b = vertices[i + 1 + i % 2];
+      c = vertices[i + 2 - i % 2];
+      if (a == b || b == c || a == c) continue;  // stitching triangles of joined strips draw nothing
+    } else {
+      a = vertices[i + 1];
+      b = vertices[i + 2];
+      c = vertices[0];
+    }
+    out.insert(out.end(), {a, b, c});
+  }
+  return out;
+}
+
+}  // namespace detail
+
 std::filesystem::path outputPathFor(const std::filesystem::path& input, const std::filesystem::path& outputDir) {
   std::filesystem::path name = input.filename();
   if (detail::isMeshFile(input)) name.replace_extension(".glb");
   return outputDir / name;
 }
 
+namespace {
+
+BakeResult bakeChecked(const std::filesystem::path& input, const std::filesystem::path& output, const BakeOptions& options);
+
+}  // namespace
+
 BakeResult bakeFile(const std::filesystem::path& input, const std::filesystem::path& output, const BakeOptions& options) {
+  try {
+    return bakeChecked(input, output, options);
+  } catch (const nlohmann::json::exception& e) {
+    // A document shape checkShape() did not foresee: still an input error, never a crash.
+    throw InputError(input.string() + ": unexpected glTF structure: " + e.what());
+  }
+}
+
+namespace {
+
+BakeResult bakeChecked(const std::filesystem::path& input, const std::filesystem::path& output, const BakeOptions& options) {
   namespace fs = std::filesystem;
   const std::string outExt = output.extension().string();
   if (outExt != ".glb" && outExt != ".gltf")
@@ -401,6 +421,7 @@ BakeResult bakeFile(const std::filesystem::path& input, const std::filesystem::p
     throw InputError(output.string() + ": is the input file; bake never writes to its input");
 
   detail::Asset asset = detail::loadAsset(input);
+  if (!output.parent_path().empty()) fs::create_directories(output.parent_path(), ec);
   for (const char* list : {"extensionsRequired", "extensionsUsed"}) {
     if (!asset.json.contains(list)) continue;
     for (const auto& name : asset.json[list]) {
@@ -432,6 +453,8 @@ BakeResult bakeFile(const std::filesystem::path& input, const std::filesystem::p
   result.bytesWritten = document.write(output);
   return result;
 }
+
+}  // namespace
 
 nlohmann::ordered_json toJson(const Report& report) {
   return Json{{"method", report.method},

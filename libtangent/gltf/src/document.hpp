@@ -23,7 +23,9 @@ class OutputDocument {
   nlohmann::ordered_json& json() { return asset_.json; }
 
   // Appends an accessor (its JSON without bufferView/byteOffset) stored in a new bufferView.
-  int addAccessor(nlohmann::ordered_json accessor, std::vector<std::uint8_t> bytes, int target);
+  // Vertex data (kArrayBuffer) whose element size is not a multiple of 4 is padded to a
+  // 4-byte byteStride, as the spec requires of vertex attributes.
+  int addAccessor(nlohmann::ordered_json accessor, std::vector<std::uint8_t> bytes, std::size_t elementSize, int target);
 
   // Writes `output` (.glb, or .gltf plus a .bin beside it) atomically; returns bytes written.
   std::uint64_t write(const std::filesystem::path& output);

@@ -2,7 +2,7 @@
 // of bake treats them like any glTF input. These formats carry no materials: every mesh
 // gets tangents. Their UV origin is bottom-left, so v becomes 1 - v for glTF.
 #include <OpenMesh/Core/IO/MeshIO.hh>
-#include <OpenMesh/Core/Mesh/TriMesh_ArrayKernelT.hh>
+#include <OpenMesh/Core/Mesh/PolyMesh_ArrayKernelT.hh>
 
 #include <bit>
 #include <cstring>
@@ -21,7 +21,9 @@ struct ImportTraits : OpenMesh::DefaultTraits {
   HalfedgeAttributes(OpenMesh::Attributes::PrevHalfedge | OpenMesh::Attributes::TexCoord2D);
   FaceAttributes(OpenMesh::Attributes::Normal);
 };
-using ImportMesh = OpenMesh::TriMesh_ArrayKernelT<ImportTraits>;
+// A polygon mesh: OpenMesh's readers leave the UVs of the diagonals unset when they
+// triangulate into a TriMesh, so polygons are fanned here from their own corners.
+using ImportMesh = OpenMesh::PolyMesh_ArrayKernelT<ImportTraits>;
 
 void appendFloats(std::vector<std::uint8_t>& bin, const std::vector<float>& values) {
   const std::size_t at = bin.size();
@@ -51,7 +53,9 @@ std::vector<std::uint8_t> meshFileToGlb(const std::filesystem::path& path) {
   std::map<std::tuple<int, std::uint32_t, std::uint32_t>, std::uint32_t> vertexOf;
   std::vector<float> positions, normals, uvs;
   std::vector<std::uint32_t> indices;
+  std::vector<std::uint32_t> polygon;
   for (auto face : mesh.faces()) {
+    polygon.clear();
     for (auto halfedge : mesh.fh_range(face)) {
       const auto vertex = mesh.to_vertex_handle(halfedge);
       const auto uv = cornerUvs ? mesh.texcoord2D(halfedge) : mesh.texcoord2D(vertex);
@@ -65,8 +69,9 @@ std::vector<std::uint8_t> meshFileToGlb(const std::filesystem::path& path) {
         normals.insert(normals.end(), {n[0], n[1], n[2]});
         uvs.insert(uvs.end(), {u, v});
       }
-      indices.push_back(it->second);
+      polygon.push_back(it->second);
     }
+    for (std::size_t i = 1; i + 1 < polygon.size(); ++i) indices.insert(indices.end(), {polygon[0], polygon[i], polygon[i + 1]});
   }
   const std::size_t vertexCount = positions.size() / 3;
   float lo[3] = {positions[0], positions[1], positions[2]}, hi[3] = {lo[0], lo[1], lo[2]};

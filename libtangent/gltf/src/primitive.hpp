@@ -2,7 +2,9 @@
 #pragma once
 
 #include <nlohmann/json.hpp>
+#include <cstdint>
 #include <string>
+#include <vector>
 
 namespace tangent::gltf::detail {
 
@@ -16,6 +18,10 @@ struct PrimitiveNeeds {
 };
 
 PrimitiveNeeds primitiveNeeds(const nlohmann::ordered_json& doc, const nlohmann::ordered_json& primitive, bool all);
+
+// Triangle list (3 vertex indices per triangle) from glTF modes 4, 5 and 6 (spec 3.7.2.1);
+// stitching triangles of joined strips (a repeated index) draw nothing and are left out.
+std::vector<std::uint32_t> triangleList(int mode, const std::vector<std::uint32_t>& vertices);
 
 // "mesh 0 'Name' primitive 1"
 std::string primitiveLabel(const nlohmann::ordered_json& doc, int mesh, int primitive);

@@ -2,6 +2,7 @@
 
 #include <atomic>
 #include <cstdio>
+#include <cstring>
 #include <fstream>
 #include <functional>
 #include <map>
@@ -159,13 +160,22 @@ OutputDocument::OutputDocument(Asset& asset) : asset_(asset) {
   firstNewView_ = asset_.json.contains("bufferViews") ? asset_.json["bufferViews"].size() : 0;
 }
 
-int OutputDocument::addAccessor(Json accessor, std::vector<std::uint8_t> bytes, int target) {
+int OutputDocument::addAccessor(Json accessor, std::vector<std::uint8_t> bytes, std::size_t elementSize, int target) {
   Json& doc = asset_.json;
+  std::size_t stride = 0;
+  if (target == kArrayBuffer && elementSize % 4 != 0) {
+    stride = (elementSize + 3) & ~std::size_t(3);
+    const std::size_t count = bytes.size() / elementSize;
+    std::vector<std::uint8_t> padded(count * stride, 0);
+    for (std::size_t i = 0; i < count; ++i) std::memcpy(&padded[i * stride], &bytes[i * elementSize], elementSize);
+    bytes = std::move(padded);
+  }
   if (!doc.contains("bufferViews")) doc["bufferViews"] = Json::array();
   if (!doc.contains("accessors")) doc["accessors"] = Json::array();
   Json view = Json::object();
   view["buffer"] = 0;
   view["byteLength"] = bytes.size();
+  if (stride != 0) view["byteStride"] = stride;
   if (target != 0) view["target"] = target;
   const int viewIndex = static_cast<int>(doc["bufferViews"].size());
   doc["bufferViews"].push_back(std::move(view));

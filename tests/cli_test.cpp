@@ -1,0 +1,145 @@
+// The `tangent` command as a pipeline calls it: exit codes, messages, malformed files from
+// Debian's assimp-testmodels, no partial outputs, inputs never written.
+#include <gtest/gtest.h>
+
+#include <array>
+#include <cstdio>
+#include <fstream>
+#include <iterator>
+#include <nlohmann/json.hpp>
+#include <sys/wait.h>
+
+#include "support/temp_dir.hpp"
+#include "support/test_assets.hpp"
+
+namespace {
+
+namespace fs = std::filesystem;
+using tangent::testing::TempDir;
+
+struct CliRun {
+  int exitCode;
+  std::string output;  // stdout and stderr
+};
+
+CliRun tangentCli(const std::string& arguments) {
+  const std::string command = std::string(TANGENT_CLI) + " " + arguments + " 2>&1";
+  CliRun run{-1, ""};
+  FILE* pipe = ::popen(command.c_str(), "r");
+  if (!pipe) return run;
+  std::array<char, 4096> buffer;
+  while (std::size_t n = std::fread(buffer.data(), 1, buffer.size(), pipe)) run.output.append(buffer.data(), n);
+  const int status = ::pclose(pipe);
+  run.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  return run;
+}
+
+std::string quoted(const fs::path& path) { return "'" + path.string() + "'"; }
+
+std::vector<char> fileBytes(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  return std::vector<char>(std::istreambuf_iterator<char>(in), {});
+}
+
+TEST(Cli, UsageErrorsExit2) {
+  EXPECT_EQ(tangentCli("").exitCode, 2);
+  EXPECT_EQ(tangentCli("frobnicate").exitCode, 2);
+  EXPECT_EQ(tangentCli("bake").exitCode, 2);
+  EXPECT_EQ(tangentCli("bake a.glb").exitCode, 2);  // no -o / --out-dir
+  EXPECT_EQ(tangentCli("bake a.glb b.glb -o c.glb").exitCode, 2);
+  EXPECT_EQ(tangentCli("bake a.glb -o c.glb --method mikk").exitCode, 2);
+  EXPECT_EQ(tangentCli("bake a.glb -o c.glb --weighting heavy").exitCode, 2);
+  EXPECT_EQ(tangentCli("bake a.glb -o c.glb --bogus").exitCode, 2);
+  const CliRun help = tangentCli("bake --help");
+  EXPECT_EQ(help.exitCode, 0);
+  EXPECT_NE(help.output.find("--weighting"), std::string::npos);
+}
+
+TEST(Cli, MissingInputExit1AndNamesIt) {
+  TempDir dir;
+  const CliRun run = tangentCli("bake " + quoted(dir / "nope.glb") + " -o " + quoted(dir / "out.glb"));
+  EXPECT_EQ(run.exitCode, 1);
+  EXPECT_NE(run.output.find("nope.glb: no such file"), std::string::npos) << run.output;
+  EXPECT_FALSE(fs::exists(dir / "out.glb"));
+}
+
+TEST(Cli, BakeWritesReportAndLeavesInputAlone) {
+  TempDir dir;
+  const auto assets = tangent::testing::makeTestAssets();
+  const fs::path a = tangent::testing::writeAsset(assets[0], dir / "in", true);
+  const fs::path b = tangent::testing::writeAsset(assets[3], dir / "in", false);
+  const auto aBefore = fileBytes(a), bBefore = fileBytes(b);
+  const CliRun run = tangentCli("bake " + quoted(a) + " " + quoted(b) + " --out-dir " + quoted(dir / "out") + " --report " + quoted(dir / "report.json"));
+  ASSERT_EQ(run.exitCode, 0) << run.output;
+  EXPECT_TRUE(fs::exists(dir / "out" / a.filename()));
+  EXPECT_TRUE(fs::exists(dir / "out" / b.filename()));
+  EXPECT_EQ(aBefore, fileBytes(a));
+  EXPECT_EQ(bBefore, fileBytes(b));
+  std::ifstream reportFile(dir / "report.json");
+  const auto report = nlohmann::json::parse(reportFile);
+  ASSERT_EQ(report.size(), 2u);
+  EXPECT_EQ(report[0]["status"], "ok");
+  EXPECT_EQ(report[0]["primitives"][0]["action"], "baked");
+  EXPECT_GT(report[0]["primitives"][0]["tangents"]["splitVertices"].get<int>(), 0);
+  EXPECT_EQ(report[0]["primitives"][0]["tangents"]["method"], "lengyel");
+}
+
+TEST(Cli, OneBadInputFailsOnlyItself) {
+  TempDir dir;
+  const auto assets = tangent::testing::makeTestAssets();
+  const fs::path good = tangent::testing::writeAsset(assets[0], dir / "in", true);
+  std::ofstream(dir / "in" / "bad.gltf") << "{\"asset\": 5}";
+  const CliRun run = tangentCli("bake " + quoted(good) + " " + quoted(dir / "in" / "bad.gltf") + " --out-dir " + quoted(dir / "out") + " --quiet");
+  EXPECT_EQ(run.exitCode, 1);
+  EXPECT_NE(run.output.find("bad.gltf"), std::string::npos) << run.output;
+  EXPECT_TRUE(fs::exists(dir / "out" / good.filename()));
+  EXPECT_FALSE(fs::exists(dir / "out" / "bad.gltf"));
+}
+
+TEST(Cli, InfoDescribesNeeds) {
+  TempDir dir;
+  const auto assets = tangent::testing::makeTestAssets();
+  const fs::path input = tangent::testing::writeAsset(assets[6], dir.path(), true);  // document_features
+  const CliRun run = tangentCli("info " + quoted(input));
+  ASSERT_EQ(run.exitCode, 0) << run.output;
+  EXPECT_NE(run.output.find("needs tangents"), std::string::npos);
+  EXPECT_NE(run.output.find("no normalTexture"), std::string::npos);
+  EXPECT_NE(run.output.find("mode 0 is not triangles"), std::string::npos);
+  const CliRun json = tangentCli("info --json " + quoted(input));
+  ASSERT_EQ(json.exitCode, 0);
+  const auto parsed = nlohmann::json::parse(json.output);
+  EXPECT_EQ(parsed["meshes"][0]["primitives"][0]["needsTangents"], true);
+  EXPECT_EQ(parsed["meshes"][0]["primitives"][4]["hasTangents"], true);
+}
+
+// Malformed files from Debian's assimp-testmodels: a clear message and exit 1, or a clean
+// bake; never a crash, never a partial output, never a temporary file left behind.
+TEST(Cli, MalformedFilesFromAssimpTestModels) {
+  const fs::path root = "/usr/share/assimp/models/glTF2";
+  if (!fs::is_directory(root)) GTEST_SKIP() << root << " is absent: install Debian's assimp-testmodels";
+  const std::vector<std::string> files = {
+      "IndexOutOfRange/IndexOutOfRange.gltf", "IndexOutOfRange/AllIndicesOutOfRange.gltf", "MissingBin/BoxTextured.gltf",
+      "wrongTypes/badNumber.gltf", "wrongTypes/badExtension.gltf", "wrongTypes/badObject.gltf", "wrongTypes/badUint.gltf",
+      "wrongTypes/badArray.gltf", "wrongTypes/badString.gltf", "SchemaFailures/sceneWrongType.gltf",
+      "BoxWithInfinites-glTF-Binary/BoxWithInfinites.glb", "IncorrectVertexArrays/Cube.gltf",
+      "BoxBadNormals-glTF-Binary/BoxBadNormals.glb"};
+  for (const auto& file : files) {
+    SCOPED_TRACE(file);
+    TempDir dir;
+    const fs::path output = dir / ("out" + fs::path(file).extension().string());
+    const CliRun run = tangentCli("bake " + quoted(root / file) + " -o " + quoted(output) + " --all");
+    std::printf("%-45s exit %d: %s", file.c_str(), run.exitCode, run.output.empty() ? "\n" : run.output.substr(0, run.output.find('\n') + 1).c_str());
+    ASSERT_TRUE(run.exitCode == 0 || run.exitCode == 1) << run.output;
+    if (run.exitCode == 1) {
+      EXPECT_NE(run.output.find("error: "), std::string::npos) << run.output;
+      EXPECT_NE(run.output.find(fs::path(file).filename().string()), std::string::npos) << run.output;
+      EXPECT_TRUE(fs::is_empty(dir.path())) << "partial output left";
+    } else {
+      EXPECT_TRUE(fs::exists(output));
+    }
+    for (const auto& entry : fs::directory_iterator(dir.path()))
+      EXPECT_EQ(entry.path().filename().string().find(".tmp-"), std::string::npos) << entry.path();
+  }
+}
+
+}  // namespace

@@ -1,0 +1,358 @@
+// Core: exact values on tiny hand-made meshes, invariants on generated ones, determinism,
+// degenerate input, and one test per error case.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <bit>
+#include <cmath>
+#include <limits>
+#include <random>
+
+#include "support/test_assets.hpp"
+#include "tangent/halfedge_mesh.hpp"
+#include "tangent/tangent.hpp"
+
+namespace {
+
+using tangent::MeshArrays;
+using tangent::Options;
+using tangent::Report;
+using tangent::testing::GridMesh;
+
+constexpr float kGarbage = std::numeric_limits<float>::quiet_NaN();
+
+struct Result {
+  std::vector<float> tangents;
+  Report report;
+};
+
+// Output pre-filled with NaN so any corner left untouched fails the invariants.
+Result run(const GridMesh& mesh, Options options = {}) {
+  Result result;
+  result.tangents.assign(mesh.indices.size() * 4, kGarbage);
+  result.report = tangent::computeCornerTangents({mesh.positions, mesh.normals, mesh.uvs, mesh.indices}, result.tangents, options);
+  return result;
+}
+
+void expectTangent(const Result& r, std::size_t corner, float x, float y, float z, float w) {
+  SCOPED_TRACE("corner " + std::to_string(corner));
+  EXPECT_NEAR(r.tangents[4 * corner + 0], x, 1e-6);
+  EXPECT_NEAR(r.tangents[4 * corner + 1], y, 1e-6);
+  EXPECT_NEAR(r.tangents[4 * corner + 2], z, 1e-6);
+  EXPECT_EQ(r.tangents[4 * corner + 3], w);
+}
+
+// Unit, orthogonal to the corner's normal, |w| = 1, finite: on every corner.
+void expectValidFrames(const GridMesh& mesh, const Result& r) {
+  for (std::size_t c = 0; c < mesh.indices.size(); ++c) {
+    const float* t = &r.tangents[4 * c];
+    const float* n = &mesh.normals[3 * mesh.indices[c]];
+    ASSERT_TRUE(std::isfinite(t[0]) && std::isfinite(t[1]) && std::isfinite(t[2]) && std::isfinite(t[3])) << "corner " << c;
+    const double length = std::sqrt(double(t[0]) * t[0] + double(t[1]) * t[1] + double(t[2]) * t[2]);
+    ASSERT_NEAR(length, 1.0, 1e-6) << "corner " << c;
+    const double nLength = std::sqrt(double(n[0]) * n[0] + double(n[1]) * n[1] + double(n[2]) * n[2]);
+    if (nLength > 0 && std::isfinite(nLength)) {
+      ASSERT_NEAR((t[0] * n[0] + t[1] * n[1] + t[2] * n[2]) / nLength, 0.0, 1e-5) << "corner " << c;
+    }
+    ASSERT_TRUE(t[3] == 1.0f || t[3] == -1.0f) << "corner " << c << " w " << t[3];
+  }
+}
+
+GridMesh quad() {
+  // Unit quad in the xy plane facing +z; u along +x, v along +y (bottom-left origin).
+  GridMesh m;
+  m.positions = {0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 1, 0};
+  m.normals = {0, 0, 1, 0, 0, 1, 0, 0, 1, 0, 0, 1};
+  m.uvs = {0, 0, 1, 0, 1, 1, 0, 1};
+  m.indices = {0, 1, 2, 0, 2, 3};
+  return m;
+}
+
+TEST(Core, QuadExactFrame) {
+  Options options;
+  options.uvOrigin = tangent::UvOrigin::bottomLeft;
+  const Result r = run(quad(), options);
+  for (std::size_t c = 0; c < 6; ++c) expectTangent(r, c, 1, 0, 0, 1);
+  EXPECT_EQ(r.report.mirroredCorners, 0u);
+  EXPECT_EQ(r.report.splitVertices, 0u);
+  EXPECT_EQ(r.report.method, "lengyel");
+  EXPECT_EQ(r.report.weighting, "angle");
+}
+
+TEST(Core, TopLeftUvOriginNegatesWOnly) {
+  const Result r = run(quad());  // default: glTF convention
+  for (std::size_t c = 0; c < 6; ++c) expectTangent(r, c, 1, 0, 0, -1);
+  EXPECT_EQ(r.report.mirroredCorners, 6u);
+}
+
+TEST(Core, MirroredQuadsSplitSharedVertices) {
+  // Two quads sharing the edge x = 1; the right quad's u runs back from 1 to 0, so the shared
+  // vertices (same position, normal and UV) need two frames with opposite w.
+  GridMesh m;
+  m.positions = {0, 0, 0, 1, 0, 0, 2, 0, 0, 0, 1, 0, 1, 1, 0, 2, 1, 0};
+  m.normals.assign(18, 0.0f);
+  for (int v = 0; v < 6; ++v) m.normals[3 * v + 2] = 1;
+  m.uvs = {0, 0, 1, 0, 0, 0, 0, 1, 1, 1, 0, 1};
+  m.indices = {0, 1, 4, 0, 4, 3, 1, 2, 5, 1, 5, 4};
+  Options options;
+  options.uvOrigin = tangent::UvOrigin::bottomLeft;
+  const Result r = run(m, options);
+  for (std::size_t c = 0; c < 6; ++c) expectTangent(r, c, 1, 0, 0, 1);
+  for (std::size_t c = 6; c < 12; ++c) expectTangent(r, c, -1, 0, 0, -1);
+  EXPECT_EQ(r.report.splitVertices, 2u);  // vertices 1 and 4
+  EXPECT_EQ(r.report.mirroredCorners, 6u);
+}
+
+GridMesh cube24() {
+  // 24-vertex cube: 4 own vertices per face, u along the face's first edge.
+  GridMesh m;
+  const int axes[6][3] = {{0, 1, 2}, {0, 1, 2}, {1, 2, 0}, {1, 2, 0}, {2, 0, 1}, {2, 0, 1}};
+  for (int f = 0; f < 6; ++f) {
+    const float side = (f % 2 == 0) ? 1.0f : -1.0f;
+    const int ua = axes[f][0], va = axes[f][1], na = axes[f][2];
+    const std::uint32_t base = static_cast<std::uint32_t>(m.positions.size() / 3);
+    const float corners[4][2] = {{-1, -1}, {1, -1}, {1, 1}, {-1, 1}};
+    for (auto& c : corners) {
+      float p[3] = {0, 0, 0}, n[3] = {0, 0, 0};
+      p[ua] = c[0] * side;  // mirror u on the back faces so the winding stays outward
+      p[va] = c[1];
+      p[na] = side;
+      n[na] = side;
+      m.positions.insert(m.positions.end(), p, p + 3);
+      m.normals.insert(m.normals.end(), n, n + 3);
+      m.uvs.insert(m.uvs.end(), {(c[0] + 1) / 2, (c[1] + 1) / 2});
+    }
+    m.indices.insert(m.indices.end(), {base, base + 1, base + 2, base, base + 2, base + 3});
+  }
+  return m;
+}
+
+TEST(Core, Cube24ExactFrames) {
+  Options options;
+  options.uvOrigin = tangent::UvOrigin::bottomLeft;
+  const GridMesh m = cube24();
+  const Result r = run(m, options);
+  const int uAxis[6] = {0, 0, 1, 1, 2, 2};
+  for (int f = 0; f < 6; ++f) {
+    float expected[3] = {0, 0, 0};
+    expected[uAxis[f]] = (f % 2 == 0) ? 1.0f : -1.0f;
+    for (int c = 0; c < 6; ++c) expectTangent(r, 6 * f + c, expected[0], expected[1], expected[2], 1);
+  }
+  EXPECT_EQ(r.report.splitVertices, 0u);
+  expectValidFrames(m, r);
+}
+
+TEST(Core, FlatGivesOneFramePerFace) {
+  const GridMesh m = tangent::testing::makeSphere(12, 8);
+  Options options;
+  options.method = tangent::Method::flat;
+  const Result r = run(m, options);
+  expectValidFrames(m, r);
+  EXPECT_EQ(r.report.method, "flat");
+  // Neighbouring faces on a sphere disagree, so shared vertices split.
+  EXPECT_GT(r.report.splitVertices, 0u);
+  const Result smooth = run(m);
+  EXPECT_EQ(smooth.report.splitVertices, 0u);
+}
+
+TEST(Core, WeightingsDiffer) {
+  // An irregular fan: angle, area and uniform weighting give different averages.
+  GridMesh m;
+  m.positions = {0, 0, 0, 1, 0, 0.3f, 0.2f, 1, 0, -1, 0.1f, 0.2f, 0, -2, -0.5f};
+  m.normals = {0, 0, 1, 0, 0, 1, 0, 0, 1, 0, 0, 1, 0, 0, 1};
+  m.uvs = {0, 0, 1, 0.1f, 0.3f, 1, -1, 0, 0.2f, -1};
+  m.indices = {0, 1, 2, 0, 2, 3, 0, 3, 4, 0, 4, 1};
+  std::vector<std::vector<float>> centres;
+  for (auto weighting : {tangent::Weighting::angle, tangent::Weighting::area, tangent::Weighting::uniform}) {
+    Options options;
+    options.weighting = weighting;
+    const Result r = run(m, options);
+    expectValidFrames(m, r);
+    centres.emplace_back(r.tangents.begin(), r.tangents.begin() + 4);
+  }
+  EXPECT_NE(centres[0], centres[1]);
+  EXPECT_NE(centres[0], centres[2]);
+  EXPECT_NE(centres[1], centres[2]);
+}
+
+TEST(Core, InvariantsOnGeneratedMeshes) {
+  for (const GridMesh& m : {tangent::testing::makeSphere(24, 12), tangent::testing::makeTorus(24, 12),
+                            tangent::testing::makeGrid(10, 7, true)}) {
+    for (auto method : {tangent::Method::lengyel, tangent::Method::flat}) {
+      Options options;
+      options.method = method;
+      const Result r = run(m, options);
+      expectValidFrames(m, r);
+    }
+  }
+}
+
+TEST(Core, TorusTangentFollowsU) {
+  // On the torus u runs around the main ring: the exact tangent is (-sin a, cos a, 0).
+  // Vertices on the u seam see triangles on one side only, so their frame is the chord's,
+  // half a ring step (2.8 degrees here) off for any method: they are left out.
+  const int rings = 64, sides = 32;
+  const GridMesh m = tangent::testing::makeTorus(rings, sides);
+  const Result r = run(m);
+  double worst = 0;
+  for (std::size_t c = 0; c < m.indices.size(); ++c) {
+    const std::uint32_t ring = m.indices[c] / (sides + 1);
+    if (ring == 0 || ring == static_cast<std::uint32_t>(rings)) continue;
+    const float* p = &m.positions[3 * m.indices[c]];
+    const double a = std::atan2(p[1], p[0]);
+    const double dot = r.tangents[4 * c] * -std::sin(a) + r.tangents[4 * c + 1] * std::cos(a);
+    worst = std::max(worst, std::acos(std::min(1.0, dot)) * 180 / M_PI);
+  }
+  EXPECT_LT(worst, 0.05);  // degrees: symmetric neighbourhoods cancel the chord error
+}
+
+// Same output bits when the faces come in another order or each triangle's corners rotate.
+TEST(Core, FaceOrderAndCornerRotationDoNotChangeBits) {
+  for (const GridMesh& m : {tangent::testing::makeSphere(20, 10), tangent::testing::makeGrid(9, 9, true)}) {
+    for (auto method : {tangent::Method::lengyel, tangent::Method::flat}) {
+      Options options;
+      options.method = method;
+      const Result reference = run(m, options);
+      std::mt19937 rng(7);
+      std::vector<std::size_t> order(m.indices.size() / 3);
+      for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
+      std::shuffle(order.begin(), order.end(), rng);
+      GridMesh shuffled = m;
+      std::vector<int> rotation(order.size());
+      for (std::size_t i = 0; i < order.size(); ++i) {
+        rotation[i] = static_cast<int>(rng() % 3);
+        for (int k = 0; k < 3; ++k) shuffled.indices[3 * i + k] = m.indices[3 * order[i] + (k + rotation[i]) % 3];
+      }
+      const Result r = run(shuffled, options);
+      for (std::size_t i = 0; i < order.size(); ++i) {
+        for (int k = 0; k < 3; ++k) {
+          const std::size_t original = 3 * order[i] + (k + rotation[i]) % 3;
+          for (int j = 0; j < 4; ++j) {
+            ASSERT_EQ(std::bit_cast<std::uint32_t>(r.tangents[4 * (3 * i + k) + j]),
+                      std::bit_cast<std::uint32_t>(reference.tangents[4 * original + j]));
+          }
+        }
+      }
+    }
+  }
+}
+
+TEST(Core, DegenerateAndZeroUvTrianglesAreCountedAndGetFrames) {
+  GridMesh m = quad();
+  // A zero-area triangle (repeated position) and a zero-UV-area triangle sharing vertex 2.
+  m.positions.insert(m.positions.end(), {1, 1, 0, 2, 1, 0, 2, 2, 0});
+  m.normals.insert(m.normals.end(), {0, 0, 1, 0, 0, 1, 0, 0, 1});
+  m.uvs.insert(m.uvs.end(), {1, 1, 1, 1, 1, 1});
+  m.indices.insert(m.indices.end(), {2, 4, 1});   // collapses: vertex 4 sits on vertex 2
+  m.indices.insert(m.indices.end(), {2, 5, 6});   // real triangle, all UVs equal
+  const Result r = run(m);
+  expectValidFrames(m, r);
+  EXPECT_EQ(r.report.degenerateTriangles, 1u);
+  EXPECT_EQ(r.report.zeroUvAreaTriangles, 1u);
+  EXPECT_GT(r.report.fallbackFromNeighbours, 0u);
+  // The corner at vertex 2 of the zero-UV triangle inherits the quad's frame there.
+  expectTangent(r, 9, 1, 0, 0, -1);
+}
+
+TEST(Core, NonFiniteInputIsReportedAndContained) {
+  GridMesh m = tangent::testing::makeGrid(4, 4, false);
+  m.positions[3 * 12] = std::numeric_limits<float>::quiet_NaN();
+  m.uvs[2 * 3] = std::numeric_limits<float>::infinity();
+  m.normals[3 * 20] = std::numeric_limits<float>::quiet_NaN();
+  const Result r = run(m);
+  EXPECT_GT(r.report.nonFiniteTriangles, 0u);
+  EXPECT_GT(r.report.invalidNormals, 0u);
+  for (std::size_t c = 0; c < m.indices.size(); ++c) {
+    const float* t = &r.tangents[4 * c];
+    ASSERT_TRUE(std::isfinite(t[0]) && std::isfinite(t[1]) && std::isfinite(t[2]));
+    ASSERT_NEAR(std::sqrt(t[0] * t[0] + t[1] * t[1] + t[2] * t[2]), 1.0f, 1e-6);
+    ASSERT_TRUE(t[3] == 1.0f || t[3] == -1.0f);
+  }
+  // Corners far from the bad vertices are exactly what a clean mesh gives.
+  const Result clean = run(tangent::testing::makeGrid(4, 4, false));
+  EXPECT_EQ(std::vector<float>(r.tangents.end() - 8, r.tangents.end()), std::vector<float>(clean.tangents.end() - 8, clean.tangents.end()));
+}
+
+TEST(Core, NonManifoldFacesAreKeptAndCounted) {
+  // Three triangles on the edge (0,1): OpenMesh refuses the third; it keeps its own vertices.
+  GridMesh m;
+  m.positions = {0, 0, 0, 1, 0, 0, 0.5f, 1, 0, 0.5f, -1, 0, 0.5f, 0, 1};
+  m.normals = {0, 0, 1, 0, 0, 1, 0, 0, 1, 0, 0, 1, 0, 0, 1};
+  m.uvs = {0, 0, 1, 0, 0.5f, 1, 0.5f, -1, 0.5f, 0.5f};
+  m.indices = {0, 1, 2, 1, 0, 3, 0, 1, 4};
+  tangent::CornerMesh cornerMesh = tangent::buildCornerMesh({m.positions, m.normals, m.uvs, m.indices});
+  EXPECT_EQ(cornerMesh.mesh.n_faces(), 3u);
+  EXPECT_EQ(cornerMesh.nonManifoldFaces, 1u);
+  const Result r = run(m);
+  EXPECT_EQ(r.report.nonManifoldFaces, 1u);
+  EXPECT_EQ(r.report.triangles, 3u);
+  for (std::size_t c = 0; c < m.indices.size(); ++c) ASSERT_TRUE(std::isfinite(r.tangents[4 * c]));
+}
+
+TEST(Core, ZeroNormalGetsAFrameAndIsCounted) {
+  GridMesh m = quad();
+  m.normals[0] = m.normals[1] = m.normals[2] = 0;
+  const Result r = run(m);
+  EXPECT_EQ(r.report.invalidNormals, 2u);  // vertex 0 is used by two corners
+  expectTangent(r, 0, 1, 0, 0, -1);
+}
+
+TEST(Core, HalfedgeMeshHoldsCornerAttributes) {
+  const GridMesh m = tangent::testing::makeGrid(3, 3, true);
+  tangent::CornerMesh cornerMesh = tangent::buildCornerMesh({m.positions, m.normals, m.uvs, m.indices});
+  EXPECT_EQ(cornerMesh.mesh.n_vertices(), m.positions.size() / 3);  // welded: positions are distinct
+  tangent::computeTangents(cornerMesh);
+  for (std::size_t c = 0; c < m.indices.size(); ++c) {
+    const auto h = cornerMesh.cornerHalfedge[c];
+    EXPECT_EQ(cornerMesh.mesh.to_vertex_handle(h).idx(), static_cast<int>(m.indices[c]));
+    EXPECT_FLOAT_EQ(cornerMesh.mesh.texcoord2D(h)[0], m.uvs[2 * m.indices[c]]);
+    EXPECT_NEAR(cornerMesh.mesh.property(cornerMesh.tangent, h).norm(), std::sqrt(2.0), 1e-9);  // |xyz|=1, |w|=1
+  }
+}
+
+TEST(CoreErrors, MismatchedNormals) {
+  GridMesh m = quad();
+  m.normals.pop_back();
+  std::vector<float> out(m.indices.size() * 4);
+  EXPECT_THROW(tangent::computeCornerTangents({m.positions, m.normals, m.uvs, m.indices}, out), std::invalid_argument);
+}
+
+TEST(CoreErrors, MismatchedUvs) {
+  GridMesh m = quad();
+  m.uvs.push_back(0);
+  std::vector<float> out(m.indices.size() * 4);
+  EXPECT_THROW(tangent::computeCornerTangents({m.positions, m.normals, m.uvs, m.indices}, out), std::invalid_argument);
+}
+
+TEST(CoreErrors, IndexOutOfRange) {
+  GridMesh m = quad();
+  m.indices[4] = 4;
+  std::vector<float> out(m.indices.size() * 4);
+  EXPECT_THROW(tangent::computeCornerTangents({m.positions, m.normals, m.uvs, m.indices}, out), std::invalid_argument);
+}
+
+TEST(CoreErrors, IndicesNotTriangles) {
+  GridMesh m = quad();
+  m.indices.pop_back();
+  std::vector<float> out(m.indices.size() * 4);
+  EXPECT_THROW(tangent::computeCornerTangents({m.positions, m.normals, m.uvs, m.indices}, out), std::invalid_argument);
+}
+
+TEST(CoreErrors, OutputTooSmall) {
+  const GridMesh m = quad();
+  std::vector<float> out(m.indices.size() * 4 - 1);
+  EXPECT_THROW(tangent::computeCornerTangents({m.positions, m.normals, m.uvs, m.indices}, out), std::invalid_argument);
+}
+
+TEST(CoreNames, ParseAndPrint) {
+  tangent::Method method;
+  EXPECT_TRUE(tangent::parseMethod("flat", method));
+  EXPECT_EQ(method, tangent::Method::flat);
+  EXPECT_FALSE(tangent::parseMethod("mikk", method));
+  tangent::Weighting weighting;
+  EXPECT_TRUE(tangent::parseWeighting("area", weighting));
+  EXPECT_EQ(tangent::toString(weighting), "area");
+  EXPECT_FALSE(tangent::parseWeighting("", weighting));
+}
+
+}  // namespace

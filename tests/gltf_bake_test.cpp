@@ -1,0 +1,429 @@
+// glTF adapter: round trip of every attribute of every corner, JSON kept outside the touched
+// accessors, accessor forms, splitting, UV-set choice, and the shared sample assets.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <fstream>
+#include <functional>
+#include <iterator>
+
+#include "accessors.hpp"
+#include "asset.hpp"
+#include "document.hpp"
+#include "primitive.hpp"
+#include "support/temp_dir.hpp"
+#include "support/test_assets.hpp"
+#include "tangent/gltf.hpp"
+
+namespace {
+
+namespace fs = std::filesystem;
+using Json = nlohmann::ordered_json;
+using tangent::gltf::detail::Asset;
+using tangent::gltf::detail::loadAsset;
+using tangent::gltf::detail::readAccessor;
+using tangent::testing::TempDir;
+
+std::vector<std::uint32_t> cornersOf(const Asset& asset, const Json& primitive) {
+  const std::size_t vertexCount = asset.model.accessors[primitive["attributes"]["POSITION"].get<int>()].count;
+  std::vector<std::uint32_t> sequence;
+  if (primitive.contains("indices")) {
+    sequence = tangent::gltf::detail::toIndices(readAccessor(asset.model, primitive["indices"].get<int>(), "indices"), vertexCount, "indices");
+  } else {
+    for (std::uint32_t i = 0; i < vertexCount; ++i) sequence.push_back(i);
+  }
+  return tangent::gltf::detail::triangleList(primitive.value("mode", 4), sequence);
+}
+
+// Every attribute (and morph-target attribute) of every corner has the same bytes.
+void expectSameCorners(const Asset& in, const Json& inPrimitive, const Asset& out, const Json& outPrimitive, const std::string& label) {
+  const auto inCorners = cornersOf(in, inPrimitive);
+  const auto outCorners = cornersOf(out, outPrimitive);
+  ASSERT_EQ(inCorners.size(), outCorners.size()) << label;
+  auto compare = [&](const Json& inAttributes, const Json& outAttributes, const std::string& where) {
+    for (auto& [name, ref] : inAttributes.items()) {
+      if (name == "TANGENT" && outAttributes.contains("TANGENT") && ref != outAttributes["TANGENT"]) continue;  // recomputed
+      ASSERT_TRUE(outAttributes.contains(name)) << where << " lost " << name;
+      const auto a = readAccessor(in.model, ref.get<int>(), name);
+      const auto b = readAccessor(out.model, outAttributes[name].get<int>(), name);
+      ASSERT_EQ(a.componentType, b.componentType) << where << " " << name;
+      ASSERT_EQ(a.type, b.type) << where << " " << name;
+      ASSERT_EQ(a.normalized, b.normalized) << where << " " << name;
+      const std::size_t size = a.elementSize();
+      for (std::size_t c = 0; c < inCorners.size(); ++c) {
+        ASSERT_EQ(0, std::memcmp(&a.bytes[inCorners[c] * size], &b.bytes[outCorners[c] * size], size))
+            << where << " " << name << " corner " << c;
+      }
+    }
+  };
+  compare(inPrimitive["attributes"], outPrimitive["attributes"], label);
+  if (inPrimitive.contains("targets")) {
+    for (std::size_t t = 0; t < inPrimitive["targets"].size(); ++t)
+      compare(inPrimitive["targets"][t], outPrimitive["targets"][t], label + " target " + std::to_string(t));
+  }
+}
+
+std::string bytesKey(const std::vector<std::uint8_t>& bytes) {
+  return std::to_string(bytes.size()) + ":" + std::to_string(std::hash<std::string_view>{}(
+                                                  std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size())));
+}
+
+// The document with accessor and bufferView references replaced by their content, storage
+// arrays removed, and baked primitives reduced to their attribute names.
+Json canonical(const Asset& asset, const std::vector<std::pair<int, int>>& touched, bool isOutput) {
+  Json doc = asset.json;
+  for (auto [m, p] : touched) {
+    Json& primitive = doc["meshes"][m]["primitives"][p];
+    auto namesOnly = [&](Json& attributes) {
+      if (isOutput) attributes.erase("TANGENT");
+      for (auto& [name, ref] : attributes.items()) ref = nullptr;
+    };
+    namesOnly(primitive["attributes"]);
+    if (primitive.contains("targets"))
+      for (auto& target : primitive["targets"]) namesOnly(target);
+    primitive.erase("indices");
+    primitive.erase("mode");
+  }
+  tangent::gltf::detail::forEachAccessorRef(doc, [&](Json& ref) {
+    const int index = ref.get<int>();
+    const auto data = readAccessor(asset.model, index, "accessor");
+    ref = "accessor " + std::to_string(data.componentType) + "/" + std::to_string(data.type) + "/" + bytesKey(data.bytes);
+  });
+  if (doc.contains("images")) {
+    for (auto& image : doc["images"]) {
+      if (!image.contains("bufferView")) continue;
+      const auto& view = asset.model.bufferViews[image["bufferView"].get<int>()];
+      const auto& buffer = asset.model.buffers[view.buffer].data;
+      image["bufferView"] = bytesKey(std::vector<std::uint8_t>(buffer.begin() + view.byteOffset, buffer.begin() + view.byteOffset + view.byteLength));
+    }
+  }
+  doc.erase("accessors");
+  doc.erase("bufferViews");
+  doc.erase("buffers");
+  return doc;
+}
+
+struct BakeCase {
+  tangent::testing::TestAsset asset;
+  bool glb;
+};
+
+class RoundTrip : public ::testing::TestWithParam<int> {};
+
+TEST_P(RoundTrip, EveryCornerAndAllOtherJsonKept) {
+  const auto assets = tangent::testing::makeTestAssets();
+  for (const auto& testAsset : {assets[static_cast<std::size_t>(GetParam())]}) {
+    for (bool glb : {false, true}) {
+      SCOPED_TRACE(testAsset.name + (glb ? ".glb" : ".gltf"));
+      TempDir dir;
+      const fs::path input = tangent::testing::writeAsset(testAsset, dir / "in", glb);
+      const fs::path output = dir / "out" / input.filename();
+      const tangent::gltf::BakeResult result = tangent::gltf::bakeFile(input, output, {});
+      const Asset in = loadAsset(input);
+      const Asset out = loadAsset(output);
+      std::vector<std::pair<int, int>> touched;
+      for (const auto& p : result.primitives) {
+        if (p.action == "baked") touched.emplace_back(p.mesh, p.primitive);
+      }
+      ASSERT_FALSE(touched.empty());
+      for (const auto& p : result.primitives) {
+        const Json& inPrimitive = in.json["meshes"][p.mesh]["primitives"][p.primitive];
+        const Json& outPrimitive = out.json["meshes"][p.mesh]["primitives"][p.primitive];
+        if (p.action != "baked") continue;
+        ASSERT_TRUE(outPrimitive["attributes"].contains("TANGENT"));
+        expectSameCorners(in, inPrimitive, out, outPrimitive, "mesh " + std::to_string(p.mesh) + " primitive " + std::to_string(p.primitive));
+        const auto tangents = tangent::gltf::detail::toFloats(readAccessor(out.model, outPrimitive["attributes"]["TANGENT"].get<int>(), "TANGENT"));
+        EXPECT_EQ(tangents.size(), 4 * p.verticesOut);
+        for (std::size_t v = 0; v < p.verticesOut; ++v) {
+          const float* t = &tangents[4 * v];
+          ASSERT_NEAR(std::sqrt(t[0] * t[0] + t[1] * t[1] + t[2] * t[2]), 1.0f, 1e-6);
+          ASSERT_TRUE(t[3] == 1.0f || t[3] == -1.0f);
+        }
+      }
+      EXPECT_EQ(canonical(in, touched, false), canonical(out, touched, true));
+      EXPECT_EQ(out.json["buffers"].size(), 1u);
+    }
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(GeneratedAssets, RoundTrip, ::testing::Range(0, 8),
+                         [](const ::testing::TestParamInfo<int>& info) {
+                           return tangent::testing::makeTestAssets()[static_cast<std::size_t>(info.param)].name;
+                         });
+
+const tangent::testing::TestAsset& assetNamed(const std::vector<tangent::testing::TestAsset>& all, const std::string& name) {
+  return *std::find_if(all.begin(), all.end(), [&](const auto& a) { return a.name == name; });
+}
+
+tangent::gltf::BakeResult bakeGenerated(const std::string& name, const TempDir& dir, Asset& out, bool glb = true) {
+  const auto all = tangent::testing::makeTestAssets();
+  const fs::path input = tangent::testing::writeAsset(assetNamed(all, name), dir / "in", glb);
+  const fs::path output = dir / "out" / input.filename();
+  auto result = tangent::gltf::bakeFile(input, output, {});
+  out = loadAsset(output);
+  return result;
+}
+
+TEST(Bake, MirroredColumnsSplitAndIndicesWiden) {
+  TempDir dir;
+  Asset out;
+  const auto result = bakeGenerated("many_splits", dir, out);
+  ASSERT_EQ(result.primitives[0].action, "baked");
+  EXPECT_EQ(result.primitives[0].verticesIn, 201u * 301u);
+  EXPECT_EQ(result.primitives[0].verticesOut, 201u * 301u + 199u * 301u);  // every interior column splits
+  EXPECT_EQ(result.primitives[0].tangents.splitVertices, 199u * 301u);
+  const int indices = out.json["meshes"][0]["primitives"][0]["indices"].get<int>();
+  EXPECT_EQ(out.json["accessors"][indices]["componentType"], 5125);
+}
+
+TEST(Bake, SmallIndexTypeKeptWhenItFits) {
+  TempDir dir;
+  Asset out;
+  bakeGenerated("interleaved_ubyte", dir, out);
+  const int indices = out.json["meshes"][0]["primitives"][0]["indices"].get<int>();
+  EXPECT_EQ(out.json["accessors"][indices]["componentType"], 5121);
+}
+
+TEST(Bake, QuantizedAttributesStayQuantizedAndAligned) {
+  TempDir dir;
+  Asset out;
+  bakeGenerated("quantized", dir, out);
+  const Json& attributes = out.json["meshes"][0]["primitives"][0]["attributes"];
+  EXPECT_EQ(out.json["accessors"][attributes["POSITION"].get<int>()]["componentType"], 5122);
+  EXPECT_EQ(out.json["accessors"][attributes["NORMAL"].get<int>()]["normalized"], true);
+  const int view = out.json["accessors"][attributes["POSITION"].get<int>()]["bufferView"].get<int>();
+  EXPECT_EQ(out.json["bufferViews"][view]["byteStride"], 8);
+  EXPECT_EQ(out.json["extensionsRequired"], Json::array({"KHR_mesh_quantization"}));
+}
+
+TEST(Bake, NormalTextureUvSetAndTextureTransformChooseTheFrame) {
+  TempDir dir;
+  Asset out;
+  const auto result = bakeGenerated("second_uv_set", dir, out);
+  ASSERT_EQ(result.primitives[0].texCoord, 1);
+  ASSERT_EQ(result.primitives[1].texCoord, 1);  // KHR_texture_transform overrides texCoord 0
+  auto firstTangent = [&](int primitive) {
+    const Json& p = out.json["meshes"][0]["primitives"][primitive];
+    return tangent::gltf::detail::toFloats(readAccessor(out.model, p["attributes"]["TANGENT"].get<int>(), "TANGENT"));
+  };
+  const auto plain = firstTangent(0);
+  const auto rotated = firstTangent(1);
+  // TEXCOORD_1's u runs along +x (TEXCOORD_0 is rotated and would give y).
+  EXPECT_GT(plain[0], 0.9f);
+  // The transform rotates UVs by 0.5 rad, so the frame turns by 0.5 rad in the surface.
+  double angle = std::acos(std::clamp(plain[0] * rotated[0] + plain[1] * rotated[1] + plain[2] * rotated[2], -1.0f, 1.0f));
+  EXPECT_NEAR(angle, 0.5, 0.05);
+}
+
+TEST(Bake, MorphTargetsGetTangentDeltas) {
+  TempDir dir;
+  Asset out;
+  bakeGenerated("morph_targets", dir, out);
+  const Json& primitive = out.json["meshes"][0]["primitives"][0];
+  ASSERT_EQ(primitive["targets"].size(), 2u);
+  for (const auto& target : primitive["targets"]) {
+    ASSERT_TRUE(target.contains("TANGENT"));
+    const Json& accessor = out.json["accessors"][target["TANGENT"].get<int>()];
+    EXPECT_EQ(accessor["type"], "VEC3");
+    const auto deltas = tangent::gltf::detail::toFloats(readAccessor(out.model, target["TANGENT"].get<int>(), "TANGENT"));
+    EXPECT_TRUE(std::any_of(deltas.begin(), deltas.end(), [](float d) { return std::abs(d) > 1e-3f; }));
+  }
+  EXPECT_EQ(out.json["meshes"][0]["weights"], Json::array({0.5, 0.0}));
+}
+
+TEST(Bake, PrimitivesThatNeedNothingAreLeftAlone) {
+  TempDir dir;
+  Asset out;
+  const auto result = bakeGenerated("document_features", dir, out);
+  ASSERT_EQ(result.primitives.size(), 5u);
+  EXPECT_EQ(result.primitives[0].action, "baked");
+  EXPECT_EQ(result.primitives[1].action, "skipped");  // no normal texture
+  EXPECT_EQ(result.primitives[2].action, "skipped");  // points
+  EXPECT_EQ(result.primitives[3].action, "skipped");  // no NORMAL
+  EXPECT_NE(result.primitives[3].reason.find("NORMAL"), std::string::npos);
+  EXPECT_EQ(result.primitives[4].action, "kept");     // valid TANGENT
+  const Json& primitives = out.json["meshes"][0]["primitives"];
+  EXPECT_FALSE(primitives[1]["attributes"].contains("TANGENT"));
+  EXPECT_FALSE(primitives[2]["attributes"].contains("TANGENT"));
+  EXPECT_EQ(primitives[0]["extras"]["primitiveNote"], "keep me");
+}
+
+TEST(Bake, OverwriteRecomputesValidTangents) {
+  TempDir dir;
+  const auto all = tangent::testing::makeTestAssets();
+  const fs::path input = tangent::testing::writeAsset(assetNamed(all, "document_features"), dir / "in", true);
+  tangent::gltf::BakeOptions options;
+  options.overwrite = true;
+  const auto result = tangent::gltf::bakeFile(input, dir / "out.glb", options);
+  EXPECT_EQ(result.primitives[4].action, "baked");
+}
+
+TEST(Bake, AllBakesPrimitivesWithoutNormalTexture) {
+  TempDir dir;
+  const auto all = tangent::testing::makeTestAssets();
+  const fs::path input = tangent::testing::writeAsset(assetNamed(all, "document_features"), dir / "in", true);
+  tangent::gltf::BakeOptions options;
+  options.all = true;
+  const auto result = tangent::gltf::bakeFile(input, dir / "out.glb", options);
+  EXPECT_EQ(result.primitives[1].action, "baked");
+}
+
+TEST(Bake, GltfAndGlbConvertBothWays) {
+  TempDir dir;
+  const auto all = tangent::testing::makeTestAssets();
+  const fs::path gltfIn = tangent::testing::writeAsset(assetNamed(all, "interleaved_ubyte"), dir / "in", false);
+  tangent::gltf::bakeFile(gltfIn, dir / "a.glb", {});
+  tangent::gltf::bakeFile(dir / "a.glb", dir / "b.gltf", {});
+  EXPECT_TRUE(fs::exists(dir / "b.bin"));
+  const Asset b = loadAsset(dir / "b.gltf");
+  EXPECT_EQ(b.json["buffers"][0]["uri"], "b.bin");
+  EXPECT_FALSE(b.binary);
+}
+
+TEST(Bake, ExternalImagesStayReachableFromTheOutputFolder) {
+  TempDir dir;
+  const fs::path demo = fs::path(TANGENT_SOURCE_DIR) / "data" / "demo" / "demo.gltf";
+  ASSERT_TRUE(fs::exists(demo));
+  const fs::path output = dir / "nested" / "deeper" / "demo.gltf";
+  tangent::gltf::bakeFile(demo, output, {});
+  const Asset out = loadAsset(output);
+  const std::string uri = out.json["images"][0]["uri"].get<std::string>();
+  EXPECT_TRUE(fs::exists(output.parent_path() / uri)) << uri;
+  // The image bytes are never decoded or rewritten: it is the same file.
+  EXPECT_TRUE(fs::equivalent(output.parent_path() / uri, demo.parent_path() / "bumps_normal.png"));
+}
+
+std::vector<char> fileBytes(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  return std::vector<char>(std::istreambuf_iterator<char>(in), {});
+}
+
+TEST(BakeErrors, RefusesToWriteOverTheInput) {
+  TempDir dir;
+  const auto all = tangent::testing::makeTestAssets();
+  const fs::path written = tangent::testing::writeAsset(assetNamed(all, "sparse"), dir.path(), false);
+  const fs::path input = dir / "a.gltf";  // a.gltf reads sparse.bin
+  fs::rename(written, input);
+  const auto before = fileBytes(input);
+  const auto binBefore = fileBytes(dir / "sparse.bin");
+  EXPECT_THROW(tangent::gltf::bakeFile(input, input, {}), tangent::gltf::InputError);
+  // A .gltf output whose .bin would replace the input's buffer file.
+  EXPECT_THROW(tangent::gltf::bakeFile(input, dir / "sparse.gltf", {}), tangent::gltf::InputError);
+  EXPECT_NO_THROW(tangent::gltf::bakeFile(input, dir / "other.gltf", {}));
+  EXPECT_EQ(before, fileBytes(input));
+  EXPECT_EQ(binBefore, fileBytes(dir / "sparse.bin"));
+  EXPECT_TRUE(fs::exists(dir / "other.bin"));
+}
+
+TEST(BakeErrors, AttributeCountMismatchNamesTheAccessor) {
+  TempDir dir;
+  auto all = tangent::testing::makeTestAssets();
+  auto asset = assetNamed(all, "interleaved_ubyte");
+  asset.json["accessors"][asset.json["meshes"][0]["primitives"][0]["attributes"]["NORMAL"].get<int>()]["count"] = 10;
+  const fs::path input = tangent::testing::writeAsset(asset, dir / "in", true);
+  try {
+    tangent::gltf::bakeFile(input, dir / "out.glb", {});
+    FAIL() << "no error";
+  } catch (const tangent::gltf::InputError& e) {
+    const std::string message = e.what();
+    EXPECT_NE(message.find("interleaved_ubyte.glb"), std::string::npos) << message;
+    EXPECT_NE(message.find("mesh 0 'Interleaved' primitive 0"), std::string::npos) << message;
+    EXPECT_NE(message.find("NORMAL"), std::string::npos) << message;
+    EXPECT_NE(message.find("accessor 1"), std::string::npos) << message;
+  }
+  EXPECT_FALSE(fs::exists(dir / "out.glb"));
+}
+
+TEST(BakeErrors, IndexOutOfRange) {
+  TempDir dir;
+  auto all = tangent::testing::makeTestAssets();
+  auto asset = assetNamed(all, "strips_and_fans");
+  // The fan's indices reach vertex 12; shrink its attributes to 5 vertices.
+  for (const char* name : {"POSITION", "NORMAL", "TEXCOORD_0"})
+    asset.json["accessors"][asset.json["meshes"][0]["primitives"][1]["attributes"][name].get<int>()]["count"] = 5;
+  const fs::path input = tangent::testing::writeAsset(asset, dir / "in", false);
+  EXPECT_THROW(tangent::gltf::bakeFile(input, dir / "out.gltf", {}), tangent::gltf::InputError);
+  EXPECT_FALSE(fs::exists(dir / "out.gltf"));
+  EXPECT_FALSE(fs::exists(dir / "out.bin"));
+}
+
+TEST(BakeErrors, NotGltf) {
+  TempDir dir;
+  std::ofstream(dir / "junk.gltf") << "{ not json";
+  EXPECT_THROW(tangent::gltf::bakeFile(dir / "junk.gltf", dir / "out.gltf", {}), tangent::gltf::InputError);
+  std::ofstream(dir / "junk.glb") << "glTF but not really";
+  EXPECT_THROW(tangent::gltf::bakeFile(dir / "junk.glb", dir / "out.glb", {}), tangent::gltf::InputError);
+  EXPECT_THROW(tangent::gltf::bakeFile(dir / "missing.glb", dir / "out.glb", {}), tangent::gltf::InputError);
+  EXPECT_THROW(tangent::gltf::bakeFile(dir / "junk.gltf", dir / "out.txt", {}), tangent::gltf::InputError);
+}
+
+TEST(MeshFiles, ObjBakesToGlb) {
+  TempDir dir;
+  std::ofstream(dir / "quad.obj") << "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\n"
+                                     "vt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\n"
+                                     "vn 0 0 1\n"
+                                     "f 1/1/1 2/2/1 3/3/1 4/4/1\n";
+  const fs::path output = tangent::gltf::outputPathFor(dir / "quad.obj", dir / "out");
+  EXPECT_EQ(output.filename(), "quad.glb");
+  const auto result = tangent::gltf::bakeFile(dir / "quad.obj", output, {});
+  ASSERT_EQ(result.primitives.size(), 1u);
+  EXPECT_EQ(result.primitives[0].action, "baked");
+  const Asset out = loadAsset(output);
+  const Json& primitive = out.json["meshes"][0]["primitives"][0];
+  const auto tangents = tangent::gltf::detail::toFloats(readAccessor(out.model, primitive["attributes"]["TANGENT"].get<int>(), "TANGENT"));
+  // OBJ's v points up; in glTF (v down) the same frame has tangent +x and w = +1.
+  EXPECT_NEAR(tangents[0], 1.0f, 1e-6);
+  EXPECT_EQ(tangents[3], 1.0f);
+}
+
+// NormalTangentMirrorTest carries Blender's MikkTSpace tangents in glTF's convention.
+TEST(SharedAssets, MirrorTestHandednessMatchesSuppliedTangents) {
+  const fs::path shared = tangent::testing::sharedAssets();
+  if (shared.empty()) GTEST_SKIP() << "../shared/assets is absent: skipping the shared sample assets";
+  const Asset asset = loadAsset(shared / "NormalTangentMirrorTest.glb");
+  const Json& primitive = asset.json["meshes"][0]["primitives"][0];
+  const auto& attributes = primitive["attributes"];
+  const std::size_t n = asset.model.accessors[attributes["POSITION"].get<int>()].count;
+  auto floats = [&](const char* name) { return tangent::gltf::detail::toFloats(readAccessor(asset.model, attributes[name].get<int>(), name)); };
+  const auto positions = floats("POSITION"), normals = floats("NORMAL"), uvs = floats("TEXCOORD_0"), supplied = floats("TANGENT");
+  const auto corners = cornersOf(asset, primitive);
+  std::vector<float> computed(corners.size() * 4);
+  tangent::computeCornerTangents({positions, normals, uvs, corners}, computed, {});
+  std::size_t wMismatch = 0;
+  std::vector<double> angles;
+  for (std::size_t c = 0; c < corners.size(); ++c) {
+    const float* s = &supplied[4 * corners[c]];
+    const float* t = &computed[4 * c];
+    if (s[3] != t[3]) ++wMismatch;
+    const double dot = (s[0] * t[0] + s[1] * t[1] + s[2] * t[2]) / std::sqrt(s[0] * s[0] + s[1] * s[1] + s[2] * s[2]);
+    angles.push_back(std::acos(std::clamp(dot, -1.0, 1.0)) * 180 / M_PI);
+  }
+  std::sort(angles.begin(), angles.end());
+  std::printf("NormalTangentMirrorTest, lengyel/angle vs supplied: %zu vertices, %zu corners, median %.4f deg, p99 %.4f deg, max %.4f deg, w mismatches %zu\n",
+              n, corners.size(), angles[angles.size() / 2], angles[angles.size() * 99 / 100], angles.back(), wMismatch);
+  EXPECT_EQ(wMismatch, 0u);
+}
+
+TEST(SharedAssets, BothAssetsBakeWithTangentsOnEveryNormalMappedPrimitive) {
+  const fs::path shared = tangent::testing::sharedAssets();
+  if (shared.empty()) GTEST_SKIP() << "../shared/assets is absent: skipping the shared sample assets";
+  for (const char* name : {"NormalTangentTest.glb", "NormalTangentMirrorTest.glb"}) {
+    TempDir dir;
+    tangent::gltf::BakeOptions options;
+    options.overwrite = true;
+    const auto result = tangent::gltf::bakeFile(shared / name, dir / name, options);
+    const Asset out = loadAsset(dir / name);
+    for (const auto& p : result.primitives) {
+      const Json& primitive = out.json["meshes"][p.mesh]["primitives"][p.primitive];
+      const auto needs = tangent::gltf::detail::primitiveNeeds(out.json, primitive, false);
+      if (needs.hasNormalTexture) {
+        EXPECT_EQ(p.action, "baked") << name;
+        EXPECT_TRUE(primitive["attributes"].contains("TANGENT")) << name;
+      }
+    }
+  }
+}
+
+}  // namespace

@@ -1,0 +1,37 @@
+// Generated glTF test assets covering the accessor forms and document features bake must
+// handle. Used by the GoogleTest round trip and by the validator run (tangent-test-assets).
+#pragma once
+
+#include <cstdint>
+#include <filesystem>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+namespace tangent::testing {
+
+struct TestAsset {
+  std::string name;
+  nlohmann::ordered_json json;
+  std::vector<std::uint8_t> bin;  // buffer 0
+};
+
+// Every case, each a complete glTF document.
+std::vector<TestAsset> makeTestAssets();
+
+// Writes `name.gltf` + `name.bin` (or `name.glb`) into dir; returns the main file.
+std::filesystem::path writeAsset(const TestAsset& asset, const std::filesystem::path& dir, bool glb);
+
+// Plain-array meshes for core tests.
+struct GridMesh {
+  std::vector<float> positions, normals, uvs;
+  std::vector<std::uint32_t> indices;
+};
+// nx * ny quads on a gently curved sheet; mirrorColumns alternates the u direction per column
+// of quads, so every interior column of vertices needs two frames.
+GridMesh makeGrid(int nx, int ny, bool mirrorColumns);
+// Torus and UV sphere (with poles) with analytic normals.
+GridMesh makeTorus(int rings, int sides);
+GridMesh makeSphere(int slices, int stacks);
+
+}  // namespace tangent::testing
