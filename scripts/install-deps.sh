@@ -1,0 +1,24 @@
+#!/usr/bin/env bash
+# Installs every Debian 12 package the project needs to build, run and test. Idempotent:
+# when everything is present it does nothing (no apt-get update).
+set -euo pipefail
+packages=(
+  build-essential cmake ninja-build pkg-config git
+  libopenmesh-dev libglm-dev libtinygltf-dev nlohmann-json3-dev libopenimageio-dev
+  libgtest-dev libgmock-dev libbenchmark-dev
+  assimp-testmodels
+)
+missing=()
+for package in "${packages[@]}"; do
+  dpkg-query -W -f='${Status}' "$package" 2>/dev/null | grep -q "install ok installed" || missing+=("$package")
+done
+# Node.js runs the reference tools (Khronos validator, reference MikkTSpace); keep any
+# node the machine already has, else take Debian's.
+command -v node >/dev/null && command -v npm >/dev/null || missing+=(nodejs npm)
+if [ ${#missing[@]} -gt 0 ]; then
+  echo "installing: ${missing[*]}"
+  sudo=""
+  [ "$(id -u)" -eq 0 ] || sudo=sudo
+  $sudo apt-get update -qq
+  DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq --no-install-recommends "${missing[@]}"
+fi
