@@ -81,7 +81,7 @@ TEST(Cli, BakeWritesReportAndLeavesInputAlone) {
   EXPECT_EQ(report[0]["status"], "ok");
   EXPECT_EQ(report[0]["primitives"][0]["action"], "baked");
   EXPECT_GT(report[0]["primitives"][0]["tangents"]["splitVertices"].get<int>(), 0);
-  EXPECT_EQ(report[0]["primitives"][0]["tangents"]["method"], "lengyel");
+  EXPECT_EQ(report[0]["primitives"][0]["tangents"]["method"], "mikktspace");
 }
 
 TEST(Cli, OneBadInputFailsOnlyItself) {

@@ -70,6 +70,7 @@ GridMesh quad() {
 
 TEST(Core, QuadExactFrame) {
   Options options;
+  options.method = tangent::Method::lengyel;
   options.uvOrigin = tangent::UvOrigin::bottomLeft;
   const Result r = run(quad(), options);
   for (std::size_t c = 0; c < 6; ++c) expectTangent(r, c, 1, 0, 0, 1);
@@ -77,6 +78,7 @@ TEST(Core, QuadExactFrame) {
   EXPECT_EQ(r.report.splitVertices, 0u);
   EXPECT_EQ(r.report.method, "lengyel");
   EXPECT_EQ(r.report.weighting, "angle");
+  EXPECT_EQ(run(quad()).report.method, "mikktspace");  // the default
 }
 
 TEST(Core, TopLeftUvOriginNegatesWOnly) {
@@ -165,6 +167,7 @@ TEST(Core, WeightingsDiffer) {
   std::vector<std::vector<float>> centres;
   for (auto weighting : {tangent::Weighting::angle, tangent::Weighting::area, tangent::Weighting::uniform}) {
     Options options;
+    options.method = tangent::Method::lengyel;
     options.weighting = weighting;
     const Result r = run(m, options);
     expectValidFrames(m, r);
@@ -178,7 +181,7 @@ TEST(Core, WeightingsDiffer) {
 TEST(Core, InvariantsOnGeneratedMeshes) {
   for (const GridMesh& m : {tangent::testing::makeSphere(24, 12), tangent::testing::makeTorus(24, 12),
                             tangent::testing::makeGrid(10, 7, true)}) {
-    for (auto method : {tangent::Method::lengyel, tangent::Method::flat}) {
+    for (auto method : {tangent::Method::mikktspace, tangent::Method::lengyel, tangent::Method::flat}) {
       Options options;
       options.method = method;
       const Result r = run(m, options);
@@ -209,7 +212,7 @@ TEST(Core, TorusTangentFollowsU) {
 // Same output bits when the faces come in another order or each triangle's corners rotate.
 TEST(Core, FaceOrderAndCornerRotationDoNotChangeBits) {
   for (const GridMesh& m : {tangent::testing::makeSphere(20, 10), tangent::testing::makeGrid(9, 9, true)}) {
-    for (auto method : {tangent::Method::lengyel, tangent::Method::flat}) {
+    for (auto method : {tangent::Method::mikktspace, tangent::Method::lengyel, tangent::Method::flat}) {
       Options options;
       options.method = method;
       const Result reference = run(m, options);
@@ -346,6 +349,10 @@ TEST(CoreErrors, OutputTooSmall) {
 
 TEST(CoreNames, ParseAndPrint) {
   tangent::Method method;
+  EXPECT_TRUE(tangent::parseMethod("flat", method));
+  EXPECT_EQ(method, tangent::Method::flat);
+  EXPECT_TRUE(tangent::parseMethod("mikktspace", method));
+  EXPECT_EQ(method, tangent::Method::mikktspace);
   EXPECT_TRUE(tangent::parseMethod("flat", method));
   EXPECT_EQ(method, tangent::Method::flat);
   EXPECT_FALSE(tangent::parseMethod("mikk", method));

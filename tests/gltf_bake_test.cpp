@@ -149,8 +149,8 @@ TEST_P(RoundTrip, EveryCornerAndAllOtherJsonKept) {
 }
 
 INSTANTIATE_TEST_SUITE_P(GeneratedAssets, RoundTrip, ::testing::Range(0, 8),
-                         [](const ::testing::TestParamInfo<int>& info) {
-                           return tangent::testing::makeTestAssets()[static_cast<std::size_t>(info.param)].name;
+                         [](const ::testing::TestParamInfo<int>& param) {
+                           return tangent::testing::makeTestAssets()[static_cast<std::size_t>(param.param)].name;
                          });
 
 const tangent::testing::TestAsset& assetNamed(const std::vector<tangent::testing::TestAsset>& all, const std::string& name) {

@@ -353,13 +353,15 @@ GridMesh makeTorus(int rings, int sides) {
   return mesh;
 }
 
-GridMesh makeSphere(int slices, int stacks) {
+GridMesh makeSphere(int slices, int stacks, bool exactPoles) {
   GridMesh mesh;
   for (int j = 0; j <= stacks; ++j) {
     const double v = double(j) / stacks, theta = v * kPi;
+    const bool pole = j == 0 || j == stacks;
+    const double sinTheta = pole && exactPoles ? 0.0 : std::sin(theta);
     for (int i = 0; i <= slices; ++i) {
       const double u = double(i) / slices, phi = u * 2 * kPi;
-      const double n[3] = {std::sin(theta) * std::cos(phi), std::sin(theta) * std::sin(phi), std::cos(theta)};
+      const double n[3] = {sinTheta * std::cos(phi), sinTheta * std::sin(phi), std::cos(theta)};
       for (int k = 0; k < 3; ++k) {
         mesh.positions.push_back(static_cast<float>(n[k]));
         mesh.normals.push_back(static_cast<float>(n[k]));

@@ -30,8 +30,9 @@ struct GridMesh {
 // nx * ny quads on a gently curved sheet; mirrorColumns alternates the u direction per column
 // of quads, so every interior column of vertices needs two frames.
 GridMesh makeGrid(int nx, int ny, bool mirrorColumns);
-// Torus and UV sphere (with poles) with analytic normals.
+// Torus and UV sphere (with poles) with analytic normals. exactPoles puts every pole vertex
+// at exactly (0, 0, +-1); without it the bottom pole's copies sit sin(pi) ~ 1e-16 apart.
 GridMesh makeTorus(int rings, int sides);
-GridMesh makeSphere(int slices, int stacks);
+GridMesh makeSphere(int slices, int stacks, bool exactPoles = true);
 
 }  // namespace tangent::testing

@@ -21,8 +21,9 @@ const char* kBakeUsage =
     "options:\n"
     "  -o, --output FILE      output file (.glb or .gltf + .bin); one input only\n"
     "  --out-dir DIR          write each output into DIR under the input's name\n"
-    "  --method NAME          lengyel (default) | flat\n"
-    "  --weighting NAME       angle (default) | area | uniform   (lengyel)\n"
+    "  --method NAME          mikktspace (default) | lengyel | flat\n"
+    "  --weighting NAME       angle (default) | area | uniform   (lengyel only)\n"
+    "  --threads N            worker threads (default 1); the output never depends on it\n"
     "  --all                  bake every triangle primitive, normal texture or not (TEXCOORD_0)\n"
     "  --overwrite            recompute valid existing TANGENT too\n"
     "  --report FILE.json     write what was done, per file and primitive\n"
@@ -63,11 +64,21 @@ int bakeCommand(const std::vector<std::string>& args) {
     } else if (arg == "--method") {
       const std::string* v = value("--method");
       if (!v || !parseMethod(*v, options.tangents.method))
-        return usageError("--method must be lengyel or flat");
+        return usageError("--method must be mikktspace, lengyel or flat");
     } else if (arg == "--weighting") {
       const std::string* v = value("--weighting");
       if (!v || !parseWeighting(*v, options.tangents.weighting))
         return usageError("--weighting must be angle, area or uniform");
+    } else if (arg == "--threads") {
+      const std::string* v = value("--threads");
+      int threads = 0;
+      try {
+        threads = v ? std::stoi(*v) : 0;
+      } catch (const std::exception&) {
+        threads = 0;
+      }
+      if (threads < 1 || threads > 256) return usageError("--threads must be a number from 1 to 256");
+      options.tangents.threads = static_cast<unsigned>(threads);
     } else if (arg == "--report") {
       const std::string* v = value("--report");
       if (!v) return usageError("--report needs a file name");
@@ -129,6 +140,7 @@ int bakeCommand(const std::vector<std::string>& args) {
             if (r.nonFiniteTriangles) std::cout << ", " << r.nonFiniteTriangles << " non-finite triangles";
             if (r.nonManifoldFaces) std::cout << ", " << r.nonManifoldFaces << " non-manifold faces";
             if (r.invalidNormals) std::cout << ", " << r.invalidNormals << " invalid normals";
+            if (r.inheritedCorners) std::cout << ", " << r.inheritedCorners << " corners inherited a frame";
             if (r.fallbackFromNeighbours + r.fallbackFixed)
               std::cout << ", " << r.fallbackFromNeighbours + r.fallbackFixed << " corners with fallback frames";
             std::cout << "]";

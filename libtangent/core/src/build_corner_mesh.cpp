@@ -1,6 +1,8 @@
 // Builds the welded half-edge mesh the algorithms run on.
 #include <OpenMesh/Core/System/omstream.hh>
 
+#include <algorithm>
+#include <array>
 #include <bit>
 #include <cstring>
 #include <stdexcept>
@@ -59,43 +61,53 @@ class QuietOpenMeshErrors {
 
 }  // namespace
 
-CornerMesh buildCornerMesh(const MeshArrays& arrays) {
-  if (arrays.positions.size() % 3 != 0) throw std::invalid_argument("positions: size is not a multiple of 3");
-  const std::size_t vertexCount = arrays.positions.size() / 3;
-  if (arrays.normals.size() != vertexCount * 3)
-    throw std::invalid_argument("normals: expected " + std::to_string(vertexCount * 3) + " floats, got " +
-                                std::to_string(arrays.normals.size()));
-  if (arrays.uvs.size() != vertexCount * 2)
-    throw std::invalid_argument("uvs: expected " + std::to_string(vertexCount * 2) + " floats, got " +
-                                std::to_string(arrays.uvs.size()));
-  if (arrays.indices.size() % 3 != 0) throw std::invalid_argument("indices: size is not a multiple of 3");
-  for (std::size_t i = 0; i < arrays.indices.size(); ++i) {
-    if (arrays.indices[i] >= vertexCount)
-      throw std::invalid_argument("indices[" + std::to_string(i) + "] = " + std::to_string(arrays.indices[i]) +
-                                  " is out of range (vertex count " + std::to_string(vertexCount) + ")");
-  }
+namespace {
 
-  CornerMesh result;
+// Bit pattern of a corner (position, normal, UV) for ordering; +0 and -0 alike.
+std::array<std::uint32_t, 8> cornerBits(const MeshArrays& arrays, std::uint32_t vertex) {
+  std::array<std::uint32_t, 8> bits{};
+  const float* values[3] = {&arrays.positions[3 * vertex], &arrays.normals[3 * vertex], &arrays.uvs[2 * vertex]};
+  const int sizes[3] = {3, 3, 2};
+  int at = 0;
+  for (int part = 0; part < 3; ++part) {
+    for (int i = 0; i < sizes[part]; ++i) {
+      const float value = values[part][i] == 0.0f ? 0.0f : values[part][i];
+      bits[at++] = std::bit_cast<std::uint32_t>(value);
+    }
+  }
+  return bits;
+}
+
+// Triangles in an order that depends only on their contents: each by its corners' bits,
+// starting at its smallest corner (rotation kept), ties by input position.
+std::vector<std::uint32_t> canonicalTriangleOrder(const MeshArrays& arrays) {
+  const std::size_t triangleCount = arrays.indices.size() / 3;
+  using Key = std::array<std::array<std::uint32_t, 8>, 3>;
+  std::vector<Key> keys(triangleCount);
+  for (std::size_t t = 0; t < triangleCount; ++t) {
+    std::array<std::array<std::uint32_t, 8>, 3> corners;
+    for (int k = 0; k < 3; ++k) corners[k] = cornerBits(arrays, arrays.indices[3 * t + k]);
+    int start = 0;
+    for (int k = 1; k < 3; ++k) {
+      if (corners[k] < corners[start]) start = k;
+    }
+    for (int k = 0; k < 3; ++k) keys[t][k] = corners[(start + k) % 3];
+  }
+  std::vector<std::uint32_t> order(triangleCount);
+  for (std::uint32_t t = 0; t < triangleCount; ++t) order[t] = t;
+  std::stable_sort(order.begin(), order.end(), [&](std::uint32_t a, std::uint32_t b) { return keys[a] < keys[b]; });
+  return order;
+}
+
+// Adds the faces in `order`; faces OpenMesh refuses (or with a repeated vertex) go on
+// duplicated vertices.
+void addFaces(CornerMesh& result, const MeshArrays& arrays, const std::vector<std::uint32_t>& inputToWeld,
+              const std::vector<std::uint32_t>* order) {
   TriMesh& mesh = result.mesh;
   const std::size_t triangleCount = arrays.indices.size() / 3;
-
-  std::unordered_map<PositionKey, std::uint32_t, PositionKeyHash> weldIndex;
-  weldIndex.reserve(vertexCount);
-  std::vector<std::uint32_t> inputToWeld(vertexCount);
-  for (std::size_t v = 0; v < vertexCount; ++v) {
-    const float* p = &arrays.positions[3 * v];
-    auto [it, inserted] = weldIndex.try_emplace(positionKey(p), static_cast<std::uint32_t>(weldIndex.size()));
-    if (inserted) {
-      mesh.add_vertex(TriMesh::Point(p[0], p[1], p[2]));
-      result.weldedVertex.push_back(it->second);
-    }
-    inputToWeld[v] = it->second;
-  }
-
-  QuietOpenMeshErrors quiet;
-  mesh.reserve(mesh.n_vertices(), triangleCount * 3 / 2 + 3, triangleCount);
-  result.cornerHalfedge.resize(triangleCount * 3);
-  for (std::size_t t = 0; t < triangleCount; ++t) {
+  result.cornerHalfedge.assign(triangleCount * 3, OpenMesh::HalfedgeHandle());
+  for (std::size_t step = 0; step < triangleCount; ++step) {
+    const std::size_t t = order ? (*order)[step] : step;
     OpenMesh::VertexHandle corners[3];
     for (int k = 0; k < 3; ++k) corners[k] = OpenMesh::VertexHandle(static_cast<int>(inputToWeld[arrays.indices[3 * t + k]]));
     OpenMesh::FaceHandle face;
@@ -124,6 +136,60 @@ CornerMesh buildCornerMesh(const MeshArrays& arrays) {
         }
       }
     }
+  }
+  result.halfedgeCorner.assign(mesh.n_halfedges(), CornerMesh::kNoCorner);
+  for (std::size_t corner = 0; corner < result.cornerHalfedge.size(); ++corner)
+    result.halfedgeCorner[result.cornerHalfedge[corner].idx()] = static_cast<std::uint32_t>(corner);
+}
+
+}  // namespace
+
+CornerMesh buildCornerMesh(const MeshArrays& arrays) {
+  if (arrays.positions.size() % 3 != 0) throw std::invalid_argument("positions: size is not a multiple of 3");
+  const std::size_t vertexCount = arrays.positions.size() / 3;
+  if (arrays.normals.size() != vertexCount * 3)
+    throw std::invalid_argument("normals: expected " + std::to_string(vertexCount * 3) + " floats, got " +
+                                std::to_string(arrays.normals.size()));
+  if (arrays.uvs.size() != vertexCount * 2)
+    throw std::invalid_argument("uvs: expected " + std::to_string(vertexCount * 2) + " floats, got " +
+                                std::to_string(arrays.uvs.size()));
+  if (arrays.indices.size() % 3 != 0) throw std::invalid_argument("indices: size is not a multiple of 3");
+  for (std::size_t i = 0; i < arrays.indices.size(); ++i) {
+    if (arrays.indices[i] >= vertexCount)
+      throw std::invalid_argument("indices[" + std::to_string(i) + "] = " + std::to_string(arrays.indices[i]) +
+                                  " is out of range (vertex count " + std::to_string(vertexCount) + ")");
+  }
+
+  // Weld by exact position; the welded vertices are added in input vertex order.
+  std::unordered_map<PositionKey, std::uint32_t, PositionKeyHash> weldIndex;
+  weldIndex.reserve(vertexCount);
+  std::vector<std::uint32_t> inputToWeld(vertexCount);
+  std::vector<std::uint32_t> weldSource;
+  for (std::size_t v = 0; v < vertexCount; ++v) {
+    auto [it, inserted] = weldIndex.try_emplace(positionKey(&arrays.positions[3 * v]), static_cast<std::uint32_t>(weldIndex.size()));
+    if (inserted) weldSource.push_back(static_cast<std::uint32_t>(v));
+    inputToWeld[v] = it->second;
+  }
+  auto makeMesh = [&](const std::vector<std::uint32_t>* order) {
+    CornerMesh result;
+    const std::size_t triangleCount = arrays.indices.size() / 3;
+    result.mesh.reserve(weldSource.size(), triangleCount * 3 / 2 + 3, triangleCount);
+    for (std::uint32_t v : weldSource) {
+      const float* p = &arrays.positions[3 * v];
+      result.mesh.add_vertex(TriMesh::Point(p[0], p[1], p[2]));
+      result.weldedVertex.push_back(static_cast<std::uint32_t>(result.weldedVertex.size()));
+    }
+    addFaces(result, arrays, inputToWeld, order);
+    return result;
+  };
+
+  QuietOpenMeshErrors quiet;
+  CornerMesh result = makeMesh(nullptr);
+  if (result.nonManifoldFaces > 0) {
+    // Which of the faces around a non-manifold edge OpenMesh refuses depends on the order
+    // they come in: build again in an order given by the faces' contents.
+    const std::vector<std::uint32_t> order = canonicalTriangleOrder(arrays);
+    result = makeMesh(&order);
   }
   return result;
 }

@@ -5,16 +5,27 @@
 #include <string>
 #include <tuple>
 
+#include "methods.hpp"
 #include "tangent/halfedge_mesh.hpp"
 
 namespace tangent {
 
-Report computeCornerTangents(const MeshArrays& arrays, std::span<float> cornerTangents, const Options& options) {
+Report computeTangents(CornerMesh& mesh, const Options& options, std::span<FrameSource> cornerSources) {
+  if (!cornerSources.empty() && cornerSources.size() != mesh.cornerHalfedge.size())
+    throw std::invalid_argument("cornerSources: expected one per corner");
+  if (options.method == Method::mikktspace) return detail::mikktspaceTangents(mesh, options, cornerSources);
+  return detail::lengyelTangents(mesh, options, cornerSources);
+}
+
+Report computeCornerTangents(const MeshArrays& arrays, std::span<float> cornerTangents, const Options& options,
+                             std::span<FrameSource> cornerSources) {
   if (cornerTangents.size() != arrays.indices.size() * 4)
     throw std::invalid_argument("cornerTangents: expected " + std::to_string(arrays.indices.size() * 4) +
                                 " floats (4 per corner), got " + std::to_string(cornerTangents.size()));
   CornerMesh cornerMesh = buildCornerMesh(arrays);
-  Report report = computeTangents(cornerMesh, options);
+  if (!cornerSources.empty() && cornerSources.size() != arrays.indices.size())
+    throw std::invalid_argument("cornerSources: expected " + std::to_string(arrays.indices.size()) + " entries (one per corner)");
+  Report report = computeTangents(cornerMesh, options, cornerSources);
   const std::size_t cornerCount = arrays.indices.size();
   for (std::size_t corner = 0; corner < cornerCount; ++corner) {
     const TangentVec& t = cornerMesh.mesh.property(cornerMesh.tangent, cornerMesh.cornerHalfedge[corner]);

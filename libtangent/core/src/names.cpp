@@ -4,6 +4,7 @@ namespace tangent {
 
 std::string_view toString(Method method) {
   switch (method) {
+    case Method::mikktspace: return "mikktspace";
     case Method::lengyel: return "lengyel";
     case Method::flat: return "flat";
   }
@@ -20,7 +21,7 @@ std::string_view toString(Weighting weighting) {
 }
 
 bool parseMethod(std::string_view name, Method& method) {
-  for (Method candidate : {Method::lengyel, Method::flat}) {
+  for (Method candidate : {Method::mikktspace, Method::lengyel, Method::flat}) {
     if (toString(candidate) == name) {
       method = candidate;
       return true;

@@ -39,37 +39,36 @@ TriangleTangent triangleTangent(const std::array<Vec3, 3>& positions, const std:
   const Vec2& t1 = uvs[(start + 1) % 3];
   const Vec2& t2 = uvs[(start + 2) % 3];
 
+  result.coincident = p0 == p1 || p1 == p2 || p0 == p2;
   const Vec3 e1 = p1 - p0;
   const Vec3 e2 = p2 - p0;
   const Vec3 cross = e1 % e2;
   const double crossLength = cross.norm();
-  if (!(crossLength > kRelativeZero * e1.norm() * e2.norm())) {
-    result.kind = TriangleKind::degenerate;
-    return result;
+  const bool flat = !(crossLength > kRelativeZero * e1.norm() * e2.norm());
+  if (!flat) {
+    result.faceNormal = cross / crossLength;
+    result.area = 0.5 * crossLength;
   }
-  result.faceNormal = cross / crossLength;
-  result.area = 0.5 * crossLength;
 
   const double du1 = t1[0] - t0[0], dv1 = t1[1] - t0[1];
   const double du2 = t2[0] - t0[0], dv2 = t2[1] - t0[1];
   const double det = du1 * dv2 - du2 * dv1;
-  if (!(std::abs(det) > kRelativeZero * (std::abs(du1 * dv2) + std::abs(du2 * dv1)))) {
-    result.kind = TriangleKind::zeroUvArea;
-    return result;
+  const bool zeroUvArea = !(std::abs(det) > kRelativeZero * (std::abs(du1 * dv2) + std::abs(du2 * dv1)));
+  if (!zeroUvArea && !result.coincident) {
+    const Vec3 uDirection = e1 * dv2 - e2 * dv1;  // det * dP/du
+    const Vec3 vDirection = e2 * du1 - e1 * du2;  // det * dP/dv
+    const double uLength = uDirection.norm();
+    const double vLength = vDirection.norm();
+    if (uLength > 0 && vLength > 0) {
+      const double sign = det > 0 ? 1.0 : -1.0;
+      result.orientation = det > 0 ? 1 : -1;
+      result.tangent = uDirection * (sign / uLength);
+      result.bitangent = vDirection * (sign / vLength);
+    }
   }
-  const Vec3 uDirection = e1 * dv2 - e2 * dv1;  // det * dP/du
-  const Vec3 vDirection = e2 * du1 - e1 * du2;  // det * dP/dv
-  const double uLength = uDirection.norm();
-  const double vLength = vDirection.norm();
-  if (!(uLength > 0) || !(vLength > 0)) {
-    result.kind = TriangleKind::degenerate;
-    return result;
-  }
-  const double sign = det > 0 ? 1.0 : -1.0;
-  result.orientation = det > 0 ? 1 : -1;
-  result.tangent = uDirection * (sign / uLength);
-  result.bitangent = vDirection * (sign / vLength);
-  result.kind = TriangleKind::usable;
+  if (flat) result.kind = TriangleKind::degenerate;
+  else if (zeroUvArea) result.kind = TriangleKind::zeroUvArea;
+  else result.kind = result.orientation != 0 ? TriangleKind::usable : TriangleKind::degenerate;
   return result;
 }
 

@@ -18,11 +18,14 @@ using Vec2 = OpenMesh::Vec2d;
 enum class TriangleKind : std::uint8_t { usable, degenerate, zeroUvArea, nonFinite };
 
 struct TriangleTangent {
-  Vec3 tangent{0, 0, 0};     // unit dP/du (zero unless usable)
-  Vec3 bitangent{0, 0, 0};   // unit dP/dv (zero unless usable)
+  Vec3 tangent{0, 0, 0};     // unit dP/du; zero when the UV area is zero
+  Vec3 bitangent{0, 0, 0};   // unit dP/dv; zero when the UV area is zero
   Vec3 faceNormal{0, 0, 0};  // unit geometric normal (zero when degenerate)
   double area = 0;           // 3D area
-  int orientation = 0;       // sign of the UV area; 0 unless usable
+  int orientation = 0;       // sign of the UV area; 0 when tangent is zero
+  bool coincident = false;   // two corners share a position exactly (MikkTSpace's "degenerate")
+  // usable: non-zero 3D and UV area. degenerate: zero 3D area (coincident or collinear
+  // corners); a collinear triangle with distinct corners may still carry tangent directions.
   TriangleKind kind = TriangleKind::degenerate;
 };
 

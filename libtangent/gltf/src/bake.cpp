@@ -468,6 +468,7 @@ nlohmann::ordered_json toJson(const Report& report) {
               {"splitVertices", report.splitVertices},
               {"nonManifoldFaces", report.nonManifoldFaces},
               {"invalidNormals", report.invalidNormals},
+              {"inheritedCorners", report.inheritedCorners},
               {"fallbackFromNeighbours", report.fallbackFromNeighbours},
               {"fallbackFixed", report.fallbackFixed}};
 }

@@ -34,6 +34,9 @@ struct CornerMesh {
   OpenMesh::HPropHandleT<TangentVec> tangent;
   // Halfedge of each input corner (3 per input triangle). Face i is input triangle i.
   std::vector<OpenMesh::HalfedgeHandle> cornerHalfedge;
+  // Input corner of each halfedge (kNoCorner for boundary halfedges).
+  static constexpr std::uint32_t kNoCorner = ~std::uint32_t(0);
+  std::vector<std::uint32_t> halfedgeCorner;
   // Canonical welded vertex of each mesh vertex: faces refused as non-manifold (or with a
   // repeated vertex) are stored on duplicated vertices, which point back here.
   std::vector<std::uint32_t> weldedVertex;
@@ -48,10 +51,12 @@ struct CornerMesh {
 };
 
 // Builds a CornerMesh from plain arrays: vertices welded by exact position (+0 and -0 equal),
-// normals and UVs copied to the corners' halfedges. Never drops a face.
+// normals and UVs copied to the corners' halfedges. Never drops a face. Which faces OpenMesh
+// refuses does not depend on the order of the triangles.
 CornerMesh buildCornerMesh(const MeshArrays& arrays);
 
 // Computes the tangent of every corner into mesh.tangent. w follows options.uvOrigin.
-Report computeTangents(CornerMesh& mesh, const Options& options = {});
+// cornerSources, when not empty, receives one FrameSource per input corner.
+Report computeTangents(CornerMesh& mesh, const Options& options = {}, std::span<FrameSource> cornerSources = {});
 
 }  // namespace tangent

@@ -15,6 +15,12 @@ namespace tangent {
 
 // Which algorithm computes the frames.
 enum class Method : std::uint8_t {
+  // MikkTSpace (M. Mikkelsen, "Simulation of Wrinkled Surfaces Revisited", 2008, and the
+  // reference implementation's rules): per-triangle tangents projected onto each corner's
+  // normal, averaged with angle weights over the corners of a vertex that are connected
+  // through shared edges with identical position, normal and UV and the same UV orientation.
+  // What nearly every normal-map baker uses and what glTF asks for. Default.
+  mikktspace,
   // Lengyel, "Computing Tangent Space Basis Vectors for an Arbitrary Mesh" (2001):
   // per-triangle tangent/bitangent from edge and UV deltas, accumulated over the corners of
   // a vertex that share position, normal, UV and UV orientation, then Gram-Schmidt
@@ -39,9 +45,19 @@ enum class UvOrigin : std::uint8_t {
 };
 
 struct Options {
-  Method method = Method::lengyel;
-  Weighting weighting = Weighting::angle;
+  Method method = Method::mikktspace;
+  Weighting weighting = Weighting::angle;  // lengyel only; mikktspace always weights by angle
   UvOrigin uvOrigin = UvOrigin::topLeft;
+  unsigned threads = 1;                    // worker threads; the output never depends on it
+};
+
+// Where a corner's frame came from.
+enum class FrameSource : std::uint8_t {
+  computed,   // from the triangles of its group
+  inherited,  // a degenerate triangle's corner copied the frame of a corner with the same
+              // position, normal and UV (MikkTSpace's rule for degenerate triangles)
+  neighbour,  // no usable triangle: borrowed from another corner of its vertex or its 1-ring
+  fixed,      // nothing to borrow: a fixed unit vector perpendicular to the normal
 };
 
 // What a call did. Every count is of input triangles or corners; nothing is silent.
@@ -58,9 +74,9 @@ struct Report {
                                             // vertex that got different frames
   std::uint64_t nonManifoldFaces = 0;       // faces OpenMesh refused; kept on own vertices
   std::uint64_t invalidNormals = 0;         // corners with zero/non-finite normal (replaced)
-  std::uint64_t fallbackFromNeighbours = 0; // corners with no usable triangle, frame taken
-                                            // from other corners of the vertex or its 1-ring
-  std::uint64_t fallbackFixed = 0;          // corners given a fixed frame perpendicular to N
+  std::uint64_t inheritedCorners = 0;       // FrameSource::inherited
+  std::uint64_t fallbackFromNeighbours = 0; // FrameSource::neighbour
+  std::uint64_t fallbackFixed = 0;          // FrameSource::fixed
 };
 
 std::string_view toString(Method method);
@@ -79,9 +95,10 @@ struct MeshArrays {
 
 // Computes one tangent (x, y, z, w) per corner into cornerTangents (4 floats per corner).
 // xyz is unit length and orthogonal to the corner's normal, w is exactly +1 or -1, and every
-// value is finite, whatever the input. Throws std::invalid_argument when the array sizes
+// value is finite, whatever the input. When cornerSources is not empty (one per corner) it
+// receives where each frame came from. Throws std::invalid_argument when the array sizes
 // disagree or an index is out of range.
 Report computeCornerTangents(const MeshArrays& mesh, std::span<float> cornerTangents,
-                             const Options& options = {});
+                             const Options& options = {}, std::span<FrameSource> cornerSources = {});
 
 }  // namespace tangent

@@ -1,0 +1,63 @@
+// What the methods share once triangles are computed: groups of corners that get one frame,
+// value-ordered sums, fallbacks for corners no usable triangle reaches, and the output.
+#pragma once
+
+#include <span>
+#include <vector>
+
+#include "tangent/halfedge_mesh.hpp"
+#include "triangle_tangent.hpp"
+
+namespace tangent::detail {
+
+std::uint64_t bitsOf(double value);  // +0 and -0 alike
+
+struct GroupKey {
+  std::uint32_t weld = 0;
+  std::int32_t orientation = 0;
+  std::uint64_t tag = 0;  // extra identity (face for `flat`, component for `mikktspace`)
+  std::uint64_t normal[3] = {};
+  std::uint64_t uv[2] = {};
+  bool operator==(const GroupKey&) const = default;
+  bool sameAttributes(const GroupKey& other) const;  // normal and UV bits
+};
+
+struct GroupKeyHash {
+  std::size_t operator()(const GroupKey& key) const noexcept;
+};
+
+GroupKey makeGroupKey(const CornerMesh& mesh, std::size_t corner, const Vec3& normal, int orientation, std::uint64_t tag);
+
+struct Group {
+  GroupKey key;
+  Vec3 normal{0, 0, 1};  // unit
+  Vec3 tangentSum{0, 0, 0};
+  Vec3 bitangentSum{0, 0, 0};
+  Vec3 tangent{0, 0, 0};
+  double w = 1;         // handedness on the stored UVs (bottom-left convention)
+  bool defined = false;
+  bool mayInherit = false;  // copying a same-attribute corner is the method's own rule here
+};
+
+struct Contribution {
+  std::uint32_t group;
+  Vec3 tangent;
+  Vec3 bitangent;
+};
+
+// Adds each contribution to its group, summing every group's terms in value order.
+void sumInValueOrder(std::vector<Contribution>& contributions, std::vector<Group>& groups);
+
+// Gram-Schmidt of `sum` against unit `n`; false when nothing of it lies in the tangent plane.
+bool orthonormalize(const Vec3& sum, const Vec3& n, Vec3& out);
+
+// The unit normal a corner works with: its own, or when that is zero or not finite the
+// triangle's (or +z); `invalid` tells which.
+Vec3 cornerNormal(const Vec3& stored, const TriangleTangent& triangle, bool& invalid);
+
+// Gives undefined groups a frame (see FrameSource), writes every corner's tangent into the
+// mesh with w in options.uvOrigin's convention, and fills the report's corner counts.
+void finishCorners(CornerMesh& mesh, std::vector<Group>& groups, const std::vector<std::uint32_t>& cornerGroup,
+                   const Options& options, Report& report, std::span<FrameSource> sources);
+
+}  // namespace tangent::detail

@@ -1,0 +1,224 @@
+// Method `mikktspace`.
+// Source: M. S. Mikkelsen, "Simulation of Wrinkled Surfaces Revisited", MSc thesis, 2008, and
+// the rules of the reference implementation (mikktspace.h/.c, 2011), reproduced here on the
+// half-edge mesh:
+//  * A corner's identity is its (position, normal, UV). Two triangles are neighbours across
+//    an edge when both ends have the same identity on both sides (and the winding agrees,
+//    which opposite halfedges guarantee).
+//  * A triangle whose corners share a position is degenerate: it takes part in nothing and
+//    its corners copy the frame of a corner with the same identity.
+//  * A triangle with zero UV area (or zero tangent) may group with anything: it contributes
+//    nothing and takes the UV orientation of the group that reaches it.
+//  * A group is the set of corners around one vertex connected through neighbour edges with
+//    the same UV orientation. Its tangent is the angle-weighted sum, over its triangles, of
+//    the triangle's dP/du projected onto the normal and normalized; the angle is between the
+//    triangle's two edges at the corner, projected onto the tangent plane. w is the
+//    orientation (+1 where the UV area is positive), negated for top-left UV origins.
+//  * With the default 180 degree threshold a group is never split.
+// Where the reference leaves a frame zero or arbitrary (a group with no contributing triangle)
+// we give a finite unit frame and say so (FrameSource::neighbour / fixed).
+//
+// Deviations, all order-independent where the reference is not: a zero-UV-area triangle
+// takes the orientation most of its neighbours have (the reference: whichever group reaches
+// it first); among several same-identity corners a degenerate corner copies the one whose
+// group weighs most (the reference: the first in face order). Arithmetic is double; the
+// reference's is float.
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+
+#include "corner_groups.hpp"
+#include "methods.hpp"
+#include "parallel.hpp"
+
+namespace tangent::detail {
+namespace {
+
+class UnionFind {
+ public:
+  explicit UnionFind(std::size_t n) : parent_(n) { std::iota(parent_.begin(), parent_.end(), 0u); }
+  std::uint32_t find(std::uint32_t x) {
+    while (parent_[x] != x) {
+      parent_[x] = parent_[parent_[x]];
+      x = parent_[x];
+    }
+    return x;
+  }
+  void unite(std::uint32_t a, std::uint32_t b) {
+    a = find(a);
+    b = find(b);
+    if (a != b) parent_[std::max(a, b)] = std::min(a, b);
+  }
+
+ private:
+  std::vector<std::uint32_t> parent_;
+};
+
+// Angle at `corner` between its two edges projected onto the plane normal to n; a zero
+// projected edge counts as perpendicular, as in the reference.
+double projectedCornerAngle(const std::array<Vec3, 3>& positions, int corner, const Vec3& n) {
+  auto projected = [&](const Vec3& edge) {
+    Vec3 v = edge - n * (n | edge);
+    const double length = v.norm();
+    return length > 0 ? v / length : Vec3(0, 0, 0);
+  };
+  const Vec3 previous = projected(positions[(corner + 2) % 3] - positions[corner]);
+  const Vec3 next = projected(positions[(corner + 1) % 3] - positions[corner]);
+  return std::acos(std::clamp(previous | next, -1.0, 1.0));
+}
+
+}  // namespace
+
+Report mikktspaceTangents(CornerMesh& cornerMesh, const Options& options, std::span<FrameSource> sources) {
+  TriMesh& mesh = cornerMesh.mesh;
+  const std::size_t cornerCount = cornerMesh.cornerHalfedge.size();
+  const std::size_t triangleCount = cornerCount / 3;
+
+  Report report;
+  report.method = "mikktspace";
+  report.weighting = "angle";
+  report.triangles = triangleCount;
+  report.corners = cornerCount;
+  report.nonManifoldFaces = cornerMesh.nonManifoldFaces;
+
+  std::vector<TriangleTangent> triangles(triangleCount);
+  std::vector<Vec3> cornerNormals(cornerCount);
+  std::vector<std::uint8_t> invalidNormal(cornerCount, 0);
+  std::vector<Contribution> cornerContribution(cornerCount, Contribution{0, Vec3(0, 0, 0), Vec3(0, 0, 0)});
+  parallelFor(triangleCount, options.threads, [&](std::size_t begin, std::size_t end) {
+    for (std::size_t t = begin; t < end; ++t) {
+      std::array<Vec3, 3> positions;
+      std::array<Vec2, 3> uvs;
+      for (int k = 0; k < 3; ++k) {
+        const auto halfedge = cornerMesh.cornerHalfedge[3 * t + k];
+        positions[k] = mesh.point(mesh.to_vertex_handle(halfedge));
+        uvs[k] = mesh.texcoord2D(halfedge);
+      }
+      const TriangleTangent& triangle = triangles[t] = triangleTangent(positions, uvs);
+      for (int k = 0; k < 3; ++k) {
+        const std::size_t corner = 3 * t + k;
+        bool invalid = false;
+        const Vec3 n = cornerNormals[corner] = cornerNormal(mesh.normal(cornerMesh.cornerHalfedge[corner]), triangle, invalid);
+        invalidNormal[corner] = invalid;
+        if (triangle.orientation == 0) continue;  // may group with anything; adds nothing
+        Vec3 tangent = triangle.tangent - n * (n | triangle.tangent);
+        Vec3 bitangent = triangle.bitangent - n * (n | triangle.bitangent);
+        const double tangentLength = tangent.norm(), bitangentLength = bitangent.norm();
+        if (tangentLength > 0) tangent /= tangentLength;
+        if (bitangentLength > 0) bitangent /= bitangentLength;
+        const double angle = projectedCornerAngle(positions, k, n);
+        cornerContribution[corner] = {0, tangent * angle, bitangent * angle};
+      }
+    }
+  });
+  for (const TriangleTangent& triangle : triangles) {
+    if (triangle.kind == TriangleKind::nonFinite) ++report.nonFiniteTriangles;
+    else if (triangle.kind == TriangleKind::degenerate) ++report.degenerateTriangles;
+    else if (triangle.kind == TriangleKind::zeroUvArea) ++report.zeroUvAreaTriangles;
+  }
+  for (std::uint8_t invalid : invalidNormal) report.invalidNormals += invalid;
+
+  // Neighbours across an edge: both ends with the same normal and UV on both sides.
+  auto sameCorner = [&](OpenMesh::HalfedgeHandle a, OpenMesh::HalfedgeHandle b) {
+    return mesh.normal(a) == mesh.normal(b) && mesh.texcoord2D(a) == mesh.texcoord2D(b);
+  };
+  // For the corner at halfedge h (pointing to v), the corners of the neighbour across the edge
+  // arriving at v: {corner at v, corner at the edge's other end} in both faces.
+  auto neighbourAcross = [&](OpenMesh::HalfedgeHandle h, std::uint32_t (&pairs)[2][2]) {
+    const auto opposite = mesh.opposite_halfedge_handle(h);
+    if (mesh.is_boundary(opposite)) return false;
+    const auto oppositeAtV = mesh.prev_halfedge_handle(opposite);
+    const auto atU = mesh.prev_halfedge_handle(h);
+    if (!sameCorner(h, oppositeAtV) || !sameCorner(atU, opposite)) return false;
+    const auto& corner = cornerMesh.halfedgeCorner;
+    pairs[0][0] = corner[h.idx()];
+    pairs[0][1] = corner[oppositeAtV.idx()];
+    pairs[1][0] = corner[atU.idx()];
+    pairs[1][1] = corner[opposite.idx()];
+    return true;
+  };
+
+  // Orientation of each triangle; zero-UV-area ones take the majority of their neighbours',
+  // round by round so that face order does not matter, ties going to +1.
+  std::vector<std::int8_t> orientation(triangleCount);
+  for (std::size_t t = 0; t < triangleCount; ++t) orientation[t] = static_cast<std::int8_t>(triangles[t].orientation);
+  std::vector<std::uint32_t> open;
+  for (std::size_t t = 0; t < triangleCount; ++t) {
+    if (orientation[t] == 0 && !triangles[t].coincident) open.push_back(static_cast<std::uint32_t>(t));
+  }
+  while (!open.empty()) {
+    std::vector<std::pair<std::uint32_t, int>> decided;
+    bool anyTie = false;
+    for (std::uint32_t t : open) {
+      int votes = 0, voters = 0;
+      for (int k = 0; k < 3; ++k) {
+        std::uint32_t pairs[2][2];
+        if (!neighbourAcross(cornerMesh.cornerHalfedge[3 * t + k], pairs)) continue;
+        const int other = orientation[pairs[0][1] / 3];
+        votes += other;
+        voters += other != 0;
+      }
+      if (votes != 0) decided.emplace_back(t, votes > 0 ? 1 : -1);
+      else anyTie = anyTie || voters > 0;
+    }
+    if (decided.empty()) {
+      if (!anyTie) break;  // the rest touch no oriented triangle: the reference groups them nowhere
+      for (std::uint32_t t : open) {
+        for (int k = 0; k < 3; ++k) {
+          std::uint32_t pairs[2][2];
+          if (neighbourAcross(cornerMesh.cornerHalfedge[3 * t + k], pairs) && orientation[pairs[0][1] / 3] != 0)
+            decided.emplace_back(t, 1);
+        }
+      }
+    }
+    for (auto [t, sign] : decided) orientation[t] = static_cast<std::int8_t>(sign);
+    std::erase_if(open, [&](std::uint32_t t) { return orientation[t] != 0; });
+  }
+
+  // Groups: corners joined across neighbour edges between triangles of equal orientation.
+  UnionFind components(cornerCount);
+  for (std::size_t corner = 0; corner < cornerCount; ++corner) {
+    const std::size_t t = corner / 3;
+    if (orientation[t] == 0) continue;
+    std::uint32_t pairs[2][2];
+    if (!neighbourAcross(cornerMesh.cornerHalfedge[corner], pairs)) continue;
+    if (orientation[pairs[0][1] / 3] != orientation[t]) continue;
+    components.unite(pairs[0][0], pairs[0][1]);
+    components.unite(pairs[1][0], pairs[1][1]);
+  }
+
+  std::vector<Group> groups;
+  std::vector<std::uint32_t> cornerGroup(cornerCount);
+  std::vector<std::uint32_t> rootGroup(cornerCount, ~0u);
+  for (std::size_t corner = 0; corner < cornerCount; ++corner) {
+    const std::uint32_t root = components.find(static_cast<std::uint32_t>(corner));
+    if (rootGroup[root] == ~0u) {
+      Group group;
+      group.key = makeGroupKey(cornerMesh, corner, cornerNormals[corner], orientation[corner / 3], root + 1);
+      group.normal = cornerNormals[corner];
+      group.mayInherit = triangles[corner / 3].coincident;
+      rootGroup[root] = static_cast<std::uint32_t>(groups.size());
+      groups.push_back(group);
+    }
+    cornerGroup[corner] = rootGroup[root];
+  }
+
+  std::vector<Contribution> contributions;
+  contributions.reserve(cornerCount);
+  for (std::size_t corner = 0; corner < cornerCount; ++corner) {
+    if (triangles[corner / 3].orientation == 0) continue;
+    Contribution c = cornerContribution[corner];
+    c.group = cornerGroup[corner];
+    contributions.push_back(c);
+  }
+  sumInValueOrder(contributions, groups);
+  for (Group& group : groups) {
+    if (group.key.orientation == 0 || !orthonormalize(group.tangentSum, group.normal, group.tangent)) continue;
+    group.w = group.key.orientation;
+    group.defined = true;
+  }
+  finishCorners(cornerMesh, groups, cornerGroup, options, report, sources);
+  return report;
+}
+
+}  // namespace tangent::detail
