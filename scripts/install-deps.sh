@@ -6,7 +6,7 @@ packages=(
   build-essential cmake ninja-build pkg-config git
   libopenmesh-dev libglm-dev libtinygltf-dev nlohmann-json3-dev libopenimageio-dev
   libgtest-dev libgmock-dev libbenchmark-dev
-  assimp-testmodels
+  assimp-testmodels python3
 )
 missing=()
 for package in "${packages[@]}"; do

@@ -12,5 +12,6 @@ constexpr int kExitUsage = 2;
 
 int bakeCommand(const std::vector<std::string>& args);
 int infoCommand(const std::vector<std::string>& args);
+int checkCommand(const std::vector<std::string>& args);
 
 }  // namespace tangent::cli

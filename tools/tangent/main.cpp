@@ -10,10 +10,11 @@ const char* kUsage =
     "\n"
     "commands:\n"
     "  bake IN... (-o OUT | --out-dir DIR)   compute TANGENT for primitives with a normal texture\n"
+    "  check IN... [--format text|json|junit] validate stored tangents (for CI)\n"
     "  info IN [--json]                      meshes, primitives, attributes, which need tangents\n"
     "\n"
     "'tangent <command> --help' describes a command's options.\n"
-    "exit codes: 0 done, 1 an input failed, 2 usage error\n";
+    "exit codes: 0 done (check: clean), 1 an input failed (check: findings), 2 usage error\n";
 
 }  // namespace
 
@@ -35,6 +36,7 @@ int main(int argc, char** argv) {
   }
   if (command == "bake") return tangent::cli::bakeCommand(args);
   if (command == "info") return tangent::cli::infoCommand(args);
+  if (command == "check") return tangent::cli::checkCommand(args);
   std::cerr << "tangent: unknown command '" << command << "'\n" << kUsage;
   return tangent::cli::kExitUsage;
 }

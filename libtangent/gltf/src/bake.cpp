@@ -25,44 +25,6 @@ std::vector<std::uint8_t> floatBytes(const std::vector<float>& values) {
   return bytes;
 }
 
-int accessorOf(const Json& object, const std::string& name) {
-  auto it = object.find(name);
-  return it != object.end() && it->is_number_integer() ? it->get<int>() : -1;
-}
-
-// The values of a VEC2/VEC3 float-like accessor; checks type and count.
-std::vector<float> readVectors(const tinygltf::Model& model, int accessor, int components, std::size_t expectedCount,
-                               const std::string& where) {
-  const AccessorData data = detail::readAccessor(model, accessor, where);
-  if (data.components != components || data.type == TINYGLTF_TYPE_MAT2)
-    throw InputError(where + " (accessor " + std::to_string(accessor) + "): expected VEC" + std::to_string(components) +
-                     ", found " + detail::typeName(data.type));
-  if (expectedCount != 0 && data.count != expectedCount)
-    throw InputError(where + " (accessor " + std::to_string(accessor) + "): has " + std::to_string(data.count) +
-                     " elements, POSITION has " + std::to_string(expectedCount));
-  return detail::toFloats(data);
-}
-
-// KHR_texture_transform: uv' = T * R * S * uv. Rotation and scale change tangent directions.
-void applyTextureTransform(std::vector<float>& uvs, const Json& transform) {
-  double offset[2] = {0, 0}, scale[2] = {1, 1};
-  if (transform.contains("offset") && transform["offset"].size() == 2) {
-    offset[0] = transform["offset"][0].get<double>();
-    offset[1] = transform["offset"][1].get<double>();
-  }
-  if (transform.contains("scale") && transform["scale"].size() == 2) {
-    scale[0] = transform["scale"][0].get<double>();
-    scale[1] = transform["scale"][1].get<double>();
-  }
-  const double rotation = transform.value("rotation", 0.0);
-  const double c = std::cos(rotation), s = std::sin(rotation);
-  for (std::size_t i = 0; i + 1 < uvs.size(); i += 2) {
-    const double u = uvs[i] * scale[0], v = uvs[i + 1] * scale[1];
-    uvs[i] = static_cast<float>(c * u + s * v + offset[0]);
-    uvs[i + 1] = static_cast<float>(-s * u + c * v + offset[1]);
-  }
-}
-
 // "" when an existing TANGENT is valid, else what is wrong with it.
 std::string tangentProblem(const AccessorData& data) {
   if (data.type != TINYGLTF_TYPE_VEC4) return std::string("type is ") + detail::typeName(data.type) + ", not VEC4";
@@ -208,10 +170,10 @@ PrimitiveResult PrimitiveBaker::bake(int meshIndex, int primitiveIndex) {
   if (!primitive.contains("attributes") || !primitive["attributes"].is_object())
     throw InputError(where + ": has no attributes object");
   Json& attributes = primitive["attributes"];
-  const int positionAccessor = accessorOf(attributes, "POSITION");
-  const int normalAccessor = accessorOf(attributes, "NORMAL");
+  const int positionAccessor = detail::accessorOf(attributes, "POSITION");
+  const int normalAccessor = detail::accessorOf(attributes, "NORMAL");
   const std::string uvName = "TEXCOORD_" + std::to_string(needs.texCoord);
-  const int uvAccessor = accessorOf(attributes, uvName);
+  const int uvAccessor = detail::accessorOf(attributes, uvName);
   if (positionAccessor < 0) throw InputError(where + ": has no POSITION attribute");
   if (normalAccessor < 0) {
     result.reason = "no NORMAL attribute; tangents need normals, primitive left as it is";
@@ -221,7 +183,7 @@ PrimitiveResult PrimitiveBaker::bake(int meshIndex, int primitiveIndex) {
     result.reason = needs.why + ", but the primitive has no " + uvName + "; left as it is";
     return result;
   }
-  const int existingTangent = accessorOf(attributes, "TANGENT");
+  const int existingTangent = detail::accessorOf(attributes, "TANGENT");
   if (existingTangent >= 0) {
     const std::string problem = tangentProblem(detail::readAccessor(model, existingTangent, where + ": TANGENT"));
     if (problem.empty() && !options_.overwrite) {
@@ -232,34 +194,14 @@ PrimitiveResult PrimitiveBaker::bake(int meshIndex, int primitiveIndex) {
     result.reason = problem.empty() ? "TANGENT recomputed (--overwrite)" : "existing TANGENT invalid (" + problem + "); recomputed";
   }
 
-  const AccessorData positionData = detail::readAccessor(model, positionAccessor, where + ": POSITION");
-  if (positionData.components != 3 || positionData.type != TINYGLTF_TYPE_VEC3)
-    throw InputError(where + ": POSITION (accessor " + std::to_string(positionAccessor) + ") must be VEC3, found " +
-                     detail::typeName(positionData.type));
-  const std::size_t vertexCount = positionData.count;
-  const std::vector<float> positions = detail::toFloats(positionData);
-  const std::vector<float> normals = readVectors(model, normalAccessor, 3, vertexCount, where + ": NORMAL");
-  std::vector<float> uvs = readVectors(model, uvAccessor, 2, vertexCount, where + ": " + uvName);
-  if (needs.hasNormalTexture) {
-    const Json& material = doc["materials"][primitive["material"].get<int>()];
-    const Json& normalTexture = material["normalTexture"];
-    if (normalTexture.contains("extensions") && normalTexture["extensions"].contains("KHR_texture_transform"))
-      applyTextureTransform(uvs, normalTexture["extensions"]["KHR_texture_transform"]);
-  }
-
-  const int mode = primitive.value("mode", 4);
-  std::vector<std::uint32_t> sequence;
-  const int indicesAccessor = accessorOf(primitive, "indices");
-  int indexComponentType = TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT;
-  if (indicesAccessor >= 0) {
-    const AccessorData indexData = detail::readAccessor(model, indicesAccessor, where + ": indices");
-    sequence = detail::toIndices(indexData, vertexCount, where + ": indices (accessor " + std::to_string(indicesAccessor) + ")");
-    indexComponentType = indexData.componentType;
-  } else {
-    sequence.resize(vertexCount);
-    std::iota(sequence.begin(), sequence.end(), 0u);
-  }
-  const std::vector<std::uint32_t> corners = detail::triangleList(mode, sequence);
+  const detail::PrimitiveGeometry geometry = detail::readGeometry(asset_, primitive, needs, where);
+  const std::size_t vertexCount = geometry.vertexCount;
+  const std::vector<float>& positions = geometry.positions;
+  const std::vector<float>& normals = geometry.normals;
+  const std::vector<float>& uvs = geometry.uvs;
+  const std::vector<std::uint32_t>& corners = geometry.corners;
+  const int mode = geometry.mode;
+  int indexComponentType = geometry.indexComponentType;
   if (corners.empty()) {
     result.reason = "primitive has no triangles; left as it is";
     return result;
@@ -281,14 +223,14 @@ PrimitiveResult PrimitiveBaker::bake(int meshIndex, int primitiveIndex) {
       const Json& target = primitive["targets"][t];
       const std::string targetWhere = where + ": target " + std::to_string(t);
       std::vector<float> morphedPositions = positions, morphedNormals = normals;
-      const int deltaPosition = accessorOf(target, "POSITION");
-      const int deltaNormal = accessorOf(target, "NORMAL");
+      const int deltaPosition = detail::accessorOf(target, "POSITION");
+      const int deltaNormal = detail::accessorOf(target, "NORMAL");
       if (deltaPosition >= 0) {
-        const auto delta = readVectors(model, deltaPosition, 3, vertexCount, targetWhere + " POSITION");
+        const auto delta = detail::readVectors(model, deltaPosition, 3, vertexCount, targetWhere + " POSITION");
         for (std::size_t i = 0; i < delta.size(); ++i) morphedPositions[i] += delta[i];
       }
       if (deltaNormal >= 0) {
-        const auto delta = readVectors(model, deltaNormal, 3, vertexCount, targetWhere + " NORMAL");
+        const auto delta = detail::readVectors(model, deltaNormal, 3, vertexCount, targetWhere + " NORMAL");
         for (std::size_t i = 0; i < delta.size(); ++i) morphedNormals[i] += delta[i];
       }
       std::vector<float> morphedTangents(corners.size() * 4);
@@ -361,32 +303,6 @@ PrimitiveResult PrimitiveBaker::bake(int meshIndex, int primitiveIndex) {
 }
 
 }  // namespace
-
-namespace detail {
-std::vector<std::uint32_t> triangleList(int mode, const std::vector<std::uint32_t>& vertices) {
-  std::vector<std::uint32_t> out;
-  if (mode == 4) {
-    out.assign(vertices.begin(), vertices.end() - static_cast<std::ptrdiff_t>(vertices.size() % 3));
-    return out;
-  }
-  for (std::size_t i = 0; i + 2 < vertices.size(); ++i) {
-    std::uint32_t a, b, c;
-    if (mode == 5) {
-      a = vertices[i];
-      b = vertices[i + 1 + i % 2];
-      c = vertices[i + 2 - i % 2];
-      if (a == b || b == c || a == c) continue;  // stitching triangles of joined strips draw nothing
-    } else {
-      a = vertices[i + 1];
-      b = vertices[i + 2];
-      c = vertices[0];
-    }
-    out.insert(out.end(), {a, b, c});
-  }
-  return out;
-}
-
-}  // namespace detail
 
 std::filesystem::path outputPathFor(const std::filesystem::path& input, const std::filesystem::path& outputDir) {
   std::filesystem::path name = input.filename();

@@ -1,7 +1,11 @@
-// What a primitive is and needs: shared by bake and info.
+// What a primitive is and needs, and reading the geometry tangents are computed from:
+// shared by bake, check and info.
 #pragma once
 
 #include <nlohmann/json.hpp>
+
+#include "accessors.hpp"
+#include "asset.hpp"
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -25,5 +29,29 @@ std::vector<std::uint32_t> triangleList(int mode, const std::vector<std::uint32_
 
 // "mesh 0 'Name' primitive 1"
 std::string primitiveLabel(const nlohmann::ordered_json& doc, int mesh, int primitive);
+
+// The accessor index stored under `name`, or -1.
+int accessorOf(const nlohmann::ordered_json& object, const std::string& name);
+
+// A VEC2/VEC3 float-like accessor's values; checks type and, when expectedCount is not 0, count.
+std::vector<float> readVectors(const tinygltf::Model& model, int accessor, int components, std::size_t expectedCount,
+                               const std::string& where);
+
+// KHR_texture_transform applied to UVs: uv' = T * R * S * uv.
+void applyTextureTransform(std::vector<float>& uvs, const nlohmann::ordered_json& transform);
+
+struct PrimitiveGeometry {
+  std::size_t vertexCount = 0;
+  std::vector<float> positions, normals;
+  std::vector<float> uvs;               // as the normal texture samples them (transform applied)
+  std::vector<std::uint32_t> corners;   // triangle list, 3 vertex indices per triangle
+  int mode = 4;
+  int indexComponentType = 5123;        // of the original indices (UNSIGNED_SHORT when none)
+};
+
+// POSITION, NORMAL and the normal texture's UV set (needs.texCoord) of a primitive; throws
+// InputError naming `where` and the accessor when one is missing or malformed.
+PrimitiveGeometry readGeometry(const Asset& asset, const nlohmann::ordered_json& primitive, const PrimitiveNeeds& needs,
+                               const std::string& where);
 
 }  // namespace tangent::gltf::detail

@@ -1,0 +1,163 @@
+// What a primitive is and needs, and reading the geometry tangents are computed from.
+// glTF 2.0 spec 3.7.2.1: tangents come from the UV set the normal texture uses;
+// KHR_texture_transform on the normal texture may override that set and turns the UVs.
+#include "primitive.hpp"
+
+#include <cmath>
+#include <numeric>
+
+#include "tangent/gltf.hpp"
+
+namespace tangent::gltf::detail {
+
+using Json = nlohmann::ordered_json;
+
+std::string primitiveLabel(const Json& doc, int mesh, int primitive) {
+  std::string label = "mesh " + std::to_string(mesh);
+  const Json& meshJson = doc["meshes"][mesh];
+  if (meshJson.contains("name") && meshJson["name"].is_string()) label += " '" + meshJson["name"].get<std::string>() + "'";
+  return label + " primitive " + std::to_string(primitive);
+}
+
+PrimitiveNeeds primitiveNeeds(const Json& doc, const Json& primitive, bool all) {
+  PrimitiveNeeds needs;
+  const int mode = primitive.value("mode", 4);
+  needs.triangles = mode == 4 || mode == 5 || mode == 6;
+  needs.compressed = primitive.contains("extensions") && primitive["extensions"].contains("KHR_draco_mesh_compression");
+  if (primitive.contains("material") && primitive["material"].is_number_integer() && doc.contains("materials")) {
+    const int materialIndex = primitive["material"].get<int>();
+    if (materialIndex >= 0 && materialIndex < static_cast<int>(doc["materials"].size())) {
+      const Json& material = doc["materials"][materialIndex];
+      if (material.contains("normalTexture") && material["normalTexture"].is_object()) {
+        const Json& normalTexture = material["normalTexture"];
+        needs.hasNormalTexture = true;
+        needs.texCoord = normalTexture.value("texCoord", 0);
+        if (normalTexture.contains("extensions") && normalTexture["extensions"].contains("KHR_texture_transform")) {
+          const Json& transform = normalTexture["extensions"]["KHR_texture_transform"];
+          if (transform.contains("texCoord") && transform["texCoord"].is_number_integer()) {
+            needs.texCoord = transform["texCoord"].get<int>();
+            needs.texCoordFromTransform = true;
+          }
+        }
+        needs.why = "material " + std::to_string(materialIndex) + " has a normalTexture on TEXCOORD_" +
+                    std::to_string(needs.texCoord) + (needs.texCoordFromTransform ? " (KHR_texture_transform)" : "");
+      }
+    }
+  }
+  if (!needs.hasNormalTexture) {
+    if (all) {
+      needs.texCoord = 0;
+      needs.why = "no normalTexture; --all uses TEXCOORD_0";
+    } else {
+      needs.why = "material has no normalTexture (use --all to bake anyway)";
+    }
+  }
+  if (!needs.triangles) needs.why = "mode " + std::to_string(mode) + " is not triangles";
+  if (needs.compressed) needs.why = "KHR_draco_mesh_compression: decompress before baking";
+  return needs;
+}
+
+int accessorOf(const Json& object, const std::string& name) {
+  auto it = object.find(name);
+  return it != object.end() && it->is_number_integer() ? it->get<int>() : -1;
+}
+
+// The values of a VEC2/VEC3 float-like accessor; checks type and count.
+std::vector<float> readVectors(const tinygltf::Model& model, int accessor, int components, std::size_t expectedCount,
+                               const std::string& where) {
+  const AccessorData data = detail::readAccessor(model, accessor, where);
+  if (data.components != components || data.type == TINYGLTF_TYPE_MAT2)
+    throw InputError(where + " (accessor " + std::to_string(accessor) + "): expected VEC" + std::to_string(components) +
+                     ", found " + detail::typeName(data.type));
+  if (expectedCount != 0 && data.count != expectedCount)
+    throw InputError(where + " (accessor " + std::to_string(accessor) + "): has " + std::to_string(data.count) +
+                     " elements, POSITION has " + std::to_string(expectedCount));
+  return detail::toFloats(data);
+}
+
+// KHR_texture_transform: uv' = T * R * S * uv. Rotation and scale change tangent directions.
+void applyTextureTransform(std::vector<float>& uvs, const Json& transform) {
+  double offset[2] = {0, 0}, scale[2] = {1, 1};
+  if (transform.contains("offset") && transform["offset"].size() == 2) {
+    offset[0] = transform["offset"][0].get<double>();
+    offset[1] = transform["offset"][1].get<double>();
+  }
+  if (transform.contains("scale") && transform["scale"].size() == 2) {
+    scale[0] = transform["scale"][0].get<double>();
+    scale[1] = transform["scale"][1].get<double>();
+  }
+  const double rotation = transform.value("rotation", 0.0);
+  const double c = std::cos(rotation), s = std::sin(rotation);
+  for (std::size_t i = 0; i + 1 < uvs.size(); i += 2) {
+    const double u = uvs[i] * scale[0], v = uvs[i + 1] * scale[1];
+    uvs[i] = static_cast<float>(c * u + s * v + offset[0]);
+    uvs[i + 1] = static_cast<float>(-s * u + c * v + offset[1]);
+  }
+}
+
+std::vector<std::uint32_t> triangleList(int mode, const std::vector<std::uint32_t>& vertices) {
+  std::vector<std::uint32_t> out;
+  if (mode == 4) {
+    out.assign(vertices.begin(), vertices.end() - static_cast<std::ptrdiff_t>(vertices.size() % 3));
+    return out;
+  }
+  for (std::size_t i = 0; i + 2 < vertices.size(); ++i) {
+    std::uint32_t a, b, c;
+    if (mode == 5) {
+      a = vertices[i];
+      b = vertices[i + 1 + i % 2];
+      c = vertices[i + 2 - i % 2];
+      if (a == b || b == c || a == c) continue;  // stitching triangles of joined strips draw nothing
+    } else {
+      a = vertices[i + 1];
+      b = vertices[i + 2];
+      c = vertices[0];
+    }
+    out.insert(out.end(), {a, b, c});
+  }
+  return out;
+}
+
+
+PrimitiveGeometry readGeometry(const Asset& asset, const Json& primitive, const PrimitiveNeeds& needs, const std::string& where) {
+  const tinygltf::Model& model = asset.model;
+  const Json& attributes = primitive["attributes"];
+  const int positionAccessor = accessorOf(attributes, "POSITION");
+  const int normalAccessor = accessorOf(attributes, "NORMAL");
+  const std::string uvName = "TEXCOORD_" + std::to_string(needs.texCoord);
+  const int uvAccessor = accessorOf(attributes, uvName);
+  if (positionAccessor < 0) throw InputError(where + ": has no POSITION attribute");
+  if (normalAccessor < 0) throw InputError(where + ": has no NORMAL attribute");
+  if (uvAccessor < 0) throw InputError(where + ": has no " + uvName + " attribute");
+
+  PrimitiveGeometry geometry;
+  const AccessorData positionData = readAccessor(model, positionAccessor, where + ": POSITION");
+  if (positionData.components != 3 || positionData.type != TINYGLTF_TYPE_VEC3)
+    throw InputError(where + ": POSITION (accessor " + std::to_string(positionAccessor) + ") must be VEC3, found " +
+                     typeName(positionData.type));
+  geometry.vertexCount = positionData.count;
+  geometry.positions = toFloats(positionData);
+  geometry.normals = readVectors(model, normalAccessor, 3, geometry.vertexCount, where + ": NORMAL");
+  geometry.uvs = readVectors(model, uvAccessor, 2, geometry.vertexCount, where + ": " + uvName);
+  if (needs.hasNormalTexture) {
+    const Json& normalTexture = asset.json["materials"][primitive["material"].get<int>()]["normalTexture"];
+    if (normalTexture.contains("extensions") && normalTexture["extensions"].contains("KHR_texture_transform"))
+      applyTextureTransform(geometry.uvs, normalTexture["extensions"]["KHR_texture_transform"]);
+  }
+
+  geometry.mode = primitive.value("mode", 4);
+  std::vector<std::uint32_t> sequence;
+  const int indicesAccessor = accessorOf(primitive, "indices");
+  if (indicesAccessor >= 0) {
+    const AccessorData indexData = readAccessor(model, indicesAccessor, where + ": indices");
+    sequence = toIndices(indexData, geometry.vertexCount, where + ": indices (accessor " + std::to_string(indicesAccessor) + ")");
+    geometry.indexComponentType = indexData.componentType;
+  } else {
+    sequence.resize(geometry.vertexCount);
+    std::iota(sequence.begin(), sequence.end(), 0u);
+  }
+  geometry.corners = triangleList(geometry.mode, sequence);
+  return geometry;
+}
+
+}  // namespace tangent::gltf::detail

@@ -1,0 +1,299 @@
+// `tangent check`: baked outputs check clean; each negative control is caught by the right
+// check; the JUnit output parses as XML with the right failure counts; exit codes.
+#include <gtest/gtest.h>
+
+#include <array>
+#include <cmath>
+#include <cstring>
+#include <fstream>
+#include <functional>
+#include <iterator>
+#include <limits>
+#include <sys/wait.h>
+
+#include "accessors.hpp"
+#include "asset.hpp"
+#include "primitive.hpp"
+#include "support/temp_dir.hpp"
+#include "support/test_assets.hpp"
+#include "tangent/check.hpp"
+#include "tangent/gltf.hpp"
+
+namespace {
+
+namespace fs = std::filesystem;
+using tangent::gltf::CheckFinding;
+using tangent::gltf::FileCheck;
+using tangent::testing::TempDir;
+
+fs::path bakedAsset(const TempDir& dir, const std::string& name) {
+  const auto all = tangent::testing::makeTestAssets();
+  const auto& asset = *std::find_if(all.begin(), all.end(), [&](const auto& a) { return a.name == name; });
+  const fs::path input = tangent::testing::writeAsset(asset, dir / "in", true);
+  const fs::path output = dir / (name + "-baked.glb");
+  tangent::gltf::bakeFile(input, output, {});
+  return output;
+}
+
+struct TangentView {
+  std::vector<float> tangents;  // 4 per vertex
+  std::vector<float> positions;
+  std::vector<std::uint32_t> corners;
+};
+
+// Rewrites primitive (0, p)'s float TANGENT in a GLB file in place through `edit`.
+void patchTangents(const fs::path& glb, int primitiveIndex, const std::function<void(TangentView&)>& edit) {
+  const auto asset = tangent::gltf::detail::loadAsset(glb);
+  const auto& primitive = asset.json["meshes"][0]["primitives"][primitiveIndex];
+  const int accessorIndex = primitive["attributes"]["TANGENT"].get<int>();
+  const auto& accessor = asset.model.accessors[accessorIndex];
+  const auto& view = asset.model.bufferViews[accessor.bufferView];
+  TangentView tv;
+  tv.tangents = tangent::gltf::detail::toFloats(tangent::gltf::detail::readAccessor(asset.model, accessorIndex, "TANGENT"));
+  tv.positions = tangent::gltf::detail::toFloats(
+      tangent::gltf::detail::readAccessor(asset.model, primitive["attributes"]["POSITION"].get<int>(), "POSITION"));
+  const auto needs = tangent::gltf::detail::primitiveNeeds(asset.json, primitive, false);
+  tv.corners = tangent::gltf::detail::readGeometry(asset, primitive, needs, "patch").corners;
+  edit(tv);
+  std::fstream file(glb, std::ios::in | std::ios::out | std::ios::binary);
+  std::uint32_t jsonLength = 0;
+  file.seekg(12);
+  file.read(reinterpret_cast<char*>(&jsonLength), 4);
+  ASSERT_EQ(view.byteStride, 0u);
+  file.seekp(static_cast<std::streamoff>(20 + jsonLength + 8 + view.byteOffset + accessor.byteOffset));
+  file.write(reinterpret_cast<const char*>(tv.tangents.data()), static_cast<std::streamsize>(tv.tangents.size() * 4));
+  ASSERT_TRUE(file.good());
+}
+
+const CheckFinding* findingOf(const FileCheck& check, int primitive, const std::string& name) {
+  for (const auto& p : check.primitives) {
+    if (p.primitive != primitive) continue;
+    for (const auto& f : p.findings) {
+      if (f.check == name) return &f;
+    }
+  }
+  return nullptr;
+}
+
+std::vector<std::string> findingNames(const FileCheck& check) {
+  std::vector<std::string> names;
+  for (const auto& p : check.primitives)
+    for (const auto& f : p.findings) names.push_back(f.check);
+  return names;
+}
+
+TEST(Check, BakedOutputsAreClean) {
+  for (const auto& asset : tangent::testing::makeTestAssets()) {
+    TempDir dir;
+    const fs::path baked = bakedAsset(dir, asset.name);
+    const FileCheck check = tangent::gltf::checkFile(baked, {});
+    EXPECT_TRUE(check.error.empty()) << check.error;
+    EXPECT_FALSE(check.primitives.empty()) << asset.name;
+    for (const auto& p : check.primitives) {
+      std::vector<std::string> names;
+      for (const auto& f : p.findings) names.push_back(f.check);
+      if (asset.name == "document_features" && p.primitive == 4) {
+        // Its supplied TANGENT, constant +x on a curved sheet, is valid, so bake keeps it;
+        // check tells that it leaves the tangent plane and differs from MikkTSpace.
+        EXPECT_EQ(names, (std::vector<std::string>{"orthogonal", "reference"}));
+      } else {
+        EXPECT_TRUE(names.empty()) << asset.name << " primitive " << p.primitive << ": " << testing::PrintToString(names);
+      }
+    }
+  }
+}
+
+TEST(Check, SharedMirrorTestAsSuppliedIsClean) {
+  const fs::path shared = tangent::testing::sharedAssets();
+  if (shared.empty()) GTEST_SKIP() << "../shared/assets is absent: skipping the shared sample assets";
+  const FileCheck check = tangent::gltf::checkFile(shared / "NormalTangentMirrorTest.glb", {});
+  EXPECT_TRUE(check.clean()) << testing::PrintToString(findingNames(check));
+  ASSERT_EQ(check.primitives.size(), 1u);
+  const FileCheck missing = tangent::gltf::checkFile(shared / "NormalTangentTest.glb", {});
+  ASSERT_NE(findingOf(missing, 0, "present"), nullptr);
+}
+
+TEST(CheckNegative, WNegatedOnOneIsland) {
+  TempDir dir;
+  const fs::path baked = bakedAsset(dir, "interleaved_ubyte");  // 6 mirrored columns of quads
+  std::size_t islandTriangles = 0;
+  patchTangents(baked, 0, [&](TangentView& tv) {
+    std::vector<char> flip(tv.tangents.size() / 4, 0);
+    for (std::size_t t = 0; t < tv.corners.size() / 3; ++t) {
+      double x = 0;
+      for (int k = 0; k < 3; ++k) x += tv.positions[3 * tv.corners[3 * t + k]] / 3;
+      if (x < 1.0 / 6) {
+        ++islandTriangles;
+        for (int k = 0; k < 3; ++k) flip[tv.corners[3 * t + k]] = 1;
+      }
+    }
+    for (std::size_t v = 0; v < flip.size(); ++v)
+      if (flip[v]) tv.tangents[4 * v + 3] = -tv.tangents[4 * v + 3];
+  });
+  const FileCheck check = tangent::gltf::checkFile(baked, {});
+  const CheckFinding* handedness = findingOf(check, 0, "handedness");
+  ASSERT_NE(handedness, nullptr) << testing::PrintToString(findingNames(check));
+  EXPECT_EQ(handedness->failed, islandTriangles);
+  EXPECT_EQ(findingOf(check, 0, "w-uniform"), nullptr);  // the island's seam vertices are its own
+  EXPECT_NE(findingOf(check, 0, "reference"), nullptr);
+}
+
+TEST(CheckNegative, BitangentReversedEverywhere) {
+  // What a flipped green channel looks like in the tangents: every w negated.
+  TempDir dir;
+  const fs::path baked = bakedAsset(dir, "interleaved_ubyte");
+  std::size_t triangles = 0;
+  patchTangents(baked, 0, [&](TangentView& tv) {
+    triangles = tv.corners.size() / 3;
+    for (std::size_t v = 0; v < tv.tangents.size() / 4; ++v) tv.tangents[4 * v + 3] = -tv.tangents[4 * v + 3];
+  });
+  const FileCheck check = tangent::gltf::checkFile(baked, {});
+  const CheckFinding* handedness = findingOf(check, 0, "handedness");
+  ASSERT_NE(handedness, nullptr);
+  EXPECT_EQ(handedness->failed, triangles);
+  EXPECT_EQ(handedness->total, triangles);
+}
+
+TEST(CheckNegative, TangentsFromTheWrongUvSet) {
+  TempDir dir;
+  const fs::path baked = bakedAsset(dir, "second_uv_set");  // normal texture on TEXCOORD_1
+  const auto asset = tangent::gltf::detail::loadAsset(baked);
+  const auto& primitive = asset.json["meshes"][0]["primitives"][0];
+  tangent::gltf::detail::PrimitiveNeeds wrong = tangent::gltf::detail::primitiveNeeds(asset.json, primitive, false);
+  ASSERT_EQ(wrong.texCoord, 1);
+  wrong.texCoord = 0;
+  wrong.hasNormalTexture = false;
+  const auto geometry = tangent::gltf::detail::readGeometry(asset, primitive, wrong, "wrong set");
+  std::vector<float> cornerTangents(geometry.corners.size() * 4);
+  tangent::computeCornerTangents({geometry.positions, geometry.normals, geometry.uvs, geometry.corners}, cornerTangents);
+  patchTangents(baked, 0, [&](TangentView& tv) {
+    for (std::size_t c = 0; c < geometry.corners.size(); ++c)
+      std::memcpy(&tv.tangents[4 * geometry.corners[c]], &cornerTangents[4 * c], 16);
+  });
+  const FileCheck check = tangent::gltf::checkFile(baked, {});
+  const CheckFinding* reference = findingOf(check, 0, "reference");
+  ASSERT_NE(reference, nullptr) << testing::PrintToString(findingNames(check));
+  EXPECT_EQ(reference->failed, reference->total);  // TEXCOORD_0 is TEXCOORD_1 turned 90 degrees
+  EXPECT_GT(reference->worst.front().severity, 80.0);
+  EXPECT_EQ(findingOf(check, 1, "reference"), nullptr);  // the other primitive is untouched
+}
+
+TEST(CheckNegative, NonUnitTangent) {
+  TempDir dir;
+  const fs::path baked = bakedAsset(dir, "interleaved_ubyte");
+  patchTangents(baked, 0, [](TangentView& tv) {
+    for (int i = 0; i < 3; ++i) tv.tangents[4 * 3 + i] *= 0.5f;
+  });
+  const FileCheck check = tangent::gltf::checkFile(baked, {});
+  const CheckFinding* unit = findingOf(check, 0, "unit");
+  ASSERT_NE(unit, nullptr);
+  EXPECT_EQ(unit->failed, 1u);
+  EXPECT_EQ(unit->worst.front().element, 3u);
+  EXPECT_NE(unit->worst.front().detail.find("vertex 3 |xyz| = 0.5"), std::string::npos) << unit->worst.front().detail;
+  EXPECT_EQ(findingNames(check), std::vector<std::string>{"unit"});
+}
+
+TEST(CheckNegative, NanInOneTangent) {
+  TempDir dir;
+  const fs::path baked = bakedAsset(dir, "interleaved_ubyte");
+  patchTangents(baked, 0, [](TangentView& tv) { tv.tangents[4 * 5 + 1] = std::numeric_limits<float>::quiet_NaN(); });
+  const FileCheck check = tangent::gltf::checkFile(baked, {});
+  const CheckFinding* finite = findingOf(check, 0, "finite");
+  ASSERT_NE(finite, nullptr);
+  EXPECT_EQ(finite->failed, 1u);
+  EXPECT_EQ(finite->worst.front().element, 5u);
+}
+
+TEST(CheckNegative, WOfOneHalf) {
+  TempDir dir;
+  const fs::path baked = bakedAsset(dir, "interleaved_ubyte");
+  patchTangents(baked, 0, [](TangentView& tv) { tv.tangents[4 * 7 + 3] = 0.5f; });
+  const FileCheck check = tangent::gltf::checkFile(baked, {});
+  const CheckFinding* w = findingOf(check, 0, "w");
+  ASSERT_NE(w, nullptr);
+  EXPECT_EQ(w->failed, 1u);
+  EXPECT_EQ(w->worst.front().element, 7u);
+  EXPECT_NE(findingOf(check, 0, "w-uniform"), nullptr);  // its triangles now mix 0.5 and +-1
+}
+
+TEST(CheckNegative, TangentsMissing) {
+  TempDir dir;
+  const auto all = tangent::testing::makeTestAssets();
+  const fs::path input = tangent::testing::writeAsset(all[0], dir.path(), true);  // not baked
+  const FileCheck check = tangent::gltf::checkFile(input, {});
+  ASSERT_NE(findingOf(check, 0, "present"), nullptr);
+  EXPECT_EQ(check.primitives[0].notRun.size(), std::size(tangent::gltf::kCheckNames) - 1);
+}
+
+TEST(CheckNegative, UnreadableFileIsAnErrorNotAFinding) {
+  TempDir dir;
+  std::ofstream(dir / "broken.gltf") << "{";
+  const FileCheck check = tangent::gltf::checkFile(dir / "broken.gltf", {});
+  EXPECT_FALSE(check.error.empty());
+  EXPECT_NE(check.error.find("broken.gltf"), std::string::npos);
+}
+
+struct CommandResult {
+  int exitCode;
+  std::string output;
+};
+
+CommandResult runCommand(const std::string& command) {
+  CommandResult result{-1, ""};
+  FILE* pipe = ::popen((command + " 2>&1").c_str(), "r");
+  if (!pipe) return result;
+  std::array<char, 4096> buffer;
+  while (std::size_t n = std::fread(buffer.data(), 1, buffer.size(), pipe)) result.output.append(buffer.data(), n);
+  const int status = ::pclose(pipe);
+  result.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  return result;
+}
+
+std::string quoted(const fs::path& path) { return "'" + path.string() + "'"; }
+
+TEST(CheckCli, ExitCodesAndJunitParsesWithTheRightCounts) {
+  TempDir dir;
+  const fs::path clean = bakedAsset(dir, "interleaved_ubyte");
+  const fs::path nonUnit = dir / "non-unit.glb";
+  fs::copy_file(clean, nonUnit);
+  patchTangents(nonUnit, 0, [](TangentView& tv) {
+    for (int i = 0; i < 3; ++i) tv.tangents[i] *= 3;  // same direction, three times too long
+  });
+  const fs::path missing = tangent::testing::writeAsset(tangent::testing::makeTestAssets()[0], dir / "raw", true);
+  const std::string cli = TANGENT_CLI;
+
+  EXPECT_EQ(runCommand(cli + " check " + quoted(clean)).exitCode, 0);
+  const CommandResult findings = runCommand(cli + " check " + quoted(clean) + " " + quoted(nonUnit));
+  EXPECT_EQ(findings.exitCode, 1);
+  EXPECT_NE(findings.output.find("FAIL unit: 1 of"), std::string::npos) << findings.output;
+  EXPECT_NE(findings.output.find("non-unit.glb"), std::string::npos);
+  EXPECT_EQ(runCommand(cli + " check " + quoted(dir / "nope.glb")).exitCode, 2);
+  EXPECT_EQ(runCommand(cli + " check --format yaml " + quoted(clean)).exitCode, 2);
+  EXPECT_EQ(runCommand(cli + " check --tolerance -1 " + quoted(clean)).exitCode, 2);
+
+  const fs::path junit = dir / "report.xml";
+  EXPECT_EQ(runCommand(cli + " check --format junit -o " + quoted(junit) + " " + quoted(clean) + " " + quoted(nonUnit) + " " +
+                       quoted(missing)).exitCode, 1);
+  // Parsed by Python's XML parser: a malformed document fails here.
+  const std::string count = R"(import sys, xml.etree.ElementTree as ET
+root = ET.parse(sys.argv[1]).getroot()
+cases = root.findall('.//testcase')
+print(len(cases), len(root.findall('.//failure')), len(root.findall('.//skipped')), root.get('failures'),
+      ' '.join(c.get('name') for c in cases if c.find('failure') is not None))
+)";
+  std::ofstream(dir / "count.py") << count;
+  const CommandResult parsed = runCommand("python3 " + quoted(dir / "count.py") + " " + quoted(junit));
+  ASSERT_EQ(parsed.exitCode, 0) << parsed.output;
+  // clean: 9 passing cases; non-unit: 8 passing + 1 failure (unit); missing: 1 failure (present) + 8 skipped.
+  EXPECT_EQ(parsed.output, "27 2 8 2 unit present\n");
+
+  const CommandResult json = runCommand(cli + " check --format json " + quoted(nonUnit));
+  EXPECT_EQ(json.exitCode, 1);
+  const auto report = nlohmann::json::parse(json.output);
+  EXPECT_EQ(report["schema"], "libtangent-check/1");
+  EXPECT_EQ(report["files"][0]["status"], "findings");
+  EXPECT_EQ(report["files"][0]["primitives"][0]["findings"][0]["check"], "unit");
+  EXPECT_EQ(report["files"][0]["primitives"][0]["findings"][0]["worst"][0]["element"], 0);
+}
+
+}  // namespace
