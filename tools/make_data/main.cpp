@@ -9,7 +9,9 @@
 #include <fstream>
 #include <iostream>
 #include <nlohmann/json.hpp>
+#include <algorithm>
 #include <numbers>
+#include <utility>
 #include <vector>
 
 namespace {
@@ -102,6 +104,213 @@ bool writeBumpNormalMap(const std::filesystem::path& path, int size, int bumpsPe
   return out->close() && ok;
 }
 
+
+MeshData cube(float half) {
+  // 24 vertices: 4 per face, u along the face's first edge, outward winding.
+  MeshData mesh;
+  const int axes[6][3] = {{0, 1, 2}, {0, 1, 2}, {2, 1, 0}, {2, 1, 0}, {0, 2, 1}, {0, 2, 1}};
+  const float sides[6] = {1, -1, -1, 1, -1, 1};
+  for (int f = 0; f < 6; ++f) {
+    const int ua = axes[f][0], va = axes[f][1], na = axes[f][2];
+    const float side = sides[f];
+    const auto base = static_cast<std::uint16_t>(mesh.positions.size() / 3);
+    const float corners[4][2] = {{-1, -1}, {1, -1}, {1, 1}, {-1, 1}};
+    for (const auto& c : corners) {
+      float p[3] = {0, 0, 0}, n[3] = {0, 0, 0};
+      p[ua] = c[0] * half * side * (f >= 4 ? -1.0f : 1.0f);
+      p[va] = c[1] * half;
+      p[na] = half * side;
+      n[na] = side;
+      mesh.positions.insert(mesh.positions.end(), p, p + 3);
+      mesh.normals.insert(mesh.normals.end(), n, n + 3);
+      mesh.uvs.insert(mesh.uvs.end(), {(c[0] + 1) / 2, (1 - c[1]) / 2});
+    }
+    // Wind counter-clockwise as seen from outside: flip when the (u, v, n) basis is left-handed.
+    float pu[3] = {0, 0, 0}, pv[3] = {0, 0, 0}, pn[3] = {0, 0, 0};
+    pu[ua] = side * (f >= 4 ? -1.0f : 1.0f);
+    pv[va] = 1;
+    pn[na] = side;
+    const float handed = (pu[1] * pv[2] - pu[2] * pv[1]) * pn[0] + (pu[2] * pv[0] - pu[0] * pv[2]) * pn[1] + (pu[0] * pv[1] - pu[1] * pv[0]) * pn[2];
+    if (handed > 0) mesh.indices.insert(mesh.indices.end(), {base, static_cast<std::uint16_t>(base + 1), static_cast<std::uint16_t>(base + 2), base, static_cast<std::uint16_t>(base + 2), static_cast<std::uint16_t>(base + 3)});
+    else mesh.indices.insert(mesh.indices.end(), {base, static_cast<std::uint16_t>(base + 2), static_cast<std::uint16_t>(base + 1), base, static_cast<std::uint16_t>(base + 3), static_cast<std::uint16_t>(base + 2)});
+  }
+  return mesh;
+}
+
+MeshData torus(int rings, int sides, float major, float minor) {
+  MeshData mesh;
+  for (int i = 0; i <= rings; ++i) {
+    for (int j = 0; j <= sides; ++j) {
+      const double a = 2 * std::numbers::pi * i / rings, b = 2 * std::numbers::pi * j / sides;
+      const double n[3] = {std::cos(a) * std::cos(b), std::sin(b), -std::sin(a) * std::cos(b)};
+      mesh.positions.insert(mesh.positions.end(), {static_cast<float>(major * std::cos(a) + minor * n[0]), static_cast<float>(minor * n[1]),
+                                                   static_cast<float>(-major * std::sin(a) + minor * n[2])});
+      mesh.normals.insert(mesh.normals.end(), {static_cast<float>(n[0]), static_cast<float>(n[1]), static_cast<float>(n[2])});
+      mesh.uvs.insert(mesh.uvs.end(), {static_cast<float>(3.0 * i / rings), static_cast<float>(1.0 * j / sides)});
+    }
+  }
+  for (int i = 0; i < rings; ++i) {
+    for (int j = 0; j < sides; ++j) {
+      const auto a = static_cast<std::uint16_t>(i * (sides + 1) + j), b = static_cast<std::uint16_t>(a + sides + 1);
+      mesh.indices.insert(mesh.indices.end(), {a, static_cast<std::uint16_t>(a + 1), b, static_cast<std::uint16_t>(a + 1), static_cast<std::uint16_t>(b + 1), b});
+    }
+  }
+  return mesh;
+}
+
+MeshData quad(float half) {
+  MeshData mesh;
+  mesh.positions = {-half, -half, 0, half, -half, 0, half, half, 0, -half, half, 0};
+  mesh.normals = {0, 0, 1, 0, 0, 1, 0, 0, 1, 0, 0, 1};
+  mesh.uvs = {0, 1, 1, 1, 1, 0, 0, 0};
+  mesh.indices = {0, 1, 2, 0, 2, 3};
+  return mesh;
+}
+
+bool writeImage(const std::filesystem::path& path, int width, int height, int channels, const std::vector<unsigned char>& pixels) {
+  auto out = OIIO::ImageOutput::create(path.string());
+  if (!out) return false;
+  OIIO::ImageSpec spec(width, height, channels, OIIO::TypeDesc::UINT8);
+  if (!out->open(path.string(), spec)) return false;
+  const bool ok = out->write_image(OIIO::TypeDesc::UINT8, pixels.data());
+  return out->close() && ok;
+}
+
+// Specular map with green, white and black regions (RGB: highlight colour, A: strength).
+bool writeSpecularRegions(const std::filesystem::path& path, int size) {
+  std::vector<unsigned char> pixels(static_cast<std::size_t>(size) * size * 4);
+  for (int y = 0; y < size; ++y) {
+    for (int x = 0; x < size; ++x) {
+      const int region = (x * 3) / size;  // vertical bands: green, white, black
+      const unsigned char colors[3][3] = {{40, 255, 60}, {255, 255, 255}, {0, 0, 0}};
+      unsigned char* p = &pixels[(static_cast<std::size_t>(y) * size + x) * 4];
+      for (int c = 0; c < 3; ++c) p[c] = colors[region][c];
+      p[3] = region == 2 ? 0 : 255;
+    }
+  }
+  return writeImage(path, size, size, 4, pixels);
+}
+
+bool writeWhite(const std::filesystem::path& path) { return writeImage(path, 4, 4, 3, std::vector<unsigned char>(4 * 4 * 3, 255)); }
+
+// Sphere map: a sky gradient over a darker ground with a bright sun, as seen in a mirror ball.
+bool writeSphereMap(const std::filesystem::path& path, int size) {
+  std::vector<unsigned char> pixels(static_cast<std::size_t>(size) * size * 3);
+  for (int y = 0; y < size; ++y) {
+    for (int x = 0; x < size; ++x) {
+      const double sx = (x + 0.5) / size * 2 - 1, sy = 1 - (y + 0.5) / size * 2;
+      const double r2 = sx * sx + sy * sy;
+      double color[3] = {0.1, 0.1, 0.12};
+      if (r2 <= 1) {
+        const double up = sy;  // reflection's up component grows with image height
+        const double sky = std::clamp(up * 0.5 + 0.5, 0.0, 1.0);
+        color[0] = 0.35 + 0.25 * sky;
+        color[1] = 0.35 + 0.35 * sky;
+        color[2] = 0.40 + 0.55 * sky;
+        if (up < 0) color[0] = color[1] = color[2] = 0.25 + 0.1 * (1 + up);
+        const double sun = std::exp(-((sx - 0.35) * (sx - 0.35) + (sy - 0.45) * (sy - 0.45)) * 60);
+        for (double& c : color) c = std::min(1.0, c + sun);
+      }
+      for (int c = 0; c < 3; ++c) pixels[(static_cast<std::size_t>(y) * size + x) * 3 + c] = static_cast<unsigned char>(std::lround(color[c] * 255));
+    }
+  }
+  return writeImage(path, size, size, 3, pixels);
+}
+
+// Where the demo scene's sun shines: down and across, so that from the default (iso) camera
+// the spheres are lit and their shadows fall beside them. The viewer test predicts the shadow.
+constexpr double kSunDirection[3] = {0.7, -0.6, -0.3};
+
+// Accumulates meshes, nodes and buffer data of one glTF document, written as .gltf + .bin.
+class DocumentWriter {
+ public:
+  struct Placement {
+    std::string name;
+    float translation[3] = {0, 0, 0};
+  };
+
+  // Adds a mesh with POSITION, NORMAL, TEXCOORD_0 and uint16 indices, and a node for it.
+  void addMesh(const MeshData& mesh, const std::string& name, int material, const float (&translation)[3]) {
+    const std::size_t n = mesh.positions.size() / 3;
+    float lo[3] = {1e30f, 1e30f, 1e30f}, hi[3] = {-1e30f, -1e30f, -1e30f};
+    for (std::size_t i = 0; i < mesh.positions.size(); ++i) {
+      lo[i % 3] = std::min(lo[i % 3], mesh.positions[i]);
+      hi[i % 3] = std::max(hi[i % 3], mesh.positions[i]);
+    }
+    const std::size_t first = accessors_.size();
+    accessors_.push_back({{"bufferView", addView(mesh.positions.data(), n * 12, 34962)}, {"componentType", 5126}, {"count", n},
+                          {"type", "VEC3"}, {"min", {lo[0], lo[1], lo[2]}}, {"max", {hi[0], hi[1], hi[2]}}});
+    accessors_.push_back({{"bufferView", addView(mesh.normals.data(), n * 12, 34962)}, {"componentType", 5126}, {"count", n}, {"type", "VEC3"}});
+    accessors_.push_back({{"bufferView", addView(mesh.uvs.data(), n * 8, 34962)}, {"componentType", 5126}, {"count", n}, {"type", "VEC2"}});
+    accessors_.push_back({{"bufferView", addView(mesh.indices.data(), mesh.indices.size() * 2, 34963)}, {"componentType", 5123},
+                          {"count", mesh.indices.size()}, {"type", "SCALAR"}});
+    Json primitive = Json::object();
+    primitive["attributes"] = {{"POSITION", first}, {"NORMAL", first + 1}, {"TEXCOORD_0", first + 2}};
+    primitive["indices"] = first + 3;
+    primitive["material"] = material;
+    meshes_.push_back({{"name", name}, {"primitives", Json::array({primitive})}});
+    Json node = {{"name", name}, {"mesh", meshes_.size() - 1}};
+    if (translation[0] != 0 || translation[1] != 0 || translation[2] != 0) node["translation"] = {translation[0], translation[1], translation[2]};
+    nodes_.push_back(node);
+  }
+  void addNode(Json node) { nodes_.push_back(std::move(node)); }
+
+  // Writes dir/stem.gltf and dir/stem.bin; `extra` holds materials, textures and the rest.
+  void write(const std::filesystem::path& dir, const std::string& stem, Json extra) const {
+    std::vector<std::uint8_t> bin = bin_;
+    while (bin.size() % 4) bin.push_back(0);
+    Json sceneNodes = Json::array();
+    for (std::size_t i = 0; i < nodes_.size(); ++i) sceneNodes.push_back(i);
+    Json doc = {{"asset", {{"version", "2.0"}, {"generator", "libtangent tangent-make-data"}, {"copyright", "libtangent authors, CC0"}}}};
+    if (extra.contains("extensionsUsed")) doc["extensionsUsed"] = extra["extensionsUsed"];
+    doc["scene"] = 0;
+    doc["scenes"] = {{{"name", stem}, {"nodes", sceneNodes}}};
+    doc["nodes"] = nodes_;
+    doc["meshes"] = meshes_;
+    for (auto& [key, value] : extra.items()) {
+      if (key != "extensionsUsed") doc[key] = value;
+    }
+    doc["accessors"] = accessors_;
+    doc["bufferViews"] = views_;
+    doc["buffers"] = {{{"uri", stem + ".bin"}, {"byteLength", bin.size()}}};
+    std::ofstream(dir / (stem + ".bin"), std::ios::binary).write(reinterpret_cast<const char*>(bin.data()), static_cast<std::streamsize>(bin.size()));
+    std::ofstream(dir / (stem + ".gltf")) << doc.dump(2) << "\n";
+  }
+
+ private:
+  std::size_t addView(const void* data, std::size_t bytes, int target) {
+    while (bin_.size() % 4) bin_.push_back(0);
+    views_.push_back({{"buffer", 0}, {"byteOffset", bin_.size()}, {"byteLength", bytes}, {"target", target}});
+    const auto* p = static_cast<const std::uint8_t*>(data);
+    bin_.insert(bin_.end(), p, p + bytes);
+    return views_.size() - 1;
+  }
+
+  std::vector<std::uint8_t> bin_;
+  Json accessors_ = Json::array(), views_ = Json::array(), meshes_ = Json::array(), nodes_ = Json::array();
+};
+
+// Materials and textures shared by the scene and the primitives; image URIs relative to
+// `imagePrefix` ("" or "../").
+Json sharedMaterials(const std::string& imagePrefix) {
+  Json specular = {{"specularFactor", 1.0}, {"specularTexture", {{"index", 2}}}, {"specularColorTexture", {{"index", 2}}}};
+  return {
+      {"extensionsUsed", {"KHR_materials_specular", "KHR_lights_punctual"}},
+      {"materials",
+       {{{"name", "BumpsSpecular"},
+         {"pbrMetallicRoughness", {{"baseColorTexture", {{"index", 1}}}, {"metallicFactor", 0.0}, {"roughnessFactor", 0.35}}},
+         {"normalTexture", {{"index", 0}}},
+         {"extensions", {{"KHR_materials_specular", specular}}}},
+        {{"name", "Ground"},
+         {"pbrMetallicRoughness", {{"baseColorFactor", {0.85, 0.85, 0.85, 1}}, {"baseColorTexture", {{"index", 1}}}, {"metallicFactor", 0.0}, {"roughnessFactor", 0.9}}}}}},
+      {"textures", {{{"source", 0}, {"sampler", 0}}, {{"source", 1}, {"sampler", 0}}, {{"source", 2}, {"sampler", 0}}}},
+      {"samplers", {{{"magFilter", 9729}, {"minFilter", 9987}, {"wrapS", 10497}, {"wrapT", 10497}}}},
+      {"images",
+       {{{"uri", imagePrefix + "bumps_normal.png"}, {"mimeType", "image/png"}},
+        {{"uri", imagePrefix + "white.png"}, {"mimeType", "image/png"}},
+        {{"uri", imagePrefix + "specular_regions.png"}, {"mimeType", "image/png"}}}}};
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -172,6 +381,50 @@ int main(int argc, char** argv) {
       {"buffers", {{{"uri", "demo.bin"}, {"byteLength", bin.size()}}}}};
   std::ofstream(dir / "demo.bin", std::ios::binary).write(reinterpret_cast<const char*>(bin.data()), static_cast<std::streamsize>(bin.size()));
   std::ofstream(dir / "demo.gltf") << doc.dump(2) << "\n";
-  std::cout << "wrote " << (dir / "demo.gltf").string() << ", demo.bin, bumps_normal.png\n";
+
+  // The viewer's demo scene: spheres on a plane under a directional light.
+  if (!writeSpecularRegions(dir / "specular_regions.png", 96) || !writeWhite(dir / "white.png") || !writeSphereMap(dir / "spheremap.png", 256)) {
+    std::cerr << "tangent-make-data: cannot write the demo textures: " << OIIO::geterror() << "\n";
+    return 1;
+  }
+  {
+    DocumentWriter scene;
+    const float groundAt[3] = {0, 0, 0};
+    MeshData ground = plane(4.0f, 0.0f);
+    scene.addMesh(ground, "Ground", 1, groundAt);
+    const float positions[3][3] = {{-1.6f, 0.7f, 0.3f}, {0.0f, 0.7f, -0.4f}, {1.6f, 0.7f, 0.3f}};
+    const char* sphereNames[3] = {"SphereLeft", "SphereMiddle", "SphereRight"};
+    for (int i = 0; i < 3; ++i) scene.addMesh(uvSphere(48, 24, 0.7f), sphereNames[i], 0, positions[i]);
+    // Sun: KHR_lights_punctual lights shine along their node's -z; the rotation turns -z to
+    // kSunDirection (q = normalize(1 + dot(a, b), cross(a, b)) for unit a, b).
+    const double length = std::sqrt(kSunDirection[0] * kSunDirection[0] + kSunDirection[1] * kSunDirection[1] + kSunDirection[2] * kSunDirection[2]);
+    const double d[3] = {kSunDirection[0] / length, kSunDirection[1] / length, kSunDirection[2] / length};
+    double q[4] = {d[1], -d[0], 0.0, 1.0 - d[2]};  // x, y, z, w for a = (0, 0, -1)
+    const double qLength = std::sqrt(q[0] * q[0] + q[1] * q[1] + q[2] * q[2] + q[3] * q[3]);
+    for (double& c : q) c /= qLength;
+    scene.addNode({{"name", "Sun"}, {"rotation", {q[0], q[1], q[2], q[3]}}, {"extensions", {{"KHR_lights_punctual", {{"light", 0}}}}}});
+    Json extra = sharedMaterials("");
+    Json sun = {{"name", "Sun"}, {"type", "directional"}, {"color", {1.0, 0.97, 0.9}}, {"intensity", 1.0}};
+    Json lamp = {{"name", "Lamp"}, {"type", "point"}, {"color", {0.4, 0.5, 0.9}}, {"intensity", 4.0}};
+    Json lights = Json::object();
+    lights["lights"] = Json::array({sun, lamp});
+    extra["extensions"] = Json::object();
+    extra["extensions"]["KHR_lights_punctual"] = lights;
+    scene.addNode({{"name", "Lamp"}, {"translation", {-2.5, 2.0, 2.5}}, {"extensions", {{"KHR_lights_punctual", {{"light", 1}}}}}});
+    scene.write(dir, "scene", extra);
+  }
+  // Primitives to choose in the viewer's panel.
+  std::filesystem::create_directories(dir / "primitives");
+  const std::pair<const char*, MeshData> primitives[] = {
+      {"quad", quad(1.0f)}, {"cube", cube(0.8f)}, {"sphere", uvSphere(48, 24, 1.0f)}, {"torus", torus(64, 24, 0.9f, 0.35f)}};
+  for (const auto& [name, mesh] : primitives) {
+    DocumentWriter writer;
+    const float origin[3] = {0, 0, 0};
+    writer.addMesh(mesh, name, 0, origin);
+    Json extra = sharedMaterials("../");
+    extra["extensionsUsed"] = {"KHR_materials_specular"};
+    writer.write(dir / "primitives", name, extra);
+  }
+  std::cout << "wrote " << dir.string() << ": demo.gltf, scene.gltf, primitives/{quad,cube,sphere,torus}.gltf and their textures\n";
   return 0;
 }

@@ -10,6 +10,7 @@
 #include "accessors.hpp"
 #include "asset.hpp"
 #include "primitive.hpp"
+#include "tangent_rules.hpp"
 #include "tangent/gltf.hpp"
 
 namespace tangent::gltf {
@@ -17,7 +18,6 @@ namespace {
 
 using Json = nlohmann::ordered_json;
 constexpr std::size_t kWorstKept = 5;
-constexpr double kDegrees = 180.0 / 3.14159265358979323846;
 
 std::string format(const char* pattern, auto... values) {
   char text[256];
@@ -60,20 +60,8 @@ class FindingBuilder {
 
 std::string tangentText(const float* t) { return format("(%.6g, %.6g, %.6g, w %.6g)", t[0], t[1], t[2], t[3]); }
 
-bool finite4(const float* t) {
-  return std::isfinite(t[0]) && std::isfinite(t[1]) && std::isfinite(t[2]) && std::isfinite(t[3]);
-}
-
-double length3(const float* v) { return std::sqrt(double(v[0]) * v[0] + double(v[1]) * v[1] + double(v[2]) * v[2]); }
-
-// Angle between two 3-vectors in degrees, robust near 0.
-double angleBetween(const float* a, const float* b) {
-  const double cross[3] = {double(a[1]) * b[2] - double(a[2]) * b[1], double(a[2]) * b[0] - double(a[0]) * b[2],
-                           double(a[0]) * b[1] - double(a[1]) * b[0]};
-  const double sine = std::sqrt(cross[0] * cross[0] + cross[1] * cross[1] + cross[2] * cross[2]);
-  const double cosine = double(a[0]) * b[0] + double(a[1]) * b[1] + double(a[2]) * b[2];
-  return std::atan2(sine, cosine) * kDegrees;
-}
+using detail::finite4;
+using detail::length3;
 
 void checkPrimitive(const detail::Asset& asset, const Json& primitive, const detail::PrimitiveNeeds& needs,
                     const std::string& where, const CheckOptions& options, PrimitiveCheck& result) {
@@ -125,7 +113,7 @@ void checkPrimitive(const detail::Asset& asset, const Json& primitive, const det
     const double length = length3(t);
     if (std::abs(length - 1.0) > unitTolerance)
       unit.fail(v, std::abs(length - 1.0), format("vertex %zu |xyz| = %.6g ", v, length) + tangentText(t));
-    if (t[3] != 1.0f && t[3] != -1.0f) w.fail(v, std::abs(std::abs(t[3]) - 1.0), format("vertex %zu w = %.6g", v, t[3]));
+    if (!detail::validW(t[3])) w.fail(v, std::abs(std::abs(t[3]) - 1.0), format("vertex %zu w = %.6g", v, t[3]));
   }
   finite.finish(result, "TANGENT has NaN or infinite components");
   unit.finish(result, format("|xyz| differs from 1 by more than %.3g", unitTolerance));
@@ -146,14 +134,10 @@ void checkPrimitive(const detail::Asset& asset, const Json& primitive, const det
     }
     // Orientation in the normal texture's UV set, on triangles with UV and 3D area.
     const float* uv[3] = {&geometry.uvs[2 * c[0]], &geometry.uvs[2 * c[1]], &geometry.uvs[2 * c[2]]};
-    const double det = (double(uv[1][0]) - uv[0][0]) * (double(uv[2][1]) - uv[0][1]) -
-                       (double(uv[2][0]) - uv[0][0]) * (double(uv[1][1]) - uv[0][1]);
-    const float* p[3] = {&geometry.positions[3 * c[0]], &geometry.positions[3 * c[1]], &geometry.positions[3 * c[2]]};
-    const double e1[3] = {double(p[1][0]) - p[0][0], double(p[1][1]) - p[0][1], double(p[1][2]) - p[0][2]};
-    const double e2[3] = {double(p[2][0]) - p[0][0], double(p[2][1]) - p[0][1], double(p[2][2]) - p[0][2]};
-    const double area = std::hypot(e1[1] * e2[2] - e1[2] * e2[1], e1[2] * e2[0] - e1[0] * e2[2], e1[0] * e2[1] - e1[1] * e2[0]);
-    if (det == 0 || !std::isfinite(det) || !(area > 0) || (w0 != 1.0f && w0 != -1.0f)) continue;
-    const float expected = det > 0 ? -1.0f : 1.0f;
+    const double det = detail::uvAreaTimesTwo(uv[0], uv[1], uv[2]);
+    const float expected = detail::expectedW(det);
+    const double area = detail::areaTimesTwo(&geometry.positions[3 * c[0]], &geometry.positions[3 * c[1]], &geometry.positions[3 * c[2]]);
+    if (expected == 0 || !std::isfinite(det) || !(area > 0) || !detail::validW(w0)) continue;
     if (w0 != expected)
       handedness.fail(t, std::abs(det), format("triangle %zu (vertices %u %u %u) has w = %.0f, its UV orientation needs %.0f", t, c[0],
                                                 c[1], c[2], w0, expected));
@@ -164,10 +148,8 @@ void checkPrimitive(const detail::Asset& asset, const Json& primitive, const det
   for (std::size_t v = 0; v < n; ++v) {
     const float* t = &tangents[4 * v];
     const float* normal = &geometry.normals[3 * v];
-    const double tl = length3(t), nl = length3(normal);
-    if (!usedVertex[v] || !finite4(t) || !(tl > 0) || !(nl > 0) || !std::isfinite(nl)) continue;
-    const double dot = (double(t[0]) * normal[0] + double(t[1]) * normal[1] + double(t[2]) * normal[2]) / (tl * nl);
-    const double offPlane = std::asin(std::clamp(std::abs(dot), 0.0, 1.0)) * kDegrees;
+    if (!usedVertex[v] || !finite4(t)) continue;
+    const double offPlane = detail::offPlaneDegrees(t, normal);
     if (offPlane > options.toleranceDegrees)
       orthogonal.fail(v, offPlane, format("vertex %zu is %.4g deg out of the tangent plane, N = (%.4g, %.4g, %.4g), T = ", v, offPlane,
                                           normal[0], normal[1], normal[2]) + tangentText(t));
@@ -191,7 +173,7 @@ void checkPrimitive(const detail::Asset& asset, const Json& primitive, const det
     const float* stored = &tangents[4 * v];
     const float* fresh = &computed[4 * c];
     if (!finite4(stored)) continue;  // `finite` reported it
-    const double angle = angleBetween(stored, fresh);
+    const double angle = detail::angleBetweenDegrees(stored, fresh);
     const bool wDiffers = (stored[3] < 0) != (fresh[3] < 0);
     if (angle > options.toleranceDegrees || wDiffers)
       reference.fail(c, angle + (wDiffers ? 360 : 0),

@@ -1,0 +1,100 @@
+// A glTF file flattened for display: every triangle primitive of the default scene as a draw
+// item in world space, one vertex per corner, with the file's tangents (or computed ones when
+// the file has none), freshly computed tangents, and what `tangent check` would say of each
+// corner. Images are referenced, never decoded here (the viewer decodes them).
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "tangent/tangent.hpp"
+
+namespace tangent::gltf {
+
+struct TextureRef {
+  int image = -1;      // index into Scene::images; -1 when absent
+  int texCoord = 0;    // UV set (the draw item's UVs already follow it, transform applied)
+  float scale = 1;     // normalTexture.scale
+};
+
+struct ImageSource {
+  std::filesystem::path file;       // external image, or empty
+  std::vector<std::uint8_t> bytes;  // embedded image (bufferView or data URI), or empty
+  std::string mimeType;
+  std::string label;                // for messages
+};
+
+struct MaterialDesc {
+  std::string name;
+  std::array<float, 4> baseColor{1, 1, 1, 1};
+  float metallic = 1, roughness = 1;
+  std::array<float, 3> emissive{0, 0, 0};
+  TextureRef baseColorTexture, normalTexture, emissiveTexture, metallicRoughnessTexture;
+  bool hasSpecular = false;  // KHR_materials_specular
+  float specularFactor = 1;
+  std::array<float, 3> specularColor{1, 1, 1};
+  TextureRef specularTexture, specularColorTexture;
+  bool doubleSided = false;
+};
+
+struct LightDesc {
+  enum class Type { directional, point, spot } type = Type::directional;
+  std::string name;
+  std::array<float, 3> color{1, 1, 1};
+  float intensity = 1;
+  float range = 0;  // 0: infinite
+  std::array<float, 3> position{0, 0, 0};
+  std::array<float, 3> direction{0, 0, -1};  // where the light points, world space
+  float innerConeAngle = 0, outerConeAngle = 0.785398f;
+};
+
+// Bits of DrawItem::cornerProblems: the checks of `tangent check` that fail at a corner.
+enum CornerProblem : std::uint8_t {
+  kProblemNotFinite = 1,
+  kProblemNotUnit = 2,
+  kProblemBadW = 4,
+  kProblemNotOrthogonal = 8,
+  kProblemHandedness = 16,
+  kProblemFarFromReference = 32,
+};
+
+struct DrawItem {
+  std::string label;  // "mesh 0 'Name' primitive 1"
+  int material = -1;  // -1: default material
+  std::array<float, 16> world{};  // column-major node transform
+  // One entry per corner (3 per triangle).
+  std::vector<float> positions;      // 3 per corner, object space
+  std::vector<float> normals;        // 3
+  std::vector<float> uvNormal;       // 2, the normal texture's UV set (transform applied)
+  std::vector<float> uvBase;         // 2, the base colour texture's UV set
+  std::vector<float> tangents;       // 4, the file's TANGENT, or computed when it has none
+  std::vector<float> computedTangents;  // 4, freshly computed (options.method)
+  std::vector<float> tangentErrorDegrees;  // angle between the two, per corner
+  std::vector<std::uint8_t> cornerProblems;  // CornerProblem bits
+  bool tangentsFromFile = false;
+  bool hasUvs = false;
+  Report report;  // of the fresh computation
+};
+
+struct SceneOptions {
+  Method method = Method::mikktspace;
+  bool negateFileW = false;   // for tests and demonstrations: flip the file's handedness
+  double toleranceDegrees = 1.0;
+};
+
+struct Scene {
+  std::vector<DrawItem> items;
+  std::vector<MaterialDesc> materials;
+  std::vector<ImageSource> images;
+  std::vector<LightDesc> lights;  // KHR_lights_punctual, in world space
+  std::array<float, 3> boundsMin{0, 0, 0}, boundsMax{0, 0, 0};  // world space
+  std::vector<std::string> messages;  // what was skipped or substituted, for the panel
+};
+
+// Throws InputError on unreadable input.
+Scene loadScene(const std::filesystem::path& input, const SceneOptions& options = {});
+
+}  // namespace tangent::gltf

@@ -1,0 +1,401 @@
+// Flattening a glTF document for display (see tangent/scene.hpp). Node transforms follow the
+// glTF 2.0 spec 3.5.3 (matrix, or T * R * S); lights come from KHR_lights_punctual.
+#include "tangent/scene.hpp"
+
+#include <glm/gtc/quaternion.hpp>
+#include <glm/gtc/type_ptr.hpp>
+#include <glm/mat4x4.hpp>
+
+#include <cmath>
+#include <limits>
+#include <numeric>
+
+#include "accessors.hpp"
+#include "asset.hpp"
+#include "primitive.hpp"
+#include "tangent/gltf.hpp"
+#include "tangent_rules.hpp"
+
+namespace tangent::gltf {
+namespace {
+
+using Json = nlohmann::ordered_json;
+
+std::vector<std::uint8_t> decodeBase64(const std::string& text) {
+  auto value = [](char c) -> int {
+    if (c >= 'A' && c <= 'Z') return c - 'A';
+    if (c >= 'a' && c <= 'z') return c - 'a' + 26;
+    if (c >= '0' && c <= '9') return c - '0' + 52;
+    if (c == '+' || c == '-') return 62;
+    if (c == '/' || c == '_') return 63;
+    return -1;
+  };
+  std::vector<std::uint8_t> out;
+  unsigned buffer = 0;
+  int bits = 0;
+  for (char c : text) {
+    const int v = value(c);
+    if (v < 0) continue;  // padding and whitespace
+    buffer = (buffer << 6) | static_cast<unsigned>(v);
+    bits += 6;
+    if (bits >= 8) {
+      bits -= 8;
+      out.push_back(static_cast<std::uint8_t>((buffer >> bits) & 0xFF));
+    }
+  }
+  return out;
+}
+
+std::string percentDecode(const std::string& uri) {
+  std::string out;
+  for (std::size_t i = 0; i < uri.size(); ++i) {
+    if (uri[i] == '%' && i + 2 < uri.size()) {
+      out += static_cast<char>(std::stoi(uri.substr(i + 1, 2), nullptr, 16));
+      i += 2;
+    } else {
+      out += uri[i];
+    }
+  }
+  return out;
+}
+
+std::vector<ImageSource> readImages(const detail::Asset& asset) {
+  std::vector<ImageSource> images;
+  if (!asset.json.contains("images")) return images;
+  const auto dir = asset.path.parent_path();
+  for (std::size_t i = 0; i < asset.json["images"].size(); ++i) {
+    const Json& image = asset.json["images"][i];
+    ImageSource source;
+    source.label = asset.path.filename().string() + " image " + std::to_string(i);
+    source.mimeType = image.value("mimeType", "");
+    if (image.contains("uri") && image["uri"].is_string()) {
+      const std::string uri = image["uri"].get<std::string>();
+      if (uri.rfind("data:", 0) == 0) {
+        const auto comma = uri.find(',');
+        if (comma != std::string::npos) source.bytes = decodeBase64(uri.substr(comma + 1));
+        source.mimeType = uri.substr(5, uri.find(';') - 5);
+      } else {
+        source.file = dir / percentDecode(uri);
+        source.label = source.file.string();
+      }
+    } else if (image.contains("bufferView") && image["bufferView"].is_number_integer()) {
+      const int viewIndex = image["bufferView"].get<int>();
+      if (viewIndex >= 0 && viewIndex < static_cast<int>(asset.model.bufferViews.size())) {
+        const auto& view = asset.model.bufferViews[viewIndex];
+        const auto& buffer = asset.model.buffers[view.buffer].data;
+        if (view.byteOffset + view.byteLength <= buffer.size())
+          source.bytes.assign(buffer.begin() + view.byteOffset, buffer.begin() + view.byteOffset + view.byteLength);
+      }
+    }
+    images.push_back(std::move(source));
+  }
+  return images;
+}
+
+TextureRef textureRef(const Json& doc, const Json& info) {
+  TextureRef ref;
+  if (!info.is_object() || !info.contains("index")) return ref;
+  const int texture = info["index"].get<int>();
+  if (!doc.contains("textures") || texture < 0 || texture >= static_cast<int>(doc["textures"].size())) return ref;
+  const Json& textureJson = doc["textures"][texture];
+  ref.image = textureJson.value("source", -1);
+  ref.texCoord = info.value("texCoord", 0);
+  if (info.contains("extensions") && info["extensions"].contains("KHR_texture_transform"))
+    ref.texCoord = info["extensions"]["KHR_texture_transform"].value("texCoord", ref.texCoord);
+  ref.scale = info.value("scale", info.value("strength", 1.0f));
+  return ref;
+}
+
+template <std::size_t N>
+void readFloats(const Json& object, const char* key, std::array<float, N>& out) {
+  if (!object.contains(key) || !object[key].is_array() || object[key].size() != N) return;
+  for (std::size_t i = 0; i < N; ++i) out[i] = object[key][i].get<float>();
+}
+
+std::vector<MaterialDesc> readMaterials(const Json& doc) {
+  std::vector<MaterialDesc> materials;
+  if (!doc.contains("materials")) return materials;
+  for (const Json& m : doc["materials"]) {
+    MaterialDesc material;
+    material.name = m.value("name", "");
+    material.doubleSided = m.value("doubleSided", false);
+    if (m.contains("pbrMetallicRoughness")) {
+      const Json& pbr = m["pbrMetallicRoughness"];
+      readFloats(pbr, "baseColorFactor", material.baseColor);
+      material.metallic = pbr.value("metallicFactor", 1.0f);
+      material.roughness = pbr.value("roughnessFactor", 1.0f);
+      if (pbr.contains("baseColorTexture")) material.baseColorTexture = textureRef(doc, pbr["baseColorTexture"]);
+      if (pbr.contains("metallicRoughnessTexture")) material.metallicRoughnessTexture = textureRef(doc, pbr["metallicRoughnessTexture"]);
+    }
+    if (m.contains("normalTexture")) material.normalTexture = textureRef(doc, m["normalTexture"]);
+    if (m.contains("emissiveTexture")) material.emissiveTexture = textureRef(doc, m["emissiveTexture"]);
+    readFloats(m, "emissiveFactor", material.emissive);
+    if (m.contains("extensions") && m["extensions"].contains("KHR_materials_specular")) {
+      const Json& specular = m["extensions"]["KHR_materials_specular"];
+      material.hasSpecular = true;
+      material.specularFactor = specular.value("specularFactor", 1.0f);
+      readFloats(specular, "specularColorFactor", material.specularColor);
+      if (specular.contains("specularTexture")) material.specularTexture = textureRef(doc, specular["specularTexture"]);
+      if (specular.contains("specularColorTexture")) material.specularColorTexture = textureRef(doc, specular["specularColorTexture"]);
+    }
+    materials.push_back(material);
+  }
+  return materials;
+}
+
+glm::mat4 localTransform(const Json& node) {
+  if (node.contains("matrix") && node["matrix"].size() == 16) {
+    glm::mat4 m;
+    for (int i = 0; i < 16; ++i) glm::value_ptr(m)[i] = node["matrix"][i].get<float>();
+    return m;
+  }
+  std::array<float, 3> t{0, 0, 0}, s{1, 1, 1};
+  std::array<float, 4> r{0, 0, 0, 1};
+  readFloats(node, "translation", t);
+  readFloats(node, "scale", s);
+  readFloats(node, "rotation", r);
+  const glm::quat q(r[3], r[0], r[1], r[2]);
+  return glm::translate(glm::mat4(1), glm::vec3(t[0], t[1], t[2])) * glm::mat4_cast(q) * glm::scale(glm::mat4(1), glm::vec3(s[0], s[1], s[2]));
+}
+
+// Reads what exists of POSITION, NORMAL and UVs; fills in flat normals and zero UVs.
+detail::PrimitiveGeometry readForDisplay(const detail::Asset& asset, const Json& primitive, const detail::PrimitiveNeeds& needs,
+                                         const std::string& where, std::vector<std::string>& messages, bool& hasUvs) {
+  const Json& attributes = primitive["attributes"];
+  const bool hasNormal = detail::accessorOf(attributes, "NORMAL") >= 0;
+  hasUvs = detail::accessorOf(attributes, "TEXCOORD_" + std::to_string(needs.texCoord)) >= 0;
+  if (hasNormal && hasUvs) return detail::readGeometry(asset, primitive, needs, where);
+  // Fall back: positions and indices, then derived normals / zero UVs.
+  const int position = detail::accessorOf(attributes, "POSITION");
+  if (position < 0) throw InputError(where + ": has no POSITION attribute");
+  detail::PrimitiveGeometry geometry;
+  {
+    const auto positions = detail::toFloats(detail::readAccessor(asset.model, position, where + ": POSITION"));
+    geometry.vertexCount = positions.size() / 3;
+    geometry.positions = positions;
+    geometry.mode = primitive.value("mode", 4);
+    std::vector<std::uint32_t> sequence;
+    const int indices = detail::accessorOf(primitive, "indices");
+    if (indices >= 0) sequence = detail::toIndices(detail::readAccessor(asset.model, indices, where + ": indices"), geometry.vertexCount, where);
+    else {
+      sequence.resize(geometry.vertexCount);
+      std::iota(sequence.begin(), sequence.end(), 0u);
+    }
+    geometry.corners = detail::triangleList(geometry.mode, sequence);
+  }
+  if (hasNormal) geometry.normals = detail::readVectors(asset.model, detail::accessorOf(attributes, "NORMAL"), 3, geometry.vertexCount, where + ": NORMAL");
+  else {
+    messages.push_back(where + ": no NORMAL; shown with face normals");
+    geometry.normals.assign(geometry.vertexCount * 3, 0.0f);
+  }
+  if (hasUvs) geometry.uvs = detail::readVectors(asset.model, detail::accessorOf(attributes, "TEXCOORD_" + std::to_string(needs.texCoord)), 2, geometry.vertexCount, where);
+  else {
+    messages.push_back(where + ": no TEXCOORD_" + std::to_string(needs.texCoord) + "; tangents undefined, textures not applied");
+    geometry.uvs.assign(geometry.vertexCount * 2, 0.0f);
+  }
+  return geometry;
+}
+
+DrawItem makeDrawItem(const detail::Asset& asset, const Json& primitive, const std::string& label, const SceneOptions& options,
+                      std::vector<std::string>& messages) {
+  const Json& doc = asset.json;
+  const std::string where = asset.path.string() + ": " + label;
+  DrawItem item;
+  item.label = label;
+  item.material = primitive.value("material", -1);
+  const detail::PrimitiveNeeds needs = detail::primitiveNeeds(doc, primitive, true);
+  const detail::PrimitiveGeometry geometry = readForDisplay(asset, primitive, needs, where, messages, item.hasUvs);
+  const std::size_t cornerCount = geometry.corners.size();
+  const std::vector<std::uint32_t>& corners = geometry.corners;
+
+  // Flat normals where the file has none.
+  std::vector<float> normals = geometry.normals;
+  std::vector<float> cornerNormals(cornerCount * 3);
+  for (std::size_t t = 0; t < cornerCount / 3; ++t) {
+    const float* p[3] = {&geometry.positions[3 * corners[3 * t]], &geometry.positions[3 * corners[3 * t + 1]],
+                         &geometry.positions[3 * corners[3 * t + 2]]};
+    const glm::vec3 face = glm::cross(glm::make_vec3(p[1]) - glm::make_vec3(p[0]), glm::make_vec3(p[2]) - glm::make_vec3(p[0]));
+    const float length = glm::length(face);
+    for (int k = 0; k < 3; ++k) {
+      const float* n = &normals[3 * corners[3 * t + k]];
+      const bool useFace = n[0] == 0 && n[1] == 0 && n[2] == 0 && length > 0;
+      for (int i = 0; i < 3; ++i) cornerNormals[3 * (3 * t + k) + i] = useFace ? face[i] / length : n[i];
+    }
+  }
+
+  // Fresh tangents, per corner.
+  std::vector<float> positionsPerCorner(cornerCount * 3), uvsPerCorner(cornerCount * 2);
+  for (std::size_t c = 0; c < cornerCount; ++c) {
+    for (int i = 0; i < 3; ++i) positionsPerCorner[3 * c + i] = geometry.positions[3 * corners[c] + i];
+    for (int i = 0; i < 2; ++i) uvsPerCorner[2 * c + i] = geometry.uvs[2 * corners[c] + i];
+  }
+  std::vector<std::uint32_t> identity(cornerCount);
+  std::iota(identity.begin(), identity.end(), 0u);
+  Options core;
+  core.method = options.method;
+  item.computedTangents.resize(cornerCount * 4);
+  std::vector<FrameSource> sources(cornerCount);
+  if (cornerCount > 0)
+    item.report = computeCornerTangents({positionsPerCorner, cornerNormals, uvsPerCorner, identity}, item.computedTangents, core, sources);
+
+  item.positions = std::move(positionsPerCorner);
+  item.normals = cornerNormals;
+  item.uvNormal = uvsPerCorner;
+  // Base colour UVs: the base colour texture's set, with its transform.
+  const int baseTexCoord = [&] {
+    if (item.material < 0 || !doc.contains("materials")) return 0;
+    return textureRef(doc, doc["materials"][item.material].value("pbrMetallicRoughness", Json::object()).value("baseColorTexture", Json::object())).texCoord;
+  }();
+  item.uvBase = item.uvNormal;
+  if (baseTexCoord != needs.texCoord || needs.hasNormalTexture) {
+    const int accessor = detail::accessorOf(primitive["attributes"], "TEXCOORD_" + std::to_string(baseTexCoord));
+    if (accessor >= 0) {
+      std::vector<float> base = detail::readVectors(asset.model, accessor, 2, geometry.vertexCount, where + ": base colour UVs");
+      const Json& info = doc["materials"][item.material]["pbrMetallicRoughness"]["baseColorTexture"];
+      if (info.contains("extensions") && info["extensions"].contains("KHR_texture_transform"))
+        detail::applyTextureTransform(base, info["extensions"]["KHR_texture_transform"]);
+      for (std::size_t c = 0; c < cornerCount; ++c)
+        for (int i = 0; i < 2; ++i) item.uvBase[2 * c + i] = base[2 * corners[c] + i];
+    }
+  }
+
+  // The file's tangents, and what check would say of each corner.
+  const int tangentAccessor = detail::accessorOf(primitive["attributes"], "TANGENT");
+  item.tangents = item.computedTangents;
+  item.tangentErrorDegrees.assign(cornerCount, 0.0f);
+  item.cornerProblems.assign(cornerCount, 0);
+  if (tangentAccessor >= 0) {
+    const auto data = detail::readAccessor(asset.model, tangentAccessor, where + ": TANGENT");
+    if (data.type == TINYGLTF_TYPE_VEC4 && data.count == geometry.vertexCount) {
+      const std::vector<float> fileTangents = detail::toFloats(data);
+      item.tangentsFromFile = true;
+      for (std::size_t c = 0; c < cornerCount; ++c) {
+        for (int i = 0; i < 4; ++i) item.tangents[4 * c + i] = fileTangents[4 * corners[c] + i];
+        if (options.negateFileW) item.tangents[4 * c + 3] = -item.tangents[4 * c + 3];
+      }
+    } else {
+      messages.push_back(where + ": TANGENT is not a VEC4 per vertex; computed tangents shown");
+    }
+  } else if (needs.hasNormalTexture) {
+    messages.push_back(where + ": no TANGENT; computed with " + std::string(toString(options.method)) + " at load");
+  }
+  if (!item.tangentsFromFile && options.negateFileW) {
+    for (std::size_t c = 0; c < cornerCount; ++c) item.tangents[4 * c + 3] = -item.tangents[4 * c + 3];
+  }
+  for (std::size_t t = 0; t < cornerCount / 3; ++t) {
+    const double det = detail::uvAreaTimesTwo(&item.uvNormal[6 * t], &item.uvNormal[6 * t + 2], &item.uvNormal[6 * t + 4]);
+    const double area = detail::areaTimesTwo(&item.positions[9 * t], &item.positions[9 * t + 3], &item.positions[9 * t + 6]);
+    for (int k = 0; k < 3; ++k) {
+      const std::size_t c = 3 * t + k;
+      const float* stored = &item.tangents[4 * c];
+      const float* fresh = &item.computedTangents[4 * c];
+      std::uint8_t problems = 0;
+      if (!detail::finite4(stored)) {
+        item.cornerProblems[c] = kProblemNotFinite;
+        item.tangentErrorDegrees[c] = 180.0f;
+        continue;
+      }
+      if (std::abs(detail::length3(stored) - 1.0) > 1e-3) problems |= kProblemNotUnit;
+      if (!detail::validW(stored[3])) problems |= kProblemBadW;
+      if (detail::offPlaneDegrees(stored, &item.normals[3 * c]) > options.toleranceDegrees) problems |= kProblemNotOrthogonal;
+      const float expected = detail::expectedW(det);
+      if (expected != 0 && area > 0 && detail::validW(stored[3]) && stored[3] != expected) problems |= kProblemHandedness;
+      const bool comparable = sources[c] == FrameSource::computed || sources[c] == FrameSource::inherited;
+      const double angle = detail::angleBetweenDegrees(stored, fresh);
+      item.tangentErrorDegrees[c] = comparable ? static_cast<float>(angle) : 0.0f;
+      if (comparable && (angle > options.toleranceDegrees || (stored[3] < 0) != (fresh[3] < 0))) problems |= kProblemFarFromReference;
+      item.cornerProblems[c] = problems;
+    }
+  }
+  return item;
+}
+
+}  // namespace
+
+Scene loadScene(const std::filesystem::path& input, const SceneOptions& options) {
+  const detail::Asset asset = detail::loadAsset(input);
+  const Json& doc = asset.json;
+  Scene scene;
+  scene.images = readImages(asset);
+  scene.materials = readMaterials(doc);
+  scene.messages = asset.warnings;
+
+  std::vector<Json> lightDefinitions;
+  if (doc.contains("extensions") && doc["extensions"].contains("KHR_lights_punctual") &&
+      doc["extensions"]["KHR_lights_punctual"].contains("lights")) {
+    for (const Json& light : doc["extensions"]["KHR_lights_punctual"]["lights"]) lightDefinitions.push_back(light);
+  }
+
+  glm::vec3 lo(std::numeric_limits<float>::max()), hi(-std::numeric_limits<float>::max());
+  const int sceneIndex = doc.value("scene", 0);
+  std::vector<std::pair<int, glm::mat4>> stack;
+  if (doc.contains("scenes") && sceneIndex >= 0 && sceneIndex < static_cast<int>(doc["scenes"].size())) {
+    const Json roots = doc["scenes"][sceneIndex].value("nodes", Json::array());
+    for (auto it = roots.rbegin(); it != roots.rend(); ++it) stack.emplace_back(it->get<int>(), glm::mat4(1));
+  } else if (doc.contains("nodes")) {
+    for (std::size_t n = doc["nodes"].size(); n-- > 0;) stack.emplace_back(static_cast<int>(n), glm::mat4(1));
+  }
+  std::size_t visited = 0;
+  while (!stack.empty()) {
+    auto [nodeIndex, parent] = stack.back();
+    stack.pop_back();
+    if (!doc.contains("nodes") || nodeIndex < 0 || nodeIndex >= static_cast<int>(doc["nodes"].size())) continue;
+    if (++visited > 100000) throw InputError(input.string() + ": node hierarchy has a cycle");
+    const Json& node = doc["nodes"][nodeIndex];
+    const glm::mat4 world = parent * localTransform(node);
+    // Pushed in reverse so that nodes are visited in document order (depth first).
+    const Json children = node.value("children", Json::array());
+    for (auto it = children.rbegin(); it != children.rend(); ++it) stack.emplace_back(it->get<int>(), world);
+    if (node.contains("extensions") && node["extensions"].contains("KHR_lights_punctual")) {
+      const int lightIndex = node["extensions"]["KHR_lights_punctual"].value("light", -1);
+      if (lightIndex >= 0 && lightIndex < static_cast<int>(lightDefinitions.size())) {
+        const Json& definition = lightDefinitions[lightIndex];
+        LightDesc light;
+        const std::string type = definition.value("type", "directional");
+        light.type = type == "point" ? LightDesc::Type::point : type == "spot" ? LightDesc::Type::spot : LightDesc::Type::directional;
+        light.name = definition.value("name", "");
+        readFloats(definition, "color", light.color);
+        light.intensity = definition.value("intensity", 1.0f);
+        light.range = definition.value("range", 0.0f);
+        if (definition.contains("spot")) {
+          light.innerConeAngle = definition["spot"].value("innerConeAngle", 0.0f);
+          light.outerConeAngle = definition["spot"].value("outerConeAngle", 0.785398f);
+        }
+        const glm::vec3 position = glm::vec3(world * glm::vec4(0, 0, 0, 1));
+        const glm::vec3 direction = glm::normalize(glm::vec3(world * glm::vec4(0, 0, -1, 0)));
+        light.position = {position.x, position.y, position.z};
+        light.direction = {direction.x, direction.y, direction.z};
+        scene.lights.push_back(light);
+      }
+    }
+    if (!node.contains("mesh")) continue;
+    const int meshIndex = node["mesh"].get<int>();
+    if (!doc.contains("meshes") || meshIndex < 0 || meshIndex >= static_cast<int>(doc["meshes"].size())) continue;
+    const Json& primitives = doc["meshes"][meshIndex]["primitives"];
+    for (std::size_t p = 0; p < primitives.size(); ++p) {
+      const std::string label = detail::primitiveLabel(doc, meshIndex, static_cast<int>(p));
+      const detail::PrimitiveNeeds needs = detail::primitiveNeeds(doc, primitives[p], true);
+      if (!needs.triangles || needs.compressed) {
+        scene.messages.push_back(label + ": " + needs.why + "; not shown");
+        continue;
+      }
+      DrawItem item = makeDrawItem(asset, primitives[p], label, options, scene.messages);
+      std::copy(glm::value_ptr(world), glm::value_ptr(world) + 16, item.world.begin());
+      for (std::size_t c = 0; c < item.positions.size() / 3; ++c) {
+        const glm::vec3 p3 = glm::vec3(world * glm::vec4(glm::make_vec3(&item.positions[3 * c]), 1));
+        if (std::isfinite(p3.x) && std::isfinite(p3.y) && std::isfinite(p3.z)) {
+          lo = glm::min(lo, p3);
+          hi = glm::max(hi, p3);
+        }
+      }
+      scene.items.push_back(std::move(item));
+    }
+  }
+  if (lo.x <= hi.x) {
+    scene.boundsMin = {lo.x, lo.y, lo.z};
+    scene.boundsMax = {hi.x, hi.y, hi.z};
+  }
+  return scene;
+}
+
+}  // namespace tangent::gltf

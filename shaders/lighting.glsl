@@ -1,0 +1,50 @@
+// Lights: directional (position.w = 0, xyz = direction the light travels) and positional
+// (position.w = 1) with ambient, diffuse and specular colours, attenuation 1/(k0 + k1 d + k2 d^2)
+// and an optional spot cone. Specular: Blinn-Phong (half vector) or Phong (reflection vector).
+
+const int kMaxLights = 4;
+uniform int u_lightCount;
+uniform vec4 u_lightPosition[kMaxLights];
+uniform vec3 u_lightAmbient[kMaxLights];
+uniform vec3 u_lightDiffuse[kMaxLights];
+uniform vec3 u_lightSpecular[kMaxLights];
+uniform vec3 u_lightAttenuation[kMaxLights];   // k0, k1, k2
+uniform vec3 u_lightSpotDirection[kMaxLights];
+uniform vec2 u_lightSpotCos[kMaxLights];       // cos(inner), cos(outer); outer = -2: no cone
+uniform int u_specularModel;                   // 0 Blinn-Phong, 1 Phong
+
+struct SurfaceLight {
+  vec3 ambient;
+  vec3 diffuse;
+  vec3 specular;
+};
+
+// Light i at a surface point; `shadow` scales its direct part.
+void addLight(int i, vec3 position, vec3 normal, vec3 toEye, float shininess, float shadow, inout SurfaceLight total) {
+  vec3 toLight;
+  float attenuation = 1.0;
+  if (u_lightPosition[i].w == 0.0) {
+    toLight = normalize(-u_lightPosition[i].xyz);
+  } else {
+    vec3 offset = u_lightPosition[i].xyz - position;
+    float d = length(offset);
+    toLight = offset / max(d, 1e-6);
+    vec3 k = u_lightAttenuation[i];
+    attenuation = 1.0 / max(k.x + k.y * d + k.z * d * d, 1e-6);
+    if (u_lightSpotCos[i].y > -1.5) {
+      float c = dot(-toLight, normalize(u_lightSpotDirection[i]));
+      attenuation *= smoothstep(u_lightSpotCos[i].y, u_lightSpotCos[i].x, c);
+    }
+  }
+  total.ambient += u_lightAmbient[i] * attenuation;
+  float lambert = max(dot(normal, toLight), 0.0);
+  if (lambert <= 0.0) return;
+  total.diffuse += u_lightDiffuse[i] * lambert * attenuation * shadow;
+  float highlight;
+  if (u_specularModel == 1) {
+    highlight = max(dot(reflect(-toLight, normal), toEye), 0.0);
+  } else {
+    highlight = max(dot(normal, normalize(toLight + toEye)), 0.0);
+  }
+  total.specular += u_lightSpecular[i] * pow(highlight, shininess) * attenuation * shadow;
+}

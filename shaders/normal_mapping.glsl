@@ -1,0 +1,17 @@
+// Tangent-space normal mapping: the frame (T, B, N) with B = cross(N, T) * w, as glTF defines
+// TANGENT; the map's green channel can be flipped for DirectX-convention maps.
+#ifdef HAS_NORMAL_MAP
+uniform sampler2D u_normalMap;
+uniform float u_normalScale;
+uniform bool u_flipGreen;
+
+vec3 perturbedNormal(vec3 normal, vec4 tangent, vec2 uv) {
+  vec3 n = normalize(normal);
+  vec3 t = normalize(tangent.xyz - n * dot(n, tangent.xyz));
+  vec3 b = cross(n, t) * (tangent.w < 0.0 ? -1.0 : 1.0);
+  vec3 m = texture(u_normalMap, uv).xyz * 2.0 - 1.0;
+  if (u_flipGreen) m.y = -m.y;
+  m.xy *= u_normalScale;
+  return normalize(mat3(t, b, n) * m);
+}
+#endif

@@ -1,0 +1,70 @@
+// Orbit camera: yaw/pitch around a target, distance, pan; named views that frame the scene.
+#pragma once
+
+#include <glm/glm.hpp>
+#include <glm/gtc/matrix_transform.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+#include "renderer.hpp"
+
+namespace tangent::viewer {
+
+struct OrbitCamera {
+  glm::vec3 target{0};
+  float distance = 5;
+  float yaw = 0, pitch = 0;  // radians; yaw 0, pitch 0 looks along -z (the front view)
+  float radius = 1;          // of the framed scene
+  bool orthographic = false;
+
+  glm::vec3 eye() const {
+    const glm::vec3 offset(std::sin(yaw) * std::cos(pitch), std::sin(pitch), std::cos(yaw) * std::cos(pitch));
+    return target + offset * distance;
+  }
+
+  CameraMatrices matrices(float aspect) const {
+    CameraMatrices m;
+    m.eye = eye();
+    const glm::vec3 up = std::abs(std::cos(pitch)) < 1e-4f ? glm::vec3(0, 0, -1) : glm::vec3(0, 1, 0);
+    m.view = glm::lookAt(m.eye, target, up);
+    const float nearPlane = std::max(distance - 3 * radius, distance * 1e-3f), farPlane = distance + 3 * radius;
+    if (orthographic) {
+      const float halfHeight = std::max(radius, radius / aspect) * 1.02f;
+      m.projection = glm::ortho(-halfHeight * aspect, halfHeight * aspect, -halfHeight, halfHeight, nearPlane, farPlane);
+    } else {
+      m.projection = glm::perspective(glm::radians(40.0f), aspect, nearPlane, farPlane);
+    }
+    return m;
+  }
+
+  // Frames the bounds from a named side: front, back, left, right, top, bottom, iso.
+  bool frame(glm::vec3 boundsMin, glm::vec3 boundsMax, const std::string& view) {
+    target = (boundsMin + boundsMax) * 0.5f;
+    radius = std::max(glm::length(boundsMax - boundsMin) * 0.5f, 1e-3f);
+    distance = radius / std::sin(glm::radians(20.0f)) * 1.05f;
+    const float quarter = glm::half_pi<float>();
+    if (view == "front") yaw = 0, pitch = 0;
+    else if (view == "back") yaw = 2 * quarter, pitch = 0;
+    else if (view == "right") yaw = quarter, pitch = 0;
+    else if (view == "left") yaw = -quarter, pitch = 0;
+    else if (view == "top") yaw = 0, pitch = quarter;
+    else if (view == "bottom") yaw = 0, pitch = -quarter;
+    else if (view == "iso") yaw = quarter / 2, pitch = 0.6f;
+    else return false;
+    return true;
+  }
+
+  void orbit(float dx, float dy) {
+    yaw -= dx * 0.008f;
+    pitch = std::clamp(pitch + dy * 0.008f, -glm::half_pi<float>() + 1e-3f, glm::half_pi<float>() - 1e-3f);
+  }
+  void pan(float dx, float dy, const glm::mat4& view) {
+    const glm::vec3 right(view[0][0], view[1][0], view[2][0]), up(view[0][1], view[1][1], view[2][1]);
+    target += (-right * dx + up * dy) * (distance * 0.0015f);
+  }
+  void zoom(float steps) { distance = std::max(distance * std::pow(0.9f, steps), radius * 0.05f); }
+};
+
+}  // namespace tangent::viewer

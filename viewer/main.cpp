@@ -1,0 +1,420 @@
+// tangent-view: shows a glTF asset with shadowed normal and specular mapping and the views that
+// validate its tangent frames; renders headless screenshots for tests and reports.
+#include <epoxy/gl.h>  // before GLFW: epoxy provides the GL declarations
+#define GLFW_INCLUDE_NONE
+#include <GLFW/glfw3.h>
+#include <imgui.h>
+#include <backends/imgui_impl_glfw.h>
+#include <backends/imgui_impl_opengl3.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cstdlib>
+#include <cstdio>
+#include <iostream>
+#include <optional>
+#include <stdexcept>
+
+#include "camera.hpp"
+#include "renderer.hpp"
+#include "shader_library.hpp"
+#include "tangent/gltf.hpp"
+#include "tangent/scene.hpp"
+#include "textures.hpp"
+
+namespace {
+
+namespace fs = std::filesystem;
+using namespace tangent::viewer;
+
+const char* kUsage =
+    "usage: tangent-view [IN] [options]\n"
+    "\n"
+    "Shows a glTF asset (default: the bundled demo scene) with shadowed normal and specular mapping\n"
+    "and views that validate its tangent frames.\n"
+    "\n"
+    "options:\n"
+    "  --screenshot OUT.png     render one frame without a window and exit\n"
+    "  --size WxH               window or screenshot size (default 1280x720)\n"
+    "  --camera NAME            front | back | left | right | top | bottom | iso (default iso)\n"
+    "  --ortho                  orthographic projection\n"
+    "  --view NAME              lit | geometry-normal | tangent | bitangent | shading-normal | uv |\n"
+    "                           handedness | error (default lit)\n"
+    "  --glyphs                 draw tangent frames (T red, B green, N blue)\n"
+    "  --no-shadows, --pcf N (0 off, 1 = 3x3, 2 = 5x5), --shadow-map-size N (1024..4096)\n"
+    "  --no-normal-map, --no-specular, --phong, --flip-green, --negate-w\n"
+    "  --reflectivity F, --sphere-map FILE, --uv-scale F\n"
+    "  --frames N               with --screenshot: render N frames and print the median frame time\n"
+    "  --shader-dir DIR         where the shaders are (default: the source tree's shaders/)\n"
+    "keys: m normal map, s specular, h shadows, p PCF, f green flip, 1-8 views, g glyphs,\n"
+    "      r reload shaders, o open, mouse: left orbit, right/middle pan, wheel zoom\n";
+
+struct Options {
+  fs::path input = fs::path(TANGENT_DATA_DIR) / "demo" / "scene.gltf";
+  std::optional<fs::path> screenshot;
+  int width = 1280, height = 720;
+  std::string camera = "iso";
+  bool orthographic = false;
+  RenderSettings settings;
+  bool negateW = false;
+  fs::path sphereMap = fs::path(TANGENT_DATA_DIR) / "demo" / "spheremap.png";
+  fs::path shaderDir = TANGENT_SHADER_DIR;
+  int frames = 1;
+};
+
+int parseOptions(int argc, char** argv, Options& options) {
+  std::vector<std::string> args(argv + 1, argv + argc);
+  for (std::size_t i = 0; i < args.size(); ++i) {
+    const std::string& arg = args[i];
+    auto value = [&]() -> std::string {
+      if (i + 1 >= args.size()) throw std::invalid_argument(arg + " needs a value");
+      return args[++i];
+    };
+    try {
+      if (arg == "-h" || arg == "--help") {
+        std::cout << kUsage;
+        return 0;
+      } else if (arg == "--screenshot") options.screenshot = value();
+      else if (arg == "--size") {
+        const std::string size = value();
+        if (std::sscanf(size.c_str(), "%dx%d", &options.width, &options.height) != 2 || options.width < 16 || options.height < 16 ||
+            options.width > 8192 || options.height > 8192)
+          throw std::invalid_argument("--size must be WxH, 16..8192");
+      } else if (arg == "--camera") options.camera = value();
+      else if (arg == "--ortho") options.orthographic = true;
+      else if (arg == "--view") {
+        const std::string name = value();
+        bool found = false;
+        for (const auto& view : kDebugViews) {
+          if (name == view.name) options.settings.view = view.view, found = true;
+        }
+        if (!found) throw std::invalid_argument("unknown --view " + name);
+      } else if (arg == "--glyphs") options.settings.glyphs = true;
+      else if (arg == "--no-shadows") options.settings.shadows = false;
+      else if (arg == "--pcf") options.settings.pcfRadius = std::clamp(std::stoi(value()), 0, 2);
+      else if (arg == "--shadow-map-size") options.settings.shadowMapSize = std::clamp(std::stoi(value()), 256, 8192);
+      else if (arg == "--no-normal-map") options.settings.normalMapping = false;
+      else if (arg == "--no-specular") options.settings.specular = false;
+      else if (arg == "--phong") options.settings.phong = true;
+      else if (arg == "--flip-green") options.settings.flipGreen = true;
+      else if (arg == "--negate-w") options.negateW = true;
+      else if (arg == "--reflectivity") options.settings.reflectivity = std::clamp(std::stof(value()), 0.0f, 1.0f);
+      else if (arg == "--sphere-map") options.sphereMap = value();
+      else if (arg == "--uv-scale") options.settings.uvScale = std::stof(value());
+      else if (arg == "--frames") options.frames = std::clamp(std::stoi(value()), 1, 10000);
+      else if (arg == "--shader-dir") options.shaderDir = value();
+      else if (!arg.empty() && arg[0] == '-') throw std::invalid_argument("unknown option " + arg);
+      else options.input = arg;
+    } catch (const std::exception& e) {
+      std::cerr << "tangent-view: " << e.what() << "\n\n" << kUsage;
+      return 2;
+    }
+  }
+  OrbitCamera probe;
+  if (!probe.frame(glm::vec3(-1), glm::vec3(1), options.camera)) {
+    std::cerr << "tangent-view: unknown --camera " << options.camera << "\n";
+    return 2;
+  }
+  return -1;
+}
+
+// Everything about the loaded asset the window shows.
+struct Viewer {
+  Options options;
+  ShaderLibrary shaders;
+  Renderer renderer;
+  OrbitCamera camera;
+  std::vector<std::string> messages;
+  fs::path loaded;
+
+  explicit Viewer(const Options& o) : options(o), shaders(o.shaderDir), renderer(shaders) {}
+
+  bool load(const fs::path& file) {
+    messages.clear();
+    try {
+      tangent::gltf::SceneOptions sceneOptions;
+      sceneOptions.negateFileW = options.negateW;
+      const tangent::gltf::Scene scene = tangent::gltf::loadScene(file, sceneOptions);
+      messages = scene.messages;
+      renderer.setScene(scene, messages);
+      loaded = file;
+    } catch (const std::exception& e) {
+      messages.push_back(std::string("cannot open: ") + e.what());
+      std::cerr << "error: " << e.what() << "\n";
+      return false;
+    }
+    for (const auto& m : messages) std::cerr << "note: " << m << "\n";
+    camera.frame(renderer.boundsMin(), renderer.boundsMax(), options.camera);
+    camera.orthographic = options.orthographic;
+    if (options.settings.reflectivity > 0 || fs::exists(options.sphereMap)) {
+      std::string error;
+      if (!renderer.loadSphereMap(options.sphereMap, error) && options.settings.reflectivity > 0) messages.push_back(error);
+    }
+    return true;
+  }
+};
+
+std::string glErrors() {
+  std::string errors;
+  for (GLenum error = glGetError(); error != GL_NO_ERROR; error = glGetError()) errors += " 0x" + std::to_string(error);
+  return errors;
+}
+
+int screenshot(Viewer& viewer) {
+  const Options& o = viewer.options;
+  Framebuffer framebuffer = makeFramebuffer();
+  Renderbuffer color = makeRenderbuffer(), depth = makeRenderbuffer();
+  glBindRenderbuffer(GL_RENDERBUFFER, color.get());
+  glRenderbufferStorage(GL_RENDERBUFFER, GL_RGBA8, o.width, o.height);
+  glBindRenderbuffer(GL_RENDERBUFFER, depth.get());
+  glRenderbufferStorage(GL_RENDERBUFFER, GL_DEPTH_COMPONENT24, o.width, o.height);
+  glBindFramebuffer(GL_FRAMEBUFFER, framebuffer.get());
+  glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, color.get());
+  glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, depth.get());
+  if (glCheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE) {
+    std::cerr << "error: offscreen framebuffer incomplete\n";
+    return 1;
+  }
+  const CameraMatrices matrices = viewer.camera.matrices(float(o.width) / float(o.height));
+  std::vector<double> milliseconds;
+  FrameStats stats;
+  try {
+    for (int frame = 0; frame < o.frames; ++frame) {
+      const auto start = std::chrono::steady_clock::now();
+      stats = viewer.renderer.render(matrices, o.settings, o.width, o.height);
+      glFinish();
+      milliseconds.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
+    }
+  } catch (const std::exception& e) {
+    std::cerr << "error: " << e.what() << "\n";
+    return 1;
+  }
+  std::vector<unsigned char> pixels(static_cast<std::size_t>(o.width) * o.height * 4);
+  glPixelStorei(GL_PACK_ALIGNMENT, 1);
+  glReadPixels(0, 0, o.width, o.height, GL_RGBA, GL_UNSIGNED_BYTE, pixels.data());
+  const std::string errors = glErrors();
+  if (!errors.empty()) {
+    std::cerr << "error: OpenGL errors:" << errors << "\n";
+    return 1;
+  }
+  std::string error;
+  if (!writePng(o.screenshot->string(), o.width, o.height, pixels, error)) {
+    std::cerr << "error: " << error << "\n";
+    return 1;
+  }
+  std::sort(milliseconds.begin(), milliseconds.end());
+  std::printf("wrote %s (%dx%d): %zu triangles, %d draw calls, %zu shader variants, median frame %.2f ms over %d frame(s)\n",
+              o.screenshot->string().c_str(), o.width, o.height, stats.triangles, stats.drawCalls, viewer.shaders.variantsCompiled(),
+              milliseconds[milliseconds.size() / 2], o.frames);
+  return 0;
+}
+
+void drawPanel(Viewer& viewer, GLFWwindow* window, const FrameStats& stats, double frameMs, char (&openPath)[1024], bool& focusOpen) {
+  RenderSettings& s = viewer.options.settings;
+  ImGui::SetNextWindowPos(ImVec2(10, 10), ImGuiCond_FirstUseEver);
+  ImGui::SetNextWindowSize(ImVec2(360, 640), ImGuiCond_FirstUseEver);
+  ImGui::Begin("tangent-view");
+  ImGui::TextWrapped("%s", viewer.loaded.string().c_str());
+  if (focusOpen) {
+    ImGui::SetKeyboardFocusHere();
+    focusOpen = false;
+  }
+  if (ImGui::InputText("open (o)", openPath, sizeof openPath, ImGuiInputTextFlags_EnterReturnsTrue)) viewer.load(openPath);
+  static const char* primitives[] = {"scene", "quad", "cube", "sphere", "torus"};
+  static int primitive = 0;
+  if (ImGui::Combo("demo", &primitive, primitives, 5)) {
+    const fs::path demo = fs::path(TANGENT_DATA_DIR) / "demo";
+    viewer.load(primitive == 0 ? demo / "scene.gltf" : demo / "primitives" / (std::string(primitives[primitive]) + ".gltf"));
+  }
+  ImGui::Text("%.1f fps, %.2f ms, %zu triangles, %d draw calls", frameMs > 0 ? 1000.0 / frameMs : 0.0, frameMs, stats.triangles, stats.drawCalls);
+  if (ImGui::CollapsingHeader("View", ImGuiTreeNodeFlags_DefaultOpen)) {
+    int view = static_cast<int>(s.view);
+    const char* names[std::size(kDebugViews)];
+    for (std::size_t i = 0; i < std::size(kDebugViews); ++i) names[i] = kDebugViews[i].name;
+    if (ImGui::Combo("view (1-8)", &view, names, static_cast<int>(std::size(kDebugViews)))) s.view = static_cast<DebugView>(view);
+    if (s.view == DebugView::tangentError)
+      ImGui::TextWrapped("error vs freshly computed: blue 0, green 1 deg, yellow 5 deg, red >= 20 deg; magenta: fails tangent check");
+    if (s.view == DebugView::handedness) ImGui::TextWrapped("teal: w = +1, orange: w = -1");
+    ImGui::Checkbox("tangent frames (g)", &s.glyphs);
+    ImGui::SliderInt("glyph count", &s.maxGlyphs, 100, 50000);
+    ImGui::Checkbox("orthographic", &viewer.camera.orthographic);
+  }
+  if (ImGui::CollapsingHeader("Shading", ImGuiTreeNodeFlags_DefaultOpen)) {
+    ImGui::Checkbox("normal mapping (m)", &s.normalMapping);
+    ImGui::Checkbox("flip green (f)", &s.flipGreen);
+    ImGui::Checkbox("specular (s)", &s.specular);
+    ImGui::Checkbox("Phong (else Blinn-Phong)", &s.phong);
+    ImGui::SliderFloat("shininess", &s.shininess, 1, 256);
+    ImGui::SliderFloat("reflectivity", &s.reflectivity, 0, 1);
+    ImGui::SliderFloat("UV scale", &s.uvScale, 0.25f, 8);
+  }
+  if (ImGui::CollapsingHeader("Shadows")) {
+    ImGui::Checkbox("shadows (h)", &s.shadows);
+    ImGui::SliderInt("PCF radius (p)", &s.pcfRadius, 0, 2);
+    static const int sizes[] = {1024, 2048, 4096};
+    int sizeIndex = s.shadowMapSize >= 4096 ? 2 : s.shadowMapSize >= 2048 ? 1 : 0;
+    if (ImGui::Combo("map size", &sizeIndex, "1024\0" "2048\0" "4096\0")) s.shadowMapSize = sizes[sizeIndex];
+    ImGui::SliderFloat("constant bias", &s.shadowBiasConstant, 0, 0.01f, "%.4f");
+    ImGui::SliderFloat("slope bias", &s.shadowBiasSlope, 0, 0.01f, "%.4f");
+  }
+  if (ImGui::CollapsingHeader("Lights")) {
+    auto& lights = viewer.renderer.lights();
+    for (std::size_t i = 0; i < lights.size(); ++i) {
+      ImGui::PushID(static_cast<int>(i));
+      Light& light = lights[i];
+      ImGui::Text("light %zu: %s%s", i, light.directional ? "directional" : "positional", i == 0 ? " (casts shadows)" : "");
+      if (light.directional) ImGui::SliderFloat3("direction", &light.direction.x, -1, 1);
+      else ImGui::DragFloat3("position", &light.position.x, 0.05f);
+      ImGui::ColorEdit3("ambient", &light.ambient.x);
+      ImGui::ColorEdit3("diffuse", &light.diffuse.x);
+      ImGui::ColorEdit3("specular", &light.specular.x);
+      if (!light.directional) ImGui::DragFloat3("k0 k1 k2", &light.attenuation.x, 0.01f, 0, 10);
+      ImGui::PopID();
+    }
+  }
+  if (ImGui::CollapsingHeader("Tangents", ImGuiTreeNodeFlags_DefaultOpen)) {
+    for (const auto& item : viewer.renderer.scene().items) {
+      ImGui::TextWrapped("%s: %s, %zu corners, %llu mirrored", item.label.c_str(),
+                         item.tangentsFromFile ? "file TANGENT" : "computed at load (mikktspace)", item.positions.size() / 3,
+                         static_cast<unsigned long long>(item.report.mirroredCorners));
+    }
+  }
+  if (!viewer.messages.empty() && ImGui::CollapsingHeader("Messages", ImGuiTreeNodeFlags_DefaultOpen)) {
+    for (const auto& m : viewer.messages) ImGui::TextWrapped("%s", m.c_str());
+  }
+  ImGui::End();
+  (void)window;
+}
+
+struct Input {
+  Viewer* viewer = nullptr;
+  double lastX = 0, lastY = 0;
+  bool focusOpen = false;
+};
+
+int interactive(Viewer& viewer, GLFWwindow* window) {
+  IMGUI_CHECKVERSION();
+  ImGui::CreateContext();
+  ImGui_ImplGlfw_InitForOpenGL(window, true);
+  ImGui_ImplOpenGL3_Init("#version 330 core");
+  Input input;
+  input.viewer = &viewer;
+  glfwSetWindowUserPointer(window, &input);
+  glfwSetKeyCallback(window, [](GLFWwindow* w, int key, int scancode, int action, int mods) {
+    ImGui_ImplGlfw_KeyCallback(w, key, scancode, action, mods);
+    if (action != GLFW_PRESS || ImGui::GetIO().WantCaptureKeyboard) return;
+    auto& in = *static_cast<Input*>(glfwGetWindowUserPointer(w));
+    RenderSettings& s = in.viewer->options.settings;
+    switch (key) {
+      case GLFW_KEY_M: s.normalMapping = !s.normalMapping; break;
+      case GLFW_KEY_S: s.specular = !s.specular; break;
+      case GLFW_KEY_H: s.shadows = !s.shadows; break;
+      case GLFW_KEY_P: s.pcfRadius = s.pcfRadius == 0 ? 1 : 0; break;
+      case GLFW_KEY_F: s.flipGreen = !s.flipGreen; break;
+      case GLFW_KEY_G: s.glyphs = !s.glyphs; break;
+      case GLFW_KEY_O: in.focusOpen = true; break;
+      case GLFW_KEY_R:
+        in.viewer->shaders.reload();
+        in.viewer->messages.push_back("shaders reloaded");
+        break;
+      case GLFW_KEY_ESCAPE: glfwSetWindowShouldClose(w, GLFW_TRUE); break;
+      default:
+        if (key >= GLFW_KEY_1 && key < GLFW_KEY_1 + static_cast<int>(std::size(kDebugViews))) s.view = static_cast<DebugView>(key - GLFW_KEY_1);
+    }
+  });
+  glfwSetScrollCallback(window, [](GLFWwindow* w, double x, double y) {
+    ImGui_ImplGlfw_ScrollCallback(w, x, y);
+    if (ImGui::GetIO().WantCaptureMouse) return;
+    static_cast<Input*>(glfwGetWindowUserPointer(w))->viewer->camera.zoom(static_cast<float>(y));
+  });
+  glfwSetDropCallback(window, [](GLFWwindow* w, int count, const char** paths) {
+    if (count > 0) static_cast<Input*>(glfwGetWindowUserPointer(w))->viewer->load(paths[0]);
+  });
+
+  char openPath[1024] = {};
+  FrameStats stats;
+  double frameMs = 0;
+  while (!glfwWindowShouldClose(window)) {
+    const auto start = std::chrono::steady_clock::now();
+    glfwPollEvents();
+    double x, y;
+    glfwGetCursorPos(window, &x, &y);
+    if (!ImGui::GetIO().WantCaptureMouse) {
+      const float dx = static_cast<float>(x - input.lastX), dy = static_cast<float>(y - input.lastY);
+      const CameraMatrices m = viewer.camera.matrices(1.0f);
+      if (glfwGetMouseButton(window, GLFW_MOUSE_BUTTON_LEFT) == GLFW_PRESS) viewer.camera.orbit(dx, dy);
+      if (glfwGetMouseButton(window, GLFW_MOUSE_BUTTON_RIGHT) == GLFW_PRESS || glfwGetMouseButton(window, GLFW_MOUSE_BUTTON_MIDDLE) == GLFW_PRESS)
+        viewer.camera.pan(dx, dy, m.view);
+    }
+    input.lastX = x;
+    input.lastY = y;
+    int width, height;
+    glfwGetFramebufferSize(window, &width, &height);
+    if (width > 0 && height > 0) {
+      try {
+        stats = viewer.renderer.render(viewer.camera.matrices(float(width) / float(height)), viewer.options.settings, width, height);
+      } catch (const std::exception& e) {
+        viewer.messages.push_back(e.what());
+        std::cerr << "error: " << e.what() << "\n";
+        viewer.options.settings.view = DebugView::lit;
+        viewer.shaders.reload();
+      }
+    }
+    ImGui_ImplOpenGL3_NewFrame();
+    ImGui_ImplGlfw_NewFrame();
+    ImGui::NewFrame();
+    drawPanel(viewer, window, stats, frameMs, openPath, input.focusOpen);
+    ImGui::Render();
+    ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
+    glfwSwapBuffers(window);
+    frameMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  }
+  ImGui_ImplOpenGL3_Shutdown();
+  ImGui_ImplGlfw_Shutdown();
+  ImGui::DestroyContext();
+  return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  Options options;
+  if (const int exit = parseOptions(argc, argv, options); exit >= 0) return exit;
+  glfwSetErrorCallback([](int code, const char* text) { std::cerr << "GLFW error " << code << ": " << text << "\n"; });
+  if (!glfwInit()) {
+    std::cerr << "error: cannot initialize GLFW (no display? run under xvfb-run)\n";
+    return 1;
+  }
+  glfwWindowHint(GLFW_CONTEXT_VERSION_MAJOR, 3);
+  glfwWindowHint(GLFW_CONTEXT_VERSION_MINOR, 3);
+  glfwWindowHint(GLFW_OPENGL_PROFILE, GLFW_OPENGL_CORE_PROFILE);
+  glfwWindowHint(GLFW_OPENGL_FORWARD_COMPAT, GLFW_TRUE);
+  if (std::getenv("TANGENT_GL_DEBUG")) glfwWindowHint(GLFW_OPENGL_DEBUG_CONTEXT, GLFW_TRUE);
+  if (options.screenshot) glfwWindowHint(GLFW_VISIBLE, GLFW_FALSE);
+  GLFWwindow* window = glfwCreateWindow(options.screenshot ? 64 : options.width, options.screenshot ? 64 : options.height,
+                                        "tangent-view", nullptr, nullptr);
+  if (!window) {
+    std::cerr << "error: cannot create an OpenGL 3.3 core context\n";
+    glfwTerminate();
+    return 1;
+  }
+  glfwMakeContextCurrent(window);
+  glfwSwapInterval(options.screenshot ? 0 : 1);
+  if (std::getenv("TANGENT_GL_DEBUG") && epoxy_has_gl_extension("GL_KHR_debug")) {
+    // Every GL error and warning on stderr, with what caused it.
+    glEnable(GL_DEBUG_OUTPUT_SYNCHRONOUS);
+    glDebugMessageCallback([](GLenum, GLenum type, GLuint, GLenum severity, GLsizei, const GLchar* message, const void*) {
+      if (severity != GL_DEBUG_SEVERITY_NOTIFICATION) std::cerr << "GL debug (type 0x" << std::hex << type << std::dec << "): " << message << "\n";
+    }, nullptr);
+  }
+  int exit = 0;
+  {
+    Viewer viewer(options);
+    const bool loaded = viewer.load(options.input);
+    if (options.screenshot) exit = loaded ? screenshot(viewer) : 1;
+    else exit = interactive(viewer, window);
+  }
+  glfwDestroyWindow(window);
+  glfwTerminate();
+  return exit;
+}

@@ -1,0 +1,345 @@
+#include "renderer.hpp"
+
+#include <glm/gtc/matrix_transform.hpp>
+#include <glm/gtc/type_ptr.hpp>
+
+#include <algorithm>
+#include <cmath>
+
+#include "textures.hpp"
+
+namespace tangent::viewer {
+namespace {
+
+constexpr int kFloatsPerVertex = 16;  // position 3, normal 3, tangent 4, uvNormal 2, uvBase 2, error 1, problems 1
+
+void setUniform(GLuint program, const char* name, const glm::mat4& m) {
+  glUniformMatrix4fv(glGetUniformLocation(program, name), 1, GL_FALSE, glm::value_ptr(m));
+}
+void setUniform(GLuint program, const char* name, const glm::mat3& m) {
+  glUniformMatrix3fv(glGetUniformLocation(program, name), 1, GL_FALSE, glm::value_ptr(m));
+}
+void setUniform(GLuint program, const char* name, const glm::vec3& v) { glUniform3fv(glGetUniformLocation(program, name), 1, glm::value_ptr(v)); }
+void setUniform(GLuint program, const char* name, const glm::vec4& v) { glUniform4fv(glGetUniformLocation(program, name), 1, glm::value_ptr(v)); }
+void setUniform(GLuint program, const char* name, float v) { glUniform1f(glGetUniformLocation(program, name), v); }
+void setUniform(GLuint program, const char* name, int v) { glUniform1i(glGetUniformLocation(program, name), v); }
+
+std::vector<Light> lightsFrom(const gltf::Scene& scene, glm::vec3 center, float radius) {
+  std::vector<Light> lights;
+  for (const auto& source : scene.lights) {
+    if (lights.size() == 4) break;
+    Light light;
+    const glm::vec3 color(source.color[0], source.color[1], source.color[2]);
+    light.directional = source.type == gltf::LightDesc::Type::directional;
+    light.position = glm::vec3(source.position[0], source.position[1], source.position[2]);
+    light.direction = glm::normalize(glm::vec3(source.direction[0], source.direction[1], source.direction[2]));
+    // KHR_lights_punctual intensities (lux, candela) mapped to Blinn-Phong colours.
+    light.diffuse = color * (light.directional ? std::min(source.intensity, 4.0f) : 1.0f);
+    light.specular = light.diffuse;
+    light.ambient = light.diffuse * 0.06f;
+    if (!light.directional) light.attenuation = glm::vec3(1.0f, 0.0f, 1.0f / std::max(source.intensity, 1e-3f));
+    if (source.type == gltf::LightDesc::Type::spot) {
+      light.spotInner = source.innerConeAngle;
+      light.spotOuter = source.outerConeAngle;
+    }
+    lights.push_back(light);
+  }
+  // Light 0 casts the shadow: the first directional light, when there is one.
+  std::stable_partition(lights.begin(), lights.end(), [](const Light& light) { return light.directional; });
+  if (!lights.empty()) return lights;
+  // Default rig: a key light that casts the shadow, a fill, a back point light and a spot.
+  Light key;
+  key.direction = glm::normalize(glm::vec3(-0.35f, -1.0f, -0.45f));
+  key.diffuse = glm::vec3(0.85f);
+  key.ambient = glm::vec3(0.12f);
+  Light fill;
+  fill.direction = glm::normalize(glm::vec3(0.8f, -0.2f, -0.4f));
+  fill.diffuse = glm::vec3(0.22f, 0.24f, 0.3f);
+  fill.specular = glm::vec3(0.1f);
+  fill.ambient = glm::vec3(0);
+  Light back;
+  back.directional = false;
+  back.position = center + glm::vec3(0, 1.2f, -1.5f) * radius;
+  back.diffuse = glm::vec3(0.35f, 0.3f, 0.25f);
+  back.ambient = glm::vec3(0);
+  back.attenuation = glm::vec3(1.0f, 0.0f, 0.15f / (radius * radius));
+  Light spot;
+  spot.directional = false;
+  spot.position = center + glm::vec3(1.5f, 1.5f, 1.5f) * radius;
+  spot.direction = glm::normalize(center - spot.position);
+  spot.diffuse = glm::vec3(0.2f);
+  spot.ambient = glm::vec3(0);
+  spot.attenuation = glm::vec3(1.0f, 0.0f, 0.05f / (radius * radius));
+  spot.spotInner = 0.25f;
+  spot.spotOuter = 0.4f;
+  return {key, fill, back, spot};
+}
+
+}  // namespace
+
+void Renderer::setScene(const gltf::Scene& scene, std::vector<std::string>& messages) {
+  scene_ = scene;
+  meshes_.clear();
+  textures_.clear();
+  glyphsBuiltFor_ = -1;
+  for (const auto& image : scene_.images) {
+    std::string error;
+    textures_.push_back(loadTexture(image, error));
+    if (!error.empty()) messages.push_back(error);
+  }
+  for (const auto& item : scene_.items) {
+    GpuMesh mesh;
+    mesh.material = item.material;
+    mesh.model = glm::make_mat4(item.world.data());
+    const std::size_t corners = item.positions.size() / 3;
+    std::vector<float> data(corners * kFloatsPerVertex);
+    for (std::size_t c = 0; c < corners; ++c) {
+      float* v = &data[c * kFloatsPerVertex];
+      std::copy_n(&item.positions[3 * c], 3, v);
+      std::copy_n(&item.normals[3 * c], 3, v + 3);
+      std::copy_n(&item.tangents[4 * c], 4, v + 6);
+      std::copy_n(&item.uvNormal[2 * c], 2, v + 10);
+      std::copy_n(&item.uvBase[2 * c], 2, v + 12);
+      v[14] = item.tangentErrorDegrees[c];
+      v[15] = static_cast<float>(item.cornerProblems[c]);
+    }
+    mesh.vertexArray = makeVertexArray();
+    mesh.vertices = makeBuffer();
+    glBindVertexArray(mesh.vertexArray.get());
+    glBindBuffer(GL_ARRAY_BUFFER, mesh.vertices.get());
+    glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(data.size() * sizeof(float)), data.data(), GL_STATIC_DRAW);
+    const int sizes[] = {3, 3, 4, 2, 2, 1, 1};
+    int offset = 0;
+    for (GLuint location = 0; location < 7; ++location) {
+      glEnableVertexAttribArray(location);
+      glVertexAttribPointer(location, sizes[location], GL_FLOAT, GL_FALSE, kFloatsPerVertex * sizeof(float),
+                            reinterpret_cast<const void*>(static_cast<std::uintptr_t>(offset * sizeof(float))));
+      offset += sizes[location];
+    }
+    mesh.count = static_cast<GLsizei>(corners);
+    meshes_.push_back(std::move(mesh));
+  }
+  glBindVertexArray(0);
+  boundsMin_ = glm::make_vec3(scene_.boundsMin.data());
+  boundsMax_ = glm::make_vec3(scene_.boundsMax.data());
+  lights_ = lightsFrom(scene_, boundsCenter(), boundsRadius());
+}
+
+bool Renderer::loadSphereMap(const std::filesystem::path& file, std::string& error) {
+  gltf::ImageSource source;
+  source.file = file;
+  source.label = file.string();
+  sphereMap_ = loadTexture(source, error);
+  return static_cast<bool>(sphereMap_);
+}
+
+GLuint Renderer::textureOf(const gltf::TextureRef& ref) const {
+  if (ref.image < 0 || ref.image >= static_cast<int>(textures_.size())) return 0;
+  return textures_[ref.image].get();
+}
+
+FeatureSet Renderer::featuresFor(const GpuMesh& mesh, const RenderSettings& settings) const {
+  FeatureSet features = 0;
+  if (settings.shadows && !lights_.empty() && lights_[0].directional) features |= static_cast<FeatureSet>(Feature::shadows);
+  if (settings.reflectivity > 0 && sphereMap_) features |= static_cast<FeatureSet>(Feature::reflection);
+  if (mesh.material < 0 || mesh.material >= static_cast<int>(scene_.materials.size())) return features;
+  const auto& material = scene_.materials[mesh.material];
+  if (textureOf(material.baseColorTexture)) features |= static_cast<FeatureSet>(Feature::baseColorMap);
+  if (textureOf(material.normalTexture)) features |= static_cast<FeatureSet>(Feature::normalMap);
+  if (textureOf(material.specularTexture)) features |= static_cast<FeatureSet>(Feature::specularMap);
+  if (textureOf(material.specularColorTexture)) features |= static_cast<FeatureSet>(Feature::specularColorMap);
+  if (textureOf(material.metallicRoughnessTexture)) features |= static_cast<FeatureSet>(Feature::metallicRoughnessMap);
+  if (textureOf(material.emissiveTexture)) features |= static_cast<FeatureSet>(Feature::emissiveMap);
+  return features;
+}
+
+glm::mat4 Renderer::lightViewProjection() const {
+  // Orthographic light view fitted to the scene's bounding sphere.
+  const glm::vec3 center = boundsCenter();
+  const float radius = boundsRadius();
+  const glm::vec3 direction = glm::normalize(lights_[0].direction);
+  const glm::vec3 up = std::abs(direction.y) > 0.99f ? glm::vec3(1, 0, 0) : glm::vec3(0, 1, 0);
+  const glm::mat4 view = glm::lookAt(center - direction * (2 * radius), center, up);
+  return glm::ortho(-radius, radius, -radius, radius, 0.01f * radius, 4 * radius) * view;
+}
+
+void Renderer::drawShadowMap(const RenderSettings& settings) {
+  GLint previous = 0;  // the caller's framebuffer, restored at the end
+  glGetIntegerv(GL_FRAMEBUFFER_BINDING, &previous);
+  if (shadowSize_ != settings.shadowMapSize || !shadowTexture_) {
+    shadowSize_ = settings.shadowMapSize;
+    shadowTexture_ = makeTexture();
+    glBindTexture(GL_TEXTURE_2D, shadowTexture_.get());
+    glTexImage2D(GL_TEXTURE_2D, 0, GL_DEPTH_COMPONENT24, shadowSize_, shadowSize_, 0, GL_DEPTH_COMPONENT, GL_FLOAT, nullptr);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_COMPARE_MODE, GL_COMPARE_REF_TO_TEXTURE);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_COMPARE_FUNC, GL_LEQUAL);
+    shadowFramebuffer_ = makeFramebuffer();
+    glBindFramebuffer(GL_FRAMEBUFFER, shadowFramebuffer_.get());
+    glFramebufferTexture2D(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_TEXTURE_2D, shadowTexture_.get(), 0);
+    glDrawBuffer(GL_NONE);
+    glReadBuffer(GL_NONE);
+  }
+  glBindFramebuffer(GL_FRAMEBUFFER, shadowFramebuffer_.get());
+  glViewport(0, 0, shadowSize_, shadowSize_);
+  glEnable(GL_DEPTH_TEST);  // without it GL writes no depth
+  glClear(GL_DEPTH_BUFFER_BIT);
+  glEnable(GL_POLYGON_OFFSET_FILL);
+  glPolygonOffset(2.0f, 4.0f);
+  glDisable(GL_CULL_FACE);
+  const GLuint program = shaders_.shadowDepth();
+  glUseProgram(program);
+  setUniform(program, "u_lightViewProjection", lightViewProjection());
+  for (const GpuMesh& mesh : meshes_) {
+    setUniform(program, "u_model", mesh.model);
+    glBindVertexArray(mesh.vertexArray.get());
+    glDrawArrays(GL_TRIANGLES, 0, mesh.count);
+  }
+  glDisable(GL_POLYGON_OFFSET_FILL);
+  glBindFramebuffer(GL_FRAMEBUFFER, static_cast<GLuint>(previous));
+}
+
+FrameStats Renderer::render(const CameraMatrices& camera, const RenderSettings& settings, int width, int height) {
+  FrameStats stats;
+  const bool anyShadows = settings.shadows && !meshes_.empty() && !lights_.empty() && lights_[0].directional &&
+                          settings.view == DebugView::lit;
+  if (anyShadows) {
+    drawShadowMap(settings);
+    stats.depthPass = true;
+    stats.drawCalls += static_cast<int>(meshes_.size());
+  }
+  glViewport(0, 0, width, height);
+  glClearColor(0.16f, 0.17f, 0.19f, 1.0f);
+  glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+  glEnable(GL_DEPTH_TEST);
+  glDisable(GL_CULL_FACE);
+  const glm::mat4 viewProjection = camera.projection * camera.view;
+  const glm::mat4 lightMatrix = anyShadows ? lightViewProjection() : glm::mat4(1);
+
+  for (const GpuMesh& mesh : meshes_) {
+    FeatureSet features = featuresFor(mesh, settings);
+    if (!anyShadows) features &= ~static_cast<FeatureSet>(Feature::shadows);
+    const GLuint program = shaders_.mesh(features, settings.view);
+    glUseProgram(program);
+    setUniform(program, "u_model", mesh.model);
+    setUniform(program, "u_normalMatrix", glm::transpose(glm::inverse(glm::mat3(mesh.model))));
+    setUniform(program, "u_viewProjection", viewProjection);
+    setUniform(program, "u_view", camera.view);
+    setUniform(program, "u_lightViewProjection", lightMatrix);
+    setUniform(program, "u_eyeWorld", camera.eye);
+    setUniform(program, "u_uvScale", settings.uvScale);
+    setUniform(program, "u_useNormalMap", settings.normalMapping ? 1 : 0);
+    setUniform(program, "u_useSpecular", settings.specular ? 1 : 0);
+    setUniform(program, "u_flipGreen", settings.flipGreen ? 1 : 0);
+    setUniform(program, "u_specularModel", settings.phong ? 1 : 0);
+
+    gltf::MaterialDesc material;
+    material.roughness = 0.5f;
+    material.metallic = 0.0f;
+    if (mesh.material >= 0 && mesh.material < static_cast<int>(scene_.materials.size())) material = scene_.materials[mesh.material];
+    setUniform(program, "u_baseColorFactor", glm::make_vec4(material.baseColor.data()));
+    setUniform(program, "u_emissiveFactor", glm::make_vec3(material.emissive.data()));
+    setUniform(program, "u_roughness", material.roughness);
+    setUniform(program, "u_metallic", material.metallic);
+    setUniform(program, "u_normalScale", material.normalTexture.scale);
+    setUniform(program, "u_specularColorFactor", material.hasSpecular ? glm::make_vec3(material.specularColor.data()) : glm::vec3(1));
+    setUniform(program, "u_specularStrength", material.hasSpecular ? material.specularFactor : 1.0f);
+    setUniform(program, "u_shininess", material.hasSpecular ? settings.shininess : 0.0f);  // 0: derive from roughness
+    setUniform(program, "u_reflectivity", settings.reflectivity);
+
+    const int lightCount = static_cast<int>(std::min<std::size_t>(lights_.size(), 4));
+    setUniform(program, "u_lightCount", lightCount);
+    for (int i = 0; i < lightCount; ++i) {
+      const Light& light = lights_[i];
+      const std::string index = "[" + std::to_string(i) + "]";
+      setUniform(program, ("u_lightPosition" + index).c_str(),
+                 light.directional ? glm::vec4(glm::normalize(light.direction), 0) : glm::vec4(light.position, 1));
+      setUniform(program, ("u_lightAmbient" + index).c_str(), light.ambient);
+      setUniform(program, ("u_lightDiffuse" + index).c_str(), light.diffuse);
+      setUniform(program, ("u_lightSpecular" + index).c_str(), light.specular);
+      setUniform(program, ("u_lightAttenuation" + index).c_str(), light.attenuation);
+      setUniform(program, ("u_lightSpotDirection" + index).c_str(), light.direction);
+      glUniform2f(glGetUniformLocation(program, ("u_lightSpotCos" + index).c_str()),
+                  light.spotInner >= 0 ? std::cos(light.spotInner) : 0.0f, light.spotOuter >= 0 ? std::cos(light.spotOuter) : -2.0f);
+    }
+
+    int unit = 0;
+    auto bind = [&](const char* name, GLuint texture) {
+      glActiveTexture(GL_TEXTURE0 + unit);
+      glBindTexture(GL_TEXTURE_2D, texture);
+      setUniform(program, name, unit);
+      ++unit;
+    };
+    if (has(features, Feature::baseColorMap)) bind("u_baseColorMap", textureOf(material.baseColorTexture));
+    if (has(features, Feature::normalMap)) bind("u_normalMap", textureOf(material.normalTexture));
+    if (has(features, Feature::specularMap)) bind("u_specularMap", textureOf(material.specularTexture));
+    if (has(features, Feature::specularColorMap)) bind("u_specularColorMap", textureOf(material.specularColorTexture));
+    if (has(features, Feature::metallicRoughnessMap)) bind("u_metallicRoughnessMap", textureOf(material.metallicRoughnessTexture));
+    if (has(features, Feature::emissiveMap)) bind("u_emissiveMap", textureOf(material.emissiveTexture));
+    if (has(features, Feature::reflection)) bind("u_sphereMap", sphereMap_.get());
+    if (has(features, Feature::shadows)) {
+      bind("u_shadowMap", shadowTexture_.get());
+      setUniform(program, "u_pcfRadius", settings.pcfRadius);
+      setUniform(program, "u_shadowBiasConstant", settings.shadowBiasConstant);
+      setUniform(program, "u_shadowBiasSlope", settings.shadowBiasSlope);
+    }
+    glBindVertexArray(mesh.vertexArray.get());
+    glDrawArrays(GL_TRIANGLES, 0, mesh.count);
+    ++stats.drawCalls;
+    stats.triangles += static_cast<std::size_t>(mesh.count / 3);
+  }
+  if (settings.glyphs) {
+    drawGlyphs(camera, settings);
+    ++stats.drawCalls;
+  }
+  glBindVertexArray(0);
+  return stats;
+}
+
+void Renderer::drawGlyphs(const CameraMatrices& camera, const RenderSettings& settings) {
+  if (glyphsBuiltFor_ != settings.maxGlyphs) {
+    std::size_t corners = 0;
+    for (const auto& item : scene_.items) corners += item.positions.size() / 3;
+    const std::size_t stride = std::max<std::size_t>(1, corners / std::max(settings.maxGlyphs, 1));
+    const float length = 0.04f * boundsRadius();
+    std::vector<float> lines;
+    for (const auto& item : scene_.items) {
+      const glm::mat4 model = glm::make_mat4(item.world.data());
+      const glm::mat3 normalMatrix = glm::transpose(glm::inverse(glm::mat3(model)));
+      for (std::size_t c = 0; c < item.positions.size() / 3; c += stride) {
+        const glm::vec3 p = glm::vec3(model * glm::vec4(glm::make_vec3(&item.positions[3 * c]), 1));
+        const glm::vec3 n = glm::normalize(normalMatrix * glm::make_vec3(&item.normals[3 * c]));
+        const glm::vec3 t = glm::normalize(glm::mat3(model) * glm::make_vec3(&item.tangents[4 * c]));
+        const glm::vec3 b = glm::cross(n, t) * (item.tangents[4 * c + 3] < 0 ? -1.0f : 1.0f);
+        const glm::vec3 axes[3] = {t, b, n};
+        const glm::vec3 colors[3] = {{1, 0.2f, 0.2f}, {0.2f, 1, 0.2f}, {0.3f, 0.5f, 1}};
+        for (int a = 0; a < 3; ++a) {
+          if (!std::isfinite(axes[a].x)) continue;
+          const glm::vec3 end = p + axes[a] * length;
+          lines.insert(lines.end(), {p.x, p.y, p.z, colors[a].r, colors[a].g, colors[a].b, end.x, end.y, end.z, colors[a].r, colors[a].g, colors[a].b});
+        }
+      }
+    }
+    glyphArray_ = makeVertexArray();
+    glyphBuffer_ = makeBuffer();
+    glBindVertexArray(glyphArray_.get());
+    glBindBuffer(GL_ARRAY_BUFFER, glyphBuffer_.get());
+    glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(lines.size() * sizeof(float)), lines.data(), GL_STATIC_DRAW);
+    glEnableVertexAttribArray(0);
+    glVertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, 6 * sizeof(float), nullptr);
+    glEnableVertexAttribArray(1);
+    glVertexAttribPointer(1, 3, GL_FLOAT, GL_FALSE, 6 * sizeof(float), reinterpret_cast<const void*>(3 * sizeof(float)));
+    glyphVertices_ = static_cast<GLsizei>(lines.size() / 6);
+    glyphsBuiltFor_ = settings.maxGlyphs;
+  }
+  const GLuint program = shaders_.lines();
+  glUseProgram(program);
+  setUniform(program, "u_viewProjection", camera.projection * camera.view);
+  glBindVertexArray(glyphArray_.get());
+  glDrawArrays(GL_LINES, 0, glyphVertices_);
+}
+
+}  // namespace tangent::viewer

@@ -1,0 +1,102 @@
+// Draws a gltf::Scene: optional depth pass from light 0 into a shadow map, then the meshes
+// with the shader variant each material needs, then tangent-frame glyphs.
+#pragma once
+
+#include <glm/glm.hpp>
+
+#include <string>
+#include <vector>
+
+#include "gl_objects.hpp"
+#include "shader_library.hpp"
+#include "tangent/scene.hpp"
+
+namespace tangent::viewer {
+
+struct Light {
+  bool directional = true;
+  glm::vec3 position{0, 4, 0};
+  glm::vec3 direction{0, -1, 0};  // where it points
+  glm::vec3 ambient{0.05f}, diffuse{0.8f}, specular{1.0f};
+  glm::vec3 attenuation{1, 0, 0};  // k0, k1, k2
+  float spotInner = -1, spotOuter = -1;  // cone half-angles in radians; < 0: no cone
+};
+
+struct RenderSettings {
+  DebugView view = DebugView::lit;
+  bool normalMapping = true;
+  bool specular = true;
+  bool shadows = true;
+  int pcfRadius = 1;         // 0 off, 1 = 3x3, 2 = 5x5
+  int shadowMapSize = 2048;
+  float shadowBiasConstant = 0.0008f;
+  float shadowBiasSlope = 0.0015f;
+  bool flipGreen = false;
+  bool phong = false;        // Phong instead of Blinn-Phong
+  float shininess = 48;      // for KHR_materials_specular materials
+  float reflectivity = 0;    // sphere-map reflection mix
+  float uvScale = 1;
+  bool glyphs = false;
+  int maxGlyphs = 4000;
+};
+
+struct CameraMatrices {
+  glm::mat4 view{1}, projection{1};
+  glm::vec3 eye{0, 0, 5};
+};
+
+struct FrameStats {
+  int drawCalls = 0;
+  std::size_t triangles = 0;
+  bool depthPass = false;
+};
+
+class Renderer {
+ public:
+  explicit Renderer(ShaderLibrary& shaders) : shaders_(shaders) {}
+
+  // Uploads meshes and decodes textures; problems go to `messages`.
+  void setScene(const gltf::Scene& scene, std::vector<std::string>& messages);
+  bool loadSphereMap(const std::filesystem::path& file, std::string& error);
+
+  // Draws into the bound framebuffer of the given size.
+  FrameStats render(const CameraMatrices& camera, const RenderSettings& settings, int width, int height);
+
+  std::vector<Light>& lights() { return lights_; }
+  glm::vec3 boundsCenter() const { return (boundsMin_ + boundsMax_) * 0.5f; }
+  glm::vec3 boundsMin() const { return boundsMin_; }
+  glm::vec3 boundsMax() const { return boundsMax_; }
+  float boundsRadius() const { return glm::max(glm::length(boundsMax_ - boundsMin_) * 0.5f, 1e-3f); }
+  const gltf::Scene& scene() const { return scene_; }
+
+ private:
+  struct GpuMesh {
+    VertexArray vertexArray;
+    Buffer vertices;
+    GLsizei count = 0;
+    int material = -1;
+    glm::mat4 model{1};
+  };
+  void drawShadowMap(const RenderSettings& settings);
+  void drawGlyphs(const CameraMatrices& camera, const RenderSettings& settings);
+  glm::mat4 lightViewProjection() const;
+  FeatureSet featuresFor(const GpuMesh& mesh, const RenderSettings& settings) const;
+  GLuint textureOf(const gltf::TextureRef& ref) const;
+
+  ShaderLibrary& shaders_;
+  gltf::Scene scene_;
+  std::vector<GpuMesh> meshes_;
+  std::vector<Texture> textures_;  // per scene image (empty when it failed)
+  Texture sphereMap_;
+  std::vector<Light> lights_;
+  glm::vec3 boundsMin_{-1}, boundsMax_{1};
+  Framebuffer shadowFramebuffer_;
+  Texture shadowTexture_;
+  int shadowSize_ = 0;
+  VertexArray glyphArray_;
+  Buffer glyphBuffer_;
+  GLsizei glyphVertices_ = 0;
+  int glyphsBuiltFor_ = -1;
+};
+
+}  // namespace tangent::viewer

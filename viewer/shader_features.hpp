@@ -1,0 +1,81 @@
+// The feature defines shader variants are compiled from: one table, used by the renderer and
+// by the test that checks every name here is used by the GLSL and vice versa.
+#pragma once
+
+#include <cstdint>
+#include <string>
+
+namespace tangent::viewer {
+
+enum class Feature : std::uint32_t {
+  baseColorMap = 1u << 0,
+  normalMap = 1u << 1,
+  specularMap = 1u << 2,       // KHR_materials_specular specularTexture (strength in A)
+  specularColorMap = 1u << 3,  // KHR_materials_specular specularColorTexture (RGB)
+  metallicRoughnessMap = 1u << 4,
+  emissiveMap = 1u << 5,
+  shadows = 1u << 6,
+  reflection = 1u << 7,        // sphere-map reflection
+};
+
+enum class DebugView : std::uint8_t {
+  lit,
+  geometryNormal,
+  tangent,
+  bitangent,
+  shadingNormal,
+  uv,
+  handedness,
+  tangentError,
+};
+
+struct FeatureDefine {
+  Feature feature;
+  const char* define;
+};
+
+inline constexpr FeatureDefine kFeatureDefines[] = {
+    {Feature::baseColorMap, "HAS_BASE_COLOR_MAP"},
+    {Feature::normalMap, "HAS_NORMAL_MAP"},
+    {Feature::specularMap, "HAS_SPECULAR_MAP"},
+    {Feature::specularColorMap, "HAS_SPECULAR_COLOR_MAP"},
+    {Feature::metallicRoughnessMap, "HAS_METALLIC_ROUGHNESS_MAP"},
+    {Feature::emissiveMap, "HAS_EMISSIVE_MAP"},
+    {Feature::shadows, "USE_SHADOWS"},
+    {Feature::reflection, "USE_REFLECTION"},
+};
+
+struct DebugViewInfo {
+  DebugView view;
+  const char* define;  // nullptr for the lit view
+  const char* name;    // for --view and the panel
+};
+
+inline constexpr DebugViewInfo kDebugViews[] = {
+    {DebugView::lit, nullptr, "lit"},
+    {DebugView::geometryNormal, "DEBUG_GEOMETRY_NORMAL", "geometry-normal"},
+    {DebugView::tangent, "DEBUG_TANGENT", "tangent"},
+    {DebugView::bitangent, "DEBUG_BITANGENT", "bitangent"},
+    {DebugView::shadingNormal, "DEBUG_SHADING_NORMAL", "shading-normal"},
+    {DebugView::uv, "DEBUG_UV", "uv"},
+    {DebugView::handedness, "DEBUG_HANDEDNESS", "handedness"},
+    {DebugView::tangentError, "DEBUG_TANGENT_ERROR", "error"},
+};
+
+using FeatureSet = std::uint32_t;
+
+inline bool has(FeatureSet set, Feature feature) { return (set & static_cast<std::uint32_t>(feature)) != 0; }
+
+// "#define X\n" lines for a variant.
+inline std::string definesFor(FeatureSet features, DebugView view) {
+  std::string text;
+  for (const auto& entry : kFeatureDefines) {
+    if (has(features, entry.feature)) text += std::string("#define ") + entry.define + "\n";
+  }
+  for (const auto& entry : kDebugViews) {
+    if (entry.view == view && entry.define) text += std::string("#define ") + entry.define + "\n";
+  }
+  return text;
+}
+
+}  // namespace tangent::viewer

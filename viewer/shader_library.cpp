@@ -1,0 +1,87 @@
+#include "shader_library.hpp"
+
+#include <fstream>
+#include <iterator>
+#include <regex>
+#include <stdexcept>
+
+namespace tangent::viewer {
+namespace {
+
+std::string infoLog(GLuint object, bool isProgram) {
+  GLint length = 0;
+  isProgram ? glGetProgramiv(object, GL_INFO_LOG_LENGTH, &length) : glGetShaderiv(object, GL_INFO_LOG_LENGTH, &length);
+  std::string log(static_cast<std::size_t>(std::max(length, 1)), '\0');
+  isProgram ? glGetProgramInfoLog(object, length, nullptr, log.data()) : glGetShaderInfoLog(object, length, nullptr, log.data());
+  return log;
+}
+
+GLuint compile(GLenum stage, const std::string& text, const std::string& name) {
+  const GLuint shader = glCreateShader(stage);
+  const char* source = text.c_str();
+  glShaderSource(shader, 1, &source, nullptr);
+  glCompileShader(shader);
+  GLint ok = 0;
+  glGetShaderiv(shader, GL_COMPILE_STATUS, &ok);
+  if (!ok) {
+    const std::string log = infoLog(shader, false);
+    glDeleteShader(shader);
+    throw std::runtime_error("shader " + name + " does not compile:\n" + log);
+  }
+  return shader;
+}
+
+}  // namespace
+
+std::string ShaderLibrary::source(const std::string& file, int depth) const {
+  if (depth > 8) throw std::runtime_error("shader includes nest too deep at " + file);
+  std::ifstream in(directory_ / file);
+  if (!in) throw std::runtime_error("cannot read shader " + (directory_ / file).string());
+  std::string text(std::istreambuf_iterator<char>(in), {});
+  static const std::regex include(R"re(^[ \t]*#include[ \t]+"([^"]+)"[^\n]*)re", std::regex::multiline);
+  std::string out;
+  auto begin = text.cbegin();
+  std::smatch match;
+  while (std::regex_search(begin, text.cend(), match, include)) {
+    out.append(begin, match[0].first);
+    out += source(match[1].str(), depth + 1);
+    begin = match[0].second;
+  }
+  out.append(begin, text.cend());
+  return out;
+}
+
+GLuint ShaderLibrary::program(const std::string& vertexFile, const std::string& fragmentFile, const std::string& defines) {
+  const auto key = std::make_tuple(vertexFile, fragmentFile, defines);
+  if (auto it = programs_.find(key); it != programs_.end()) return it->second.get();
+  auto withDefines = [&](std::string text) {
+    const auto lineEnd = text.find('\n');  // after "#version ..."
+    return text.insert(lineEnd + 1, defines);
+  };
+  const GLuint vertex = compile(GL_VERTEX_SHADER, withDefines(source(vertexFile)), vertexFile);
+  GLuint fragment = 0;
+  try {
+    fragment = compile(GL_FRAGMENT_SHADER, withDefines(source(fragmentFile)), fragmentFile + " with\n" + defines);
+  } catch (...) {
+    glDeleteShader(vertex);
+    throw;
+  }
+  Program program(glCreateProgram());
+  glAttachShader(program.get(), vertex);
+  glAttachShader(program.get(), fragment);
+  glLinkProgram(program.get());
+  glDeleteShader(vertex);
+  glDeleteShader(fragment);
+  GLint ok = 0;
+  glGetProgramiv(program.get(), GL_LINK_STATUS, &ok);
+  if (!ok) throw std::runtime_error("program " + vertexFile + " + " + fragmentFile + " does not link:\n" + infoLog(program.get(), true));
+  const GLuint id = program.get();
+  programs_.emplace(key, std::move(program));
+  return id;
+}
+
+GLuint ShaderLibrary::mesh(FeatureSet features, DebugView view) { return program("mesh.vert", "mesh.frag", definesFor(features, view)); }
+GLuint ShaderLibrary::shadowDepth() { return program("shadow_depth.vert", "shadow_depth.frag", ""); }
+GLuint ShaderLibrary::lines() { return program("lines.vert", "lines.frag", ""); }
+
+}  // namespace tangent::viewer

@@ -1,0 +1,37 @@
+// Shader programs from the files in shaders/: `#include "x.glsl"` resolved at load, feature
+// defines inserted after #version, each variant compiled once and cached until reload().
+#pragma once
+
+#include <filesystem>
+#include <map>
+#include <string>
+#include <tuple>
+#include <vector>
+
+#include "gl_objects.hpp"
+#include "shader_features.hpp"
+
+namespace tangent::viewer {
+
+class ShaderLibrary {
+ public:
+  explicit ShaderLibrary(std::filesystem::path directory) : directory_(std::move(directory)) {}
+
+  // The mesh program for a feature set and debug view; throws std::runtime_error with the
+  // compiler's log on failure.
+  GLuint mesh(FeatureSet features, DebugView view);
+  GLuint shadowDepth();
+  GLuint lines();
+  // Forgets every compiled program; the next request reads the files again ('r').
+  void reload() { programs_.clear(); }
+  std::size_t variantsCompiled() const { return programs_.size(); }
+
+ private:
+  GLuint program(const std::string& vertexFile, const std::string& fragmentFile, const std::string& defines);
+  std::string source(const std::string& file, int depth = 0) const;
+
+  std::filesystem::path directory_;
+  std::map<std::tuple<std::string, std::string, std::string>, Program> programs_;
+};
+
+}  // namespace tangent::viewer
