@@ -7,6 +7,7 @@ packages=(
   libopenmesh-dev libglm-dev libtinygltf-dev nlohmann-json3-dev libopenimageio-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   assimp-testmodels python3
+  libglfw3-dev libepoxy-dev libimgui-dev libfreetype-dev libstb-dev xvfb xauth libgl1-mesa-dri
 )
 missing=()
 for package in "${packages[@]}"; do

@@ -1,0 +1,194 @@
+// tangent-view headless, as the tests of the viewer issue ask: runs under Xvfb with Mesa's
+// llvmpipe (the CTest entry wraps it in xvfb-run).
+#include <OpenImageIO/imageio.h>
+#include <gtest/gtest.h>
+
+#include <array>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <numeric>
+#include <sys/wait.h>
+
+#include "support/temp_dir.hpp"
+
+namespace {
+
+namespace fs = std::filesystem;
+using tangent::testing::TempDir;
+
+struct Image {
+  int width = 0, height = 0;
+  std::vector<float> rgb;  // top-down rows, 0..1
+  std::array<float, 3> at(int x, int y) const {
+    const float* p = &rgb[(static_cast<std::size_t>(y) * width + x) * 3];
+    return {p[0], p[1], p[2]};
+  }
+  float luma(int x, int y) const {
+    const auto c = at(x, y);
+    return 0.2126f * c[0] + 0.7152f * c[1] + 0.0722f * c[2];
+  }
+};
+
+Image readPng(const fs::path& path) {
+  Image image;
+  auto in = OIIO::ImageInput::open(path.string());
+  if (!in) {
+    ADD_FAILURE() << "cannot read " << path << ": " << OIIO::geterror();
+    return image;
+  }
+  image.width = in->spec().width;
+  image.height = in->spec().height;
+  image.rgb.resize(static_cast<std::size_t>(image.width) * image.height * 3);
+  in->read_image(0, 0, 0, 3, OIIO::TypeDesc::FLOAT, image.rgb.data());
+  return image;
+}
+
+int run(const std::string& arguments, std::string& output) {
+  const std::string command = std::string(TANGENT_VIEW) + " " + arguments + " 2>&1";
+  FILE* pipe = ::popen(command.c_str(), "r");
+  std::array<char, 4096> buffer;
+  output.clear();
+  while (std::size_t n = std::fread(buffer.data(), 1, buffer.size(), pipe)) output.append(buffer.data(), n);
+  const int status = ::pclose(pipe);
+  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+}
+
+Image screenshot(const TempDir& dir, const std::string& name, const std::string& arguments) {
+  const fs::path out = dir / (name + ".png");
+  std::string output;
+  const int exit = run(arguments + " --screenshot '" + out.string() + "'", output);
+  EXPECT_EQ(exit, 0) << arguments << "\n" << output;
+  EXPECT_EQ(output.find("OpenGL errors"), std::string::npos) << output;
+  return exit == 0 ? readPng(out) : Image{};
+}
+
+// Mean luma of the pixels within `radius` of (cx, cy), split into four quadrants.
+std::array<float, 4> quadrantMeans(const Image& image, double cx, double cy, double radius) {
+  std::array<double, 4> sum{};
+  std::array<int, 4> count{};
+  for (int y = static_cast<int>(cy - radius); y <= static_cast<int>(cy + radius); ++y) {
+    for (int x = static_cast<int>(cx - radius); x <= static_cast<int>(cx + radius); ++x) {
+      const double dx = x - cx, dy = y - cy;
+      if (dx * dx + dy * dy > radius * radius || x < 0 || y < 0 || x >= image.width || y >= image.height) continue;
+      const int q = (dx < 0 ? 0 : 1) + (dy < 0 ? 0 : 2);
+      sum[q] += image.luma(x, y);
+      ++count[q];
+    }
+  }
+  std::array<float, 4> means{};
+  for (int q = 0; q < 4; ++q) means[q] = count[q] ? static_cast<float>(sum[q] / count[q]) : 0.0f;
+  return means;
+}
+
+// NormalTangentTest, front, orthographic: 3 x 5 cells; in each, a sphere of real geometry
+// (left square) and a flat quad with the same sphere in its normal map (right square).
+// Model-space layout of the asset: columns at x = -0.8, 0, 0.8 (squares at -/+0.16), rows at
+// y = 0.8 ... -0.8. Returns, per cell, the largest quadrant difference in mean luma.
+std::vector<float> cellDifferences(const Image& image) {
+  // The camera frames the bounding sphere: centre and radius of the asset's POSITION bounds.
+  const double minX = -1.11, maxX = 1.11, minY = -1.2, maxY = 0.95, minZ = -0.00999999, maxZ = 0.0805;
+  const double cx = (minX + maxX) / 2, cy = (minY + maxY) / 2;
+  const double radius = std::sqrt((maxX - minX) * (maxX - minX) + (maxY - minY) * (maxY - minY) + (maxZ - minZ) * (maxZ - minZ)) / 2;
+  const double halfHeight = radius * 1.02;  // OrbitCamera's orthographic framing (square image)
+  const double pixelsPerUnit = image.height / (2 * halfHeight);
+  auto toPixel = [&](double x, double y) {
+    return std::make_pair(image.width / 2.0 + (x - cx) * pixelsPerUnit, image.height / 2.0 - (y - cy) * pixelsPerUnit);
+  };
+  std::vector<float> differences;
+  for (double column : {-0.8, 0.0, 0.8}) {
+    for (double row : {0.8, 0.4, 0.0, -0.4, -0.8}) {
+      const auto [lx, ly] = toPixel(column - 0.16, row);
+      const auto [rx, ry] = toPixel(column + 0.16, row);
+      const double r = 0.09 * pixelsPerUnit;  // inside the sphere of each square
+      const auto left = quadrantMeans(image, lx, ly, r), right = quadrantMeans(image, rx, ry, r);
+      float worst = 0;
+      for (int q = 0; q < 4; ++q) worst = std::max(worst, std::abs(left[q] - right[q]));
+      differences.push_back(worst);
+    }
+  }
+  return differences;
+}
+
+TEST(Viewer, NormalTangentTestHalvesShadeAlikeAndFlipsAreCaught) {
+  const fs::path asset = fs::path(TANGENT_SOURCE_DIR) / ".." / "shared" / "assets" / "NormalTangentTest.glb";
+  if (!fs::exists(asset)) GTEST_SKIP() << "../shared/assets is absent: skipping NormalTangentTest";
+  TempDir dir;
+  const std::string common = "'" + asset.string() + "' --camera front --ortho --size 800x800 --no-shadows";
+  const auto good = cellDifferences(screenshot(dir, "good", common));
+  const auto flipped = cellDifferences(screenshot(dir, "flip", common + " --flip-green"));
+  const auto negated = cellDifferences(screenshot(dir, "negate", common + " --negate-w"));
+  ASSERT_EQ(good.size(), 15u);
+  int flippedCaught = 0, negatedCaught = 0;
+  for (std::size_t cell = 0; cell < good.size(); ++cell) {
+    std::printf("cell %2zu: quadrant luma difference good %.3f, green flipped %.3f, w negated %.3f\n", cell, good[cell], flipped[cell],
+                negated[cell]);
+    EXPECT_LT(good[cell], 0.06f) << "cell " << cell;
+    flippedCaught += flipped[cell] > 0.08f;
+    negatedCaught += negated[cell] > 0.08f;
+  }
+  EXPECT_EQ(flippedCaught, 15);
+  EXPECT_EQ(negatedCaught, 15);
+}
+
+TEST(Viewer, DemoSceneShadowFallsWhereTheSphereOccludesTheSun) {
+  TempDir dir;
+  const std::string common = "--camera top --ortho --size 600x600";
+  const Image shadowed = screenshot(dir, "shadows", common);
+  const Image plain = screenshot(dir, "no-shadows", common + " --no-shadows");
+  ASSERT_EQ(shadowed.width, 600);
+  // data/demo/scene.gltf: plane y = 0 over [-4, 4]^2, middle sphere at (0, 0.7, -0.4) radius 0.7,
+  // sun shining along (0.7, -0.6, -0.3) (tools/make_data). The shadow of the sphere's centre:
+  const double d[3] = {0.7, -0.6, -0.3};
+  const double t = 0.7 / -d[1];
+  const double shadowX = 0 + t * d[0], shadowZ = -0.4 + t * d[2];
+  // Top view of the scene's bounding sphere (centre (0, 0.7, 0), the plane's corners dominate).
+  const double radius = std::sqrt(8.0 * 8.0 + 8.0 * 8.0 + 1.4 * 1.4) / 2, halfHeight = radius * 1.02;
+  const double pixelsPerUnit = 600 / (2 * halfHeight);
+  auto pixel = [&](double x, double z) { return std::make_pair(300 + x * pixelsPerUnit, 300 + z * pixelsPerUnit); };
+  auto meanLuma = [](const Image& image, std::pair<double, double> at) {
+    const auto q = quadrantMeans(image, at.first, at.second, 6);
+    return (q[0] + q[1] + q[2] + q[3]) / 4;
+  };
+  const auto inShadow = pixel(shadowX, shadowZ);
+  const auto litPlane = pixel(-2.5, 2.5);  // far from every sphere and shadow
+  const float shadowOn = meanLuma(shadowed, inShadow), shadowOff = meanLuma(plain, inShadow);
+  const float litOn = meanLuma(shadowed, litPlane), litOff = meanLuma(plain, litPlane);
+  std::printf("shadow spot: %.3f with shadows, %.3f without; lit plane: %.3f / %.3f\n", shadowOn, shadowOff, litOn, litOff);
+  EXPECT_LT(shadowOn, 0.6f * shadowOff);            // a clear shadow where the sphere blocks the sun
+  EXPECT_NEAR(litOn, litOff, 0.02f);                // the lit plane is untouched
+  // Without shadows the spot is as bright as plane nearby (1 unit across the light's path; the
+  // blue point lamp brightens the far corner, so that is no reference here).
+  const float besideOff = meanLuma(plain, pixel(shadowX - 0.36, shadowZ - 0.84));
+  EXPECT_GT(shadowOff, 0.85f * besideOff);
+}
+
+TEST(Viewer, EveryDebugViewRendersAndDiffersFromLit) {
+  TempDir dir;
+  const std::string common = "--size 320x180";
+  const Image lit = screenshot(dir, "lit", common);
+  ASSERT_EQ(lit.width, 320);
+  for (const char* view : {"geometry-normal", "tangent", "bitangent", "shading-normal", "uv", "handedness", "error"}) {
+    const Image image = screenshot(dir, view, common + " --view " + view);
+    ASSERT_EQ(image.rgb.size(), lit.rgb.size()) << view;
+    double difference = 0;
+    for (std::size_t i = 0; i < image.rgb.size(); ++i) difference += std::abs(image.rgb[i] - lit.rgb[i]);
+    difference /= static_cast<double>(image.rgb.size());
+    EXPECT_GT(difference, 0.02) << view;
+  }
+  const Image glyphs = screenshot(dir, "glyphs", common + " --glyphs");
+  double difference = 0;
+  for (std::size_t i = 0; i < glyphs.rgb.size(); ++i) difference += std::abs(glyphs.rgb[i] - lit.rgb[i]);
+  EXPECT_GT(difference, 0.0);
+}
+
+TEST(Viewer, BadInputIsAnErrorNotACrash) {
+  TempDir dir;
+  std::string output;
+  EXPECT_EQ(run("'" + (dir / "missing.glb").string() + "' --screenshot '" + (dir / "x.png").string() + "'", output), 1);
+  EXPECT_NE(output.find("missing.glb"), std::string::npos) << output;
+  EXPECT_EQ(run("--view nonsense --screenshot x.png", output), 2);
+  EXPECT_FALSE(fs::exists(dir / "x.png"));
+}
+
+}  // namespace
