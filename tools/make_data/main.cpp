@@ -10,6 +10,7 @@
 #include <iostream>
 #include <nlohmann/json.hpp>
 #include <algorithm>
+#include <cstdlib>
 #include <numbers>
 #include <utility>
 #include <vector>
@@ -313,10 +314,61 @@ Json sharedMaterials(const std::string& imagePrefix) {
 
 }  // namespace
 
+// A textured UV sphere of 2 * segments * (segments - 1) triangles, with its textures, for
+// benchmarks (not committed).
+int writeBenchmarkSphere(int segments, const std::filesystem::path& dir) {
+  std::filesystem::create_directories(dir);
+  if (!writeBumpNormalMap(dir / "bumps_normal.png", 256, 4) || !writeSpecularRegions(dir / "specular_regions.png", 96) ||
+      !writeWhite(dir / "white.png")) {
+    std::cerr << "tangent-make-data: cannot write textures: " << OIIO::geterror() << "\n";
+    return 1;
+  }
+  if (segments < 3 || segments > 4000) {
+    std::cerr << "tangent-make-data: --sphere needs 3..4000 segments\n";
+    return 2;
+  }
+  // uint16 indices limit a mesh to 65536 vertices: split the sphere into bands that fit.
+  DocumentWriter writer;
+  const int rowsPerBand = std::max(1, 60000 / (segments + 1) - 1);
+  for (int first = 0, band = 0; first < segments; first += rowsPerBand, ++band) {
+    const int last = std::min(segments, first + rowsPerBand);
+    MeshData mesh;
+    for (int j = first; j <= last; ++j) {
+      const double v = double(j) / segments, theta = v * std::numbers::pi;
+      for (int i = 0; i <= segments; ++i) {
+        const double u = double(i) / segments, phi = u * 2 * std::numbers::pi;
+        const double n[3] = {std::sin(theta) * std::cos(phi), std::cos(theta), -std::sin(theta) * std::sin(phi)};
+        for (int k = 0; k < 3; ++k) {
+          mesh.positions.push_back(static_cast<float>(n[k]));
+          mesh.normals.push_back(static_cast<float>(n[k]));
+        }
+        mesh.uvs.insert(mesh.uvs.end(), {static_cast<float>(u * 4), static_cast<float>(v * 2)});
+      }
+    }
+    for (int j = first; j < last; ++j) {
+      for (int i = 0; i < segments; ++i) {
+        const auto a = static_cast<std::uint16_t>((j - first) * (segments + 1) + i), b = static_cast<std::uint16_t>(a + segments + 1);
+        if (j != 0) mesh.indices.insert(mesh.indices.end(), {a, b, static_cast<std::uint16_t>(a + 1)});
+        if (j != segments - 1) mesh.indices.insert(mesh.indices.end(), {static_cast<std::uint16_t>(a + 1), b, static_cast<std::uint16_t>(b + 1)});
+      }
+    }
+    const float origin[3] = {0, 0, 0};
+    writer.addMesh(mesh, "band" + std::to_string(band), 0, origin);
+  }
+  Json extra = sharedMaterials("");
+  extra["extensionsUsed"] = {"KHR_materials_specular"};
+  const std::string stem = "sphere-" + std::to_string(segments);
+  writer.write(dir, stem, extra);
+  std::cout << "wrote " << (dir / (stem + ".gltf")).string() << ": " << 2 * segments * (segments - 1) << " triangles\n";
+  return 0;
+}
+
 int main(int argc, char** argv) {
   namespace fs = std::filesystem;
+  if (argc == 4 && std::string(argv[1]) == "--sphere") return writeBenchmarkSphere(std::atoi(argv[2]), argv[3]);
   if (argc != 2) {
-    std::cerr << "usage: tangent-make-data OUT_DIR\n";
+    std::cerr << "usage: tangent-make-data OUT_DIR              the bundled demo data\n"
+                 "       tangent-make-data --sphere N OUT_DIR   a textured N x N UV sphere for benchmarks\n";
     return 2;
   }
   const fs::path dir = argv[1];
