@@ -55,7 +55,9 @@ class UnionFind {
 };
 
 // Angle at `corner` between its two edges projected onto the plane normal to n; a zero
-// projected edge counts as perpendicular, as in the reference.
+// projected edge counts as perpendicular, as in the reference. atan2 rather than the
+// reference's acos of the dot product: acos returns 0 for angles below ~1e-8 rad, which would
+// leave a fan of slivers with no weight at all.
 double projectedCornerAngle(const std::array<Vec3, 3>& positions, int corner, const Vec3& n) {
   auto projected = [&](const Vec3& edge) {
     Vec3 v = edge - n * (n | edge);
@@ -64,7 +66,8 @@ double projectedCornerAngle(const std::array<Vec3, 3>& positions, int corner, co
   };
   const Vec3 previous = projected(positions[(corner + 2) % 3] - positions[corner]);
   const Vec3 next = projected(positions[(corner + 1) % 3] - positions[corner]);
-  return std::acos(std::clamp(previous | next, -1.0, 1.0));
+  if (previous.sqrnorm() == 0 || next.sqrnorm() == 0) return std::acos(0.0);
+  return std::atan2((previous % next).norm(), previous | next);
 }
 
 }  // namespace
