@@ -129,11 +129,13 @@ AnalyticMesh makeSurface(const std::string& surface, std::size_t targetTriangles
   for (int j = 0; j < n; ++j) {
     for (int i = 0; i < n; ++i) {
       const std::uint32_t a = j * (n + 1) + i, b = a + 1, c = a + n + 1, d = c + 1;
+      // The diagonals' cross product: still defined when one edge collapses at a pole.
       const float* pa = &mesh.positions[3 * a];
       const float* pb = &mesh.positions[3 * b];
+      const float* pc = &mesh.positions[3 * c];
       const float* pd = &mesh.positions[3 * d];
-      const Vec e1 = {double(pb[0]) - pa[0], double(pb[1]) - pa[1], double(pb[2]) - pa[2]};
-      const Vec e2 = {double(pd[0]) - pa[0], double(pd[1]) - pa[1], double(pd[2]) - pa[2]};
+      const Vec e1 = {double(pd[0]) - pa[0], double(pd[1]) - pa[1], double(pd[2]) - pa[2]};
+      const Vec e2 = {double(pc[0]) - pb[0], double(pc[1]) - pb[1], double(pc[2]) - pb[2]};
       const Vec normalAt = {mesh.normals[3 * a] + mesh.normals[3 * d], mesh.normals[3 * a + 1] + mesh.normals[3 * d + 1],
                             mesh.normals[3 * a + 2] + mesh.normals[3 * d + 2]};
       if (dot(cross(e1, e2), normalAt) >= 0) mesh.indices.insert(mesh.indices.end(), {a, b, d, a, d, c});

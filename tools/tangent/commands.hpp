@@ -13,5 +13,6 @@ constexpr int kExitUsage = 2;
 int bakeCommand(const std::vector<std::string>& args);
 int infoCommand(const std::vector<std::string>& args);
 int checkCommand(const std::vector<std::string>& args);
+int benchCommand(const std::vector<std::string>& args);
 
 }  // namespace tangent::cli

@@ -12,6 +12,7 @@ const char* kUsage =
     "  bake IN... (-o OUT | --out-dir DIR)   compute TANGENT for primitives with a normal texture\n"
     "  check IN... [--format text|json|junit] validate stored tangents (for CI)\n"
     "  info IN [--json]                      meshes, primitives, attributes, which need tangents\n"
+    "  bench [--stress]                      error against run time; the stress suite\n"
     "\n"
     "'tangent <command> --help' describes a command's options.\n"
     "exit codes: 0 done (check: clean), 1 an input failed (check: findings), 2 usage error\n";
@@ -37,6 +38,7 @@ int main(int argc, char** argv) {
   if (command == "bake") return tangent::cli::bakeCommand(args);
   if (command == "info") return tangent::cli::infoCommand(args);
   if (command == "check") return tangent::cli::checkCommand(args);
+  if (command == "bench") return tangent::cli::benchCommand(args);
   std::cerr << "tangent: unknown command '" << command << "'\n" << kUsage;
   return tangent::cli::kExitUsage;
 }

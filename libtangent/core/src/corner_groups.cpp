@@ -35,14 +35,28 @@ GroupKey makeGroupKey(const CornerMesh& cornerMesh, std::size_t corner, const Ve
 }
 
 void sumInValueOrder(std::vector<Contribution>& contributions, std::vector<Group>& groups) {
-  auto less = [](const Contribution& a, const Contribution& b) {
-    return std::tie(a.group, a.tangent[0], a.tangent[1], a.tangent[2], a.bitangent[0], a.bitangent[1], a.bitangent[2]) <
-           std::tie(b.group, b.tangent[0], b.tangent[1], b.tangent[2], b.bitangent[0], b.bitangent[1], b.bitangent[2]);
+  // Bucket by group (counting sort), then order each group's few terms by value.
+  std::vector<std::uint32_t> start(groups.size() + 1, 0);
+  for (const Contribution& c : contributions) ++start[c.group + 1];
+  for (std::size_t g = 0; g < groups.size(); ++g) start[g + 1] += start[g];
+  std::vector<std::uint32_t> order(contributions.size());
+  {
+    std::vector<std::uint32_t> next(start.begin(), start.end() - 1);
+    for (std::uint32_t i = 0; i < contributions.size(); ++i) order[next[contributions[i].group]++] = i;
+  }
+  auto less = [&](std::uint32_t x, std::uint32_t y) {
+    const Contribution& a = contributions[x];
+    const Contribution& b = contributions[y];
+    return std::tie(a.tangent[0], a.tangent[1], a.tangent[2], a.bitangent[0], a.bitangent[1], a.bitangent[2]) <
+           std::tie(b.tangent[0], b.tangent[1], b.tangent[2], b.bitangent[0], b.bitangent[1], b.bitangent[2]);
   };
-  std::sort(contributions.begin(), contributions.end(), less);
-  for (const Contribution& c : contributions) {
-    groups[c.group].tangentSum += c.tangent;
-    groups[c.group].bitangentSum += c.bitangent;
+  for (std::size_t g = 0; g < groups.size(); ++g) {
+    const auto begin = order.begin() + start[g], end = order.begin() + start[g + 1];
+    if (end - begin > 1) std::sort(begin, end, less);
+    for (auto it = begin; it != end; ++it) {
+      groups[g].tangentSum += contributions[*it].tangent;
+      groups[g].bitangentSum += contributions[*it].bitangent;
+    }
   }
 }
 
@@ -91,8 +105,10 @@ bool frameFromCandidates(const std::vector<const Group*>& candidates, const Grou
 void finishCorners(CornerMesh& cornerMesh, std::vector<Group>& groups, const std::vector<std::uint32_t>& cornerGroup,
                    const Options& options, Report& report, std::span<FrameSource> sources) {
   TriMesh& mesh = cornerMesh.mesh;
-  std::vector<std::vector<std::uint32_t>> definedAtWeld(mesh.n_vertices());
-  for (std::uint32_t g = 0; g < groups.size(); ++g) {
+  // Defined groups per welded vertex, only needed when some group has no frame of its own.
+  const bool anyUndefined = std::any_of(groups.begin(), groups.end(), [](const Group& g) { return !g.defined; });
+  std::vector<std::vector<std::uint32_t>> definedAtWeld(anyUndefined ? mesh.n_vertices() : 0);
+  for (std::uint32_t g = 0; anyUndefined && g < groups.size(); ++g) {
     if (groups[g].defined) definedAtWeld[groups[g].key.weld].push_back(g);
   }
   std::vector<FrameSource> groupSource(groups.size(), FrameSource::computed);

@@ -1,6 +1,7 @@
 // The plain-array API: builds the half-edge mesh, runs the method, copies one tangent per corner.
 #include <algorithm>
 #include <bit>
+#include <cstring>
 #include <stdexcept>
 #include <string>
 #include <tuple>
@@ -32,18 +33,22 @@ Report computeCornerTangents(const MeshArrays& arrays, std::span<float> cornerTa
     for (int i = 0; i < 4; ++i) cornerTangents[4 * corner + i] = static_cast<float>(t[i]);
   }
 
-  // Extra vertices a caller must create: distinct tangents per input vertex, minus one.
-  using Entry = std::tuple<std::uint32_t, std::uint32_t, std::uint32_t, std::uint32_t, std::uint32_t>;
-  std::vector<Entry> entries(cornerCount);
+  // Extra vertices a caller must create: distinct tangents per input vertex, minus one. Most
+  // vertices have one tangent: compare with the vertex's first corner and sort only the rest.
+  const std::size_t vertexCount = arrays.positions.size() / 3;
+  std::vector<std::int64_t> firstCorner(vertexCount, -1);
+  std::vector<std::tuple<std::uint32_t, std::uint32_t, std::uint32_t, std::uint32_t, std::uint32_t>> others;
+  auto bits = [&](std::size_t corner, int i) { return std::bit_cast<std::uint32_t>(cornerTangents[4 * corner + i]); };
   for (std::size_t corner = 0; corner < cornerCount; ++corner) {
-    const float* t = &cornerTangents[4 * corner];
-    entries[corner] = {arrays.indices[corner], std::bit_cast<std::uint32_t>(t[0]), std::bit_cast<std::uint32_t>(t[1]),
-                       std::bit_cast<std::uint32_t>(t[2]), std::bit_cast<std::uint32_t>(t[3])};
+    const std::uint32_t v = arrays.indices[corner];
+    if (firstCorner[v] < 0) {
+      firstCorner[v] = static_cast<std::int64_t>(corner);
+    } else if (std::memcmp(&cornerTangents[4 * corner], &cornerTangents[4 * firstCorner[v]], 16) != 0) {
+      others.emplace_back(v, bits(corner, 0), bits(corner, 1), bits(corner, 2), bits(corner, 3));
+    }
   }
-  std::sort(entries.begin(), entries.end());
-  for (std::size_t i = 1; i < entries.size(); ++i) {
-    if (std::get<0>(entries[i]) == std::get<0>(entries[i - 1]) && entries[i] != entries[i - 1]) ++report.splitVertices;
-  }
+  std::sort(others.begin(), others.end());
+  report.splitVertices = static_cast<std::uint64_t>(std::unique(others.begin(), others.end()) - others.begin());
   return report;
 }
 
