@@ -141,6 +141,18 @@ Report mikktspaceTangents(CornerMesh& cornerMesh, const Options& options, std::s
     return true;
   };
 
+  // The neighbour across each corner's incoming edge, looked up once (in parallel): the
+  // corner of the neighbouring face at the same vertex and the two corners at the edge's far
+  // end (this face's, then the neighbour's); kNone when there is no such neighbour.
+  constexpr std::uint32_t kNone = ~std::uint32_t(0);
+  std::vector<std::array<std::uint32_t, 3>> across(cornerCount, {kNone, kNone, kNone});
+  parallelFor(cornerCount, options.threads, [&](std::size_t begin, std::size_t end) {
+    std::uint32_t pairs[2][2];
+    for (std::size_t corner = begin; corner < end; ++corner) {
+      if (neighbourAcross(cornerMesh.cornerHalfedge[corner], pairs)) across[corner] = {pairs[0][1], pairs[1][0], pairs[1][1]};
+    }
+  });
+
   // Orientation of each triangle; zero-UV-area ones take the majority of their neighbours',
   // round by round so that face order does not matter, ties going to +1.
   std::vector<std::int8_t> orientation(triangleCount);
@@ -155,9 +167,9 @@ Report mikktspaceTangents(CornerMesh& cornerMesh, const Options& options, std::s
     for (std::uint32_t t : open) {
       int votes = 0, voters = 0;
       for (int k = 0; k < 3; ++k) {
-        std::uint32_t pairs[2][2];
-        if (!neighbourAcross(cornerMesh.cornerHalfedge[3 * t + k], pairs)) continue;
-        const int other = orientation[pairs[0][1] / 3];
+        const std::uint32_t neighbour = across[3 * t + k][0];
+        if (neighbour == kNone) continue;
+        const int other = orientation[neighbour / 3];
         votes += other;
         voters += other != 0;
       }
@@ -168,9 +180,8 @@ Report mikktspaceTangents(CornerMesh& cornerMesh, const Options& options, std::s
       if (!anyTie) break;  // the rest touch no oriented triangle: the reference groups them nowhere
       for (std::uint32_t t : open) {
         for (int k = 0; k < 3; ++k) {
-          std::uint32_t pairs[2][2];
-          if (neighbourAcross(cornerMesh.cornerHalfedge[3 * t + k], pairs) && orientation[pairs[0][1] / 3] != 0)
-            decided.emplace_back(t, 1);
+          const std::uint32_t neighbour = across[3 * t + k][0];
+          if (neighbour != kNone && orientation[neighbour / 3] != 0) decided.emplace_back(t, 1);
         }
       }
     }
@@ -182,12 +193,10 @@ Report mikktspaceTangents(CornerMesh& cornerMesh, const Options& options, std::s
   UnionFind components(cornerCount);
   for (std::size_t corner = 0; corner < cornerCount; ++corner) {
     const std::size_t t = corner / 3;
-    if (orientation[t] == 0) continue;
-    std::uint32_t pairs[2][2];
-    if (!neighbourAcross(cornerMesh.cornerHalfedge[corner], pairs)) continue;
-    if (orientation[pairs[0][1] / 3] != orientation[t]) continue;
-    components.unite(pairs[0][0], pairs[0][1]);
-    components.unite(pairs[1][0], pairs[1][1]);
+    const auto& [neighbour, farHere, farThere] = across[corner];
+    if (orientation[t] == 0 || neighbour == kNone || orientation[neighbour / 3] != orientation[t]) continue;
+    components.unite(static_cast<std::uint32_t>(corner), neighbour);
+    components.unite(farHere, farThere);
   }
 
   std::vector<Group> groups;
@@ -215,11 +224,14 @@ Report mikktspaceTangents(CornerMesh& cornerMesh, const Options& options, std::s
     contributions.push_back(c);
   }
   sumInValueOrder(contributions, groups);
-  for (Group& group : groups) {
-    if (group.key.orientation == 0 || !orthonormalize(group.tangentSum, group.normal, group.tangent)) continue;
-    group.w = group.key.orientation;
-    group.defined = true;
-  }
+  parallelFor(groups.size(), options.threads, [&](std::size_t begin, std::size_t end) {
+    for (std::size_t g = begin; g < end; ++g) {
+      Group& group = groups[g];
+      if (group.key.orientation == 0 || !orthonormalize(group.tangentSum, group.normal, group.tangent)) continue;
+      group.w = group.key.orientation;
+      group.defined = true;
+    }
+  });
   finishCorners(cornerMesh, groups, cornerGroup, options, report, sources);
   return report;
 }
