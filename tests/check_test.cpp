@@ -9,11 +9,11 @@
 #include <functional>
 #include <iterator>
 #include <limits>
-#include <sys/wait.h>
 
 #include "accessors.hpp"
 #include "asset.hpp"
 #include "primitive.hpp"
+#include "support/run_command.hpp"
 #include "support/temp_dir.hpp"
 #include "support/test_assets.hpp"
 #include "tangent/check.hpp"
@@ -233,21 +233,7 @@ TEST(CheckNegative, UnreadableFileIsAnErrorNotAFinding) {
   EXPECT_NE(check.error.find("broken.gltf"), std::string::npos);
 }
 
-struct CommandResult {
-  int exitCode;
-  std::string output;
-};
-
-CommandResult runCommand(const std::string& command) {
-  CommandResult result{-1, ""};
-  FILE* pipe = ::popen((command + " 2>&1").c_str(), "r");
-  if (!pipe) return result;
-  std::array<char, 4096> buffer;
-  while (std::size_t n = std::fread(buffer.data(), 1, buffer.size(), pipe)) result.output.append(buffer.data(), n);
-  const int status = ::pclose(pipe);
-  result.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  return result;
-}
+using tangent::testing::runCommand;
 
 std::string quoted(const fs::path& path) { return "'" + path.string() + "'"; }
 
@@ -263,7 +249,7 @@ TEST(CheckCli, ExitCodesAndJunitParsesWithTheRightCounts) {
   const std::string cli = TANGENT_CLI;
 
   EXPECT_EQ(runCommand(cli + " check " + quoted(clean)).exitCode, 0);
-  const CommandResult findings = runCommand(cli + " check " + quoted(clean) + " " + quoted(nonUnit));
+  const auto findings = runCommand(cli + " check " + quoted(clean) + " " + quoted(nonUnit));
   EXPECT_EQ(findings.exitCode, 1);
   EXPECT_NE(findings.output.find("FAIL unit: 1 of"), std::string::npos) << findings.output;
   EXPECT_NE(findings.output.find("non-unit.glb"), std::string::npos);
@@ -282,12 +268,12 @@ print(len(cases), len(root.findall('.//failure')), len(root.findall('.//skipped'
       ' '.join(c.get('name') for c in cases if c.find('failure') is not None))
 )";
   std::ofstream(dir / "count.py") << count;
-  const CommandResult parsed = runCommand("python3 " + quoted(dir / "count.py") + " " + quoted(junit));
+  const auto parsed = runCommand("python3 " + quoted(dir / "count.py") + " " + quoted(junit));
   ASSERT_EQ(parsed.exitCode, 0) << parsed.output;
   // clean: 9 passing cases; non-unit: 8 passing + 1 failure (unit); missing: 1 failure (present) + 8 skipped.
   EXPECT_EQ(parsed.output, "27 2 8 2 unit present\n");
 
-  const CommandResult json = runCommand(cli + " check --format json " + quoted(nonUnit));
+  const auto json = runCommand(cli + " check --format json " + quoted(nonUnit));
   EXPECT_EQ(json.exitCode, 1);
   const auto report = nlohmann::json::parse(json.output);
   EXPECT_EQ(report["schema"], "libtangent-check/1");

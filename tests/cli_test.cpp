@@ -7,8 +7,8 @@
 #include <fstream>
 #include <iterator>
 #include <nlohmann/json.hpp>
-#include <sys/wait.h>
 
+#include "support/run_command.hpp"
 #include "support/temp_dir.hpp"
 #include "support/test_assets.hpp"
 
@@ -17,22 +17,9 @@ namespace {
 namespace fs = std::filesystem;
 using tangent::testing::TempDir;
 
-struct CliRun {
-  int exitCode;
-  std::string output;  // stdout and stderr
-};
+using CliRun = tangent::testing::CommandResult;
 
-CliRun tangentCli(const std::string& arguments) {
-  const std::string command = std::string(TANGENT_CLI) + " " + arguments + " 2>&1";
-  CliRun run{-1, ""};
-  FILE* pipe = ::popen(command.c_str(), "r");
-  if (!pipe) return run;
-  std::array<char, 4096> buffer;
-  while (std::size_t n = std::fread(buffer.data(), 1, buffer.size(), pipe)) run.output.append(buffer.data(), n);
-  const int status = ::pclose(pipe);
-  run.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  return run;
-}
+CliRun tangentCli(const std::string& arguments) { return tangent::testing::runCommand(std::string(TANGENT_CLI) + " " + arguments); }
 
 std::string quoted(const fs::path& path) { return "'" + path.string() + "'"; }
 

@@ -216,24 +216,12 @@ TEST(Core, FaceOrderAndCornerRotationDoNotChangeBits) {
       Options options;
       options.method = method;
       const Result reference = run(m, options);
-      std::mt19937 rng(7);
-      std::vector<std::size_t> order(m.indices.size() / 3);
-      for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
-      std::shuffle(order.begin(), order.end(), rng);
-      GridMesh shuffled = m;
-      std::vector<int> rotation(order.size());
-      for (std::size_t i = 0; i < order.size(); ++i) {
-        rotation[i] = static_cast<int>(rng() % 3);
-        for (int k = 0; k < 3; ++k) shuffled.indices[3 * i + k] = m.indices[3 * order[i] + (k + rotation[i]) % 3];
-      }
-      const Result r = run(shuffled, options);
-      for (std::size_t i = 0; i < order.size(); ++i) {
-        for (int k = 0; k < 3; ++k) {
-          const std::size_t original = 3 * order[i] + (k + rotation[i]) % 3;
-          for (int j = 0; j < 4; ++j) {
-            ASSERT_EQ(std::bit_cast<std::uint32_t>(r.tangents[4 * (3 * i + k) + j]),
-                      std::bit_cast<std::uint32_t>(reference.tangents[4 * original + j]));
-          }
+      const auto shuffled = tangent::testing::shuffleFacesAndRotateCorners(m, 7);
+      const Result r = run(shuffled.mesh, options);
+      for (std::size_t c = 0; c < shuffled.originalCorner.size(); ++c) {
+        for (int j = 0; j < 4; ++j) {
+          ASSERT_EQ(std::bit_cast<std::uint32_t>(r.tangents[4 * c + j]),
+                    std::bit_cast<std::uint32_t>(reference.tangents[4 * shuffled.originalCorner[c] + j]));
         }
       }
     }

@@ -324,23 +324,10 @@ TEST(MikkTSpace, SameBitsForAnyFaceOrderCornerRotationAndThreadCount) {
       const Ours threaded = computeOurs(arraysOf(m), options);
       ASSERT_EQ(0, std::memcmp(threaded.tangents.data(), reference.tangents.data(), reference.tangents.size() * 4)) << threads;
     }
-    std::mt19937 rng(3);
-    std::vector<std::size_t> order(m.indices.size() / 3);
-    for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
-    std::shuffle(order.begin(), order.end(), rng);
-    GridMesh shuffled = m;
-    std::vector<int> rotation(order.size());
-    for (std::size_t i = 0; i < order.size(); ++i) {
-      rotation[i] = static_cast<int>(rng() % 3);
-      for (int k = 0; k < 3; ++k) shuffled.indices[3 * i + k] = m.indices[3 * order[i] + (k + rotation[i]) % 3];
-    }
-    const Ours r = computeOurs(arraysOf(shuffled), {});
-    for (std::size_t i = 0; i < order.size(); ++i) {
-      for (int k = 0; k < 3; ++k) {
-        const std::size_t original = 3 * order[i] + (k + rotation[i]) % 3;
-        ASSERT_EQ(0, std::memcmp(&r.tangents[4 * (3 * i + k)], &reference.tangents[4 * original], 16));
-      }
-    }
+    const auto shuffled = tangent::testing::shuffleFacesAndRotateCorners(m, 3);
+    const Ours r = computeOurs(arraysOf(shuffled.mesh), {});
+    for (std::size_t c = 0; c < shuffled.originalCorner.size(); ++c)
+      ASSERT_EQ(0, std::memcmp(&r.tangents[4 * c], &reference.tangents[4 * shuffled.originalCorner[c]], 16));
   }
 }
 

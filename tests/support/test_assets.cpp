@@ -4,6 +4,8 @@
 #include <cstring>
 #include <fstream>
 #include <numbers>
+#include <numeric>
+#include <random>
 
 namespace tangent::testing {
 namespace {
@@ -377,6 +379,23 @@ GridMesh makeSphere(int slices, int stacks, bool exactPoles) {
     }
   }
   return mesh;
+}
+
+ShuffledMesh shuffleFacesAndRotateCorners(const GridMesh& mesh, unsigned seed) {
+  std::mt19937 rng(seed);
+  std::vector<std::size_t> order(mesh.indices.size() / 3);
+  std::iota(order.begin(), order.end(), std::size_t(0));
+  std::shuffle(order.begin(), order.end(), rng);
+  ShuffledMesh shuffled{mesh, std::vector<std::size_t>(mesh.indices.size())};
+  for (std::size_t i = 0; i < order.size(); ++i) {
+    const int rotation = static_cast<int>(rng() % 3);
+    for (int k = 0; k < 3; ++k) {
+      const std::size_t original = 3 * order[i] + (k + rotation) % 3;
+      shuffled.mesh.indices[3 * i + k] = mesh.indices[original];
+      shuffled.originalCorner[3 * i + k] = original;
+    }
+  }
+  return shuffled;
 }
 
 std::vector<TestAsset> makeTestAssets() {

@@ -30,6 +30,14 @@ struct GridMesh {
 // nx * ny quads on a gently curved sheet; mirrorColumns alternates the u direction per column
 // of quads, so every interior column of vertices needs two frames.
 GridMesh makeGrid(int nx, int ny, bool mirrorColumns);
+// The mesh with its triangles in a random order and each triangle's corners rotated;
+// originalCorner[c] is the corner of `mesh` that corner c of the result came from.
+struct ShuffledMesh {
+  GridMesh mesh;
+  std::vector<std::size_t> originalCorner;
+};
+ShuffledMesh shuffleFacesAndRotateCorners(const GridMesh& mesh, unsigned seed);
+
 // Torus and UV sphere (with poles) with analytic normals. exactPoles puts every pole vertex
 // at exactly (0, 0, +-1); without it the bottom pole's copies sit sin(pi) ~ 1e-16 apart.
 GridMesh makeTorus(int rings, int sides);

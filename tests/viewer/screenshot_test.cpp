@@ -8,8 +8,8 @@
 #include <cstdio>
 #include <filesystem>
 #include <numeric>
-#include <sys/wait.h>
 
+#include "support/run_command.hpp"
 #include "support/temp_dir.hpp"
 
 namespace {
@@ -45,13 +45,9 @@ Image readPng(const fs::path& path) {
 }
 
 int run(const std::string& arguments, std::string& output) {
-  const std::string command = std::string(TANGENT_VIEW) + " " + arguments + " 2>&1";
-  FILE* pipe = ::popen(command.c_str(), "r");
-  std::array<char, 4096> buffer;
-  output.clear();
-  while (std::size_t n = std::fread(buffer.data(), 1, buffer.size(), pipe)) output.append(buffer.data(), n);
-  const int status = ::pclose(pipe);
-  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  const auto result = tangent::testing::runCommand(std::string(TANGENT_VIEW) + " " + arguments);
+  output = result.output;
+  return result.exitCode;
 }
 
 Image screenshot(const TempDir& dir, const std::string& name, const std::string& arguments) {

@@ -378,61 +378,22 @@ int main(int argc, char** argv) {
     return 1;
   }
 
-  const MeshData meshes[3] = {uvSphere(32, 16, 1.0f), mirroredQuads(), plane(4.0f, -1.0f)};
-  const char* names[3] = {"Sphere", "MirroredQuads", "Ground"};
-  const int materials[3] = {0, 0, 1};
-  std::vector<std::uint8_t> bin;
-  Json accessors = Json::array(), views = Json::array(), meshJson = Json::array(), nodes = Json::array();
-  auto addView = [&](const void* data, std::size_t bytes, int target) {
-    while (bin.size() % 4) bin.push_back(0);
-    views.push_back({{"buffer", 0}, {"byteOffset", bin.size()}, {"byteLength", bytes}, {"target", target}});
-    const auto* p = static_cast<const std::uint8_t*>(data);
-    bin.insert(bin.end(), p, p + bytes);
-    return views.size() - 1;
-  };
-  for (int m = 0; m < 3; ++m) {
-    const MeshData& mesh = meshes[m];
-    const std::size_t n = mesh.positions.size() / 3;
-    float lo[3] = {1e30f, 1e30f, 1e30f}, hi[3] = {-1e30f, -1e30f, -1e30f};
-    for (std::size_t i = 0; i < mesh.positions.size(); ++i) {
-      lo[i % 3] = std::min(lo[i % 3], mesh.positions[i]);
-      hi[i % 3] = std::max(hi[i % 3], mesh.positions[i]);
-    }
-    const std::size_t first = accessors.size();
-    accessors.push_back({{"bufferView", addView(mesh.positions.data(), n * 12, 34962)}, {"componentType", 5126}, {"count", n},
-                         {"type", "VEC3"}, {"min", {lo[0], lo[1], lo[2]}}, {"max", {hi[0], hi[1], hi[2]}}});
-    accessors.push_back({{"bufferView", addView(mesh.normals.data(), n * 12, 34962)}, {"componentType", 5126}, {"count", n}, {"type", "VEC3"}});
-    accessors.push_back({{"bufferView", addView(mesh.uvs.data(), n * 8, 34962)}, {"componentType", 5126}, {"count", n}, {"type", "VEC2"}});
-    accessors.push_back({{"bufferView", addView(mesh.indices.data(), mesh.indices.size() * 2, 34963)}, {"componentType", 5123},
-                         {"count", mesh.indices.size()}, {"type", "SCALAR"}});
-    Json primitive = Json::object();
-    primitive["attributes"] = {{"POSITION", first}, {"NORMAL", first + 1}, {"TEXCOORD_0", first + 2}};
-    primitive["indices"] = first + 3;
-    primitive["material"] = materials[m];
-    meshJson.push_back({{"name", names[m]}, {"primitives", Json::array({primitive})}});
+  // bake's default input: a sphere and mirrored quads with the bump map, a plain ground.
+  {
+    DocumentWriter demo;
+    const float sphereAt[3] = {0, 0, 0}, quadsAt[3] = {0, 0.5f, 1.5f}, groundAt[3] = {0, 0, 0};
+    demo.addMesh(uvSphere(32, 16, 1.0f), "Sphere", 0, sphereAt);
+    demo.addMesh(mirroredQuads(), "MirroredQuads", 0, quadsAt);
+    demo.addMesh(plane(4.0f, -1.0f), "Ground", 1, groundAt);
+    Json extra = {
+        {"materials", {{{"name", "Bumps"}, {"pbrMetallicRoughness", {{"baseColorFactor", {1, 1, 1, 1}}, {"metallicFactor", 0.0}, {"roughnessFactor", 0.4}}},
+                        {"normalTexture", {{"index", 0}}}},
+                       {{"name", "PlainGround"}, {"pbrMetallicRoughness", {{"baseColorFactor", {0.8, 0.8, 0.8, 1}}, {"metallicFactor", 0.0}}}}}},
+        {"textures", {{{"source", 0}, {"sampler", 0}}}},
+        {"samplers", {{{"magFilter", 9729}, {"minFilter", 9987}, {"wrapS", 10497}, {"wrapT", 10497}}}},
+        {"images", {{{"uri", "bumps_normal.png"}, {"mimeType", "image/png"}}}}};
+    demo.write(dir, "demo", extra);
   }
-  nodes.push_back({{"name", "Sphere"}, {"mesh", 0}, {"translation", {0, 0, 0}}});
-  nodes.push_back({{"name", "MirroredQuads"}, {"mesh", 1}, {"translation", {0, 0.5, 1.5}}});
-  nodes.push_back({{"name", "Ground"}, {"mesh", 2}});
-  while (bin.size() % 4) bin.push_back(0);
-
-  Json doc = {
-      {"asset", {{"version", "2.0"}, {"generator", "libtangent tangent-make-data"}, {"copyright", "libtangent authors, CC0"}}},
-      {"scene", 0},
-      {"scenes", {{{"name", "Demo"}, {"nodes", {0, 1, 2}}}}},
-      {"nodes", nodes},
-      {"meshes", meshJson},
-      {"materials", {{{"name", "Bumps"}, {"pbrMetallicRoughness", {{"baseColorFactor", {1, 1, 1, 1}}, {"metallicFactor", 0.0}, {"roughnessFactor", 0.4}}},
-                      {"normalTexture", {{"index", 0}}}},
-                     {{"name", "PlainGround"}, {"pbrMetallicRoughness", {{"baseColorFactor", {0.8, 0.8, 0.8, 1}}, {"metallicFactor", 0.0}}}}}},
-      {"textures", {{{"source", 0}, {"sampler", 0}}}},
-      {"samplers", {{{"magFilter", 9729}, {"minFilter", 9987}, {"wrapS", 10497}, {"wrapT", 10497}}}},
-      {"images", {{{"uri", "bumps_normal.png"}, {"mimeType", "image/png"}}}},
-      {"accessors", accessors},
-      {"bufferViews", views},
-      {"buffers", {{{"uri", "demo.bin"}, {"byteLength", bin.size()}}}}};
-  std::ofstream(dir / "demo.bin", std::ios::binary).write(reinterpret_cast<const char*>(bin.data()), static_cast<std::streamsize>(bin.size()));
-  std::ofstream(dir / "demo.gltf") << doc.dump(2) << "\n";
 
   // The viewer's demo scene: spheres on a plane under a directional light.
   if (!writeSpecularRegions(dir / "specular_regions.png", 96) || !writeWhite(dir / "white.png") || !writeSphereMap(dir / "spheremap.png", 256)) {

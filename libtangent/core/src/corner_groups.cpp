@@ -70,6 +70,15 @@ bool orthonormalize(const Vec3& sum, const Vec3& n, Vec3& out) {
   return true;
 }
 
+void triangleCorners(const CornerMesh& cornerMesh, std::size_t t, std::array<Vec3, 3>& positions, std::array<Vec2, 3>& uvs) {
+  const TriMesh& mesh = cornerMesh.mesh;
+  for (int k = 0; k < 3; ++k) {
+    const auto halfedge = cornerMesh.cornerHalfedge[3 * t + k];
+    positions[k] = mesh.point(mesh.to_vertex_handle(halfedge));
+    uvs[k] = mesh.texcoord2D(halfedge);
+  }
+}
+
 Vec3 cornerNormal(const Vec3& stored, const TriangleTangent& triangle, bool& invalid) {
   const double length = stored.norm();
   invalid = !(length > 0 && std::isfinite(length));

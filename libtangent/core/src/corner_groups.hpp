@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "tangent/halfedge_mesh.hpp"
+#include "parallel.hpp"
 #include "triangle_tangent.hpp"
 
 namespace tangent::detail {
@@ -51,9 +52,54 @@ void sumInValueOrder(std::vector<Contribution>& contributions, std::vector<Group
 // Gram-Schmidt of `sum` against unit `n`; false when nothing of it lies in the tangent plane.
 bool orthonormalize(const Vec3& sum, const Vec3& n, Vec3& out);
 
+// Positions and UVs of input triangle t, in its input corner order.
+void triangleCorners(const CornerMesh& mesh, std::size_t t, std::array<Vec3, 3>& positions, std::array<Vec2, 3>& uvs);
+
 // The unit normal a corner works with: its own, or when that is zero or not finite the
 // triangle's (or +z); `invalid` tells which.
 Vec3 cornerNormal(const Vec3& stored, const TriangleTangent& triangle, bool& invalid);
+
+struct TriangleData {
+  std::vector<TriangleTangent> triangles;
+  std::vector<Vec3> cornerNormals;  // unit (see cornerNormal)
+};
+
+// The pass every method starts with, in parallel: each triangle evaluated, each corner given
+// its normal; perCorner(corner, k, positions, triangle, normal) adds the method's own term.
+// Counts degenerate, zero-UV, non-finite triangles and invalid normals into the report.
+template <typename PerCorner>
+TriangleData evaluateTriangles(const CornerMesh& cornerMesh, const Options& options, Report& report, const PerCorner& perCorner) {
+  const std::size_t triangleCount = cornerMesh.cornerHalfedge.size() / 3;
+  TriangleData data;
+  data.triangles.resize(triangleCount);
+  data.cornerNormals.resize(triangleCount * 3);
+  std::vector<std::uint8_t> invalidNormal(triangleCount * 3, 0);
+  parallelFor(triangleCount, options.threads, [&](std::size_t begin, std::size_t end) {
+    for (std::size_t t = begin; t < end; ++t) {
+      std::array<Vec3, 3> positions;
+      std::array<Vec2, 3> uvs;
+      triangleCorners(cornerMesh, t, positions, uvs);
+      const TriangleTangent& triangle = data.triangles[t] = triangleTangent(positions, uvs);
+      for (int k = 0; k < 3; ++k) {
+        const std::size_t corner = 3 * t + k;
+        bool invalid = false;
+        data.cornerNormals[corner] = cornerNormal(cornerMesh.mesh.normal(cornerMesh.cornerHalfedge[corner]), triangle, invalid);
+        invalidNormal[corner] = invalid;
+        perCorner(corner, k, positions, triangle, data.cornerNormals[corner]);
+      }
+    }
+  });
+  for (const TriangleTangent& triangle : data.triangles) {
+    switch (triangle.kind) {
+      case TriangleKind::usable: break;
+      case TriangleKind::degenerate: ++report.degenerateTriangles; break;
+      case TriangleKind::zeroUvArea: ++report.zeroUvAreaTriangles; break;
+      case TriangleKind::nonFinite: ++report.nonFiniteTriangles; break;
+    }
+  }
+  for (std::uint8_t invalid : invalidNormal) report.invalidNormals += invalid;
+  return data;
+}
 
 // Gives undefined groups a frame (see FrameSource), writes every corner's tangent into the
 // mesh with w in options.uvOrigin's convention, and fills the report's corner counts.

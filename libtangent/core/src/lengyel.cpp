@@ -12,12 +12,10 @@
 
 #include "corner_groups.hpp"
 #include "methods.hpp"
-#include "parallel.hpp"
 
 namespace tangent::detail {
 
 Report lengyelTangents(CornerMesh& cornerMesh, const Options& options, std::span<FrameSource> sources) {
-  TriMesh& mesh = cornerMesh.mesh;
   const std::size_t cornerCount = cornerMesh.cornerHalfedge.size();
   const std::size_t triangleCount = cornerCount / 3;
   const bool flat = options.method == Method::flat;
@@ -29,43 +27,19 @@ Report lengyelTangents(CornerMesh& cornerMesh, const Options& options, std::span
   report.corners = cornerCount;
   report.nonManifoldFaces = cornerMesh.nonManifoldFaces;
 
-  std::vector<TriangleTangent> triangles(triangleCount);
-  std::vector<Vec3> cornerNormals(cornerCount);
   std::vector<double> cornerWeights(cornerCount, 0.0);
-  std::vector<std::uint8_t> invalidNormal(cornerCount, 0);
-  parallelFor(triangleCount, options.threads, [&](std::size_t begin, std::size_t end) {
-    for (std::size_t t = begin; t < end; ++t) {
-      std::array<Vec3, 3> positions;
-      std::array<Vec2, 3> uvs;
-      for (int k = 0; k < 3; ++k) {
-        const auto halfedge = cornerMesh.cornerHalfedge[3 * t + k];
-        positions[k] = mesh.point(mesh.to_vertex_handle(halfedge));
-        uvs[k] = mesh.texcoord2D(halfedge);
-      }
-      const TriangleTangent& triangle = triangles[t] = triangleTangent(positions, uvs);
-      for (int k = 0; k < 3; ++k) {
-        const std::size_t corner = 3 * t + k;
-        bool invalid = false;
-        cornerNormals[corner] = cornerNormal(mesh.normal(cornerMesh.cornerHalfedge[corner]), triangle, invalid);
-        invalidNormal[corner] = invalid;
-        if (triangle.kind != TriangleKind::usable) continue;
-        switch (options.weighting) {
-          case Weighting::angle: cornerWeights[corner] = cornerAngle(positions, k); break;
-          case Weighting::area: cornerWeights[corner] = triangle.area; break;
-          case Weighting::uniform: cornerWeights[corner] = 1.0; break;
-        }
-      }
-    }
-  });
-  for (const TriangleTangent& triangle : triangles) {
-    switch (triangle.kind) {
-      case TriangleKind::usable: break;
-      case TriangleKind::degenerate: ++report.degenerateTriangles; break;
-      case TriangleKind::zeroUvArea: ++report.zeroUvAreaTriangles; break;
-      case TriangleKind::nonFinite: ++report.nonFiniteTriangles; break;
-    }
-  }
-  for (std::uint8_t invalid : invalidNormal) report.invalidNormals += invalid;
+  TriangleData data = evaluateTriangles(cornerMesh, options, report,
+                                        [&](std::size_t corner, int k, const std::array<Vec3, 3>& positions,
+                                            const TriangleTangent& triangle, const Vec3&) {
+                                          if (triangle.kind != TriangleKind::usable) return;
+                                          switch (options.weighting) {
+                                            case Weighting::angle: cornerWeights[corner] = cornerAngle(positions, k); break;
+                                            case Weighting::area: cornerWeights[corner] = triangle.area; break;
+                                            case Weighting::uniform: cornerWeights[corner] = 1.0; break;
+                                          }
+                                        });
+  const std::vector<TriangleTangent>& triangles = data.triangles;
+  const std::vector<Vec3>& cornerNormals = data.cornerNormals;
 
   // Group the corners by value.
   std::unordered_map<GroupKey, std::uint32_t, GroupKeyHash> groupIndex;

@@ -84,26 +84,11 @@ Report mikktspaceTangents(CornerMesh& cornerMesh, const Options& options, std::s
   report.corners = cornerCount;
   report.nonManifoldFaces = cornerMesh.nonManifoldFaces;
 
-  std::vector<TriangleTangent> triangles(triangleCount);
-  std::vector<Vec3> cornerNormals(cornerCount);
-  std::vector<std::uint8_t> invalidNormal(cornerCount, 0);
   std::vector<Contribution> cornerContribution(cornerCount, Contribution{0, Vec3(0, 0, 0), Vec3(0, 0, 0)});
-  parallelFor(triangleCount, options.threads, [&](std::size_t begin, std::size_t end) {
-    for (std::size_t t = begin; t < end; ++t) {
-      std::array<Vec3, 3> positions;
-      std::array<Vec2, 3> uvs;
-      for (int k = 0; k < 3; ++k) {
-        const auto halfedge = cornerMesh.cornerHalfedge[3 * t + k];
-        positions[k] = mesh.point(mesh.to_vertex_handle(halfedge));
-        uvs[k] = mesh.texcoord2D(halfedge);
-      }
-      const TriangleTangent& triangle = triangles[t] = triangleTangent(positions, uvs);
-      for (int k = 0; k < 3; ++k) {
-        const std::size_t corner = 3 * t + k;
-        bool invalid = false;
-        const Vec3 n = cornerNormals[corner] = cornerNormal(mesh.normal(cornerMesh.cornerHalfedge[corner]), triangle, invalid);
-        invalidNormal[corner] = invalid;
-        if (triangle.orientation == 0) continue;  // may group with anything; adds nothing
+  const TriangleData data = evaluateTriangles(
+      cornerMesh, options, report,
+      [&](std::size_t corner, int k, const std::array<Vec3, 3>& positions, const TriangleTangent& triangle, const Vec3& n) {
+        if (triangle.orientation == 0) return;  // may group with anything; adds nothing
         Vec3 tangent = triangle.tangent - n * (n | triangle.tangent);
         Vec3 bitangent = triangle.bitangent - n * (n | triangle.bitangent);
         const double tangentLength = tangent.norm(), bitangentLength = bitangent.norm();
@@ -111,15 +96,9 @@ Report mikktspaceTangents(CornerMesh& cornerMesh, const Options& options, std::s
         if (bitangentLength > 0) bitangent /= bitangentLength;
         const double angle = projectedCornerAngle(positions, k, n);
         cornerContribution[corner] = {0, tangent * angle, bitangent * angle};
-      }
-    }
-  });
-  for (const TriangleTangent& triangle : triangles) {
-    if (triangle.kind == TriangleKind::nonFinite) ++report.nonFiniteTriangles;
-    else if (triangle.kind == TriangleKind::degenerate) ++report.degenerateTriangles;
-    else if (triangle.kind == TriangleKind::zeroUvArea) ++report.zeroUvAreaTriangles;
-  }
-  for (std::uint8_t invalid : invalidNormal) report.invalidNormals += invalid;
+      });
+  const std::vector<TriangleTangent>& triangles = data.triangles;
+  const std::vector<Vec3>& cornerNormals = data.cornerNormals;
 
   // Neighbours across an edge: both ends with the same normal and UV on both sides.
   auto sameCorner = [&](OpenMesh::HalfedgeHandle a, OpenMesh::HalfedgeHandle b) {
