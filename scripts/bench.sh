@@ -6,7 +6,8 @@
 #   - whole-process runs on generated UV spheres of ~1e5, 1e6 and 4e6 triangles: tangent bake,
 #     gltf-transform tangents (npm @gltf-transform/cli) and assimp export -cts (Debian
 #     assimp-utils), median wall time and peak memory (GNU time)
-# Writes docs/benchmarks.md, docs/bench-plot.png and .svg, docs/bench.csv.
+# Writes docs/benchmarks.md, docs/bench-plot.png and .svg, docs/bench.csv, and the tables
+# between the bench markers of README.md.
 # Usage: scripts/bench.sh [--quick]   (--quick: small sizes, one run each; CI's smoke test)
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -97,6 +98,13 @@ lines += ["", "## Error against run time", "", "![error against run time](bench-
           "Mean angular error against the exact tangent on analytic surfaces, per method, one point per resolution "
           "(data: [bench.csv](bench.csv), from `tangent bench`)."]
 open("docs/benchmarks.md", "w").write("\n".join(lines) + "\n")
+# The README shows the same tables between its bench markers.
+readme = open("README.md").read()
+begin, end = "<!-- bench:begin -->", "<!-- bench:end -->"
+if begin in readme and end in readme:
+    tables = "\n".join(l for l in lines[2:] if not l.startswith("## Error against") and "bench-plot" not in l and not l.startswith("Mean angular error"))
+    readme = readme[:readme.index(begin) + len(begin)] + "\n" + tables.strip() + "\n" + readme[readme.index(end):]
+    open("README.md", "w").write(readme)
 PY
 cp "$out/error/plot.png" docs/bench-plot.png 2>/dev/null || true
 cp "$out/error/plot.svg" docs/bench-plot.svg 2>/dev/null || true
