@@ -159,6 +159,28 @@ TEST(Viewer, DemoSceneShadowFallsWhereTheSphereOccludesTheSun) {
   EXPECT_GT(shadowOff, 0.85f * besideOff);
 }
 
+// The demo material's specular map has green, white and black bands (RGB colour, A strength):
+// the highlight the specular term adds must come in white and in green.
+TEST(Viewer, SpecularMapColoursTheHighlights) {
+  TempDir dir;
+  const std::string common = "'" + (fs::path(TANGENT_SOURCE_DIR) / "data" / "demo" / "primitives" / "sphere.gltf").string() +
+                             "' --camera front --size 400x400 --no-shadows";
+  const Image on = screenshot(dir, "specular", common), off = screenshot(dir, "no-specular", common + " --no-specular");
+  ASSERT_EQ(on.rgb.size(), off.rgb.size());
+  int white = 0, green = 0;
+  for (int y = 0; y < on.height; ++y) {
+    for (int x = 0; x < on.width; ++x) {
+      const auto a = on.at(x, y), b = off.at(x, y);
+      const float r = a[0] - b[0], g = a[1] - b[1], bl = a[2] - b[2];
+      if (g > 0.08f && std::abs(r - g) < 0.03f && std::abs(bl - g) < 0.03f) ++white;
+      if (g > 0.08f && g > 2 * r && g > 2 * bl) ++green;
+    }
+  }
+  std::printf("highlight pixels: %d white, %d green\n", white, green);
+  EXPECT_GT(white, 50);
+  EXPECT_GT(green, 20);
+}
+
 TEST(Viewer, EveryDebugViewRendersAndDiffersFromLit) {
   TempDir dir;
   const std::string common = "--size 320x180";

@@ -299,7 +299,8 @@ Json sharedMaterials(const std::string& imagePrefix) {
       {"extensionsUsed", {"KHR_materials_specular", "KHR_lights_punctual"}},
       {"materials",
        {{{"name", "BumpsSpecular"},
-         {"pbrMetallicRoughness", {{"baseColorTexture", {{"index", 1}}}, {"metallicFactor", 0.0}, {"roughnessFactor", 0.35}}},
+         // Mid grey over the white texture: room above the diffuse for the highlights to show.
+         {"pbrMetallicRoughness", {{"baseColorFactor", {0.55, 0.55, 0.55, 1.0}}, {"baseColorTexture", {{"index", 1}}}, {"metallicFactor", 0.0}, {"roughnessFactor", 0.35}}},
          {"normalTexture", {{"index", 0}}},
          {"extensions", {{"KHR_materials_specular", specular}}}},
         {{"name", "Ground"},
