@@ -194,15 +194,16 @@ Report mikktspaceTangents(CornerMesh& cornerMesh, const Options& options, std::s
     cornerGroup[corner] = rootGroup[root];
   }
 
-  std::vector<Contribution> contributions;
-  contributions.reserve(cornerCount);
+  // The contributing corners, compacted in place (no second per-corner array).
+  std::size_t kept = 0;
   for (std::size_t corner = 0; corner < cornerCount; ++corner) {
     if (triangles[corner / 3].orientation == 0) continue;
-    Contribution c = cornerContribution[corner];
-    c.group = cornerGroup[corner];
-    contributions.push_back(c);
+    cornerContribution[kept] = cornerContribution[corner];
+    cornerContribution[kept].group = cornerGroup[corner];
+    ++kept;
   }
-  sumInValueOrder(contributions, groups);
+  cornerContribution.resize(kept);
+  sumInValueOrder(cornerContribution, groups);
   parallelFor(groups.size(), options.threads, [&](std::size_t begin, std::size_t end) {
     for (std::size_t g = begin; g < end; ++g) {
       Group& group = groups[g];

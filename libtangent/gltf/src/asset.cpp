@@ -133,24 +133,32 @@ void splitGlb(std::span<const std::uint8_t> bytes, const std::string& label, std
   }
 }
 
+std::vector<std::uint8_t> makeGlbHeader(std::size_t jsonSize, std::size_t binSize) {
+  const std::size_t jsonPadded = (jsonSize + 3) & ~std::size_t(3);
+  const std::size_t binPadded = (binSize + 3) & ~std::size_t(3);
+  const std::size_t total = 12 + 8 + jsonPadded + (binSize == 0 ? 0 : 8 + binPadded);
+  std::vector<std::uint8_t> header;
+  appendU32(header, kGlbMagic);
+  appendU32(header, 2);
+  appendU32(header, static_cast<std::uint32_t>(total));
+  appendU32(header, static_cast<std::uint32_t>(jsonPadded));
+  appendU32(header, kChunkJson);
+  appendU32(header, static_cast<std::uint32_t>(binPadded));
+  appendU32(header, kChunkBin);
+  return header;
+}
+
 std::vector<std::uint8_t> makeGlb(const std::string& json, std::span<const std::uint8_t> bin) {
-  const std::size_t jsonPadded = (json.size() + 3) & ~std::size_t(3);
-  const std::size_t binPadded = (bin.size() + 3) & ~std::size_t(3);
-  const std::size_t total = 12 + 8 + jsonPadded + (bin.empty() ? 0 : 8 + binPadded);
+  const std::vector<std::uint8_t> header = makeGlbHeader(json.size(), bin.size());
   std::vector<std::uint8_t> out;
-  out.reserve(total);
-  appendU32(out, kGlbMagic);
-  appendU32(out, 2);
-  appendU32(out, static_cast<std::uint32_t>(total));
-  appendU32(out, static_cast<std::uint32_t>(jsonPadded));
-  appendU32(out, kChunkJson);
+  out.reserve(header.size() + json.size() + bin.size() + 6);
+  out.insert(out.end(), header.begin(), header.begin() + 20);
   out.insert(out.end(), json.begin(), json.end());
-  out.resize(out.size() + jsonPadded - json.size(), ' ');
+  out.resize(out.size() + (4 - json.size() % 4) % 4, ' ');
   if (!bin.empty()) {
-    appendU32(out, static_cast<std::uint32_t>(binPadded));
-    appendU32(out, kChunkBin);
+    out.insert(out.end(), header.begin() + 20, header.end());
     out.insert(out.end(), bin.begin(), bin.end());
-    out.resize(out.size() + binPadded - bin.size(), 0);
+    out.resize(out.size() + (4 - bin.size() % 4) % 4, 0);
   }
   return out;
 }

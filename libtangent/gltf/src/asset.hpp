@@ -36,4 +36,8 @@ void splitGlb(std::span<const std::uint8_t> bytes, const std::string& label, std
 // Builds a GLB container.
 std::vector<std::uint8_t> makeGlb(const std::string& json, std::span<const std::uint8_t> bin);
 
+// The 28 bytes a GLB puts around its chunks: file header + JSON chunk header (20 bytes), then
+// the BIN chunk header (8 bytes), for chunks of these unpadded sizes.
+std::vector<std::uint8_t> makeGlbHeader(std::size_t jsonSize, std::size_t binSize);
+
 }  // namespace tangent::gltf::detail

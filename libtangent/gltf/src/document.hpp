@@ -46,8 +46,10 @@ class OutputDocument {
 void forEachAccessorRef(nlohmann::ordered_json& doc, const std::function<void(nlohmann::ordered_json&)>& visit);
 void forEachBufferViewRef(nlohmann::ordered_json& doc, const std::function<void(nlohmann::ordered_json&)>& visit);
 
-// Writes bytes to a temporary file beside `path`, then renames it over `path`.
+// Writes bytes (or pieces, one after another) to a temporary file beside `path`, then renames
+// it over `path`.
 void writeFileAtomic(const std::filesystem::path& path, std::span<const std::uint8_t> bytes);
+void writeFileAtomic(const std::filesystem::path& path, const std::vector<std::span<const std::uint8_t>>& pieces);
 
 // Files the document reads besides itself (external buffers and images), absolute.
 std::vector<std::filesystem::path> referencedFiles(const Asset& asset);

@@ -222,9 +222,14 @@ std::vector<std::uint8_t> OutputDocument::packBuffers() {
     std::size_t length = 0;
     std::size_t alignTo = 0;  // keep the old offset modulo 4 so accessor alignment survives
     if (i >= firstNewView_) {
-      const auto& bytes = newViewBytes_[i - firstNewView_];
-      source = bytes.data();
-      length = bytes.size();
+      auto& bytes = newViewBytes_[i - firstNewView_];
+      while (packed.size() % 4 != alignTo) packed.push_back(0);
+      view["buffer"] = 0;
+      if (packed.size() == 0) view.erase("byteOffset");
+      else view["byteOffset"] = packed.size();
+      packed.insert(packed.end(), bytes.begin(), bytes.end());
+      std::vector<std::uint8_t>().swap(bytes);  // packed now holds it
+      continue;
     } else {
       const int bufferIndex = view.value("buffer", 0);
       const std::size_t offset = view.value("byteOffset", std::size_t(0));
@@ -279,9 +284,25 @@ std::uint64_t OutputDocument::write(const std::filesystem::path& output) {
   const bool glb = output.extension() == ".glb";
   Json& doc = asset_.json;
   if (glb) {
-    const std::vector<std::uint8_t> bytes = makeGlb(doc.dump(), bin);
-    writeFileAtomic(output, bytes);
-    return bytes.size();
+    // Header and chunk headers, then the chunks straight from their own memory: no whole copy.
+    const std::string json = doc.dump();
+    const std::vector<std::uint8_t> header = makeGlbHeader(json.size(), bin.size());
+    const std::size_t jsonPadding = (4 - json.size() % 4) % 4, binPadding = (4 - bin.size() % 4) % 4;
+    const std::string spaces(jsonPadding, ' ');
+    const std::uint8_t zeros[4] = {0, 0, 0, 0};
+    const std::size_t jsonChunkEnd = 20;  // the JSON chunk's header closes the 20-byte prefix
+    std::vector<std::span<const std::uint8_t>> pieces = {
+        std::span(header.data(), jsonChunkEnd), std::span(reinterpret_cast<const std::uint8_t*>(json.data()), json.size()),
+        std::span(reinterpret_cast<const std::uint8_t*>(spaces.data()), spaces.size())};
+    if (!bin.empty()) {
+      pieces.push_back(std::span(header.data() + jsonChunkEnd, 8));
+      pieces.push_back(std::span<const std::uint8_t>(bin));
+      pieces.push_back(std::span(zeros, binPadding));
+    }
+    writeFileAtomic(output, pieces);
+    std::uint64_t total = 0;
+    for (const auto& piece : pieces) total += piece.size();
+    return total;
   }
   std::uint64_t written = 0;
   if (!bin.empty()) {
@@ -297,6 +318,10 @@ std::uint64_t OutputDocument::write(const std::filesystem::path& output) {
 }
 
 void writeFileAtomic(const std::filesystem::path& path, std::span<const std::uint8_t> bytes) {
+  writeFileAtomic(path, std::vector<std::span<const std::uint8_t>>{bytes});
+}
+
+void writeFileAtomic(const std::filesystem::path& path, const std::vector<std::span<const std::uint8_t>>& pieces) {
   namespace fs = std::filesystem;
   static std::atomic<unsigned> counter{0};
   const fs::path temp = path.parent_path() / ("." + path.filename().string() + ".tmp-" + std::to_string(::getpid()) + "-" +
@@ -304,7 +329,7 @@ void writeFileAtomic(const std::filesystem::path& path, std::span<const std::uin
   {
     std::ofstream out(temp, std::ios::binary | std::ios::trunc);
     if (!out) throw std::runtime_error(path.string() + ": cannot create " + temp.string());
-    out.write(reinterpret_cast<const char*>(bytes.data()), static_cast<std::streamsize>(bytes.size()));
+    for (const auto& piece : pieces) out.write(reinterpret_cast<const char*>(piece.data()), static_cast<std::streamsize>(piece.size()));
     out.flush();
     if (!out) {
       out.close();
