@@ -378,6 +378,31 @@ TEST(MeshFiles, ObjBakesToGlb) {
   EXPECT_EQ(tangents[3], 1.0f);
 }
 
+// PLY and OFF go through the same OpenMesh readers: the same quad gives the same frame.
+TEST(MeshFiles, PlyAndOffBakeToGlb) {
+  TempDir dir;
+  std::ofstream(dir / "quad.off") << "STNOFF\n4 2 0\n0 0 0 0 0 1 0 0\n1 0 0 0 0 1 1 0\n1 1 0 0 0 1 1 1\n0 1 0 0 0 1 0 1\n"
+                                     "3 0 1 2\n3 0 2 3\n";
+  std::ofstream(dir / "quad.ply") << "ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\nproperty float y\nproperty float z\n"
+                                     "property float nx\nproperty float ny\nproperty float nz\nproperty float u\nproperty float v\n"
+                                     "element face 2\nproperty list uchar int vertex_indices\nend_header\n"
+                                     "0 0 0 0 0 1 0 0\n1 0 0 0 0 1 1 0\n1 1 0 0 0 1 1 1\n0 1 0 0 0 1 0 1\n3 0 1 2\n3 0 2 3\n";
+  for (const char* name : {"quad.off", "quad.ply"}) {
+    SCOPED_TRACE(name);
+    const fs::path output = tangent::gltf::outputPathFor(dir / name, dir / "out");
+    const auto result = tangent::gltf::bakeFile(dir / name, output, {});
+    ASSERT_EQ(result.primitives.size(), 1u);
+    EXPECT_EQ(result.primitives[0].action, "baked");
+    EXPECT_NE(result.primitives[0].reason.find("OBJ/PLY/OFF"), std::string::npos) << result.primitives[0].reason;
+    const Asset out = loadAsset(output);
+    const Json& primitive = out.json["meshes"][0]["primitives"][0];
+    EXPECT_EQ(out.model.accessors[primitive["attributes"]["POSITION"].get<int>()].count, 4u);  // UVs and normals kept per vertex
+    const auto tangents = tangent::gltf::detail::toFloats(readAccessor(out.model, primitive["attributes"]["TANGENT"].get<int>(), "TANGENT"));
+    EXPECT_NEAR(tangents[0], 1.0f, 1e-6);
+    EXPECT_EQ(tangents[3], 1.0f);
+  }
+}
+
 // NormalTangentMirrorTest carries Blender's MikkTSpace tangents in glTF's convention.
 TEST(SharedAssets, MirrorTestHandednessMatchesSuppliedTangents) {
   const fs::path shared = tangent::testing::sharedAssets();

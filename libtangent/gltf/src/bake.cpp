@@ -164,7 +164,10 @@ PrimitiveResult PrimitiveBaker::bake(int meshIndex, int primitiveIndex) {
   result.action = "skipped";
 
   const detail::PrimitiveNeeds needs = detail::primitiveNeeds(doc, primitive, options_.all || asset_.fromMeshFile);
-  result.reason = needs.why;
+  const std::string why = asset_.fromMeshFile && !needs.hasNormalTexture && needs.texCoord >= 0
+                              ? "OBJ/PLY/OFF carry no materials: every mesh is baked, from its texture coordinates"
+                              : needs.why;
+  result.reason = why;
   if (!needs.triangles || needs.compressed || needs.texCoord < 0) return result;
   result.texCoord = needs.texCoord;
   if (!primitive.contains("attributes") || !primitive["attributes"].is_object())
@@ -298,7 +301,7 @@ PrimitiveResult PrimitiveBaker::bake(int meshIndex, int primitiveIndex) {
         output_.addAccessor(floatAccessor(outCount, "VEC3"), floatBytes(targetTangentDeltas[t]), 12, detail::kArrayBuffer);
   }
   result.action = "baked";
-  if (existingTangent < 0) result.reason = needs.why;
+  if (existingTangent < 0) result.reason = why;
   return result;
 }
 
