@@ -133,33 +133,32 @@ void splitGlb(std::span<const std::uint8_t> bytes, const std::string& label, std
   }
 }
 
-std::vector<std::uint8_t> makeGlbHeader(std::size_t jsonSize, std::size_t binSize) {
-  const std::size_t jsonPadded = (jsonSize + 3) & ~std::size_t(3);
-  const std::size_t binPadded = (binSize + 3) & ~std::size_t(3);
-  const std::size_t total = 12 + 8 + jsonPadded + (binSize == 0 ? 0 : 8 + binPadded);
-  std::vector<std::uint8_t> header;
-  appendU32(header, kGlbMagic);
-  appendU32(header, 2);
-  appendU32(header, static_cast<std::uint32_t>(total));
-  appendU32(header, static_cast<std::uint32_t>(jsonPadded));
-  appendU32(header, kChunkJson);
-  appendU32(header, static_cast<std::uint32_t>(binPadded));
-  appendU32(header, kChunkBin);
-  return header;
+std::vector<std::span<const std::uint8_t>> glbPieces(const std::string& json, std::span<const std::uint8_t> bin,
+                                                     std::vector<std::uint8_t>& frame) {
+  const std::size_t jsonPadding = (4 - json.size() % 4) % 4, binPadding = (4 - bin.size() % 4) % 4;
+  const std::size_t total = 12 + 8 + json.size() + jsonPadding + (bin.empty() ? 0 : 8 + bin.size() + binPadding);
+  // frame: file header + JSON chunk header (20), JSON padding, BIN chunk header (8), BIN padding.
+  frame.clear();
+  appendU32(frame, kGlbMagic);
+  appendU32(frame, 2);
+  appendU32(frame, static_cast<std::uint32_t>(total));
+  appendU32(frame, static_cast<std::uint32_t>(json.size() + jsonPadding));
+  appendU32(frame, kChunkJson);
+  frame.resize(frame.size() + jsonPadding, ' ');
+  appendU32(frame, static_cast<std::uint32_t>(bin.size() + binPadding));
+  appendU32(frame, kChunkBin);
+  frame.resize(frame.size() + binPadding, 0);
+  const std::uint8_t* f = frame.data();
+  std::vector<std::span<const std::uint8_t>> pieces = {
+      {f, 20}, {reinterpret_cast<const std::uint8_t*>(json.data()), json.size()}, {f + 20, jsonPadding}};
+  if (!bin.empty()) pieces.insert(pieces.end(), {{f + 20 + jsonPadding, 8}, bin, {f + 28 + jsonPadding, binPadding}});
+  return pieces;
 }
 
 std::vector<std::uint8_t> makeGlb(const std::string& json, std::span<const std::uint8_t> bin) {
-  const std::vector<std::uint8_t> header = makeGlbHeader(json.size(), bin.size());
+  std::vector<std::uint8_t> frame;
   std::vector<std::uint8_t> out;
-  out.reserve(header.size() + json.size() + bin.size() + 6);
-  out.insert(out.end(), header.begin(), header.begin() + 20);
-  out.insert(out.end(), json.begin(), json.end());
-  out.resize(out.size() + (4 - json.size() % 4) % 4, ' ');
-  if (!bin.empty()) {
-    out.insert(out.end(), header.begin() + 20, header.end());
-    out.insert(out.end(), bin.begin(), bin.end());
-    out.resize(out.size() + (4 - bin.size() % 4) % 4, 0);
-  }
+  for (const auto& piece : glbPieces(json, bin, frame)) out.insert(out.end(), piece.begin(), piece.end());
   return out;
 }
 

@@ -33,11 +33,12 @@ std::vector<std::uint8_t> meshFileToGlb(const std::filesystem::path& path);
 void splitGlb(std::span<const std::uint8_t> bytes, const std::string& label, std::string& json,
               std::span<const std::uint8_t>& bin);
 
-// Builds a GLB container.
-std::vector<std::uint8_t> makeGlb(const std::string& json, std::span<const std::uint8_t> bin);
+// A GLB container as pieces to write one after another: headers and padding (kept in
+// `frame`), the JSON chunk and the BIN chunk (pointing into json and bin).
+std::vector<std::span<const std::uint8_t>> glbPieces(const std::string& json, std::span<const std::uint8_t> bin,
+                                                     std::vector<std::uint8_t>& frame);
 
-// The 28 bytes a GLB puts around its chunks: file header + JSON chunk header (20 bytes), then
-// the BIN chunk header (8 bytes), for chunks of these unpadded sizes.
-std::vector<std::uint8_t> makeGlbHeader(std::size_t jsonSize, std::size_t binSize);
+// A GLB container in one block (the pieces joined).
+std::vector<std::uint8_t> makeGlb(const std::string& json, std::span<const std::uint8_t> bin);
 
 }  // namespace tangent::gltf::detail

@@ -222,14 +222,9 @@ std::vector<std::uint8_t> OutputDocument::packBuffers() {
     std::size_t length = 0;
     std::size_t alignTo = 0;  // keep the old offset modulo 4 so accessor alignment survives
     if (i >= firstNewView_) {
-      auto& bytes = newViewBytes_[i - firstNewView_];
-      while (packed.size() % 4 != alignTo) packed.push_back(0);
-      view["buffer"] = 0;
-      if (packed.size() == 0) view.erase("byteOffset");
-      else view["byteOffset"] = packed.size();
-      packed.insert(packed.end(), bytes.begin(), bytes.end());
-      std::vector<std::uint8_t>().swap(bytes);  // packed now holds it
-      continue;
+      const auto& bytes = newViewBytes_[i - firstNewView_];
+      source = bytes.data();
+      length = bytes.size();
     } else {
       const int bufferIndex = view.value("buffer", 0);
       const std::size_t offset = view.value("byteOffset", std::size_t(0));
@@ -245,6 +240,7 @@ std::vector<std::uint8_t> OutputDocument::packBuffers() {
     if (packed.size() == 0) view.erase("byteOffset");
     else view["byteOffset"] = packed.size();
     packed.insert(packed.end(), source, source + length);
+    if (i >= firstNewView_) std::vector<std::uint8_t>().swap(newViewBytes_[i - firstNewView_]);  // packed holds it now
   }
   while (packed.size() % 4 != 0) packed.push_back(0);
 
@@ -284,21 +280,10 @@ std::uint64_t OutputDocument::write(const std::filesystem::path& output) {
   const bool glb = output.extension() == ".glb";
   Json& doc = asset_.json;
   if (glb) {
-    // Header and chunk headers, then the chunks straight from their own memory: no whole copy.
+    // Written from the pieces' own memory: no whole copy of the file.
     const std::string json = doc.dump();
-    const std::vector<std::uint8_t> header = makeGlbHeader(json.size(), bin.size());
-    const std::size_t jsonPadding = (4 - json.size() % 4) % 4, binPadding = (4 - bin.size() % 4) % 4;
-    const std::string spaces(jsonPadding, ' ');
-    const std::uint8_t zeros[4] = {0, 0, 0, 0};
-    const std::size_t jsonChunkEnd = 20;  // the JSON chunk's header closes the 20-byte prefix
-    std::vector<std::span<const std::uint8_t>> pieces = {
-        std::span(header.data(), jsonChunkEnd), std::span(reinterpret_cast<const std::uint8_t*>(json.data()), json.size()),
-        std::span(reinterpret_cast<const std::uint8_t*>(spaces.data()), spaces.size())};
-    if (!bin.empty()) {
-      pieces.push_back(std::span(header.data() + jsonChunkEnd, 8));
-      pieces.push_back(std::span<const std::uint8_t>(bin));
-      pieces.push_back(std::span(zeros, binPadding));
-    }
+    std::vector<std::uint8_t> frame;
+    const auto pieces = glbPieces(json, bin, frame);
     writeFileAtomic(output, pieces);
     std::uint64_t total = 0;
     for (const auto& piece : pieces) total += piece.size();
