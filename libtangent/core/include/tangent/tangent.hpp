@@ -7,6 +7,7 @@
 #pragma once
 
 #include <cstdint>
+#include <memory>
 #include <span>
 #include <string>
 #include <string_view>
@@ -48,7 +49,8 @@ struct Options {
   Method method = Method::mikktspace;
   Weighting weighting = Weighting::angle;  // lengyel only; mikktspace always weights by angle
   UvOrigin uvOrigin = UvOrigin::topLeft;
-  unsigned threads = 1;                    // worker threads; the output never depends on it
+  unsigned threads = 0;                    // worker threads, 0: all hardware threads; the output
+                                           // never depends on it
 };
 
 // Where a corner's frame came from.
@@ -77,6 +79,7 @@ struct Report {
   std::uint64_t inheritedCorners = 0;       // FrameSource::inherited
   std::uint64_t fallbackFromNeighbours = 0; // FrameSource::neighbour
   std::uint64_t fallbackFixed = 0;          // FrameSource::fixed
+  std::uint64_t outputVertices = 0;         // input vertices + splitVertices (see CornerOutputs)
 };
 
 std::string_view toString(Method method);
@@ -93,7 +96,48 @@ struct MeshArrays {
   std::span<const std::uint32_t> indices; // 3 per triangle
 };
 
-// Computes one tangent (x, y, z, w) per corner into cornerTangents (4 floats per corner).
+namespace detail {
+struct WorkspaceData;
+}
+
+// Scratch memory reused across calls: a caller that computes many meshes keeps one per thread
+// and repeated calls of the same or smaller size allocate nothing. Not for concurrent calls.
+class TangentWorkspace {
+ public:
+  TangentWorkspace();
+  ~TangentWorkspace();
+  TangentWorkspace(TangentWorkspace&&) noexcept;
+  TangentWorkspace& operator=(TangentWorkspace&&) noexcept;
+  TangentWorkspace(const TangentWorkspace&) = delete;
+  TangentWorkspace& operator=(const TangentWorkspace&) = delete;
+  std::size_t bytesReserved() const;  // scratch memory held now
+  detail::WorkspaceData& data() { return *data_; }
+
+ private:
+  std::unique_ptr<detail::WorkspaceData> data_;
+};
+
+// What a call writes; the caller owns every array.
+struct CornerOutputs {
+  std::span<float> tangents;                   // required: x, y, z, w per corner (4 floats)
+  std::span<FrameSource> sources = {};         // optional: where each corner's frame came from
+  // Optional, one per corner: the output vertex of each corner (the vertex split). Corners of
+  // input vertex v that got the same tangent bits as v's first corner (in corner order) keep
+  // vertex v; every other distinct tangent of v becomes a new vertex, numbered from the input
+  // vertex count up (in order of first corner). So an output vertex buffer is the input
+  // vertices followed by Report::splitVertices copies, copy o of input vertex indices[c] for
+  // the first corner c with cornerVertex[c] == o.
+  std::span<std::uint32_t> cornerVertex = {};
+};
+
+// The main entry point. Writes one tangent (x, y, z, w) per corner: xyz unit length and
+// orthogonal to the corner's normal, w exactly +1 or -1, every value finite, whatever the
+// input; the same bits for any thread count and any order of the triangles. Throws
+// std::invalid_argument when the array sizes disagree or an index is out of range.
+Report computeCornerTangents(const MeshArrays& mesh, const CornerOutputs& outputs, const Options& options,
+                             TangentWorkspace& workspace);
+
+// The same with a workspace of its own. Computes one tangent (x, y, z, w) per corner into cornerTangents (4 floats per corner).
 // xyz is unit length and orthogonal to the corner's normal, w is exactly +1 or -1, and every
 // value is finite, whatever the input. When cornerSources is not empty (one per corner) it
 // receives where each frame came from. Throws std::invalid_argument when the array sizes
