@@ -1,54 +1,107 @@
-// The plain-array API: builds the half-edge mesh, runs the method, copies one tangent per corner.
-#include <algorithm>
-#include <bit>
-#include <cstring>
+// The entry points: the plain-array call (every method) and the OpenMesh call.
+#include <tbb/task_arena.h>
+
 #include <stdexcept>
 #include <string>
-#include <tuple>
+#include <thread>
 
 #include "methods.hpp"
 #include "tangent/halfedge_mesh.hpp"
+#include "workspace.hpp"
 
 namespace tangent {
+namespace {
 
-Report computeTangents(CornerMesh& mesh, const Options& options, std::span<FrameSource> cornerSources) {
-  if (!cornerSources.empty() && cornerSources.size() != mesh.cornerHalfedge.size())
-    throw std::invalid_argument("cornerSources: expected one per corner");
-  if (options.method == Method::mikktspace) return detail::mikktspaceTangents(mesh, options, cornerSources);
-  return detail::lengyelTangents(mesh, options, cornerSources);
+unsigned threadCount(const Options& options) {
+  if (options.threads > 0) return options.threads;
+  return static_cast<unsigned>(std::max(1, tbb::this_task_arena::max_concurrency()));
 }
 
-Report computeCornerTangents(const MeshArrays& arrays, std::span<float> cornerTangents, const Options& options,
-                             std::span<FrameSource> cornerSources) {
-  if (cornerTangents.size() != arrays.indices.size() * 4)
-    throw std::invalid_argument("cornerTangents: expected " + std::to_string(arrays.indices.size() * 4) +
-                                " floats (4 per corner), got " + std::to_string(cornerTangents.size()));
-  CornerMesh cornerMesh = buildCornerMesh(arrays);
-  if (!cornerSources.empty() && cornerSources.size() != arrays.indices.size())
-    throw std::invalid_argument("cornerSources: expected " + std::to_string(arrays.indices.size()) + " entries (one per corner)");
-  Report report = computeTangents(cornerMesh, options, cornerSources);
-  const std::size_t cornerCount = arrays.indices.size();
-  for (std::size_t corner = 0; corner < cornerCount; ++corner) {
-    const TangentVec& t = cornerMesh.mesh.property(cornerMesh.tangent, cornerMesh.cornerHalfedge[corner]);
-    for (int i = 0; i < 4; ++i) cornerTangents[4 * corner + i] = static_cast<float>(t[i]);
+// Methods `lengyel` and `flat` run on the half-edge mesh; their frames come back per corner
+// in the bottom-left convention with their sources, for finishOutputs.
+void lengyelOnArrays(detail::WorkspaceData& ws, const MeshArrays& mesh, const CornerOutputs& outputs, const Options& options,
+                     Report& report) {
+  CornerMesh cornerMesh = buildCornerMesh(mesh);
+  Options native = options;
+  native.uvOrigin = UvOrigin::bottomLeft;
+  std::vector<FrameSource> sources(ws.cornerCount);
+  report = detail::lengyelTangents(cornerMesh, native, sources);
+  detail::ensureSize(ws.cornerState, ws.cornerCount);
+  detail::ensureSize(ws.cornerLink, ws.cornerCount);
+  for (std::size_t c = 0; c < ws.cornerCount; ++c) {
+    const TangentVec& t = cornerMesh.mesh.property(cornerMesh.tangent, cornerMesh.cornerHalfedge[c]);
+    for (int i = 0; i < 4; ++i) outputs.tangents[4 * c + i] = static_cast<float>(t[i]);
+    ws.cornerState[c] = static_cast<std::uint8_t>(sources[c]);
+    ws.cornerLink[c] = detail::kNone;
   }
+  const std::uint64_t invalidNormals = report.invalidNormals;
+  detail::finishOutputs(ws, mesh, outputs, options, report);
+  report.invalidNormals = invalidNormals;
+}
 
-  // Extra vertices a caller must create: distinct tangents per input vertex, minus one. Most
-  // vertices have one tangent: compare with the vertex's first corner and sort only the rest.
-  const std::size_t vertexCount = arrays.positions.size() / 3;
-  std::vector<std::int64_t> firstCorner(vertexCount, -1);
-  std::vector<std::tuple<std::uint32_t, std::uint32_t, std::uint32_t, std::uint32_t, std::uint32_t>> others;
-  auto bits = [&](std::size_t corner, int i) { return std::bit_cast<std::uint32_t>(cornerTangents[4 * corner + i]); };
-  for (std::size_t corner = 0; corner < cornerCount; ++corner) {
-    const std::uint32_t v = arrays.indices[corner];
-    if (firstCorner[v] < 0) {
-      firstCorner[v] = static_cast<std::int64_t>(corner);
-    } else if (std::memcmp(&cornerTangents[4 * corner], &cornerTangents[4 * firstCorner[v]], 16) != 0) {
-      others.emplace_back(v, bits(corner, 0), bits(corner, 1), bits(corner, 2), bits(corner, 3));
+}  // namespace
+
+Report computeCornerTangents(const MeshArrays& mesh, const CornerOutputs& outputs, const Options& options,
+                             TangentWorkspace& workspace) {
+  detail::checkArrays(mesh, outputs);
+  detail::WorkspaceData& ws = workspace.data();
+  ws.threads = threadCount(options);
+  Report report;
+  auto body = [&] {
+    detail::weldAndBucket(ws, mesh);
+    if (options.method == Method::mikktspace) {
+      detail::mikktspaceOnBuckets(ws, mesh, outputs, report);
+      detail::finishOutputs(ws, mesh, outputs, options, report);
+    } else {
+      lengyelOnArrays(ws, mesh, outputs, options, report);
     }
+  };
+  if (ws.threads > 1) {
+    tbb::task_arena arena(static_cast<int>(ws.threads));
+    arena.execute(body);
+  } else {
+    body();
   }
-  std::sort(others.begin(), others.end());
-  report.splitVertices = static_cast<std::uint64_t>(std::unique(others.begin(), others.end()) - others.begin());
+  return report;
+}
+
+Report computeCornerTangents(const MeshArrays& mesh, std::span<float> cornerTangents, const Options& options,
+                             std::span<FrameSource> cornerSources) {
+  TangentWorkspace workspace;
+  return computeCornerTangents(mesh, CornerOutputs{cornerTangents, cornerSources, {}}, options, workspace);
+}
+
+Report computeTangents(CornerMesh& cornerMesh, const Options& options, std::span<FrameSource> cornerSources) {
+  const std::size_t cornerCount = cornerMesh.cornerHalfedge.size();
+  if (!cornerSources.empty() && cornerSources.size() != cornerCount)
+    throw std::invalid_argument("cornerSources: expected one per corner");
+  if (options.method != Method::mikktspace) return detail::lengyelTangents(cornerMesh, options, cornerSources);
+  // The same kernel as the array call, on the corners' values: the same bits.
+  const TriMesh& mesh = cornerMesh.mesh;
+  std::vector<float> positions(3 * cornerCount), normals(3 * cornerCount), uvs(2 * cornerCount), tangents(4 * cornerCount);
+  std::vector<std::uint32_t> indices(cornerCount);
+  for (std::size_t c = 0; c < cornerCount; ++c) {
+    const auto halfedge = cornerMesh.cornerHalfedge[c];
+    const auto& p = mesh.point(mesh.to_vertex_handle(halfedge));
+    const auto& n = mesh.normal(halfedge);
+    const auto& uv = mesh.texcoord2D(halfedge);
+    for (int i = 0; i < 3; ++i) {
+      positions[3 * c + i] = static_cast<float>(p[i]);
+      normals[3 * c + i] = static_cast<float>(n[i]);
+    }
+    uvs[2 * c] = static_cast<float>(uv[0]);
+    uvs[2 * c + 1] = static_cast<float>(uv[1]);
+    indices[c] = static_cast<std::uint32_t>(c);
+  }
+  TangentWorkspace workspace;
+  Report report = computeCornerTangents({positions, normals, uvs, indices}, CornerOutputs{tangents, cornerSources, {}},
+                                        options, workspace);
+  report.nonManifoldFaces = std::max(report.nonManifoldFaces, cornerMesh.nonManifoldFaces);
+  report.splitVertices = 0;  // corners of the half-edge mesh are its vertices here
+  for (std::size_t c = 0; c < cornerCount; ++c) {
+    const float* t = &tangents[4 * c];
+    cornerMesh.mesh.property(cornerMesh.tangent, cornerMesh.cornerHalfedge[c]) = TangentVec(t[0], t[1], t[2], t[3]);
+  }
   return report;
 }
 

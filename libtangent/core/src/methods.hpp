@@ -1,4 +1,5 @@
-// The methods, each in its own file; computeTangents() dispatches.
+// The methods on the half-edge mesh (`lengyel`, `flat`); `mikktspace` runs on packed arrays
+// (mikktspace.cpp, workspace.hpp).
 #pragma once
 
 #include <span>
@@ -8,6 +9,5 @@
 namespace tangent::detail {
 
 Report lengyelTangents(CornerMesh& mesh, const Options& options, std::span<FrameSource> sources);  // and flat
-Report mikktspaceTangents(CornerMesh& mesh, const Options& options, std::span<FrameSource> sources);
 
 }  // namespace tangent::detail

@@ -1,219 +1,788 @@
-// Method `mikktspace`.
+// Method `mikktspace` over packed arrays.
 // Source: M. S. Mikkelsen, "Simulation of Wrinkled Surfaces Revisited", MSc thesis, 2008, and
-// the rules of the reference implementation (mikktspace.h/.c, 2011), reproduced here on the
-// half-edge mesh:
-//  * A corner's identity is its (position, normal, UV). Two triangles are neighbours across
-//    an edge when both ends have the same identity on both sides (and the winding agrees,
-//    which opposite halfedges guarantee).
-//  * A triangle whose corners share a position is degenerate: it takes part in nothing and
-//    its corners copy the frame of a corner with the same identity.
-//  * A triangle with zero UV area (or zero tangent) may group with anything: it contributes
-//    nothing and takes the UV orientation of the group that reaches it.
-//  * A group is the set of corners around one vertex connected through neighbour edges with
-//    the same UV orientation. Its tangent is the angle-weighted sum, over its triangles, of
-//    the triangle's dP/du projected onto the normal and normalized; the angle is between the
-//    triangle's two edges at the corner, projected onto the tangent plane. w is the
-//    orientation (+1 where the UV area is positive), negated for top-left UV origins.
-//  * With the default 180 degree threshold a group is never split.
-// Where the reference leaves a frame zero or arbitrary (a group with no contributing triangle)
-// we give a finite unit frame and say so (FrameSource::neighbour / fixed).
+// the rules of the reference implementation (mikktspace.h/.c, 2011):
+//  * A corner's identity is its (position, normal, UV) value. Triangles with two corners at
+//    one position ("coincident") take part in nothing; their corners copy the frame of a
+//    corner with the same identity.
+//  * Two triangles are neighbours across an edge when its two ends have the same identities
+//    on both sides and the edge runs the opposite way. Where more than two triangles share an
+//    edge, half-edges are paired greedily in a fixed order (the reference: face order).
+//  * A triangle with zero UV area or zero dP/du or dP/dv "groups with any": it adds nothing
+//    and takes the UV orientation of the groups that reach it.
+//  * A group is the set of corners around one identity connected through neighbour edges
+//    between triangles of the same UV orientation. A corner's tangent is the sum, over the
+//    triangles of its group whose dP/du and dP/dv are not exactly opposite to its own (the
+//    reference's subgroups at its default 180 degree threshold), of dP/du projected onto the
+//    normal, normalized and weighted by the corner angle in the tangent plane.
+// Where the reference depends on face order or a triangle's first corner we use rules that
+// depend on values only, so that no shuffle changes a bit: each triangle is evaluated from its
+// smallest corner; non-manifold edges pair in the order of the triangles' values; a zero-UV
+// triangle takes the orientation most of its neighbours have (layer by layer outwards from
+// oriented triangles, ties +1); a coincident corner copies the heaviest group of its identity;
+// exact duplicate triangles share one frame. One triangle never gets mixed w, and no corner is
+// left without a frame: FrameSource says where a frame was borrowed or made up.
 //
-// Deviations, all order-independent where the reference is not: a zero-UV-area triangle
-// takes the orientation most of its neighbours have (the reference: whichever group reaches
-// it first); among several same-identity corners a degenerate corner copies the one whose
-// group weighs most (the reference: the first in face order). Arithmetic is double; the
-// reference's is float.
+// Layout: a few passes over packed arrays. Weld by hashing, bucket corners by welded vertex
+// (counting sort), then every phase runs per triangle or per bucket in parallel (oneTBB);
+// each item's result depends only on the input, so any thread count gives the same bits.
 #include <algorithm>
+#include <array>
+#include <bit>
 #include <cmath>
-#include <numeric>
+#include <cstring>
+#include <tbb/combinable.h>
 
-#include "corner_groups.hpp"
-#include "methods.hpp"
-#include "parallel.hpp"
+#include "workspace.hpp"
 
 namespace tangent::detail {
 namespace {
 
-class UnionFind {
- public:
-  explicit UnionFind(std::size_t n) : parent_(n) { std::iota(parent_.begin(), parent_.end(), 0u); }
-  std::uint32_t find(std::uint32_t x) {
-    while (parent_[x] != x) {
-      parent_[x] = parent_[parent_[x]];
-      x = parent_[x];
-    }
-    return x;
-  }
-  void unite(std::uint32_t a, std::uint32_t b) {
-    a = find(a);
-    b = find(b);
-    if (a != b) parent_[std::max(a, b)] = std::min(a, b);
-  }
+struct V3 {
+  double x = 0, y = 0, z = 0;
+};
+inline V3 operator+(V3 a, V3 b) { return {a.x + b.x, a.y + b.y, a.z + b.z}; }
+inline V3 operator-(V3 a, V3 b) { return {a.x - b.x, a.y - b.y, a.z - b.z}; }
+inline V3 operator*(V3 a, double s) { return {a.x * s, a.y * s, a.z * s}; }
+inline double dot(V3 a, V3 b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
+inline V3 cross(V3 a, V3 b) { return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x}; }
+inline double length(V3 a) { return std::sqrt(dot(a, a)); }
+inline bool finite(V3 a) { return std::isfinite(a.x) && std::isfinite(a.y) && std::isfinite(a.z); }
+inline bool operator==(V3 a, V3 b) { return a.x == b.x && a.y == b.y && a.z == b.z; }
 
- private:
-  std::vector<std::uint32_t> parent_;
+inline std::size_t nextCorner(std::size_t c) { return c % 3 == 2 ? c - 2 : c + 1; }
+inline std::size_t previousCorner(std::size_t c) { return c % 3 == 0 ? c + 2 : c - 1; }
+inline std::uint32_t canonicalBits(float x) { return std::bit_cast<std::uint32_t>(x == 0.0f ? 0.0f : x); }
+
+// Relative size below which a UV determinant or a dP/du is taken as zero: a few float
+// roundings, where the reference (float arithmetic) finds exactly zero.
+constexpr double kUvZero = 0x1p-22;
+// Below this fraction of |e1||e2| a 3D area is rounding noise (report: degenerate).
+constexpr double kAreaZero = 1e-14;
+// Projected tangents this close to opposite form separate subgroups (the reference's
+// cos > cos(180 deg) test in float).
+constexpr double kOppositeCos = -1.0 + 0x1p-23;
+
+struct Arrays {
+  const float* positions;
+  const float* normals;
+  const float* uvs;
+  const std::uint32_t* indices;
+  V3 position(std::uint32_t v) const { return {positions[3 * v], positions[3 * v + 1], positions[3 * v + 2]}; }
+  V3 normal(std::uint32_t v) const { return {normals[3 * v], normals[3 * v + 1], normals[3 * v + 2]}; }
+  // Position and UV bits, the order in which a triangle picks its first corner.
+  std::array<std::uint32_t, 5> shapeKey(std::uint32_t v) const {
+    return {canonicalBits(positions[3 * v]), canonicalBits(positions[3 * v + 1]), canonicalBits(positions[3 * v + 2]),
+            canonicalBits(uvs[2 * v]), canonicalBits(uvs[2 * v + 1])};
+  }
+  std::array<std::uint32_t, 8> identityKey(std::uint32_t v) const {
+    return {canonicalBits(positions[3 * v]), canonicalBits(positions[3 * v + 1]), canonicalBits(positions[3 * v + 2]),
+            canonicalBits(normals[3 * v]),   canonicalBits(normals[3 * v + 1]),   canonicalBits(normals[3 * v + 2]),
+            canonicalBits(uvs[2 * v]),       canonicalBits(uvs[2 * v + 1])};
+  }
 };
 
-// Angle at `corner` between its two edges projected onto the plane normal to n; a zero
-// projected edge counts as perpendicular, as in the reference. atan2 rather than the
-// reference's acos of the dot product: acos returns 0 for angles below ~1e-8 rad, which would
-// leave a fan of slivers with no weight at all.
-double projectedCornerAngle(const std::array<Vec3, 3>& positions, int corner, const Vec3& n) {
-  auto projected = [&](const Vec3& edge) {
-    Vec3 v = edge - n * (n | edge);
-    const double length = v.norm();
-    return length > 0 ? v / length : Vec3(0, 0, 0);
+// First corner (0..2) of triangle t in value order, so that rotations give the same bits.
+int firstCorner(const Arrays& a, std::size_t t) {
+  const auto k0 = a.shapeKey(a.indices[3 * t]), k1 = a.shapeKey(a.indices[3 * t + 1]), k2 = a.shapeKey(a.indices[3 * t + 2]);
+  int first = 0;
+  const std::array<std::uint32_t, 5>* best = &k0;
+  if (k1 < *best) first = 1, best = &k1;
+  if (k2 < *best) first = 2;
+  return first;
+}
+
+// Unit dP/du and dP/dv of triangle t (signed by the UV orientation), its orientation and flags.
+void evaluateTriangle(const Arrays& a, std::size_t t, float* frame, std::int8_t& orientation, std::uint8_t& flags) {
+  const int first = firstCorner(a, t);
+  V3 p[3];
+  double u[3], v[3];
+  bool allFinite = true;
+  for (int k = 0; k < 3; ++k) {
+    const std::uint32_t vertex = a.indices[3 * t + (first + k) % 3];
+    p[k] = a.position(vertex);
+    u[k] = a.uvs[2 * vertex];
+    v[k] = a.uvs[2 * vertex + 1];
+    allFinite = allFinite && finite(p[k]) && std::isfinite(u[k]) && std::isfinite(v[k]);
+  }
+  std::fill(frame, frame + 6, 0.0f);
+  orientation = 0;
+  if (!allFinite) {
+    flags = kNonFinite | kGroupWithAny;
+    return;
+  }
+  flags = 0;
+  const bool coincident = p[0] == p[1] || p[1] == p[2] || p[0] == p[2];
+  const V3 e1 = p[1] - p[0], e2 = p[2] - p[0];
+  if (!(length(cross(e1, e2)) > kAreaZero * length(e1) * length(e2))) flags |= kFlat;
+  const double du1 = u[1] - u[0], dv1 = v[1] - v[0], du2 = u[2] - u[0], dv2 = v[2] - v[0];
+  const double det = du1 * dv2 - du2 * dv1;
+  const bool zeroUv = !(std::abs(det) > kUvZero * (std::abs(du1 * dv2) + std::abs(du2 * dv1)));
+  if (zeroUv && !(flags & kFlat)) flags |= kZeroUv;
+  if (coincident) {
+    flags |= kCoincident;
+    return;
+  }
+  if (!zeroUv) {
+    const V3 uDirection = e1 * dv2 - e2 * dv1;  // det * dP/du
+    const V3 vDirection = e2 * du1 - e1 * du2;  // det * dP/dv
+    const double uLength = length(uDirection), vLength = length(vDirection);
+    const bool uUsable = uLength > kAreaZero * (length(e1) * std::abs(dv2) + length(e2) * std::abs(dv1));
+    const bool vUsable = vLength > kAreaZero * (length(e2) * std::abs(du1) + length(e1) * std::abs(du2));
+    if (uUsable && vUsable) {
+      const double sign = det > 0 ? 1.0 : -1.0;
+      orientation = det > 0 ? 1 : -1;
+      for (int i = 0; i < 3; ++i) {
+        frame[i] = static_cast<float>((&uDirection.x)[i] * (sign / uLength));
+        frame[3 + i] = static_cast<float>((&vDirection.x)[i] * (sign / vLength));
+      }
+      return;
+    }
+  }
+  flags |= kGroupWithAny;
+}
+
+// Strict order of triangles by value (rotation-free): the order non-manifold edges pair in.
+bool triangleBefore(const Arrays& a, std::size_t s, std::size_t t) {
+  auto sequence = [&](std::size_t tri) {
+    std::array<std::array<std::uint32_t, 8>, 3> keys;
+    for (int k = 0; k < 3; ++k) keys[k] = a.identityKey(a.indices[3 * tri + k]);
+    int first = 0;
+    for (int k = 1; k < 3; ++k) {
+      if (keys[k] < keys[first]) first = k;
+    }
+    return std::array<std::array<std::uint32_t, 8>, 3>{keys[first], keys[(first + 1) % 3], keys[(first + 2) % 3]};
   };
-  const Vec3 previous = projected(positions[(corner + 2) % 3] - positions[corner]);
-  const Vec3 next = projected(positions[(corner + 1) % 3] - positions[corner]);
-  if (previous.sqrnorm() == 0 || next.sqrnorm() == 0) return std::acos(0.0);
-  return std::atan2((previous % next).norm(), previous | next);
+  const auto ks = sequence(s), kt = sequence(t);
+  if (ks != kt) return ks < kt;
+  return s < t;  // exact duplicates: never both paired (see pairBucket)
+}
+
+inline void insertionSort(std::uint64_t* begin, std::uint64_t* end) {
+  if (end - begin > 24) {
+    std::sort(begin, end);
+    return;
+  }
+  for (std::uint64_t* i = begin + 1; i < end; ++i) {
+    const std::uint64_t value = *i;
+    std::uint64_t* j = i;
+    for (; j > begin && *(j - 1) > value; --j) *j = *(j - 1);
+    *j = value;
+  }
+}
+
+class Kernel {
+ public:
+  Kernel(WorkspaceData& ws, const MeshArrays& mesh, const CornerOutputs& outputs)
+      : ws_(ws),
+        a_{mesh.positions.data(), mesh.normals.data(), mesh.uvs.data(), mesh.indices.data()},
+        tangents_(outputs.tangents.data()),
+        vertexId_(ws.vertexId.data()),
+        start_(ws.bucketStart.data()),
+        corners_(ws.bucketCorners.data()) {}
+
+  void run(Report& report);
+
+ private:
+  std::uint32_t id(std::size_t corner) const { return vertexId_[a_.indices[corner]]; }
+  bool participates(std::size_t corner) const { return !(ws_.triangleFlags[corner / 3] & kCoincident); }
+  std::uint32_t localIndex(std::uint32_t bucket, std::uint32_t corner) const {
+    const std::uint32_t* begin = corners_ + start_[bucket];
+    return static_cast<std::uint32_t>(std::lower_bound(begin, corners_ + start_[bucket + 1], corner) - begin);
+  }
+
+  void evaluateTriangles(Report& report);
+  void pairBucket(std::uint32_t bucket, BucketScratch& scratch);
+  void pairNonManifold(const std::uint32_t* outs, std::size_t outCount, const std::uint32_t* ins, std::size_t inCount);
+  void resolveGroupWithAny();
+  V3 bucketNormal(std::uint32_t bucket, bool& invalid) const;
+  void groupBucket(std::uint32_t bucket, BucketScratch& scratch);
+  void inheritInBucket(std::uint32_t bucket, std::uint32_t corner, float w, bool anyW);
+  void fallbacks();
+  void writeCorner(std::size_t corner, V3 tangent, float w, FrameSource source, float weight) {
+    tangents_[4 * corner] = static_cast<float>(tangent.x);
+    tangents_[4 * corner + 1] = static_cast<float>(tangent.y);
+    tangents_[4 * corner + 2] = static_cast<float>(tangent.z);
+    tangents_[4 * corner + 3] = w;
+    ws_.cornerState[corner] = static_cast<std::uint8_t>((ws_.cornerState[corner] & ~(kSourceMask | kUndefined)) |
+                                                        static_cast<std::uint8_t>(source));
+    ws_.cornerWeight[corner] = weight;
+  }
+  void markUndefined(std::size_t corner, float w) {
+    tangents_[4 * corner + 3] = w;
+    ws_.cornerState[corner] |= kUndefined;
+    ws_.cornerWeight[corner] = 0;
+  }
+  bool defined(std::size_t corner) const {
+    const std::uint8_t s = ws_.cornerState[corner];
+    if (s & kUndefined) return false;
+    const auto source = static_cast<FrameSource>(s & kSourceMask);
+    return source == FrameSource::computed || source == FrameSource::inherited;
+  }
+  // Ranking of a candidate frame: heavier group first, then by value.
+  bool betterCandidate(std::size_t a, std::size_t b) const {
+    if (ws_.cornerWeight[a] != ws_.cornerWeight[b]) return ws_.cornerWeight[a] > ws_.cornerWeight[b];
+    std::uint32_t bitsA[4], bitsB[4];
+    std::memcpy(bitsA, &tangents_[4 * a], sizeof bitsA);
+    std::memcpy(bitsB, &tangents_[4 * b], sizeof bitsB);
+    return std::lexicographical_compare(bitsB, bitsB + 4, bitsA, bitsA + 4);
+  }
+
+  WorkspaceData& ws_;
+  Arrays a_;
+  float* tangents_;
+  const std::uint32_t* vertexId_;
+  const std::uint32_t* start_;
+  const std::uint32_t* corners_;
+};
+
+void Kernel::evaluateTriangles(Report& report) {
+  const std::size_t triangleCount = ws_.cornerCount / 3;
+  struct Counts {
+    std::uint64_t flat = 0, zeroUv = 0, nonFinite = 0;
+  };
+  tbb::combinable<Counts> counts;
+  forRange(ws_, triangleCount, 4096, [&](std::size_t begin, std::size_t end) {
+    Counts local;
+    for (std::size_t t = begin; t < end; ++t) {
+      std::uint8_t flags;
+      evaluateTriangle(a_, t, &ws_.triangleFrames[6 * t], ws_.orientation[t], flags);
+      ws_.triangleFlags[t] = flags;
+      local.flat += (flags & (kFlat | kNonFinite)) == kFlat;
+      local.zeroUv += (flags & kZeroUv) != 0;
+      local.nonFinite += (flags & kNonFinite) != 0;
+    }
+    Counts& total = counts.local();
+    total.flat += local.flat;
+    total.zeroUv += local.zeroUv;
+    total.nonFinite += local.nonFinite;
+  });
+  counts.combine_each([&](const Counts& c) {
+    report.degenerateTriangles += c.flat;
+    report.zeroUvAreaTriangles += c.zeroUv;
+    report.nonFiniteTriangles += c.nonFinite;
+  });
+}
+
+// Pairs the half-edges at one welded vertex: a corner's outgoing edge (to its next corner)
+// with the incoming edge of a corner whose previous corner has the same identity. Marks exact
+// duplicate triangles (same identities, same winding) as copies of the first of them.
+void Kernel::pairBucket(std::uint32_t bucket, BucketScratch& scratch) {
+  const std::uint32_t first = start_[bucket], count = start_[bucket + 1] - first;
+  const std::uint32_t* list = corners_ + first;
+  for (std::uint32_t i = 0; i < count; ++i) {
+    ws_.cornerState[list[i]] = 0;
+    ws_.cornerLink[list[i]] = kNone;
+  }
+  if (count < 2) return;
+  // keys: [0, n) outgoing (next id, corner), [n, 2n) incoming (previous id, corner).
+  scratch.keys.resize(2 * count);
+  std::uint64_t* outs = scratch.keys.data();
+  std::size_t n = 0;
+  for (std::uint32_t i = 0; i < count; ++i) {
+    const std::uint32_t c = list[i];
+    if (!participates(c)) continue;
+    outs[n++] = (std::uint64_t(id(nextCorner(c))) << 32) | c;
+  }
+  std::uint64_t* ins = outs + n;
+  for (std::size_t i = 0; i < n; ++i) {
+    const auto c = static_cast<std::uint32_t>(outs[i]);
+    ins[i] = (std::uint64_t(id(previousCorner(c))) << 32) | c;
+  }
+  insertionSort(outs, outs + n);
+  insertionSort(ins, ins + n);
+  // Duplicates: same next and same previous identity.
+  for (std::size_t i = 0; i < n;) {
+    std::size_t j = i + 1;
+    while (j < n && (outs[j] >> 32) == (outs[i] >> 32)) ++j;
+    for (std::size_t y = i + 1; y < j; ++y) {
+      const auto cy = static_cast<std::uint32_t>(outs[y]);
+      for (std::size_t x = i; x < y; ++x) {
+        const auto cx = static_cast<std::uint32_t>(outs[x]);
+        if (!(ws_.cornerState[cx] & kCopy) && id(previousCorner(cx)) == id(previousCorner(cy))) {
+          ws_.cornerState[cy] |= kCopy;
+          ws_.cornerLink[cy] = cx;
+          break;
+        }
+      }
+    }
+    i = j;
+  }
+  auto isCopy = [&](std::uint64_t key) { return (ws_.cornerState[static_cast<std::uint32_t>(key)] & kCopy) != 0; };
+  std::size_t o = 0, k = 0;
+  while (o < n && k < n) {
+    const std::uint64_t q = std::min(outs[o] >> 32, ins[k] >> 32);
+    std::size_t oEnd = o, kEnd = k;
+    while (oEnd < n && (outs[oEnd] >> 32) == q) ++oEnd;
+    while (kEnd < n && (ins[kEnd] >> 32) == q) ++kEnd;
+    std::size_t outCount = 0, inCount = 0;
+    std::uint32_t lastOut = kNone, lastIn = kNone;
+    for (std::size_t i = o; i < oEnd; ++i) {
+      if (!isCopy(outs[i])) ++outCount, lastOut = static_cast<std::uint32_t>(outs[i]);
+    }
+    for (std::size_t i = k; i < kEnd; ++i) {
+      if (!isCopy(ins[i])) ++inCount, lastIn = static_cast<std::uint32_t>(ins[i]);
+    }
+    if (outCount == 1 && inCount == 1) {
+      ws_.cornerLink[lastOut] = lastIn;
+    } else if (outCount > 0 && inCount > 0) {
+      scratch.items.clear();
+      for (std::size_t i = o; i < oEnd; ++i) {
+        if (!isCopy(outs[i])) scratch.items.push_back(static_cast<std::uint32_t>(outs[i]));
+      }
+      const std::size_t split = scratch.items.size();
+      for (std::size_t i = k; i < kEnd; ++i) {
+        if (!isCopy(ins[i])) scratch.items.push_back(static_cast<std::uint32_t>(ins[i]));
+      }
+      const std::uint32_t* items = scratch.items.data();
+      pairNonManifold(items, split, items + split, scratch.items.size() - split);
+    }
+    o = oEnd;
+    k = kEnd;
+  }
+}
+
+// The reference's greedy pairing of the half-edges of one edge, in value order of their
+// triangles: each unpaired one takes the first later unpaired one running the other way.
+void Kernel::pairNonManifold(const std::uint32_t* outs, std::size_t outCount, const std::uint32_t* ins, std::size_t inCount) {
+  struct HalfEdge {
+    std::uint32_t corner;
+    bool outgoing;
+    bool paired;
+  };
+  std::vector<HalfEdge> halfEdges;
+  halfEdges.reserve(outCount + inCount);
+  for (std::size_t i = 0; i < outCount; ++i) halfEdges.push_back({outs[i], true, false});
+  for (std::size_t i = 0; i < inCount; ++i) halfEdges.push_back({ins[i], false, false});
+  std::sort(halfEdges.begin(), halfEdges.end(),
+            [&](const HalfEdge& x, const HalfEdge& y) { return triangleBefore(a_, x.corner / 3, y.corner / 3); });
+  for (std::size_t i = 0; i < halfEdges.size(); ++i) {
+    if (halfEdges[i].outgoing) ws_.cornerState[halfEdges[i].corner] |= 32;  // on a non-manifold edge
+    if (halfEdges[i].paired) continue;
+    for (std::size_t j = i + 1; j < halfEdges.size(); ++j) {
+      if (halfEdges[j].paired || halfEdges[j].outgoing == halfEdges[i].outgoing) continue;
+      halfEdges[i].paired = halfEdges[j].paired = true;
+      const HalfEdge& out = halfEdges[i].outgoing ? halfEdges[i] : halfEdges[j];
+      const HalfEdge& in = halfEdges[i].outgoing ? halfEdges[j] : halfEdges[i];
+      ws_.cornerLink[out.corner] = in.corner;
+      break;
+    }
+  }
+}
+
+// Zero-UV triangles take the orientation most of their oriented neighbours have, layer by
+// layer outwards from the oriented triangles (ties +1). Those no edge path reaches (the
+// reference leaves them a default frame) then vote among the triangles that share one of their
+// corners' identities, and the edge layers go on from there.
+void Kernel::resolveGroupWithAny() {
+  const std::size_t triangleCount = ws_.cornerCount / 3;
+  auto open = [&](std::size_t t) {
+    return ws_.orientation[t] == 0 && (ws_.triangleFlags[t] & (kGroupWithAny | kCoincident)) == kGroupWithAny &&
+           !(ws_.cornerState[3 * t] & kCopy);
+  };
+  auto neighbour = [&](std::size_t t, int k) -> std::size_t {
+    const std::uint32_t link = ws_.cornerLink[3 * t + k];
+    return link == kNone ? kNone : link / 3;
+  };
+  std::vector<std::uint32_t> pending;
+  for (std::size_t t = 0; t < triangleCount; ++t) {
+    if (open(t)) pending.push_back(static_cast<std::uint32_t>(t));
+  }
+  if (pending.empty()) return;
+  // Decides every triangle of `candidates` that has a voter, all from one snapshot.
+  std::vector<std::int8_t> decided;
+  auto decide = [&](std::vector<std::uint32_t>& candidates, bool byVertex) {
+    std::sort(candidates.begin(), candidates.end());
+    candidates.erase(std::unique(candidates.begin(), candidates.end()), candidates.end());
+    decided.assign(candidates.size(), 0);
+    for (std::size_t i = 0; i < candidates.size(); ++i) {
+      const std::uint32_t t = candidates[i];
+      if (!open(t)) continue;
+      int votes = 0, voters = 0;
+      for (int k = 0; k < 3; ++k) {
+        if (!byVertex) {
+          const std::size_t other = neighbour(t, k);
+          if (other != kNone && ws_.orientation[other] != 0) votes += ws_.orientation[other], ++voters;
+          continue;
+        }
+        const std::uint32_t bucket = id(3 * t + k);
+        for (std::uint32_t j = start_[bucket]; j < start_[bucket + 1]; ++j) {
+          const std::int8_t o = ws_.orientation[corners_[j] / 3];
+          if (o != 0) votes += o, ++voters;
+        }
+      }
+      if (voters > 0) decided[i] = votes < 0 ? -1 : 1;
+    }
+    std::vector<std::uint32_t> done;
+    for (std::size_t i = 0; i < candidates.size(); ++i) {
+      if (decided[i] != 0) {
+        ws_.orientation[candidates[i]] = decided[i];
+        done.push_back(candidates[i]);
+      }
+    }
+    return done;
+  };
+  auto edgeLayers = [&](std::vector<std::uint32_t> layer) {
+    while (!layer.empty()) {
+      const std::vector<std::uint32_t> done = decide(layer, false);
+      layer.clear();
+      for (std::uint32_t t : done) {
+        for (int k = 0; k < 3; ++k) {
+          const std::size_t other = neighbour(t, k);
+          if (other != kNone && open(other)) layer.push_back(static_cast<std::uint32_t>(other));
+        }
+      }
+    }
+  };
+  edgeLayers(pending);
+  for (int round = 0; round < 64; ++round) {
+    std::erase_if(pending, [&](std::uint32_t t) { return !open(t); });
+    if (pending.empty()) break;
+    std::vector<std::uint32_t> candidates = pending;
+    const std::vector<std::uint32_t> done = decide(candidates, true);
+    if (done.empty()) break;
+    std::vector<std::uint32_t> layer;
+    for (std::uint32_t t : done) {
+      for (int k = 0; k < 3; ++k) {
+        const std::size_t other = neighbour(t, k);
+        if (other != kNone && open(other)) layer.push_back(static_cast<std::uint32_t>(other));
+      }
+    }
+    edgeLayers(std::move(layer));
+  }
+}
+
+// The unit normal of a welded vertex; a zero or non-finite one is replaced by the sum of its
+// triangles' unit normals (summed in value order), else +z.
+V3 Kernel::bucketNormal(std::uint32_t bucket, bool& invalid) const {
+  const std::uint32_t first = start_[bucket], last = start_[bucket + 1];
+  V3 n = a_.normal(a_.indices[corners_[first]]);
+  n = {n.x == 0 ? 0.0 : n.x, n.y == 0 ? 0.0 : n.y, n.z == 0 ? 0.0 : n.z};
+  const double len = length(n);
+  invalid = !(len > 0 && std::isfinite(len));
+  if (!invalid) return n * (1.0 / len);
+  std::vector<std::array<double, 3>> faceNormals;
+  for (std::uint32_t i = first; i < last; ++i) {
+    const std::size_t t = corners_[i] / 3;
+    if (ws_.triangleFlags[t] & (kCoincident | kNonFinite | kFlat)) continue;
+    const int f = firstCorner(a_, t);
+    const V3 p0 = a_.position(a_.indices[3 * t + f]), p1 = a_.position(a_.indices[3 * t + (f + 1) % 3]),
+             p2 = a_.position(a_.indices[3 * t + (f + 2) % 3]);
+    const V3 c = cross(p1 - p0, p2 - p0);
+    const double l = length(c);
+    if (l > 0 && std::isfinite(l)) faceNormals.push_back({c.x / l, c.y / l, c.z / l});
+  }
+  std::sort(faceNormals.begin(), faceNormals.end());
+  V3 sum;
+  for (const auto& f : faceNormals) sum = sum + V3{f[0], f[1], f[2]};
+  const double sumLength = length(sum);
+  if (sumLength > 1e-12 && std::isfinite(sumLength)) return sum * (1.0 / sumLength);
+  return {0, 0, 1};
+}
+
+inline bool orthonormalize(V3 sum, V3 n, V3& out) {
+  const double sumLength = length(sum);
+  if (!(sumLength > 0) || !std::isfinite(sumLength)) return false;
+  const V3 t = sum - n * dot(n, sum);
+  const double l = length(t);
+  if (!(l > 1e-12 * sumLength)) return false;
+  out = t * (1.0 / l);
+  return true;
+}
+
+inline V3 projectedUnit(V3 v, V3 n) {
+  const V3 p = v - n * dot(n, v);
+  const double l = length(p);
+  return l > 1e-30 ? p * (1.0 / l) : V3{};
+}
+
+// Groups of one welded vertex, their sums, and the frames of its corners.
+void Kernel::groupBucket(std::uint32_t bucket, BucketScratch& scratch) {
+  const std::uint32_t first = start_[bucket], count = start_[bucket + 1] - first;
+  if (count == 0) return;
+  const std::uint32_t* list = corners_ + first;
+  bool invalidNormal = false;
+  const V3 n = bucketNormal(bucket, invalidNormal);
+  if (invalidNormal) {
+    for (std::uint32_t i = 0; i < count; ++i) ws_.cornerState[list[i]] |= kInvalidNormal;
+  }
+
+  // Union-find over the bucket's corners through pairs of equal orientation.
+  scratch.parent.resize(count);
+  std::uint32_t* parent = scratch.parent.data();
+  for (std::uint32_t i = 0; i < count; ++i) parent[i] = i;
+  auto find = [&](std::uint32_t x) {
+    while (parent[x] != x) x = parent[x] = parent[parent[x]];
+    return x;
+  };
+  for (std::uint32_t i = 0; i < count; ++i) {
+    const std::uint32_t c = list[i];
+    if (!participates(c) || (ws_.cornerState[c] & kCopy)) continue;
+    const std::uint32_t d = ws_.cornerLink[c];
+    if (d == kNone || ws_.orientation[c / 3] != ws_.orientation[d / 3]) continue;
+    std::uint32_t x = find(i), y = find(localIndex(bucket, d));
+    if (x != y) parent[std::max(x, y)] = std::min(x, y);
+  }
+  // Members of each group, group by group: keys = (root, local index).
+  scratch.keys.clear();
+  for (std::uint32_t i = 0; i < count; ++i) {
+    const std::uint32_t c = list[i];
+    if (participates(c) && !(ws_.cornerState[c] & kCopy)) scratch.keys.push_back((std::uint64_t(find(i)) << 32) | i);
+  }
+  insertionSort(scratch.keys.data(), scratch.keys.data() + scratch.keys.size());
+  const std::size_t memberCount = scratch.keys.size();
+  auto member = [&](std::size_t m) { return static_cast<std::uint32_t>(scratch.keys[m]); };
+  auto rootOf = [&](std::size_t m) { return static_cast<std::uint32_t>(scratch.keys[m] >> 32); };
+
+  // Per contributing member: weighted tangent (3), unit tangent (3), unit bitangent (3), angle.
+  constexpr int kStride = 10;
+  for (std::size_t g = 0; g < memberCount;) {
+    std::size_t gEnd = g + 1;
+    while (gEnd < memberCount && rootOf(gEnd) == rootOf(g)) ++gEnd;
+    const std::int8_t orientation = ws_.orientation[list[member(g)] / 3];
+    const float w = orientation > 0 ? 1.0f : -1.0f;  // reference: fSign = +1 where the UV area is positive
+    scratch.values.clear();
+    scratch.items.clear();  // contributing members, local indices
+    double angleSum = 0;
+    for (std::size_t m = g; m < gEnd; ++m) {
+      const std::uint32_t c = list[member(m)];
+      const std::size_t t = c / 3;
+      if (ws_.triangleFlags[t] & kGroupWithAny) continue;
+      const float* frame = &ws_.triangleFrames[6 * t];
+      const V3 s = projectedUnit({frame[0], frame[1], frame[2]}, n);
+      const V3 b = projectedUnit({frame[3], frame[4], frame[5]}, n);
+      const V3 here = a_.position(a_.indices[c]);
+      const V3 toPrevious = projectedUnit(a_.position(a_.indices[previousCorner(c)]) - here, n);
+      const V3 toNext = projectedUnit(a_.position(a_.indices[nextCorner(c)]) - here, n);
+      double angle = std::acos(0.0);  // a zero edge counts as perpendicular, as in the reference
+      if (!(toPrevious == V3{}) && !(toNext == V3{})) angle = std::atan2(length(cross(toPrevious, toNext)), dot(toPrevious, toNext));
+      const double row[kStride] = {s.x * angle, s.y * angle, s.z * angle, s.x, s.y, s.z, b.x, b.y, b.z, angle};
+      scratch.values.insert(scratch.values.end(), row, row + kStride);
+      scratch.items.push_back(static_cast<std::uint32_t>(m));
+      angleSum += angle;
+    }
+    const std::size_t contributing = scratch.items.size();
+    // Sum in value order so that face order cannot change a bit.
+    std::vector<std::uint32_t> byValue;
+    std::uint32_t byValueSmall[32];
+    std::uint32_t* sorted = byValueSmall;
+    if (contributing > 32) {
+      byValue.resize(contributing);
+      sorted = byValue.data();
+    }
+    for (std::uint32_t i = 0; i < contributing; ++i) sorted[i] = i;
+    const double* values = scratch.values.data();
+    std::sort(sorted, sorted + contributing, [&](std::uint32_t x, std::uint32_t y) {
+      return std::lexicographical_compare(values + kStride * x, values + kStride * x + 3, values + kStride * y,
+                                          values + kStride * y + 3);
+    });
+    // Subgroups: any pair with opposite projected dP/du or dP/dv?
+    bool anyOpposite = false;
+    if (contributing > 1) {
+      V3 sumS, sumB;
+      for (std::size_t i = 0; i < contributing; ++i) {
+        sumS = sumS + V3{values[kStride * i + 3], values[kStride * i + 4], values[kStride * i + 5]};
+        sumB = sumB + V3{values[kStride * i + 6], values[kStride * i + 7], values[kStride * i + 8]};
+      }
+      bool halfSpace = true;  // every unit vector strictly on the side of the sum: no opposite pair
+      for (std::size_t i = 0; i < contributing && halfSpace; ++i) {
+        const V3 s{values[kStride * i + 3], values[kStride * i + 4], values[kStride * i + 5]};
+        const V3 b{values[kStride * i + 6], values[kStride * i + 7], values[kStride * i + 8]};
+        halfSpace = (s == V3{} || dot(s, sumS) > 1e-9) && (b == V3{} || dot(b, sumB) > 1e-9);
+      }
+      if (!halfSpace && contributing <= 4096) {
+        for (std::size_t i = 0; i < contributing && !anyOpposite; ++i) {
+          for (std::size_t j = i + 1; j < contributing && !anyOpposite; ++j) {
+            const double* x = values + kStride * i;
+            const double* y = values + kStride * j;
+            anyOpposite = x[3] * y[3] + x[4] * y[4] + x[5] * y[5] <= kOppositeCos ||
+                          x[6] * y[6] + x[7] * y[7] + x[8] * y[8] <= kOppositeCos;
+          }
+        }
+      }
+    }
+    auto sumOver = [&](std::size_t self) {  // self: a contributing index, or kNone for all
+      V3 sum;
+      for (std::size_t i = 0; i < contributing; ++i) {
+        const double* x = values + kStride * sorted[i];
+        if (self != kNone && sorted[i] != self) {
+          const double* y = values + kStride * self;
+          if (x[3] * y[3] + x[4] * y[4] + x[5] * y[5] <= kOppositeCos || x[6] * y[6] + x[7] * y[7] + x[8] * y[8] <= kOppositeCos)
+            continue;
+        }
+        sum = sum + V3{x[0], x[1], x[2]};
+      }
+      return sum;
+    };
+    const auto weight = static_cast<float>(angleSum);
+    V3 shared;
+    const bool sharedDefined = contributing > 0 && orthonormalize(sumOver(kNone), n, shared);
+    std::size_t nextContributing = 0;
+    for (std::size_t m = g; m < gEnd; ++m) {
+      const std::uint32_t c = list[member(m)];
+      std::size_t self = kNone;
+      if (nextContributing < contributing && scratch.items[nextContributing] == m) self = nextContributing++;
+      if (contributing == 0) {
+        markUndefined(c, orientation != 0 ? w : -1.0f);
+      } else if (!anyOpposite || self == kNone) {
+        if (sharedDefined) writeCorner(c, shared, w, FrameSource::computed, weight);
+        else markUndefined(c, w);
+      } else {
+        V3 own;
+        if (orthonormalize(sumOver(self), n, own)) writeCorner(c, own, w, FrameSource::computed, weight);
+        else markUndefined(c, w);
+      }
+    }
+    g = gEnd;
+  }
+
+  // Coincident corners copy the best frame of their identity (the reference: the first).
+  for (std::uint32_t i = 0; i < count; ++i) {
+    const std::uint32_t c = list[i];
+    if (!participates(c)) inheritInBucket(bucket, c, 0, true);
+  }
+}
+
+// Gives `corner` the best computed frame of its bucket (with w, unless anyW); else undefined.
+void Kernel::inheritInBucket(std::uint32_t bucket, std::uint32_t corner, float w, bool anyW) {
+  std::uint32_t best = kNone;
+  for (std::uint32_t i = start_[bucket]; i < start_[bucket + 1]; ++i) {
+    const std::uint32_t c = corners_[i];
+    if (!participates(c) || (ws_.cornerState[c] & kCopy) || (ws_.cornerState[c] & kUndefined)) continue;
+    if (static_cast<FrameSource>(ws_.cornerState[c] & kSourceMask) != FrameSource::computed) continue;
+    if (!anyW && tangents_[4 * c + 3] != w) continue;
+    if (best == kNone || betterCandidate(c, best)) best = c;
+  }
+  if (best == kNone) {
+    markUndefined(corner, anyW ? -1.0f : w);
+    return;
+  }
+  const float* from = &tangents_[4 * best];
+  writeCorner(corner, {from[0], from[1], from[2]}, from[3], FrameSource::inherited, ws_.cornerWeight[best]);
+}
+
+// The rare corners without a frame of their own, after every group is done: one w per
+// coincident triangle, then frames borrowed from the vertex, the triangle or its 1-ring.
+void Kernel::fallbacks() {
+  const std::size_t triangleCount = ws_.cornerCount / 3;
+  std::vector<std::uint32_t> coincident, undefined;
+  for (std::size_t t = 0; t < triangleCount; ++t) {
+    if (ws_.triangleFlags[t] & kCoincident) coincident.push_back(static_cast<std::uint32_t>(t));
+  }
+  for (std::uint32_t t : coincident) {
+    int plus = 0, minus = 0;
+    for (int k = 0; k < 3; ++k) {
+      const std::size_t c = 3 * t + k;
+      if (ws_.cornerState[c] & kUndefined) continue;
+      (tangents_[4 * c + 3] > 0 ? plus : minus) += 1;
+    }
+    const float w = plus + minus == 0 ? -1.0f : (minus > plus ? -1.0f : 1.0f);
+    for (int k = 0; k < 3; ++k) {
+      const std::size_t c = 3 * t + k;
+      if (ws_.cornerState[c] & kUndefined) tangents_[4 * c + 3] = w;
+      else if (tangents_[4 * c + 3] != w) inheritInBucket(id(c), static_cast<std::uint32_t>(c), w, false);
+    }
+  }
+  for (std::size_t c = 0; c < ws_.cornerCount; ++c) {
+    if ((ws_.cornerState[c] & kUndefined) && !(ws_.cornerState[c] & kCopy)) undefined.push_back(static_cast<std::uint32_t>(c));
+  }
+  // Each borrows only from frames that were there before this loop: decide all, then write.
+  struct Decision {
+    std::uint32_t corner;
+    V3 tangent;
+    FrameSource source;
+  };
+  std::vector<Decision> decisions;
+  decisions.reserve(undefined.size());
+  for (std::uint32_t c : undefined) {
+    const float w = tangents_[4 * c + 3];
+    const std::uint32_t bucket = id(c);
+    bool invalid;
+    const V3 n = bucketNormal(bucket, invalid);
+    const bool isCoincident = (ws_.triangleFlags[c / 3] & kCoincident) != 0;
+    // 1. Same identity, same w.
+    std::uint32_t best = kNone;
+    for (std::uint32_t i = start_[bucket]; i < start_[bucket + 1]; ++i) {
+      const std::uint32_t d = corners_[i];
+      if (d != c && defined(d) && !(ws_.cornerState[d] & kCopy) && tangents_[4 * d + 3] == w && (best == kNone || betterCandidate(d, best))) best = d;
+    }
+    if (best != kNone) {
+      const float* from = &tangents_[4 * best];
+      decisions.push_back({c, {from[0], from[1], from[2]}, isCoincident ? FrameSource::inherited : FrameSource::neighbour});
+      continue;
+    }
+    // 2. The triangle's other corners, then 3. the corners at its other two vertices.
+    for (int pass = 0; pass < 2 && best == kNone; ++pass) {
+      for (int k = 1; k < 3; ++k) {
+        const std::size_t other = 3 * (c / 3) + (c % 3 + k) % 3;
+        if (pass == 0) {
+          if (defined(other) && !(ws_.cornerState[other] & kCopy) && tangents_[4 * other + 3] == w && (best == kNone || betterCandidate(other, best)))
+            best = static_cast<std::uint32_t>(other);
+          continue;
+        }
+        const std::uint32_t otherBucket = id(other);
+        for (std::uint32_t i = start_[otherBucket]; i < start_[otherBucket + 1]; ++i) {
+          const std::uint32_t d = corners_[i];
+          if (defined(d) && !(ws_.cornerState[d] & kCopy) && tangents_[4 * d + 3] == w && (best == kNone || betterCandidate(d, best))) best = d;
+        }
+      }
+    }
+    V3 tangent;
+    if (best != kNone && orthonormalize({tangents_[4 * best], tangents_[4 * best + 1], tangents_[4 * best + 2]}, n, tangent)) {
+      decisions.push_back({c, tangent, FrameSource::neighbour});
+      continue;
+    }
+    // 4. A fixed unit vector perpendicular to the normal: the axis least aligned with it.
+    const double abs[3] = {std::abs(n.x), std::abs(n.y), std::abs(n.z)};
+    const int axis = abs[0] <= abs[1] && abs[0] <= abs[2] ? 0 : (abs[1] <= abs[2] ? 1 : 2);
+    V3 unit;
+    (&unit.x)[axis] = 1;
+    orthonormalize(unit, n, tangent);
+    decisions.push_back({c, tangent, FrameSource::fixed});
+  }
+  for (const Decision& d : decisions) writeCorner(d.corner, d.tangent, tangents_[4 * d.corner + 3], d.source, 0);
+}
+
+void Kernel::run(Report& report) {
+  const std::size_t cornerCount = ws_.cornerCount, triangleCount = cornerCount / 3;
+  ensureSize(ws_.triangleFrames, 6 * triangleCount);
+  ensureSize(ws_.orientation, triangleCount);
+  ensureSize(ws_.triangleFlags, triangleCount);
+  ensureSize(ws_.cornerLink, cornerCount);
+  ensureSize(ws_.cornerState, cornerCount);
+  ensureSize(ws_.cornerWeight, cornerCount);
+  evaluateTriangles(report);
+
+  const std::size_t bucketCount = ws_.vertexCount;
+  forRange(ws_, bucketCount, 1024, [&](std::size_t begin, std::size_t end) {
+    BucketScratch& scratch = ws_.scratch.local();
+    for (std::size_t b = begin; b < end; ++b) pairBucket(static_cast<std::uint32_t>(b), scratch);
+  });
+  {
+    tbb::combinable<std::uint64_t> nonManifold;
+    forRange(ws_, triangleCount, 1 << 14, [&](std::size_t begin, std::size_t end) {
+      std::uint64_t local = 0;
+      for (std::size_t t = begin; t < end; ++t)
+        local += ((ws_.cornerState[3 * t] | ws_.cornerState[3 * t + 1] | ws_.cornerState[3 * t + 2]) & 32) != 0;
+      nonManifold.local() += local;
+    });
+    report.nonManifoldFaces = nonManifold.combine(std::plus<>());
+  }
+  resolveGroupWithAny();
+  forRange(ws_, bucketCount, 1024, [&](std::size_t begin, std::size_t end) {
+    BucketScratch& scratch = ws_.scratch.local();
+    for (std::size_t b = begin; b < end; ++b) groupBucket(static_cast<std::uint32_t>(b), scratch);
+  });
+  fallbacks();
 }
 
 }  // namespace
 
-Report mikktspaceTangents(CornerMesh& cornerMesh, const Options& options, std::span<FrameSource> sources) {
-  TriMesh& mesh = cornerMesh.mesh;
-  const std::size_t cornerCount = cornerMesh.cornerHalfedge.size();
-  const std::size_t triangleCount = cornerCount / 3;
-
-  Report report;
+void mikktspaceOnBuckets(WorkspaceData& ws, const MeshArrays& mesh, const CornerOutputs& outputs, Report& report) {
   report.method = "mikktspace";
   report.weighting = "angle";
-  report.triangles = triangleCount;
-  report.corners = cornerCount;
-  report.nonManifoldFaces = cornerMesh.nonManifoldFaces;
-
-  std::vector<Contribution> cornerContribution(cornerCount, Contribution{0, Vec3(0, 0, 0), Vec3(0, 0, 0)});
-  const TriangleData data = evaluateTriangles(
-      cornerMesh, options, report,
-      [&](std::size_t corner, int k, const std::array<Vec3, 3>& positions, const TriangleTangent& triangle, const Vec3& n) {
-        if (triangle.orientation == 0) return;  // may group with anything; adds nothing
-        Vec3 tangent = triangle.tangent - n * (n | triangle.tangent);
-        Vec3 bitangent = triangle.bitangent - n * (n | triangle.bitangent);
-        const double tangentLength = tangent.norm(), bitangentLength = bitangent.norm();
-        if (tangentLength > 0) tangent /= tangentLength;
-        if (bitangentLength > 0) bitangent /= bitangentLength;
-        const double angle = projectedCornerAngle(positions, k, n);
-        cornerContribution[corner] = {0, tangent * angle, bitangent * angle};
-      });
-  const std::vector<TriangleTangent>& triangles = data.triangles;
-  const std::vector<Vec3>& cornerNormals = data.cornerNormals;
-
-  // Neighbours across an edge: both ends with the same normal and UV on both sides.
-  auto sameCorner = [&](OpenMesh::HalfedgeHandle a, OpenMesh::HalfedgeHandle b) {
-    return mesh.normal(a) == mesh.normal(b) && mesh.texcoord2D(a) == mesh.texcoord2D(b);
-  };
-  // For the corner at halfedge h (pointing to v), the corners of the neighbour across the edge
-  // arriving at v: {corner at v, corner at the edge's other end} in both faces.
-  auto neighbourAcross = [&](OpenMesh::HalfedgeHandle h, std::uint32_t (&pairs)[2][2]) {
-    const auto opposite = mesh.opposite_halfedge_handle(h);
-    if (mesh.is_boundary(opposite)) return false;
-    const auto oppositeAtV = mesh.prev_halfedge_handle(opposite);
-    const auto atU = mesh.prev_halfedge_handle(h);
-    if (!sameCorner(h, oppositeAtV) || !sameCorner(atU, opposite)) return false;
-    const auto& corner = cornerMesh.halfedgeCorner;
-    pairs[0][0] = corner[h.idx()];
-    pairs[0][1] = corner[oppositeAtV.idx()];
-    pairs[1][0] = corner[atU.idx()];
-    pairs[1][1] = corner[opposite.idx()];
-    return true;
-  };
-
-  // The neighbour across each corner's incoming edge, looked up once (in parallel): the
-  // corner of the neighbouring face at the same vertex and the two corners at the edge's far
-  // end (this face's, then the neighbour's); kNone when there is no such neighbour.
-  constexpr std::uint32_t kNone = ~std::uint32_t(0);
-  std::vector<std::array<std::uint32_t, 3>> across(cornerCount, {kNone, kNone, kNone});
-  parallelFor(cornerCount, options.threads, [&](std::size_t begin, std::size_t end) {
-    std::uint32_t pairs[2][2];
-    for (std::size_t corner = begin; corner < end; ++corner) {
-      if (neighbourAcross(cornerMesh.cornerHalfedge[corner], pairs)) across[corner] = {pairs[0][1], pairs[1][0], pairs[1][1]};
-    }
-  });
-
-  // Orientation of each triangle; zero-UV-area ones take the majority of their neighbours',
-  // round by round so that face order does not matter, ties going to +1.
-  std::vector<std::int8_t> orientation(triangleCount);
-  for (std::size_t t = 0; t < triangleCount; ++t) orientation[t] = static_cast<std::int8_t>(triangles[t].orientation);
-  std::vector<std::uint32_t> open;
-  for (std::size_t t = 0; t < triangleCount; ++t) {
-    if (orientation[t] == 0 && !triangles[t].coincident) open.push_back(static_cast<std::uint32_t>(t));
-  }
-  while (!open.empty()) {
-    std::vector<std::pair<std::uint32_t, int>> decided;
-    bool anyTie = false;
-    for (std::uint32_t t : open) {
-      int votes = 0, voters = 0;
-      for (int k = 0; k < 3; ++k) {
-        const std::uint32_t neighbour = across[3 * t + k][0];
-        if (neighbour == kNone) continue;
-        const int other = orientation[neighbour / 3];
-        votes += other;
-        voters += other != 0;
-      }
-      if (votes != 0) decided.emplace_back(t, votes > 0 ? 1 : -1);
-      else anyTie = anyTie || voters > 0;
-    }
-    if (decided.empty()) {
-      if (!anyTie) break;  // the rest touch no oriented triangle: the reference groups them nowhere
-      for (std::uint32_t t : open) {
-        for (int k = 0; k < 3; ++k) {
-          const std::uint32_t neighbour = across[3 * t + k][0];
-          if (neighbour != kNone && orientation[neighbour / 3] != 0) decided.emplace_back(t, 1);
-        }
-      }
-    }
-    for (auto [t, sign] : decided) orientation[t] = static_cast<std::int8_t>(sign);
-    std::erase_if(open, [&](std::uint32_t t) { return orientation[t] != 0; });
-  }
-
-  // Groups: corners joined across neighbour edges between triangles of equal orientation.
-  UnionFind components(cornerCount);
-  for (std::size_t corner = 0; corner < cornerCount; ++corner) {
-    const std::size_t t = corner / 3;
-    const auto& [neighbour, farHere, farThere] = across[corner];
-    if (orientation[t] == 0 || neighbour == kNone || orientation[neighbour / 3] != orientation[t]) continue;
-    components.unite(static_cast<std::uint32_t>(corner), neighbour);
-    components.unite(farHere, farThere);
-  }
-
-  std::vector<Group> groups;
-  std::vector<std::uint32_t> cornerGroup(cornerCount);
-  std::vector<std::uint32_t> rootGroup(cornerCount, ~0u);
-  for (std::size_t corner = 0; corner < cornerCount; ++corner) {
-    const std::uint32_t root = components.find(static_cast<std::uint32_t>(corner));
-    if (rootGroup[root] == ~0u) {
-      Group group;
-      group.key = makeGroupKey(cornerMesh, corner, cornerNormals[corner], orientation[corner / 3], root + 1);
-      group.normal = cornerNormals[corner];
-      group.mayInherit = triangles[corner / 3].coincident;
-      rootGroup[root] = static_cast<std::uint32_t>(groups.size());
-      groups.push_back(group);
-    }
-    cornerGroup[corner] = rootGroup[root];
-  }
-
-  // The contributing corners, compacted in place (no second per-corner array).
-  std::size_t kept = 0;
-  for (std::size_t corner = 0; corner < cornerCount; ++corner) {
-    if (triangles[corner / 3].orientation == 0) continue;
-    cornerContribution[kept] = cornerContribution[corner];
-    cornerContribution[kept].group = cornerGroup[corner];
-    ++kept;
-  }
-  cornerContribution.resize(kept);
-  sumInValueOrder(cornerContribution, groups);
-  parallelFor(groups.size(), options.threads, [&](std::size_t begin, std::size_t end) {
-    for (std::size_t g = begin; g < end; ++g) {
-      Group& group = groups[g];
-      if (group.key.orientation == 0 || !orthonormalize(group.tangentSum, group.normal, group.tangent)) continue;
-      group.w = group.key.orientation;
-      group.defined = true;
-    }
-  });
-  finishCorners(cornerMesh, groups, cornerGroup, options, report, sources);
-  return report;
+  report.triangles = ws.cornerCount / 3;
+  report.corners = ws.cornerCount;
+  Kernel(ws, mesh, outputs).run(report);
 }
 
 }  // namespace tangent::detail

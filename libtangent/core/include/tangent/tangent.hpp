@@ -74,7 +74,7 @@ struct Report {
   std::uint64_t mirroredCorners = 0;        // corners whose output w is -1
   std::uint64_t splitVertices = 0;          // extra vertices needed: corners of one input
                                             // vertex that got different frames
-  std::uint64_t nonManifoldFaces = 0;       // faces OpenMesh refused; kept on own vertices
+  std::uint64_t nonManifoldFaces = 0;       // faces on an edge that more than two faces share
   std::uint64_t invalidNormals = 0;         // corners with zero/non-finite normal (replaced)
   std::uint64_t inheritedCorners = 0;       // FrameSource::inherited
   std::uint64_t fallbackFromNeighbours = 0; // FrameSource::neighbour

@@ -1,0 +1,348 @@
+// The phases every method shares: argument checks, welding by value, corner buckets, and
+// the output pass (duplicates, w convention, counts, vertex split).
+#include "workspace.hpp"
+
+#include <tbb/combinable.h>
+
+#include <algorithm>
+#include <atomic>
+#include <bit>
+#include <cstring>
+#include <stdexcept>
+#include <string>
+
+namespace tangent {
+namespace detail {
+namespace {
+
+inline std::uint32_t canonicalBits(float x) { return std::bit_cast<std::uint32_t>(x == 0.0f ? 0.0f : x); }
+
+std::uint64_t vertexHash(const MeshArrays& mesh, std::size_t v) {
+  std::uint64_t h = 0x9E3779B97F4A7C15ull;
+  auto mix = [&h](float x) {
+    h = (h ^ canonicalBits(x)) * 0xFF51AFD7ED558CCDull;
+    h ^= h >> 31;
+  };
+  for (int i = 0; i < 3; ++i) mix(mesh.positions[3 * v + i]);
+  for (int i = 0; i < 3; ++i) mix(mesh.normals[3 * v + i]);
+  mix(mesh.uvs[2 * v]);
+  mix(mesh.uvs[2 * v + 1]);
+  return h ^ (h >> 29);
+}
+
+// The reference's identity of a corner: every value equal as floats (+0 == -0, NaN != NaN).
+bool sameVertex(const MeshArrays& mesh, std::size_t a, std::size_t b) {
+  for (int i = 0; i < 3; ++i) {
+    if (mesh.positions[3 * a + i] != mesh.positions[3 * b + i] || mesh.normals[3 * a + i] != mesh.normals[3 * b + i])
+      return false;
+  }
+  return mesh.uvs[2 * a] == mesh.uvs[2 * b] && mesh.uvs[2 * a + 1] == mesh.uvs[2 * b + 1];
+}
+
+void sortSmall(std::uint32_t* begin, std::uint32_t* end) {
+  if (end - begin <= 16) {
+    for (std::uint32_t* i = begin + 1; i < end; ++i) {
+      const std::uint32_t value = *i;
+      std::uint32_t* j = i;
+      for (; j > begin && *(j - 1) > value; --j) *j = *(j - 1);
+      *j = value;
+    }
+  } else {
+    std::sort(begin, end);
+  }
+}
+
+}  // namespace
+
+std::size_t WorkspaceData::bytes() const {
+  auto size = [](const auto& v) { return v.capacity() * sizeof(v[0]); };
+  return size(table) + size(vertexId) + size(bucketStart) + size(bucketCorners) + size(triangleFrames) +
+         size(orientation) + size(triangleFlags) + size(cornerLink) + size(cornerState) + size(cornerWeight) +
+         size(bucketExtra);
+}
+
+void checkArrays(const MeshArrays& mesh, const CornerOutputs& outputs) {
+  auto fail = [](const std::string& what) { throw std::invalid_argument(what); };
+  if (mesh.positions.size() % 3 != 0) fail("positions: size " + std::to_string(mesh.positions.size()) + " is not a multiple of 3");
+  const std::size_t vertexCount = mesh.positions.size() / 3;
+  if (vertexCount >= kNone) fail("positions: more than 2^32 - 2 vertices");
+  if (mesh.normals.size() != vertexCount * 3)
+    fail("normals: expected " + std::to_string(vertexCount * 3) + " floats, got " + std::to_string(mesh.normals.size()));
+  if (mesh.uvs.size() != vertexCount * 2)
+    fail("uvs: expected " + std::to_string(vertexCount * 2) + " floats, got " + std::to_string(mesh.uvs.size()));
+  if (mesh.indices.size() % 3 != 0) fail("indices: size " + std::to_string(mesh.indices.size()) + " is not a multiple of 3");
+  const std::size_t cornerCount = mesh.indices.size();
+  if (cornerCount >= kNone) fail("indices: more than 2^32 - 2 corners");
+  if (outputs.tangents.size() != cornerCount * 4)
+    fail("tangents: expected " + std::to_string(cornerCount * 4) + " floats (4 per corner), got " +
+         std::to_string(outputs.tangents.size()));
+  if (!outputs.sources.empty() && outputs.sources.size() != cornerCount)
+    fail("sources: expected " + std::to_string(cornerCount) + " entries (one per corner), got " +
+         std::to_string(outputs.sources.size()));
+  if (!outputs.cornerVertex.empty() && outputs.cornerVertex.size() != cornerCount)
+    fail("cornerVertex: expected " + std::to_string(cornerCount) + " entries (one per corner), got " +
+         std::to_string(outputs.cornerVertex.size()));
+  const std::uint32_t* indices = mesh.indices.data();
+  for (std::size_t i = 0; i < cornerCount; ++i) {
+    if (indices[i] >= vertexCount)
+      fail("indices[" + std::to_string(i) + "] = " + std::to_string(indices[i]) + " is out of range (vertex count " +
+           std::to_string(vertexCount) + ")");
+  }
+}
+
+void weldAndBucket(WorkspaceData& ws, const MeshArrays& mesh) {
+  const std::size_t vertexCount = mesh.positions.size() / 3;
+  const std::size_t cornerCount = mesh.indices.size();
+  ws.vertexCount = vertexCount;
+  ws.cornerCount = cornerCount;
+
+  // Weld: an open-addressing table of vertex + 1; the smallest vertex of equal values wins.
+  std::size_t tableSize = 16;
+  while (tableSize < 2 * vertexCount) tableSize *= 2;
+  const std::size_t mask = tableSize - 1;
+  ensureSize(ws.table, tableSize);
+  ensureSize(ws.vertexId, vertexCount);
+  std::uint32_t* table = ws.table.data();
+  std::uint32_t* vertexId = ws.vertexId.data();
+  forRange(ws, tableSize, 1 << 16, [&](std::size_t begin, std::size_t end) { std::fill(table + begin, table + end, 0u); });
+  if (ws.threads <= 1) {
+    for (std::size_t v = 0; v < vertexCount; ++v) {
+      for (std::size_t slot = vertexHash(mesh, v) & mask;; slot = (slot + 1) & mask) {
+        if (table[slot] == 0) {
+          table[slot] = static_cast<std::uint32_t>(v + 1);
+          vertexId[v] = static_cast<std::uint32_t>(v);
+          break;
+        }
+        if (sameVertex(mesh, table[slot] - 1, v)) {
+          vertexId[v] = table[slot] - 1;
+          break;
+        }
+      }
+    }
+  } else {
+    forRange(ws, vertexCount, 4096, [&](std::size_t begin, std::size_t end) {
+      for (std::size_t v = begin; v < end; ++v) {
+        const auto mine = static_cast<std::uint32_t>(v + 1);
+        for (std::size_t slot = vertexHash(mesh, v) & mask;; slot = (slot + 1) & mask) {
+          std::atomic_ref<std::uint32_t> cell(table[slot]);
+          std::uint32_t current = cell.load(std::memory_order_relaxed);
+          bool done = false;
+          while (!done) {
+            if (current == 0) {
+              if (cell.compare_exchange_weak(current, mine, std::memory_order_relaxed)) done = true;
+            } else if (sameVertex(mesh, current - 1, v)) {
+              if (current <= mine || cell.compare_exchange_weak(current, mine, std::memory_order_relaxed)) done = true;
+            } else {
+              break;  // another value: probe on
+            }
+          }
+          if (done) break;
+        }
+      }
+    });
+    forRange(ws, vertexCount, 4096, [&](std::size_t begin, std::size_t end) {
+      for (std::size_t v = begin; v < end; ++v) {
+        for (std::size_t slot = vertexHash(mesh, v) & mask;; slot = (slot + 1) & mask) {
+          const std::uint32_t entry = std::atomic_ref<std::uint32_t>(table[slot]).load(std::memory_order_relaxed);
+          if (entry == v + 1 || sameVertex(mesh, entry - 1, v)) {
+            vertexId[v] = entry - 1;
+            break;
+          }
+        }
+      }
+    });
+  }
+
+  // Buckets: a counting sort of the corners by welded id.
+  ensureSize(ws.bucketStart, vertexCount + 1);
+  ensureSize(ws.bucketCorners, cornerCount);
+  ensureSize(ws.bucketExtra, vertexCount + 1);
+  std::uint32_t* start = ws.bucketStart.data();
+  std::uint32_t* cursor = ws.bucketExtra.data();
+  std::uint32_t* corners = ws.bucketCorners.data();
+  const std::uint32_t* indices = mesh.indices.data();
+  forRange(ws, vertexCount + 1, 1 << 16, [&](std::size_t begin, std::size_t end) { std::fill(start + begin, start + end, 0u); });
+  if (ws.threads <= 1) {
+    for (std::size_t c = 0; c < cornerCount; ++c) ++start[vertexId[indices[c]] + 1];
+  } else {
+    forRange(ws, cornerCount, 1 << 14, [&](std::size_t begin, std::size_t end) {
+      for (std::size_t c = begin; c < end; ++c)
+        std::atomic_ref<std::uint32_t>(start[vertexId[indices[c]] + 1]).fetch_add(1, std::memory_order_relaxed);
+    });
+  }
+  for (std::size_t v = 0; v < vertexCount; ++v) start[v + 1] += start[v];
+  std::memcpy(cursor, start, vertexCount * sizeof(std::uint32_t));
+  if (ws.threads <= 1) {
+    for (std::size_t c = 0; c < cornerCount; ++c) corners[cursor[vertexId[indices[c]]]++] = static_cast<std::uint32_t>(c);
+  } else {
+    forRange(ws, cornerCount, 1 << 14, [&](std::size_t begin, std::size_t end) {
+      for (std::size_t c = begin; c < end; ++c) {
+        const std::uint32_t at = std::atomic_ref<std::uint32_t>(cursor[vertexId[indices[c]]]).fetch_add(1, std::memory_order_relaxed);
+        corners[at] = static_cast<std::uint32_t>(c);
+      }
+    });
+    // Each bucket in corner order, as the one-thread fill leaves it.
+    forRange(ws, vertexCount, 4096, [&](std::size_t begin, std::size_t end) {
+      for (std::size_t v = begin; v < end; ++v) {
+        if (start[v + 1] - start[v] > 1) sortSmall(corners + start[v], corners + start[v + 1]);
+      }
+    });
+  }
+}
+
+namespace {
+
+struct Counts {
+  std::uint64_t mirrored = 0, inherited = 0, neighbour = 0, fixed = 0, invalidNormals = 0;
+  void add(const Counts& o) {
+    mirrored += o.mirrored;
+    inherited += o.inherited;
+    neighbour += o.neighbour;
+    fixed += o.fixed;
+    invalidNormals += o.invalidNormals;
+  }
+};
+
+// Sort key of a corner in the split: input vertex, then tangent bits, then corner.
+struct SplitEntry {
+  std::uint32_t vertex;
+  std::uint32_t bits[4];
+  std::uint32_t corner;
+  bool operator<(const SplitEntry& o) const {
+    if (vertex != o.vertex) return vertex < o.vertex;
+    const int c = std::memcmp(bits, o.bits, sizeof bits);
+    if (c != 0) return c < 0;
+    return corner < o.corner;
+  }
+  bool sameTangent(const SplitEntry& o) const { return vertex == o.vertex && std::memcmp(bits, o.bits, sizeof bits) == 0; }
+};
+
+}  // namespace
+
+void finishOutputs(WorkspaceData& ws, const MeshArrays& mesh, const CornerOutputs& outputs, const Options& options,
+                   Report& report) {
+  const std::size_t cornerCount = ws.cornerCount, vertexCount = ws.vertexCount;
+  float* tangents = outputs.tangents.data();
+  std::uint8_t* state = ws.cornerState.data();
+  const std::uint32_t* link = ws.cornerLink.data();
+  const float wSign = options.uvOrigin == UvOrigin::topLeft ? -1.0f : 1.0f;
+
+  // Duplicates copy their original (never itself a copy); then w convention and counts.
+  forRange(ws, cornerCount, 1 << 14, [&](std::size_t begin, std::size_t end) {
+    for (std::size_t c = begin; c < end; ++c) {
+      if (!(state[c] & kCopy)) continue;
+      const std::uint32_t original = link[c];
+      std::memcpy(&tangents[4 * c], &tangents[4 * original], 4 * sizeof(float));
+      state[c] = static_cast<std::uint8_t>((state[c] & ~kSourceMask) | (state[original] & kSourceMask));
+    }
+  });
+  tbb::combinable<Counts> counts;
+  forRange(ws, cornerCount, 1 << 14, [&](std::size_t begin, std::size_t end) {
+    Counts local;
+    for (std::size_t c = begin; c < end; ++c) {
+      const std::uint8_t s = state[c];
+      tangents[4 * c + 3] *= wSign;
+      local.mirrored += tangents[4 * c + 3] < 0;
+      switch (static_cast<FrameSource>(s & kSourceMask)) {
+        case FrameSource::computed: break;
+        case FrameSource::inherited: ++local.inherited; break;
+        case FrameSource::neighbour: ++local.neighbour; break;
+        case FrameSource::fixed: ++local.fixed; break;
+      }
+      local.invalidNormals += (s & kInvalidNormal) != 0;
+      if (!outputs.sources.empty()) outputs.sources[c] = static_cast<FrameSource>(s & kSourceMask);
+    }
+    counts.local().add(local);
+  });
+  Counts total;
+  counts.combine_each([&](const Counts& c) { total.add(c); });
+  report.mirroredCorners = total.mirrored;
+  report.inheritedCorners = total.inherited;
+  report.fallbackFromNeighbours = total.neighbour;
+  report.fallbackFixed = total.fixed;
+  report.invalidNormals = total.invalidNormals;
+
+  // Vertex split, bucket by bucket: the tangent of a vertex's first corner keeps the vertex,
+  // each other distinct tangent is one extra vertex.
+  const std::uint32_t* start = ws.bucketStart.data();
+  const std::uint32_t* corners = ws.bucketCorners.data();
+  const std::uint32_t* indices = mesh.indices.data();
+  std::uint32_t* extra = ws.bucketExtra.data();
+  const bool wantVertices = !outputs.cornerVertex.empty();
+  std::uint32_t* cornerVertex = wantVertices ? outputs.cornerVertex.data() : nullptr;
+  constexpr std::uint32_t kExtraFlag = 0x80000000u;
+  forRange(ws, vertexCount, 2048, [&](std::size_t begin, std::size_t end) {
+    std::vector<SplitEntry> entries;
+    for (std::size_t b = begin; b < end; ++b) {
+      const std::uint32_t first = start[b], last = start[b + 1];
+      extra[b] = 0;
+      if (last - first == 0) continue;
+      if (last - first == 1) {
+        if (wantVertices) cornerVertex[corners[first]] = indices[corners[first]];
+        continue;
+      }
+      entries.clear();
+      for (std::uint32_t i = first; i < last; ++i) {
+        const std::uint32_t c = corners[i];
+        SplitEntry e;
+        e.vertex = indices[c];
+        std::memcpy(e.bits, &tangents[4 * c], sizeof e.bits);
+        for (auto& bit : e.bits) bit = bit == 0x80000000u ? 0u : bit;  // -0 and +0 alike
+        e.corner = c;
+        entries.push_back(e);
+      }
+      std::sort(entries.begin(), entries.end());
+      std::uint32_t extras = 0;
+      for (std::size_t i = 0; i < entries.size();) {
+        // One input vertex: find the tangent of its first corner.
+        std::size_t j = i;
+        std::uint32_t firstCorner = entries[i].corner;
+        std::size_t firstAt = i;
+        while (j < entries.size() && entries[j].vertex == entries[i].vertex) {
+          if (entries[j].corner < firstCorner) firstCorner = entries[j].corner, firstAt = j;
+          ++j;
+        }
+        for (std::size_t k = i; k < j;) {
+          std::size_t l = k;
+          while (l < j && entries[l].sameTangent(entries[k])) ++l;
+          const bool keepsVertex = entries[k].sameTangent(entries[firstAt]);
+          const std::uint32_t id = keepsVertex ? entries[k].vertex : (kExtraFlag | extras++);
+          if (wantVertices) {
+            for (std::size_t m = k; m < l; ++m) cornerVertex[entries[m].corner] = id;
+          }
+          k = l;
+        }
+        i = j;
+      }
+      extra[b] = extras;
+    }
+  });
+  std::uint64_t splits = 0;
+  for (std::size_t b = 0; b < vertexCount; ++b) {
+    const std::uint32_t n = extra[b];
+    extra[b] = static_cast<std::uint32_t>(splits);
+    splits += n;
+  }
+  if (vertexCount + splits >= kExtraFlag) throw std::invalid_argument("indices: the vertex split needs more than 2^31 vertices");
+  report.splitVertices = splits;
+  report.outputVertices = vertexCount + splits;
+  if (wantVertices && splits > 0) {
+    const std::uint32_t* vertexId = ws.vertexId.data();
+    forRange(ws, cornerCount, 1 << 14, [&](std::size_t begin, std::size_t end) {
+      for (std::size_t c = begin; c < end; ++c) {
+        if (cornerVertex[c] & kExtraFlag)
+          cornerVertex[c] = static_cast<std::uint32_t>(vertexCount) + extra[vertexId[indices[c]]] + (cornerVertex[c] & ~kExtraFlag);
+      }
+    });
+  }
+}
+
+}  // namespace detail
+
+TangentWorkspace::TangentWorkspace() : data_(std::make_unique<detail::WorkspaceData>()) {}
+TangentWorkspace::~TangentWorkspace() = default;
+TangentWorkspace::TangentWorkspace(TangentWorkspace&&) noexcept = default;
+TangentWorkspace& TangentWorkspace::operator=(TangentWorkspace&&) noexcept = default;
+std::size_t TangentWorkspace::bytesReserved() const { return data_->bytes(); }
+
+}  // namespace tangent

@@ -1,0 +1,107 @@
+// Scratch memory of one call, kept between calls (TangentWorkspace), and the phases that every
+// method shares: checking the arrays, welding corners by value, bucketing corners by welded
+// vertex, and the vertex split of the output.
+#pragma once
+
+#include <tbb/enumerable_thread_specific.h>
+
+#include <cstdint>
+#include <vector>
+
+#include "tangent/tangent.hpp"
+
+namespace tangent::detail {
+
+constexpr std::uint32_t kNone = ~std::uint32_t(0);
+
+// Per-corner state bits (WorkspaceData::cornerState).
+enum CornerState : std::uint8_t {
+  kSourceMask = 3,      // FrameSource
+  kUndefined = 4,       // no frame yet: a fallback must give one
+  kCopy = 8,            // corner of an exact duplicate triangle: copies cornerLink's frame
+  kInvalidNormal = 16,  // zero or non-finite normal, replaced
+};
+
+// Per-triangle bits (WorkspaceData::triangleFlags).
+enum TriangleFlag : std::uint8_t {
+  kCoincident = 1,    // two corners with the same position: the reference's "degenerate"
+  kGroupWithAny = 2,  // contributes nothing and takes the orientation of its neighbours
+  kNonFinite = 4,
+  kFlat = 8,          // zero 3D area (report: degenerate)
+  kZeroUv = 16,       // zero UV area (report: zeroUvArea)
+};
+
+// Scratch of one worker thread: small arrays reused bucket after bucket.
+struct BucketScratch {
+  std::vector<std::uint64_t> keys;
+  std::vector<std::uint32_t> items;
+  std::vector<std::uint32_t> parent;
+  std::vector<double> values;
+  std::vector<std::uint32_t> order;
+};
+
+struct WorkspaceData {
+  unsigned threads = 1;
+  std::size_t vertexCount = 0, cornerCount = 0;
+  std::vector<std::uint32_t> table;          // open-addressing weld table (vertex + 1, 0 empty)
+  std::vector<std::uint32_t> vertexId;       // welded id of each input vertex: the smallest
+                                             // vertex index with the same values
+  std::vector<std::uint32_t> bucketStart;    // vertexCount + 1: corners of welded id v are
+  std::vector<std::uint32_t> bucketCorners;  // bucketCorners[bucketStart[v] .. bucketStart[v+1])
+  std::vector<float> triangleFrames;         // 6 per triangle: unit dP/du, dP/dv, signed
+  std::vector<std::int8_t> orientation;      // per triangle: sign of the UV area (resolved)
+  std::vector<std::uint8_t> triangleFlags;   // per triangle: TriangleFlag bits
+  std::vector<std::uint32_t> cornerLink;     // per corner: neighbour corner across the corner's
+                                             // outgoing edge, or the original of a kCopy corner
+  std::vector<std::uint8_t> cornerState;     // per corner: CornerState bits
+  std::vector<float> cornerWeight;           // per corner: angle sum of its group (ranking)
+  std::vector<std::uint32_t> bucketExtra;    // per welded id: extra output vertices, then offsets
+  tbb::enumerable_thread_specific<BucketScratch> scratch;
+
+  std::size_t bytes() const;
+};
+
+// Grows v to at least n elements (never shrinks, so a reused workspace allocates nothing).
+template <typename T>
+void ensureSize(std::vector<T>& v, std::size_t n) {
+  if (v.size() < n) v.resize(n);
+}
+
+// Checks the sizes and every index; throws std::invalid_argument naming the array.
+void checkArrays(const MeshArrays& mesh, const CornerOutputs& outputs);
+
+// Welds vertices by exact (position, normal, UV) value as the reference does (+0 and -0
+// equal), then buckets the corners by welded id, each bucket in corner order.
+void weldAndBucket(WorkspaceData& ws, const MeshArrays& mesh);
+
+// The method `mikktspace` on the welded buckets: writes outputs.tangents (bottom-left w) and
+// ws.cornerState, fills the triangle counts of the report.
+void mikktspaceOnBuckets(WorkspaceData& ws, const MeshArrays& mesh, const CornerOutputs& outputs, Report& report);
+
+// Copies duplicate corners, applies the UV origin to w, counts sources and mirrored corners,
+// and works out the vertex split (outputs.cornerVertex when asked for).
+void finishOutputs(WorkspaceData& ws, const MeshArrays& mesh, const CornerOutputs& outputs, const Options& options,
+                   Report& report);
+
+// Runs body(begin, end) over [0, count) on the workspace's threads.
+template <typename Body>
+void forRange(const WorkspaceData& ws, std::size_t count, std::size_t grain, const Body& body);
+
+}  // namespace tangent::detail
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+namespace tangent::detail {
+
+template <typename Body>
+void forRange(const WorkspaceData& ws, std::size_t count, std::size_t grain, const Body& body) {
+  if (ws.threads <= 1 || count <= grain) {
+    if (count > 0) body(std::size_t(0), count);
+    return;
+  }
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, count, grain),
+                    [&](const tbb::blocked_range<std::size_t>& range) { body(range.begin(), range.end()); });
+}
+
+}  // namespace tangent::detail
