@@ -12,6 +12,8 @@
 #include <iostream>
 #include <nlohmann/json.hpp>
 #include <numeric>
+#include <sstream>
+#include <tuple>
 #include <thread>
 
 #include "analytic_surfaces.hpp"
@@ -176,12 +178,12 @@ void writePlot(const fs::path& dir, const std::vector<std::string>& surfaces) {
   for (const char* terminal : {"pngcairo size 1500,900 font ',10'", "svg size 1500,900 font 'sans,10'"}) {
     const bool png = std::string(terminal).rfind("png", 0) == 0;
     script << "set terminal " << terminal << "\nset output '" << (dir / (png ? "plot.png" : "plot.svg")).string() << "'\n"
-           << "set datafile separator ','\nset logscale xy\nset grid\nset key left bottom\n"
+           << "set datafile separator ','\nset logscale xy\nset grid\nset key right top\n"
            << "set multiplot layout 2,3 title 'Mean angular error against run time (1 thread; one point per resolution)'\n";
     for (const auto& surface : surfaces) {
       script << "set title '" << surface << "'\nset xlabel 'time per call, ms'\nset ylabel 'mean error, degrees'\nplot ";
       for (std::size_t m = 0; m < methods.size(); ++m) {
-        script << (m ? ", " : "") << "'" << (dir / "bench.csv").string() << "' using (strcol(1) eq '" << surface << "' && strcol(3) eq '"
+        script << (m ? ", " : "") << "'" << (dir / "plot.csv").string() << "' using (strcol(1) eq '" << surface << "' && strcol(3) eq '"
                << methods[m] << "' && $4 == 1 ? $13 : 1/0):5 with linespoints title '" << methods[m]
                << (m >= 5 ? " (peer)" : "") << "'";
       }
@@ -229,6 +231,10 @@ int benchCommand(const std::vector<std::string>& args) {
   std::ofstream csv(outDir / "bench.csv");
   csv << "surface,triangles,method,threads,mean_deg,p99_deg,max_deg,w_errors,corners,build_ms,compute_ms,output_ms,total_ms\n";
   Json results = Json::array();
+  // The plot reads a copy sorted by series, so that each series' points are consecutive rows
+  // and gnuplot joins them (a filtered-out row in between breaks the line).
+  using SeriesKey = std::tuple<std::string, std::string, unsigned, std::size_t>;
+  std::vector<std::pair<SeriesKey, std::string>> plotRows;
   std::printf("%-12s %9s %-18s %3s %10s %10s %10s %8s %10s %10s %10s %10s\n", "surface", "triangles", "method", "thr", "mean deg",
               "p99 deg", "max deg", "w errors", "build ms", "compute ms", "output ms", "total ms");
   std::vector<std::size_t> resolutions;
@@ -236,32 +242,31 @@ int benchCommand(const std::vector<std::string>& args) {
   for (const auto& surface : bench::surfaceNames()) {
     for (std::size_t target : resolutions) {
       const bench::AnalyticMesh mesh = bench::makeSurface(surface, target);
-      for (const Setting& setting : settings()) {
-        std::vector<float> corners;
-        const Timing timing = timedRun(mesh.arrays(), setting.options, target >= 1000000 ? std::min(repeats, 3) : repeats, corners);
-        const Errors e = compare(corners, mesh.indices, mesh.exactTangents, true);
+      // One row per method: terminal, CSV, JSON, and the plot's rows (kept for sorting).
+      auto record = [&](const std::string& label, unsigned threads, const Timing& timing, const Errors& e) {
         std::printf("%-12s %9zu %-18s %3u %10.5f %10.5f %10.5f %8zu %10.2f %10.2f %10.2f %10.2f\n", surface.c_str(), mesh.triangles(),
-                    setting.label.c_str(), setting.options.threads, e.mean, e.p99, e.max, e.wErrors, timing.build, timing.compute,
-                    timing.output, timing.total());
-        csv << surface << "," << mesh.triangles() << "," << setting.label << "," << setting.options.threads << "," << e.mean << "," << e.p99
-            << "," << e.max << "," << e.wErrors << "," << mesh.indices.size() << "," << timing.build << "," << timing.compute << ","
-            << timing.output << "," << timing.total() << "\n";
-        results.push_back({{"surface", surface}, {"triangles", mesh.triangles()}, {"method", setting.label}, {"threads", setting.options.threads},
+                    label.c_str(), threads, e.mean, e.p99, e.max, e.wErrors, timing.build, timing.compute, timing.output, timing.total());
+        std::ostringstream row;
+        row << surface << "," << mesh.triangles() << "," << label << "," << threads << "," << e.mean << "," << e.p99 << "," << e.max << ","
+            << e.wErrors << "," << mesh.indices.size() << "," << timing.build << "," << timing.compute << "," << timing.output << ","
+            << timing.total() << "\n";
+        csv << row.str();
+        plotRows.push_back({{surface, label, threads, mesh.triangles()}, row.str()});
+        results.push_back({{"surface", surface}, {"triangles", mesh.triangles()}, {"method", label}, {"threads", threads},
                            {"meanDegrees", e.mean}, {"p99Degrees", e.p99}, {"maxDegrees", e.max}, {"wErrors", e.wErrors},
                            {"buildMs", timing.build}, {"computeMs", timing.compute}, {"outputMs", timing.output}});
+      };
+      const int runs = target >= 1000000 ? std::min(repeats, 3) : repeats;
+      for (const Setting& setting : settings()) {
+        std::vector<float> corners;
+        const Timing timing = timedRun(mesh.arrays(), setting.options, runs, corners);
+        record(setting.label, setting.options.threads, timing, compare(corners, mesh.indices, mesh.exactTangents, true));
       }
+      // The peers: one call, its time counted as compute.
       for (bench::Peer peer : bench::peers()) {
         std::vector<float> corners;
-        const std::string label(toString(peer));
-        const Timing timing = timedPeerRun(peer, mesh.arrays(), UvOrigin::bottomLeft, target >= 1000000 ? std::min(repeats, 3) : repeats, corners);
-        const Errors e = compare(corners, mesh.indices, mesh.exactTangents, true);
-        std::printf("%-12s %9zu %-18s %3u %10.5f %10.5f %10.5f %8zu %10s %10.2f %10s %10.2f\n", surface.c_str(), mesh.triangles(),
-                    label.c_str(), 1u, e.mean, e.p99, e.max, e.wErrors, "-", timing.compute, "-", timing.total());
-        csv << surface << "," << mesh.triangles() << "," << label << ",1," << e.mean << "," << e.p99 << "," << e.max << "," << e.wErrors
-            << "," << mesh.indices.size() << ",0," << timing.compute << ",0," << timing.total() << "\n";
-        results.push_back({{"surface", surface}, {"triangles", mesh.triangles()}, {"method", label}, {"threads", 1}, {"meanDegrees", e.mean},
-                           {"p99Degrees", e.p99}, {"maxDegrees", e.max}, {"wErrors", e.wErrors}, {"buildMs", 0}, {"computeMs", timing.compute},
-                           {"outputMs", 0}});
+        const Timing timing = timedPeerRun(peer, mesh.arrays(), UvOrigin::bottomLeft, runs, corners);
+        record(std::string(toString(peer)), 1, timing, compare(corners, mesh.indices, mesh.exactTangents, true));
       }
       std::fflush(stdout);
     }
@@ -335,6 +340,10 @@ int benchCommand(const std::vector<std::string>& args) {
     }
   }
   csv.close();
+  std::sort(plotRows.begin(), plotRows.end());
+  std::ofstream plotCsv(outDir / "plot.csv");
+  for (const auto& [key, row] : plotRows) plotCsv << row;
+  plotCsv.close();
   Json report = {{"machine", {{"hardwareThreads", std::thread::hardware_concurrency()}}},
                  {"repeats", repeats},
                  {"analytic", results},
