@@ -53,10 +53,11 @@ const Input& input(const InputSource& source) {
 
 // A UV sphere as ONE primitive: (n+1)^2 shared vertices with normals and UVs, indexed.
 InputSource sphere(const std::string& name, std::size_t triangles) {
-  return {name, [triangles] {
-            tangent::bench::AnalyticMesh mesh = tangent::bench::makeSurface("sphere", triangles);
-            return Input{std::move(mesh.positions), std::move(mesh.normals), std::move(mesh.uvs), std::move(mesh.indices)};
-          }};
+  return {
+      name, [triangles] {
+        tangent::bench::AnalyticMesh mesh = tangent::bench::makeSurface("sphere", triangles);
+        return Input{std::move(mesh.positions), std::move(mesh.normals), std::move(mesh.uvs), std::move(mesh.indices)};
+      }};
 }
 
 // The largest normal-mapped primitive of each asset, read by the glTF layer the way bake reads it.
@@ -117,12 +118,24 @@ class LibraryCall {
   explicit LibraryCall(const Input& in) : tangents_(in.indices.size() * 4), cornerVertex_(in.indices.size()) {}
   tangent::Report operator()(const Input& in, const tangent::Options& o) {
 #ifdef TANGENT_BENCH_WORKSPACE_API
-    return tangent::computeCornerTangents(in.arrays(), tangent::CornerOutputs{tangents_, {}, cornerVertex_}, o, workspace_);
+    return tangent::computeCornerTangents(in.arrays(), tangent::CornerOutputs{tangents_, {}, cornerVertex_}, o,
+                                          workspace_);
 #else
     return tangent::computeCornerTangents(in.arrays(), std::span<float>(tangents_), o);
 #endif
   }
-  const float* data() const { return tangents_.data(); }
+  const float* data() const {
+    return tangents_.data();
+  }
+  static std::string description() {
+#ifdef TANGENT_BENCH_WORKSPACE_API
+    return "computeCornerTangents(MeshArrays, CornerOutputs{tangents, {}, cornerVertex}, Options, TangentWorkspace&), "
+           "workspace reused";
+#else
+    return "computeCornerTangents(MeshArrays, span<float>, Options) (no workspace: the TangentWorkspace overload is "
+           "not used in this build)";
+#endif
+  }
 
  private:
   std::vector<float> tangents_;
@@ -134,7 +147,7 @@ class LibraryCall {
 
 void counters(benchmark::State& state, const Input& in, unsigned threads) {
   state.counters["triangles"] = static_cast<double>(in.triangles());
-  state.counters["threads"] = threads;
+  state.counters["workers"] = threads;  // not "threads": Google Benchmark's own JSON field
 }
 
 unsigned actualThreads(unsigned requested) {
@@ -142,43 +155,49 @@ unsigned actualThreads(unsigned requested) {
 }
 
 // Process CPU time counts the worker threads too; wall time (real_time) is reported beside it.
-void reportProcessCpuTime(benchmark::internal::Benchmark* b) { b->MeasureProcessCPUTime()->Unit(benchmark::kMillisecond); }
+void reportProcessCpuTime(benchmark::internal::Benchmark* b) {
+  b->MeasureProcessCPUTime()->Unit(benchmark::kMillisecond);
+}
 
 void registerInput(const InputSource& source) {
   const std::pair<const char*, unsigned> threadSettings[] = {{"t1", 1u}, {"t2", 2u}, {"tall", 0u}};
   for (const auto& [label, threads] : threadSettings) {
-    reportProcessCpuTime(benchmark::RegisterBenchmark(("library/" + std::string(label) + "/" + source.name).c_str(), [source, threads = threads](benchmark::State& state) {
-      const Input& in = input(source);
-      LibraryCall call(in);
-      const tangent::Options o = options(threads);
-      for (auto _ : state) {
-        call(in, o);
-        benchmark::DoNotOptimize(call.data());
-        benchmark::ClobberMemory();
-      }
-      counters(state, in, actualThreads(threads));
-    }));
-    reportProcessCpuTime(benchmark::RegisterBenchmark(("openmesh/" + std::string(label) + "/" + source.name).c_str(), [source, threads = threads](benchmark::State& state) {
-      const Input& in = input(source);
-      tangent::CornerMesh mesh = tangent::buildCornerMesh(in.arrays());  // built once, outside the timing
-      const tangent::Options o = options(threads);
-      for (auto _ : state) benchmark::DoNotOptimize(tangent::computeTangents(mesh, o).corners);
-      counters(state, in, actualThreads(threads));
-    }));
+    reportProcessCpuTime(benchmark::RegisterBenchmark(("library/" + std::string(label) + "/" + source.name).c_str(),
+                                                      [source, threads = threads](benchmark::State& state) {
+                                                        const Input& in = input(source);
+                                                        LibraryCall call(in);
+                                                        const tangent::Options o = options(threads);
+                                                        for (auto _ : state) {
+                                                          call(in, o);
+                                                          benchmark::DoNotOptimize(call.data());
+                                                          benchmark::ClobberMemory();
+                                                        }
+                                                        counters(state, in, actualThreads(threads));
+                                                      }));
+    reportProcessCpuTime(benchmark::RegisterBenchmark(
+        ("openmesh/" + std::string(label) + "/" + source.name).c_str(),
+        [source, threads = threads](benchmark::State& state) {
+          const Input& in = input(source);
+          tangent::CornerMesh mesh = tangent::buildCornerMesh(in.arrays());  // built once, outside the timing
+          const tangent::Options o = options(threads);
+          for (auto _ : state) benchmark::DoNotOptimize(tangent::computeTangents(mesh, o).corners);
+          counters(state, in, actualThreads(threads));
+        }));
   }
   for (tangent::bench::Peer peer : tangent::bench::peers()) {
     std::string name(toString(peer));
     std::replace(name.begin(), name.end(), '/', '-');  // "meshopt-compatible": one name segment
-    reportProcessCpuTime(benchmark::RegisterBenchmark((name + "/" + source.name).c_str(), [source, peer](benchmark::State& state) {
-      const Input& in = input(source);
-      std::vector<float> tangents(in.indices.size() * 4);
-      for (auto _ : state) {
-        tangent::bench::runPeer(peer, in.arrays(), tangents);
-        benchmark::DoNotOptimize(tangents.data());
-        benchmark::ClobberMemory();
-      }
-      counters(state, in, 1);
-    }));
+    reportProcessCpuTime(
+        benchmark::RegisterBenchmark((name + "/" + source.name).c_str(), [source, peer](benchmark::State& state) {
+          const Input& in = input(source);
+          std::vector<float> tangents(in.indices.size() * 4);
+          for (auto _ : state) {
+            tangent::bench::runPeer(peer, in.arrays(), tangents);
+            benchmark::DoNotOptimize(tangents.data());
+            benchmark::ClobberMemory();
+          }
+          counters(state, in, 1);
+        }));
   }
 }
 
@@ -188,7 +207,12 @@ int main(int argc, char** argv) {
   benchmark::Initialize(&argc, argv);
   if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
   if (tangent::bench::peers().empty()) std::cerr << "kernel bench: " << tangent::bench::peersNote() << "\n";
-  std::vector<InputSource> sources = {sphere("sphere-1e5", 100000), sphere("sphere-1e6", 1000000), sphere("sphere-4e6", 4000000)};
+  // In the JSON's context, for the report: what "library" and the peers were in this build.
+  benchmark::AddCustomContext("library_call", LibraryCall::description());
+  benchmark::AddCustomContext("peers", tangent::bench::peersNote());
+  benchmark::AddCustomContext("hardware_threads", std::to_string(std::max(1u, std::thread::hardware_concurrency())));
+  std::vector<InputSource> sources = {sphere("sphere-1e5", 100000), sphere("sphere-1e6", 1000000),
+                                      sphere("sphere-4e6", 4000000)};
   for (auto& asset : assetInputs(fs::path(TANGENT_ASSETS_DIR))) sources.push_back(std::move(asset));
   for (const auto& source : sources) registerInput(source);
   const std::size_t ran = benchmark::RunSpecifiedBenchmarks();
