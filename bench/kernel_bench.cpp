@@ -1,66 +1,221 @@
-// Kernel phases with Google Benchmark: the whole library call (build the half-edge mesh,
-// compute, copy per corner) and its two main phases, on UV spheres of ~1e5..4e6 triangles.
-// scripts/bench.sh runs it beside the peers.
+// The library against the strongest peers, on the same arrays in one process (Google
+// Benchmark): the plain-array call and the OpenMesh input path at 1, 2 and all threads, the
+// reference MikkTSpace in C and meshoptimizer's tangent generator in its MikkTSpace-compatible
+// and default modes. Inputs: single-primitive UV spheres of 1e5, 1e6 and 4e6 triangles and the
+// largest normal-mapped primitive of each ../shared/assets/*.glb. Every call writes one tangent
+// per corner into memory allocated before timing.
+//
+// Names: IMPLEMENTATION/INPUT, e.g. library/t1/sphere-1e5, openmesh/tall/sphere-1e6,
+// mikktspace.c/sphere-4e6, meshopt-compatible/asset:NormalTangentTest. Times are process CPU
+// time (all threads) and wall time per call; scripts/bench.sh takes the medians of repetitions.
 #include <benchmark/benchmark.h>
 
+#include <algorithm>
+#include <filesystem>
+#include <functional>
+#include <iostream>
 #include <map>
+#include <memory>
+#include <string>
+#include <thread>
+#include <vector>
 
 #include "analytic_surfaces.hpp"
+#include "asset.hpp"
+#include "peers.hpp"
+#include "primitive.hpp"
 #include "tangent/halfedge_mesh.hpp"
 
 namespace {
 
-const tangent::bench::AnalyticMesh& sphere(std::size_t triangles) {
-  static std::map<std::size_t, tangent::bench::AnalyticMesh> cache;
-  auto it = cache.find(triangles);
-  if (it == cache.end()) it = cache.emplace(triangles, tangent::bench::makeSurface("sphere", triangles)).first;
-  return it->second;
+namespace fs = std::filesystem;
+
+// One indexed triangle list: what every implementation gets.
+struct Input {
+  std::vector<float> positions, normals, uvs;
+  std::vector<std::uint32_t> indices;
+  tangent::MeshArrays arrays() const { return {positions, normals, uvs, indices}; }
+  std::size_t triangles() const { return indices.size() / 3; }
+};
+
+// Inputs are made on first use, so a filtered run builds only what it times.
+struct InputSource {
+  std::string name;
+  std::function<Input()> make;
+};
+
+const Input& input(const InputSource& source) {
+  static std::map<std::string, std::unique_ptr<Input>> cache;
+  auto& slot = cache[source.name];
+  if (!slot) slot = std::make_unique<Input>(source.make());
+  return *slot;
 }
 
-tangent::Options options(const benchmark::State& state) {
+// A UV sphere as ONE primitive: (n+1)^2 shared vertices with normals and UVs, indexed.
+InputSource sphere(const std::string& name, std::size_t triangles) {
+  return {
+      name, [triangles] {
+        tangent::bench::AnalyticMesh mesh = tangent::bench::makeSurface("sphere", triangles);
+        return Input{std::move(mesh.positions), std::move(mesh.normals), std::move(mesh.uvs), std::move(mesh.indices)};
+      }};
+}
+
+// The largest normal-mapped primitive of each asset, read by the glTF layer the way bake reads it.
+std::vector<InputSource> assetInputs(const fs::path& folder) {
+  std::vector<InputSource> sources;
+  if (!fs::is_directory(folder)) {
+    std::cerr << "kernel bench: " << folder.string() << " not found: asset inputs left out\n";
+    return sources;
+  }
+  std::vector<fs::path> files;
+  for (const auto& entry : fs::directory_iterator(folder))
+    if (entry.path().extension() == ".glb") files.push_back(entry.path());
+  std::sort(files.begin(), files.end());
+  for (const auto& file : files) {
+    try {
+      namespace detail = tangent::gltf::detail;
+      const detail::Asset asset = detail::loadAsset(file);
+      Input largest;
+      const auto& meshes = asset.json.value("meshes", nlohmann::ordered_json::array());
+      for (std::size_t m = 0; m < meshes.size(); ++m) {
+        const auto& primitives = meshes[m].value("primitives", nlohmann::ordered_json::array());
+        for (std::size_t p = 0; p < primitives.size(); ++p) {
+          const detail::PrimitiveNeeds needs = detail::primitiveNeeds(asset.json, primitives[p], false);
+          if (!needs.triangles || needs.compressed || !needs.hasNormalTexture) continue;
+          detail::PrimitiveGeometry g =
+              detail::readGeometry(asset, primitives[p], needs, detail::primitiveLabel(asset.json, int(m), int(p)));
+          if (g.corners.size() > largest.indices.size())
+            largest = {std::move(g.positions), std::move(g.normals), std::move(g.uvs), std::move(g.corners)};
+        }
+      }
+      if (largest.indices.empty()) {
+        std::cerr << "kernel bench: " << file.filename().string() << " has no normal-mapped triangles: left out\n";
+        continue;
+      }
+      auto shared = std::make_shared<Input>(std::move(largest));
+      sources.push_back({"asset:" + file.stem().string(), [shared] { return *shared; }});
+    } catch (const std::exception& e) {
+      std::cerr << "kernel bench: " << file.string() << ": " << e.what() << ": left out\n";
+    }
+  }
+  return sources;
+}
+
+tangent::Options options(unsigned threads) {
   tangent::Options o;
-  o.method = static_cast<tangent::Method>(state.range(1));
-  o.threads = static_cast<unsigned>(state.range(2));
+  o.method = tangent::Method::mikktspace;
+  o.uvOrigin = tangent::UvOrigin::bottomLeft;  // the peers' w convention; the time does not depend on it
+  o.threads = threads;
   return o;
 }
 
-void LibraryCall(benchmark::State& state) {
-  const auto& mesh = sphere(static_cast<std::size_t>(state.range(0)));
-  std::vector<float> out(mesh.indices.size() * 4);
-  for (auto _ : state) {
-    tangent::computeCornerTangents(mesh.arrays(), out, options(state));
-    benchmark::DoNotOptimize(out.data());
+// The library's plain-array entry point, behind one switch. With TANGENT_BENCH_WORKSPACE_API
+// (CMake option of the same name) it is the overload with a TangentWorkspace reused across
+// calls and CornerOutputs{tangents, {}, cornerVertex}; without, the older overload that
+// allocates its own scratch memory, until the new one is implemented.
+class LibraryCall {
+ public:
+  explicit LibraryCall(const Input& in) : tangents_(in.indices.size() * 4), cornerVertex_(in.indices.size()) {}
+  tangent::Report operator()(const Input& in, const tangent::Options& o) {
+#ifdef TANGENT_BENCH_WORKSPACE_API
+    return tangent::computeCornerTangents(in.arrays(), tangent::CornerOutputs{tangents_, {}, cornerVertex_}, o,
+                                          workspace_);
+#else
+    return tangent::computeCornerTangents(in.arrays(), std::span<float>(tangents_), o);
+#endif
   }
-  state.counters["triangles"] = static_cast<double>(mesh.triangles());
-}
-
-void BuildMesh(benchmark::State& state) {
-  const auto& mesh = sphere(static_cast<std::size_t>(state.range(0)));
-  for (auto _ : state) {
-    tangent::CornerMesh cornerMesh = tangent::buildCornerMesh(mesh.arrays());
-    benchmark::DoNotOptimize(cornerMesh.mesh.n_faces());
+  const float* data() const {
+    return tangents_.data();
   }
+  static std::string description() {
+#ifdef TANGENT_BENCH_WORKSPACE_API
+    return "computeCornerTangents(MeshArrays, CornerOutputs{tangents, {}, cornerVertex}, Options, TangentWorkspace&), "
+           "workspace reused";
+#else
+    return "computeCornerTangents(MeshArrays, span<float>, Options) (no workspace: the TangentWorkspace overload is "
+           "not used in this build)";
+#endif
+  }
+
+ private:
+  std::vector<float> tangents_;
+  std::vector<std::uint32_t> cornerVertex_;
+#ifdef TANGENT_BENCH_WORKSPACE_API
+  tangent::TangentWorkspace workspace_;
+#endif
+};
+
+void counters(benchmark::State& state, const Input& in, unsigned threads) {
+  state.counters["triangles"] = static_cast<double>(in.triangles());
+  state.counters["workers"] = threads;  // not "threads": Google Benchmark's own JSON field
 }
 
-void Compute(benchmark::State& state) {
-  const auto& mesh = sphere(static_cast<std::size_t>(state.range(0)));
-  tangent::CornerMesh cornerMesh = tangent::buildCornerMesh(mesh.arrays());
-  for (auto _ : state) benchmark::DoNotOptimize(tangent::computeTangents(cornerMesh, options(state)).corners);
+unsigned actualThreads(unsigned requested) {
+  return requested ? requested : std::max(1u, std::thread::hardware_concurrency());
 }
 
-constexpr int kMikk = static_cast<int>(tangent::Method::mikktspace);
-constexpr int kLengyel = static_cast<int>(tangent::Method::lengyel);
+// Process CPU time counts the worker threads too; wall time (real_time) is reported beside it.
+void reportProcessCpuTime(benchmark::internal::Benchmark* b) {
+  b->MeasureProcessCPUTime()->Unit(benchmark::kMillisecond);
+}
 
-void Sizes(benchmark::internal::Benchmark* b) {
-  for (long triangles : {100000L, 1000000L, 4000000L})
-    for (long method : {kMikk, kLengyel})
-      for (long threads : {1L, 2L}) b->Args({triangles, method, threads});
-  b->ArgNames({"triangles", "method", "threads"})->Unit(benchmark::kMillisecond)->UseRealTime();
+void registerInput(const InputSource& source) {
+  const std::pair<const char*, unsigned> threadSettings[] = {{"t1", 1u}, {"t2", 2u}, {"tall", 0u}};
+  for (const auto& [label, threads] : threadSettings) {
+    reportProcessCpuTime(benchmark::RegisterBenchmark(("library/" + std::string(label) + "/" + source.name).c_str(),
+                                                      [source, threads = threads](benchmark::State& state) {
+                                                        const Input& in = input(source);
+                                                        LibraryCall call(in);
+                                                        const tangent::Options o = options(threads);
+                                                        for (auto _ : state) {
+                                                          call(in, o);
+                                                          benchmark::DoNotOptimize(call.data());
+                                                          benchmark::ClobberMemory();
+                                                        }
+                                                        counters(state, in, actualThreads(threads));
+                                                      }));
+    reportProcessCpuTime(benchmark::RegisterBenchmark(
+        ("openmesh/" + std::string(label) + "/" + source.name).c_str(),
+        [source, threads = threads](benchmark::State& state) {
+          const Input& in = input(source);
+          tangent::CornerMesh mesh = tangent::buildCornerMesh(in.arrays());  // built once, outside the timing
+          const tangent::Options o = options(threads);
+          for (auto _ : state) benchmark::DoNotOptimize(tangent::computeTangents(mesh, o).corners);
+          counters(state, in, actualThreads(threads));
+        }));
+  }
+  for (tangent::bench::Peer peer : tangent::bench::peers()) {
+    std::string name(toString(peer));
+    std::replace(name.begin(), name.end(), '/', '-');  // "meshopt-compatible": one name segment
+    reportProcessCpuTime(
+        benchmark::RegisterBenchmark((name + "/" + source.name).c_str(), [source, peer](benchmark::State& state) {
+          const Input& in = input(source);
+          std::vector<float> tangents(in.indices.size() * 4);
+          for (auto _ : state) {
+            tangent::bench::runPeer(peer, in.arrays(), tangents);
+            benchmark::DoNotOptimize(tangents.data());
+            benchmark::ClobberMemory();
+          }
+          counters(state, in, 1);
+        }));
+  }
 }
 
 }  // namespace
 
-BENCHMARK(LibraryCall)->Apply(Sizes);
-BENCHMARK(Compute)->Apply(Sizes);
-BENCHMARK(BuildMesh)->Arg(100000)->Arg(1000000)->Arg(4000000)->Unit(benchmark::kMillisecond)->UseRealTime();
-BENCHMARK_MAIN();
+int main(int argc, char** argv) {
+  benchmark::Initialize(&argc, argv);
+  if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
+  if (tangent::bench::peers().empty()) std::cerr << "kernel bench: " << tangent::bench::peersNote() << "\n";
+  // In the JSON's context, for the report: what "library" and the peers were in this build.
+  benchmark::AddCustomContext("library_call", LibraryCall::description());
+  benchmark::AddCustomContext("peers", tangent::bench::peersNote());
+  benchmark::AddCustomContext("hardware_threads", std::to_string(std::max(1u, std::thread::hardware_concurrency())));
+  std::vector<InputSource> sources = {sphere("sphere-1e5", 100000), sphere("sphere-1e6", 1000000),
+                                      sphere("sphere-4e6", 4000000)};
+  for (auto& asset : assetInputs(fs::path(TANGENT_ASSETS_DIR))) sources.push_back(std::move(asset));
+  for (const auto& source : sources) registerInput(source);
+  const std::size_t ran = benchmark::RunSpecifiedBenchmarks();
+  benchmark::Shutdown();
+  return ran ? 0 : 1;  // a filter that matches nothing fails (the CTest smoke test relies on it)
+}

@@ -76,18 +76,20 @@ Parametric parametric(const std::string& surface) {
   if (surface == "heightfield" || surface == "sheared") {
     const double shear = surface == "sheared" ? 0.6 : 0.0;
     return [shear](double s, double t, double& u, double& v) {
-      // P(x, y) = (x, y, h(x, y)) over [-1, 1]^2; UVs u = x + shear y, v = y (scaled to [0, 1]).
+      // P(x, y) = (x, y, h(x, y)) over [-1, 1]^2; UVs u = x, v = y + shear x (scaled to [0, 1]).
+      // The shear is in v so that dP/du (v held fixed) leans away from the x axis: the
+      // tangent itself changes, not only the bitangent.
       const double X = 2 * s - 1, Y = 2 * t - 1;
-      const double h = 0.25 * std::sin(2 * X) * std::cos(3 * Y);
       const double hx = 0.5 * std::cos(2 * X) * std::cos(3 * Y), hy = -0.75 * std::sin(2 * X) * std::sin(3 * Y);
-      u = (X + shear * Y) / 2;
-      v = Y / 2;
+      u = X / 2;
+      v = (Y + shear * X) / 2;
       Sample x;
-      x.position = {X, Y, h};
+      x.position = {X, Y, 0.25 * std::sin(2 * X) * std::cos(3 * Y)};
       x.normal = normalize({-hx, -hy, 1});
-      // x = 2u - 2 shear v, y = 2v: dP/du = 2 (1, 0, hx); dP/dv = (-2 shear, 2, -2 shear hx + 2 hy).
-      x.dPdu = {2, 0, 2 * hx};
-      x.dPdv = {-2 * shear, 2, -2 * shear * hx + 2 * hy};
+      // Inverse map: X = 2u, Y = 2v - 2 shear u. Chain rule:
+      // dP/du = (2, -2 shear, 2 hx - 2 shear hy); dP/dv = (0, 2, 2 hy).
+      x.dPdu = {2, -2 * shear, 2 * hx - 2 * shear * hy};
+      x.dPdv = {0, 2, 2 * hy};
       return x;
     };
   }

@@ -22,7 +22,8 @@ struct AnalyticMesh {
 };
 
 // Names: "sphere" (UV sphere with poles), "torus", "cylinder", "heightfield" (z = f(x, y) with
-// u = x, v = y), "sheared" (a height field with the non-orthogonal mapping u = x + 0.6 y, v = y).
+// u = x, v = y), "sheared" (the same height field with the non-orthogonal mapping u = x,
+// v = y + 0.6 x, whose tangent dP/du leans away from the x axis).
 const std::vector<std::string>& surfaceNames();
 
 // About `targetTriangles` triangles (a grid of n x n quads, n = sqrt(target / 2)).

@@ -22,6 +22,7 @@ using Json = nlohmann::ordered_json;
 struct MeshData {
   std::vector<float> positions, normals, uvs;
   std::vector<std::uint16_t> indices;
+  std::vector<std::uint32_t> indices32;  // used instead of `indices` when not empty (large meshes)
 };
 
 MeshData uvSphere(int slices, int stacks, float radius) {
@@ -230,7 +231,7 @@ class DocumentWriter {
     float translation[3] = {0, 0, 0};
   };
 
-  // Adds a mesh with POSITION, NORMAL, TEXCOORD_0 and uint16 indices, and a node for it.
+  // Adds a mesh with POSITION, NORMAL, TEXCOORD_0 and uint16 (or uint32) indices, and a node for it.
   void addMesh(const MeshData& mesh, const std::string& name, int material, const float (&translation)[3]) {
     const std::size_t n = mesh.positions.size() / 3;
     float lo[3] = {1e30f, 1e30f, 1e30f}, hi[3] = {-1e30f, -1e30f, -1e30f};
@@ -243,8 +244,12 @@ class DocumentWriter {
                           {"type", "VEC3"}, {"min", {lo[0], lo[1], lo[2]}}, {"max", {hi[0], hi[1], hi[2]}}});
     accessors_.push_back({{"bufferView", addView(mesh.normals.data(), n * 12, 34962)}, {"componentType", 5126}, {"count", n}, {"type", "VEC3"}});
     accessors_.push_back({{"bufferView", addView(mesh.uvs.data(), n * 8, 34962)}, {"componentType", 5126}, {"count", n}, {"type", "VEC2"}});
-    accessors_.push_back({{"bufferView", addView(mesh.indices.data(), mesh.indices.size() * 2, 34963)}, {"componentType", 5123},
-                          {"count", mesh.indices.size()}, {"type", "SCALAR"}});
+    if (mesh.indices32.empty())
+      accessors_.push_back({{"bufferView", addView(mesh.indices.data(), mesh.indices.size() * 2, 34963)}, {"componentType", 5123},
+                            {"count", mesh.indices.size()}, {"type", "SCALAR"}});
+    else
+      accessors_.push_back({{"bufferView", addView(mesh.indices32.data(), mesh.indices32.size() * 4, 34963)}, {"componentType", 5125},
+                            {"count", mesh.indices32.size()}, {"type", "SCALAR"}});
     Json primitive = Json::object();
     primitive["attributes"] = {{"POSITION", first}, {"NORMAL", first + 1}, {"TEXCOORD_0", first + 2}};
     primitive["indices"] = first + 3;
@@ -316,8 +321,9 @@ Json sharedMaterials(const std::string& imagePrefix) {
 }  // namespace
 
 // A textured UV sphere of 2 * segments * (segments - 1) triangles, with its textures, for
-// benchmarks (not committed).
-int writeBenchmarkSphere(int segments, const std::filesystem::path& dir) {
+// benchmarks (not committed). Split into meshes with uint16 indices, or with onePrimitive a
+// single primitive with uint32 indices (what the peer benchmarks compare on).
+int writeBenchmarkSphere(int segments, const std::filesystem::path& dir, bool onePrimitive) {
   std::filesystem::create_directories(dir);
   if (!writeBumpNormalMap(dir / "bumps_normal.png", 256, 4) || !writeSpecularRegions(dir / "specular_regions.png", 96) ||
       !writeWhite(dir / "white.png")) {
@@ -330,7 +336,7 @@ int writeBenchmarkSphere(int segments, const std::filesystem::path& dir) {
   }
   // uint16 indices limit a mesh to 65536 vertices: split the sphere into bands that fit.
   DocumentWriter writer;
-  const int rowsPerBand = std::max(1, 60000 / (segments + 1) - 1);
+  const int rowsPerBand = onePrimitive ? segments : std::max(1, 60000 / (segments + 1) - 1);
   for (int first = 0, band = 0; first < segments; first += rowsPerBand, ++band) {
     const int last = std::min(segments, first + rowsPerBand);
     MeshData mesh;
@@ -348,13 +354,18 @@ int writeBenchmarkSphere(int segments, const std::filesystem::path& dir) {
     }
     for (int j = first; j < last; ++j) {
       for (int i = 0; i < segments; ++i) {
-        const auto a = static_cast<std::uint16_t>((j - first) * (segments + 1) + i), b = static_cast<std::uint16_t>(a + segments + 1);
-        if (j != 0) mesh.indices.insert(mesh.indices.end(), {a, b, static_cast<std::uint16_t>(a + 1)});
-        if (j != segments - 1) mesh.indices.insert(mesh.indices.end(), {static_cast<std::uint16_t>(a + 1), b, static_cast<std::uint16_t>(b + 1)});
+        const auto a = static_cast<std::uint32_t>((j - first) * (segments + 1) + i), b = a + segments + 1;
+        std::vector<std::uint32_t> quad;
+        if (j != 0) quad.insert(quad.end(), {a, b, a + 1});
+        if (j != segments - 1) quad.insert(quad.end(), {a + 1, b, b + 1});
+        for (std::uint32_t index : quad) {
+          if (onePrimitive) mesh.indices32.push_back(index);
+          else mesh.indices.push_back(static_cast<std::uint16_t>(index));
+        }
       }
     }
     const float origin[3] = {0, 0, 0};
-    writer.addMesh(mesh, "band" + std::to_string(band), 0, origin);
+    writer.addMesh(mesh, onePrimitive ? std::string("sphere") : "band" + std::to_string(band), 0, origin);
   }
   Json extra = sharedMaterials("");
   extra["extensionsUsed"] = {"KHR_materials_specular"};
@@ -366,10 +377,13 @@ int writeBenchmarkSphere(int segments, const std::filesystem::path& dir) {
 
 int main(int argc, char** argv) {
   namespace fs = std::filesystem;
-  if (argc == 4 && std::string(argv[1]) == "--sphere") return writeBenchmarkSphere(std::atoi(argv[2]), argv[3]);
+  if ((argc == 4 || (argc == 5 && std::string(argv[4]) == "--one-primitive")) && std::string(argv[1]) == "--sphere")
+    return writeBenchmarkSphere(std::atoi(argv[2]), argv[3], argc == 5);
   if (argc != 2) {
     std::cerr << "usage: tangent-make-data OUT_DIR              the bundled demo data\n"
-                 "       tangent-make-data --sphere N OUT_DIR   a textured N x N UV sphere for benchmarks\n";
+                 "       tangent-make-data --sphere N OUT_DIR [--one-primitive]\n"
+                 "                                              a textured N x N UV sphere for benchmarks (split into\n"
+                 "                                              uint16-indexed meshes, or one uint32-indexed primitive)\n";
     return 2;
   }
   const fs::path dir = argv[1];

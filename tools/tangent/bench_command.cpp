@@ -1,5 +1,6 @@
 // `tangent bench`: error against run time. Analytic surfaces with exact tangents at several
-// resolutions, every method and setting, 1 and 2 threads; real assets against mikktspace;
+// resolutions, every method and setting, 1 and 2 threads, and the peers (reference MikkTSpace
+// in C, meshoptimizer in both modes) when built with them; real assets against mikktspace;
 // the stress suite with --stress. Table on the terminal, CSV and JSON files, and a log-log
 // plot of error against run time drawn by gnuplot (PNG and SVG).
 #include <algorithm>
@@ -11,10 +12,13 @@
 #include <iostream>
 #include <nlohmann/json.hpp>
 #include <numeric>
+#include <sstream>
+#include <tuple>
 #include <thread>
 
 #include "analytic_surfaces.hpp"
 #include "commands.hpp"
+#include "peers.hpp"
 #include "stress_cases.hpp"
 #include "tangent/gltf.hpp"
 #include "tangent/halfedge_mesh.hpp"
@@ -31,7 +35,9 @@ const char* kBenchUsage =
     "usage: tangent bench [options]\n"
     "\n"
     "Error against run time of every method on analytic surfaces (exact tangents known) from\n"
-    "about 1e2 to --max-triangles triangles, and agreement with mikktspace on real assets.\n"
+    "about 1e2 to --max-triangles triangles, and agreement with mikktspace on real assets. When\n"
+    "built with ../shared/peers, the reference MikkTSpace in C and meshoptimizer (compatible and\n"
+    "default modes) are measured on the same arrays and drawn on the same axes.\n"
     "\n"
     "options:\n"
     "  --max-triangles N   largest resolution (default 1000000)\n"
@@ -111,6 +117,23 @@ Timing timedRun(const MeshArrays& mesh, const Options& options, int repeats, std
   return {median(build), median(compute), median(output)};
 }
 
+// A peer (reference MikkTSpace in C, meshoptimizer) on the same arrays: one call, no phases.
+// Its w is in the bottom-left convention; topLeft negates it, as the library does.
+Timing timedPeerRun(bench::Peer peer, const MeshArrays& mesh, UvOrigin uvOrigin, int repeats, std::vector<float>& cornerTangents) {
+  std::vector<double> total;
+  cornerTangents.resize(mesh.indices.size() * 4);
+  for (int r = 0; r < repeats; ++r) {
+    const auto t0 = Clock::now();
+    bench::runPeer(peer, mesh, cornerTangents);
+    total.push_back(std::chrono::duration<double, std::milli>(Clock::now() - t0).count());
+  }
+  if (uvOrigin == UvOrigin::topLeft)
+    for (std::size_t c = 0; c < mesh.indices.size(); ++c) cornerTangents[4 * c + 3] = -cornerTangents[4 * c + 3];
+  Timing timing;
+  timing.compute = median(total);
+  return timing;
+}
+
 Errors compare(const std::vector<float>& corners, const std::vector<std::uint32_t>& indices, const std::vector<float>& reference,
                bool referencePerVertex) {
   Errors e;
@@ -150,17 +173,19 @@ int stressSummary() {
 void writePlot(const fs::path& dir, const std::vector<std::string>& surfaces) {
   // One panel per surface: mean error against total time, a series per method (1 thread).
   std::ofstream script(dir / "plot.gp");
-  const char* methods[] = {"mikktspace", "lengyel/angle", "lengyel/area", "lengyel/uniform", "flat"};
+  std::vector<std::string> methods = {"mikktspace", "lengyel/angle", "lengyel/area", "lengyel/uniform", "flat"};
+  for (bench::Peer peer : bench::peers()) methods.emplace_back(toString(peer));  // same axes, when built with the peers
   for (const char* terminal : {"pngcairo size 1500,900 font ',10'", "svg size 1500,900 font 'sans,10'"}) {
     const bool png = std::string(terminal).rfind("png", 0) == 0;
     script << "set terminal " << terminal << "\nset output '" << (dir / (png ? "plot.png" : "plot.svg")).string() << "'\n"
-           << "set datafile separator ','\nset logscale xy\nset grid\nset key left bottom\n"
+           << "set datafile separator ','\nset logscale xy\nset grid\nset key right top\n"
            << "set multiplot layout 2,3 title 'Mean angular error against run time (1 thread; one point per resolution)'\n";
     for (const auto& surface : surfaces) {
       script << "set title '" << surface << "'\nset xlabel 'time per call, ms'\nset ylabel 'mean error, degrees'\nplot ";
-      for (std::size_t m = 0; m < std::size(methods); ++m) {
-        script << (m ? ", " : "") << "'" << (dir / "bench.csv").string() << "' using (strcol(1) eq '" << surface << "' && strcol(3) eq '"
-               << methods[m] << "' && $4 == 1 ? $13 : 1/0):5 with linespoints title '" << methods[m] << "'";
+      for (std::size_t m = 0; m < methods.size(); ++m) {
+        script << (m ? ", " : "") << "'" << (dir / "plot.csv").string() << "' using (strcol(1) eq '" << surface << "' && strcol(3) eq '"
+               << methods[m] << "' && $4 == 1 ? $13 : 1/0):5 with linespoints title '" << methods[m]
+               << (m >= 5 ? " (peer)" : "") << "'";
       }
       script << "\n";
     }
@@ -198,6 +223,7 @@ int benchCommand(const std::vector<std::string>& args) {
     }
   }
   if (stress) return stressSummary();
+  if (bench::peers().empty()) std::cerr << "tangent bench: " << bench::peersNote() << "\n";
   if (assets.empty() && fs::is_directory("../shared/assets")) assets.emplace_back("../shared/assets");
   std::error_code ec;
   fs::create_directories(outDir, ec);
@@ -205,26 +231,42 @@ int benchCommand(const std::vector<std::string>& args) {
   std::ofstream csv(outDir / "bench.csv");
   csv << "surface,triangles,method,threads,mean_deg,p99_deg,max_deg,w_errors,corners,build_ms,compute_ms,output_ms,total_ms\n";
   Json results = Json::array();
-  std::printf("%-12s %9s %-16s %3s %10s %10s %10s %8s %10s %10s %10s %10s\n", "surface", "triangles", "method", "thr", "mean deg",
+  // The plot reads a copy sorted by series, so that each series' points are consecutive rows
+  // and gnuplot joins them (a filtered-out row in between breaks the line).
+  using SeriesKey = std::tuple<std::string, std::string, unsigned, std::size_t>;
+  std::vector<std::pair<SeriesKey, std::string>> plotRows;
+  std::printf("%-12s %9s %-18s %3s %10s %10s %10s %8s %10s %10s %10s %10s\n", "surface", "triangles", "method", "thr", "mean deg",
               "p99 deg", "max deg", "w errors", "build ms", "compute ms", "output ms", "total ms");
   std::vector<std::size_t> resolutions;
   for (std::size_t r = 100; r <= maxTriangles; r *= 10) resolutions.push_back(r);
   for (const auto& surface : bench::surfaceNames()) {
     for (std::size_t target : resolutions) {
       const bench::AnalyticMesh mesh = bench::makeSurface(surface, target);
-      for (const Setting& setting : settings()) {
-        std::vector<float> corners;
-        const Timing timing = timedRun(mesh.arrays(), setting.options, target >= 1000000 ? std::min(repeats, 3) : repeats, corners);
-        const Errors e = compare(corners, mesh.indices, mesh.exactTangents, true);
-        std::printf("%-12s %9zu %-16s %3u %10.5f %10.5f %10.5f %8zu %10.2f %10.2f %10.2f %10.2f\n", surface.c_str(), mesh.triangles(),
-                    setting.label.c_str(), setting.options.threads, e.mean, e.p99, e.max, e.wErrors, timing.build, timing.compute,
-                    timing.output, timing.total());
-        csv << surface << "," << mesh.triangles() << "," << setting.label << "," << setting.options.threads << "," << e.mean << "," << e.p99
-            << "," << e.max << "," << e.wErrors << "," << mesh.indices.size() << "," << timing.build << "," << timing.compute << ","
-            << timing.output << "," << timing.total() << "\n";
-        results.push_back({{"surface", surface}, {"triangles", mesh.triangles()}, {"method", setting.label}, {"threads", setting.options.threads},
+      // One row per method: terminal, CSV, JSON, and the plot's rows (kept for sorting).
+      auto record = [&](const std::string& label, unsigned threads, const Timing& timing, const Errors& e) {
+        std::printf("%-12s %9zu %-18s %3u %10.5f %10.5f %10.5f %8zu %10.2f %10.2f %10.2f %10.2f\n", surface.c_str(), mesh.triangles(),
+                    label.c_str(), threads, e.mean, e.p99, e.max, e.wErrors, timing.build, timing.compute, timing.output, timing.total());
+        std::ostringstream row;
+        row << surface << "," << mesh.triangles() << "," << label << "," << threads << "," << e.mean << "," << e.p99 << "," << e.max << ","
+            << e.wErrors << "," << mesh.indices.size() << "," << timing.build << "," << timing.compute << "," << timing.output << ","
+            << timing.total() << "\n";
+        csv << row.str();
+        plotRows.push_back({{surface, label, threads, mesh.triangles()}, row.str()});
+        results.push_back({{"surface", surface}, {"triangles", mesh.triangles()}, {"method", label}, {"threads", threads},
                            {"meanDegrees", e.mean}, {"p99Degrees", e.p99}, {"maxDegrees", e.max}, {"wErrors", e.wErrors},
                            {"buildMs", timing.build}, {"computeMs", timing.compute}, {"outputMs", timing.output}});
+      };
+      const int runs = target >= 1000000 ? std::min(repeats, 3) : repeats;
+      for (const Setting& setting : settings()) {
+        std::vector<float> corners;
+        const Timing timing = timedRun(mesh.arrays(), setting.options, runs, corners);
+        record(setting.label, setting.options.threads, timing, compare(corners, mesh.indices, mesh.exactTangents, true));
+      }
+      // The peers: one call, its time counted as compute.
+      for (bench::Peer peer : bench::peers()) {
+        std::vector<float> corners;
+        const Timing timing = timedPeerRun(peer, mesh.arrays(), UvOrigin::bottomLeft, runs, corners);
+        record(std::string(toString(peer)), 1, timing, compare(corners, mesh.indices, mesh.exactTangents, true));
       }
       std::fflush(stdout);
     }
@@ -243,7 +285,7 @@ int benchCommand(const std::vector<std::string>& args) {
   }
   std::sort(files.begin(), files.end());
   if (!files.empty())
-    std::printf("\n%-28s %-10s %9s %-16s %3s %10s %10s %10s %8s %10s\n", "asset", "primitive", "triangles", "method", "thr", "median deg",
+    std::printf("\n%-28s %-10s %9s %-18s %3s %10s %10s %10s %8s %10s\n", "asset", "primitive", "triangles", "method", "thr", "median deg",
                 "p99 deg", "max deg", "w diff", "total ms");
   for (const auto& file : files) {
     gltf::Scene scene;
@@ -261,26 +303,47 @@ int benchCommand(const std::vector<std::string>& args) {
       std::vector<float> reference;
       Options mikk;
       timedRun(arrays, mikk, 1, reference);
+      struct Run {
+        std::string label;
+        unsigned threads;
+        std::vector<float> corners;
+        Timing timing;
+      };
+      std::vector<Run> runs;
       for (const Setting& setting : settings()) {
         Options options = setting.options;
         options.uvOrigin = UvOrigin::topLeft;
-        std::vector<float> corners;
-        const Timing timing = timedRun(arrays, options, repeats, corners);
+        Run run{setting.label, options.threads, {}, {}};
+        run.timing = timedRun(arrays, options, repeats, run.corners);
+        runs.push_back(std::move(run));
+      }
+      for (bench::Peer peer : bench::peers()) {
+        Run run{std::string(toString(peer)), 1, {}, {}};
+        run.timing = timedPeerRun(peer, arrays, UvOrigin::topLeft, repeats, run.corners);
+        runs.push_back(std::move(run));
+      }
+      for (const Run& run : runs) {
+        const std::vector<float>& corners = run.corners;
+        const Timing& timing = run.timing;
         const Errors e = compare(corners, identity, reference, false);
         std::vector<double> angles(identity.size());
         for (std::size_t c = 0; c < identity.size(); ++c) angles[c] = angleDegrees(&corners[4 * c], &reference[4 * c]);
         std::sort(angles.begin(), angles.end());
         const double med = angles.empty() ? 0 : angles[angles.size() / 2];
-        std::printf("%-28s %-10s %9zu %-16s %3u %10.5f %10.5f %10.5f %8zu %10.2f\n", file.filename().string().c_str(),
-                    item.label.substr(item.label.rfind(' ') + 1).c_str(), identity.size() / 3, setting.label.c_str(), options.threads, med,
+        std::printf("%-28s %-10s %9zu %-18s %3u %10.5f %10.5f %10.5f %8zu %10.2f\n", file.filename().string().c_str(),
+                    item.label.substr(item.label.rfind(' ') + 1).c_str(), identity.size() / 3, run.label.c_str(), run.threads, med,
                     e.p99, e.max, e.wErrors, timing.total());
-        assetResults.push_back({{"asset", file.filename().string()}, {"primitive", item.label}, {"method", setting.label},
-                                {"threads", options.threads}, {"medianDegrees", med}, {"p99Degrees", e.p99}, {"maxDegrees", e.max},
+        assetResults.push_back({{"asset", file.filename().string()}, {"primitive", item.label}, {"method", run.label},
+                                {"threads", run.threads}, {"medianDegrees", med}, {"p99Degrees", e.p99}, {"maxDegrees", e.max},
                                 {"wDifferences", e.wErrors}, {"totalMs", timing.total()}});
       }
     }
   }
   csv.close();
+  std::sort(plotRows.begin(), plotRows.end());
+  std::ofstream plotCsv(outDir / "plot.csv");
+  for (const auto& [key, row] : plotRows) plotCsv << row;
+  plotCsv.close();
   Json report = {{"machine", {{"hardwareThreads", std::thread::hardware_concurrency()}}},
                  {"repeats", repeats},
                  {"analytic", results},
