@@ -109,40 +109,27 @@ tangent::Options options(unsigned threads) {
   return o;
 }
 
-// The library's plain-array entry point, behind one switch. With TANGENT_BENCH_WORKSPACE_API
-// (CMake option of the same name) it is the overload with a TangentWorkspace reused across
-// calls and CornerOutputs{tangents, {}, cornerVertex}; without, the older overload that
-// allocates its own scratch memory, until the new one is implemented.
+// The library's plain-array entry point as a pipeline calls it: a TangentWorkspace reused
+// across calls, and the vertex split asked for (CornerOutputs{tangents, {}, cornerVertex}).
 class LibraryCall {
  public:
   explicit LibraryCall(const Input& in) : tangents_(in.indices.size() * 4), cornerVertex_(in.indices.size()) {}
   tangent::Report operator()(const Input& in, const tangent::Options& o) {
-#ifdef TANGENT_BENCH_WORKSPACE_API
     return tangent::computeCornerTangents(in.arrays(), tangent::CornerOutputs{tangents_, {}, cornerVertex_}, o,
                                           workspace_);
-#else
-    return tangent::computeCornerTangents(in.arrays(), std::span<float>(tangents_), o);
-#endif
   }
   const float* data() const {
     return tangents_.data();
   }
   static std::string description() {
-#ifdef TANGENT_BENCH_WORKSPACE_API
     return "computeCornerTangents(MeshArrays, CornerOutputs{tangents, {}, cornerVertex}, Options, TangentWorkspace&), "
            "workspace reused";
-#else
-    return "computeCornerTangents(MeshArrays, span<float>, Options) (no workspace: the TangentWorkspace overload is "
-           "not used in this build)";
-#endif
   }
 
  private:
   std::vector<float> tangents_;
   std::vector<std::uint32_t> cornerVertex_;
-#ifdef TANGENT_BENCH_WORKSPACE_API
   tangent::TangentWorkspace workspace_;
-#endif
 };
 
 void counters(benchmark::State& state, const Input& in, unsigned threads) {

@@ -489,6 +489,34 @@ inline bool orthonormalize(V3 sum, V3 n, V3& out) {
   return true;
 }
 
+inline V3 projected(V3 v, V3 n) { return v - n * dot(n, v); }
+
+constexpr double kHalfPi = 1.5707963267948966;
+
+// atan2(y, x) for y >= 0 (not both zero), within 2e-8 rad: octant reduction, a shift by
+// pi/4 to |a| <= tan(pi/8), then the odd series of atan to a^15. A fraction of libm's cost.
+inline double angleBetween(double y, double x) {
+  const double ax = std::abs(x);
+  const bool steep = y > ax;
+  double a = steep ? ax / y : y / ax;
+  double base = 0;
+  if (a > 0.41421356237309503) {
+    a = (a - 1) / (a + 1);
+    base = 0.78539816339744831;
+  }
+  const double a2 = a * a;
+  double r = -1.0 / 15;
+  r = r * a2 + 1.0 / 13;
+  r = r * a2 - 1.0 / 11;
+  r = r * a2 + 1.0 / 9;
+  r = r * a2 - 1.0 / 7;
+  r = r * a2 + 1.0 / 5;
+  r = r * a2 - 1.0 / 3;
+  r = base + a * (1 + r * a2);
+  if (steep) r = kHalfPi - r;
+  return x < 0 ? 2 * kHalfPi - r : r;
+}
+
 inline V3 projectedUnit(V3 v, V3 n) {
   const V3 p = v - n * dot(n, v);
   const double l = length(p);
@@ -533,15 +561,17 @@ void Kernel::groupBucket(std::uint32_t bucket, BucketScratch& scratch) {
   auto member = [&](std::size_t m) { return static_cast<std::uint32_t>(scratch.keys[m]); };
   auto rootOf = [&](std::size_t m) { return static_cast<std::uint32_t>(scratch.keys[m] >> 32); };
 
-  // Per contributing member: weighted tangent (3), unit tangent (3), unit bitangent (3), angle.
+  // Per contributing member: weighted tangent (3), unit projected tangent (3), the
+  // triangle's unit bitangent (3, unprojected), angle.
   constexpr int kStride = 10;
   for (std::size_t g = 0; g < memberCount;) {
     std::size_t gEnd = g + 1;
     while (gEnd < memberCount && rootOf(gEnd) == rootOf(g)) ++gEnd;
     const std::int8_t orientation = ws_.orientation[list[member(g)] / 3];
     const float w = orientation > 0 ? 1.0f : -1.0f;  // reference: fSign = +1 where the UV area is positive
-    scratch.values.clear();
+    scratch.values.resize(kStride * (gEnd - g));
     scratch.items.clear();  // contributing members, local indices
+    double* values = scratch.values.data();
     double angleSum = 0;
     for (std::size_t m = g; m < gEnd; ++m) {
       const std::uint32_t c = list[member(m)];
@@ -549,14 +579,16 @@ void Kernel::groupBucket(std::uint32_t bucket, BucketScratch& scratch) {
       if (ws_.triangleFlags[t] & kGroupWithAny) continue;
       const float* frame = &ws_.triangleFrames[6 * t];
       const V3 s = projectedUnit({frame[0], frame[1], frame[2]}, n);
-      const V3 b = projectedUnit({frame[3], frame[4], frame[5]}, n);
       const V3 here = a_.position(a_.indices[c]);
-      const V3 toPrevious = projectedUnit(a_.position(a_.indices[previousCorner(c)]) - here, n);
-      const V3 toNext = projectedUnit(a_.position(a_.indices[nextCorner(c)]) - here, n);
-      double angle = std::acos(0.0);  // a zero edge counts as perpendicular, as in the reference
-      if (!(toPrevious == V3{}) && !(toNext == V3{})) angle = std::atan2(length(cross(toPrevious, toNext)), dot(toPrevious, toNext));
-      const double row[kStride] = {s.x * angle, s.y * angle, s.z * angle, s.x, s.y, s.z, b.x, b.y, b.z, angle};
-      scratch.values.insert(scratch.values.end(), row, row + kStride);
+      const V3 toPrevious = projected(a_.position(a_.indices[previousCorner(c)]) - here, n);
+      const V3 toNext = projected(a_.position(a_.indices[nextCorner(c)]) - here, n);
+      double angle = kHalfPi;  // a zero edge counts as perpendicular, as in the reference
+      if (!(toPrevious == V3{}) && !(toNext == V3{})) angle = angleBetween(length(cross(toPrevious, toNext)), dot(toPrevious, toNext));
+      double* row = values + kStride * scratch.items.size();
+      row[0] = s.x * angle, row[1] = s.y * angle, row[2] = s.z * angle;
+      row[3] = s.x, row[4] = s.y, row[5] = s.z;
+      row[6] = frame[3], row[7] = frame[4], row[8] = frame[5];
+      row[9] = angle;
       scratch.items.push_back(static_cast<std::uint32_t>(m));
       angleSum += angle;
     }
@@ -570,12 +602,26 @@ void Kernel::groupBucket(std::uint32_t bucket, BucketScratch& scratch) {
       sorted = byValue.data();
     }
     for (std::uint32_t i = 0; i < contributing; ++i) sorted[i] = i;
-    const double* values = scratch.values.data();
-    std::sort(sorted, sorted + contributing, [&](std::uint32_t x, std::uint32_t y) {
-      return std::lexicographical_compare(values + kStride * x, values + kStride * x + 3, values + kStride * y,
-                                          values + kStride * y + 3);
-    });
-    // Subgroups: any pair with opposite projected dP/du or dP/dv?
+    auto lessByValue = [&](std::uint32_t x, std::uint32_t y) {
+      const double* p = values + kStride * x;
+      const double* q = values + kStride * y;
+      if (p[0] != q[0]) return p[0] < q[0];
+      if (p[1] != q[1]) return p[1] < q[1];
+      return p[2] < q[2];
+    };
+    if (contributing <= 32) {
+      for (std::uint32_t i = 1; i < contributing; ++i) {
+        const std::uint32_t value = sorted[i];
+        std::uint32_t j = i;
+        for (; j > 0 && lessByValue(value, sorted[j - 1]); --j) sorted[j] = sorted[j - 1];
+        sorted[j] = value;
+      }
+    } else {
+      std::sort(sorted, sorted + contributing, lessByValue);
+    }
+    // Subgroups: is any pair's projected dP/du or dP/dv opposite? All on one side of their
+    // sum proves no (any positive scale of the vectors); else compare pairs.
+    auto unitBitangent = [&](std::size_t i) { return projectedUnit({values[kStride * i + 6], values[kStride * i + 7], values[kStride * i + 8]}, n); };
     bool anyOpposite = false;
     if (contributing > 1) {
       V3 sumS, sumB;
@@ -583,19 +629,20 @@ void Kernel::groupBucket(std::uint32_t bucket, BucketScratch& scratch) {
         sumS = sumS + V3{values[kStride * i + 3], values[kStride * i + 4], values[kStride * i + 5]};
         sumB = sumB + V3{values[kStride * i + 6], values[kStride * i + 7], values[kStride * i + 8]};
       }
-      bool halfSpace = true;  // every unit vector strictly on the side of the sum: no opposite pair
+      sumB = projected(sumB, n);
+      bool halfSpace = true;
       for (std::size_t i = 0; i < contributing && halfSpace; ++i) {
-        const V3 s{values[kStride * i + 3], values[kStride * i + 4], values[kStride * i + 5]};
-        const V3 b{values[kStride * i + 6], values[kStride * i + 7], values[kStride * i + 8]};
-        halfSpace = (s == V3{} || dot(s, sumS) > 1e-9) && (b == V3{} || dot(b, sumB) > 1e-9);
+        const double* x = values + kStride * i;
+        const V3 s{x[3], x[4], x[5]};
+        halfSpace = (s == V3{} || dot(s, sumS) > 1e-9) && dot(V3{x[6], x[7], x[8]}, sumB) > 1e-9;
       }
       if (!halfSpace && contributing <= 4096) {
         for (std::size_t i = 0; i < contributing && !anyOpposite; ++i) {
+          const V3 bi = unitBitangent(i);
           for (std::size_t j = i + 1; j < contributing && !anyOpposite; ++j) {
             const double* x = values + kStride * i;
             const double* y = values + kStride * j;
-            anyOpposite = x[3] * y[3] + x[4] * y[4] + x[5] * y[5] <= kOppositeCos ||
-                          x[6] * y[6] + x[7] * y[7] + x[8] * y[8] <= kOppositeCos;
+            anyOpposite = x[3] * y[3] + x[4] * y[4] + x[5] * y[5] <= kOppositeCos || dot(bi, unitBitangent(j)) <= kOppositeCos;
           }
         }
       }
@@ -606,7 +653,7 @@ void Kernel::groupBucket(std::uint32_t bucket, BucketScratch& scratch) {
         const double* x = values + kStride * sorted[i];
         if (self != kNone && sorted[i] != self) {
           const double* y = values + kStride * self;
-          if (x[3] * y[3] + x[4] * y[4] + x[5] * y[5] <= kOppositeCos || x[6] * y[6] + x[7] * y[7] + x[8] * y[8] <= kOppositeCos)
+          if (x[3] * y[3] + x[4] * y[4] + x[5] * y[5] <= kOppositeCos || dot(unitBitangent(sorted[i]), unitBitangent(self)) <= kOppositeCos)
             continue;
         }
         sum = sum + V3{x[0], x[1], x[2]};

@@ -281,6 +281,19 @@ void finishOutputs(WorkspaceData& ws, const MeshArrays& mesh, const CornerOutput
         if (wantVertices) cornerVertex[corners[first]] = indices[corners[first]];
         continue;
       }
+      // Most buckets: one input vertex, one tangent.
+      const std::uint32_t c0 = corners[first];
+      bool uniform = true;
+      for (std::uint32_t i = first + 1; i < last && uniform; ++i) {
+        const std::uint32_t c = corners[i];
+        uniform = indices[c] == indices[c0] && std::memcmp(&tangents[4 * c], &tangents[4 * c0], 4 * sizeof(float)) == 0;
+      }
+      if (uniform) {
+        if (wantVertices) {
+          for (std::uint32_t i = first; i < last; ++i) cornerVertex[corners[i]] = indices[c0];
+        }
+        continue;
+      }
       entries.clear();
       for (std::uint32_t i = first; i < last; ++i) {
         const std::uint32_t c = corners[i];
