@@ -5,6 +5,7 @@
 //   TANGENT_DIFF_BASE_SEED=N   first seed of the run (default kDefaultBaseSeed)
 //   TANGENT_DIFF_MESHES=N      meshes per run (default TANGENT_DIFF_DEFAULT_MESHES)
 //   TANGENT_DIFF_SEED=N        replay that one mesh and print every corner
+//   TANGENT_DIFF_ONLY=CASE     meshes allow only that case (a name from the per-case table)
 //   TANGENT_DIFF_MODEL=TEXT    (AssimpTestModels) print every corner of primitives whose name contains TEXT
 #include <gtest/gtest.h>
 
@@ -66,10 +67,17 @@ const char* testBinary() {
 TEST(ReferenceC, RandomMeshes) {
   const auto replaySeed = envNumber("TANGENT_DIFF_SEED");
   const std::uint64_t baseSeed = replaySeed.value_or(envNumber("TANGENT_DIFF_BASE_SEED").value_or(kDefaultBaseSeed));
+  const char* onlyName = std::getenv("TANGENT_DIFF_ONLY");
+  const auto only =
+      onlyName != nullptr && *onlyName != '\0' ? tangent::testing::parseMeshFeature(onlyName) : std::nullopt;
+  if (onlyName != nullptr && *onlyName != '\0' && !only) FAIL() << "TANGENT_DIFF_ONLY=" << onlyName << " names no case";
+  const std::string replayPrefix = only ? "TANGENT_DIFF_ONLY=" + std::string(onlyName) + " " : std::string();
   const std::uint64_t meshCount =
       replaySeed ? 1 : envNumber("TANGENT_DIFF_MESHES").value_or(TANGENT_DIFF_DEFAULT_MESHES);
-  std::printf("reference C differential: base seed %llu, %llu meshes (TANGENT_DIFF_BASE_SEED, TANGENT_DIFF_MESHES)\n",
-              static_cast<unsigned long long>(baseSeed), static_cast<unsigned long long>(meshCount));
+  std::printf(
+      "reference C differential: base seed %llu, %llu meshes (TANGENT_DIFF_BASE_SEED, TANGENT_DIFF_MESHES)%s%s\n",
+      static_cast<unsigned long long>(baseSeed), static_cast<unsigned long long>(meshCount), only ? ", only " : "",
+      only ? onlyName : "");
 
   const auto start = std::chrono::steady_clock::now();
   RuleCounts total;
@@ -79,7 +87,7 @@ TEST(ReferenceC, RandomMeshes) {
   std::vector<std::uint64_t> failingSeeds;
   for (std::uint64_t i = 0; i < meshCount; ++i) {
     const std::uint64_t seed = baseSeed + i;
-    const tangent::testing::RandomMesh mesh = tangent::testing::randomMesh(seed);
+    const tangent::testing::RandomMesh mesh = tangent::testing::randomMesh(seed, only);
     std::string error;
     const std::vector<float> ours = computeOurs(mesh.arrays(), error);
     const auto result = tangent::testing::applyReferenceRule(mesh.arrays(), ours, seed ^ 0x5eed5eed5eedull);
@@ -99,9 +107,9 @@ TEST(ReferenceC, RandomMeshes) {
           features += std::string(features.empty() ? "" : ",") +
                       std::string(tangent::testing::toString(static_cast<tangent::testing::MeshFeature>(f)));
       std::printf(
-          "FAIL seed %llu [%s]%s%s: %s\n  replay: TANGENT_DIFF_SEED=%llu %s --gtest_filter=ReferenceC.RandomMeshes\n",
+          "FAIL seed %llu [%s]%s%s: %s\n  replay: %sTANGENT_DIFF_SEED=%llu %s --gtest_filter=ReferenceC.RandomMeshes\n",
           static_cast<unsigned long long>(seed), features.c_str(), error.empty() ? "" : " threw: ", error.c_str(),
-          result.counts.describe().c_str(), static_cast<unsigned long long>(seed), testBinary());
+          result.counts.describe().c_str(), replayPrefix.c_str(), static_cast<unsigned long long>(seed), testBinary());
     }
     if (replaySeed) std::printf("%s", tangent::testing::describeCorners(mesh.arrays(), ours, result).c_str());
   }
@@ -141,7 +149,7 @@ TEST(ReferenceC, RandomMeshes) {
   // The generator's coverage: most corners are compared, and every case and every class
   // occurs (with a full run's worth of meshes).
   EXPECT_GE(static_cast<double>(total.compared), kMinComparedFraction * static_cast<double>(total.corners));
-  if (meshCount >= 1000) {
+  if (meshCount >= 1000 && !only) {
     for (std::size_t f = 0; f < featureMeshes.size(); ++f)
       EXPECT_GE(featureMeshes[f], meshCount / 50)
           << "case " << tangent::testing::toString(static_cast<tangent::testing::MeshFeature>(f)) << " too rare";

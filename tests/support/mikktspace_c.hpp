@@ -18,7 +18,8 @@ struct ReferenceFrame {
   float sign = 0;
   bool written = false;  // setTSpaceBasic was called for this corner
   // setTSpace gave exactly the space the reference starts every corner with (tangent (1,0,0),
-  // bitangent (0,1,0), both magnitudes 1, not orientation preserving): no group reached it.
+  // bitangent (0,1,0), both magnitudes 1, not orientation preserving): likely no group reached
+  // it (a computed space can be the same; see applyReferenceRule).
   bool initialSpace = false;
 };
 

@@ -492,10 +492,20 @@ void deindexSome(Builder& b) {
 
 // Each mesh allows a random subset of the cases (so a failing case shows in which meshes
 // fail), then combines what it allows at random.
-RandomMesh randomMesh(std::uint64_t seed) {
+std::optional<MeshFeature> parseMeshFeature(std::string_view name) {
+  for (std::size_t f = 0; f < kMeshFeatureCount; ++f)
+    if (toString(static_cast<MeshFeature>(f)) == name) return static_cast<MeshFeature>(f);
+  return std::nullopt;
+}
+
+RandomMesh randomMesh(std::uint64_t seed, std::optional<MeshFeature> only) {
   using enum MeshFeature;
   Builder b(seed);
   for (bool& allowed : b.enabled) allowed = b.random.chance(0.3);
+  if (only) {
+    b.enabled = {};
+    b.enabled[static_cast<std::size_t>(*only)] = true;
+  }
   if (!b.allows(smoothGrid) && !b.allows(flatGrid))
     b.enabled[static_cast<std::size_t>(b.random.chance(0.5) ? smoothGrid : flatGrid)] = true;
   const int target = b.random.between(20, 400);

@@ -6,6 +6,7 @@
 
 #include <array>
 #include <cstdint>
+#include <optional>
 #include <string_view>
 #include <vector>
 
@@ -45,6 +46,9 @@ struct RandomMesh {
   std::size_t triangleCount() const { return indices.size() / 3; }
 };
 
-RandomMesh randomMesh(std::uint64_t seed);
+// only: the mesh allows just that case (and a grid kind) instead of a random subset, to
+// attribute failures to one case.
+RandomMesh randomMesh(std::uint64_t seed, std::optional<MeshFeature> only = std::nullopt);
+std::optional<MeshFeature> parseMeshFeature(std::string_view name);
 
 }  // namespace tangent::testing

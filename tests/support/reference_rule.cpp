@@ -128,6 +128,15 @@ RuleResult applyReferenceRule(const MeshArrays& mesh, std::span<const float> our
         std::count_if(run.begin(), run.end(), [](const ReferenceFrame& f) { return !f.written; }));
   }
 
+  // The initial space can also be computed (a flat patch with tangent x, bitangent y and unit
+  // magnitudes). With every UV doubled (exact; welding, orientation and directions unchanged)
+  // computed magnitudes halve while the initial space stays: unreached is initial in both.
+  std::vector<float> doubledUvs(mesh.uvs.begin(), mesh.uvs.end());
+  for (float& uv : doubledUvs) uv *= 2;
+  MeshArrays doubled = mesh;
+  doubled.uvs = doubledUvs;
+  const std::vector<ReferenceFrame> doubledRun = referenceCornerFrames(doubled);
+
   const std::vector<ReferenceFrame>& original = result.reference[0];
   result.classes.assign(corners, CornerClass::compared);
   result.degrees.assign(corners, 0.0);
@@ -140,7 +149,7 @@ RuleResult applyReferenceRule(const MeshArrays& mesh, std::span<const float> our
         original[first].sign != original[first + 1].sign || original[first].sign != original[first + 2].sign;
     if (!definedFrame(original[c], normal)) {
       cornerClass = CornerClass::undefined;
-    } else if (original[c].initialSpace) {
+    } else if (original[c].initialSpace && (doubledRun.empty() || doubledRun[c].initialSpace)) {
       // (1,0,0) left where no group reaches can happen to be orthogonal to the normal.
       cornerClass = CornerClass::undefined;
       ++counts.unreached;
