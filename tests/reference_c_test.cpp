@@ -3,7 +3,7 @@
 // differential test against the reference C MikkTSpace"; see support/reference_rule.hpp.
 //
 //   TANGENT_DIFF_BASE_SEED=N   first seed of the run (default kDefaultBaseSeed)
-//   TANGENT_DIFF_MESHES=N      meshes per run (default TANGENT_DIFF_DEFAULT_MESHES)
+//   TANGENT_DIFF_MESHES=N      meshes per run (default kDefaultMeshes)
 //   TANGENT_DIFF_SEED=N        replay that one mesh and print every corner
 //   TANGENT_DIFF_ONLY=CASE     meshes allow only that case (a name from the per-case table)
 //   TANGENT_DIFF_MODEL=TEXT    (AssimpTestModels) print every corner of primitives whose name contains TEXT
@@ -24,16 +24,13 @@
 #include "support/reference_rule.hpp"
 #include "tangent/tangent.hpp"
 
-#ifndef TANGENT_DIFF_DEFAULT_MESHES
-#define TANGENT_DIFF_DEFAULT_MESHES 2000
-#endif
-
 namespace fs = std::filesystem;
 using tangent::testing::RuleCounts;
 
 namespace {
 
 constexpr std::uint64_t kDefaultBaseSeed = 0x7a6e6e74;
+constexpr std::uint64_t kDefaultMeshes = 2000;  // about 4 s here, 16 s under ASan + UBSan
 // The generator must keep most corners comparable, or the test compares little.
 constexpr double kMinComparedFraction = 0.75;
 
@@ -72,8 +69,7 @@ TEST(ReferenceC, RandomMeshes) {
       onlyName != nullptr && *onlyName != '\0' ? tangent::testing::parseMeshFeature(onlyName) : std::nullopt;
   if (onlyName != nullptr && *onlyName != '\0' && !only) FAIL() << "TANGENT_DIFF_ONLY=" << onlyName << " names no case";
   const std::string replayPrefix = only ? "TANGENT_DIFF_ONLY=" + std::string(onlyName) + " " : std::string();
-  const std::uint64_t meshCount =
-      replaySeed ? 1 : envNumber("TANGENT_DIFF_MESHES").value_or(TANGENT_DIFF_DEFAULT_MESHES);
+  const std::uint64_t meshCount = replaySeed ? 1 : envNumber("TANGENT_DIFF_MESHES").value_or(kDefaultMeshes);
   std::printf(
       "reference C differential: base seed %llu, %llu meshes (TANGENT_DIFF_BASE_SEED, TANGENT_DIFF_MESHES)%s%s\n",
       static_cast<unsigned long long>(baseSeed), static_cast<unsigned long long>(meshCount), only ? ", only " : "",
@@ -183,6 +179,14 @@ TEST(ReferenceC, AssimpTestModels) {
   std::size_t primitives = 0, skippedPrimitives = 0;
   for (const fs::path& file : files) {
     const std::string name = fs::relative(file, root).string();
+#ifdef __SANITIZE_ADDRESS__
+    // Its header makes the OFF reader ask for ~128 GiB: std::bad_alloc in a normal build (listed
+    // below), but ASan's operator new aborts the process instead of throwing.
+    if (name == "invalid/OutOfMemory.off") {
+      unreadable.push_back(name + ": skipped under AddressSanitizer (the reader asks for ~128 GiB)");
+      continue;
+    }
+#endif
     tangent::gltf::detail::Asset asset;
     try {
       asset = tangent::gltf::detail::loadAsset(file);
