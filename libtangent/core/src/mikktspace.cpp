@@ -30,6 +30,7 @@
 #include <bit>
 #include <cmath>
 #include <cstring>
+#include <limits>
 #include <tbb/combinable.h>
 
 #include "workspace.hpp"
@@ -58,9 +59,6 @@ inline std::uint32_t canonicalBits(float x) { return std::bit_cast<std::uint32_t
 constexpr double kUvZero = 0x1p-22;
 // Below this fraction of |e1||e2| a 3D area is rounding noise (report: degenerate).
 constexpr double kAreaZero = 1e-14;
-// Projected tangents this close to opposite form separate subgroups (the reference's
-// cos > cos(180 deg) test in float).
-constexpr double kOppositeCos = -1.0 + 0x1p-23;
 
 struct Arrays {
   const float* positions;
@@ -91,18 +89,42 @@ int firstCorner(const Arrays& a, std::size_t t) {
   return first;
 }
 
-// Unit dP/du and dP/dv of triangle t (signed by the UV orientation), its orientation and flags.
+// The reference's float arithmetic, operation for operation (mikktspace.c: vsub, vscale,
+// vdot, Length, Normalize, NotZero), so that its zero tests and its opposite-tangent test
+// see the same roundings.
+struct F3 {
+  float x = 0, y = 0, z = 0;
+};
+inline F3 fsub(F3 a, F3 b) { return {a.x - b.x, a.y - b.y, a.z - b.z}; }
+inline F3 fadd(F3 a, F3 b) { return {a.x + b.x, a.y + b.y, a.z + b.z}; }
+inline F3 fscale(float s, F3 a) { return {s * a.x, s * a.y, s * a.z}; }
+inline float fdot(F3 a, F3 b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
+inline float flength(F3 a) { return std::sqrt(a.x * a.x + a.y * a.y + a.z * a.z); }
+inline bool notZero(float x) { return std::abs(x) > std::numeric_limits<float>::min(); }
+inline bool notZero(F3 a) { return notZero(a.x) || notZero(a.y) || notZero(a.z); }
+// The reference's projection onto the plane of a (raw) normal, normalized where not zero.
+inline F3 referenceProjected(F3 v, F3 n) {
+  F3 p = fsub(v, fscale(fdot(n, v), n));
+  if (notZero(p)) p = fscale(1 / flength(p), p);
+  return p;
+}
+
+// Unit dP/du and dP/dv of triangle t (signed by the UV orientation), its orientation and
+// flags. The reference's float formulas (eq. 18, 19 of its source) from the triangle's first
+// corner in value order; where float under- or overflows on a triangle that double
+// arithmetic resolves (denormal or huge coordinates), the double result.
 void evaluateTriangle(const Arrays& a, std::size_t t, float* frame, std::int8_t& orientation, std::uint8_t& flags) {
   const int first = firstCorner(a, t);
-  V3 p[3];
-  double u[3], v[3];
+  F3 pf[3];
+  float uf[3], vf[3];
   bool allFinite = true;
   for (int k = 0; k < 3; ++k) {
     const std::uint32_t vertex = a.indices[3 * t + (first + k) % 3];
-    p[k] = a.position(vertex);
-    u[k] = a.uvs[2 * vertex];
-    v[k] = a.uvs[2 * vertex + 1];
-    allFinite = allFinite && finite(p[k]) && std::isfinite(u[k]) && std::isfinite(v[k]);
+    pf[k] = {a.positions[3 * vertex], a.positions[3 * vertex + 1], a.positions[3 * vertex + 2]};
+    uf[k] = a.uvs[2 * vertex];
+    vf[k] = a.uvs[2 * vertex + 1];
+    allFinite = allFinite && std::isfinite(pf[k].x) && std::isfinite(pf[k].y) && std::isfinite(pf[k].z) &&
+                std::isfinite(uf[k]) && std::isfinite(vf[k]);
   }
   std::fill(frame, frame + 6, 0.0f);
   orientation = 0;
@@ -111,34 +133,63 @@ void evaluateTriangle(const Arrays& a, std::size_t t, float* frame, std::int8_t&
     return;
   }
   flags = 0;
-  const bool coincident = p[0] == p[1] || p[1] == p[2] || p[0] == p[2];
+  auto same = [](F3 x, F3 y) { return x.x == y.x && x.y == y.y && x.z == y.z; };
+  const bool coincident = same(pf[0], pf[1]) || same(pf[1], pf[2]) || same(pf[0], pf[2]);
+  const V3 p[3] = {{pf[0].x, pf[0].y, pf[0].z}, {pf[1].x, pf[1].y, pf[1].z}, {pf[2].x, pf[2].y, pf[2].z}};
   const V3 e1 = p[1] - p[0], e2 = p[2] - p[0];
   if (!(length(cross(e1, e2)) > kAreaZero * length(e1) * length(e2))) flags |= kFlat;
-  const double du1 = u[1] - u[0], dv1 = v[1] - v[0], du2 = u[2] - u[0], dv2 = v[2] - v[0];
-  const double det = du1 * dv2 - du2 * dv1;
-  const bool zeroUv = !(std::abs(det) > kUvZero * (std::abs(du1 * dv2) + std::abs(du2 * dv1)));
-  if (zeroUv && !(flags & kFlat)) flags |= kZeroUv;
   if (coincident) {
     flags |= kCoincident;
     return;
   }
-  if (!zeroUv) {
-    const V3 uDirection = e1 * dv2 - e2 * dv1;  // det * dP/du
-    const V3 vDirection = e2 * du1 - e1 * du2;  // det * dP/dv
-    const double uLength = length(uDirection), vLength = length(vDirection);
-    const bool uUsable = uLength > kAreaZero * (length(e1) * std::abs(dv2) + length(e2) * std::abs(dv1));
-    const bool vUsable = vLength > kAreaZero * (length(e2) * std::abs(du1) + length(e1) * std::abs(du2));
-    if (uUsable && vUsable) {
-      const double sign = det > 0 ? 1.0 : -1.0;
-      orientation = det > 0 ? 1 : -1;
-      for (int i = 0; i < 3; ++i) {
-        frame[i] = static_cast<float>((&uDirection.x)[i] * (sign / uLength));
-        frame[3 + i] = static_cast<float>((&vDirection.x)[i] * (sign / vLength));
-      }
-      return;
+
+  // The reference, in float.
+  const float t21x = uf[1] - uf[0], t21y = vf[1] - vf[0], t31x = uf[2] - uf[0], t31y = vf[2] - vf[0];
+  const F3 d1 = fsub(pf[1], pf[0]), d2 = fsub(pf[2], pf[0]);
+  const float signedArea = t21x * t31y - t21y * t31x;
+  F3 vOs = fsub(fscale(t31y, d1), fscale(t21y, d2));
+  F3 vOt = fadd(fscale(-t31x, d1), fscale(t21x, d2));
+  bool usable = false;
+  if (notZero(signedArea)) {
+    const float absArea = std::abs(signedArea);
+    const float lengthS = flength(vOs), lengthT = flength(vOt);
+    const float sign = signedArea > 0 ? 1.0f : -1.0f;
+    if (notZero(lengthS)) vOs = fscale(sign / lengthS, vOs);
+    if (notZero(lengthT)) vOt = fscale(sign / lengthT, vOt);
+    usable = notZero(lengthS / absArea) && notZero(lengthT / absArea) && std::isfinite(lengthS) && std::isfinite(lengthT);
+  }
+  if (usable) {
+    orientation = signedArea > 0 ? 1 : -1;
+    const float values[6] = {vOs.x, vOs.y, vOs.z, vOt.x, vOt.y, vOt.z};
+    std::copy(values, values + 6, frame);
+    return;
+  }
+
+  // Float found nothing: trust it unless its terms under- or overflowed.
+  const double du1 = double(uf[1]) - uf[0], dv1 = double(vf[1]) - vf[0], du2 = double(uf[2]) - uf[0], dv2 = double(vf[2]) - vf[0];
+  const double det = du1 * dv2 - du2 * dv1;
+  const double terms = std::abs(du1 * dv2) + std::abs(du2 * dv1);
+  const V3 uDirection = e1 * dv2 - e2 * dv1;  // det * dP/du
+  const V3 vDirection = e2 * du1 - e1 * du2;  // det * dP/dv
+  const double uLength = length(uDirection), vLength = length(vDirection);
+  // Float squares lengths: beyond about 1e+-19 they under- or overflow.
+  constexpr double kTiny = 1e-18, kHuge = 1e18;
+  const bool floatRange = terms > kTiny * kTiny && terms < kHuge * kHuge && uLength > kTiny && uLength < kHuge &&
+                          vLength > kTiny && vLength < kHuge && length(e1) < kHuge && length(e2) < kHuge;
+  const bool doubleUsable = std::abs(det) > kUvZero * terms &&
+                            uLength > kAreaZero * (length(e1) * std::abs(dv2) + length(e2) * std::abs(dv1)) &&
+                            vLength > kAreaZero * (length(e2) * std::abs(du1) + length(e1) * std::abs(du2));
+  if (!floatRange && doubleUsable) {
+    const double sign = det > 0 ? 1.0 : -1.0;
+    orientation = det > 0 ? 1 : -1;
+    for (int i = 0; i < 3; ++i) {
+      frame[i] = static_cast<float>((&uDirection.x)[i] * (sign / uLength));
+      frame[3 + i] = static_cast<float>((&vDirection.x)[i] * (sign / vLength));
     }
+    return;
   }
   flags |= kGroupWithAny;
+  if (!(flags & kFlat)) flags |= kZeroUv;
 }
 
 // Strict order of triangles by value (rotation-free): the order non-manifold edges pair in.
@@ -561,8 +612,10 @@ void Kernel::groupBucket(std::uint32_t bucket, BucketScratch& scratch) {
   auto member = [&](std::size_t m) { return static_cast<std::uint32_t>(scratch.keys[m]); };
   auto rootOf = [&](std::size_t m) { return static_cast<std::uint32_t>(scratch.keys[m] >> 32); };
 
-  // Per contributing member: weighted tangent (3), unit projected tangent (3), the
-  // triangle's unit bitangent (3, unprojected), angle.
+  // Per contributing member: weighted tangent (3), then dP/du and dP/dv projected as the
+  // reference projects them (3 + 3, float arithmetic on the raw normal), angle.
+  const F3 rawNormal{a_.normals[3 * a_.indices[list[0]]], a_.normals[3 * a_.indices[list[0]] + 1],
+                     a_.normals[3 * a_.indices[list[0]] + 2]};
   constexpr int kStride = 10;
   for (std::size_t g = 0; g < memberCount;) {
     std::size_t gEnd = g + 1;
@@ -584,10 +637,15 @@ void Kernel::groupBucket(std::uint32_t bucket, BucketScratch& scratch) {
       const V3 toNext = projected(a_.position(a_.indices[nextCorner(c)]) - here, n);
       double angle = kHalfPi;  // a zero edge counts as perpendicular, as in the reference
       if (!(toPrevious == V3{}) && !(toNext == V3{})) angle = angleBetween(length(cross(toPrevious, toNext)), dot(toPrevious, toNext));
+      // A corner whose edges project onto one line has no angle, but the reference's float
+      // acos rarely returns exactly 0 there: its direction still counts where nothing else does.
+      angle = std::max(angle, 1e-12);
+      const F3 referenceS = referenceProjected({frame[0], frame[1], frame[2]}, rawNormal);
+      const F3 referenceT = referenceProjected({frame[3], frame[4], frame[5]}, rawNormal);
       double* row = values + kStride * scratch.items.size();
       row[0] = s.x * angle, row[1] = s.y * angle, row[2] = s.z * angle;
-      row[3] = s.x, row[4] = s.y, row[5] = s.z;
-      row[6] = frame[3], row[7] = frame[4], row[8] = frame[5];
+      row[3] = referenceS.x, row[4] = referenceS.y, row[5] = referenceS.z;
+      row[6] = referenceT.x, row[7] = referenceT.y, row[8] = referenceT.z;
       row[9] = angle;
       scratch.items.push_back(static_cast<std::uint32_t>(m));
       angleSum += angle;
@@ -619,43 +677,41 @@ void Kernel::groupBucket(std::uint32_t bucket, BucketScratch& scratch) {
     } else {
       std::sort(sorted, sorted + contributing, lessByValue);
     }
-    // Subgroups: is any pair's projected dP/du or dP/dv opposite? All on one side of their
-    // sum proves no (any positive scale of the vectors); else compare pairs.
-    auto unitBitangent = [&](std::size_t i) { return projectedUnit({values[kStride * i + 6], values[kStride * i + 7], values[kStride * i + 8]}, n); };
+    // Subgroups: the reference keeps apart two triangles whose projected dP/du or dP/dv have
+    // a float dot product of -1 or less. All vectors well inside one half-space (1e-3 from its
+    // boundary) proves there is no such pair; otherwise compare pairs as the reference does.
+    auto opposite = [&](std::size_t i, std::size_t j) {
+      const double* x = values + kStride * i;
+      const double* y = values + kStride * j;
+      const F3 si{float(x[3]), float(x[4]), float(x[5])}, sj{float(y[3]), float(y[4]), float(y[5])};
+      const F3 ti{float(x[6]), float(x[7]), float(x[8])}, tj{float(y[6]), float(y[7]), float(y[8])};
+      return !(fdot(si, sj) > -1.0f) || !(fdot(ti, tj) > -1.0f);
+    };
     bool anyOpposite = false;
     if (contributing > 1) {
-      V3 sumS, sumB;
+      V3 sumS, sumT;
       for (std::size_t i = 0; i < contributing; ++i) {
         sumS = sumS + V3{values[kStride * i + 3], values[kStride * i + 4], values[kStride * i + 5]};
-        sumB = sumB + V3{values[kStride * i + 6], values[kStride * i + 7], values[kStride * i + 8]};
+        sumT = sumT + V3{values[kStride * i + 6], values[kStride * i + 7], values[kStride * i + 8]};
       }
-      sumB = projected(sumB, n);
+      const double lengthS = length(sumS), lengthT = length(sumT);
       bool halfSpace = true;
       for (std::size_t i = 0; i < contributing && halfSpace; ++i) {
         const double* x = values + kStride * i;
-        const V3 s{x[3], x[4], x[5]};
-        halfSpace = (s == V3{} || dot(s, sumS) > 1e-9) && dot(V3{x[6], x[7], x[8]}, sumB) > 1e-9;
+        const V3 si{x[3], x[4], x[5]}, ti{x[6], x[7], x[8]};
+        halfSpace = (si == V3{} || dot(si, sumS) > 1e-3 * lengthS) && (ti == V3{} || dot(ti, sumT) > 1e-3 * lengthT);
       }
       if (!halfSpace && contributing <= 4096) {
         for (std::size_t i = 0; i < contributing && !anyOpposite; ++i) {
-          const V3 bi = unitBitangent(i);
-          for (std::size_t j = i + 1; j < contributing && !anyOpposite; ++j) {
-            const double* x = values + kStride * i;
-            const double* y = values + kStride * j;
-            anyOpposite = x[3] * y[3] + x[4] * y[4] + x[5] * y[5] <= kOppositeCos || dot(bi, unitBitangent(j)) <= kOppositeCos;
-          }
+          for (std::size_t j = i + 1; j < contributing && !anyOpposite; ++j) anyOpposite = opposite(i, j);
         }
       }
     }
     auto sumOver = [&](std::size_t self) {  // self: a contributing index, or kNone for all
       V3 sum;
       for (std::size_t i = 0; i < contributing; ++i) {
+        if (self != kNone && sorted[i] != self && opposite(sorted[i], self)) continue;
         const double* x = values + kStride * sorted[i];
-        if (self != kNone && sorted[i] != self) {
-          const double* y = values + kStride * self;
-          if (x[3] * y[3] + x[4] * y[4] + x[5] * y[5] <= kOppositeCos || dot(unitBitangent(sorted[i]), unitBitangent(self)) <= kOppositeCos)
-            continue;
-        }
         sum = sum + V3{x[0], x[1], x[2]};
       }
       return sum;
