@@ -151,8 +151,11 @@ RuleResult applyReferenceRule(const MeshArrays& mesh, std::span<const float> our
     const float* normal = &mesh.normals[3 * std::size_t{mesh.indices[c]}];
     CornerClass& cornerClass = result.classes[c];
     const std::size_t first = c - c % 3;
-    const bool mixedW =
-        original[first].sign != original[first + 1].sign || original[first].sign != original[first + 2].sign;
+    // Mixed w in any run: a zero-UV triangle reached from both sides in some order leaves one
+    // corner with the reference's initial space, whose (1,0,0) can equal a computed frame.
+    const bool mixedW = std::any_of(result.reference.begin(), result.reference.end(), [&](const auto& run) {
+      return run[first].sign != run[first + 1].sign || run[first].sign != run[first + 2].sign;
+    });
     if (!definedFrame(original[c], normal)) {
       cornerClass = CornerClass::undefined;
     } else if (original[c].initialSpace && (doubledRun.empty() || doubledRun[c].initialSpace)) {

@@ -249,6 +249,19 @@ class Kernel {
   void groupBucket(std::uint32_t bucket, BucketScratch& scratch);
   void inheritInBucket(std::uint32_t bucket, std::uint32_t corner, float w, bool anyW);
   void fallbacks();
+  // The reference's corner angle (EvalTspace): float projections on the raw normal, float
+  // cosine clamped to [-1, 1], acos.
+  double referenceAngle(std::size_t corner, F3 rawNormal) const {
+    auto at = [&](std::size_t c) {
+      const std::uint32_t v = a_.indices[c];
+      return F3{a_.positions[3 * v], a_.positions[3 * v + 1], a_.positions[3 * v + 2]};
+    };
+    const F3 here = at(corner);
+    const F3 toPrevious = referenceProjected(fsub(at(previousCorner(corner)), here), rawNormal);
+    const F3 toNext = referenceProjected(fsub(at(nextCorner(corner)), here), rawNormal);
+    const float cosine = std::clamp(fdot(toPrevious, toNext), -1.0f, 1.0f);
+    return static_cast<float>(std::acos(static_cast<double>(cosine)));
+  }
   void writeCorner(std::size_t corner, V3 tangent, float w, FrameSource source, float weight) {
     tangents_[4 * corner] = static_cast<float>(tangent.x);
     tangents_[4 * corner + 1] = static_cast<float>(tangent.y);
@@ -637,8 +650,12 @@ void Kernel::groupBucket(std::uint32_t bucket, BucketScratch& scratch) {
       const V3 toNext = projected(a_.position(a_.indices[nextCorner(c)]) - here, n);
       double angle = kHalfPi;  // a zero edge counts as perpendicular, as in the reference
       if (!(toPrevious == V3{}) && !(toNext == V3{})) angle = angleBetween(length(cross(toPrevious, toNext)), dot(toPrevious, toNext));
-      // A corner whose edges project onto one line has no angle, but the reference's float
-      // acos rarely returns exactly 0 there: its direction still counts where nothing else does.
+      if (angle < 1e-3 || angle > 2 * kHalfPi - 1e-3) {
+        // Near 0 or pi the reference's float cosine decides: acos(0.99999994) is 3.5e-4, not 0.
+        angle = referenceAngle(c, rawNormal);
+      }
+      // A corner whose edges project onto one line has no angle; its direction still counts
+      // where nothing else does.
       angle = std::max(angle, 1e-12);
       const F3 referenceS = referenceProjected({frame[0], frame[1], frame[2]}, rawNormal);
       const F3 referenceT = referenceProjected({frame[3], frame[4], frame[5]}, rawNormal);
