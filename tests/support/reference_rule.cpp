@@ -20,8 +20,11 @@ double degreesBetween(const float a[3], const float b[3]) {
   return degreesBetween(da, db);
 }
 
+// Same sign, same length (a zero vector is at angle 0 from anything) and within kAgreeDegrees.
 bool sameFrame(const ReferenceFrame& a, const ReferenceFrame& b) {
-  return a.written && b.written && a.sign == b.sign && degreesBetween(a.tangent, b.tangent) <= kAgreeDegrees;
+  auto length = [](const float* t) { return std::sqrt(double{t[0]} * t[0] + double{t[1]} * t[1] + double{t[2]} * t[2]); };
+  return a.written && b.written && a.sign == b.sign && std::abs(length(a.tangent) - length(b.tangent)) < kDefinedTolerance &&
+         degreesBetween(a.tangent, b.tangent) <= kAgreeDegrees;
 }
 
 // The reference frame is a unit vector orthogonal to the corner's unit normal.
@@ -45,19 +48,20 @@ bool validOurs(const float* tangent) {
   return std::abs(length - 1) < kUnitTolerance && (tangent[3] == 1.0f || tangent[3] == -1.0f);
 }
 
-// The first shuffle reverses the triangle order: every pair of triangles then comes in the
-// other order in one run, so a reference answer that depends on which of two triangles comes
-// first (non-manifold edges, duplicated faces) always shows as unstable, not only when a
-// random shuffle happens to swap them.
-FaceOrder shuffledOrder(std::size_t triangles, std::mt19937_64& engine, bool reversed) {
+// Shuffle 0 reverses the triangle order, so every pair of triangles comes in the other order
+// in one run (the reference pairs the triangles of a non-manifold edge in face order).
+// Shuffles 0 and 1 rotate every triangle by one and by two corners, so every triangle is seen
+// from each of its corners (the reference's float arithmetic starts at a triangle's first
+// corner). The others are random orders with random rotations.
+FaceOrder shuffledOrder(std::size_t triangles, std::mt19937_64& engine, int shuffle) {
   FaceOrder order;
   order.triangleOrder.resize(triangles);
-  for (std::size_t i = 0; i < triangles; ++i) order.triangleOrder[i] = static_cast<std::uint32_t>(reversed ? triangles - 1 - i : i);
-  if (!reversed) {
+  for (std::size_t i = 0; i < triangles; ++i) order.triangleOrder[i] = static_cast<std::uint32_t>(shuffle == 0 ? triangles - 1 - i : i);
+  if (shuffle != 0) {
     for (std::size_t i = triangles; i > 1; --i) std::swap(order.triangleOrder[i - 1], order.triangleOrder[engine() % i]);
   }
   order.cornerRotation.resize(triangles);
-  for (auto& rotation : order.cornerRotation) rotation = static_cast<std::uint8_t>(engine() % 3);
+  for (auto& rotation : order.cornerRotation) rotation = static_cast<std::uint8_t>(shuffle < 2 ? shuffle + 1 : engine() % 3);
   return order;
 }
 
@@ -124,7 +128,7 @@ RuleResult applyReferenceRule(const MeshArrays& mesh, std::span<const float> our
   std::mt19937_64 engine(shuffleSeed);
   result.reference.push_back(referenceCornerFrames(mesh));
   for (int s = 0; s < kShuffles; ++s)
-    result.reference.push_back(referenceCornerFrames(mesh, shuffledOrder(triangles, engine, s == 0)));
+    result.reference.push_back(referenceCornerFrames(mesh, shuffledOrder(triangles, engine, s)));
   for (auto& run : result.reference) {
     if (run.empty()) {  // the reference failed: count it, and treat its corners as unwritten
       ++counts.referenceFailures;

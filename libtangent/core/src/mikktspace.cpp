@@ -644,7 +644,6 @@ void Kernel::groupBucket(std::uint32_t bucket, BucketScratch& scratch) {
       const std::size_t t = c / 3;
       if (ws_.triangleFlags[t] & kGroupWithAny) continue;
       const float* frame = &ws_.triangleFrames[6 * t];
-      const V3 s = projectedUnit({frame[0], frame[1], frame[2]}, n);
       const V3 here = a_.position(a_.indices[c]);
       const V3 toPrevious = projected(a_.position(a_.indices[previousCorner(c)]) - here, n);
       const V3 toNext = projected(a_.position(a_.indices[nextCorner(c)]) - here, n);
@@ -660,7 +659,8 @@ void Kernel::groupBucket(std::uint32_t bucket, BucketScratch& scratch) {
       const F3 referenceS = referenceProjected({frame[0], frame[1], frame[2]}, rawNormal);
       const F3 referenceT = referenceProjected({frame[3], frame[4], frame[5]}, rawNormal);
       double* row = values + kStride * scratch.items.size();
-      row[0] = s.x * angle, row[1] = s.y * angle, row[2] = s.z * angle;
+      // The reference's projected direction, so that sums which (nearly) cancel keep its sign.
+      row[0] = referenceS.x * angle, row[1] = referenceS.y * angle, row[2] = referenceS.z * angle;
       row[3] = referenceS.x, row[4] = referenceS.y, row[5] = referenceS.z;
       row[6] = referenceT.x, row[7] = referenceT.y, row[8] = referenceT.z;
       row[9] = angle;
