@@ -433,10 +433,7 @@ void Kernel::pairNonManifold(const std::uint32_t* outs, std::size_t outCount, co
   }
 }
 
-// Zero-UV triangles take the orientation most of their oriented neighbours have, layer by
-// layer outwards from the oriented triangles (ties +1). Those no edge path reaches (the
-// reference leaves them a default frame) then vote among the triangles that share one of their
-// corners' identities, and the edge layers go on from there.
+// Orientation of the triangles that group with any (zero UV area): see below.
 void Kernel::resolveGroupWithAny() {
   const std::size_t triangleCount = ws_.cornerCount / 3;
   auto open = [&](std::size_t t) {
@@ -452,6 +449,76 @@ void Kernel::resolveGroupWithAny() {
     if (open(t)) pending.push_back(static_cast<std::uint32_t>(t));
   }
   if (pending.empty()) return;
+
+  // The reference: a group starts at an oriented triangle's corner and spreads around that
+  // one vertex, and the first group to reach a zero-UV triangle gives it its orientation. So
+  // the groups that can reach one are those of oriented triangles joined to it around one of
+  // its vertices through zero-UV triangles. Where all of them agree, the reference's answer
+  // does not depend on face order and we give the same; where they disagree, the majority of
+  // the triangle's corners (ties +1).
+  {
+    constexpr std::uint8_t kReachedMinus = 64, kReachedPlus = 128;
+    std::vector<std::uint32_t> buckets;
+    for (std::uint32_t t : pending) {
+      for (int k = 0; k < 3; ++k) buckets.push_back(id(3 * t + k));
+    }
+    std::sort(buckets.begin(), buckets.end());
+    buckets.erase(std::unique(buckets.begin(), buckets.end()), buckets.end());
+    std::vector<std::uint32_t> parent;
+    std::vector<std::uint8_t> reached;
+    for (std::uint32_t bucket : buckets) {
+      const std::uint32_t first = start_[bucket], count = start_[bucket + 1] - first;
+      const std::uint32_t* list = corners_ + first;
+      parent.resize(count);
+      reached.assign(count, 0);
+      for (std::uint32_t i = 0; i < count; ++i) parent[i] = i;
+      auto find = [&](std::uint32_t x) {
+        while (parent[x] != x) x = parent[x] = parent[parent[x]];
+        return x;
+      };
+      for (std::uint32_t i = 0; i < count; ++i) {
+        const std::uint32_t c = list[i];
+        const std::uint32_t d = ws_.cornerLink[c];
+        if (!participates(c) || (ws_.cornerState[c] & kCopy) || d == kNone) continue;
+        if (open(c / 3) && open(d / 3)) {
+          const std::uint32_t x = find(i), y = find(localIndex(bucket, d));
+          if (x != y) parent[std::max(x, y)] = std::min(x, y);
+        }
+      }
+      for (std::uint32_t i = 0; i < count; ++i) {
+        const std::uint32_t c = list[i];
+        const std::uint32_t d = ws_.cornerLink[c];
+        if (!participates(c) || (ws_.cornerState[c] & kCopy) || d == kNone) continue;
+        const bool openC = open(c / 3), openD = open(d / 3);
+        if (openC == openD) continue;
+        const std::uint32_t gwa = openC ? i : localIndex(bucket, d);
+        const std::int8_t o = ws_.orientation[openC ? d / 3 : c / 3];
+        if (o != 0) reached[find(gwa)] |= o > 0 ? kReachedPlus : kReachedMinus;
+      }
+      for (std::uint32_t i = 0; i < count; ++i) {
+        if (open(list[i] / 3)) ws_.cornerState[list[i]] |= reached[find(i)];
+      }
+    }
+    std::vector<std::int8_t> orientations(pending.size(), 0);
+    for (std::size_t i = 0; i < pending.size(); ++i) {
+      int plus = 0, minus = 0;
+      for (int k = 0; k < 3; ++k) {
+        std::uint8_t& state = ws_.cornerState[3 * pending[i] + k];
+        plus += (state & kReachedPlus) != 0;
+        minus += (state & kReachedMinus) != 0;
+        state &= static_cast<std::uint8_t>(~(kReachedPlus | kReachedMinus));
+      }
+      if (plus + minus > 0) orientations[i] = minus > plus ? -1 : 1;
+    }
+    for (std::size_t i = 0; i < pending.size(); ++i) {
+      if (orientations[i] != 0) ws_.orientation[pending[i]] = orientations[i];
+    }
+    std::erase_if(pending, [&](std::uint32_t t) { return !open(t); });
+    if (pending.empty()) return;
+  }
+
+  // Those no group of the reference reaches: outwards from decided triangles, first across
+  // edges, then by the triangles that share a corner's identity.
   // Decides every triangle of `candidates` that has a voter, all from one snapshot.
   std::vector<std::int8_t> decided;
   auto decide = [&](std::vector<std::uint32_t>& candidates, bool byVertex) {
@@ -649,8 +716,9 @@ void Kernel::groupBucket(std::uint32_t bucket, BucketScratch& scratch) {
       const V3 toNext = projected(a_.position(a_.indices[nextCorner(c)]) - here, n);
       double angle = kHalfPi;  // a zero edge counts as perpendicular, as in the reference
       if (!(toPrevious == V3{}) && !(toNext == V3{})) angle = angleBetween(length(cross(toPrevious, toNext)), dot(toPrevious, toNext));
-      if (angle < 1e-3 || angle > 2 * kHalfPi - 1e-3) {
-        // Near 0 or pi the reference's float cosine decides: acos(0.99999994) is 3.5e-4, not 0.
+      if (angle < 0.1 || angle > 2 * kHalfPi - 0.1) {
+        // Near 0 or pi the reference's float cosine decides (acos(0.99999994) is 3.5e-4, not 0),
+        // and its rounding moves small angles by a visible fraction.
         angle = referenceAngle(c, rawNormal);
       }
       // A corner whose edges project onto one line has no angle; its direction still counts
