@@ -137,7 +137,7 @@ void evaluateTriangle(const Arrays& a, std::size_t t, float* frame, std::int8_t&
   const bool coincident = same(pf[0], pf[1]) || same(pf[1], pf[2]) || same(pf[0], pf[2]);
   const V3 p[3] = {{pf[0].x, pf[0].y, pf[0].z}, {pf[1].x, pf[1].y, pf[1].z}, {pf[2].x, pf[2].y, pf[2].z}};
   const V3 e1 = p[1] - p[0], e2 = p[2] - p[0];
-  if (!(length(cross(e1, e2)) > kAreaZero * length(e1) * length(e2))) flags |= kFlat;
+  if (!(dot(cross(e1, e2), cross(e1, e2)) > kAreaZero * kAreaZero * dot(e1, e1) * dot(e2, e2))) flags |= kFlat;
   if (coincident) {
     flags |= kCoincident;
     return;
@@ -625,25 +625,18 @@ inline V3 projected(V3 v, V3 n) { return v - n * dot(n, v); }
 constexpr double kHalfPi = 1.5707963267948966;
 
 // atan2(y, x) for y >= 0 (not both zero), within 2e-8 rad: octant reduction, a shift by
-// pi/4 to |a| <= tan(pi/8), then the odd series of atan to a^15. A fraction of libm's cost.
+// pi/4 to |t| <= tan(pi/8) (one division either way), then the odd series of atan to t^15,
+// evaluated in Estrin's form for a short dependency chain. A fraction of libm's cost.
 inline double angleBetween(double y, double x) {
   const double ax = std::abs(x);
   const bool steep = y > ax;
-  double a = steep ? ax / y : y / ax;
-  double base = 0;
-  if (a > 0.41421356237309503) {
-    a = (a - 1) / (a + 1);
-    base = 0.78539816339744831;
-  }
-  const double a2 = a * a;
-  double r = -1.0 / 15;
-  r = r * a2 + 1.0 / 13;
-  r = r * a2 - 1.0 / 11;
-  r = r * a2 + 1.0 / 9;
-  r = r * a2 - 1.0 / 7;
-  r = r * a2 + 1.0 / 5;
-  r = r * a2 - 1.0 / 3;
-  r = base + a * (1 + r * a2);
+  const double num = steep ? ax : y, den = steep ? y : ax;
+  const bool shift = num > 0.41421356237309503 * den;
+  const double t = shift ? (num - den) / (num + den) : num / den;
+  const double t2 = t * t, t4 = t2 * t2, t8 = t4 * t4;
+  const double p01 = 1.0 - t2 / 3, p23 = 1.0 / 5 - t2 / 7, p45 = 1.0 / 9 - t2 / 11, p67 = 1.0 / 13 - t2 / 15;
+  double r = t * ((p01 + t4 * p23) + t8 * (p45 + t4 * p67));
+  if (shift) r += 0.78539816339744831;
   if (steep) r = kHalfPi - r;
   return x < 0 ? 2 * kHalfPi - r : r;
 }
@@ -792,14 +785,27 @@ void Kernel::groupBucket(std::uint32_t bucket, BucketScratch& scratch) {
         }
       }
     }
-    auto sumOver = [&](std::size_t self) {  // self: a contributing index, or kNone for all
+    // The sum over a corner's subgroup (self: a contributing index, or kNone for all). Where
+    // the terms nearly cancel, rounding decides the direction: then the reference's own float
+    // sum (its float angles, added in value order) so that we round as it does.
+    auto sumOver = [&](std::size_t self) {
       V3 sum;
+      double weights = 0;
       for (std::size_t i = 0; i < contributing; ++i) {
         if (self != kNone && sorted[i] != self && opposite(sorted[i], self)) continue;
         const double* x = values + kStride * sorted[i];
         sum = sum + V3{x[0], x[1], x[2]};
+        weights += x[9];
       }
-      return sum;
+      if (length(sum) >= 1e-3 * weights) return sum;
+      F3 floatSum;
+      for (std::size_t i = 0; i < contributing; ++i) {
+        if (self != kNone && sorted[i] != self && opposite(sorted[i], self)) continue;
+        const double* x = values + kStride * sorted[i];
+        const auto angle = static_cast<float>(referenceAngle(list[member(scratch.items[sorted[i]])], rawNormal));
+        floatSum = fadd(floatSum, fscale(angle, F3{float(x[3]), float(x[4]), float(x[5])}));
+      }
+      return V3{floatSum.x, floatSum.y, floatSum.z};
     };
     const auto weight = static_cast<float>(angleSum);
     V3 shared;
