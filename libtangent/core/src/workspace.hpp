@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "tangent/bulk_buffer.hpp"
 #include "tangent/tangent.hpp"
 
 namespace tangent::detail {
@@ -43,27 +44,27 @@ struct BucketScratch {
 struct WorkspaceData {
   unsigned threads = 1;
   std::size_t vertexCount = 0, cornerCount = 0;
-  std::vector<std::uint32_t> table;          // open-addressing weld table (vertex + 1, 0 empty)
-  std::vector<std::uint32_t> vertexId;       // welded id of each input vertex: the smallest
+  BulkVector<std::uint32_t> table;          // open-addressing weld table (vertex + 1, 0 empty)
+  BulkVector<std::uint32_t> vertexId;       // welded id of each input vertex: the smallest
                                              // vertex index with the same values
-  std::vector<std::uint32_t> bucketStart;    // vertexCount + 1: corners of welded id v are
-  std::vector<std::uint32_t> bucketCorners;  // bucketCorners[bucketStart[v] .. bucketStart[v+1])
-  std::vector<float> triangleFrames;         // 6 per triangle: unit dP/du, dP/dv, signed
-  std::vector<std::int8_t> orientation;      // per triangle: sign of the UV area (resolved)
-  std::vector<std::uint8_t> triangleFlags;   // per triangle: TriangleFlag bits
-  std::vector<std::uint32_t> cornerLink;     // per corner: neighbour corner across the corner's
+  BulkVector<std::uint32_t> bucketStart;    // vertexCount + 1: corners of welded id v are
+  BulkVector<std::uint32_t> bucketCorners;  // bucketCorners[bucketStart[v] .. bucketStart[v+1])
+  BulkVector<float> triangleFrames;         // 6 per triangle: unit dP/du, dP/dv, signed
+  BulkVector<std::int8_t> orientation;      // per triangle: sign of the UV area (resolved)
+  BulkVector<std::uint8_t> triangleFlags;   // per triangle: TriangleFlag bits
+  BulkVector<std::uint32_t> cornerLink;     // per corner: neighbour corner across the corner's
                                              // outgoing edge, or the original of a kCopy corner
-  std::vector<std::uint8_t> cornerState;     // per corner: CornerState bits
-  std::vector<float> cornerWeight;           // per corner: angle sum of its group (ranking)
-  std::vector<std::uint32_t> bucketExtra;    // per welded id: extra output vertices, then offsets
+  BulkVector<std::uint8_t> cornerState;     // per corner: CornerState bits
+  BulkVector<float> cornerWeight;           // per corner: angle sum of its group (ranking)
+  BulkVector<std::uint32_t> bucketExtra;    // per welded id: extra output vertices, then offsets
   tbb::enumerable_thread_specific<BucketScratch> scratch;
 
   std::size_t bytes() const;
 };
 
 // Grows v to at least n elements (never shrinks, so a reused workspace allocates nothing).
-template <typename T>
-void ensureSize(std::vector<T>& v, std::size_t n) {
+template <typename Vector>
+void ensureSize(Vector& v, std::size_t n) {
   if (v.size() < n) v.resize(n);
 }
 

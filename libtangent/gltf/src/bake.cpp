@@ -10,6 +10,7 @@
 #include "asset.hpp"
 #include "document.hpp"
 #include "primitive.hpp"
+#include "tangent/bulk_buffer.hpp"
 #include "tangent/gltf.hpp"
 
 namespace tangent::gltf {
@@ -48,13 +49,13 @@ std::string tangentProblem(const AccessorData& data) {
 struct VertexSplit {
   std::vector<std::uint32_t> source;      // original vertex of each output vertex
   std::vector<std::int64_t> firstCorner;  // a corner of each output vertex, -1 if unused
-  std::vector<std::uint32_t> cornerVertex;
+  BulkVector<std::uint32_t> cornerVertex;
   std::vector<float> tangents;            // 4 per output vertex
 };
 
 // One pass over the core's corner -> output vertex map (CornerOutputs::cornerVertex).
-VertexSplit splitVertices(const std::vector<std::uint32_t>& corners, const std::vector<float>& cornerTangents,
-                          std::vector<std::uint32_t> cornerVertex, std::size_t outputVertices, std::size_t vertexCount,
+VertexSplit splitVertices(const std::vector<std::uint32_t>& corners, const BulkVector<float>& cornerTangents,
+                          BulkVector<std::uint32_t> cornerVertex, std::size_t outputVertices, std::size_t vertexCount,
                           const std::vector<float>& normals) {
   VertexSplit split;
   split.source.resize(outputVertices);
@@ -181,8 +182,8 @@ PrimitiveResult PrimitiveBaker::bake(int meshIndex, int primitiveIndex) {
     return result;
   }
 
-  std::vector<float> cornerTangents(corners.size() * 4);
-  std::vector<std::uint32_t> cornerVertex(corners.size());
+  BulkVector<float> cornerTangents(corners.size() * 4);
+  BulkVector<std::uint32_t> cornerVertex(corners.size());
   Options coreOptions = options_.tangents;
   coreOptions.uvOrigin = UvOrigin::topLeft;
   TangentWorkspace workspace;
@@ -211,7 +212,7 @@ PrimitiveResult PrimitiveBaker::bake(int meshIndex, int primitiveIndex) {
         const auto delta = detail::readVectors(model, deltaNormal, 3, vertexCount, targetWhere + " NORMAL");
         for (std::size_t i = 0; i < delta.size(); ++i) morphedNormals[i] += delta[i];
       }
-      std::vector<float> morphedTangents(corners.size() * 4);
+      BulkVector<float> morphedTangents(corners.size() * 4);
       computeCornerTangents({morphedPositions, morphedNormals, uvs, corners}, CornerOutputs{morphedTangents}, coreOptions,
                             workspace);
       std::vector<float> deltas(split.source.size() * 3, 0.0f);
