@@ -20,11 +20,15 @@ double degreesBetween(const float a[3], const float b[3]) {
   return degreesBetween(da, db);
 }
 
-// Same sign, same length (a zero vector is at angle 0 from anything) and within kAgreeDegrees.
+// Same sign, same length (a zero vector is at angle 0 from anything) and within
+// kStableDegrees: a frame that moves by more than that between face orders sums terms that
+// cancel, and its float rounding depends on the order of the sum. A few runs see only part of
+// that spread (measured: 0.005 degrees over 13 runs, 0.034 over all 5040 orders of a
+// 7-triangle fan), so such a corner is not compared at kAgreeDegrees.
 bool sameFrame(const ReferenceFrame& a, const ReferenceFrame& b) {
   auto length = [](const float* t) { return std::sqrt(double{t[0]} * t[0] + double{t[1]} * t[1] + double{t[2]} * t[2]); };
   return a.written && b.written && a.sign == b.sign && std::abs(length(a.tangent) - length(b.tangent)) < kDefinedTolerance &&
-         degreesBetween(a.tangent, b.tangent) <= kAgreeDegrees;
+         degreesBetween(a.tangent, b.tangent) <= kStableDegrees;
 }
 
 // The reference frame is a unit vector orthogonal to the corner's unit normal.
@@ -173,7 +177,20 @@ RuleResult applyReferenceRule(const MeshArrays& mesh, std::span<const float> our
       cornerClass = CornerClass::referenceMixedW;
 
     const float* tangent = &ours[4 * c];
-    result.degrees[c] = degreesBetween(tangent, original[c].tangent);
+    // Against the reference's direction in the tangent plane: ours is orthogonal to the normal
+    // by contract, the reference's only up to its float rounding, which a sum of cancelling
+    // terms magnifies (measured: 0.026 degrees out of the plane on a sliver fan).
+    {
+      const double len2 = double{normal[0]} * normal[0] + double{normal[1]} * normal[1] + double{normal[2]} * normal[2];
+      const float* r = original[c].tangent;
+      double inPlane[3] = {r[0], r[1], r[2]};
+      if (len2 > 0 && std::isfinite(len2)) {
+        const double d = (r[0] * double{normal[0]} + r[1] * double{normal[1]} + r[2] * double{normal[2]}) / len2;
+        for (int i = 0; i < 3; ++i) inPlane[i] -= d * normal[i];
+      }
+      const double ours[3] = {tangent[0], tangent[1], tangent[2]};
+      result.degrees[c] = degreesBetween(ours, inPlane);
+    }
     bool failed = false;
     if (!validOurs(tangent)) {
       ++counts.invalidCorners;
