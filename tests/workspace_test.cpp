@@ -1,0 +1,148 @@
+// The hot path's contract: the same bits for any thread count and any triangle order, the
+// vertex split it returns, a workspace that repeated calls reuse, and the OpenMesh call on
+// the same kernel.
+#include <gtest/gtest.h>
+
+#include <bit>
+#include <cstring>
+#include <limits>
+#include <map>
+#include <set>
+
+#include "support/random_meshes.hpp"
+#include "support/test_assets.hpp"
+#include "tangent/halfedge_mesh.hpp"
+#include "tangent/tangent.hpp"
+
+namespace {
+
+using tangent::testing::GridMesh;
+
+struct Output {
+  std::vector<float> tangents;
+  std::vector<std::uint32_t> cornerVertex;
+  tangent::Report report;
+};
+
+Output compute(const tangent::MeshArrays& mesh, unsigned threads, tangent::TangentWorkspace& workspace) {
+  Output out;
+  out.tangents.assign(mesh.indices.size() * 4, std::numeric_limits<float>::quiet_NaN());
+  out.cornerVertex.assign(mesh.indices.size(), ~0u);
+  tangent::Options options;
+  options.threads = threads;
+  out.report = tangent::computeCornerTangents(mesh, tangent::CornerOutputs{out.tangents, {}, out.cornerVertex}, options, workspace);
+  return out;
+}
+
+Output compute(const tangent::MeshArrays& mesh, unsigned threads) {
+  tangent::TangentWorkspace workspace;
+  return compute(mesh, threads, workspace);
+}
+
+// A mesh with every hard case (non-manifold edges and vertices, duplicates, zero-UV and
+// degenerate triangles, mirrored islands) from the differential test's generator, made large
+// enough that several threads really split every phase.
+GridMesh hardMesh() {
+  GridMesh m;
+  for (std::uint64_t seed = 1; m.indices.size() < 3 * 60000; ++seed) {
+    const tangent::testing::RandomMesh part = tangent::testing::randomMesh(seed);
+    const auto base = static_cast<std::uint32_t>(m.positions.size() / 3);
+    m.positions.insert(m.positions.end(), part.positions.begin(), part.positions.end());
+    m.normals.insert(m.normals.end(), part.normals.begin(), part.normals.end());
+    m.uvs.insert(m.uvs.end(), part.uvs.begin(), part.uvs.end());
+    for (std::uint32_t i : part.indices) m.indices.push_back(base + i);
+  }
+  return m;
+}
+
+tangent::MeshArrays arraysOf(const GridMesh& m) { return {m.positions, m.normals, m.uvs, m.indices}; }
+
+TEST(Workspace, SameBitsForOneTwoThreeAndEightThreadsAndShuffledInput) {
+  const GridMesh meshes[] = {hardMesh(), tangent::testing::makeTorus(256, 128)};
+  for (const GridMesh& m : meshes) {
+    const Output one = compute(arraysOf(m), 1);
+    for (unsigned threads : {2u, 3u, 8u, 0u}) {
+      const Output other = compute(arraysOf(m), threads);
+      ASSERT_EQ(0, std::memcmp(one.tangents.data(), other.tangents.data(), one.tangents.size() * sizeof(float))) << threads;
+      ASSERT_EQ(one.cornerVertex, other.cornerVertex) << threads;
+      ASSERT_EQ(one.report.splitVertices, other.report.splitVertices);
+      ASSERT_EQ(one.report.nonManifoldFaces, other.report.nonManifoldFaces);
+    }
+    for (unsigned seed : {3u, 4u, 5u}) {
+      const auto shuffled = tangent::testing::shuffleFacesAndRotateCorners(m, seed);
+      const Output s = compute(arraysOf(shuffled.mesh), 8);
+      for (std::size_t c = 0; c < shuffled.originalCorner.size(); ++c)
+        ASSERT_EQ(0, std::memcmp(&s.tangents[4 * c], &one.tangents[4 * shuffled.originalCorner[c]], 16)) << "corner " << c;
+      EXPECT_EQ(s.report.splitVertices, one.report.splitVertices);
+    }
+  }
+}
+
+TEST(Workspace, VertexSplitKeepsEveryVertexAndAddsOnePerExtraTangent) {
+  const GridMesh m = hardMesh();
+  const Output out = compute(arraysOf(m), 0);
+  const std::size_t vertexCount = m.positions.size() / 3;
+  ASSERT_EQ(out.report.outputVertices, vertexCount + out.report.splitVertices);
+  // Distinct (input vertex, tangent bits) pairs, counted independently of the core.
+  std::map<std::uint32_t, std::set<std::array<std::uint32_t, 4>>> tangentsOfVertex;
+  std::map<std::uint32_t, std::pair<std::uint32_t, std::array<std::uint32_t, 4>>> outputVertex;  // output -> (input, bits)
+  for (std::size_t c = 0; c < m.indices.size(); ++c) {
+    std::array<std::uint32_t, 4> bits;
+    std::memcpy(bits.data(), &out.tangents[4 * c], 16);
+    tangentsOfVertex[m.indices[c]].insert(bits);
+    const std::uint32_t o = out.cornerVertex[c];
+    ASSERT_LT(o, out.report.outputVertices) << "corner " << c;
+    auto [it, inserted] = outputVertex.try_emplace(o, m.indices[c], bits);
+    if (!inserted) {
+      ASSERT_EQ(it->second.first, m.indices[c]) << "output vertex " << o << " mixes input vertices";
+      ASSERT_EQ(it->second.second, bits) << "output vertex " << o << " mixes tangents";
+    }
+    if (o < vertexCount) ASSERT_EQ(o, m.indices[c]) << "an input vertex keeps its index";
+  }
+  std::size_t extra = 0;
+  for (const auto& [vertex, tangents] : tangentsOfVertex) extra += tangents.size() - 1;
+  EXPECT_EQ(out.report.splitVertices, extra);
+  EXPECT_GT(extra, 1000u);  // the hard cases split many vertices: the check is not vacuous
+  // Corners with one input vertex and one tangent share one output vertex.
+  std::map<std::pair<std::uint32_t, std::array<std::uint32_t, 4>>, std::uint32_t> byValue;
+  for (const auto& [o, key] : outputVertex) ASSERT_TRUE(byValue.try_emplace(key, o).second) << "two output vertices for one tangent";
+}
+
+TEST(Workspace, RepeatedCallsReuseTheirMemory) {
+  const GridMesh big = tangent::testing::makeTorus(200, 100), small = tangent::testing::makeTorus(40, 20);
+  tangent::TangentWorkspace workspace;
+  const Output first = compute(arraysOf(big), 1, workspace);
+  const std::size_t reserved = workspace.bytesReserved();
+  EXPECT_GT(reserved, big.indices.size() * 16);  // it holds the per-corner scratch
+  const Output again = compute(arraysOf(big), 1, workspace);
+  EXPECT_EQ(workspace.bytesReserved(), reserved);
+  EXPECT_EQ(first.tangents, again.tangents);
+  const Output smaller = compute(arraysOf(small), 1, workspace);
+  EXPECT_EQ(workspace.bytesReserved(), reserved);
+  EXPECT_EQ(smaller.tangents, compute(arraysOf(small), 1).tangents);  // a reused workspace changes nothing
+}
+
+TEST(Workspace, OpenMeshCallGivesTheArrayCallsBitsOnHardCases) {
+  const GridMesh m = hardMesh();
+  const Output arrays = compute(arraysOf(m), 0);
+  tangent::CornerMesh cornerMesh = tangent::buildCornerMesh(arraysOf(m));
+  const tangent::Report report = tangent::computeTangents(cornerMesh);
+  EXPECT_EQ(report.corners, m.indices.size());
+  for (std::size_t c = 0; c < m.indices.size(); ++c) {
+    const auto& t = cornerMesh.mesh.property(cornerMesh.tangent, cornerMesh.cornerHalfedge[c]);
+    for (int i = 0; i < 4; ++i)
+      ASSERT_EQ(std::bit_cast<std::uint32_t>(static_cast<float>(t[i])), std::bit_cast<std::uint32_t>(arrays.tangents[4 * c + i]))
+          << "corner " << c;
+  }
+}
+
+TEST(WorkspaceErrors, CornerVertexOfTheWrongSize) {
+  const GridMesh m = tangent::testing::makeGrid(2, 2, false);
+  std::vector<float> tangents(m.indices.size() * 4);
+  std::vector<std::uint32_t> cornerVertex(m.indices.size() - 1);
+  tangent::TangentWorkspace workspace;
+  EXPECT_THROW(tangent::computeCornerTangents(arraysOf(m), tangent::CornerOutputs{tangents, {}, cornerVertex}, {}, workspace),
+               std::invalid_argument);
+}
+
+}  // namespace
