@@ -262,6 +262,11 @@ class Kernel {
     const float cosine = std::clamp(fdot(toPrevious, toNext), -1.0f, 1.0f);
     return static_cast<float>(std::acos(static_cast<double>(cosine)));
   }
+  // Once a bucket's groups are built its corners' neighbour links are spent: the same slot
+  // then holds the corner's group weight (the sum of its angles), which ranks candidate
+  // frames; corners of duplicate triangles keep their link to the original.
+  void setWeight(std::size_t corner, float weight) { ws_.cornerLink[corner] = std::bit_cast<std::uint32_t>(weight); }
+  float weight(std::size_t corner) const { return std::bit_cast<float>(ws_.cornerLink[corner]); }
   void writeCorner(std::size_t corner, V3 tangent, float w, FrameSource source, float weight) {
     tangents_[4 * corner] = static_cast<float>(tangent.x);
     tangents_[4 * corner + 1] = static_cast<float>(tangent.y);
@@ -269,12 +274,12 @@ class Kernel {
     tangents_[4 * corner + 3] = w;
     ws_.cornerState[corner] = static_cast<std::uint8_t>((ws_.cornerState[corner] & ~(kSourceMask | kUndefined)) |
                                                         static_cast<std::uint8_t>(source));
-    ws_.cornerWeight[corner] = weight;
+    setWeight(corner, weight);
   }
   void markUndefined(std::size_t corner, float w) {
     tangents_[4 * corner + 3] = w;
     ws_.cornerState[corner] |= kUndefined;
-    ws_.cornerWeight[corner] = 0;
+    setWeight(corner, 0);
   }
   bool defined(std::size_t corner) const {
     const std::uint8_t s = ws_.cornerState[corner];
@@ -284,7 +289,7 @@ class Kernel {
   }
   // Ranking of a candidate frame: heavier group first, then by value.
   bool betterCandidate(std::size_t a, std::size_t b) const {
-    if (ws_.cornerWeight[a] != ws_.cornerWeight[b]) return ws_.cornerWeight[a] > ws_.cornerWeight[b];
+    if (weight(a) != weight(b)) return weight(a) > weight(b);
     std::uint32_t bitsA[4], bitsB[4];
     std::memcpy(bitsA, &tangents_[4 * a], sizeof bitsA);
     std::memcpy(bitsB, &tangents_[4 * b], sizeof bitsB);
@@ -817,7 +822,7 @@ void Kernel::groupBucket(std::uint32_t bucket, BucketScratch& scratch) {
       }
       return terms > 2 ? doubleSum : V3{floatSum.x, floatSum.y, floatSum.z};
     };
-    const auto weight = static_cast<float>(angleSum);
+    const auto groupWeight = static_cast<float>(angleSum);
     V3 shared;
     const bool sharedDefined = contributing > 0 && orthonormalize(sumOver(kNone), n, shared);
     std::size_t nextContributing = 0;
@@ -828,11 +833,11 @@ void Kernel::groupBucket(std::uint32_t bucket, BucketScratch& scratch) {
       if (contributing == 0) {
         markUndefined(c, orientation != 0 ? w : -1.0f);
       } else if (!anyOpposite || self == kNone) {
-        if (sharedDefined) writeCorner(c, shared, w, FrameSource::computed, weight);
+        if (sharedDefined) writeCorner(c, shared, w, FrameSource::computed, groupWeight);
         else markUndefined(c, w);
       } else {
         V3 own;
-        if (orthonormalize(sumOver(self), n, own)) writeCorner(c, own, w, FrameSource::computed, weight);
+        if (orthonormalize(sumOver(self), n, own)) writeCorner(c, own, w, FrameSource::computed, groupWeight);
         else markUndefined(c, w);
       }
     }
@@ -861,7 +866,7 @@ void Kernel::inheritInBucket(std::uint32_t bucket, std::uint32_t corner, float w
     return;
   }
   const float* from = &tangents_[4 * best];
-  writeCorner(corner, {from[0], from[1], from[2]}, from[3], FrameSource::inherited, ws_.cornerWeight[best]);
+  writeCorner(corner, {from[0], from[1], from[2]}, from[3], FrameSource::inherited, weight(best));
 }
 
 // The rare corners without a frame of their own, after every group is done: one w per
@@ -953,7 +958,6 @@ void Kernel::run(Report& report) {
   ensureSize(ws_.triangleFlags, triangleCount);
   ensureSize(ws_.cornerLink, cornerCount);
   ensureSize(ws_.cornerState, cornerCount);
-  ensureSize(ws_.cornerWeight, cornerCount);
   evaluateTriangles(report);
 
   const std::size_t bucketCount = ws_.vertexCount;

@@ -53,9 +53,9 @@ struct WorkspaceData {
   BulkVector<std::int8_t> orientation;      // per triangle: sign of the UV area (resolved)
   BulkVector<std::uint8_t> triangleFlags;   // per triangle: TriangleFlag bits
   BulkVector<std::uint32_t> cornerLink;     // per corner: neighbour corner across the corner's
-                                             // outgoing edge, or the original of a kCopy corner
+                                             // outgoing edge, or the original of a kCopy corner;
+                                             // after grouping, the group weight (mikktspace.cpp)
   BulkVector<std::uint8_t> cornerState;     // per corner: CornerState bits
-  BulkVector<float> cornerWeight;           // per corner: angle sum of its group (ranking)
   BulkVector<std::uint32_t> bucketExtra;    // per welded id: extra output vertices, then offsets
   tbb::enumerable_thread_specific<BucketScratch> scratch;
 

@@ -191,6 +191,7 @@ PrimitiveResult PrimitiveBaker::bake(int meshIndex, int primitiveIndex) {
                                           coreOptions, workspace);
   VertexSplit split = splitVertices(corners, cornerTangents, std::move(cornerVertex), result.tangents.outputVertices,
                                     vertexCount, normals);
+  BulkVector<float>().swap(cornerTangents);  // per output vertex from here on: free the per-corner copy
   result.verticesIn = vertexCount;
   result.verticesOut = split.source.size();
   const bool rebuild = split.source.size() != vertexCount || mode != 4;
@@ -224,6 +225,7 @@ PrimitiveResult PrimitiveBaker::bake(int meshIndex, int primitiveIndex) {
       targetTangentDeltas.push_back(std::move(deltas));
     }
   }
+  workspace = TangentWorkspace();  // its scratch is not needed for writing: free it before
 
   const std::size_t outCount = split.source.size();
   if (rebuild) {
