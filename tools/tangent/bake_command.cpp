@@ -23,7 +23,7 @@ const char* kBakeUsage =
     "  --out-dir DIR          write each output into DIR under the input's name\n"
     "  --method NAME          mikktspace (default) | lengyel | flat\n"
     "  --weighting NAME       angle (default) | area | uniform   (lengyel only)\n"
-    "  --threads N            worker threads (default 1); the output never depends on it\n"
+    "  --threads N            worker threads (default: all hardware threads); the output never depends on it\n"
     "  --all                  bake every triangle primitive, normal texture or not (TEXCOORD_0)\n"
     "  --overwrite            recompute valid existing TANGENT too\n"
     "  --report FILE.json     write what was done, per file and primitive\n"
