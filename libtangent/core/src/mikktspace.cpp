@@ -691,8 +691,8 @@ void Kernel::groupBucket(std::uint32_t bucket, BucketScratch& scratch) {
   auto member = [&](std::size_t m) { return static_cast<std::uint32_t>(scratch.keys[m]); };
   auto rootOf = [&](std::size_t m) { return static_cast<std::uint32_t>(scratch.keys[m] >> 32); };
 
-  // Per contributing member: weighted tangent (3), then dP/du and dP/dv projected as the
-  // reference projects them (3 + 3, float arithmetic on the raw normal), angle.
+  // Per contributing member: weighted tangent (3), dP/du projected as the reference projects
+  // it (float arithmetic on the raw normal), the triangle's unit dP/dv (3), angle.
   const F3 rawNormal{a_.normals[3 * a_.indices[list[0]]], a_.normals[3 * a_.indices[list[0]] + 1],
                      a_.normals[3 * a_.indices[list[0]] + 2]};
   constexpr int kStride = 10;
@@ -724,12 +724,11 @@ void Kernel::groupBucket(std::uint32_t bucket, BucketScratch& scratch) {
       // where nothing else does.
       angle = std::max(angle, 1e-12);
       const F3 referenceS = referenceProjected({frame[0], frame[1], frame[2]}, rawNormal);
-      const F3 referenceT = referenceProjected({frame[3], frame[4], frame[5]}, rawNormal);
       double* row = values + kStride * scratch.items.size();
       // The reference's projected direction, so that sums which (nearly) cancel keep its sign.
       row[0] = referenceS.x * angle, row[1] = referenceS.y * angle, row[2] = referenceS.z * angle;
       row[3] = referenceS.x, row[4] = referenceS.y, row[5] = referenceS.z;
-      row[6] = referenceT.x, row[7] = referenceT.y, row[8] = referenceT.z;
+      row[6] = frame[3], row[7] = frame[4], row[8] = frame[5];  // projected only where needed
       row[9] = angle;
       scratch.items.push_back(static_cast<std::uint32_t>(m));
       angleSum += angle;
@@ -768,8 +767,10 @@ void Kernel::groupBucket(std::uint32_t bucket, BucketScratch& scratch) {
       const double* x = values + kStride * i;
       const double* y = values + kStride * j;
       const F3 si{float(x[3]), float(x[4]), float(x[5])}, sj{float(y[3]), float(y[4]), float(y[5])};
-      const F3 ti{float(x[6]), float(x[7]), float(x[8])}, tj{float(y[6]), float(y[7]), float(y[8])};
-      return !(fdot(si, sj) > -1.0f) || !(fdot(ti, tj) > -1.0f);
+      if (!(fdot(si, sj) > -1.0f)) return true;
+      const F3 ti = referenceProjected({float(x[6]), float(x[7]), float(x[8])}, rawNormal);
+      const F3 tj = referenceProjected({float(y[6]), float(y[7]), float(y[8])}, rawNormal);
+      return !(fdot(ti, tj) > -1.0f);
     };
     bool anyOpposite = false;
     if (contributing > 1) {
@@ -778,12 +779,15 @@ void Kernel::groupBucket(std::uint32_t bucket, BucketScratch& scratch) {
         sumS = sumS + V3{values[kStride * i + 3], values[kStride * i + 4], values[kStride * i + 5]};
         sumT = sumT + V3{values[kStride * i + 6], values[kStride * i + 7], values[kStride * i + 8]};
       }
+      // dP/dv unprojected: its dot with a vector in the plane is that of its projection, whose
+      // length is at most 1, so the bound holds for the projections too.
+      sumT = projected(sumT, n);
       const double lengthS = length(sumS), lengthT = length(sumT);
       bool halfSpace = true;
       for (std::size_t i = 0; i < contributing && halfSpace; ++i) {
         const double* x = values + kStride * i;
         const V3 si{x[3], x[4], x[5]}, ti{x[6], x[7], x[8]};
-        halfSpace = (si == V3{} || dot(si, sumS) > 1e-3 * lengthS) && (ti == V3{} || dot(ti, sumT) > 1e-3 * lengthT);
+        halfSpace = (si == V3{} || dot(si, sumS) > 1e-3 * lengthS) && dot(ti, sumT) > 1e-3 * lengthT;
       }
       if (!halfSpace && contributing <= 4096) {
         for (std::size_t i = 0; i < contributing && !anyOpposite; ++i) {
