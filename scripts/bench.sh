@@ -133,7 +133,7 @@ for i in inputs:
                  f"{fmt(ms(f'openmesh/t1/{i}'))} | {fmt(ms(f'mikktspace.c/{i}'))} | {fmt(compatible)} | {fmt(ms(f'meshopt-default/{i}'))} | "
                  f"{fmt(npm.get(i, float('nan')))} | {ratio(one, compatible)} | {ratio(ms(f'library/t1/{i}', 'real_time'), two)} |")
 lines += ["",
-          f"- library: `{context.get('library_call', '?')}` on plain arrays (it builds the OpenMesh mesh, computes and writes one tangent per corner).",
+          f"- library: `{context.get('library_call', '?')}` on plain arrays (welds, groups and writes one tangent and one output vertex per corner; no OpenMesh mesh).",
           "- OpenMesh input: `computeTangents(CornerMesh&, options)` on a mesh built by `buildCornerMesh` before timing.",
           "- all threads: `Options::threads = 0`; the column says how many hardware threads the machine has, not how many the core used.",
           "- mikktspace.c: `genTangSpaceDefault` reading the indexed arrays through its face/vertex callbacks and writing per corner. "
