@@ -134,7 +134,7 @@ for i in inputs:
                  f"{fmt(npm.get(i, float('nan')))} | {ratio(one, compatible)} | {ratio(ms(f'library/t1/{i}', 'real_time'), two)} |")
 lines += ["",
           f"- library: `{context.get('library_call', '?')}` on plain arrays (welds, groups and writes one tangent and one output vertex per corner; no OpenMesh mesh).",
-          "- OpenMesh input: `computeTangents(CornerMesh&, options)` on a mesh built by `buildCornerMesh` before timing.",
+          "- OpenMesh input: `computeTangents(CornerMesh&, options, TangentWorkspace&)` (workspace reused) on a mesh built by `buildCornerMesh` before timing.",
           "- all threads: `Options::threads = 0`; the column says how many hardware threads the machine has, not how many the core used.",
           "- mikktspace.c: `genTangSpaceDefault` reading the indexed arrays through its face/vertex callbacks and writing per corner. "
           "meshopt: `meshopt_generateTangents` on the indexed arrays (one index per corner; one xyzw per corner out), "

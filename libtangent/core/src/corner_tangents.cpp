@@ -72,36 +72,66 @@ Report computeCornerTangents(const MeshArrays& mesh, std::span<float> cornerTang
 }
 
 Report computeTangents(CornerMesh& cornerMesh, const Options& options, std::span<FrameSource> cornerSources) {
+  TangentWorkspace workspace;
+  return computeTangents(cornerMesh, options, workspace, cornerSources);
+}
+
+Report computeTangents(CornerMesh& cornerMesh, const Options& options, TangentWorkspace& workspace,
+                       std::span<FrameSource> cornerSources) {
   const std::size_t cornerCount = cornerMesh.cornerHalfedge.size();
   if (!cornerSources.empty() && cornerSources.size() != cornerCount)
     throw std::invalid_argument("cornerSources: expected one per corner");
   if (options.method != Method::mikktspace) return detail::lengyelTangents(cornerMesh, options, cornerSources);
   // The same kernel as the array call, on the corners' values: the same bits.
   const TriMesh& mesh = cornerMesh.mesh;
-  std::vector<float> positions(3 * cornerCount), normals(3 * cornerCount), uvs(2 * cornerCount), tangents(4 * cornerCount);
-  std::vector<std::uint32_t> indices(cornerCount);
-  for (std::size_t c = 0; c < cornerCount; ++c) {
-    const auto halfedge = cornerMesh.cornerHalfedge[c];
-    const auto& p = mesh.point(mesh.to_vertex_handle(halfedge));
-    const auto& n = mesh.normal(halfedge);
-    const auto& uv = mesh.texcoord2D(halfedge);
-    for (int i = 0; i < 3; ++i) {
-      positions[3 * c + i] = static_cast<float>(p[i]);
-      normals[3 * c + i] = static_cast<float>(n[i]);
+  detail::WorkspaceData& ws = workspace.data();
+  detail::ensureSize(ws.meshPositions, 3 * cornerCount);
+  detail::ensureSize(ws.meshNormals, 3 * cornerCount);
+  detail::ensureSize(ws.meshUvs, 2 * cornerCount);
+  detail::ensureSize(ws.meshTangents, 4 * cornerCount);
+  detail::ensureSize(ws.meshIndices, cornerCount);
+  float* positions = ws.meshPositions.data();
+  float* normals = ws.meshNormals.data();
+  float* uvs = ws.meshUvs.data();
+  float* tangents = ws.meshTangents.data();
+  std::uint32_t* indices = ws.meshIndices.data();
+  ws.threads = threadCount(options);
+  auto inArena = [&](const auto& body) {
+    if (ws.threads > 1) {
+      tbb::task_arena arena(static_cast<int>(ws.threads));
+      arena.execute([&] { detail::forRange(ws, cornerCount, 1 << 14, body); });
+    } else {
+      body(std::size_t(0), cornerCount);
     }
-    uvs[2 * c] = static_cast<float>(uv[0]);
-    uvs[2 * c + 1] = static_cast<float>(uv[1]);
-    indices[c] = static_cast<std::uint32_t>(c);
-  }
-  TangentWorkspace workspace;
-  Report report = computeCornerTangents({positions, normals, uvs, indices}, CornerOutputs{tangents, cornerSources, {}},
+  };
+  inArena([&](std::size_t begin, std::size_t end) {
+    for (std::size_t c = begin; c < end; ++c) {
+      const auto halfedge = cornerMesh.cornerHalfedge[c];
+      const auto& p = mesh.point(mesh.to_vertex_handle(halfedge));
+      const auto& n = mesh.normal(halfedge);
+      const auto& uv = mesh.texcoord2D(halfedge);
+      for (int i = 0; i < 3; ++i) {
+        positions[3 * c + i] = static_cast<float>(p[i]);
+        normals[3 * c + i] = static_cast<float>(n[i]);
+      }
+      uvs[2 * c] = static_cast<float>(uv[0]);
+      uvs[2 * c + 1] = static_cast<float>(uv[1]);
+      indices[c] = static_cast<std::uint32_t>(c);
+    }
+  });
+  const MeshArrays arrays{std::span<const float>(positions, 3 * cornerCount), std::span<const float>(normals, 3 * cornerCount),
+                          std::span<const float>(uvs, 2 * cornerCount), std::span<const std::uint32_t>(indices, cornerCount)};
+  Report report = computeCornerTangents(arrays, CornerOutputs{std::span<float>(tangents, 4 * cornerCount), cornerSources, {}},
                                         options, workspace);
   report.nonManifoldFaces = std::max(report.nonManifoldFaces, cornerMesh.nonManifoldFaces);
   report.splitVertices = 0;  // corners of the half-edge mesh are its vertices here
-  for (std::size_t c = 0; c < cornerCount; ++c) {
-    const float* t = &tangents[4 * c];
-    cornerMesh.mesh.property(cornerMesh.tangent, cornerMesh.cornerHalfedge[c]) = TangentVec(t[0], t[1], t[2], t[3]);
-  }
+  report.outputVertices = cornerCount;
+  inArena([&](std::size_t begin, std::size_t end) {
+    for (std::size_t c = begin; c < end; ++c) {
+      const float* t = &tangents[4 * c];
+      cornerMesh.mesh.property(cornerMesh.tangent, cornerMesh.cornerHalfedge[c]) = TangentVec(t[0], t[1], t[2], t[3]);
+    }
+  });
   return report;
 }
 

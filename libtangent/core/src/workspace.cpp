@@ -57,7 +57,7 @@ void sortSmall(std::uint32_t* begin, std::uint32_t* end) {
 std::size_t WorkspaceData::bytes() const {
   auto size = [](const auto& v) { return v.capacity() * sizeof(v[0]); };
   return size(table) + size(vertexId) + size(bucketStart) + size(bucketCorners) + size(triangleFrames) +
-         size(orientation) + size(triangleFlags) + size(cornerLink) + size(cornerState) +
+         size(orientation) + size(triangleFlags) + size(cornerLink) + size(cornerState) + size(meshPositions) + size(meshNormals) + size(meshUvs) + size(meshTangents) + size(meshIndices) +
          size(bucketExtra);
 }
 

@@ -58,6 +58,9 @@ struct WorkspaceData {
   BulkVector<std::uint8_t> cornerState;     // per corner: CornerState bits
   BulkVector<std::uint32_t> bucketExtra;    // per welded id: extra output vertices, then offsets
   tbb::enumerable_thread_specific<BucketScratch> scratch;
+  // The OpenMesh call's corners as arrays (corner_tangents.cpp).
+  BulkVector<float> meshPositions, meshNormals, meshUvs, meshTangents;
+  BulkVector<std::uint32_t> meshIndices;
 
   std::size_t bytes() const;
 };

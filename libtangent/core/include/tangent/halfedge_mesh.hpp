@@ -58,5 +58,8 @@ CornerMesh buildCornerMesh(const MeshArrays& arrays);
 // Computes the tangent of every corner into mesh.tangent. w follows options.uvOrigin.
 // cornerSources, when not empty, receives one FrameSource per input corner.
 Report computeTangents(CornerMesh& mesh, const Options& options = {}, std::span<FrameSource> cornerSources = {});
+// The same with a workspace that repeated calls reuse (see TangentWorkspace).
+Report computeTangents(CornerMesh& mesh, const Options& options, TangentWorkspace& workspace,
+                       std::span<FrameSource> cornerSources = {});
 
 }  // namespace tangent
