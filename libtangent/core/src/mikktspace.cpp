@@ -221,6 +221,27 @@ inline void insertionSort(std::uint64_t* begin, std::uint64_t* end) {
   }
 }
 
+// Union-find over the corners of one bucket (local indices), the smaller root winning.
+class BucketUnionFind {
+ public:
+  explicit BucketUnionFind(std::vector<std::uint32_t>& parent, std::uint32_t count) : parent_(parent) {
+    parent_.resize(count);
+    for (std::uint32_t i = 0; i < count; ++i) parent_[i] = i;
+  }
+  std::uint32_t find(std::uint32_t x) {
+    while (parent_[x] != x) x = parent_[x] = parent_[parent_[x]];
+    return x;
+  }
+  void unite(std::uint32_t a, std::uint32_t b) {
+    a = find(a);
+    b = find(b);
+    if (a != b) parent_[std::max(a, b)] = std::min(a, b);
+  }
+
+ private:
+  std::vector<std::uint32_t>& parent_;
+};
+
 class Kernel {
  public:
   Kernel(WorkspaceData& ws, const MeshArrays& mesh, const CornerOutputs& outputs)
@@ -474,21 +495,14 @@ void Kernel::resolveGroupWithAny() {
     for (std::uint32_t bucket : buckets) {
       const std::uint32_t first = start_[bucket], count = start_[bucket + 1] - first;
       const std::uint32_t* list = corners_ + first;
-      parent.resize(count);
       reached.assign(count, 0);
-      for (std::uint32_t i = 0; i < count; ++i) parent[i] = i;
-      auto find = [&](std::uint32_t x) {
-        while (parent[x] != x) x = parent[x] = parent[parent[x]];
-        return x;
-      };
+      BucketUnionFind components(parent, count);
+      auto find = [&](std::uint32_t x) { return components.find(x); };
       for (std::uint32_t i = 0; i < count; ++i) {
         const std::uint32_t c = list[i];
         const std::uint32_t d = ws_.cornerLink[c];
         if (!participates(c) || (ws_.cornerState[c] & kCopy) || d == kNone) continue;
-        if (open(c / 3) && open(d / 3)) {
-          const std::uint32_t x = find(i), y = find(localIndex(bucket, d));
-          if (x != y) parent[std::max(x, y)] = std::min(x, y);
-        }
+        if (open(c / 3) && open(d / 3)) components.unite(i, localIndex(bucket, d));
       }
       for (std::uint32_t i = 0; i < count; ++i) {
         const std::uint32_t c = list[i];
@@ -665,20 +679,14 @@ void Kernel::groupBucket(std::uint32_t bucket, BucketScratch& scratch) {
   }
 
   // Union-find over the bucket's corners through pairs of equal orientation.
-  scratch.parent.resize(count);
-  std::uint32_t* parent = scratch.parent.data();
-  for (std::uint32_t i = 0; i < count; ++i) parent[i] = i;
-  auto find = [&](std::uint32_t x) {
-    while (parent[x] != x) x = parent[x] = parent[parent[x]];
-    return x;
-  };
+  BucketUnionFind components(scratch.parent, count);
+  auto find = [&](std::uint32_t x) { return components.find(x); };
   for (std::uint32_t i = 0; i < count; ++i) {
     const std::uint32_t c = list[i];
     if (!participates(c) || (ws_.cornerState[c] & kCopy)) continue;
     const std::uint32_t d = ws_.cornerLink[c];
     if (d == kNone || ws_.orientation[c / 3] != ws_.orientation[d / 3]) continue;
-    std::uint32_t x = find(i), y = find(localIndex(bucket, d));
-    if (x != y) parent[std::max(x, y)] = std::min(x, y);
+    components.unite(i, localIndex(bucket, d));
   }
   // Members of each group, group by group: keys = (root, local index).
   scratch.keys.clear();
