@@ -1,9 +1,9 @@
 // The entry points: the plain-array call (every method) and the OpenMesh call.
 #include <tbb/task_arena.h>
 
+#include <algorithm>
 #include <stdexcept>
 #include <string>
-#include <thread>
 
 #include "methods.hpp"
 #include "tangent/halfedge_mesh.hpp"
@@ -56,12 +56,7 @@ Report computeCornerTangents(const MeshArrays& mesh, const CornerOutputs& output
       lengyelOnArrays(ws, mesh, outputs, options, report);
     }
   };
-  if (ws.threads > 1) {
-    tbb::task_arena arena(static_cast<int>(ws.threads));
-    arena.execute(body);
-  } else {
-    body();
-  }
+  detail::onThreads(ws, body);
   return report;
 }
 
@@ -96,14 +91,7 @@ Report computeTangents(CornerMesh& cornerMesh, const Options& options, TangentWo
   float* tangents = ws.meshTangents.data();
   std::uint32_t* indices = ws.meshIndices.data();
   ws.threads = threadCount(options);
-  auto inArena = [&](const auto& body) {
-    if (ws.threads > 1) {
-      tbb::task_arena arena(static_cast<int>(ws.threads));
-      arena.execute([&] { detail::forRange(ws, cornerCount, 1 << 14, body); });
-    } else {
-      body(std::size_t(0), cornerCount);
-    }
-  };
+  auto inArena = [&](const auto& body) { detail::onThreads(ws, [&] { detail::forRange(ws, cornerCount, 1 << 14, body); }); };
   inArena([&](std::size_t begin, std::size_t end) {
     for (std::size_t c = begin; c < end; ++c) {
       const auto halfedge = cornerMesh.cornerHalfedge[c];

@@ -52,7 +52,6 @@ inline bool operator==(V3 a, V3 b) { return a.x == b.x && a.y == b.y && a.z == b
 
 inline std::size_t nextCorner(std::size_t c) { return c % 3 == 2 ? c - 2 : c + 1; }
 inline std::size_t previousCorner(std::size_t c) { return c % 3 == 0 ? c + 2 : c - 1; }
-inline std::uint32_t canonicalBits(float x) { return std::bit_cast<std::uint32_t>(x == 0.0f ? 0.0f : x); }
 
 // Relative size below which a UV determinant or a dP/du is taken as zero: a few float
 // roundings, where the reference (float arithmetic) finds exactly zero.
@@ -206,19 +205,6 @@ bool triangleBefore(const Arrays& a, std::size_t s, std::size_t t) {
   const auto ks = sequence(s), kt = sequence(t);
   if (ks != kt) return ks < kt;
   return s < t;  // exact duplicates: never both paired (see pairBucket)
-}
-
-inline void insertionSort(std::uint64_t* begin, std::uint64_t* end) {
-  if (end - begin > 24) {
-    std::sort(begin, end);
-    return;
-  }
-  for (std::uint64_t* i = begin + 1; i < end; ++i) {
-    const std::uint64_t value = *i;
-    std::uint64_t* j = i;
-    for (; j > begin && *(j - 1) > value; --j) *j = *(j - 1);
-    *j = value;
-  }
 }
 
 // Union-find over the corners of one bucket (local indices), the smaller root winning.
@@ -378,8 +364,8 @@ void Kernel::pairBucket(std::uint32_t bucket, BucketScratch& scratch) {
     const auto c = static_cast<std::uint32_t>(outs[i]);
     ins[i] = (std::uint64_t(id(previousCorner(c))) << 32) | c;
   }
-  insertionSort(outs, outs + n);
-  insertionSort(ins, ins + n);
+  sortSmall(outs, outs + n);
+  sortSmall(ins, ins + n);
   // Duplicates: same next and same previous identity.
   for (std::size_t i = 0; i < n;) {
     std::size_t j = i + 1;
@@ -694,7 +680,7 @@ void Kernel::groupBucket(std::uint32_t bucket, BucketScratch& scratch) {
     const std::uint32_t c = list[i];
     if (participates(c) && !(ws_.cornerState[c] & kCopy)) scratch.keys.push_back((std::uint64_t(find(i)) << 32) | i);
   }
-  insertionSort(scratch.keys.data(), scratch.keys.data() + scratch.keys.size());
+  sortSmall(scratch.keys.data(), scratch.keys.data() + scratch.keys.size());
   const std::size_t memberCount = scratch.keys.size();
   auto member = [&](std::size_t m) { return static_cast<std::uint32_t>(scratch.keys[m]); };
   auto rootOf = [&](std::size_t m) { return static_cast<std::uint32_t>(scratch.keys[m] >> 32); };

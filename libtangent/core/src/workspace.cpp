@@ -15,8 +15,6 @@ namespace tangent {
 namespace detail {
 namespace {
 
-inline std::uint32_t canonicalBits(float x) { return std::bit_cast<std::uint32_t>(x == 0.0f ? 0.0f : x); }
-
 std::uint64_t vertexHash(const MeshArrays& mesh, std::size_t v) {
   std::uint64_t h = 0x9E3779B97F4A7C15ull;
   auto mix = [&h](float x) {
@@ -37,19 +35,6 @@ bool sameVertex(const MeshArrays& mesh, std::size_t a, std::size_t b) {
       return false;
   }
   return mesh.uvs[2 * a] == mesh.uvs[2 * b] && mesh.uvs[2 * a + 1] == mesh.uvs[2 * b + 1];
-}
-
-void sortSmall(std::uint32_t* begin, std::uint32_t* end) {
-  if (end - begin <= 16) {
-    for (std::uint32_t* i = begin + 1; i < end; ++i) {
-      const std::uint32_t value = *i;
-      std::uint32_t* j = i;
-      for (; j > begin && *(j - 1) > value; --j) *j = *(j - 1);
-      *j = value;
-    }
-  } else {
-    std::sort(begin, end);
-  }
 }
 
 }  // namespace
@@ -304,8 +289,7 @@ void finishOutputs(WorkspaceData& ws, const MeshArrays& mesh, const CornerOutput
         const std::uint32_t c = corners[i];
         SplitEntry e;
         e.vertex = indices[c];
-        std::memcpy(e.bits, &tangents[4 * c], sizeof e.bits);
-        for (auto& bit : e.bits) bit = bit == 0x80000000u ? 0u : bit;  // -0 and +0 alike
+        for (int k = 0; k < 4; ++k) e.bits[k] = canonicalBits(tangents[4 * c + k]);  // -0 and +0 alike
         e.corner = c;
         entries.push_back(e);
       }

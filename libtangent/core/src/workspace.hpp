@@ -5,6 +5,8 @@
 
 #include <tbb/enumerable_thread_specific.h>
 
+#include <algorithm>
+#include <bit>
 #include <cstdint>
 #include <vector>
 
@@ -38,7 +40,6 @@ struct BucketScratch {
   std::vector<std::uint32_t> items;
   std::vector<std::uint32_t> parent;
   std::vector<double> values;
-  std::vector<std::uint32_t> order;
 };
 
 struct WorkspaceData {
@@ -64,6 +65,24 @@ struct WorkspaceData {
 
   std::size_t bytes() const;
 };
+
+// The bits of a float with -0 taken as +0: the order and hash of values that compare equal.
+inline std::uint32_t canonicalBits(float x) { return std::bit_cast<std::uint32_t>(x == 0.0f ? 0.0f : x); }
+
+// Sorts the few keys of one bucket: insertion sort up to two dozen, std::sort beyond.
+template <typename T>
+void sortSmall(T* begin, T* end) {
+  if (end - begin > 24) {
+    std::sort(begin, end);
+    return;
+  }
+  for (T* i = begin + 1; i < end; ++i) {
+    const T value = *i;
+    T* j = i;
+    for (; j > begin && *(j - 1) > value; --j) *j = *(j - 1);
+    *j = value;
+  }
+}
 
 // Grows v to at least n elements (never shrinks, so a reused workspace allocates nothing).
 template <typename Vector>
@@ -91,10 +110,15 @@ void finishOutputs(WorkspaceData& ws, const MeshArrays& mesh, const CornerOutput
 template <typename Body>
 void forRange(const WorkspaceData& ws, std::size_t count, std::size_t grain, const Body& body);
 
+// Runs body() in an arena of ws.threads worker threads (inline for one).
+template <typename Body>
+void onThreads(const WorkspaceData& ws, const Body& body);
+
 }  // namespace tangent::detail
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
 
 namespace tangent::detail {
 
@@ -106,6 +130,16 @@ void forRange(const WorkspaceData& ws, std::size_t count, std::size_t grain, con
   }
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, count, grain),
                     [&](const tbb::blocked_range<std::size_t>& range) { body(range.begin(), range.end()); });
+}
+
+template <typename Body>
+void onThreads(const WorkspaceData& ws, const Body& body) {
+  if (ws.threads <= 1) {
+    body();
+    return;
+  }
+  tbb::task_arena arena(static_cast<int>(ws.threads));
+  arena.execute(body);
 }
 
 }  // namespace tangent::detail
