@@ -282,17 +282,43 @@ TEST(Bake, GltfAndGlbConvertBothWays) {
   EXPECT_FALSE(b.binary);
 }
 
-TEST(Bake, ExternalImagesStayReachableFromTheOutputFolder) {
+std::vector<char> fileBytes(const fs::path& path);
+
+TEST(Bake, ExternalImagesAreCopiedBesideTheOutput) {
   TempDir dir;
   const fs::path demo = fs::path(TANGENT_SOURCE_DIR) / "data" / "demo" / "demo.gltf";
   ASSERT_TRUE(fs::exists(demo));
   const fs::path output = dir / "nested" / "deeper" / "demo.gltf";
   tangent::gltf::bakeFile(demo, output, {});
-  const Asset out = loadAsset(output);
+  const Asset out = loadAsset(output);  // the default asset root: the output's own folder
   const std::string uri = out.json["images"][0]["uri"].get<std::string>();
-  EXPECT_TRUE(fs::exists(output.parent_path() / uri)) << uri;
-  // The image bytes are never decoded or rewritten: it is the same file.
-  EXPECT_TRUE(fs::equivalent(output.parent_path() / uri, demo.parent_path() / "bumps_normal.png"));
+  EXPECT_EQ(uri, "bumps_normal.png");
+  // The image bytes are never decoded or rewritten: a byte-for-byte copy.
+  EXPECT_EQ(fileBytes(output.parent_path() / uri), fileBytes(demo.parent_path() / "bumps_normal.png"));
+}
+
+TEST(Bake, ImagesOutsideTheInputFolderAreReferredToWhereTheyAre) {
+  TempDir dir;
+  const fs::path demo = fs::path(TANGENT_SOURCE_DIR) / "data" / "demo" / "demo.gltf";
+  // The texture one folder up, reachable only with a wider asset root.
+  fs::create_directories(dir / "asset" / "scene");
+  fs::copy_file(demo.parent_path() / "bumps_normal.png", dir / "asset" / "bumps_normal.png");
+  auto doc = nlohmann::ordered_json::parse(std::ifstream(demo));
+  ASSERT_EQ(doc["images"][0]["uri"], "bumps_normal.png");
+  doc["images"][0]["uri"] = "../bumps_normal.png";
+  for (auto& buffer : doc["buffers"]) {
+    const std::string name = buffer["uri"].get<std::string>();
+    fs::copy_file(demo.parent_path() / name, dir / "asset" / "scene" / name);
+  }
+  std::ofstream(dir / "asset" / "scene" / "demo.gltf") << doc.dump();
+  const fs::path input = dir / "asset" / "scene" / "demo.gltf";
+  EXPECT_THROW(tangent::gltf::bakeFile(input, dir / "out" / "demo.gltf", {}), tangent::gltf::InputError);
+  EXPECT_FALSE(fs::exists(dir / "out" / "demo.gltf"));
+  tangent::gltf::BakeOptions options;
+  options.assetRoot = dir / "asset";
+  tangent::gltf::bakeFile(input, dir / "asset" / "out" / "demo.gltf", options);
+  const Asset out = loadAsset(dir / "asset" / "out" / "demo.gltf", dir / "asset");
+  EXPECT_EQ(out.json["images"][0]["uri"], "../bumps_normal.png");
 }
 
 std::vector<char> fileBytes(const fs::path& path) {

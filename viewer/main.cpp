@@ -45,6 +45,7 @@ const char* kUsage =
     "  --no-normal-map, --no-specular, --phong, --flip-green, --negate-w\n"
     "  --reflectivity F, --sphere-map FILE, --uv-scale F\n"
     "  --frames N               with --screenshot: render N frames and print the median frame time\n"
+    "  --asset-root DIR         folder buffer and image URIs may not leave (default: the file's folder)\n"
     "  --shader-dir DIR         where the shaders are (default: the source tree's shaders/)\n"
     "keys: m normal map, s specular, h shadows, p PCF, f green flip, 1-8 views, g glyphs,\n"
     "      r reload shaders, o open, mouse: left orbit, right/middle pan, wheel zoom\n";
@@ -59,6 +60,7 @@ struct Options {
   bool negateW = false;
   fs::path sphereMap = fs::path(TANGENT_DATA_DIR) / "demo" / "spheremap.png";
   fs::path shaderDir = TANGENT_SHADER_DIR;
+  fs::path assetRoot;  // --asset-root: the folder buffer and image URIs may not leave
   int frames = 1;
 };
 
@@ -103,6 +105,7 @@ int parseOptions(int argc, char** argv, Options& options) {
       else if (arg == "--uv-scale") options.settings.uvScale = std::stof(value());
       else if (arg == "--frames") options.frames = std::clamp(std::stoi(value()), 1, 10000);
       else if (arg == "--shader-dir") options.shaderDir = value();
+      else if (arg == "--asset-root") options.assetRoot = value();
       else if (!arg.empty() && arg[0] == '-') throw std::invalid_argument("unknown option " + arg);
       else options.input = arg;
     } catch (const std::exception& e) {
@@ -134,6 +137,7 @@ struct Viewer {
     try {
       tangent::gltf::SceneOptions sceneOptions;
       sceneOptions.negateFileW = options.negateW;
+      sceneOptions.assetRoot = options.assetRoot;
       const tangent::gltf::Scene scene = tangent::gltf::loadScene(file, sceneOptions);
       messages = scene.messages;
       renderer.setScene(scene, messages);
@@ -224,7 +228,7 @@ void drawPanel(Viewer& viewer, GLFWwindow* window, const FrameStats& stats, doub
   static int primitive = 0;
   if (ImGui::Combo("demo", &primitive, primitives, 5)) {
     const fs::path demo = fs::path(TANGENT_DATA_DIR) / "demo";
-    viewer.load(primitive == 0 ? demo / "scene.gltf" : demo / "primitives" / (std::string(primitives[primitive]) + ".gltf"));
+    viewer.load(primitive == 0 ? demo / "scene.gltf" : demo / (std::string(primitives[primitive]) + ".gltf"));
   }
   ImGui::Text("%.1f fps, %.2f ms, %zu triangles, %d draw calls", frameMs > 0 ? 1000.0 / frameMs : 0.0, frameMs, stats.triangles, stats.drawCalls);
   if (ImGui::CollapsingHeader("View", ImGuiTreeNodeFlags_DefaultOpen)) {

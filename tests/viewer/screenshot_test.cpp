@@ -163,7 +163,7 @@ TEST(Viewer, DemoSceneShadowFallsWhereTheSphereOccludesTheSun) {
 // the highlight the specular term adds must come in white and in green.
 TEST(Viewer, SpecularMapColoursTheHighlights) {
   TempDir dir;
-  const std::string common = "'" + (fs::path(TANGENT_SOURCE_DIR) / "data" / "demo" / "primitives" / "sphere.gltf").string() +
+  const std::string common = "'" + (fs::path(TANGENT_SOURCE_DIR) / "data" / "demo" / "sphere.gltf").string() +
                              "' --camera front --size 400x400 --no-shadows";
   const Image on = screenshot(dir, "specular", common), off = screenshot(dir, "no-specular", common + " --no-specular");
   ASSERT_EQ(on.rgb.size(), off.rgb.size());

@@ -441,18 +441,18 @@ int main(int argc, char** argv) {
     scene.addNode({{"name", "Lamp"}, {"translation", {-2.5, 2.0, 2.5}}, {"extensions", {{"KHR_lights_punctual", {{"light", 1}}}}}});
     scene.write(dir, "scene", extra);
   }
-  // Primitives to choose in the viewer's panel.
-  std::filesystem::create_directories(dir / "primitives");
+  // Primitives to choose in the viewer's panel: beside the textures, so that each file stays
+  // inside its own folder (the loader's default asset root).
   const std::pair<const char*, MeshData> primitives[] = {
       {"quad", quad(1.0f)}, {"cube", cube(0.8f)}, {"sphere", uvSphere(48, 24, 1.0f)}, {"torus", torus(64, 24, 0.9f, 0.35f)}};
   for (const auto& [name, mesh] : primitives) {
     DocumentWriter writer;
     const float origin[3] = {0, 0, 0};
     writer.addMesh(mesh, name, 0, origin);
-    Json extra = sharedMaterials("../");
+    Json extra = sharedMaterials("");
     extra["extensionsUsed"] = {"KHR_materials_specular"};
-    writer.write(dir / "primitives", name, extra);
+    writer.write(dir, name, extra);
   }
-  std::cout << "wrote " << dir.string() << ": demo.gltf, scene.gltf, primitives/{quad,cube,sphere,torus}.gltf and their textures\n";
+  std::cout << "wrote " << dir.string() << ": demo.gltf, scene.gltf, {quad,cube,sphere,torus}.gltf and their textures\n";
   return 0;
 }

@@ -26,6 +26,7 @@ const char* kBakeUsage =
     "  --threads N            worker threads (default: all hardware threads); the output never depends on it\n"
     "  --all                  bake every triangle primitive, normal texture or not (TEXCOORD_0)\n"
     "  --overwrite            recompute valid existing TANGENT too\n"
+    "  --asset-root DIR       folder buffer and image URIs may not leave (default: the input's folder)\n"
     "  --report FILE.json     write what was done, per file and primitive\n"
     "  --quiet                print errors only\n"
     "  -h, --help             this text\n";
@@ -83,6 +84,11 @@ int bakeCommand(const std::vector<std::string>& args) {
       const std::string* v = value("--report");
       if (!v) return usageError("--report needs a file name");
       reportPath = *v;
+    } else if (arg == "--asset-root") {
+      const std::string* v = value("--asset-root");
+      if (!v) return usageError("--asset-root needs a directory");
+      options.assetRoot = *v;
+      if (!fs::is_directory(options.assetRoot)) return usageError("--asset-root " + *v + " is not a directory");
     } else if (arg == "--all") {
       options.all = true;
     } else if (arg == "--overwrite") {

@@ -24,6 +24,7 @@ const char* kCheckUsage =
     "  --tolerance DEG     for orthogonality and agreement (default 1)\n"
     "  --method NAME       mikktspace (default) | lengyel: what agreement is measured against\n"
     "  --all               check every triangle primitive (TEXCOORD_0 without a normal texture)\n"
+    "  --asset-root DIR    folder buffer and image URIs may not leave (default: the input's folder)\n"
     "  -h, --help          this text\n"
     "exit codes: 0 clean, 1 findings, 2 unreadable input or usage error\n";
 
@@ -184,6 +185,10 @@ int checkCommand(const std::vector<std::string>& args) {
         return usageError("--method must be mikktspace or lengyel");
     } else if (arg == "--all") {
       options.all = true;
+    } else if (arg == "--asset-root") {
+      if (!hasValue) return usageError("--asset-root needs a directory");
+      options.assetRoot = args[++i];
+      if (!std::filesystem::is_directory(options.assetRoot)) return usageError("--asset-root " + args[i] + " is not a directory");
     } else if (!arg.empty() && arg[0] == '-') {
       return usageError("unknown option '" + arg + "'");
     } else {

@@ -1,3 +1,4 @@
+#include <filesystem>
 #include <iostream>
 
 #include "commands.hpp"
@@ -7,12 +8,22 @@ namespace tangent::cli {
 
 int infoCommand(const std::vector<std::string>& args) {
   std::vector<std::string> inputs;
+  std::filesystem::path assetRoot;
   bool json = false;
-  for (const auto& arg : args) {
+  for (std::size_t i = 0; i < args.size(); ++i) {
+    const std::string& arg = args[i];
     if (arg == "--json") json = true;
-    else if (arg == "-h" || arg == "--help") {
-      std::cout << "usage: tangent info IN... [--json]\n"
-                   "Lists meshes, primitives and attributes, and which primitives need tangents and why.\n";
+    else if (arg == "--asset-root") {
+      if (i + 1 >= args.size() || !std::filesystem::is_directory(args[i + 1])) {
+        std::cerr << "tangent info: --asset-root needs a directory\n";
+        return kExitUsage;
+      }
+      assetRoot = args[++i];
+    } else if (arg == "-h" || arg == "--help") {
+      std::cout << "usage: tangent info IN... [--json] [--asset-root DIR]\n"
+                   "Lists meshes, primitives and attributes, and which primitives need tangents and why.\n"
+                   "Fails (exit 1) on any file bake would refuse. --asset-root DIR: the folder buffer and\n"
+                   "image URIs may not leave (default: the input's folder).\n";
       return kExitOk;
     } else if (!arg.empty() && arg[0] == '-') {
       std::cerr << "tangent info: unknown option '" << arg << "'\n";
@@ -26,7 +37,7 @@ int infoCommand(const std::vector<std::string>& args) {
   int failed = 0;
   for (const auto& input : inputs) {
     try {
-      const auto info = gltf::describeFile(input);
+      const auto info = gltf::describeFile(input, assetRoot);
       if (json) {
         std::cout << info.dump(2) << "\n";
         continue;

@@ -100,13 +100,24 @@ std::uint32_t readUnsigned(const std::uint8_t* p, int componentType) {
   }
 }
 
-}  // namespace
+// Where an accessor's bytes are, every range checked against the bytes actually loaded,
+// before anything is allocated for it.
+struct AccessorLayout {
+  AccessorData header;               // all but bytes
+  const std::uint8_t* dense = nullptr;  // first element, or null (zeros)
+  std::size_t stride = 0;
+  std::size_t sparseCount = 0;
+  int sparseIndexType = 0;
+  const std::uint8_t* sparseIndices = nullptr;
+  const std::uint8_t* sparseValues = nullptr;
+};
 
-AccessorData readAccessor(const tinygltf::Model& model, int accessorIndex, const std::string& where) {
+AccessorLayout locate(const tinygltf::Model& model, int accessorIndex, const std::string& where) {
   if (accessorIndex < 0 || accessorIndex >= static_cast<int>(model.accessors.size()))
     fail(where, accessorIndex, "accessor does not exist (the file has " + std::to_string(model.accessors.size()) + ")");
   const tinygltf::Accessor& accessor = model.accessors[accessorIndex];
-  AccessorData data;
+  AccessorLayout layout;
+  AccessorData& data = layout.header;
   data.componentType = accessor.componentType;
   data.type = accessor.type;
   data.normalized = accessor.normalized;
@@ -116,49 +127,94 @@ AccessorData readAccessor(const tinygltf::Model& model, int accessorIndex, const
   if (data.components == 0) fail(where, accessorIndex, "invalid type " + std::to_string(accessor.type));
   if (data.componentSize == 0) fail(where, accessorIndex, "invalid componentType " + std::to_string(accessor.componentType));
   if (data.count == 0) fail(where, accessorIndex, "count is 0");
-  if (data.count > (std::size_t(1) << 31) / data.elementSize()) fail(where, accessorIndex, "count is implausibly large");
+  if (data.count > (std::size_t(1) << 31) / data.elementSize())
+    fail(where, accessorIndex, "count " + std::to_string(data.count) + " is over the limit of 2 GiB per accessor");
   const std::size_t elementSize = data.elementSize();
-  data.bytes.assign(data.count * elementSize, 0);
 
   if (accessor.bufferView >= 0) {
-    if (static_cast<std::size_t>(accessor.bufferView) < model.bufferViews.size()) {
-      const auto& view = model.bufferViews[accessor.bufferView];
-      std::size_t stride = view.byteStride == 0 ? elementSize : view.byteStride;
-      if (view.byteStride != 0 && (view.byteStride < elementSize || view.byteStride % data.componentSize != 0))
-        fail(where, accessorIndex, "byteStride " + std::to_string(view.byteStride) + " does not fit " +
-                                       std::to_string(elementSize) + "-byte elements");
-      if (accessor.byteOffset % data.componentSize != 0)
-        fail(where, accessorIndex, "byteOffset " + std::to_string(accessor.byteOffset) + " is not a multiple of the component size");
-      const std::size_t span = stride * (data.count - 1) + elementSize;
-      const std::uint8_t* source = viewRange(model, accessor.bufferView, accessor.byteOffset, span, where, accessorIndex, "element");
-      for (std::size_t i = 0; i < data.count; ++i) std::memcpy(&data.bytes[i * elementSize], source + i * stride, elementSize);
-    } else {
+    if (static_cast<std::size_t>(accessor.bufferView) >= model.bufferViews.size())
       fail(where, accessorIndex, "bufferView " + std::to_string(accessor.bufferView) + " does not exist");
-    }
+    const auto& view = model.bufferViews[accessor.bufferView];
+    layout.stride = view.byteStride == 0 ? elementSize : view.byteStride;
+    if (view.byteStride != 0 && (view.byteStride < elementSize || view.byteStride % data.componentSize != 0))
+      fail(where, accessorIndex, "byteStride " + std::to_string(view.byteStride) + " does not fit " +
+                                     std::to_string(elementSize) + "-byte elements");
+    if (accessor.byteOffset % data.componentSize != 0)
+      fail(where, accessorIndex, "byteOffset " + std::to_string(accessor.byteOffset) + " is not a multiple of the component size");
+    const std::size_t span = layout.stride * (data.count - 1) + elementSize;
+    layout.dense = viewRange(model, accessor.bufferView, accessor.byteOffset, span, where, accessorIndex, "element");
   }
 
   if (accessor.sparse.isSparse) {
     const auto& sparse = accessor.sparse;
     if (sparse.count <= 0 || static_cast<std::size_t>(sparse.count) > data.count)
       fail(where, accessorIndex, "sparse.count " + std::to_string(sparse.count) + " is not in 1.." + std::to_string(data.count));
-    const int indexType = sparse.indices.componentType;
-    const std::size_t indexSize = componentBytes(indexType);
-    if (indexType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE && indexType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT &&
-        indexType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT)
+    layout.sparseIndexType = sparse.indices.componentType;
+    const std::size_t indexSize = componentBytes(layout.sparseIndexType);
+    if (layout.sparseIndexType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE &&
+        layout.sparseIndexType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT &&
+        layout.sparseIndexType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT)
       fail(where, accessorIndex, "sparse.indices.componentType must be an unsigned integer type");
-    const std::size_t sparseCount = static_cast<std::size_t>(sparse.count);
-    const std::uint8_t* indices = viewRange(model, sparse.indices.bufferView, static_cast<std::size_t>(sparse.indices.byteOffset),
-                                            sparseCount * indexSize, where, accessorIndex, "sparse index");
-    const std::uint8_t* values = viewRange(model, sparse.values.bufferView, static_cast<std::size_t>(sparse.values.byteOffset),
-                                           sparseCount * elementSize, where, accessorIndex, "sparse value");
-    for (std::size_t i = 0; i < sparseCount; ++i) {
-      const std::uint32_t target = readUnsigned(indices + i * indexSize, indexType);
+    layout.sparseCount = static_cast<std::size_t>(sparse.count);
+    layout.sparseIndices = viewRange(model, sparse.indices.bufferView, static_cast<std::size_t>(sparse.indices.byteOffset),
+                                     layout.sparseCount * indexSize, where, accessorIndex, "sparse index");
+    layout.sparseValues = viewRange(model, sparse.values.bufferView, static_cast<std::size_t>(sparse.values.byteOffset),
+                                    layout.sparseCount * elementSize, where, accessorIndex, "sparse value");
+    for (std::size_t i = 0; i < layout.sparseCount; ++i) {
+      const std::uint32_t target = readUnsigned(layout.sparseIndices + i * indexSize, layout.sparseIndexType);
       if (target >= data.count)
         fail(where, accessorIndex, "sparse index " + std::to_string(target) + " is out of range (count " + std::to_string(data.count) + ")");
-      std::memcpy(&data.bytes[target * elementSize], values + i * elementSize, elementSize);
     }
   }
+  return layout;
+}
+
+}  // namespace
+
+AccessorData readAccessor(const tinygltf::Model& model, int accessorIndex, const std::string& where) {
+  const AccessorLayout layout = locate(model, accessorIndex, where);
+  AccessorData data = layout.header;
+  const std::size_t elementSize = data.elementSize();
+  data.bytes.assign(data.count * elementSize, 0);
+  if (layout.dense) {
+    for (std::size_t i = 0; i < data.count; ++i)
+      std::memcpy(&data.bytes[i * elementSize], layout.dense + i * layout.stride, elementSize);
+  }
+  const std::size_t indexSize = componentBytes(layout.sparseIndexType);
+  for (std::size_t i = 0; i < layout.sparseCount; ++i) {
+    const std::uint32_t target = readUnsigned(layout.sparseIndices + i * indexSize, layout.sparseIndexType);
+    std::memcpy(&data.bytes[target * elementSize], layout.sparseValues + i * elementSize, elementSize);
+  }
   return data;
+}
+
+std::size_t checkAccessor(const tinygltf::Model& model, int accessorIndex, const std::string& where) {
+  return locate(model, accessorIndex, where).header.count;
+}
+
+void checkIndexRange(const tinygltf::Model& model, int accessorIndex, std::size_t vertexCount, const std::string& where) {
+  const AccessorLayout layout = locate(model, accessorIndex, where);
+  if (layout.sparseCount != 0) {
+    toIndices(readAccessor(model, accessorIndex, where), vertexCount, where);
+    return;
+  }
+  const AccessorData& data = layout.header;
+  if (data.type != TINYGLTF_TYPE_SCALAR ||
+      (data.componentType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE &&
+       data.componentType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT &&
+       data.componentType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT))
+    throw InputError(where + ": indices must be SCALAR of UNSIGNED_BYTE, UNSIGNED_SHORT or UNSIGNED_INT, not " +
+                     typeName(data.type) + " of " + componentTypeName(data.componentType));
+  if (!layout.dense) {
+    if (vertexCount == 0) throw InputError(where + ": index 0 is out of range (the primitive has no vertices)");
+    return;
+  }
+  for (std::size_t i = 0; i < data.count; ++i) {
+    const std::uint32_t index = readUnsigned(layout.dense + i * layout.stride, data.componentType);
+    if (index >= vertexCount)
+      throw InputError(where + ": index " + std::to_string(index) + " at position " + std::to_string(i) +
+                       " is out of range (the primitive has " + std::to_string(vertexCount) + " vertices)");
+  }
 }
 
 std::vector<float> toFloats(const AccessorData& data) {

@@ -31,6 +31,12 @@ const char* componentTypeName(int componentType);
 // `where` prefixes every error message ("file.glb: mesh 0 primitive 0: NORMAL").
 AccessorData readAccessor(const tinygltf::Model& model, int accessorIndex, const std::string& where);
 
+// The checks of readAccessor (every range against the loaded bytes, sparse targets) without
+// copying anything; returns the element count.
+std::size_t checkAccessor(const tinygltf::Model& model, int accessorIndex, const std::string& where);
+// The same for an index accessor, and every index < vertexCount.
+void checkIndexRange(const tinygltf::Model& model, int accessorIndex, std::size_t vertexCount, const std::string& where);
+
 // Element values as floats; normalized integers follow the spec's decoding (max(c / 127, -1)...).
 std::vector<float> toFloats(const AccessorData& data);
 

@@ -6,6 +6,9 @@
 #include <iterator>
 
 #include "tangent/gltf.hpp"
+#include "primitive.hpp"
+#include "uri.hpp"
+#include "validate.hpp"
 
 namespace tangent::gltf::detail {
 namespace {
@@ -25,9 +28,18 @@ void appendU32(std::vector<std::uint8_t>& out, std::uint32_t v) {
   out.insert(out.end(), p, p + 4);
 }
 
+// Largest input file read whole (a GLB cannot be larger than 4 GiB).
+constexpr std::uintmax_t kMaxInputBytes = std::uintmax_t(4) << 30;
+
 std::vector<std::uint8_t> readFileBytes(const std::filesystem::path& path) {
   std::error_code ec;
-  if (!std::filesystem::is_regular_file(path, ec)) throw InputError(path.string() + ": no such file");
+  const auto status = std::filesystem::status(path, ec);
+  if (!std::filesystem::exists(status)) throw InputError(path.string() + ": no such file");
+  if (std::filesystem::is_directory(status)) throw InputError(path.string() + ": is a directory, not a glTF file");
+  if (!std::filesystem::is_regular_file(status)) throw InputError(path.string() + ": is not a regular file");
+  const std::uintmax_t size = std::filesystem::file_size(path, ec);
+  if (ec || size >= kMaxInputBytes)
+    throw InputError(path.string() + ": is " + std::to_string(size) + " bytes; inputs are limited to 4 GiB");
   std::ifstream in(path, std::ios::binary);
   if (!in) throw InputError(path.string() + ": cannot be opened for reading");
   return std::vector<std::uint8_t>(std::istreambuf_iterator<char>(in), {});
@@ -39,68 +51,63 @@ bool noImageDecoding(tinygltf::Image*, const int, std::string*, std::string*, in
 
 using Json = nlohmann::ordered_json;
 
-[[noreturn]] void shapeError(const std::string& label, const std::string& pointer, const char* expected) {
-  throw InputError(label + ": " + pointer + " must be " + expected);
+// tinygltf reads buffers and images through these: every path is checked against the asset
+// root again, so no file outside it is opened whatever tinygltf makes of a URI.
+struct FileAccess {
+  std::filesystem::path root;
+};
+
+std::filesystem::path containedFile(const std::string& path, const FileAccess& access) {
+  std::error_code ec;
+  const std::filesystem::path resolved = std::filesystem::weakly_canonical(std::filesystem::absolute(path, ec), ec);
+  if (ec || !isInside(resolved, access.root) || !std::filesystem::is_regular_file(resolved, ec)) return {};
+  return resolved;
 }
 
-void requireIndex(const Json& object, const char* key, const std::string& label, const std::string& pointer) {
-  if (object.contains(key) && !object[key].is_number_integer()) shapeError(label, pointer + "/" + key, "an integer");
+bool fileExists(const std::string& path, void* user) {
+  return !containedFile(path, *static_cast<const FileAccess*>(user)).empty();
 }
 
-// The parts of the document bake reads or renumbers must have the types the spec gives them,
-// so later code can index them without surprises.
-void checkShape(const Json& doc, const std::string& label) {
-  for (const char* key : {"accessors", "animations", "buffers", "bufferViews", "cameras", "images", "materials", "meshes",
-                          "nodes", "samplers", "scenes", "skins", "textures"}) {
-    if (!doc.contains(key)) continue;
-    if (!doc[key].is_array()) shapeError(label, std::string("/") + key, "an array");
-    for (std::size_t i = 0; i < doc[key].size(); ++i) {
-      if (!doc[key][i].is_object()) shapeError(label, "/" + std::string(key) + "/" + std::to_string(i), "an object");
-    }
+std::string expandFilePath(const std::string& path, void*) { return path; }
+
+bool readWholeFile(std::vector<unsigned char>* out, std::string* err, const std::string& path, void* user) {
+  const std::filesystem::path file = containedFile(path, *static_cast<const FileAccess*>(user));
+  if (file.empty()) {
+    if (err) *err += "refused to read " + path + ": not a regular file inside the asset root\n";
+    return false;
   }
-  for (const char* key : {"extensionsUsed", "extensionsRequired"}) {
-    if (doc.contains(key) && !doc[key].is_array()) shapeError(label, std::string("/") + key, "an array");
+  std::ifstream in(file, std::ios::binary);
+  if (!in) {
+    if (err) *err += "cannot open " + path + "\n";
+    return false;
   }
-  const auto indexMap = [&](const Json& map, const std::string& pointer) {
-    if (!map.is_object()) shapeError(label, pointer, "an object");
-    for (const auto& [name, value] : map.items()) {
-      if (!value.is_number_integer()) shapeError(label, pointer + "/" + name, "an accessor index");
-    }
-  };
-  if (doc.contains("meshes")) {
-    for (std::size_t m = 0; m < doc["meshes"].size(); ++m) {
-      const Json& mesh = doc["meshes"][m];
-      const std::string meshPointer = "/meshes/" + std::to_string(m);
-      if (!mesh.contains("primitives") || !mesh["primitives"].is_array()) shapeError(label, meshPointer + "/primitives", "an array");
-      for (std::size_t p = 0; p < mesh["primitives"].size(); ++p) {
-        const Json& primitive = mesh["primitives"][p];
-        const std::string pointer = meshPointer + "/primitives/" + std::to_string(p);
-        if (!primitive.is_object()) shapeError(label, pointer, "an object");
-        if (!primitive.contains("attributes")) shapeError(label, pointer + "/attributes", "present");
-        indexMap(primitive["attributes"], pointer + "/attributes");
-        for (const char* key : {"indices", "material", "mode"}) requireIndex(primitive, key, label, pointer);
-        if (primitive.contains("targets")) {
-          if (!primitive["targets"].is_array()) shapeError(label, pointer + "/targets", "an array");
-          for (std::size_t t = 0; t < primitive["targets"].size(); ++t)
-            indexMap(primitive["targets"][t], pointer + "/targets/" + std::to_string(t));
-        }
+  out->assign(std::istreambuf_iterator<char>(in), {});
+  return true;
+}
+
+bool writeWholeFile(std::string* err, const std::string& path, const std::vector<unsigned char>&, void*) {
+  if (err) *err += "loading never writes (" + path + ")\n";
+  return false;
+}
+
+// Buffer and image URIs against the containment rule, before tinygltf opens anything. A
+// missing image inside the root is left to tinygltf's warning: bake carries images through.
+void checkUris(const Json& doc, const std::filesystem::path& baseDir, const std::filesystem::path& root, const std::string& label) {
+  for (const char* kind : {"buffers", "images"}) {
+    if (!doc.contains(kind)) continue;
+    const std::string singular = std::string(kind).substr(0, std::string(kind).size() - 1);
+    for (std::size_t i = 0; i < doc[kind].size(); ++i) {
+      const Json& item = doc[kind][i];
+      if (!item.contains("uri")) continue;
+      const std::string uri = item["uri"].get<std::string>();
+      const std::string what = "/" + std::string(kind) + "/" + std::to_string(i);
+      if (isDataUri(uri)) continue;
+      try {
+        resolveFileUri(uri, baseDir, root, label, what);
+      } catch (const InputError& e) {
+        if (singular == "image" && std::string(e.what()).find("does not exist") != std::string::npos) continue;
+        throw;
       }
-    }
-  }
-  if (doc.contains("materials")) {
-    for (std::size_t i = 0; i < doc["materials"].size(); ++i) {
-      const Json& material = doc["materials"][i];
-      if (!material.contains("normalTexture")) continue;
-      const std::string pointer = "/materials/" + std::to_string(i) + "/normalTexture";
-      if (!material["normalTexture"].is_object()) shapeError(label, pointer, "an object");
-      requireIndex(material["normalTexture"], "index", label, pointer);
-      requireIndex(material["normalTexture"], "texCoord", label, pointer);
-    }
-  }
-  if (doc.contains("bufferViews")) {
-    for (std::size_t i = 0; i < doc["bufferViews"].size(); ++i) {
-      for (const char* key : {"buffer", "byteOffset", "byteLength", "byteStride"})
-        requireIndex(doc["bufferViews"][i], key, label, "/bufferViews/" + std::to_string(i));
     }
   }
 }
@@ -162,13 +169,16 @@ std::vector<std::uint8_t> makeGlb(const std::string& json, std::span<const std::
   return out;
 }
 
-Asset loadAsset(const std::filesystem::path& path) {
+Asset loadAsset(const std::filesystem::path& path, const std::filesystem::path& assetRoot) {
   Asset asset;
   asset.path = path;
+  asset.root = assetRootFor(path, assetRoot);
   const std::string label = path.string();
   std::vector<std::uint8_t> bytes;
   if (isMeshFile(path)) {
-    if (!std::filesystem::is_regular_file(path)) throw InputError(label + ": no such file");
+    std::error_code ec;
+    if (std::filesystem::is_directory(path, ec)) throw InputError(label + ": is a directory, not a mesh file");
+    if (!std::filesystem::is_regular_file(path, ec)) throw InputError(label + ": no such file");
     bytes = meshFileToGlb(path);
     asset.fromMeshFile = true;
   } else {
@@ -183,24 +193,30 @@ Asset loadAsset(const std::filesystem::path& path) {
   } else {
     jsonText.assign(bytes.begin(), bytes.end());
   }
+  checkJsonDepth(jsonText, label);
   try {
     asset.json = nlohmann::ordered_json::parse(jsonText);
   } catch (const nlohmann::json::exception& e) {
     throw InputError(label + ": not valid glTF JSON: " + e.what());
   }
   if (!asset.json.is_object()) throw InputError(label + ": glTF JSON must be an object");
-  checkShape(asset.json, label);
+  validateDocument(asset.json, label);
+  const std::filesystem::path baseDir = std::filesystem::absolute(path).parent_path();
+  if (!isInside(assetRootFor(path, {}), asset.root))
+    throw InputError(label + ": the asset root " + asset.root.string() + " does not contain the file's folder");
+  checkUris(asset.json, baseDir, asset.root, label);
 
   tinygltf::TinyGLTF loader;
   loader.SetImageLoader(noImageDecoding, nullptr);
+  FileAccess access{asset.root};
+  loader.SetFsCallbacks({fileExists, expandFilePath, readWholeFile, writeWholeFile, &access});
   std::string err, warn;
-  const std::string baseDir = path.parent_path().string();
   bool ok = false;
   try {
     ok = asset.binary ? loader.LoadBinaryFromMemory(&asset.model, &err, &warn, bytes.data(),
-                                                    static_cast<unsigned int>(bytes.size()), baseDir)
+                                                    static_cast<unsigned int>(bytes.size()), baseDir.string())
                       : loader.LoadASCIIFromString(&asset.model, &err, &warn, jsonText.data(),
-                                                   static_cast<unsigned int>(jsonText.size()), baseDir);
+                                                   static_cast<unsigned int>(jsonText.size()), baseDir.string());
   } catch (const std::exception& e) {
     err = e.what();
   }
@@ -209,6 +225,7 @@ Asset loadAsset(const std::filesystem::path& path) {
     throw InputError(label + ": cannot be loaded: " + (err.empty() ? std::string("unknown tinygltf error") : err));
   }
   if (!warn.empty()) asset.warnings.push_back(label + ": " + warn);
+  verifyMeshData(asset);
   return asset;
 }
 

@@ -14,6 +14,7 @@ namespace tangent::gltf::detail {
 
 struct Asset {
   std::filesystem::path path;   // the input file
+  std::filesystem::path root;   // canonical folder its buffers and images must stay inside
   bool binary = false;          // GLB container
   bool fromMeshFile = false;    // converted from OBJ/PLY/OFF
   nlohmann::ordered_json json;  // the document as read
@@ -23,8 +24,9 @@ struct Asset {
 
 bool isMeshFile(const std::filesystem::path& path);  // .obj, .ply, .off
 
-// Throws InputError naming the file on anything unreadable or malformed.
-Asset loadAsset(const std::filesystem::path& path);
+// Throws InputError naming the file on anything unreadable or malformed. `assetRoot`: the
+// folder buffer and image URIs may not leave (empty: the file's own folder).
+Asset loadAsset(const std::filesystem::path& path, const std::filesystem::path& assetRoot = {});
 
 // OBJ/PLY/OFF read through OpenMesh, returned as an in-memory GLB (mesh_file.cpp).
 std::vector<std::uint8_t> meshFileToGlb(const std::filesystem::path& path);

@@ -318,7 +318,7 @@ BakeResult bakeChecked(const std::filesystem::path& input, const std::filesystem
   if (fs::exists(output, ec) && fs::equivalent(input, output, ec))
     throw InputError(output.string() + ": is the input file; bake never writes to its input");
 
-  detail::Asset asset = detail::loadAsset(input);
+  detail::Asset asset = detail::loadAsset(input, options.assetRoot);
   if (!output.parent_path().empty()) fs::create_directories(output.parent_path(), ec);
   for (const char* list : {"extensionsRequired", "extensionsUsed"}) {
     if (!asset.json.contains(list)) continue;

@@ -195,7 +195,7 @@ FileCheck checkFile(const std::filesystem::path& input, const CheckOptions& opti
   FileCheck result;
   result.file = input.string();
   try {
-    const detail::Asset asset = detail::loadAsset(input);
+    const detail::Asset asset = detail::loadAsset(input, options.assetRoot);
     const Json& doc = asset.json;
     const std::size_t meshCount = doc.contains("meshes") ? doc["meshes"].size() : 0;
     for (std::size_t m = 0; m < meshCount; ++m) {

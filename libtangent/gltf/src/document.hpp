@@ -33,7 +33,9 @@ class OutputDocument {
  private:
   void dropOrphans();
   std::vector<std::uint8_t> packBuffers();
-  void rebaseUris(const std::filesystem::path& outputDir);
+  // External images inside the input's folder are copied beside the output (same relative
+  // path); others (a wider --asset-root) are referred to relative to the output.
+  void placeImages(const std::filesystem::path& outputDir);
 
   Asset& asset_;
   std::set<int> accessorsBefore_;

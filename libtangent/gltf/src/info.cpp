@@ -5,9 +5,9 @@
 #include "tangent/gltf.hpp"
 
 namespace tangent::gltf {
-nlohmann::ordered_json describeFile(const std::filesystem::path& input) {
+nlohmann::ordered_json describeFile(const std::filesystem::path& input, const std::filesystem::path& assetRoot) {
   using Json = nlohmann::ordered_json;
-  detail::Asset asset = detail::loadAsset(input);
+  detail::Asset asset = detail::loadAsset(input, assetRoot);
   const Json& doc = asset.json;
   Json out = Json::object();
   out["file"] = input.string();

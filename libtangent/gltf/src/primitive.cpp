@@ -160,4 +160,42 @@ PrimitiveGeometry readGeometry(const Asset& asset, const Json& primitive, const 
   return geometry;
 }
 
+void verifyMeshData(const Asset& asset) {
+  const Json& doc = asset.json;
+  if (doc.contains("extensionsUsed")) {
+    for (const Json& name : doc["extensionsUsed"]) {
+      if (name == "EXT_meshopt_compression" || name == "KHR_meshopt_compression") return;  // bytes are compressed
+    }
+  }
+  const std::string file = asset.path.string();
+  const std::size_t meshCount = doc.contains("meshes") ? doc["meshes"].size() : 0;
+  for (std::size_t m = 0; m < meshCount; ++m) {
+    const Json& primitives = doc["meshes"][m]["primitives"];
+    for (std::size_t p = 0; p < primitives.size(); ++p) {
+      const Json& primitive = primitives[p];
+      if (primitive.contains("extensions") && primitive["extensions"].contains("KHR_draco_mesh_compression")) continue;
+      const std::string where = file + ": " + primitiveLabel(doc, static_cast<int>(m), static_cast<int>(p));
+      const int position = accessorOf(primitive["attributes"], "POSITION");
+      const std::size_t vertexCount = position >= 0 ? checkAccessor(asset.model, position, where + ": POSITION") : 0;
+      auto attributes = [&](const Json& map, const std::string& prefix) {
+        for (const auto& [name, value] : map.items()) {
+          const std::string at = where + ": " + prefix + name;
+          const std::size_t count = checkAccessor(asset.model, value.get<int>(), at);
+          if (position >= 0 && count != vertexCount)
+            throw InputError(at + " (accessor " + value.dump() + "): has " + std::to_string(count) + " elements, POSITION has " +
+                             std::to_string(vertexCount));
+        }
+      };
+      attributes(primitive["attributes"], "");
+      if (primitive.contains("targets")) {
+        for (std::size_t t = 0; t < primitive["targets"].size(); ++t)
+          attributes(primitive["targets"][t], "target " + std::to_string(t) + " ");
+      }
+      const int indices = accessorOf(primitive, "indices");
+      if (indices >= 0 && position >= 0)
+        checkIndexRange(asset.model, indices, vertexCount, where + ": indices (accessor " + std::to_string(indices) + ")");
+    }
+  }
+}
+
 }  // namespace tangent::gltf::detail

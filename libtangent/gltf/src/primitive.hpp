@@ -54,4 +54,9 @@ struct PrimitiveGeometry {
 PrimitiveGeometry readGeometry(const Asset& asset, const nlohmann::ordered_json& primitive, const PrimitiveNeeds& needs,
                                const std::string& where);
 
+// Every mesh primitive's accessors against the bytes loaded (ranges, sparse targets, equal
+// attribute counts, indices < vertex count), copying nothing: loadAsset runs it, so bake,
+// check, info and the viewer refuse the same files. Throws InputError naming the accessor.
+void verifyMeshData(const Asset& asset);
+
 }  // namespace tangent::gltf::detail

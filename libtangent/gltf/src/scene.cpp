@@ -15,54 +15,17 @@
 #include "primitive.hpp"
 #include "tangent/gltf.hpp"
 #include "tangent_rules.hpp"
+#include "uri.hpp"
 
 namespace tangent::gltf {
 namespace {
 
 using Json = nlohmann::ordered_json;
 
-std::vector<std::uint8_t> decodeBase64(const std::string& text) {
-  auto value = [](char c) -> int {
-    if (c >= 'A' && c <= 'Z') return c - 'A';
-    if (c >= 'a' && c <= 'z') return c - 'a' + 26;
-    if (c >= '0' && c <= '9') return c - '0' + 52;
-    if (c == '+' || c == '-') return 62;
-    if (c == '/' || c == '_') return 63;
-    return -1;
-  };
-  std::vector<std::uint8_t> out;
-  unsigned buffer = 0;
-  int bits = 0;
-  for (char c : text) {
-    const int v = value(c);
-    if (v < 0) continue;  // padding and whitespace
-    buffer = (buffer << 6) | static_cast<unsigned>(v);
-    bits += 6;
-    if (bits >= 8) {
-      bits -= 8;
-      out.push_back(static_cast<std::uint8_t>((buffer >> bits) & 0xFF));
-    }
-  }
-  return out;
-}
-
-std::string percentDecode(const std::string& uri) {
-  std::string out;
-  for (std::size_t i = 0; i < uri.size(); ++i) {
-    if (uri[i] == '%' && i + 2 < uri.size()) {
-      out += static_cast<char>(std::stoi(uri.substr(i + 1, 2), nullptr, 16));
-      i += 2;
-    } else {
-      out += uri[i];
-    }
-  }
-  return out;
-}
-
-std::vector<ImageSource> readImages(const detail::Asset& asset) {
+std::vector<ImageSource> readImages(const detail::Asset& asset, std::vector<std::string>& messages) {
   std::vector<ImageSource> images;
   if (!asset.json.contains("images")) return images;
-  const auto dir = asset.path.parent_path();
+  const auto dir = std::filesystem::absolute(asset.path).parent_path();
   for (std::size_t i = 0; i < asset.json["images"].size(); ++i) {
     const Json& image = asset.json["images"][i];
     ImageSource source;
@@ -70,20 +33,24 @@ std::vector<ImageSource> readImages(const detail::Asset& asset) {
     source.mimeType = image.value("mimeType", "");
     if (image.contains("uri") && image["uri"].is_string()) {
       const std::string uri = image["uri"].get<std::string>();
-      if (uri.rfind("data:", 0) == 0) {
-        const auto comma = uri.find(',');
-        if (comma != std::string::npos) source.bytes = decodeBase64(uri.substr(comma + 1));
+      if (detail::isDataUri(uri)) {
+        source.bytes = detail::decodeDataUri(uri, asset.path.string() + ": /images/" + std::to_string(i));
         source.mimeType = uri.substr(5, uri.find(';') - 5);
       } else {
-        source.file = dir / percentDecode(uri);
-        source.label = source.file.string();
+        // loadAsset refused URIs that leave the asset root; a missing file leaves the image empty.
+        try {
+          source.file = detail::resolveFileUri(uri, dir, asset.root, asset.path.string(), "/images/" + std::to_string(i));
+          source.label = source.file.string();
+        } catch (const InputError& e) {
+          messages.push_back(e.what());
+        }
       }
     } else if (image.contains("bufferView") && image["bufferView"].is_number_integer()) {
       const int viewIndex = image["bufferView"].get<int>();
       if (viewIndex >= 0 && viewIndex < static_cast<int>(asset.model.bufferViews.size())) {
         const auto& view = asset.model.bufferViews[viewIndex];
         const auto& buffer = asset.model.buffers[view.buffer].data;
-        if (view.byteOffset + view.byteLength <= buffer.size())
+        if (view.byteOffset <= buffer.size() && view.byteLength <= buffer.size() - view.byteOffset)
           source.bytes.assign(buffer.begin() + view.byteOffset, buffer.begin() + view.byteOffset + view.byteLength);
       }
     }
@@ -313,12 +280,12 @@ DrawItem makeDrawItem(const detail::Asset& asset, const Json& primitive, const s
 }  // namespace
 
 Scene loadScene(const std::filesystem::path& input, const SceneOptions& options) {
-  const detail::Asset asset = detail::loadAsset(input);
+  const detail::Asset asset = detail::loadAsset(input, options.assetRoot);
   const Json& doc = asset.json;
   Scene scene;
-  scene.images = readImages(asset);
-  scene.materials = readMaterials(doc);
   scene.messages = asset.warnings;
+  scene.images = readImages(asset, scene.messages);
+  scene.materials = readMaterials(doc);
 
   std::vector<Json> lightDefinitions;
   if (doc.contains("extensions") && doc["extensions"].contains("KHR_lights_punctual") &&

@@ -9,6 +9,7 @@
 
 #include "document.hpp"
 #include "tangent/gltf.hpp"
+#include "uri.hpp"
 
 namespace tangent::gltf::detail {
 
@@ -42,37 +43,8 @@ void visitExtensionBufferViews(Json& node, bool insideExtensions, const std::fun
   }
 }
 
-std::string percentEncodePath(const std::string& path) {
-  static const char* hex = "0123456789ABCDEF";
-  std::string out;
-  for (unsigned char c : path) {
-    if (std::isalnum(c) || std::string_view("-._~/!$&'()*+,;=:@").find(static_cast<char>(c)) != std::string_view::npos) {
-      out += static_cast<char>(c);
-    } else {
-      out += '%';
-      out += hex[c >> 4];
-      out += hex[c & 15];
-    }
-  }
-  return out;
-}
-
-std::string percentDecode(const std::string& uri) {
-  std::string out;
-  for (std::size_t i = 0; i < uri.size(); ++i) {
-    if (uri[i] == '%' && i + 2 < uri.size() && std::isxdigit(static_cast<unsigned char>(uri[i + 1])) &&
-        std::isxdigit(static_cast<unsigned char>(uri[i + 2]))) {
-      out += static_cast<char>(std::stoi(uri.substr(i + 1, 2), nullptr, 16));
-      i += 2;
-    } else {
-      out += uri[i];
-    }
-  }
-  return out;
-}
-
 bool isRelativeFileUri(const std::string& uri) {
-  return !uri.empty() && uri.rfind("data:", 0) != 0 && uri.find("://") == std::string::npos && uri.front() != '/';
+  return !uri.empty() && !isDataUri(uri) && uri.find("://") == std::string::npos && uri.front() != '/';
 }
 
 std::set<int> collect(Json& doc, void (*walker)(Json&, const std::function<void(Json&)>&)) {
@@ -226,12 +198,15 @@ std::vector<std::uint8_t> OutputDocument::packBuffers() {
       source = bytes.data();
       length = bytes.size();
     } else {
-      const int bufferIndex = view.value("buffer", 0);
-      const std::size_t offset = view.value("byteOffset", std::size_t(0));
-      length = view.value("byteLength", std::size_t(0));
-      if (bufferIndex < 0 || bufferIndex >= static_cast<int>(buffers.size()) ||
-          offset + length > buffers[bufferIndex].data.size())
-        throw InputError(asset_.path.string() + ": bufferView " + std::to_string(i) + " lies outside its buffer");
+      // validateDocument checked types and declared sizes; the loaded bytes may still be fewer.
+      const std::int64_t bufferIndex = view.value("buffer", std::int64_t(-1));
+      const std::int64_t offset = view.value("byteOffset", std::int64_t(0));
+      const std::int64_t viewLength = view.value("byteLength", std::int64_t(0));
+      if (bufferIndex < 0 || bufferIndex >= static_cast<std::int64_t>(buffers.size()) || offset < 0 || viewLength < 0 ||
+          static_cast<std::uint64_t>(offset) > buffers[bufferIndex].data.size() ||
+          static_cast<std::uint64_t>(viewLength) > buffers[bufferIndex].data.size() - static_cast<std::uint64_t>(offset))
+        throw InputError(asset_.path.string() + ": /bufferViews/" + std::to_string(i) + ": lies outside the bytes loaded for its buffer");
+      length = static_cast<std::size_t>(viewLength);
       source = buffers[bufferIndex].data.data() + offset;
       alignTo = offset % 4;
     }
@@ -255,19 +230,36 @@ std::vector<std::uint8_t> OutputDocument::packBuffers() {
   return packed;
 }
 
-void OutputDocument::rebaseUris(const std::filesystem::path& outputDir) {
+void OutputDocument::placeImages(const std::filesystem::path& outputDir) {
   namespace fs = std::filesystem;
-  const fs::path inputDir = fs::absolute(asset_.path).parent_path();
+  const fs::path inputDir = assetRootFor(asset_.path, {});
   std::error_code ec;
-  if (fs::equivalent(inputDir, outputDir, ec)) return;
+  const fs::path targetDir = fs::weakly_canonical(outputDir, ec);
+  if (fs::equivalent(inputDir, targetDir, ec)) return;
   Json& doc = asset_.json;
   if (!doc.contains("images")) return;
   for (auto& image : doc["images"]) {
     if (!image.contains("uri") || !image["uri"].is_string()) continue;
     const std::string uri = image["uri"].get<std::string>();
     if (!isRelativeFileUri(uri)) continue;
-    const fs::path target = (inputDir / percentDecode(uri)).lexically_normal();
-    image["uri"] = percentEncodePath(target.lexically_relative(outputDir).generic_string());
+    const fs::path source = fs::weakly_canonical(inputDir / percentDecode(uri), ec);
+    if (ec || !fs::is_regular_file(source, ec)) continue;  // missing: kept as written (loading warned)
+    if (isInside(source, inputDir)) {
+      // Beside the output under the same relative path, so the output is self-contained and
+      // passes the default asset root; never over a file the input uses.
+      const fs::path relative = source.lexically_relative(inputDir);
+      const fs::path target = targetDir / relative;
+      if (fs::exists(target, ec) && fs::equivalent(target, source, ec)) continue;
+      fs::create_directories(target.parent_path(), ec);
+      std::ifstream in(source, std::ios::binary);
+      const std::vector<std::uint8_t> bytes{std::istreambuf_iterator<char>(in), {}};
+      if (!in && !in.eof()) throw std::runtime_error(source.string() + ": cannot be read to copy beside the output");
+      writeFileAtomic(target, bytes);
+      image["uri"] = percentEncodePath(relative.generic_string());
+    } else {
+      // Outside the input's folder (allowed by --asset-root): referred to where it is.
+      image["uri"] = percentEncodePath(source.lexically_relative(targetDir).generic_string());
+    }
   }
 }
 
@@ -276,7 +268,7 @@ std::uint64_t OutputDocument::write(const std::filesystem::path& output) {
   dropOrphans();
   std::vector<std::uint8_t> bin = packBuffers();
   const fs::path outputDir = fs::absolute(output).parent_path();
-  rebaseUris(outputDir);
+  placeImages(outputDir);
   const bool glb = output.extension() == ".glb";
   Json& doc = asset_.json;
   if (glb) {

@@ -15,6 +15,7 @@ struct CheckOptions {
   Method method = Method::mikktspace;  // what `reference` recomputes with
   double toleranceDegrees = 1.0;       // for `orthogonal` and `reference`
   bool all = false;                    // every triangle primitive, not only normal-mapped ones
+  std::filesystem::path assetRoot;     // folder buffer and image URIs may not leave (empty: the file's)
 };
 
 // The checks, in the order they run. `present` and `format` gate the rest.

@@ -24,6 +24,9 @@ struct BakeOptions {
   Options tangents;         // method, weighting (uvOrigin is always topLeft for glTF)
   bool all = false;         // every triangle primitive, not only those with a normalTexture
   bool overwrite = false;   // recompute valid existing TANGENT too
+  // Folder that buffer and image URIs may not leave after resolving `..` and symbolic links
+  // (empty: the input's own folder). See the README's "Security and limits".
+  std::filesystem::path assetRoot;
 };
 
 // What happened to one primitive.
@@ -55,7 +58,8 @@ BakeResult bakeFile(const std::filesystem::path& input, const std::filesystem::p
 std::filesystem::path outputPathFor(const std::filesystem::path& input, const std::filesystem::path& outputDir);
 
 // Meshes, primitives, attributes, and which need tangents and why, as JSON.
-nlohmann::ordered_json describeFile(const std::filesystem::path& input);
+// `assetRoot` as in BakeOptions.
+nlohmann::ordered_json describeFile(const std::filesystem::path& input, const std::filesystem::path& assetRoot = {});
 
 // Result of a bake as the JSON written by `tangent bake --report`.
 nlohmann::ordered_json toJson(const BakeResult& result);

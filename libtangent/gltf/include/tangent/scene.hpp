@@ -83,6 +83,7 @@ struct SceneOptions {
   Method method = Method::mikktspace;
   bool negateFileW = false;   // for tests and demonstrations: flip the file's handedness
   double toleranceDegrees = 1.0;
+  std::filesystem::path assetRoot;  // folder buffer and image URIs may not leave (empty: the file's)
 };
 
 struct Scene {

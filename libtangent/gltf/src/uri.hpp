@@ -1,0 +1,35 @@
+// URIs of buffers and images (glTF 2.0 spec 3.1.1 and RFC 3986) and the containment rule:
+// an asset may read data: URIs and relative paths that stay inside its asset root after
+// `..` and symbolic links are resolved. Every file an asset names goes through resolveFileUri.
+#pragma once
+
+#include <cstdint>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+namespace tangent::gltf::detail {
+
+// RFC 3986 percent-decoding; a '%' not followed by two hex digits stays as it is.
+std::string percentDecode(const std::string& uri);
+// Percent-encodes what a relative path may not carry in a URI ('/' stays).
+std::string percentEncodePath(const std::string& path);
+
+bool isDataUri(const std::string& uri);
+// Base64 payload of a data: URI; throws InputError (naming `what`) when it is not base64.
+std::vector<std::uint8_t> decodeDataUri(const std::string& uri, const std::string& what);
+
+// The folder an asset's files must stay inside: `root` when given, else the input's folder;
+// made absolute and canonical (symbolic links resolved).
+std::filesystem::path assetRootFor(const std::filesystem::path& input, const std::filesystem::path& root);
+
+// The file a relative URI names, resolved against `baseDir` and checked against the rule:
+// no scheme, not absolute, inside `root` after resolving `..` and links, an existing regular
+// file. Throws InputError "<label>: <what> uri '<uri>' ..." otherwise.
+std::filesystem::path resolveFileUri(const std::string& uri, const std::filesystem::path& baseDir,
+                                     const std::filesystem::path& root, const std::string& label, const std::string& what);
+
+// True when `path` (canonical) lies inside `root` (canonical).
+bool isInside(const std::filesystem::path& path, const std::filesystem::path& root);
+
+}  // namespace tangent::gltf::detail
