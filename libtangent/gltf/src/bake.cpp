@@ -346,6 +346,15 @@ BakeResult bakeChecked(const std::filesystem::path& input, const std::filesystem
     const std::size_t primitiveCount = doc["meshes"][m]["primitives"].size();
     for (std::size_t p = 0; p < primitiveCount; ++p) {
       result.primitives.push_back(baker.bake(static_cast<int>(m), static_cast<int>(p)));
+      // Non-finite input is baked (its corners get fallback frames) but never silently.
+      const PrimitiveResult& baked = result.primitives.back();
+      const std::string where = input.string() + ": " + detail::primitiveLabel(doc, static_cast<int>(m), static_cast<int>(p));
+      if (baked.tangents.nonFiniteTriangles)
+        result.warnings.push_back(where + ": " + std::to_string(baked.tangents.nonFiniteTriangles) +
+                                  " triangles have non-finite (NaN or infinite) positions or UVs; their corners got fallback frames");
+      if (baked.tangents.invalidNormals)
+        result.warnings.push_back(where + ": " + std::to_string(baked.tangents.invalidNormals) +
+                                  " corners have zero or non-finite normals; replaced by their faces' normals");
     }
   }
   result.bytesWritten = document.write(output);

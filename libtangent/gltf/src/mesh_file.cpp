@@ -1,7 +1,10 @@
 // OBJ, PLY and OFF through OpenMesh's readers, converted to an in-memory GLB so that the rest
 // of bake treats them like any glTF input. These formats carry no materials: every mesh
 // gets tangents. Their UV origin is bottom-left, so v becomes 1 - v for glTF.
+#include <OpenMesh/Core/IO/IOManager.hh>
 #include <OpenMesh/Core/IO/MeshIO.hh>
+#include <OpenMesh/Core/IO/importer/ImporterT.hh>
+#include <OpenMesh/Core/System/omstream.hh>
 #include <OpenMesh/Core/Mesh/PolyMesh_ArrayKernelT.hh>
 
 #include <bit>
@@ -25,6 +28,103 @@ struct ImportTraits : OpenMesh::DefaultTraits {
 // triangulate into a TriMesh, so polygons are fanned here from their own corners.
 using ImportMesh = OpenMesh::PolyMesh_ArrayKernelT<ImportTraits>;
 
+// OpenMesh's readers trust the file: a face naming a vertex that does not exist reaches
+// add_face and then per-halfedge writes through an invalid handle, and a header count is
+// looped over (and reserved) whatever the file holds. Every call that takes a handle or a
+// count from the file is checked here first; a refusal throws InputError naming the file
+// and the element. Counts are bounded by the file's size (a vertex or face takes at least
+// 3 bytes in every format).
+class CheckedImporter : public OpenMesh::IO::ImporterT<ImportMesh> {
+  using Base = OpenMesh::IO::ImporterT<ImportMesh>;
+
+ public:
+  CheckedImporter(ImportMesh& mesh, std::string label, std::uintmax_t fileBytes)
+      : Base(mesh), mesh_(mesh), label_(std::move(label)), limit_(fileBytes / 3 + 16) {}
+
+  OpenMesh::VertexHandle add_vertex(const OpenMesh::Vec3f& point) override {
+    countVertex();
+    return Base::add_vertex(point);
+  }
+  OpenMesh::VertexHandle add_vertex() override {
+    countVertex();
+    return Base::add_vertex();
+  }
+  OpenMesh::FaceHandle add_face(const OpenMesh::IO::BaseImporter::VHandles& vertices) override {
+    if (++faces_ > limit_) throw InputError(label_ + ": more faces than the file's size allows; the file is malformed");
+    for (std::size_t k = 0; k < vertices.size(); ++k) {
+      if (!validVertex(vertices[k]))
+        throw InputError(label_ + ": face " + std::to_string(faces_) + " corner " + std::to_string(k + 1) + " refers to vertex " +
+                         std::to_string(vertices[k].idx() + 1) + " (1-based), but the file has " +
+                         std::to_string(mesh_.n_vertices()) + " vertices there");
+    }
+    return Base::add_face(vertices);
+  }
+  void add_face_texcoords(OpenMesh::FaceHandle face, OpenMesh::VertexHandle vertex,
+                          const std::vector<OpenMesh::Vec2f>& uvs) override {
+    if (!validFace(face) || !validVertex(vertex)) return;  // a face add_face refused (repeated vertex)
+    Base::add_face_texcoords(face, vertex, uvs);
+  }
+  void add_face_texcoords(OpenMesh::FaceHandle face, OpenMesh::VertexHandle vertex,
+                          const std::vector<OpenMesh::Vec3f>& uvs) override {
+    if (!validFace(face) || !validVertex(vertex)) return;
+    Base::add_face_texcoords(face, vertex, uvs);
+  }
+  void set_point(OpenMesh::VertexHandle v, const OpenMesh::Vec3f& p) override { vertex(v, "position"), Base::set_point(v, p); }
+  void set_normal(OpenMesh::VertexHandle v, const OpenMesh::Vec3f& n) override { vertex(v, "normal"), Base::set_normal(v, n); }
+  void set_normal(OpenMesh::VertexHandle v, const OpenMesh::Vec3d& n) override { vertex(v, "normal"), Base::set_normal(v, n); }
+  void set_texcoord(OpenMesh::VertexHandle v, const OpenMesh::Vec2f& t) override { vertex(v, "UV"), Base::set_texcoord(v, t); }
+  void set_texcoord(OpenMesh::VertexHandle v, const OpenMesh::Vec3f& t) override { vertex(v, "UV"), Base::set_texcoord(v, t); }
+  void set_texcoord(OpenMesh::HalfedgeHandle h, const OpenMesh::Vec2f& t) override {
+    if (h.is_valid() && static_cast<std::size_t>(h.idx()) < mesh_.n_halfedges()) Base::set_texcoord(h, t);
+  }
+  void set_texcoord(OpenMesh::HalfedgeHandle h, const OpenMesh::Vec3f& t) override {
+    if (h.is_valid() && static_cast<std::size_t>(h.idx()) < mesh_.n_halfedges()) Base::set_texcoord(h, t);
+  }
+  void set_color(OpenMesh::VertexHandle v, const OpenMesh::Vec3uc& c) override { vertex(v, "colour"), Base::set_color(v, c); }
+  void set_color(OpenMesh::VertexHandle v, const OpenMesh::Vec4uc& c) override { vertex(v, "colour"), Base::set_color(v, c); }
+  void set_color(OpenMesh::VertexHandle v, const OpenMesh::Vec3f& c) override { vertex(v, "colour"), Base::set_color(v, c); }
+  void set_color(OpenMesh::VertexHandle v, const OpenMesh::Vec4f& c) override { vertex(v, "colour"), Base::set_color(v, c); }
+  void set_normal(OpenMesh::FaceHandle f, const OpenMesh::Vec3f& n) override { if (validFace(f)) Base::set_normal(f, n); }
+  void set_normal(OpenMesh::FaceHandle f, const OpenMesh::Vec3d& n) override { if (validFace(f)) Base::set_normal(f, n); }
+  void set_color(OpenMesh::FaceHandle f, const OpenMesh::Vec3uc& c) override { if (validFace(f)) Base::set_color(f, c); }
+  void set_color(OpenMesh::FaceHandle f, const OpenMesh::Vec4uc& c) override { if (validFace(f)) Base::set_color(f, c); }
+  void set_color(OpenMesh::FaceHandle f, const OpenMesh::Vec3f& c) override { if (validFace(f)) Base::set_color(f, c); }
+  void set_color(OpenMesh::FaceHandle f, const OpenMesh::Vec4f& c) override { if (validFace(f)) Base::set_color(f, c); }
+  void set_face_texindex(OpenMesh::FaceHandle f, int id) override { if (validFace(f)) Base::set_face_texindex(f, id); }
+  void reserve(unsigned int vertices, unsigned int edges, unsigned int faces) override {
+    if (vertices > limit_ || faces > limit_)
+      throw InputError(label_ + ": header declares " + std::to_string(vertices) + " vertices and " + std::to_string(faces) +
+                       " faces, more than a file of this size can hold");
+    Base::reserve(vertices, std::min<unsigned>(edges, static_cast<unsigned>(limit_ * 2)), faces);
+  }
+
+ private:
+  bool validVertex(OpenMesh::VertexHandle v) const { return v.is_valid() && static_cast<std::size_t>(v.idx()) < mesh_.n_vertices(); }
+  bool validFace(OpenMesh::FaceHandle f) const { return f.is_valid() && static_cast<std::size_t>(f.idx()) < mesh_.n_faces(); }
+  void vertex(OpenMesh::VertexHandle v, const char* what) const {
+    if (!validVertex(v))
+      throw InputError(label_ + ": " + what + " given for vertex " + std::to_string(v.idx() + 1) + " (1-based), but the file has " +
+                       std::to_string(mesh_.n_vertices()) + " vertices there");
+  }
+  void countVertex() {
+    if (++vertices_ > limit_) throw InputError(label_ + ": more vertices than the file's size allows; the file is malformed");
+  }
+
+  ImportMesh& mesh_;
+  std::string label_;
+  std::uintmax_t limit_;
+  std::uintmax_t vertices_ = 0, faces_ = 0;
+};
+
+// OpenMesh reports every non-manifold face on its error stream: muted while reading.
+class MutedOpenMeshErrors {
+ public:
+  MutedOpenMeshErrors() { omerr().disable(); }
+  ~MutedOpenMeshErrors() { omerr().enable(); }
+  MutedOpenMeshErrors(const MutedOpenMeshErrors&) = delete;
+  MutedOpenMeshErrors& operator=(const MutedOpenMeshErrors&) = delete;
+};
+
 void appendFloats(std::vector<std::uint8_t>& bin, const std::vector<float>& values) {
   const std::size_t at = bin.size();
   bin.resize(at + values.size() * 4);
@@ -37,8 +137,16 @@ std::vector<std::uint8_t> meshFileToGlb(const std::filesystem::path& path) {
   ImportMesh mesh;
   OpenMesh::IO::Options options = OpenMesh::IO::Options::VertexNormal | OpenMesh::IO::Options::VertexTexCoord |
                                   OpenMesh::IO::Options::FaceTexCoord;
-  if (!OpenMesh::IO::read_mesh(mesh, path.string(), options))
-    throw InputError(path.string() + ": OpenMesh cannot read this file");
+  std::error_code ec;
+  const std::uintmax_t fileBytes = std::filesystem::file_size(path, ec);
+  if (ec) throw InputError(path.string() + ": cannot be read: " + ec.message());
+  {
+    MutedOpenMeshErrors muted;
+    CheckedImporter importer(mesh, path.string(), fileBytes);
+    if (!OpenMesh::IO::IOManager().read(path.string(), importer, options))
+      throw InputError(path.string() + ": OpenMesh cannot read this file (malformed, or not " +
+                       path.extension().string() + " at all)");
+  }
   if (mesh.n_faces() == 0) throw InputError(path.string() + ": has no faces");
   const bool haveNormals = options.check(OpenMesh::IO::Options::VertexNormal);
   const bool cornerUvs = options.check(OpenMesh::IO::Options::FaceTexCoord);
