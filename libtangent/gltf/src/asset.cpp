@@ -103,7 +103,13 @@ void checkUris(const Json& doc, const std::filesystem::path& baseDir, const std:
       const std::string what = "/" + std::string(kind) + "/" + std::to_string(i);
       if (isDataUri(uri)) continue;
       try {
-        resolveFileUri(uri, baseDir, root, label, what);
+        const std::filesystem::path file = resolveFileUri(uri, baseDir, root, label, what);
+        std::error_code ec;
+        const std::uintmax_t size = std::filesystem::file_size(file, ec);
+        const auto declared = item.value("byteLength", std::int64_t(0));
+        if (singular == "buffer" && !ec && size < static_cast<std::uintmax_t>(declared))
+          throw InputError(label + ": " + what + ": byteLength is " + std::to_string(declared) + " but '" + uri + "' has " +
+                           std::to_string(size) + " bytes");
       } catch (const InputError& e) {
         if (singular == "image" && std::string(e.what()).find("does not exist") != std::string::npos) continue;
         throw;

@@ -155,6 +155,9 @@ PrimitiveResult PrimitiveBaker::bake(int meshIndex, int primitiveIndex) {
     return result;
   }
   if (uvAccessor < 0) {
+    // The material names a UV set the primitive lacks: a broken reference, refused (as check
+    // and info do). Without a normal texture (--all) there is simply nothing to bake from.
+    if (needs.hasNormalTexture) throw InputError(where + ": " + needs.why + ", but the primitive has no " + uvName + " attribute");
     result.reason = needs.why + ", but the primitive has no " + uvName + "; left as it is";
     return result;
   }
