@@ -291,16 +291,24 @@ add("obj_face_index_out_of_range", {"in.obj": tri_obj + b"f 1/1/1 2/2/1 99/3/1\n
 add("obj_negative_index_before_start", {"in.obj": tri_obj + b"f -1/1/1 -2/2/1 -9/3/1\n"}, "", input_name="in.obj")
 add("obj_no_uvs", {"in.obj": b"v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n"}, "has no texture coordinates", input_name="in.obj")
 add("off_huge_face_count", {"in.off": b"OFF\n3 999999999 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n"},
-    "more than a file of this size can hold", input_name="in.off")
+    "OFF header declares 3 vertices and 999999999 faces", input_name="in.off")
 add("off_huge_vertex_count", {"in.off": b"OFF\n999999999 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n"},
-    "more than a file of this size can hold", input_name="in.off")
+    "OFF header declares 999999999 vertices", input_name="in.off")
+add("off_bad_keyword", {"in.off": b"OFX\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n"}, "OFF header line 1", input_name="in.off")
+add("off_counts_not_numbers", {"in.off": b"OFF\nthree 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n"}, "OFF header line 2",
+    input_name="in.off")
 add("off_face_index_out_of_range", {"in.off": b"STOFF\n3 1 0\n0 0 0 0 0\n1 0 0 1 0\n0 1 0 0 1\n3 0 1 7\n"},
     "refers to vertex 8", input_name="in.off")
 ply_header = (b"ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\n"
               b"property float s\nproperty float t\nelement face %d\nproperty list uchar int vertex_indices\nend_header\n")
 ply_body = b"0 0 0 0 0\n1 0 0 1 0\n0 1 0 0 1\n"
 add("ply_huge_face_count", {"in.ply": (ply_header % 2000000000) + ply_body + b"3 0 1 2\n"},
-    "more than a file of this size can hold", input_name="in.ply")
+    "PLY header declares 2000000000 face elements", input_name="in.ply")
+add("ply_element_without_count", {"in.ply": ply_header.replace(b"element vertex 3", b"element ver") % 1 + ply_body},
+    "PLY header line 3: expected 'element NAME COUNT'", input_name="in.ply")
+add("ply_no_end_header", {"in.ply": b"ply\nformat ascii 1.0\nelement vertex 3\n"}, "no end_header", input_name="in.ply")
+add("ply_bad_property", {"in.ply": ply_header.replace(b"property float x", b"property quaternion x") % 1 + ply_body},
+    "PLY header line 4", input_name="in.ply")
 add("ply_face_index_out_of_range", {"in.ply": (ply_header % 1) + ply_body + b"3 0 1 5\n"}, "refers to vertex 6",
     input_name="in.ply")
 

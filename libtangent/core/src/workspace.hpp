@@ -72,6 +72,7 @@ inline std::uint32_t canonicalBits(float x) { return std::bit_cast<std::uint32_t
 // Sorts the few keys of one bucket: insertion sort up to two dozen, std::sort beyond.
 template <typename T>
 void sortSmall(T* begin, T* end) {
+  if (end - begin < 2) return;  // also an empty range at a null pointer
   if (end - begin > 24) {
     std::sort(begin, end);
     return;

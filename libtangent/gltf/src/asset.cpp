@@ -131,16 +131,17 @@ void splitGlb(std::span<const std::uint8_t> bytes, const std::string& label, std
   if (bytes.size() < 20) throw InputError(label + ": GLB is truncated (" + std::to_string(bytes.size()) + " bytes)");
   if (readU32(bytes.data()) != kGlbMagic) throw InputError(label + ": not a GLB file (bad magic)");
   if (readU32(bytes.data() + 4) != 2) throw InputError(label + ": GLB version " + std::to_string(readU32(bytes.data() + 4)) + " is not 2");
-  const std::uint32_t length = readU32(bytes.data() + 8);
-  if (length > bytes.size()) throw InputError(label + ": GLB header says " + std::to_string(length) + " bytes, file has " + std::to_string(bytes.size()));
-  const std::uint32_t jsonLength = readU32(bytes.data() + 12);
+  const std::uint64_t length = readU32(bytes.data() + 8);
+  if (length > bytes.size() || length < 20)
+    throw InputError(label + ": GLB header says " + std::to_string(length) + " bytes, file has " + std::to_string(bytes.size()));
+  const std::uint64_t jsonLength = readU32(bytes.data() + 12);
   if (readU32(bytes.data() + 16) != kChunkJson || jsonLength > length - 20)
     throw InputError(label + ": GLB first chunk is not a valid JSON chunk");
   json.assign(reinterpret_cast<const char*>(bytes.data() + 20), jsonLength);
   bin = {};
   const std::size_t next = 20 + static_cast<std::size_t>(jsonLength);
   if (next + 8 <= length && readU32(bytes.data() + next + 4) == kChunkBin) {
-    const std::uint32_t binLength = readU32(bytes.data() + next);
+    const std::uint64_t binLength = readU32(bytes.data() + next);
     if (binLength > length - next - 8) throw InputError(label + ": GLB BIN chunk overruns the file");
     bin = bytes.subspan(next + 8, binLength);
   }
@@ -176,20 +177,24 @@ std::vector<std::uint8_t> makeGlb(const std::string& json, std::span<const std::
 }
 
 Asset loadAsset(const std::filesystem::path& path, const std::filesystem::path& assetRoot) {
-  Asset asset;
-  asset.path = path;
-  asset.root = assetRootFor(path, assetRoot);
   const std::string label = path.string();
-  std::vector<std::uint8_t> bytes;
   if (isMeshFile(path)) {
     std::error_code ec;
     if (std::filesystem::is_directory(path, ec)) throw InputError(label + ": is a directory, not a mesh file");
     if (!std::filesystem::is_regular_file(path, ec)) throw InputError(label + ": no such file");
-    bytes = meshFileToGlb(path);
-    asset.fromMeshFile = true;
-  } else {
-    bytes = readFileBytes(path);
+    return loadAssetBytes(meshFileToGlb(path), path, assetRoot, true);
   }
+  return loadAssetBytes(readFileBytes(path), path, assetRoot, false);
+}
+
+Asset loadAssetBytes(std::vector<std::uint8_t> bytes, const std::filesystem::path& path,
+                     const std::filesystem::path& assetRoot, bool fromMeshFile) {
+  Asset asset;
+  asset.path = path;
+  asset.root = assetRootFor(path, assetRoot);
+  asset.fromMeshFile = fromMeshFile;
+  const std::string label = path.string();
+  if (bytes.size() >= kMaxInputBytes) throw InputError(label + ": inputs are limited to 4 GiB");
   asset.binary = bytes.size() >= 4 && readU32(bytes.data()) == kGlbMagic;
 
   std::string jsonText;

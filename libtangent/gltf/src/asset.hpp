@@ -27,6 +27,10 @@ bool isMeshFile(const std::filesystem::path& path);  // .obj, .ply, .off
 // Throws InputError naming the file on anything unreadable or malformed. `assetRoot`: the
 // folder buffer and image URIs may not leave (empty: the file's own folder).
 Asset loadAsset(const std::filesystem::path& path, const std::filesystem::path& assetRoot = {});
+// The same from bytes already read (`path` names the file and its folder in messages and for
+// URIs); the fuzz targets call it.
+Asset loadAssetBytes(std::vector<std::uint8_t> bytes, const std::filesystem::path& path,
+                     const std::filesystem::path& assetRoot, bool fromMeshFile);
 
 // OBJ/PLY/OFF read through OpenMesh, returned as an in-memory GLB (mesh_file.cpp).
 std::vector<std::uint8_t> meshFileToGlb(const std::filesystem::path& path);

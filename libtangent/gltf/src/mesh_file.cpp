@@ -7,7 +7,10 @@
 #include <OpenMesh/Core/System/omstream.hh>
 #include <OpenMesh/Core/Mesh/PolyMesh_ArrayKernelT.hh>
 
+#include <algorithm>
 #include <bit>
+#include <cctype>
+#include <fstream>
 #include <cstring>
 #include <map>
 #include <tuple>
@@ -116,6 +119,174 @@ class CheckedImporter : public OpenMesh::IO::ImporterT<ImportMesh> {
   std::uintmax_t vertices_ = 0, faces_ = 0;
 };
 
+std::vector<std::string> words(const std::string& line) {
+  std::vector<std::string> out;
+  std::size_t i = 0;
+  while (i < line.size()) {
+    while (i < line.size() && std::isspace(static_cast<unsigned char>(line[i]))) ++i;
+    const std::size_t start = i;
+    while (i < line.size() && !std::isspace(static_cast<unsigned char>(line[i]))) ++i;
+    if (i > start) out.push_back(line.substr(start, i - start));
+  }
+  return out;
+}
+
+bool isCount(const std::string& word) {
+  return !word.empty() && word.size() <= 10 && std::all_of(word.begin(), word.end(), [](unsigned char c) { return std::isdigit(c); });
+}
+
+// Bytes of one PLY scalar type; 0 when the name is not one.
+int plyTypeBytes(const std::string& type) {
+  static const std::pair<const char*, int> types[] = {
+      {"char", 1},  {"uchar", 1},  {"int8", 1},  {"uint8", 1},  {"short", 2},   {"ushort", 2},  {"int16", 2},
+      {"uint16", 2}, {"int", 4},   {"uint", 4},  {"int32", 4},  {"uint32", 4},  {"float", 4},   {"float32", 4},
+      {"double", 8}, {"float64", 8}};
+  for (const auto& [name, bytes] : types) {
+    if (type == name) return bytes;
+  }
+  return 0;
+}
+
+// OpenMesh's PLY and OFF header parsers loop forever on some malformed headers (found by
+// fuzz_mesh_file): the header is checked here first, line by line, and every element count
+// against the bytes that follow it.
+void checkPlyHeader(std::istream& in, std::uintmax_t fileBytes, const std::string& label) {
+  std::string line;
+  std::size_t lineNumber = 0, headerBytes = 0;
+  auto next = [&]() -> bool {
+    if (!std::getline(in, line)) return false;
+    ++lineNumber;
+    headerBytes += line.size() + 1;
+    if (!line.empty() && line.back() == '\r') line.pop_back();
+    return true;
+  };
+  auto fail = [&](const std::string& what) -> void {
+    throw InputError(label + ": PLY header line " + std::to_string(lineNumber) + ": " + what);
+  };
+  if (!next() || line != "ply") fail("the file must start with a line 'ply'");
+  if (!next()) fail("missing format line");
+  const std::vector<std::string> format = words(line);
+  if (format.size() != 3 || format[0] != "format" ||
+      (format[1] != "ascii" && format[1] != "binary_little_endian" && format[1] != "binary_big_endian"))
+    fail("expected 'format ascii|binary_little_endian|binary_big_endian 1.0'");
+  const bool ascii = format[1] == "ascii";
+  struct Element {
+    std::string name;
+    std::uint64_t count = 0, minBytes = 0;
+  };
+  std::vector<Element> elements;
+  for (;;) {
+    if (!next()) fail("the header has no end_header line");
+    if (headerBytes > (1u << 20)) fail("the header is longer than 1 MiB");
+    const std::vector<std::string> w = words(line);
+    if (w.empty() || w[0] == "comment" || w[0] == "obj_info") continue;
+    if (w[0] == "end_header") break;
+    if (w[0] == "element") {
+      if (w.size() != 3 || !isCount(w[2])) fail("expected 'element NAME COUNT'");
+      elements.push_back({w[1], std::stoull(w[2]), 0});
+    } else if (w[0] == "property") {
+      if (elements.empty()) fail("a property before any element");
+      if (w.size() == 3 && plyTypeBytes(w[1])) {
+        elements.back().minBytes += ascii ? 2 : plyTypeBytes(w[1]);
+      } else if (w.size() == 5 && w[1] == "list" && plyTypeBytes(w[2]) && plyTypeBytes(w[3])) {
+        elements.back().minBytes += ascii ? 2 : plyTypeBytes(w[2]);
+      } else {
+        fail("expected 'property TYPE NAME' or 'property list TYPE TYPE NAME'");
+      }
+    }  // other lines (some exporters write free text) are skipped, as OpenMesh skips them
+  }
+  const std::uintmax_t body = fileBytes > headerBytes ? fileBytes - headerBytes : 0;
+  for (const Element& e : elements) {
+    if (e.count > 0 && e.count * std::max<std::uint64_t>(e.minBytes, 1) > body + 1)
+      throw InputError(label + ": PLY header declares " + std::to_string(e.count) + " " + e.name +
+                       " elements, more than the " + std::to_string(body) + " bytes after the header can hold");
+  }
+}
+
+void checkOffHeader(std::istream& in, std::uintmax_t fileBytes, const std::string& label) {
+  std::string line;
+  std::size_t lineNumber = 0;
+  auto next = [&]() -> bool {
+    while (std::getline(in, line)) {
+      ++lineNumber;
+      const std::size_t hash = line.find('#');
+      if (hash != std::string::npos) line.erase(hash);
+      if (!words(line).empty()) return true;
+    }
+    return false;
+  };
+  auto fail = [&](const std::string& what) -> void {
+    throw InputError(label + ": OFF header line " + std::to_string(lineNumber) + ": " + what);
+  };
+  if (!next()) fail("the file is empty");
+  std::vector<std::string> w = words(line);
+  std::string keyword = w[0];
+  // [ST][C][N][4][n]OFF: the optional prefixes in the order OpenMesh reads them.
+  std::size_t at = 0;
+  for (const char* prefix : {"ST", "C", "N", "4", "n"}) {
+    if (keyword.compare(at, std::strlen(prefix), prefix) == 0) at += std::strlen(prefix);
+  }
+  if (keyword.substr(at) != "OFF") fail("expected an OFF keyword ([ST][C][N][4][n]OFF), found '" + keyword.substr(0, 40) + "'");
+  if (keyword.find('n') != std::string::npos) fail("nOFF (a dimension other than 3) is not read");
+  const bool binary = w.size() > 1 && w[1] == "BINARY";
+  if (binary) return;  // counts are binary; OpenMesh reads them, the importer bounds them
+  w.erase(w.begin(), w.begin() + 1);
+  if (w.empty()) {
+    if (!next()) fail("missing the vertex, face and edge counts");
+    w = words(line);
+  }
+  if (w.size() < 2 || !isCount(w[0]) || !isCount(w[1]) || (w.size() > 2 && !isCount(w[2])))
+    fail("expected 'VERTICES FACES [EDGES]' as non-negative integers");
+  const std::uint64_t vertices = std::stoull(w[0]), faces = std::stoull(w[1]);
+  // An ASCII vertex takes at least 6 bytes ("0 0 0\n"), a face at least 8 ("3 0 1 2\n").
+  if (vertices * 6 + faces * 8 > fileBytes + 8)
+    throw InputError(label + ": OFF header declares " + std::to_string(vertices) + " vertices and " + std::to_string(faces) +
+                     " faces, more than a file of " + std::to_string(fileBytes) + " bytes can hold");
+}
+
+// OpenMesh's OBJ reader asserts (aborts) on a face line without a vertex and trusts every
+// reference: each `f` line is checked here against the v, vt and vn lines before it.
+void checkObj(std::istream& in, const std::string& label) {
+  std::string line;
+  std::size_t lineNumber = 0;
+  std::int64_t counts[3] = {0, 0, 0};  // v, vt, vn
+  const char* const kinds[3] = {"vertex", "texture coordinate", "normal"};
+  while (std::getline(in, line)) {
+    ++lineNumber;
+    const std::vector<std::string> w = words(line);
+    if (w.empty()) continue;
+    if (w[0] == "v") ++counts[0];
+    else if (w[0] == "vt") ++counts[1];
+    else if (w[0] == "vn") ++counts[2];
+    if (w[0] != "f") continue;
+    auto fail = [&](const std::string& what) {
+      throw InputError(label + ": OBJ line " + std::to_string(lineNumber) + ": " + what);
+    };
+    if (w.size() < 4) fail("a face needs at least three vertices");
+    for (std::size_t k = 1; k < w.size(); ++k) {
+      std::size_t start = 0;
+      for (int part = 0; part < 3 && start <= w[k].size(); ++part) {
+        const std::size_t slash = std::min(w[k].find('/', start), w[k].size());
+        const std::string number = w[k].substr(start, slash - start);
+        start = slash + 1;
+        if (number.empty()) {
+          if (part == 0) fail("face corner '" + w[k].substr(0, 40) + "' has no vertex index");
+          continue;
+        }
+        const bool negative = number[0] == '-';
+        const std::string digits = negative || number[0] == '+' ? number.substr(1) : number;
+        if (!isCount(digits)) fail("face corner '" + w[k].substr(0, 40) + "' is not an index");
+        const std::int64_t index = std::stoll(digits);
+        const std::int64_t resolved = negative ? counts[part] - index + 1 : index;
+        if (index == 0 || resolved < 1 || resolved > counts[part])
+          fail("face corner '" + w[k].substr(0, 40) + "' refers to " + kinds[part] + " " + number + ", but " +
+               std::to_string(counts[part]) + " are defined before this line");
+        if (slash == w[k].size()) break;
+      }
+    }
+  }
+}
+
 // OpenMesh reports every non-manifold face on its error stream: muted while reading.
 class MutedOpenMeshErrors {
  public:
@@ -140,6 +311,14 @@ std::vector<std::uint8_t> meshFileToGlb(const std::filesystem::path& path) {
   std::error_code ec;
   const std::uintmax_t fileBytes = std::filesystem::file_size(path, ec);
   if (ec) throw InputError(path.string() + ": cannot be read: " + ec.message());
+  {
+    std::ifstream header(path, std::ios::binary);
+    std::string extension = path.extension().string();
+    std::transform(extension.begin(), extension.end(), extension.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+    if (extension == ".ply") checkPlyHeader(header, fileBytes, path.string());
+    if (extension == ".off") checkOffHeader(header, fileBytes, path.string());
+    if (extension == ".obj") checkObj(header, path.string());
+  }
   {
     MutedOpenMeshErrors muted;
     CheckedImporter importer(mesh, path.string(), fileBytes);

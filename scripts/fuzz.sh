@@ -1,0 +1,35 @@
+#!/usr/bin/env bash
+# Builds the libFuzzer targets (clang, AddressSanitizer + UndefinedBehaviorSanitizer) and runs
+# each for SECONDS (default 40) on a copy of its committed seed corpus. A crash, hang (10 s per
+# input), leak or sanitizer report fails the script; the input that caused it is copied to
+# tests/fuzz/regressions/TARGET/, where CTest replays it from then on.
+#   scripts/fuzz.sh            # about two minutes: what scripts/test.sh runs
+#   scripts/fuzz.sh 3600       # an hour per target
+set -euo pipefail
+cd "$(dirname "$0")/.."
+seconds=${1:-40}
+build=build-fuzz
+if [ ! -f "$build/build.ninja" ]; then
+  CC=clang CXX=clang++ cmake -S . -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DTANGENT_FUZZ=ON >/dev/null
+fi
+cmake --build "$build" --parallel "$(nproc)" --target fuzz_gltf fuzz_mesh_file fuzz_core
+status=0
+for target in gltf mesh_file core; do
+  work="$build/fuzz-work/$target"
+  rm -rf "$work" && mkdir -p "$work/corpus" "$work/artifacts"
+  cp tests/fuzz/corpus/$target/* "$work/corpus/"
+  dict=()
+  [ "$target" = gltf ] && dict=(-dict=tests/fuzz/gltf.dict)
+  echo "== fuzz_$target for ${seconds} s"
+  if ! "$build/bin/fuzz_$target" "$work/corpus" "${dict[@]}" -max_total_time="$seconds" -timeout=10 \
+       -rss_limit_mb=4096 -max_len=65536 -print_final_stats=1 -artifact_prefix="$work/artifacts/" \
+       >"$work/log.txt" 2>&1; then
+    status=1
+    echo "fuzz_$target FAILED; last lines of $work/log.txt:"
+    tail -40 "$work/log.txt"
+    mkdir -p "tests/fuzz/regressions/$target"
+    cp "$work"/artifacts/* "tests/fuzz/regressions/$target/" 2>/dev/null || true
+  fi
+  grep -E "stat::number_of_executed_units|stat::peak_rss_mb" "$work/log.txt" | sed "s/^/  /"
+done
+exit $status

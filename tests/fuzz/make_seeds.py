@@ -1,0 +1,54 @@
+#!/usr/bin/env python3
+"""Writes the committed seed corpus of the fuzz targets (tests/fuzz/corpus): small valid
+inputs of every shape the targets read, from the base asset of tests/malformed. Rerun after
+changing it; fuzzing adds its finds to a copy, never here (crashes go to regressions/)."""
+import base64
+import copy
+import json
+import os
+import random
+import sys
+
+here = os.path.dirname(os.path.abspath(__file__))
+sys.path.insert(0, os.path.join(here, "..", "malformed"))
+import make_cases as m  # noqa: E402
+
+
+def write(folder, name, data):
+    os.makedirs(folder, exist_ok=True)
+    with open(os.path.join(folder, name), "wb") as f:
+        f.write(data)
+
+
+gltf = os.path.join(here, "corpus", "gltf")
+embedded = "data:application/octet-stream;base64," + base64.b64encode(m.BIN).decode()
+doc = m.base_document(embedded)
+write(gltf, "quad_embedded.gltf", json.dumps(doc).encode())
+write(gltf, "quad_external.gltf", json.dumps(m.base_document("base.bin")).encode())
+write(gltf, "quad.glb", m.glb({**m.base_document(), "buffers": [{"byteLength": len(m.BIN)}]}))
+variant = copy.deepcopy(doc)
+variant["meshes"][0]["primitives"][0]["mode"] = 5
+variant["accessors"][3]["count"] = 4
+write(gltf, "quad_strip.gltf", json.dumps(variant).encode())
+variant = copy.deepcopy(doc)
+variant["accessors"][2]["sparse"] = {"count": 1, "indices": {"bufferView": 3, "componentType": 5123},
+                                     "values": {"bufferView": 2}}
+variant["materials"][0]["normalTexture"]["extensions"] = {"KHR_texture_transform": {"rotation": 0.5, "scale": [2, 1]}}
+write(gltf, "quad_sparse_transform.gltf", json.dumps(variant).encode())
+variant = copy.deepcopy(doc)
+variant["meshes"][0]["primitives"][0]["targets"] = [{"POSITION": 1, "NORMAL": 1}]
+variant["nodes"] = [{"children": [1], "scale": [-1, 1, 1]}, {"mesh": 0}]
+variant["scenes"] = [{"nodes": [0]}]
+write(gltf, "quad_morph_nodes.gltf", json.dumps(variant).encode())
+
+mesh = os.path.join(here, "corpus", "mesh_file")
+write(mesh, "tri.obj", b"\0" + b"v 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nvt 1 0\nvt 0 1\nvn 0 0 1\nf 1/1/1 2/2/1 3/3/1\n")
+write(mesh, "quad.obj", b"\0" + b"v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nvt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\nf 1/1 2/2 3/3 4/4\n")
+write(mesh, "tri.ply", b"\1" + (m.__dict__.get("ply_header") % 1) + m.__dict__.get("ply_body") + b"3 0 1 2\n")
+write(mesh, "tri.off", b"\2" + b"STOFF\n3 1 0\n0 0 0 0 0\n1 0 0 1 0\n0 1 0 0 1\n3 0 1 2\n")
+
+core = os.path.join(here, "corpus", "core")
+rng = random.Random(20261122)
+for i in range(8):
+    write(core, f"random_{i}", bytes(rng.randrange(256) for _ in range(64 + 48 * i)))
+print("seed corpus written")
