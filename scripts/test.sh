@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Installs what is missing, builds, and runs every test: the normal build, then the same
-# tests built with AddressSanitizer and UndefinedBehaviorSanitizer.
+# tests built with AddressSanitizer and UndefinedBehaviorSanitizer, then each fuzz target
+# for a fixed number of runs with a fixed seed (scripts/fuzz.sh --ci, about 40 s each).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 scripts/install-deps.sh
@@ -16,3 +17,5 @@ echo "== tests under AddressSanitizer + UndefinedBehaviorSanitizer"
 scripts/build.sh build-sanitize -DTANGENT_SANITIZE=ON -DCMAKE_BUILD_TYPE=Debug
 ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1 \
   ctest --test-dir build-sanitize --output-on-failure -j "$(nproc)"
+echo "== fuzz targets (libFuzzer, ASan + UBSan)"
+scripts/fuzz.sh --ci

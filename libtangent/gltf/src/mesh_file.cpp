@@ -166,7 +166,7 @@ void checkPlyHeader(std::istream& in, std::uintmax_t fileBytes, const std::strin
   if (!next() || line != "ply") fail("the file must start with a line 'ply'");
   if (!next()) fail("missing format line");
   const std::vector<std::string> format = words(line);
-  if (format.size() != 3 || format[0] != "format" ||
+  if (format.size() != 3 || format[0] != "format" || format[2] != "1.0" ||
       (format[1] != "ascii" && format[1] != "binary_little_endian" && format[1] != "binary_big_endian"))
     fail("expected 'format ascii|binary_little_endian|binary_big_endian 1.0'");
   const bool ascii = format[1] == "ascii";
