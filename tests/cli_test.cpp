@@ -157,9 +157,10 @@ TEST(Cli, EveryAssimpTestModelBakedWithAllChecksClean) {
     if (check.exitCode != 0) failures.push_back(entry.path().string() + ":\n" + check.output.substr(0, 600));
   }
   std::printf("assimp-testmodels: %d baked and checked, %d refused by bake\n", baked, refused);
-  // 39 with assimp-testmodels 5.2.5; the rest are glTF 1.0, Draco, or refused as malformed
-  // (indices out of range, references to nothing, node cycles: see BakeErrors and tests/malformed).
-  EXPECT_GE(baked, 39);
+  // 38 with assimp-testmodels 5.2.5; the rest are glTF 1.0, Draco, or refused as malformed
+  // (indices out of range, references to nothing, node cycles, a PLY header with free text:
+  // see tests/malformed).
+  EXPECT_GE(baked, 38);
   for (const auto& failure : failures) ADD_FAILURE() << "check --all fails on the bake of " << failure;
 }
 

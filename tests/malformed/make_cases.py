@@ -306,6 +306,8 @@ add("ply_huge_face_count", {"in.ply": (ply_header % 2000000000) + ply_body + b"3
     "PLY header declares 2000000000 face elements", input_name="in.ply")
 add("ply_element_without_count", {"in.ply": ply_header.replace(b"element vertex 3", b"element ver") % 1 + ply_body},
     "PLY header line 3: expected 'element NAME COUNT'", input_name="in.ply")
+add("ply_free_text_line", {"in.ply": ply_header.replace(b"element vertex 3", b"eleme5\tproperty list uchar int x\nelement vertex 3") % 1 + ply_body},
+    "PLY header line 3: unknown keyword", input_name="in.ply")
 add("ply_no_end_header", {"in.ply": b"ply\nformat ascii 1.0\nelement vertex 3\n"}, "no end_header", input_name="in.ply")
 add("ply_bad_property", {"in.ply": ply_header.replace(b"property float x", b"property quaternion x") % 1 + ply_body},
     "PLY header line 4", input_name="in.ply")

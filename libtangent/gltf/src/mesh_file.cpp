@@ -193,7 +193,11 @@ void checkPlyHeader(std::istream& in, std::uintmax_t fileBytes, const std::strin
       } else {
         fail("expected 'property TYPE NAME' or 'property list TYPE TYPE NAME'");
       }
-    }  // other lines (some exporters write free text) are skipped, as OpenMesh skips them
+    } else {
+      // Free text in a header (an old Blender wrote one line of it) is not PLY; OpenMesh's
+      // parser misreads it into crashes (fuzz_mesh_file), so it is refused.
+      fail("unknown keyword '" + w[0].substr(0, 40) + "' (a PLY header line is comment, obj_info, element, property or end_header)");
+    }
   }
   const std::uintmax_t body = fileBytes > headerBytes ? fileBytes - headerBytes : 0;
   for (const Element& e : elements) {
