@@ -1,0 +1,52 @@
+"""Type stubs of the libtangent module (python/module.cpp): see help(libtangent)."""
+import os
+from typing import Any, Optional, TypedDict, Union
+
+import numpy as np
+import numpy.typing as npt
+
+PathLike = Union[str, os.PathLike[str]]
+
+class Error(RuntimeError):
+    """Base class of libtangent's errors (I/O failures)."""
+
+class InputError(Error):
+    """A file libtangent refuses: the message names the file and the element."""
+
+class TangentResult(TypedDict):
+    tangents: npt.NDArray[np.float32]       # (corners, 4): x, y, z, w
+    corner_vertex: npt.NDArray[np.uint32]   # (corners,)
+    report: dict[str, Any]
+
+def compute_tangents(
+    positions: npt.ArrayLike,
+    normals: npt.ArrayLike,
+    uvs: npt.ArrayLike,
+    indices: npt.ArrayLike,
+    *,
+    method: str = "mikktspace",
+    weighting: str = "angle",
+    threads: int = 0,
+    uv_origin: str = "top-left",
+) -> TangentResult: ...
+
+def bake(
+    input: PathLike,
+    output: PathLike,
+    *,
+    method: str = "mikktspace",
+    weighting: str = "angle",
+    threads: int = 0,
+    all: bool = False,
+    overwrite: bool = False,
+    asset_root: Optional[PathLike] = None,
+) -> dict[str, Any]: ...
+
+def check(
+    path: PathLike,
+    *,
+    method: str = "mikktspace",
+    tolerance: float = 1.0,
+    all: bool = False,
+    asset_root: Optional[PathLike] = None,
+) -> dict[str, Any]: ...

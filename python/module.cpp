@@ -1,0 +1,238 @@
+// The Python module `libtangent` (pybind11): the core on numpy arrays, and bake and check on
+// files with the options and the reports of the `tangent` command. The GIL is released while
+// C++ runs, so other Python threads (and Dask workers' threads) go on.
+#include <pybind11/numpy.h>
+#include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+#include <pybind11/stl/filesystem.h>
+
+#include <filesystem>
+#include <optional>
+#include <string>
+
+#include "tangent/check.hpp"
+#include "tangent/gltf.hpp"
+#include "tangent/tangent.hpp"
+
+namespace py = pybind11;
+
+namespace {
+
+// nlohmann JSON to Python objects, through Python's own json module (reports are small).
+py::object toPython(const nlohmann::ordered_json& json) { return py::module_::import("json").attr("loads")(json.dump()); }
+
+[[noreturn]] void badArgument(const std::string& argument, const std::string& what) {
+  throw py::value_error("libtangent: " + argument + ": " + what);
+}
+
+tangent::Method method(const std::string& name) {
+  tangent::Method m;
+  if (!tangent::parseMethod(name, m)) badArgument("method", "'" + name + "' is not mikktspace, lengyel or flat");
+  return m;
+}
+
+tangent::Weighting weighting(const std::string& name) {
+  tangent::Weighting w;
+  if (!tangent::parseWeighting(name, w)) badArgument("weighting", "'" + name + "' is not angle, area or uniform");
+  return w;
+}
+
+unsigned threadCount(int threads) {
+  if (threads < 0 || threads > 256) badArgument("threads", std::to_string(threads) + " is not 0 (all) to 256");
+  return static_cast<unsigned>(threads);
+}
+
+// A float array of shape (n, width) or (n * width,), as float32 C-contiguous (converted only
+// when it is not already).
+py::array_t<float, py::array::c_style> floatRows(const py::handle& object, const char* argument, int width) {
+  const py::array any = py::array::ensure(object);
+  if (!any) badArgument(argument, "must be a numpy array (or convertible to one)");
+  const char kind = any.dtype().kind();
+  if (kind != 'f' && kind != 'i' && kind != 'u')
+    badArgument(argument, "must hold real numbers, not dtype " + std::string(py::str(any.dtype())));
+  const bool rows = any.ndim() == 2 && any.shape(1) == width;
+  const bool flat = any.ndim() == 1 && any.shape(0) % width == 0;
+  if (!rows && !flat)
+    badArgument(argument, "must have shape (n, " + std::to_string(width) + ") or (n * " + std::to_string(width) + ",), not " +
+                              std::string(py::str(py::tuple(py::cast(std::vector<py::ssize_t>(any.shape(), any.shape() + any.ndim()))))));
+  return py::array_t<float, py::array::c_style | py::array::forcecast>::ensure(any);
+}
+
+py::array_t<std::uint32_t, py::array::c_style> indexArray(const py::handle& object) {
+  const py::array any = py::array::ensure(object);
+  if (!any) badArgument("indices", "must be a numpy array (or convertible to one)");
+  const char kind = any.dtype().kind();
+  if (kind != 'i' && kind != 'u') badArgument("indices", "must hold integers, not dtype " + std::string(py::str(any.dtype())));
+  const bool rows = any.ndim() == 2 && any.shape(1) == 3;
+  const bool flat = any.ndim() == 1 && any.shape(0) % 3 == 0;
+  if (!rows && !flat) badArgument("indices", "must have shape (t, 3) or (t * 3,)");
+  if (any.size() > 0 && !(any.dtype().is(py::dtype::of<std::uint32_t>()))) {
+    // Range-checked before narrowing: a negative or >= 2^32 index is an error, not a wrap.
+    const py::object lo = any.attr("min")(), hi = any.attr("max")();
+    if (lo.cast<long long>() < 0) badArgument("indices", "has a negative index " + std::string(py::str(lo)));
+    if (hi.cast<unsigned long long>() > 0xFFFFFFFFull) badArgument("indices", "has an index beyond 2^32 - 1");
+  }
+  return py::array_t<std::uint32_t, py::array::c_style | py::array::forcecast>::ensure(any);
+}
+
+py::dict computeTangents(const py::handle& positionsIn, const py::handle& normalsIn, const py::handle& uvsIn,
+                         const py::handle& indicesIn, const std::string& methodName, const std::string& weightingName,
+                         int threads, const std::string& uvOrigin) {
+  const auto positions = floatRows(positionsIn, "positions", 3);
+  const auto normals = floatRows(normalsIn, "normals", 3);
+  const auto uvs = floatRows(uvsIn, "uvs", 2);
+  const auto indices = indexArray(indicesIn);
+  const std::size_t vertices = static_cast<std::size_t>(positions.size() / 3);
+  if (static_cast<std::size_t>(normals.size() / 3) != vertices)
+    badArgument("normals", std::to_string(normals.size() / 3) + " normals for " + std::to_string(vertices) + " positions");
+  if (static_cast<std::size_t>(uvs.size() / 2) != vertices)
+    badArgument("uvs", std::to_string(uvs.size() / 2) + " UVs for " + std::to_string(vertices) + " positions");
+  tangent::Options options;
+  options.method = method(methodName);
+  options.weighting = weighting(weightingName);
+  options.threads = threadCount(threads);
+  if (uvOrigin == "top-left") options.uvOrigin = tangent::UvOrigin::topLeft;
+  else if (uvOrigin == "bottom-left") options.uvOrigin = tangent::UvOrigin::bottomLeft;
+  else badArgument("uv_origin", "'" + uvOrigin + "' is not top-left (glTF) or bottom-left (OpenGL, OBJ)");
+
+  const std::size_t corners = static_cast<std::size_t>(indices.size());
+  py::array_t<float> tangents({static_cast<py::ssize_t>(corners), py::ssize_t(4)});
+  py::array_t<std::uint32_t> cornerVertex(static_cast<py::ssize_t>(corners));
+  const tangent::MeshArrays arrays{{positions.data(), static_cast<std::size_t>(positions.size())},
+                                   {normals.data(), static_cast<std::size_t>(normals.size())},
+                                   {uvs.data(), static_cast<std::size_t>(uvs.size())},
+                                   {indices.data(), corners}};
+  const tangent::CornerOutputs outputs{{tangents.mutable_data(), corners * 4}, {}, {cornerVertex.mutable_data(), corners}};
+  tangent::Report report;
+  std::string error;
+  {
+    py::gil_scoped_release released;
+    try {
+      tangent::TangentWorkspace workspace;
+      report = tangent::computeCornerTangents(arrays, outputs, options, workspace);
+    } catch (const std::exception& e) {
+      error = e.what();
+    }
+  }
+  if (!error.empty()) throw py::value_error("libtangent: " + error);
+  py::dict result;
+  result["tangents"] = tangents;
+  result["corner_vertex"] = cornerVertex;
+  result["report"] = toPython(tangent::gltf::toJson(report));
+  return result;
+}
+
+}  // namespace
+
+PYBIND11_MODULE(libtangent, m) {
+  m.doc() =
+      "libtangent: MikkTSpace-exact tangent frames for glTF and plain arrays.\n\n"
+      "compute_tangents() works on numpy arrays; bake() and check() work on files, with the\n"
+      "options and the JSON reports of the `tangent bake` and `tangent check` commands.";
+  static py::exception<std::runtime_error> error(m, "Error", PyExc_RuntimeError);
+  static py::exception<tangent::gltf::InputError> inputError(m, "InputError", error.ptr());
+  error.doc() = "Base class of libtangent's errors (I/O failures).";
+  inputError.doc() = "A file libtangent refuses: the message names the file and the element, as the CLI's does.";
+  py::register_exception_translator([](std::exception_ptr p) {
+    try {
+      if (p) std::rethrow_exception(p);
+    } catch (const tangent::gltf::InputError& e) {
+      PyErr_SetString(inputError.ptr(), e.what());
+    } catch (const py::builtin_exception&) {
+      throw;  // ValueError and friends: pybind11's own translation
+    } catch (const std::runtime_error& e) {
+      PyErr_SetString(error.ptr(), e.what());
+    }
+  });
+
+  m.def("compute_tangents", &computeTangents, py::arg("positions"), py::arg("normals"), py::arg("uvs"), py::arg("indices"),
+        py::kw_only(), py::arg("method") = "mikktspace", py::arg("weighting") = "angle", py::arg("threads") = 0,
+        py::arg("uv_origin") = "top-left",
+        R"(Tangent frames per corner of an indexed triangle list.
+
+positions, normals: float arrays of shape (n, 3) or (3n,); uvs: (n, 2) or (2n,);
+indices: integer array of shape (t, 3) or (3t,), each below n. float32 and uint32 C-contiguous
+arrays are used without copying; others are converted.
+
+method: mikktspace (default; what normal-map bakers use) | lengyel | flat
+weighting: angle (default) | area | uniform   (lengyel only)
+threads: worker threads, 0 = all hardware threads; the result never depends on it
+uv_origin: top-left (glTF, default) | bottom-left (OpenGL, OBJ): decides the sign of w
+
+Returns a dict: "tangents" float32 (3t, 4): x, y, z, w per corner, unit, w = +-1;
+"corner_vertex" uint32 (3t,): the vertex each corner uses after splitting (input vertex v
+keeps index v; report["splitVertices"] extra vertices follow); "report": what happened, as
+the `tangents` object of `tangent bake --report`.
+Raises ValueError naming the argument on a bad shape, dtype, option or index.
+The GIL is released while the core runs.)");
+
+  m.def(
+      "bake",
+      [](const std::filesystem::path& input, const std::filesystem::path& output, const std::string& methodName,
+         const std::string& weightingName, int threads, bool all, bool overwrite, std::optional<std::filesystem::path> assetRoot) {
+        tangent::gltf::BakeOptions options;
+        options.tangents.method = method(methodName);
+        options.tangents.weighting = weighting(weightingName);
+        options.tangents.threads = threadCount(threads);
+        options.all = all;
+        options.overwrite = overwrite;
+        if (assetRoot) options.assetRoot = *assetRoot;
+        nlohmann::ordered_json entry = {{"input", input.string()}, {"output", output.string()}, {"status", "ok"}};
+        {
+          py::gil_scoped_release released;
+          entry.update(tangent::gltf::toJson(tangent::gltf::bakeFile(input, output, options)));
+        }
+        return toPython(entry);
+      },
+      py::arg("input"), py::arg("output"), py::kw_only(), py::arg("method") = "mikktspace", py::arg("weighting") = "angle",
+      py::arg("threads") = 0, py::arg("all") = false, py::arg("overwrite") = false, py::arg("asset_root") = py::none(),
+      R"(Bake TANGENT into a glTF file, as `tangent bake INPUT -o OUTPUT` does.
+
+Computes TANGENT for every triangle primitive whose material has a normalTexture, from the
+UV set that texture uses, and writes OUTPUT (.glb, or .gltf + .bin). Inputs: .gltf, .glb,
+.obj, .ply, .off. The input is never written to; the output is written atomically.
+
+method: mikktspace (default) | lengyel | flat
+weighting: angle (default) | area | uniform   (lengyel only)
+threads: worker threads (0 = all); the output never depends on it
+all: bake every triangle primitive, normal texture or not (TEXCOORD_0)
+overwrite: recompute valid existing TANGENT too
+asset_root: folder buffer and image URIs may not leave (default: the input's folder)
+
+Returns the dict `tangent bake --report` writes for this file.
+Raises libtangent.InputError with the CLI's message on a file it refuses.)");
+
+  m.def(
+      "check",
+      [](const std::filesystem::path& input, const std::string& methodName, double tolerance, bool all,
+         std::optional<std::filesystem::path> assetRoot) {
+        tangent::gltf::CheckOptions options;
+        options.method = method(methodName);
+        if (options.method == tangent::Method::flat) badArgument("method", "check compares with mikktspace or lengyel");
+        if (!(tolerance > 0 && tolerance <= 180)) badArgument("tolerance", "must be degrees in (0, 180]");
+        options.toleranceDegrees = tolerance;
+        options.all = all;
+        if (assetRoot) options.assetRoot = *assetRoot;
+        tangent::gltf::FileCheck result;
+        {
+          py::gil_scoped_release released;
+          result = tangent::gltf::checkFile(input, options);
+        }
+        if (!result.error.empty()) throw tangent::gltf::InputError(result.error);
+        return toPython(tangent::gltf::toJson(result));
+      },
+      py::arg("path"), py::kw_only(), py::arg("method") = "mikktspace", py::arg("tolerance") = 1.0, py::arg("all") = false,
+      py::arg("asset_root") = py::none(),
+      R"(Check the TANGENTs stored in a glTF file, as `tangent check PATH --format json` does.
+
+Per primitive that needs tangents: present, format, finite, unit, w, w-uniform, orthogonal,
+handedness, reference (within `tolerance` degrees of freshly computed `method` tangents).
+
+method: mikktspace (default) | lengyel
+tolerance: degrees, for orthogonal and reference (default 1)
+all: every triangle primitive, not only normal-mapped ones
+asset_root: folder buffer and image URIs may not leave (default: the file's folder)
+
+Returns the file's entry of the JSON report (docs/check-json.md): "status" is "clean" or
+"findings". Raises libtangent.InputError with the CLI's message on an unreadable file.)");
+}

@@ -1,0 +1,219 @@
+"""The Python module against the C++ library and the `tangent` command (python/module.cpp).
+
+Run by CTest (python.pytest) with PYTHONPATH at build/python and TANGENT_CLI,
+TANGENT_ARRAYS_TOOL and TANGENT_SOURCE_DIR set."""
+import json
+import os
+import pathlib
+import shutil
+import subprocess
+import threading
+import time
+
+import numpy as np
+import pytest
+
+import libtangent
+
+CLI = os.environ["TANGENT_CLI"]
+ARRAYS_TOOL = os.environ["TANGENT_ARRAYS_TOOL"]
+SOURCE = pathlib.Path(os.environ["TANGENT_SOURCE_DIR"])
+DEMO = SOURCE / "data" / "demo"
+
+
+def uv_sphere(columns, rows):
+    """A UV sphere with a seam (duplicated vertices at u = 0 and 1) and poles."""
+    u = np.linspace(0.0, 1.0, columns + 1, dtype=np.float64)
+    v = np.linspace(0.0, 1.0, rows + 1, dtype=np.float64)
+    uu, vv = np.meshgrid(u, v)
+    theta, phi = uu * 2 * np.pi, vv * np.pi
+    normals = np.stack([np.sin(phi) * np.cos(theta), np.cos(phi), np.sin(phi) * np.sin(theta)], axis=-1).reshape(-1, 3)
+    positions = normals * 2.0
+    uvs = np.stack([uu, vv], axis=-1).reshape(-1, 2)
+    quads = []
+    for r in range(rows):
+        for c in range(columns):
+            a, b = r * (columns + 1) + c, r * (columns + 1) + c + 1
+            d, e = a + columns + 1, b + columns + 1
+            quads += [[a, d, b], [b, d, e]]
+    return (positions.astype(np.float32), normals.astype(np.float32), uvs.astype(np.float32),
+            np.asarray(quads, dtype=np.uint32))
+
+
+def mirrored_soup(seed):
+    """Random triangles over shared vertices, some UV islands mirrored, some degenerate."""
+    rng = np.random.default_rng(seed)
+    n = 60
+    positions = rng.normal(size=(n, 3)).astype(np.float32)
+    normals = rng.normal(size=(n, 3))
+    normals /= np.linalg.norm(normals, axis=1, keepdims=True)
+    uvs = rng.uniform(-1, 1, size=(n, 2)).astype(np.float32)
+    uvs[n // 2:, 0] *= -1  # a mirrored half
+    indices = rng.integers(0, n, size=(150, 3)).astype(np.uint32)
+    indices[:5, 2] = indices[:5, 1]  # coincident corners
+    return positions, normals.astype(np.float32), uvs, indices
+
+
+def run_cpp(tmp_path, arrays, method, uv_origin):
+    positions, normals, uvs, indices = arrays
+    for name, values in (("positions.f32", positions), ("normals.f32", normals), ("uvs.f32", uvs), ("indices.u32", indices)):
+        np.ascontiguousarray(values).tofile(tmp_path / name)
+    subprocess.run([ARRAYS_TOOL, str(tmp_path), method, uv_origin], check=True)
+    return (np.fromfile(tmp_path / "tangents.f32", dtype=np.float32).reshape(-1, 4),
+            np.fromfile(tmp_path / "corner_vertex.u32", dtype=np.uint32))
+
+
+@pytest.mark.parametrize("method", ["mikktspace", "lengyel", "flat"])
+@pytest.mark.parametrize("uv_origin", ["top-left", "bottom-left"])
+@pytest.mark.parametrize("mesh", ["sphere", "soup1", "soup2"])
+def test_bit_identical_to_the_cpp_library(tmp_path, method, uv_origin, mesh):
+    arrays = uv_sphere(24, 12) if mesh == "sphere" else mirrored_soup(int(mesh[-1]))
+    expected_tangents, expected_vertex = run_cpp(tmp_path, arrays, method, uv_origin)
+    result = libtangent.compute_tangents(*arrays, method=method, uv_origin=uv_origin)
+    assert result["tangents"].dtype == np.float32 and result["tangents"].shape == (arrays[3].size, 4)
+    assert result["tangents"].tobytes() == expected_tangents.tobytes()
+    if method == "mikktspace":
+        assert result["corner_vertex"].tobytes() == expected_vertex.tobytes()
+    # The same bits for any thread count, and from flat or float64 input.
+    again = libtangent.compute_tangents(*(a.reshape(-1).astype(np.float64) if a.dtype == np.float32 else a.reshape(-1).astype(np.int64)
+                                          for a in arrays), method=method, uv_origin=uv_origin, threads=2)
+    assert again["tangents"].tobytes() == result["tangents"].tobytes()
+
+
+def test_report_and_vertex_split():
+    result = libtangent.compute_tangents(*uv_sphere(24, 12))
+    report = result["report"]
+    assert report["method"] == "mikktspace" and report["triangles"] == 24 * 12 * 2
+    assert report["corners"] == 3 * report["triangles"]
+    vertices = 25 * 13
+    assert report["splitVertices"] == result["corner_vertex"].max() + 1 - vertices
+    assert np.allclose(np.linalg.norm(result["tangents"][:, :3], axis=1), 1.0, atol=1e-6)
+    assert set(np.unique(result["tangents"][:, 3])) <= {-1.0, 1.0}
+
+
+def cli_bake_report(tmp_path, source, output):
+    report = tmp_path / "report.json"
+    subprocess.run([CLI, "bake", str(source), "-o", str(output), "--report", str(report), "--quiet"], check=True)
+    return json.loads(report.read_text())[0]
+
+
+@pytest.mark.parametrize("name", ["demo.gltf", "scene.gltf", "torus.gltf"])
+def test_bake_report_and_bytes_equal_the_cli(tmp_path, name):
+    output = tmp_path / "out.glb"
+    expected = cli_bake_report(tmp_path, DEMO / name, output)
+    cli_bytes = output.read_bytes()
+    output.unlink()
+    result = libtangent.bake(DEMO / name, output)
+    assert result == expected
+    assert output.read_bytes() == cli_bytes
+
+
+def test_check_equals_the_cli_json(tmp_path):
+    output = tmp_path / "out.glb"
+    libtangent.bake(DEMO / "demo.gltf", output)
+    done = subprocess.run([CLI, "check", str(output), "--format", "json"], capture_output=True, check=True)
+    assert libtangent.check(output) == json.loads(done.stdout)["files"][0]
+    # Findings are returned, not raised: w negated is caught by the handedness check.
+    unbaked = libtangent.check(DEMO / "demo.gltf")
+    assert unbaked["status"] == "findings"
+    assert unbaked["primitives"][0]["findings"][0]["check"] == "present"
+
+
+def test_refused_files_raise_the_cli_message(tmp_path):
+    broken = tmp_path / "broken.gltf"
+    broken.write_text('{"asset": {"version": "2.0"}, "buffers": [{"uri": "../../../../etc/passwd", "byteLength": 4}]}')
+    done = subprocess.run([CLI, "bake", str(broken), "-o", str(tmp_path / "x.glb")], capture_output=True, text=True)
+    assert done.returncode == 1
+    with pytest.raises(libtangent.InputError) as caught:
+        libtangent.bake(broken, tmp_path / "x.glb")
+    assert done.stderr.strip() == "error: " + str(caught.value)
+    assert "leaves the asset root" in str(caught.value)
+    assert isinstance(caught.value, libtangent.Error) and not (tmp_path / "x.glb").exists()
+    with pytest.raises(libtangent.InputError, match="no such file"):
+        libtangent.check(tmp_path / "missing.glb")
+
+
+def test_asset_root_widens_what_a_file_may_read(tmp_path):
+    scene = tmp_path / "asset" / "scene"
+    scene.mkdir(parents=True)
+    shutil.copy(DEMO / "bumps_normal.png", tmp_path / "asset")
+    doc = json.loads((DEMO / "demo.gltf").read_text())
+    doc["images"][0]["uri"] = "../bumps_normal.png"
+    shutil.copy(DEMO / "demo.bin", scene)
+    (scene / "demo.gltf").write_text(json.dumps(doc))
+    with pytest.raises(libtangent.InputError, match="asset root"):
+        libtangent.bake(scene / "demo.gltf", tmp_path / "out.glb")
+    assert libtangent.bake(scene / "demo.gltf", tmp_path / "asset" / "out.glb", asset_root=tmp_path / "asset")["status"] == "ok"
+
+
+P = np.array([[0, 0, 0], [1, 0, 0], [0, 1, 0]], np.float32)
+N = np.array([[0, 0, 1]] * 3, np.float32)
+UV = np.array([[0, 0], [1, 0], [0, 1]], np.float32)
+
+
+@pytest.mark.parametrize("change, phrase", [
+    (dict(positions=P[:, :2]), "positions: must have shape"),
+    (dict(positions=np.array(["a", "b", "c"])), "positions: must hold real numbers"),
+    (dict(normals=N[:2]), "normals: 2 normals for 3 positions"),
+    (dict(uvs=UV.astype(np.complex64)), "uvs: must hold real numbers"),
+    (dict(uvs=UV[:, :1]), "uvs: must have shape"),
+    (dict(indices=[0, 1]), "indices: must have shape"),
+    (dict(indices=[0, 1, -1]), "indices: has a negative index"),
+    (dict(indices=np.array([0, 1, 2**40])), "indices: has an index beyond"),
+    (dict(indices=[0, 1, 5]), "is out of range"),
+    (dict(indices=[0.0, 1.0, 2.0]), "indices: must hold integers"),
+    (dict(method="bogus"), "method: 'bogus' is not"),
+    (dict(weighting="heavy"), "weighting: 'heavy' is not"),
+    (dict(threads=-1), "threads: -1"),
+    (dict(uv_origin="middle"), "uv_origin: 'middle' is not"),
+])
+def test_bad_arguments_raise_value_error_naming_the_argument(change, phrase):
+    arguments = dict(positions=P, normals=N, uvs=UV, indices=[0, 1, 2])
+    arguments.update(change)
+    with pytest.raises(ValueError, match=phrase):
+        libtangent.compute_tangents(**arguments)
+
+
+def test_bad_options_of_bake_and_check(tmp_path):
+    with pytest.raises(ValueError, match="method"):
+        libtangent.bake(DEMO / "demo.gltf", tmp_path / "o.glb", method="fast")
+    with pytest.raises(ValueError, match="tolerance"):
+        libtangent.check(DEMO / "demo.gltf", tolerance=0)
+    with pytest.raises(ValueError, match="method"):
+        libtangent.check(DEMO / "demo.gltf", method="flat")
+
+
+def test_the_gil_is_released_while_the_core_runs():
+    arrays = uv_sphere(1000, 600)  # 1.2e6 triangles: a few hundred ms on one thread
+    counter = [0]
+    stop = threading.Event()
+
+    def spin():
+        while not stop.is_set():
+            counter[0] += 1
+
+    worker = threading.Thread(target=spin)
+    worker.start()
+    # The spinning thread's rate while this one sleeps (GIL free).
+    time.sleep(0.02)
+    before, started = counter[0], time.perf_counter()
+    time.sleep(0.2)
+    free_rate = (counter[0] - before) / (time.perf_counter() - started)
+    before, started = counter[0], time.perf_counter()
+    libtangent.compute_tangents(*arrays, threads=1)
+    during, elapsed = counter[0] - before, time.perf_counter() - started
+    stop.set()
+    worker.join()
+    # Holding the GIL, the spinning thread could run only around the call's edges (the
+    # interpreter's 5 ms switch interval), a few percent of the call; released, it keeps
+    # most of its free rate for the whole call (a quarter allows for a busy machine).
+    assert elapsed > 0.1, elapsed
+    assert during > 0.25 * free_rate * elapsed, (during, free_rate, elapsed)
+
+
+def test_help_reads_like_the_cli():
+    assert "as `tangent bake INPUT -o OUTPUT` does" in libtangent.bake.__doc__
+    for option in ("method", "weighting", "threads", "all", "overwrite", "asset_root"):
+        assert option + ":" in libtangent.bake.__doc__
+    stub = pathlib.Path(libtangent.__file__).with_name("libtangent.pyi")
+    assert "def compute_tangents(" in stub.read_text()
