@@ -298,7 +298,11 @@ add("off_bad_keyword", {"in.off": b"OFX\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n"}
 add("off_counts_not_numbers", {"in.off": b"OFF\nthree 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n"}, "OFF header line 2",
     input_name="in.off")
 add("off_face_index_out_of_range", {"in.off": b"STOFF\n3 1 0\n0 0 0 0 0\n1 0 0 1 0\n0 1 0 0 1\n3 0 1 7\n"},
-    "refers to vertex 8", input_name="in.off")
+    "face 1 corner 3 '7' is not a vertex index below 3", input_name="in.off")
+add("off_face_corner_count_huge", {"in.off": b"STOFF\n3 1 0\n0 0 0 0 0\n1 0 0 1 0\n0 1 0 0 1\n37777777777 0 1 2\n"},
+    "face 1 declares", input_name="in.off")
+add("off_truncated_faces", {"in.off": b"OFF\n3 2 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n"}, "the file ends after 1 of 2 faces",
+    input_name="in.off")
 ply_header = (b"ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\n"
               b"property float s\nproperty float t\nelement face %d\nproperty list uchar int vertex_indices\nend_header\n")
 ply_body = b"0 0 0 0 0\n1 0 0 1 0\n0 1 0 0 1\n"

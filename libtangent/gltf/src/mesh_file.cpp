@@ -246,6 +246,24 @@ void checkOffHeader(std::istream& in, std::uintmax_t fileBytes, const std::strin
   if (vertices * 6 + faces * 8 > fileBytes + 8)
     throw InputError(label + ": OFF header declares " + std::to_string(vertices) + " vertices and " + std::to_string(faces) +
                      " faces, more than a file of " + std::to_string(fileBytes) + " bytes can hold");
+  // The body, one vertex or face per line: OpenMesh loops over a face's declared corner count
+  // whatever the line holds (fuzz_mesh_file), so every face line is checked here.
+  for (std::uint64_t v = 0; v < vertices; ++v) {
+    if (!next()) fail("the file ends after " + std::to_string(v) + " of " + std::to_string(vertices) + " vertices");
+  }
+  for (std::uint64_t f = 0; f < faces; ++f) {
+    if (!next()) fail("the file ends after " + std::to_string(f) + " of " + std::to_string(faces) + " faces");
+    const std::vector<std::string> face = words(line);
+    if (!isCount(face[0]) || std::stoull(face[0]) < 3 || std::stoull(face[0]) > face.size() - 1)
+      fail("face " + std::to_string(f + 1) + " declares '" + face[0].substr(0, 20) + "' corners but lists " +
+           std::to_string(face.size() - 1) + " numbers");
+    const std::size_t corners = std::stoull(face[0]);
+    for (std::size_t k = 1; k <= corners; ++k) {
+      if (!isCount(face[k]) || std::stoull(face[k]) >= vertices)
+        fail("face " + std::to_string(f + 1) + " corner " + std::to_string(k) + " '" + face[k].substr(0, 20) +
+             "' is not a vertex index below " + std::to_string(vertices));
+    }
+  }
 }
 
 // OpenMesh's OBJ reader asserts (aborts) on a face line without a vertex and trusts every
