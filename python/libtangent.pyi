@@ -50,3 +50,20 @@ def check(
     all: bool = False,
     asset_root: Optional[PathLike] = None,
 ) -> dict[str, Any]: ...
+
+def bake_tree(
+    input_folder: PathLike,
+    output_folder: PathLike,
+    *,
+    method: str = "mikktspace",
+    weighting: str = "angle",
+    threads: int = 0,
+    all: bool = False,
+    overwrite: bool = False,
+    asset_root: Optional[PathLike] = None,
+    force: bool = False,
+) -> list[dict[str, Any]]: ...
+
+def find_inputs(folder: PathLike) -> list[str]: ...
+
+def input_digest(input: PathLike, *, asset_root: Optional[PathLike] = None) -> str: ...

@@ -10,6 +10,7 @@
 #include <optional>
 #include <string>
 
+#include "tangent/batch.hpp"
 #include "tangent/check.hpp"
 #include "tangent/gltf.hpp"
 #include "tangent/tangent.hpp"
@@ -201,6 +202,52 @@ asset_root: folder buffer and image URIs may not leave (default: the input's fol
 
 Returns the dict `tangent bake --report` writes for this file.
 Raises libtangent.InputError with the CLI's message on a file it refuses.)");
+
+  m.def(
+      "bake_tree",
+      [](const std::filesystem::path& inputFolder, const std::filesystem::path& outputFolder, const std::string& methodName,
+         const std::string& weightingName, int threads, bool all, bool overwrite, std::optional<std::filesystem::path> assetRoot,
+         bool force) {
+        tangent::gltf::BatchOptions options;
+        options.bake.tangents.method = method(methodName);
+        options.bake.tangents.weighting = weighting(weightingName);
+        options.bake.tangents.threads = threadCount(threads);
+        options.bake.all = all;
+        options.bake.overwrite = overwrite;
+        if (assetRoot) options.bake.assetRoot = *assetRoot;
+        options.force = force;
+        nlohmann::ordered_json entries = nlohmann::ordered_json::array();
+        {
+          py::gil_scoped_release released;
+          for (const auto& entry : tangent::gltf::bakeTree(inputFolder, outputFolder, options)) entries.push_back(tangent::gltf::toJson(entry));
+        }
+        return toPython(entries);
+      },
+      py::arg("input_folder"), py::arg("output_folder"), py::kw_only(), py::arg("method") = "mikktspace",
+      py::arg("weighting") = "angle", py::arg("threads") = 0, py::arg("all") = false, py::arg("overwrite") = false,
+      py::arg("asset_root") = py::none(), py::arg("force") = false,
+      R"(Bake a folder tree, as `tangent bake INPUT_FOLDER --recursive --out-dir OUTPUT_FOLDER` does.
+
+Every .gltf, .glb, .obj, .ply and .off under INPUT_FOLDER is baked into the same relative
+path under OUTPUT_FOLDER; one failure never stops the rest. OUTPUT_FOLDER/tangent-manifest.json
+records each input's SHA-256 (with the buffers and images it names) and the options, so a
+re-run skips what is unchanged (force=True bakes everything).
+
+Options as for bake(). Returns the list `tangent bake --recursive --report` writes: per file
+"input", "output", "status" ("ok" | "failed"), "unchanged", "digest", "error" when failed,
+and the bake report when baked in this run.)");
+
+  m.def("find_inputs", [](const std::filesystem::path& folder) {
+        std::vector<std::string> names;
+        for (const auto& path : tangent::gltf::findInputs(folder)) names.push_back(path.string());
+        return names;
+      }, py::arg("folder"), "The bakeable files under a folder, recursively and sorted, as bake_tree() finds them.");
+
+  m.def("input_digest", [](const std::filesystem::path& input, std::optional<std::filesystem::path> assetRoot) {
+        py::gil_scoped_release released;
+        return tangent::gltf::inputDigest(input, assetRoot.value_or(std::filesystem::path()));
+      }, py::arg("input"), py::kw_only(), py::arg("asset_root") = py::none(),
+      "SHA-256 (hex) of a file and of every buffer and image it names: the manifest's digest.");
 
   m.def(
       "check",

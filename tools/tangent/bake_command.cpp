@@ -5,6 +5,7 @@
 #include <iostream>
 
 #include "commands.hpp"
+#include "tangent/batch.hpp"
 #include "tangent/gltf.hpp"
 
 namespace tangent::cli {
@@ -12,6 +13,7 @@ namespace {
 
 const char* kBakeUsage =
     "usage: tangent bake IN... (-o OUT | --out-dir DIR) [options]\n"
+    "       tangent bake FOLDER... --recursive --out-dir DIR [options]\n"
     "\n"
     "Computes TANGENT for every triangle primitive whose material has a normalTexture, from the\n"
     "UV set that texture uses, and writes a new file. Inputs: .gltf, .glb, .obj, .ply, .off\n"
@@ -27,6 +29,10 @@ const char* kBakeUsage =
     "  --all                  bake every triangle primitive, normal texture or not (TEXCOORD_0)\n"
     "  --overwrite            recompute valid existing TANGENT too\n"
     "  --asset-root DIR       folder buffer and image URIs may not leave (default: the input's folder)\n"
+    "  --recursive            inputs are folders: bake every .gltf/.glb/.obj/.ply/.off under them\n"
+    "                         into the same relative path under --out-dir, keeping a manifest\n"
+    "                         (DIR/tangent-manifest.json) so that a re-run skips unchanged files\n"
+    "  --force                with --recursive: bake everything, whatever the manifest says\n"
     "  --report FILE.json     write what was done, per file and primitive\n"
     "  --quiet                print errors only\n"
     "  -h, --help             this text\n";
@@ -36,6 +42,46 @@ int usageError(const std::string& message) {
   return kExitUsage;
 }
 
+int writeReport(const std::filesystem::path& reportPath, const nlohmann::ordered_json& report) {
+  if (reportPath.empty()) return kExitOk;
+  std::ofstream out(reportPath);
+  out << report.dump(2) << "\n";
+  if (!out) {
+    std::cerr << "error: cannot write report " << reportPath.string() << "\n";
+    return kExitInputFailed;
+  }
+  return kExitOk;
+}
+
+// --recursive: each folder into --out-dir (into --out-dir/NAME when there are several).
+int bakeTrees(const std::vector<std::filesystem::path>& folders, const std::filesystem::path& outDir,
+              const gltf::BakeOptions& options, bool force, bool quiet, const std::filesystem::path& reportPath) {
+  gltf::BatchOptions batch;
+  batch.bake = options;
+  batch.force = force;
+  nlohmann::ordered_json report = nlohmann::ordered_json::array();
+  std::size_t baked = 0, unchanged = 0, failed = 0;
+  for (const auto& folder : folders) {
+    const std::filesystem::path target = folders.size() == 1 ? outDir : outDir / folder.filename();
+    try {
+      gltf::bakeTree(folder, target, batch, [&](const gltf::BatchEntry& entry) {
+        (entry.skipped ? unchanged : entry.ok ? baked : failed) += 1;
+        if (!entry.ok) failed += entry.skipped;  // a file that failed last time and has not changed still fails
+        if (!entry.ok) std::cerr << "error: " << entry.error << (entry.skipped ? " (unchanged since the last run)" : "") << "\n";
+        else if (!quiet)
+          std::cout << entry.input.string() << " -> " << entry.output.string() << (entry.skipped ? ": unchanged\n" : ": baked\n");
+        report.push_back(gltf::toJson(entry));
+      });
+    } catch (const std::exception& e) {
+      ++failed;
+      std::cerr << "error: " << e.what() << "\n";
+    }
+  }
+  if (!quiet) std::cout << baked << " baked, " << unchanged << " unchanged, " << failed << " failed\n";
+  const int written = writeReport(reportPath, report);
+  return failed ? kExitInputFailed : written;
+}
+
 }  // namespace
 
 int bakeCommand(const std::vector<std::string>& args) {
@@ -43,7 +89,7 @@ int bakeCommand(const std::vector<std::string>& args) {
   std::vector<fs::path> inputs;
   fs::path output, outDir, reportPath;
   gltf::BakeOptions options;
-  bool quiet = false;
+  bool quiet = false, recursive = false, force = false;
   for (std::size_t i = 0; i < args.size(); ++i) {
     const std::string& arg = args[i];
     auto value = [&](const char* name) -> const std::string* {
@@ -89,6 +135,10 @@ int bakeCommand(const std::vector<std::string>& args) {
       if (!v) return usageError("--asset-root needs a directory");
       options.assetRoot = *v;
       if (!fs::is_directory(options.assetRoot)) return usageError("--asset-root " + *v + " is not a directory");
+    } else if (arg == "--recursive") {
+      recursive = true;
+    } else if (arg == "--force") {
+      force = true;
     } else if (arg == "--all") {
       options.all = true;
     } else if (arg == "--overwrite") {
@@ -102,6 +152,14 @@ int bakeCommand(const std::vector<std::string>& args) {
     }
   }
   if (inputs.empty()) return usageError("no input files");
+  if (recursive) {
+    if (outDir.empty() || !output.empty()) return usageError("--recursive needs --out-dir DIR (and no -o)");
+    for (const fs::path& input : inputs) {
+      if (!fs::is_directory(input)) return usageError("--recursive: " + input.string() + " is not a folder");
+    }
+    return bakeTrees(inputs, outDir, options, force, quiet, reportPath);
+  }
+  if (force) return usageError("--force goes with --recursive");
   if (output.empty() == outDir.empty()) return usageError("give exactly one of -o FILE and --out-dir DIR");
   if (!output.empty() && inputs.size() > 1) return usageError("-o takes one input; use --out-dir for several");
   if (!outDir.empty()) {

@@ -1,0 +1,48 @@
+// Baking folder trees: every glTF, OBJ, PLY and OFF file under a folder, each into the same
+// relative path under an output folder, one failure never stopping the rest, with a manifest
+// (OUTPUT/tangent-manifest.json) of input digests so that a re-run skips what is unchanged.
+#pragma once
+
+#include <cstdint>
+#include <filesystem>
+#include <functional>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "tangent/gltf.hpp"
+
+namespace tangent::gltf {
+
+inline constexpr const char* kManifestName = "tangent-manifest.json";
+
+struct BatchOptions {
+  BakeOptions bake;
+  bool force = false;  // bake everything, whatever the manifest says
+};
+
+struct BatchEntry {
+  std::filesystem::path input, output;
+  bool ok = false;          // baked (now or, when skipped, last time)
+  bool skipped = false;     // input, the files it names and the options unchanged since the manifest
+  std::string error;        // why it failed
+  std::string digest;       // SHA-256 of the input and every file it names (buffers, images)
+  nlohmann::ordered_json report;  // toJson(BakeResult) when baked in this run
+};
+
+// The bakeable files under `folder` (recursively, sorted; symbolic links to folders are not
+// followed), leaving out everything under `skip` (the output folder when it lies inside).
+std::vector<std::filesystem::path> findInputs(const std::filesystem::path& folder, const std::filesystem::path& skip = {});
+
+// SHA-256 over the input's bytes and those of every buffer and image it names inside its
+// asset root (hex).
+std::string inputDigest(const std::filesystem::path& input, const std::filesystem::path& assetRoot = {});
+
+// Bakes the tree; `onFile` is called after each file. Writes the manifest (atomically) at the end.
+std::vector<BatchEntry> bakeTree(const std::filesystem::path& inputFolder, const std::filesystem::path& outputFolder,
+                                 const BatchOptions& options, const std::function<void(const BatchEntry&)>& onFile = {});
+
+// One entry as the CLI's --report writes it.
+nlohmann::ordered_json toJson(const BatchEntry& entry);
+
+}  // namespace tangent::gltf
