@@ -87,12 +87,9 @@ def main(argv=None):
 
     inputs = [p for p in libtangent.find_inputs(input_folder)
               if not pathlib.Path(p).resolve().is_relative_to(output_folder)]
-    if args.scheduler:
-        client = Client(args.scheduler)
-    else:
-        client = Client(LocalCluster(n_workers=args.workers, threads_per_worker=1, processes=True,
-                                     dashboard_address=None))
-    with client:
+    cluster = None if args.scheduler else LocalCluster(n_workers=args.workers, threads_per_worker=1, processes=True,
+                                                       dashboard_address=None)
+    with Client(args.scheduler or cluster) as client:
         futures = []
         for path in inputs:
             key = pathlib.Path(path).relative_to(input_folder).as_posix()
@@ -100,8 +97,8 @@ def main(argv=None):
             futures.append(client.submit(bake_one, path, str(output), options, previous.get(key), args.force,
                                          pure=False))
         entries = client.gather(futures)
-        if not args.scheduler:
-            client.cluster.close()
+    if cluster is not None:
+        cluster.close()
 
     files = {}
     for entry in entries:
