@@ -217,3 +217,17 @@ def test_help_reads_like_the_cli():
         assert option + ":" in libtangent.bake.__doc__
     stub = pathlib.Path(libtangent.__file__).with_name("libtangent.pyi")
     assert "def compute_tangents(" in stub.read_text()
+
+
+SHARED_ASSETS = sorted((SOURCE.parent / "shared" / "assets").glob("*.glb"))
+
+
+@pytest.mark.skipif(not SHARED_ASSETS, reason="../shared/assets is absent: the shared sample assets are not compared")
+@pytest.mark.parametrize("asset", SHARED_ASSETS, ids=[a.stem for a in SHARED_ASSETS])
+def test_shared_assets_bake_to_the_cli_bytes(tmp_path, asset):
+    output = tmp_path / "out.glb"
+    expected = cli_bake_report(tmp_path, asset, output)
+    cli_bytes = output.read_bytes()
+    output.unlink()
+    assert libtangent.bake(asset, output) == expected
+    assert output.read_bytes() == cli_bytes
