@@ -51,21 +51,32 @@ uniform float u_reflectivity;
 #endif
 
 void main() {
+#if defined(DEBUG_FACE_ORIENTATION)
+  // As Blender's overlay: front faces blue, back faces red (culling is off for this view).
+  fragColor = gl_FrontFacing ? vec4(0.15, 0.35, 0.95, 1.0) : vec4(0.90, 0.15, 0.10, 1.0);
+  return;
+#endif
   vec3 normal = normalize(v_normalWorld);
-  if (!gl_FrontFacing) normal = -normal;  // double-sided materials see their back faces lit
+  vec4 tangent = v_tangentWorld;
+  // Only double-sided materials show back faces (the others are culled): lit as seen, with
+  // N, T and B all reversed (glTF 2.0 3.9.6).
+  if (!gl_FrontFacing) {
+    normal = -normal;
+    tangent = vec4(-tangent.xyz, -tangent.w);
+  }
   vec3 shadingNormal = normal;
 #ifdef HAS_NORMAL_MAP
-  if (u_useNormalMap) shadingNormal = perturbedNormal(normal, v_tangentWorld, v_uvNormal);
+  if (u_useNormalMap) shadingNormal = perturbedNormal(normal, tangent, v_uvNormal);
 #endif
 
 #if defined(DEBUG_GEOMETRY_NORMAL)
   fragColor = vec4(signedColor(cross(dFdx(v_positionWorld), dFdy(v_positionWorld))), 1.0);
   return;
 #elif defined(DEBUG_TANGENT)
-  fragColor = vec4(signedColor(v_tangentWorld.xyz), 1.0);
+  fragColor = vec4(signedColor(tangent.xyz), 1.0);
   return;
 #elif defined(DEBUG_BITANGENT)
-  fragColor = vec4(signedColor(cross(normal, v_tangentWorld.xyz) * v_tangentWorld.w), 1.0);
+  fragColor = vec4(signedColor(cross(normal, tangent.xyz) * tangent.w), 1.0);
   return;
 #elif defined(DEBUG_SHADING_NORMAL)
   fragColor = vec4(signedColor(shadingNormal), 1.0);

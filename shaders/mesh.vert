@@ -14,6 +14,7 @@ uniform mat3 u_normalMatrix;
 uniform mat4 u_viewProjection;
 uniform mat4 u_lightViewProjection;
 uniform float u_uvScale;
+uniform float u_mirror;  // sign of det(u_model): a mirroring transform flips the bitangent
 
 out vec3 v_positionWorld;
 out vec3 v_normalWorld;
@@ -28,7 +29,9 @@ void main() {
   vec4 world = u_model * vec4(a_position, 1.0);
   v_positionWorld = world.xyz;
   v_normalWorld = u_normalMatrix * a_normal;
-  v_tangentWorld = vec4(mat3(u_model) * a_tangent.xyz, a_tangent.w);
+  // B = cross(N, T) * w in object space; in world space cross(M N, M T) carries det(M)'s sign,
+  // so w does too.
+  v_tangentWorld = vec4(mat3(u_model) * a_tangent.xyz, a_tangent.w * u_mirror);
   v_uvNormal = a_uvNormal * u_uvScale;
   v_uvBase = a_uvBase * u_uvScale;
   v_shadowCoord = u_lightViewProjection * world;

@@ -39,7 +39,7 @@ const char* kUsage =
     "  --camera NAME            front | back | left | right | top | bottom | iso (default iso)\n"
     "  --ortho                  orthographic projection\n"
     "  --view NAME              lit | geometry-normal | tangent | bitangent | shading-normal | uv |\n"
-    "                           handedness | error (default lit)\n"
+    "                           handedness | error | face-orientation (front blue, back red) (default lit)\n"
     "  --glyphs                 draw tangent frames (T red, B green, N blue)\n"
     "  --no-shadows, --pcf N (0 off, 1 = 3x3, 2 = 5x5), --shadow-map-size N (1024..4096)\n"
     "  --no-normal-map, --no-specular, --phong, --flip-green, --negate-w\n"
@@ -235,7 +235,7 @@ void drawPanel(Viewer& viewer, GLFWwindow* window, const FrameStats& stats, doub
     int view = static_cast<int>(s.view);
     const char* names[std::size(kDebugViews)];
     for (std::size_t i = 0; i < std::size(kDebugViews); ++i) names[i] = kDebugViews[i].name;
-    if (ImGui::Combo("view (1-8)", &view, names, static_cast<int>(std::size(kDebugViews)))) s.view = static_cast<DebugView>(view);
+    if (ImGui::Combo("view (1-9)", &view, names, static_cast<int>(std::size(kDebugViews)))) s.view = static_cast<DebugView>(view);
     if (s.view == DebugView::tangentError)
       ImGui::TextWrapped("error vs freshly computed: blue 0, green 1 deg, yellow 5 deg, red >= 20 deg; magenta: fails tangent check");
     if (s.view == DebugView::handedness) ImGui::TextWrapped("teal: w = +1, orange: w = -1");

@@ -220,6 +220,14 @@ FrameStats Renderer::render(const CameraMatrices& camera, const RenderSettings& 
   const glm::mat4 lightMatrix = anyShadows ? lightViewProjection() : glm::mat4(1);
 
   for (const GpuMesh& mesh : meshes_) {
+    // A node whose transform mirrors (negative determinant) turns its triangles' winding
+    // around: its front faces are the clockwise ones (glTF 2.0 3.7.4).
+    const bool mirrored = glm::determinant(glm::mat3(mesh.model)) < 0;
+    glFrontFace(mirrored ? GL_CW : GL_CCW);
+    const bool doubleSided = mesh.material >= 0 && mesh.material < static_cast<int>(scene_.materials.size()) &&
+                             scene_.materials[mesh.material].doubleSided;
+    if (doubleSided || settings.view == DebugView::faceOrientation) glDisable(GL_CULL_FACE);
+    else glEnable(GL_CULL_FACE), glCullFace(GL_BACK);
     FeatureSet features = featuresFor(mesh, settings);
     if (!anyShadows) features &= ~static_cast<FeatureSet>(Feature::shadows);
     const GLuint program = shaders_.mesh(features, settings.view);
@@ -231,6 +239,7 @@ FrameStats Renderer::render(const CameraMatrices& camera, const RenderSettings& 
     setUniform(program, "u_lightViewProjection", lightMatrix);
     setUniform(program, "u_eyeWorld", camera.eye);
     setUniform(program, "u_uvScale", settings.uvScale);
+    setUniform(program, "u_mirror", mirrored ? -1.0f : 1.0f);
     setUniform(program, "u_useNormalMap", settings.normalMapping ? 1 : 0);
     setUniform(program, "u_useSpecular", settings.specular ? 1 : 0);
     setUniform(program, "u_flipGreen", settings.flipGreen ? 1 : 0);
@@ -291,6 +300,8 @@ FrameStats Renderer::render(const CameraMatrices& camera, const RenderSettings& 
     ++stats.drawCalls;
     stats.triangles += static_cast<std::size_t>(mesh.count / 3);
   }
+  glFrontFace(GL_CCW);
+  glDisable(GL_CULL_FACE);
   if (settings.glyphs) {
     drawGlyphs(camera, settings);
     ++stats.drawCalls;
@@ -309,11 +320,12 @@ void Renderer::drawGlyphs(const CameraMatrices& camera, const RenderSettings& se
     for (const auto& item : scene_.items) {
       const glm::mat4 model = glm::make_mat4(item.world.data());
       const glm::mat3 normalMatrix = glm::transpose(glm::inverse(glm::mat3(model)));
+      const float mirror = glm::determinant(glm::mat3(model)) < 0 ? -1.0f : 1.0f;  // see mesh.vert
       for (std::size_t c = 0; c < item.positions.size() / 3; c += stride) {
         const glm::vec3 p = glm::vec3(model * glm::vec4(glm::make_vec3(&item.positions[3 * c]), 1));
         const glm::vec3 n = glm::normalize(normalMatrix * glm::make_vec3(&item.normals[3 * c]));
         const glm::vec3 t = glm::normalize(glm::mat3(model) * glm::make_vec3(&item.tangents[4 * c]));
-        const glm::vec3 b = glm::cross(n, t) * (item.tangents[4 * c + 3] < 0 ? -1.0f : 1.0f);
+        const glm::vec3 b = glm::cross(n, t) * (item.tangents[4 * c + 3] < 0 ? -mirror : mirror);
         const glm::vec3 axes[3] = {t, b, n};
         const glm::vec3 colors[3] = {{1, 0.2f, 0.2f}, {0.2f, 1, 0.2f}, {0.3f, 0.5f, 1}};
         for (int a = 0; a < 3; ++a) {

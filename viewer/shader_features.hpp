@@ -27,6 +27,7 @@ enum class DebugView : std::uint8_t {
   uv,
   handedness,
   tangentError,
+  faceOrientation,
 };
 
 struct FeatureDefine {
@@ -60,6 +61,7 @@ inline constexpr DebugViewInfo kDebugViews[] = {
     {DebugView::uv, "DEBUG_UV", "uv"},
     {DebugView::handedness, "DEBUG_HANDEDNESS", "handedness"},
     {DebugView::tangentError, "DEBUG_TANGENT_ERROR", "error"},
+    {DebugView::faceOrientation, "DEBUG_FACE_ORIENTATION", "face-orientation"},
 };
 
 using FeatureSet = std::uint32_t;

@@ -7,7 +7,10 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <fstream>
 #include <numeric>
+
+#include <nlohmann/json.hpp>
 
 #include "support/run_command.hpp"
 #include "support/temp_dir.hpp"
@@ -186,7 +189,7 @@ TEST(Viewer, EveryDebugViewRendersAndDiffersFromLit) {
   const std::string common = "--size 320x180";
   const Image lit = screenshot(dir, "lit", common);
   ASSERT_EQ(lit.width, 320);
-  for (const char* view : {"geometry-normal", "tangent", "bitangent", "shading-normal", "uv", "handedness", "error"}) {
+  for (const char* view : {"geometry-normal", "tangent", "bitangent", "shading-normal", "uv", "handedness", "error", "face-orientation"}) {
     const Image image = screenshot(dir, view, common + " --view " + view);
     ASSERT_EQ(image.rgb.size(), lit.rgb.size()) << view;
     double difference = 0;
@@ -198,6 +201,101 @@ TEST(Viewer, EveryDebugViewRendersAndDiffersFromLit) {
   double difference = 0;
   for (std::size_t i = 0; i < glyphs.rgb.size(); ++i) difference += std::abs(glyphs.rgb[i] - lit.rgb[i]);
   EXPECT_GT(difference, 0.0);
+}
+
+// A copy of a demo asset (with its .bin and textures) whose scene is wrapped in a node with
+// the given extra JSON (a transform), and whose material is given `doubleSided`.
+fs::path demoCopy(const TempDir& dir, const std::string& name, const nlohmann::json& wrapper, bool doubleSided) {
+  const fs::path demo = fs::path(TANGENT_SOURCE_DIR) / "data" / "demo";
+  const fs::path folder = dir / (name + (wrapper.empty() ? "" : "-wrapped") + (doubleSided ? "-double" : ""));
+  fs::create_directories(folder);
+  for (const auto& entry : fs::directory_iterator(demo)) {
+    if (entry.path().extension() != ".gltf") fs::copy_file(entry.path(), folder / entry.path().filename());
+  }
+  nlohmann::json doc = nlohmann::json::parse(std::ifstream(demo / (name + ".gltf")));
+  if (!wrapper.empty()) {
+    nlohmann::json node = wrapper;
+    node["children"] = doc["scenes"][0]["nodes"];
+    doc["nodes"].push_back(node);
+    doc["scenes"][0]["nodes"] = nlohmann::json::array({doc["nodes"].size() - 1});
+  }
+  for (auto& material : doc["materials"]) material["doubleSided"] = doubleSided;
+  std::ofstream(folder / (name + ".gltf")) << doc.dump();
+  return folder / (name + ".gltf");
+}
+
+float backgroundShare(const Image& image) {
+  int background = 0;
+  for (int y = 0; y < image.height; ++y) {
+    for (int x = 0; x < image.width; ++x) {
+      const auto c = image.at(x, y);
+      background += std::abs(c[0] - 0.16f) < 0.02f && std::abs(c[1] - 0.17f) < 0.02f && std::abs(c[2] - 0.19f) < 0.02f;
+    }
+  }
+  return static_cast<float>(background) / static_cast<float>(image.width * image.height);
+}
+
+// Every demo primitive, and the same under a mirroring node, is wound counter-clockwise seen
+// from outside: the face-orientation view shows no back face (red) anywhere.
+TEST(Viewer, DemoPrimitivesShowOnlyFrontFaces) {
+  TempDir dir;
+  for (const char* name : {"cube", "sphere", "torus", "scene"}) {
+    for (const bool mirror : {false, true}) {
+      const fs::path file = mirror ? demoCopy(dir, name, {{"scale", {-1, 1, 1}}}, false)
+                                   : fs::path(TANGENT_SOURCE_DIR) / "data" / "demo" / (std::string(name) + ".gltf");
+      const Image image = screenshot(dir, std::string(name) + (mirror ? "-mirrored" : ""),
+                                     "'" + file.string() + "' --view face-orientation --size 240x180");
+      int front = 0, back = 0;
+      for (int y = 0; y < image.height; ++y) {
+        for (int x = 0; x < image.width; ++x) {
+          const auto c = image.at(x, y);
+          front += c[2] > 0.8f && c[0] < 0.3f;
+          back += c[0] > 0.8f && c[2] < 0.3f;
+        }
+      }
+      EXPECT_GT(front, 1000) << name << (mirror ? " mirrored" : "");
+      EXPECT_EQ(back, 0) << name << (mirror ? " mirrored" : "");
+    }
+  }
+}
+
+// Mirroring a normal-mapped sphere with a node's negative scale mirrors its shading normals:
+// pixel (x, y) of the copy shows the normal of pixel (w - 1 - x, y) of the original with x
+// negated (shading-normal view: red = x * 0.5 + 0.5). This needs the node's winding handled
+// and the bitangent's sign turned with the transform's determinant.
+TEST(Viewer, MirroredNodeMirrorsTheShadingNormals) {
+  TempDir dir;
+  const fs::path original = fs::path(TANGENT_SOURCE_DIR) / "data" / "demo" / "sphere.gltf";
+  const fs::path mirrored = demoCopy(dir, "sphere", {{"scale", {-1, 1, 1}}}, false);
+  const std::string common = " --view shading-normal --camera front --ortho --size 300x300";
+  const Image a = screenshot(dir, "sphere", "'" + original.string() + "'" + common);
+  const Image b = screenshot(dir, "sphere-mirrored", "'" + mirrored.string() + "'" + common);
+  ASSERT_EQ(a.rgb.size(), b.rgb.size());
+  double error = 0, flatError = 0;
+  int samples = 0;
+  for (int y = 0; y < a.height; ++y) {
+    for (int x = 0; x < a.width; ++x) {
+      const auto p = a.at(a.width - 1 - x, y), q = b.at(x, y);
+      if (backgroundShare(Image{1, 1, {p[0], p[1], p[2]}}) > 0 || backgroundShare(Image{1, 1, {q[0], q[1], q[2]}}) > 0) continue;
+      error += std::abs(q[0] - (1 - p[0])) + std::abs(q[1] - p[1]) + std::abs(q[2] - p[2]);
+      flatError += std::abs(q[0] - p[0]) + std::abs(q[1] - p[1]) + std::abs(q[2] - p[2]);
+      ++samples;
+    }
+  }
+  ASSERT_GT(samples, 20000);
+  std::printf("mirrored shading normals: mean error %.4f (unmirrored comparison %.4f) over %d pixels\n", error / samples,
+              flatError / samples, samples);
+  EXPECT_LT(error / samples, 0.02);
+}
+
+// Seen from behind, a single-sided quad is culled and a double-sided one is drawn.
+TEST(Viewer, OnlyDoubleSidedMaterialsShowTheirBackFaces) {
+  TempDir dir;
+  const std::string common = " --camera back --size 240x180 --no-shadows";
+  const Image single = screenshot(dir, "single", "'" + demoCopy(dir, "quad", {}, false).string() + "'" + common);
+  const Image both = screenshot(dir, "double", "'" + demoCopy(dir, "quad", {}, true).string() + "'" + common);
+  EXPECT_GT(backgroundShare(single), 0.999f);
+  EXPECT_LT(backgroundShare(both), 0.7f);
 }
 
 TEST(Viewer, BadInputIsAnErrorNotACrash) {

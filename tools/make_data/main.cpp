@@ -154,7 +154,8 @@ MeshData torus(int rings, int sides, float major, float minor) {
   for (int i = 0; i < rings; ++i) {
     for (int j = 0; j < sides; ++j) {
       const auto a = static_cast<std::uint16_t>(i * (sides + 1) + j), b = static_cast<std::uint16_t>(a + sides + 1);
-      mesh.indices.insert(mesh.indices.end(), {a, static_cast<std::uint16_t>(a + 1), b, static_cast<std::uint16_t>(a + 1), static_cast<std::uint16_t>(b + 1), b});
+      // Counter-clockwise seen from outside, as the normals point (glTF: front faces CCW).
+      mesh.indices.insert(mesh.indices.end(), {a, b, static_cast<std::uint16_t>(a + 1), static_cast<std::uint16_t>(a + 1), b, static_cast<std::uint16_t>(b + 1)});
     }
   }
   return mesh;
