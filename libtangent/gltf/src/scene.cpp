@@ -209,16 +209,23 @@ DrawItem makeDrawItem(const detail::Asset& asset, const Json& primitive, const s
   item.normals = cornerNormals;
   item.uvNormal = uvsPerCorner;
   // Base colour UVs: the base colour texture's set, with its transform.
-  const int baseTexCoord = [&] {
-    if (item.material < 0 || !doc.contains("materials")) return 0;
-    return textureRef(doc, doc["materials"][item.material].value("pbrMetallicRoughness", Json::object()).value("baseColorTexture", Json::object())).texCoord;
-  }();
+  // (Looked up with find: a material may have no pbrMetallicRoughness or no base colour texture.)
+  const Json* baseInfo = nullptr;
+  if (item.material >= 0 && doc.contains("materials")) {
+    const Json& material = doc["materials"][item.material];
+    const auto pbr = material.find("pbrMetallicRoughness");
+    if (pbr != material.end() && pbr->is_object()) {
+      const auto texture = pbr->find("baseColorTexture");
+      if (texture != pbr->end() && texture->is_object()) baseInfo = &*texture;
+    }
+  }
+  const int baseTexCoord = baseInfo ? textureRef(doc, *baseInfo).texCoord : 0;
   item.uvBase = item.uvNormal;
-  if (baseTexCoord != needs.texCoord || needs.hasNormalTexture) {
+  if (baseInfo && (baseTexCoord != needs.texCoord || needs.hasNormalTexture)) {
     const int accessor = detail::accessorOf(primitive["attributes"], "TEXCOORD_" + std::to_string(baseTexCoord));
     if (accessor >= 0) {
       std::vector<float> base = detail::readVectors(asset.model, accessor, 2, geometry.vertexCount, where + ": base colour UVs");
-      const Json& info = doc["materials"][item.material]["pbrMetallicRoughness"]["baseColorTexture"];
+      const Json& info = *baseInfo;
       if (info.contains("extensions") && info["extensions"].contains("KHR_texture_transform"))
         detail::applyTextureTransform(base, info["extensions"]["KHR_texture_transform"]);
       for (std::size_t c = 0; c < cornerCount; ++c)
