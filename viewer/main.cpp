@@ -17,6 +17,7 @@
 
 #include "camera.hpp"
 #include "renderer.hpp"
+#include "resources.hpp"
 #include "shader_library.hpp"
 #include "tangent/gltf.hpp"
 #include "tangent/scene.hpp"
@@ -51,15 +52,15 @@ const char* kUsage =
     "      r reload shaders, o open, mouse: left orbit, right/middle pan, wheel zoom\n";
 
 struct Options {
-  fs::path input = fs::path(TANGENT_DATA_DIR) / "demo" / "scene.gltf";
+  fs::path input = resourceFolder("data") / "demo" / "scene.gltf";
   std::optional<fs::path> screenshot;
   int width = 1280, height = 720;
   std::string camera = "iso";
   bool orthographic = false;
   RenderSettings settings;
   bool negateW = false;
-  fs::path sphereMap = fs::path(TANGENT_DATA_DIR) / "demo" / "spheremap.png";
-  fs::path shaderDir = TANGENT_SHADER_DIR;
+  fs::path sphereMap = resourceFolder("data") / "demo" / "spheremap.png";
+  fs::path shaderDir = resourceFolder("shaders");
   fs::path assetRoot;  // --asset-root: the folder buffer and image URIs may not leave
   int frames = 1;
 };
@@ -227,7 +228,7 @@ void drawPanel(Viewer& viewer, GLFWwindow* window, const FrameStats& stats, doub
   static const char* primitives[] = {"scene", "quad", "cube", "sphere", "torus"};
   static int primitive = 0;
   if (ImGui::Combo("demo", &primitive, primitives, 5)) {
-    const fs::path demo = fs::path(TANGENT_DATA_DIR) / "demo";
+    const fs::path demo = resourceFolder("data") / "demo";
     viewer.load(primitive == 0 ? demo / "scene.gltf" : demo / (std::string(primitives[primitive]) + ".gltf"));
   }
   ImGui::Text("%.1f fps, %.2f ms, %zu triangles, %d draw calls", frameMs > 0 ? 1000.0 / frameMs : 0.0, frameMs, stats.triangles, stats.drawCalls);
