@@ -48,7 +48,7 @@ const char* kUsage =
     "  --frames N               with --screenshot: render N frames and print the median frame time\n"
     "  --asset-root DIR         folder buffer and image URIs may not leave (default: the file's folder)\n"
     "  --shader-dir DIR         where the shaders are (default: the source tree's shaders/)\n"
-    "keys: m normal map, s specular, h shadows, p PCF, f green flip, 1-8 views, g glyphs,\n"
+    "keys: m normal map, s specular, h shadows, p PCF, f green flip, 1-9 views, g glyphs,\n"
     "      r reload shaders, o open, mouse: left orbit, right/middle pan, wheel zoom\n";
 
 struct Options {
@@ -226,19 +226,28 @@ void drawPanel(Viewer& viewer, GLFWwindow* window, const FrameStats& stats, doub
   }
   if (ImGui::InputText("open (o)", openPath, sizeof openPath, ImGuiInputTextFlags_EnterReturnsTrue)) viewer.load(openPath);
   static const char* primitives[] = {"scene", "quad", "cube", "sphere", "torus"};
-  static int primitive = 0;
-  if (ImGui::Combo("demo", &primitive, primitives, 5)) {
-    const fs::path demo = resourceFolder("data") / "demo";
-    viewer.load(primitive == 0 ? demo / "scene.gltf" : demo / (std::string(primitives[primitive]) + ".gltf"));
+  const fs::path demo = resourceFolder("data") / "demo";
+  // The combo shows the demo file that is loaded, and nothing for any other file.
+  int primitive = -1;
+  for (int i = 0; i < 5; ++i) {
+    std::error_code ec;
+    if (fs::equivalent(viewer.loaded, demo / (std::string(primitives[i]) + ".gltf"), ec)) primitive = i;
   }
+  if (ImGui::Combo("demo", &primitive, primitives, 5)) viewer.load(demo / (std::string(primitives[primitive]) + ".gltf"));
   ImGui::Text("%.1f fps, %.2f ms, %zu triangles, %d draw calls", frameMs > 0 ? 1000.0 / frameMs : 0.0, frameMs, stats.triangles, stats.drawCalls);
   if (ImGui::CollapsingHeader("View", ImGuiTreeNodeFlags_DefaultOpen)) {
     int view = static_cast<int>(s.view);
     const char* names[std::size(kDebugViews)];
     for (std::size_t i = 0; i < std::size(kDebugViews); ++i) names[i] = kDebugViews[i].name;
     if (ImGui::Combo("view (1-9)", &view, names, static_cast<int>(std::size(kDebugViews)))) s.view = static_cast<DebugView>(view);
-    if (s.view == DebugView::tangentError)
+    if (s.view == DebugView::tangentError) {
       ImGui::TextWrapped("error vs freshly computed: blue 0, green 1 deg, yellow 5 deg, red >= 20 deg; magenta: fails tangent check");
+      const auto& items = viewer.renderer.scene().items;
+      if (std::none_of(items.begin(), items.end(), [](const auto& item) { return item.tangentsFromFile; }))
+        ImGui::TextWrapped("This file has no TANGENT: the tangents shown were computed at load, so they are compared with "
+                           "themselves and the view is all blue. Bake the file to judge stored tangents.");
+    }
+    if (s.view == DebugView::faceOrientation) ImGui::TextWrapped("blue: front face, red: back face (culling off in this view)");
     if (s.view == DebugView::handedness) ImGui::TextWrapped("teal: w = +1, orange: w = -1");
     ImGui::Checkbox("tangent frames (g)", &s.glyphs);
     ImGui::SliderInt("glyph count", &s.maxGlyphs, 100, 50000);
