@@ -100,6 +100,16 @@ std::uint32_t readUnsigned(const std::uint8_t* p, int componentType) {
   }
 }
 
+// glTF 2.0 3.7.2.1: indices are SCALAR of an unsigned integer type.
+void requireIndexType(const AccessorData& data, const std::string& where) {
+  if (data.type != TINYGLTF_TYPE_SCALAR ||
+      (data.componentType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE &&
+       data.componentType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT &&
+       data.componentType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT))
+    throw InputError(where + ": indices must be SCALAR of UNSIGNED_BYTE, UNSIGNED_SHORT or UNSIGNED_INT, not " +
+                     typeName(data.type) + " of " + componentTypeName(data.componentType));
+}
+
 // Where an accessor's bytes are, every range checked against the bytes actually loaded,
 // before anything is allocated for it.
 struct AccessorLayout {
@@ -199,12 +209,7 @@ void checkIndexRange(const tinygltf::Model& model, int accessorIndex, std::size_
     return;
   }
   const AccessorData& data = layout.header;
-  if (data.type != TINYGLTF_TYPE_SCALAR ||
-      (data.componentType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE &&
-       data.componentType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT &&
-       data.componentType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT))
-    throw InputError(where + ": indices must be SCALAR of UNSIGNED_BYTE, UNSIGNED_SHORT or UNSIGNED_INT, not " +
-                     typeName(data.type) + " of " + componentTypeName(data.componentType));
+  requireIndexType(data, where);
   if (!layout.dense) {
     if (vertexCount == 0) throw InputError(where + ": index 0 is out of range (the primitive has no vertices)");
     return;
@@ -257,12 +262,7 @@ std::vector<float> toFloats(const AccessorData& data) {
 }
 
 std::vector<std::uint32_t> toIndices(const AccessorData& data, std::size_t vertexCount, const std::string& where) {
-  if (data.type != TINYGLTF_TYPE_SCALAR ||
-      (data.componentType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE &&
-       data.componentType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT &&
-       data.componentType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT))
-    throw InputError(where + ": indices must be SCALAR of UNSIGNED_BYTE, UNSIGNED_SHORT or UNSIGNED_INT, not " +
-                     typeName(data.type) + " of " + componentTypeName(data.componentType));
+  requireIndexType(data, where);
   std::vector<std::uint32_t> out(data.count);
   for (std::size_t i = 0; i < data.count; ++i) {
     out[i] = readUnsigned(&data.bytes[i * data.componentSize], data.componentType);
