@@ -76,6 +76,19 @@ py::array_t<std::uint32_t, py::array::c_style> indexArray(const py::handle& obje
   return py::array_t<std::uint32_t, py::array::c_style | py::array::forcecast>::ensure(any);
 }
 
+// The options of `tangent bake`, from bake()'s and bake_tree()'s keyword arguments.
+tangent::gltf::BakeOptions bakeOptions(const std::string& methodName, const std::string& weightingName, int threads, bool all,
+                                       bool overwrite, const std::optional<std::filesystem::path>& assetRoot) {
+  tangent::gltf::BakeOptions options;
+  options.tangents.method = method(methodName);
+  options.tangents.weighting = weighting(weightingName);
+  options.tangents.threads = threadCount(threads);
+  options.all = all;
+  options.overwrite = overwrite;
+  if (assetRoot) options.assetRoot = *assetRoot;
+  return options;
+}
+
 py::dict computeTangents(const py::handle& positionsIn, const py::handle& normalsIn, const py::handle& uvsIn,
                          const py::handle& indicesIn, const std::string& methodName, const std::string& weightingName,
                          int threads, const std::string& uvOrigin) {
@@ -171,13 +184,7 @@ The GIL is released while the core runs.)");
       "bake",
       [](const std::filesystem::path& input, const std::filesystem::path& output, const std::string& methodName,
          const std::string& weightingName, int threads, bool all, bool overwrite, std::optional<std::filesystem::path> assetRoot) {
-        tangent::gltf::BakeOptions options;
-        options.tangents.method = method(methodName);
-        options.tangents.weighting = weighting(weightingName);
-        options.tangents.threads = threadCount(threads);
-        options.all = all;
-        options.overwrite = overwrite;
-        if (assetRoot) options.assetRoot = *assetRoot;
+        const tangent::gltf::BakeOptions options = bakeOptions(methodName, weightingName, threads, all, overwrite, assetRoot);
         nlohmann::ordered_json entry = {{"input", input.string()}, {"output", output.string()}, {"status", "ok"}};
         {
           py::gil_scoped_release released;
@@ -209,12 +216,7 @@ Raises libtangent.InputError with the CLI's message on a file it refuses.)");
          const std::string& weightingName, int threads, bool all, bool overwrite, std::optional<std::filesystem::path> assetRoot,
          bool force) {
         tangent::gltf::BatchOptions options;
-        options.bake.tangents.method = method(methodName);
-        options.bake.tangents.weighting = weighting(weightingName);
-        options.bake.tangents.threads = threadCount(threads);
-        options.bake.all = all;
-        options.bake.overwrite = overwrite;
-        if (assetRoot) options.bake.assetRoot = *assetRoot;
+        options.bake = bakeOptions(methodName, weightingName, threads, all, overwrite, assetRoot);
         options.force = force;
         nlohmann::ordered_json entries = nlohmann::ordered_json::array();
         {

@@ -51,15 +51,22 @@ const char* kUsage =
     "keys: m normal map, s specular, h shadows, p PCF, f green flip, 1-9 views, g glyphs,\n"
     "      r reload shaders, o open, mouse: left orbit, right/middle pan, wheel zoom\n";
 
+// The demo files the panel offers (data/demo/NAME.gltf), and where they are.
+const char* const kDemoFiles[] = {"scene", "quad", "cube", "sphere", "torus"};
+const fs::path& demoFolder() {
+  static const fs::path folder = resourceFolder("data") / "demo";
+  return folder;
+}
+
 struct Options {
-  fs::path input = resourceFolder("data") / "demo" / "scene.gltf";
+  fs::path input = demoFolder() / "scene.gltf";
   std::optional<fs::path> screenshot;
   int width = 1280, height = 720;
   std::string camera = "iso";
   bool orthographic = false;
   RenderSettings settings;
   bool negateW = false;
-  fs::path sphereMap = resourceFolder("data") / "demo" / "spheremap.png";
+  fs::path sphereMap = demoFolder() / "spheremap.png";
   fs::path shaderDir = resourceFolder("shaders");
   fs::path assetRoot;  // --asset-root: the folder buffer and image URIs may not leave
   int frames = 1;
@@ -130,6 +137,7 @@ struct Viewer {
   OrbitCamera camera;
   std::vector<std::string> messages;
   fs::path loaded;
+  int loadedDemo = -1;  // index into kDemoFiles of the file loaded, -1 for any other file
 
   explicit Viewer(const Options& o) : options(o), shaders(o.shaderDir), renderer(shaders) {}
 
@@ -143,6 +151,11 @@ struct Viewer {
       messages = scene.messages;
       renderer.setScene(scene, messages);
       loaded = file;
+      loadedDemo = -1;
+      for (int i = 0; i < static_cast<int>(std::size(kDemoFiles)); ++i) {
+        std::error_code ec;
+        if (fs::equivalent(file, demoFolder() / (std::string(kDemoFiles[i]) + ".gltf"), ec)) loadedDemo = i;
+      }
     } catch (const std::exception& e) {
       messages.push_back(std::string("cannot open: ") + e.what());
       std::cerr << "error: " << e.what() << "\n";
@@ -225,15 +238,10 @@ void drawPanel(Viewer& viewer, GLFWwindow* window, const FrameStats& stats, doub
     focusOpen = false;
   }
   if (ImGui::InputText("open (o)", openPath, sizeof openPath, ImGuiInputTextFlags_EnterReturnsTrue)) viewer.load(openPath);
-  static const char* primitives[] = {"scene", "quad", "cube", "sphere", "torus"};
-  const fs::path demo = resourceFolder("data") / "demo";
   // The combo shows the demo file that is loaded, and nothing for any other file.
-  int primitive = -1;
-  for (int i = 0; i < 5; ++i) {
-    std::error_code ec;
-    if (fs::equivalent(viewer.loaded, demo / (std::string(primitives[i]) + ".gltf"), ec)) primitive = i;
-  }
-  if (ImGui::Combo("demo", &primitive, primitives, 5)) viewer.load(demo / (std::string(primitives[primitive]) + ".gltf"));
+  int primitive = viewer.loadedDemo;
+  if (ImGui::Combo("demo", &primitive, kDemoFiles, static_cast<int>(std::size(kDemoFiles))))
+    viewer.load(demoFolder() / (std::string(kDemoFiles[primitive]) + ".gltf"));
   ImGui::Text("%.1f fps, %.2f ms, %zu triangles, %d draw calls", frameMs > 0 ? 1000.0 / frameMs : 0.0, frameMs, stats.triangles, stats.drawCalls);
   if (ImGui::CollapsingHeader("View", ImGuiTreeNodeFlags_DefaultOpen)) {
     int view = static_cast<int>(s.view);

@@ -224,9 +224,11 @@ FrameStats Renderer::render(const CameraMatrices& camera, const RenderSettings& 
     // around: its front faces are the clockwise ones (glTF 2.0 3.7.4).
     const bool mirrored = glm::determinant(glm::mat3(mesh.model)) < 0;
     glFrontFace(mirrored ? GL_CW : GL_CCW);
-    const bool doubleSided = mesh.material >= 0 && mesh.material < static_cast<int>(scene_.materials.size()) &&
-                             scene_.materials[mesh.material].doubleSided;
-    if (doubleSided || settings.view == DebugView::faceOrientation) glDisable(GL_CULL_FACE);
+    gltf::MaterialDesc material;
+    material.roughness = 0.5f;
+    material.metallic = 0.0f;
+    if (mesh.material >= 0 && mesh.material < static_cast<int>(scene_.materials.size())) material = scene_.materials[mesh.material];
+    if (material.doubleSided || settings.view == DebugView::faceOrientation) glDisable(GL_CULL_FACE);
     else glEnable(GL_CULL_FACE), glCullFace(GL_BACK);
     FeatureSet features = featuresFor(mesh, settings);
     if (!anyShadows) features &= ~static_cast<FeatureSet>(Feature::shadows);
@@ -245,10 +247,6 @@ FrameStats Renderer::render(const CameraMatrices& camera, const RenderSettings& 
     setUniform(program, "u_flipGreen", settings.flipGreen ? 1 : 0);
     setUniform(program, "u_specularModel", settings.phong ? 1 : 0);
 
-    gltf::MaterialDesc material;
-    material.roughness = 0.5f;
-    material.metallic = 0.0f;
-    if (mesh.material >= 0 && mesh.material < static_cast<int>(scene_.materials.size())) material = scene_.materials[mesh.material];
     setUniform(program, "u_baseColorFactor", glm::make_vec4(material.baseColor.data()));
     setUniform(program, "u_emissiveFactor", glm::make_vec3(material.emissive.data()));
     setUniform(program, "u_roughness", material.roughness);

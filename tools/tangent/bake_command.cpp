@@ -65,8 +65,9 @@ int bakeTrees(const std::vector<std::filesystem::path>& folders, const std::file
     const std::filesystem::path target = folders.size() == 1 ? outDir : outDir / folder.filename();
     try {
       gltf::bakeTree(folder, target, batch, [&](const gltf::BatchEntry& entry) {
-        (entry.skipped ? unchanged : entry.ok ? baked : failed) += 1;
-        if (!entry.ok) failed += entry.skipped;  // a file that failed last time and has not changed still fails
+        if (entry.skipped) ++unchanged;
+        else if (entry.ok) ++baked;
+        if (!entry.ok) ++failed;  // a file that failed last time and has not changed still fails
         if (!entry.ok) std::cerr << "error: " << entry.error << (entry.skipped ? " (unchanged since the last run)" : "") << "\n";
         else if (!quiet)
           std::cout << entry.input.string() << " -> " << entry.output.string() << (entry.skipped ? ": unchanged\n" : ": baked\n");
@@ -223,14 +224,7 @@ int bakeCommand(const std::vector<std::string>& args) {
     report.push_back(entry);
   }
   if (progress) std::cerr << "\r\033[K";
-  if (!reportPath.empty()) {
-    std::ofstream out(reportPath);
-    out << report.dump(2) << "\n";
-    if (!out) {
-      std::cerr << "error: cannot write report " << reportPath.string() << "\n";
-      return kExitInputFailed;
-    }
-  }
+  if (const int written = writeReport(reportPath, report); written != kExitOk) return written;
   if (failed && !quiet && inputs.size() > 1) std::cerr << failed << " of " << inputs.size() << " inputs failed\n";
   return failed ? kExitInputFailed : kExitOk;
 }

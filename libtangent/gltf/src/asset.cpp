@@ -95,7 +95,7 @@ bool writeWholeFile(std::string* err, const std::string& path, const std::vector
 void checkUris(const Json& doc, const std::filesystem::path& baseDir, const std::filesystem::path& root, const std::string& label) {
   for (const char* kind : {"buffers", "images"}) {
     if (!doc.contains(kind)) continue;
-    const std::string singular = std::string(kind).substr(0, std::string(kind).size() - 1);
+    const bool buffers = std::string(kind) == "buffers";
     for (std::size_t i = 0; i < doc[kind].size(); ++i) {
       const Json& item = doc[kind][i];
       if (!item.contains("uri")) continue;
@@ -107,12 +107,11 @@ void checkUris(const Json& doc, const std::filesystem::path& baseDir, const std:
         std::error_code ec;
         const std::uintmax_t size = std::filesystem::file_size(file, ec);
         const auto declared = item.value("byteLength", std::int64_t(0));
-        if (singular == "buffer" && !ec && size < static_cast<std::uintmax_t>(declared))
+        if (buffers && !ec && size < static_cast<std::uintmax_t>(declared))
           throw InputError(label + ": " + what + ": byteLength is " + std::to_string(declared) + " but '" + uri + "' has " +
                            std::to_string(size) + " bytes");
-      } catch (const InputError& e) {
-        if (singular == "image" && std::string(e.what()).find("does not exist") != std::string::npos) continue;
-        throw;
+      } catch (const MissingFileError&) {
+        if (buffers) throw;
       }
     }
   }

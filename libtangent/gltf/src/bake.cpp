@@ -157,7 +157,7 @@ PrimitiveResult PrimitiveBaker::bake(int meshIndex, int primitiveIndex) {
   if (uvAccessor < 0) {
     // The material names a UV set the primitive lacks: a broken reference, refused (as check
     // and info do). Without a normal texture (--all) there is simply nothing to bake from.
-    if (needs.hasNormalTexture) throw InputError(where + ": " + needs.why + ", but the primitive has no " + uvName + " attribute");
+    if (const std::string problem = detail::missingUvSet(primitive, needs); !problem.empty()) throw InputError(where + ": " + problem);
     result.reason = needs.why + ", but the primitive has no " + uvName + "; left as it is";
     return result;
   }

@@ -206,18 +206,22 @@ FileCheck checkFile(const std::filesystem::path& input, const CheckOptions& opti
         const detail::PrimitiveNeeds needs = detail::primitiveNeeds(doc, primitive, options.all || asset.fromMeshFile);
         const bool hasNormal = detail::accessorOf(primitive["attributes"], "NORMAL") >= 0;
         const bool hasUv = detail::accessorOf(primitive["attributes"], "TEXCOORD_" + std::to_string(needs.texCoord)) >= 0;
-        if (needs.triangles && !needs.compressed && needs.hasNormalTexture && !hasUv) {
-          // A normal texture sampling a UV set the primitive lacks: a broken file, not a skip.
+        auto newCheck = [&] {
           PrimitiveCheck check;
           check.mesh = static_cast<int>(m);
           check.primitive = static_cast<int>(p);
           check.texCoord = needs.texCoord;
           if (mesh.contains("name") && mesh["name"].is_string()) check.meshName = mesh["name"].get<std::string>();
+          return check;
+        };
+        if (const std::string problem = detail::missingUvSet(primitive, needs); !problem.empty()) {
+          // A normal texture sampling a UV set the primitive lacks: a broken file, not a skip.
+          PrimitiveCheck check = newCheck();
           CheckFinding finding;
           finding.check = "format";
           finding.unit = "primitive";
           finding.failed = finding.total = 1;
-          finding.message = needs.why + ", but the primitive has no TEXCOORD_" + std::to_string(needs.texCoord) + " attribute";
+          finding.message = problem;
           check.findings.push_back(std::move(finding));
           for (const char* name : kCheckNames) {
             if (std::string(name) != "present" && std::string(name) != "format") check.notRun.push_back(name);
@@ -232,11 +236,7 @@ FileCheck checkFile(const std::filesystem::path& input, const CheckOptions& opti
           result.skipped.push_back(label + ": " + why);
           continue;
         }
-        PrimitiveCheck check;
-        check.mesh = static_cast<int>(m);
-        check.primitive = static_cast<int>(p);
-        check.texCoord = needs.texCoord;
-        if (mesh.contains("name") && mesh["name"].is_string()) check.meshName = mesh["name"].get<std::string>();
+        PrimitiveCheck check = newCheck();
         checkPrimitive(asset, primitive, needs, input.string() + ": " + label, options, check);
         result.primitives.push_back(std::move(check));
       }

@@ -25,10 +25,8 @@ nlohmann::ordered_json describeFile(const std::filesystem::path& input, const st
       const Json& primitive = mesh["primitives"][p];
       const detail::PrimitiveNeeds needs = detail::primitiveNeeds(doc, primitive, asset.fromMeshFile);
       // What bake refuses, info refuses: a normal texture on a UV set the primitive lacks.
-      if (needs.triangles && !needs.compressed && needs.hasNormalTexture &&
-          detail::accessorOf(primitive["attributes"], "TEXCOORD_" + std::to_string(needs.texCoord)) < 0)
-        throw InputError(input.string() + ": " + detail::primitiveLabel(doc, static_cast<int>(m), static_cast<int>(p)) + ": " +
-                         needs.why + ", but the primitive has no TEXCOORD_" + std::to_string(needs.texCoord) + " attribute");
+      if (const std::string problem = detail::missingUvSet(primitive, needs); !problem.empty())
+        throw InputError(input.string() + ": " + detail::primitiveLabel(doc, static_cast<int>(m), static_cast<int>(p)) + ": " + problem);
       Json primitiveOut = Json::object();
       primitiveOut["index"] = p;
       primitiveOut["mode"] = primitive.value("mode", 4);

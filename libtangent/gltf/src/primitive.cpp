@@ -57,6 +57,13 @@ PrimitiveNeeds primitiveNeeds(const Json& doc, const Json& primitive, bool all) 
   return needs;
 }
 
+std::string missingUvSet(const Json& primitive, const PrimitiveNeeds& needs) {
+  if (!needs.triangles || needs.compressed || !needs.hasNormalTexture) return {};
+  const std::string uvName = "TEXCOORD_" + std::to_string(needs.texCoord);
+  if (accessorOf(primitive["attributes"], uvName) >= 0) return {};
+  return needs.why + ", but the primitive has no " + uvName + " attribute";
+}
+
 int accessorOf(const Json& object, const std::string& name) {
   auto it = object.find(name);
   return it != object.end() && it->is_number_integer() ? it->get<int>() : -1;

@@ -23,6 +23,10 @@ struct PrimitiveNeeds {
 
 PrimitiveNeeds primitiveNeeds(const nlohmann::ordered_json& doc, const nlohmann::ordered_json& primitive, bool all);
 
+// The one rule for a normal texture on a UV set the primitive does not have (a broken file:
+// bake and info refuse it, check reports a finding): what is wrong, or "" when nothing is.
+std::string missingUvSet(const nlohmann::ordered_json& primitive, const PrimitiveNeeds& needs);
+
 // Triangle list (3 vertex indices per triangle) from glTF modes 4, 5 and 6 (spec 3.7.2.1);
 // stitching triangles of joined strips (a repeated index) draw nothing and are left out.
 std::vector<std::uint32_t> triangleList(int mode, const std::vector<std::uint32_t>& vertices);

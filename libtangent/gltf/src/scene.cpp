@@ -41,7 +41,7 @@ std::vector<ImageSource> readImages(const detail::Asset& asset, std::vector<std:
         try {
           source.file = detail::resolveFileUri(uri, dir, asset.root, asset.path.string(), "/images/" + std::to_string(i));
           source.label = source.file.string();
-        } catch (const InputError& e) {
+        } catch (const detail::MissingFileError& e) {
           messages.push_back(e.what());
         }
       }

@@ -134,7 +134,7 @@ fs::path resolveFileUri(const std::string& uri, const fs::path& baseDir, const f
     throw InputError(prefix + "leaves the asset root " + root.string() +
                      " (resolved to " + resolved.string() + "); pass --asset-root to allow a wider folder");
   const fs::file_status status = fs::status(resolved, ec);
-  if (ec || !fs::exists(status)) throw InputError(prefix + "names a file that does not exist (" + resolved.string() + ")");
+  if (ec || !fs::exists(status)) throw MissingFileError(prefix + "names a file that does not exist (" + resolved.string() + ")");
   if (fs::is_directory(status)) throw InputError(prefix + "names a directory, not a file (" + resolved.string() + ")");
   if (!fs::is_regular_file(status)) throw InputError(prefix + "names a device, pipe or socket, not a file (" + resolved.string() + ")");
   return resolved;

@@ -8,6 +8,8 @@
 #include <string>
 #include <vector>
 
+#include "tangent/gltf.hpp"
+
 namespace tangent::gltf::detail {
 
 // RFC 3986 percent-decoding; a '%' not followed by two hex digits stays as it is.
@@ -23,9 +25,17 @@ std::vector<std::uint8_t> decodeDataUri(const std::string& uri, const std::strin
 // made absolute and canonical (symbolic links resolved).
 std::filesystem::path assetRootFor(const std::filesystem::path& input, const std::filesystem::path& root);
 
+// Thrown by resolveFileUri when a URI passes the rule but names no file: loading refuses a
+// missing buffer, while a missing image is only a warning (images are carried through).
+class MissingFileError : public InputError {
+ public:
+  using InputError::InputError;
+};
+
 // The file a relative URI names, resolved against `baseDir` and checked against the rule:
 // no scheme, not absolute, inside `root` after resolving `..` and links, an existing regular
-// file. Throws InputError "<label>: <what> uri '<uri>' ..." otherwise.
+// file. Throws InputError "<label>: <what> uri '<uri>' ..." otherwise (MissingFileError when
+// only the file is missing).
 std::filesystem::path resolveFileUri(const std::string& uri, const std::filesystem::path& baseDir,
                                      const std::filesystem::path& root, const std::string& label, const std::string& what);
 

@@ -122,12 +122,7 @@ class Validator {
       if (required) fail(join(pointer, key), "is required");
       return -1;
     }
-    if (!it->is_number_integer()) fail(join(pointer, key), "must be an index into " + std::string(array));
-    const std::int64_t n = static_cast<std::int64_t>(count(array));
-    const bool negative = it->is_number_integer() && !it->is_number_unsigned() && it->get<std::int64_t>() < 0;
-    if (negative || it->get<std::uint64_t>() >= std::uint64_t(n))
-      fail(join(pointer, key), "refers to " + std::string(array) + " " + it->dump() + ", which does not exist (the file has " +
-                                   std::to_string(n) + ")");
+    referenceValue(*it, join(pointer, key), array);
     return it->get<std::int64_t>();
   }
   void referenceValue(const Json& value, const std::string& pointer, const char* array) const {
