@@ -273,4 +273,42 @@ std::vector<std::uint32_t> toIndices(const AccessorData& data, std::size_t verte
   return out;
 }
 
+std::vector<float> readFloats(const tinygltf::Model& model, int accessorIndex, const std::string& where, AccessorData& header) {
+  const AccessorLayout layout = locate(model, accessorIndex, where);
+  header = layout.header;
+  if (!layout.dense || layout.sparseCount != 0 || header.componentType != TINYGLTF_COMPONENT_TYPE_FLOAT)
+    return toFloats(readAccessor(model, accessorIndex, where));
+  const std::size_t elementSize = header.elementSize();
+  std::vector<float> out(header.count * header.components);
+  auto* target = reinterpret_cast<std::uint8_t*>(out.data());
+  if (layout.stride == elementSize) {
+    std::memcpy(target, layout.dense, header.count * elementSize);
+  } else {
+    for (std::size_t i = 0; i < header.count; ++i) std::memcpy(target + i * elementSize, layout.dense + i * layout.stride, elementSize);
+  }
+  return out;
+}
+
+std::vector<std::uint32_t> readIndices(const tinygltf::Model& model, int accessorIndex, std::size_t vertexCount,
+                                       const std::string& where, AccessorData& header) {
+  const AccessorLayout layout = locate(model, accessorIndex, where);
+  header = layout.header;
+  const std::string values = where + " (accessor " + std::to_string(accessorIndex) + ")";
+  if (!layout.dense || layout.sparseCount != 0) return toIndices(readAccessor(model, accessorIndex, where), vertexCount, values);
+  requireIndexType(header, values);
+  std::vector<std::uint32_t> out(header.count);
+  for (std::size_t i = 0; i < header.count; ++i) out[i] = readUnsigned(layout.dense + i * layout.stride, header.componentType);
+  // Checked after the copy, in one pass that the compiler can vectorize.
+  std::uint32_t largest = 0;
+  for (const std::uint32_t index : out) largest = std::max(largest, index);
+  if (header.count > 0 && largest >= vertexCount) {
+    for (std::size_t i = 0; i < header.count; ++i) {
+      if (out[i] >= vertexCount)
+        throw InputError(values + ": index " + std::to_string(out[i]) + " at position " + std::to_string(i) +
+                         " is out of range (the primitive has " + std::to_string(vertexCount) + " vertices)");
+    }
+  }
+  return out;
+}
+
 }  // namespace tangent::gltf::detail

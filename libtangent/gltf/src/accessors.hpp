@@ -43,4 +43,12 @@ std::vector<float> toFloats(const AccessorData& data);
 // Index values; checks the component type is an unsigned integer and each value < vertexCount.
 std::vector<std::uint32_t> toIndices(const AccessorData& data, std::size_t vertexCount, const std::string& where);
 
+// readAccessor then toFloats / toIndices, without the packed copy in between where the
+// accessor has a bufferView and no sparse values (the usual case). `header` gets the
+// accessor's type and counts (its bytes stay empty). readIndices names values out of range as
+// `where (accessor N)`, as toIndices does.
+std::vector<float> readFloats(const tinygltf::Model& model, int accessorIndex, const std::string& where, AccessorData& header);
+std::vector<std::uint32_t> readIndices(const tinygltf::Model& model, int accessorIndex, std::size_t vertexCount,
+                                       const std::string& where, AccessorData& header);
+
 }  // namespace tangent::gltf::detail

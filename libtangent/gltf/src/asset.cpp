@@ -6,6 +6,7 @@
 #include <iterator>
 
 #include "tangent/gltf.hpp"
+#include "document.hpp"
 #include "primitive.hpp"
 #include "uri.hpp"
 #include "validate.hpp"
@@ -40,9 +41,9 @@ std::vector<std::uint8_t> readFileBytes(const std::filesystem::path& path) {
   const std::uintmax_t size = std::filesystem::file_size(path, ec);
   if (ec || size >= kMaxInputBytes)
     throw InputError(path.string() + ": is " + std::to_string(size) + " bytes; inputs are limited to 4 GiB");
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError(path.string() + ": cannot be opened for reading");
-  return std::vector<std::uint8_t>(std::istreambuf_iterator<char>(in), {});
+  std::vector<std::uint8_t> bytes;
+  if (!readFileInto(path, bytes)) throw InputError(path.string() + ": cannot be opened for reading");
+  return bytes;
 }
 
 bool noImageDecoding(tinygltf::Image*, const int, std::string*, std::string*, int, int, const unsigned char*, int, void*) {
@@ -76,12 +77,10 @@ bool readWholeFile(std::vector<unsigned char>* out, std::string* err, const std:
     if (err) *err += "refused to read " + path + ": not a regular file inside the asset root\n";
     return false;
   }
-  std::ifstream in(file, std::ios::binary);
-  if (!in) {
-    if (err) *err += "cannot open " + path + "\n";
+  if (!readFileInto(file, *out)) {
+    if (err) *err += "cannot read " + path + "\n";
     return false;
   }
-  out->assign(std::istreambuf_iterator<char>(in), {});
   return true;
 }
 
@@ -148,8 +147,16 @@ void splitGlb(std::span<const std::uint8_t> bytes, const std::string& label, std
 
 std::vector<std::span<const std::uint8_t>> glbPieces(const std::string& json, std::span<const std::uint8_t> bin,
                                                      std::vector<std::uint8_t>& frame) {
-  const std::size_t jsonPadding = (4 - json.size() % 4) % 4, binPadding = (4 - bin.size() % 4) % 4;
-  const std::size_t total = 12 + 8 + json.size() + jsonPadding + (bin.empty() ? 0 : 8 + bin.size() + binPadding);
+  return glbPieces(json, std::vector<std::span<const std::uint8_t>>{bin}, frame);
+}
+
+std::vector<std::span<const std::uint8_t>> glbPieces(const std::string& json,
+                                                     const std::vector<std::span<const std::uint8_t>>& binPieces,
+                                                     std::vector<std::uint8_t>& frame) {
+  std::size_t binSize = 0;
+  for (const auto& piece : binPieces) binSize += piece.size();
+  const std::size_t jsonPadding = (4 - json.size() % 4) % 4, binPadding = (4 - binSize % 4) % 4;
+  const std::size_t total = 12 + 8 + json.size() + jsonPadding + (binSize == 0 ? 0 : 8 + binSize + binPadding);
   // frame: file header + JSON chunk header (20), JSON padding, BIN chunk header (8), BIN padding.
   frame.clear();
   appendU32(frame, kGlbMagic);
@@ -158,13 +165,19 @@ std::vector<std::span<const std::uint8_t>> glbPieces(const std::string& json, st
   appendU32(frame, static_cast<std::uint32_t>(json.size() + jsonPadding));
   appendU32(frame, kChunkJson);
   frame.resize(frame.size() + jsonPadding, ' ');
-  appendU32(frame, static_cast<std::uint32_t>(bin.size() + binPadding));
+  appendU32(frame, static_cast<std::uint32_t>(binSize + binPadding));
   appendU32(frame, kChunkBin);
   frame.resize(frame.size() + binPadding, 0);
   const std::uint8_t* f = frame.data();
   std::vector<std::span<const std::uint8_t>> pieces = {
       {f, 20}, {reinterpret_cast<const std::uint8_t*>(json.data()), json.size()}, {f + 20, jsonPadding}};
-  if (!bin.empty()) pieces.insert(pieces.end(), {{f + 20 + jsonPadding, 8}, bin, {f + 28 + jsonPadding, binPadding}});
+  if (binSize > 0) {
+    pieces.push_back({f + 20 + jsonPadding, 8});
+    for (const auto& piece : binPieces) {
+      if (!piece.empty()) pieces.push_back(piece);
+    }
+    pieces.push_back({f + 28 + jsonPadding, binPadding});
+  }
   return pieces;
 }
 

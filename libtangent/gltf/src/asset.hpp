@@ -43,6 +43,10 @@ void splitGlb(std::span<const std::uint8_t> bytes, const std::string& label, std
 // `frame`), the JSON chunk and the BIN chunk (pointing into json and bin).
 std::vector<std::span<const std::uint8_t>> glbPieces(const std::string& json, std::span<const std::uint8_t> bin,
                                                      std::vector<std::uint8_t>& frame);
+// The same with the BIN chunk's bytes in pieces, one after another.
+std::vector<std::span<const std::uint8_t>> glbPieces(const std::string& json,
+                                                     const std::vector<std::span<const std::uint8_t>>& binPieces,
+                                                     std::vector<std::uint8_t>& frame);
 
 // A GLB container in one block (the pieces joined).
 std::vector<std::uint8_t> makeGlb(const std::string& json, std::span<const std::uint8_t> bin);

@@ -18,8 +18,9 @@ namespace fs = std::filesystem;
 namespace {
 
 std::vector<std::uint8_t> fileBytes(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  return std::vector<std::uint8_t>(std::istreambuf_iterator<char>(in), {});
+  std::vector<std::uint8_t> bytes;
+  detail::readFileInto(path, bytes);  // unreadable: no bytes, as before
+  return bytes;
 }
 
 bool isInput(const fs::path& path) {

@@ -32,7 +32,9 @@ class OutputDocument {
 
  private:
   void dropOrphans();
-  std::vector<std::uint8_t> packBuffers();
+  // Lays every bufferView out in one buffer (4-byte aligned) and returns that buffer's bytes
+  // as pieces of the memory they are in (loaded buffers, new views, padding): no copy.
+  std::vector<std::span<const std::uint8_t>> packBuffers();
   // External images inside the input's folder are copied beside the output (same relative
   // path); others (a wider --asset-root) are referred to relative to the output.
   void placeImages(const std::filesystem::path& outputDir);
@@ -47,6 +49,9 @@ class OutputDocument {
 // Visits every place the document references an accessor / a bufferView by index.
 void forEachAccessorRef(nlohmann::ordered_json& doc, const std::function<void(nlohmann::ordered_json&)>& visit);
 void forEachBufferViewRef(nlohmann::ordered_json& doc, const std::function<void(nlohmann::ordered_json&)>& visit);
+
+// Reads a whole file with one sized read into `out`; false where it cannot be opened or read.
+bool readFileInto(const std::filesystem::path& path, std::vector<std::uint8_t>& out);
 
 // Writes bytes (or pieces, one after another) to a temporary file beside `path`, then renames
 // it over `path`.

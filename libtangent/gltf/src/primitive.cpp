@@ -72,14 +72,15 @@ int accessorOf(const Json& object, const std::string& name) {
 // The values of a VEC2/VEC3 float-like accessor; checks type and count.
 std::vector<float> readVectors(const tinygltf::Model& model, int accessor, int components, std::size_t expectedCount,
                                const std::string& where) {
-  const AccessorData data = detail::readAccessor(model, accessor, where);
+  AccessorData data;
+  std::vector<float> values = detail::readFloats(model, accessor, where, data);
   if (data.components != components || data.type == TINYGLTF_TYPE_MAT2)
     throw InputError(where + " (accessor " + std::to_string(accessor) + "): expected VEC" + std::to_string(components) +
                      ", found " + detail::typeName(data.type));
   if (expectedCount != 0 && data.count != expectedCount)
     throw InputError(where + " (accessor " + std::to_string(accessor) + "): has " + std::to_string(data.count) +
                      " elements, POSITION has " + std::to_string(expectedCount));
-  return detail::toFloats(data);
+  return values;
 }
 
 // KHR_texture_transform: uv' = T * R * S * uv. Rotation and scale change tangent directions.
@@ -102,12 +103,12 @@ void applyTextureTransform(std::vector<float>& uvs, const Json& transform) {
   }
 }
 
-std::vector<std::uint32_t> triangleList(int mode, const std::vector<std::uint32_t>& vertices) {
-  std::vector<std::uint32_t> out;
+std::vector<std::uint32_t> triangleList(int mode, std::vector<std::uint32_t> vertices) {
   if (mode == 4) {
-    out.assign(vertices.begin(), vertices.end() - static_cast<std::ptrdiff_t>(vertices.size() % 3));
-    return out;
+    vertices.resize(vertices.size() - vertices.size() % 3);
+    return vertices;
   }
+  std::vector<std::uint32_t> out;
   for (std::size_t i = 0; i + 2 < vertices.size(); ++i) {
     std::uint32_t a, b, c;
     if (mode == 5) {
@@ -138,12 +139,12 @@ PrimitiveGeometry readGeometry(const Asset& asset, const Json& primitive, const 
   if (uvAccessor < 0) throw InputError(where + ": has no " + uvName + " attribute");
 
   PrimitiveGeometry geometry;
-  const AccessorData positionData = readAccessor(model, positionAccessor, where + ": POSITION");
+  AccessorData positionData;
+  geometry.positions = readFloats(model, positionAccessor, where + ": POSITION", positionData);
   if (positionData.components != 3 || positionData.type != TINYGLTF_TYPE_VEC3)
     throw InputError(where + ": POSITION (accessor " + std::to_string(positionAccessor) + ") must be VEC3, found " +
                      typeName(positionData.type));
   geometry.vertexCount = positionData.count;
-  geometry.positions = toFloats(positionData);
   geometry.normals = readVectors(model, normalAccessor, 3, geometry.vertexCount, where + ": NORMAL");
   geometry.uvs = readVectors(model, uvAccessor, 2, geometry.vertexCount, where + ": " + uvName);
   if (needs.hasNormalTexture) {
@@ -156,14 +157,14 @@ PrimitiveGeometry readGeometry(const Asset& asset, const Json& primitive, const 
   std::vector<std::uint32_t> sequence;
   const int indicesAccessor = accessorOf(primitive, "indices");
   if (indicesAccessor >= 0) {
-    const AccessorData indexData = readAccessor(model, indicesAccessor, where + ": indices");
-    sequence = toIndices(indexData, geometry.vertexCount, where + ": indices (accessor " + std::to_string(indicesAccessor) + ")");
+    AccessorData indexData;
+    sequence = readIndices(model, indicesAccessor, geometry.vertexCount, where + ": indices", indexData);
     geometry.indexComponentType = indexData.componentType;
   } else {
     sequence.resize(geometry.vertexCount);
     std::iota(sequence.begin(), sequence.end(), 0u);
   }
-  geometry.corners = triangleList(geometry.mode, sequence);
+  geometry.corners = triangleList(geometry.mode, std::move(sequence));
   return geometry;
 }
 

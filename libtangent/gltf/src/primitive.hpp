@@ -29,7 +29,7 @@ std::string missingUvSet(const nlohmann::ordered_json& primitive, const Primitiv
 
 // Triangle list (3 vertex indices per triangle) from glTF modes 4, 5 and 6 (spec 3.7.2.1);
 // stitching triangles of joined strips (a repeated index) draw nothing and are left out.
-std::vector<std::uint32_t> triangleList(int mode, const std::vector<std::uint32_t>& vertices);
+std::vector<std::uint32_t> triangleList(int mode, std::vector<std::uint32_t> vertices);
 
 // "mesh 0 'Name' primitive 1"
 std::string primitiveLabel(const nlohmann::ordered_json& doc, int mesh, int primitive);

@@ -182,9 +182,16 @@ void OutputDocument::dropOrphans() {
   firstNewView_ -= droppedBeforeNew;
 }
 
-std::vector<std::uint8_t> OutputDocument::packBuffers() {
+std::vector<std::span<const std::uint8_t>> OutputDocument::packBuffers() {
+  static constexpr std::uint8_t kZeros[4] = {0, 0, 0, 0};
   Json& doc = asset_.json;
-  std::vector<std::uint8_t> packed;
+  std::vector<std::span<const std::uint8_t>> packed;
+  std::size_t size = 0;
+  auto padTo = [&](std::size_t remainder) {
+    const std::size_t padding = (remainder + 4 - size % 4) % 4;
+    if (padding > 0) packed.push_back({kZeros, padding});
+    size += padding;
+  };
   if (!doc.contains("bufferViews")) return packed;
   Json& views = doc["bufferViews"];
   const auto& buffers = asset_.model.buffers;
@@ -210,18 +217,18 @@ std::vector<std::uint8_t> OutputDocument::packBuffers() {
       source = buffers[bufferIndex].data.data() + offset;
       alignTo = offset % 4;
     }
-    while (packed.size() % 4 != alignTo) packed.push_back(0);
+    padTo(alignTo);
     view["buffer"] = 0;
-    if (packed.size() == 0) view.erase("byteOffset");
-    else view["byteOffset"] = packed.size();
-    packed.insert(packed.end(), source, source + length);
-    if (i >= firstNewView_) std::vector<std::uint8_t>().swap(newViewBytes_[i - firstNewView_]);  // packed holds it now
+    if (size == 0) view.erase("byteOffset");
+    else view["byteOffset"] = size;
+    if (length > 0) packed.push_back({source, length});
+    size += length;
   }
-  while (packed.size() % 4 != 0) packed.push_back(0);
+  padTo(0);
 
   Json buffer = doc.contains("buffers") && !doc["buffers"].empty() ? doc["buffers"][0] : Json::object();
   buffer.erase("uri");
-  buffer["byteLength"] = packed.size();
+  buffer["byteLength"] = size;
   doc["buffers"] = Json::array({buffer});
   if (views.empty()) {
     doc.erase("bufferViews");
@@ -251,9 +258,8 @@ void OutputDocument::placeImages(const std::filesystem::path& outputDir) {
       const fs::path target = targetDir / relative;
       if (fs::exists(target, ec) && fs::equivalent(target, source, ec)) continue;
       fs::create_directories(target.parent_path(), ec);
-      std::ifstream in(source, std::ios::binary);
-      const std::vector<std::uint8_t> bytes{std::istreambuf_iterator<char>(in), {}};
-      if (!in && !in.eof()) throw std::runtime_error(source.string() + ": cannot be read to copy beside the output");
+      std::vector<std::uint8_t> bytes;
+      if (!readFileInto(source, bytes)) throw std::runtime_error(source.string() + ": cannot be read to copy beside the output");
       writeFileAtomic(target, bytes);
       image["uri"] = percentEncodePath(relative.generic_string());
     } else {
@@ -266,7 +272,7 @@ void OutputDocument::placeImages(const std::filesystem::path& outputDir) {
 std::uint64_t OutputDocument::write(const std::filesystem::path& output) {
   namespace fs = std::filesystem;
   dropOrphans();
-  std::vector<std::uint8_t> bin = packBuffers();
+  const std::vector<std::span<const std::uint8_t>> bin = packBuffers();
   const fs::path outputDir = fs::absolute(output).parent_path();
   placeImages(outputDir);
   const bool glb = output.extension() == ".glb";
@@ -287,11 +293,24 @@ std::uint64_t OutputDocument::write(const std::filesystem::path& output) {
     binPath.replace_extension(".bin");
     doc["buffers"][0]["uri"] = percentEncodePath(binPath.filename().string());
     writeFileAtomic(binPath, bin);
-    written += bin.size();
+    for (const auto& piece : bin) written += piece.size();
   }
   const std::string text = doc.dump(2) + "\n";
   writeFileAtomic(output, std::span(reinterpret_cast<const std::uint8_t*>(text.data()), text.size()));
   return written + text.size();
+}
+
+bool readFileInto(const std::filesystem::path& path, std::vector<std::uint8_t>& out) {
+  std::ifstream in(path, std::ios::binary | std::ios::ate);
+  if (!in) return false;
+  const std::streamoff size = in.tellg();
+  if (size < 0) return false;
+  out.resize(static_cast<std::size_t>(size));
+  in.seekg(0);
+  in.read(reinterpret_cast<char*>(out.data()), size);
+  // A file that shrank while read is short: the bytes read are all there is.
+  out.resize(static_cast<std::size_t>(in.gcount()));
+  return !in.bad();
 }
 
 void writeFileAtomic(const std::filesystem::path& path, std::span<const std::uint8_t> bytes) {
