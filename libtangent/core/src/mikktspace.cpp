@@ -31,7 +31,6 @@
 #include <cmath>
 #include <cstring>
 #include <limits>
-#include <tbb/combinable.h>
 
 #include "workspace.hpp"
 
@@ -272,8 +271,8 @@ class Kernel {
   // Once a bucket's groups are built its corners' neighbour links are spent: the same slot
   // then holds the corner's group weight (the sum of its angles), which ranks candidate
   // frames; corners of duplicate triangles keep their link to the original.
-  void setWeight(std::size_t corner, float weight) { ws_.cornerLink[corner] = std::bit_cast<std::uint32_t>(weight); }
-  float weight(std::size_t corner) const { return std::bit_cast<float>(ws_.cornerLink[corner]); }
+  void setWeight(std::size_t corner, float weight) { ws_.cornerLink[corner] = bitCast<std::uint32_t>(weight); }
+  float weight(std::size_t corner) const { return bitCast<float>(ws_.cornerLink[corner]); }
   void writeCorner(std::size_t corner, V3 tangent, float w, FrameSource source, float weight) {
     tangents_[4 * corner] = static_cast<float>(tangent.x);
     tangents_[4 * corner + 1] = static_cast<float>(tangent.y);
@@ -316,7 +315,7 @@ void Kernel::evaluateTriangles(Report& report) {
   struct Counts {
     std::uint64_t flat = 0, zeroUv = 0, nonFinite = 0;
   };
-  tbb::combinable<Counts> counts;
+  Combinable<Counts> counts;
   forRange(ws_, triangleCount, 4096, [&](std::size_t begin, std::size_t end) {
     Counts local;
     for (std::size_t t = begin; t < end; ++t) {
@@ -964,7 +963,7 @@ void Kernel::run(Report& report) {
     for (std::size_t b = begin; b < end; ++b) pairBucket(static_cast<std::uint32_t>(b), scratch);
   });
   {
-    tbb::combinable<std::uint64_t> nonManifold;
+    Combinable<std::uint64_t> nonManifold;
     forRange(ws_, triangleCount, 1 << 14, [&](std::size_t begin, std::size_t end) {
       std::uint64_t local = 0;
       for (std::size_t t = begin; t < end; ++t)

@@ -2,7 +2,6 @@
 // the output pass (duplicates, w convention, counts, vertex split).
 #include "workspace.hpp"
 
-#include <tbb/combinable.h>
 
 #include <algorithm>
 #include <atomic>
@@ -112,7 +111,7 @@ void weldAndBucket(WorkspaceData& ws, const MeshArrays& mesh) {
       for (std::size_t v = begin; v < end; ++v) {
         const auto mine = static_cast<std::uint32_t>(v + 1);
         for (std::size_t slot = vertexHash(mesh, v) & mask;; slot = (slot + 1) & mask) {
-          std::atomic_ref<std::uint32_t> cell(table[slot]);
+          AtomicRef<std::uint32_t> cell(table[slot]);
           std::uint32_t current = cell.load(std::memory_order_relaxed);
           bool done = false;
           while (!done) {
@@ -131,7 +130,7 @@ void weldAndBucket(WorkspaceData& ws, const MeshArrays& mesh) {
     forRange(ws, vertexCount, 4096, [&](std::size_t begin, std::size_t end) {
       for (std::size_t v = begin; v < end; ++v) {
         for (std::size_t slot = vertexHash(mesh, v) & mask;; slot = (slot + 1) & mask) {
-          const std::uint32_t entry = std::atomic_ref<std::uint32_t>(table[slot]).load(std::memory_order_relaxed);
+          const std::uint32_t entry = AtomicRef<std::uint32_t>(table[slot]).load(std::memory_order_relaxed);
           if (entry == v + 1 || sameVertex(mesh, entry - 1, v)) {
             vertexId[v] = entry - 1;
             break;
@@ -157,7 +156,7 @@ void weldAndBucket(WorkspaceData& ws, const MeshArrays& mesh) {
   } else {
     forRange(ws, cornerCount, 1 << 14, [&](std::size_t begin, std::size_t end) {
       for (std::size_t c = begin; c < end; ++c)
-        std::atomic_ref<std::uint32_t>(start[vertexId[indices[c]] + 1]).fetch_add(1, std::memory_order_relaxed);
+        AtomicRef<std::uint32_t>(start[vertexId[indices[c]] + 1]).fetch_add(1, std::memory_order_relaxed);
     });
   }
   for (std::size_t v = 0; v < vertexCount; ++v) start[v + 1] += start[v];
@@ -167,7 +166,7 @@ void weldAndBucket(WorkspaceData& ws, const MeshArrays& mesh) {
   } else {
     forRange(ws, cornerCount, 1 << 14, [&](std::size_t begin, std::size_t end) {
       for (std::size_t c = begin; c < end; ++c) {
-        const std::uint32_t at = std::atomic_ref<std::uint32_t>(cursor[vertexId[indices[c]]]).fetch_add(1, std::memory_order_relaxed);
+        const std::uint32_t at = AtomicRef<std::uint32_t>(cursor[vertexId[indices[c]]]).fetch_add(1, std::memory_order_relaxed);
         corners[at] = static_cast<std::uint32_t>(c);
       }
     });
@@ -226,7 +225,7 @@ void finishOutputs(WorkspaceData& ws, const MeshArrays& mesh, const CornerOutput
       state[c] = static_cast<std::uint8_t>((state[c] & ~kSourceMask) | (state[original] & kSourceMask));
     }
   });
-  tbb::combinable<Counts> counts;
+  Combinable<Counts> counts;
   forRange(ws, cornerCount, 1 << 14, [&](std::size_t begin, std::size_t end) {
     Counts local;
     for (std::size_t c = begin; c < end; ++c) {

@@ -3,11 +3,15 @@
 // vertex, and the vertex split of the output.
 #pragma once
 
+#if !defined(TANGENT_SERIAL)
+#include <tbb/combinable.h>
 #include <tbb/enumerable_thread_specific.h>
+#endif
 
 #include <algorithm>
-#include <bit>
+#include <atomic>
 #include <cstdint>
+#include <cstring>
 #include <vector>
 
 #include "tangent/bulk_buffer.hpp"
@@ -34,6 +38,56 @@ enum TriangleFlag : std::uint8_t {
   kZeroUv = 16,       // zero UV area (report: zeroUvArea)
 };
 
+#if defined(TANGENT_SERIAL)
+// Built without threads (TANGENT_SERIAL: the WebAssembly package): one of each, in the
+// shape of the oneTBB types used below.
+template <typename T>
+struct Combinable {
+  T value{};
+  T& local() { return value; }
+  template <typename F>
+  void combine_each(F f) const {
+    f(value);
+  }
+  template <typename F>
+  T combine(F) const {
+    return value;
+  }
+};
+template <typename T>
+using PerThread = Combinable<T>;
+// The operations of std::atomic_ref used by the weld, on a plain reference (one thread).
+template <typename T>
+class AtomicRef {
+ public:
+  explicit AtomicRef(T& value) : value_(value) {}
+  T load(std::memory_order) const { return value_; }
+  bool compare_exchange_weak(T& expected, T desired, std::memory_order) {
+    if (value_ != expected) {
+      expected = value_;
+      return false;
+    }
+    value_ = desired;
+    return true;
+  }
+  T fetch_add(T add, std::memory_order) {
+    const T old = value_;
+    value_ += add;
+    return old;
+  }
+
+ private:
+  T& value_;
+};
+#else
+template <typename T>
+using AtomicRef = std::atomic_ref<T>;
+template <typename T>
+using Combinable = tbb::combinable<T>;
+template <typename T>
+using PerThread = tbb::enumerable_thread_specific<T>;
+#endif
+
 // Scratch of one worker thread: small arrays reused bucket after bucket.
 struct BucketScratch {
   std::vector<std::uint64_t> keys;
@@ -58,7 +112,7 @@ struct WorkspaceData {
                                              // after grouping, the group weight (mikktspace.cpp)
   BulkVector<std::uint8_t> cornerState;     // per corner: CornerState bits
   BulkVector<std::uint32_t> bucketExtra;    // per welded id: extra output vertices, then offsets
-  tbb::enumerable_thread_specific<BucketScratch> scratch;
+  PerThread<BucketScratch> scratch;
   // The OpenMesh call's corners as arrays (corner_tangents.cpp).
   BulkVector<float> meshPositions, meshNormals, meshUvs, meshTangents;
   BulkVector<std::uint32_t> meshIndices;
@@ -66,8 +120,18 @@ struct WorkspaceData {
   std::size_t bytes() const;
 };
 
+// std::bit_cast for the few trivially copyable types used here (the WebAssembly toolchain's
+// standard library lacks it).
+template <typename To, typename From>
+inline To bitCast(const From& from) {
+  static_assert(sizeof(To) == sizeof(From));
+  To to;
+  std::memcpy(&to, &from, sizeof to);
+  return to;
+}
+
 // The bits of a float with -0 taken as +0: the order and hash of values that compare equal.
-inline std::uint32_t canonicalBits(float x) { return std::bit_cast<std::uint32_t>(x == 0.0f ? 0.0f : x); }
+inline std::uint32_t canonicalBits(float x) { return bitCast<std::uint32_t>(x == 0.0f ? 0.0f : x); }
 
 // Sorts the few keys of one bucket: insertion sort up to two dozen, std::sort beyond.
 template <typename T>
@@ -117,9 +181,11 @@ void onThreads(const WorkspaceData& ws, const Body& body);
 
 }  // namespace tangent::detail
 
+#if !defined(TANGENT_SERIAL)
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
+#endif
 
 namespace tangent::detail {
 
@@ -129,18 +195,27 @@ void forRange(const WorkspaceData& ws, std::size_t count, std::size_t grain, con
     if (count > 0) body(std::size_t(0), count);
     return;
   }
+#if defined(TANGENT_SERIAL)
+  body(std::size_t(0), count);
+#else
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, count, grain),
                     [&](const tbb::blocked_range<std::size_t>& range) { body(range.begin(), range.end()); });
+#endif
 }
 
 template <typename Body>
 void onThreads(const WorkspaceData& ws, const Body& body) {
+#if defined(TANGENT_SERIAL)
+  (void)ws;
+  body();
+#else
   if (ws.threads <= 1) {
     body();
     return;
   }
   tbb::task_arena arena(static_cast<int>(ws.threads));
   arena.execute(body);
+#endif
 }
 
 }  // namespace tangent::detail
