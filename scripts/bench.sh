@@ -25,6 +25,7 @@ dpkg-query -W -f='${Status}' assimp-utils 2>/dev/null | grep -q "install ok inst
   { apt-get update -qq && DEBIAN_FRONTEND=noninteractive apt-get install -y -qq assimp-utils time; }
 [ -x /usr/bin/time ] || DEBIAN_FRONTEND=noninteractive apt-get install -y -qq time
 (cd bench/node && npm ci --no-audit --no-fund --loglevel=error)
+wasm/build.sh >/dev/null  # libtangent's WebAssembly package, timed beside npm mikktspace
 # Only what the benchmarks run; configured as scripts/build.sh does when the folder is new.
 [ -f "$build/build.ninja" ] || cmake -S . -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo >/dev/null
 cmake --build "$build" --parallel "$(nproc)" --target tangent tangent-make-data tangent-kernel-bench >/dev/null
@@ -75,10 +76,20 @@ for size in "${sizes[@]}"; do
   read -r as as_kb <<<"$(measure assimp assimp export "$input" "$out/assimp.assbin" -fassbin -cts)"
   kernel_runs=$runs; [ "$target" -gt 2000000 ] && kernel_runs=1  # the npm reference needs minutes there
   # The same analytic sphere as the kernel benchmark's sphere-$name (tools/bench/analytic_surfaces.cpp).
-  npm_ms=$(cd bench/node && node mikktspace_kernel.mjs "$target" "$kernel_runs" | sed -n 's/.*"medianMs":\([0-9.]*\).*/\1/p')
-  rows+=("$triangles $ours $ours_kb $gt $gt_kb $as $as_kb sphere-$name $npm_ms")
-  echo "sphere $n: $triangles triangles, bake ${ours}s (${ours_kb} kB), gltf-transform ${gt}s (${gt_kb} kB), assimp ${as}s (${as_kb} kB); npm mikktspace kernel on sphere-$name ${npm_ms} ms"
+  wasm_json=$(cd bench/node && node mikktspace_kernel.mjs "$target" "$kernel_runs")
+  npm_ms=$(sed -n 's/.*"medianMs":\([0-9.]*\).*/\1/p' <<<"$wasm_json")
+  ours_wasm_ms=$(sed -n 's/.*"libtangentWasmMs":\([0-9.]*\).*/\1/p' <<<"$wasm_json")
+  rows+=("$triangles $ours $ours_kb $gt $gt_kb $as $as_kb sphere-$name $npm_ms ${ours_wasm_ms:-nan}")
+  echo "sphere $n: $triangles triangles, bake ${ours}s (${ours_kb} kB), gltf-transform ${gt}s (${gt_kb} kB), assimp ${as}s (${as_kb} kB); WebAssembly kernels on sphere-$name: npm mikktspace ${npm_ms} ms, libtangent-wasm ${ours_wasm_ms:-–} ms"
 done
+# The WebAssembly kernels on the shared assets too (5 runs each, alternating).
+wasm_assets=()
+for glb in ../shared/assets/*.glb; do
+  [ -f "$glb" ] || continue
+  wasm_json=$(cd bench/node && node mikktspace_kernel.mjs "../../$glb" 5)
+  wasm_assets+=("asset:$(basename "$glb" .glb) $(sed -n 's/.*"triangles":\([0-9.]*\).*"medianMs":\([0-9.]*\).*"libtangentWasmMs":\([0-9.]*\).*/\1 \2 \3/p' <<<"$wasm_json")")
+done
+export TANGENT_WASM_ASSETS="$(printf '%s\n' "${wasm_assets[@]}")"
 
 # The report.
 python3 - "$out" $quick "${rows[@]}" <<'PY'
@@ -164,7 +175,19 @@ lines += ["", "## Whole process on generated UV spheres (glTF, one primitive, no
 for t, o, okb, g, gkb, a, akb, *_ in rows:
     lines.append(f"| {int(t):,} | {float(o):.2f} | {int(okb)/1024:.0f} | {float(g):.2f} | {int(gkb)/1024:.0f} | {float(a):.2f} | {int(akb)/1024:.0f} | "
                  f"{ratio(float(g), float(o))} | {int(okb)/int(gkb):.2f}x | {ratio(float(o), float(a))} |")
-lines += ["", "assimp's glTF 2 exporter drops tangents, so assimp is timed exporting to its own `assbin` format, which keeps them.",
+lines += ["", "assimp's glTF 2 exporter drops tangents, so assimp is timed exporting to its own `assbin` format, which keeps them."]
+lines += ["", "## WebAssembly kernels, one Node process, same de-indexed arrays", "",
+          "Milliseconds per `generateTangents(position, normal, texcoord)` call (wall, medians, runs alternating): the npm "
+          "`mikktspace` package (the reference compiled to WebAssembly, what glTF-Transform users pass to `tangents()`) against "
+          "libtangent's package (`wasm/package`, single-threaded).", "",
+          "| input | triangles | npm mikktspace | libtangent-wasm | libtangent-wasm speed-up |", "|---|---:|---:|---:|---:|"]
+wasm_rows = [(r[7], int(r[0]), float(r[8]) if r[8] else float("nan"), float(r[9])) for r in rows if len(r) > 9]
+wasm_rows += [(a.split()[0], int(float(a.split()[1])), float(a.split()[2]), float(a.split()[3]))
+              for a in os.environ.get("TANGENT_WASM_ASSETS", "").splitlines() if len(a.split()) == 4]
+for name, t, theirs, mine in wasm_rows:
+    lines.append(f"| {name} | {t:,} | {fmt(theirs)} | {fmt(mine)} | {ratio(theirs, mine)} |")
+lines += ["", "The spheres here are `sphere-1eN` de-indexed (its 2n degenerate pole triangles included); 4e6 is one run."]
+lines += ["",
           "", "## Error against run time", "", "![error against run time](bench-plot.png)", "",
           "Mean angular error against the exact tangent on analytic surfaces, per method, one point per resolution, "
           "with the reference MikkTSpace C and both meshoptimizer modes when built with the peers "

@@ -1,40 +1,84 @@
-// The reference MikkTSpace kernel (npm `mikktspace`, WebAssembly) on the same UV sphere the
-// library is measured on (tools/bench/analytic_surfaces.cpp, "sphere"), de-indexed as the
-// package requires. Prints the median of the runs in milliseconds as JSON.
-// Usage: node mikktspace_kernel.mjs TRIANGLES [RUNS]
+// The reference MikkTSpace kernel (npm `mikktspace`, WebAssembly) and libtangent's own
+// WebAssembly package (wasm/package, when built by wasm/build.sh) on the same de-indexed arrays
+// in one process, runs alternating: the UV sphere the library is measured on
+// (tools/bench/analytic_surfaces.cpp, "sphere"), or the largest normal-mapped primitive of a
+// .glb. Prints the medians in milliseconds as JSON.
+// Usage: node mikktspace_kernel.mjs TRIANGLES|FILE.glb [RUNS]
+import fs from 'node:fs';
 import { generateTangents } from 'mikktspace';
 
-const target = Number(process.argv[2] ?? 1000000);
+const ours = fs.existsSync(new URL('../../wasm/package/dist/tangent_wasm.cjs', import.meta.url))
+  ? (await import('../../wasm/package/index.mjs')).generateTangents
+  : null;
 const runs = Number(process.argv[3] ?? 3);
-const n = Math.max(2, Math.round(Math.sqrt(target / 2)));
-const vertices = [];
-for (let j = 0; j <= n; ++j) {
-  for (let i = 0; i <= n; ++i) {
-    const u = i / n, v = j / n, phi = 2 * Math.PI * u, theta = Math.PI * v;
-    const st = (j === 0 || j === n) ? 0 : Math.sin(theta), ct = j === 0 ? 1 : j === n ? -1 : Math.cos(theta);
-    const p = [st * Math.cos(phi), ct, -st * Math.sin(phi)];
-    vertices.push({ p, uv: [u, v] });
-  }
+let position, normal, texcoord;
+if (String(process.argv[2]).endsWith('.glb')) {
+  ({ position, normal, texcoord } = await fromAsset(process.argv[2]));
+} else {
+  ({ position, normal, texcoord } = sphere(Number(process.argv[2] ?? 1000000)));
 }
-const indices = [];
-for (let j = 0; j < n; ++j) {
-  for (let i = 0; i < n; ++i) {
-    const a = j * (n + 1) + i, b = a + 1, c = a + n + 1, d = c + 1;
-    indices.push(a, d, b, a, c, d);  // outward winding for this parameterization
-  }
-}
-const corners = indices.length;
-const position = new Float32Array(corners * 3), normal = new Float32Array(corners * 3), texcoord = new Float32Array(corners * 2);
-indices.forEach((vi, c) => {
-  position.set(vertices[vi].p, 3 * c);
-  normal.set(vertices[vi].p, 3 * c);
-  texcoord.set(vertices[vi].uv, 2 * c);
-});
-const times = [];
+const times = { mikktspace: [], libtangentWasm: [] };
 for (let r = 0; r < runs; ++r) {
-  const start = process.hrtime.bigint();
-  generateTangents(position, normal, texcoord);
-  times.push(Number(process.hrtime.bigint() - start) / 1e6);
+  for (const [name, generate] of [['mikktspace', generateTangents], ['libtangentWasm', ours]]) {
+    if (!generate) continue;
+    const start = process.hrtime.bigint();
+    generate(position, normal, texcoord);
+    times[name].push(Number(process.hrtime.bigint() - start) / 1e6);
+  }
 }
-times.sort((x, y) => x - y);
-console.log(JSON.stringify({ triangles: corners / 3, medianMs: times[Math.floor(times.length / 2)], runs }));
+const median = (values) => (values.length ? values.sort((x, y) => x - y)[Math.floor(values.length / 2)] : null);
+console.log(JSON.stringify({ triangles: position.length / 9, medianMs: median(times.mikktspace),
+  libtangentWasmMs: median(times.libtangentWasm), runs }));
+
+// The largest normal-mapped triangle-list primitive of a GLB, de-indexed.
+async function fromAsset(file) {
+  const { NodeIO } = await import('@gltf-transform/core');
+  const document = await new NodeIO().read(file);
+  let best = null;
+  for (const mesh of document.getRoot().listMeshes()) {
+    for (const primitive of mesh.listPrimitives()) {
+      const info = primitive.getMaterial()?.getNormalTextureInfo();
+      const uv = primitive.getAttribute(`TEXCOORD_${info ? info.getTexCoord() : 0}`);
+      if (primitive.getMode() !== 4 || !uv || !primitive.getAttribute('NORMAL')) continue;
+      const count = primitive.getIndices() ? primitive.getIndices().getCount() : primitive.getAttribute('POSITION').getCount();
+      if (!best || count > best.count) best = { primitive, uv, count };
+    }
+  }
+  const { primitive, uv, count } = best;
+  const indices = primitive.getIndices()?.getArray() ?? Uint32Array.from({ length: count }, (_, i) => i);
+  const gather = (accessor, width) => {
+    const out = new Float32Array(count * width), element = [];
+    for (let c = 0; c < count; ++c) out.set(accessor.getElement(indices[c], element), width * c);
+    return out;
+  };
+  return { position: gather(primitive.getAttribute('POSITION'), 3), normal: gather(primitive.getAttribute('NORMAL'), 3),
+    texcoord: gather(uv, 2) };
+}
+
+function sphere(target) {
+  const n = Math.max(2, Math.round(Math.sqrt(target / 2)));
+  const vertices = [];
+  for (let j = 0; j <= n; ++j) {
+    for (let i = 0; i <= n; ++i) {
+      const u = i / n, v = j / n, phi = 2 * Math.PI * u, theta = Math.PI * v;
+      const st = (j === 0 || j === n) ? 0 : Math.sin(theta), ct = j === 0 ? 1 : j === n ? -1 : Math.cos(theta);
+      const p = [st * Math.cos(phi), ct, -st * Math.sin(phi)];
+      vertices.push({ p, uv: [u, v] });
+    }
+  }
+  const indices = [];
+  for (let j = 0; j < n; ++j) {
+    for (let i = 0; i < n; ++i) {
+      const a = j * (n + 1) + i, b = a + 1, c = a + n + 1, d = c + 1;
+      indices.push(a, d, b, a, c, d);  // outward winding for this parameterization
+    }
+  }
+  const corners = indices.length;
+  const position = new Float32Array(corners * 3), normal = new Float32Array(corners * 3), texcoord = new Float32Array(corners * 2);
+  indices.forEach((vi, c) => {
+    position.set(vertices[vi].p, 3 * c);
+    normal.set(vertices[vi].p, 3 * c);
+    texcoord.set(vertices[vi].uv, 2 * c);
+  });
+  return { position, normal, texcoord };
+}

@@ -1,0 +1,15 @@
+#!/usr/bin/env bash
+# CTest `wasm.package`: the install test (builds and packs the package from the checkout by
+# the README's block, installs it into a new project, runs the README's blocks there), then
+# wasm_test.mjs (against the C++ library, through glTF-Transform, the validator) on the
+# generated test assets and ../shared/assets where present.
+# Usage: run_wasm_tests.sh SOURCE_DIR WORK_DIR ARRAYS_TOOL TEST_ASSETS_TOOL
+set -euo pipefail
+source_dir=$1 work=$2 tool=$3 make_assets=$4
+rm -rf "$work" && mkdir -p "$work"
+"$make_assets" "$work/assets" >/dev/null
+"$source_dir/tests/node/wasm_install_test.sh" "$source_dir" "$work/install" "$work/assets/second_uv_set.glb"
+assets=("$work"/assets/*.glb)
+shared=$source_dir/../shared/assets
+if [ -d "$shared" ]; then assets+=("$shared"/*.glb); else echo "note: $shared absent: the shared assets are left out"; fi
+(cd "$source_dir/tests/node" && node wasm_test.mjs "$tool" "$work/arrays" "${assets[@]}")

@@ -1,0 +1,38 @@
+#!/usr/bin/env bash
+# The WebAssembly package as a user gets it, by the README's own blocks (section "WebAssembly"),
+# run as written: the first (sh) at the repository root builds and packs it; the package is
+# installed from that tarball into a new project (beside glTF-Transform, from the npm cache
+# that tests/node's npm ci filled); there the js block and the last sh block run on a copy of
+# ASSET as in.glb, and what they write must pass the Khronos validator.
+# Usage: wasm_install_test.sh SOURCE_DIR WORK_DIR ASSET
+set -euo pipefail
+source_dir=$1 work=$2 asset=$3
+rm -rf "$work" && mkdir -p "$work/project" "$work/blocks"
+python3 - "$source_dir/README.md" "$work/blocks" <<'PY'
+import re, sys
+text = open(sys.argv[1]).read()
+start = text.index("## WebAssembly")
+section = text[start:text.index("\n## ", start + 1)]
+blocks = re.findall(r"```(sh|js)\n(.*?)```", section, re.S)
+assert [lang for lang, _ in blocks] == ["sh", "js", "sh"], [lang for lang, _ in blocks]
+for i, (lang, body) in enumerate(blocks):
+    open(f"{sys.argv[2]}/{i}.{lang}", "w").write(body)
+PY
+(cd "$source_dir" && bash -euo pipefail "$work/blocks/0.sh")
+tarball=$(ls "$source_dir"/wasm/libtangent-wasm-*.tgz)
+cd "$work/project"
+npm init -y >/dev/null
+npm install --prefer-offline --no-audit --no-fund --loglevel=error "$tarball" \
+  @gltf-transform/core@4.5.1 @gltf-transform/extensions@4.5.1 @gltf-transform/functions@4.5.1
+cp "$asset" in.glb
+cp "$work/blocks/1.js" readme.mjs
+node readme.mjs
+node "$source_dir/tests/node/validate.mjs" out.glb
+rm out.glb
+bash -euo pipefail "$work/blocks/2.sh"
+node "$source_dir/tests/node/validate.mjs" out.glb
+# Never over its input; an existing output only with --overwrite.
+if npx --no-install tangent-wasm out.glb out.glb 2>/dev/null; then echo "tangent-wasm overwrote its input" >&2; exit 1; fi
+if npx --no-install tangent-wasm in.glb out.glb 2>/dev/null; then echo "tangent-wasm replaced an output without --overwrite" >&2; exit 1; fi
+npx --no-install tangent-wasm in.glb out.glb --overwrite >/dev/null
+echo "installed package: ok"

@@ -1,0 +1,206 @@
+// Tests of the WebAssembly package (wasm/package) against the C++ library and the Khronos
+// validator. Usage: node wasm_test.mjs ARRAYS_TOOL WORK_DIR ASSET...
+//   ARRAYS_TOOL: tangent-arrays-tool (the C++ library on raw arrays, tests/support)
+//   ASSET: .gltf/.glb files put through glTF-Transform's tangents() with our generateTangents
+// Every corner: within 0.01 degrees of the C++ library and the same w; every output tangent
+// finite, unit and never zero; every written file free of validator errors. Exits 1 on failure.
+import { execFileSync } from 'node:child_process';
+import fs from 'node:fs';
+import path from 'node:path';
+import { NodeIO } from '@gltf-transform/core';
+import { ALL_EXTENSIONS } from '@gltf-transform/extensions';
+import { tangents, unweld } from '@gltf-transform/functions';
+import validator from 'gltf-validator';
+import { generateTangents, generateTangentsIndexed } from '../../wasm/package/index.mjs';
+
+const [tool, workDir, ...assets] = process.argv.slice(2);
+if (!tool || !workDir) {
+  console.error('usage: node wasm_test.mjs ARRAYS_TOOL WORK_DIR ASSET...');
+  process.exit(2);
+}
+fs.rmSync(workDir, { recursive: true, force: true });
+fs.mkdirSync(workDir, { recursive: true });
+let failures = 0;
+const fail = (message) => {
+  console.log(`FAIL ${message}`);
+  failures++;
+};
+
+// The C++ library on the same arrays: per-corner tangents and vertex split.
+let runs = 0;
+function library(position, normal, texcoord, indices, origin) {
+  const dir = path.join(workDir, `arrays-${runs++}`);
+  fs.mkdirSync(dir);
+  const write = (name, array) => fs.writeFileSync(path.join(dir, name), Buffer.from(array.buffer, array.byteOffset, array.byteLength));
+  write('positions.f32', position);
+  write('normals.f32', normal);
+  write('uvs.f32', texcoord);
+  write('indices.u32', indices);
+  execFileSync(tool, [dir, 'mikktspace', origin]);
+  const read = (name, Type) => {
+    const bytes = fs.readFileSync(path.join(dir, name));
+    return new Type(bytes.buffer.slice(bytes.byteOffset, bytes.byteOffset + bytes.byteLength));
+  };
+  return { tangents: read('tangents.f32', Float32Array), cornerVertex: read('corner_vertex.u32', Uint32Array) };
+}
+
+// Compares per-corner tangents (ours: a function of the corner) with the library's.
+function compare(label, cornerCount, ours, theirs) {
+  let worst = 0, wrongW = 0, identical = 0;
+  for (let c = 0; c < cornerCount; ++c) {
+    const a = ours(c), b = theirs.subarray(4 * c, 4 * c + 4);
+    const la = Math.hypot(a[0], a[1], a[2]), lb = Math.hypot(b[0], b[1], b[2]);
+    if (!(Math.abs(la - 1) < 1e-5) || !a.every(Number.isFinite) || Math.abs(Math.abs(a[3]) - 1) !== 0) {
+      fail(`${label}: corner ${c}: not a finite unit tangent with w = +-1: ${Array.from(a)}`);
+      return;
+    }
+    const cos = Math.min(1, Math.max(-1, (a[0] * b[0] + a[1] * b[1] + a[2] * b[2]) / (la * lb)));
+    worst = Math.max(worst, (Math.acos(cos) * 180) / Math.PI);
+    if (a[3] !== b[3]) wrongW++;
+    if (a[0] === b[0] && a[1] === b[1] && a[2] === b[2] && a[3] === b[3]) identical++;
+  }
+  const ok = worst <= 0.01 && wrongW === 0;
+  console.log(`${ok ? 'ok  ' : 'FAIL'} ${label}: ${cornerCount} corners, worst ${worst.toExponential(2)} deg, ` +
+    `${wrongW} with another w, ${identical} bit-identical`);
+  if (!ok) failures++;
+}
+
+// Seeded generator (mulberry32) for the meshes below.
+function random(seed) {
+  return () => {
+    seed = (seed + 0x6d2b79f5) | 0;
+    let t = Math.imul(seed ^ (seed >>> 15), 1 | seed);
+    t = (t + Math.imul(t ^ (t >>> 7), 61 | t)) ^ t;
+    return ((t ^ (t >>> 14)) >>> 0) / 4294967296;
+  };
+}
+
+// A bumpy UV sphere with a seam, one mirrored half (u flipped beyond the equator's half),
+// and slivers: triangles collapsed to a line, to a point, and with all corners at one UV.
+function generated(segments, seed) {
+  const rand = random(seed);
+  const position = [], normal = [], texcoord = [];
+  for (let j = 0; j <= segments; ++j) {
+    for (let i = 0; i <= segments; ++i) {
+      const u = i / segments, v = j / segments, phi = 2 * Math.PI * u, theta = Math.PI * v;
+      const r = 1 + 0.05 * rand();
+      const p = [r * Math.sin(theta) * Math.cos(phi), r * Math.cos(theta), -r * Math.sin(theta) * Math.sin(phi)];
+      position.push(...p);
+      const l = Math.hypot(...p);
+      normal.push(p[0] / l, p[1] / l, p[2] / l);
+      texcoord.push(u < 0.5 ? u : 1 - u, v);  // mirrored half
+    }
+  }
+  const indices = [];
+  for (let j = 0; j < segments; ++j) {
+    for (let i = 0; i < segments; ++i) {
+      const a = j * (segments + 1) + i, b = a + 1, c = a + segments + 1, d = c + 1;
+      indices.push(a, d, b, a, c, d);
+    }
+  }
+  // Slivers: a line (two corners at one vertex), a zero-UV triangle, a point.
+  const n = indices.length / 3;
+  for (let k = 0; k < 6; ++k) {
+    const t = Math.floor(rand() * n);
+    const kind = k % 3;
+    if (kind === 0) indices[3 * t + 2] = indices[3 * t + 1];
+    if (kind === 1) {
+      const v = indices[3 * t];
+      for (const w of [indices[3 * t + 1], indices[3 * t + 2]]) texcoord.splice(2 * w, 2, texcoord[2 * v], texcoord[2 * v + 1]);
+    }
+    if (kind === 2) indices[3 * t + 1] = indices[3 * t + 2] = indices[3 * t];
+  }
+  return {
+    position: new Float32Array(position), normal: new Float32Array(normal), texcoord: new Float32Array(texcoord),
+    indices: new Uint32Array(indices),
+  };
+}
+
+function deindex(mesh) {
+  const n = mesh.indices.length;
+  const out = { position: new Float32Array(3 * n), normal: new Float32Array(3 * n), texcoord: new Float32Array(2 * n) };
+  mesh.indices.forEach((v, c) => {
+    out.position.set(mesh.position.subarray(3 * v, 3 * v + 3), 3 * c);
+    out.normal.set(mesh.normal.subarray(3 * v, 3 * v + 3), 3 * c);
+    out.texcoord.set(mesh.texcoord.subarray(2 * v, 2 * v + 2), 2 * c);
+  });
+  return out;
+}
+
+// 1. Generated meshes, indexed (glTF's w) and de-indexed (MikkTSpace's w, as glTF-Transform
+// expects it), against the library on the same arrays; the vertex split too.
+for (const [segments, seed] of [[8, 1], [24, 2], [64, 3]]) {
+  const mesh = generated(segments, seed);
+  const label = `generated sphere ${segments}x${segments} (seed ${seed})`;
+  const ours = generateTangentsIndexed(mesh.position, mesh.normal, mesh.texcoord, mesh.indices);
+  const theirs = library(mesh.position, mesh.normal, mesh.texcoord, mesh.indices, 'top-left');
+  compare(`${label}, indexed`, mesh.indices.length, (c) => ours.tangents.subarray(4 * ours.indices[c], 4 * ours.indices[c] + 4), theirs.tangents);
+  const sameSplit = ours.indices.every((v, c) => v === theirs.cornerVertex[c]) &&
+    ours.source.every((s, v) => v >= mesh.position.length / 3 || s === v || !ours.indices.includes(v));
+  if (!sameSplit) fail(`${label}: the vertex split differs from the library's`);
+  for (let v = 0; v < ours.vertexCount; ++v) {
+    const t = ours.tangents.subarray(4 * v, 4 * v + 4);
+    if (!(Math.abs(Math.hypot(t[0], t[1], t[2]) - 1) < 1e-5)) fail(`${label}: output vertex ${v} has no unit tangent`);
+  }
+  const flat = deindex(mesh);
+  const sequence = Uint32Array.from({ length: mesh.indices.length }, (_, i) => i);
+  const plain = generateTangents(flat.position, flat.normal, flat.texcoord);
+  const plainTheirs = library(flat.position, flat.normal, flat.texcoord, sequence, 'bottom-left');
+  compare(`${label}, de-indexed`, mesh.indices.length, (c) => plain.subarray(4 * c, 4 * c + 4), plainTheirs.tangents);
+}
+
+// 2. Errors surface as exceptions with the core's message.
+try {
+  generateTangentsIndexed(new Float32Array(9), new Float32Array(9), new Float32Array(6), [0, 1, 3]);
+  fail('an index out of range was accepted');
+} catch (e) {
+  if (!/indices\[2\] = 3 is out of range/.test(e.message)) fail(`unexpected error message: ${e.message}`);
+  else console.log(`ok   error surfaces: ${e.message}`);
+}
+
+// 3. glTF-Transform's tangents() with our generateTangents on real files; the validator on
+// what it writes.
+const io = new NodeIO().registerExtensions(ALL_EXTENSIONS);
+for (const asset of assets) {
+  const name = path.basename(asset);
+  const document = await io.read(asset);
+  await document.transform(unweld(), tangents({ generateTangents, overwrite: true }));
+  let compared = 0, strips = 0;
+  for (const mesh of document.getRoot().listMeshes()) {
+    mesh.listPrimitives().forEach((primitive, p) => {
+      const material = primitive.getMaterial();
+      const info = material?.getNormalTextureInfo();
+      const semantic = info && material.getNormalTexture() ? `TEXCOORD_${info.getTexCoord()}` : null;
+      const position = primitive.getAttribute('POSITION'), normal = primitive.getAttribute('NORMAL');
+      const texcoord = semantic && primitive.getAttribute(semantic), tangent = primitive.getAttribute('TANGENT');
+      if (!position || !normal || !texcoord) return;
+      if (primitive.getMode() !== 4) {
+        strips++;  // glTF-Transform's tangents() takes triangle lists only
+        return;
+      }
+      if (!tangent) {
+        fail(`${name} mesh "${mesh.getName()}" primitive ${p}: normal-mapped, but glTF-Transform wrote no TANGENT`);
+        return;
+      }
+      const f32 = (accessor) => Float32Array.from(accessor.getArray());
+      const n = position.getCount();
+      const theirs = library(f32(position), f32(normal), f32(texcoord), Uint32Array.from({ length: n }, (_, i) => i), 'top-left');
+      const stored = f32(tangent);
+      compare(`${name} mesh "${mesh.getName()}" primitive ${p} through glTF-Transform`, n, (c) => stored.subarray(4 * c, 4 * c + 4), theirs.tangents);
+      compared++;
+    });
+  }
+  if (compared === 0 && strips === 0) fail(`${name}: no normal-mapped primitive got tangents`);
+  if (strips > 0) console.log(`note ${name}: ${strips} normal-mapped strip/fan primitives left alone by glTF-Transform's tangents()`);
+  const out = path.join(workDir, `${path.parse(name).name}.glb`);
+  fs.writeFileSync(out, await io.writeBinary(document));
+  const report = await validator.validateBytes(new Uint8Array(fs.readFileSync(out)), { uri: path.basename(out) });
+  if (report.issues.numErrors > 0) {
+    fail(`${out}: ${report.issues.numErrors} validator errors: ` +
+      report.issues.messages.filter((m) => m.severity === 0).slice(0, 3).map((m) => `${m.code} ${m.pointer}`).join('; '));
+  } else {
+    console.log(`ok   ${name}: written by glTF-Transform with our tangents, 0 validator errors`);
+  }
+}
+console.log(failures === 0 ? 'all passed' : `${failures} failed`);
+process.exit(failures === 0 ? 0 : 1);

@@ -1,0 +1,41 @@
+/** Resolves once the module is ready (it is by the time the module has loaded). */
+export declare const ready: Promise<void>;
+
+/**
+ * Tangents of a de-indexed triangle list, xyzw per vertex, w in MikkTSpace's own convention
+ * (as the npm `mikktspace` package returns it; glTF-Transform's tangents() negates it).
+ */
+export declare function generateTangents(position: Float32Array, normal: Float32Array, texcoord: Float32Array): Float32Array;
+
+export interface TangentReport {
+  triangles: number;
+  outputVertices: number;
+  splitVertices: number;
+  degenerateTriangles: number;
+  zeroUvAreaTriangles: number;
+  nonFiniteTriangles: number;
+  inheritedCorners: number;
+  fallbackFromNeighbours: number;
+  fallbackFixed: number;
+  mirroredCorners: number;
+}
+
+export interface IndexedTangents {
+  /** Output vertices: the input vertices, then the copies the split adds. */
+  vertexCount: number;
+  /** xyzw per output vertex. */
+  tangents: Float32Array;
+  /** The input vertex each output vertex copies. */
+  source: Uint32Array;
+  /** The triangle list over the output vertices. */
+  indices: Uint32Array;
+  report: TangentReport;
+}
+
+export interface IndexedOptions {
+  /** 'top-left' (glTF; default) or 'bottom-left' (MikkTSpace's own w). */
+  uvOrigin?: 'top-left' | 'bottom-left';
+}
+
+export declare function generateTangentsIndexed(position: Float32Array, normal: Float32Array, texcoord: Float32Array,
+  indices: Uint32Array | ArrayLike<number>, options?: IndexedOptions): IndexedTangents;

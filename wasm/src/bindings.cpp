@@ -1,0 +1,127 @@
+// The WebAssembly entry points of the npm package (wasm/package): the core's MikkTSpace method
+// on arrays in the module's memory, built without threads (TANGENT_SERIAL), without OpenMesh.
+// One workspace is reused from call to call, so repeated calls allocate nothing new.
+// Every function returns 0 on success; on failure 1 and tangent_error() says why.
+#include <emscripten/emscripten.h>
+
+#include <cmath>
+#include <cstdint>
+#include <exception>
+#include <numeric>
+#include <string>
+#include <vector>
+
+#include "tangent/tangent.hpp"
+#include "workspace.hpp"
+
+namespace {
+
+struct State {
+  tangent::TangentWorkspace workspace;
+  std::vector<std::uint32_t> sequence;  // 0, 1, 2, ... for de-indexed input
+  std::vector<float> cornerTangents;    // 4 per corner
+  std::vector<std::uint32_t> cornerVertex;
+  std::vector<float> vertexTangents;    // 4 per output vertex
+  std::vector<std::uint32_t> vertexSource;  // output vertex -> input vertex
+  double report[10] = {};
+  std::string error;
+};
+
+State& state() {
+  static State s;
+  return s;
+}
+
+// A unit vector perpendicular to n (the axis least aligned with it, made orthogonal), for
+// vertices no triangle uses: no output tangent is ever zero.
+void perpendicular(const float* n, float* out) {
+  double x = n[0], y = n[1], z = n[2];
+  const double len = std::sqrt(x * x + y * y + z * z);
+  if (!(len > 0) || !std::isfinite(len)) x = 0, y = 0, z = 1;
+  else x /= len, y /= len, z /= len;
+  const double a[3] = {std::abs(x), std::abs(y), std::abs(z)};
+  const int axis = a[0] <= a[1] && a[0] <= a[2] ? 0 : (a[1] <= a[2] ? 1 : 2);
+  double t[3] = {0, 0, 0};
+  t[axis] = 1;
+  const double d = t[0] * x + t[1] * y + t[2] * z;
+  t[0] -= d * x, t[1] -= d * y, t[2] -= d * z;
+  const double l = std::sqrt(t[0] * t[0] + t[1] * t[1] + t[2] * t[2]);
+  out[0] = static_cast<float>(t[0] / l), out[1] = static_cast<float>(t[1] / l), out[2] = static_cast<float>(t[2] / l);
+  out[3] = 1.0f;
+}
+
+}  // namespace
+
+extern "C" {
+
+// Tangents per corner for `cornerCount` corners (a triangle list) of `vertexCount` vertices;
+// indices may be null (corner i is vertex i). topLeft: 1 for glTF's UV origin and w (the
+// core's default), 0 for MikkTSpace's own (its fSign, as the npm mikktspace package returns).
+EMSCRIPTEN_KEEPALIVE int tangent_run(const float* positions, const float* normals, const float* uvs, const std::uint32_t* indices,
+                                     std::uint32_t vertexCount, std::uint32_t cornerCount, int topLeft) {
+  State& s = state();
+  s.error.clear();
+  try {
+    if (!indices) {
+      if (s.sequence.size() < cornerCount) {
+        s.sequence.resize(cornerCount);
+        std::iota(s.sequence.begin(), s.sequence.end(), 0u);
+      }
+      indices = s.sequence.data();
+    }
+    s.cornerTangents.resize(std::size_t(cornerCount) * 4);
+    s.cornerVertex.resize(cornerCount);
+    const tangent::MeshArrays mesh{{positions, std::size_t(vertexCount) * 3},
+                                   {normals, std::size_t(vertexCount) * 3},
+                                   {uvs, std::size_t(vertexCount) * 2},
+                                   {indices, cornerCount}};
+    const tangent::CornerOutputs outputs{s.cornerTangents, {}, s.cornerVertex};
+    tangent::Options options;
+    options.uvOrigin = topLeft ? tangent::UvOrigin::topLeft : tangent::UvOrigin::bottomLeft;
+    options.threads = 1;
+    tangent::detail::checkArrays(mesh, outputs);
+    tangent::detail::WorkspaceData& ws = s.workspace.data();
+    ws.threads = 1;
+    tangent::Report report;
+    tangent::detail::weldAndBucket(ws, mesh);
+    tangent::detail::mikktspaceOnBuckets(ws, mesh, outputs, report);
+    tangent::detail::finishOutputs(ws, mesh, outputs, options, report);
+    const double values[10] = {double(report.triangles),          double(report.outputVertices),
+                               double(report.splitVertices),      double(report.degenerateTriangles),
+                               double(report.zeroUvAreaTriangles), double(report.nonFiniteTriangles),
+                               double(report.inheritedCorners),   double(report.fallbackFromNeighbours),
+                               double(report.fallbackFixed),      double(report.mirroredCorners)};
+    std::copy(values, values + 10, s.report);
+    // Per output vertex: the tangent of its corners and the input vertex it copies.
+    const std::size_t outputVertices = static_cast<std::size_t>(report.outputVertices);
+    s.vertexTangents.assign(outputVertices * 4, 0.0f);
+    s.vertexSource.resize(outputVertices);
+    std::vector<bool> used(outputVertices, false);
+    for (std::uint32_t c = 0; c < cornerCount; ++c) {
+      const std::uint32_t v = s.cornerVertex[c];
+      std::copy(&s.cornerTangents[4 * std::size_t(c)], &s.cornerTangents[4 * std::size_t(c)] + 4, &s.vertexTangents[4 * std::size_t(v)]);
+      s.vertexSource[v] = indices[c];
+      used[v] = true;
+    }
+    for (std::size_t v = 0; v < outputVertices; ++v) {
+      if (used[v]) continue;
+      s.vertexSource[v] = static_cast<std::uint32_t>(v);  // unused input vertices keep their place
+      perpendicular(&normals[3 * v], &s.vertexTangents[4 * v]);
+    }
+    return 0;
+  } catch (const std::exception& e) {
+    s.error = e.what();
+  } catch (...) {
+    s.error = "unknown error";
+  }
+  return 1;
+}
+
+EMSCRIPTEN_KEEPALIVE const char* tangent_error() { return state().error.c_str(); }
+EMSCRIPTEN_KEEPALIVE float* tangent_corner_tangents() { return state().cornerTangents.data(); }
+EMSCRIPTEN_KEEPALIVE std::uint32_t* tangent_corner_vertices() { return state().cornerVertex.data(); }
+EMSCRIPTEN_KEEPALIVE float* tangent_vertex_tangents() { return state().vertexTangents.data(); }
+EMSCRIPTEN_KEEPALIVE std::uint32_t* tangent_vertex_sources() { return state().vertexSource.data(); }
+EMSCRIPTEN_KEEPALIVE double* tangent_report() { return state().report; }
+
+}  // extern "C"
