@@ -11,6 +11,7 @@
 #include <nlohmann/json.hpp>
 
 #include "support/run_command.hpp"
+#include "support/skip_or_fail.hpp"
 #include "support/temp_dir.hpp"
 #include "support/test_assets.hpp"
 
@@ -105,7 +106,7 @@ TEST(Cli, InfoDescribesNeeds) {
 // bake; never a crash, never a partial output, never a temporary file left behind.
 TEST(Cli, MalformedFilesFromAssimpTestModels) {
   const fs::path root = "/usr/share/assimp/models/glTF2";
-  if (!fs::is_directory(root)) GTEST_SKIP() << root << " is absent: install Debian's assimp-testmodels";
+  if (!fs::is_directory(root)) TANGENT_SKIP_OR_FAIL(root << " is absent: install Debian's assimp-testmodels");
   const std::vector<std::string> files = {
       "IndexOutOfRange/IndexOutOfRange.gltf", "IndexOutOfRange/AllIndicesOutOfRange.gltf", "MissingBin/BoxTextured.gltf",
       "wrongTypes/badNumber.gltf", "wrongTypes/badExtension.gltf", "wrongTypes/badObject.gltf", "wrongTypes/badUint.gltf",
@@ -136,7 +137,7 @@ TEST(Cli, MalformedFilesFromAssimpTestModels) {
 // reference agreeing. Files the baker refuses are listed, never a failure of this test.
 TEST(Cli, EveryAssimpTestModelBakedWithAllChecksClean) {
   const fs::path root = "/usr/share/assimp/models";
-  if (!fs::is_directory(root)) GTEST_SKIP() << root << " is absent: install Debian's assimp-testmodels";
+  if (!fs::is_directory(root)) TANGENT_SKIP_OR_FAIL(root << " is absent: install Debian's assimp-testmodels");
   int baked = 0, refused = 0;
   std::vector<std::string> failures;
   for (const auto& entry : fs::recursive_directory_iterator(root)) {

@@ -13,6 +13,7 @@
 #include "asset.hpp"
 #include "document.hpp"
 #include "primitive.hpp"
+#include "support/skip_or_fail.hpp"
 #include "support/temp_dir.hpp"
 #include "support/test_assets.hpp"
 #include "tangent/gltf.hpp"
@@ -432,7 +433,7 @@ TEST(MeshFiles, PlyAndOffBakeToGlb) {
 // NormalTangentMirrorTest carries Blender's MikkTSpace tangents in glTF's convention.
 TEST(SharedAssets, MirrorTestHandednessMatchesSuppliedTangents) {
   const fs::path shared = tangent::testing::sharedAssets();
-  if (shared.empty()) GTEST_SKIP() << "../shared/assets is absent: skipping the shared sample assets";
+  if (shared.empty()) TANGENT_SKIP_OR_FAIL("../shared/assets is absent: skipping the shared sample assets");
   const Asset asset = loadAsset(shared / "NormalTangentMirrorTest.glb");
   const Json& primitive = asset.json["meshes"][0]["primitives"][0];
   const auto& attributes = primitive["attributes"];
@@ -459,7 +460,7 @@ TEST(SharedAssets, MirrorTestHandednessMatchesSuppliedTangents) {
 
 TEST(SharedAssets, BothAssetsBakeWithTangentsOnEveryNormalMappedPrimitive) {
   const fs::path shared = tangent::testing::sharedAssets();
-  if (shared.empty()) GTEST_SKIP() << "../shared/assets is absent: skipping the shared sample assets";
+  if (shared.empty()) TANGENT_SKIP_OR_FAIL("../shared/assets is absent: skipping the shared sample assets");
   for (const char* name : {"NormalTangentTest.glb", "NormalTangentMirrorTest.glb"}) {
     TempDir dir;
     tangent::gltf::BakeOptions options;

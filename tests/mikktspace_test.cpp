@@ -15,6 +15,7 @@
 #include "asset.hpp"
 #include "primitive.hpp"
 #include "support/reference.hpp"
+#include "support/skip_or_fail.hpp"
 #include "support/temp_dir.hpp"
 #include "support/test_assets.hpp"
 #include "tangent/gltf.hpp"
@@ -219,7 +220,7 @@ std::vector<float> perCorner(const PrimitiveArrays& p, const std::vector<float>&
 
 TEST(MikkTSpaceReference, SharedAssets) {
   const fs::path shared = tangent::testing::sharedAssets();
-  if (shared.empty()) GTEST_SKIP() << "../shared/assets is absent: skipping the shared sample assets";
+  if (shared.empty()) TANGENT_SKIP_OR_FAIL("../shared/assets is absent: skipping the shared sample assets");
   std::vector<PrimitiveArrays> primitives;
   for (const char* name : {"NormalTangentTest.glb", "NormalTangentMirrorTest.glb"}) {
     for (auto& p : normalMappedPrimitives(shared / name)) primitives.push_back(std::move(p));
