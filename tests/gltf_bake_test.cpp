@@ -53,6 +53,12 @@ void expectSameCorners(const Asset& in, const Json& inPrimitive, const Asset& ou
       ASSERT_EQ(a.type, b.type) << where << " " << name;
       ASSERT_EQ(a.normalized, b.normalized) << where << " " << name;
       const std::size_t size = a.elementSize();
+      // Every corner's vertex inside both accessors (an attribute left at the input's count
+      // after a split would otherwise be read past its end).
+      const std::uint32_t inLast = *std::max_element(inCorners.begin(), inCorners.end());
+      const std::uint32_t outLast = *std::max_element(outCorners.begin(), outCorners.end());
+      ASSERT_LE((std::size_t(inLast) + 1) * size, a.bytes.size()) << where << " " << name;
+      ASSERT_LE((std::size_t(outLast) + 1) * size, b.bytes.size()) << where << " " << name << " has too few elements";
       for (std::size_t c = 0; c < inCorners.size(); ++c) {
         ASSERT_EQ(0, std::memcmp(&a.bytes[inCorners[c] * size], &b.bytes[outCorners[c] * size], size))
             << where << " " << name << " corner " << c;
