@@ -14,6 +14,7 @@
 #include "asset.hpp"
 #include "primitive.hpp"
 #include "support/run_command.hpp"
+#include "support/skip_or_fail.hpp"
 #include "support/temp_dir.hpp"
 #include "support/test_assets.hpp"
 #include "tangent/check.hpp"
@@ -105,7 +106,7 @@ TEST(Check, BakedOutputsAreClean) {
 
 TEST(Check, SharedMirrorTestAsSuppliedIsClean) {
   const fs::path shared = tangent::testing::sharedAssets();
-  if (shared.empty()) GTEST_SKIP() << "../shared/assets is absent: skipping the shared sample assets";
+  if (shared.empty()) TANGENT_SKIP_OR_FAIL("../shared/assets is absent: skipping the shared sample assets");
   const FileCheck check = tangent::gltf::checkFile(shared / "NormalTangentMirrorTest.glb", {});
   EXPECT_TRUE(check.clean()) << testing::PrintToString(findingNames(check));
   ASSERT_EQ(check.primitives.size(), 1u);

@@ -3,9 +3,11 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <bit>
 #include <cmath>
 #include <limits>
+#include <numbers>
 #include <random>
 
 #include "support/test_assets.hpp"
@@ -157,30 +159,85 @@ TEST(Core, FlatGivesOneFramePerFace) {
   EXPECT_EQ(smooth.report.splitVertices, 0u);
 }
 
-TEST(Core, WeightingsDiffer) {
-  // An irregular fan: angle, area and uniform weighting give different averages.
+// Two triangles sharing the edge 0-2, flat in z = 0 (normal +z, so projecting onto the
+// tangent plane changes nothing), with one UV per vertex (piecewise linear, positive
+// orientation in both):
+//   A = (0, 1, 2): (0,0) (1,0) (0,1), uv = position: dP/du = (1, 0)
+//   B = (0, 2, 3): (0,0) (0,1) (-2,-2), uv (0,0) (0,1) (-2,0): P = u (1,1) + v (0,1),
+//       dP/du = (1, 1) / sqrt(2)
+// Angles: at vertex 0, A pi/2 and B 3pi/4 (between (0,1) and (-1,-1)); at vertex 2, A pi/4
+// (between (0,-1) and (1,-1)) and B atan2(2, 3) (between (0,-1) and (-2,-3): |cross| 2,
+// dot 3). Areas: A 1/2, B 1/2 |(0,1) x (-2,-2)| = 1.
+// Vertices 0 and 2 have one position, normal and UV each, and both methods group their two
+// corners (lengyel by vertex, mikktspace across the shared edge): one frame, the normalized
+// weighted sum of the two dP/du; mikktspace weights by the angles of the edges projected
+// onto the tangent plane, here the angles themselves. Vertices 1 and 3 see one triangle: its
+// own dP/du. In the bottom-left convention both triangles are right-handed (w = +1). At
+// vertex 0 the three weightings differ: 27.2 (angle), 30.4 (area) and 22.5 (uniform) degrees
+// from +x.
+GridMesh twoTriangleFan() {
   GridMesh m;
-  m.positions = {0, 0, 0, 1, 0, 0.3f, 0.2f, 1, 0, -1, 0.1f, 0.2f, 0, -2, -0.5f};
-  m.normals = {0, 0, 1, 0, 0, 1, 0, 0, 1, 0, 0, 1, 0, 0, 1};
-  m.uvs = {0, 0, 1, 0.1f, 0.3f, 1, -1, 0, 0.2f, -1};
-  m.indices = {0, 1, 2, 0, 2, 3, 0, 3, 4, 0, 4, 1};
-  std::vector<std::vector<float>> centres;
-  for (auto weighting : {tangent::Weighting::angle, tangent::Weighting::area, tangent::Weighting::uniform}) {
+  m.positions = {0, 0, 0, 1, 0, 0, 0, 1, 0, -2, -2, 0};
+  for (int v = 0; v < 4; ++v) m.normals.insert(m.normals.end(), {0, 0, 1});
+  m.uvs = {0, 0, 1, 0, 0, 1, -2, 0};
+  m.indices = {0, 1, 2, 0, 2, 3};
+  return m;
+}
+
+TEST(Core, EachWeightingGivesItsHandComputedFrame) {
+  const double pi = std::numbers::pi, root2 = std::sqrt(2.0);
+  struct Weights {
+    double a, b;  // of triangle A's and B's dP/du
+  };
+  struct Expected {
+    const char* name;
+    tangent::Method method;
+    tangent::Weighting weighting;
+    Weights atVertex0, atVertex2;
+  };
+  const Weights angle0{pi / 2, 3 * pi / 4}, angle2{pi / 4, std::atan2(2.0, 3.0)}, area{0.5, 1.0}, uniform{1.0, 1.0};
+  const GridMesh m = twoTriangleFan();
+  for (const Expected& e : {Expected{"lengyel/angle", tangent::Method::lengyel, tangent::Weighting::angle, angle0, angle2},
+                            Expected{"lengyel/area", tangent::Method::lengyel, tangent::Weighting::area, area, area},
+                            Expected{"lengyel/uniform", tangent::Method::lengyel, tangent::Weighting::uniform, uniform, uniform},
+                            Expected{"mikktspace", tangent::Method::mikktspace, tangent::Weighting::angle, angle0, angle2}}) {
+    SCOPED_TRACE(e.name);
     Options options;
-    options.method = tangent::Method::lengyel;
-    options.weighting = weighting;
+    options.method = e.method;
+    options.weighting = e.weighting;
+    options.uvOrigin = tangent::UvOrigin::bottomLeft;
     const Result r = run(m, options);
-    expectValidFrames(m, r);
-    centres.emplace_back(r.tangents.begin(), r.tangents.begin() + 4);
+    auto sum = [&](Weights w) {  // w.a (1, 0) + w.b (1, 1) / sqrt(2), normalized
+      const double x = w.a + w.b / root2, y = w.b / root2, length = std::hypot(x, y);
+      return std::array<float, 2>{static_cast<float>(x / length), static_cast<float>(y / length)};
+    };
+    const auto at0 = sum(e.atVertex0), at2 = sum(e.atVertex2);
+    const float diagonal = static_cast<float>(1 / root2);
+    expectTangent(r, 0, at0[0], at0[1], 0, 1);  // A: vertices 0, 1, 2
+    expectTangent(r, 1, 1, 0, 0, 1);
+    expectTangent(r, 2, at2[0], at2[1], 0, 1);
+    expectTangent(r, 3, at0[0], at0[1], 0, 1);  // B: vertices 0, 2, 3
+    expectTangent(r, 4, at2[0], at2[1], 0, 1);
+    expectTangent(r, 5, diagonal, diagonal, 0, 1);
+    EXPECT_EQ(r.report.splitVertices, 0u);
   }
-  EXPECT_NE(centres[0], centres[1]);
-  EXPECT_NE(centres[0], centres[2]);
-  EXPECT_NE(centres[1], centres[2]);
+  // flat: every corner its own triangle's dP/du, so vertices 0 and 2 (in both triangles) need
+  // two frames each: 2 more vertices.
+  Options options;
+  options.method = tangent::Method::flat;
+  options.uvOrigin = tangent::UvOrigin::bottomLeft;
+  const Result flat = run(m, options);
+  const float diagonal = static_cast<float>(1 / root2);
+  for (std::size_t c = 0; c < 3; ++c) expectTangent(flat, c, 1, 0, 0, 1);
+  for (std::size_t c = 3; c < 6; ++c) expectTangent(flat, c, diagonal, diagonal, 0, 1);
+  EXPECT_EQ(flat.report.splitVertices, 2u);
+  EXPECT_EQ(flat.report.outputVertices, 6u);
 }
 
 TEST(Core, InvariantsOnGeneratedMeshes) {
-  for (const GridMesh& m : {tangent::testing::makeSphere(24, 12), tangent::testing::makeTorus(24, 12),
-                            tangent::testing::makeGrid(10, 7, true)}) {
+  // The sphere also with every third triangle wound against its normals (inconsistent winding).
+  for (const GridMesh& m : {tangent::testing::makeSphere(24, 12), tangent::testing::reverseWinding(tangent::testing::makeSphere(24, 12), 3),
+                            tangent::testing::makeTorus(24, 12), tangent::testing::makeGrid(10, 7, true)}) {
     for (auto method : {tangent::Method::mikktspace, tangent::Method::lengyel, tangent::Method::flat}) {
       Options options;
       options.method = method;

@@ -13,6 +13,7 @@
 #include "asset.hpp"
 #include "document.hpp"
 #include "primitive.hpp"
+#include "support/skip_or_fail.hpp"
 #include "support/temp_dir.hpp"
 #include "support/test_assets.hpp"
 #include "tangent/gltf.hpp"
@@ -52,6 +53,12 @@ void expectSameCorners(const Asset& in, const Json& inPrimitive, const Asset& ou
       ASSERT_EQ(a.type, b.type) << where << " " << name;
       ASSERT_EQ(a.normalized, b.normalized) << where << " " << name;
       const std::size_t size = a.elementSize();
+      // Every corner's vertex inside both accessors (an attribute left at the input's count
+      // after a split would otherwise be read past its end).
+      const std::uint32_t inLast = *std::max_element(inCorners.begin(), inCorners.end());
+      const std::uint32_t outLast = *std::max_element(outCorners.begin(), outCorners.end());
+      ASSERT_LE((std::size_t(inLast) + 1) * size, a.bytes.size()) << where << " " << name;
+      ASSERT_LE((std::size_t(outLast) + 1) * size, b.bytes.size()) << where << " " << name << " has too few elements";
       for (std::size_t c = 0; c < inCorners.size(); ++c) {
         ASSERT_EQ(0, std::memcmp(&a.bytes[inCorners[c] * size], &b.bytes[outCorners[c] * size], size))
             << where << " " << name << " corner " << c;
@@ -210,11 +217,32 @@ TEST(Bake, NormalTextureUvSetAndTextureTransformChooseTheFrame) {
   };
   const auto plain = firstTangent(0);
   const auto rotated = firstTangent(1);
-  // TEXCOORD_1's u runs along +x (TEXCOORD_0 is rotated and would give y).
-  EXPECT_GT(plain[0], 0.9f);
-  // The transform rotates UVs by 0.5 rad, so the frame turns by 0.5 rad in the surface.
-  double angle = std::acos(std::clamp(plain[0] * rotated[0] + plain[1] * rotated[1] + plain[2] * rotated[2], -1.0f, 1.0f));
-  EXPECT_NEAR(angle, 0.5, 0.05);
+  // The grid is flat (normal +z). TEXCOORD_1 is (u, v) = (x, 1 - y): dP/du = +x, and with v
+  // running down (glTF) the frame is right-handed, w = +1 (TEXCOORD_0 is turned 90 degrees
+  // and would give y).
+  // The transform (rotation r = 0.5, scale 2) maps uv to u' = 2 (cos r u + sin r v),
+  // v' = 2 (-sin r u + cos r v) (as three.js's setUvTransform does). With u = x, v = 1 - y:
+  // d(u', v')/d(x, y) = 2 [cos r, -sin r; -sin r, -cos r], whose inverse has the first column
+  // d(x, y)/du' = (cos r, -sin r) / 2: the tangent turns by -r about the normal, and the
+  // transform's determinant (+4) keeps w.
+  ASSERT_EQ(plain.size(), rotated.size());
+  const double r = 0.5;
+  for (std::size_t v = 0; v < plain.size() / 4; ++v) {
+    SCOPED_TRACE("vertex " + std::to_string(v));
+    EXPECT_NEAR(plain[4 * v], 1.0, 1e-6);
+    EXPECT_NEAR(plain[4 * v + 1], 0.0, 1e-6);
+    EXPECT_NEAR(plain[4 * v + 2], 0.0, 1e-6);
+    EXPECT_EQ(plain[4 * v + 3], 1.0f);
+    const float* t = &rotated[4 * v];
+    // Signed angle from the plain frame to the rotated one about +z.
+    const double signedAngle = std::atan2(plain[4 * v] * t[1] - plain[4 * v + 1] * t[0],
+                                          plain[4 * v] * t[0] + plain[4 * v + 1] * t[1]);
+    EXPECT_NEAR(signedAngle, -r, 1e-4);
+    EXPECT_NEAR(t[0], std::cos(r), 1e-4);
+    EXPECT_NEAR(t[1], -std::sin(r), 1e-4);
+    EXPECT_NEAR(t[2], 0.0, 1e-6);
+    EXPECT_EQ(t[3], 1.0f);
+  }
 }
 
 TEST(Bake, MorphTargetsGetTangentDeltas) {
@@ -432,7 +460,7 @@ TEST(MeshFiles, PlyAndOffBakeToGlb) {
 // NormalTangentMirrorTest carries Blender's MikkTSpace tangents in glTF's convention.
 TEST(SharedAssets, MirrorTestHandednessMatchesSuppliedTangents) {
   const fs::path shared = tangent::testing::sharedAssets();
-  if (shared.empty()) GTEST_SKIP() << "../shared/assets is absent: skipping the shared sample assets";
+  if (shared.empty()) TANGENT_SKIP_OR_FAIL("../shared/assets is absent: skipping the shared sample assets");
   const Asset asset = loadAsset(shared / "NormalTangentMirrorTest.glb");
   const Json& primitive = asset.json["meshes"][0]["primitives"][0];
   const auto& attributes = primitive["attributes"];
@@ -459,7 +487,7 @@ TEST(SharedAssets, MirrorTestHandednessMatchesSuppliedTangents) {
 
 TEST(SharedAssets, BothAssetsBakeWithTangentsOnEveryNormalMappedPrimitive) {
   const fs::path shared = tangent::testing::sharedAssets();
-  if (shared.empty()) GTEST_SKIP() << "../shared/assets is absent: skipping the shared sample assets";
+  if (shared.empty()) TANGENT_SKIP_OR_FAIL("../shared/assets is absent: skipping the shared sample assets");
   for (const char* name : {"NormalTangentTest.glb", "NormalTangentMirrorTest.glb"}) {
     TempDir dir;
     tangent::gltf::BakeOptions options;

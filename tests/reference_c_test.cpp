@@ -22,6 +22,7 @@
 #include "primitive.hpp"
 #include "support/random_meshes.hpp"
 #include "support/reference_rule.hpp"
+#include "support/skip_or_fail.hpp"
 #include "tangent/tangent.hpp"
 
 namespace fs = std::filesystem;
@@ -160,7 +161,7 @@ TEST(ReferenceC, RandomMeshes) {
 // triangle primitive with normals and UVs under the same rule.
 TEST(ReferenceC, AssimpTestModels) {
   const fs::path root = "/usr/share/assimp/models";
-  if (!fs::is_directory(root)) GTEST_SKIP() << root << " is absent: install Debian's assimp-testmodels";
+  if (!fs::is_directory(root)) TANGENT_SKIP_OR_FAIL(root << " is absent: install Debian's assimp-testmodels");
   std::vector<fs::path> files;
   for (const auto& entry : fs::recursive_directory_iterator(root)) {
     if (!entry.is_regular_file()) continue;

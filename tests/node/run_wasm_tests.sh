@@ -11,5 +11,7 @@ rm -rf "$work" && mkdir -p "$work"
 "$source_dir/tests/node/wasm_install_test.sh" "$source_dir" "$work/install" "$work/assets/second_uv_set.glb"
 assets=("$work"/assets/*.glb)
 shared=$source_dir/../shared/assets
-if [ -d "$shared" ]; then assets+=("$shared"/*.glb); else echo "note: $shared absent: the shared assets are left out"; fi
+[ -d "$shared" ] && assets+=("$shared"/*.glb)
 (cd "$source_dir/tests/node" && node wasm_test.mjs "$tool" "$work/arrays" "${assets[@]}")
+# The rest ran; without the shared assets the test still reports itself skipped (a failure under CI=true).
+[ -d "$shared" ] || exec "$source_dir/tests/support/skip_or_fail.sh" "$shared is absent: the shared assets were left out"

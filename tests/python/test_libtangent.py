@@ -14,6 +14,7 @@ import numpy as np
 import pytest
 
 import libtangent
+from conftest import skip_or_fail
 
 CLI = os.environ["TANGENT_CLI"]
 ARRAYS_TOOL = os.environ["TANGENT_ARRAYS_TOOL"]
@@ -219,12 +220,14 @@ def test_help_reads_like_the_cli():
     assert "def compute_tangents(" in stub.read_text()
 
 
-SHARED_ASSETS = sorted((SOURCE.parent / "shared" / "assets").glob("*.glb"))
+SHARED = SOURCE.parent / "shared" / "assets"
 
 
-@pytest.mark.skipif(not SHARED_ASSETS, reason="../shared/assets is absent: the shared sample assets are not compared")
-@pytest.mark.parametrize("asset", SHARED_ASSETS, ids=[a.stem for a in SHARED_ASSETS])
-def test_shared_assets_bake_to_the_cli_bytes(tmp_path, asset):
+@pytest.mark.parametrize("name", ["NormalTangentTest.glb", "NormalTangentMirrorTest.glb"])
+def test_shared_assets_bake_to_the_cli_bytes(tmp_path, name):
+    asset = SHARED / name
+    if not asset.is_file():
+        skip_or_fail(f"{asset} is absent: the shared sample assets are not compared")
     output = tmp_path / "out.glb"
     expected = cli_bake_report(tmp_path, asset, output)
     cli_bytes = output.read_bytes()

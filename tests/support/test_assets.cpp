@@ -251,7 +251,14 @@ TestAsset morphTargets() {
 
 TestAsset secondUvSet() {
   Builder b("second_uv_set");
-  const GridMesh grid = makeGrid(4, 4, false);
+  // Flat (z = 0, normals +z), so that the frames the UV sets and the texture transform give
+  // are exact directions in the plane.
+  GridMesh grid = makeGrid(4, 4, false);
+  for (std::size_t v = 0; v < grid.positions.size() / 3; ++v) {
+    grid.positions[3 * v + 2] = 0;
+    grid.normals[3 * v] = grid.normals[3 * v + 1] = 0;
+    grid.normals[3 * v + 2] = 1;
+  }
   std::vector<float> rotated;  // TEXCOORD_0 rotated 90 degrees: wrong for the normal map
   for (std::size_t i = 0; i < grid.uvs.size(); i += 2) rotated.insert(rotated.end(), {grid.uvs[i + 1], 1 - grid.uvs[i]});
   Json attributes = {{"POSITION", b.floats(grid.positions, "VEC3", 3, true)}, {"NORMAL", b.floats(grid.normals, "VEC3", 3)},
@@ -374,10 +381,18 @@ GridMesh makeSphere(int slices, int stacks, bool exactPoles) {
   for (int j = 0; j < stacks; ++j) {
     for (int i = 0; i < slices; ++i) {
       const std::uint32_t a = j * (slices + 1) + i, b = a + slices + 1;
-      // Pole rows keep their zero-area triangles on purpose: they are the stiff case.
-      mesh.indices.insert(mesh.indices.end(), {a, a + 1, b, a + 1, b + 1, b});
+      // Counter-clockwise seen from outside (j runs from the north pole down, i eastward: a,
+      // b below it, a + 1 east of it), so glTF's front faces agree with the normals. Pole rows
+      // keep their zero-area triangles on purpose: they are the stiff case.
+      mesh.indices.insert(mesh.indices.end(), {a, b, a + 1, a + 1, b, b + 1});
     }
   }
+  return mesh;
+}
+
+GridMesh reverseWinding(GridMesh mesh, int every) {
+  for (std::size_t t = 0; t < mesh.indices.size() / 3; t += static_cast<std::size_t>(every))
+    std::swap(mesh.indices[3 * t + 1], mesh.indices[3 * t + 2]);
   return mesh;
 }
 

@@ -38,9 +38,13 @@ struct ShuffledMesh {
 };
 ShuffledMesh shuffleFacesAndRotateCorners(const GridMesh& mesh, unsigned seed);
 
-// Torus and UV sphere (with poles) with analytic normals. exactPoles puts every pole vertex
+// Torus and UV sphere (with poles) with analytic normals, both wound counter-clockwise seen
+// from outside (glTF's front faces agree with the normals). exactPoles puts every pole vertex
 // at exactly (0, 0, +-1); without it the bottom pole's copies sit sin(pi) ~ 1e-16 apart.
 GridMesh makeTorus(int rings, int sides);
 GridMesh makeSphere(int slices, int stacks, bool exactPoles = true);
+// The inconsistent-winding fixture: the mesh with triangles 0, every, 2 * every, ... turned
+// over (two corners swapped), so they are wound against their normals; every = 1 turns all.
+GridMesh reverseWinding(GridMesh mesh, int every);
 
 }  // namespace tangent::testing

@@ -14,6 +14,7 @@
 #include <nlohmann/json.hpp>
 
 #include "support/run_command.hpp"
+#include "support/skip_or_fail.hpp"
 #include "support/temp_dir.hpp"
 
 namespace {
@@ -112,7 +113,7 @@ std::vector<float> cellDifferences(const Image& image) {
 
 TEST(Viewer, NormalTangentTestHalvesShadeAlikeAndFlipsAreCaught) {
   const fs::path asset = fs::path(TANGENT_SOURCE_DIR) / ".." / "shared" / "assets" / "NormalTangentTest.glb";
-  if (!fs::exists(asset)) GTEST_SKIP() << "../shared/assets is absent: skipping NormalTangentTest";
+  if (!fs::exists(asset)) TANGENT_SKIP_OR_FAIL("../shared/assets is absent: skipping NormalTangentTest");
   TempDir dir;
   const std::string common = "'" + asset.string() + "' --camera front --ortho --size 800x800 --no-shadows";
   const auto good = cellDifferences(screenshot(dir, "good", common));

@@ -1,0 +1,146 @@
+#!/usr/bin/env bash
+# Mutation check (not part of CI): applies small deliberate bugs to the core and the glTF
+# layer, one at a time, to a copy of the source tree, rebuilds it and runs the tests that
+# should notice; prints which tests caught each mutation and which mutations survived.
+#
+#   scripts/mutate.sh [NAME...]       every mutation, or only those named
+#   TANGENT_MUTATE_DIR=/tmp/x          where the copy and its build live (kept between runs,
+#                                      so that later runs and each mutation rebuild
+#                                      incrementally; default /tmp/libtangent-mutate)
+#
+# The working tree is never written: the tracked and untracked (not ignored) files are copied
+# to $TANGENT_MUTATE_DIR/src, ../shared is linked beside it and tests/node/node_modules into
+# it. Each mutation is an exact text replacement that must match exactly once, or the script
+# stops: update it when the code it targets changes. The goal: every mutation caught by at
+# least two tests, one of them independent of the library's own code (the reference C or npm
+# MikkTSpace, the Khronos validator, values computed by hand in the test, tangents an
+# exporter wrote): those are marked with *.
+set -euo pipefail
+source_dir=$(cd "$(dirname "$0")/.." && pwd)
+work=${TANGENT_MUTATE_DIR:-/tmp/libtangent-mutate}
+copy=$work/src build=$work/build
+python=/usr/bin/python3
+
+# Independent of the library's own code (see above).
+independent='^(ReferenceC\.|MikkTSpaceReference\.|validator\.|SharedAssets\.MirrorTestHandedness|MeshFiles\.|Core\.(QuadExactFrame|TopLeftUvOriginNegatesWOnly|MirroredQuadsSplitSharedVertices|Cube24ExactFrames|EachWeightingGivesItsHandComputedFrame|TorusTangentFollowsU)$|Bake\.(MirroredColumnsSplitAndIndicesWiden|NormalTextureUvSetAndTextureTransformChooseTheFrame)$|Cli\.BakeWritesReportAndLeavesInputAlone$)'
+# The tests each kind of mutation runs (CTest -R).
+core_tests='^(Core|CoreNames|MikkTSpace|MikkTSpaceReference|Workspace|ReferenceC|Stress|StressReport|Check|CheckNegative|SharedAssets|MeshFiles)\.|^Methods/|^validator\.'
+gltf_tests='^(Bake|BakeErrors|MeshFiles|Check|CheckNegative|Cli|SharedAssets)\.|RoundTrip|^MikkTSpaceReference\.(ObjInputThroughBake|SharedAssets)$|^validator\.'
+
+names=() files=() tests=() olds=() news=()
+# mutation NAME FILE TESTS OLD NEW: OLD must occur exactly once in FILE.
+mutation() { names+=("$1"); files+=("$2"); tests+=("$3"); olds+=("$4"); news+=("$5"); }
+mutation w-sign libtangent/core/src/mikktspace.cpp "$core_tests" \
+  'const float w = orientation > 0 ? 1.0f : -1.0f;' \
+  'const float w = orientation > 0 ? -1.0f : 1.0f;'
+mutation w-convention-in-bake libtangent/gltf/src/bake.cpp "$gltf_tests" \
+  'coreOptions.uvOrigin = UvOrigin::topLeft;' \
+  'coreOptions.uvOrigin = UvOrigin::bottomLeft;'
+mutation weighting-mikktspace-area libtangent/core/src/mikktspace.cpp "$core_tests" \
+  'angle = std::max(angle, 1e-12);' \
+  'angle = std::max(0.5 * length(cross(a_.position(a_.indices[previousCorner(c)]) - here, a_.position(a_.indices[nextCorner(c)]) - here)), 1e-12);'
+mutation weighting-lengyel-area libtangent/core/src/lengyel.cpp "$core_tests" \
+  'case Weighting::angle: cornerWeights[corner] = cornerAngle(positions, k); break;' \
+  'case Weighting::angle: cornerWeights[corner] = triangle.area; break;'
+mutation projection-mikktspace libtangent/core/src/mikktspace.cpp "$core_tests" \
+  'const F3 referenceS = referenceProjected({frame[0], frame[1], frame[2]}, rawNormal);' \
+  'const F3 referenceS{frame[0], frame[1], frame[2]};'
+mutation projection-lengyel libtangent/core/src/corner_groups.cpp "$core_tests" \
+  'Vec3 t = sum - n * (n | sum);' \
+  'Vec3 t = sum;'
+mutation uv-set libtangent/gltf/src/primitive.cpp "$gltf_tests" \
+  'const std::string uvName = "TEXCOORD_" + std::to_string(needs.texCoord);
+  const int uvAccessor' \
+  'const std::string uvName = "TEXCOORD_0";
+  const int uvAccessor'
+mutation index-widening libtangent/gltf/src/bake.cpp "$gltf_tests" \
+  'if (outCount - 1 >= 65535 && indexComponentType == TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT)' \
+  'if (false)'
+mutation attribute-carry libtangent/gltf/src/bake.cpp "$gltf_tests" \
+  'if (name == "TANGENT") continue;' \
+  "if (name == \"TANGENT\" || name[0] == '_') continue;  // custom attributes not gathered"
+
+mkdir -p "$copy"
+ln -sfn "$(cd "$source_dir/.." && pwd)/shared" "$work/shared"
+# Copy with the files' own times (tar keeps them), so unchanged files do not rebuild.
+(cd "$source_dir" && git ls-files -co --exclude-standard -z | tar --null -T - -cf -) | tar -xf - -C "$copy"
+if [ -d "$source_dir/tests/node/node_modules" ]; then
+  ln -sfn "$source_dir/tests/node/node_modules" "$copy/tests/node/node_modules"
+fi
+if [ ! -f "$build/build.ninja" ]; then
+  cmake -S "$copy" -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DTANGENT_BUILD_VIEWER=OFF \
+    -DTANGENT_BUILD_BENCHMARKS=OFF -DTANGENT_BUILD_PYTHON=OFF >/dev/null
+fi
+targets=(tangent tangent-test-assets tangent_tests tangent_reference_c_tests)
+echo "== unmutated build and tests (all must pass)"
+cmake --build "$build" --parallel 2 --target "${targets[@]}" >/dev/null
+
+# apply FILE OLD NEW: replaces the one occurrence of OLD, or fails.
+apply() {
+  "$python" - "$1" "$2" "$3" <<'EOF'
+import pathlib, sys
+path, old, new = pathlib.Path(sys.argv[1]), sys.argv[2], sys.argv[3]
+text = path.read_text()
+count = text.count(old)
+if count != 1:
+    sys.exit(f"mutation does not apply: {path} has {count} occurrences of:\n{old}")
+path.write_text(text.replace(old, new))
+EOF
+  touch "$1"
+}
+
+# run_tests REGEX: prints the names of the failing tests (none: empty).
+run_tests() {
+  local log=$work/ctest.log
+  ctest --test-dir "$build" -R "$1" -j 2 --timeout 900 >"$log" 2>&1 || true
+  grep -E '^[[:space:]]*[0-9]+ - .* \((Failed|Timeout|SEGFAULT|Subprocess aborted|Exception|Child aborted)' "$log" |
+    sed -E 's/^[[:space:]]*[0-9]+ - ([^ ]+) .*/\1/' || true
+}
+
+baseline=$(run_tests "$core_tests|$gltf_tests")
+if [ -n "$baseline" ]; then
+  echo "tests fail without any mutation:"; echo "$baseline"; exit 1
+fi
+
+selected=("$@")
+rows=()
+for i in "${!names[@]}"; do
+  name=${names[$i]} file=${files[$i]}
+  if [ ${#selected[@]} -gt 0 ] && [[ ! " ${selected[*]} " == *" $name "* ]]; then continue; fi
+  echo "== $name ($file)"
+  cp -p "$copy/$file" "$work/pristine"
+  apply "$copy/$file" "${olds[$i]}" "${news[$i]}"
+  if cmake --build "$build" --parallel 2 --target "${targets[@]}" >"$work/build.log" 2>&1; then
+    caught=$(run_tests "${tests[$i]}")
+  else
+    tail -20 "$work/build.log"
+    caught="(does not build)"
+  fi
+  cp -p "$work/pristine" "$copy/$file"
+  touch "$copy/$file"
+  count=0 independent_count=0 list=""
+  while read -r test; do
+    [ -n "$test" ] || continue
+    count=$((count + 1))
+    mark=""
+    if [[ $test =~ $independent ]]; then mark="*"; independent_count=$((independent_count + 1)); fi
+    list+="${list:+, }$test$mark"
+  done <<<"$caught"
+  if [ "$caught" = "(does not build)" ]; then verdict="does not build"
+  elif [ "$count" -eq 0 ]; then verdict="SURVIVED"
+  elif [ "$count" -ge 2 ] && [ "$independent_count" -ge 1 ]; then verdict="caught"
+  else verdict="caught (thinly)"
+  fi
+  echo "   $verdict: $count tests, $independent_count independent"
+  rows+=("$name|$verdict|$count|$independent_count|$list")
+done
+# Leave the copy's build unmutated for the next run.
+cmake --build "$build" --parallel 2 --target "${targets[@]}" >/dev/null
+
+echo
+echo "| mutation | result | tests failing | of them independent (*) | tests |"
+echo "|---|---|---|---|---|"
+for row in "${rows[@]}"; do
+  IFS='|' read -r name verdict count independent_count list <<<"$row"
+  echo "| $name | $verdict | $count | $independent_count | $list |"
+done
