@@ -209,12 +209,16 @@ TEST(MikkTSpaceReference, OtherMethodsOnConsistentlyWoundMeshes) {
       EXPECT_EQ(lengyel.compared, named.mesh.indices.size() - named.fallback);
       EXPECT_EQ(lengyel.wMismatches, inverted ? lengyel.compared : 0u);
       EXPECT_LE(lengyel.maxDegrees, flat.maxDegrees + 1e-4);
-      if (weighting == tangent::Weighting::angle && named.name != "jittered grid") EXPECT_LE(lengyel.maxDegrees, 1e-3);
+      if (weighting == tangent::Weighting::angle && named.name != "jittered grid") {
+        EXPECT_LE(lengyel.maxDegrees, 1e-3);
+      }
     }
     SCOPED_TRACE("flat, " + named.name);
     EXPECT_EQ(flat.ourFallback, named.fallback);
     EXPECT_EQ(flat.wMismatches, inverted ? flat.compared : 0u);
-    if (flatBound.count(named.name)) EXPECT_LE(flat.maxDegrees, flatBound.at(named.name) + 1e-3);
+    if (flatBound.count(named.name)) {
+      EXPECT_LE(flat.maxDegrees, flatBound.at(named.name) + 1e-3);
+    }
   }
 }
 

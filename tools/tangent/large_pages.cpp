@@ -7,23 +7,17 @@
 #include <cstdlib>
 #include <new>
 
+#include "tangent/bulk_buffer.hpp"
+
 #if defined(__linux__)
 #include <malloc.h>
-#include <sys/mman.h>
 #endif
 
 namespace {
 
-constexpr std::size_t kHugePage = std::size_t(2) << 20;
-
 void* allocate(std::size_t bytes) noexcept {
-  if (bytes < kHugePage) return std::malloc(bytes == 0 ? 1 : bytes);
-  const std::size_t rounded = (bytes + kHugePage - 1) / kHugePage * kHugePage;
-  void* p = std::aligned_alloc(kHugePage, rounded);
-#if defined(__linux__) && defined(MADV_HUGEPAGE)
-  if (p) madvise(p, rounded, MADV_HUGEPAGE);  // advice only
-#endif
-  return p;
+  if (bytes < tangent::kHugePage) return std::malloc(bytes == 0 ? 1 : bytes);
+  return tangent::allocateHugePages(bytes);
 }
 
 #if defined(__linux__) && defined(M_MMAP_MAX)

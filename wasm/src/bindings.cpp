@@ -32,21 +32,16 @@ State& state() {
   return s;
 }
 
-// A unit vector perpendicular to n (the axis least aligned with it, made orthogonal), for
-// vertices no triangle uses: no output tangent is ever zero.
-void perpendicular(const float* n, float* out) {
-  double x = n[0], y = n[1], z = n[2];
-  const double len = std::sqrt(x * x + y * y + z * z);
-  if (!(len > 0) || !std::isfinite(len)) x = 0, y = 0, z = 1;
-  else x /= len, y /= len, z /= len;
-  const double a[3] = {std::abs(x), std::abs(y), std::abs(z)};
-  const int axis = a[0] <= a[1] && a[0] <= a[2] ? 0 : (a[1] <= a[2] ? 1 : 2);
-  double t[3] = {0, 0, 0};
-  t[axis] = 1;
-  const double d = t[0] * x + t[1] * y + t[2] * z;
-  t[0] -= d * x, t[1] -= d * y, t[2] -= d * z;
-  const double l = std::sqrt(t[0] * t[0] + t[1] * t[1] + t[2] * t[2]);
-  out[0] = static_cast<float>(t[0] / l), out[1] = static_cast<float>(t[1] / l), out[2] = static_cast<float>(t[2] / l);
+// A unit tangent for a vertex no triangle uses (the core's rule for a corner with nothing to
+// borrow from), so that no output tangent is ever zero; +z where the normal is not usable.
+void unusedVertexTangent(const float* normal, float* out) {
+  double n[3] = {normal[0], normal[1], normal[2]};
+  const double len = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+  if (!(len > 0) || !std::isfinite(len)) n[0] = 0, n[1] = 0, n[2] = 1;
+  else n[0] /= len, n[1] /= len, n[2] /= len;
+  double t[3];
+  tangent::detail::axisPerpendicular(n, t);
+  out[0] = static_cast<float>(t[0]), out[1] = static_cast<float>(t[1]), out[2] = static_cast<float>(t[2]);
   out[3] = 1.0f;
 }
 
@@ -78,14 +73,10 @@ EMSCRIPTEN_KEEPALIVE int tangent_run(const float* positions, const float* normal
     const tangent::CornerOutputs outputs{s.cornerTangents, {}, s.cornerVertex};
     tangent::Options options;
     options.uvOrigin = topLeft ? tangent::UvOrigin::topLeft : tangent::UvOrigin::bottomLeft;
-    options.threads = 1;
     tangent::detail::checkArrays(mesh, outputs);
     tangent::detail::WorkspaceData& ws = s.workspace.data();
     ws.threads = 1;
-    tangent::Report report;
-    tangent::detail::weldAndBucket(ws, mesh);
-    tangent::detail::mikktspaceOnBuckets(ws, mesh, outputs, report);
-    tangent::detail::finishOutputs(ws, mesh, outputs, options, report);
+    const tangent::Report report = tangent::detail::mikktspaceOnArrays(ws, mesh, outputs, options);
     const double values[10] = {double(report.triangles),          double(report.outputVertices),
                                double(report.splitVertices),      double(report.degenerateTriangles),
                                double(report.zeroUvAreaTriangles), double(report.nonFiniteTriangles),
@@ -106,7 +97,7 @@ EMSCRIPTEN_KEEPALIVE int tangent_run(const float* positions, const float* normal
     for (std::size_t v = 0; v < outputVertices; ++v) {
       if (used[v]) continue;
       s.vertexSource[v] = static_cast<std::uint32_t>(v);  // unused input vertices keep their place
-      perpendicular(&normals[3 * v], &s.vertexTangents[4 * v]);
+      unusedVertexTangent(&normals[3 * v], &s.vertexTangents[4 * v]);
     }
     return 0;
   } catch (const std::exception& e) {

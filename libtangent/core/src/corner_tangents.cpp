@@ -48,11 +48,10 @@ Report computeCornerTangents(const MeshArrays& mesh, const CornerOutputs& output
   ws.threads = threadCount(options);
   Report report;
   auto body = [&] {
-    detail::weldAndBucket(ws, mesh);
     if (options.method == Method::mikktspace) {
-      detail::mikktspaceOnBuckets(ws, mesh, outputs, report);
-      detail::finishOutputs(ws, mesh, outputs, options, report);
+      report = detail::mikktspaceOnArrays(ws, mesh, outputs, options);
     } else {
+      detail::weldAndBucket(ws, mesh);
       lengyelOnArrays(ws, mesh, outputs, options, report);
     }
   };

@@ -937,12 +937,8 @@ void Kernel::fallbacks() {
       decisions.push_back({c, tangent, FrameSource::neighbour});
       continue;
     }
-    // 4. A fixed unit vector perpendicular to the normal: the axis least aligned with it.
-    const double abs[3] = {std::abs(n.x), std::abs(n.y), std::abs(n.z)};
-    const int axis = abs[0] <= abs[1] && abs[0] <= abs[2] ? 0 : (abs[1] <= abs[2] ? 1 : 2);
-    V3 unit;
-    (&unit.x)[axis] = 1;
-    orthonormalize(unit, n, tangent);
+    // 4. A fixed unit vector perpendicular to the normal.
+    axisPerpendicular(&n.x, &tangent.x);
     decisions.push_back({c, tangent, FrameSource::fixed});
   }
   for (const Decision& d : decisions) writeCorner(d.corner, d.tangent, tangents_[4 * d.corner + 3], d.source, 0);
@@ -988,6 +984,14 @@ void mikktspaceOnBuckets(WorkspaceData& ws, const MeshArrays& mesh, const Corner
   report.triangles = ws.cornerCount / 3;
   report.corners = ws.cornerCount;
   Kernel(ws, mesh, outputs).run(report);
+}
+
+Report mikktspaceOnArrays(WorkspaceData& ws, const MeshArrays& mesh, const CornerOutputs& outputs, const Options& options) {
+  Report report;
+  weldAndBucket(ws, mesh);
+  mikktspaceOnBuckets(ws, mesh, outputs, report);
+  finishOutputs(ws, mesh, outputs, options, report);
+  return report;
 }
 
 }  // namespace tangent::detail

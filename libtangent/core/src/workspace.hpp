@@ -10,6 +10,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <cmath>
 #include <cstdint>
 #include <cstring>
 #include <vector>
@@ -133,6 +134,19 @@ inline To bitCast(const From& from) {
 // The bits of a float with -0 taken as +0: the order and hash of values that compare equal.
 inline std::uint32_t canonicalBits(float x) { return bitCast<std::uint32_t>(x == 0.0f ? 0.0f : x); }
 
+// A fixed unit vector perpendicular to the unit normal n, for a corner with no frame to
+// borrow: the axis least aligned with n, made orthogonal to it.
+inline void axisPerpendicular(const double n[3], double out[3]) {
+  const double a[3] = {std::abs(n[0]), std::abs(n[1]), std::abs(n[2])};
+  const int axis = a[0] <= a[1] && a[0] <= a[2] ? 0 : (a[1] <= a[2] ? 1 : 2);
+  double t[3] = {0, 0, 0};
+  t[axis] = 1;
+  const double along = n[0] * t[0] + n[1] * t[1] + n[2] * t[2];
+  for (int i = 0; i < 3; ++i) t[i] = t[i] - n[i] * along;
+  const double scale = 1.0 / std::sqrt(t[0] * t[0] + t[1] * t[1] + t[2] * t[2]);
+  for (int i = 0; i < 3; ++i) out[i] = t[i] * scale;
+}
+
 // Sorts the few keys of one bucket: insertion sort up to two dozen, std::sort beyond.
 template <typename T>
 void sortSmall(T* begin, T* end) {
@@ -161,6 +175,10 @@ void checkArrays(const MeshArrays& mesh, const CornerOutputs& outputs);
 // Welds vertices by exact (position, normal, UV) value as the reference does (+0 and -0
 // equal), then buckets the corners by welded id, each bucket in corner order.
 void weldAndBucket(WorkspaceData& ws, const MeshArrays& mesh);
+
+// The method `mikktspace` on checked arrays: weld, groups, output pass (weldAndBucket,
+// mikktspaceOnBuckets, finishOutputs), on the calling thread's arena.
+Report mikktspaceOnArrays(WorkspaceData& ws, const MeshArrays& mesh, const CornerOutputs& outputs, const Options& options);
 
 // The method `mikktspace` on the welded buckets: writes outputs.tangents (bottom-left w) and
 // ws.cornerState, fills the triangle counts of the report.

@@ -101,6 +101,22 @@ std::uint32_t readUnsigned(const std::uint8_t* p, int componentType) {
 }
 
 // glTF 2.0 3.7.2.1: indices are SCALAR of an unsigned integer type.
+[[noreturn]] void indexOutOfRange(const std::string& where, std::uint32_t index, std::size_t position, std::size_t vertexCount) {
+  throw InputError(where + ": index " + std::to_string(index) + " at position " + std::to_string(position) +
+                   " is out of range (the primitive has " + std::to_string(vertexCount) + " vertices)");
+}
+
+// Throws for the first index not below vertexCount: one pass for the largest (which the
+// compiler vectorizes), a second only to name a bad one.
+void requireBelow(const std::vector<std::uint32_t>& indices, std::size_t vertexCount, const std::string& where) {
+  std::uint32_t largest = 0;
+  for (const std::uint32_t index : indices) largest = std::max(largest, index);
+  if (indices.empty() || largest < vertexCount) return;
+  for (std::size_t i = 0; i < indices.size(); ++i) {
+    if (indices[i] >= vertexCount) indexOutOfRange(where, indices[i], i, vertexCount);
+  }
+}
+
 void requireIndexType(const AccessorData& data, const std::string& where) {
   if (data.type != TINYGLTF_TYPE_SCALAR ||
       (data.componentType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE &&
@@ -216,9 +232,7 @@ void checkIndexRange(const tinygltf::Model& model, int accessorIndex, std::size_
   }
   for (std::size_t i = 0; i < data.count; ++i) {
     const std::uint32_t index = readUnsigned(layout.dense + i * layout.stride, data.componentType);
-    if (index >= vertexCount)
-      throw InputError(where + ": index " + std::to_string(index) + " at position " + std::to_string(i) +
-                       " is out of range (the primitive has " + std::to_string(vertexCount) + " vertices)");
+    if (index >= vertexCount) indexOutOfRange(where, index, i, vertexCount);
   }
 }
 
@@ -264,12 +278,8 @@ std::vector<float> toFloats(const AccessorData& data) {
 std::vector<std::uint32_t> toIndices(const AccessorData& data, std::size_t vertexCount, const std::string& where) {
   requireIndexType(data, where);
   std::vector<std::uint32_t> out(data.count);
-  for (std::size_t i = 0; i < data.count; ++i) {
-    out[i] = readUnsigned(&data.bytes[i * data.componentSize], data.componentType);
-    if (out[i] >= vertexCount)
-      throw InputError(where + ": index " + std::to_string(out[i]) + " at position " + std::to_string(i) +
-                       " is out of range (the primitive has " + std::to_string(vertexCount) + " vertices)");
-  }
+  for (std::size_t i = 0; i < data.count; ++i) out[i] = readUnsigned(&data.bytes[i * data.componentSize], data.componentType);
+  requireBelow(out, vertexCount, where);
   return out;
 }
 
@@ -298,16 +308,7 @@ std::vector<std::uint32_t> readIndices(const tinygltf::Model& model, int accesso
   requireIndexType(header, values);
   std::vector<std::uint32_t> out(header.count);
   for (std::size_t i = 0; i < header.count; ++i) out[i] = readUnsigned(layout.dense + i * layout.stride, header.componentType);
-  // Checked after the copy, in one pass that the compiler can vectorize.
-  std::uint32_t largest = 0;
-  for (const std::uint32_t index : out) largest = std::max(largest, index);
-  if (header.count > 0 && largest >= vertexCount) {
-    for (std::size_t i = 0; i < header.count; ++i) {
-      if (out[i] >= vertexCount)
-        throw InputError(values + ": index " + std::to_string(out[i]) + " at position " + std::to_string(i) +
-                         " is out of range (the primitive has " + std::to_string(vertexCount) + " vertices)");
-    }
-  }
+  requireBelow(out, vertexCount, values);
   return out;
 }
 

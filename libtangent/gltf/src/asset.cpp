@@ -145,11 +145,6 @@ void splitGlb(std::span<const std::uint8_t> bytes, const std::string& label, std
   }
 }
 
-std::vector<std::span<const std::uint8_t>> glbPieces(const std::string& json, std::span<const std::uint8_t> bin,
-                                                     std::vector<std::uint8_t>& frame) {
-  return glbPieces(json, std::vector<std::span<const std::uint8_t>>{bin}, frame);
-}
-
 std::vector<std::span<const std::uint8_t>> glbPieces(const std::string& json,
                                                      const std::vector<std::span<const std::uint8_t>>& binPieces,
                                                      std::vector<std::uint8_t>& frame) {
@@ -184,7 +179,7 @@ std::vector<std::span<const std::uint8_t>> glbPieces(const std::string& json,
 std::vector<std::uint8_t> makeGlb(const std::string& json, std::span<const std::uint8_t> bin) {
   std::vector<std::uint8_t> frame;
   std::vector<std::uint8_t> out;
-  for (const auto& piece : glbPieces(json, bin, frame)) out.insert(out.end(), piece.begin(), piece.end());
+  for (const auto& piece : glbPieces(json, {bin}, frame)) out.insert(out.end(), piece.begin(), piece.end());
   return out;
 }
 

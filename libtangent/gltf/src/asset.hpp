@@ -40,10 +40,8 @@ void splitGlb(std::span<const std::uint8_t> bytes, const std::string& label, std
               std::span<const std::uint8_t>& bin);
 
 // A GLB container as pieces to write one after another: headers and padding (kept in
-// `frame`), the JSON chunk and the BIN chunk (pointing into json and bin).
-std::vector<std::span<const std::uint8_t>> glbPieces(const std::string& json, std::span<const std::uint8_t> bin,
-                                                     std::vector<std::uint8_t>& frame);
-// The same with the BIN chunk's bytes in pieces, one after another.
+// `frame`), the JSON chunk and the BIN chunk's bytes (pointing into json and binPieces, whose
+// pieces are the chunk one after another).
 std::vector<std::span<const std::uint8_t>> glbPieces(const std::string& json,
                                                      const std::vector<std::span<const std::uint8_t>>& binPieces,
                                                      std::vector<std::uint8_t>& frame);

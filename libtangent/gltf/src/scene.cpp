@@ -137,9 +137,9 @@ detail::PrimitiveGeometry readForDisplay(const detail::Asset& asset, const Json&
   if (position < 0) throw InputError(where + ": has no POSITION attribute");
   detail::PrimitiveGeometry geometry;
   {
-    const auto positions = detail::toFloats(detail::readAccessor(asset.model, position, where + ": POSITION"));
-    geometry.vertexCount = positions.size() / 3;
-    geometry.positions = positions;
+    detail::AccessorData header;
+    geometry.positions = detail::readFloats(asset.model, position, where + ": POSITION", header);
+    geometry.vertexCount = geometry.positions.size() / 3;
     geometry.mode = primitive.value("mode", 4);
     std::vector<std::uint32_t> sequence;
     const int indices = detail::accessorOf(primitive, "indices");
@@ -148,7 +148,7 @@ detail::PrimitiveGeometry readForDisplay(const detail::Asset& asset, const Json&
       sequence.resize(geometry.vertexCount);
       std::iota(sequence.begin(), sequence.end(), 0u);
     }
-    geometry.corners = detail::triangleList(geometry.mode, sequence);
+    geometry.corners = detail::triangleList(geometry.mode, std::move(sequence));
   }
   if (hasNormal) geometry.normals = detail::readVectors(asset.model, detail::accessorOf(attributes, "NORMAL"), 3, geometry.vertexCount, where + ": NORMAL");
   else {

@@ -17,10 +17,23 @@
 
 namespace tangent {
 
+inline constexpr std::size_t kHugePage = std::size_t(2) << 20;
+
+// At least `bytes` on 2 MiB boundaries, rounded up to whole 2 MiB, with transparent huge pages
+// asked for (advice only: without them it still works); null when out of memory. Free with
+// std::free. For blocks of kHugePage and more.
+inline void* allocateHugePages(std::size_t bytes) noexcept {
+  const std::size_t rounded = (bytes + kHugePage - 1) / kHugePage * kHugePage;
+  void* p = std::aligned_alloc(kHugePage, rounded);
+#if defined(__linux__) && defined(MADV_HUGEPAGE)
+  if (p) madvise(p, rounded, MADV_HUGEPAGE);
+#endif
+  return p;
+}
+
 template <typename T>
 struct BulkAllocator {
   using value_type = T;
-  static constexpr std::size_t kHugePage = std::size_t(2) << 20;
 
   BulkAllocator() noexcept = default;
   template <typename U>
@@ -29,12 +42,8 @@ struct BulkAllocator {
   T* allocate(std::size_t n) {
     const std::size_t bytes = n * sizeof(T);
     if (bytes < kHugePage) return static_cast<T*>(::operator new(bytes));
-    const std::size_t rounded = (bytes + kHugePage - 1) / kHugePage * kHugePage;
-    void* p = std::aligned_alloc(kHugePage, rounded);
+    void* p = allocateHugePages(bytes);
     if (!p) throw std::bad_alloc();
-#if defined(__linux__) && defined(MADV_HUGEPAGE)
-    madvise(p, rounded, MADV_HUGEPAGE);  // advice only: without huge pages it still works
-#endif
     return static_cast<T*>(p);
   }
   void deallocate(T* p, std::size_t n) noexcept {
