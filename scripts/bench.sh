@@ -79,7 +79,8 @@ for size in "${sizes[@]}"; do
   wasm_json=$(cd bench/node && node mikktspace_kernel.mjs "$target" "$kernel_runs")
   npm_ms=$(sed -n 's/.*"medianMs":\([0-9.]*\).*/\1/p' <<<"$wasm_json")
   ours_wasm_ms=$(sed -n 's/.*"libtangentWasmMs":\([0-9.]*\).*/\1/p' <<<"$wasm_json")
-  rows+=("$triangles $ours $ours_kb $gt $gt_kb $as $as_kb sphere-$name $npm_ms ${ours_wasm_ms:-nan}")
+  wasm_triangles=$(sed -n 's/.*"triangles":\([0-9]*\).*/\1/p' <<<"$wasm_json")
+  rows+=("$triangles $ours $ours_kb $gt $gt_kb $as $as_kb sphere-$name $npm_ms ${ours_wasm_ms:-nan} $wasm_triangles")
   echo "sphere $n: $triangles triangles, bake ${ours}s (${ours_kb} kB), gltf-transform ${gt}s (${gt_kb} kB), assimp ${as}s (${as_kb} kB); WebAssembly kernels on sphere-$name: npm mikktspace ${npm_ms} ms, libtangent-wasm ${ours_wasm_ms:-–} ms"
 done
 # The WebAssembly kernels on the shared assets too (5 runs each, alternating).
@@ -181,7 +182,7 @@ lines += ["", "## WebAssembly kernels, one Node process, same de-indexed arrays"
           "`mikktspace` package (the reference compiled to WebAssembly, what glTF-Transform users pass to `tangents()`) against "
           "libtangent's package (`wasm/package`, single-threaded).", "",
           "| input | triangles | npm mikktspace | libtangent-wasm | libtangent-wasm speed-up |", "|---|---:|---:|---:|---:|"]
-wasm_rows = [(r[7], int(r[0]), float(r[8]) if r[8] else float("nan"), float(r[9])) for r in rows if len(r) > 9]
+wasm_rows = [(r[7], int(r[10]), float(r[8]) if r[8] else float("nan"), float(r[9])) for r in rows if len(r) > 10]
 wasm_rows += [(a.split()[0], int(float(a.split()[1])), float(a.split()[2]), float(a.split()[3]))
               for a in os.environ.get("TANGENT_WASM_ASSETS", "").splitlines() if len(a.split()) == 4]
 for name, t, theirs, mine in wasm_rows:
