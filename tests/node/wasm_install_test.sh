@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
-# The WebAssembly package as a user gets it, by the README's own blocks (section "WebAssembly"),
-# run as written: the first (sh) at the repository root builds and packs it; the package is
+# The WebAssembly package as a user gets it, by the README's own blocks (its section
+# "WebAssembly (Node, browsers, glTF-Transform)", not the benchmark table's heading), run as
+# written: the first (sh) at the repository root builds and packs it; the package is
 # installed from that tarball into a new project (beside glTF-Transform, from the npm cache
 # that tests/node's npm ci filled); there the js block and the last sh block run on a copy of
 # ASSET as in.glb, and what they write must pass the Khronos validator.
@@ -11,7 +12,7 @@ rm -rf "$work" && mkdir -p "$work/project" "$work/blocks"
 python3 - "$source_dir/README.md" "$work/blocks" <<'PY'
 import re, sys
 text = open(sys.argv[1]).read()
-start = text.index("## WebAssembly")
+start = text.index("\n## WebAssembly (Node, browsers, glTF-Transform)\n")
 section = text[start:text.index("\n## ", start + 1)]
 blocks = re.findall(r"```(sh|js)\n(.*?)```", section, re.S)
 assert [lang for lang, _ in blocks] == ["sh", "js", "sh"], [lang for lang, _ in blocks]
