@@ -136,6 +136,42 @@ TEST(Workspace, OpenMeshCallGivesTheArrayCallsBitsOnHardCases) {
   }
 }
 
+// The OpenMesh call lets corners of one mesh vertex share an array vertex where their values
+// are equal; -0 against +0 and NaN must keep them apart exactly as the array call's weld does.
+TEST(Workspace, OpenMeshCallKeepsSignedZerosAndNaNsApart) {
+  const GridMesh torus = tangent::testing::makeTorus(12, 8);
+  GridMesh m;  // one array vertex per corner, so each corner's values can differ
+  for (std::size_t c = 0; c < torus.indices.size(); ++c) {
+    const std::uint32_t v = torus.indices[c];
+    m.positions.insert(m.positions.end(), &torus.positions[3 * v], &torus.positions[3 * v] + 3);
+    m.normals.insert(m.normals.end(), &torus.normals[3 * v], &torus.normals[3 * v] + 3);
+    m.uvs.insert(m.uvs.end(), &torus.uvs[2 * v], &torus.uvs[2 * v] + 2);
+    m.indices.push_back(static_cast<std::uint32_t>(c));
+  }
+  std::size_t signedZeros = 0, nans = 0;
+  for (std::size_t c = 0; c < m.indices.size(); ++c) {
+    if (c % 5 == 1 && m.uvs[2 * c] == 0.0f) m.uvs[2 * c] = -0.0f, ++signedZeros;
+    // The same NaN bits at every corner of a vertex: equal bits, yet never the same vertex.
+    if (torus.indices[c] % 13 == 3) m.normals[3 * c + 1] = std::numeric_limits<float>::quiet_NaN(), ++nans;
+    if (torus.indices[c] % 17 == 5) m.uvs[2 * c + 1] = std::numeric_limits<float>::quiet_NaN(), ++nans;
+  }
+  ASSERT_GT(signedZeros, 0u);
+  ASSERT_GT(nans, 0u);
+  const Output arrays = compute(arraysOf(m), 1);
+  tangent::CornerMesh cornerMesh = tangent::buildCornerMesh(arraysOf(m));
+  for (unsigned threads : {1u, 3u}) {
+    tangent::Options options;
+    options.threads = threads;
+    tangent::computeTangents(cornerMesh, options);
+    for (std::size_t c = 0; c < m.indices.size(); ++c) {
+      const auto& t = cornerMesh.mesh.property(cornerMesh.tangent, cornerMesh.cornerHalfedge[c]);
+      for (int i = 0; i < 4; ++i)
+        ASSERT_EQ(std::bit_cast<std::uint32_t>(static_cast<float>(t[i])), std::bit_cast<std::uint32_t>(arrays.tangents[4 * c + i]))
+            << "corner " << c << ", " << threads << " threads";
+    }
+  }
+}
+
 TEST(WorkspaceErrors, CornerVertexOfTheWrongSize) {
   const GridMesh m = tangent::testing::makeGrid(2, 2, false);
   std::vector<float> tangents(m.indices.size() * 4);

@@ -2,6 +2,7 @@
 #include <tbb/task_arena.h>
 
 #include <algorithm>
+#include <cstring>
 #include <stdexcept>
 #include <string>
 
@@ -76,38 +77,111 @@ Report computeTangents(CornerMesh& cornerMesh, const Options& options, TangentWo
   if (!cornerSources.empty() && cornerSources.size() != cornerCount)
     throw std::invalid_argument("cornerSources: expected one per corner");
   if (options.method != Method::mikktspace) return detail::lengyelTangents(cornerMesh, options, cornerSources);
-  // The same kernel as the array call, on the corners' values: the same bits.
+  // Below, one index array holds corner links (< cornerCount) and numbers counted down from 2^32.
+  if (cornerCount >= (std::size_t(1) << 31)) throw std::invalid_argument("mesh: more than 2^31 corners");
+  // The same kernel as the array call, on the corners' values: the same bits. The corners of
+  // one mesh vertex mostly carry the same normal and UV; those share one array vertex, so the
+  // weld sees about as many vertices as the array call does (sharing changes no bits: the
+  // kernel works on values, and corners share only where every value is equal and not NaN).
   const TriMesh& mesh = cornerMesh.mesh;
   detail::WorkspaceData& ws = workspace.data();
-  detail::ensureSize(ws.meshPositions, 3 * cornerCount);
-  detail::ensureSize(ws.meshNormals, 3 * cornerCount);
-  detail::ensureSize(ws.meshUvs, 2 * cornerCount);
   detail::ensureSize(ws.meshTangents, 4 * cornerCount);
   detail::ensureSize(ws.meshIndices, cornerCount);
-  float* positions = ws.meshPositions.data();
-  float* normals = ws.meshNormals.data();
-  float* uvs = ws.meshUvs.data();
   float* tangents = ws.meshTangents.data();
   std::uint32_t* indices = ws.meshIndices.data();
   ws.threads = threadCount(options);
   auto inArena = [&](const auto& body) { detail::onThreads(ws, [&] { detail::forRange(ws, cornerCount, 1 << 14, body); }); };
+  struct CornerValues {
+    float position[3], normal[3], uv[2];
+    bool shareable() const {  // no NaN: the weld never joins a NaN vertex with another
+      for (float x : position) if (x != x) return false;
+      for (float x : normal) if (x != x) return false;
+      return uv[0] == uv[0] && uv[1] == uv[1];
+    }
+    bool operator==(const CornerValues& o) const { return std::memcmp(this, &o, sizeof o) == 0; }
+  };
+  auto values = [&](std::size_t c) {
+    const auto halfedge = cornerMesh.cornerHalfedge[c];
+    const auto& p = mesh.point(mesh.to_vertex_handle(halfedge));
+    const auto& n = mesh.normal(halfedge);
+    const auto& uv = mesh.texcoord2D(halfedge);
+    CornerValues v;
+    for (int i = 0; i < 3; ++i) {
+      v.position[i] = static_cast<float>(p[i]);
+      v.normal[i] = static_cast<float>(n[i]);
+    }
+    v.uv[0] = static_cast<float>(uv[0]);
+    v.uv[1] = static_cast<float>(uv[1]);
+    return v;
+  };
+  // The representative corner of a mesh vertex: the corner of its stored halfedge's face.
+  auto representative = [&](std::size_t c) -> std::uint32_t {
+    const auto vertex = mesh.to_vertex_handle(cornerMesh.cornerHalfedge[c]);
+    const auto out = mesh.halfedge_handle(vertex);
+    const auto in = mesh.is_boundary(out) ? mesh.opposite_halfedge_handle(out) : mesh.prev_halfedge_handle(out);
+    const std::uint32_t r = cornerMesh.halfedgeCorner[static_cast<std::size_t>(in.idx())];
+    return r == CornerMesh::kNoCorner ? static_cast<std::uint32_t>(c) : r;
+  };
+  // 1. Each corner: its own array vertex (kNone) or its representative's.
   inArena([&](std::size_t begin, std::size_t end) {
     for (std::size_t c = begin; c < end; ++c) {
-      const auto halfedge = cornerMesh.cornerHalfedge[c];
-      const auto& p = mesh.point(mesh.to_vertex_handle(halfedge));
-      const auto& n = mesh.normal(halfedge);
-      const auto& uv = mesh.texcoord2D(halfedge);
-      for (int i = 0; i < 3; ++i) {
-        positions[3 * c + i] = static_cast<float>(p[i]);
-        normals[3 * c + i] = static_cast<float>(n[i]);
-      }
-      uvs[2 * c] = static_cast<float>(uv[0]);
-      uvs[2 * c + 1] = static_cast<float>(uv[1]);
-      indices[c] = static_cast<std::uint32_t>(c);
+      const std::uint32_t r = representative(c);
+      indices[c] = detail::kNone;
+      if (r == c) continue;
+      const CornerValues mine = values(c);
+      if (mine.shareable() && mine == values(r)) indices[c] = r;
     }
   });
-  const MeshArrays arrays{std::span<const float>(positions, 3 * cornerCount), std::span<const float>(normals, 3 * cornerCount),
-                          std::span<const float>(uvs, 2 * cornerCount), std::span<const std::uint32_t>(indices, cornerCount)};
+  // 2. Array vertices numbered in corner order, chunk by chunk.
+  constexpr std::size_t kChunk = 1 << 16;
+  const std::size_t chunkCount = (cornerCount + kChunk - 1) / kChunk;
+  std::vector<std::uint32_t> chunkStart(chunkCount + 1, 0);
+  detail::onThreads(ws, [&] {
+    detail::forRange(ws, chunkCount, 1, [&](std::size_t begin, std::size_t end) {
+      for (std::size_t k = begin; k < end; ++k) {
+        std::uint32_t own = 0;
+        for (std::size_t c = k * kChunk; c < std::min(cornerCount, (k + 1) * kChunk); ++c) own += indices[c] == detail::kNone;
+        chunkStart[k + 1] = own;
+      }
+    });
+  });
+  for (std::size_t k = 0; k < chunkCount; ++k) chunkStart[k + 1] += chunkStart[k];
+  const std::size_t vertexCount = chunkCount == 0 ? 0 : chunkStart[chunkCount];
+  detail::ensureSize(ws.meshPositions, 3 * vertexCount);
+  detail::ensureSize(ws.meshNormals, 3 * vertexCount);
+  detail::ensureSize(ws.meshUvs, 2 * vertexCount);
+  float* positions = ws.meshPositions.data();
+  float* normals = ws.meshNormals.data();
+  float* uvs = ws.meshUvs.data();
+  detail::onThreads(ws, [&] {
+    detail::forRange(ws, chunkCount, 1, [&](std::size_t begin, std::size_t end) {
+      for (std::size_t k = begin; k < end; ++k) {
+        std::uint32_t next = chunkStart[k];
+        for (std::size_t c = k * kChunk; c < std::min(cornerCount, (k + 1) * kChunk); ++c) {
+          if (indices[c] != detail::kNone) continue;
+          const CornerValues v = values(c);
+          std::memcpy(&positions[3 * next], v.position, sizeof v.position);
+          std::memcpy(&normals[3 * next], v.normal, sizeof v.normal);
+          std::memcpy(&uvs[2 * next], v.uv, sizeof v.uv);
+          indices[c] = detail::kNone - 1 - next;  // numbered, told apart from corner links
+          ++next;
+        }
+      }
+    });
+  });
+  // 3. Links to representatives become their numbers (a representative is always numbered).
+  inArena([&](std::size_t begin, std::size_t end) {
+    for (std::size_t c = begin; c < end; ++c) {
+      const std::uint32_t i = indices[c];
+      if (i >= detail::kNone - vertexCount) continue;
+      indices[c] = indices[i];
+    }
+  });
+  inArena([&](std::size_t begin, std::size_t end) {
+    for (std::size_t c = begin; c < end; ++c) indices[c] = detail::kNone - 1 - indices[c];
+  });
+  const MeshArrays arrays{std::span<const float>(positions, 3 * vertexCount), std::span<const float>(normals, 3 * vertexCount),
+                          std::span<const float>(uvs, 2 * vertexCount), std::span<const std::uint32_t>(indices, cornerCount)};
   Report report = computeCornerTangents(arrays, CornerOutputs{std::span<float>(tangents, 4 * cornerCount), cornerSources, {}},
                                         options, workspace);
   report.nonManifoldFaces = std::max(report.nonManifoldFaces, cornerMesh.nonManifoldFaces);
