@@ -4,6 +4,7 @@
 
 
 #include <algorithm>
+#include <array>
 #include <atomic>
 #include <bit>
 #include <cstring>
@@ -40,7 +41,7 @@ bool sameVertex(const MeshArrays& mesh, std::size_t a, std::size_t b) {
 
 std::size_t WorkspaceData::bytes() const {
   auto size = [](const auto& v) { return v.capacity() * sizeof(v[0]); };
-  return size(table) + size(vertexId) + size(bucketStart) + size(bucketCorners) + size(triangleFrames) +
+  return size(table) + size(vertexHashes) + size(weldOrder) + size(weldCounts) + size(vertexId) + size(bucketStart) + size(bucketCorners) + size(triangleFrames) +
          size(orientation) + size(triangleFlags) + size(cornerLink) + size(cornerState) + size(meshPositions) + size(meshNormals) + size(meshUvs) + size(meshTangents) + size(meshIndices) +
          size(bucketExtra);
 }
@@ -80,62 +81,92 @@ void weldAndBucket(WorkspaceData& ws, const MeshArrays& mesh) {
   ws.vertexCount = vertexCount;
   ws.cornerCount = cornerCount;
 
-  // Weld: an open-addressing table of vertex + 1; the smallest vertex of equal values wins.
-  std::size_t tableSize = 16;
-  while (tableSize < 2 * vertexCount) tableSize *= 2;
-  const std::size_t mask = tableSize - 1;
-  ensureSize(ws.table, tableSize);
+  // Weld: open-addressing tables of vertex + 1; the smallest vertex of equal values wins.
   ensureSize(ws.vertexId, vertexCount);
-  std::uint32_t* table = ws.table.data();
   std::uint32_t* vertexId = ws.vertexId.data();
-  forRange(ws, tableSize, 1 << 16, [&](std::size_t begin, std::size_t end) { std::fill(table + begin, table + end, 0u); });
-  // One pass in order where threads are few (measured at 1e6 triangles: 23 ms serial, 56 ms
-  // as two threads of compare-and-swap inserts plus the look-up pass); the parallel form
-  // pays off from about four threads.
-  if (ws.threads < 4) {
-    for (std::size_t v = 0; v < vertexCount; ++v) {
-      for (std::size_t slot = vertexHash(mesh, v) & mask;; slot = (slot + 1) & mask) {
-        if (table[slot] == 0) {
-          table[slot] = static_cast<std::uint32_t>(v + 1);
-          vertexId[v] = static_cast<std::uint32_t>(v);
-          break;
-        }
-        if (sameVertex(mesh, table[slot] - 1, v)) {
-          vertexId[v] = table[slot] - 1;
-          break;
-        }
+  auto insert = [&](std::uint32_t* table, std::size_t mask, std::size_t v, std::uint64_t hash) {
+    for (std::size_t slot = hash & mask;; slot = (slot + 1) & mask) {
+      if (table[slot] == 0) {
+        table[slot] = static_cast<std::uint32_t>(v + 1);
+        vertexId[v] = static_cast<std::uint32_t>(v);
+        return;
+      }
+      if (sameVertex(mesh, table[slot] - 1, v)) {
+        vertexId[v] = table[slot] - 1;
+        return;
       }
     }
+  };
+  if (ws.threads < 2) {
+    // One table, vertices in order.
+    std::size_t tableSize = 16;
+    while (tableSize < 2 * vertexCount) tableSize *= 2;
+    ensureSize(ws.table, tableSize);
+    std::uint32_t* table = ws.table.data();
+    std::fill(table, table + tableSize, 0u);
+    for (std::size_t v = 0; v < vertexCount; ++v) insert(table, tableSize - 1, v, vertexHash(mesh, v));
   } else {
-    forRange(ws, vertexCount, 4096, [&](std::size_t begin, std::size_t end) {
-      for (std::size_t v = begin; v < end; ++v) {
-        const auto mine = static_cast<std::uint32_t>(v + 1);
-        for (std::size_t slot = vertexHash(mesh, v) & mask;; slot = (slot + 1) & mask) {
-          AtomicRef<std::uint32_t> cell(table[slot]);
-          std::uint32_t current = cell.load(std::memory_order_relaxed);
-          bool done = false;
-          while (!done) {
-            if (current == 0) {
-              if (cell.compare_exchange_weak(current, mine, std::memory_order_relaxed)) done = true;
-            } else if (sameVertex(mesh, current - 1, v)) {
-              if (current <= mine || cell.compare_exchange_weak(current, mine, std::memory_order_relaxed)) done = true;
-            } else {
-              break;  // another value: probe on
-            }
-          }
-          if (done) break;
+    // Threads: the vertices split by the top bits of their hash into partitions (a counting
+    // sort that keeps vertex order inside each), one small table per partition, partitions
+    // in parallel. Equal values share a hash, so each partition welds on its own; no atomics,
+    // and the tables stay in cache (measured at 1e6 triangles: see docs/benchmarks.md).
+    constexpr int kPartitionBits = 8;
+    constexpr std::size_t kPartitions = std::size_t(1) << kPartitionBits, kChunk = 1 << 15;
+    const std::size_t chunkCount = (vertexCount + kChunk - 1) / kChunk;
+    ensureSize(ws.vertexHashes, vertexCount);
+    ensureSize(ws.weldOrder, vertexCount);
+    ensureSize(ws.weldCounts, chunkCount * kPartitions + kPartitions + 1);
+    std::uint64_t* hashes = ws.vertexHashes.data();
+    std::uint32_t* order = ws.weldOrder.data();
+    std::uint32_t* counts = ws.weldCounts.data();  // [chunk][partition], then partition starts
+    std::uint32_t* partitionStart = counts + chunkCount * kPartitions;
+    auto partitionOf = [](std::uint64_t hash) { return static_cast<std::size_t>(hash >> (64 - kPartitionBits)); };
+    forRange(ws, chunkCount, 1, [&](std::size_t begin, std::size_t end) {
+      for (std::size_t k = begin; k < end; ++k) {
+        std::uint32_t* count = counts + k * kPartitions;
+        std::fill(count, count + kPartitions, 0u);
+        for (std::size_t v = k * kChunk; v < std::min(vertexCount, (k + 1) * kChunk); ++v) {
+          hashes[v] = vertexHash(mesh, v);
+          ++count[partitionOf(hashes[v])];
         }
       }
     });
-    forRange(ws, vertexCount, 4096, [&](std::size_t begin, std::size_t end) {
-      for (std::size_t v = begin; v < end; ++v) {
-        for (std::size_t slot = vertexHash(mesh, v) & mask;; slot = (slot + 1) & mask) {
-          const std::uint32_t entry = AtomicRef<std::uint32_t>(table[slot]).load(std::memory_order_relaxed);
-          if (entry == v + 1 || sameVertex(mesh, entry - 1, v)) {
-            vertexId[v] = entry - 1;
-            break;
-          }
-        }
+    // Offsets, partition-major: partition p's vertices, chunk by chunk, each chunk in order.
+    std::uint32_t total = 0;
+    for (std::size_t p = 0; p < kPartitions; ++p) {
+      partitionStart[p] = total;
+      for (std::size_t k = 0; k < chunkCount; ++k) {
+        const std::uint32_t n = counts[k * kPartitions + p];
+        counts[k * kPartitions + p] = total;
+        total += n;
+      }
+    }
+    partitionStart[kPartitions] = total;
+    forRange(ws, chunkCount, 1, [&](std::size_t begin, std::size_t end) {
+      for (std::size_t k = begin; k < end; ++k) {
+        std::uint32_t* cursor = counts + k * kPartitions;
+        for (std::size_t v = k * kChunk; v < std::min(vertexCount, (k + 1) * kChunk); ++v)
+          order[cursor[partitionOf(hashes[v])]++] = static_cast<std::uint32_t>(v);
+      }
+    });
+    // Table of partition p: a power of two of at least twice its vertices, at tableStart[p].
+    std::size_t tableSize = 0;
+    std::array<std::size_t, kPartitions + 1> tableStart;
+    for (std::size_t p = 0; p < kPartitions; ++p) {
+      std::size_t size = 16;
+      while (size < 2 * std::size_t(partitionStart[p + 1] - partitionStart[p])) size *= 2;
+      tableStart[p] = tableSize;
+      tableSize += size;
+    }
+    tableStart[kPartitions] = tableSize;
+    ensureSize(ws.table, tableSize);
+    std::uint32_t* table = ws.table.data();
+    forRange(ws, kPartitions, 1, [&](std::size_t begin, std::size_t end) {
+      for (std::size_t p = begin; p < end; ++p) {
+        std::uint32_t* part = table + tableStart[p];
+        const std::size_t mask = tableStart[p + 1] - tableStart[p] - 1;
+        std::fill(part, part + mask + 1, 0u);
+        for (std::uint32_t i = partitionStart[p]; i < partitionStart[p + 1]; ++i) insert(part, mask, order[i], hashes[order[i]]);
       }
     });
   }
