@@ -455,10 +455,7 @@ void Kernel::resolveGroupWithAny() {
     const std::uint32_t link = ws_.cornerLink[3 * t + k];
     return link == kNone ? kNone : link / 3;
   };
-  std::vector<std::uint32_t> pending;
-  for (std::size_t t = 0; t < triangleCount; ++t) {
-    if (open(t)) pending.push_back(static_cast<std::uint32_t>(t));
-  }
+  std::vector<std::uint32_t> pending = collectIf(ws_, triangleCount, open);
   if (pending.empty()) return;
 
   // The reference: a group starts at an oriented triangle's corner and spreads around that
@@ -870,10 +867,8 @@ void Kernel::inheritInBucket(std::uint32_t bucket, std::uint32_t corner, float w
 // coincident triangle, then frames borrowed from the vertex, the triangle or its 1-ring.
 void Kernel::fallbacks() {
   const std::size_t triangleCount = ws_.cornerCount / 3;
-  std::vector<std::uint32_t> coincident, undefined;
-  for (std::size_t t = 0; t < triangleCount; ++t) {
-    if (ws_.triangleFlags[t] & kCoincident) coincident.push_back(static_cast<std::uint32_t>(t));
-  }
+  const std::vector<std::uint32_t> coincident =
+      collectIf(ws_, triangleCount, [&](std::size_t t) { return (ws_.triangleFlags[t] & kCoincident) != 0; });
   for (std::uint32_t t : coincident) {
     int plus = 0, minus = 0;
     for (int k = 0; k < 3; ++k) {
@@ -888,9 +883,9 @@ void Kernel::fallbacks() {
       else if (tangents_[4 * c + 3] != w) inheritInBucket(id(c), static_cast<std::uint32_t>(c), w, false);
     }
   }
-  for (std::size_t c = 0; c < ws_.cornerCount; ++c) {
-    if ((ws_.cornerState[c] & kUndefined) && !(ws_.cornerState[c] & kCopy)) undefined.push_back(static_cast<std::uint32_t>(c));
-  }
+  const std::vector<std::uint32_t> undefined = collectIf(ws_, ws_.cornerCount, [&](std::size_t c) {
+    return (ws_.cornerState[c] & kUndefined) && !(ws_.cornerState[c] & kCopy);
+  });
   // Each borrows only from frames that were there before this loop: decide all, then write.
   struct Decision {
     std::uint32_t corner;

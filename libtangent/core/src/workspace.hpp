@@ -200,6 +200,11 @@ void forRange(const WorkspaceData& ws, std::size_t count, std::size_t grain, con
 template <typename Body>
 void onThreads(const WorkspaceData& ws, const Body& body);
 
+// The indices in [0, count) where keep(i) holds, in increasing order, gathered in parallel
+// (fixed chunks: counted, then filled at their offsets).
+template <typename Keep>
+std::vector<std::uint32_t> collectIf(const WorkspaceData& ws, std::size_t count, const Keep& keep);
+
 }  // namespace tangent::detail
 
 #if !defined(TANGENT_SERIAL)
@@ -222,6 +227,31 @@ void forRange(const WorkspaceData& ws, std::size_t count, std::size_t grain, con
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, count, grain),
                     [&](const tbb::blocked_range<std::size_t>& range) { body(range.begin(), range.end()); });
 #endif
+}
+
+template <typename Keep>
+std::vector<std::uint32_t> collectIf(const WorkspaceData& ws, std::size_t count, const Keep& keep) {
+  constexpr std::size_t kChunk = 1 << 16;
+  const std::size_t chunkCount = (count + kChunk - 1) / kChunk;
+  std::vector<std::size_t> offset(chunkCount + 1, 0);
+  forRange(ws, chunkCount, 1, [&](std::size_t begin, std::size_t end) {
+    for (std::size_t k = begin; k < end; ++k) {
+      std::size_t n = 0;
+      for (std::size_t i = k * kChunk; i < std::min(count, (k + 1) * kChunk); ++i) n += keep(i) ? 1 : 0;
+      offset[k + 1] = n;
+    }
+  });
+  for (std::size_t k = 0; k < chunkCount; ++k) offset[k + 1] += offset[k];
+  std::vector<std::uint32_t> kept(offset[chunkCount]);
+  forRange(ws, chunkCount, 1, [&](std::size_t begin, std::size_t end) {
+    for (std::size_t k = begin; k < end; ++k) {
+      std::size_t at = offset[k];
+      for (std::size_t i = k * kChunk; i < std::min(count, (k + 1) * kChunk); ++i) {
+        if (keep(i)) kept[at++] = static_cast<std::uint32_t>(i);
+      }
+    }
+  });
+  return kept;
 }
 
 template <typename Body>
