@@ -180,21 +180,50 @@ void weldAndBucket(WorkspaceData& ws, const MeshArrays& mesh) {
   std::uint32_t* corners = ws.bucketCorners.data();
   const std::uint32_t* indices = mesh.indices.data();
   forRange(ws, vertexCount + 1, 1 << 16, [&](std::size_t begin, std::size_t end) { std::fill(start + begin, start + end, 0u); });
-  // Counting and filling are one cheap pass each: below four threads, atomic increments cost
-  // more than they share (measured at 1e6 triangles, two threads: 21 ms against 4 ms serial).
-  if (ws.threads < 4) {
+  // Counting and filling: one pass each on one thread; on two or three, each thread counts
+  // and fills its own slice of the corners with its own counters (in the weld table, free by
+  // now), which keeps every bucket in corner order; from four, atomic counters, then each
+  // bucket sorted (measured at 1e6 triangles, two threads: atomics 21 ms against 4 ms serial).
+  if (ws.threads == 1) {
     for (std::size_t c = 0; c < cornerCount; ++c) ++start[vertexId[indices[c]] + 1];
+    for (std::size_t v = 0; v < vertexCount; ++v) start[v + 1] += start[v];
+    std::memcpy(cursor, start, vertexCount * sizeof(std::uint32_t));
+    for (std::size_t c = 0; c < cornerCount; ++c) corners[cursor[vertexId[indices[c]]]++] = static_cast<std::uint32_t>(c);
+  } else if (ws.threads < 4) {
+    const std::size_t slices = ws.threads, sliceLength = (cornerCount + slices - 1) / slices;
+    ensureSize(ws.table, slices * vertexCount);
+    std::uint32_t* sliceCount = ws.table.data();  // [slice][vertex]
+    forRange(ws, slices, 1, [&](std::size_t begin, std::size_t end) {
+      for (std::size_t k = begin; k < end; ++k) {
+        std::uint32_t* count = sliceCount + k * vertexCount;
+        std::fill(count, count + vertexCount, 0u);
+        for (std::size_t c = k * sliceLength; c < std::min(cornerCount, (k + 1) * sliceLength); ++c) ++count[vertexId[indices[c]]];
+      }
+    });
+    std::uint32_t total = 0;
+    for (std::size_t v = 0; v < vertexCount; ++v) {
+      start[v] = total;
+      for (std::size_t k = 0; k < slices; ++k) {
+        const std::uint32_t n = sliceCount[k * vertexCount + v];
+        sliceCount[k * vertexCount + v] = total;  // the slice's first position in bucket v
+        total += n;
+      }
+    }
+    start[vertexCount] = total;
+    forRange(ws, slices, 1, [&](std::size_t begin, std::size_t end) {
+      for (std::size_t k = begin; k < end; ++k) {
+        std::uint32_t* next = sliceCount + k * vertexCount;
+        for (std::size_t c = k * sliceLength; c < std::min(cornerCount, (k + 1) * sliceLength); ++c)
+          corners[next[vertexId[indices[c]]]++] = static_cast<std::uint32_t>(c);
+      }
+    });
   } else {
     forRange(ws, cornerCount, 1 << 14, [&](std::size_t begin, std::size_t end) {
       for (std::size_t c = begin; c < end; ++c)
         AtomicRef<std::uint32_t>(start[vertexId[indices[c]] + 1]).fetch_add(1, std::memory_order_relaxed);
     });
-  }
-  for (std::size_t v = 0; v < vertexCount; ++v) start[v + 1] += start[v];
-  std::memcpy(cursor, start, vertexCount * sizeof(std::uint32_t));
-  if (ws.threads < 4) {
-    for (std::size_t c = 0; c < cornerCount; ++c) corners[cursor[vertexId[indices[c]]]++] = static_cast<std::uint32_t>(c);
-  } else {
+    for (std::size_t v = 0; v < vertexCount; ++v) start[v + 1] += start[v];
+    std::memcpy(cursor, start, vertexCount * sizeof(std::uint32_t));
     forRange(ws, cornerCount, 1 << 14, [&](std::size_t begin, std::size_t end) {
       for (std::size_t c = begin; c < end; ++c) {
         const std::uint32_t at = AtomicRef<std::uint32_t>(cursor[vertexId[indices[c]]]).fetch_add(1, std::memory_order_relaxed);
