@@ -46,7 +46,6 @@ inline V3 operator*(V3 a, double s) { return {a.x * s, a.y * s, a.z * s}; }
 inline double dot(V3 a, V3 b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
 inline V3 cross(V3 a, V3 b) { return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x}; }
 inline double length(V3 a) { return std::sqrt(dot(a, a)); }
-inline bool finite(V3 a) { return std::isfinite(a.x) && std::isfinite(a.y) && std::isfinite(a.z); }
 inline bool operator==(V3 a, V3 b) { return a.x == b.x && a.y == b.y && a.z == b.z; }
 
 inline std::size_t nextCorner(std::size_t c) { return c % 3 == 2 ? c - 2 : c + 1; }
@@ -641,12 +640,6 @@ inline double angleBetween(double y, double x) {
   if (shift) r += 0.78539816339744831;
   if (steep) r = kHalfPi - r;
   return x < 0 ? 2 * kHalfPi - r : r;
-}
-
-inline V3 projectedUnit(V3 v, V3 n) {
-  const V3 p = v - n * dot(n, v);
-  const double l = length(p);
-  return l > 1e-30 ? p * (1.0 / l) : V3{};
 }
 
 // Groups of one welded vertex, their sums, and the frames of its corners.
