@@ -41,7 +41,7 @@ bool sameVertex(const MeshArrays& mesh, std::size_t a, std::size_t b) {
 
 std::size_t WorkspaceData::bytes() const {
   auto size = [](const auto& v) { return v.capacity() * sizeof(v[0]); };
-  return size(table) + size(vertexHashes) + size(weldOrder) + size(weldCounts) + size(vertexId) + size(bucketStart) + size(bucketCorners) + size(triangleFrames) +
+  return size(table) + size(weldCounts) + size(vertexId) + size(bucketStart) + size(bucketCorners) + size(triangleFrames) +
          size(orientation) + size(triangleFlags) + size(cornerLink) + size(cornerState) + size(meshPositions) + size(meshNormals) + size(meshUvs) + size(meshTangents) + size(meshIndices) +
          size(bucketExtra);
 }
@@ -109,24 +109,26 @@ void weldAndBucket(WorkspaceData& ws, const MeshArrays& mesh) {
     // Threads: the vertices split by the top bits of their hash into partitions (a counting
     // sort that keeps vertex order inside each), one small table per partition, partitions
     // in parallel. Equal values share a hash, so each partition welds on its own; no atomics,
-    // and the tables stay in cache (measured at 1e6 triangles: see docs/benchmarks.md).
+    // and the tables stay in cache. The hashes (partition in the top 8 bits, 24 bits of slot)
+    // and the order live in the bucket arrays, which are filled only after the weld.
     constexpr int kPartitionBits = 8;
     constexpr std::size_t kPartitions = std::size_t(1) << kPartitionBits, kChunk = 1 << 15;
     const std::size_t chunkCount = (vertexCount + kChunk - 1) / kChunk;
-    ensureSize(ws.vertexHashes, vertexCount);
-    ensureSize(ws.weldOrder, vertexCount);
+    ensureSize(ws.bucketExtra, vertexCount + 1);
+    ensureSize(ws.bucketCorners, std::max(cornerCount, vertexCount));
     ensureSize(ws.weldCounts, chunkCount * kPartitions + kPartitions + 1);
-    std::uint64_t* hashes = ws.vertexHashes.data();
-    std::uint32_t* order = ws.weldOrder.data();
+    std::uint32_t* hashes = ws.bucketExtra.data();
+    std::uint32_t* order = ws.bucketCorners.data();
     std::uint32_t* counts = ws.weldCounts.data();  // [chunk][partition], then partition starts
     std::uint32_t* partitionStart = counts + chunkCount * kPartitions;
-    auto partitionOf = [](std::uint64_t hash) { return static_cast<std::size_t>(hash >> (64 - kPartitionBits)); };
+    auto partitionOf = [](std::uint32_t hash) { return static_cast<std::size_t>(hash >> (32 - kPartitionBits)); };
     forRange(ws, chunkCount, 1, [&](std::size_t begin, std::size_t end) {
       for (std::size_t k = begin; k < end; ++k) {
         std::uint32_t* count = counts + k * kPartitions;
         std::fill(count, count + kPartitions, 0u);
         for (std::size_t v = k * kChunk; v < std::min(vertexCount, (k + 1) * kChunk); ++v) {
-          hashes[v] = vertexHash(mesh, v);
+          const std::uint64_t hash = vertexHash(mesh, v);
+          hashes[v] = static_cast<std::uint32_t>(hash >> 32 & 0xFF000000u) | static_cast<std::uint32_t>(hash & 0xFFFFFFu);
           ++count[partitionOf(hashes[v])];
         }
       }
@@ -166,7 +168,7 @@ void weldAndBucket(WorkspaceData& ws, const MeshArrays& mesh) {
         std::uint32_t* part = table + tableStart[p];
         const std::size_t mask = tableStart[p + 1] - tableStart[p] - 1;
         std::fill(part, part + mask + 1, 0u);
-        for (std::uint32_t i = partitionStart[p]; i < partitionStart[p + 1]; ++i) insert(part, mask, order[i], hashes[order[i]]);
+        for (std::uint32_t i = partitionStart[p]; i < partitionStart[p + 1]; ++i) insert(part, mask, order[i], hashes[order[i]] & 0xFFFFFFu);
       }
     });
   }

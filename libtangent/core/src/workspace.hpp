@@ -101,9 +101,7 @@ struct WorkspaceData {
   unsigned threads = 1;
   std::size_t vertexCount = 0, cornerCount = 0;
   BulkVector<std::uint32_t> table;          // open-addressing weld table(s) (vertex + 1, 0 empty)
-  BulkVector<std::uint64_t> vertexHashes;   // threaded weld: hash of each vertex,
-  BulkVector<std::uint32_t> weldOrder;      // the vertices by partition,
-  BulkVector<std::uint32_t> weldCounts;     // per-chunk counts and partition starts
+  BulkVector<std::uint32_t> weldCounts;     // threaded weld: per-chunk counts, partition starts
   BulkVector<std::uint32_t> vertexId;       // welded id of each input vertex: the smallest
                                              // vertex index with the same values
   BulkVector<std::uint32_t> bucketStart;    // vertexCount + 1: corners of welded id v are
