@@ -44,7 +44,8 @@ const char* kUsage =
     "  --glyphs                 draw tangent frames (T red, B green, N blue)\n"
     "  --no-shadows, --pcf N (0 off, 1 = 3x3, 2 = 5x5), --shadow-map-size N (1024..4096)\n"
     "  --shading NAME           pbr (glTF metallic-roughness, default) | blinn-phong | phong (specular-map mode)\n"
-    "  --msaa N                 samples per pixel in the window and screenshots (default 4; 0 off)\n"
+    "  --msaa N                 samples per pixel in the window and screenshots (default 4, or 0 on a\n"
+    "                           software rasteriser such as llvmpipe, where 4x costs 3-4 times the frame)\n"
     "  --no-normal-map, --no-specular, --phong (= --shading phong), --flip-green, --negate-w\n"
     "  --reflectivity F, --sphere-map FILE, --uv-scale F\n"
     "  --frames N               with --screenshot: render N frames and print the median frame time and\n"
@@ -73,7 +74,7 @@ struct Options {
   fs::path shaderDir = resourceFolder("shaders");
   fs::path assetRoot;  // --asset-root: the folder buffer and image URIs may not leave
   int frames = 1;
-  int msaaSamples = 4;  // 0: off
+  int msaaSamples = -1;  // 0: off; -1: 4, or off on a software rasteriser (softwareRasteriser)
 };
 
 int parseOptions(int argc, char** argv, Options& options) {
@@ -183,6 +184,13 @@ struct Viewer {
     return true;
   }
 };
+
+// Mesa's llvmpipe and softpipe shade on the CPU, where multisampling costs 3-4 times the frame.
+bool softwareRasteriser() {
+  const auto* renderer = reinterpret_cast<const char*>(glGetString(GL_RENDERER));
+  const std::string name = renderer ? renderer : "";
+  return name.find("llvmpipe") != std::string::npos || name.find("softpipe") != std::string::npos;
+}
 
 std::string glErrors() {
   std::string errors;
@@ -457,7 +465,7 @@ int main(int argc, char** argv) {
   glfwWindowHint(GLFW_OPENGL_FORWARD_COMPAT, GLFW_TRUE);
   if (std::getenv("TANGENT_GL_DEBUG")) glfwWindowHint(GLFW_OPENGL_DEBUG_CONTEXT, GLFW_TRUE);
   if (options.screenshot) glfwWindowHint(GLFW_VISIBLE, GLFW_FALSE);
-  else glfwWindowHint(GLFW_SAMPLES, options.msaaSamples > 1 ? options.msaaSamples : 0);
+  else glfwWindowHint(GLFW_SAMPLES, options.msaaSamples < 0 ? 4 : options.msaaSamples > 1 ? options.msaaSamples : 0);
   GLFWwindow* window = glfwCreateWindow(options.screenshot ? 64 : options.width, options.screenshot ? 64 : options.height,
                                         "tangent-view", nullptr, nullptr);
   if (!window) {
@@ -473,6 +481,10 @@ int main(int argc, char** argv) {
     glDebugMessageCallback([](GLenum, GLenum type, GLuint, GLenum severity, GLsizei, const GLchar* message, const void*) {
       if (severity != GL_DEBUG_SEVERITY_NOTIFICATION) std::cerr << "GL debug (type 0x" << std::hex << type << std::dec << "): " << message << "\n";
     }, nullptr);
+  }
+  if (options.msaaSamples < 0) {
+    options.msaaSamples = softwareRasteriser() ? 0 : 4;
+    if (options.msaaSamples == 0) glDisable(GL_MULTISAMPLE);  // the window's samples, unused
   }
   int exit = 0;
   {
