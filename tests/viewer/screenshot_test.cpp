@@ -496,6 +496,30 @@ TEST(Viewer, AlphaMaskCutsOutAndBlendMixes) {
   }
 }
 
+// occlusionTexture darkens the environment (ambient) term where its R channel is low, as much
+// as its strength says; direct light is untouched.
+TEST(Viewer, OcclusionMapDarkensTheAmbientTerm) {
+  TempDir dir;
+  writeRgbaPng(dir / "occlusion.png", 64, 64, [](int x, int) {
+    const auto r = static_cast<unsigned char>(x < 32 ? 0 : 255);
+    return std::array<unsigned char, 4>{r, r, r, 255};
+  });
+  auto render = [&](const std::string& name, double strength) {
+    const nlohmann::json material = {{"pbrMetallicRoughness", {{"metallicFactor", 0.0}, {"roughnessFactor", 1.0}}},
+                                     {"occlusionTexture", {{"index", 0}, {"strength", strength}}}};
+    return screenshot(dir, name, "'" + quadAsset(dir, name, material, "occlusion.png").string() + "'" + kQuadView + " --shading pbr");
+  };
+  const Image full = render("strength1", 1.0), none = render("strength0", 0.0);
+  ASSERT_EQ(full.width, 200);
+  auto luma = [](std::array<float, 3> c) { return 0.2126f * c[0] + 0.7152f * c[1] + 0.0722f * c[2]; };
+  const float occludedHalf = luma(quadPixel(full, -0.5, 0)), openHalf = luma(quadPixel(full, 0.5, 0));
+  const float noneLeft = luma(quadPixel(none, -0.5, 0)), noneRight = luma(quadPixel(none, 0.5, 0));
+  std::printf("strength 1: occluded %.3f, open %.3f; strength 0: %.3f, %.3f\n", occludedHalf, openHalf, noneLeft, noneRight);
+  EXPECT_LT(occludedHalf, openHalf - 0.03f);
+  EXPECT_NEAR(openHalf, noneRight, 0.01f);     // occlusion 1 changes nothing
+  EXPECT_GT(noneLeft, occludedHalf + 0.03f);   // strength 0 turns it off
+}
+
 // Copy of data/demo/sphere.gltf with one untextured metallic-roughness material.
 fs::path plainSphere(const TempDir& dir, const std::string& name, double metallic, double roughness) {
   const fs::path demo = fs::path(TANGENT_SOURCE_DIR) / "data" / "demo";
