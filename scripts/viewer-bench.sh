@@ -1,34 +1,59 @@
 #!/usr/bin/env bash
-# Frame time of tangent-view under Xvfb (Mesa llvmpipe on machines without a GPU): median of
-# N frames at 1280x720, for NormalTangentTest and a generated ~100k-triangle textured sphere,
-# with every feature on and with each feature turned off or changed in turn.
-# Usage: scripts/viewer-bench.sh [FRAMES]   (after scripts/build.sh)
+# Frame time of tangent-view under Xvfb (Mesa llvmpipe on machines without a GPU): the median
+# of N frames at 1280x720 for each asset, with the defaults (PBR, shadows + PCF 3x3; MSAA 4x,
+# or off on a software rasteriser) and with each feature turned off or changed in turn.
+# Usage: scripts/viewer-bench.sh [--frames N] [ASSET...]   (after scripts/build.sh)
+# Without assets: a generated ~100k-triangle textured sphere, plus ../shared/assets' glTF files
+# when that folder exists (said on stderr when it does not).
 set -euo pipefail
-cd "$(dirname "$0")/.."
-frames=${1:-15}
-mkdir -p build/bench
-build/bin/tangent-make-data --sphere 224 build/bench >/dev/null
-assets=(build/bench/sphere-224.gltf)
-[ -f ../shared/assets/NormalTangentTest.glb ] && assets=(../shared/assets/NormalTangentTest.glb "${assets[@]}")
+root=$(cd "$(dirname "$0")/.." && pwd)
+frames=15
+if [ "${1:-}" = "--frames" ]; then
+  frames=$2
+  shift 2
+fi
+viewer=$root/build/bin/tangent-view
+[ -x "$viewer" ] || { echo "viewer-bench: $viewer is missing: run scripts/build.sh first" >&2; exit 2; }
+work=$(mktemp -d /tmp/viewer-bench-XXXXXX)
+trap 'rm -rf "$work"' EXIT
+assets=("$@")
+if [ ${#assets[@]} -eq 0 ]; then
+  "$root/build/bin/tangent-make-data" --sphere 224 "$work" >/dev/null
+  assets=("$work/sphere-224.gltf")
+  if [ -d "$root/../shared/assets" ]; then
+    for file in "$root"/../shared/assets/*.glb "$root"/../shared/assets/*.gltf; do
+      [ -f "$file" ] && assets+=("$file")
+    done
+  else
+    echo "viewer-bench: $root/../shared/assets is absent: measuring the generated sphere only" >&2
+  fi
+fi
+for asset in "${assets[@]}"; do
+  [ -f "$asset" ] || { echo "viewer-bench: $asset does not exist" >&2; exit 2; }
+done
 configs=(
-  "shadows + PCF 3x3 (reference)|"
+  "defaults: PBR, shadows + PCF 3x3|"
   "no shadows (no depth pass)|--no-shadows"
   "PCF off|--pcf 0"
   "PCF 5x5|--pcf 2"
   "shadow map 4096|--shadow-map-size 4096"
+  "MSAA off|--msaa 0"
+  "MSAA 4x|--msaa 4"
+  "Blinn-Phong specular-map mode|--shading blinn-phong"
   "no normal mapping|--no-normal-map"
   "no specular|--no-specular"
   "sphere-map reflection 0.3|--reflectivity 0.3"
   "error heatmap view|--view error"
 )
-printf "%-42s %-34s %10s\n" "asset" "configuration" "median ms"
+printf "%-34s %-40s %10s\n" "asset" "configuration" "median ms"
 for asset in "${assets[@]}"; do
   for config in "${configs[@]}"; do
     name=${config%%|*}
     flags=${config#*|}
-    line=$(xvfb-run -a -s "-screen 0 1280x1024x24" build/bin/tangent-view "$asset" --size 1280x720 --camera front \
-           --screenshot build/bench/frame.png --frames "$frames" $flags 2>/dev/null)
+    # shellcheck disable=SC2086  # flags are words
+    line=$(xvfb-run -a -s "-screen 0 1280x1024x24" "$viewer" "$asset" --size 1280x720 --camera front \
+           --screenshot "$work/frame.png" --frames "$frames" $flags 2>/dev/null) || line="failed"
     ms=$(sed -n 's/.*median frame \([0-9.]*\) ms.*/\1/p' <<<"$line")
-    printf "%-42s %-34s %10s\n" "$(basename "$asset")" "$name" "$ms"
+    printf "%-34s %-40s %10s\n" "$(basename "$asset")" "$name" "${ms:-failed}"
   done
 done

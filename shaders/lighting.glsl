@@ -1,6 +1,9 @@
 // Lights: directional (position.w = 0, xyz = direction the light travels) and positional
 // (position.w = 1) with ambient, diffuse and specular colours, attenuation 1/(k0 + k1 d + k2 d^2)
-// and an optional spot cone. Specular: Blinn-Phong (half vector) or Phong (reflection vector).
+// and an optional spot cone. Both shading modes read them: the specular-map mode
+// (Blinn-Phong with the half vector or Phong with the reflection vector, as the tutorials teach)
+// and the metallic-roughness mode (pbr.glsl), where a light's diffuse colour is its radiance
+// scaled so that a white Lambertian surface facing it shows that colour in both modes.
 
 const int kMaxLights = 4;
 uniform int u_lightCount;
@@ -13,29 +16,35 @@ uniform vec3 u_lightSpotDirection[kMaxLights];
 uniform vec2 u_lightSpotCos[kMaxLights];       // cos(inner), cos(outer); outer = -2: no cone
 uniform int u_specularModel;                   // 0 Blinn-Phong, 1 Phong
 
+// Direction to light i from a surface point and the light's attenuation there (distance, cone).
+float lightAt(int i, vec3 position, out vec3 toLight) {
+  if (u_lightPosition[i].w == 0.0) {
+    toLight = normalize(-u_lightPosition[i].xyz);
+    return 1.0;
+  }
+  vec3 offset = u_lightPosition[i].xyz - position;
+  float d = length(offset);
+  toLight = offset / max(d, 1e-6);
+  vec3 k = u_lightAttenuation[i];
+  float attenuation = 1.0 / max(k.x + k.y * d + k.z * d * d, 1e-6);
+  if (u_lightSpotCos[i].y > -1.5) {
+    float c = dot(-toLight, normalize(u_lightSpotDirection[i]));
+    attenuation *= smoothstep(u_lightSpotCos[i].y, u_lightSpotCos[i].x, c);
+  }
+  return attenuation;
+}
+
+#ifndef SHADING_PBR
 struct SurfaceLight {
   vec3 ambient;
   vec3 diffuse;
   vec3 specular;
 };
 
-// Light i at a surface point; `shadow` scales its direct part.
+// Light i at a surface point, specular-map mode; `shadow` scales its direct part.
 void addLight(int i, vec3 position, vec3 normal, vec3 toEye, float shininess, float shadow, inout SurfaceLight total) {
   vec3 toLight;
-  float attenuation = 1.0;
-  if (u_lightPosition[i].w == 0.0) {
-    toLight = normalize(-u_lightPosition[i].xyz);
-  } else {
-    vec3 offset = u_lightPosition[i].xyz - position;
-    float d = length(offset);
-    toLight = offset / max(d, 1e-6);
-    vec3 k = u_lightAttenuation[i];
-    attenuation = 1.0 / max(k.x + k.y * d + k.z * d * d, 1e-6);
-    if (u_lightSpotCos[i].y > -1.5) {
-      float c = dot(-toLight, normalize(u_lightSpotDirection[i]));
-      attenuation *= smoothstep(u_lightSpotCos[i].y, u_lightSpotCos[i].x, c);
-    }
-  }
+  float attenuation = lightAt(i, position, toLight);
   total.ambient += u_lightAmbient[i] * attenuation;
   float lambert = max(dot(normal, toLight), 0.0);
   if (lambert <= 0.0) return;
@@ -48,3 +57,4 @@ void addLight(int i, vec3 position, vec3 normal, vec3 toEye, float shininess, fl
   }
   total.specular += u_lightSpecular[i] * pow(highlight, shininess) * attenuation * shadow;
 }
+#endif

@@ -1,12 +1,15 @@
 #version 330 core
 // Mesh fragment stage. Every feature is a define (viewer/shader_features.hpp): a material
-// without a feature compiles none of its code.
+// without a feature compiles none of its code. Two shading modes: SHADING_PBR, glTF's
+// metallic-roughness model (pbr.glsl), or else the tutorials' specular-map mode (Blinn-Phong
+// or Phong, lighting.glsl). Lighting is linear; the output is sRGB-encoded (colour.glsl).
 
 in vec3 v_positionWorld;
 in vec3 v_normalWorld;
 in vec4 v_tangentWorld;
 in vec2 v_uvNormal;
-in vec2 v_uvBase;
+in vec2 v_uv0;
+in vec2 v_uv1;
 in vec4 v_shadowCoord;
 in float v_tangentError;
 in float v_cornerProblems;
@@ -24,26 +27,51 @@ uniform bool u_useNormalMap;
 uniform bool u_useSpecular;
 uniform float u_roughness;
 uniform float u_metallic;
+uniform bool u_blend;          // alphaMode BLEND: the output keeps the base colour's alpha
 
+#include "colour.glsl"
 #include "lighting.glsl"
+#include "pbr.glsl"
 #include "shadows.glsl"
 #include "normal_mapping.glsl"
 #include "debug_views.glsl"
 
+// Each texture samples its own UV set (texCoord 0 or 1) through its KHR_texture_transform.
+vec2 textureUv(int set, mat3 transform) { return (transform * vec3(set == 1 ? v_uv1 : v_uv0, 1.0)).xy; }
+
 #ifdef HAS_BASE_COLOR_MAP
 uniform sampler2D u_baseColorMap;
+uniform int u_baseColorUvSet;
+uniform mat3 u_baseColorUvTransform;
 #endif
 #ifdef HAS_SPECULAR_MAP
 uniform sampler2D u_specularMap;
+uniform int u_specularUvSet;
+uniform mat3 u_specularUvTransform;
 #endif
 #ifdef HAS_SPECULAR_COLOR_MAP
 uniform sampler2D u_specularColorMap;
+uniform int u_specularColorUvSet;
+uniform mat3 u_specularColorUvTransform;
 #endif
 #ifdef HAS_METALLIC_ROUGHNESS_MAP
 uniform sampler2D u_metallicRoughnessMap;
+uniform int u_metallicRoughnessUvSet;
+uniform mat3 u_metallicRoughnessUvTransform;
 #endif
 #ifdef HAS_EMISSIVE_MAP
 uniform sampler2D u_emissiveMap;
+uniform int u_emissiveUvSet;
+uniform mat3 u_emissiveUvTransform;
+#endif
+#ifdef HAS_OCCLUSION_MAP
+uniform sampler2D u_occlusionMap;
+uniform int u_occlusionUvSet;
+uniform mat3 u_occlusionUvTransform;
+uniform float u_occlusionStrength;
+#endif
+#ifdef ALPHA_MASK
+uniform float u_alphaCutoff;
 #endif
 #ifdef USE_REFLECTION
 uniform sampler2D u_sphereMap;
@@ -51,6 +79,15 @@ uniform float u_reflectivity;
 #endif
 
 void main() {
+  vec4 baseColor = u_baseColorFactor;
+#ifdef HAS_BASE_COLOR_MAP
+  baseColor *= texture(u_baseColorMap, textureUv(u_baseColorUvSet, u_baseColorUvTransform));
+#endif
+#ifdef ALPHA_MASK
+  if (baseColor.a < u_alphaCutoff) discard;
+#endif
+  float alpha = u_blend ? baseColor.a : 1.0;
+
 #if defined(DEBUG_FACE_ORIENTATION)
   // As Blender's overlay: front faces blue, back faces red (culling is off for this view).
   fragColor = gl_FrontFacing ? vec4(0.15, 0.35, 0.95, 1.0) : vec4(0.90, 0.15, 0.10, 1.0);
@@ -92,37 +129,54 @@ void main() {
   return;
 #endif
 
-  vec4 baseColor = u_baseColorFactor;
-#ifdef HAS_BASE_COLOR_MAP
-  baseColor *= texture(u_baseColorMap, v_uvBase);
-#endif
-  // Specular: KHR_materials_specular maps; without them a fallback from roughness/metallic.
-  vec3 specularColor = u_specularColorFactor;
-  float specularStrength = u_specularStrength;
+#ifdef MATERIAL_UNLIT
+  // KHR_materials_unlit: the base colour as it is, no lights.
+  fragColor = vec4(linearToSrgb(baseColor.rgb), alpha);
+  return;
+#else
   float roughness = u_roughness;
   float metallic = u_metallic;
 #ifdef HAS_METALLIC_ROUGHNESS_MAP
-  vec4 mr = texture(u_metallicRoughnessMap, v_uvBase);
+  vec4 mr = texture(u_metallicRoughnessMap, textureUv(u_metallicRoughnessUvSet, u_metallicRoughnessUvTransform));
   roughness *= mr.g;
   metallic *= mr.b;
 #endif
+  roughness = clamp(roughness, 0.0, 1.0);
+  metallic = clamp(metallic, 0.0, 1.0);
+  // KHR_materials_specular: strength (A of its texture) and colour.
+  vec3 specularColor = u_specularColorFactor;
+  float specularStrength = u_specularStrength;
 #ifdef HAS_SPECULAR_MAP
-  specularStrength *= texture(u_specularMap, v_uvBase).a;
+  specularStrength *= texture(u_specularMap, textureUv(u_specularUvSet, u_specularUvTransform)).a;
 #endif
 #ifdef HAS_SPECULAR_COLOR_MAP
-  specularColor *= texture(u_specularColorMap, v_uvBase).rgb;
+  specularColor *= texture(u_specularColorMap, textureUv(u_specularColorUvSet, u_specularColorUvTransform)).rgb;
 #endif
-  float shininess = u_shininess;
-  if (u_shininess <= 0.0) {
-    float alpha = max(roughness * roughness, 0.02);
-    shininess = 2.0 / (alpha * alpha) - 2.0;
-    specularStrength *= (1.0 - roughness) * (1.0 - roughness);
-    specularColor *= mix(vec3(0.04), baseColor.rgb, metallic) / 0.04;
-  }
   if (!u_useSpecular) specularStrength = 0.0;
+  float occlusion = 1.0;
+#ifdef HAS_OCCLUSION_MAP
+  occlusion = 1.0 + u_occlusionStrength * (texture(u_occlusionMap, textureUv(u_occlusionUvSet, u_occlusionUvTransform)).r - 1.0);
+#endif
 
   vec3 toEye = normalize(u_eyeWorld - v_positionWorld);
+  vec3 ambient = vec3(0.0);
+#ifdef SHADING_PBR
+  PbrSurface surface = PbrSurface(baseColor.rgb, metallic, roughness, min(vec3(0.04) * specularColor, vec3(1.0)), specularStrength);
+  vec3 color = vec3(0.0);
+#else
+  // Without KHR_materials_specular, highlights follow roughness and metallic: shininess from
+  // the GGX width, metals tint their highlight and lose their diffuse part.
+  float shininess = u_shininess;
+  vec3 diffuseColor = baseColor.rgb;
+  if (u_shininess <= 0.0) {
+    float a = max(roughness * roughness, 0.02);
+    shininess = 2.0 / (a * a) - 2.0;
+    specularStrength *= (1.0 - roughness) * (1.0 - roughness);
+    specularColor *= mix(vec3(1.0), baseColor.rgb, metallic);
+    diffuseColor *= 1.0 - metallic;
+  }
   SurfaceLight light = SurfaceLight(vec3(0.0), vec3(0.0), vec3(0.0));
+#endif
   for (int i = 0; i < u_lightCount; ++i) {
     float shadow = 1.0;
 #ifdef USE_SHADOWS
@@ -131,17 +185,29 @@ void main() {
       shadow = shadowFactor(v_shadowCoord, normal, toLight);
     }
 #endif
+#ifdef SHADING_PBR
+    vec3 toLight;
+    float attenuation = lightAt(i, v_positionWorld, toLight);
+    ambient += u_lightAmbient[i] * attenuation;
+    color += pbrDirect(surface, shadingNormal, toEye, toLight) * u_lightDiffuse[i] * (kPi * attenuation * shadow);
+#else
     addLight(i, v_positionWorld, shadingNormal, toEye, shininess, shadow, light);
+#endif
   }
-  vec3 color = baseColor.rgb * (light.ambient + light.diffuse) + specularColor * specularStrength * light.specular;
+#ifdef SHADING_PBR
+  color += pbrEnvironment(surface, shadingNormal, toEye, ambient) * occlusion;
+#else
+  vec3 color = diffuseColor * (light.ambient * occlusion + light.diffuse) + specularColor * specularStrength * light.specular;
+#endif
 #ifdef USE_REFLECTION
   vec3 r = mat3(u_view) * reflect(-toEye, shadingNormal);
   float m = 2.0 * sqrt(r.x * r.x + r.y * r.y + (r.z + 1.0) * (r.z + 1.0));
   color = mix(color, texture(u_sphereMap, r.xy / m + 0.5).rgb, u_reflectivity);
 #endif
-  color += u_emissiveFactor;
+  vec3 emissive = u_emissiveFactor;
 #ifdef HAS_EMISSIVE_MAP
-  color += u_emissiveFactor * (texture(u_emissiveMap, v_uvBase).rgb - 1.0);
+  emissive *= texture(u_emissiveMap, textureUv(u_emissiveUvSet, u_emissiveUvTransform)).rgb;
 #endif
-  fragColor = vec4(color, baseColor.a);
+  fragColor = vec4(linearToSrgb(color + emissive), alpha);
+#endif
 }

@@ -34,16 +34,19 @@ struct OrbitCamera {
       const float halfHeight = std::max(radius, radius / aspect) * 1.02f;
       m.projection = glm::ortho(-halfHeight * aspect, halfHeight * aspect, -halfHeight, halfHeight, nearPlane, farPlane);
     } else {
-      m.projection = glm::perspective(glm::radians(40.0f), aspect, nearPlane, farPlane);
+      m.projection = glm::perspective(glm::radians(kFieldOfViewY), aspect, nearPlane, farPlane);
     }
     return m;
   }
 
-  // Frames the bounds from a named side: front, back, left, right, top, bottom, iso.
-  bool frame(glm::vec3 boundsMin, glm::vec3 boundsMax, const std::string& view) {
+  static constexpr float kFieldOfViewY = 40.0f;  // degrees
+
+  // Frames the bounds from a named side: front, back, left, right, top, bottom, iso. The
+  // perspective view backs off just far enough that all eight corners of the box are inside
+  // the frame of the given aspect (plus 5%); the orthographic one shows the bounding sphere.
+  bool frame(glm::vec3 boundsMin, glm::vec3 boundsMax, const std::string& view, float aspect = 16.0f / 9.0f) {
     target = (boundsMin + boundsMax) * 0.5f;
     radius = std::max(glm::length(boundsMax - boundsMin) * 0.5f, 1e-3f);
-    distance = radius / std::sin(glm::radians(20.0f)) * 1.05f;
     const float quarter = glm::half_pi<float>();
     if (view == "front") yaw = 0, pitch = 0;
     else if (view == "back") yaw = 2 * quarter, pitch = 0;
@@ -53,6 +56,18 @@ struct OrbitCamera {
     else if (view == "bottom") yaw = 0, pitch = -quarter;
     else if (view == "iso") yaw = quarter / 2, pitch = 0.6f;
     else return false;
+    distance = 1;
+    const glm::mat4 view1 = matrices(aspect).view;  // orientation only: the eye at distance 1
+    const float tanY = std::tan(glm::radians(kFieldOfViewY) * 0.5f), tanX = tanY * aspect;
+    float needed = 0;
+    for (int corner = 0; corner < 8; ++corner) {
+      const glm::vec3 p((corner & 1) ? boundsMax.x : boundsMin.x, (corner & 2) ? boundsMax.y : boundsMin.y,
+                        (corner & 4) ? boundsMax.z : boundsMin.z);
+      // Camera-space offset from the target: x right, y up, z towards the eye.
+      const glm::vec3 q = glm::mat3(view1) * (p - target);
+      needed = std::max({needed, q.z + std::abs(q.x) / tanX, q.z + std::abs(q.y) / tanY});
+    }
+    distance = std::max(needed * 1.05f, radius * 0.05f);
     return true;
   }
 

@@ -43,9 +43,13 @@ const char* kUsage =
     "                           handedness | error | face-orientation (front blue, back red) (default lit)\n"
     "  --glyphs                 draw tangent frames (T red, B green, N blue)\n"
     "  --no-shadows, --pcf N (0 off, 1 = 3x3, 2 = 5x5), --shadow-map-size N (1024..4096)\n"
-    "  --no-normal-map, --no-specular, --phong, --flip-green, --negate-w\n"
+    "  --shading NAME           pbr (glTF metallic-roughness, default) | blinn-phong | phong (specular-map mode)\n"
+    "  --msaa N                 samples per pixel in the window and screenshots (default 4, or 0 on a\n"
+    "                           software rasteriser such as llvmpipe, where 4x costs 3-4 times the frame)\n"
+    "  --no-normal-map, --no-specular, --phong (= --shading phong), --flip-green, --negate-w\n"
     "  --reflectivity F, --sphere-map FILE, --uv-scale F\n"
-    "  --frames N               with --screenshot: render N frames and print the median frame time\n"
+    "  --frames N               with --screenshot: render N frames and print the median frame time and\n"
+    "                           how many shadow-map passes they drew\n"
     "  --asset-root DIR         folder buffer and image URIs may not leave (default: the file's folder)\n"
     "  --shader-dir DIR         where the shaders are (default: the source tree's shaders/)\n"
     "keys: m normal map, s specular, h shadows, p PCF, f green flip, 1-9 views, g glyphs,\n"
@@ -70,6 +74,7 @@ struct Options {
   fs::path shaderDir = resourceFolder("shaders");
   fs::path assetRoot;  // --asset-root: the folder buffer and image URIs may not leave
   int frames = 1;
+  int msaaSamples = -1;  // 0: off; -1: 4, or off on a software rasteriser (softwareRasteriser)
 };
 
 int parseOptions(int argc, char** argv, Options& options) {
@@ -105,7 +110,15 @@ int parseOptions(int argc, char** argv, Options& options) {
       else if (arg == "--shadow-map-size") options.settings.shadowMapSize = std::clamp(std::stoi(value()), 256, 8192);
       else if (arg == "--no-normal-map") options.settings.normalMapping = false;
       else if (arg == "--no-specular") options.settings.specular = false;
-      else if (arg == "--phong") options.settings.phong = true;
+      else if (arg == "--phong") options.settings.shading = Shading::phong;
+      else if (arg == "--shading") {
+        const std::string name = value();
+        bool found = false;
+        for (const auto& shading : kShadings) {
+          if (name == shading.name) options.settings.shading = shading.shading, found = true;
+        }
+        if (!found) throw std::invalid_argument("unknown --shading " + name);
+      } else if (arg == "--msaa") options.msaaSamples = std::clamp(std::stoi(value()), 0, 16);
       else if (arg == "--flip-green") options.settings.flipGreen = true;
       else if (arg == "--negate-w") options.negateW = true;
       else if (arg == "--reflectivity") options.settings.reflectivity = std::clamp(std::stof(value()), 0.0f, 1.0f);
@@ -162,7 +175,7 @@ struct Viewer {
       return false;
     }
     for (const auto& m : messages) std::cerr << "note: " << m << "\n";
-    camera.frame(renderer.boundsMin(), renderer.boundsMax(), options.camera);
+    camera.frame(renderer.boundsMin(), renderer.boundsMax(), options.camera, float(options.width) / float(options.height));
     camera.orthographic = options.orthographic;
     if (options.settings.reflectivity > 0 || fs::exists(options.sphereMap)) {
       std::string error;
@@ -172,34 +185,67 @@ struct Viewer {
   }
 };
 
+// Mesa's llvmpipe and softpipe shade on the CPU, where multisampling costs 3-4 times the frame.
+bool softwareRasteriser() {
+  const auto* renderer = reinterpret_cast<const char*>(glGetString(GL_RENDERER));
+  const std::string name = renderer ? renderer : "";
+  return name.find("llvmpipe") != std::string::npos || name.find("softpipe") != std::string::npos;
+}
+
 std::string glErrors() {
   std::string errors;
   for (GLenum error = glGetError(); error != GL_NO_ERROR; error = glGetError()) errors += " 0x" + std::to_string(error);
   return errors;
 }
 
+// An offscreen framebuffer with a colour and a depth renderbuffer, multisampled when samples > 0.
+struct OffscreenTarget {
+  Framebuffer framebuffer;
+  Renderbuffer color, depth;
+};
+
+bool makeOffscreenTarget(OffscreenTarget& target, int width, int height, int samples, bool withDepth) {
+  target.framebuffer = makeFramebuffer();
+  target.color = makeRenderbuffer();
+  glBindRenderbuffer(GL_RENDERBUFFER, target.color.get());
+  glRenderbufferStorageMultisample(GL_RENDERBUFFER, samples, GL_RGBA8, width, height);
+  glBindFramebuffer(GL_FRAMEBUFFER, target.framebuffer.get());
+  glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, target.color.get());
+  if (withDepth) {
+    target.depth = makeRenderbuffer();
+    glBindRenderbuffer(GL_RENDERBUFFER, target.depth.get());
+    glRenderbufferStorageMultisample(GL_RENDERBUFFER, samples, GL_DEPTH_COMPONENT24, width, height);
+    glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, target.depth.get());
+  }
+  return glCheckFramebufferStatus(GL_FRAMEBUFFER) == GL_FRAMEBUFFER_COMPLETE;
+}
+
 int screenshot(Viewer& viewer) {
   const Options& o = viewer.options;
-  Framebuffer framebuffer = makeFramebuffer();
-  Renderbuffer color = makeRenderbuffer(), depth = makeRenderbuffer();
-  glBindRenderbuffer(GL_RENDERBUFFER, color.get());
-  glRenderbufferStorage(GL_RENDERBUFFER, GL_RGBA8, o.width, o.height);
-  glBindRenderbuffer(GL_RENDERBUFFER, depth.get());
-  glRenderbufferStorage(GL_RENDERBUFFER, GL_DEPTH_COMPONENT24, o.width, o.height);
-  glBindFramebuffer(GL_FRAMEBUFFER, framebuffer.get());
-  glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, color.get());
-  glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, depth.get());
-  if (glCheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE) {
+  // Drawn into a multisampled target (as the window is), resolved into a plain one to read.
+  GLint maxSamples = 0;
+  glGetIntegerv(GL_MAX_SAMPLES, &maxSamples);
+  const int samples = std::min(o.msaaSamples > 1 ? o.msaaSamples : 0, static_cast<int>(maxSamples));
+  OffscreenTarget drawTarget, readTarget;
+  if (!makeOffscreenTarget(drawTarget, o.width, o.height, samples, true) ||
+      (samples > 0 && !makeOffscreenTarget(readTarget, o.width, o.height, 0, false))) {
     std::cerr << "error: offscreen framebuffer incomplete\n";
     return 1;
   }
+  glBindFramebuffer(GL_FRAMEBUFFER, drawTarget.framebuffer.get());
   const CameraMatrices matrices = viewer.camera.matrices(float(o.width) / float(o.height));
   std::vector<double> milliseconds;
   FrameStats stats;
   try {
     for (int frame = 0; frame < o.frames; ++frame) {
       const auto start = std::chrono::steady_clock::now();
+      glBindFramebuffer(GL_FRAMEBUFFER, drawTarget.framebuffer.get());
       stats = viewer.renderer.render(matrices, o.settings, o.width, o.height);
+      if (samples > 0) {
+        glBindFramebuffer(GL_READ_FRAMEBUFFER, drawTarget.framebuffer.get());
+        glBindFramebuffer(GL_DRAW_FRAMEBUFFER, readTarget.framebuffer.get());
+        glBlitFramebuffer(0, 0, o.width, o.height, 0, 0, o.width, o.height, GL_COLOR_BUFFER_BIT, GL_NEAREST);
+      }
       glFinish();
       milliseconds.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
     }
@@ -208,6 +254,7 @@ int screenshot(Viewer& viewer) {
     return 1;
   }
   std::vector<unsigned char> pixels(static_cast<std::size_t>(o.width) * o.height * 4);
+  glBindFramebuffer(GL_FRAMEBUFFER, samples > 0 ? readTarget.framebuffer.get() : drawTarget.framebuffer.get());
   glPixelStorei(GL_PACK_ALIGNMENT, 1);
   glReadPixels(0, 0, o.width, o.height, GL_RGBA, GL_UNSIGNED_BYTE, pixels.data());
   const std::string errors = glErrors();
@@ -221,9 +268,10 @@ int screenshot(Viewer& viewer) {
     return 1;
   }
   std::sort(milliseconds.begin(), milliseconds.end());
-  std::printf("wrote %s (%dx%d): %zu triangles, %d draw calls, %zu shader variants, median frame %.2f ms over %d frame(s)\n",
-              o.screenshot->string().c_str(), o.width, o.height, stats.triangles, stats.drawCalls, viewer.shaders.variantsCompiled(),
-              milliseconds[milliseconds.size() / 2], o.frames);
+  std::printf("wrote %s (%dx%d, %d samples): %zu triangles, %d draw calls, %zu shader variants, %d shadow pass(es), "
+              "median frame %.2f ms over %d frame(s)\n",
+              o.screenshot->string().c_str(), o.width, o.height, std::max(samples, 1), stats.triangles, stats.drawCalls,
+              viewer.shaders.variantsCompiled(), viewer.renderer.shadowPasses(), milliseconds[milliseconds.size() / 2], o.frames);
   return 0;
 }
 
@@ -265,8 +313,12 @@ void drawPanel(Viewer& viewer, GLFWwindow* window, const FrameStats& stats, doub
     ImGui::Checkbox("normal mapping (m)", &s.normalMapping);
     ImGui::Checkbox("flip green (f)", &s.flipGreen);
     ImGui::Checkbox("specular (s)", &s.specular);
-    ImGui::Checkbox("Phong (else Blinn-Phong)", &s.phong);
-    ImGui::SliderFloat("shininess", &s.shininess, 1, 256);
+    int shading = static_cast<int>(s.shading);
+    const char* shadingNames[std::size(kShadings)];
+    for (std::size_t i = 0; i < std::size(kShadings); ++i) shadingNames[i] = kShadings[i].name;
+    if (ImGui::Combo("shading", &shading, shadingNames, static_cast<int>(std::size(kShadings)))) s.shading = static_cast<Shading>(shading);
+    if (s.shading == Shading::pbr) ImGui::TextWrapped("glTF metallic-roughness (GGX), occlusion, emissive; sRGB output");
+    else ImGui::SliderFloat("shininess", &s.shininess, 1, 256);
     ImGui::SliderFloat("reflectivity", &s.reflectivity, 0, 1);
     ImGui::SliderFloat("UV scale", &s.uvScale, 0.25f, 8);
   }
@@ -413,6 +465,7 @@ int main(int argc, char** argv) {
   glfwWindowHint(GLFW_OPENGL_FORWARD_COMPAT, GLFW_TRUE);
   if (std::getenv("TANGENT_GL_DEBUG")) glfwWindowHint(GLFW_OPENGL_DEBUG_CONTEXT, GLFW_TRUE);
   if (options.screenshot) glfwWindowHint(GLFW_VISIBLE, GLFW_FALSE);
+  else glfwWindowHint(GLFW_SAMPLES, options.msaaSamples < 0 ? 4 : options.msaaSamples > 1 ? options.msaaSamples : 0);
   GLFWwindow* window = glfwCreateWindow(options.screenshot ? 64 : options.width, options.screenshot ? 64 : options.height,
                                         "tangent-view", nullptr, nullptr);
   if (!window) {
@@ -428,6 +481,10 @@ int main(int argc, char** argv) {
     glDebugMessageCallback([](GLenum, GLenum type, GLuint, GLenum severity, GLsizei, const GLchar* message, const void*) {
       if (severity != GL_DEBUG_SEVERITY_NOTIFICATION) std::cerr << "GL debug (type 0x" << std::hex << type << std::dec << "): " << message << "\n";
     }, nullptr);
+  }
+  if (options.msaaSamples < 0) {
+    options.msaaSamples = softwareRasteriser() ? 0 : 4;
+    if (options.msaaSamples == 0) glDisable(GL_MULTISAMPLE);  // the window's samples, unused
   }
   int exit = 0;
   {

@@ -4,14 +4,16 @@
 #include <glm/gtc/type_ptr.hpp>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <limits>
 
 #include "textures.hpp"
 
 namespace tangent::viewer {
 namespace {
 
-constexpr int kFloatsPerVertex = 16;  // position 3, normal 3, tangent 4, uvNormal 2, uvBase 2, error 1, problems 1
+constexpr int kFloatsPerVertex = 18;  // position 3, normal 3, tangent 4, uvNormal 2, uv0 2, uv1 2, error 1, problems 1
 
 void setUniform(GLuint program, const char* name, const glm::mat4& m) {
   glUniformMatrix4fv(glGetUniformLocation(program, name), 1, GL_FALSE, glm::value_ptr(m));
@@ -23,6 +25,19 @@ void setUniform(GLuint program, const char* name, const glm::vec3& v) { glUnifor
 void setUniform(GLuint program, const char* name, const glm::vec4& v) { glUniform4fv(glGetUniformLocation(program, name), 1, glm::value_ptr(v)); }
 void setUniform(GLuint program, const char* name, float v) { glUniform1f(glGetUniformLocation(program, name), v); }
 void setUniform(GLuint program, const char* name, int v) { glUniform1i(glGetUniformLocation(program, name), v); }
+
+// A texture's UV set and KHR_texture_transform, for textureUv() in mesh.frag.
+void setUvUniforms(GLuint program, const std::string& prefix, const gltf::TextureRef& ref) {
+  const auto& t = ref.uvTransform;
+  setUniform(program, (prefix + "UvSet").c_str(), ref.texCoord == 1 ? 1 : 0);
+  setUniform(program, (prefix + "UvTransform").c_str(), glm::mat3(t[0], t[1], 0, t[2], t[3], 0, t[4], t[5], 1));
+}
+
+// Every texture a material may sample.
+std::array<const gltf::TextureRef*, 7> textureRefs(const gltf::MaterialDesc& m) {
+  return {&m.baseColorTexture, &m.normalTexture,     &m.emissiveTexture,     &m.metallicRoughnessTexture,
+          &m.occlusionTexture, &m.specularTexture, &m.specularColorTexture};
+}
 
 std::vector<Light> lightsFrom(const gltf::Scene& scene, glm::vec3 center, float radius) {
   std::vector<Light> lights;
@@ -81,11 +96,35 @@ void Renderer::setScene(const gltf::Scene& scene, std::vector<std::string>& mess
   scene_ = scene;
   meshes_.clear();
   textures_.clear();
+  srgbTextures_.clear();
   glyphsBuiltFor_ = -1;
-  for (const auto& image : scene_.images) {
+  ++sceneVersion_;
+  shadowPasses_ = 0;
+  // Each image is uploaded as the materials use it: sRGB where it holds colour, linear where
+  // it holds data; both when used both ways.
+  const std::size_t imageCount = scene_.images.size();
+  std::vector<bool> usedAsColour(imageCount), usedAsData(imageCount);
+  for (const auto& material : scene_.materials) {
+    for (const gltf::TextureRef* ref : textureRefs(material)) {
+      if (ref->image < 0 || ref->image >= static_cast<int>(imageCount)) continue;
+      (ref->colour ? usedAsColour : usedAsData)[ref->image] = true;
+      if (ref->texCoord > 1)
+        messages.push_back("material '" + material.name + "': texCoord " + std::to_string(ref->texCoord) +
+                           " shown with TEXCOORD_0 (the viewer reads sets 0 and 1)");
+    }
+  }
+  textures_.resize(imageCount);
+  srgbTextures_.resize(imageCount);
+  for (std::size_t i = 0; i < imageCount; ++i) {
+    if (!usedAsColour[i] && !usedAsData[i]) continue;
+    DecodedImage image;
     std::string error;
-    textures_.push_back(loadTexture(image, error));
-    if (!error.empty()) messages.push_back(error);
+    if (!decodeImage(scene_.images[i], image, error)) {
+      messages.push_back(error);
+      continue;
+    }
+    if (usedAsColour[i]) srgbTextures_[i] = uploadTexture(image, true);
+    if (usedAsData[i]) textures_[i] = uploadTexture(image, false);
   }
   for (const auto& item : scene_.items) {
     GpuMesh mesh;
@@ -99,18 +138,26 @@ void Renderer::setScene(const gltf::Scene& scene, std::vector<std::string>& mess
       std::copy_n(&item.normals[3 * c], 3, v + 3);
       std::copy_n(&item.tangents[4 * c], 4, v + 6);
       std::copy_n(&item.uvNormal[2 * c], 2, v + 10);
-      std::copy_n(&item.uvBase[2 * c], 2, v + 12);
-      v[14] = item.tangentErrorDegrees[c];
-      v[15] = static_cast<float>(item.cornerProblems[c]);
+      std::copy_n(&item.uvSets[0][2 * c], 2, v + 12);
+      std::copy_n(&item.uvSets[1][2 * c], 2, v + 14);
+      v[16] = item.tangentErrorDegrees[c];
+      v[17] = static_cast<float>(item.cornerProblems[c]);
     }
+    glm::vec3 lo(std::numeric_limits<float>::max()), hi(-std::numeric_limits<float>::max());
+    for (std::size_t c = 0; c < corners; ++c) {
+      const glm::vec3 p = glm::vec3(mesh.model * glm::vec4(glm::make_vec3(&item.positions[3 * c]), 1));
+      lo = glm::min(lo, p);
+      hi = glm::max(hi, p);
+    }
+    mesh.centerWorld = corners > 0 ? (lo + hi) * 0.5f : glm::vec3(0);
     mesh.vertexArray = makeVertexArray();
     mesh.vertices = makeBuffer();
     glBindVertexArray(mesh.vertexArray.get());
     glBindBuffer(GL_ARRAY_BUFFER, mesh.vertices.get());
     glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(data.size() * sizeof(float)), data.data(), GL_STATIC_DRAW);
-    const int sizes[] = {3, 3, 4, 2, 2, 1, 1};
+    const int sizes[] = {3, 3, 4, 2, 2, 2, 1, 1};
     int offset = 0;
-    for (GLuint location = 0; location < 7; ++location) {
+    for (GLuint location = 0; location < 8; ++location) {
       glEnableVertexAttribArray(location);
       glVertexAttribPointer(location, sizes[location], GL_FLOAT, GL_FALSE, kFloatsPerVertex * sizeof(float),
                             reinterpret_cast<const void*>(static_cast<std::uintptr_t>(offset * sizeof(float))));
@@ -129,21 +176,30 @@ bool Renderer::loadSphereMap(const std::filesystem::path& file, std::string& err
   gltf::ImageSource source;
   source.file = file;
   source.label = file.string();
-  sphereMap_ = loadTexture(source, error);
+  sphereMap_ = loadTexture(source, true, error);
   return static_cast<bool>(sphereMap_);
 }
 
 GLuint Renderer::textureOf(const gltf::TextureRef& ref) const {
-  if (ref.image < 0 || ref.image >= static_cast<int>(textures_.size())) return 0;
-  return textures_[ref.image].get();
+  const auto& textures = ref.colour ? srgbTextures_ : textures_;
+  if (ref.image < 0 || ref.image >= static_cast<int>(textures.size())) return 0;
+  return textures[ref.image].get();
 }
 
 FeatureSet Renderer::featuresFor(const GpuMesh& mesh, const RenderSettings& settings) const {
   FeatureSet features = 0;
   if (settings.shadows && !lights_.empty() && lights_[0].directional) features |= static_cast<FeatureSet>(Feature::shadows);
   if (settings.reflectivity > 0 && sphereMap_) features |= static_cast<FeatureSet>(Feature::reflection);
+  if (settings.shading == Shading::pbr) features |= static_cast<FeatureSet>(Feature::pbr);
   if (mesh.material < 0 || mesh.material >= static_cast<int>(scene_.materials.size())) return features;
   const auto& material = scene_.materials[mesh.material];
+  if (material.unlit) {
+    // Unlit: base colour and alpha only.
+    features &= ~(static_cast<FeatureSet>(Feature::shadows) | static_cast<FeatureSet>(Feature::reflection));
+    features |= static_cast<FeatureSet>(Feature::unlit);
+  }
+  if (material.alphaMode == gltf::MaterialDesc::AlphaMode::mask) features |= static_cast<FeatureSet>(Feature::alphaMask);
+  if (textureOf(material.occlusionTexture)) features |= static_cast<FeatureSet>(Feature::occlusionMap);
   if (textureOf(material.baseColorTexture)) features |= static_cast<FeatureSet>(Feature::baseColorMap);
   if (textureOf(material.normalTexture)) features |= static_cast<FeatureSet>(Feature::normalMap);
   if (textureOf(material.specularTexture)) features |= static_cast<FeatureSet>(Feature::specularMap);
@@ -171,6 +227,8 @@ void Renderer::drawShadowMap(const RenderSettings& settings) {
     shadowTexture_ = makeTexture();
     glBindTexture(GL_TEXTURE_2D, shadowTexture_.get());
     glTexImage2D(GL_TEXTURE_2D, 0, GL_DEPTH_COMPONENT24, shadowSize_, shadowSize_, 0, GL_DEPTH_COMPONENT, GL_FLOAT, nullptr);
+    // Hardware depth comparison (sampler2DShadow): with LINEAR filtering each tap is itself a
+    // bilinear blend of four comparisons.
     glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
     glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
     glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
@@ -186,6 +244,7 @@ void Renderer::drawShadowMap(const RenderSettings& settings) {
   glBindFramebuffer(GL_FRAMEBUFFER, shadowFramebuffer_.get());
   glViewport(0, 0, shadowSize_, shadowSize_);
   glEnable(GL_DEPTH_TEST);  // without it GL writes no depth
+  glDepthMask(GL_TRUE);
   glClear(GL_DEPTH_BUFFER_BIT);
   glEnable(GL_POLYGON_OFFSET_FILL);
   glPolygonOffset(2.0f, 4.0f);
@@ -200,6 +259,7 @@ void Renderer::drawShadowMap(const RenderSettings& settings) {
   }
   glDisable(GL_POLYGON_OFFSET_FILL);
   glBindFramebuffer(GL_FRAMEBUFFER, static_cast<GLuint>(previous));
+  ++shadowPasses_;
 }
 
 FrameStats Renderer::render(const CameraMatrices& camera, const RenderSettings& settings, int width, int height) {
@@ -207,96 +267,44 @@ FrameStats Renderer::render(const CameraMatrices& camera, const RenderSettings& 
   const bool anyShadows = settings.shadows && !meshes_.empty() && !lights_.empty() && lights_[0].directional &&
                           settings.view == DebugView::lit;
   if (anyShadows) {
-    drawShadowMap(settings);
-    stats.depthPass = true;
-    stats.drawCalls += static_cast<int>(meshes_.size());
+    // The map depends on the scene, light 0's direction and the map size only: a camera that
+    // moves reuses it.
+    const ShadowKey key{glm::normalize(lights_[0].direction), settings.shadowMapSize, sceneVersion_};
+    if (!(key == shadowKey_) || !shadowTexture_) {
+      drawShadowMap(settings);
+      shadowKey_ = key;
+      stats.depthPass = true;
+      stats.drawCalls += static_cast<int>(meshes_.size());
+    }
   }
   glViewport(0, 0, width, height);
   glClearColor(0.16f, 0.17f, 0.19f, 1.0f);
+  glDepthMask(GL_TRUE);
   glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
   glEnable(GL_DEPTH_TEST);
   glDisable(GL_CULL_FACE);
-  const glm::mat4 viewProjection = camera.projection * camera.view;
-  const glm::mat4 lightMatrix = anyShadows ? lightViewProjection() : glm::mat4(1);
 
+  // Opaque and masked meshes front to back (less overdraw), then blended ones back to front
+  // over them without writing depth.
+  auto blended = [&](const GpuMesh& mesh) {
+    return mesh.material >= 0 && mesh.material < static_cast<int>(scene_.materials.size()) &&
+           scene_.materials[mesh.material].alphaMode == gltf::MaterialDesc::AlphaMode::blend && settings.view == DebugView::lit;
+  };
+  std::vector<std::pair<float, const GpuMesh*>> opaque, transparent;
   for (const GpuMesh& mesh : meshes_) {
-    // A node whose transform mirrors (negative determinant) turns its triangles' winding
-    // around: its front faces are the clockwise ones (glTF 2.0 3.7.4).
-    const bool mirrored = glm::determinant(glm::mat3(mesh.model)) < 0;
-    glFrontFace(mirrored ? GL_CW : GL_CCW);
-    gltf::MaterialDesc material;
-    material.roughness = 0.5f;
-    material.metallic = 0.0f;
-    if (mesh.material >= 0 && mesh.material < static_cast<int>(scene_.materials.size())) material = scene_.materials[mesh.material];
-    if (material.doubleSided || settings.view == DebugView::faceOrientation) glDisable(GL_CULL_FACE);
-    else glEnable(GL_CULL_FACE), glCullFace(GL_BACK);
-    FeatureSet features = featuresFor(mesh, settings);
-    if (!anyShadows) features &= ~static_cast<FeatureSet>(Feature::shadows);
-    const GLuint program = shaders_.mesh(features, settings.view);
-    glUseProgram(program);
-    setUniform(program, "u_model", mesh.model);
-    setUniform(program, "u_normalMatrix", glm::transpose(glm::inverse(glm::mat3(mesh.model))));
-    setUniform(program, "u_viewProjection", viewProjection);
-    setUniform(program, "u_view", camera.view);
-    setUniform(program, "u_lightViewProjection", lightMatrix);
-    setUniform(program, "u_eyeWorld", camera.eye);
-    setUniform(program, "u_uvScale", settings.uvScale);
-    setUniform(program, "u_mirror", mirrored ? -1.0f : 1.0f);
-    setUniform(program, "u_useNormalMap", settings.normalMapping ? 1 : 0);
-    setUniform(program, "u_useSpecular", settings.specular ? 1 : 0);
-    setUniform(program, "u_flipGreen", settings.flipGreen ? 1 : 0);
-    setUniform(program, "u_specularModel", settings.phong ? 1 : 0);
-
-    setUniform(program, "u_baseColorFactor", glm::make_vec4(material.baseColor.data()));
-    setUniform(program, "u_emissiveFactor", glm::make_vec3(material.emissive.data()));
-    setUniform(program, "u_roughness", material.roughness);
-    setUniform(program, "u_metallic", material.metallic);
-    setUniform(program, "u_normalScale", material.normalTexture.scale);
-    setUniform(program, "u_specularColorFactor", material.hasSpecular ? glm::make_vec3(material.specularColor.data()) : glm::vec3(1));
-    setUniform(program, "u_specularStrength", material.hasSpecular ? material.specularFactor : 1.0f);
-    setUniform(program, "u_shininess", material.hasSpecular ? settings.shininess : 0.0f);  // 0: derive from roughness
-    setUniform(program, "u_reflectivity", settings.reflectivity);
-
-    const int lightCount = static_cast<int>(std::min<std::size_t>(lights_.size(), 4));
-    setUniform(program, "u_lightCount", lightCount);
-    for (int i = 0; i < lightCount; ++i) {
-      const Light& light = lights_[i];
-      const std::string index = "[" + std::to_string(i) + "]";
-      setUniform(program, ("u_lightPosition" + index).c_str(),
-                 light.directional ? glm::vec4(glm::normalize(light.direction), 0) : glm::vec4(light.position, 1));
-      setUniform(program, ("u_lightAmbient" + index).c_str(), light.ambient);
-      setUniform(program, ("u_lightDiffuse" + index).c_str(), light.diffuse);
-      setUniform(program, ("u_lightSpecular" + index).c_str(), light.specular);
-      setUniform(program, ("u_lightAttenuation" + index).c_str(), light.attenuation);
-      setUniform(program, ("u_lightSpotDirection" + index).c_str(), light.direction);
-      glUniform2f(glGetUniformLocation(program, ("u_lightSpotCos" + index).c_str()),
-                  light.spotInner >= 0 ? std::cos(light.spotInner) : 0.0f, light.spotOuter >= 0 ? std::cos(light.spotOuter) : -2.0f);
-    }
-
-    int unit = 0;
-    auto bind = [&](const char* name, GLuint texture) {
-      glActiveTexture(GL_TEXTURE0 + unit);
-      glBindTexture(GL_TEXTURE_2D, texture);
-      setUniform(program, name, unit);
-      ++unit;
-    };
-    if (has(features, Feature::baseColorMap)) bind("u_baseColorMap", textureOf(material.baseColorTexture));
-    if (has(features, Feature::normalMap)) bind("u_normalMap", textureOf(material.normalTexture));
-    if (has(features, Feature::specularMap)) bind("u_specularMap", textureOf(material.specularTexture));
-    if (has(features, Feature::specularColorMap)) bind("u_specularColorMap", textureOf(material.specularColorTexture));
-    if (has(features, Feature::metallicRoughnessMap)) bind("u_metallicRoughnessMap", textureOf(material.metallicRoughnessTexture));
-    if (has(features, Feature::emissiveMap)) bind("u_emissiveMap", textureOf(material.emissiveTexture));
-    if (has(features, Feature::reflection)) bind("u_sphereMap", sphereMap_.get());
-    if (has(features, Feature::shadows)) {
-      bind("u_shadowMap", shadowTexture_.get());
-      setUniform(program, "u_pcfRadius", settings.pcfRadius);
-      setUniform(program, "u_shadowBiasConstant", settings.shadowBiasConstant);
-      setUniform(program, "u_shadowBiasSlope", settings.shadowBiasSlope);
-    }
-    glBindVertexArray(mesh.vertexArray.get());
-    glDrawArrays(GL_TRIANGLES, 0, mesh.count);
-    ++stats.drawCalls;
-    stats.triangles += static_cast<std::size_t>(mesh.count / 3);
+    const float distance = glm::length(mesh.centerWorld - camera.eye);
+    (blended(mesh) ? transparent : opaque).emplace_back(distance, &mesh);
+  }
+  std::stable_sort(opaque.begin(), opaque.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+  std::stable_sort(transparent.begin(), transparent.end(), [](const auto& a, const auto& b) { return a.first > b.first; });
+  for (const auto& [distance, mesh] : opaque) drawMesh(*mesh, camera, settings, anyShadows, stats);
+  if (!transparent.empty()) {
+    glEnable(GL_BLEND);
+    glBlendFuncSeparate(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA, GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
+    glDepthMask(GL_FALSE);
+    for (const auto& [distance, mesh] : transparent) drawMesh(*mesh, camera, settings, anyShadows, stats);
+    glDepthMask(GL_TRUE);
+    glDisable(GL_BLEND);
   }
   glFrontFace(GL_CCW);
   glDisable(GL_CULL_FACE);
@@ -306,6 +314,94 @@ FrameStats Renderer::render(const CameraMatrices& camera, const RenderSettings& 
   }
   glBindVertexArray(0);
   return stats;
+}
+
+void Renderer::drawMesh(const GpuMesh& mesh, const CameraMatrices& camera, const RenderSettings& settings, bool shadows, FrameStats& stats) {
+  // A node whose transform mirrors (negative determinant) turns its triangles' winding
+  // around: its front faces are the clockwise ones (glTF 2.0 3.7.4).
+  const bool mirrored = glm::determinant(glm::mat3(mesh.model)) < 0;
+  glFrontFace(mirrored ? GL_CW : GL_CCW);
+  gltf::MaterialDesc material;
+  material.roughness = 0.5f;
+  material.metallic = 0.0f;
+  if (mesh.material >= 0 && mesh.material < static_cast<int>(scene_.materials.size())) material = scene_.materials[mesh.material];
+  if (material.doubleSided || settings.view == DebugView::faceOrientation) glDisable(GL_CULL_FACE);
+  else glEnable(GL_CULL_FACE), glCullFace(GL_BACK);
+  FeatureSet features = featuresFor(mesh, settings);
+  if (!shadows) features &= ~static_cast<FeatureSet>(Feature::shadows);
+  const GLuint program = shaders_.mesh(features, settings.view);
+  glUseProgram(program);
+  setUniform(program, "u_model", mesh.model);
+  setUniform(program, "u_normalMatrix", glm::transpose(glm::inverse(glm::mat3(mesh.model))));
+  setUniform(program, "u_viewProjection", camera.projection * camera.view);
+  setUniform(program, "u_view", camera.view);
+  setUniform(program, "u_lightViewProjection", shadows ? lightViewProjection() : glm::mat4(1));
+  setUniform(program, "u_eyeWorld", camera.eye);
+  setUniform(program, "u_uvScale", settings.uvScale);
+  setUniform(program, "u_mirror", mirrored ? -1.0f : 1.0f);
+  setUniform(program, "u_useNormalMap", settings.normalMapping ? 1 : 0);
+  setUniform(program, "u_useSpecular", settings.specular ? 1 : 0);
+  setUniform(program, "u_flipGreen", settings.flipGreen ? 1 : 0);
+  setUniform(program, "u_specularModel", settings.shading == Shading::phong ? 1 : 0);
+  setUniform(program, "u_blend", material.alphaMode == gltf::MaterialDesc::AlphaMode::blend ? 1 : 0);
+  setUniform(program, "u_alphaCutoff", material.alphaCutoff);
+
+  setUniform(program, "u_baseColorFactor", glm::make_vec4(material.baseColor.data()));
+  setUniform(program, "u_emissiveFactor", glm::make_vec3(material.emissive.data()));
+  setUniform(program, "u_roughness", material.roughness);
+  setUniform(program, "u_metallic", material.metallic);
+  setUniform(program, "u_normalScale", material.normalTexture.scale);
+  setUniform(program, "u_occlusionStrength", material.occlusionTexture.scale);
+  setUniform(program, "u_specularColorFactor", material.hasSpecular ? glm::make_vec3(material.specularColor.data()) : glm::vec3(1));
+  setUniform(program, "u_specularStrength", material.hasSpecular ? material.specularFactor : 1.0f);
+  setUniform(program, "u_shininess", material.hasSpecular ? settings.shininess : 0.0f);  // 0: derive from roughness
+  setUniform(program, "u_reflectivity", settings.reflectivity);
+
+  const int lightCount = static_cast<int>(std::min<std::size_t>(lights_.size(), 4));
+  setUniform(program, "u_lightCount", lightCount);
+  for (int i = 0; i < lightCount; ++i) {
+    const Light& light = lights_[i];
+    const std::string index = "[" + std::to_string(i) + "]";
+    setUniform(program, ("u_lightPosition" + index).c_str(),
+               light.directional ? glm::vec4(glm::normalize(light.direction), 0) : glm::vec4(light.position, 1));
+    setUniform(program, ("u_lightAmbient" + index).c_str(), light.ambient);
+    setUniform(program, ("u_lightDiffuse" + index).c_str(), light.diffuse);
+    setUniform(program, ("u_lightSpecular" + index).c_str(), light.specular);
+    setUniform(program, ("u_lightAttenuation" + index).c_str(), light.attenuation);
+    setUniform(program, ("u_lightSpotDirection" + index).c_str(), light.direction);
+    glUniform2f(glGetUniformLocation(program, ("u_lightSpotCos" + index).c_str()),
+                light.spotInner >= 0 ? std::cos(light.spotInner) : 0.0f, light.spotOuter >= 0 ? std::cos(light.spotOuter) : -2.0f);
+  }
+
+  int unit = 0;
+  auto bind = [&](const char* name, GLuint texture) {
+    glActiveTexture(GL_TEXTURE0 + unit);
+    glBindTexture(GL_TEXTURE_2D, texture);
+    setUniform(program, name, unit);
+    ++unit;
+  };
+  auto bindMap = [&](const char* prefix, const gltf::TextureRef& ref) {
+    bind((std::string("u_") + prefix + "Map").c_str(), textureOf(ref));
+    setUvUniforms(program, std::string("u_") + prefix, ref);
+  };
+  if (has(features, Feature::baseColorMap)) bindMap("baseColor", material.baseColorTexture);
+  if (has(features, Feature::normalMap)) bind("u_normalMap", textureOf(material.normalTexture));
+  if (has(features, Feature::specularMap)) bindMap("specular", material.specularTexture);
+  if (has(features, Feature::specularColorMap)) bindMap("specularColor", material.specularColorTexture);
+  if (has(features, Feature::metallicRoughnessMap)) bindMap("metallicRoughness", material.metallicRoughnessTexture);
+  if (has(features, Feature::emissiveMap)) bindMap("emissive", material.emissiveTexture);
+  if (has(features, Feature::occlusionMap)) bindMap("occlusion", material.occlusionTexture);
+  if (has(features, Feature::reflection)) bind("u_sphereMap", sphereMap_.get());
+  if (has(features, Feature::shadows)) {
+    bind("u_shadowMap", shadowTexture_.get());
+    setUniform(program, "u_pcfRadius", settings.pcfRadius);
+    setUniform(program, "u_shadowBiasConstant", settings.shadowBiasConstant);
+    setUniform(program, "u_shadowBiasSlope", settings.shadowBiasSlope);
+  }
+  glBindVertexArray(mesh.vertexArray.get());
+  glDrawArrays(GL_TRIANGLES, 0, mesh.count);
+  ++stats.drawCalls;
+  stats.triangles += static_cast<std::size_t>(mesh.count / 3);
 }
 
 void Renderer::drawGlyphs(const CameraMatrices& camera, const RenderSettings& settings) {

@@ -32,8 +32,8 @@ struct RenderSettings {
   float shadowBiasConstant = 0.0008f;
   float shadowBiasSlope = 0.0015f;
   bool flipGreen = false;
-  bool phong = false;        // Phong instead of Blinn-Phong
-  float shininess = 48;      // for KHR_materials_specular materials
+  Shading shading = Shading::pbr;
+  float shininess = 48;      // specular-map mode, for KHR_materials_specular materials
   float reflectivity = 0;    // sphere-map reflection mix
   float uvScale = 1;
   bool glyphs = false;
@@ -48,7 +48,7 @@ struct CameraMatrices {
 struct FrameStats {
   int drawCalls = 0;
   std::size_t triangles = 0;
-  bool depthPass = false;
+  bool depthPass = false;  // the shadow map was redrawn this frame
 };
 
 class Renderer {
@@ -68,6 +68,9 @@ class Renderer {
   glm::vec3 boundsMax() const { return boundsMax_; }
   float boundsRadius() const { return glm::max(glm::length(boundsMax_ - boundsMin_) * 0.5f, 1e-3f); }
   const gltf::Scene& scene() const { return scene_; }
+  // Shadow-map depth passes drawn since the scene was set: one per change of scene, light 0's
+  // direction or map size, not one per frame.
+  int shadowPasses() const { return shadowPasses_; }
 
  private:
   struct GpuMesh {
@@ -76,7 +79,16 @@ class Renderer {
     GLsizei count = 0;
     int material = -1;
     glm::mat4 model{1};
+    glm::vec3 centerWorld{0};  // of its bounds, for draw order
   };
+  // What the shadow map was drawn for; a frame that matches it reuses the map.
+  struct ShadowKey {
+    glm::vec3 direction{0};
+    int size = 0;
+    int sceneVersion = -1;
+    bool operator==(const ShadowKey&) const = default;
+  };
+  void drawMesh(const GpuMesh& mesh, const CameraMatrices& camera, const RenderSettings& settings, bool shadows, FrameStats& stats);
   void drawShadowMap(const RenderSettings& settings);
   void drawGlyphs(const CameraMatrices& camera, const RenderSettings& settings);
   glm::mat4 lightViewProjection() const;
@@ -86,13 +98,17 @@ class Renderer {
   ShaderLibrary& shaders_;
   gltf::Scene scene_;
   std::vector<GpuMesh> meshes_;
-  std::vector<Texture> textures_;  // per scene image (empty when it failed)
+  std::vector<Texture> textures_;      // per scene image, linear data (empty when unused or failed)
+  std::vector<Texture> srgbTextures_;  // per scene image, sRGB colour (empty when unused or failed)
   Texture sphereMap_;
   std::vector<Light> lights_;
   glm::vec3 boundsMin_{-1}, boundsMax_{1};
   Framebuffer shadowFramebuffer_;
   Texture shadowTexture_;
   int shadowSize_ = 0;
+  ShadowKey shadowKey_;
+  int sceneVersion_ = 0;
+  int shadowPasses_ = 0;
   VertexArray glyphArray_;
   Buffer glyphBuffer_;
   GLsizei glyphVertices_ = 0;

@@ -16,6 +16,10 @@ enum class Feature : std::uint32_t {
   emissiveMap = 1u << 5,
   shadows = 1u << 6,
   reflection = 1u << 7,        // sphere-map reflection
+  occlusionMap = 1u << 8,
+  alphaMask = 1u << 9,         // alphaMode MASK: discard below alphaCutoff
+  unlit = 1u << 10,            // KHR_materials_unlit
+  pbr = 1u << 11,              // metallic-roughness shading (else the specular-map mode)
 };
 
 enum class DebugView : std::uint8_t {
@@ -44,6 +48,25 @@ inline constexpr FeatureDefine kFeatureDefines[] = {
     {Feature::emissiveMap, "HAS_EMISSIVE_MAP"},
     {Feature::shadows, "USE_SHADOWS"},
     {Feature::reflection, "USE_REFLECTION"},
+    {Feature::occlusionMap, "HAS_OCCLUSION_MAP"},
+    {Feature::alphaMask, "ALPHA_MASK"},
+    {Feature::unlit, "MATERIAL_UNLIT"},
+    {Feature::pbr, "SHADING_PBR"},
+};
+
+// The lit view's shading: glTF's metallic-roughness model, or the tutorials' specular-map
+// mode with Blinn-Phong (half vector) or Phong (reflection vector) highlights.
+enum class Shading : std::uint8_t { pbr, blinnPhong, phong };
+
+struct ShadingInfo {
+  Shading shading;
+  const char* name;  // for --shading and the panel
+};
+
+inline constexpr ShadingInfo kShadings[] = {
+    {Shading::pbr, "pbr"},
+    {Shading::blinnPhong, "blinn-phong"},
+    {Shading::phong, "phong"},
 };
 
 struct DebugViewInfo {

@@ -17,44 +17,63 @@ std::string extensionFor(const std::string& mimeType) {
 
 }  // namespace
 
-Texture loadTexture(const gltf::ImageSource& source, std::string& error) {
+bool decodeImage(const gltf::ImageSource& source, DecodedImage& image, std::string& error) {
   std::unique_ptr<OIIO::ImageInput> input;
   OIIO::Filesystem::IOMemReader memory(source.bytes.data(), source.bytes.size());
+  // glTF's alpha is straight (unassociated): keep colour as stored, not premultiplied.
+  OIIO::ImageSpec config;
+  config.attribute("oiio:UnassociatedAlpha", 1);
   if (!source.bytes.empty()) {
-    input = OIIO::ImageInput::open("embedded" + extensionFor(source.mimeType), nullptr, &memory);
+    // With a configuration given, OIIO takes the proxy from it, not from the third argument.
+    OIIO::Filesystem::IOProxy* proxy = &memory;
+    config.attribute("oiio:ioproxy", OIIO::TypeDesc::PTR, &proxy);
+    input = OIIO::ImageInput::open("embedded" + extensionFor(source.mimeType), &config, &memory);
   } else if (!source.file.empty()) {
-    input = OIIO::ImageInput::open(source.file.string());
+    input = OIIO::ImageInput::open(source.file.string(), &config);
   }
   if (!input) {
     error = source.label + ": cannot be decoded: " + OIIO::geterror();
-    return {};
+    return false;
   }
   const OIIO::ImageSpec& spec = input->spec();
   const int width = spec.width, height = spec.height, channels = spec.nchannels;
   std::vector<unsigned char> pixels(static_cast<std::size_t>(width) * height * channels);
   if (!input->read_image(0, 0, 0, channels, OIIO::TypeDesc::UINT8, pixels.data())) {
     error = source.label + ": cannot be read: " + input->geterror();
-    return {};
+    return false;
   }
   input->close();
-  std::vector<unsigned char> rgba(static_cast<std::size_t>(width) * height * 4, 255);
+  image.width = width;
+  image.height = height;
+  image.rgba.assign(static_cast<std::size_t>(width) * height * 4, 255);
   for (std::size_t p = 0; p < static_cast<std::size_t>(width) * height; ++p) {
     for (int c = 0; c < 4; ++c) {
-      if (c < channels) rgba[4 * p + c] = pixels[p * channels + c];
-      else if (c < 3) rgba[4 * p + c] = pixels[p * channels];  // grey: spread the one channel
+      if (c < channels) image.rgba[4 * p + c] = pixels[p * channels + c];
+      else if (c < 3) image.rgba[4 * p + c] = pixels[p * channels];  // grey: spread the one channel
     }
   }
+  return true;
+}
+
+Texture uploadTexture(const DecodedImage& image, bool srgb) {
   Texture texture = makeTexture();
   glBindTexture(GL_TEXTURE_2D, texture.get());
   glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
   // glTF's UV origin is the image's first row: upload rows as stored, sample uv as given.
-  glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA8, width, height, 0, GL_RGBA, GL_UNSIGNED_BYTE, rgba.data());
+  glTexImage2D(GL_TEXTURE_2D, 0, srgb ? GL_SRGB8_ALPHA8 : GL_RGBA8, image.width, image.height, 0, GL_RGBA, GL_UNSIGNED_BYTE,
+               image.rgba.data());
   glGenerateMipmap(GL_TEXTURE_2D);
   glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
   glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
   glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_REPEAT);
   glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_REPEAT);
   return texture;
+}
+
+Texture loadTexture(const gltf::ImageSource& source, bool srgb, std::string& error) {
+  DecodedImage image;
+  if (!decodeImage(source, image, error)) return {};
+  return uploadTexture(image, srgb);
 }
 
 bool writePng(const std::string& path, int width, int height, const std::vector<unsigned char>& rgbaBottomUp, std::string& error) {

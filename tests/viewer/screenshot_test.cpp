@@ -165,12 +165,13 @@ TEST(Viewer, DemoSceneShadowFallsWhereTheSphereOccludesTheSun) {
 }
 
 // The demo material's specular map has green, white and black bands (RGB colour, A strength):
-// the highlight the specular term adds must come in white and in green.
+// in the specular-map mode, the highlight the specular term adds must come in white and in green.
 TEST(Viewer, SpecularMapColoursTheHighlights) {
   TempDir dir;
   const std::string common = "'" + (fs::path(TANGENT_SOURCE_DIR) / "data" / "demo" / "sphere.gltf").string() +
                              "' --camera front --size 400x400 --no-shadows";
-  const Image on = screenshot(dir, "specular", common), off = screenshot(dir, "no-specular", common + " --no-specular");
+  const Image on = screenshot(dir, "specular", common + " --shading blinn-phong"),
+              off = screenshot(dir, "no-specular", common + " --shading blinn-phong --no-specular");
   ASSERT_EQ(on.rgb.size(), off.rgb.size());
   int white = 0, green = 0;
   for (int y = 0; y < on.height; ++y) {
@@ -178,7 +179,7 @@ TEST(Viewer, SpecularMapColoursTheHighlights) {
       const auto a = on.at(x, y), b = off.at(x, y);
       const float r = a[0] - b[0], g = a[1] - b[1], bl = a[2] - b[2];
       if (g > 0.08f && std::abs(r - g) < 0.03f && std::abs(bl - g) < 0.03f) ++white;
-      if (g > 0.08f && g > 2 * r && g > 2 * bl) ++green;
+      if (g > 0.04f && g > 2 * r && g > 2 * bl) ++green;  // the green band lies off the key light's highlight
     }
   }
   std::printf("highlight pixels: %d white, %d green\n", white, green);
@@ -325,6 +326,305 @@ TEST(Viewer, OpensEveryGeneratedTestAsset) {
       EXPECT_LT(backgroundShare(image), 0.995f) << input << " shows nothing";
     }
   }
+}
+
+// ---- Linear pipeline, PBR, texCoord and KHR_texture_transform, alpha, MSAA, shadow cache ----
+
+// Writes an RGBA8 PNG of width x height whose pixel (x, y) (y from the top) is colour(x, y).
+template <class Colour>
+void writeRgbaPng(const fs::path& path, int width, int height, Colour colour) {
+  std::vector<unsigned char> pixels(static_cast<std::size_t>(width) * height * 4);
+  for (int y = 0; y < height; ++y)
+    for (int x = 0; x < width; ++x) {
+      const std::array<unsigned char, 4> c = colour(x, y);
+      std::copy(c.begin(), c.end(), &pixels[(static_cast<std::size_t>(y) * width + x) * 4]);
+    }
+  auto out = OIIO::ImageOutput::create(path.string());
+  OIIO::ImageSpec spec(width, height, 4, OIIO::TypeDesc::UINT8);
+  spec.attribute("oiio:UnassociatedAlpha", 1);  // written as given: straight alpha, as glTF's
+  ASSERT_TRUE(out && out->open(path.string(), spec));
+  out->write_image(OIIO::TypeDesc::UINT8, pixels.data());
+  out->close();
+}
+
+// A quad over [-1, 1]^2 at z = 0 facing +z with TEXCOORD_0 = ((x + 1) / 2, (1 - y) / 2) (the
+// image upright seen from the front) and TEXCOORD_1 the same mirrored in u, with `material` and
+// texture 0 = image 0 = `image`.
+fs::path quadAsset(const TempDir& dir, const std::string& name, const nlohmann::json& material, const std::string& image) {
+  const float positions[] = {-1, -1, 0, 1, -1, 0, 1, 1, 0, -1, 1, 0};
+  const float normals[] = {0, 0, 1, 0, 0, 1, 0, 0, 1, 0, 0, 1};
+  const float uv0[] = {0, 1, 1, 1, 1, 0, 0, 0};
+  const float uv1[] = {1, 1, 0, 1, 0, 0, 1, 0};
+  const std::uint16_t indices[] = {0, 1, 2, 0, 2, 3};
+  std::string bin;
+  auto append = [&](const void* data, std::size_t bytes) { bin.append(static_cast<const char*>(data), bytes); };
+  append(positions, sizeof positions);
+  append(normals, sizeof normals);
+  append(uv0, sizeof uv0);
+  append(uv1, sizeof uv1);
+  append(indices, sizeof indices);
+  std::ofstream(dir / (name + ".bin"), std::ios::binary) << bin;
+  nlohmann::json doc = {
+      {"asset", {{"version", "2.0"}}},
+      {"scene", 0},
+      {"scenes", {{{"nodes", {0}}}}},
+      {"nodes", {{{"mesh", 0}}}},
+      {"meshes", {{{"primitives", {{{"attributes", {{"POSITION", 0}, {"NORMAL", 1}, {"TEXCOORD_0", 2}, {"TEXCOORD_1", 3}}}, {"indices", 4}, {"material", 0}}}}}}},
+      {"materials", {material}},
+      {"textures", {{{"source", 0}}}},
+      {"images", {{{"uri", image}}}},
+      {"buffers", {{{"uri", name + ".bin"}, {"byteLength", bin.size()}}}},
+      {"bufferViews", {{{"buffer", 0}, {"byteOffset", 0}, {"byteLength", 48}},
+                       {{"buffer", 0}, {"byteOffset", 48}, {"byteLength", 48}},
+                       {{"buffer", 0}, {"byteOffset", 96}, {"byteLength", 32}},
+                       {{"buffer", 0}, {"byteOffset", 128}, {"byteLength", 32}},
+                       {{"buffer", 0}, {"byteOffset", 160}, {"byteLength", 12}}}},
+      {"accessors", {{{"bufferView", 0}, {"componentType", 5126}, {"count", 4}, {"type", "VEC3"}, {"min", {-1, -1, 0}}, {"max", {1, 1, 0}}},
+                     {{"bufferView", 1}, {"componentType", 5126}, {"count", 4}, {"type", "VEC3"}},
+                     {{"bufferView", 2}, {"componentType", 5126}, {"count", 4}, {"type", "VEC2"}},
+                     {{"bufferView", 3}, {"componentType", 5126}, {"count", 4}, {"type", "VEC2"}},
+                     {{"bufferView", 4}, {"componentType", 5123}, {"count", 6}, {"type", "SCALAR"}}}},
+  };
+  if (material.contains("extensions")) {
+    for (const auto& [extension, value] : material["extensions"].items()) doc["extensionsUsed"].push_back(extension);
+  }
+  const fs::path file = dir / (name + ".gltf");
+  std::ofstream(file) << doc.dump(1);
+  return file;
+}
+
+// The pixel of a front orthographic 200x200 view of quadAsset at model point (x, y): the
+// camera frames the quad's bounding sphere (radius sqrt 2) with OrbitCamera's 1.02 margin.
+std::array<float, 3> quadPixel(const Image& image, double x, double y) {
+  const double pixelsPerUnit = image.height / (2 * std::sqrt(2.0) * 1.02);
+  return image.at(static_cast<int>(image.width / 2.0 + x * pixelsPerUnit), static_cast<int>(image.height / 2.0 - y * pixelsPerUnit));
+}
+
+double srgbToLinear(double c) { return c <= 0.04045 ? c / 12.92 : std::pow((c + 0.055) / 1.055, 2.4); }
+double linearToSrgb(double c) { return c <= 0.0031308 ? c * 12.92 : 1.055 * std::pow(c, 1 / 2.4) - 0.055; }
+
+const char* const kQuadView = " --camera front --ortho --size 200x200 --no-shadows";
+
+// An unlit quad with a flat sRGB mid-grey texture reads back as that grey (decoded to linear by
+// the sampler, encoded again at the output); with baseColorFactor 0.5 it reads back as half the
+// linear value, sRGB-encoded (92/255), not as half the stored value (64/255) that lighting in
+// gamma space gives.
+TEST(Viewer, SrgbTextureDecodedLitLinearAndEncoded) {
+  TempDir dir;
+  writeRgbaPng(dir / "grey.png", 8, 8, [](int, int) { return std::array<unsigned char, 4>{128, 128, 128, 255}; });
+  for (const double factor : {1.0, 0.5}) {
+    const nlohmann::json material = {
+        {"pbrMetallicRoughness", {{"baseColorTexture", {{"index", 0}}}, {"baseColorFactor", {factor, factor, factor, 1.0}}}},
+        {"extensions", {{"KHR_materials_unlit", nlohmann::json::object()}}}};
+    const std::string name = "grey-" + std::to_string(static_cast<int>(factor * 100));
+    const Image image = screenshot(dir, name, "'" + quadAsset(dir, name, material, "grey.png").string() + "'" + kQuadView);
+    ASSERT_EQ(image.width, 200);
+    const double expected = linearToSrgb(factor * srgbToLinear(128 / 255.0));
+    const auto centre = quadPixel(image, 0, 0);
+    std::printf("factor %.1f: centre %.4f (%.1f/255), expected %.4f (%.1f/255)\n", factor, centre[0], centre[0] * 255, expected, expected * 255);
+    for (int c = 0; c < 3; ++c) EXPECT_NEAR(centre[c], expected, 1.5 / 255) << "factor " << factor;
+  }
+}
+
+// Four flat quadrants: top left red, top right green, bottom left blue, bottom right white.
+std::array<unsigned char, 4> quadrantColour(int x, int y) {
+  const bool right = x >= 32, bottom = y >= 32;
+  if (!right && !bottom) return {255, 0, 0, 255};
+  if (right && !bottom) return {0, 255, 0, 255};
+  if (!right && bottom) return {0, 0, 255, 255};
+  return {255, 255, 255, 255};
+}
+
+char colourName(std::array<float, 3> c) {
+  if (c[0] > 0.8f && c[1] > 0.8f && c[2] > 0.8f) return 'W';
+  if (c[0] > 0.8f && c[1] < 0.2f && c[2] < 0.2f) return 'R';
+  if (c[1] > 0.8f && c[0] < 0.2f && c[2] < 0.2f) return 'G';
+  if (c[2] > 0.8f && c[0] < 0.2f && c[1] < 0.2f) return 'B';
+  return '?';
+}
+
+// Each texture samples the UV set its texCoord names, through its KHR_texture_transform (the
+// extension's texCoord overriding), rotation as textureTransformMatrix documents it.
+TEST(Viewer, TexCoordAndTextureTransformChooseTheTexels) {
+  TempDir dir;
+  writeRgbaPng(dir / "quadrants.png", 64, 64, quadrantColour);
+  struct Case {
+    const char* name;
+    const char* textureInfo;  // JSON
+    const char* expected;     // colours at the quad's top left and top right quarter points
+  };
+  const Case cases[] = {
+      {"texcoord0", R"({"index": 0})", "RG"},
+      {"texcoord1", R"({"index": 0, "texCoord": 1})", "GR"},
+      {"offset", R"({"index": 0, "extensions": {"KHR_texture_transform": {"offset": [0.5, 0.0]}}})", "GR"},
+      {"scale", R"({"index": 0, "extensions": {"KHR_texture_transform": {"scale": [1.0, 3.0]}}})", "BW"},
+      // A quarter turn: uv' = (cos u + sin v, -sin u + cos v): (0.25, 0.25) -> (0.25, -0.25),
+      // blue (repeat); the GLSL listing's matrix would give (-0.25, 0.25), green.
+      {"rotation", R"({"index": 0, "extensions": {"KHR_texture_transform": {"rotation": 1.5707963267948966}}})", "BR"},
+      {"override", R"({"index": 0, "extensions": {"KHR_texture_transform": {"texCoord": 1}}})", "GR"},
+  };
+  for (const Case& c : cases) {
+    const nlohmann::json material = {{"pbrMetallicRoughness", {{"baseColorTexture", nlohmann::json::parse(c.textureInfo)}}},
+                                     {"extensions", {{"KHR_materials_unlit", nlohmann::json::object()}}}};
+    const Image image = screenshot(dir, c.name, "'" + quadAsset(dir, c.name, material, "quadrants.png").string() + "'" + kQuadView);
+    ASSERT_EQ(image.width, 200) << c.name;
+    const std::string seen{colourName(quadPixel(image, -0.5, 0.5)), colourName(quadPixel(image, 0.5, 0.5))};
+    EXPECT_EQ(seen, c.expected) << c.name;
+  }
+}
+
+// alphaMode: MASK discards below alphaCutoff, BLEND mixes over what is behind, OPAQUE ignores alpha.
+TEST(Viewer, AlphaMaskCutsOutAndBlendMixes) {
+  TempDir dir;
+  // Left half alpha 0, right half alpha 1, all white.
+  writeRgbaPng(dir / "half.png", 64, 64, [](int x, int) { return std::array<unsigned char, 4>{255, 255, 255, static_cast<unsigned char>(x < 32 ? 0 : 255)}; });
+  const std::array<float, 3> background{0.16f, 0.17f, 0.19f};
+  auto render = [&](const std::string& mode, double factorAlpha) {
+    nlohmann::json material = {{"pbrMetallicRoughness", {{"baseColorTexture", {{"index", 0}}}, {"baseColorFactor", {1.0, 1.0, 1.0, factorAlpha}}}},
+                               {"alphaMode", mode},
+                               {"extensions", {{"KHR_materials_unlit", nlohmann::json::object()}}}};
+    return screenshot(dir, mode, "'" + quadAsset(dir, mode, material, "half.png").string() + "'" + kQuadView);
+  };
+  const Image mask = render("MASK", 1.0), blend = render("BLEND", 0.5), opaque = render("OPAQUE", 1.0);
+  ASSERT_EQ(mask.width, 200);
+  for (int c = 0; c < 3; ++c) {
+    EXPECT_NEAR(quadPixel(mask, -0.5, 0)[c], background[c], 0.01f) << "masked-out half shows the background";
+    EXPECT_NEAR(quadPixel(mask, 0.5, 0)[c], 1.0f, 0.01f) << "kept half is white";
+    EXPECT_NEAR(quadPixel(blend, -0.5, 0)[c], background[c], 0.01f) << "alpha 0 adds nothing";
+    EXPECT_NEAR(quadPixel(blend, 0.5, 0)[c], 0.5f * (1.0f + background[c]), 0.01f) << "alpha 0.5 mixes half and half";
+    EXPECT_NEAR(quadPixel(opaque, -0.5, 0)[c], 1.0f, 0.01f) << "opaque ignores alpha";
+  }
+}
+
+// occlusionTexture darkens the environment (ambient) term where its R channel is low, as much
+// as its strength says; direct light is untouched.
+TEST(Viewer, OcclusionMapDarkensTheAmbientTerm) {
+  TempDir dir;
+  writeRgbaPng(dir / "occlusion.png", 64, 64, [](int x, int) {
+    const auto r = static_cast<unsigned char>(x < 32 ? 0 : 255);
+    return std::array<unsigned char, 4>{r, r, r, 255};
+  });
+  auto render = [&](const std::string& name, double strength) {
+    const nlohmann::json material = {{"pbrMetallicRoughness", {{"metallicFactor", 0.0}, {"roughnessFactor", 1.0}}},
+                                     {"occlusionTexture", {{"index", 0}, {"strength", strength}}}};
+    return screenshot(dir, name, "'" + quadAsset(dir, name, material, "occlusion.png").string() + "'" + kQuadView + " --shading pbr");
+  };
+  const Image full = render("strength1", 1.0), none = render("strength0", 0.0);
+  ASSERT_EQ(full.width, 200);
+  auto luma = [](std::array<float, 3> c) { return 0.2126f * c[0] + 0.7152f * c[1] + 0.0722f * c[2]; };
+  const float occludedHalf = luma(quadPixel(full, -0.5, 0)), openHalf = luma(quadPixel(full, 0.5, 0));
+  const float noneLeft = luma(quadPixel(none, -0.5, 0)), noneRight = luma(quadPixel(none, 0.5, 0));
+  std::printf("strength 1: occluded %.3f, open %.3f; strength 0: %.3f, %.3f\n", occludedHalf, openHalf, noneLeft, noneRight);
+  EXPECT_LT(occludedHalf, openHalf - 0.03f);
+  EXPECT_NEAR(openHalf, noneRight, 0.01f);     // occlusion 1 changes nothing
+  EXPECT_GT(noneLeft, occludedHalf + 0.03f);   // strength 0 turns it off
+}
+
+// Copy of data/demo/sphere.gltf with one untextured metallic-roughness material.
+fs::path plainSphere(const TempDir& dir, const std::string& name, double metallic, double roughness) {
+  const fs::path demo = fs::path(TANGENT_SOURCE_DIR) / "data" / "demo";
+  const fs::path folder = dir / name;
+  fs::create_directories(folder);
+  fs::copy_file(demo / "sphere.bin", folder / "sphere.bin");
+  nlohmann::json doc = nlohmann::json::parse(std::ifstream(demo / "sphere.gltf"));
+  doc.erase("textures");
+  doc.erase("images");
+  doc.erase("samplers");
+  doc.erase("extensionsUsed");
+  doc["materials"] = {{{"pbrMetallicRoughness", {{"baseColorFactor", {0.9, 0.9, 0.9, 1.0}}, {"metallicFactor", metallic}, {"roughnessFactor", roughness}}}}};
+  std::ofstream(folder / "sphere.gltf") << doc.dump();
+  return folder / "sphere.gltf";
+}
+
+// Linear luminance (sRGB decoded) of every pixel that is not background, sorted.
+std::vector<float> objectLuminances(const Image& image) {
+  std::vector<float> lumas;
+  for (int y = 0; y < image.height; ++y)
+    for (int x = 0; x < image.width; ++x) {
+      const auto c = image.at(x, y);
+      if (std::abs(c[0] - 0.16f) < 0.01f && std::abs(c[1] - 0.17f) < 0.01f && std::abs(c[2] - 0.19f) < 0.01f) continue;
+      lumas.push_back(static_cast<float>(0.2126 * srgbToLinear(c[0]) + 0.7152 * srgbToLinear(c[1]) + 0.0722 * srgbToLinear(c[2])));
+    }
+  std::sort(lumas.begin(), lumas.end());
+  return lumas;
+}
+
+// PBR mode (glTF appendix B): a metal has no diffuse term, so away from its highlight a metal
+// sphere is far darker (in linear luminance) than a dielectric one of the same base colour; a
+// smoother metal has a brighter, smaller highlight.
+TEST(Viewer, PbrMetalHasNoDiffuseAndSmootherMeansSharperHighlights) {
+  TempDir dir;
+  const std::string common = " --camera front --size 300x300 --no-shadows --shading pbr";
+  auto lumas = [&](const std::string& name, double metallic, double roughness) {
+    return objectLuminances(screenshot(dir, name, "'" + plainSphere(dir, name, metallic, roughness).string() + "'" + common));
+  };
+  const auto dielectric = lumas("dielectric", 0, 0.5), metal = lumas("metal", 1, 0.5);
+  const auto smoothMetal = lumas("smooth-metal", 1, 0.2), roughMetal = lumas("rough-metal", 1, 0.8);
+  ASSERT_GT(dielectric.size(), 10000u);
+  ASSERT_GT(metal.size(), 10000u);
+  auto median = [](const std::vector<float>& v) { return v[v.size() / 2]; };
+  auto peak = [](const std::vector<float>& v) { return v[v.size() - 1 - v.size() / 1000]; };  // 99.9th percentile
+  auto brightShare = [](const std::vector<float>& v, float threshold) {
+    return static_cast<float>(v.end() - std::upper_bound(v.begin(), v.end(), threshold)) / static_cast<float>(v.size());
+  };
+  std::printf("median luminance: dielectric %.3f, metal %.3f; peak: smooth metal %.3f, rough metal %.3f; share > 0.6: smooth %.4f, rough %.4f\n",
+              median(dielectric), median(metal), peak(smoothMetal), peak(roughMetal), brightShare(smoothMetal, 0.6f),
+              brightShare(roughMetal, 0.6f));
+  EXPECT_LT(median(metal), 0.6f * median(dielectric));
+  EXPECT_GT(peak(smoothMetal), peak(roughMetal));
+  EXPECT_GT(peak(smoothMetal), 0.9f);
+}
+
+// MSAA: the silhouette of a sphere in the flat face-orientation view is two colours without
+// it, and gets intermediate (coverage-weighted) pixels with it.
+TEST(Viewer, MsaaBlendsSilhouettePixels) {
+  TempDir dir;
+  const std::string common = "'" + (fs::path(TANGENT_SOURCE_DIR) / "data" / "demo" / "sphere.gltf").string() +
+                             "' --view face-orientation --camera front --size 200x200";
+  auto mixedPixels = [](const Image& image) {
+    int mixed = 0;
+    for (int y = 0; y < image.height; ++y)
+      for (int x = 0; x < image.width; ++x) {
+        const auto c = image.at(x, y);
+        const bool background = std::abs(c[0] - 0.16f) < 0.01f && std::abs(c[2] - 0.19f) < 0.01f;
+        const bool front = std::abs(c[0] - 0.15f) < 0.01f && std::abs(c[2] - 0.95f) < 0.01f;
+        mixed += !background && !front;
+      }
+    return mixed;
+  };
+  const int aliased = mixedPixels(screenshot(dir, "msaa0", common + " --msaa 0"));
+  const int smoothed = mixedPixels(screenshot(dir, "msaa4", common + " --msaa 4"));
+  std::printf("silhouette pixels between background and surface: %d without MSAA, %d with 4x\n", aliased, smoothed);
+  EXPECT_EQ(aliased, 0);
+  EXPECT_GT(smoothed, 150);
+}
+
+// A static scene draws its shadow map once, however many frames it renders.
+TEST(Viewer, ShadowMapDrawnOnceForAStaticScene) {
+  TempDir dir;
+  std::string output;
+  ASSERT_EQ(run("--size 160x90 --frames 6 --screenshot '" + (dir / "a.png").string() + "'", output), 0) << output;
+  EXPECT_NE(output.find("1 shadow pass(es)"), std::string::npos) << output;
+  ASSERT_EQ(run("--size 160x90 --frames 6 --no-shadows --screenshot '" + (dir / "b.png").string() + "'", output), 0) << output;
+  EXPECT_NE(output.find("0 shadow pass(es)"), std::string::npos) << output;
+}
+
+// The perspective camera frames the bounding box to the view: the demo sphere seen from the
+// front spans about 72% of the frame's height (the bounding box's front face fills it; framing the
+// box's bounding sphere gave 52%).
+TEST(Viewer, PerspectiveFramingFillsTheView) {
+  TempDir dir;
+  const Image image = screenshot(dir, "sphere", "'" + (fs::path(TANGENT_SOURCE_DIR) / "data" / "demo" / "sphere.gltf").string() +
+                                                    "' --camera front --size 320x180 --view face-orientation");
+  ASSERT_EQ(image.width, 320);
+  int top = image.height, bottom = -1;
+  for (int y = 0; y < image.height; ++y)
+    for (int x = 0; x < image.width; ++x)
+      if (image.at(x, y)[2] > 0.8f) top = std::min(top, y), bottom = std::max(bottom, y);
+  const float share = static_cast<float>(bottom - top + 1) / static_cast<float>(image.height);
+  std::printf("sphere spans %.0f%% of the frame's height\n", 100 * share);
+  EXPECT_GT(share, 0.65f);
+  EXPECT_LT(share, 1.0f);  // and is not cut off
 }
 
 TEST(Viewer, BadInputIsAnErrorNotACrash) {

@@ -84,7 +84,7 @@ std::vector<float> readVectors(const tinygltf::Model& model, int accessor, int c
 }
 
 // KHR_texture_transform: uv' = T * R * S * uv. Rotation and scale change tangent directions.
-void applyTextureTransform(std::vector<float>& uvs, const Json& transform) {
+std::array<double, 6> textureTransformMatrix(const Json& transform) {
   double offset[2] = {0, 0}, scale[2] = {1, 1};
   if (transform.contains("offset") && transform["offset"].size() == 2) {
     offset[0] = transform["offset"][0].get<double>();
@@ -96,10 +96,15 @@ void applyTextureTransform(std::vector<float>& uvs, const Json& transform) {
   }
   const double rotation = transform.value("rotation", 0.0);
   const double c = std::cos(rotation), s = std::sin(rotation);
+  return {c * scale[0], -s * scale[0], s * scale[1], c * scale[1], offset[0], offset[1]};
+}
+
+void applyTextureTransform(std::vector<float>& uvs, const Json& transform) {
+  const std::array<double, 6> m = textureTransformMatrix(transform);
   for (std::size_t i = 0; i + 1 < uvs.size(); i += 2) {
-    const double u = uvs[i] * scale[0], v = uvs[i + 1] * scale[1];
-    uvs[i] = static_cast<float>(c * u + s * v + offset[0]);
-    uvs[i + 1] = static_cast<float>(-s * u + c * v + offset[1]);
+    const double u = uvs[i], v = uvs[i + 1];
+    uvs[i] = static_cast<float>(m[0] * u + m[2] * v + m[4]);
+    uvs[i + 1] = static_cast<float>(m[1] * u + m[3] * v + m[5]);
   }
 }
 

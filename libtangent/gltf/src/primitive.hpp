@@ -6,6 +6,7 @@
 
 #include "accessors.hpp"
 #include "asset.hpp"
+#include <array>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -41,7 +42,15 @@ int accessorOf(const nlohmann::ordered_json& object, const std::string& name);
 std::vector<float> readVectors(const tinygltf::Model& model, int accessor, int components, std::size_t expectedCount,
                                const std::string& where);
 
-// KHR_texture_transform applied to UVs: uv' = T * R * S * uv.
+// KHR_texture_transform as a 2x3 column-major matrix: uv' = (m0 u + m2 v + m4, m1 u + m3 v + m5),
+// T * R * S with R = [cos sin; -sin cos] (rows): the transpose of the GLSL listing in the
+// extension's README, which rotates counter-clockwise in a v-up frame while glTF's v points
+// down (KhronosGroup/glTF#1563, where Blender's importer and Babylon.js are reported to agree).
+// The current Khronos Sample Viewer builds this same matrix. (TextureTransformTest, whose green
+// marker shows the intended direction, is not in ../shared/assets, so not checked here.)
+std::array<double, 6> textureTransformMatrix(const nlohmann::ordered_json& transform);
+
+// KHR_texture_transform applied to UVs (textureTransformMatrix).
 void applyTextureTransform(std::vector<float>& uvs, const nlohmann::ordered_json& transform);
 
 struct PrimitiveGeometry {

@@ -6,6 +6,7 @@
 #include <glm/gtc/type_ptr.hpp>
 #include <glm/mat4x4.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <numeric>
@@ -67,9 +68,19 @@ TextureRef textureRef(const Json& doc, const Json& info) {
   const Json& textureJson = doc["textures"][texture];
   ref.image = textureJson.value("source", -1);
   ref.texCoord = info.value("texCoord", 0);
-  if (info.contains("extensions") && info["extensions"].contains("KHR_texture_transform"))
-    ref.texCoord = info["extensions"]["KHR_texture_transform"].value("texCoord", ref.texCoord);
+  if (info.contains("extensions") && info["extensions"].contains("KHR_texture_transform")) {
+    const Json& transform = info["extensions"]["KHR_texture_transform"];
+    ref.texCoord = transform.value("texCoord", ref.texCoord);
+    const std::array<double, 6> m = detail::textureTransformMatrix(transform);
+    std::copy(m.begin(), m.end(), ref.uvTransform.begin());
+  }
   ref.scale = info.value("scale", info.value("strength", 1.0f));
+  return ref;
+}
+
+TextureRef colourTextureRef(const Json& doc, const Json& info) {
+  TextureRef ref = textureRef(doc, info);
+  ref.colour = true;
   return ref;
 }
 
@@ -91,19 +102,26 @@ std::vector<MaterialDesc> readMaterials(const Json& doc) {
       readFloats(pbr, "baseColorFactor", material.baseColor);
       material.metallic = pbr.value("metallicFactor", 1.0f);
       material.roughness = pbr.value("roughnessFactor", 1.0f);
-      if (pbr.contains("baseColorTexture")) material.baseColorTexture = textureRef(doc, pbr["baseColorTexture"]);
+      if (pbr.contains("baseColorTexture")) material.baseColorTexture = colourTextureRef(doc, pbr["baseColorTexture"]);
       if (pbr.contains("metallicRoughnessTexture")) material.metallicRoughnessTexture = textureRef(doc, pbr["metallicRoughnessTexture"]);
     }
     if (m.contains("normalTexture")) material.normalTexture = textureRef(doc, m["normalTexture"]);
-    if (m.contains("emissiveTexture")) material.emissiveTexture = textureRef(doc, m["emissiveTexture"]);
+    if (m.contains("emissiveTexture")) material.emissiveTexture = colourTextureRef(doc, m["emissiveTexture"]);
+    if (m.contains("occlusionTexture")) material.occlusionTexture = textureRef(doc, m["occlusionTexture"]);
     readFloats(m, "emissiveFactor", material.emissive);
+    const std::string alphaMode = m.value("alphaMode", "OPAQUE");
+    material.alphaMode = alphaMode == "MASK"    ? MaterialDesc::AlphaMode::mask
+                         : alphaMode == "BLEND" ? MaterialDesc::AlphaMode::blend
+                                                : MaterialDesc::AlphaMode::opaque;
+    material.alphaCutoff = m.value("alphaCutoff", 0.5f);
+    material.unlit = m.contains("extensions") && m["extensions"].contains("KHR_materials_unlit");
     if (m.contains("extensions") && m["extensions"].contains("KHR_materials_specular")) {
       const Json& specular = m["extensions"]["KHR_materials_specular"];
       material.hasSpecular = true;
       material.specularFactor = specular.value("specularFactor", 1.0f);
       readFloats(specular, "specularColorFactor", material.specularColor);
       if (specular.contains("specularTexture")) material.specularTexture = textureRef(doc, specular["specularTexture"]);
-      if (specular.contains("specularColorTexture")) material.specularColorTexture = textureRef(doc, specular["specularColorTexture"]);
+      if (specular.contains("specularColorTexture")) material.specularColorTexture = colourTextureRef(doc, specular["specularColorTexture"]);
     }
     materials.push_back(material);
   }
@@ -208,29 +226,15 @@ DrawItem makeDrawItem(const detail::Asset& asset, const Json& primitive, const s
   item.positions = std::move(positionsPerCorner);
   item.normals = cornerNormals;
   item.uvNormal = uvsPerCorner;
-  // Base colour UVs: the base colour texture's set, with its transform.
-  // (Looked up with find: a material may have no pbrMetallicRoughness or no base colour texture.)
-  const Json* baseInfo = nullptr;
-  if (item.material >= 0 && doc.contains("materials")) {
-    const Json& material = doc["materials"][item.material];
-    const auto pbr = material.find("pbrMetallicRoughness");
-    if (pbr != material.end() && pbr->is_object()) {
-      const auto texture = pbr->find("baseColorTexture");
-      if (texture != pbr->end() && texture->is_object()) baseInfo = &*texture;
-    }
-  }
-  const int baseTexCoord = baseInfo ? textureRef(doc, *baseInfo).texCoord : 0;
-  item.uvBase = item.uvNormal;
-  if (baseInfo && (baseTexCoord != needs.texCoord || needs.hasNormalTexture)) {
-    const int accessor = detail::accessorOf(primitive["attributes"], "TEXCOORD_" + std::to_string(baseTexCoord));
-    if (accessor >= 0) {
-      std::vector<float> base = detail::readVectors(asset.model, accessor, 2, geometry.vertexCount, where + ": base colour UVs");
-      const Json& info = *baseInfo;
-      if (info.contains("extensions") && info["extensions"].contains("KHR_texture_transform"))
-        detail::applyTextureTransform(base, info["extensions"]["KHR_texture_transform"]);
-      for (std::size_t c = 0; c < cornerCount; ++c)
-        for (int i = 0; i < 2; ++i) item.uvBase[2 * c + i] = base[2 * corners[c] + i];
-    }
+  // TEXCOORD_0 and _1 as stored, per corner: the viewer applies each texture's own set and
+  // KHR_texture_transform (the normal texture's are in uvNormal already).
+  for (int set = 0; set < 2; ++set) {
+    item.uvSets[set].assign(cornerCount * 2, 0.0f);
+    const int accessor = detail::accessorOf(primitive["attributes"], "TEXCOORD_" + std::to_string(set));
+    if (accessor < 0) continue;
+    const std::vector<float> uvs = detail::readVectors(asset.model, accessor, 2, geometry.vertexCount, where + ": TEXCOORD_" + std::to_string(set));
+    for (std::size_t c = 0; c < cornerCount; ++c)
+      for (int i = 0; i < 2; ++i) item.uvSets[set][2 * c + i] = uvs[2 * corners[c] + i];
   }
 
   // The file's tangents, and what check would say of each corner.

@@ -16,8 +16,12 @@ namespace tangent::gltf {
 
 struct TextureRef {
   int image = -1;      // index into Scene::images; -1 when absent
-  int texCoord = 0;    // UV set (the draw item's UVs already follow it, transform applied)
-  float scale = 1;     // normalTexture.scale
+  int texCoord = 0;    // UV set (KHR_texture_transform's override applied)
+  float scale = 1;     // normalTexture.scale, occlusionTexture.strength
+  // KHR_texture_transform as a column-major 2x3 matrix: uv' = (t0 u + t2 v + t4, t1 u + t3 v + t5).
+  // DrawItem::uvNormal has the normal texture's applied already; the others apply it to uvSets.
+  std::array<float, 6> uvTransform{1, 0, 0, 1, 0, 0};
+  bool colour = false;  // sRGB-encoded (base colour, emissive, specular colour), else linear data
 };
 
 struct ImageSource {
@@ -32,7 +36,10 @@ struct MaterialDesc {
   std::array<float, 4> baseColor{1, 1, 1, 1};
   float metallic = 1, roughness = 1;
   std::array<float, 3> emissive{0, 0, 0};
-  TextureRef baseColorTexture, normalTexture, emissiveTexture, metallicRoughnessTexture;
+  TextureRef baseColorTexture, normalTexture, emissiveTexture, metallicRoughnessTexture, occlusionTexture;
+  enum class AlphaMode { opaque, mask, blend } alphaMode = AlphaMode::opaque;
+  float alphaCutoff = 0.5f;
+  bool unlit = false;        // KHR_materials_unlit
   bool hasSpecular = false;  // KHR_materials_specular
   float specularFactor = 1;
   std::array<float, 3> specularColor{1, 1, 1};
@@ -69,7 +76,7 @@ struct DrawItem {
   std::vector<float> positions;      // 3 per corner, object space
   std::vector<float> normals;        // 3
   std::vector<float> uvNormal;       // 2, the normal texture's UV set (transform applied)
-  std::vector<float> uvBase;         // 2, the base colour texture's UV set
+  std::array<std::vector<float>, 2> uvSets;  // 2 each, TEXCOORD_0 and _1 as stored (zeros when absent)
   std::vector<float> tangents;       // 4, the file's TANGENT, or computed when it has none
   std::vector<float> computedTangents;  // 4, freshly computed (options.method)
   std::vector<float> tangentErrorDegrees;  // angle between the two, per corner
