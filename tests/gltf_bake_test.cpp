@@ -271,7 +271,11 @@ TEST(Bake, PrimitivesThatNeedNothingAreLeftAlone) {
   EXPECT_EQ(result.primitives[2].action, "skipped");  // points
   EXPECT_EQ(result.primitives[3].action, "skipped");  // no NORMAL
   EXPECT_NE(result.primitives[3].reason.find("NORMAL"), std::string::npos);
-  EXPECT_EQ(result.primitives[4].action, "kept");     // valid TANGENT
+  // Its supplied TANGENT, constant +x on a curved sheet, is unit with w = +-1 but leaves the
+  // tangent plane: check fails it, so bake replaces it and says which checks failed.
+  EXPECT_EQ(result.primitives[4].action, "baked");
+  EXPECT_EQ(result.primitives[4].failedChecks, (std::vector<std::string>{"orthogonal", "reference"}));
+  EXPECT_EQ(result.primitives[4].reason.rfind("existing TANGENT fails tangent check (orthogonal: ", 0), 0u) << result.primitives[4].reason;
   const Json& primitives = out.json["meshes"][0]["primitives"];
   EXPECT_FALSE(primitives[1]["attributes"].contains("TANGENT"));
   EXPECT_FALSE(primitives[2]["attributes"].contains("TANGENT"));
@@ -282,9 +286,14 @@ TEST(Bake, OverwriteRecomputesValidTangents) {
   TempDir dir;
   const auto all = tangent::testing::makeTestAssets();
   const fs::path input = tangent::testing::writeAsset(assetNamed(all, "document_features"), dir / "in", true);
+  tangent::gltf::bakeFile(input, dir / "once.glb", {});
+  // A second bake keeps what the first wrote (check passes it) unless --overwrite.
+  EXPECT_EQ(tangent::gltf::bakeFile(dir / "once.glb", dir / "twice.glb", {}).primitives[0].action, "kept");
   tangent::gltf::BakeOptions options;
   options.overwrite = true;
-  const auto result = tangent::gltf::bakeFile(input, dir / "out.glb", options);
+  const auto result = tangent::gltf::bakeFile(dir / "once.glb", dir / "out.glb", options);
+  EXPECT_EQ(result.primitives[0].action, "baked");
+  EXPECT_EQ(result.primitives[0].reason, "TANGENT recomputed (--overwrite)");
   EXPECT_EQ(result.primitives[4].action, "baked");
 }
 
