@@ -356,7 +356,6 @@ nlohmann::ordered_json toJson(const FileCheck& check) {
   if (!check.error.empty()) out["error"] = check.error;
   out["primitives"] = primitives;
   out["skipped"] = check.skipped;
-  out["seconds"] = check.seconds;
   return out;
 }
 
