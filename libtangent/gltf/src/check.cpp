@@ -193,8 +193,13 @@ void checkPrimitiveTangents(const Asset& asset, const Json& primitive, const Pri
       orthogonal.fail(v, offPlane, format("vertex %zu is %.4g deg out of the tangent plane, N = (%.4g, %.4g, %.4g), T = ", v, offPlane,
                                           normal[0], normal[1], normal[2]) + tangentText(t));
   }
-  orthogonal.finish(result, format("xyz leaves the plane normal to NORMAL by more than %.3g deg (%.3g + rounding of %s TANGENT and %s NORMAL)",
-                                   orthogonalLimit, options.orthogonalToleranceDegrees, component, result.normalComponent.c_str()));
+  // The limits in words: the tolerance, plus rounding where there is any.
+  const bool roundedFrame = limits.tangentAngleDegrees > 0 || limits.normalAngleDegrees > 0;
+  const std::string frameRounding =
+      roundedFrame ? format(" (%.3g + rounding of %s TANGENT and %s NORMAL)", options.orthogonalToleranceDegrees, component,
+                            result.normalComponent.c_str())
+                   : "";
+  orthogonal.finish(result, format("xyz leaves the plane normal to NORMAL by more than %.3g deg", orthogonalLimit) + frameRounding);
 
   // Against freshly computed tangents, on corners where the method defines a frame.
   FindingBuilder reference(CheckId::reference, "corners", geometry.corners.size(), "degrees", referenceLimit, options);
@@ -235,10 +240,15 @@ void checkPrimitiveTangents(const Asset& asset, const Json& primitive, const Pri
   // Ignored checks listed in check order (they finish in the order the passes run).
   std::sort(result.ignored.begin(), result.ignored.end(),
             [](const std::string& a, const std::string& b) { return *parseCheck(a) < *parseCheck(b); });
-  reference.finish(result, format("differs from freshly computed %s tangents by more than %.3g deg (%.3g + rounding of %s TANGENT "
-                                  "and %s NORMAL, plus up to %.3g deg where positions/UVs are rounded), or in w",
-                                  std::string(toString(options.method)).c_str(), referenceLimit, options.referenceToleranceDegrees,
-                                  component, result.normalComponent.c_str(), result.referenceAllowanceMaxDegrees));
+  std::string referenceRounding;
+  if (roundedFrame)
+    referenceRounding = format(" (%.3g + rounding of %s TANGENT and %s NORMAL)", options.referenceToleranceDegrees, component,
+                               result.normalComponent.c_str());
+  if (allowance.orientationDecided.size())
+    referenceRounding += format(", plus up to %.3g deg per corner for rounded positions/UVs", result.referenceAllowanceMaxDegrees);
+  reference.finish(result, format("differs from freshly computed %s tangents by more than %.3g deg",
+                                  std::string(toString(options.method)).c_str(), referenceLimit) +
+                               referenceRounding + ", or in w");
 }
 
 std::string findingsSummary(const PrimitiveCheck& check) {
