@@ -54,11 +54,13 @@ double storageStep(int componentType, bool normalized) {
 // the smallest gap between distinct values estimates that step, bounded by 10 significant bits
 // so that a small mesh (few distinct values, wide gaps) is not given a coarse grid.
 double halfRoundingStep(const tinygltf::Model& model, int accessor, const std::string& where) {
-  if (accessor < 0) return 0;
-  const AccessorData data = readAccessor(model, accessor, where);
-  const double storage = storageStep(data.componentType, data.normalized);
+  if (accessor < 0 || static_cast<std::size_t>(accessor) >= model.accessors.size()) return 0;
+  // The declared type first: float data (Draco's decoded attributes included) is never read here.
+  const tinygltf::Accessor& declared = model.accessors[static_cast<std::size_t>(accessor)];
+  const double storage = storageStep(declared.componentType, declared.normalized);
   if (storage == 0) return 0;
-  if (!data.normalized || data.componentSize == 1) return storage / 2;
+  if (!declared.normalized || componentBytes(declared.componentType) == 1) return storage / 2;
+  const AccessorData data = readAccessor(model, accessor, where);
   const bool isSigned = data.componentType == TINYGLTF_COMPONENT_TYPE_SHORT;
   const double coarsest = isSigned ? gridStep(kFewestShortBits) : 1.0 / double((1 << kFewestShortBits) - 1);
   const std::vector<float> values = toFloats(data);
