@@ -40,6 +40,7 @@ def bake(
     all: bool = False,
     overwrite: bool = False,
     asset_root: Optional[PathLike] = None,
+    tangent_format: str = "float",
 ) -> dict[str, Any]: ...
 
 def check(
@@ -49,6 +50,11 @@ def check(
     tolerance: float = 1.0,
     all: bool = False,
     asset_root: Optional[PathLike] = None,
+    only: Optional[list[str]] = None,
+    ignore: list[str] = ...,
+    allow_missing: bool = False,
+    orthogonal_tolerance: Optional[float] = None,
+    reference_tolerance: Optional[float] = None,
 ) -> dict[str, Any]: ...
 
 def bake_tree(

@@ -6,6 +6,7 @@
 #include <pybind11/stl.h>
 #include <pybind11/stl/filesystem.h>
 
+#include <bitset>
 #include <filesystem>
 #include <optional>
 #include <string>
@@ -183,8 +184,12 @@ The GIL is released while the core runs.)");
   m.def(
       "bake",
       [](const std::filesystem::path& input, const std::filesystem::path& output, const std::string& methodName,
-         const std::string& weightingName, int threads, bool all, bool overwrite, std::optional<std::filesystem::path> assetRoot) {
-        const tangent::gltf::BakeOptions options = bakeOptions(methodName, weightingName, threads, all, overwrite, assetRoot);
+         const std::string& weightingName, int threads, bool all, bool overwrite, std::optional<std::filesystem::path> assetRoot,
+         const std::string& tangentFormat) {
+        tangent::gltf::BakeOptions options = bakeOptions(methodName, weightingName, threads, all, overwrite, assetRoot);
+        const auto format = tangent::gltf::parseTangentFormat(tangentFormat);
+        if (!format) badArgument("tangent_format", "'" + tangentFormat + "' is not float, short or byte");
+        options.tangentFormat = *format;
         nlohmann::ordered_json entry = {{"input", input.string()}, {"output", output.string()}, {"status", "ok"}};
         {
           py::gil_scoped_release released;
@@ -194,6 +199,7 @@ The GIL is released while the core runs.)");
       },
       py::arg("input"), py::arg("output"), py::kw_only(), py::arg("method") = "mikktspace", py::arg("weighting") = "angle",
       py::arg("threads") = 0, py::arg("all") = false, py::arg("overwrite") = false, py::arg("asset_root") = py::none(),
+      py::arg("tangent_format") = "float",
       R"(Bake TANGENT into a glTF file, as `tangent bake INPUT -o OUTPUT` does.
 
 Computes TANGENT for every triangle primitive whose material has a normalTexture, from the
@@ -206,6 +212,8 @@ threads: worker threads (0 = all); the output never depends on it
 all: bake every triangle primitive, normal texture or not (TEXCOORD_0)
 overwrite: recompute valid existing TANGENT too
 asset_root: folder buffer and image URIs may not leave (default: the input's folder)
+tangent_format: float (default) | short | byte: TANGENT as float or normalized SHORT/BYTE
+  (KHR_mesh_quantization)
 
 Returns the dict `tangent bake --report` writes for this file.
 Raises libtangent.InputError with the CLI's message on a file it refuses.)");
@@ -254,12 +262,30 @@ and the bake report when baked in this run.)");
   m.def(
       "check",
       [](const std::filesystem::path& input, const std::string& methodName, double tolerance, bool all,
-         std::optional<std::filesystem::path> assetRoot) {
+         std::optional<std::filesystem::path> assetRoot, std::optional<std::vector<std::string>> only,
+         const std::vector<std::string>& ignore, bool allowMissing, std::optional<double> orthogonalTolerance,
+         std::optional<double> referenceTolerance) {
         tangent::gltf::CheckOptions options;
         options.method = method(methodName);
         if (options.method == tangent::Method::flat) badArgument("method", "check compares with mikktspace or lengyel");
-        if (!(tolerance > 0 && tolerance <= 180)) badArgument("tolerance", "must be degrees in (0, 180]");
-        options.toleranceDegrees = tolerance;
+        auto degrees = [](const char* argument, double value) {
+          if (!(value > 0 && value <= 180)) badArgument(argument, "must be degrees in (0, 180]");
+          return value;
+        };
+        options.orthogonalToleranceDegrees = degrees("orthogonal_tolerance", orthogonalTolerance.value_or(degrees("tolerance", tolerance)));
+        options.referenceToleranceDegrees = degrees("reference_tolerance", referenceTolerance.value_or(tolerance));
+        auto checkSet = [](const char* argument, const std::vector<std::string>& names) {
+          std::bitset<tangent::gltf::kCheckCount> set;
+          for (const auto& name : names) {
+            const auto id = tangent::gltf::parseCheck(name);
+            if (!id) badArgument(argument, "'" + name + "' is not a check name");
+            set.set(static_cast<std::size_t>(*id));
+          }
+          return set;
+        };
+        if (only) options.enabled = checkSet("only", *only);
+        options.enabled &= ~checkSet("ignore", ignore);
+        options.allowMissing = allowMissing;
         options.all = all;
         if (assetRoot) options.assetRoot = *assetRoot;
         tangent::gltf::FileCheck result;
@@ -271,14 +297,18 @@ and the bake report when baked in this run.)");
         return toPython(tangent::gltf::toJson(result));
       },
       py::arg("path"), py::kw_only(), py::arg("method") = "mikktspace", py::arg("tolerance") = 1.0, py::arg("all") = false,
-      py::arg("asset_root") = py::none(),
+      py::arg("asset_root") = py::none(), py::arg("only") = py::none(), py::arg("ignore") = std::vector<std::string>(),
+      py::arg("allow_missing") = false, py::arg("orthogonal_tolerance") = py::none(), py::arg("reference_tolerance") = py::none(),
       R"(Check the TANGENTs stored in a glTF file, as `tangent check PATH --format json` does.
 
 Per primitive that needs tangents: present, format, finite, unit, w, w-uniform, orthogonal,
 handedness, reference (within `tolerance` degrees of freshly computed `method` tangents).
 
 method: mikktspace (default) | lengyel
-tolerance: degrees, for orthogonal and reference (default 1)
+tolerance: degrees, for orthogonal and reference (default 1), on top of the rounding limits
+orthogonal_tolerance, reference_tolerance: the same for one check (default: tolerance)
+only: run only these checks (names as above); ignore: leave these out
+allow_missing: a primitive without TANGENT is skipped, not a finding
 all: every triangle primitive, not only normal-mapped ones
 asset_root: folder buffer and image URIs may not leave (default: the file's folder)
 

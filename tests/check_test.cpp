@@ -93,13 +93,9 @@ TEST(Check, BakedOutputsAreClean) {
     for (const auto& p : check.primitives) {
       std::vector<std::string> names;
       for (const auto& f : p.findings) names.push_back(f.check);
-      if (asset.name == "document_features" && p.primitive == 4) {
-        // Its supplied TANGENT, constant +x on a curved sheet, is valid, so bake keeps it;
-        // check tells that it leaves the tangent plane and differs from MikkTSpace.
-        EXPECT_EQ(names, (std::vector<std::string>{"orthogonal", "reference"}));
-      } else {
-        EXPECT_TRUE(names.empty()) << asset.name << " primitive " << p.primitive << ": " << testing::PrintToString(names);
-      }
+      // Bake replaces whatever check would fail (document_features' supplied constant +x
+      // tangent on a curved sheet included): every output is clean.
+      EXPECT_TRUE(names.empty()) << asset.name << " primitive " << p.primitive << ": " << testing::PrintToString(names);
     }
   }
 }
@@ -277,7 +273,7 @@ print(len(cases), len(root.findall('.//failure')), len(root.findall('.//skipped'
   const auto json = runCommand(cli + " check --format json " + quoted(nonUnit));
   EXPECT_EQ(json.exitCode, 1);
   const auto report = nlohmann::json::parse(json.output);
-  EXPECT_EQ(report["schema"], "libtangent-check/1");
+  EXPECT_EQ(report["schema"], "libtangent-check/2");
   EXPECT_EQ(report["files"][0]["status"], "findings");
   EXPECT_EQ(report["files"][0]["primitives"][0]["findings"][0]["check"], "unit");
   EXPECT_EQ(report["files"][0]["primitives"][0]["findings"][0]["worst"][0]["element"], 0);

@@ -79,12 +79,12 @@ std::string bytesKey(const std::vector<std::uint8_t>& bytes) {
 
 // The document with accessor and bufferView references replaced by their content, storage
 // arrays removed, and baked primitives reduced to their attribute names.
-Json canonical(const Asset& asset, const std::vector<std::pair<int, int>>& touched, bool isOutput) {
+Json canonical(const Asset& asset, const std::vector<std::pair<int, int>>& touched) {
   Json doc = asset.json;
   for (auto [m, p] : touched) {
     Json& primitive = doc["meshes"][m]["primitives"][p];
     auto namesOnly = [&](Json& attributes) {
-      if (isOutput) attributes.erase("TANGENT");
+      attributes.erase("TANGENT");  // written by the bake (an input TANGENT check fails is replaced)
       for (auto& [name, ref] : attributes.items()) ref = nullptr;
     };
     namesOnly(primitive["attributes"]);
@@ -149,7 +149,7 @@ TEST_P(RoundTrip, EveryCornerAndAllOtherJsonKept) {
           ASSERT_TRUE(t[3] == 1.0f || t[3] == -1.0f);
         }
       }
-      EXPECT_EQ(canonical(in, touched, false), canonical(out, touched, true));
+      EXPECT_EQ(canonical(in, touched), canonical(out, touched));
       EXPECT_EQ(out.json["buffers"].size(), 1u);
     }
   }
@@ -271,7 +271,11 @@ TEST(Bake, PrimitivesThatNeedNothingAreLeftAlone) {
   EXPECT_EQ(result.primitives[2].action, "skipped");  // points
   EXPECT_EQ(result.primitives[3].action, "skipped");  // no NORMAL
   EXPECT_NE(result.primitives[3].reason.find("NORMAL"), std::string::npos);
-  EXPECT_EQ(result.primitives[4].action, "kept");     // valid TANGENT
+  // Its supplied TANGENT, constant +x on a curved sheet, is unit with w = +-1 but leaves the
+  // tangent plane: check fails it, so bake replaces it and says which checks failed.
+  EXPECT_EQ(result.primitives[4].action, "baked");
+  EXPECT_EQ(result.primitives[4].failedChecks, (std::vector<std::string>{"orthogonal", "reference"}));
+  EXPECT_EQ(result.primitives[4].reason.rfind("existing TANGENT fails tangent check (orthogonal: ", 0), 0u) << result.primitives[4].reason;
   const Json& primitives = out.json["meshes"][0]["primitives"];
   EXPECT_FALSE(primitives[1]["attributes"].contains("TANGENT"));
   EXPECT_FALSE(primitives[2]["attributes"].contains("TANGENT"));
@@ -282,9 +286,14 @@ TEST(Bake, OverwriteRecomputesValidTangents) {
   TempDir dir;
   const auto all = tangent::testing::makeTestAssets();
   const fs::path input = tangent::testing::writeAsset(assetNamed(all, "document_features"), dir / "in", true);
+  tangent::gltf::bakeFile(input, dir / "once.glb", {});
+  // A second bake keeps what the first wrote (check passes it) unless --overwrite.
+  EXPECT_EQ(tangent::gltf::bakeFile(dir / "once.glb", dir / "twice.glb", {}).primitives[0].action, "kept");
   tangent::gltf::BakeOptions options;
   options.overwrite = true;
-  const auto result = tangent::gltf::bakeFile(input, dir / "out.glb", options);
+  const auto result = tangent::gltf::bakeFile(dir / "once.glb", dir / "out.glb", options);
+  EXPECT_EQ(result.primitives[0].action, "baked");
+  EXPECT_EQ(result.primitives[0].reason, "TANGENT recomputed (--overwrite)");
   EXPECT_EQ(result.primitives[4].action, "baked");
 }
 

@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
-# Bakes inputs into a fresh folder and runs the Khronos glTF validator on each output: 0
-# errors required. `generated`: every generated test asset and the bundled demo; `shared`: the
+# Bakes inputs into a fresh folder (float TANGENT, and normalized SHORT and BYTE with
+# --tangent-format, which must also check clean) and runs the Khronos glTF validator on each
+# output: 0 errors required. `generated`: every generated test asset and the bundled demo; `shared`: the
 # shared sample assets (../shared/assets), skipped where absent (exit 77; a failure under
 # CI=true, tests/support/skip_or_fail.sh).
 # Usage: run_validator.sh generated|shared TANGENT_CLI TEST_ASSETS_TOOL SOURCE_DIR
@@ -36,6 +37,13 @@ for input in "${inputs[@]}"; do
   esac
   for out in "${outs[@]}"; do
     "$tangent" bake "$input" -o "$out" --quiet --overwrite
+    outputs+=("$out")
+  done
+  # Quantized TANGENT (KHR_mesh_quantization): normalized SHORT and BYTE, which must check clean too.
+  for format in short byte; do
+    out="$work/out/${name%.*}-$format.glb"
+    "$tangent" bake "$input" -o "$out" --quiet --overwrite --tangent-format "$format"
+    "$tangent" check "$out" > "$work/check.txt" || { cat "$work/check.txt" >&2; exit 1; }
     outputs+=("$out")
   done
 done

@@ -120,6 +120,26 @@ def test_check_equals_the_cli_json(tmp_path):
     assert unbaked["primitives"][0]["findings"][0]["check"] == "present"
 
 
+def test_check_options_match_the_cli(tmp_path):
+    unbaked = DEMO / "demo.gltf"  # no TANGENT: `present` fails unless missing tangents are allowed
+    assert libtangent.check(unbaked, allow_missing=True)["status"] == "clean"
+    assert libtangent.check(unbaked, ignore=["present"])["primitives"][0]["ignored"] == ["present"]
+    only = libtangent.check(unbaked, only=["unit", "w"])
+    assert only["status"] == "clean" and only["primitives"][0]["ignored"][0] == "present"
+    done = subprocess.run([CLI, "check", str(unbaked), "--format", "json", "--only", "unit,w"], capture_output=True)
+    assert only == json.loads(done.stdout)["files"][0]
+    output = tmp_path / "short.glb"
+    assert libtangent.bake(unbaked, output, tangent_format="short")["primitives"][0]["tangentFormat"] == "short"
+    checked = libtangent.check(output, orthogonal_tolerance=0.5, reference_tolerance=2)
+    assert checked["status"] == "clean"
+    assert checked["primitives"][0]["limits"]["tangentComponent"] == "normalized SHORT"
+    assert checked["primitives"][0]["limits"]["referenceDegrees"] > 2
+    with pytest.raises(ValueError, match="only: 'units' is not a check name"):
+        libtangent.check(unbaked, only=["units"])
+    with pytest.raises(ValueError, match="tangent_format"):
+        libtangent.bake(unbaked, tmp_path / "x.glb", tangent_format="half")
+
+
 def test_refused_files_raise_the_cli_message(tmp_path):
     broken = tmp_path / "broken.gltf"
     broken.write_text('{"asset": {"version": "2.0"}, "buffers": [{"uri": "../../../../etc/passwd", "byteLength": 4}]}')

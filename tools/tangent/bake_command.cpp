@@ -3,6 +3,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <optional>
 
 #include "commands.hpp"
 #include "tangent/batch.hpp"
@@ -33,7 +34,9 @@ const char* kBakeUsage =
     "                         into the same relative path under --out-dir, keeping a manifest\n"
     "                         (DIR/tangent-manifest.json) so that a re-run skips unchanged files\n"
     "  --force                with --recursive: bake everything, whatever the manifest says\n"
-    "  --report FILE.json     write what was done, per file and primitive\n"
+    "  --tangent-format F     float (default) | short | byte: TANGENT as float or normalized SHORT/BYTE\n"
+    "                         (KHR_mesh_quantization, declared used and required); kept TANGENTs stay as they are\n"
+    "  --report FILE.json     write what was done, per file and primitive (\"-\": standard output)\n"
     "  --quiet                print errors only\n"
     "  -h, --help             this text\n";
 
@@ -42,15 +45,10 @@ int usageError(const std::string& message) {
   return kExitUsage;
 }
 
+// --report FILE ("-": standard output, the human-readable lines then go to stderr).
 int writeReport(const std::filesystem::path& reportPath, const nlohmann::ordered_json& report) {
   if (reportPath.empty()) return kExitOk;
-  std::ofstream out(reportPath);
-  out << report.dump(2) << "\n";
-  if (!out) {
-    std::cerr << "error: cannot write report " << reportPath.string() << "\n";
-    return kExitInputFailed;
-  }
-  return kExitOk;
+  return writeTextOutput(reportPath.string(), report.dump(2) + "\n", "bake") ? kExitOk : kExitInputFailed;
 }
 
 // --recursive: each folder into --out-dir (into --out-dir/NAME when there are several).
@@ -70,7 +68,7 @@ int bakeTrees(const std::vector<std::filesystem::path>& folders, const std::file
         if (!entry.ok) ++failed;  // a file that failed last time and has not changed still fails
         if (!entry.ok) std::cerr << "error: " << entry.error << (entry.skipped ? " (unchanged since the last run)" : "") << "\n";
         else if (!quiet)
-          std::cout << entry.input.string() << " -> " << entry.output.string() << (entry.skipped ? ": unchanged\n" : ": baked\n");
+          (reportPath == "-" ? std::cerr : std::cout) << entry.input.string() << " -> " << entry.output.string() << (entry.skipped ? ": unchanged\n" : ": baked\n");
         report.push_back(gltf::toJson(entry));
       });
     } catch (const std::exception& e) {
@@ -78,7 +76,8 @@ int bakeTrees(const std::vector<std::filesystem::path>& folders, const std::file
       std::cerr << "error: " << e.what() << "\n";
     }
   }
-  if (!quiet) std::cout << baked << " baked, " << unchanged << " unchanged, " << failed << " failed\n";
+  std::ostream& log = reportPath == "-" ? std::cerr : std::cout;
+  if (!quiet) log << baked << " baked, " << unchanged << " unchanged, " << failed << " failed\n";
   const int written = writeReport(reportPath, report);
   return failed ? kExitInputFailed : written;
 }
@@ -144,6 +143,11 @@ int bakeCommand(const std::vector<std::string>& args) {
       options.all = true;
     } else if (arg == "--overwrite") {
       options.overwrite = true;
+    } else if (arg == "--tangent-format") {
+      const std::string* v = value("--tangent-format");
+      const std::optional<gltf::TangentFormat> format = v ? gltf::parseTangentFormat(*v) : std::nullopt;
+      if (!format) return usageError("--tangent-format must be float, short or byte");
+      options.tangentFormat = *format;
     } else if (arg == "--quiet" || arg == "-q") {
       quiet = true;
     } else if (!arg.empty() && arg[0] == '-') {
@@ -170,6 +174,7 @@ int bakeCommand(const std::vector<std::string>& args) {
   }
 
   const bool progress = !quiet && inputs.size() > 1 && ::isatty(STDERR_FILENO);
+  std::ostream& log = reportPath == "-" ? std::cerr : std::cout;
   int failed = 0;
   nlohmann::ordered_json report = nlohmann::ordered_json::array();
   for (std::size_t n = 0; n < inputs.size(); ++n) {
@@ -191,26 +196,26 @@ int bakeCommand(const std::vector<std::string>& args) {
           skipped += p.action == "skipped";
           split += p.action == "baked" ? p.verticesOut - p.verticesIn : 0;
         }
-        std::cout << input.string() << " -> " << target.string() << ": " << baked << " baked, " << kept << " kept, "
+        log << input.string() << " -> " << target.string() << ": " << baked << " baked, " << kept << " kept, "
                   << skipped << " skipped; " << split << " vertices added by splits\n";
         for (const auto& p : result.primitives) {
-          std::cout << "  mesh " << p.mesh << (p.meshName.empty() ? "" : " '" + p.meshName + "'") << " primitive "
+          log << "  mesh " << p.mesh << (p.meshName.empty() ? "" : " '" + p.meshName + "'") << " primitive "
                     << p.primitive << ": " << p.action << " - " << p.reason;
           if (p.action == "baked") {
             const Report& r = p.tangents;
-            std::cout << " [" << r.method << (r.weighting.empty() ? "" : "/" + r.weighting) << ", " << p.verticesIn << " -> "
+            log << " [" << r.method << (r.weighting.empty() ? "" : "/" + r.weighting) << ", " << p.verticesIn << " -> "
                       << p.verticesOut << " vertices, " << r.mirroredCorners << " mirrored corners";
-            if (r.degenerateTriangles) std::cout << ", " << r.degenerateTriangles << " degenerate triangles";
-            if (r.zeroUvAreaTriangles) std::cout << ", " << r.zeroUvAreaTriangles << " zero-UV-area triangles";
-            if (r.nonFiniteTriangles) std::cout << ", " << r.nonFiniteTriangles << " non-finite triangles";
-            if (r.nonManifoldFaces) std::cout << ", " << r.nonManifoldFaces << " non-manifold faces";
-            if (r.invalidNormals) std::cout << ", " << r.invalidNormals << " invalid normals";
-            if (r.inheritedCorners) std::cout << ", " << r.inheritedCorners << " corners inherited a frame";
+            if (r.degenerateTriangles) log << ", " << r.degenerateTriangles << " degenerate triangles";
+            if (r.zeroUvAreaTriangles) log << ", " << r.zeroUvAreaTriangles << " zero-UV-area triangles";
+            if (r.nonFiniteTriangles) log << ", " << r.nonFiniteTriangles << " non-finite triangles";
+            if (r.nonManifoldFaces) log << ", " << r.nonManifoldFaces << " non-manifold faces";
+            if (r.invalidNormals) log << ", " << r.invalidNormals << " invalid normals";
+            if (r.inheritedCorners) log << ", " << r.inheritedCorners << " corners inherited a frame";
             if (r.fallbackFromNeighbours + r.fallbackFixed)
-              std::cout << ", " << r.fallbackFromNeighbours + r.fallbackFixed << " corners with fallback frames";
-            std::cout << "]";
+              log << ", " << r.fallbackFromNeighbours + r.fallbackFixed << " corners with fallback frames";
+            log << "]";
           }
-          std::cout << "\n";
+          log << "\n";
         }
         for (const auto& w : result.warnings) std::cerr << "warning: " << w << "\n";
       }

@@ -1,7 +1,14 @@
 // `tangent check`: text for people, JSON for tools (docs/check-json.md), JUnit XML for CI
-// servers (one test case per primitive and check).
+// servers (one test case per primitive and check), GitHub workflow annotations and SARIF 2.1.0
+// for code-scanning tools.
+#include <algorithm>
+#include <bitset>
+#include <cctype>
+#include <chrono>
+#include <ctime>
 #include <fstream>
 #include <iostream>
+#include <optional>
 #include <sstream>
 
 #include "commands.hpp"
@@ -14,18 +21,26 @@ const char* kCheckUsage =
     "usage: tangent check IN... [options]\n"
     "\n"
     "Checks the TANGENT of every primitive whose material has a normal texture: present, float\n"
-    "or normalized VEC4, finite, unit (1e-3), w exactly +-1 and the same on a triangle's corners,\n"
-    "orthogonal to NORMAL, handedness matching the normal texture's UV orientation, and close to\n"
-    "freshly computed tangents.\n"
+    "or normalized BYTE/SHORT VEC4 (format), finite, unit, w exactly +-1 and the same on a\n"
+    "triangle's corners (w, w-uniform), orthogonal to NORMAL, handedness matching the normal\n"
+    "texture's UV orientation, and close to freshly computed tangents (reference). Limits for\n"
+    "quantized data follow from the rounding step (README, \"Limits per component type\").\n"
     "\n"
     "options:\n"
-    "  --format FORMAT     text (default) | json | junit\n"
-    "  -o, --output FILE   write the report to FILE instead of standard output\n"
-    "  --tolerance DEG     for orthogonality and agreement (default 1)\n"
-    "  --method NAME       mikktspace (default) | lengyel: what agreement is measured against\n"
+    "  --format FORMAT     text (default) | json | junit | github | sarif\n"
+    "  -o, --output FILE   write the report to FILE (\"-\": standard output, the default)\n"
+    "  --only CHECKS       run only these checks (comma-separated names)\n"
+    "  --ignore CHECKS     leave these checks out\n"
+    "  --tolerance DEG     for orthogonal and reference (default 1), on top of the rounding limits\n"
+    "  --tolerance CHECK=DEG  for one of them: orthogonal=DEG or reference=DEG\n"
+    "  --allow-missing     a primitive without TANGENT is skipped, not a finding (clients compute MikkTSpace)\n"
+    "  --config FILE.json  settings from a file (only, ignore, tolerance, method, allowMissing, all);\n"
+    "                      options on the command line override it\n"
+    "  --method NAME       mikktspace (default) | lengyel: what reference is measured against\n"
     "  --all               check every triangle primitive (TEXCOORD_0 without a normal texture)\n"
     "  --asset-root DIR    folder buffer and image URIs may not leave (default: the input's folder)\n"
     "  -h, --help          this text\n"
+    "checks: present format finite unit w w-uniform orthogonal handedness reference\n"
     "exit codes: 0 clean, 1 findings, 2 unreadable input or usage error\n";
 
 std::string xmlEscape(const std::string& text) {
@@ -82,6 +97,13 @@ void writeText(std::ostream& out, const std::vector<gltf::FileCheck>& checks) {
         for (const auto& name : p.notRun) out << " " << name;
         out << "\n";
       }
+      if (!p.ignored.empty()) {
+        out << "    ignored:";
+        for (const auto& name : p.ignored) out << " " << name;
+        out << "\n";
+      }
+      if (p.referenceUnresolved)
+        out << "    (" << p.referenceUnresolved << " corners have a UV orientation their rounded positions/UVs leave open; not compared)\n";
       if (p.referenceUndefined) out << "    (" << p.referenceUndefined << " corners have no defined reference frame; not compared)\n";
     }
     for (const auto& s : file.skipped) out << "  skipped " << s << "\n";
@@ -90,7 +112,7 @@ void writeText(std::ostream& out, const std::vector<gltf::FileCheck>& checks) {
       << (errors ? ", " + std::to_string(errors) + " unreadable" : "") << "\n";
 }
 
-void writeJson(std::ostream& out, const std::vector<gltf::FileCheck>& checks) {
+void writeJson(std::ostream& out, const std::vector<gltf::FileCheck>& checks, const gltf::CheckOptions& options) {
   nlohmann::ordered_json files = nlohmann::ordered_json::array();
   std::size_t findings = 0, errors = 0, primitives = 0;
   for (const auto& file : checks) {
@@ -100,51 +122,223 @@ void writeJson(std::ostream& out, const std::vector<gltf::FileCheck>& checks) {
     for (const auto& p : file.primitives) findings += p.findings.size();
   }
   nlohmann::ordered_json report = {
-      {"schema", "libtangent-check/1"},
+      {"schema", "libtangent-check/2"},
+      {"settings", gltf::toJson(options)},
       {"summary", {{"files", checks.size()}, {"primitives", primitives}, {"findings", findings}, {"unreadable", errors}}},
       {"files", files}};
   out << report.dump(2) << "\n";
 }
 
-void writeJunit(std::ostream& out, const std::vector<gltf::FileCheck>& checks) {
+// One run of the command: what JUnit's timestamps need.
+struct RunTimes {
+  std::vector<std::string> startedUtc;  // per file, ISO 8601
+};
+
+std::string isoTimestampUtc(std::chrono::system_clock::time_point when) {
+  const std::time_t seconds = std::chrono::system_clock::to_time_t(when);
+  std::tm utc{};
+  gmtime_r(&seconds, &utc);
+  char text[32];
+  std::strftime(text, sizeof text, "%Y-%m-%dT%H:%M:%S", &utc);
+  return text;
+}
+
+std::string seconds3(double seconds) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.3f", seconds);
+  return text;
+}
+
+// JUnit XML as Jenkins and GitLab read it (the junit-10 schema's attributes): a suite per file,
+// a test case per primitive and check, skipped cases for checks not run or ignored and for
+// primitives not checked.
+void writeJunit(std::ostream& out, const std::vector<gltf::FileCheck>& checks, const RunTimes& times) {
   std::ostringstream suites;
-  std::size_t allTests = 0, allFailures = 0, allErrors = 0;
-  for (const auto& file : checks) {
+  std::size_t allTests = 0, allFailures = 0, allErrors = 0, allSkipped = 0;
+  double allSeconds = 0;
+  for (std::size_t i = 0; i < checks.size(); ++i) {
+    const gltf::FileCheck& file = checks[i];
+    const std::string fileAttribute = xmlEscape(file.file);
     std::ostringstream cases;
-    std::size_t tests = 0, failures = 0, errors = 0;
-    if (!file.error.empty()) {
+    std::size_t tests = 0, failures = 0, errors = 0, skipped = 0;
+    auto open = [&](const std::string& classname, const std::string& name) {
       ++tests;
+      cases << "    <testcase classname=\"" << classname << "\" name=\"" << xmlEscape(name) << "\" file=\"" << fileAttribute << "\"";
+    };
+    if (!file.error.empty()) {
       ++errors;
-      cases << "    <testcase classname=\"" << xmlEscape(file.file) << "\" name=\"load\">\n      <error message=\""
-            << xmlEscape(file.error) << "\"/>\n    </testcase>\n";
+      open(fileAttribute, "load");
+      cases << ">\n      <error message=\"" << xmlEscape(file.error) << "\"/>\n    </testcase>\n";
     }
     for (const auto& p : file.primitives) {
       const std::string classname = xmlEscape(file.file + " " + primitiveName(p));
       for (const auto& name : p.passed) {
-        ++tests;
-        cases << "    <testcase classname=\"" << classname << "\" name=\"" << name << "\"/>\n";
+        open(classname, name);
+        cases << "/>\n";
       }
       for (const auto& f : p.findings) {
-        ++tests;
         ++failures;
-        cases << "    <testcase classname=\"" << classname << "\" name=\"" << f.check << "\">\n      <failure message=\""
-              << xmlEscape(findingSummary(f)) << "\" type=\"" << f.check << "\">";
+        open(classname, f.check);
+        cases << ">\n      <failure message=\"" << xmlEscape(findingSummary(f)) << "\" type=\"" << f.check << "\">";
         for (const auto& s : f.worst) cases << xmlEscape(s.detail) << "\n";
         cases << "</failure>\n    </testcase>\n";
       }
-      for (const auto& name : p.notRun) {
-        ++tests;
-        cases << "    <testcase classname=\"" << classname << "\" name=\"" << name << "\">\n      <skipped message=\"an earlier check failed\"/>\n    </testcase>\n";
+      for (const auto& [names, why] : {std::pair{&p.notRun, "an earlier check failed"}, std::pair{&p.ignored, "ignored (--only/--ignore)"}}) {
+        for (const auto& name : *names) {
+          ++skipped;
+          open(classname, name);
+          cases << ">\n      <skipped message=\"" << why << "\"/>\n    </testcase>\n";
+        }
       }
     }
-    suites << "  <testsuite name=\"" << xmlEscape(file.file) << "\" tests=\"" << tests << "\" failures=\"" << failures
-           << "\" errors=\"" << errors << "\">\n" << cases.str() << "  </testsuite>\n";
+    for (const auto& reason : file.skipped) {
+      const std::size_t colon = reason.find(": ");
+      ++skipped;
+      open(xmlEscape(file.file + " " + reason.substr(0, colon)), "primitive");
+      cases << ">\n      <skipped message=\"" << xmlEscape(colon == std::string::npos ? reason : reason.substr(colon + 2))
+            << "\"/>\n    </testcase>\n";
+    }
+    suites << "  <testsuite name=\"" << fileAttribute << "\" tests=\"" << tests << "\" failures=\"" << failures << "\" errors=\""
+           << errors << "\" skipped=\"" << skipped << "\" time=\"" << seconds3(file.seconds) << "\" timestamp=\""
+           << times.startedUtc[i] << "\" file=\"" << fileAttribute << "\">\n"
+           << cases.str() << "  </testsuite>\n";
     allTests += tests;
     allFailures += failures;
     allErrors += errors;
+    allSkipped += skipped;
+    allSeconds += file.seconds;
   }
   out << "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n<testsuites name=\"tangent check\" tests=\"" << allTests << "\" failures=\""
-      << allFailures << "\" errors=\"" << allErrors << "\">\n" << suites.str() << "</testsuites>\n";
+      << allFailures << "\" errors=\"" << allErrors << "\" skipped=\"" << allSkipped << "\" time=\"" << seconds3(allSeconds)
+      << "\">\n" << suites.str() << "</testsuites>\n";
+}
+
+// GitHub Actions workflow commands: `::error file=F,title=T::message`. Data escapes % CR LF;
+// property values also : and , (actions/toolkit, command.ts).
+std::string githubData(const std::string& text) {
+  std::string out;
+  for (char c : text) {
+    if (c == '%') out += "%25";
+    else if (c == '\r') out += "%0D";
+    else if (c == '\n') out += "%0A";
+    else out += c;
+  }
+  return out;
+}
+
+std::string githubProperty(const std::string& text) {
+  std::string out;
+  for (char c : githubData(text)) {
+    if (c == ':') out += "%3A";
+    else if (c == ',') out += "%2C";
+    else out += c;
+  }
+  return out;
+}
+
+void writeGithub(std::ostream& out, const std::vector<gltf::FileCheck>& checks) {
+  std::size_t primitives = 0, findings = 0, errors = 0;
+  for (const auto& file : checks) {
+    if (!file.error.empty()) {
+      ++errors;
+      out << "::error file=" << githubProperty(file.file) << ",title=" << githubProperty("tangent check: unreadable") << "::"
+          << githubData(file.error) << "\n";
+    }
+    for (const auto& p : file.primitives) {
+      ++primitives;
+      for (const auto& f : p.findings) {
+        ++findings;
+        std::string message = primitiveName(p) + ": " + findingSummary(f);
+        if (!f.worst.empty()) message += "\nworst: " + f.worst.front().detail;
+        out << "::error file=" << githubProperty(file.file) << ",title=" << githubProperty("tangent check " + f.check + " (" + primitiveName(p) + ")")
+            << "::" << githubData(message) << "\n";
+      }
+    }
+  }
+  out << "::notice title=tangent check::" << checks.size() << " file(s), " << primitives << " primitive(s) checked, " << findings
+      << " finding(s)" << (errors ? ", " + std::to_string(errors) + " unreadable" : "") << "\n";
+}
+
+// A file path as a SARIF artifactLocation.uri (RFC 3986 relative reference): unreserved
+// characters and '/' as they are, everything else percent-encoded.
+std::string uriReference(const std::string& path) {
+  static const char* hex = "0123456789ABCDEF";
+  std::string out;
+  for (unsigned char c : path) {
+    if (std::isalnum(c) || c == '-' || c == '.' || c == '_' || c == '~' || c == '/') {
+      out += static_cast<char>(c);
+    } else {
+      out += '%';
+      out += hex[c >> 4];
+      out += hex[c & 15];
+    }
+  }
+  return out;
+}
+
+const char* checkDescription(std::size_t index) {
+  static const char* descriptions[] = {
+      "A primitive whose material has a normal texture stores TANGENT.",
+      "TANGENT is VEC4 of FLOAT or normalized BYTE/SHORT, one element per vertex, on a UV set the primitive has.",
+      "TANGENT components are finite.",
+      "|xyz| is 1 within the rounding of the component type.",
+      "w is exactly +1 or -1.",
+      "w is the same on the three corners of a triangle.",
+      "xyz is orthogonal to NORMAL within the tolerance and the rounding of both.",
+      "w agrees with the triangle's orientation in the normal texture's UV set (w = -sign(UV area)).",
+      "TANGENT agrees with freshly computed tangents within the tolerance and the rounding of the inputs."};
+  return descriptions[index];
+}
+
+// SARIF 2.1.0 (OASIS): one run, a rule per check, a result per finding located at the file and
+// the primitive (a logical location named as a JSON pointer into the document).
+void writeSarif(std::ostream& out, const std::vector<gltf::FileCheck>& checks, const gltf::CheckOptions& options) {
+  using Json = nlohmann::ordered_json;
+  Json rules = Json::array();
+  for (std::size_t i = 0; i < gltf::kCheckCount; ++i)
+    rules.push_back({{"id", gltf::kCheckNames[i]}, {"name", gltf::kCheckNames[i]}, {"shortDescription", {{"text", checkDescription(i)}}},
+                     {"defaultConfiguration", {{"level", "error"}, {"enabled", options.enabled.test(i)}}}});
+  Json results = Json::array(), notifications = Json::array();
+  for (const auto& file : checks) {
+    const Json artifact = {{"uri", uriReference(file.file)}};
+    if (!file.error.empty())
+      notifications.push_back({{"level", "error"}, {"message", {{"text", file.error}}},
+                               {"locations", Json::array({{{"physicalLocation", {{"artifactLocation", artifact}}}}})}});
+    for (const auto& p : file.primitives) {
+      for (const auto& f : p.findings) {
+        const std::size_t ruleIndex = static_cast<std::size_t>(*gltf::parseCheck(f.check));
+        Json properties = {{"unit", f.unit}, {"failed", f.failed}, {"total", f.total}, {"severityUnit", f.severityUnit}};
+        Json worst = Json::array();
+        for (const auto& s : f.worst) worst.push_back({{"element", s.element}, {"severity", s.severity}, {"detail", s.detail}});
+        properties["worst"] = worst;
+        const std::string pointer = "/meshes/" + std::to_string(p.mesh) + "/primitives/" + std::to_string(p.primitive);
+        results.push_back(
+            {{"ruleId", f.check},
+             {"ruleIndex", ruleIndex},
+             {"level", "error"},
+             {"message", {{"text", primitiveName(p) + ": " + findingSummary(f)}}},
+             {"locations", Json::array({{{"physicalLocation", {{"artifactLocation", artifact}}},
+                                         {"logicalLocations", Json::array({{{"name", primitiveName(p)},
+                                                                             {"fullyQualifiedName", pointer},
+                                                                             {"kind", "object"}}})}}})},
+             {"properties", properties}});
+      }
+    }
+  }
+  bool unreadable = false;
+  for (const auto& file : checks) unreadable = unreadable || !file.error.empty();
+  Json invocation = {{"executionSuccessful", !unreadable}};
+  if (!notifications.empty()) invocation["toolExecutionNotifications"] = notifications;
+  invocation["properties"] = {{"settings", gltf::toJson(options)}};
+  const Json log = {
+      {"$schema", "https://json.schemastore.org/sarif-2.1.0.json"},
+      {"version", "2.1.0"},
+      {"runs", Json::array({{{"tool", {{"driver", {{"name", "tangent check"},
+                                                   {"informationUri", "https://github.com/KhronosGroup/glTF/tree/main/specification/2.0"},
+                                                   {"rules", rules}}}}},
+                             {"invocations", Json::array({invocation})},
+                             {"results", results}}})}};
+  out << log.dump(2) << "\n";
 }
 
 int usageError(const std::string& message) {
@@ -152,34 +346,82 @@ int usageError(const std::string& message) {
   return kExitUsage;
 }
 
+// "unit,w" -> the set; nullopt (after a message) on an unknown name.
+std::optional<std::bitset<gltf::kCheckCount>> parseCheckList(const std::string& list) {
+  std::bitset<gltf::kCheckCount> set;
+  std::size_t start = 0;
+  while (start <= list.size()) {
+    const std::size_t comma = std::min(list.find(',', start), list.size());
+    const std::string name = list.substr(start, comma - start);
+    const std::optional<gltf::CheckId> id = gltf::parseCheck(name);
+    if (!id) return std::nullopt;
+    set.set(static_cast<std::size_t>(*id));
+    start = comma + 1;
+  }
+  return set;
+}
+
+std::optional<double> parseDegrees(const std::string& text) {
+  try {
+    std::size_t used = 0;
+    const double degrees = std::stod(text, &used);
+    if (used != text.size() || !(degrees > 0) || degrees > 180) return std::nullopt;
+    return degrees;
+  } catch (const std::exception&) {
+    return std::nullopt;
+  }
+}
+
 }  // namespace
 
 int checkCommand(const std::vector<std::string>& args) {
   std::vector<std::string> inputs;
-  std::string formatName = "text", output;
+  std::string formatName = "text", output = "-";
   gltf::CheckOptions options;
+  // The config file first, whatever its place: the command line overrides it.
+  for (std::size_t i = 0; i < args.size(); ++i) {
+    if (args[i] != "--config") continue;
+    if (i + 1 >= args.size()) return usageError("--config needs a JSON file");
+    try {
+      gltf::applyCheckConfig(args[i + 1], options);
+    } catch (const std::exception& e) {
+      return usageError(e.what());
+    }
+  }
   for (std::size_t i = 0; i < args.size(); ++i) {
     const std::string& arg = args[i];
     const bool hasValue = i + 1 < args.size();
     if (arg == "-h" || arg == "--help") {
       std::cout << kCheckUsage;
       return kExitOk;
+    } else if (arg == "--config") {
+      ++i;  // read above
     } else if (arg == "--format") {
-      if (!hasValue) return usageError("--format needs text, json or junit");
+      if (!hasValue) return usageError("--format needs text, json, junit, github or sarif");
       formatName = args[++i];
-      if (formatName != "text" && formatName != "json" && formatName != "junit") return usageError("--format must be text, json or junit");
+      if (formatName != "text" && formatName != "json" && formatName != "junit" && formatName != "github" && formatName != "sarif")
+        return usageError("--format must be text, json, junit, github or sarif");
     } else if (arg == "-o" || arg == "--output") {
-      if (!hasValue) return usageError(arg + " needs a file name");
+      if (!hasValue) return usageError(arg + " needs a file name (\"-\" for standard output)");
       output = args[++i];
+    } else if (arg == "--only" || arg == "--ignore") {
+      const std::optional<std::bitset<gltf::kCheckCount>> set = hasValue ? parseCheckList(args[++i]) : std::nullopt;
+      if (!set) return usageError(arg + " needs check names separated by commas: present format finite unit w w-uniform orthogonal handedness reference");
+      if (arg == "--only") options.enabled = *set;
+      else options.enabled &= ~*set;
     } else if (arg == "--tolerance") {
-      if (!hasValue) return usageError("--tolerance needs degrees");
-      try {
-        std::size_t used = 0;
-        options.toleranceDegrees = std::stod(args[++i], &used);
-        if (used != args[i].size() || !(options.toleranceDegrees > 0) || options.toleranceDegrees > 180) throw std::invalid_argument("");
-      } catch (const std::exception&) {
-        return usageError("--tolerance must be a number of degrees in (0, 180]");
-      }
+      if (!hasValue) return usageError("--tolerance needs degrees, or orthogonal=DEG / reference=DEG");
+      const std::string& value = args[++i];
+      const std::size_t equals = value.find('=');
+      const std::string check = equals == std::string::npos ? "" : value.substr(0, equals);
+      const std::optional<double> degrees = parseDegrees(equals == std::string::npos ? value : value.substr(equals + 1));
+      if (!degrees) return usageError("--tolerance must be a number of degrees in (0, 180]");
+      if (check.empty() || check == "orthogonal") options.orthogonalToleranceDegrees = *degrees;
+      if (check.empty() || check == "reference") options.referenceToleranceDegrees = *degrees;
+      if (!check.empty() && check != "orthogonal" && check != "reference")
+        return usageError("--tolerance " + check + "=...: only orthogonal and reference have a tolerance");
+    } else if (arg == "--allow-missing") {
+      options.allowMissing = true;
     } else if (arg == "--method") {
       if (!hasValue || !parseMethod(args[++i], options.method) || options.method == Method::flat)
         return usageError("--method must be mikktspace or lengyel");
@@ -196,28 +438,24 @@ int checkCommand(const std::vector<std::string>& args) {
     }
   }
   if (inputs.empty()) return usageError("no input files");
+  if (options.enabled.none()) return usageError("--only/--ignore leave no check to run");
 
   std::vector<gltf::FileCheck> checks;
+  RunTimes times;
   bool unreadable = false, findings = false;
   for (const auto& input : inputs) {
+    times.startedUtc.push_back(isoTimestampUtc(std::chrono::system_clock::now()));
     checks.push_back(gltf::checkFile(input, options));
     unreadable = unreadable || !checks.back().error.empty();
     findings = findings || !checks.back().clean();
   }
   std::ostringstream report;
-  if (formatName == "json") writeJson(report, checks);
-  else if (formatName == "junit") writeJunit(report, checks);
+  if (formatName == "json") writeJson(report, checks, options);
+  else if (formatName == "junit") writeJunit(report, checks, times);
+  else if (formatName == "github") writeGithub(report, checks);
+  else if (formatName == "sarif") writeSarif(report, checks, options);
   else writeText(report, checks);
-  if (output.empty()) {
-    std::cout << report.str();
-  } else {
-    std::ofstream file(output);
-    file << report.str();
-    if (!file) {
-      std::cerr << "tangent check: cannot write " << output << "\n";
-      return kExitUsage;
-    }
-  }
+  if (!writeTextOutput(output, report.str(), "check")) return kExitUsage;
   for (const auto& check : checks) {
     if (!check.error.empty()) std::cerr << "error: " << check.error << "\n";
   }

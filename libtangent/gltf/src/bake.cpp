@@ -8,6 +8,7 @@
 
 #include "accessors.hpp"
 #include "asset.hpp"
+#include "check_primitive.hpp"
 #include "document.hpp"
 #include "primitive.hpp"
 #include "tangent/bulk_buffer.hpp"
@@ -23,26 +24,6 @@ std::vector<std::uint8_t> floatBytes(const std::vector<float>& values) {
   std::vector<std::uint8_t> bytes(values.size() * sizeof(float));
   std::memcpy(bytes.data(), values.data(), bytes.size());
   return bytes;
-}
-
-// "" when an existing TANGENT is valid, else what is wrong with it.
-std::string tangentProblem(const AccessorData& data) {
-  if (data.type != TINYGLTF_TYPE_VEC4) return std::string("type is ") + detail::typeName(data.type) + ", not VEC4";
-  double tolerance = 1e-3;
-  if (data.componentType == TINYGLTF_COMPONENT_TYPE_BYTE && data.normalized) tolerance = 2e-2;
-  else if (data.componentType == TINYGLTF_COMPONENT_TYPE_SHORT && data.normalized) tolerance = 2e-3;
-  else if (data.componentType != TINYGLTF_COMPONENT_TYPE_FLOAT)
-    return std::string("component type ") + detail::componentTypeName(data.componentType) + " is not allowed";
-  const std::vector<float> values = detail::toFloats(data);
-  for (std::size_t v = 0; v < data.count; ++v) {
-    const float* t = &values[4 * v];
-    if (!std::isfinite(t[0]) || !std::isfinite(t[1]) || !std::isfinite(t[2]) || !std::isfinite(t[3]))
-      return "vertex " + std::to_string(v) + " is not finite";
-    const double length = std::sqrt(double(t[0]) * t[0] + double(t[1]) * t[1] + double(t[2]) * t[2]);
-    if (std::abs(length - 1.0) > tolerance) return "vertex " + std::to_string(v) + " has |xyz| = " + std::to_string(length);
-    if (t[3] != 1.0f && t[3] != -1.0f) return "vertex " + std::to_string(v) + " has w = " + std::to_string(t[3]);
-  }
-  return "";
 }
 
 // Output vertices as the core split them: input vertex o stays o, copies follow.
@@ -106,6 +87,46 @@ Json carriedAccessor(const Json& original, std::size_t count) {
   return accessor;
 }
 
+// TANGENT as the options ask: float, or normalized SHORT/BYTE rounded to nearest (spec 3.11:
+// c = round(f * 32767) or round(f * 127)), which the stored-tangent rules accept.
+struct EncodedTangents {
+  Json accessor;
+  std::vector<std::uint8_t> bytes;
+  std::size_t stride = 16;
+};
+
+template <typename Integer>
+std::vector<std::uint8_t> normalizedBytes(const std::vector<float>& values, double scale) {
+  std::vector<std::uint8_t> bytes(values.size() * sizeof(Integer));
+  for (std::size_t i = 0; i < values.size(); ++i) {
+    const auto q = static_cast<Integer>(std::lround(std::clamp(double(values[i]), -1.0, 1.0) * scale));
+    std::memcpy(&bytes[i * sizeof(Integer)], &q, sizeof(Integer));
+  }
+  return bytes;
+}
+
+EncodedTangents encodeTangents(const std::vector<float>& tangents, TangentFormat format) {
+  const std::size_t count = tangents.size() / 4;
+  switch (format) {
+    case TangentFormat::normalizedShort:
+      return {Json{{"componentType", TINYGLTF_COMPONENT_TYPE_SHORT}, {"normalized", true}, {"count", count}, {"type", "VEC4"}},
+              normalizedBytes<std::int16_t>(tangents, 32767.0), 8};
+    case TangentFormat::normalizedByte:
+      return {Json{{"componentType", TINYGLTF_COMPONENT_TYPE_BYTE}, {"normalized", true}, {"count", count}, {"type", "VEC4"}},
+              normalizedBytes<std::int8_t>(tangents, 127.0), 4};
+    case TangentFormat::float32: break;
+  }
+  return {Json{{"componentType", TINYGLTF_COMPONENT_TYPE_FLOAT}, {"count", count}, {"type", "VEC4"}}, floatBytes(tangents), 16};
+}
+
+// Adds `name` to extensionsUsed and extensionsRequired unless there already.
+void declareRequiredExtension(Json& doc, const char* name) {
+  for (const char* list : {"extensionsUsed", "extensionsRequired"}) {
+    if (!doc.contains(list) || !doc[list].is_array()) doc[list] = Json::array();
+    if (std::find(doc[list].begin(), doc[list].end(), Json(name)) == doc[list].end()) doc[list].push_back(name);
+  }
+}
+
 Json floatAccessor(std::size_t count, const char* type) {
   return Json{{"componentType", TINYGLTF_COMPONENT_TYPE_FLOAT}, {"count", count}, {"type", type}};
 }
@@ -163,13 +184,17 @@ PrimitiveResult PrimitiveBaker::bake(int meshIndex, int primitiveIndex) {
   }
   const int existingTangent = detail::accessorOf(attributes, "TANGENT");
   if (existingTangent >= 0) {
-    const std::string problem = tangentProblem(detail::readAccessor(model, existingTangent, where + ": TANGENT"));
-    if (problem.empty() && !options_.overwrite) {
+    // Keep exactly what `tangent check` passes at its default settings: the same function decides.
+    PrimitiveCheck verdict;
+    detail::checkPrimitiveTangents(asset_, primitive, needs, where, CheckOptions{}, verdict);
+    if (verdict.findings.empty() && !options_.overwrite) {
       result.action = "kept";
-      result.reason = "valid TANGENT present (use --overwrite to recompute)";
+      result.reason = "valid TANGENT present: tangent check passes it (use --overwrite to recompute)";
       return result;
     }
-    result.reason = problem.empty() ? "TANGENT recomputed (--overwrite)" : "existing TANGENT invalid (" + problem + "); recomputed";
+    for (const CheckFinding& finding : verdict.findings) result.failedChecks.push_back(finding.check);
+    result.reason = verdict.findings.empty() ? "TANGENT recomputed (--overwrite)"
+                                             : "existing TANGENT fails tangent check (" + detail::findingsSummary(verdict) + "); recomputed";
   }
 
   const detail::PrimitiveGeometry geometry = detail::readGeometry(asset_, primitive, needs, where);
@@ -277,17 +302,35 @@ PrimitiveResult PrimitiveBaker::bake(int meshIndex, int primitiveIndex) {
     if (primitive.contains("mode")) primitive["mode"] = 4;
   }
   // Inserting "indices" above may have moved the primitive's members: look attributes up again.
-  primitive["attributes"]["TANGENT"] = output_.addAccessor(floatAccessor(outCount, "VEC4"), floatBytes(split.tangents), 16, detail::kArrayBuffer);
+  EncodedTangents encoded = encodeTangents(split.tangents, options_.tangentFormat);
+  primitive["attributes"]["TANGENT"] = output_.addAccessor(encoded.accessor, std::move(encoded.bytes), encoded.stride, detail::kArrayBuffer);
   for (std::size_t t = 0; t < targetTangentDeltas.size(); ++t) {
     primitive["targets"][t]["TANGENT"] =
         output_.addAccessor(floatAccessor(outCount, "VEC3"), floatBytes(targetTangentDeltas[t]), 12, detail::kArrayBuffer);
   }
   result.action = "baked";
+  result.tangentFormat = options_.tangentFormat;
   if (existingTangent < 0) result.reason = why;
   return result;
 }
 
 }  // namespace
+
+std::optional<TangentFormat> parseTangentFormat(std::string_view name) {
+  if (name == "float") return TangentFormat::float32;
+  if (name == "short") return TangentFormat::normalizedShort;
+  if (name == "byte") return TangentFormat::normalizedByte;
+  return std::nullopt;
+}
+
+const char* toString(TangentFormat format) {
+  switch (format) {
+    case TangentFormat::float32: return "float";
+    case TangentFormat::normalizedShort: return "short";
+    case TangentFormat::normalizedByte: return "byte";
+  }
+  return "?";
+}
 
 std::filesystem::path outputPathFor(const std::filesystem::path& input, const std::filesystem::path& outputDir) {
   std::filesystem::path name = input.filename();
@@ -360,6 +403,10 @@ BakeResult bakeChecked(const std::filesystem::path& input, const std::filesystem
                                   " corners have zero or non-finite normals; replaced by their faces' normals");
     }
   }
+  // Declared after the loop: no reference into the document is held across the insertion.
+  if (std::any_of(result.primitives.begin(), result.primitives.end(),
+                  [](const PrimitiveResult& p) { return p.action == "baked" && p.tangentFormat != TangentFormat::float32; }))
+    declareRequiredExtension(doc, "KHR_mesh_quantization");
   result.bytesWritten = document.write(output);
   return result;
 }
@@ -389,7 +436,9 @@ nlohmann::ordered_json toJson(const BakeResult& result) {
     Json entry = {{"mesh", p.mesh}, {"meshName", p.meshName}, {"primitive", p.primitive},
                   {"action", p.action}, {"reason", p.reason}};
     if (p.texCoord >= 0) entry["texCoord"] = p.texCoord;
+    if (!p.failedChecks.empty()) entry["failedChecks"] = p.failedChecks;
     if (p.action == "baked") {
+      entry["tangentFormat"] = toString(p.tangentFormat);
       entry["verticesIn"] = p.verticesIn;
       entry["verticesOut"] = p.verticesOut;
       entry["tangents"] = toJson(p.tangents);

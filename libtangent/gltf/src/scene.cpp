@@ -242,8 +242,19 @@ DrawItem makeDrawItem(const detail::Asset& asset, const Json& primitive, const s
   item.tangents = item.computedTangents;
   item.tangentErrorDegrees.assign(cornerCount, 0.0f);
   item.cornerProblems.assign(cornerCount, 0);
+  // check's limits for this primitive's component types (tangent_rules.hpp); float until known.
+  detail::StoredTangentLimits limits;
+  detail::ReferenceAllowance allowance;
   if (tangentAccessor >= 0) {
     const auto data = detail::readAccessor(asset.model, tangentAccessor, where + ": TANGENT");
+    const int normalAccessor = detail::accessorOf(primitive["attributes"], "NORMAL");
+    const auto tangentComponent = detail::storedComponentOf(data.componentType, data.normalized);
+    if (tangentComponent && normalAccessor >= 0 && item.hasUvs) {
+      const Json& normal = doc["accessors"][normalAccessor];
+      limits = detail::storedTangentLimits(*tangentComponent, detail::storedComponentOf(normal.value("componentType", 0), normal.value("normalized", false))
+                                                                  .value_or(detail::StoredComponent::float32));
+      allowance = detail::referenceAllowance(geometry, detail::inputRounding(asset, primitive, needs.texCoord, needs.hasNormalTexture));
+    }
     if (data.type == TINYGLTF_TYPE_VEC4 && data.count == geometry.vertexCount) {
       const std::vector<float> fileTangents = detail::toFloats(data);
       item.tangentsFromFile = true;
@@ -273,15 +284,21 @@ DrawItem makeDrawItem(const detail::Asset& asset, const Json& primitive, const s
         item.tangentErrorDegrees[c] = 180.0f;
         continue;
       }
-      if (std::abs(detail::length3(stored) - 1.0) > 1e-3) problems |= kProblemNotUnit;
+      if (!detail::unitOk(stored, limits)) problems |= kProblemNotUnit;
       if (!detail::validW(stored[3])) problems |= kProblemBadW;
-      if (detail::offPlaneDegrees(stored, &item.normals[3 * c]) > options.toleranceDegrees) problems |= kProblemNotOrthogonal;
+      if (detail::offPlaneDegrees(stored, &item.normals[3 * c]) > detail::orthogonalLimitDegrees(limits, options.toleranceDegrees))
+        problems |= kProblemNotOrthogonal;
       const float expected = detail::expectedW(det);
-      if (expected != 0 && area > 0 && detail::validW(stored[3]) && stored[3] != expected) problems |= kProblemHandedness;
-      const bool comparable = sources[c] == FrameSource::computed || sources[c] == FrameSource::inherited;
+      if (expected != 0 && area > 0 && detail::validW(stored[3]) && stored[3] != expected && allowance.decided(t))
+        problems |= kProblemHandedness;
+      const float inputAllowance = allowance.vertex(corners[c]);
+      const bool comparable = (sources[c] == FrameSource::computed || sources[c] == FrameSource::inherited) &&
+                              inputAllowance < detail::kUncomparableDegrees;
       const double angle = detail::angleBetweenDegrees(stored, fresh);
       item.tangentErrorDegrees[c] = comparable ? static_cast<float>(angle) : 0.0f;
-      if (comparable && (angle > options.toleranceDegrees || (stored[3] < 0) != (fresh[3] < 0))) problems |= kProblemFarFromReference;
+      if (comparable && detail::referenceFails(angle, stored[3], fresh[3],
+                                               detail::referenceLimitDegrees(limits, options.toleranceDegrees, inputAllowance)))
+        problems |= kProblemFarFromReference;
       item.cornerProblems[c] = problems;
     }
   }

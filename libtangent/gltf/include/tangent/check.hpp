@@ -1,8 +1,12 @@
 // Validation of the tangents stored in a glTF file: what `tangent check` runs for CI.
 #pragma once
 
+#include <bitset>
 #include <cstdint>
 #include <filesystem>
+#include <iterator>
+#include <optional>
+#include <string_view>
 #include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
@@ -11,20 +15,38 @@
 
 namespace tangent::gltf {
 
-struct CheckOptions {
-  Method method = Method::mikktspace;  // what `reference` recomputes with
-  double toleranceDegrees = 1.0;       // for `orthogonal` and `reference`
-  bool all = false;                    // every triangle primitive, not only normal-mapped ones
-  std::filesystem::path assetRoot;     // folder buffer and image URIs may not leave (empty: the file's)
-};
-
 // The checks, in the order they run. `present` and `format` gate the rest.
+enum class CheckId { present, format, finite, unit, w, wUniform, orthogonal, handedness, reference };
 inline constexpr const char* kCheckNames[] = {"present", "format",      "finite",     "unit",     "w",
                                               "w-uniform", "orthogonal", "handedness", "reference"};
+inline constexpr std::size_t kCheckCount = std::size(kCheckNames);
+inline const char* toString(CheckId id) { return kCheckNames[static_cast<std::size_t>(id)]; }
+std::optional<CheckId> parseCheck(std::string_view name);
+
+struct CheckOptions {
+  Method method = Method::mikktspace;     // what `reference` recomputes with
+  double orthogonalToleranceDegrees = 1.0;  // `orthogonal`, on top of the rounding limits
+  double referenceToleranceDegrees = 1.0;   // `reference`, on top of the rounding limits
+  std::bitset<kCheckCount> enabled = std::bitset<kCheckCount>().set();  // --only / --ignore
+  bool allowMissing = false;               // no TANGENT: skipped (the client computes MikkTSpace)
+  bool all = false;                        // every triangle primitive, not only normal-mapped ones
+  std::filesystem::path assetRoot;         // folder buffer and image URIs may not leave (empty: the file's)
+  std::string configFile;                  // where the settings came from, for the report ("" for none)
+  bool runs(CheckId id) const { return enabled.test(static_cast<std::size_t>(id)); }
+};
+
+// Reads a check configuration (JSON: only, ignore, tolerance {orthogonal, reference}, method,
+// allowMissing, all; README "tangent check") into `options`. Throws std::runtime_error naming
+// the file and the member that is wrong.
+void applyCheckConfig(const std::filesystem::path& file, CheckOptions& options);
+
+// The settings as the JSON report records them.
+nlohmann::ordered_json toJson(const CheckOptions& options);
 
 struct CheckSample {
   std::uint64_t element = 0;  // vertex, triangle or corner index, per the finding's unit
-  double severity = 0;        // larger is worse (deviation, angle...)
+  double severity = 0;        // larger is worse, in the finding's severityUnit
+  bool wDiffers = false;      // `reference` only: w disagrees too (ranked before any angle)
   std::string detail;         // the values, for people
 };
 
@@ -34,6 +56,8 @@ struct CheckFinding {
   std::uint64_t failed = 0;
   std::uint64_t total = 0;
   std::string message;         // what is wrong, with the threshold
+  std::string severityUnit;    // of the samples' severity: "degrees", "length", "uv-area" or "none"
+  double limit = 0;            // the threshold applied, in severityUnit (0 where exact)
   std::vector<CheckSample> worst;  // up to 5, worst first
 };
 
@@ -46,8 +70,16 @@ struct PrimitiveCheck {
   std::uint64_t triangles = 0;
   std::vector<std::string> passed;      // checks that ran clean
   std::vector<std::string> notRun;      // checks a failed gate (present, format) made moot
+  std::vector<std::string> ignored;     // checks --only / --ignore left out
+  std::string tangentComponent;         // "float", "normalized SHORT", "normalized BYTE" ("" when unknown)
+  std::string normalComponent;
+  double unitLimit = 0;                 // the limits applied (tangent_rules): | |xyz| - 1 |
+  double orthogonalLimitDegrees = 0;
+  double referenceLimitDegrees = 0;     // before the per-corner allowance for rounded positions/UVs
   std::vector<CheckFinding> findings;
   std::uint64_t referenceUndefined = 0; // corners the reference method leaves arbitrary: not compared
+  std::uint64_t referenceUnresolved = 0; // corners whose UV orientation rounded positions/UVs leave open: not compared
+  double referenceAllowanceMaxDegrees = 0;  // largest per-corner allowance for rounded positions/UVs
 };
 
 struct FileCheck {
@@ -55,6 +87,7 @@ struct FileCheck {
   std::string error;                     // unreadable input (then no primitives)
   std::vector<PrimitiveCheck> primitives;  // those that need tangents
   std::vector<std::string> skipped;        // primitives not checked, and why
+  double seconds = 0;                      // time spent checking the file
   bool clean() const;
 };
 

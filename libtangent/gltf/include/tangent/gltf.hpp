@@ -4,8 +4,10 @@
 
 #include <cstdint>
 #include <filesystem>
+#include <optional>
 #include <stdexcept>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include <nlohmann/json.hpp>
@@ -20,10 +22,17 @@ class InputError : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+// How bake stores the TANGENT it writes: glTF's float, or normalized SHORT/BYTE under
+// KHR_mesh_quantization (declared in extensionsUsed and extensionsRequired).
+enum class TangentFormat { float32, normalizedShort, normalizedByte };
+std::optional<TangentFormat> parseTangentFormat(std::string_view name);  // "float", "short", "byte"
+const char* toString(TangentFormat format);
+
 struct BakeOptions {
   Options tangents;         // method, weighting (uvOrigin is always topLeft for glTF)
   bool all = false;         // every triangle primitive, not only those with a normalTexture
   bool overwrite = false;   // recompute valid existing TANGENT too
+  TangentFormat tangentFormat = TangentFormat::float32;  // of the TANGENT bake writes
   // Folder that buffer and image URIs may not leave after resolving `..` and symbolic links
   // (empty: the input's own folder). See the README's "Security and limits".
   std::filesystem::path assetRoot;
@@ -36,10 +45,12 @@ struct PrimitiveResult {
   std::string meshName;
   std::string action;       // "baked", "kept", "skipped"
   std::string reason;       // why (always set)
+  std::vector<std::string> failedChecks;  // the checks an existing TANGENT failed (then replaced)
   int texCoord = -1;        // UV set used, -1 when none
   std::uint64_t verticesIn = 0;
   std::uint64_t verticesOut = 0;
   Report tangents;          // core report, when baked
+  TangentFormat tangentFormat = TangentFormat::float32;  // of the TANGENT written, when baked
 };
 
 struct BakeResult {

@@ -1,0 +1,232 @@
+// The limits of the stored-tangent rules (tangent_rules.hpp), derived from the rounding step of
+// the component types glTF 2.0 and KHR_mesh_quantization allow:
+//
+// A normalized component c of n bits decodes to c / (2^(n-1) - 1) (spec 3.11): step
+// s = 1/127 (BYTE) or 1/32767 (SHORT), rounding error <= s/2 per component. Tools often store
+// fewer significant bits b inside the component (gltfpack -vn, gltf-transform quantize's
+// quantizeNormal, default 10): the value is rounded to 1/(2^(b-1) - 1) first, then to s, so the
+// error is <= 0.5/(2^(b-1) - 1) + s/2. The xyz error vector e has |e| <= sqrt(3) * that, hence
+//   | |xyz| - 1 | <= |e|             (triangle inequality)
+//   direction error <= asin(|e|)      (the widest angle of a ball of radius |e| around a unit vector)
+// We accept BYTE at its full 8 bits and SHORT down to 10 significant bits:
+//   BYTE:  e1 = 0.5/127 = 3.94e-3, |xyz| within 6.82e-3, angle <= 0.391 deg
+//   SHORT: e1 = 0.5/511 + 0.5/32767 = 9.94e-4, |xyz| within 1.72e-3, angle <= 0.0986 deg
+//   FLOAT: |xyz| within 1e-3 (writers' own rounding), angle 0.
+// `orthogonal` compares TANGENT with NORMAL, both rounded: tolerance + both angles. `reference`
+// compares TANGENT with a frame recomputed from the rounded NORMAL (projection onto a plane tilted
+// by d turns a direction by at most d): tolerance + both angles, plus what rounded positions and
+// UVs do to the recomputed frame (referenceAllowance below).
+#include "tangent_rules.hpp"
+
+#include <cmath>
+#include <limits>
+
+#include "accessors.hpp"
+#include "asset.hpp"
+#include "primitive.hpp"
+
+namespace tangent::gltf::detail {
+namespace {
+
+using Json = nlohmann::ordered_json;
+
+constexpr double kFloatUnitDeviation = 1e-3;  // float writers' rounding and normalization
+constexpr int kByteBits = 8;
+constexpr int kFewestShortBits = 10;           // gltf-transform quantize's default for normals
+
+double gridStep(int bits) { return 1.0 / double((1 << (bits - 1)) - 1); }
+
+// The storage step of one decoded component: 0 for float, 1 for unnormalized integers.
+double storageStep(int componentType, bool normalized) {
+  if (componentType == TINYGLTF_COMPONENT_TYPE_FLOAT) return 0;
+  if (!normalized) return 1;
+  switch (componentType) {
+    case TINYGLTF_COMPONENT_TYPE_BYTE: return 1.0 / 127;
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: return 1.0 / 255;
+    case TINYGLTF_COMPONENT_TYPE_SHORT: return 1.0 / 32767;
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: return 1.0 / 65535;
+    default: return 0;
+  }
+}
+
+// Half the rounding step of a position or UV accessor, in its decoded units. Normalized 16-bit
+// data may hold fewer significant bits (gltf-transform quantize: 14 for positions, 12 for UVs):
+// the smallest gap between distinct values estimates that step, bounded by 10 significant bits
+// so that a small mesh (few distinct values, wide gaps) is not given a coarse grid.
+double halfRoundingStep(const tinygltf::Model& model, int accessor, const std::string& where) {
+  if (accessor < 0 || static_cast<std::size_t>(accessor) >= model.accessors.size()) return 0;
+  // The declared type first: float data (Draco's decoded attributes included) is never read here.
+  const tinygltf::Accessor& declared = model.accessors[static_cast<std::size_t>(accessor)];
+  const double storage = storageStep(declared.componentType, declared.normalized);
+  if (storage == 0) return 0;
+  if (!declared.normalized || componentBytes(declared.componentType) == 1) return storage / 2;
+  const AccessorData data = readAccessor(model, accessor, where);
+  const bool isSigned = data.componentType == TINYGLTF_COMPONENT_TYPE_SHORT;
+  const double coarsest = isSigned ? gridStep(kFewestShortBits) : 1.0 / double((1 << kFewestShortBits) - 1);
+  const std::vector<float> values = toFloats(data);
+  double smallestGap = coarsest;
+  for (int component = 0; component < data.components; ++component) {
+    std::vector<float> column;
+    column.reserve(data.count);
+    for (std::size_t i = 0; i < data.count; ++i) column.push_back(values[i * data.components + component]);
+    std::sort(column.begin(), column.end());
+    for (std::size_t i = 1; i < column.size(); ++i) {
+      const double gap = double(column[i]) - column[i - 1];
+      if (gap > 0) smallestGap = std::min(smallestGap, gap);
+    }
+  }
+  return (std::max(smallestGap, storage) + storage) / 2;
+}
+
+}  // namespace
+
+std::optional<StoredComponent> storedComponentOf(int componentType, bool normalized) {
+  if (componentType == TINYGLTF_COMPONENT_TYPE_FLOAT) return StoredComponent::float32;
+  if (normalized && componentType == TINYGLTF_COMPONENT_TYPE_SHORT) return StoredComponent::normalizedShort;
+  if (normalized && componentType == TINYGLTF_COMPONENT_TYPE_BYTE) return StoredComponent::normalizedByte;
+  return std::nullopt;
+}
+
+const char* toString(StoredComponent component) {
+  switch (component) {
+    case StoredComponent::float32: return "float";
+    case StoredComponent::normalizedShort: return "normalized SHORT";
+    case StoredComponent::normalizedByte: return "normalized BYTE";
+  }
+  return "?";
+}
+
+StoredVectorRounding storedVectorRounding(StoredComponent component) {
+  StoredVectorRounding rounding;
+  switch (component) {
+    case StoredComponent::float32:
+      rounding.lengthDeviation = kFloatUnitDeviation;
+      return rounding;
+    case StoredComponent::normalizedByte:
+      rounding.significantBits = kByteBits;
+      rounding.componentError = gridStep(kByteBits) / 2;
+      break;
+    case StoredComponent::normalizedShort:
+      rounding.significantBits = kFewestShortBits;
+      rounding.componentError = gridStep(kFewestShortBits) / 2 + gridStep(16) / 2;
+      break;
+  }
+  const double vectorError = std::sqrt(3.0) * rounding.componentError;
+  rounding.lengthDeviation = vectorError;
+  rounding.angleDegrees = std::asin(vectorError) * kDegreesPerRadian;
+  return rounding;
+}
+
+StoredTangentLimits storedTangentLimits(StoredComponent tangent, StoredComponent normal) {
+  StoredTangentLimits limits;
+  limits.tangent = tangent;
+  limits.normal = normal;
+  const StoredVectorRounding t = storedVectorRounding(tangent), n = storedVectorRounding(normal);
+  limits.unitDeviation = std::max(kFloatUnitDeviation, t.lengthDeviation);
+  limits.tangentAngleDegrees = t.angleDegrees;
+  limits.normalAngleDegrees = n.angleDegrees;
+  return limits;
+}
+
+double orthogonalLimitDegrees(const StoredTangentLimits& limits, double toleranceDegrees) {
+  return toleranceDegrees + limits.tangentAngleDegrees + limits.normalAngleDegrees;
+}
+
+double referenceLimitDegrees(const StoredTangentLimits& limits, double toleranceDegrees, double inputAllowanceDegrees) {
+  return toleranceDegrees + limits.tangentAngleDegrees + limits.normalAngleDegrees + inputAllowanceDegrees;
+}
+
+InputRounding inputRounding(const Asset& asset, const Json& primitive, int texCoord, bool hasNormalTexture) {
+  InputRounding rounding;
+  const Json& attributes = primitive["attributes"];
+  rounding.position = halfRoundingStep(asset.model, accessorOf(attributes, "POSITION"), asset.path.string() + ": POSITION");
+  rounding.uv = halfRoundingStep(asset.model, accessorOf(attributes, "TEXCOORD_" + std::to_string(texCoord)),
+                                 asset.path.string() + ": TEXCOORD_" + std::to_string(texCoord));
+  // The reference sees UVs after the normal texture's KHR_texture_transform: its scale scales the step.
+  if (rounding.uv > 0 && hasNormalTexture && primitive.contains("material")) {
+    const Json& texture = asset.json["materials"][primitive["material"].get<int>()]["normalTexture"];
+    if (texture.contains("extensions") && texture["extensions"].contains("KHR_texture_transform")) {
+      const Json& transform = texture["extensions"]["KHR_texture_transform"];
+      if (transform.contains("scale") && transform["scale"].size() == 2)
+        rounding.uv *= std::max(std::abs(transform["scale"][0].get<double>()), std::abs(transform["scale"][1].get<double>()));
+    }
+  }
+  return rounding;
+}
+
+// A triangle's tangent direction (MikkTSpace, Lengyel) is that of v = e1 * dv2 - e2 * dv1
+// (e: edges from corner 0, dv: their V deltas). Moving each UV component by up to eu and each
+// position component by up to ep changes v by at most
+//   2 eu (|e1| + |e2|) + 2 sqrt(3) ep (|dv1| + |dv2|) + 8 sqrt(3) ep eu,
+// which turns it by at most asin(change / |v|). The UV area (du1 dv2 - du2 dv1) moves by at
+// most 2 eu (|du1| + |du2| + |dv1| + |dv2|) + 8 eu^2: when that reaches the area itself, the
+// triangle's orientation (and w) is undecided, and it may join or leave a vertex's group.
+// A vertex's frame is the sum S of its triangles' unit tangents (projected onto the normal)
+// weighted by corner angle a_i; each moves by at most the chord 2 sin(turn_i / 2) (2 when
+// undecided), so S moves by at most E = sum a_i chord_i and turns by at most asin(E / |S|);
+// where E reaches |S| the vertex cannot be compared.
+ReferenceAllowance referenceAllowance(const PrimitiveGeometry& geometry, const InputRounding& rounding) {
+  ReferenceAllowance allowance;
+  if (!rounding.any()) return allowance;
+  const double eu = rounding.uv, ep = rounding.position, root3 = std::sqrt(3.0);
+  const std::size_t triangles = geometry.corners.size() / 3;
+  allowance.vertexDegrees.assign(geometry.vertexCount, 0.0f);
+  allowance.orientationDecided.assign(triangles, 1);
+  std::vector<double> sum(3 * geometry.vertexCount, 0.0), movement(geometry.vertexCount, 0.0);
+  for (std::size_t t = 0; t < triangles; ++t) {
+    const std::uint32_t* c = &geometry.corners[3 * t];
+    const float* p[3] = {&geometry.positions[3 * c[0]], &geometry.positions[3 * c[1]], &geometry.positions[3 * c[2]]};
+    const float* uv[3] = {&geometry.uvs[2 * c[0]], &geometry.uvs[2 * c[1]], &geometry.uvs[2 * c[2]]};
+    double e1[3], e2[3];
+    for (int i = 0; i < 3; ++i) {
+      e1[i] = double(p[1][i]) - p[0][i];
+      e2[i] = double(p[2][i]) - p[0][i];
+    }
+    const double du1 = double(uv[1][0]) - uv[0][0], dv1 = double(uv[1][1]) - uv[0][1];
+    const double du2 = double(uv[2][0]) - uv[0][0], dv2 = double(uv[2][1]) - uv[0][1];
+    const double area = du1 * dv2 - du2 * dv1;
+    const double areaChange = 2 * eu * (std::abs(du1) + std::abs(du2) + std::abs(dv1) + std::abs(dv2)) + 8 * eu * eu;
+    const double sign = area < 0 ? -1.0 : 1.0;
+    double v[3] = {sign * (e1[0] * dv2 - e2[0] * dv1), sign * (e1[1] * dv2 - e2[1] * dv1), sign * (e1[2] * dv2 - e2[2] * dv1)};
+    const double vLength = std::hypot(v[0], v[1], v[2]);
+    double chord = 2;
+    if (!(std::abs(area) > areaChange) || !std::isfinite(area)) {
+      allowance.orientationDecided[t] = 0;
+    } else {
+      const double e1Length = std::hypot(e1[0], e1[1], e1[2]), e2Length = std::hypot(e2[0], e2[1], e2[2]);
+      const double change = 2 * eu * (e1Length + e2Length) + 2 * root3 * ep * (std::abs(dv1) + std::abs(dv2)) + 8 * root3 * ep * eu;
+      if (change < vLength) chord = 2 * std::sin(std::asin(change / vLength) / 2);
+    }
+    for (int k = 0; k < 3; ++k) {
+      const std::uint32_t vertex = c[k];
+      // Corner angle at this vertex: the weight MikkTSpace gives the triangle there.
+      const float* here = p[k];
+      const float* next = p[(k + 1) % 3];
+      const float* prev = p[(k + 2) % 3];
+      const float a[3] = {next[0] - here[0], next[1] - here[1], next[2] - here[2]};
+      const float b[3] = {prev[0] - here[0], prev[1] - here[1], prev[2] - here[2]};
+      const double weight = angleBetweenDegrees(a, b) / kDegreesPerRadian;
+      if (!std::isfinite(weight)) continue;
+      movement[vertex] += weight * chord;
+      // The triangle's tangent projected onto the vertex's normal plane, unit length.
+      const float* n = &geometry.normals[3 * vertex];
+      const double nLength = length3(n);
+      double projected[3] = {v[0], v[1], v[2]};
+      if (nLength > 0 && std::isfinite(nLength)) {
+        const double dot = (v[0] * n[0] + v[1] * n[1] + v[2] * n[2]) / (nLength * nLength);
+        for (int i = 0; i < 3; ++i) projected[i] -= dot * n[i];
+      }
+      const double projectedLength = std::hypot(projected[0], projected[1], projected[2]);
+      if (!(projectedLength > 0) || !std::isfinite(projectedLength)) continue;
+      for (int i = 0; i < 3; ++i) sum[3 * vertex + i] += weight * projected[i] / projectedLength;
+    }
+  }
+  for (std::size_t v = 0; v < geometry.vertexCount; ++v) {
+    const double size = std::hypot(sum[3 * v], sum[3 * v + 1], sum[3 * v + 2]);
+    allowance.vertexDegrees[v] =
+        movement[v] < size ? static_cast<float>(std::asin(movement[v] / size) * kDegreesPerRadian) : kUncomparableDegrees;
+  }
+  return allowance;
+}
+
+}  // namespace tangent::gltf::detail

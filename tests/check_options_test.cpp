@@ -1,0 +1,300 @@
+// `tangent check`'s per-check control (--only, --ignore, --tolerance CHECK=DEG,
+// --allow-missing, --config) and its CI formats (github, sarif, junit), on a hand-made quad
+// whose findings are known exactly; `-o -` and `bake --report -` write to standard output.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstring>
+#include <fstream>
+#include <regex>
+
+#include "support/run_command.hpp"
+#include "support/temp_dir.hpp"
+#include "tangent/check.hpp"
+
+namespace {
+
+namespace fs = std::filesystem;
+using Json = nlohmann::ordered_json;
+using tangent::testing::runCommand;
+using tangent::testing::TempDir;
+
+std::string quoted(const fs::path& path) { return "'" + path.string() + "'"; }
+
+// A unit quad in the XY plane, UVs with glTF's top-left origin, normal-mapped; the frame at
+// every vertex is T = (1, 0, 0), w = +1 (w = -sign(UV area), and the UV area is negative).
+// `tangents` (4 per vertex) replace that when given; `withTangent` false leaves TANGENT out.
+fs::path writeQuad(const fs::path& dir, const std::string& name, std::vector<float> tangents = {}, bool withTangent = true) {
+  fs::create_directories(dir);
+  const std::vector<float> positions = {0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 1, 0};
+  const std::vector<float> normals = {0, 0, 1, 0, 0, 1, 0, 0, 1, 0, 0, 1};
+  const std::vector<float> uvs = {0, 1, 1, 1, 1, 0, 0, 0};
+  if (tangents.empty()) tangents = {1, 0, 0, 1, 1, 0, 0, 1, 1, 0, 0, 1, 1, 0, 0, 1};
+  const std::vector<std::uint16_t> indices = {0, 1, 2, 0, 2, 3};
+  std::vector<std::uint8_t> bin;
+  auto append = [&](const void* data, std::size_t size) {
+    const auto* bytes = static_cast<const std::uint8_t*>(data);
+    bin.insert(bin.end(), bytes, bytes + size);
+  };
+  append(positions.data(), 48);
+  append(normals.data(), 48);
+  append(uvs.data(), 32);
+  append(tangents.data(), 64);
+  append(indices.data(), 12);
+  Json attributes = {{"POSITION", 0}, {"NORMAL", 1}, {"TEXCOORD_0", 2}};
+  if (withTangent) attributes["TANGENT"] = 3;
+  const Json doc = {
+      {"asset", {{"version", "2.0"}}},
+      {"buffers", Json::array({{{"uri", name + ".bin"}, {"byteLength", bin.size()}}})},
+      {"bufferViews", Json::array({{{"buffer", 0}, {"byteOffset", 0}, {"byteLength", 192}, {"target", 34962}},
+                                   {{"buffer", 0}, {"byteOffset", 192}, {"byteLength", 12}, {"target", 34963}}})},
+      {"accessors", Json::array({{{"bufferView", 0}, {"byteOffset", 0}, {"componentType", 5126}, {"count", 4}, {"type", "VEC3"},
+                                  {"min", {0, 0, 0}}, {"max", {1, 1, 0}}},
+                                 {{"bufferView", 0}, {"byteOffset", 48}, {"componentType", 5126}, {"count", 4}, {"type", "VEC3"}},
+                                 {{"bufferView", 0}, {"byteOffset", 96}, {"componentType", 5126}, {"count", 4}, {"type", "VEC2"}},
+                                 {{"bufferView", 0}, {"byteOffset", 128}, {"componentType", 5126}, {"count", 4}, {"type", "VEC4"}},
+                                 {{"bufferView", 1}, {"componentType", 5123}, {"count", 6}, {"type", "SCALAR"}}})},
+      {"materials", Json::array({{{"normalTexture", {{"index", 0}}}}})},
+      {"textures", Json::array({{{"source", 0}}})},
+      {"images", Json::array({{{"uri", "normal.png"}}})},
+      {"meshes", Json::array({{{"primitives", Json::array({{{"attributes", attributes}, {"indices", 4}, {"material", 0}}})}}})},
+      {"nodes", Json::array({{{"mesh", 0}}})},
+      {"scenes", Json::array({{{"nodes", {0}}}})},
+      {"scene", 0}};
+  std::ofstream(dir / (name + ".bin"), std::ios::binary).write(reinterpret_cast<const char*>(bin.data()), static_cast<std::streamsize>(bin.size()));
+  std::ofstream(dir / (name + ".gltf")) << doc.dump(2);
+  return dir / (name + ".gltf");
+}
+
+// Vertex 2 twice too long: exactly one finding, `unit`, 1 of 4 vertices.
+fs::path nonUnitQuad(const fs::path& dir) {
+  return writeQuad(dir, "quad", {1, 0, 0, 1, 1, 0, 0, 1, 2, 0, 0, 1, 1, 0, 0, 1});
+}
+
+// Every tangent turned by `inPlane` degrees about the normal and tilted `outOfPlane` degrees
+// towards it: still unit.
+fs::path turnedQuad(const fs::path& dir, const std::string& name, double inPlane, double outOfPlane) {
+  const double a = inPlane * M_PI / 180, b = outOfPlane * M_PI / 180;
+  const float t[4] = {static_cast<float>(std::cos(a) * std::cos(b)), static_cast<float>(std::sin(a) * std::cos(b)),
+                      static_cast<float>(std::sin(b)), 1};
+  std::vector<float> tangents;
+  for (int v = 0; v < 4; ++v) tangents.insert(tangents.end(), t, t + 4);
+  return writeQuad(dir, name, tangents);
+}
+
+const std::string cli = TANGENT_CLI;
+
+Json checkJson(const std::string& arguments) {
+  const auto run = runCommand("(" + cli + " check --format json " + arguments + " 2>/dev/null)");
+  try {
+    return Json::parse(run.output);
+  } catch (const std::exception& e) {
+    ADD_FAILURE() << "not JSON (" << e.what() << "): " << run.output;
+    return Json::object();
+  }
+}
+
+std::vector<std::string> findingChecks(const Json& report) {
+  std::vector<std::string> names;
+  for (const auto& file : report["files"])
+    for (const auto& p : file["primitives"])
+      for (const auto& f : p["findings"]) names.push_back(f["check"].get<std::string>());
+  return names;
+}
+
+TEST(CheckOptions, TheQuadIsCleanAndItsNonUnitTwinHasExactlyOneFinding) {
+  TempDir dir;
+  EXPECT_EQ(runCommand(cli + " check " + quoted(writeQuad(dir / "clean", "quad"))).exitCode, 0);
+  const Json report = checkJson(quoted(nonUnitQuad(dir.path())));
+  EXPECT_EQ(findingChecks(report), std::vector<std::string>{"unit"});
+  const Json& finding = report["files"][0]["primitives"][0]["findings"][0];
+  EXPECT_EQ(finding["failed"], 1);
+  EXPECT_EQ(finding["total"], 4);
+  EXPECT_EQ(finding["severityUnit"], "length");
+  EXPECT_EQ(finding["limit"], 1e-3);
+  EXPECT_EQ(finding["worst"][0]["severity"], 1.0);
+  EXPECT_EQ(finding["worst"][0]["detail"], "vertex 2 |xyz| = 2 (2, 0, 0, w 1)");
+}
+
+TEST(CheckOptions, OnlyAndIgnore) {
+  TempDir dir;
+  const fs::path quad = nonUnitQuad(dir.path());
+  const Json only = checkJson("--only unit,w " + quoted(quad));
+  const Json& p = only["files"][0]["primitives"][0];
+  EXPECT_EQ(findingChecks(only), std::vector<std::string>{"unit"});
+  EXPECT_EQ(p["passed"], Json::array({"w"}));
+  EXPECT_EQ(p["ignored"], Json::array({"present", "format", "finite", "w-uniform", "orthogonal", "handedness", "reference"}));
+  EXPECT_EQ(only["settings"]["checks"], Json::array({"unit", "w"}));
+
+  EXPECT_EQ(runCommand(cli + " check --ignore unit " + quoted(quad)).exitCode, 0);
+  const Json ignored = checkJson("--ignore unit,reference " + quoted(quad));
+  EXPECT_TRUE(findingChecks(ignored).empty());
+  EXPECT_EQ(ignored["files"][0]["primitives"][0]["ignored"], Json::array({"unit", "reference"}));
+  EXPECT_EQ(ignored["settings"]["ignored"], Json::array({"unit", "reference"}));
+  EXPECT_EQ(runCommand(cli + " check --only " + quoted(quad)).exitCode, 2);
+  EXPECT_EQ(runCommand(cli + " check --only units " + quoted(quad)).exitCode, 2);
+  EXPECT_EQ(runCommand(cli + " check --ignore present,format,finite,unit,w,w-uniform,orthogonal,handedness,reference " + quoted(quad)).exitCode, 2);
+}
+
+TEST(CheckOptions, ToleranceForEachAngularCheck) {
+  TempDir dir;
+  const fs::path turned = turnedQuad(dir.path(), "turned", 5, 0);   // reference 5 deg off, in plane
+  const fs::path tilted = turnedQuad(dir.path(), "tilted", 0, 3);   // 3 deg out of the plane
+  EXPECT_EQ(findingChecks(checkJson(quoted(turned))), std::vector<std::string>{"reference"});
+  EXPECT_TRUE(findingChecks(checkJson("--tolerance reference=6 " + quoted(turned))).empty());
+  EXPECT_EQ(findingChecks(checkJson("--tolerance orthogonal=6 " + quoted(turned))), std::vector<std::string>{"reference"});
+  EXPECT_EQ(findingChecks(checkJson(quoted(tilted))), (std::vector<std::string>{"orthogonal", "reference"}));
+  EXPECT_EQ(findingChecks(checkJson("--tolerance orthogonal=4 " + quoted(tilted))), std::vector<std::string>{"reference"});
+  EXPECT_TRUE(findingChecks(checkJson("--tolerance 4 " + quoted(tilted))).empty());
+  const Json settings = checkJson("--tolerance orthogonal=4 " + quoted(tilted))["settings"];
+  EXPECT_EQ(settings["tolerance"], (Json{{"orthogonal", 4.0}, {"reference", 1.0}}));
+  EXPECT_EQ(runCommand(cli + " check --tolerance handedness=4 " + quoted(tilted)).exitCode, 2);
+  EXPECT_EQ(runCommand(cli + " check --tolerance reference=0 " + quoted(tilted)).exitCode, 2);
+}
+
+TEST(CheckOptions, AllowMissing) {
+  TempDir dir;
+  const fs::path missing = writeQuad(dir.path(), "missing", {}, false);
+  const auto failing = runCommand(cli + " check " + quoted(missing));
+  EXPECT_EQ(failing.exitCode, 1);
+  EXPECT_NE(failing.output.find("FAIL present"), std::string::npos) << failing.output;
+  const auto allowed = runCommand(cli + " check --allow-missing " + quoted(missing));
+  EXPECT_EQ(allowed.exitCode, 0) << allowed.output;
+  EXPECT_NE(allowed.output.find("skipped mesh 0 primitive 0: no TANGENT, allowed (--allow-missing"), std::string::npos) << allowed.output;
+  // A TANGENT that is present is still checked.
+  EXPECT_EQ(runCommand(cli + " check --allow-missing " + quoted(nonUnitQuad(dir.path()))).exitCode, 1);
+}
+
+TEST(CheckOptions, ConfigFileWithTheSameSettingsAndCommandLineOverrides) {
+  TempDir dir;
+  const fs::path turned = turnedQuad(dir.path(), "turned", 5, 0);
+  const fs::path missing = writeQuad(dir.path(), "missing", {}, false);
+  const fs::path config = dir / "tangent-check.json";
+  std::ofstream(config) << R"({"tolerance": {"reference": 6}, "ignore": ["unit"], "allowMissing": true})";
+  const Json report = checkJson("--config " + quoted(config) + " " + quoted(turned) + " " + quoted(missing));
+  EXPECT_TRUE(findingChecks(report).empty());
+  EXPECT_EQ(report["settings"]["config"], config.string());
+  EXPECT_EQ(report["settings"]["tolerance"]["reference"], 6.0);
+  EXPECT_EQ(report["settings"]["ignored"], Json::array({"unit"}));
+  EXPECT_EQ(report["settings"]["allowMissing"], true);
+  // The command line wins, wherever --config stands.
+  EXPECT_EQ(findingChecks(checkJson(quoted(turned) + " --tolerance reference=2 --config " + quoted(config))),
+            std::vector<std::string>{"reference"});
+  for (const std::string bad : {R"({"ignore": ["units"]})", R"({"tolerance": {"w": 2}})", R"({"colour": 1})", "[1"}) {
+    std::ofstream(dir / "bad.json") << bad;
+    const auto run = runCommand(cli + " check --config " + quoted(dir / "bad.json") + " " + quoted(turned));
+    EXPECT_EQ(run.exitCode, 2) << bad;
+    EXPECT_NE(run.output.find("bad.json"), std::string::npos) << run.output;
+  }
+}
+
+TEST(CheckFormats, GithubAnnotationsExactly) {
+  TempDir dir;
+  const fs::path quad = nonUnitQuad(dir.path());
+  const auto run = runCommand(cli + " check --format github " + quoted(quad));
+  EXPECT_EQ(run.exitCode, 1);
+  EXPECT_EQ(run.output, "::error file=" + quad.string() + ",title=tangent check unit (mesh 0 primitive 0)::mesh 0 primitive 0: "
+                        "1 of 4 vertices: |xyz| differs from 1 by more than 0.001 (float)%0Aworst: vertex 2 |xyz| = 2 (2, 0, 0, w 1)\n"
+                        "::notice title=tangent check::1 file(s), 1 primitive(s) checked, 1 finding(s)\n");
+  // Commas and colons in a file name are escaped in the property.
+  const fs::path odd = dir / "a,b:c";
+  fs::create_directories(odd);
+  const fs::path oddQuad = nonUnitQuad(odd);
+  const auto escaped = runCommand(cli + " check --format github " + quoted(oddQuad));
+  EXPECT_EQ(escaped.output.rfind("::error file=" + dir.path().string() + "/a%2Cb%3Ac/quad.gltf,title=", 0), 0u) << escaped.output;
+  const auto unreadable = runCommand("(" + cli + " check --format github " + quoted(dir / "none.glb") + " 2>/dev/null)");
+  EXPECT_EQ(unreadable.exitCode, 2);
+  EXPECT_EQ(unreadable.output.rfind("::error file=" + (dir / "none.glb").string() + ",title=tangent check%3A unreadable::", 0), 0u)
+      << unreadable.output;
+}
+
+// SARIF 2.1.0: no schema validator or schema file is available offline here, so this asserts
+// the schema's required properties (sarifLog: version, runs; run: tool; tool: driver;
+// toolComponent: name; reportingDescriptor: id; result: message; message: text;
+// invocation: executionSuccessful; notification: message) and the exact content.
+TEST(CheckFormats, SarifStructureAndContent) {
+  TempDir dir;
+  const fs::path quad = nonUnitQuad(dir.path());
+  const fs::path clean = writeQuad(dir / "clean dir", "clean");
+  const auto run = runCommand("(" + cli + " check --format sarif -o - " + quoted(quad) + " " + quoted(clean) + " " + quoted(dir / "none.glb") + " 2>/dev/null)");
+  EXPECT_EQ(run.exitCode, 2);  // one input unreadable
+  const Json log = Json::parse(run.output);
+  ASSERT_EQ(log["version"], "2.1.0");
+  EXPECT_EQ(log["$schema"], "https://json.schemastore.org/sarif-2.1.0.json");
+  ASSERT_EQ(log["runs"].size(), 1u);
+  const Json& sarifRun = log["runs"][0];
+  const Json& driver = sarifRun["tool"]["driver"];
+  EXPECT_EQ(driver["name"], "tangent check");
+  ASSERT_EQ(driver["rules"].size(), std::size(tangent::gltf::kCheckNames));
+  for (std::size_t i = 0; i < driver["rules"].size(); ++i) {
+    EXPECT_EQ(driver["rules"][i]["id"], tangent::gltf::kCheckNames[i]);
+    EXPECT_TRUE(driver["rules"][i]["shortDescription"]["text"].is_string());
+  }
+  ASSERT_EQ(sarifRun["results"].size(), 1u);
+  const Json& result = sarifRun["results"][0];
+  EXPECT_EQ(result["ruleId"], "unit");
+  EXPECT_EQ(result["ruleIndex"], 3);
+  EXPECT_EQ(result["level"], "error");
+  EXPECT_EQ(result["message"]["text"], "mesh 0 primitive 0: 1 of 4 vertices: |xyz| differs from 1 by more than 0.001 (float)");
+  EXPECT_EQ(result["locations"][0]["physicalLocation"]["artifactLocation"]["uri"], quad.string());
+  EXPECT_EQ(result["locations"][0]["logicalLocations"][0]["fullyQualifiedName"], "/meshes/0/primitives/0");
+  EXPECT_EQ(result["properties"]["failed"], 1);
+  const Json& invocation = sarifRun["invocations"][0];
+  EXPECT_EQ(invocation["executionSuccessful"], false);
+  ASSERT_EQ(invocation["toolExecutionNotifications"].size(), 1u);
+  EXPECT_TRUE(invocation["toolExecutionNotifications"][0]["message"]["text"].is_string());
+  EXPECT_EQ(invocation["toolExecutionNotifications"][0]["locations"][0]["physicalLocation"]["artifactLocation"]["uri"],
+            (dir / "none.glb").string());
+  EXPECT_EQ(invocation["properties"]["settings"]["method"], "mikktspace");
+  // A path with a space is a percent-encoded URI reference.
+  const auto spaced = Json::parse(runCommand(cli + " check --format sarif " + quoted(writeQuad(dir / "clean dir", "x", {2, 0, 0, 1, 1, 0, 0, 1, 1, 0, 0, 1, 1, 0, 0, 1}))).output);
+  EXPECT_EQ(spaced["runs"][0]["results"][0]["locations"][0]["physicalLocation"]["artifactLocation"]["uri"],
+            (dir.path() / "clean%20dir/x.gltf").string());
+}
+
+TEST(CheckFormats, JunitHasTimeTimestampFileAndSkipped) {
+  TempDir dir;
+  const fs::path quad = nonUnitQuad(dir.path());
+  const fs::path missing = writeQuad(dir.path(), "missing", {}, false);
+  const fs::path report = dir / "report.xml";
+  EXPECT_EQ(runCommand(cli + " check --format junit -o " + quoted(report) + " " + quoted(quad) + " " + quoted(missing)).exitCode, 1);
+  const std::string script = R"(import sys, re, xml.etree.ElementTree as ET
+root = ET.parse(sys.argv[1]).getroot()
+print(root.tag, root.get('tests'), root.get('failures'), root.get('errors'), root.get('skipped'), float(root.get('time')) >= 0)
+for suite in root.findall('testsuite'):
+    assert re.fullmatch(r'\d{4}-\d\d-\d\dT\d\d:\d\d:\d\d', suite.get('timestamp')), suite.get('timestamp')
+    assert float(suite.get('time')) >= 0
+    print(suite.get('name') == suite.get('file'), suite.get('tests'), suite.get('failures'), suite.get('skipped'))
+    for case in suite.findall('testcase'):
+        assert case.get('file') == suite.get('file')
+        state = 'failure' if case.find('failure') is not None else 'skipped' if case.find('skipped') is not None else 'ok'
+        print(' ', case.get('name'), state)
+)";
+  std::ofstream(dir / "read.py") << script;
+  const auto parsed = runCommand("/usr/bin/python3 " + quoted(dir / "read.py") + " " + quoted(report));
+  ASSERT_EQ(parsed.exitCode, 0) << parsed.output;
+  EXPECT_EQ(parsed.output,
+            "testsuites 18 2 0 8 True\n"
+            "True 9 1 0\n  present ok\n  format ok\n  finite ok\n  w ok\n  w-uniform ok\n  handedness ok\n  orthogonal ok\n"
+            "  reference ok\n  unit failure\n"
+            "True 9 1 8\n  present failure\n  format skipped\n  finite skipped\n  unit skipped\n  w skipped\n  w-uniform skipped\n"
+            "  orthogonal skipped\n  handedness skipped\n  reference skipped\n");
+}
+
+TEST(CheckFormats, DashWritesToStandardOutput) {
+  TempDir dir;
+  const fs::path quad = nonUnitQuad(dir.path());
+  const auto json = runCommand("(" + cli + " check --format json -o - " + quoted(quad) + " 2>/dev/null)");
+  EXPECT_EQ(json.exitCode, 1);
+  EXPECT_EQ(Json::parse(json.output)["schema"], "libtangent-check/2");
+  EXPECT_FALSE(fs::exists("-"));
+  // bake --report -: the report on stdout, the human-readable lines on stderr.
+  const auto bake = runCommand("(" + cli + " bake " + quoted(quad) + " -o " + quoted(dir / "out.glb") + " --report - 2>/dev/null)");
+  ASSERT_EQ(bake.exitCode, 0) << bake.output;
+  const Json report = Json::parse(bake.output);
+  EXPECT_EQ(report[0]["primitives"][0]["action"], "baked");
+  EXPECT_EQ(report[0]["primitives"][0]["failedChecks"], Json::array({"unit"}));
+  EXPECT_EQ(report[0]["primitives"][0]["reason"], "existing TANGENT fails tangent check (unit: 1 of 4 vertices); recomputed");
+}
+
+}  // namespace

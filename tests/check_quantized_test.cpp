@@ -1,0 +1,475 @@
+// The stored-tangent rules on quantized data (issue 11): the derived limits, clean bakes through
+// gltfpack and gltf-transform quantize checking clean, every negative control caught in
+// float and quantized form, bake keeping exactly what check passes, and bake's quantized
+// TANGENT output.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstring>
+#include <fstream>
+#include <functional>
+#include <set>
+
+#include "accessors.hpp"
+#include "asset.hpp"
+#include "primitive.hpp"
+#include "support/run_command.hpp"
+#include "support/skip_or_fail.hpp"
+#include "support/temp_dir.hpp"
+#include "support/test_assets.hpp"
+#include "tangent/check.hpp"
+#include "tangent/gltf.hpp"
+#include "tangent_rules.hpp"
+
+namespace {
+
+namespace fs = std::filesystem;
+using Json = nlohmann::ordered_json;
+using tangent::gltf::FileCheck;
+using tangent::testing::runCommand;
+using tangent::testing::TempDir;
+namespace detail = tangent::gltf::detail;
+
+std::string quoted(const fs::path& path) { return "'" + path.string() + "'"; }
+
+// ---- the derived limits, to the digits the README states ----
+
+TEST(TangentRules, LimitsFollowFromTheRoundingStep) {
+  using detail::StoredComponent;
+  const auto byte = detail::storedVectorRounding(StoredComponent::normalizedByte);
+  EXPECT_EQ(byte.significantBits, 8);
+  EXPECT_DOUBLE_EQ(byte.componentError, 0.5 / 127);
+  EXPECT_NEAR(byte.lengthDeviation, 6.819e-3, 1e-6);
+  EXPECT_NEAR(byte.angleDegrees, 0.3907, 1e-4);
+  const auto shortRounding = detail::storedVectorRounding(StoredComponent::normalizedShort);
+  EXPECT_EQ(shortRounding.significantBits, 10);
+  EXPECT_DOUBLE_EQ(shortRounding.componentError, 0.5 / 511 + 0.5 / 32767);
+  EXPECT_NEAR(shortRounding.lengthDeviation, 1.7212e-3, 1e-6);
+  EXPECT_NEAR(shortRounding.angleDegrees, 0.09862, 1e-4);
+  const auto floats = detail::storedTangentLimits(StoredComponent::float32, StoredComponent::float32);
+  EXPECT_EQ(floats.unitDeviation, 1e-3);
+  EXPECT_EQ(detail::orthogonalLimitDegrees(floats, 1.0), 1.0);
+  EXPECT_EQ(detail::referenceLimitDegrees(floats, 1.0, 0.0), 1.0);
+  const auto packed = detail::storedTangentLimits(StoredComponent::normalizedByte, StoredComponent::normalizedShort);
+  EXPECT_NEAR(packed.unitDeviation, 6.819e-3, 1e-6);
+  EXPECT_NEAR(detail::orthogonalLimitDegrees(packed, 1.0), 1.0 + 0.3907 + 0.0986, 1e-3);
+  EXPECT_NEAR(detail::referenceLimitDegrees(packed, 2.0, 3.0), 2.0 + 0.3907 + 0.0986 + 3.0, 1e-3);
+  EXPECT_FALSE(detail::storedComponentOf(5121, true));  // UNSIGNED_BYTE is not allowed for TANGENT
+  EXPECT_FALSE(detail::storedComponentOf(5122, false)); // SHORT must be normalized
+}
+
+TEST(TangentRules, RoundingAFrameStaysInsideTheLimits) {
+  // Every unit vector on a fine sphere grid, rounded to 8 and to 10 significant bits (in 16):
+  // the worst deviation found stays under the derived bound and comes close to it.
+  double worstByte = 0, worstShort = 0;
+  for (int i = 0; i <= 200; ++i) {
+    for (int j = 0; j < 400; ++j) {
+      const double theta = M_PI * i / 200, phi = 2 * M_PI * j / 400;
+      const double v[3] = {std::sin(theta) * std::cos(phi), std::sin(theta) * std::sin(phi), std::cos(theta)};
+      float byte[3], tenBits[3];
+      for (int k = 0; k < 3; ++k) {
+        byte[k] = static_cast<float>(std::lround(v[k] * 127) / 127.0);
+        tenBits[k] = static_cast<float>(std::lround(std::lround(v[k] * 511) / 511.0 * 32767) / 32767.0);
+      }
+      worstByte = std::max(worstByte, detail::unitDeviation(byte));
+      worstShort = std::max(worstShort, detail::unitDeviation(tenBits));
+    }
+  }
+  const auto byteLimits = detail::storedTangentLimits(detail::StoredComponent::normalizedByte, detail::StoredComponent::float32);
+  const auto shortLimits = detail::storedTangentLimits(detail::StoredComponent::normalizedShort, detail::StoredComponent::float32);
+  EXPECT_LE(worstByte, byteLimits.unitDeviation);
+  EXPECT_GT(worstByte, 0.5 * byteLimits.unitDeviation);
+  EXPECT_LE(worstShort, shortLimits.unitDeviation);
+  EXPECT_GT(worstShort, 0.5 * shortLimits.unitDeviation);
+}
+
+// ---- GLB surgery ----
+
+struct Glb {
+  Json json;
+  std::vector<std::uint8_t> bin;
+};
+
+Glb readGlb(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::vector<std::uint8_t> bytes((std::istreambuf_iterator<char>(in)), {});
+  std::uint32_t jsonLength = 0, binLength = 0;
+  std::memcpy(&jsonLength, &bytes[12], 4);
+  Glb glb;
+  glb.json = Json::parse(bytes.begin() + 20, bytes.begin() + 20 + jsonLength);
+  if (bytes.size() > 20 + jsonLength + 8) {
+    std::memcpy(&binLength, &bytes[20 + jsonLength], 4);
+    glb.bin.assign(bytes.begin() + 20 + jsonLength + 8, bytes.begin() + 20 + jsonLength + 8 + binLength);
+  }
+  return glb;
+}
+
+void writeGlb(const Glb& glb, const fs::path& path) {
+  std::string json = glb.json.dump();
+  while (json.size() % 4) json += ' ';
+  std::vector<std::uint8_t> bin = glb.bin;
+  while (bin.size() % 4) bin.push_back(0);
+  auto u32 = [](std::ofstream& out, std::uint32_t value) { out.write(reinterpret_cast<const char*>(&value), 4); };
+  std::ofstream out(path, std::ios::binary);
+  const std::uint32_t total = 12 + 8 + static_cast<std::uint32_t>(json.size()) + (bin.empty() ? 0 : 8 + static_cast<std::uint32_t>(bin.size()));
+  u32(out, 0x46546C67);
+  u32(out, 2);
+  u32(out, total);
+  u32(out, static_cast<std::uint32_t>(json.size()));
+  u32(out, 0x4E4F534A);
+  out << json;
+  if (!bin.empty()) {
+    u32(out, static_cast<std::uint32_t>(bin.size()));
+    u32(out, 0x004E4942);
+    out.write(reinterpret_cast<const char*>(bin.data()), static_cast<std::streamsize>(bin.size()));
+  }
+}
+
+struct TangentEdit {
+  std::vector<float> tangents;        // 4 per vertex, decoded
+  std::vector<std::uint32_t> corners;  // the primitive's triangles
+  std::vector<float> uvs;              // the normal texture's UV set, as check reads it
+};
+
+// Decodes primitive 0 of mesh 0's TANGENT (float, normalized BYTE or SHORT, any stride),
+// lets `edit` change it, and writes it back in the same component type (rounded to nearest).
+void patchTangents(const fs::path& glbPath, const std::function<void(TangentEdit&)>& edit) {
+  const detail::Asset asset = detail::loadAsset(glbPath);
+  const Json& primitive = asset.json["meshes"][0]["primitives"][0];
+  const int accessorIndex = primitive["attributes"]["TANGENT"].get<int>();
+  TangentEdit view;
+  view.tangents = detail::toFloats(detail::readAccessor(asset.model, accessorIndex, "TANGENT"));
+  const auto needs = detail::primitiveNeeds(asset.json, primitive, false);
+  const auto geometry = detail::readGeometry(asset, primitive, needs, "patch");
+  view.corners = geometry.corners;
+  view.uvs = geometry.uvs;
+  edit(view);
+  Glb glb = readGlb(glbPath);
+  const Json& accessor = glb.json["accessors"][accessorIndex];
+  const Json& bufferView = glb.json["bufferViews"][accessor["bufferView"].get<int>()];
+  const int componentType = accessor["componentType"].get<int>();
+  const std::size_t componentSize = componentType == 5126 ? 4 : componentType == 5122 ? 2 : 1;
+  const std::size_t stride = bufferView.value("byteStride", 4 * componentSize);
+  const std::size_t start = bufferView.value("byteOffset", 0) + accessor.value("byteOffset", 0);
+  for (std::size_t v = 0; v < view.tangents.size() / 4; ++v) {
+    for (int k = 0; k < 4; ++k) {
+      std::uint8_t* at = &glb.bin[start + v * stride + k * componentSize];
+      const float value = view.tangents[4 * v + k];
+      if (componentType == 5126) {
+        std::memcpy(at, &value, 4);
+      } else if (componentType == 5122) {
+        const auto q = static_cast<std::int16_t>(std::lround(std::clamp(value, -1.0f, 1.0f) * 32767));
+        std::memcpy(at, &q, 2);
+      } else {
+        const auto q = static_cast<std::int8_t>(std::lround(std::clamp(value, -1.0f, 1.0f) * 127));
+        std::memcpy(at, &q, 1);
+      }
+    }
+  }
+  writeGlb(glb, glbPath);
+}
+
+std::vector<std::string> findingNames(const FileCheck& check) {
+  std::vector<std::string> names;
+  for (const auto& p : check.primitives)
+    for (const auto& f : p.findings) names.push_back(f.check);
+  return names;
+}
+
+std::string describe(const FileCheck& check) {
+  std::string text = check.error;
+  for (const auto& p : check.primitives)
+    for (const auto& f : p.findings) text += " [" + f.check + ": " + std::to_string(f.failed) + " of " + std::to_string(f.total) + ": " + f.message + (f.worst.empty() ? "" : " e.g. " + f.worst.front().detail) + "]";
+  return text;
+}
+
+// ---- the tools that quantize ----
+
+std::string gltfpack() {
+  const auto found = runCommand("command -v gltfpack");
+  return found.exitCode == 0 ? "gltfpack" : "";
+}
+
+fs::path gltfTransform() {
+  const fs::path cli = fs::path(TANGENT_SOURCE_DIR) / "tests/node/node_modules/.bin/gltf-transform";
+  return fs::exists(cli) ? cli : fs::path();
+}
+
+// The clean bakes the quantized files start from: the generated mirrored and second-UV-set
+// meshes and the shared sample assets where present.
+std::vector<fs::path> cleanBakes(const TempDir& dir, bool& sharedPresent) {
+  std::vector<fs::path> baked;
+  const auto all = tangent::testing::makeTestAssets();
+  for (const std::string name : {"interleaved_ubyte", "second_uv_set"}) {
+    auto asset = *std::find_if(all.begin(), all.end(), [&](const auto& a) { return a.name == name; });
+    // gltfpack 0.18 drops KHR_texture_transform's texCoord override (second_uv_set's second
+    // primitive then samples TEXCOORD_0, and check rightly fails its reference): only the
+    // primitive whose normalTexture.texCoord names TEXCOORD_1 goes through the tools.
+    if (name == "second_uv_set") asset.json["meshes"][0]["primitives"].erase(1);
+    const fs::path input = tangent::testing::writeAsset(asset, dir / "in", true);
+    baked.push_back(dir / (name + "-baked.glb"));
+    tangent::gltf::bakeFile(input, baked.back(), {});
+  }
+  const fs::path shared = tangent::testing::sharedAssets();
+  sharedPresent = !shared.empty();
+  if (sharedPresent) {
+    for (const std::string name : {"NormalTangentTest", "NormalTangentMirrorTest"}) {
+      baked.push_back(dir / (name + "-baked.glb"));
+      tangent::gltf::bakeFile(shared / (name + ".glb"), baked.back(), {.overwrite = true});
+    }
+  }
+  return baked;
+}
+
+// Every quantized form of `input`: gltfpack defaults, -vn 8, -vn 12; gltf-transform quantize.
+std::vector<fs::path> quantizedForms(const fs::path& input, const fs::path& dir) {
+  std::vector<fs::path> outputs;
+  const std::string stem = input.stem().string();
+  for (const auto& [suffix, flags] : {std::pair{"gltfpack", ""}, std::pair{"gltfpack-vn8", " -vn 8"}, std::pair{"gltfpack-vn12", " -vn 12"}}) {
+    const fs::path out = dir / (stem + "-" + suffix + ".glb");
+    const auto run = runCommand("gltfpack -i " + quoted(input) + " -o " + quoted(out) + flags);
+    EXPECT_EQ(run.exitCode, 0) << run.output;
+    outputs.push_back(out);
+  }
+  const fs::path out = dir / (stem + "-gltf-transform-quantize.glb");
+  const auto run = runCommand(quoted(gltfTransform()) + " quantize " + quoted(input) + " " + quoted(out));
+  EXPECT_EQ(run.exitCode, 0) << run.output;
+  outputs.push_back(out);
+  return outputs;
+}
+
+// bake keeps a TANGENT exactly when check passes it, and otherwise names the failed checks.
+void expectBakeAgreesWithCheck(const fs::path& input, const fs::path& dir) {
+  const FileCheck check = tangent::gltf::checkFile(input, {});
+  ASSERT_TRUE(check.error.empty()) << check.error;
+  const tangent::gltf::BakeResult baked = tangent::gltf::bakeFile(input, dir / ("rebaked-" + input.filename().string()), {});
+  for (const auto& p : check.primitives) {
+    const auto found = std::find_if(baked.primitives.begin(), baked.primitives.end(),
+                                    [&](const auto& b) { return b.mesh == p.mesh && b.primitive == p.primitive; });
+    ASSERT_NE(found, baked.primitives.end());
+    std::vector<std::string> names;
+    for (const auto& f : p.findings) names.push_back(f.check);
+    if (p.findings.empty()) {
+      EXPECT_EQ(found->action, "kept") << input << ": " << found->reason;
+    } else {
+      EXPECT_EQ(found->action, "baked") << input;
+      EXPECT_EQ(found->failedChecks, names) << input;
+      EXPECT_NE(found->reason.find("fails tangent check (" + names.front() + ": "), std::string::npos) << found->reason;
+    }
+  }
+}
+
+TEST(QuantizedCheck, CleanBakesThroughGltfpackAndGltfTransformCheckClean) {
+  if (gltfpack().empty()) TANGENT_SKIP_OR_FAIL("gltfpack is not installed (scripts/install-deps.sh): quantized inputs not tested");
+  if (gltfTransform().empty()) TANGENT_SKIP_OR_FAIL("tests/node/node_modules is absent (npm ci): gltf-transform quantize not tested");
+  TempDir dir;
+  bool sharedPresent = false;
+  const std::vector<fs::path> bakes = cleanBakes(dir, sharedPresent);
+  std::set<std::string> tangentComponents;
+  for (const fs::path& baked : bakes) {
+    for (const fs::path& quantized : quantizedForms(baked, dir.path())) {
+      const FileCheck check = tangent::gltf::checkFile(quantized, {});
+      EXPECT_TRUE(check.clean()) << quantized << ": " << describe(check);
+      ASSERT_FALSE(check.primitives.empty()) << quantized;
+      for (const auto& p : check.primitives) {
+        tangentComponents.insert(p.tangentComponent);
+        EXPECT_LT(p.referenceUnresolved, p.triangles * 3) << quantized << ": the reference still compares most corners";
+      }
+      expectBakeAgreesWithCheck(quantized, dir.path());
+    }
+  }
+  // gltfpack stores TANGENT as BYTE, gltf-transform as SHORT: both limits were exercised.
+  EXPECT_EQ(tangentComponents, (std::set<std::string>{"normalized BYTE", "normalized SHORT"}));
+  if (!sharedPresent) TANGENT_SKIP_OR_FAIL("../shared/assets is absent: only the generated meshes were quantized");
+}
+
+// A negative control: what it does to the tangents, and the check that must catch it.
+struct Control {
+  std::string name;
+  std::string check;
+  std::function<void(TangentEdit&)> edit;
+};
+
+std::vector<std::uint32_t> islandOfTriangleZero(const TangentEdit& view) {
+  // Triangles connected to triangle 0 through shared vertices: one UV island, since a bake
+  // splits vertices where the frame changes.
+  const std::size_t triangles = view.corners.size() / 3;
+  std::vector<char> inIsland(triangles, 0), vertexSeen(view.tangents.size() / 4, 0);
+  vertexSeen[view.corners[0]] = vertexSeen[view.corners[1]] = vertexSeen[view.corners[2]] = 1;
+  for (bool grew = true; grew;) {
+    grew = false;
+    for (std::size_t t = 0; t < triangles; ++t) {
+      if (inIsland[t]) continue;
+      const std::uint32_t* c = &view.corners[3 * t];
+      if (vertexSeen[c[0]] || vertexSeen[c[1]] || vertexSeen[c[2]]) {
+        inIsland[t] = 1;
+        grew = true;
+        for (int k = 0; k < 3; ++k) vertexSeen[c[k]] = 1;
+      }
+    }
+  }
+  std::vector<std::uint32_t> vertices;
+  for (std::size_t v = 0; v < vertexSeen.size(); ++v)
+    if (vertexSeen[v]) vertices.push_back(static_cast<std::uint32_t>(v));
+  return vertices;
+}
+
+std::vector<Control> controls() {
+  return {
+      {"w negated on an island", "handedness",
+       [](TangentEdit& view) {
+         for (std::uint32_t v : islandOfTriangleZero(view)) view.tangents[4 * v + 3] = -view.tangents[4 * v + 3];
+       }},
+      {"reversed bitangent", "handedness",
+       [](TangentEdit& view) {
+         for (std::size_t v = 0; v < view.tangents.size() / 4; ++v) view.tangents[4 * v + 3] = -view.tangents[4 * v + 3];
+       }},
+      {"non-unit", "unit",
+       [](TangentEdit& view) {
+         for (int k = 0; k < 3; ++k) view.tangents[k] *= 0.5f;
+       }},
+      {"w = 0.5", "w", [](TangentEdit& view) { view.tangents[3] = 0.5f; }},
+  };
+}
+
+// The wrong UV set: tangents computed from TEXCOORD_0 while the normal texture samples TEXCOORD_1.
+void useWrongUvSet(const fs::path& glbPath) {
+  const detail::Asset asset = detail::loadAsset(glbPath);
+  const Json& primitive = asset.json["meshes"][0]["primitives"][0];
+  detail::PrimitiveNeeds wrong = detail::primitiveNeeds(asset.json, primitive, false);
+  ASSERT_EQ(wrong.texCoord, 1);
+  wrong.texCoord = 0;
+  wrong.hasNormalTexture = false;
+  const auto geometry = detail::readGeometry(asset, primitive, wrong, "wrong set");
+  std::vector<float> cornerTangents(geometry.corners.size() * 4);
+  tangent::computeCornerTangents({geometry.positions, geometry.normals, geometry.uvs, geometry.corners}, cornerTangents);
+  patchTangents(glbPath, [&](TangentEdit& view) {
+    for (std::size_t c = 0; c < geometry.corners.size(); ++c)
+      std::memcpy(&view.tangents[4 * geometry.corners[c]], &cornerTangents[4 * c], 16);
+  });
+}
+
+void removeTangent(const fs::path& glbPath) {
+  Glb glb = readGlb(glbPath);
+  glb.json["meshes"][0]["primitives"][0]["attributes"].erase("TANGENT");
+  writeGlb(glb, glbPath);
+}
+
+void expectCaught(const fs::path& file, const std::string& control, const std::string& check) {
+  const FileCheck result = tangent::gltf::checkFile(file, {});
+  const auto names = findingNames(result);
+  EXPECT_NE(std::find(names.begin(), names.end(), check), names.end())
+      << control << " in " << file.filename() << " not caught by " << check << ": " << describe(result);
+}
+
+TEST(QuantizedCheck, NegativeControlsAreCaughtInFloatAndQuantizedForm) {
+  if (gltfpack().empty()) TANGENT_SKIP_OR_FAIL("gltfpack is not installed (scripts/install-deps.sh): quantized inputs not tested");
+  if (gltfTransform().empty()) TANGENT_SKIP_OR_FAIL("tests/node/node_modules is absent (npm ci): gltf-transform quantize not tested");
+  TempDir dir;
+  bool sharedPresent = false;
+  const std::vector<fs::path> bakes = cleanBakes(dir, sharedPresent);
+  std::vector<fs::path> forms;  // every clean file, float and quantized
+  for (const fs::path& baked : bakes) {
+    forms.push_back(baked);
+    for (const fs::path& quantized : quantizedForms(baked, dir.path())) forms.push_back(quantized);
+  }
+  int index = 0;
+  for (const fs::path& form : forms) {
+    ASSERT_TRUE(tangent::gltf::checkFile(form, {}).clean()) << form;
+    auto variant = [&](const std::string& name) {
+      const fs::path copy = dir / ("control-" + std::to_string(index++) + "-" + form.filename().string());
+      fs::copy_file(form, copy);
+      (void)name;
+      return copy;
+    };
+    for (const Control& control : controls()) {
+      const fs::path copy = variant(control.name);
+      patchTangents(copy, control.edit);
+      expectCaught(copy, control.name, control.check);
+      if (control.name == "w negated on an island") expectCaught(copy, control.name, "reference");
+      expectBakeAgreesWithCheck(copy, dir.path());
+    }
+    const fs::path missing = variant("missing");
+    removeTangent(missing);
+    expectCaught(missing, "missing", "present");
+    if (form.filename().string().find("second_uv_set") != std::string::npos) {
+      const fs::path wrong = variant("wrong UV set");
+      useWrongUvSet(wrong);
+      expectCaught(wrong, "wrong UV set", "reference");
+      expectBakeAgreesWithCheck(wrong, dir.path());
+    }
+    // NaN has no quantized form (integers are finite): the float control only.
+    if (detail::loadAsset(form).json["accessors"][detail::loadAsset(form).json["meshes"][0]["primitives"][0]["attributes"]["TANGENT"].get<int>()]["componentType"] == 5126) {
+      const fs::path nan = variant("NaN");
+      patchTangents(nan, [](TangentEdit& view) { view.tangents[1] = std::nanf(""); });
+      expectCaught(nan, "NaN", "finite");
+      expectBakeAgreesWithCheck(nan, dir.path());
+    }
+  }
+  if (!sharedPresent) TANGENT_SKIP_OR_FAIL("../shared/assets is absent: controls ran on the generated meshes only");
+}
+
+// ---- bake --tangent-format ----
+
+TEST(QuantizedOutput, ShortAndByteTangentsCheckCleanAndDeclareTheExtension) {
+  TempDir dir;
+  const auto all = tangent::testing::makeTestAssets();
+  for (const auto& format : {tangent::gltf::TangentFormat::normalizedShort, tangent::gltf::TangentFormat::normalizedByte}) {
+    for (const auto& asset : all) {
+      const fs::path input = tangent::testing::writeAsset(asset, dir / "in", true);
+      const fs::path output = dir / (asset.name + "-" + tangent::gltf::toString(format) + ".glb");
+      tangent::gltf::BakeOptions options;
+      options.tangentFormat = format;
+      options.overwrite = true;
+      const auto result = tangent::gltf::bakeFile(input, output, options);
+      bool bakedAny = false;
+      for (const auto& p : result.primitives) bakedAny = bakedAny || p.action == "baked";
+      const FileCheck check = tangent::gltf::checkFile(output, {});
+      EXPECT_TRUE(check.clean()) << output << ": " << describe(check);
+      const Glb glb = readGlb(output);
+      const auto has = [&](const char* list) {
+        return glb.json.contains(list) &&
+               std::find(glb.json[list].begin(), glb.json[list].end(), Json("KHR_mesh_quantization")) != glb.json[list].end();
+      };
+      EXPECT_EQ(has("extensionsUsed"), bakedAny) << output;
+      EXPECT_EQ(has("extensionsRequired"), bakedAny) << output;
+      for (const auto& p : check.primitives) {
+        if (!bakedAny) break;
+        const auto baked = std::find_if(result.primitives.begin(), result.primitives.end(),
+                                        [&](const auto& b) { return b.mesh == p.mesh && b.primitive == p.primitive; });
+        if (baked->action != "baked") continue;
+        EXPECT_EQ(p.tangentComponent, format == tangent::gltf::TangentFormat::normalizedShort ? "normalized SHORT" : "normalized BYTE")
+            << output;
+      }
+    }
+  }
+}
+
+TEST(QuantizedOutput, CliTangentFormatAndValidator) {
+  TempDir dir;
+  const fs::path validator = fs::path(TANGENT_SOURCE_DIR) / "tests/node/validate.mjs";
+  const fs::path nodeModules = fs::path(TANGENT_SOURCE_DIR) / "tests/node/node_modules/gltf-validator";
+  const auto all = tangent::testing::makeTestAssets();
+  const auto& asset = *std::find_if(all.begin(), all.end(), [&](const auto& a) { return a.name == "interleaved_ubyte"; });
+  const fs::path input = tangent::testing::writeAsset(asset, dir / "in", true);
+  const std::string cli = TANGENT_CLI;
+  std::vector<fs::path> outputs;
+  for (const std::string format : {"short", "byte"}) {
+    for (const std::string extension : {".glb", ".gltf"}) {
+      const fs::path output = dir / ("out-" + format + extension);
+      const auto bake = runCommand(cli + " bake " + quoted(input) + " -o " + quoted(output) + " --tangent-format " + format + " --quiet");
+      ASSERT_EQ(bake.exitCode, 0) << bake.output;
+      const auto check = runCommand(cli + " check " + quoted(output));
+      EXPECT_EQ(check.exitCode, 0) << check.output;
+      outputs.push_back(output);
+    }
+  }
+  EXPECT_EQ(runCommand(cli + " bake " + quoted(input) + " -o " + quoted(dir / "x.glb") + " --tangent-format half").exitCode, 2);
+  if (!fs::exists(nodeModules)) TANGENT_SKIP_OR_FAIL("tests/node/node_modules is absent (npm ci): the validator was not run");
+  std::string command = "node " + quoted(validator);
+  for (const auto& output : outputs) command += " " + quoted(output);
+  const auto validated = runCommand(command);
+  EXPECT_EQ(validated.exitCode, 0) << validated.output;
+}
+
+}  // namespace
