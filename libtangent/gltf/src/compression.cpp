@@ -5,6 +5,7 @@
 #include <algorithm>
 
 #include "primitive.hpp"
+#include "tangent/gltf.hpp"
 
 namespace tangent::gltf::detail {
 
@@ -112,6 +113,14 @@ bool adaptForLoader(Json& doc) {
 }
 
 void decodeCompressedData(Asset& asset) {
+  // KHR_meshopt_compression (meshoptimizer's newer codec versions) is not decoded: refused by
+  // name rather than read as if its views held plain data.
+  if (asset.json.contains("extensionsUsed") && asset.json["extensionsUsed"].is_array()) {
+    for (const Json& name : asset.json["extensionsUsed"]) {
+      if (name == "KHR_meshopt_compression")
+        throw InputError(asset.path.string() + ": uses KHR_meshopt_compression, which is not decoded (EXT_meshopt_compression is)");
+    }
+  }
   decodeMeshoptViews(asset);
   decodeDracoPrimitives(asset);
 }

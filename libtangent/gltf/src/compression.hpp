@@ -40,8 +40,9 @@ bool adaptForLoader(nlohmann::ordered_json& doc);
 
 // Decodes every EXT_meshopt_compression bufferView and every Draco primitive into tinygltf's
 // model (new buffers appended; the views and accessors repointed at them). Throws InputError
-// naming the file and the element ("/bufferViews/3 EXT_meshopt_compression: ...",
-// "meshes[0].primitives[1] KHR_draco_mesh_compression: ...").
+// naming the file and the element ("bufferViews[3] EXT_meshopt_compression: ...",
+// "meshes[0].primitives[1] KHR_draco_mesh_compression: ..."); files using
+// KHR_meshopt_compression are refused by name.
 void decodeCompressedData(Asset& asset);
 
 // Per decoder (meshopt_decode.cpp, draco_decode.cpp).
