@@ -121,8 +121,18 @@ void recomputeBounds(Json& accessor, const AccessorData& data) {
     low[c] = std::min(low[c], values[i]);
     high[c] = std::max(high[c], values[i]);
   }
-  accessor["min"] = low;
-  accessor["max"] = high;
+  if (data.componentType == TINYGLTF_COMPONENT_TYPE_FLOAT) {
+    accessor["min"] = low;
+    accessor["max"] = high;
+    return;
+  }
+  // Integer components: written as integers.
+  accessor["min"] = Json::array();
+  accessor["max"] = Json::array();
+  for (int c = 0; c < data.components; ++c) {
+    accessor["min"].push_back(static_cast<std::int64_t>(low[c]));
+    accessor["max"].push_back(static_cast<std::int64_t>(high[c]));
+  }
 }
 
 Json floatAccessor(std::size_t count, const char* type) {
