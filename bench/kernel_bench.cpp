@@ -82,7 +82,7 @@ std::vector<InputSource> assetInputs(const fs::path& folder) {
         const auto& primitives = meshes[m].value("primitives", nlohmann::ordered_json::array());
         for (std::size_t p = 0; p < primitives.size(); ++p) {
           const detail::PrimitiveNeeds needs = detail::primitiveNeeds(asset.json, primitives[p], false);
-          if (!needs.triangles || needs.compressed || !needs.hasNormalTexture) continue;
+          if (!needs.triangles || !needs.hasNormalTexture) continue;
           detail::PrimitiveGeometry g =
               detail::readGeometry(asset, primitives[p], needs, detail::primitiveLabel(asset.json, int(m), int(p)));
           if (g.corners.size() > largest.indices.size())

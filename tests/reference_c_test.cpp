@@ -207,7 +207,7 @@ TEST(ReferenceC, AssimpTestModels) {
         const auto needs = tangent::gltf::detail::primitiveNeeds(asset.json, primitive, true);
         const std::string where = name + " mesh " + std::to_string(m) + " primitive " + std::to_string(p);
         const auto& attributes = primitive["attributes"];
-        if (!needs.triangles || needs.compressed || needs.texCoord < 0 ||
+        if (!needs.triangles || needs.texCoord < 0 ||
             tangent::gltf::detail::accessorOf(attributes, "NORMAL") < 0 ||
             tangent::gltf::detail::accessorOf(attributes, "TEXCOORD_" + std::to_string(needs.texCoord)) < 0) {
           ++skippedPrimitives;

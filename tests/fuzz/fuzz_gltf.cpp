@@ -26,7 +26,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
       const auto& primitives = doc["meshes"][m]["primitives"];
       for (std::size_t p = 0; p < primitives.size(); ++p) {
         const detail::PrimitiveNeeds needs = detail::primitiveNeeds(doc, primitives[p], true);
-        if (!needs.triangles || needs.compressed || needs.texCoord < 0) continue;
+        if (!needs.triangles || needs.texCoord < 0) continue;
         try {
           const detail::PrimitiveGeometry g = detail::readGeometry(asset, primitives[p], needs, "fuzz");
           tangent::fuzz::computeAndCheck(g.positions, g.normals, g.uvs, g.corners, tangent::Method::mikktspace);

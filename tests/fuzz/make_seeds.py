@@ -1,7 +1,11 @@
 #!/usr/bin/env python3
 """Writes the committed seed corpus of the fuzz targets (tests/fuzz/corpus): small valid
 inputs of every shape the targets read, from the base asset of tests/malformed. Rerun after
-changing it; fuzzing adds its finds to a copy, never here (crashes go to regressions/)."""
+changing it; fuzzing adds its finds to a copy, never here (crashes go to regressions/).
+
+Not written here: corpus/gltf/quad_draco.glb and quad_meshopt.glb, the quad.glb seed (with
+its image) through `gltf-transform draco` and `gltf-transform meshopt` (tests/node, pinned):
+real KHR_draco_mesh_compression and EXT_meshopt_compression streams for the fuzzer to cut."""
 import base64
 import copy
 import json

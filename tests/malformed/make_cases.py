@@ -211,6 +211,33 @@ files = {"in.gltf": json.dumps(base_document()).encode(), "tex.png": PNG,
          "base.bin": BIN[:128] + struct.pack("<6H", 0, 1, 2, 0, 2, 40) + BIN[140:]}
 add("index_value_out_of_range", files, "index 40 at position 5 is out of range")
 
+
+# --- compressed data (KHR_draco_mesh_compression, EXT_meshopt_compression): streams that are
+# no streams. tests/compressed covers real encoder output, cut and miscounted.
+def meshopt_view(extension):
+    def mutate(doc):
+        doc["extensionsUsed"] = doc["extensionsRequired"] = ["EXT_meshopt_compression"]
+        doc["bufferViews"][0]["extensions"] = {"EXT_meshopt_compression": extension}
+    return mutate
+
+
+def draco_primitive(doc):
+    doc["extensionsUsed"] = doc["extensionsRequired"] = ["KHR_draco_mesh_compression"]
+    doc["meshes"][0]["primitives"][0]["extensions"] = {
+        "KHR_draco_mesh_compression": {"bufferView": 1, "attributes": {"POSITION": 0, "NORMAL": 1, "TEXCOORD_0": 2}}}
+
+
+# The 12 index bytes read as an attribute stream: no room for its 32-byte tail.
+gltf_case("meshopt_stream_truncated", meshopt_view({"buffer": 0, "byteOffset": 128, "byteLength": 12, "byteStride": 12,
+                                                    "count": 4, "mode": "ATTRIBUTES"}),
+          "bufferViews[0] EXT_meshopt_compression: the compressed stream is malformed or truncated")
+gltf_case("meshopt_count_huge", meshopt_view({"buffer": 0, "byteLength": 48, "byteStride": 12, "count": 2 ** 28,
+                                              "mode": "ATTRIBUTES"}),
+          "bufferViews[0] EXT_meshopt_compression: count 268435456 x byteStride 12 is over the limit of 2 GiB")
+# Normals read as a Draco stream.
+gltf_case("draco_stream_garbage", draco_primitive,
+          "meshes[0].primitives[0] KHR_draco_mesh_compression: the Draco stream in bufferView 1 cannot be decoded")
+
 # --- materials, textures, images
 gltf_case("normaltexture_dangling", setter(["materials", 0, "normalTexture", "index"], 9), "/normalTexture/index: refers to textures 9")
 gltf_case("normaltexture_no_index", setter(["materials", 0, "normalTexture"], {"scale": 1}), "/normalTexture/index: is required")

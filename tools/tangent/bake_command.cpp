@@ -217,6 +217,8 @@ int bakeCommand(const std::vector<std::string>& args) {
           }
           log << "\n";
         }
+        for (const auto& name : result.extensionsRemoved)
+          std::cout << "  " << name << " removed from extensionsUsed/extensionsRequired: nothing in the output uses it\n";
         for (const auto& w : result.warnings) std::cerr << "warning: " << w << "\n";
       }
     } catch (const std::exception& e) {

@@ -50,6 +50,7 @@ int infoCommand(const std::vector<std::string>& args) {
         for (const auto& primitive : mesh["primitives"]) {
           std::cout << "    primitive " << primitive["index"].get<int>() << ": mode " << primitive["mode"].get<int>();
           if (primitive.contains("material")) std::cout << ", material " << primitive["material"].dump();
+          for (const auto& name : primitive["compression"]) std::cout << ", " << name.get<std::string>();
           std::cout << (primitive["needsTangents"].get<bool>() ? ", needs tangents" : ", no tangents needed")
                     << (primitive["hasTangents"].get<bool>() ? ", has TANGENT" : "") << " - "
                     << primitive["why"].get<std::string>() << "\n";

@@ -6,6 +6,7 @@
 #include <iterator>
 
 #include "tangent/gltf.hpp"
+#include "compression.hpp"
 #include "document.hpp"
 #include "primitive.hpp"
 #include "uri.hpp"
@@ -205,8 +206,8 @@ Asset loadAssetBytes(std::vector<std::uint8_t> bytes, const std::filesystem::pat
   asset.binary = bytes.size() >= 4 && readU32(bytes.data()) == kGlbMagic;
 
   std::string jsonText;
+  std::span<const std::uint8_t> bin;
   if (asset.binary) {
-    std::span<const std::uint8_t> bin;
     splitGlb(bytes, label, jsonText, bin);
   } else {
     jsonText.assign(bytes.begin(), bytes.end());
@@ -223,6 +224,15 @@ Asset loadAssetBytes(std::vector<std::uint8_t> bytes, const std::filesystem::pat
   if (!isInside(assetRootFor(path, {}), asset.root))
     throw InputError(label + ": the asset root " + asset.root.string() + " does not contain the file's folder");
   checkUris(asset.json, baseDir, asset.root, label);
+  // Compressed data: tinygltf gets a document it accepts (see adaptForLoader); the data is
+  // decoded below.
+  if (nlohmann::ordered_json forLoader = asset.json; adaptForLoader(forLoader)) {
+    jsonText = forLoader.dump();
+    if (asset.binary) {
+      std::vector<std::uint8_t> rebuilt = makeGlb(jsonText, bin);
+      bytes = std::move(rebuilt);
+    }
+  }
 
   tinygltf::TinyGLTF loader;
   loader.SetImageLoader(noImageDecoding, nullptr);
@@ -243,6 +253,7 @@ Asset loadAssetBytes(std::vector<std::uint8_t> bytes, const std::filesystem::pat
     throw InputError(label + ": cannot be loaded: " + (err.empty() ? std::string("unknown tinygltf error") : err));
   }
   if (!warn.empty()) asset.warnings.push_back(label + ": " + warn);
+  decodeCompressedData(asset);
   verifyMeshData(asset);
   return asset;
 }

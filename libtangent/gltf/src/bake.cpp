@@ -9,6 +9,7 @@
 #include "accessors.hpp"
 #include "asset.hpp"
 #include "check_primitive.hpp"
+#include "compression.hpp"
 #include "document.hpp"
 #include "primitive.hpp"
 #include "tangent/bulk_buffer.hpp"
@@ -127,6 +128,34 @@ void declareRequiredExtension(Json& doc, const char* name) {
   }
 }
 
+// min/max of carried data where the stored ones may not hold: Draco's quantization moves
+// values, and the validator compares min/max with the data. Per the spec they are in the
+// stored (not normalized) units.
+void recomputeBounds(Json& accessor, const AccessorData& data) {
+  if (!accessor.contains("min") && !accessor.contains("max")) return;
+  AccessorData raw = data;
+  raw.normalized = false;
+  const std::vector<float> values = detail::toFloats(raw);
+  std::vector<float> low(values.begin(), values.begin() + data.components), high = low;
+  for (std::size_t i = 0; i < values.size(); ++i) {
+    const std::size_t c = i % data.components;
+    low[c] = std::min(low[c], values[i]);
+    high[c] = std::max(high[c], values[i]);
+  }
+  if (data.componentType == TINYGLTF_COMPONENT_TYPE_FLOAT) {
+    accessor["min"] = low;
+    accessor["max"] = high;
+    return;
+  }
+  // Integer components: written as integers.
+  accessor["min"] = Json::array();
+  accessor["max"] = Json::array();
+  for (int c = 0; c < data.components; ++c) {
+    accessor["min"].push_back(static_cast<std::int64_t>(low[c]));
+    accessor["max"].push_back(static_cast<std::int64_t>(high[c]));
+  }
+}
+
 Json floatAccessor(std::size_t count, const char* type) {
   return Json{{"componentType", TINYGLTF_COMPONENT_TYPE_FLOAT}, {"count", count}, {"type", type}};
 }
@@ -161,7 +190,7 @@ PrimitiveResult PrimitiveBaker::bake(int meshIndex, int primitiveIndex) {
                               ? "OBJ/PLY/OFF carry no materials: every mesh is baked, from its texture coordinates"
                               : needs.why;
   result.reason = why;
-  if (!needs.triangles || needs.compressed || needs.texCoord < 0) return result;
+  if (!needs.triangles || needs.texCoord < 0) return result;
   result.texCoord = needs.texCoord;
   if (!primitive.contains("attributes") || !primitive["attributes"].is_object())
     throw InputError(where + ": has no attributes object");
@@ -222,7 +251,9 @@ PrimitiveResult PrimitiveBaker::bake(int meshIndex, int primitiveIndex) {
   BulkVector<float>().swap(cornerTangents);  // per output vertex from here on: free the per-corner copy
   result.verticesIn = vertexCount;
   result.verticesOut = split.source.size();
-  const bool rebuild = split.source.size() != vertexCount || mode != 4;
+  // Compressed data is written uncompressed: every accessor of a baked primitive is new.
+  const detail::PrimitiveCompression compression = detail::primitiveCompression(asset_, primitive);
+  const bool rebuild = split.source.size() != vertexCount || mode != 4 || compression.any();
 
   // Morph targets get TANGENT deltas: tangents of the morphed shape minus the base ones.
   std::vector<std::vector<float>> targetTangentDeltas;
@@ -264,8 +295,9 @@ PrimitiveResult PrimitiveBaker::bake(int meshIndex, int primitiveIndex) {
       if (data.count != vertexCount)
         throw InputError(where + ": " + name + " (accessor " + std::to_string(index) + ") has " + std::to_string(data.count) +
                          " elements, POSITION has " + std::to_string(vertexCount));
-      accessorRef = output_.addAccessor(carriedAccessor(doc["accessors"][index], outCount), gather(data, split.source),
-                                        data.elementSize(), detail::kArrayBuffer);
+      Json carried = carriedAccessor(doc["accessors"][index], outCount);
+      if (compression.draco) recomputeBounds(carried, data);
+      accessorRef = output_.addAccessor(std::move(carried), gather(data, split.source), data.elementSize(), detail::kArrayBuffer);
     }
     if (primitive.contains("targets")) {
       for (std::size_t t = 0; t < primitive["targets"].size(); ++t) {
@@ -300,6 +332,10 @@ PrimitiveResult PrimitiveBaker::bake(int meshIndex, int primitiveIndex) {
     Json indexAccessor = {{"componentType", indexComponentType}, {"count", split.cornerVertex.size()}, {"type", "SCALAR"}};
     primitive["indices"] = output_.addAccessor(indexAccessor, std::move(indexBytes), indexSize, detail::kElementArrayBuffer);
     if (primitive.contains("mode")) primitive["mode"] = 4;
+    if (compression.draco) {
+      primitive["extensions"].erase(detail::kDracoExtension);
+      if (primitive["extensions"].empty()) primitive.erase("extensions");
+    }
   }
   // Inserting "indices" above may have moved the primitive's members: look attributes up again.
   EncodedTangents encoded = encodeTangents(split.tangents, options_.tangentFormat);
@@ -311,6 +347,11 @@ PrimitiveResult PrimitiveBaker::bake(int meshIndex, int primitiveIndex) {
   result.action = "baked";
   result.tangentFormat = options_.tangentFormat;
   if (existingTangent < 0) result.reason = why;
+  if (compression.any()) {
+    std::string names;
+    for (const std::string& name : detail::compressionNames(compression)) names += (names.empty() ? "" : ", ") + name;
+    result.reason += "; written uncompressed (was " + names + ")";
+  }
   return result;
 }
 
@@ -366,13 +407,6 @@ BakeResult bakeChecked(const std::filesystem::path& input, const std::filesystem
 
   detail::Asset asset = detail::loadAsset(input, options.assetRoot);
   if (!output.parent_path().empty()) fs::create_directories(output.parent_path(), ec);
-  for (const char* list : {"extensionsRequired", "extensionsUsed"}) {
-    if (!asset.json.contains(list)) continue;
-    for (const auto& name : asset.json[list]) {
-      if (name == "EXT_meshopt_compression" || name == "KHR_meshopt_compression")
-        throw InputError(input.string() + ": uses " + name.get<std::string>() + "; decompress it before baking");
-    }
-  }
   fs::path binPath = output;
   binPath.replace_extension(".bin");
   for (const fs::path& used : detail::referencedFiles(asset)) {
@@ -408,6 +442,7 @@ BakeResult bakeChecked(const std::filesystem::path& input, const std::filesystem
                   [](const PrimitiveResult& p) { return p.action == "baked" && p.tangentFormat != TangentFormat::float32; }))
     declareRequiredExtension(doc, "KHR_mesh_quantization");
   result.bytesWritten = document.write(output);
+  result.extensionsRemoved = document.extensionsRemoved();
   return result;
 }
 
@@ -447,7 +482,10 @@ nlohmann::ordered_json toJson(const BakeResult& result) {
   }
   Json warnings = Json::array();
   for (const auto& w : result.warnings) warnings.push_back(w);
-  return Json{{"primitives", primitives}, {"warnings", warnings}, {"bytesWritten", result.bytesWritten}};
+  return Json{{"primitives", primitives},
+              {"extensionsRemoved", result.extensionsRemoved},
+              {"warnings", warnings},
+              {"bytesWritten", result.bytesWritten}};
 }
 
 }  // namespace tangent::gltf

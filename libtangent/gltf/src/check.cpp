@@ -306,9 +306,9 @@ FileCheck checkFile(const std::filesystem::path& input, const CheckOptions& opti
           result.primitives.push_back(std::move(check));
           continue;
         }
-        if (!needs.triangles || needs.compressed || needs.texCoord < 0 || !hasNormal || !hasUv) {
+        if (!needs.triangles || needs.texCoord < 0 || !hasNormal || !hasUv) {
           std::string why = needs.why;
-          if (needs.triangles && !needs.compressed && needs.texCoord >= 0)
+          if (needs.triangles && needs.texCoord >= 0)
             why = !hasNormal ? "no NORMAL attribute" : "no TEXCOORD_" + std::to_string(needs.texCoord) + " attribute";
           result.skipped.push_back(label + ": " + why);
           continue;

@@ -7,6 +7,7 @@
 #include <nlohmann/json.hpp>
 #include <set>
 #include <span>
+#include <string>
 #include <vector>
 
 #include "asset.hpp"
@@ -30,10 +31,16 @@ class OutputDocument {
   // Writes `output` (.glb, or .gltf plus a .bin beside it) atomically; returns bytes written.
   std::uint64_t write(const std::filesystem::path& output);
 
+  // Compression extensions write() took out of extensionsUsed/Required (nothing used them).
+  const std::vector<std::string>& extensionsRemoved() const { return extensionsRemoved_; }
+
  private:
   void dropOrphans();
   // Lays every bufferView out in one buffer (4-byte aligned) and returns that buffer's bytes
   // as pieces of the memory they are in (loaded buffers, new views, padding): no copy.
+  // EXT_meshopt_compression views keep their compressed bytes (in that buffer) and lie in a
+  // second, data-less fallback buffer where the input required the extension, else their
+  // decoded bytes stay in the first buffer as the fallback data.
   std::vector<std::span<const std::uint8_t>> packBuffers();
   // External images inside the input's folder are copied beside the output (same relative
   // path); others (a wider --asset-root) are referred to relative to the output.
@@ -44,6 +51,8 @@ class OutputDocument {
   std::set<int> bufferViewsBefore_;
   std::vector<std::vector<std::uint8_t>> newViewBytes_;  // data of bufferViews added by us
   std::size_t firstNewView_ = 0;
+  std::vector<int> loadedViewOf_;  // after dropOrphans: the loaded (model) index of each old view
+  std::vector<std::string> extensionsRemoved_;
 };
 
 // Visits every place the document references an accessor / a bufferView by index.

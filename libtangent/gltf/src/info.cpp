@@ -1,6 +1,7 @@
 // `tangent info`: meshes, primitives, attributes, and which primitives need tangents and why.
 #include "asset.hpp"
 #include "accessors.hpp"
+#include "compression.hpp"
 #include "primitive.hpp"
 #include "tangent/gltf.hpp"
 
@@ -47,8 +48,10 @@ nlohmann::ordered_json describeFile(const std::filesystem::path& input, const st
       }
       primitiveOut["attributes"] = attributes;
       if (primitive.contains("targets")) primitiveOut["morphTargets"] = primitive["targets"].size();
+      // The extensions the primitive's data was decoded from: [] when stored plainly.
+      primitiveOut["compression"] = detail::compressionNames(detail::primitiveCompression(asset, primitive));
       const bool hasTangent = primitive.contains("attributes") && primitive["attributes"].contains("TANGENT");
-      primitiveOut["needsTangents"] = needs.triangles && !needs.compressed && needs.hasNormalTexture;
+      primitiveOut["needsTangents"] = needs.triangles && needs.hasNormalTexture;
       primitiveOut["hasTangents"] = hasTangent;
       if (needs.texCoord >= 0 && needs.hasNormalTexture) primitiveOut["normalTexCoord"] = needs.texCoord;
       primitiveOut["why"] = needs.why;

@@ -23,7 +23,6 @@ PrimitiveNeeds primitiveNeeds(const Json& doc, const Json& primitive, bool all) 
   PrimitiveNeeds needs;
   const int mode = primitive.value("mode", 4);
   needs.triangles = mode == 4 || mode == 5 || mode == 6;
-  needs.compressed = primitive.contains("extensions") && primitive["extensions"].contains("KHR_draco_mesh_compression");
   if (primitive.contains("material") && primitive["material"].is_number_integer() && doc.contains("materials")) {
     const int materialIndex = primitive["material"].get<int>();
     if (materialIndex >= 0 && materialIndex < static_cast<int>(doc["materials"].size())) {
@@ -53,12 +52,11 @@ PrimitiveNeeds primitiveNeeds(const Json& doc, const Json& primitive, bool all) 
     }
   }
   if (!needs.triangles) needs.why = "mode " + std::to_string(mode) + " is not triangles";
-  if (needs.compressed) needs.why = "KHR_draco_mesh_compression: decompress before baking";
   return needs;
 }
 
 std::string missingUvSet(const Json& primitive, const PrimitiveNeeds& needs) {
-  if (!needs.triangles || needs.compressed || !needs.hasNormalTexture) return {};
+  if (!needs.triangles || !needs.hasNormalTexture) return {};
   const std::string uvName = "TEXCOORD_" + std::to_string(needs.texCoord);
   if (accessorOf(primitive["attributes"], uvName) >= 0) return {};
   return needs.why + ", but the primitive has no " + uvName + " attribute";
@@ -175,18 +173,12 @@ PrimitiveGeometry readGeometry(const Asset& asset, const Json& primitive, const 
 
 void verifyMeshData(const Asset& asset) {
   const Json& doc = asset.json;
-  if (doc.contains("extensionsUsed")) {
-    for (const Json& name : doc["extensionsUsed"]) {
-      if (name == "EXT_meshopt_compression" || name == "KHR_meshopt_compression") return;  // bytes are compressed
-    }
-  }
   const std::string file = asset.path.string();
   const std::size_t meshCount = doc.contains("meshes") ? doc["meshes"].size() : 0;
   for (std::size_t m = 0; m < meshCount; ++m) {
     const Json& primitives = doc["meshes"][m]["primitives"];
     for (std::size_t p = 0; p < primitives.size(); ++p) {
       const Json& primitive = primitives[p];
-      if (primitive.contains("extensions") && primitive["extensions"].contains("KHR_draco_mesh_compression")) continue;
       const std::string where = file + ": " + primitiveLabel(doc, static_cast<int>(m), static_cast<int>(p));
       const int position = accessorOf(primitive["attributes"], "POSITION");
       const std::size_t vertexCount = position >= 0 ? checkAccessor(asset.model, position, where + ": POSITION") : 0;

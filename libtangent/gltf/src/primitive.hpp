@@ -15,7 +15,6 @@ namespace tangent::gltf::detail {
 
 struct PrimitiveNeeds {
   bool triangles = false;        // mode 4, 5 or 6
-  bool compressed = false;       // KHR_draco_mesh_compression
   bool hasNormalTexture = false;
   int texCoord = -1;             // UV set the normal texture samples, -1 when none
   bool texCoordFromTransform = false;  // KHR_texture_transform overrode texCoord
@@ -68,7 +67,8 @@ PrimitiveGeometry readGeometry(const Asset& asset, const nlohmann::ordered_json&
                                const std::string& where);
 
 // Every mesh primitive's accessors against the bytes loaded (ranges, sparse targets, equal
-// attribute counts, indices < vertex count), copying nothing: loadAsset runs it, so bake,
+// attribute counts, indices < vertex count), copying nothing: loadAsset runs it (after
+// decoding compressed data, so compressed primitives are checked alike), so bake,
 // check, info and the viewer refuse the same files. Throws InputError naming the accessor.
 void verifyMeshData(const Asset& asset);
 

@@ -370,7 +370,7 @@ Scene loadScene(const std::filesystem::path& input, const SceneOptions& options)
     for (std::size_t p = 0; p < primitives.size(); ++p) {
       const std::string label = detail::primitiveLabel(doc, meshIndex, static_cast<int>(p));
       const detail::PrimitiveNeeds needs = detail::primitiveNeeds(doc, primitives[p], true);
-      if (!needs.triangles || needs.compressed) {
+      if (!needs.triangles) {
         scene.messages.push_back(label + ": " + needs.why + "; not shown");
         continue;
       }

@@ -1,5 +1,6 @@
 #include <unistd.h>
 
+#include <algorithm>
 #include <atomic>
 #include <cstdio>
 #include <cstring>
@@ -7,6 +8,7 @@
 #include <functional>
 #include <map>
 
+#include "compression.hpp"
 #include "document.hpp"
 #include "tangent/gltf.hpp"
 #include "uri.hpp"
@@ -178,6 +180,10 @@ void OutputDocument::dropOrphans() {
   for (int v : orphanViews) {
     if (static_cast<std::size_t>(v) < firstNewView_) ++droppedBeforeNew;
   }
+  loadedViewOf_.clear();
+  for (std::size_t v = 0; v < firstNewView_; ++v) {
+    if (!orphanViews.count(static_cast<int>(v))) loadedViewOf_.push_back(static_cast<int>(v));
+  }
   dropAndRenumber(doc, "bufferViews", orphanViews, forEachBufferViewRef);
   firstNewView_ -= droppedBeforeNew;
 }
@@ -195,12 +201,41 @@ std::vector<std::span<const std::uint8_t>> OutputDocument::packBuffers() {
   if (!doc.contains("bufferViews")) return packed;
   Json& views = doc["bufferViews"];
   const auto& buffers = asset_.model.buffers;
+  const bool meshoptRequired = doc.contains("extensionsRequired") && doc["extensionsRequired"].is_array() &&
+                               std::find(doc["extensionsRequired"].begin(), doc["extensionsRequired"].end(),
+                                         Json(kMeshoptExtension)) != doc["extensionsRequired"].end();
+  std::size_t fallbackSize = 0;  // of the data-less fallback buffer
   for (std::size_t i = 0; i < views.size(); ++i) {
     Json& view = views[i];
     const std::uint8_t* source = nullptr;
     std::size_t length = 0;
     std::size_t alignTo = 0;  // keep the old offset modulo 4 so accessor alignment survives
-    if (i >= firstNewView_) {
+    const bool meshopt = i < firstNewView_ && view.contains("extensions") && view["extensions"].is_object() &&
+                         view["extensions"].contains(kMeshoptExtension);
+    if (meshopt) {
+      // The compressed bytes (checked when decoded) go into the packed buffer...
+      Json& extension = view["extensions"][kMeshoptExtension];
+      const auto& compressed = buffers[extension["buffer"].get<std::size_t>()].data;
+      padTo(0);
+      packed.push_back({compressed.data() + extension.value("byteOffset", std::size_t(0)), extension["byteLength"].get<std::size_t>()});
+      extension["buffer"] = 0;
+      extension["byteOffset"] = size;
+      size += extension["byteLength"].get<std::size_t>();
+      const std::size_t viewLength = view["byteLength"].get<std::size_t>();
+      if (meshoptRequired) {
+        // ...and the view itself into the fallback buffer, which holds no data.
+        fallbackSize = (fallbackSize + 3) & ~std::size_t(3);
+        view["buffer"] = 1;
+        if (fallbackSize == 0) view.erase("byteOffset");
+        else view["byteOffset"] = fallbackSize;
+        fallbackSize += viewLength;
+        continue;
+      }
+      // ...and, where loaders may ignore the extension, the decoded bytes as fallback data.
+      const tinygltf::BufferView& decoded = asset_.model.bufferViews[loadedViewOf_[i]];
+      source = buffers[decoded.buffer].data.data() + decoded.byteOffset;
+      length = viewLength;
+    } else if (i >= firstNewView_) {
       const auto& bytes = newViewBytes_[i - firstNewView_];
       source = bytes.data();
       length = bytes.size();
@@ -226,10 +261,29 @@ std::vector<std::span<const std::uint8_t>> OutputDocument::packBuffers() {
   }
   padTo(0);
 
-  Json buffer = doc.contains("buffers") && !doc["buffers"].empty() ? doc["buffers"][0] : Json::object();
+  // The first buffer's JSON (name, extras) for the packed data, the first fallback buffer's for
+  // the fallback.
+  Json buffer = Json::object(), fallback = Json::object();
+  bool fallbackFound = false;
+  if (doc.contains("buffers")) {
+    for (auto it = doc["buffers"].rbegin(); it != doc["buffers"].rend(); ++it) {
+      if (isMeshoptFallbackBuffer(*it)) {
+        fallback = *it;
+        fallbackFound = true;
+      } else {
+        buffer = *it;
+      }
+    }
+  }
   buffer.erase("uri");
   buffer["byteLength"] = size;
   doc["buffers"] = Json::array({buffer});
+  if (fallbackSize > 0) {
+    fallback.erase("uri");
+    fallback["byteLength"] = fallbackSize;
+    if (!fallbackFound) fallback["extensions"][kMeshoptExtension]["fallback"] = true;
+    doc["buffers"].push_back(std::move(fallback));
+  }
   if (views.empty()) {
     doc.erase("bufferViews");
     doc.erase("buffers");
@@ -272,6 +326,7 @@ void OutputDocument::placeImages(const std::filesystem::path& outputDir) {
 std::uint64_t OutputDocument::write(const std::filesystem::path& output) {
   namespace fs = std::filesystem;
   dropOrphans();
+  extensionsRemoved_ = dropUnusedCompressionExtensions(asset_.json);
   const std::vector<std::span<const std::uint8_t>> bin = packBuffers();
   const fs::path outputDir = fs::absolute(output).parent_path();
   placeImages(outputDir);

@@ -56,6 +56,9 @@ struct PrimitiveResult {
 struct BakeResult {
   std::vector<PrimitiveResult> primitives;
   std::vector<std::string> warnings;
+  // Compression extensions (KHR_draco_mesh_compression, EXT_meshopt_compression) taken out of
+  // extensionsUsed/extensionsRequired because no baked-over data uses them any more.
+  std::vector<std::string> extensionsRemoved;
   std::uint64_t bytesWritten = 0;
 };
 
