@@ -114,23 +114,28 @@ Report computeTangents(CornerMesh& cornerMesh, const Options& options, TangentWo
     v.uv[1] = static_cast<float>(uv[1]);
     return v;
   };
-  // The representative corner of a mesh vertex: the corner of its stored halfedge's face.
-  auto representative = [&](std::size_t c) -> std::uint32_t {
-    const auto vertex = mesh.to_vertex_handle(cornerMesh.cornerHalfedge[c]);
-    const auto out = mesh.halfedge_handle(vertex);
-    const auto in = mesh.is_boundary(out) ? mesh.opposite_halfedge_handle(out) : mesh.prev_halfedge_handle(out);
-    const std::uint32_t r = cornerMesh.halfedgeCorner[static_cast<std::size_t>(in.idx())];
-    return r == CornerMesh::kNoCorner ? static_cast<std::uint32_t>(c) : r;
-  };
-  // 1. Each corner: its own array vertex (kNone) or its representative's.
-  inArena([&](std::size_t begin, std::size_t end) {
-    for (std::size_t c = begin; c < end; ++c) {
-      const std::uint32_t r = representative(c);
-      indices[c] = detail::kNone;
-      if (r == c) continue;
-      const CornerValues mine = values(c);
-      if (mine.shareable() && mine == values(r)) indices[c] = r;
-    }
+  // 1. Each corner: its own array vertex (kNone) or that of its mesh vertex's representative
+  // (the corner of the face of the vertex's stored halfedge), vertex by vertex, so that the
+  // representative's values are read once. Equal bits imply the same NaN-free state.
+  inArena([&](std::size_t begin, std::size_t end) { std::fill(indices + begin, indices + end, detail::kNone); });
+  const std::size_t meshVertices = mesh.n_vertices();
+  detail::onThreads(ws, [&] {
+    detail::forRange(ws, meshVertices, 1 << 12, [&](std::size_t begin, std::size_t end) {
+      for (std::size_t v = begin; v < end; ++v) {
+        const TriMesh::VertexHandle vertex(static_cast<int>(v));
+        const auto out = mesh.halfedge_handle(vertex);
+        if (!out.is_valid()) continue;
+        const auto in = mesh.is_boundary(out) ? mesh.opposite_halfedge_handle(out) : mesh.prev_halfedge_handle(out);
+        const std::uint32_t r = cornerMesh.halfedgeCorner[static_cast<std::size_t>(in.idx())];
+        if (r == CornerMesh::kNoCorner) continue;
+        const CornerValues shared = values(r);
+        if (!shared.shareable()) continue;
+        for (const auto halfedge : mesh.vih_range(vertex)) {
+          const std::uint32_t c = cornerMesh.halfedgeCorner[static_cast<std::size_t>(halfedge.idx())];
+          if (c != CornerMesh::kNoCorner && c != r && values(c) == shared) indices[c] = r;
+        }
+      }
+    });
   });
   // 2. Array vertices numbered in corner order, chunk by chunk.
   constexpr std::size_t kChunk = 1 << 16;
