@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstring>
 #include <fstream>
+#include <iterator>
 #include <regex>
 
 #include "support/run_command.hpp"
@@ -295,6 +296,38 @@ TEST(CheckFormats, DashWritesToStandardOutput) {
   EXPECT_EQ(report[0]["primitives"][0]["action"], "baked");
   EXPECT_EQ(report[0]["primitives"][0]["failedChecks"], Json::array({"unit"}));
   EXPECT_EQ(report[0]["primitives"][0]["reason"], "existing TANGENT fails tangent check (unit: 1 of 4 vertices); recomputed");
+}
+
+// bake -o -: the .glb goes to stdout, byte for byte what -o FILE writes; messages go to
+// stderr; an asset with external images is refused (a stream cannot carry them) and leaves
+// nothing behind.
+TEST(BakeOutput, DashWritesTheGlbToStandardOutput) {
+  TempDir dir;
+  std::ofstream(dir / "quad.obj") << "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nvt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\nvn 0 0 1\n"
+                                     "f 1/1/1 2/2/1 3/3/1\nf 1/1/1 3/3/1 4/4/1\n";
+  const auto file = runCommand(cli + " bake " + quoted(dir / "quad.obj") + " -o " + quoted(dir / "file.glb") + " --quiet");
+  ASSERT_EQ(file.exitCode, 0) << file.output;
+  const auto streamed = runCommand("(" + cli + " bake " + quoted(dir / "quad.obj") + " -o - 2>" + quoted(dir / "stderr.txt") + ")");
+  ASSERT_EQ(streamed.exitCode, 0) << streamed.output;
+  std::ifstream in(dir / "file.glb", std::ios::binary);
+  const std::string written((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  EXPECT_GT(written.size(), 12u);
+  EXPECT_EQ(streamed.output, written);
+  std::ifstream log(dir / "stderr.txt");
+  const std::string messages((std::istreambuf_iterator<char>(log)), std::istreambuf_iterator<char>());
+  EXPECT_NE(messages.find("quad.obj -> -: 1 baked"), std::string::npos) << messages;
+  EXPECT_FALSE(fs::exists("-"));
+
+  const fs::path quad = writeQuad(dir.path(), "quad");  // refers to normal.png
+  std::ofstream(dir / "normal.png") << "not read";
+  const auto refused = runCommand("(" + cli + " bake " + quoted(quad) + " -o - 2>&1 >/dev/null)");
+  EXPECT_EQ(refused.exitCode, 1);
+  EXPECT_NE(refused.output.find("quad.gltf: -o - writes one .glb, but the asset refers to external files (normal.png)"),
+            std::string::npos)
+      << refused.output;
+  const auto both = runCommand(cli + " bake " + quoted(quad) + " -o - --report -");
+  EXPECT_EQ(both.exitCode, 2);
+  EXPECT_NE(both.output.find("cannot both write to standard output"), std::string::npos) << both.output;
 }
 
 }  // namespace

@@ -4,6 +4,8 @@
 #include <fstream>
 #include <iostream>
 #include <optional>
+#include <stdexcept>
+#include <string>
 
 #include "commands.hpp"
 #include "tangent/batch.hpp"
@@ -22,7 +24,8 @@ const char* kBakeUsage =
     "The input is never written to; outputs are written atomically.\n"
     "\n"
     "options:\n"
-    "  -o, --output FILE      output file (.glb or .gltf + .bin); one input only\n"
+    "  -o, --output FILE      output file (.glb or .gltf + .bin); one input only. \"-\": a .glb on standard\n"
+    "                         output (the asset may refer to no external image; messages go to stderr)\n"
     "  --out-dir DIR          write each output into DIR under the input's name\n"
     "  --method NAME          mikktspace (default) | lengyel | flat\n"
     "  --weighting NAME       angle (default) | area | uniform   (lengyel only)\n"
@@ -39,6 +42,42 @@ const char* kBakeUsage =
     "  --report FILE.json     write what was done, per file and primitive (\"-\": standard output)\n"
     "  --quiet                print errors only\n"
     "  -h, --help             this text\n";
+
+// -o -: the bake goes to a private temporary folder, then its bytes to standard output.
+class StdoutTarget {
+ public:
+  StdoutTarget() {
+    namespace fs = std::filesystem;
+    for (int attempt = 0;; ++attempt) {
+      dir_ = fs::temp_directory_path() / ("tangent-bake-" + std::to_string(::getpid()) + "-" + std::to_string(attempt));
+      if (fs::create_directory(dir_)) break;  // throws where the folder cannot be made at all
+    }
+  }
+  ~StdoutTarget() {
+    std::error_code ec;
+    std::filesystem::remove_all(dir_, ec);
+  }
+  StdoutTarget(const StdoutTarget&) = delete;
+  StdoutTarget& operator=(const StdoutTarget&) = delete;
+  std::filesystem::path file() const { return dir_ / "stdout.glb"; }
+  // Streams the baked file; refuses when the bake placed files beside it (external images,
+  // whose relative URIs a stream cannot carry).
+  void send(const std::filesystem::path& input) const {
+    namespace fs = std::filesystem;
+    for (const auto& entry : fs::directory_iterator(dir_)) {
+      if (entry.path() != file())
+        throw std::runtime_error(input.string() + ": -o - writes one .glb, but the asset refers to external files (" +
+                                 entry.path().filename().string() + "); write it with -o FILE instead");
+    }
+    std::ifstream in(file(), std::ios::binary);
+    std::cout << in.rdbuf();
+    std::cout.flush();
+    if (!in || !std::cout) throw std::runtime_error("-o -: could not write the baked file to standard output");
+  }
+
+ private:
+  std::filesystem::path dir_;
+};
 
 int usageError(const std::string& message) {
   std::cerr << "tangent bake: " << message << "\n\n" << kBakeUsage;
@@ -167,6 +206,8 @@ int bakeCommand(const std::vector<std::string>& args) {
   if (force) return usageError("--force goes with --recursive");
   if (output.empty() == outDir.empty()) return usageError("give exactly one of -o FILE and --out-dir DIR");
   if (!output.empty() && inputs.size() > 1) return usageError("-o takes one input; use --out-dir for several");
+  const bool toStdout = output == "-";
+  if (toStdout && reportPath == "-") return usageError("-o - and --report - cannot both write to standard output");
   if (!outDir.empty()) {
     std::error_code ec;
     fs::create_directories(outDir, ec);
@@ -174,16 +215,20 @@ int bakeCommand(const std::vector<std::string>& args) {
   }
 
   const bool progress = !quiet && inputs.size() > 1 && ::isatty(STDERR_FILENO);
-  std::ostream& log = reportPath == "-" ? std::cerr : std::cout;
+  std::ostream& log = reportPath == "-" || toStdout ? std::cerr : std::cout;
   int failed = 0;
   nlohmann::ordered_json report = nlohmann::ordered_json::array();
   for (std::size_t n = 0; n < inputs.size(); ++n) {
     const fs::path& input = inputs[n];
-    const fs::path target = output.empty() ? gltf::outputPathFor(input, outDir) : output;
+    std::optional<StdoutTarget> stream;
+    if (toStdout) stream.emplace();
+    const fs::path target = stream ? stream->file() : output.empty() ? gltf::outputPathFor(input, outDir) : output;
+    const std::string targetName = stream ? "-" : target.string();
     if (progress) std::cerr << "\r[" << n + 1 << "/" << inputs.size() << "] " << input.filename().string() << "\033[K" << std::flush;
-    nlohmann::ordered_json entry = {{"input", input.string()}, {"output", target.string()}};
+    nlohmann::ordered_json entry = {{"input", input.string()}, {"output", targetName}};
     try {
       const gltf::BakeResult result = gltf::bakeFile(input, target, options);
+      if (stream) stream->send(input);
       entry["status"] = "ok";
       entry.update(gltf::toJson(result));
       if (!quiet) {
@@ -196,7 +241,7 @@ int bakeCommand(const std::vector<std::string>& args) {
           skipped += p.action == "skipped";
           split += p.action == "baked" ? p.verticesOut - p.verticesIn : 0;
         }
-        log << input.string() << " -> " << target.string() << ": " << baked << " baked, " << kept << " kept, "
+        log << input.string() << " -> " << targetName << ": " << baked << " baked, " << kept << " kept, "
                   << skipped << " skipped; " << split << " vertices added by splits\n";
         for (const auto& p : result.primitives) {
           log << "  mesh " << p.mesh << (p.meshName.empty() ? "" : " '" + p.meshName + "'") << " primitive "
@@ -218,7 +263,7 @@ int bakeCommand(const std::vector<std::string>& args) {
           log << "\n";
         }
         for (const auto& name : result.extensionsRemoved)
-          std::cout << "  " << name << " removed from extensionsUsed/extensionsRequired: nothing in the output uses it\n";
+          log << "  " << name << " removed from extensionsUsed/extensionsRequired: nothing in the output uses it\n";
         for (const auto& w : result.warnings) std::cerr << "warning: " << w << "\n";
       }
     } catch (const std::exception& e) {
