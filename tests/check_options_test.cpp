@@ -10,6 +10,7 @@
 #include <regex>
 
 #include "support/run_command.hpp"
+#include "support/skip_or_fail.hpp"
 #include "support/temp_dir.hpp"
 #include "tangent/check.hpp"
 
@@ -251,6 +252,33 @@ TEST(CheckFormats, SarifStructureAndContent) {
   const auto spaced = Json::parse(runCommand(cli + " check --format sarif " + quoted(writeQuad(dir / "clean dir", "x", {2, 0, 0, 1, 1, 0, 0, 1, 1, 0, 0, 1, 1, 0, 0, 1}))).output);
   EXPECT_EQ(spaced["runs"][0]["results"][0]["locations"][0]["physicalLocation"]["artifactLocation"]["uri"],
             (dir.path() / "clean%20dir/x.gltf").string());
+}
+
+// The SARIF output against the SARIF 2.1.0 JSON schema itself (tests/node: the schema from
+// Microsoft's SARIF multitool package, ajv with formats), with a broken copy as the control.
+TEST(CheckFormats, SarifValidAgainstTheSchema) {
+  const fs::path node = fs::path(TANGENT_SOURCE_DIR) / "tests/node";
+  if (!fs::exists(node / "node_modules/@microsoft/sarif-multitool-linux/sarif-2.1.0.json") ||
+      !fs::exists(node / "node_modules/ajv-formats"))
+    TANGENT_SKIP_OR_FAIL("tests/node/node_modules lacks the SARIF schema or ajv: run `npm ci` in tests/node (scripts/test.sh does)");
+  TempDir dir;
+  const fs::path quad = nonUnitQuad(dir.path());
+  const fs::path clean = writeQuad(dir / "clean dir", "clean");
+  const fs::path log = dir / "check.sarif";
+  EXPECT_EQ(runCommand(cli + " check --format sarif -o " + quoted(log) + " " + quoted(quad) + " " + quoted(clean) + " " +
+                       quoted(dir / "none.glb"))
+                .exitCode,
+            2);
+  Json broken = Json::parse(std::ifstream(log));
+  ASSERT_EQ(broken["runs"][0]["results"].size(), 1u);  // a finding and a notification are in what is validated
+  broken["runs"][0]["tool"].erase("driver");
+  std::ofstream(dir / "broken.sarif") << broken.dump();
+  const std::string validate = "node " + quoted(node / "validate_sarif.mjs") + " ";
+  const auto valid = runCommand(validate + quoted(log));
+  EXPECT_EQ(valid.exitCode, 0) << valid.output;
+  const auto invalid = runCommand(validate + quoted(dir / "broken.sarif"));
+  EXPECT_EQ(invalid.exitCode, 1) << invalid.output;
+  EXPECT_NE(invalid.output.find("must have required property 'driver'"), std::string::npos) << invalid.output;
 }
 
 TEST(CheckFormats, JunitHasTimeTimestampFileAndSkipped) {
