@@ -221,11 +221,12 @@ std::vector<fs::path> cleanBakes(const TempDir& dir, bool& sharedPresent) {
   return baked;
 }
 
-// Every quantized form of `input`: gltfpack defaults, -vn 8, -vn 12; gltf-transform quantize.
+// Every quantized form of `input`: gltfpack defaults, -vn 8, -vn 12, -vn 16; gltf-transform quantize.
 std::vector<fs::path> quantizedForms(const fs::path& input, const fs::path& dir) {
   std::vector<fs::path> outputs;
   const std::string stem = input.stem().string();
-  for (const auto& [suffix, flags] : {std::pair{"gltfpack", ""}, std::pair{"gltfpack-vn8", " -vn 8"}, std::pair{"gltfpack-vn12", " -vn 12"}}) {
+  for (const auto& [suffix, flags] : {std::pair{"gltfpack", ""}, std::pair{"gltfpack-vn8", " -vn 8"}, std::pair{"gltfpack-vn12", " -vn 12"},
+                                      std::pair{"gltfpack-vn16", " -vn 16"}}) {
     const fs::path out = dir / (stem + "-" + suffix + ".glb");
     const auto run = runCommand("gltfpack -i " + quoted(input) + " -o " + quoted(out) + flags);
     EXPECT_EQ(run.exitCode, 0) << run.output;

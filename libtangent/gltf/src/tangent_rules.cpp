@@ -18,10 +18,12 @@
 // UVs do to the recomputed frame (referenceAllowance below).
 #include "tangent_rules.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
 #include "accessors.hpp"
+#include "compression.hpp"
 #include "asset.hpp"
 #include "primitive.hpp"
 
@@ -53,29 +55,44 @@ double storageStep(int componentType, bool normalized) {
 // data may hold fewer significant bits (gltf-transform quantize: 14 for positions, 12 for UVs):
 // the smallest gap between distinct values estimates that step, bounded by 10 significant bits
 // so that a small mesh (few distinct values, wide gaps) is not given a coarse grid.
-double halfRoundingStep(const tinygltf::Model& model, int accessor, const std::string& where) {
+// The smallest positive gap between two values of one component: no larger than the grid step
+// where the values lie on a grid, a bound from above on what rounding to it moved them.
+double smallestGap(const std::vector<float>& values, int components, std::size_t count, double start) {
+  double gap = start;
+  std::vector<float> column;
+  column.reserve(count);
+  for (int component = 0; component < components; ++component) {
+    column.clear();
+    for (std::size_t i = 0; i < count; ++i) column.push_back(values[i * components + component]);
+    std::sort(column.begin(), column.end());
+    for (std::size_t i = 1; i < column.size(); ++i) {
+      const double d = double(column[i]) - column[i - 1];
+      if (d > 0 && std::isfinite(d)) gap = std::min(gap, d);
+    }
+  }
+  return gap;
+}
+
+// `dracoFloats`: the accessor was decoded from a Draco stream, which quantizes positions and
+// UVs to a grid of its own (bits and range in the stream) and decodes to float; the grid step
+// is then taken as the smallest gap between decoded values, which is at least the step.
+double halfRoundingStep(const tinygltf::Model& model, int accessor, const std::string& where, bool dracoFloats) {
   if (accessor < 0 || static_cast<std::size_t>(accessor) >= model.accessors.size()) return 0;
-  // The declared type first: float data (Draco's decoded attributes included) is never read here.
+  // The declared type first: other float data is never read here.
   const tinygltf::Accessor& declared = model.accessors[static_cast<std::size_t>(accessor)];
+  if (dracoFloats && declared.componentType == TINYGLTF_COMPONENT_TYPE_FLOAT) {
+    const AccessorData data = readAccessor(model, accessor, where);
+    const double gap = smallestGap(toFloats(data), data.components, data.count, std::numeric_limits<double>::infinity());
+    return std::isfinite(gap) ? gap / 2 : 0;
+  }
   const double storage = storageStep(declared.componentType, declared.normalized);
   if (storage == 0) return 0;
   if (!declared.normalized || componentBytes(declared.componentType) == 1) return storage / 2;
   const AccessorData data = readAccessor(model, accessor, where);
   const bool isSigned = data.componentType == TINYGLTF_COMPONENT_TYPE_SHORT;
   const double coarsest = isSigned ? gridStep(kFewestShortBits) : 1.0 / double((1 << kFewestShortBits) - 1);
-  const std::vector<float> values = toFloats(data);
-  double smallestGap = coarsest;
-  for (int component = 0; component < data.components; ++component) {
-    std::vector<float> column;
-    column.reserve(data.count);
-    for (std::size_t i = 0; i < data.count; ++i) column.push_back(values[i * data.components + component]);
-    std::sort(column.begin(), column.end());
-    for (std::size_t i = 1; i < column.size(); ++i) {
-      const double gap = double(column[i]) - column[i - 1];
-      if (gap > 0) smallestGap = std::min(smallestGap, gap);
-    }
-  }
-  return (std::max(smallestGap, storage) + storage) / 2;
+  const double gap = smallestGap(toFloats(data), data.components, data.count, coarsest);
+  return (std::max(gap, storage) + storage) / 2;
 }
 
 }  // namespace
@@ -139,9 +156,10 @@ double referenceLimitDegrees(const StoredTangentLimits& limits, double tolerance
 InputRounding inputRounding(const Asset& asset, const Json& primitive, int texCoord, bool hasNormalTexture) {
   InputRounding rounding;
   const Json& attributes = primitive["attributes"];
-  rounding.position = halfRoundingStep(asset.model, accessorOf(attributes, "POSITION"), asset.path.string() + ": POSITION");
+  const bool draco = primitiveCompression(asset, primitive).draco;
+  rounding.position = halfRoundingStep(asset.model, accessorOf(attributes, "POSITION"), asset.path.string() + ": POSITION", draco);
   rounding.uv = halfRoundingStep(asset.model, accessorOf(attributes, "TEXCOORD_" + std::to_string(texCoord)),
-                                 asset.path.string() + ": TEXCOORD_" + std::to_string(texCoord));
+                                 asset.path.string() + ": TEXCOORD_" + std::to_string(texCoord), draco);
   // The reference sees UVs after the normal texture's KHR_texture_transform: its scale scales the step.
   if (rounding.uv > 0 && hasNormalTexture && primitive.contains("material")) {
     const Json& texture = asset.json["materials"][primitive["material"].get<int>()]["normalTexture"];
