@@ -299,6 +299,19 @@ for suite in root.findall('testsuite'):
         state = 'failure' if case.find('failure') is not None else 'skipped' if case.find('skipped') is not None else 'ok'
         print(' ', case.get('name'), state)
 )";
+  // Valid against the JUnit XML schema (tests/schemas/junit.xsd, xmllint); the control lacks a
+  // testcase's required name.
+  const std::string schema = quoted(fs::path(TANGENT_SOURCE_DIR) / "tests/schemas/junit.xsd");
+  const auto valid = runCommand("xmllint --noout --schema " + schema + " " + quoted(report));
+  EXPECT_EQ(valid.exitCode, 0) << valid.output;
+  std::ifstream xml(report);
+  std::string text((std::istreambuf_iterator<char>(xml)), std::istreambuf_iterator<char>());
+  const std::size_t named = text.find("name=\"present\"");
+  ASSERT_NE(named, std::string::npos);
+  std::ofstream(dir / "broken.xml") << text.erase(named, std::string("name=\"present\"").size());
+  const auto invalid = runCommand("xmllint --noout --schema " + schema + " " + quoted(dir / "broken.xml"));
+  EXPECT_NE(invalid.exitCode, 0);
+  EXPECT_NE(invalid.output.find("The attribute 'name' is required but missing"), std::string::npos) << invalid.output;
   std::ofstream(dir / "read.py") << script;
   const auto parsed = runCommand("/usr/bin/python3 " + quoted(dir / "read.py") + " " + quoted(report));
   ASSERT_EQ(parsed.exitCode, 0) << parsed.output;
