@@ -75,6 +75,44 @@ void checkArrays(const MeshArrays& mesh, const CornerOutputs& outputs) {
   }
 }
 
+namespace {
+
+// A stable counting sort in parallel: the items [0, count), cut into `chunks` equal runs, each
+// counted and scattered by one task with its own counters (counters: chunks * keys), so that
+// out holds the items grouped by key, each group in item order; groupStart (keys + 1) gets
+// the groups' starts.
+template <typename Key>
+void stableCountingSort(const WorkspaceData& ws, std::size_t count, std::size_t keys, std::size_t chunks, const Key& key,
+                        std::uint32_t* counters, std::uint32_t* groupStart, std::uint32_t* out) {
+  const std::size_t length = chunks == 0 ? 0 : (count + chunks - 1) / chunks;
+  forRange(ws, chunks, 1, [&](std::size_t begin, std::size_t end) {
+    for (std::size_t k = begin; k < end; ++k) {
+      std::uint32_t* counter = counters + k * keys;
+      std::fill(counter, counter + keys, 0u);
+      for (std::size_t i = k * length; i < std::min(count, (k + 1) * length); ++i) ++counter[key(i)];
+    }
+  });
+  // Key-major offsets: each group's items chunk by chunk.
+  std::uint32_t total = 0;
+  for (std::size_t g = 0; g < keys; ++g) {
+    groupStart[g] = total;
+    for (std::size_t k = 0; k < chunks; ++k) {
+      const std::uint32_t n = counters[k * keys + g];
+      counters[k * keys + g] = total;
+      total += n;
+    }
+  }
+  groupStart[keys] = total;
+  forRange(ws, chunks, 1, [&](std::size_t begin, std::size_t end) {
+    for (std::size_t k = begin; k < end; ++k) {
+      std::uint32_t* next = counters + k * keys;
+      for (std::size_t i = k * length; i < std::min(count, (k + 1) * length); ++i) out[next[key(i)]++] = static_cast<std::uint32_t>(i);
+    }
+  });
+}
+
+}  // namespace
+
 void weldAndBucket(WorkspaceData& ws, const MeshArrays& mesh) {
   const std::size_t vertexCount = mesh.positions.size() / 3;
   const std::size_t cornerCount = mesh.indices.size();
@@ -122,35 +160,14 @@ void weldAndBucket(WorkspaceData& ws, const MeshArrays& mesh) {
     std::uint32_t* counts = ws.weldCounts.data();  // [chunk][partition], then partition starts
     std::uint32_t* partitionStart = counts + chunkCount * kPartitions;
     auto partitionOf = [](std::uint32_t hash) { return static_cast<std::size_t>(hash >> (32 - kPartitionBits)); };
-    forRange(ws, chunkCount, 1, [&](std::size_t begin, std::size_t end) {
-      for (std::size_t k = begin; k < end; ++k) {
-        std::uint32_t* count = counts + k * kPartitions;
-        std::fill(count, count + kPartitions, 0u);
-        for (std::size_t v = k * kChunk; v < std::min(vertexCount, (k + 1) * kChunk); ++v) {
-          const std::uint64_t hash = vertexHash(mesh, v);
-          hashes[v] = static_cast<std::uint32_t>(hash >> 32 & 0xFF000000u) | static_cast<std::uint32_t>(hash & 0xFFFFFFu);
-          ++count[partitionOf(hashes[v])];
-        }
+    forRange(ws, vertexCount, kChunk, [&](std::size_t begin, std::size_t end) {
+      for (std::size_t v = begin; v < end; ++v) {
+        const std::uint64_t hash = vertexHash(mesh, v);
+        hashes[v] = static_cast<std::uint32_t>(hash >> 32 & 0xFF000000u) | static_cast<std::uint32_t>(hash & 0xFFFFFFu);
       }
     });
-    // Offsets, partition-major: partition p's vertices, chunk by chunk, each chunk in order.
-    std::uint32_t total = 0;
-    for (std::size_t p = 0; p < kPartitions; ++p) {
-      partitionStart[p] = total;
-      for (std::size_t k = 0; k < chunkCount; ++k) {
-        const std::uint32_t n = counts[k * kPartitions + p];
-        counts[k * kPartitions + p] = total;
-        total += n;
-      }
-    }
-    partitionStart[kPartitions] = total;
-    forRange(ws, chunkCount, 1, [&](std::size_t begin, std::size_t end) {
-      for (std::size_t k = begin; k < end; ++k) {
-        std::uint32_t* cursor = counts + k * kPartitions;
-        for (std::size_t v = k * kChunk; v < std::min(vertexCount, (k + 1) * kChunk); ++v)
-          order[cursor[partitionOf(hashes[v])]++] = static_cast<std::uint32_t>(v);
-      }
-    });
+    stableCountingSort(ws, vertexCount, kPartitions, chunkCount, [&](std::size_t v) { return partitionOf(hashes[v]); }, counts,
+                       partitionStart, order);
     // Table of partition p: a power of two of at least twice its vertices, at tableStart[p].
     std::size_t tableSize = 0;
     std::array<std::size_t, kPartitions + 1> tableStart;
@@ -182,43 +199,15 @@ void weldAndBucket(WorkspaceData& ws, const MeshArrays& mesh) {
   std::uint32_t* corners = ws.bucketCorners.data();
   const std::uint32_t* indices = mesh.indices.data();
   forRange(ws, vertexCount + 1, 1 << 16, [&](std::size_t begin, std::size_t end) { std::fill(start + begin, start + end, 0u); });
-  // Counting and filling: one pass each on one thread; on two or three, each thread counts
-  // and fills its own slice of the corners with its own counters (in the weld table, free by
-  // now), which keeps every bucket in corner order; from four, atomic counters, then each
-  // bucket sorted (measured at 1e6 triangles, two threads: atomics 21 ms against 4 ms serial).
-  if (ws.threads == 1) {
-    for (std::size_t c = 0; c < cornerCount; ++c) ++start[vertexId[indices[c]] + 1];
-    for (std::size_t v = 0; v < vertexCount; ++v) start[v + 1] += start[v];
-    std::memcpy(cursor, start, vertexCount * sizeof(std::uint32_t));
-    for (std::size_t c = 0; c < cornerCount; ++c) corners[cursor[vertexId[indices[c]]]++] = static_cast<std::uint32_t>(c);
-  } else if (ws.threads < 4) {
-    const std::size_t slices = ws.threads, sliceLength = (cornerCount + slices - 1) / slices;
+  // Counting and filling: below four threads, each thread counts and fills its own slice of
+  // the corners with its own counters (in the weld table, free by now), which keeps every
+  // bucket in corner order; from four, atomic counters, then each bucket sorted (measured at
+  // 1e6 triangles, two threads: atomics 21 ms against 4 ms serial).
+  if (ws.threads < 4) {
+    const std::size_t slices = ws.threads;
     ensureSize(ws.table, slices * vertexCount);
-    std::uint32_t* sliceCount = ws.table.data();  // [slice][vertex]
-    forRange(ws, slices, 1, [&](std::size_t begin, std::size_t end) {
-      for (std::size_t k = begin; k < end; ++k) {
-        std::uint32_t* count = sliceCount + k * vertexCount;
-        std::fill(count, count + vertexCount, 0u);
-        for (std::size_t c = k * sliceLength; c < std::min(cornerCount, (k + 1) * sliceLength); ++c) ++count[vertexId[indices[c]]];
-      }
-    });
-    std::uint32_t total = 0;
-    for (std::size_t v = 0; v < vertexCount; ++v) {
-      start[v] = total;
-      for (std::size_t k = 0; k < slices; ++k) {
-        const std::uint32_t n = sliceCount[k * vertexCount + v];
-        sliceCount[k * vertexCount + v] = total;  // the slice's first position in bucket v
-        total += n;
-      }
-    }
-    start[vertexCount] = total;
-    forRange(ws, slices, 1, [&](std::size_t begin, std::size_t end) {
-      for (std::size_t k = begin; k < end; ++k) {
-        std::uint32_t* next = sliceCount + k * vertexCount;
-        for (std::size_t c = k * sliceLength; c < std::min(cornerCount, (k + 1) * sliceLength); ++c)
-          corners[next[vertexId[indices[c]]]++] = static_cast<std::uint32_t>(c);
-      }
-    });
+    stableCountingSort(ws, cornerCount, vertexCount, slices, [&](std::size_t c) { return vertexId[indices[c]]; }, ws.table.data(),
+                       start, corners);
   } else {
     forRange(ws, cornerCount, 1 << 14, [&](std::size_t begin, std::size_t end) {
       for (std::size_t c = begin; c < end; ++c)
