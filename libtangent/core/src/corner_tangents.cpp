@@ -137,21 +137,10 @@ Report computeTangents(CornerMesh& cornerMesh, const Options& options, TangentWo
       }
     });
   });
-  // 2. Array vertices numbered in corner order, chunk by chunk.
-  constexpr std::size_t kChunk = 1 << 16;
-  const std::size_t chunkCount = (cornerCount + kChunk - 1) / kChunk;
-  std::vector<std::uint32_t> chunkStart(chunkCount + 1, 0);
-  detail::onThreads(ws, [&] {
-    detail::forRange(ws, chunkCount, 1, [&](std::size_t begin, std::size_t end) {
-      for (std::size_t k = begin; k < end; ++k) {
-        std::uint32_t own = 0;
-        for (std::size_t c = k * kChunk; c < std::min(cornerCount, (k + 1) * kChunk); ++c) own += indices[c] == detail::kNone;
-        chunkStart[k + 1] = own;
-      }
-    });
-  });
-  for (std::size_t k = 0; k < chunkCount; ++k) chunkStart[k + 1] += chunkStart[k];
-  const std::size_t vertexCount = chunkCount == 0 ? 0 : chunkStart[chunkCount];
+  // 2. Array vertices: the corners that keep their own, numbered in corner order.
+  std::vector<std::uint32_t> own;
+  detail::onThreads(ws, [&] { own = detail::collectIf(ws, cornerCount, [&](std::size_t c) { return indices[c] == detail::kNone; }); });
+  const std::size_t vertexCount = own.size();
   detail::ensureSize(ws.meshPositions, 3 * vertexCount);
   detail::ensureSize(ws.meshNormals, 3 * vertexCount);
   detail::ensureSize(ws.meshUvs, 2 * vertexCount);
@@ -159,18 +148,14 @@ Report computeTangents(CornerMesh& cornerMesh, const Options& options, TangentWo
   float* normals = ws.meshNormals.data();
   float* uvs = ws.meshUvs.data();
   detail::onThreads(ws, [&] {
-    detail::forRange(ws, chunkCount, 1, [&](std::size_t begin, std::size_t end) {
-      for (std::size_t k = begin; k < end; ++k) {
-        std::uint32_t next = chunkStart[k];
-        for (std::size_t c = k * kChunk; c < std::min(cornerCount, (k + 1) * kChunk); ++c) {
-          if (indices[c] != detail::kNone) continue;
-          const CornerValues v = values(c);
-          std::memcpy(&positions[3 * next], v.position, sizeof v.position);
-          std::memcpy(&normals[3 * next], v.normal, sizeof v.normal);
-          std::memcpy(&uvs[2 * next], v.uv, sizeof v.uv);
-          indices[c] = detail::kNone - 1 - next;  // numbered, told apart from corner links
-          ++next;
-        }
+    detail::forRange(ws, vertexCount, 1 << 14, [&](std::size_t begin, std::size_t end) {
+      for (std::size_t next = begin; next < end; ++next) {
+        const std::uint32_t c = own[next];
+        const CornerValues v = values(c);
+        std::memcpy(&positions[3 * next], v.position, sizeof v.position);
+        std::memcpy(&normals[3 * next], v.normal, sizeof v.normal);
+        std::memcpy(&uvs[2 * next], v.uv, sizeof v.uv);
+        indices[c] = static_cast<std::uint32_t>(detail::kNone - 1 - next);  // numbered, told apart from corner links
       }
     });
   });
