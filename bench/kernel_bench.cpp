@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The library against the strongest peers, on the same arrays in one process (Google
 // Benchmark): the plain-array call and the OpenMesh input path at 1, 2 and all threads, the
 // reference MikkTSpace in C and meshoptimizer's tangent generator in its MikkTSpace-compatible

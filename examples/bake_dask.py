@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: MIT
 """Bake a folder tree of glTF/OBJ/PLY/OFF files on Dask's distributed scheduler.
 
     python3 examples/bake_dask.py INPUT_FOLDER OUTPUT_FOLDER [--workers N] [--scheduler ADDRESS]

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """Type stubs of the libtangent module (python/module.cpp): see help(libtangent)."""
 import os
 from typing import Any, Optional, TypedDict, Union

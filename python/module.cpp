@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The Python module `libtangent` (pybind11): the core on numpy arrays, and bake and check on
 // files with the options and the reports of the `tangent` command. The GIL is released while
 // C++ runs, so other Python threads (and Dask workers' threads) go on.

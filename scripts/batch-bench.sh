@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: MIT
 # Baking 200 files three ways, medians of 3 runs each (wall seconds): `tangent bake` once per
 # file in a shell loop, `tangent bake --recursive` (one process), and examples/bake_dask.py on a
 # 2-worker LocalCluster. The files: 40 copies of five demo glTFs (demo, quad, cube, sphere,

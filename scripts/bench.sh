@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: MIT
 # Speed and error against run time, with the peers measured in the same run on the same inputs.
 #   - tangent bench: error against run time on analytic surfaces (+ CSV/JSON, plot via gnuplot),
 #     with the reference MikkTSpace C and meshoptimizer on the same axes when built with them

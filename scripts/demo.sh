@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: MIT
 # The main job on the bundled default: installs what is missing, builds, bakes tangents into
 # data/demo/scene.gltf, prints what it did, checks the result, and shows it in tangent-view:
 # in a window when there is a display, otherwise as a headless screenshot (Xvfb).

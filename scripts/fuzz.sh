@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: MIT
 # Builds the libFuzzer targets (clang, AddressSanitizer + UndefinedBehaviorSanitizer) and runs
 # each for SECONDS (default 40) on a copy of its committed seed corpus. A crash, hang (10 s per
 # input), leak or sanitizer report fails the script; the input that caused it is copied to

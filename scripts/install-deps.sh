@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: MIT
 # Installs every Debian 12 package the project needs to build, run and test. Idempotent:
 # when everything is present it does nothing (no apt-get update).
 set -euo pipefail

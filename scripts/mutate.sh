@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: MIT
 # Mutation check (not part of CI): applies small deliberate bugs to the core and the glTF
 # layer, one at a time, to a copy of the source tree, rebuilds it and runs the tests that
 # should notice; prints which tests caught each mutation and which mutations survived.

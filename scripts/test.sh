@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: MIT
 # Installs what is missing, builds, and runs every test: the normal build, then the same
 # tests built with AddressSanitizer and UndefinedBehaviorSanitizer, then each fuzz target
 # for a fixed number of runs with a fixed seed (scripts/fuzz.sh --ci, about 40 s each).

@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: MIT
 # Thread scaling of the plain-array call: the kernel benchmark's all-threads case pinned to
 # 1, 2, 4, 8, ... CPUs (taskset; oneTBB uses the CPUs it is given), on single-primitive UV
 # spheres, with meshoptimizer's MikkTSpace-compatible mode on one CPU in the same run.

@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: MIT
 # Frame time of tangent-view under Xvfb (Mesa llvmpipe on machines without a GPU): the median
 # of N frames at 1280x720 for each asset, with the defaults (PBR, shadows + PCF 3x3; MSAA 4x,
 # or off on a software rasteriser) and with each feature turned off or changed in turn.

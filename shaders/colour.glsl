@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Colour encodings. Textures holding colour are sampled from sRGB8_ALPHA8 storage (decoded to
 // linear by the sampler); lighting is linear; the result is encoded once, here, to sRGB
 // (IEC 61966-2-1) after clamping to [0, 1], so the same code serves the window and screenshots.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Validation views: geometry normal, tangent, bitangent, shading normal, UVs, handedness
 // (w = +1 teal, w = -1 orange) and the angular error against freshly computed tangents as a
 // heatmap (0 blue, 1 deg green, 5 deg yellow, >= 20 deg red; failing corners magenta).

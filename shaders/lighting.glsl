@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Lights: directional (position.w = 0, xyz = direction the light travels) and positional
 // (position.w = 1) with ambient, diffuse and specular colours, attenuation 1/(k0 + k1 d + k2 d^2)
 // and an optional spot cone. Both shading modes read them: the specular-map mode

@@ -1,4 +1,5 @@
 #version 330 core
+// SPDX-License-Identifier: MIT
 // Tangent-frame glyphs: short T (red), B (green), N (blue) lines at vertices.
 layout(location = 0) in vec3 a_position;
 layout(location = 1) in vec3 a_color;

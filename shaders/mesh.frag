@@ -1,4 +1,5 @@
 #version 330 core
+// SPDX-License-Identifier: MIT
 // Mesh fragment stage. Every feature is a define (viewer/shader_features.hpp): a material
 // without a feature compiles none of its code. Two shading modes: SHADING_PBR, glTF's
 // metallic-roughness model (pbr.glsl), or else the tutorials' specular-map mode (Blinn-Phong

@@ -1,4 +1,5 @@
 #version 330 core
+// SPDX-License-Identifier: MIT
 // Mesh vertex stage: world-space position, normal and tangent frame; shadow-map coordinates.
 
 layout(location = 0) in vec3 a_position;

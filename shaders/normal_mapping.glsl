@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Tangent-space normal mapping: the frame (T, B, N) with B = cross(N, T) * w, as glTF defines
 // TANGENT; the map's green channel can be flipped for DirectX-convention maps.
 #ifdef HAS_NORMAL_MAP

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // glTF 2.0 metallic-roughness BRDF, as the specification's Appendix B writes it:
 //   metal_brdf      = specular_brdf(a) * (baseColor + (1 - baseColor) (1 - V.H)^5)
 //   dielectric_brdf = fresnel_mix(ior 1.5, diffuse_brdf(baseColor), specular_brdf(a))

@@ -1,3 +1,4 @@
 #version 330 core
+// SPDX-License-Identifier: MIT
 // Depth only: nothing to write but depth.
 void main() {}

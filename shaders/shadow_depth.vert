@@ -1,4 +1,5 @@
 #version 330 core
+// SPDX-License-Identifier: MIT
 // Depth pass from light 0.
 layout(location = 0) in vec3 a_position;
 uniform mat4 u_model;

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Shadow mapping for light 0: depth compare in a sampler2DShadow (hardware comparison with
 // bilinear filtering), with a constant plus slope bias and PCF over (2r+1)x(2r+1) texels
 // (r = 0 off, 1 = 3x3, 2 = 5x5) in (2r)^2 taps.

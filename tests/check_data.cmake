@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 # Regenerates data/demo into a temporary folder and compares every file, byte for byte, both ways.
 string(RANDOM LENGTH 12 suffix)
 set(out "${CMAKE_CURRENT_BINARY_DIR}/data-check-${suffix}")

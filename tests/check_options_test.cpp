@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // `tangent check`'s per-check control (--only, --ignore, --tolerance CHECK=DEG,
 // --allow-missing, --config) and its CI formats (github, sarif, junit), on a hand-made quad
 // whose findings are known exactly; `-o -` and `bake --report -` write to standard output.

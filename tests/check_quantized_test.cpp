@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The stored-tangent rules on quantized data (issue 11): the derived limits, clean bakes through
 // gltfpack and gltf-transform quantize checking clean, every negative control caught in
 // float and quantized form, bake keeping exactly what check passes, and bake's quantized

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // `tangent check`: baked outputs check clean; each negative control is caught by the right
 // check; the JUnit output parses as XML with the right failure counts; exit codes.
 #include <gtest/gtest.h>

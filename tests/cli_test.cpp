@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The `tangent` command as a pipeline calls it: exit codes, messages, malformed files from
 // Debian's assimp-testmodels, no partial outputs, inputs never written.
 #include <gtest/gtest.h>

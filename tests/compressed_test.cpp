@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Compressed input (KHR_draco_mesh_compression, EXT_meshopt_compression), on files that
 // gltf-transform (tests/node, pinned) makes from a generated asset: the viewer's scene loads
 // them like their source, and hostile compressed data is refused with an InputError naming

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Core: exact values on tiny hand-made meshes, invariants on generated ones, determinism,
 // degenerate input, and one test per error case.
 #include <gtest/gtest.h>

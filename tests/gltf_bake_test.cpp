@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // glTF adapter: round trip of every attribute of every corner, JSON kept outside the touched
 // accessors, accessor forms, splitting, UV-set choice, and the shared sample assets.
 #include <gtest/gtest.h>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Method `mikktspace` against the reference MikkTSpace (npm `mikktspace`, WebAssembly): every
 // generated mesh, OBJ input through bake, and the shared sample assets; plus determinism
 // under face shuffles, corner rotation and thread count.

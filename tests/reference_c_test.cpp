@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Randomized differential test against the reference C MikkTSpace (mmikk/MikkTSpace, compiled
 // from ../shared/peers/mikktspace by the test build only). The rule is the issue's "randomized
 // differential test against the reference C MikkTSpace"; see support/reference_rule.hpp.

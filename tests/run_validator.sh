@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: MIT
 # Bakes inputs into a fresh folder (float TANGENT, and normalized SHORT and BYTE with
 # --tangent-format, which must also check clean) and runs the Khronos glTF validator on each
 # output: 0 errors required. `generated`: every generated test asset and the bundled demo; `shared`: the

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The stress suite: every stiff or extreme case, every method: finite, unit (1e-6), orthogonal
 // to the normal (1e-5), w exactly +-1, the same bits on every run, broken input contained.
 #include <gtest/gtest.h>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The hot path's contract: the same bits for any thread count and any triangle order, the
 // vertex split it returns, a workspace that repeated calls reuse, and the OpenMesh call on
 // the same kernel.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Orbit camera: yaw/pitch around a target, distance, pan; named views that frame the scene.
 #pragma once
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Move-only owners of OpenGL objects: each deletes its object when it goes.
 #pragma once
 

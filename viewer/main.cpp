@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // tangent-view: shows a glTF asset with shadowed normal and specular mapping and the views that
 // validate its tangent frames; renders headless screenshots for tests and reports.
 #include <epoxy/gl.h>  // before GLFW: epoxy provides the GL declarations

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Draws a gltf::Scene: optional depth pass from light 0 into a shadow map, then the meshes
 // with the shader variant each material needs, then tangent-frame glyphs.
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Where the viewer's shaders and demo data are: beside an installed executable
 // (PREFIX/bin/tangent-view finds PREFIX/share/libtangent/{shaders,data}), or in the source tree
 // when it runs from the build tree. Never a path compiled in for an installed copy, so an

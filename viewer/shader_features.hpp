@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The feature defines shader variants are compiled from: one table, used by the renderer and
 // by the test that checks every name here is used by the GLSL and vice versa.
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Shader programs from the files in shaders/: `#include "x.glsl"` resolved at load, feature
 // defines inserted after #version, each variant compiled once and cached until reload().
 #pragma once

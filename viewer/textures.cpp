@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "textures.hpp"
 
 #include <OpenImageIO/filesystem.h>

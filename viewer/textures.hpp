@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Images decoded through OpenImageIO (files or embedded bytes) into GL textures.
 #pragma once
 

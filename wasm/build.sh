@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: MIT
 # Builds the WebAssembly package (wasm/package/dist/tangent_wasm.cjs, the .wasm embedded) with
 # Debian's emscripten: the core's MikkTSpace method, single-threaded (TANGENT_SERIAL), no OpenMesh.
 # Usage: wasm/build.sh   (installs emscripten first where it is missing)

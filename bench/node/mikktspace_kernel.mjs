@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The reference MikkTSpace kernel (npm `mikktspace`, WebAssembly) and libtangent's own
 // WebAssembly package (wasm/package, when built by wasm/build.sh) on the same de-indexed arrays
 // in one process, runs alternating: the UV sphere the library is measured on

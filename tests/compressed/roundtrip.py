@@ -1,4 +1,5 @@
 #!/usr/bin/python3
+# SPDX-License-Identifier: MIT
 """Compressed input round trip (issue 11, item 4): our own clean bakes, compressed by the tools
 pipelines use, read back by `tangent`.
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // libFuzzer target: the core on arbitrary arrays. The bytes choose a vertex count, a
 // triangle list and every float (raw bits or a table of awkward values: zeros, signed zeros,
 // denormals, huge, NaN, infinities), the method and the thread count. The core must answer

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // libFuzzer target: a .gltf or .glb file's bytes through the loader (depth limit, document
 // validation, URI containment, tinygltf, accessor checks), then every triangle primitive's
 // geometry through the core. Input errors are answers; a crash, hang, leak or sanitizer

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // libFuzzer target: OBJ, PLY and OFF files (the first byte picks the format) through the
 // checked OpenMesh importer and on into the core. Input errors are answers; a crash, hang,
 // leak or sanitizer report is a finding.

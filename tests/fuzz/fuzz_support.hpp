@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Shared by the fuzz targets: a folder holding the base buffer and image (so that relative
 // URIs can resolve), and the core's output contract checked on every corner.
 #pragma once

@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: MIT
 """Writes the committed seed corpus of the fuzz targets (tests/fuzz/corpus): small valid
 inputs of every shape the targets read, from the base asset of tests/malformed. Rerun after
 changing it; fuzzing adds its finds to a copy, never here (crashes go to regressions/).

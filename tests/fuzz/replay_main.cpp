@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Without libFuzzer (GCC builds, the sanitizer build): runs a fuzz target once on every file
 // of the folders given, the committed seed corpus and every crash ever found.
 #include <cstdint>

@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: MIT
 """Writes the malformed-input table: one folder per case under OUT, and OUT/cases.json.
 
 Each case is a valid base asset (a normal-mapped quad: POSITION, NORMAL, TEXCOORD_0, indices,

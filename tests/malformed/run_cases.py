@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: MIT
 """Runs the malformed-input table (make_cases.py) against the `tangent` command.
 
 For every case and each of bake, check and info: the exit code the table gives; a message

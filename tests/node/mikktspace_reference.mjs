@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Runs the reference MikkTSpace (npm `mikktspace`, WebAssembly) on de-indexed meshes.
 // Usage: node mikktspace_reference.mjs IN OUT [IN OUT ...]
 // IN:  uint32 corner count n, then n*3 float32 positions, n*3 normals, n*2 UVs (little endian).

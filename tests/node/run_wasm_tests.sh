@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: MIT
 # CTest `wasm.package`: the install test (builds and packs the package from the checkout by
 # the README's block, installs it into a new project, runs the README's blocks there), then
 # wasm_test.mjs (against the C++ library, through glTF-Transform, the validator) on the

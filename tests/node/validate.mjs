@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Runs the Khronos glTF validator on each file given; prints one JSON line per file and
 // exits 1 when any file has errors. Usage: node validate.mjs FILE...
 import fs from 'node:fs';

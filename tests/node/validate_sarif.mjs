@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Validates SARIF logs against the SARIF 2.1.0 JSON schema (the copy shipped in Microsoft's
 // SARIF multitool package, pinned in package-lock.json) with ajv, formats included.
 // Usage: node validate_sarif.mjs FILE.sarif...   exit 0 when every file is valid.

@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: MIT
 # The WebAssembly package as a user gets it, by the README's own blocks (its section
 # "WebAssembly (Node, browsers, glTF-Transform)", not the benchmark table's heading), run as
 # written: the first (sh) at the repository root builds and packs it; the package is

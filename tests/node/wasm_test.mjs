@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Tests of the WebAssembly package (wasm/package) against the C++ library and the Khronos
 // validator. Usage: node wasm_test.mjs ARRAYS_TOOL WORK_DIR ASSET...
 //   ARRAYS_TOOL: tangent-arrays-tool (the C++ library on raw arrays, tests/support)

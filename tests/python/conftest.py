@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """What a test does when something from outside the repository is absent (../shared, a Debian
 package): skipped on a developer's machine, a failure in CI (CI=true, set by .ci/run). The
 rule of tests/support/skip_or_fail.hpp for pytest.

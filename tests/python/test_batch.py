@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """Batch baking of folder trees: `tangent bake --recursive`, libtangent.bake_tree and the Dask
 example (examples/bake_dask.py) on a LocalCluster of 2 workers."""
 import json

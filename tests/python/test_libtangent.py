@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """The Python module against the C++ library and the `tangent` command (python/module.cpp).
 
 Run by CTest (python.pytest) with PYTHONPATH at build/python and TANGENT_CLI,

@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: MIT
 """Writes one C++ program from the README's ```cpp blocks, in order, inside one main() that
 first makes the arrays the blocks use (a unit quad), and afterwards checks what they computed.
 The README's C++ then builds and runs as a test: a block that no longer compiles or runs fails."""

@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: MIT
 """Runs the README's ```python blocks as written, in order, in one namespace, and the ```sh
 blocks of its "## Python" section with bash, all from the repository root (the README's paths
 are relative to it). The sh blocks run as on a fresh Debian machine: /usr/bin first on PATH

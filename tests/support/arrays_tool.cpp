@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // For the Python tests: the C++ library on raw arrays read from files, so that the module's
 // results can be compared bit for bit with a call that does not go through Python.
 //   tangent-arrays-tool DIR METHOD UV_ORIGIN

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "support/mikktspace_c.hpp"
 
 #include <mikktspace.h>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The reference MikkTSpace in C (../shared/peers/mikktspace, compiled by the test build only)
 // called on plain arrays, with the triangles handed over in any order and with their corners
 // rotated, the results mapped back to the original corners.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "support/random_meshes.hpp"
 
 #include <algorithm>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Seeded random triangle meshes that mix the cases tangent generators disagree on: seams,
 // mirrored islands, non-manifold edges and vertices, flipped and duplicated faces, zero UV
 // area, degenerate and sliver triangles, welded vs shared vertices, and MikkTSpace subgroup

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The reference MikkTSpace (npm `mikktspace`, WebAssembly) run on de-indexed meshes, and the
 // per-corner comparison against it.
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "support/reference_rule.hpp"
 
 #include <algorithm>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The differential rule against the reference C MikkTSpace (from the issue "randomized
 // differential test against the reference C MikkTSpace"):
 //  * the reference runs on the original triangle order and on kShuffles shuffles of it with

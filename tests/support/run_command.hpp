@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Runs a shell command, capturing standard output and error together.
 #pragma once
 

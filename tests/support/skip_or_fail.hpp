@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // What a test does when something it needs from outside the repository is absent (../shared,
 // Debian's assimp-testmodels): on a developer's machine it is skipped, and CTest reports it
 // as skipped (gtest_discover_tests sets SKIP_REGULAR_EXPRESSION for GTEST_SKIP's output); in

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // A fresh directory per test, removed afterwards: tests never share files.
 #pragma once
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Generated glTF test assets covering the accessor forms and document features bake must
 // handle. Used by the GoogleTest round trip and by the validator run (tangent-test-assets).
 #pragma once

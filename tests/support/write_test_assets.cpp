@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // tangent-test-assets OUT_DIR: writes every generated test asset as .gltf and as .glb.
 #include <iostream>
 

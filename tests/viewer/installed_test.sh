@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: MIT
 # The installed viewer works away from the source tree: `cmake --install` into a temporary
 # prefix, then the installed tangent-view renders its demo scene from another folder, reading
 # its shaders and demo data from PREFIX/share/libtangent.

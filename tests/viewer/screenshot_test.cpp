@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // tangent-view headless, as the tests of the viewer issue ask: runs under Xvfb with Mesa's
 // llvmpipe (the CTest entry wraps it in xvfb-run).
 #include <OpenImageIO/imageio.h>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Every feature define the C++ side can emit is used by the GLSL, and every define the GLSL
 // tests is one the C++ side can emit.
 #include <gtest/gtest.h>

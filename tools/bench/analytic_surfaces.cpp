@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "analytic_surfaces.hpp"
 
 #include <array>

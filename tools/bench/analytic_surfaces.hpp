@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Parametric surfaces whose exact tangent frame is known in closed form, tessellated at a
 // chosen resolution, for measuring error against run time. Exact tangent: dP/du projected onto
 // the tangent plane and normalized; exact w: sign(dot(cross(N, T), dP/dv)), in the

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The peers the benchmarks measure against, on the same arrays in the same process: the
 // reference MikkTSpace in C (Mikkelsen, genTangSpaceDefault) and meshoptimizer's
 // meshopt_generateTangents in its MikkTSpace-compatible and default modes. Their unmodified

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Stiff and extreme inputs: generated meshes for every case of the stress suite, and the
 // invariants every method must keep on them (run by the tests, summarized by
 // `tangent bench --stress`).

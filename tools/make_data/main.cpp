@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Generates the bundled demo asset in data/demo/: a UV sphere, two quads with a mirrored UV
 // island, and a ground plane without a normal map, plus the bump normal map they use.
 // Usage: tangent-make-data OUT_DIR

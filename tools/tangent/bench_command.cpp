@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // `tangent bench`: error against run time. Analytic surfaces with exact tangents at several
 // resolutions, every method and setting, 1 and 2 threads, and the peers (reference MikkTSpace
 // in C, meshoptimizer in both modes) when built with them; real assets against mikktspace;

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // `tangent check`: text for people, JSON for tools (docs/check-json.md), JUnit XML for CI
 // servers (one test case per primitive and check), GitHub workflow annotations and SARIF 2.1.0
 // for code-scanning tools.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The command's allocation policy: blocks of 2 MiB and more (a primitive's arrays, buffers,
 // the file read whole) are placed on 2 MiB boundaries and asked for transparent huge pages,
 // so that first touching them costs one page fault per 2 MiB instead of one per 4 KiB. On

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // `tangent`: bake tangents into glTF, describe assets.
 #include <iostream>
 

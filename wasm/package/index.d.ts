@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 /** Resolves once the module is ready (it is by the time the module has loaded). */
 export declare const ready: Promise<void>;
 

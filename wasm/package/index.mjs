@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // libtangent's MikkTSpace tangents in WebAssembly: a drop-in `generateTangents` for
 // glTF-Transform's tangents(), and an indexed call that returns the vertex split.
 import createTangentModule from './dist/tangent_wasm.cjs';

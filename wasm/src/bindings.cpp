@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The WebAssembly entry points of the npm package (wasm/package): the core's MikkTSpace method
 // on arrays in the module's memory, built without threads (TANGENT_SERIAL), without OpenMesh.
 // One workspace is reused from call to call, so repeated calls allocate nothing new.

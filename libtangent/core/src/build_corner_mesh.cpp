@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Builds the welded half-edge mesh the algorithms run on.
 #include <OpenMesh/Core/System/omstream.hh>
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "corner_groups.hpp"
 
 #include <algorithm>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // What the methods share once triangles are computed: groups of corners that get one frame,
 // value-ordered sums, fallbacks for corners no usable triangle reaches, and the output.
 #pragma once

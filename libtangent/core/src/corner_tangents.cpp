@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The entry points: the plain-array call (every method) and the OpenMesh call.
 #include <tbb/task_arena.h>
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Methods `lengyel` and `flat`.
 // Source: E. Lengyel, "Computing Tangent Space Basis Vectors for an Arbitrary Mesh", 2001:
 // accumulate per-triangle tangents over the corners that will share a vertex, then

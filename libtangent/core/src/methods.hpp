@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The methods on the half-edge mesh (`lengyel`, `flat`); `mikktspace` runs on packed arrays
 // (mikktspace.cpp, workspace.hpp).
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Method `mikktspace` over packed arrays.
 // Source: M. S. Mikkelsen, "Simulation of Wrinkled Surfaces Revisited", MSc thesis, 2008, and
 // the rules of the reference implementation (mikktspace.h/.c, 2011):

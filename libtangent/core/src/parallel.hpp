@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Splits [0, count) into one contiguous chunk per thread. Each item's result depends only on
 // the item, so the output is the same for any thread count.
 #pragma once

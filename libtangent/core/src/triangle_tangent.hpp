@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Per-triangle tangent directions from edge and UV deltas.
 // Source: E. Lengyel, "Computing Tangent Space Basis Vectors for an Arbitrary Mesh", 2001.
 // Solving [e1 e2] = [dP/du dP/dv] [du1 du2; dv1 dv2] gives

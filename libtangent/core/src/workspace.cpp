@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The phases every method shares: argument checks, welding by value, corner buckets, and
 // the output pass (duplicates, w convention, counts, vertex split).
 #include "workspace.hpp"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Scratch memory of one call, kept between calls (TangentWorkspace), and the phases that every
 // method shares: checking the arrays, welding corners by value, bucketing corners by welded
 // vertex, and the vertex split of the output.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "accessors.hpp"
 
 #include <algorithm>

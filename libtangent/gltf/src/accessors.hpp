@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Decoding glTF accessors (glTF 2.0 spec, section 3.6 "Binary Data Storage"): byteStride,
 // normalized and plain integer components (KHR_mesh_quantization), sparse substitution,
 // accessors without a bufferView (zeros). Every bound is checked; errors name the accessor.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Loading an asset: the original JSON (kept for output, so nothing unmodelled is lost) and
 // tinygltf's model (buffers and accessors for decoding). Images are never decoded.
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // `bake`: TANGENT for the primitives that need it (glTF 2.0 spec 3.7.2.1), vertices split where
 // the corners of one glTF vertex got different frames, every other attribute carried along.
 #include <algorithm>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "tangent/batch.hpp"
 
 #include <algorithm>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // `tangent check`: are the stored tangents present, well formed, orthogonal, of the right
 // handedness for the normal texture's UV set, and close to freshly computed ones?
 // Handedness in glTF's convention: w = -sign(UV area) (see README, "glTF's w convention").

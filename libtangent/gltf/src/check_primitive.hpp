@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // check's verdict on one primitive, shared with bake: bake keeps an existing TANGENT exactly
 // when this finds nothing at default settings, and otherwise says which checks failed.
 #pragma once

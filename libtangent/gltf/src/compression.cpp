@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Which compressions a document and its primitives use, and the bookkeeping of their
 // extension declarations. The decoders are in meshopt_decode.cpp and draco_decode.cpp.
 #include "compression.hpp"

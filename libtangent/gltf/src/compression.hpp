@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Compressed mesh data, decoded once at load so that every reader (bake, check, info, the
 // viewer's scene) sees plain accessors: KHR_draco_mesh_compression (a primitive's attributes
 // and indices in one Draco stream) and EXT_meshopt_compression (a bufferView's bytes in one

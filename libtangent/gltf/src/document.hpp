@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Editing a glTF document for output: new accessors appended, then on finish the accessors and
 // bufferViews the edit orphaned are dropped, every reference renumbered, and all surviving
 // buffer data packed into one buffer (the GLB BIN chunk or one .bin file).

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // KHR_draco_mesh_compression (KhronosGroup/glTF, extensions/2.0/Khronos/KHR_draco_mesh_compression):
 // a primitive's attributes and indices decoded from the Draco stream in the extension's
 // bufferView. Each glTF attribute named in the extension's `attributes` map is the Draco

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // `tangent info`: meshes, primitives, attributes, and which primitives need tangents and why.
 #include "asset.hpp"
 #include "accessors.hpp"

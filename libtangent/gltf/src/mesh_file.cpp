@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // OBJ, PLY and OFF through OpenMesh's readers, converted to an in-memory GLB so that the rest
 // of bake treats them like any glTF input. These formats carry no materials: every mesh
 // gets tangents. Their UV origin is bottom-left, so v becomes 1 - v for glTF.

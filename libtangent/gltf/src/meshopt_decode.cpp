@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // EXT_meshopt_compression (KhronosGroup/glTF, extensions/2.0/Vendor/EXT_meshopt_compression):
 // a bufferView's bytes decoded from its compressed source with meshoptimizer's codecs
 // (mode ATTRIBUTES, TRIANGLES or INDICES), then the filter (NONE, OCTAHEDRAL, QUATERNION,

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // What a primitive is and needs, and reading the geometry tangents are computed from:
 // shared by bake, check and info.
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Flattening a glTF document for display (see tangent/scene.hpp). Node transforms follow the
 // glTF 2.0 spec 3.5.3 (matrix, or T * R * S); lights come from KHR_lights_punctual.
 #include "tangent/scene.hpp"

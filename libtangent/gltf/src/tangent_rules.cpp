@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The limits of the stored-tangent rules (tangent_rules.hpp), derived from the rounding step of
 // the component types glTF 2.0 and KHR_mesh_quantization allow:
 //

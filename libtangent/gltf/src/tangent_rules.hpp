@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The one set of rules a stored TANGENT must satisfy, per component type: `tangent check`
 // applies them, `bake` keeps a TANGENT exactly when check passes it (it runs check's primitive
 // check), and the viewer's loader marks the corners that break them.

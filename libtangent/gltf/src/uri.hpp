@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // URIs of buffers and images (glTF 2.0 spec 3.1.1 and RFC 3986) and the containment rule:
 // an asset may read data: URIs and relative paths that stay inside its asset root after
 // `..` and symbolic links are resolved. Every file an asset names goes through resolveFileUri.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Bounded, checked loading of untrusted glTF (README "Security and limits"): the JSON's
 // nesting depth is measured before any parser recurses into it, and every index, offset,
 // count and stride the tools read is checked against the document (64-bit arithmetic) before

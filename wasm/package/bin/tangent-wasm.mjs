@@ -1,4 +1,5 @@
 #!/usr/bin/env node
+// SPDX-License-Identifier: MIT
 // tangent-wasm IN OUT [--overwrite]: bakes MikkTSpace tangents into every normal-mapped
 // triangle primitive of a glTF/GLB with glTF-Transform (its unweld, tangents and weld steps)
 // and this package's generateTangents. Needs @gltf-transform/core, /extensions and /functions

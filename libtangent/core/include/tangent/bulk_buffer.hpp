@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Large arrays without the cost of their first touch: elements are default-initialized (no
 // zero fill that is overwritten anyway) and, on Linux, blocks of 2 MiB or more are asked for
 // transparent huge pages, so that one page fault maps 2 MiB instead of 4 KiB. On virtual

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The OpenMesh representation the core works on: a triangle mesh welded by position, with
 // normal, UV and tangent stored per halfedge (that is, per face corner). The corner of face
 // f at vertex v is the halfedge of f that points to v, as OpenMesh's own readers use it.

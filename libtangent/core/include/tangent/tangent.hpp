@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // libtangent core API: tangent frames for triangle meshes.
 //
 // The core computes and opens no files. Two entry points:

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Baking folder trees: every glTF, OBJ, PLY and OFF file under a folder, each into the same
 // relative path under an output folder, one failure never stopping the rest, with a manifest
 // (OUTPUT/tangent-manifest.json) of input digests so that a re-run skips what is unchanged.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Validation of the tangents stored in a glTF file: what `tangent check` runs for CI.
 #pragma once
 

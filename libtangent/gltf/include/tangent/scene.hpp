@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // A glTF file flattened for display: every triangle primitive of the default scene as a draw
 // item in world space, one vertex per corner, with the file's tangents (or computed ones when
 // the file has none), freshly computed tangents, and what `tangent check` would say of each
