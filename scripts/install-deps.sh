@@ -4,7 +4,7 @@
 # when everything is present it does nothing (no apt-get update).
 set -euo pipefail
 packages=(
-  build-essential cmake ninja-build pkg-config git
+  build-essential cmake ninja-build pkg-config git ccache
   libopenmesh-dev libglm-dev libtinygltf-dev nlohmann-json3-dev libopenimageio-dev
   libgtest-dev libgmock-dev libbenchmark-dev libtbb-dev linux-perf
   libdraco-dev libmeshoptimizer-dev gltfpack libxml2-utils
