@@ -294,7 +294,6 @@ and the bake report when baked in this run.)");
           py::gil_scoped_release released;
           result = tangent::gltf::checkFile(input, options);
         }
-        if (!result.error.empty()) throw tangent::gltf::InputError(result.error);
         return toPython(tangent::gltf::toJson(result));
       },
       py::arg("path"), py::kw_only(), py::arg("method") = "mikktspace", py::arg("tolerance") = 1.0, py::arg("all") = false,

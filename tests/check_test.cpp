@@ -226,9 +226,12 @@ TEST(CheckNegative, TangentsMissing) {
 TEST(CheckNegative, UnreadableFileIsAnErrorNotAFinding) {
   TempDir dir;
   std::ofstream(dir / "broken.gltf") << "{";
-  const FileCheck check = tangent::gltf::checkFile(dir / "broken.gltf", {});
-  EXPECT_FALSE(check.error.empty());
-  EXPECT_NE(check.error.find("broken.gltf"), std::string::npos);
+  try {
+    tangent::gltf::checkFile(dir / "broken.gltf", {});
+    FAIL() << "checkFile accepted a file that is not JSON";
+  } catch (const tangent::gltf::InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("broken.gltf"), std::string::npos) << e.what();
+  }
 }
 
 using tangent::testing::runCommand;

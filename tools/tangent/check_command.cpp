@@ -14,6 +14,7 @@
 
 #include "commands.hpp"
 #include "tangent/check.hpp"
+#include "tangent/gltf.hpp"
 
 namespace tangent::cli {
 namespace {
@@ -446,7 +447,17 @@ int checkCommand(const std::vector<std::string>& args) {
   bool unreadable = false, findings = false;
   for (const auto& input : inputs) {
     times.startedUtc.push_back(isoTimestampUtc(std::chrono::system_clock::now()));
-    checks.push_back(gltf::checkFile(input, options));
+    const auto started = std::chrono::steady_clock::now();
+    try {
+      checks.push_back(gltf::checkFile(input, options));
+    } catch (const gltf::InputError& e) {
+      // Unreadable: reported in every format as a file with an error (exit code 2).
+      gltf::FileCheck unreadableFile;
+      unreadableFile.file = input;
+      unreadableFile.error = e.what();
+      unreadableFile.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+      checks.push_back(std::move(unreadableFile));
+    }
     unreadable = unreadable || !checks.back().error.empty();
     findings = findings || !checks.back().clean();
   }

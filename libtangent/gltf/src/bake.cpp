@@ -12,6 +12,7 @@
 #include "check_primitive.hpp"
 #include "compression.hpp"
 #include "document.hpp"
+#include "entry_point.hpp"
 #include "primitive.hpp"
 #include "tangent/bulk_buffer.hpp"
 #include "tangent/gltf.hpp"
@@ -387,12 +388,7 @@ BakeResult bakeChecked(const std::filesystem::path& input, const std::filesystem
 }  // namespace
 
 BakeResult bakeFile(const std::filesystem::path& input, const std::filesystem::path& output, const BakeOptions& options) {
-  try {
-    return bakeChecked(input, output, options);
-  } catch (const nlohmann::json::exception& e) {
-    // A document shape checkShape() did not foresee: still an input error, never a crash.
-    throw InputError(input.string() + ": unexpected glTF structure: " + e.what());
-  }
+  return detail::throwingInputError(input, [&] { return bakeChecked(input, output, options); });
 }
 
 namespace {

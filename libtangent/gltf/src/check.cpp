@@ -14,6 +14,7 @@
 #include "asset.hpp"
 #include "primitive.hpp"
 #include "check_primitive.hpp"
+#include "entry_point.hpp"
 #include "tangent_rules.hpp"
 #include "tangent/gltf.hpp"
 
@@ -268,16 +269,13 @@ bool FileCheck::clean() const {
   return std::all_of(primitives.begin(), primitives.end(), [](const PrimitiveCheck& p) { return p.findings.empty(); });
 }
 
-FileCheck checkFile(const std::filesystem::path& input, const CheckOptions& options) {
+namespace {
+
+FileCheck checkAsset(const std::filesystem::path& input, const CheckOptions& options) {
   FileCheck result;
   result.file = input.string();
   const auto started = std::chrono::steady_clock::now();
-  struct Timer {
-    FileCheck& result;
-    std::chrono::steady_clock::time_point started;
-    ~Timer() { result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count(); }
-  } timer{result, started};
-  try {
+  {
     const detail::Asset asset = detail::loadAsset(input, options.assetRoot);
     const Json& doc = asset.json;
     const std::size_t meshCount = doc.contains("meshes") ? doc["meshes"].size() : 0;
@@ -324,11 +322,15 @@ FileCheck checkFile(const std::filesystem::path& input, const CheckOptions& opti
         result.primitives.push_back(std::move(check));
       }
     }
-  } catch (const std::exception& e) {
-    result.primitives.clear();
-    result.error = e.what();
   }
+  result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
   return result;
+}
+
+}  // namespace
+
+FileCheck checkFile(const std::filesystem::path& input, const CheckOptions& options) {
+  return detail::throwingInputError(input, [&] { return checkAsset(input, options); });
 }
 
 nlohmann::ordered_json toJson(const FileCheck& check) {

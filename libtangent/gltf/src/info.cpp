@@ -3,11 +3,14 @@
 #include "asset.hpp"
 #include "accessors.hpp"
 #include "compression.hpp"
+#include "entry_point.hpp"
 #include "primitive.hpp"
 #include "tangent/gltf.hpp"
 
 namespace tangent::gltf {
-nlohmann::ordered_json describeFile(const std::filesystem::path& input, const std::filesystem::path& assetRoot) {
+namespace {
+
+nlohmann::ordered_json describe(const std::filesystem::path& input, const std::filesystem::path& assetRoot) {
   using Json = nlohmann::ordered_json;
   detail::Asset asset = detail::loadAsset(input, assetRoot);
   const Json& doc = asset.json;
@@ -66,6 +69,12 @@ nlohmann::ordered_json describeFile(const std::filesystem::path& input, const st
   for (const auto& w : asset.warnings) warnings.push_back(w);
   out["warnings"] = warnings;
   return out;
+}
+
+}  // namespace
+
+nlohmann::ordered_json describeFile(const std::filesystem::path& input, const std::filesystem::path& assetRoot) {
+  return detail::throwingInputError(input, [&] { return describe(input, assetRoot); });
 }
 
 }  // namespace tangent::gltf

@@ -14,6 +14,7 @@
 
 #include "accessors.hpp"
 #include "asset.hpp"
+#include "entry_point.hpp"
 #include "primitive.hpp"
 #include "tangent/gltf.hpp"
 #include "tangent_rules.hpp"
@@ -306,9 +307,7 @@ DrawItem makeDrawItem(const detail::Asset& asset, const Json& primitive, const s
   return item;
 }
 
-}  // namespace
-
-Scene loadScene(const std::filesystem::path& input, const SceneOptions& options) {
+Scene flattenScene(const std::filesystem::path& input, const SceneOptions& options) {
   const detail::Asset asset = detail::loadAsset(input, options.assetRoot);
   const Json& doc = asset.json;
   Scene scene;
@@ -392,6 +391,12 @@ Scene loadScene(const std::filesystem::path& input, const SceneOptions& options)
     scene.boundsMax = {hi.x, hi.y, hi.z};
   }
   return scene;
+}
+
+}  // namespace
+
+Scene loadScene(const std::filesystem::path& input, const SceneOptions& options) {
+  return detail::throwingInputError(input, [&] { return flattenScene(input, options); });
 }
 
 }  // namespace tangent::gltf

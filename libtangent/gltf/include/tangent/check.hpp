@@ -85,14 +85,15 @@ struct PrimitiveCheck {
 
 struct FileCheck {
   std::string file;
-  std::string error;                     // unreadable input (then no primitives)
+  std::string error;                     // unreadable input (then no primitives): set by callers
+                                         // that report such a file (the CLI), never by checkFile
   std::vector<PrimitiveCheck> primitives;  // those that need tangents
   std::vector<std::string> skipped;        // primitives not checked, and why
   double seconds = 0;                      // time spent checking the file
   bool clean() const;
 };
 
-// Never throws for bad input: an unreadable file comes back with `error` set.
+// Throws InputError on unreadable input (the same message `tangent check` reports).
 FileCheck checkFile(const std::filesystem::path& input, const CheckOptions& options);
 
 nlohmann::ordered_json toJson(const FileCheck& check);

@@ -17,10 +17,18 @@
 
 namespace tangent::gltf {
 
-// Any problem with an input file: the message names file, mesh, primitive and accessor.
+// The one exception the entry points of this layer (bakeFile, describeFile, checkFile,
+// loadScene, and through them OBJ/PLY/OFF files) throw for an input they cannot use: what()
+// is "<file>: <element>: <reason>", naming the file, the element (mesh, primitive, accessor,
+// URI, line; absent when the whole file is at fault) and what is wrong. Each entry point
+// translates whatever its work throws into it once (see src/entry_point.hpp).
 class InputError : public std::runtime_error {
  public:
-  using std::runtime_error::runtime_error;
+  // A message that names file and element itself, as the readers below the entry points build it.
+  explicit InputError(const std::string& message) : std::runtime_error(message) {}
+  // The message from its three parts; `element` may be empty.
+  InputError(const std::string& file, const std::string& element, const std::string& reason)
+      : std::runtime_error(file + (element.empty() ? "" : ": " + element) + ": " + reason) {}
 };
 
 // How bake stores the TANGENT it writes: glTF's float, or normalized SHORT/BYTE under
@@ -64,8 +72,8 @@ struct BakeResult {
 };
 
 // Reads `input`, bakes, writes `output` (.glb or .gltf + .bin beside it). The input is never
-// written to; outputs appear complete or not at all. Throws InputError on bad input and
-// std::runtime_error on I/O failure.
+// written to; outputs appear complete or not at all. Throws InputError on bad input (an
+// unusable output path included) and std::runtime_error when writing the output fails.
 BakeResult bakeFile(const std::filesystem::path& input, const std::filesystem::path& output,
                     const BakeOptions& options);
 
@@ -73,7 +81,7 @@ BakeResult bakeFile(const std::filesystem::path& input, const std::filesystem::p
 std::filesystem::path outputPathFor(const std::filesystem::path& input, const std::filesystem::path& outputDir);
 
 // Meshes, primitives, attributes, and which need tangents and why, as JSON.
-// `assetRoot` as in BakeOptions.
+// `assetRoot` as in BakeOptions. Throws InputError on unreadable input.
 nlohmann::ordered_json describeFile(const std::filesystem::path& input, const std::filesystem::path& assetRoot = {});
 
 // Result of a bake as the JSON written by `tangent bake --report`.
