@@ -29,15 +29,15 @@ py::object toPython(const nlohmann::ordered_json& json) { return py::module_::im
 }
 
 tangent::Method method(const std::string& name) {
-  tangent::Method m;
-  if (!tangent::parseMethod(name, m)) badArgument("method", "'" + name + "' is not mikktspace, lengyel or flat");
-  return m;
+  const std::optional<tangent::Method> m = tangent::parseMethod(name);
+  if (!m) badArgument("method", "'" + name + "' is not mikktspace, lengyel or flat");
+  return *m;
 }
 
 tangent::Weighting weighting(const std::string& name) {
-  tangent::Weighting w;
-  if (!tangent::parseWeighting(name, w)) badArgument("weighting", "'" + name + "' is not angle, area or uniform");
-  return w;
+  const std::optional<tangent::Weighting> w = tangent::parseWeighting(name);
+  if (!w) badArgument("weighting", "'" + name + "' is not angle, area or uniform");
+  return *w;
 }
 
 unsigned threadCount(int threads) {

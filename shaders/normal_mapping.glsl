@@ -2,6 +2,11 @@
 // Tangent-space normal mapping: the frame (T, B, N) with B = cross(N, T) * w, as glTF defines
 // TANGENT; the map's green channel can be flipped for DirectX-convention maps.
 #ifdef HAS_NORMAL_MAP
+// w = tangent::handedness(UV orientation, glTF's top-left origin), passed in by the viewer:
+// counter-clockwise UVs get w = -1, so cross(N, T) * w points to the image's top (+green).
+#if TANGENT_W_CCW_UV != -1
+#error normal_mapping.glsl assumes the glTF handedness, w = -1 for counter-clockwise UVs
+#endif
 uniform sampler2D u_normalMap;
 uniform float u_normalScale;
 uniform bool u_flipGreen;

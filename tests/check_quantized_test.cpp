@@ -252,9 +252,9 @@ void expectBakeAgreesWithCheck(const fs::path& input, const fs::path& dir) {
     std::vector<std::string> names;
     for (const auto& f : p.findings) names.push_back(f.check);
     if (p.findings.empty()) {
-      EXPECT_EQ(found->action, "kept") << input << ": " << found->reason;
+      EXPECT_EQ(found->action, tangent::gltf::PrimitiveAction::kept) << input << ": " << found->reason;
     } else {
-      EXPECT_EQ(found->action, "baked") << input;
+      EXPECT_EQ(found->action, tangent::gltf::PrimitiveAction::baked) << input;
       EXPECT_EQ(found->failedChecks, names) << input;
       EXPECT_NE(found->reason.find("fails tangent check (" + names.front() + ": "), std::string::npos) << found->reason;
     }
@@ -425,7 +425,7 @@ TEST(QuantizedOutput, ShortAndByteTangentsCheckCleanAndDeclareTheExtension) {
       options.overwrite = true;
       const auto result = tangent::gltf::bakeFile(input, output, options);
       bool bakedAny = false;
-      for (const auto& p : result.primitives) bakedAny = bakedAny || p.action == "baked";
+      for (const auto& p : result.primitives) bakedAny = bakedAny || p.action == tangent::gltf::PrimitiveAction::baked;
       const FileCheck check = tangent::gltf::checkFile(output, {});
       EXPECT_TRUE(check.clean()) << output << ": " << describe(check);
       const Glb glb = readGlb(output);
@@ -439,7 +439,7 @@ TEST(QuantizedOutput, ShortAndByteTangentsCheckCleanAndDeclareTheExtension) {
         if (!bakedAny) break;
         const auto baked = std::find_if(result.primitives.begin(), result.primitives.end(),
                                         [&](const auto& b) { return b.mesh == p.mesh && b.primitive == p.primitive; });
-        if (baked->action != "baked") continue;
+        if (baked->action != tangent::gltf::PrimitiveAction::baked) continue;
         EXPECT_EQ(p.tangentComponent, format == tangent::gltf::TangentFormat::normalizedShort ? "normalized SHORT" : "normalized BYTE")
             << output;
       }

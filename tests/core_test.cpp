@@ -79,15 +79,32 @@ TEST(Core, QuadExactFrame) {
   for (std::size_t c = 0; c < 6; ++c) expectTangent(r, c, 1, 0, 0, 1);
   EXPECT_EQ(r.report.mirroredCorners, 0u);
   EXPECT_EQ(r.report.splitVertices, 0u);
-  EXPECT_EQ(r.report.method, "lengyel");
-  EXPECT_EQ(r.report.weighting, "angle");
-  EXPECT_EQ(run(quad()).report.method, "mikktspace");  // the default
+  EXPECT_EQ(r.report.method, tangent::Method::lengyel);
+  EXPECT_EQ(r.report.weighting, tangent::Weighting::angle);
+  EXPECT_EQ(run(quad()).report.method, tangent::Method::mikktspace);  // the default
 }
 
 TEST(Core, TopLeftUvOriginNegatesWOnly) {
   const Result r = run(quad());  // default: glTF convention
   for (std::size_t c = 0; c < 6; ++c) expectTangent(r, c, 1, 0, 0, -1);
   EXPECT_EQ(r.report.mirroredCorners, 6u);
+}
+
+// The one handedness rule, and every method following it: the quad's UVs turn counter-clockwise.
+TEST(Core, HandednessRuleDecidesWForEveryMethodAndOrigin) {
+  static_assert(tangent::handedness(1.0f, tangent::UvOrigin::topLeft) == -1.0f);
+  static_assert(tangent::handedness(-1.0, tangent::UvOrigin::topLeft) == 1.0);
+  static_assert(tangent::handedness(1.0f, tangent::UvOrigin::bottomLeft) == 1.0f);
+  static_assert(tangent::kGltfUvOrigin == tangent::UvOrigin::topLeft);
+  for (tangent::Method method : {tangent::Method::mikktspace, tangent::Method::lengyel, tangent::Method::flat}) {
+    for (tangent::UvOrigin origin : {tangent::UvOrigin::topLeft, tangent::UvOrigin::bottomLeft}) {
+      Options options;
+      options.method = method;
+      options.uvOrigin = origin;
+      const Result r = run(quad(), options);
+      for (std::size_t c = 0; c < 6; ++c) EXPECT_EQ(r.tangents[4 * c + 3], tangent::handedness(1.0f, origin)) << c;
+    }
+  }
 }
 
 TEST(Core, MirroredQuadsSplitSharedVertices) {
@@ -153,7 +170,8 @@ TEST(Core, FlatGivesOneFramePerFace) {
   options.method = tangent::Method::flat;
   const Result r = run(m, options);
   expectValidFrames(m, r);
-  EXPECT_EQ(r.report.method, "flat");
+  EXPECT_EQ(r.report.method, tangent::Method::flat);
+  EXPECT_EQ(r.report.weighting, std::nullopt);
   // Neighbouring faces on a sphere disagree, so shared vertices split.
   EXPECT_GT(r.report.splitVertices, 0u);
   const Result smooth = run(m);
@@ -400,18 +418,16 @@ TEST(CoreErrors, OutputTooSmall) {
 }
 
 TEST(CoreNames, ParseAndPrint) {
-  tangent::Method method;
-  EXPECT_TRUE(tangent::parseMethod("flat", method));
-  EXPECT_EQ(method, tangent::Method::flat);
-  EXPECT_TRUE(tangent::parseMethod("mikktspace", method));
-  EXPECT_EQ(method, tangent::Method::mikktspace);
-  EXPECT_TRUE(tangent::parseMethod("flat", method));
-  EXPECT_EQ(method, tangent::Method::flat);
-  EXPECT_FALSE(tangent::parseMethod("mikk", method));
-  tangent::Weighting weighting;
-  EXPECT_TRUE(tangent::parseWeighting("area", weighting));
-  EXPECT_EQ(tangent::toString(weighting), "area");
-  EXPECT_FALSE(tangent::parseWeighting("", weighting));
+  EXPECT_EQ(tangent::parseMethod("flat"), tangent::Method::flat);
+  EXPECT_EQ(tangent::parseMethod("mikktspace"), tangent::Method::mikktspace);
+  EXPECT_EQ(tangent::parseMethod("lengyel"), tangent::Method::lengyel);
+  EXPECT_EQ(tangent::parseMethod("mikk"), std::nullopt);
+  for (tangent::Method method : {tangent::Method::mikktspace, tangent::Method::lengyel, tangent::Method::flat})
+    EXPECT_EQ(tangent::parseMethod(tangent::toString(method)), method);
+  const std::optional<tangent::Weighting> weighting = tangent::parseWeighting("area");
+  ASSERT_TRUE(weighting);
+  EXPECT_EQ(tangent::toString(*weighting), "area");
+  EXPECT_EQ(tangent::parseWeighting(""), std::nullopt);
 }
 
 }  // namespace

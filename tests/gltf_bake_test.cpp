@@ -133,13 +133,13 @@ TEST_P(RoundTrip, EveryCornerAndAllOtherJsonKept) {
       const Asset out = loadAsset(output);
       std::vector<std::pair<int, int>> touched;
       for (const auto& p : result.primitives) {
-        if (p.action == "baked") touched.emplace_back(p.mesh, p.primitive);
+        if (p.action == tangent::gltf::PrimitiveAction::baked) touched.emplace_back(p.mesh, p.primitive);
       }
       ASSERT_FALSE(touched.empty());
       for (const auto& p : result.primitives) {
         const Json& inPrimitive = in.json["meshes"][p.mesh]["primitives"][p.primitive];
         const Json& outPrimitive = out.json["meshes"][p.mesh]["primitives"][p.primitive];
-        if (p.action != "baked") continue;
+        if (p.action != tangent::gltf::PrimitiveAction::baked) continue;
         ASSERT_TRUE(outPrimitive["attributes"].contains("TANGENT"));
         expectSameCorners(in, inPrimitive, out, outPrimitive, "mesh " + std::to_string(p.mesh) + " primitive " + std::to_string(p.primitive));
         const auto tangents = tangent::gltf::detail::toFloats(readAccessor(out.model, outPrimitive["attributes"]["TANGENT"].get<int>(), "TANGENT"));
@@ -178,7 +178,7 @@ TEST(Bake, MirroredColumnsSplitAndIndicesWiden) {
   TempDir dir;
   Asset out;
   const auto result = bakeGenerated("many_splits", dir, out);
-  ASSERT_EQ(result.primitives[0].action, "baked");
+  ASSERT_EQ(result.primitives[0].action, tangent::gltf::PrimitiveAction::baked);
   EXPECT_EQ(result.primitives[0].verticesIn, 201u * 301u);
   EXPECT_EQ(result.primitives[0].verticesOut, 201u * 301u + 199u * 301u);  // every interior column splits
   EXPECT_EQ(result.primitives[0].tangents.splitVertices, 199u * 301u);
@@ -267,14 +267,14 @@ TEST(Bake, PrimitivesThatNeedNothingAreLeftAlone) {
   Asset out;
   const auto result = bakeGenerated("document_features", dir, out);
   ASSERT_EQ(result.primitives.size(), 5u);
-  EXPECT_EQ(result.primitives[0].action, "baked");
-  EXPECT_EQ(result.primitives[1].action, "skipped");  // no normal texture
-  EXPECT_EQ(result.primitives[2].action, "skipped");  // points
-  EXPECT_EQ(result.primitives[3].action, "skipped");  // no NORMAL
+  EXPECT_EQ(result.primitives[0].action, tangent::gltf::PrimitiveAction::baked);
+  EXPECT_EQ(result.primitives[1].action, tangent::gltf::PrimitiveAction::skipped);  // no normal texture
+  EXPECT_EQ(result.primitives[2].action, tangent::gltf::PrimitiveAction::skipped);  // points
+  EXPECT_EQ(result.primitives[3].action, tangent::gltf::PrimitiveAction::skipped);  // no NORMAL
   EXPECT_NE(result.primitives[3].reason.find("NORMAL"), std::string::npos);
   // Its supplied TANGENT, constant +x on a curved sheet, is unit with w = +-1 but leaves the
   // tangent plane: check fails it, so bake replaces it and says which checks failed.
-  EXPECT_EQ(result.primitives[4].action, "baked");
+  EXPECT_EQ(result.primitives[4].action, tangent::gltf::PrimitiveAction::baked);
   EXPECT_EQ(result.primitives[4].failedChecks, (std::vector<std::string>{"orthogonal", "reference"}));
   EXPECT_EQ(result.primitives[4].reason.rfind("existing TANGENT fails tangent check (orthogonal: ", 0), 0u) << result.primitives[4].reason;
   const Json& primitives = out.json["meshes"][0]["primitives"];
@@ -289,13 +289,13 @@ TEST(Bake, OverwriteRecomputesValidTangents) {
   const fs::path input = tangent::testing::writeAsset(assetNamed(all, "document_features"), dir / "in", true);
   tangent::gltf::bakeFile(input, dir / "once.glb", {});
   // A second bake keeps what the first wrote (check passes it) unless --overwrite.
-  EXPECT_EQ(tangent::gltf::bakeFile(dir / "once.glb", dir / "twice.glb", {}).primitives[0].action, "kept");
+  EXPECT_EQ(tangent::gltf::bakeFile(dir / "once.glb", dir / "twice.glb", {}).primitives[0].action, tangent::gltf::PrimitiveAction::kept);
   tangent::gltf::BakeOptions options;
   options.overwrite = true;
   const auto result = tangent::gltf::bakeFile(dir / "once.glb", dir / "out.glb", options);
-  EXPECT_EQ(result.primitives[0].action, "baked");
+  EXPECT_EQ(result.primitives[0].action, tangent::gltf::PrimitiveAction::baked);
   EXPECT_EQ(result.primitives[0].reason, "TANGENT recomputed (--overwrite)");
-  EXPECT_EQ(result.primitives[4].action, "baked");
+  EXPECT_EQ(result.primitives[4].action, tangent::gltf::PrimitiveAction::baked);
 }
 
 TEST(Bake, AllBakesPrimitivesWithoutNormalTexture) {
@@ -305,7 +305,7 @@ TEST(Bake, AllBakesPrimitivesWithoutNormalTexture) {
   tangent::gltf::BakeOptions options;
   options.all = true;
   const auto result = tangent::gltf::bakeFile(input, dir / "out.glb", options);
-  EXPECT_EQ(result.primitives[1].action, "baked");
+  EXPECT_EQ(result.primitives[1].action, tangent::gltf::PrimitiveAction::baked);
 }
 
 TEST(Bake, GltfAndGlbConvertBothWays) {
@@ -433,7 +433,7 @@ TEST(MeshFiles, ObjBakesToGlb) {
   EXPECT_EQ(output.filename(), "quad.glb");
   const auto result = tangent::gltf::bakeFile(dir / "quad.obj", output, {});
   ASSERT_EQ(result.primitives.size(), 1u);
-  EXPECT_EQ(result.primitives[0].action, "baked");
+  EXPECT_EQ(result.primitives[0].action, tangent::gltf::PrimitiveAction::baked);
   const Asset out = loadAsset(output);
   const Json& primitive = out.json["meshes"][0]["primitives"][0];
   const auto tangents = tangent::gltf::detail::toFloats(readAccessor(out.model, primitive["attributes"]["TANGENT"].get<int>(), "TANGENT"));
@@ -456,7 +456,7 @@ TEST(MeshFiles, PlyAndOffBakeToGlb) {
     const fs::path output = tangent::gltf::outputPathFor(dir / name, dir / "out");
     const auto result = tangent::gltf::bakeFile(dir / name, output, {});
     ASSERT_EQ(result.primitives.size(), 1u);
-    EXPECT_EQ(result.primitives[0].action, "baked");
+    EXPECT_EQ(result.primitives[0].action, tangent::gltf::PrimitiveAction::baked);
     EXPECT_NE(result.primitives[0].reason.find("OBJ/PLY/OFF"), std::string::npos) << result.primitives[0].reason;
     const Asset out = loadAsset(output);
     const Json& primitive = out.json["meshes"][0]["primitives"][0];
@@ -508,7 +508,7 @@ TEST(SharedAssets, BothAssetsBakeWithTangentsOnEveryNormalMappedPrimitive) {
       const Json& primitive = out.json["meshes"][p.mesh]["primitives"][p.primitive];
       const auto needs = tangent::gltf::detail::primitiveNeeds(out.json, primitive, false);
       if (needs.hasNormalTexture) {
-        EXPECT_EQ(p.action, "baked") << name;
+        EXPECT_EQ(p.action, tangent::gltf::PrimitiveAction::baked) << name;
         EXPECT_TRUE(primitive["attributes"].contains("TANGENT")) << name;
       }
     }

@@ -6,6 +6,8 @@
 #include <regex>
 #include <stdexcept>
 
+#include "tangent/tangent.hpp"
+
 namespace tangent::viewer {
 namespace {
 
@@ -81,7 +83,14 @@ GLuint ShaderLibrary::program(const std::string& vertexFile, const std::string& 
   return id;
 }
 
-GLuint ShaderLibrary::mesh(FeatureSet features, DebugView view) { return program("mesh.vert", "mesh.frag", definesFor(features, view)); }
+// glTF's handedness from the library's one rule: the w that counter-clockwise UVs get (-1).
+// normal_mapping.glsl is written for it and refuses to compile under another.
+static const std::string kHandednessDefine =
+    "#define TANGENT_W_CCW_UV " + std::to_string(static_cast<int>(tangent::handedness(1.0f, tangent::kGltfUvOrigin))) + "\n";
+
+GLuint ShaderLibrary::mesh(FeatureSet features, DebugView view) {
+  return program("mesh.vert", "mesh.frag", definesFor(features, view) + kHandednessDefine);
+}
 GLuint ShaderLibrary::shadowDepth() { return program("shadow_depth.vert", "shadow_depth.frag", ""); }
 GLuint ShaderLibrary::lines() { return program("lines.vert", "lines.frag", ""); }
 

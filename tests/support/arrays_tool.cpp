@@ -41,7 +41,9 @@ int main(int argc, char** argv) {
   }
   const std::filesystem::path dir = argv[1];
   tangent::Options options;
-  if (!tangent::parseMethod(argv[2], options.method)) return 2;
+  const std::optional<tangent::Method> method = tangent::parseMethod(argv[2]);
+  if (!method) return 2;
+  options.method = *method;
   options.uvOrigin = std::string(argv[3]) == "bottom-left" ? tangent::UvOrigin::bottomLeft : tangent::UvOrigin::topLeft;
   const auto positions = readRaw<float>(dir / "positions.f32"), normals = readRaw<float>(dir / "normals.f32"),
              uvs = readRaw<float>(dir / "uvs.f32");

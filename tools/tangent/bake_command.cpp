@@ -150,12 +150,14 @@ int bakeCommand(const std::vector<std::string>& args) {
       outDir = *v;
     } else if (arg == "--method") {
       const std::string* v = value("--method");
-      if (!v || !parseMethod(*v, options.tangents.method))
-        return usageError("--method must be mikktspace, lengyel or flat");
+      const std::optional<Method> method = v ? parseMethod(*v) : std::nullopt;
+      if (!method) return usageError("--method must be mikktspace, lengyel or flat");
+      options.tangents.method = *method;
     } else if (arg == "--weighting") {
       const std::string* v = value("--weighting");
-      if (!v || !parseWeighting(*v, options.tangents.weighting))
-        return usageError("--weighting must be angle, area or uniform");
+      const std::optional<Weighting> weighting = v ? parseWeighting(*v) : std::nullopt;
+      if (!weighting) return usageError("--weighting must be angle, area or uniform");
+      options.tangents.weighting = *weighting;
     } else if (arg == "--threads") {
       const std::string* v = value("--threads");
       int threads = 0;
@@ -237,19 +239,19 @@ int bakeCommand(const std::vector<std::string>& args) {
         int baked = 0, kept = 0, skipped = 0;
         std::uint64_t split = 0;
         for (const auto& p : result.primitives) {
-          baked += p.action == "baked";
-          kept += p.action == "kept";
-          skipped += p.action == "skipped";
-          split += p.action == "baked" ? p.verticesOut - p.verticesIn : 0;
+          baked += p.action == gltf::PrimitiveAction::baked;
+          kept += p.action == gltf::PrimitiveAction::kept;
+          skipped += p.action == gltf::PrimitiveAction::skipped;
+          split += p.action == gltf::PrimitiveAction::baked ? p.verticesOut - p.verticesIn : 0;
         }
         log << input.string() << " -> " << targetName << ": " << baked << " baked, " << kept << " kept, "
                   << skipped << " skipped; " << split << " vertices added by splits\n";
         for (const auto& p : result.primitives) {
           log << "  mesh " << p.mesh << (p.meshName.empty() ? "" : " '" + p.meshName + "'") << " primitive "
-                    << p.primitive << ": " << p.action << " - " << p.reason;
-          if (p.action == "baked") {
+                    << p.primitive << ": " << gltf::toString(p.action) << " - " << p.reason;
+          if (p.action == gltf::PrimitiveAction::baked) {
             const Report& r = p.tangents;
-            log << " [" << r.method << (r.weighting.empty() ? "" : "/" + r.weighting) << ", " << p.verticesIn << " -> "
+            log << " [" << toString(r.method) << (r.weighting ? "/" + std::string(toString(*r.weighting)) : "") << ", " << p.verticesIn << " -> "
                       << p.verticesOut << " vertices, " << r.mirroredCorners << " mirrored corners";
             if (r.degenerateTriangles) log << ", " << r.degenerateTriangles << " degenerate triangles";
             if (r.zeroUvAreaTriangles) log << ", " << r.zeroUvAreaTriangles << " zero-UV-area triangles";

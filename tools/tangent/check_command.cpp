@@ -425,8 +425,9 @@ int checkCommand(const std::vector<std::string>& args) {
     } else if (arg == "--allow-missing") {
       options.allowMissing = true;
     } else if (arg == "--method") {
-      if (!hasValue || !parseMethod(args[++i], options.method) || options.method == Method::flat)
-        return usageError("--method must be mikktspace or lengyel");
+      const std::optional<Method> method = hasValue ? parseMethod(args[++i]) : std::nullopt;
+      if (!method || *method == Method::flat) return usageError("--method must be mikktspace or lengyel");
+      options.method = *method;
     } else if (arg == "--all") {
       options.all = true;
     } else if (arg == "--asset-root") {

@@ -152,7 +152,7 @@ void finishCorners(CornerMesh& cornerMesh, std::vector<Group>& groups, const std
     }
   }
 
-  const double wSign = options.uvOrigin == UvOrigin::topLeft ? -1.0 : 1.0;
+  const double wSign = handedness(1.0, options.uvOrigin);
   for (std::size_t corner = 0; corner < cornerGroup.size(); ++corner) {
     const Group& group = groups[cornerGroup[corner]];
     const double w = group.w * wSign;

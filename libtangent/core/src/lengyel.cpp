@@ -22,8 +22,8 @@ Report lengyelTangents(CornerMesh& cornerMesh, const Options& options, std::span
   const bool flat = options.method == Method::flat;
 
   Report report;
-  report.method = std::string(toString(options.method));
-  report.weighting = flat ? "" : std::string(toString(options.weighting));
+  report.method = options.method;
+  if (!flat) report.weighting = options.weighting;
   report.triangles = triangleCount;
   report.corners = cornerCount;
   report.nonManifoldFaces = cornerMesh.nonManifoldFaces;

@@ -968,8 +968,8 @@ void Kernel::run(Report& report) {
 }  // namespace
 
 void mikktspaceOnBuckets(WorkspaceData& ws, const MeshArrays& mesh, const CornerOutputs& outputs, Report& report) {
-  report.method = "mikktspace";
-  report.weighting = "angle";
+  report.method = Method::mikktspace;
+  report.weighting = Weighting::angle;
   report.triangles = ws.cornerCount / 3;
   report.corners = ws.cornerCount;
   Kernel(ws, mesh, outputs).run(report);

@@ -21,24 +21,18 @@ std::string_view toString(Weighting weighting) {
   return "unknown";
 }
 
-bool parseMethod(std::string_view name, Method& method) {
+std::optional<Method> parseMethod(std::string_view name) {
   for (Method candidate : {Method::mikktspace, Method::lengyel, Method::flat}) {
-    if (toString(candidate) == name) {
-      method = candidate;
-      return true;
-    }
+    if (toString(candidate) == name) return candidate;
   }
-  return false;
+  return std::nullopt;
 }
 
-bool parseWeighting(std::string_view name, Weighting& weighting) {
+std::optional<Weighting> parseWeighting(std::string_view name) {
   for (Weighting candidate : {Weighting::angle, Weighting::area, Weighting::uniform}) {
-    if (toString(candidate) == name) {
-      weighting = candidate;
-      return true;
-    }
+    if (toString(candidate) == name) return candidate;
   }
-  return false;
+  return std::nullopt;
 }
 
 }  // namespace tangent

@@ -266,7 +266,7 @@ void finishOutputs(WorkspaceData& ws, const MeshArrays& mesh, const CornerOutput
   float* tangents = outputs.tangents.data();
   std::uint8_t* state = ws.cornerState.data();
   const std::uint32_t* link = ws.cornerLink.data();
-  const float wSign = options.uvOrigin == UvOrigin::topLeft ? -1.0f : 1.0f;
+  const float wSign = handedness(1.0f, options.uvOrigin);
 
   // Duplicates copy their original (never itself a copy); then w convention and counts.
   forRange(ws, cornerCount, 1 << 14, [&](std::size_t begin, std::size_t end) {

@@ -185,7 +185,7 @@ PrimitiveResult PrimitiveBaker::bake(int meshIndex, int primitiveIndex) {
   result.mesh = meshIndex;
   result.primitive = primitiveIndex;
   if (doc["meshes"][meshIndex].contains("name")) result.meshName = doc["meshes"][meshIndex]["name"].get<std::string>();
-  result.action = "skipped";
+  result.action = PrimitiveAction::skipped;
 
   const detail::PrimitiveNeeds needs = detail::primitiveNeeds(doc, primitive, options_.all || asset_.fromMeshFile);
   const std::string why = asset_.fromMeshFile && !needs.hasNormalTexture && needs.texCoord >= 0
@@ -219,7 +219,7 @@ PrimitiveResult PrimitiveBaker::bake(int meshIndex, int primitiveIndex) {
     PrimitiveCheck verdict;
     detail::checkPrimitiveTangents(asset_, primitive, needs, where, CheckOptions{}, verdict);
     if (verdict.findings.empty() && !options_.overwrite) {
-      result.action = "kept";
+      result.action = PrimitiveAction::kept;
       result.reason = "valid TANGENT present: tangent check passes it (use --overwrite to recompute)";
       return result;
     }
@@ -244,7 +244,7 @@ PrimitiveResult PrimitiveBaker::bake(int meshIndex, int primitiveIndex) {
   BulkVector<float> cornerTangents(corners.size() * 4);
   BulkVector<std::uint32_t> cornerVertex(corners.size());
   Options coreOptions = options_.tangents;
-  coreOptions.uvOrigin = UvOrigin::topLeft;
+  coreOptions.uvOrigin = kGltfUvOrigin;
   TangentWorkspace workspace;
   result.tangents = computeCornerTangents({positions, normals, uvs, corners}, CornerOutputs{cornerTangents, {}, cornerVertex},
                                           coreOptions, workspace);
@@ -346,7 +346,7 @@ PrimitiveResult PrimitiveBaker::bake(int meshIndex, int primitiveIndex) {
     primitive["targets"][t]["TANGENT"] =
         output_.addAccessor(floatAccessor(outCount, "VEC3"), floatBytes(targetTangentDeltas[t]), 12, detail::kArrayBuffer);
   }
-  result.action = "baked";
+  result.action = PrimitiveAction::baked;
   result.tangentFormat = options_.tangentFormat;
   if (existingTangent < 0) result.reason = why;
   if (compression.any()) {
@@ -364,6 +364,15 @@ std::optional<TangentFormat> parseTangentFormat(std::string_view name) {
   if (name == "short") return TangentFormat::normalizedShort;
   if (name == "byte") return TangentFormat::normalizedByte;
   return std::nullopt;
+}
+
+const char* toString(PrimitiveAction action) {
+  switch (action) {
+    case PrimitiveAction::baked: return "baked";
+    case PrimitiveAction::kept: return "kept";
+    case PrimitiveAction::skipped: return "skipped";
+  }
+  return "?";
 }
 
 const char* toString(TangentFormat format) {
@@ -436,7 +445,7 @@ BakeResult bakeChecked(const std::filesystem::path& input, const std::filesystem
   }
   // Declared after the loop: no reference into the document is held across the insertion.
   if (std::any_of(result.primitives.begin(), result.primitives.end(),
-                  [](const PrimitiveResult& p) { return p.action == "baked" && p.tangentFormat != TangentFormat::float32; }))
+                  [](const PrimitiveResult& p) { return p.action == PrimitiveAction::baked && p.tangentFormat != TangentFormat::float32; }))
     declareRequiredExtension(doc, "KHR_mesh_quantization");
   result.bytesWritten = document.write(output);
   result.extensionsRemoved = document.extensionsRemoved();
@@ -446,8 +455,8 @@ BakeResult bakeChecked(const std::filesystem::path& input, const std::filesystem
 }  // namespace
 
 nlohmann::ordered_json toJson(const Report& report) {
-  return Json{{"method", report.method},
-              {"weighting", report.weighting},
+  return Json{{"method", toString(report.method)},
+              {"weighting", report.weighting ? toString(*report.weighting) : std::string_view()},
               {"triangles", report.triangles},
               {"corners", report.corners},
               {"degenerateTriangles", report.degenerateTriangles},
@@ -466,10 +475,10 @@ nlohmann::ordered_json toJson(const BakeResult& result) {
   Json primitives = Json::array();
   for (const PrimitiveResult& p : result.primitives) {
     Json entry = {{"mesh", p.mesh}, {"meshName", p.meshName}, {"primitive", p.primitive},
-                  {"action", p.action}, {"reason", p.reason}};
+                  {"action", toString(p.action)}, {"reason", p.reason}};
     if (p.texCoord >= 0) entry["texCoord"] = p.texCoord;
     if (!p.failedChecks.empty()) entry["failedChecks"] = p.failedChecks;
-    if (p.action == "baked") {
+    if (p.action == PrimitiveAction::baked) {
       entry["tangentFormat"] = toString(p.tangentFormat);
       entry["verticesIn"] = p.verticesIn;
       entry["verticesOut"] = p.verticesOut;

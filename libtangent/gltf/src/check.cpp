@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: MIT
 // `tangent check`: are the stored tangents present, well formed, orthogonal, of the right
 // handedness for the normal texture's UV set, and close to freshly computed ones?
-// Handedness in glTF's convention: w = -sign(UV area) (see README, "glTF's w convention").
+// Handedness in glTF's convention, tangent::handedness: w = -sign(UV area) (README, "glTF's w convention").
 #include "tangent/check.hpp"
 
 #include <algorithm>
@@ -208,7 +208,7 @@ void checkPrimitiveTangents(const Asset& asset, const Json& primitive, const Pri
   if (options.runs(CheckId::reference)) {
     Options core;
     core.method = options.method;
-    core.uvOrigin = UvOrigin::topLeft;
+    core.uvOrigin = kGltfUvOrigin;
     std::vector<float> computed(geometry.corners.size() * 4);
     std::vector<FrameSource> sources(geometry.corners.size());
     computeCornerTangents({geometry.positions, geometry.normals, geometry.uvs, geometry.corners}, computed, core, sources);
@@ -429,10 +429,9 @@ void applyCheckConfig(const std::filesystem::path& file, CheckOptions& options) 
         throw std::runtime_error(where + ": tolerance must be degrees or {\"orthogonal\": DEG, \"reference\": DEG}");
       }
     } else if (key == "method") {
-      Method method{};
-      if (!value.is_string() || !parseMethod(value.get<std::string>(), method) || method == Method::flat)
-        throw std::runtime_error(where + ": method must be \"mikktspace\" or \"lengyel\"");
-      options.method = method;
+      const std::optional<Method> method = value.is_string() ? parseMethod(value.get<std::string>()) : std::nullopt;
+      if (!method || *method == Method::flat) throw std::runtime_error(where + ": method must be \"mikktspace\" or \"lengyel\"");
+      options.method = *method;
     } else if (key == "allowMissing" || key == "all") {
       if (!value.is_boolean()) throw std::runtime_error(where + ": " + key + " must be true or false");
       (key == "all" ? options.all : options.allowMissing) = value.get<bool>();

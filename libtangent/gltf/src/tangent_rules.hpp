@@ -18,6 +18,8 @@
 
 #include <nlohmann/json.hpp>
 
+#include "tangent/tangent.hpp"
+
 namespace tangent::gltf::detail {
 
 struct Asset;
@@ -120,8 +122,12 @@ inline double areaTimesTwo(const float* p0, const float* p1, const float* p2) {
   return std::hypot(e1[1] * e2[2] - e1[2] * e2[1], e1[2] * e2[0] - e1[0] * e2[2], e1[0] * e2[1] - e1[1] * e2[0]);
 }
 
-// glTF's handedness for a triangle's UV orientation: w = -sign(UV area); 0 when undefined.
-inline float expectedW(double uvAreaTwice) { return uvAreaTwice > 0 ? -1.0f : uvAreaTwice < 0 ? 1.0f : 0.0f; }
+// glTF's handedness for a triangle's (twice) signed UV area, by the core's rule
+// (tangent::handedness): w = -sign(UV area); 0 when undefined.
+inline float expectedW(double uvAreaTwice) {
+  const float orientation = uvAreaTwice > 0 ? 1.0f : uvAreaTwice < 0 ? -1.0f : 0.0f;
+  return tangent::handedness(orientation, tangent::kGltfUvOrigin);
+}
 
 // The reference comparison of one corner: too far, or w differs.
 inline bool referenceFails(double angleDegrees, float storedW, float computedW, double limitDegrees) {

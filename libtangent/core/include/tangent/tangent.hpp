@@ -7,8 +7,10 @@
 //  * computeTangents() on a CornerMesh (halfedge_mesh.hpp) for callers that do.
 #pragma once
 
+#include <concepts>
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <span>
 #include <string>
 #include <string_view>
@@ -46,6 +48,19 @@ enum class UvOrigin : std::uint8_t {
   bottomLeft,  // OpenGL, OBJ, MikkTSpace's native convention
 };
 
+// glTF's UV origin: what bake and check compute and expect TANGENT in.
+inline constexpr UvOrigin kGltfUvOrigin = UvOrigin::topLeft;
+
+// The one rule for handedness: the w of a frame whose UVs, as stored, turn with
+// `uvOrientation` (the sign of the signed UV area, +1 counter-clockwise, -1 clockwise; 0 where
+// undefined stays 0), in the convention of `origin`. bottomLeft keeps the orientation
+// (MikkTSpace's own sign); topLeft negates it, so in glTF w = -sign(UV area) (README, "glTF's
+// w convention"). The core, tangent check and the viewer's shaders all take it from here.
+template <std::floating_point T>
+constexpr T handedness(T uvOrientation, UvOrigin origin) {
+  return uvOrientation * (origin == UvOrigin::topLeft ? T(-1) : T(1));
+}
+
 struct Options {
   Method method = Method::mikktspace;
   Weighting weighting = Weighting::angle;  // lengyel only; mikktspace always weights by angle
@@ -65,8 +80,8 @@ enum class FrameSource : std::uint8_t {
 
 // What a call did. Every count is of input triangles or corners; nothing is silent.
 struct Report {
-  std::string method;                  // method actually used ("lengyel", "flat")
-  std::string weighting;               // weighting actually used ("angle", ... or "" for flat)
+  Method method = Method::mikktspace;  // method actually used
+  std::optional<Weighting> weighting;  // weighting actually used (none for flat)
   std::uint64_t triangles = 0;
   std::uint64_t corners = 0;
   std::uint64_t degenerateTriangles = 0;    // zero or non-finite 3D area
@@ -85,9 +100,9 @@ struct Report {
 
 std::string_view toString(Method method);
 std::string_view toString(Weighting weighting);
-// Parse a name as accepted on the command line; false if unknown.
-bool parseMethod(std::string_view name, Method& method);
-bool parseWeighting(std::string_view name, Weighting& weighting);
+// Parse a name as accepted on the command line (the names toString gives); none if unknown.
+std::optional<Method> parseMethod(std::string_view name);
+std::optional<Weighting> parseWeighting(std::string_view name);
 
 // Plain-array input. Corners are the entries of `indices`, three per triangle.
 struct MeshArrays {

@@ -38,7 +38,7 @@ std::optional<TangentFormat> parseTangentFormat(std::string_view name);  // "flo
 const char* toString(TangentFormat format);
 
 struct BakeOptions {
-  Options tangents;         // method, weighting (uvOrigin is always topLeft for glTF)
+  Options tangents;         // method, weighting (uvOrigin is always kGltfUvOrigin)
   bool all = false;         // every triangle primitive, not only those with a normalTexture
   bool overwrite = false;   // recompute valid existing TANGENT too
   TangentFormat tangentFormat = TangentFormat::float32;  // of the TANGENT bake writes
@@ -47,12 +47,16 @@ struct BakeOptions {
   std::filesystem::path assetRoot;
 };
 
+// What bake did with a primitive; toString gives the report's "action" names.
+enum class PrimitiveAction { baked, kept, skipped };
+const char* toString(PrimitiveAction action);  // "baked", "kept", "skipped"
+
 // What happened to one primitive.
 struct PrimitiveResult {
   int mesh = 0;
   int primitive = 0;
   std::string meshName;
-  std::string action;       // "baked", "kept", "skipped"
+  PrimitiveAction action = PrimitiveAction::skipped;
   std::string reason;       // why (always set)
   std::vector<std::string> failedChecks;  // the checks an existing TANGENT failed (then replaced)
   int texCoord = -1;        // UV set used, -1 when none
