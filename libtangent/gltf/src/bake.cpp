@@ -6,6 +6,8 @@
 #include <cmath>
 #include <cstring>
 #include <numeric>
+#include <optional>
+#include <utility>
 
 #include "accessors.hpp"
 #include "asset.hpp"
@@ -162,199 +164,286 @@ Json floatAccessor(std::size_t count, const char* type) {
   return Json{{"componentType", TINYGLTF_COMPONENT_TYPE_FLOAT}, {"count", count}, {"type", type}};
 }
 
+// What plan() decided for one primitive: where it is, what it needs and, when it is to be
+// baked, why. When `bake` is false the result is final (skipped, or kept).
+struct PrimitivePlan {
+  int mesh = 0;
+  int primitive = 0;
+  std::string where;  // "<file>: mesh M 'name' primitive P", for messages
+  detail::PrimitiveNeeds needs;
+  std::string why;    // why the primitive gets tangents
+  bool bake = false;
+  bool replacesTangent = false;  // an existing TANGENT is recomputed
+  PrimitiveResult result;
+};
+
+// What compute() produced, per output vertex: the vertex split with its tangents, and the
+// morph targets' TANGENT deltas.
+struct ComputedTangents {
+  std::size_t vertexCount = 0;  // input vertices
+  int indexComponentType = 0;   // of the input's indices (0 when it has none)
+  VertexSplit split;
+  std::vector<std::vector<float>> targetTangentDeltas;
+  detail::PrimitiveCompression compression;
+  bool rebuild = false;  // every vertex accessor and the indices are written anew
+};
+
+// Bakes one primitive in three steps: plan (does it need tangents, is it valid), compute
+// (tangents, vertex split, morph deltas; reads the document only) and emit (new accessors, the
+// primitive's references to them). Emit holds no reference into the document across an
+// insertion: it appends an accessor first, then looks the primitive up again to refer to it.
 class PrimitiveBaker {
  public:
   PrimitiveBaker(detail::Asset& asset, detail::OutputDocument& output, const BakeOptions& options)
       : asset_(asset), output_(output), options_(options) {}
 
-  PrimitiveResult bake(int meshIndex, int primitiveIndex);
+  PrimitiveResult bake(int meshIndex, int primitiveIndex) {
+    PrimitivePlan plan = planPrimitive(meshIndex, primitiveIndex);
+    if (!plan.bake) return std::move(plan.result);
+    std::optional<ComputedTangents> computed = compute(plan);
+    if (computed) emit(plan, *computed);
+    return std::move(plan.result);
+  }
 
  private:
+  Json& primitiveJson(const PrimitivePlan& plan) {
+    return output_.json()["meshes"][plan.mesh]["primitives"][plan.primitive];
+  }
+  PrimitivePlan planPrimitive(int meshIndex, int primitiveIndex);
+  std::optional<ComputedTangents> compute(PrimitivePlan& plan);
+  void emit(PrimitivePlan& plan, const ComputedTangents& computed);
+  void rebuildAttributes(const PrimitivePlan& plan, const ComputedTangents& computed);
+  void rebuildTargets(const PrimitivePlan& plan, const ComputedTangents& computed);
+  void writeIndices(const PrimitivePlan& plan, const ComputedTangents& computed);
+  void writeTangents(const PrimitivePlan& plan, const ComputedTangents& computed);
+
   detail::Asset& asset_;
   detail::OutputDocument& output_;
   const BakeOptions& options_;
 };
 
-PrimitiveResult PrimitiveBaker::bake(int meshIndex, int primitiveIndex) {
-  Json& doc = output_.json();
-  Json& primitive = doc["meshes"][meshIndex]["primitives"][primitiveIndex];
-  const tinygltf::Model& model = asset_.model;
-  const std::string where = asset_.path.string() + ": " + detail::primitiveLabel(doc, meshIndex, primitiveIndex);
-
-  PrimitiveResult result;
+// Eligibility (a triangle primitive that needs tangents and has what they are computed from)
+// and validity (an existing TANGENT that tangent check passes is kept).
+PrimitivePlan PrimitiveBaker::planPrimitive(int meshIndex, int primitiveIndex) {
+  const Json& doc = output_.json();
+  PrimitivePlan plan;
+  plan.mesh = meshIndex;
+  plan.primitive = primitiveIndex;
+  const Json& primitive = primitiveJson(plan);
+  plan.where = asset_.path.string() + ": " + detail::primitiveLabel(doc, meshIndex, primitiveIndex);
+  PrimitiveResult& result = plan.result;
   result.mesh = meshIndex;
   result.primitive = primitiveIndex;
   if (doc["meshes"][meshIndex].contains("name")) result.meshName = doc["meshes"][meshIndex]["name"].get<std::string>();
   result.action = PrimitiveAction::skipped;
 
-  const detail::PrimitiveNeeds needs = detail::primitiveNeeds(doc, primitive, options_.all || asset_.fromMeshFile);
-  const std::string why = asset_.fromMeshFile && !needs.hasNormalTexture && needs.texCoord >= 0
-                              ? "OBJ/PLY/OFF carry no materials: every mesh is baked, from its texture coordinates"
-                              : needs.why;
-  result.reason = why;
-  if (!needs.triangles || needs.texCoord < 0) return result;
+  const detail::PrimitiveNeeds& needs = plan.needs = detail::primitiveNeeds(doc, primitive, options_.all || asset_.fromMeshFile);
+  plan.why = asset_.fromMeshFile && !needs.hasNormalTexture && needs.texCoord >= 0
+                 ? "OBJ/PLY/OFF carry no materials: every mesh is baked, from its texture coordinates"
+                 : needs.why;
+  result.reason = plan.why;
+  if (!needs.triangles || needs.texCoord < 0) return plan;
   result.texCoord = needs.texCoord;
   if (!primitive.contains("attributes") || !primitive["attributes"].is_object())
-    throw InputError(where + ": has no attributes object");
-  Json& attributes = primitive["attributes"];
-  const int positionAccessor = detail::accessorOf(attributes, "POSITION");
-  const int normalAccessor = detail::accessorOf(attributes, "NORMAL");
+    throw InputError(plan.where + ": has no attributes object");
+  const Json& attributes = primitive["attributes"];
   const std::string uvName = "TEXCOORD_" + std::to_string(needs.texCoord);
-  const int uvAccessor = detail::accessorOf(attributes, uvName);
-  if (positionAccessor < 0) throw InputError(where + ": has no POSITION attribute");
-  if (normalAccessor < 0) {
+  if (detail::accessorOf(attributes, "POSITION") < 0) throw InputError(plan.where + ": has no POSITION attribute");
+  if (detail::accessorOf(attributes, "NORMAL") < 0) {
     result.reason = "no NORMAL attribute; tangents need normals, primitive left as it is";
-    return result;
+    return plan;
   }
-  if (uvAccessor < 0) {
+  if (detail::accessorOf(attributes, uvName) < 0) {
     // The material names a UV set the primitive lacks: a broken reference, refused (as check
     // and info do). Without a normal texture (--all) there is simply nothing to bake from.
-    if (const std::string problem = detail::missingUvSet(primitive, needs); !problem.empty()) throw InputError(where + ": " + problem);
+    if (const std::string problem = detail::missingUvSet(primitive, needs); !problem.empty())
+      throw InputError(plan.where + ": " + problem);
     result.reason = needs.why + ", but the primitive has no " + uvName + "; left as it is";
-    return result;
+    return plan;
   }
-  const int existingTangent = detail::accessorOf(attributes, "TANGENT");
-  if (existingTangent >= 0) {
+  if (detail::accessorOf(attributes, "TANGENT") >= 0) {
     // Keep exactly what `tangent check` passes at its default settings: the same function decides.
     PrimitiveCheck verdict;
-    detail::checkPrimitiveTangents(asset_, primitive, needs, where, CheckOptions{}, verdict);
+    detail::checkPrimitiveTangents(asset_, primitive, needs, plan.where, CheckOptions{}, verdict);
     if (verdict.findings.empty() && !options_.overwrite) {
       result.action = PrimitiveAction::kept;
       result.reason = "valid TANGENT present: tangent check passes it (use --overwrite to recompute)";
-      return result;
+      return plan;
     }
     for (const CheckFinding& finding : verdict.findings) result.failedChecks.push_back(finding.check);
     result.reason = verdict.findings.empty() ? "TANGENT recomputed (--overwrite)"
                                              : "existing TANGENT fails tangent check (" + detail::findingsSummary(verdict) + "); recomputed";
+    plan.replacesTangent = true;
   }
+  plan.bake = true;
+  return plan;
+}
 
-  const detail::PrimitiveGeometry geometry = detail::readGeometry(asset_, primitive, needs, where);
-  const std::size_t vertexCount = geometry.vertexCount;
-  const std::vector<float>& positions = geometry.positions;
-  const std::vector<float>& normals = geometry.normals;
-  const std::vector<float>& uvs = geometry.uvs;
+// Tangents per corner from the core, the vertex split, and TANGENT deltas for the morph
+// targets (tangents of the morphed shape minus the base ones). Reads the document only.
+std::optional<ComputedTangents> PrimitiveBaker::compute(PrimitivePlan& plan) {
+  const Json& primitive = primitiveJson(plan);
+  PrimitiveResult& result = plan.result;
+  const detail::PrimitiveGeometry geometry = detail::readGeometry(asset_, primitive, plan.needs, plan.where);
   const std::vector<std::uint32_t>& corners = geometry.corners;
-  const int mode = geometry.mode;
-  int indexComponentType = geometry.indexComponentType;
   if (corners.empty()) {
     result.reason = "primitive has no triangles; left as it is";
-    return result;
+    return std::nullopt;
   }
+  ComputedTangents computed;
+  computed.vertexCount = geometry.vertexCount;
+  computed.indexComponentType = geometry.indexComponentType;
 
   BulkVector<float> cornerTangents(corners.size() * 4);
   BulkVector<std::uint32_t> cornerVertex(corners.size());
   Options coreOptions = options_.tangents;
   coreOptions.uvOrigin = kGltfUvOrigin;
   TangentWorkspace workspace;
-  result.tangents = computeCornerTangents({positions, normals, uvs, corners}, CornerOutputs{cornerTangents, {}, cornerVertex},
-                                          coreOptions, workspace);
-  VertexSplit split = splitVertices(corners, cornerTangents, std::move(cornerVertex), result.tangents.outputVertices,
-                                    vertexCount, normals);
+  result.tangents = computeCornerTangents({geometry.positions, geometry.normals, geometry.uvs, corners},
+                                          CornerOutputs{cornerTangents, {}, cornerVertex}, coreOptions, workspace);
+  computed.split = splitVertices(corners, cornerTangents, std::move(cornerVertex), result.tangents.outputVertices,
+                                 geometry.vertexCount, geometry.normals);
   BulkVector<float>().swap(cornerTangents);  // per output vertex from here on: free the per-corner copy
-  result.verticesIn = vertexCount;
+  const VertexSplit& split = computed.split;
+  result.verticesIn = geometry.vertexCount;
   result.verticesOut = split.source.size();
   // Compressed data is written uncompressed: every accessor of a baked primitive is new.
-  const detail::PrimitiveCompression compression = detail::primitiveCompression(asset_, primitive);
-  const bool rebuild = split.source.size() != vertexCount || mode != 4 || compression.any();
+  computed.compression = detail::primitiveCompression(asset_, primitive);
+  computed.rebuild = split.source.size() != geometry.vertexCount || geometry.mode != 4 || computed.compression.any();
 
-  // Morph targets get TANGENT deltas: tangents of the morphed shape minus the base ones.
-  std::vector<std::vector<float>> targetTangentDeltas;
   if (primitive.contains("targets") && primitive["targets"].is_array()) {
     for (std::size_t t = 0; t < primitive["targets"].size(); ++t) {
       const Json& target = primitive["targets"][t];
-      const std::string targetWhere = where + ": target " + std::to_string(t);
-      std::vector<float> morphedPositions = positions, morphedNormals = normals;
+      const std::string targetWhere = plan.where + ": target " + std::to_string(t);
+      std::vector<float> morphedPositions = geometry.positions, morphedNormals = geometry.normals;
       const int deltaPosition = detail::accessorOf(target, "POSITION");
       const int deltaNormal = detail::accessorOf(target, "NORMAL");
       if (deltaPosition >= 0) {
-        const auto delta = detail::readVectors(model, deltaPosition, 3, vertexCount, targetWhere + " POSITION");
+        const auto delta = detail::readVectors(asset_.model, deltaPosition, 3, geometry.vertexCount, targetWhere + " POSITION");
         for (std::size_t i = 0; i < delta.size(); ++i) morphedPositions[i] += delta[i];
       }
       if (deltaNormal >= 0) {
-        const auto delta = detail::readVectors(model, deltaNormal, 3, vertexCount, targetWhere + " NORMAL");
+        const auto delta = detail::readVectors(asset_.model, deltaNormal, 3, geometry.vertexCount, targetWhere + " NORMAL");
         for (std::size_t i = 0; i < delta.size(); ++i) morphedNormals[i] += delta[i];
       }
       BulkVector<float> morphedTangents(corners.size() * 4);
-      computeCornerTangents({morphedPositions, morphedNormals, uvs, corners}, CornerOutputs{morphedTangents}, coreOptions,
-                            workspace);
+      computeCornerTangents({morphedPositions, morphedNormals, geometry.uvs, corners}, CornerOutputs{morphedTangents},
+                            coreOptions, workspace);
       std::vector<float> deltas(split.source.size() * 3, 0.0f);
       for (std::size_t v = 0; v < split.source.size(); ++v) {
         if (split.firstCorner[v] < 0) continue;
         const float* morphed = &morphedTangents[4 * split.firstCorner[v]];
         for (int i = 0; i < 3; ++i) deltas[3 * v + i] = morphed[i] - split.tangents[4 * v + i];
       }
-      targetTangentDeltas.push_back(std::move(deltas));
+      computed.targetTangentDeltas.push_back(std::move(deltas));
     }
   }
-  workspace = TangentWorkspace();  // its scratch is not needed for writing: free it before
+  return computed;
+}
 
-  const std::size_t outCount = split.source.size();
-  if (rebuild) {
-    for (auto& [name, accessorRef] : attributes.items()) {
-      if (name == "TANGENT") continue;
-      const int index = accessorRef.get<int>();
-      const AccessorData data = detail::readAccessor(model, index, where + ": " + name);
-      if (data.count != vertexCount)
-        throw InputError(where + ": " + name + " (accessor " + std::to_string(index) + ") has " + std::to_string(data.count) +
-                         " elements, POSITION has " + std::to_string(vertexCount));
-      Json carried = carriedAccessor(doc["accessors"][index], outCount);
-      if (compression.draco) recomputeBounds(carried, data);
-      accessorRef = output_.addAccessor(std::move(carried), gather(data, split.source), data.elementSize(), detail::kArrayBuffer);
-    }
-    if (primitive.contains("targets")) {
-      for (std::size_t t = 0; t < primitive["targets"].size(); ++t) {
-        for (auto& [name, accessorRef] : primitive["targets"][t].items()) {
-          if (name == "TANGENT" || !accessorRef.is_number_integer()) continue;
-          const int index = accessorRef.get<int>();
-          const AccessorData data = detail::readAccessor(model, index, where + ": target " + std::to_string(t) + " " + name);
-          if (data.count != vertexCount)
-            throw InputError(where + ": target " + std::to_string(t) + " " + name + " has " + std::to_string(data.count) +
-                             " elements, POSITION has " + std::to_string(vertexCount));
-          accessorRef = output_.addAccessor(carriedAccessor(doc["accessors"][index], outCount), gather(data, split.source),
-                                            data.elementSize(), detail::kArrayBuffer);
-        }
-      }
-    }
-    // Indices: the original component type, widened when the split outgrows it (the largest
-    // value of each type is primitive restart and not allowed).
-    if (outCount - 1 >= 255 && indexComponentType == TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE)
-      indexComponentType = TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT;
-    if (outCount - 1 >= 65535 && indexComponentType == TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT)
-      indexComponentType = TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT;
-    const std::size_t indexSize = detail::componentBytes(indexComponentType);
-    std::vector<std::uint8_t> indexBytes(split.cornerVertex.size() * indexSize);
-    for (std::size_t c = 0; c < split.cornerVertex.size(); ++c) {
-      const std::uint32_t value = split.cornerVertex[c];
-      if (indexSize == 1) indexBytes[c] = static_cast<std::uint8_t>(value);
-      else if (indexSize == 2) {
-        const auto v16 = static_cast<std::uint16_t>(value);
-        std::memcpy(&indexBytes[2 * c], &v16, 2);
-      } else std::memcpy(&indexBytes[4 * c], &value, 4);
-    }
-    Json indexAccessor = {{"componentType", indexComponentType}, {"count", split.cornerVertex.size()}, {"type", "SCALAR"}};
-    primitive["indices"] = output_.addAccessor(indexAccessor, std::move(indexBytes), indexSize, detail::kElementArrayBuffer);
-    if (primitive.contains("mode")) primitive["mode"] = 4;
-    if (compression.draco) {
-      primitive["extensions"].erase(detail::kDracoExtension);
-      if (primitive["extensions"].empty()) primitive.erase("extensions");
-    }
+// New accessors in a fixed order (carried attributes, carried target attributes, indices,
+// TANGENT, target TANGENT deltas), so that the output's bytes depend on the input only.
+void PrimitiveBaker::emit(PrimitivePlan& plan, const ComputedTangents& computed) {
+  if (computed.rebuild) {
+    rebuildAttributes(plan, computed);
+    rebuildTargets(plan, computed);
+    writeIndices(plan, computed);
   }
-  // Inserting "indices" above may have moved the primitive's members: look attributes up again.
-  EncodedTangents encoded = encodeTangents(split.tangents, options_.tangentFormat);
-  primitive["attributes"]["TANGENT"] = output_.addAccessor(encoded.accessor, std::move(encoded.bytes), encoded.stride, detail::kArrayBuffer);
-  for (std::size_t t = 0; t < targetTangentDeltas.size(); ++t) {
-    primitive["targets"][t]["TANGENT"] =
-        output_.addAccessor(floatAccessor(outCount, "VEC3"), floatBytes(targetTangentDeltas[t]), 12, detail::kArrayBuffer);
-  }
+  writeTangents(plan, computed);
+  PrimitiveResult& result = plan.result;
   result.action = PrimitiveAction::baked;
   result.tangentFormat = options_.tangentFormat;
-  if (existingTangent < 0) result.reason = why;
-  if (compression.any()) {
+  if (!plan.replacesTangent) result.reason = plan.why;
+  if (computed.compression.any()) {
     std::string names;
-    for (const std::string& name : detail::compressionNames(compression)) names += (names.empty() ? "" : ", ") + name;
+    for (const std::string& name : detail::compressionNames(computed.compression)) names += (names.empty() ? "" : ", ") + name;
     result.reason += "; written uncompressed (was " + names + ")";
   }
-  return result;
+}
+
+// Every attribute but TANGENT, gathered into the split vertices.
+void PrimitiveBaker::rebuildAttributes(const PrimitivePlan& plan, const ComputedTangents& computed) {
+  std::vector<std::pair<std::string, int>> carried;  // taken first: the loop below appends to the document
+  for (const auto& [name, accessorRef] : primitiveJson(plan)["attributes"].items()) {
+    if (name != "TANGENT") carried.emplace_back(name, accessorRef.get<int>());
+  }
+  const std::size_t outCount = computed.split.source.size();
+  for (const auto& [name, index] : carried) {
+    const AccessorData data = detail::readAccessor(asset_.model, index, plan.where + ": " + name);
+    if (data.count != computed.vertexCount)
+      throw InputError(plan.where + ": " + name + " (accessor " + std::to_string(index) + ") has " + std::to_string(data.count) +
+                       " elements, POSITION has " + std::to_string(computed.vertexCount));
+    Json accessor = carriedAccessor(output_.json()["accessors"][index], outCount);
+    if (computed.compression.draco) recomputeBounds(accessor, data);
+    const int written =
+        output_.addAccessor(std::move(accessor), gather(data, computed.split.source), data.elementSize(), detail::kArrayBuffer);
+    primitiveJson(plan)["attributes"][name] = written;
+  }
+}
+
+// The morph targets' attributes (TANGENT aside), gathered the same way.
+void PrimitiveBaker::rebuildTargets(const PrimitivePlan& plan, const ComputedTangents& computed) {
+  if (!primitiveJson(plan).contains("targets")) return;
+  const std::size_t targetCount = primitiveJson(plan)["targets"].size();
+  const std::size_t outCount = computed.split.source.size();
+  for (std::size_t t = 0; t < targetCount; ++t) {
+    std::vector<std::pair<std::string, int>> carried;
+    for (const auto& [name, accessorRef] : primitiveJson(plan)["targets"][t].items()) {
+      if (name != "TANGENT" && accessorRef.is_number_integer()) carried.emplace_back(name, accessorRef.get<int>());
+    }
+    for (const auto& [name, index] : carried) {
+      const std::string what = plan.where + ": target " + std::to_string(t) + " " + name;
+      const AccessorData data = detail::readAccessor(asset_.model, index, what);
+      if (data.count != computed.vertexCount)
+        throw InputError(what + " has " + std::to_string(data.count) + " elements, POSITION has " + std::to_string(computed.vertexCount));
+      const int written = output_.addAccessor(carriedAccessor(output_.json()["accessors"][index], outCount),
+                                              gather(data, computed.split.source), data.elementSize(), detail::kArrayBuffer);
+      primitiveJson(plan)["targets"][t][name] = written;
+    }
+  }
+}
+
+// Indices of the split vertices as a triangle list: the original component type, widened when
+// the split outgrows it (the largest value of each type is primitive restart and not allowed).
+void PrimitiveBaker::writeIndices(const PrimitivePlan& plan, const ComputedTangents& computed) {
+  const std::size_t outCount = computed.split.source.size();
+  const BulkVector<std::uint32_t>& cornerVertex = computed.split.cornerVertex;
+  int indexComponentType = computed.indexComponentType;
+  if (outCount - 1 >= 255 && indexComponentType == TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE)
+    indexComponentType = TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT;
+  if (outCount - 1 >= 65535 && indexComponentType == TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT)
+    indexComponentType = TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT;
+  const std::size_t indexSize = detail::componentBytes(indexComponentType);
+  std::vector<std::uint8_t> indexBytes(cornerVertex.size() * indexSize);
+  for (std::size_t c = 0; c < cornerVertex.size(); ++c) {
+    const std::uint32_t value = cornerVertex[c];
+    if (indexSize == 1) indexBytes[c] = static_cast<std::uint8_t>(value);
+    else if (indexSize == 2) {
+      const auto v16 = static_cast<std::uint16_t>(value);
+      std::memcpy(&indexBytes[2 * c], &v16, 2);
+    } else std::memcpy(&indexBytes[4 * c], &value, 4);
+  }
+  const Json indexAccessor = {{"componentType", indexComponentType}, {"count", cornerVertex.size()}, {"type", "SCALAR"}};
+  const int indices = output_.addAccessor(indexAccessor, std::move(indexBytes), indexSize, detail::kElementArrayBuffer);
+  Json& primitive = primitiveJson(plan);
+  primitive["indices"] = indices;  // may insert: members of `primitive` are looked up by name from here on
+  if (primitive.contains("mode")) primitive["mode"] = 4;
+  if (computed.compression.draco) {
+    primitive["extensions"].erase(detail::kDracoExtension);
+    if (primitive["extensions"].empty()) primitive.erase("extensions");
+  }
+}
+
+void PrimitiveBaker::writeTangents(const PrimitivePlan& plan, const ComputedTangents& computed) {
+  EncodedTangents encoded = encodeTangents(computed.split.tangents, options_.tangentFormat);
+  const int tangents = output_.addAccessor(encoded.accessor, std::move(encoded.bytes), encoded.stride, detail::kArrayBuffer);
+  primitiveJson(plan)["attributes"]["TANGENT"] = tangents;
+  const std::size_t outCount = computed.split.source.size();
+  for (std::size_t t = 0; t < computed.targetTangentDeltas.size(); ++t) {
+    const int deltas = output_.addAccessor(floatAccessor(outCount, "VEC3"), floatBytes(computed.targetTangentDeltas[t]), 12,
+                                           detail::kArrayBuffer);
+    primitiveJson(plan)["targets"][t]["TANGENT"] = deltas;
+  }
 }
 
 }  // namespace
