@@ -175,14 +175,18 @@ void main() {
   }
   SurfaceLight light = SurfaceLight(vec3(0.0), vec3(0.0), vec3(0.0));
 #endif
-  for (int i = 0; i < u_lightCount; ++i) {
-    float shadow = 1.0;
+  // Light 0's shadow, looked up once outside the loop (which then has no texture fetch).
+  float shadow0 = 1.0;
 #ifdef USE_SHADOWS
-    if (i == 0) {
-      vec3 toLight = u_lightPosition[0].w == 0.0 ? normalize(-u_lightPosition[0].xyz) : normalize(u_lightPosition[0].xyz - v_positionWorld);
-      shadow = shadowFactor(v_shadowCoord, normal, toLight);
-    }
+  {
+    vec3 toLight = u_lightPosition[0].w == 0.0 ? normalize(-u_lightPosition[0].xyz) : normalize(u_lightPosition[0].xyz - v_positionWorld);
+    shadow0 = shadowFactor(v_shadowCoord, normal, toLight);
+  }
 #endif
+  // A constant trip count the compiler can unroll, cut short at u_lightCount.
+  for (int i = 0; i < kMaxLights; ++i) {
+    if (i >= u_lightCount) break;
+    float shadow = i == 0 ? shadow0 : 1.0;
 #ifdef SHADING_PBR
     vec3 toLight;
     float attenuation = lightAt(i, v_positionWorld, toLight);
