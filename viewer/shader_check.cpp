@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: MIT
 #include "shader_check.hpp"
 
-#include <map>
+#include <algorithm>
 #include <set>
 #include <span>
 
