@@ -81,8 +81,14 @@ GLuint ShaderLibrary::program(const std::string& vertexFile, const std::string& 
   return id;
 }
 
-GLuint ShaderLibrary::mesh(FeatureSet features, DebugView view) { return program("mesh.vert", "mesh.frag", definesFor(features, view)); }
-GLuint ShaderLibrary::shadowDepth() { return program("shadow_depth.vert", "shadow_depth.frag", ""); }
+GLuint ShaderLibrary::mesh(FeatureSet features, DebugView view, ToneMapping toneMapping) {
+  return program("mesh.vert", "mesh.frag", definesFor(features, view, toneMapping));
+}
+GLuint ShaderLibrary::depthOnly(FeatureSet features) {
+  features &= static_cast<FeatureSet>(Feature::alphaMask) | static_cast<FeatureSet>(Feature::baseColorMap);
+  if (!has(features, Feature::alphaMask)) features = 0;  // the texture matters only to the alpha test
+  return program("shadow_depth.vert", "shadow_depth.frag", definesFor(features, DebugView::lit));
+}
 GLuint ShaderLibrary::lines() { return program("lines.vert", "lines.frag", ""); }
 
 }  // namespace tangent::viewer
