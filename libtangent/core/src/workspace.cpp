@@ -143,7 +143,25 @@ void weldAndBucket(WorkspaceData& ws, const MeshArrays& mesh) {
     ensureSize(ws.table, tableSize);
     std::uint32_t* table = ws.table.data();
     std::fill(table, table + tableSize, 0u);
-    for (std::size_t v = 0; v < vertexCount; ++v) insert(table, tableSize - 1, v, vertexHash(mesh, v));
+    // The table (2 * vertexCount slots, megabytes) is probed at random: each vertex's hash is
+    // worked out kAhead vertices early and its slot prefetched, so that the probe finds it in
+    // cache. Same inserts in the same order.
+    const std::size_t mask = tableSize - 1;
+    constexpr std::size_t kAhead = 16;
+    std::uint64_t ahead[kAhead];
+    for (std::size_t v = 0; v < std::min(kAhead, vertexCount); ++v) {
+      ahead[v] = vertexHash(mesh, v);
+      prefetch(table + (ahead[v] & mask));
+    }
+    for (std::size_t v = 0; v < vertexCount; ++v) {
+      const std::uint64_t hash = ahead[v % kAhead];
+      if (v + kAhead < vertexCount) {
+        const std::uint64_t later = vertexHash(mesh, v + kAhead);
+        ahead[v % kAhead] = later;
+        prefetch(table + (later & mask));
+      }
+      insert(table, mask, v, hash);
+    }
   } else {
     // Threads: the vertices split by the top bits of their hash into partitions (a counting
     // sort that keeps vertex order inside each), one small table per partition, partitions

@@ -133,6 +133,15 @@ inline To bitCast(const From& from) {
   return to;
 }
 
+// A hint that *address will be read soon (no effect where the compiler has no such builtin).
+inline void prefetch(const void* address) {
+#if defined(__GNUC__) || defined(__clang__)
+  __builtin_prefetch(address);
+#else
+  (void)address;
+#endif
+}
+
 // The bits of a float with -0 taken as +0: the order and hash of values that compare equal.
 inline std::uint32_t canonicalBits(float x) { return bitCast<std::uint32_t>(x == 0.0f ? 0.0f : x); }
 
