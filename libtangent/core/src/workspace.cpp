@@ -137,30 +137,48 @@ void weldAndBucket(WorkspaceData& ws, const MeshArrays& mesh) {
     }
   };
   if (ws.threads < 2) {
-    // One table, vertices in order.
+    // One table, vertices in order. Each slot holds vertex + 1 and a tag, the hash's top 32
+    // bits: a probe that meets another vertex compares tags before that vertex's values, which
+    // lie anywhere in the input (a cache miss per collision otherwise). Equal values have
+    // equal tags, so the same slots match as without them.
     std::size_t tableSize = 16;
     while (tableSize < 2 * vertexCount) tableSize *= 2;
-    ensureSize(ws.table, tableSize);
+    ensureSize(ws.table, 2 * tableSize);
     std::uint32_t* table = ws.table.data();
-    std::fill(table, table + tableSize, 0u);
-    // The table (2 * vertexCount slots, megabytes) is probed at random: each vertex's hash is
-    // worked out kAhead vertices early and its slot prefetched, so that the probe finds it in
-    // cache. Same inserts in the same order.
+    std::fill(table, table + 2 * tableSize, 0u);
     const std::size_t mask = tableSize - 1;
+    auto insertTagged = [&](std::size_t v, std::uint64_t hash) {
+      const auto tag = static_cast<std::uint32_t>(hash >> 32);
+      for (std::size_t slot = hash & mask;; slot = (slot + 1) & mask) {
+        std::uint32_t* entry = table + 2 * slot;
+        if (entry[0] == 0) {
+          entry[0] = static_cast<std::uint32_t>(v + 1);
+          entry[1] = tag;
+          vertexId[v] = static_cast<std::uint32_t>(v);
+          return;
+        }
+        if (entry[1] == tag && sameVertex(mesh, entry[0] - 1, v)) {
+          vertexId[v] = entry[0] - 1;
+          return;
+        }
+      }
+    };
+    // The table (megabytes) is probed at random: each vertex's hash is worked out kAhead
+    // vertices early and its slot prefetched, so that the probe finds it in cache.
     constexpr std::size_t kAhead = 16;
     std::uint64_t ahead[kAhead];
     for (std::size_t v = 0; v < std::min(kAhead, vertexCount); ++v) {
       ahead[v] = vertexHash(mesh, v);
-      prefetch(table + (ahead[v] & mask));
+      prefetch(table + 2 * (ahead[v] & mask));
     }
     for (std::size_t v = 0; v < vertexCount; ++v) {
       const std::uint64_t hash = ahead[v % kAhead];
       if (v + kAhead < vertexCount) {
         const std::uint64_t later = vertexHash(mesh, v + kAhead);
         ahead[v % kAhead] = later;
-        prefetch(table + (later & mask));
+        prefetch(table + 2 * (later & mask));
       }
-      insert(table, mask, v, hash);
+      insertTagged(v, hash);
     }
   } else {
     // Threads: the vertices split by the top bits of their hash into partitions (a counting
