@@ -65,11 +65,6 @@ struct Arrays {
   const std::uint32_t* indices;
   V3 position(std::uint32_t v) const { return {positions[3 * v], positions[3 * v + 1], positions[3 * v + 2]}; }
   V3 normal(std::uint32_t v) const { return {normals[3 * v], normals[3 * v + 1], normals[3 * v + 2]}; }
-  // Position and UV bits, the order in which a triangle picks its first corner.
-  std::array<std::uint32_t, 5> shapeKey(std::uint32_t v) const {
-    return {canonicalBits(positions[3 * v]), canonicalBits(positions[3 * v + 1]), canonicalBits(positions[3 * v + 2]),
-            canonicalBits(uvs[2 * v]), canonicalBits(uvs[2 * v + 1])};
-  }
   std::array<std::uint32_t, 8> identityKey(std::uint32_t v) const {
     return {canonicalBits(positions[3 * v]), canonicalBits(positions[3 * v + 1]), canonicalBits(positions[3 * v + 2]),
             canonicalBits(normals[3 * v]),   canonicalBits(normals[3 * v + 1]),   canonicalBits(normals[3 * v + 2]),
@@ -77,13 +72,26 @@ struct Arrays {
   }
 };
 
+// The order in which a triangle picks its first corner: position, then UV bits (+0 and -0
+// alike), compared lexicographically and left at the first value that differs (nearly always
+// the first).
+bool shapeBefore(const Arrays& a, std::uint32_t u, std::uint32_t v) {
+  for (int i = 0; i < 3; ++i) {
+    const std::uint32_t x = canonicalBits(a.positions[3 * u + i]), y = canonicalBits(a.positions[3 * v + i]);
+    if (x != y) return x < y;
+  }
+  for (int i = 0; i < 2; ++i) {
+    const std::uint32_t x = canonicalBits(a.uvs[2 * u + i]), y = canonicalBits(a.uvs[2 * v + i]);
+    if (x != y) return x < y;
+  }
+  return false;
+}
+
 // First corner (0..2) of triangle t in value order, so that rotations give the same bits.
 int firstCorner(const Arrays& a, std::size_t t) {
-  const auto k0 = a.shapeKey(a.indices[3 * t]), k1 = a.shapeKey(a.indices[3 * t + 1]), k2 = a.shapeKey(a.indices[3 * t + 2]);
-  int first = 0;
-  const std::array<std::uint32_t, 5>* best = &k0;
-  if (k1 < *best) first = 1, best = &k1;
-  if (k2 < *best) first = 2;
+  const std::uint32_t* v = a.indices + 3 * t;
+  int first = shapeBefore(a, v[1], v[0]) ? 1 : 0;
+  if (shapeBefore(a, v[2], v[first])) first = 2;
   return first;
 }
 
