@@ -654,6 +654,7 @@ inline double angleBetween(double y, double x) {
 // Groups of one welded vertex, their sums, and the frames of its corners.
 void Kernel::groupBucket(std::uint32_t bucket, BucketScratch& scratch) {
   const std::uint32_t first = start_[bucket], count = start_[bucket + 1] - first;
+  ws_.bucketUniform[bucket] = 0;
   if (count == 0) return;
   const std::uint32_t* list = corners_ + first;
   bool invalidNormal = false;
@@ -688,6 +689,8 @@ void Kernel::groupBucket(std::uint32_t bucket, BucketScratch& scratch) {
   const F3 rawNormal{a_.normals[3 * a_.indices[list[0]]], a_.normals[3 * a_.indices[list[0]] + 1],
                      a_.normals[3 * a_.indices[list[0]] + 2]};
   constexpr int kStride = 10;
+  // Every corner of the bucket given the one shared frame of one group (see bucketUniform).
+  bool oneFrame = memberCount == count;
   for (std::size_t g = 0; g < memberCount;) {
     std::size_t gEnd = g + 1;
     while (gEnd < memberCount && rootOf(gEnd) == rootOf(g)) ++gEnd;
@@ -821,6 +824,7 @@ void Kernel::groupBucket(std::uint32_t bucket, BucketScratch& scratch) {
     const auto groupWeight = static_cast<float>(angleSum);
     V3 shared;
     const bool sharedDefined = contributing > 0 && orthonormalize(sumOver(kNone), n, shared);
+    oneFrame = oneFrame && g == 0 && gEnd == memberCount && sharedDefined && !anyOpposite;
     std::size_t nextContributing = 0;
     for (std::size_t m = g; m < gEnd; ++m) {
       const std::uint32_t c = list[member(m)];
@@ -838,6 +842,13 @@ void Kernel::groupBucket(std::uint32_t bucket, BucketScratch& scratch) {
       }
     }
     g = gEnd;
+  }
+  if (oneFrame) {
+    const std::uint32_t vertex = a_.indices[list[0]];
+    bool oneVertex = true;
+    for (std::uint32_t i = 1; i < count; ++i) oneVertex = oneVertex && a_.indices[list[i]] == vertex;
+    ws_.bucketUniform[bucket] = oneVertex;
+    return;  // no coincident corners here
   }
 
   // Coincident corners copy the best frame of their identity (the reference: the first).
@@ -948,6 +959,7 @@ void Kernel::run(Report& report) {
   ensureSize(ws_.triangleFlags, triangleCount);
   ensureSize(ws_.cornerLink, cornerCount);
   ensureSize(ws_.cornerState, cornerCount);
+  ensureSize(ws_.bucketUniform, ws_.vertexCount);
   evaluateTriangles(report);
 
   const std::size_t bucketCount = ws_.vertexCount;
@@ -971,6 +983,7 @@ void Kernel::run(Report& report) {
     for (std::size_t b = begin; b < end; ++b) groupBucket(static_cast<std::uint32_t>(b), scratch);
   });
   fallbacks();
+  ws_.bucketUniformKnown = true;
 }
 
 }  // namespace

@@ -44,7 +44,7 @@ std::size_t WorkspaceData::bytes() const {
   auto size = [](const auto& v) { return v.capacity() * sizeof(v[0]); };
   return size(table) + size(weldCounts) + size(vertexId) + size(bucketStart) + size(bucketCorners) + size(triangleFrames) +
          size(orientation) + size(triangleFlags) + size(cornerLink) + size(cornerState) + size(meshPositions) + size(meshNormals) + size(meshUvs) + size(meshTangents) + size(meshIndices) +
-         size(bucketExtra);
+         size(bucketExtra) + size(bucketUniform);
 }
 
 void checkArrays(const MeshArrays& mesh, const CornerOutputs& outputs) {
@@ -119,6 +119,7 @@ void weldAndBucket(WorkspaceData& ws, const MeshArrays& mesh) {
   const std::size_t cornerCount = mesh.indices.size();
   ws.vertexCount = vertexCount;
   ws.cornerCount = cornerCount;
+  ws.bucketUniformKnown = false;
 
   // Weld: open-addressing tables of vertex + 1; the smallest vertex of equal values wins.
   ensureSize(ws.vertexId, vertexCount);
@@ -345,6 +346,7 @@ void finishOutputs(WorkspaceData& ws, const MeshArrays& mesh, const CornerOutput
   const std::uint32_t* corners = ws.bucketCorners.data();
   const std::uint32_t* indices = mesh.indices.data();
   std::uint32_t* extra = ws.bucketExtra.data();
+  const std::uint8_t* knownUniform = ws.bucketUniformKnown ? ws.bucketUniform.data() : nullptr;
   const bool wantVertices = !outputs.cornerVertex.empty();
   std::uint32_t* cornerVertex = wantVertices ? outputs.cornerVertex.data() : nullptr;
   constexpr std::uint32_t kExtraFlag = 0x80000000u;
@@ -358,9 +360,16 @@ void finishOutputs(WorkspaceData& ws, const MeshArrays& mesh, const CornerOutput
         if (wantVertices) cornerVertex[corners[first]] = indices[corners[first]];
         continue;
       }
-      // Most buckets: one input vertex, one tangent.
+      // Most buckets: one input vertex, one tangent (known from the kernel for most of those).
       const std::uint32_t c0 = corners[first];
       bool uniform = true;
+      if (knownUniform && knownUniform[b]) {
+        if (wantVertices) {
+          const std::uint32_t vertex = indices[c0];
+          for (std::uint32_t i = first; i < last; ++i) cornerVertex[corners[i]] = vertex;
+        }
+        continue;
+      }
       for (std::uint32_t i = first + 1; i < last && uniform; ++i) {
         const std::uint32_t c = corners[i];
         uniform = indices[c] == indices[c0] && std::memcmp(&tangents[4 * c], &tangents[4 * c0], 4 * sizeof(float)) == 0;

@@ -115,6 +115,11 @@ struct WorkspaceData {
                                              // after grouping, the group weight (mikktspace.cpp)
   BulkVector<std::uint8_t> cornerState;     // per corner: CornerState bits
   BulkVector<std::uint32_t> bucketExtra;    // per welded id: extra output vertices, then offsets
+  BulkVector<std::uint8_t> bucketUniform;   // per welded id, where bucketUniformKnown: 1 when the
+                                             // kernel gave all its corners one input vertex's
+                                             // one frame, which nothing after it changes, so
+                                             // that the vertex split need not compare them
+  bool bucketUniformKnown = false;          // set by the mikktspace kernel, reset by the weld
   PerThread<BucketScratch> scratch;
   // The OpenMesh call's corners as arrays (corner_tangents.cpp).
   BulkVector<float> meshPositions, meshNormals, meshUvs, meshTangents;
