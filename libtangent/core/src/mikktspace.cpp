@@ -33,6 +33,10 @@
 #include <cstring>
 #include <limits>
 
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
+
 #include "workspace.hpp"
 
 namespace tangent::detail {
@@ -651,6 +655,37 @@ inline double angleBetween(double y, double x) {
   return x < 0 ? 2 * kHalfPi - r : r;
 }
 
+// angleBetween of two (y, x) pairs at once, operation for operation the same (IEEE double
+// arithmetic in SSE2 lanes rounds as the scalar code does), so the same bits; the selects are
+// masks, not branches, which mispredict on the mix of acute and obtuse corners of a fan.
+inline void angleBetweenPair(const double y[2], const double x[2], double angle[2]) {
+#if defined(__SSE2__)
+  const __m128d vy = _mm_loadu_pd(y), vx = _mm_loadu_pd(x);
+  auto select = [](__m128d mask, __m128d a, __m128d b) { return _mm_or_pd(_mm_and_pd(mask, a), _mm_andnot_pd(mask, b)); };
+  auto constant = [](double c) { return _mm_set1_pd(c); };
+  const __m128d ax = _mm_andnot_pd(_mm_set1_pd(-0.0), vx);
+  const __m128d steep = _mm_cmpgt_pd(vy, ax);
+  const __m128d num = select(steep, ax, vy), den = select(steep, vy, ax);
+  const __m128d shift = _mm_cmpgt_pd(num, _mm_mul_pd(constant(0.41421356237309503), den));
+  const __m128d t = _mm_div_pd(select(shift, _mm_sub_pd(num, den), num), select(shift, _mm_add_pd(num, den), den));
+  const __m128d t2 = _mm_mul_pd(t, t), t4 = _mm_mul_pd(t2, t2), t8 = _mm_mul_pd(t4, t4);
+  constexpr double c3 = 1.0 / 3, c5 = 1.0 / 5, c7 = 1.0 / 7, c9 = 1.0 / 9, c11 = 1.0 / 11, c13 = 1.0 / 13, c15 = 1.0 / 15;
+  const __m128d p01 = _mm_sub_pd(constant(1.0), _mm_mul_pd(t2, constant(c3)));
+  const __m128d p23 = _mm_sub_pd(constant(c5), _mm_mul_pd(t2, constant(c7)));
+  const __m128d p45 = _mm_sub_pd(constant(c9), _mm_mul_pd(t2, constant(c11)));
+  const __m128d p67 = _mm_sub_pd(constant(c13), _mm_mul_pd(t2, constant(c15)));
+  __m128d r = _mm_mul_pd(t, _mm_add_pd(_mm_add_pd(p01, _mm_mul_pd(t4, p23)), _mm_mul_pd(t8, _mm_add_pd(p45, _mm_mul_pd(t4, p67)))));
+  // r >= +0 (or NaN) here, and r + 0 is r: adding pi/4 in the lanes that shift only.
+  r = _mm_add_pd(r, _mm_and_pd(shift, constant(0.78539816339744831)));
+  r = select(steep, _mm_sub_pd(constant(kHalfPi), r), r);
+  r = select(_mm_cmplt_pd(vx, _mm_setzero_pd()), _mm_sub_pd(constant(2 * kHalfPi), r), r);
+  _mm_storeu_pd(angle, r);
+#else
+  angle[0] = angleBetween(y[0], x[0]);
+  angle[1] = angleBetween(y[1], x[1]);
+#endif
+}
+
 // Groups of one welded vertex, their sums, and the frames of its corners.
 void Kernel::groupBucket(std::uint32_t bucket, BucketScratch& scratch) {
   const std::uint32_t first = start_[bucket], count = start_[bucket + 1] - first;
@@ -699,7 +734,9 @@ void Kernel::groupBucket(std::uint32_t bucket, BucketScratch& scratch) {
     scratch.values.resize(kStride * (gEnd - g));
     scratch.items.clear();  // contributing members, local indices
     double* values = scratch.values.data();
-    double angleSum = 0;
+    // Three passes over the group's contributing corners: their projected edges (y, x of the
+    // angle parked in the row's first two slots, whether both edges are non-zero in its
+    // third) and directions; the angles two at a time; then the weighted terms.
     for (std::size_t m = g; m < gEnd; ++m) {
       const std::uint32_t c = list[member(m)];
       const std::size_t t = c / 3;
@@ -708,24 +745,43 @@ void Kernel::groupBucket(std::uint32_t bucket, BucketScratch& scratch) {
       const V3 here = a_.position(a_.indices[c]);
       const V3 toPrevious = projected(a_.position(a_.indices[previousCorner(c)]) - here, n);
       const V3 toNext = projected(a_.position(a_.indices[nextCorner(c)]) - here, n);
-      double angle = kHalfPi;  // a zero edge counts as perpendicular, as in the reference
-      if (!(toPrevious == V3{}) && !(toNext == V3{})) angle = angleBetween(length(cross(toPrevious, toNext)), dot(toPrevious, toNext));
+      const F3 referenceS = referenceProjected({frame[0], frame[1], frame[2]}, rawNormal);
+      double* row = values + kStride * scratch.items.size();
+      const bool edges = !(toPrevious == V3{}) && !(toNext == V3{});
+      row[0] = edges ? length(cross(toPrevious, toNext)) : 1.0;
+      row[1] = edges ? dot(toPrevious, toNext) : 0.0;
+      row[2] = edges ? 1.0 : 0.0;
+      // The reference's projected direction, so that sums which (nearly) cancel keep its sign.
+      row[3] = referenceS.x, row[4] = referenceS.y, row[5] = referenceS.z;
+      row[6] = frame[3], row[7] = frame[4], row[8] = frame[5];  // projected only where needed
+      scratch.items.push_back(static_cast<std::uint32_t>(m));
+    }
+    const std::size_t contributingCorners = scratch.items.size();
+    for (std::size_t i = 0; i < contributingCorners; i += 2) {
+      double* row = values + kStride * i;
+      if (i + 1 < contributingCorners) {
+        const double y[2] = {row[0], row[kStride]}, x[2] = {row[1], row[kStride + 1]};
+        double angle[2];
+        angleBetweenPair(y, x, angle);
+        row[9] = angle[0], row[kStride + 9] = angle[1];
+      } else {
+        row[9] = angleBetween(row[0], row[1]);
+      }
+    }
+    double angleSum = 0;
+    for (std::size_t i = 0; i < contributingCorners; ++i) {
+      double* row = values + kStride * i;
+      double angle = row[2] != 0 ? row[9] : kHalfPi;  // a zero edge counts as perpendicular, as in the reference
       if (angle < 0.1 || angle > 2 * kHalfPi - 0.1) {
         // Near 0 or pi the reference's float cosine decides (acos(0.99999994) is 3.5e-4, not 0),
         // and its rounding moves small angles by a visible fraction.
-        angle = referenceAngle(c, rawNormal);
+        angle = referenceAngle(list[member(scratch.items[i])], rawNormal);
       }
       // A corner whose edges project onto one line has no angle; its direction still counts
       // where nothing else does.
       angle = std::max(angle, 1e-12);
-      const F3 referenceS = referenceProjected({frame[0], frame[1], frame[2]}, rawNormal);
-      double* row = values + kStride * scratch.items.size();
-      // The reference's projected direction, so that sums which (nearly) cancel keep its sign.
-      row[0] = referenceS.x * angle, row[1] = referenceS.y * angle, row[2] = referenceS.z * angle;
-      row[3] = referenceS.x, row[4] = referenceS.y, row[5] = referenceS.z;
-      row[6] = frame[3], row[7] = frame[4], row[8] = frame[5];  // projected only where needed
+      row[0] = row[3] * angle, row[1] = row[4] * angle, row[2] = row[5] * angle;
       row[9] = angle;
-      scratch.items.push_back(static_cast<std::uint32_t>(m));
       angleSum += angle;
     }
     const std::size_t contributing = scratch.items.size();
