@@ -45,6 +45,9 @@ configs=(
   "no specular|--no-specular"
   "sphere-map reflection 0.3|--reflectivity 0.3"
   "error heatmap view|--view error"
+  "uv view (cheapest fragment shader)|--view uv"
+  "depth pre-pass|--depth-prepass"
+  "no tone mapping|--tone-map none"
 )
 printf "%-34s %-40s %10s\n" "asset" "configuration" "median ms"
 for asset in "${assets[@]}"; do

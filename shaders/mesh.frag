@@ -9,8 +9,6 @@ in vec3 v_positionWorld;
 in vec3 v_normalWorld;
 in vec4 v_tangentWorld;
 in vec2 v_uvNormal;
-in vec2 v_uv0;
-in vec2 v_uv1;
 in vec4 v_shadowCoord;
 in float v_tangentError;
 in float v_cornerProblems;
@@ -29,16 +27,15 @@ uniform bool u_useSpecular;
 uniform float u_roughness;
 uniform float u_metallic;
 uniform bool u_blend;          // alphaMode BLEND: the output keeps the base colour's alpha
+uniform float u_exposure;      // linear factor on the lit colour before tone mapping
 
 #include "colour.glsl"
+#include "texture_uv.glsl"
 #include "lighting.glsl"
 #include "pbr.glsl"
 #include "shadows.glsl"
 #include "normal_mapping.glsl"
 #include "debug_views.glsl"
-
-// Each texture samples its own UV set (texCoord 0 or 1) through its KHR_texture_transform.
-vec2 textureUv(int set, mat3 transform) { return (transform * vec3(set == 1 ? v_uv1 : v_uv0, 1.0)).xy; }
 
 #ifdef HAS_BASE_COLOR_MAP
 uniform sampler2D u_baseColorMap;
@@ -131,7 +128,7 @@ void main() {
 #endif
 
 #ifdef MATERIAL_UNLIT
-  // KHR_materials_unlit: the base colour as it is, no lights.
+  // KHR_materials_unlit: the base colour as it is, no lights, no exposure, no tone mapping.
   fragColor = vec4(linearToSrgb(baseColor.rgb), alpha);
   return;
 #else
@@ -178,19 +175,23 @@ void main() {
   }
   SurfaceLight light = SurfaceLight(vec3(0.0), vec3(0.0), vec3(0.0));
 #endif
-  for (int i = 0; i < u_lightCount; ++i) {
-    float shadow = 1.0;
+  // Light 0's shadow, looked up once outside the loop (which then has no texture fetch).
+  float shadow0 = 1.0;
 #ifdef USE_SHADOWS
-    if (i == 0) {
-      vec3 toLight = u_lightPosition[0].w == 0.0 ? normalize(-u_lightPosition[0].xyz) : normalize(u_lightPosition[0].xyz - v_positionWorld);
-      shadow = shadowFactor(v_shadowCoord, normal, toLight);
-    }
+  {
+    vec3 toLight = u_lightPosition[0].w == 0.0 ? normalize(-u_lightPosition[0].xyz) : normalize(u_lightPosition[0].xyz - v_positionWorld);
+    shadow0 = shadowFactor(v_shadowCoord, normal, toLight);
+  }
 #endif
+  // A constant trip count the compiler can unroll, cut short at u_lightCount.
+  for (int i = 0; i < kMaxLights; ++i) {
+    if (i >= u_lightCount) break;
+    float shadow = i == 0 ? shadow0 : 1.0;
 #ifdef SHADING_PBR
     vec3 toLight;
     float attenuation = lightAt(i, v_positionWorld, toLight);
     ambient += u_lightAmbient[i] * attenuation;
-    color += pbrDirect(surface, shadingNormal, toEye, toLight) * u_lightDiffuse[i] * (kPi * attenuation * shadow);
+    color += pbrDirect(surface, shadingNormal, toEye, toLight) * u_lightDiffuse[i] * (kLightToIlluminance * attenuation * shadow);
 #else
     addLight(i, v_positionWorld, shadingNormal, toEye, shininess, shadow, light);
 #endif
@@ -209,6 +210,6 @@ void main() {
 #ifdef HAS_EMISSIVE_MAP
   emissive *= texture(u_emissiveMap, textureUv(u_emissiveUvSet, u_emissiveUvTransform)).rgb;
 #endif
-  fragColor = vec4(linearToSrgb(color + emissive), alpha);
+  fragColor = vec4(linearToSrgb(toneMap((color + emissive) * u_exposure)), alpha);
 #endif
 }

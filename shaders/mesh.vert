@@ -27,9 +27,10 @@ out vec2 v_uv1;
 out vec4 v_shadowCoord;
 out float v_tangentError;
 out float v_cornerProblems;
+invariant gl_Position;  // as in shadow_depth.vert: the depth pre-pass writes the same depths
 
 void main() {
-  vec4 world = u_model * vec4(a_position, 1.0);
+  vec4 world = u_model * vec4(a_position, 1.0);  // gl_Position as shadow_depth.vert computes it
   v_positionWorld = world.xyz;
   v_normalWorld = u_normalMatrix * a_normal;
   // B = cross(N, T) * w in object space; in world space cross(M N, M T) carries det(M)'s sign,

@@ -6,16 +6,16 @@
 set -euo pipefail
 src=${1:?usage: licence_test.sh SOURCE_DIR}
 grep -q '^MIT License$' "$src/LICENSE" || { echo "$src/LICENSE: not the MIT licence"; exit 1; }
-missing=0
-while IFS= read -r -d '' f; do
-  if ! head -n 3 "$f" | grep -q 'SPDX-License-Identifier: MIT'; then
-    echo "no SPDX-License-Identifier line in the first 3 lines: ${f#"$src"/}"
-    missing=$((missing + 1))
-  fi
-done < <(find "$src" \( -name 'build*' -o -name node_modules -o -name .git -o -name '.devcarry' \) -prune -o -type f \
+# One awk over every file: the names of those without the line in their first three.
+mapfile -t missing < <(find "$src" \( -name 'build*' -o -name node_modules -o -name .git -o -name '.devcarry' \) -prune -o -type f \
            \( -name '*.cpp' -o -name '*.hpp' -o -name '*.c' -o -name '*.h' -o -name '*.glsl' -o -name '*.vert' \
               -o -name '*.frag' -o -name '*.sh' -o -name '*.py' -o -name '*.pyi' -o -name '*.cmake' -o -name '*.cmake.in' \
-              -o -name CMakeLists.txt -o -name '*.mjs' -o -name '*.js' -o -name '*.ts' \) -print0)
+              -o -name CMakeLists.txt -o -name '*.mjs' -o -name '*.js' -o -name '*.ts' \) -print0 |
+  xargs -0 awk 'FNR == 1 { if (NR > 1 && !found) print previous; found = 0; previous = FILENAME }
+                FNR <= 3 && /SPDX-License-Identifier: MIT/ { found = 1 }
+                END { if (NR > 0 && !found) print previous }')
+for f in "${missing[@]}"; do echo "no SPDX-License-Identifier line in the first 3 lines: ${f#"$src"/}"; done
+missing=${#missing[@]}
 if [ "$missing" -ne 0 ]; then
   echo "$missing source file(s) without the licence line"
   exit 1

@@ -10,6 +10,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstdlib>
 #include <cstdio>
 #include <iostream>
@@ -19,6 +20,7 @@
 #include "camera.hpp"
 #include "renderer.hpp"
 #include "resources.hpp"
+#include "shader_check.hpp"
 #include "shader_library.hpp"
 #include "tangent/gltf.hpp"
 #include "tangent/scene.hpp"
@@ -45,6 +47,12 @@ const char* kUsage =
     "  --glyphs                 draw tangent frames (T red, B green, N blue)\n"
     "  --no-shadows, --pcf N (0 off, 1 = 3x3, 2 = 5x5), --shadow-map-size N (1024..4096)\n"
     "  --shading NAME           pbr (glTF metallic-roughness, default) | blinn-phong | phong (specular-map mode)\n"
+    "  --tone-map NAME          khr-pbr-neutral (default) | aces | none (values above 1 clip); unlit\n"
+    "                           materials and debug views are never tone mapped\n"
+    "  --exposure F|auto        linear factor on the lit colour before tone mapping (default auto: pi\n"
+    "                           over the brightest KHR_lights_punctual illuminance at the scene's centre in\n"
+    "                           pbr, where those lights are in lux and candela; 1 otherwise)\n"
+    "  --depth-prepass          draw opaque depth first, then shade each pixel once\n"
     "  --msaa N                 samples per pixel in the window and screenshots (default 4, or 0 on a\n"
     "                           software rasteriser such as llvmpipe, where 4x costs 3-4 times the frame)\n"
     "  --no-normal-map, --no-specular, --phong (= --shading phong), --flip-green, --negate-w\n"
@@ -53,6 +61,8 @@ const char* kUsage =
     "                           how many shadow-map passes they drew\n"
     "  --asset-root DIR         folder buffer and image URIs may not leave (default: the file's folder)\n"
     "  --shader-dir DIR         where the shaders are (default: the source tree's shaders/)\n"
+    "  --check-shaders          link the programs in a spread of variants, compare their vertex inputs\n"
+    "                           with the layout tables (viewer/vertex_layout.hpp) and exit (1 on a mismatch)\n"
     "keys: m normal map, s specular, h shadows, p PCF, f green flip, 1-9 views, g glyphs,\n"
     "      r reload shaders, o open, mouse: left orbit, right/middle pan, wheel zoom\n";
 
@@ -75,6 +85,7 @@ struct Options {
   fs::path shaderDir = resourceFolder("shaders");
   fs::path assetRoot;  // --asset-root: the folder buffer and image URIs may not leave
   int frames = 1;
+  bool checkShaders = false;
   int msaaSamples = -1;  // 0: off; -1: 4, or off on a software rasteriser (softwareRasteriser)
 };
 
@@ -128,6 +139,21 @@ int parseOptions(int argc, char** argv, Options& options) {
       else if (arg == "--frames") options.frames = std::clamp(std::stoi(value()), 1, 10000);
       else if (arg == "--shader-dir") options.shaderDir = value();
       else if (arg == "--asset-root") options.assetRoot = value();
+      else if (arg == "--check-shaders") options.checkShaders = true;
+      else if (arg == "--depth-prepass") options.settings.depthPrePass = true;
+      else if (arg == "--exposure") {
+        const std::string text = value();
+        if (text == "auto") options.settings.exposure = 0;
+        else if (!(std::stof(text) > 0) || !std::isfinite(std::stof(text))) throw std::invalid_argument("--exposure must be > 0 or auto");
+        else options.settings.exposure = std::stof(text);
+      } else if (arg == "--tone-map") {
+        const std::string name = value();
+        bool found = false;
+        for (const auto& entry : kToneMappings) {
+          if (name == entry.name) options.settings.toneMapping = entry.toneMapping, found = true;
+        }
+        if (!found) throw std::invalid_argument("unknown --tone-map " + name);
+      }
       else if (!arg.empty() && arg[0] == '-') throw std::invalid_argument("unknown option " + arg);
       else options.input = arg;
     } catch (const std::exception& e) {
@@ -270,9 +296,9 @@ int screenshot(Viewer& viewer) {
   }
   std::sort(milliseconds.begin(), milliseconds.end());
   std::printf("wrote %s (%dx%d, %d samples): %zu triangles, %d draw calls, %zu shader variants, %d shadow pass(es), "
-              "median frame %.2f ms over %d frame(s)\n",
+              "exposure %.4g, median frame %.2f ms over %d frame(s)\n",
               o.screenshot->string().c_str(), o.width, o.height, std::max(samples, 1), stats.triangles, stats.drawCalls,
-              viewer.shaders.variantsCompiled(), viewer.renderer.shadowPasses(), milliseconds[milliseconds.size() / 2], o.frames);
+              viewer.shaders.variantsCompiled(), viewer.renderer.shadowPasses(), stats.exposure, milliseconds[milliseconds.size() / 2], o.frames);
   return 0;
 }
 
@@ -320,6 +346,16 @@ void drawPanel(Viewer& viewer, GLFWwindow* window, const FrameStats& stats, doub
     if (ImGui::Combo("shading", &shading, shadingNames, static_cast<int>(std::size(kShadings)))) s.shading = static_cast<Shading>(shading);
     if (s.shading == Shading::pbr) ImGui::TextWrapped("glTF metallic-roughness (GGX), occlusion, emissive; sRGB output");
     else ImGui::SliderFloat("shininess", &s.shininess, 1, 256);
+    int toneMapping = static_cast<int>(s.toneMapping);
+    const char* toneNames[std::size(kToneMappings)];
+    for (std::size_t i = 0; i < std::size(kToneMappings); ++i) toneNames[i] = kToneMappings[i].name;
+    if (ImGui::Combo("tone mapping", &toneMapping, toneNames, static_cast<int>(std::size(kToneMappings))))
+      s.toneMapping = static_cast<ToneMapping>(toneMapping);
+    bool autoExposure = s.exposure <= 0;
+    if (ImGui::Checkbox("auto exposure", &autoExposure)) s.exposure = autoExposure ? 0 : viewer.renderer.exposure(s);
+    if (!autoExposure) ImGui::SliderFloat("exposure", &s.exposure, 1e-4f, 1e4f, "%.4g", ImGuiSliderFlags_Logarithmic);
+    else ImGui::Text("exposure %.4g%s", stats.exposure, viewer.renderer.physicalLights(s) ? " (lights in lux / candela)" : "");
+    ImGui::Checkbox("depth pre-pass", &s.depthPrePass);
     ImGui::SliderFloat("reflectivity", &s.reflectivity, 0, 1);
     ImGui::SliderFloat("UV scale", &s.uvScale, 0.25f, 8);
   }
@@ -344,6 +380,11 @@ void drawPanel(Viewer& viewer, GLFWwindow* window, const FrameStats& stats, doub
       ImGui::ColorEdit3("diffuse", &light.diffuse.x);
       ImGui::ColorEdit3("specular", &light.specular.x);
       if (!light.directional) ImGui::DragFloat3("k0 k1 k2", &light.attenuation.x, 0.01f, 0, 10);
+      if (light.physical) {
+        ImGui::TextWrapped("in pbr: colour x intensity, %s", light.directional ? "lux" : "candela, range window");
+        ImGui::ColorEdit3("colour", &light.color.x);
+        ImGui::DragFloat("intensity", &light.intensity, 0.01f * std::max(light.intensity, 1.0f), 0, 1e7f);
+      }
       ImGui::PopID();
     }
   }
@@ -465,7 +506,7 @@ int main(int argc, char** argv) {
   glfwWindowHint(GLFW_OPENGL_PROFILE, GLFW_OPENGL_CORE_PROFILE);
   glfwWindowHint(GLFW_OPENGL_FORWARD_COMPAT, GLFW_TRUE);
   if (std::getenv("TANGENT_GL_DEBUG")) glfwWindowHint(GLFW_OPENGL_DEBUG_CONTEXT, GLFW_TRUE);
-  if (options.screenshot) glfwWindowHint(GLFW_VISIBLE, GLFW_FALSE);
+  if (options.screenshot || options.checkShaders) glfwWindowHint(GLFW_VISIBLE, GLFW_FALSE);
   else glfwWindowHint(GLFW_SAMPLES, options.msaaSamples < 0 ? 4 : options.msaaSamples > 1 ? options.msaaSamples : 0);
   GLFWwindow* window = glfwCreateWindow(options.screenshot ? 64 : options.width, options.screenshot ? 64 : options.height,
                                         "tangent-view", nullptr, nullptr);
@@ -488,7 +529,14 @@ int main(int argc, char** argv) {
     if (options.msaaSamples == 0) glDisable(GL_MULTISAMPLE);  // the window's samples, unused
   }
   int exit = 0;
-  {
+  if (options.checkShaders) {
+    ShaderLibrary shaders(options.shaderDir);
+    int checked = 0;
+    const auto problems = checkShaderInputs(shaders, checked);
+    for (const auto& problem : problems) std::cerr << "error: " << problem << "\n";
+    std::printf("%d programs linked, vertex inputs %s the layout tables\n", checked, problems.empty() ? "agree with" : "DISAGREE with");
+    exit = problems.empty() ? 0 : 1;
+  } else {
     Viewer viewer(options);
     const bool loaded = viewer.load(options.input);
     if (options.screenshot) exit = loaded ? screenshot(viewer) : 1;

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 #include "renderer.hpp"
 
+#include <glm/gtc/constants.hpp>
 #include <glm/gtc/matrix_transform.hpp>
 #include <glm/gtc/type_ptr.hpp>
 
@@ -8,13 +9,46 @@
 #include <array>
 #include <cmath>
 #include <limits>
+#include <span>
 
 #include "textures.hpp"
+#include "vertex_layout.hpp"
 
 namespace tangent::viewer {
 namespace {
 
-constexpr int kFloatsPerVertex = 18;  // position 3, normal 3, tangent 4, uvNormal 2, uv0 2, uv1 2, error 1, problems 1
+// Enables and points every attribute of a layout at the bound GL_ARRAY_BUFFER of packed floats.
+void setVertexLayout(std::span<const VertexAttribute> layout) {
+  const auto stride = static_cast<GLsizei>(floatsPerVertex(layout) * sizeof(float));
+  for (const VertexAttribute& attribute : layout) {
+    glEnableVertexAttribArray(attribute.location);
+    glVertexAttribPointer(attribute.location, attribute.components, GL_FLOAT, GL_FALSE, stride,
+                          reinterpret_cast<const void*>(static_cast<std::uintptr_t>(attribute.offset * sizeof(float))));
+  }
+}
+
+// A draw item's corners packed as kMeshVertexLayout says.
+std::vector<float> packMeshVertices(const gltf::DrawItem& item) {
+  const std::size_t corners = item.positions.size() / 3;
+  std::vector<float> data(corners * kMeshFloatsPerVertex);
+  for (const VertexAttribute& attribute : kMeshVertexLayout) {
+    for (std::size_t c = 0; c < corners; ++c) {
+      float* out = &data[c * kMeshFloatsPerVertex + attribute.offset];
+      const auto n = static_cast<std::size_t>(attribute.components);
+      switch (attribute.source) {
+        case VertexSource::position: std::copy_n(&item.positions[n * c], n, out); break;
+        case VertexSource::normal: std::copy_n(&item.normals[n * c], n, out); break;
+        case VertexSource::tangent: std::copy_n(&item.tangents[n * c], n, out); break;
+        case VertexSource::uvNormal: std::copy_n(&item.uvNormal[n * c], n, out); break;
+        case VertexSource::uv0: std::copy_n(&item.uvSets[0][n * c], n, out); break;
+        case VertexSource::uv1: std::copy_n(&item.uvSets[1][n * c], n, out); break;
+        case VertexSource::tangentError: *out = item.tangentErrorDegrees[c]; break;
+        case VertexSource::cornerProblems: *out = static_cast<float>(item.cornerProblems[c]); break;
+      }
+    }
+  }
+  return data;
+}
 
 void setUniform(GLuint program, const char* name, const glm::mat4& m) {
   glUniformMatrix4fv(glGetUniformLocation(program, name), 1, GL_FALSE, glm::value_ptr(m));
@@ -52,7 +86,11 @@ std::vector<Light> lightsFrom(const gltf::Scene& scene, glm::vec3 center, float 
     // KHR_lights_punctual intensities (lux, candela) mapped to Blinn-Phong colours.
     light.diffuse = color * (light.directional ? std::min(source.intensity, 4.0f) : 1.0f);
     light.specular = light.diffuse;
-    light.ambient = light.diffuse * 0.06f;
+    light.ambient = light.diffuse * kAmbientShare;
+    light.physical = true;
+    light.color = color;
+    light.intensity = source.intensity;
+    light.range = source.range;
     if (!light.directional) light.attenuation = glm::vec3(1.0f, 0.0f, 1.0f / std::max(source.intensity, 1e-3f));
     if (source.type == gltf::LightDesc::Type::spot) {
       light.spotInner = source.innerConeAngle;
@@ -67,7 +105,7 @@ std::vector<Light> lightsFrom(const gltf::Scene& scene, glm::vec3 center, float 
   Light key;
   key.direction = glm::normalize(glm::vec3(-0.35f, -1.0f, -0.45f));
   key.diffuse = glm::vec3(0.85f);
-  key.ambient = glm::vec3(0.12f);
+  key.ambient = glm::vec3(2 * kAmbientShare);
   Light fill;
   fill.direction = glm::normalize(glm::vec3(0.8f, -0.2f, -0.4f));
   fill.diffuse = glm::vec3(0.22f, 0.24f, 0.3f);
@@ -89,6 +127,14 @@ std::vector<Light> lightsFrom(const gltf::Scene& scene, glm::vec3 center, float 
   spot.spotInner = 0.25f;
   spot.spotOuter = 0.4f;
   return {key, fill, back, spot};
+}
+
+// BLEND materials cast shadows cut out where their alpha is below this, as MASK materials do
+// at their alphaCutoff: a half-transparent surface casts where it is mostly opaque.
+constexpr float kBlendShadowCutoff = 0.5f;
+
+const gltf::MaterialDesc* materialOf(const gltf::Scene& scene, int material) {
+  return material >= 0 && material < static_cast<int>(scene.materials.size()) ? &scene.materials[material] : nullptr;
 }
 
 }  // namespace
@@ -132,18 +178,7 @@ void Renderer::setScene(const gltf::Scene& scene, std::vector<std::string>& mess
     mesh.material = item.material;
     mesh.model = glm::make_mat4(item.world.data());
     const std::size_t corners = item.positions.size() / 3;
-    std::vector<float> data(corners * kFloatsPerVertex);
-    for (std::size_t c = 0; c < corners; ++c) {
-      float* v = &data[c * kFloatsPerVertex];
-      std::copy_n(&item.positions[3 * c], 3, v);
-      std::copy_n(&item.normals[3 * c], 3, v + 3);
-      std::copy_n(&item.tangents[4 * c], 4, v + 6);
-      std::copy_n(&item.uvNormal[2 * c], 2, v + 10);
-      std::copy_n(&item.uvSets[0][2 * c], 2, v + 12);
-      std::copy_n(&item.uvSets[1][2 * c], 2, v + 14);
-      v[16] = item.tangentErrorDegrees[c];
-      v[17] = static_cast<float>(item.cornerProblems[c]);
-    }
+    const std::vector<float> data = packMeshVertices(item);
     glm::vec3 lo(std::numeric_limits<float>::max()), hi(-std::numeric_limits<float>::max());
     for (std::size_t c = 0; c < corners; ++c) {
       const glm::vec3 p = glm::vec3(mesh.model * glm::vec4(glm::make_vec3(&item.positions[3 * c]), 1));
@@ -156,14 +191,7 @@ void Renderer::setScene(const gltf::Scene& scene, std::vector<std::string>& mess
     glBindVertexArray(mesh.vertexArray.get());
     glBindBuffer(GL_ARRAY_BUFFER, mesh.vertices.get());
     glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(data.size() * sizeof(float)), data.data(), GL_STATIC_DRAW);
-    const int sizes[] = {3, 3, 4, 2, 2, 2, 1, 1};
-    int offset = 0;
-    for (GLuint location = 0; location < 8; ++location) {
-      glEnableVertexAttribArray(location);
-      glVertexAttribPointer(location, sizes[location], GL_FLOAT, GL_FALSE, kFloatsPerVertex * sizeof(float),
-                            reinterpret_cast<const void*>(static_cast<std::uintptr_t>(offset * sizeof(float))));
-      offset += sizes[location];
-    }
+    setVertexLayout(kMeshVertexLayout);
     mesh.count = static_cast<GLsizei>(corners);
     meshes_.push_back(std::move(mesh));
   }
@@ -192,11 +220,13 @@ FeatureSet Renderer::featuresFor(const GpuMesh& mesh, const RenderSettings& sett
   if (settings.shadows && !lights_.empty() && lights_[0].directional) features |= static_cast<FeatureSet>(Feature::shadows);
   if (settings.reflectivity > 0 && sphereMap_) features |= static_cast<FeatureSet>(Feature::reflection);
   if (settings.shading == Shading::pbr) features |= static_cast<FeatureSet>(Feature::pbr);
+  if (physicalLights(settings)) features |= static_cast<FeatureSet>(Feature::physicalLights);
   if (mesh.material < 0 || mesh.material >= static_cast<int>(scene_.materials.size())) return features;
   const auto& material = scene_.materials[mesh.material];
   if (material.unlit) {
     // Unlit: base colour and alpha only.
-    features &= ~(static_cast<FeatureSet>(Feature::shadows) | static_cast<FeatureSet>(Feature::reflection));
+    features &= ~(static_cast<FeatureSet>(Feature::shadows) | static_cast<FeatureSet>(Feature::reflection) |
+                  static_cast<FeatureSet>(Feature::physicalLights));
     features |= static_cast<FeatureSet>(Feature::unlit);
   }
   if (material.alphaMode == gltf::MaterialDesc::AlphaMode::mask) features |= static_cast<FeatureSet>(Feature::alphaMask);
@@ -208,6 +238,77 @@ FeatureSet Renderer::featuresFor(const GpuMesh& mesh, const RenderSettings& sett
   if (textureOf(material.metallicRoughnessTexture)) features |= static_cast<FeatureSet>(Feature::metallicRoughnessMap);
   if (textureOf(material.emissiveTexture)) features |= static_cast<FeatureSet>(Feature::emissiveMap);
   return features;
+}
+
+bool Renderer::physicalLights(const RenderSettings& settings) const {
+  return settings.shading == Shading::pbr && !lights_.empty() && lights_[0].physical;
+}
+
+float Renderer::exposure(const RenderSettings& settings) const {
+  if (settings.exposure > 0) return settings.exposure;
+  if (!physicalLights(settings)) return 1;
+  const glm::vec3 center = boundsCenter();
+  float brightest = 0;
+  for (const Light& light : lights_) {
+    float illuminance = light.intensity * std::max({light.color.r, light.color.g, light.color.b});
+    if (!light.directional) {
+      // At the centre, or at a tenth of the scene's radius for a light inside the scene.
+      const float d = std::max(glm::length(light.position - center), 0.1f * boundsRadius());
+      illuminance /= d * d;
+      if (light.range > 0) illuminance *= std::clamp(1 - std::pow(d / light.range, 4.0f), 0.0f, 1.0f);
+    }
+    brightest = std::max(brightest, illuminance);
+  }
+  return brightest > 0 ? glm::pi<float>() / brightest : 1.0f;
+}
+
+FeatureSet Renderer::alphaTestFeatures(const GpuMesh& mesh, bool blendCasts) const {
+  const gltf::MaterialDesc* material = materialOf(scene_, mesh.material);
+  if (!material) return 0;
+  const bool tested = material->alphaMode == gltf::MaterialDesc::AlphaMode::mask ||
+                      (blendCasts && material->alphaMode == gltf::MaterialDesc::AlphaMode::blend);
+  if (!tested) return 0;
+  FeatureSet features = static_cast<FeatureSet>(Feature::alphaMask);
+  if (textureOf(material->baseColorTexture)) features |= static_cast<FeatureSet>(Feature::baseColorMap);
+  return features;
+}
+
+// Front faces and culling as glTF defines them for a mesh: a node whose transform mirrors
+// (negative determinant) turns its triangles' winding around, so its front faces are the
+// clockwise ones (glTF 2.0 3.7.4); back faces are culled unless the material is doubleSided.
+void Renderer::applyCulling(const GpuMesh& mesh, const RenderSettings& settings) const {
+  const bool mirrored = glm::determinant(glm::mat3(mesh.model)) < 0;
+  glFrontFace(mirrored ? GL_CW : GL_CCW);
+  const gltf::MaterialDesc* material = materialOf(scene_, mesh.material);
+  if ((material && material->doubleSided) || settings.view == DebugView::faceOrientation) glDisable(GL_CULL_FACE);
+  else glEnable(GL_CULL_FACE), glCullFace(GL_BACK);
+}
+
+void Renderer::drawDepth(const std::vector<const GpuMesh*>& meshes, const glm::mat4& viewProjection, const RenderSettings& settings,
+                         bool blendCasts, bool cullAsLit) {
+  for (const GpuMesh* mesh : meshes) {
+    const FeatureSet features = alphaTestFeatures(*mesh, blendCasts);
+    const GLuint program = shaders_.depthOnly(features);
+    glUseProgram(program);
+    setUniform(program, "u_viewProjection", viewProjection);
+    setUniform(program, "u_model", mesh->model);
+    if (has(features, Feature::alphaMask)) {
+      const gltf::MaterialDesc& material = *materialOf(scene_, mesh->material);
+      setUniform(program, "u_uvScale", settings.uvScale);
+      setUniform(program, "u_baseColorFactor", glm::make_vec4(material.baseColor.data()));
+      setUniform(program, "u_alphaCutoff",
+                 material.alphaMode == gltf::MaterialDesc::AlphaMode::mask ? material.alphaCutoff : kBlendShadowCutoff);
+      if (has(features, Feature::baseColorMap)) {
+        glActiveTexture(GL_TEXTURE0);
+        glBindTexture(GL_TEXTURE_2D, textureOf(material.baseColorTexture));
+        setUniform(program, "u_baseColorMap", 0);
+        setUvUniforms(program, "u_baseColor", material.baseColorTexture);
+      }
+    }
+    if (cullAsLit) applyCulling(*mesh, settings);
+    glBindVertexArray(mesh->vertexArray.get());
+    glDrawArrays(GL_TRIANGLES, 0, mesh->count);
+  }
 }
 
 glm::mat4 Renderer::lightViewProjection() const {
@@ -250,14 +351,11 @@ void Renderer::drawShadowMap(const RenderSettings& settings) {
   glEnable(GL_POLYGON_OFFSET_FILL);
   glPolygonOffset(2.0f, 4.0f);
   glDisable(GL_CULL_FACE);
-  const GLuint program = shaders_.shadowDepth();
-  glUseProgram(program);
-  setUniform(program, "u_lightViewProjection", lightViewProjection());
-  for (const GpuMesh& mesh : meshes_) {
-    setUniform(program, "u_model", mesh.model);
-    glBindVertexArray(mesh.vertexArray.get());
-    glDrawArrays(GL_TRIANGLES, 0, mesh.count);
-  }
+  // Every mesh casts: opaque ones whole, MASK ones cut out at their alphaCutoff, BLEND ones cut
+  // out at kBlendShadowCutoff.
+  std::vector<const GpuMesh*> casters;
+  for (const GpuMesh& mesh : meshes_) casters.push_back(&mesh);
+  drawDepth(casters, lightViewProjection(), settings, true, false);
   glDisable(GL_POLYGON_OFFSET_FILL);
   glBindFramebuffer(GL_FRAMEBUFFER, static_cast<GLuint>(previous));
   ++shadowPasses_;
@@ -270,7 +368,7 @@ FrameStats Renderer::render(const CameraMatrices& camera, const RenderSettings& 
   if (anyShadows) {
     // The map depends on the scene, light 0's direction and the map size only: a camera that
     // moves reuses it.
-    const ShadowKey key{glm::normalize(lights_[0].direction), settings.shadowMapSize, sceneVersion_};
+    const ShadowKey key{glm::normalize(lights_[0].direction), settings.shadowMapSize, sceneVersion_, settings.uvScale};
     if (!(key == shadowKey_) || !shadowTexture_) {
       drawShadowMap(settings);
       shadowKey_ = key;
@@ -298,7 +396,25 @@ FrameStats Renderer::render(const CameraMatrices& camera, const RenderSettings& 
   }
   std::stable_sort(opaque.begin(), opaque.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
   std::stable_sort(transparent.begin(), transparent.end(), [](const auto& a, const auto& b) { return a.first > b.first; });
+  stats.exposure = exposure(settings);
+  const bool prePass = settings.depthPrePass && settings.view == DebugView::lit && !opaque.empty();
+  if (prePass) {
+    // Depth of the opaque and masked meshes first, so that the shading pass below runs the
+    // fragment shader once per pixel; same culling, same invariant positions, GL_LEQUAL.
+    std::vector<const GpuMesh*> occluders;
+    for (const auto& [distance, mesh] : opaque) occluders.push_back(mesh);
+    glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
+    drawDepth(occluders, camera.projection * camera.view, settings, false, true);
+    stats.drawCalls += static_cast<int>(occluders.size());
+    glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+    glDepthFunc(GL_LEQUAL);
+    glDepthMask(GL_FALSE);
+  }
   for (const auto& [distance, mesh] : opaque) drawMesh(*mesh, camera, settings, anyShadows, stats);
+  if (prePass) {
+    glDepthFunc(GL_LESS);
+    glDepthMask(GL_TRUE);
+  }
   if (!transparent.empty()) {
     glEnable(GL_BLEND);
     glBlendFuncSeparate(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA, GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
@@ -318,19 +434,15 @@ FrameStats Renderer::render(const CameraMatrices& camera, const RenderSettings& 
 }
 
 void Renderer::drawMesh(const GpuMesh& mesh, const CameraMatrices& camera, const RenderSettings& settings, bool shadows, FrameStats& stats) {
-  // A node whose transform mirrors (negative determinant) turns its triangles' winding
-  // around: its front faces are the clockwise ones (glTF 2.0 3.7.4).
   const bool mirrored = glm::determinant(glm::mat3(mesh.model)) < 0;
-  glFrontFace(mirrored ? GL_CW : GL_CCW);
+  applyCulling(mesh, settings);
   gltf::MaterialDesc material;
   material.roughness = 0.5f;
   material.metallic = 0.0f;
-  if (mesh.material >= 0 && mesh.material < static_cast<int>(scene_.materials.size())) material = scene_.materials[mesh.material];
-  if (material.doubleSided || settings.view == DebugView::faceOrientation) glDisable(GL_CULL_FACE);
-  else glEnable(GL_CULL_FACE), glCullFace(GL_BACK);
+  if (const gltf::MaterialDesc* own = materialOf(scene_, mesh.material)) material = *own;
   FeatureSet features = featuresFor(mesh, settings);
   if (!shadows) features &= ~static_cast<FeatureSet>(Feature::shadows);
-  const GLuint program = shaders_.mesh(features, settings.view);
+  const GLuint program = shaders_.mesh(features, settings.view, settings.toneMapping);
   glUseProgram(program);
   setUniform(program, "u_model", mesh.model);
   setUniform(program, "u_normalMatrix", glm::transpose(glm::inverse(glm::mat3(mesh.model))));
@@ -346,6 +458,7 @@ void Renderer::drawMesh(const GpuMesh& mesh, const CameraMatrices& camera, const
   setUniform(program, "u_specularModel", settings.shading == Shading::phong ? 1 : 0);
   setUniform(program, "u_blend", material.alphaMode == gltf::MaterialDesc::AlphaMode::blend ? 1 : 0);
   setUniform(program, "u_alphaCutoff", material.alphaCutoff);
+  setUniform(program, "u_exposure", exposure(settings));
 
   setUniform(program, "u_baseColorFactor", glm::make_vec4(material.baseColor.data()));
   setUniform(program, "u_emissiveFactor", glm::make_vec3(material.emissive.data()));
@@ -365,8 +478,15 @@ void Renderer::drawMesh(const GpuMesh& mesh, const CameraMatrices& camera, const
     const std::string index = "[" + std::to_string(i) + "]";
     setUniform(program, ("u_lightPosition" + index).c_str(),
                light.directional ? glm::vec4(glm::normalize(light.direction), 0) : glm::vec4(light.position, 1));
-    setUniform(program, ("u_lightAmbient" + index).c_str(), light.ambient);
-    setUniform(program, ("u_lightDiffuse" + index).c_str(), light.diffuse);
+    if (has(features, Feature::physicalLights)) {
+      // Illuminance (lux) or intensity (candela) times colour; ambient radiance a share of it.
+      setUniform(program, ("u_lightDiffuse" + index).c_str(), light.color * light.intensity);
+      setUniform(program, ("u_lightAmbient" + index).c_str(), light.color * (light.intensity * kAmbientShare / glm::pi<float>()));
+      setUniform(program, ("u_lightRange" + index).c_str(), light.range);
+    } else {
+      setUniform(program, ("u_lightAmbient" + index).c_str(), light.ambient);
+      setUniform(program, ("u_lightDiffuse" + index).c_str(), light.diffuse);
+    }
     setUniform(program, ("u_lightSpecular" + index).c_str(), light.specular);
     setUniform(program, ("u_lightAttenuation" + index).c_str(), light.attenuation);
     setUniform(program, ("u_lightSpotDirection" + index).c_str(), light.direction);
@@ -435,11 +555,8 @@ void Renderer::drawGlyphs(const CameraMatrices& camera, const RenderSettings& se
     glBindVertexArray(glyphArray_.get());
     glBindBuffer(GL_ARRAY_BUFFER, glyphBuffer_.get());
     glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(lines.size() * sizeof(float)), lines.data(), GL_STATIC_DRAW);
-    glEnableVertexAttribArray(0);
-    glVertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, 6 * sizeof(float), nullptr);
-    glEnableVertexAttribArray(1);
-    glVertexAttribPointer(1, 3, GL_FLOAT, GL_FALSE, 6 * sizeof(float), reinterpret_cast<const void*>(3 * sizeof(float)));
-    glyphVertices_ = static_cast<GLsizei>(lines.size() / 6);
+    setVertexLayout(kLineVertexLayout);
+    glyphVertices_ = static_cast<GLsizei>(lines.size() / kLineFloatsPerVertex);
     glyphsBuiltFor_ = settings.maxGlyphs;
   }
   const GLuint program = shaders_.lines();

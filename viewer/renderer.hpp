@@ -21,7 +21,16 @@ struct Light {
   glm::vec3 ambient{0.05f}, diffuse{0.8f}, specular{1.0f};
   glm::vec3 attenuation{1, 0, 0};  // k0, k1, k2
   float spotInner = -1, spotOuter = -1;  // cone half-angles in radians; < 0: no cone
+  // From KHR_lights_punctual: PBR mode reads these, in the extension's units, instead of the
+  // colours and k0 k1 k2 above (which the specular-map mode keeps using).
+  bool physical = false;
+  glm::vec3 color{1};
+  float intensity = 1;  // lux (directional) or candela (point, spot)
+  float range = 0;      // 0: infinite
 };
+
+// The share of a light's direct illuminance that the viewer adds as ambient (sky) light.
+inline constexpr float kAmbientShare = 0.06f;
 
 struct RenderSettings {
   DebugView view = DebugView::lit;
@@ -39,6 +48,9 @@ struct RenderSettings {
   float uvScale = 1;
   bool glyphs = false;
   int maxGlyphs = 4000;
+  ToneMapping toneMapping = ToneMapping::khrPbrNeutral;
+  float exposure = 0;        // linear factor before tone mapping; <= 0: automatic (Renderer::exposure)
+  bool depthPrePass = false; // opaque meshes' depth first, then shading with GL_LEQUAL and no depth writes
 };
 
 struct CameraMatrices {
@@ -50,6 +62,7 @@ struct FrameStats {
   int drawCalls = 0;
   std::size_t triangles = 0;
   bool depthPass = false;  // the shadow map was redrawn this frame
+  float exposure = 1;      // the exposure used
 };
 
 class Renderer {
@@ -72,6 +85,12 @@ class Renderer {
   // Shadow-map depth passes drawn since the scene was set: one per change of scene, light 0's
   // direction or map size, not one per frame.
   int shadowPasses() const { return shadowPasses_; }
+  // The lit colour's factor before tone mapping: settings.exposure when > 0; else, with lights
+  // in physical units, pi over the largest illuminance a light gives at the scene's centre (a
+  // white Lambertian surface facing the brightest light shows 1), and 1 otherwise.
+  float exposure(const RenderSettings& settings) const;
+  // PBR mode with the file's KHR_lights_punctual lights: in the extension's units.
+  bool physicalLights(const RenderSettings& settings) const;
 
  private:
   struct GpuMesh {
@@ -87,10 +106,17 @@ class Renderer {
     glm::vec3 direction{0};
     int size = 0;
     int sceneVersion = -1;
+    float uvScale = 1;  // alpha-tested materials' cut-outs move with it
     bool operator==(const ShadowKey&) const = default;
   };
   void drawMesh(const GpuMesh& mesh, const CameraMatrices& camera, const RenderSettings& settings, bool shadows, FrameStats& stats);
   void drawShadowMap(const RenderSettings& settings);
+  // Depth only: each mesh through the depth program of its alpha test (MASK, or BLEND by the
+  // shadow rule when `blendCasts`), under `viewProjection`.
+  void drawDepth(const std::vector<const GpuMesh*>& meshes, const glm::mat4& viewProjection, const RenderSettings& settings,
+                 bool blendCasts, bool cullAsLit);
+  FeatureSet alphaTestFeatures(const GpuMesh& mesh, bool blendCasts) const;
+  void applyCulling(const GpuMesh& mesh, const RenderSettings& settings) const;
   void drawGlyphs(const CameraMatrices& camera, const RenderSettings& settings);
   glm::mat4 lightViewProjection() const;
   FeatureSet featuresFor(const GpuMesh& mesh, const RenderSettings& settings) const;

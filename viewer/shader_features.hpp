@@ -21,6 +21,8 @@ enum class Feature : std::uint32_t {
   alphaMask = 1u << 9,         // alphaMode MASK: discard below alphaCutoff
   unlit = 1u << 10,            // KHR_materials_unlit
   pbr = 1u << 11,              // metallic-roughness shading (else the specular-map mode)
+  // Bits from 16 up: this session's additions, apart from any others appended above.
+  physicalLights = 1u << 16,   // KHR_lights_punctual in its units (lux, candela), range window
 };
 
 enum class DebugView : std::uint8_t {
@@ -51,6 +53,7 @@ inline constexpr FeatureDefine kFeatureDefines[] = {
     {Feature::reflection, "USE_REFLECTION"},
     {Feature::occlusionMap, "HAS_OCCLUSION_MAP"},
     {Feature::alphaMask, "ALPHA_MASK"},
+    {Feature::physicalLights, "LIGHTS_PHYSICAL"},
     {Feature::unlit, "MATERIAL_UNLIT"},
     {Feature::pbr, "SHADING_PBR"},
 };
@@ -88,18 +91,37 @@ inline constexpr DebugViewInfo kDebugViews[] = {
     {DebugView::faceOrientation, "DEBUG_FACE_ORIENTATION", "face-orientation"},
 };
 
+// Tone mapping of the lit views' linear colour before the sRGB encoding, as the Khronos glTF
+// Sample Viewer offers it; unlit materials and the debug views are never tone mapped.
+enum class ToneMapping : std::uint8_t { none, khrPbrNeutral, acesNarkowicz };
+
+struct ToneMappingInfo {
+  ToneMapping toneMapping;
+  const char* define;  // nullptr: none
+  const char* name;    // for --tone-map and the panel
+};
+
+inline constexpr ToneMappingInfo kToneMappings[] = {
+    {ToneMapping::none, nullptr, "none"},
+    {ToneMapping::khrPbrNeutral, "TONEMAP_KHR_PBR_NEUTRAL", "khr-pbr-neutral"},
+    {ToneMapping::acesNarkowicz, "TONEMAP_ACES_NARKOWICZ", "aces"},
+};
+
 using FeatureSet = std::uint32_t;
 
 inline bool has(FeatureSet set, Feature feature) { return (set & static_cast<std::uint32_t>(feature)) != 0; }
 
 // "#define X\n" lines for a variant.
-inline std::string definesFor(FeatureSet features, DebugView view) {
+inline std::string definesFor(FeatureSet features, DebugView view, ToneMapping toneMapping = ToneMapping::none) {
   std::string text;
   for (const auto& entry : kFeatureDefines) {
     if (has(features, entry.feature)) text += std::string("#define ") + entry.define + "\n";
   }
   for (const auto& entry : kDebugViews) {
     if (entry.view == view && entry.define) text += std::string("#define ") + entry.define + "\n";
+  }
+  for (const auto& entry : kToneMappings) {
+    if (entry.toneMapping == toneMapping && entry.define) text += std::string("#define ") + entry.define + "\n";
   }
   return text;
 }

@@ -88,10 +88,14 @@ GLuint ShaderLibrary::program(const std::string& vertexFile, const std::string& 
 static const std::string kHandednessDefine =
     "#define TANGENT_W_CCW_UV " + std::to_string(static_cast<int>(tangent::handedness(1.0f, tangent::kGltfUvOrigin))) + "\n";
 
-GLuint ShaderLibrary::mesh(FeatureSet features, DebugView view) {
-  return program("mesh.vert", "mesh.frag", definesFor(features, view) + kHandednessDefine);
+GLuint ShaderLibrary::mesh(FeatureSet features, DebugView view, ToneMapping toneMapping) {
+  return program("mesh.vert", "mesh.frag", definesFor(features, view, toneMapping) + kHandednessDefine);
 }
-GLuint ShaderLibrary::shadowDepth() { return program("shadow_depth.vert", "shadow_depth.frag", ""); }
+GLuint ShaderLibrary::depthOnly(FeatureSet features) {
+  features &= static_cast<FeatureSet>(Feature::alphaMask) | static_cast<FeatureSet>(Feature::baseColorMap);
+  if (!has(features, Feature::alphaMask)) features = 0;  // the texture matters only to the alpha test
+  return program("shadow_depth.vert", "shadow_depth.frag", definesFor(features, DebugView::lit));
+}
 GLuint ShaderLibrary::lines() { return program("lines.vert", "lines.frag", ""); }
 
 }  // namespace tangent::viewer

@@ -20,8 +20,10 @@ class ShaderLibrary {
 
   // The mesh program for a feature set and debug view; throws std::runtime_error with the
   // compiler's log on failure.
-  GLuint mesh(FeatureSet features, DebugView view);
-  GLuint shadowDepth();
+  GLuint mesh(FeatureSet features, DebugView view, ToneMapping toneMapping = ToneMapping::none);
+  // Depth only (the shadow map, the depth pre-pass); of the features, only alphaMask and
+  // baseColorMap make a difference.
+  GLuint depthOnly(FeatureSet features = 0);
   GLuint lines();
   // Forgets every compiled program; the next request reads the files again ('r').
   void reload() { programs_.clear(); }

@@ -10,6 +10,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <numeric>
 
 #include <nlohmann/json.hpp>
@@ -351,7 +352,8 @@ void writeRgbaPng(const fs::path& path, int width, int height, Colour colour) {
 // A quad over [-1, 1]^2 at z = 0 facing +z with TEXCOORD_0 = ((x + 1) / 2, (1 - y) / 2) (the
 // image upright seen from the front) and TEXCOORD_1 the same mirrored in u, with `material` and
 // texture 0 = image 0 = `image`.
-fs::path quadAsset(const TempDir& dir, const std::string& name, const nlohmann::json& material, const std::string& image) {
+fs::path quadAsset(const TempDir& dir, const std::string& name, const nlohmann::json& material, const std::string& image,
+                   const nlohmann::json& patch = nlohmann::json::object()) {
   const float positions[] = {-1, -1, 0, 1, -1, 0, 1, 1, 0, -1, 1, 0};
   const float normals[] = {0, 0, 1, 0, 0, 1, 0, 0, 1, 0, 0, 1};
   const float uv0[] = {0, 1, 1, 1, 1, 0, 0, 0};
@@ -389,6 +391,7 @@ fs::path quadAsset(const TempDir& dir, const std::string& name, const nlohmann::
   if (material.contains("extensions")) {
     for (const auto& [extension, value] : material["extensions"].items()) doc["extensionsUsed"].push_back(extension);
   }
+  doc.merge_patch(patch);
   const fs::path file = dir / (name + ".gltf");
   std::ofstream(file) << doc.dump(1);
   return file;
@@ -626,6 +629,173 @@ TEST(Viewer, PerspectiveFramingFillsTheView) {
   std::printf("sphere spans %.0f%% of the frame's height\n", 100 * share);
   EXPECT_GT(share, 0.65f);
   EXPECT_LT(share, 1.0f);  // and is not cut off
+}
+
+// ---- Tone mapping, lights in physical units, alpha-tested shadows ----
+
+// quadAsset's patch adding a KHR_lights_punctual light (JSON) on a node with `node` (JSON:
+// translation, matrix) to the scene.
+nlohmann::json lightPatch(const nlohmann::json& light, const nlohmann::json& node) {
+  nlohmann::json lightNode = node;
+  lightNode["extensions"] = {{"KHR_lights_punctual", {{"light", 0}}}};
+  return {{"extensionsUsed", {"KHR_lights_punctual"}},
+          {"extensions", {{"KHR_lights_punctual", {{"lights", {light}}}}}},
+          {"nodes", {{{"mesh", 0}}, lightNode}},
+          {"scenes", {{{"nodes", {0, 1}}}}}};
+}
+
+const nlohmann::json kWhiteRough = {{"pbrMetallicRoughness", {{"baseColorFactor", {1.0, 1.0, 1.0, 1.0}}, {"metallicFactor", 0.0}, {"roughnessFactor", 1.0}}}};
+
+// Mean linear (sRGB-decoded) red of the pixels within 5 of the quad's point (x, y).
+double meanLinear(const Image& image, double x, double y) {
+  const double pixelsPerUnit = image.height / (2 * std::sqrt(2.0) * 1.02);
+  const int cx = static_cast<int>(image.width / 2.0 + x * pixelsPerUnit), cy = static_cast<int>(image.height / 2.0 - y * pixelsPerUnit);
+  double sum = 0;
+  int count = 0;
+  for (int py = cy - 5; py <= cy + 5; ++py)
+    for (int px = cx - 5; px <= cx + 5; ++px) sum += srgbToLinear(image.at(px, py)[0]), ++count;
+  return sum / count;
+}
+
+// A directional light (pi lux, shining along -z) on a white quad exposed to about 1.3 and 2.6:
+// without tone mapping the lower already clips to 255; with Khronos PBR Neutral (the default) and ACES both
+// stay below white and the brighter one reads brighter.
+TEST(Viewer, ToneMappingRollsOffBrightValuesInsteadOfClipping) {
+  TempDir dir;
+  writeRgbaPng(dir / "white.png", 4, 4, [](int, int) { return std::array<unsigned char, 4>{255, 255, 255, 255}; });
+  const fs::path file = quadAsset(dir, "lit", kWhiteRough, "white.png",
+                                  lightPatch({{"type", "directional"}, {"intensity", 3.14159265}}, {{"translation", {0, 0, 3}}}));
+  std::map<std::string, std::array<float, 2>> centre;
+  for (const std::string toneMap : {"none", "khr-pbr-neutral", "aces"}) {
+    for (int e = 0; e < 2; ++e) {
+      if (toneMap == "none" && e == 1) {  // clipped at the lower exposure already
+        centre[toneMap][e] = centre[toneMap][0];
+        continue;
+      }
+      const std::string name = toneMap + std::to_string(e);
+      const Image image = screenshot(dir, name, "'" + file.string() + "'" + kQuadView + " --tone-map " + toneMap + " --exposure " + (e ? "2.5" : "1.25"));
+      ASSERT_EQ(image.width, 200) << name;
+      centre[toneMap][e] = quadPixel(image, 0, 0)[0];
+    }
+    std::printf("%-16s exposure 1.25: %.1f/255, exposure 2.5: %.1f/255\n", toneMap.c_str(), centre[toneMap][0] * 255, centre[toneMap][1] * 255);
+  }
+  EXPECT_EQ(centre["none"][0], 1.0f);
+  for (const char* toneMap : {"khr-pbr-neutral", "aces"}) {
+    EXPECT_LT(centre[toneMap][1], 254 / 255.0f) << toneMap;
+    EXPECT_GT(centre[toneMap][1], centre[toneMap][0] + 2 / 255.0f) << toneMap;
+    EXPECT_GT(centre[toneMap][0], 200 / 255.0f) << toneMap;
+  }
+}
+
+// KHR_lights_punctual in PBR mode, in its units: a point light 2 above a white quad; doubling
+// its intensity (candela) doubles the linear radiance (fixed exposure, no tone mapping); a
+// range shorter than the distance cuts it off; a range of 4 scales it by the window
+// 1 - (2/4)^4 at the centre.
+TEST(Viewer, PointLightIntensityIsLinearAndRangeCutsItOff) {
+  TempDir dir;
+  writeRgbaPng(dir / "white.png", 4, 4, [](int, int) { return std::array<unsigned char, 4>{255, 255, 255, 255}; });
+  auto radiance = [&](const std::string& name, double intensity, double range) {
+    nlohmann::json light = {{"type", "point"}, {"intensity", intensity}};
+    if (range > 0) light["range"] = range;
+    const fs::path file = quadAsset(dir, name, kWhiteRough, "white.png", lightPatch(light, {{"translation", {0, 0, 2}}}));
+    const Image image = screenshot(dir, name, "'" + file.string() + "'" + kQuadView + " --tone-map none --exposure 2");
+    return image.width == 200 ? meanLinear(image, 0, 0) : -1.0;
+  };
+  const double one = radiance("one", 1.0, 0), two = radiance("two", 2.0, 0);
+  const double cut = radiance("cut", 2.0, 1.5), windowed = radiance("windowed", 2.0, 4.0);
+  std::printf("linear radiance at the centre: 1 cd %.4f, 2 cd %.4f (ratio %.4f), range 1.5 %.4f, range 4 %.4f (ratio %.4f, window %.4f)\n",
+              one, two, two / one, cut, windowed, windowed / two, 1 - std::pow(0.5, 4));
+  EXPECT_GT(one, 0.1);
+  EXPECT_NEAR(two / one, 2.0, 0.03);
+  EXPECT_EQ(cut, 0.0);
+  EXPECT_NEAR(windowed / two, 1 - std::pow(0.5, 4), 0.02);
+}
+
+// A ground quad (6 x 6 at y = 0) under a MASK quad (2 x 2 at y = 1) with a square hole in its
+// texture's alpha (the middle half in u and v), a sun shining along (1, -1, 0): the hole's
+// shadow-free spot lands on the ground at x 0.5..1.5, the rim's shadow at 1.5..2, seen from the
+// top beside the quad at x 1..2.
+fs::path maskShadowAsset(const TempDir& dir) {
+  writeRgbaPng(dir / "hole.png", 64, 64, [](int x, int y) {
+    const bool hole = x >= 16 && x < 48 && y >= 16 && y < 48;
+    return std::array<unsigned char, 4>{255, 255, 255, static_cast<unsigned char>(hole ? 0 : 255)};
+  });
+  std::vector<float> positions, normals, uvs;
+  for (const auto& [half, height] : {std::pair{3.0f, 0.0f}, std::pair{1.0f, 1.0f}}) {
+    for (const auto& [x, z] : {std::pair{-1, 1}, std::pair{1, 1}, std::pair{1, -1}, std::pair{-1, -1}}) {
+      positions.insert(positions.end(), {x * half, height, z * half});
+      normals.insert(normals.end(), {0, 1, 0});
+      uvs.insert(uvs.end(), {(x + 1) * 0.5f, (z + 1) * 0.5f});
+    }
+  }
+  const std::uint16_t indices[] = {0, 1, 2, 0, 2, 3};
+  std::string bin;
+  auto append = [&](const void* data, std::size_t bytes) { bin.append(static_cast<const char*>(data), bytes); };
+  append(positions.data(), positions.size() * 4);
+  append(normals.data(), normals.size() * 4);
+  append(uvs.data(), uvs.size() * 4);
+  append(indices, sizeof indices);
+  std::ofstream(dir / "mask-shadow.bin", std::ios::binary) << bin;
+  const double s = std::sqrt(0.5);
+  nlohmann::json doc = nlohmann::json::parse(R"({
+    "asset": {"version": "2.0"},
+    "extensionsUsed": ["KHR_lights_punctual"],
+    "extensions": {"KHR_lights_punctual": {"lights": [{"type": "directional", "intensity": 2.0}]}},
+    "scene": 0,
+    "scenes": [{"nodes": [0, 1, 2]}],
+    "nodes": [{"mesh": 0}, {"mesh": 1}, {"extensions": {"KHR_lights_punctual": {"light": 0}}}],
+    "meshes": [{"primitives": [{"attributes": {"POSITION": 0, "NORMAL": 2, "TEXCOORD_0": 4}, "indices": 6, "material": 0}]},
+               {"primitives": [{"attributes": {"POSITION": 1, "NORMAL": 3, "TEXCOORD_0": 5}, "indices": 6, "material": 1}]}],
+    "materials": [{"pbrMetallicRoughness": {"metallicFactor": 0.0, "roughnessFactor": 1.0}, "doubleSided": true},
+                  {"pbrMetallicRoughness": {"metallicFactor": 0.0, "baseColorTexture": {"index": 0}}, "alphaMode": "MASK", "doubleSided": true}],
+    "textures": [{"source": 0}],
+    "images": [{"uri": "hole.png"}],
+    "buffers": [{"uri": "mask-shadow.bin", "byteLength": 268}],
+    "bufferViews": [{"buffer": 0, "byteOffset": 0, "byteLength": 48}, {"buffer": 0, "byteOffset": 48, "byteLength": 48},
+                    {"buffer": 0, "byteOffset": 96, "byteLength": 48}, {"buffer": 0, "byteOffset": 144, "byteLength": 48},
+                    {"buffer": 0, "byteOffset": 192, "byteLength": 32}, {"buffer": 0, "byteOffset": 224, "byteLength": 32},
+                    {"buffer": 0, "byteOffset": 256, "byteLength": 12}],
+    "accessors": [{"bufferView": 0, "componentType": 5126, "count": 4, "type": "VEC3", "min": [-3, 0, -3], "max": [3, 0, 3]},
+                  {"bufferView": 1, "componentType": 5126, "count": 4, "type": "VEC3", "min": [-1, 1, -1], "max": [1, 1, 1]},
+                  {"bufferView": 2, "componentType": 5126, "count": 4, "type": "VEC3"},
+                  {"bufferView": 3, "componentType": 5126, "count": 4, "type": "VEC3"},
+                  {"bufferView": 4, "componentType": 5126, "count": 4, "type": "VEC2"},
+                  {"bufferView": 5, "componentType": 5126, "count": 4, "type": "VEC2"},
+                  {"bufferView": 6, "componentType": 5123, "count": 6, "type": "SCALAR"}]
+  })");
+  EXPECT_EQ(bin.size(), 268u);
+  // The light's -z is (1, -1, 0) / sqrt 2: columns x (s, s, 0), y (0, 0, -1), z (-s, s, 0).
+  doc["nodes"][2]["matrix"] = {s, s, 0, 0, 0, 0, -1, 0, -s, s, 0, 0, 0, 0, 0, 1};
+  std::ofstream(dir / "mask-shadow.gltf") << doc.dump(1);
+  return dir / "mask-shadow.gltf";
+}
+
+TEST(Viewer, MaskedQuadCastsACutOutShadow) {
+  TempDir dir;
+  const fs::path file = maskShadowAsset(dir);
+  const std::string common = "'" + file.string() + "' --camera top --ortho --size 256x256";
+  const Image shadowed = screenshot(dir, "shadows", common), plain = screenshot(dir, "no-shadows", common + " --no-shadows");
+  ASSERT_EQ(shadowed.width, 256);
+  // Top view: x to the right, z down; the bounds' sphere (centre (0, 0.5, 0)) framed with 1.02.
+  const double pixelsPerUnit = 256 / (2 * 1.02 * std::sqrt(36.0 + 36.0 + 1.0) / 2);
+  auto meanLuma = [&](const Image& image, double x, double z) {
+    const auto q = quadrantMeans(image, 128 + x * pixelsPerUnit, 128 + z * pixelsPerUnit, 3);
+    return (q[0] + q[1] + q[2] + q[3]) / 4;
+  };
+  const float holeOn = meanLuma(shadowed, 1.25, 0), holeOff = meanLuma(plain, 1.25, 0);
+  const float rimOn = meanLuma(shadowed, 1.75, 0), rimOff = meanLuma(plain, 1.75, 0);
+  std::printf("ground under the hole: %.3f with shadows, %.3f without; under the rim: %.3f / %.3f\n", holeOn, holeOff, rimOn, rimOff);
+  EXPECT_NEAR(holeOn, holeOff, 0.02f);   // light through the hole
+  EXPECT_LT(rimOn, 0.6f * rimOff);       // the rim's shadow
+}
+
+// The vertex layout tables and the linked programs agree: every active input of the mesh
+// program (in a spread of variants), the shadow and the line programs is in its table, at the
+// table's location, with its component count, and every table entry is read somewhere.
+TEST(Viewer, LinkedProgramsMatchTheVertexLayoutTables) {
+  std::string output;
+  EXPECT_EQ(run("--check-shaders", output), 0) << output;
+  EXPECT_NE(output.find("agree with the layout tables"), std::string::npos) << output;
 }
 
 TEST(Viewer, BadInputIsAnErrorNotACrash) {

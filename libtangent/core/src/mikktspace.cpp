@@ -33,6 +33,10 @@
 #include <cstring>
 #include <limits>
 
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
+
 #include "workspace.hpp"
 
 namespace tangent::detail {
@@ -65,11 +69,6 @@ struct Arrays {
   const std::uint32_t* indices;
   V3 position(std::uint32_t v) const { return {positions[3 * v], positions[3 * v + 1], positions[3 * v + 2]}; }
   V3 normal(std::uint32_t v) const { return {normals[3 * v], normals[3 * v + 1], normals[3 * v + 2]}; }
-  // Position and UV bits, the order in which a triangle picks its first corner.
-  std::array<std::uint32_t, 5> shapeKey(std::uint32_t v) const {
-    return {canonicalBits(positions[3 * v]), canonicalBits(positions[3 * v + 1]), canonicalBits(positions[3 * v + 2]),
-            canonicalBits(uvs[2 * v]), canonicalBits(uvs[2 * v + 1])};
-  }
   std::array<std::uint32_t, 8> identityKey(std::uint32_t v) const {
     return {canonicalBits(positions[3 * v]), canonicalBits(positions[3 * v + 1]), canonicalBits(positions[3 * v + 2]),
             canonicalBits(normals[3 * v]),   canonicalBits(normals[3 * v + 1]),   canonicalBits(normals[3 * v + 2]),
@@ -77,13 +76,26 @@ struct Arrays {
   }
 };
 
+// The order in which a triangle picks its first corner: position, then UV bits (+0 and -0
+// alike), compared lexicographically and left at the first value that differs (nearly always
+// the first).
+bool shapeBefore(const Arrays& a, std::uint32_t u, std::uint32_t v) {
+  for (int i = 0; i < 3; ++i) {
+    const std::uint32_t x = canonicalBits(a.positions[3 * u + i]), y = canonicalBits(a.positions[3 * v + i]);
+    if (x != y) return x < y;
+  }
+  for (int i = 0; i < 2; ++i) {
+    const std::uint32_t x = canonicalBits(a.uvs[2 * u + i]), y = canonicalBits(a.uvs[2 * v + i]);
+    if (x != y) return x < y;
+  }
+  return false;
+}
+
 // First corner (0..2) of triangle t in value order, so that rotations give the same bits.
 int firstCorner(const Arrays& a, std::size_t t) {
-  const auto k0 = a.shapeKey(a.indices[3 * t]), k1 = a.shapeKey(a.indices[3 * t + 1]), k2 = a.shapeKey(a.indices[3 * t + 2]);
-  int first = 0;
-  const std::array<std::uint32_t, 5>* best = &k0;
-  if (k1 < *best) first = 1, best = &k1;
-  if (k2 < *best) first = 2;
+  const std::uint32_t* v = a.indices + 3 * t;
+  int first = shapeBefore(a, v[1], v[0]) ? 1 : 0;
+  if (shapeBefore(a, v[2], v[first])) first = 2;
   return first;
 }
 
@@ -643,9 +655,41 @@ inline double angleBetween(double y, double x) {
   return x < 0 ? 2 * kHalfPi - r : r;
 }
 
+// angleBetween of two (y, x) pairs at once, operation for operation the same (IEEE double
+// arithmetic in SSE2 lanes rounds as the scalar code does), so the same bits; the selects are
+// masks, not branches, which mispredict on the mix of acute and obtuse corners of a fan.
+inline void angleBetweenPair(const double y[2], const double x[2], double angle[2]) {
+#if defined(__SSE2__)
+  const __m128d vy = _mm_loadu_pd(y), vx = _mm_loadu_pd(x);
+  auto select = [](__m128d mask, __m128d a, __m128d b) { return _mm_or_pd(_mm_and_pd(mask, a), _mm_andnot_pd(mask, b)); };
+  auto constant = [](double c) { return _mm_set1_pd(c); };
+  const __m128d ax = _mm_andnot_pd(_mm_set1_pd(-0.0), vx);
+  const __m128d steep = _mm_cmpgt_pd(vy, ax);
+  const __m128d num = select(steep, ax, vy), den = select(steep, vy, ax);
+  const __m128d shift = _mm_cmpgt_pd(num, _mm_mul_pd(constant(0.41421356237309503), den));
+  const __m128d t = _mm_div_pd(select(shift, _mm_sub_pd(num, den), num), select(shift, _mm_add_pd(num, den), den));
+  const __m128d t2 = _mm_mul_pd(t, t), t4 = _mm_mul_pd(t2, t2), t8 = _mm_mul_pd(t4, t4);
+  constexpr double c3 = 1.0 / 3, c5 = 1.0 / 5, c7 = 1.0 / 7, c9 = 1.0 / 9, c11 = 1.0 / 11, c13 = 1.0 / 13, c15 = 1.0 / 15;
+  const __m128d p01 = _mm_sub_pd(constant(1.0), _mm_mul_pd(t2, constant(c3)));
+  const __m128d p23 = _mm_sub_pd(constant(c5), _mm_mul_pd(t2, constant(c7)));
+  const __m128d p45 = _mm_sub_pd(constant(c9), _mm_mul_pd(t2, constant(c11)));
+  const __m128d p67 = _mm_sub_pd(constant(c13), _mm_mul_pd(t2, constant(c15)));
+  __m128d r = _mm_mul_pd(t, _mm_add_pd(_mm_add_pd(p01, _mm_mul_pd(t4, p23)), _mm_mul_pd(t8, _mm_add_pd(p45, _mm_mul_pd(t4, p67)))));
+  // r >= +0 (or NaN) here, and r + 0 is r: adding pi/4 in the lanes that shift only.
+  r = _mm_add_pd(r, _mm_and_pd(shift, constant(0.78539816339744831)));
+  r = select(steep, _mm_sub_pd(constant(kHalfPi), r), r);
+  r = select(_mm_cmplt_pd(vx, _mm_setzero_pd()), _mm_sub_pd(constant(2 * kHalfPi), r), r);
+  _mm_storeu_pd(angle, r);
+#else
+  angle[0] = angleBetween(y[0], x[0]);
+  angle[1] = angleBetween(y[1], x[1]);
+#endif
+}
+
 // Groups of one welded vertex, their sums, and the frames of its corners.
 void Kernel::groupBucket(std::uint32_t bucket, BucketScratch& scratch) {
   const std::uint32_t first = start_[bucket], count = start_[bucket + 1] - first;
+  ws_.bucketUniform[bucket] = 0;
   if (count == 0) return;
   const std::uint32_t* list = corners_ + first;
   bool invalidNormal = false;
@@ -680,6 +724,8 @@ void Kernel::groupBucket(std::uint32_t bucket, BucketScratch& scratch) {
   const F3 rawNormal{a_.normals[3 * a_.indices[list[0]]], a_.normals[3 * a_.indices[list[0]] + 1],
                      a_.normals[3 * a_.indices[list[0]] + 2]};
   constexpr int kStride = 10;
+  // Every corner of the bucket given the one shared frame of one group (see bucketUniform).
+  bool oneFrame = memberCount == count;
   for (std::size_t g = 0; g < memberCount;) {
     std::size_t gEnd = g + 1;
     while (gEnd < memberCount && rootOf(gEnd) == rootOf(g)) ++gEnd;
@@ -688,7 +734,9 @@ void Kernel::groupBucket(std::uint32_t bucket, BucketScratch& scratch) {
     scratch.values.resize(kStride * (gEnd - g));
     scratch.items.clear();  // contributing members, local indices
     double* values = scratch.values.data();
-    double angleSum = 0;
+    // Three passes over the group's contributing corners: their projected edges (y, x of the
+    // angle parked in the row's first two slots, whether both edges are non-zero in its
+    // third) and directions; the angles two at a time; then the weighted terms.
     for (std::size_t m = g; m < gEnd; ++m) {
       const std::uint32_t c = list[member(m)];
       const std::size_t t = c / 3;
@@ -697,24 +745,43 @@ void Kernel::groupBucket(std::uint32_t bucket, BucketScratch& scratch) {
       const V3 here = a_.position(a_.indices[c]);
       const V3 toPrevious = projected(a_.position(a_.indices[previousCorner(c)]) - here, n);
       const V3 toNext = projected(a_.position(a_.indices[nextCorner(c)]) - here, n);
-      double angle = kHalfPi;  // a zero edge counts as perpendicular, as in the reference
-      if (!(toPrevious == V3{}) && !(toNext == V3{})) angle = angleBetween(length(cross(toPrevious, toNext)), dot(toPrevious, toNext));
+      const F3 referenceS = referenceProjected({frame[0], frame[1], frame[2]}, rawNormal);
+      double* row = values + kStride * scratch.items.size();
+      const bool edges = !(toPrevious == V3{}) && !(toNext == V3{});
+      row[0] = edges ? length(cross(toPrevious, toNext)) : 1.0;
+      row[1] = edges ? dot(toPrevious, toNext) : 0.0;
+      row[2] = edges ? 1.0 : 0.0;
+      // The reference's projected direction, so that sums which (nearly) cancel keep its sign.
+      row[3] = referenceS.x, row[4] = referenceS.y, row[5] = referenceS.z;
+      row[6] = frame[3], row[7] = frame[4], row[8] = frame[5];  // projected only where needed
+      scratch.items.push_back(static_cast<std::uint32_t>(m));
+    }
+    const std::size_t contributingCorners = scratch.items.size();
+    for (std::size_t i = 0; i < contributingCorners; i += 2) {
+      double* row = values + kStride * i;
+      if (i + 1 < contributingCorners) {
+        const double y[2] = {row[0], row[kStride]}, x[2] = {row[1], row[kStride + 1]};
+        double angle[2];
+        angleBetweenPair(y, x, angle);
+        row[9] = angle[0], row[kStride + 9] = angle[1];
+      } else {
+        row[9] = angleBetween(row[0], row[1]);
+      }
+    }
+    double angleSum = 0;
+    for (std::size_t i = 0; i < contributingCorners; ++i) {
+      double* row = values + kStride * i;
+      double angle = row[2] != 0 ? row[9] : kHalfPi;  // a zero edge counts as perpendicular, as in the reference
       if (angle < 0.1 || angle > 2 * kHalfPi - 0.1) {
         // Near 0 or pi the reference's float cosine decides (acos(0.99999994) is 3.5e-4, not 0),
         // and its rounding moves small angles by a visible fraction.
-        angle = referenceAngle(c, rawNormal);
+        angle = referenceAngle(list[member(scratch.items[i])], rawNormal);
       }
       // A corner whose edges project onto one line has no angle; its direction still counts
       // where nothing else does.
       angle = std::max(angle, 1e-12);
-      const F3 referenceS = referenceProjected({frame[0], frame[1], frame[2]}, rawNormal);
-      double* row = values + kStride * scratch.items.size();
-      // The reference's projected direction, so that sums which (nearly) cancel keep its sign.
-      row[0] = referenceS.x * angle, row[1] = referenceS.y * angle, row[2] = referenceS.z * angle;
-      row[3] = referenceS.x, row[4] = referenceS.y, row[5] = referenceS.z;
-      row[6] = frame[3], row[7] = frame[4], row[8] = frame[5];  // projected only where needed
+      row[0] = row[3] * angle, row[1] = row[4] * angle, row[2] = row[5] * angle;
       row[9] = angle;
-      scratch.items.push_back(static_cast<std::uint32_t>(m));
       angleSum += angle;
     }
     const std::size_t contributing = scratch.items.size();
@@ -813,6 +880,7 @@ void Kernel::groupBucket(std::uint32_t bucket, BucketScratch& scratch) {
     const auto groupWeight = static_cast<float>(angleSum);
     V3 shared;
     const bool sharedDefined = contributing > 0 && orthonormalize(sumOver(kNone), n, shared);
+    oneFrame = oneFrame && g == 0 && gEnd == memberCount && sharedDefined && !anyOpposite;
     std::size_t nextContributing = 0;
     for (std::size_t m = g; m < gEnd; ++m) {
       const std::uint32_t c = list[member(m)];
@@ -830,6 +898,13 @@ void Kernel::groupBucket(std::uint32_t bucket, BucketScratch& scratch) {
       }
     }
     g = gEnd;
+  }
+  if (oneFrame) {
+    const std::uint32_t vertex = a_.indices[list[0]];
+    bool oneVertex = true;
+    for (std::uint32_t i = 1; i < count; ++i) oneVertex = oneVertex && a_.indices[list[i]] == vertex;
+    ws_.bucketUniform[bucket] = oneVertex;
+    return;  // no coincident corners here
   }
 
   // Coincident corners copy the best frame of their identity (the reference: the first).
@@ -940,6 +1015,7 @@ void Kernel::run(Report& report) {
   ensureSize(ws_.triangleFlags, triangleCount);
   ensureSize(ws_.cornerLink, cornerCount);
   ensureSize(ws_.cornerState, cornerCount);
+  ensureSize(ws_.bucketUniform, ws_.vertexCount);
   evaluateTriangles(report);
 
   const std::size_t bucketCount = ws_.vertexCount;
@@ -963,6 +1039,7 @@ void Kernel::run(Report& report) {
     for (std::size_t b = begin; b < end; ++b) groupBucket(static_cast<std::uint32_t>(b), scratch);
   });
   fallbacks();
+  ws_.bucketUniformKnown = true;
 }
 
 }  // namespace

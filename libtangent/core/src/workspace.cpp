@@ -44,7 +44,7 @@ std::size_t WorkspaceData::bytes() const {
   auto size = [](const auto& v) { return v.capacity() * sizeof(v[0]); };
   return size(table) + size(weldCounts) + size(vertexId) + size(bucketStart) + size(bucketCorners) + size(triangleFrames) +
          size(orientation) + size(triangleFlags) + size(cornerLink) + size(cornerState) + size(meshPositions) + size(meshNormals) + size(meshUvs) + size(meshTangents) + size(meshIndices) +
-         size(bucketExtra);
+         size(bucketExtra) + size(bucketUniform);
 }
 
 void checkArrays(const MeshArrays& mesh, const CornerOutputs& outputs) {
@@ -119,6 +119,7 @@ void weldAndBucket(WorkspaceData& ws, const MeshArrays& mesh) {
   const std::size_t cornerCount = mesh.indices.size();
   ws.vertexCount = vertexCount;
   ws.cornerCount = cornerCount;
+  ws.bucketUniformKnown = false;
 
   // Weld: open-addressing tables of vertex + 1; the smallest vertex of equal values wins.
   ensureSize(ws.vertexId, vertexCount);
@@ -137,13 +138,49 @@ void weldAndBucket(WorkspaceData& ws, const MeshArrays& mesh) {
     }
   };
   if (ws.threads < 2) {
-    // One table, vertices in order.
+    // One table, vertices in order. Each slot holds vertex + 1 and a tag, the hash's top 32
+    // bits: a probe that meets another vertex compares tags before that vertex's values, which
+    // lie anywhere in the input (a cache miss per collision otherwise). Equal values have
+    // equal tags, so the same slots match as without them.
     std::size_t tableSize = 16;
     while (tableSize < 2 * vertexCount) tableSize *= 2;
-    ensureSize(ws.table, tableSize);
+    ensureSize(ws.table, 2 * tableSize);
     std::uint32_t* table = ws.table.data();
-    std::fill(table, table + tableSize, 0u);
-    for (std::size_t v = 0; v < vertexCount; ++v) insert(table, tableSize - 1, v, vertexHash(mesh, v));
+    std::fill(table, table + 2 * tableSize, 0u);
+    const std::size_t mask = tableSize - 1;
+    auto insertTagged = [&](std::size_t v, std::uint64_t hash) {
+      const auto tag = static_cast<std::uint32_t>(hash >> 32);
+      for (std::size_t slot = hash & mask;; slot = (slot + 1) & mask) {
+        std::uint32_t* entry = table + 2 * slot;
+        if (entry[0] == 0) {
+          entry[0] = static_cast<std::uint32_t>(v + 1);
+          entry[1] = tag;
+          vertexId[v] = static_cast<std::uint32_t>(v);
+          return;
+        }
+        if (entry[1] == tag && sameVertex(mesh, entry[0] - 1, v)) {
+          vertexId[v] = entry[0] - 1;
+          return;
+        }
+      }
+    };
+    // The table (megabytes) is probed at random: each vertex's hash is worked out kAhead
+    // vertices early and its slot prefetched, so that the probe finds it in cache.
+    constexpr std::size_t kAhead = 16;
+    std::uint64_t ahead[kAhead];
+    for (std::size_t v = 0; v < std::min(kAhead, vertexCount); ++v) {
+      ahead[v] = vertexHash(mesh, v);
+      prefetch(table + 2 * (ahead[v] & mask));
+    }
+    for (std::size_t v = 0; v < vertexCount; ++v) {
+      const std::uint64_t hash = ahead[v % kAhead];
+      if (v + kAhead < vertexCount) {
+        const std::uint64_t later = vertexHash(mesh, v + kAhead);
+        ahead[v % kAhead] = later;
+        prefetch(table + 2 * (later & mask));
+      }
+      insertTagged(v, hash);
+    }
   } else {
     // Threads: the vertices split by the top bits of their hash into partitions (a counting
     // sort that keeps vertex order inside each), one small table per partition, partitions
@@ -309,6 +346,7 @@ void finishOutputs(WorkspaceData& ws, const MeshArrays& mesh, const CornerOutput
   const std::uint32_t* corners = ws.bucketCorners.data();
   const std::uint32_t* indices = mesh.indices.data();
   std::uint32_t* extra = ws.bucketExtra.data();
+  const std::uint8_t* knownUniform = ws.bucketUniformKnown ? ws.bucketUniform.data() : nullptr;
   const bool wantVertices = !outputs.cornerVertex.empty();
   std::uint32_t* cornerVertex = wantVertices ? outputs.cornerVertex.data() : nullptr;
   constexpr std::uint32_t kExtraFlag = 0x80000000u;
@@ -322,9 +360,16 @@ void finishOutputs(WorkspaceData& ws, const MeshArrays& mesh, const CornerOutput
         if (wantVertices) cornerVertex[corners[first]] = indices[corners[first]];
         continue;
       }
-      // Most buckets: one input vertex, one tangent.
+      // Most buckets: one input vertex, one tangent (known from the kernel for most of those).
       const std::uint32_t c0 = corners[first];
       bool uniform = true;
+      if (knownUniform && knownUniform[b]) {
+        if (wantVertices) {
+          const std::uint32_t vertex = indices[c0];
+          for (std::uint32_t i = first; i < last; ++i) cornerVertex[corners[i]] = vertex;
+        }
+        continue;
+      }
       for (std::uint32_t i = first + 1; i < last && uniform; ++i) {
         const std::uint32_t c = corners[i];
         uniform = indices[c] == indices[c0] && std::memcmp(&tangents[4 * c], &tangents[4 * c0], 4 * sizeof(float)) == 0;

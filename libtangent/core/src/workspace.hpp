@@ -115,6 +115,11 @@ struct WorkspaceData {
                                              // after grouping, the group weight (mikktspace.cpp)
   BulkVector<std::uint8_t> cornerState;     // per corner: CornerState bits
   BulkVector<std::uint32_t> bucketExtra;    // per welded id: extra output vertices, then offsets
+  BulkVector<std::uint8_t> bucketUniform;   // per welded id, where bucketUniformKnown: 1 when the
+                                             // kernel gave all its corners one input vertex's
+                                             // one frame, which nothing after it changes, so
+                                             // that the vertex split need not compare them
+  bool bucketUniformKnown = false;          // set by the mikktspace kernel, reset by the weld
   PerThread<BucketScratch> scratch;
   // The OpenMesh call's corners as arrays (corner_tangents.cpp).
   BulkVector<float> meshPositions, meshNormals, meshUvs, meshTangents;
@@ -131,6 +136,15 @@ inline To bitCast(const From& from) {
   To to;
   std::memcpy(&to, &from, sizeof to);
   return to;
+}
+
+// A hint that *address will be read soon (no effect where the compiler has no such builtin).
+inline void prefetch(const void* address) {
+#if defined(__GNUC__) || defined(__clang__)
+  __builtin_prefetch(address);
+#else
+  (void)address;
+#endif
 }
 
 // The bits of a float with -0 taken as +0: the order and hash of values that compare equal.
