@@ -22,8 +22,8 @@ int main() {
     std::vector<float> tangents(indices.size() * 4, NAN);
     const tangent::Report report =
         tangent::computeCornerTangents({positions, normals, uvs, indices}, tangents, {.uvOrigin = origin, .threads = 1});
-    if (report.corners != indices.size() || report.method != "mikktspace") {
-      std::printf("report: %llu corners, method %s\n", static_cast<unsigned long long>(report.corners), report.method.c_str());
+    if (report.corners != indices.size() || report.method != tangent::Method::mikktspace) {
+      std::printf("report: %llu corners, method %s\n", static_cast<unsigned long long>(report.corners), std::string(tangent::toString(report.method)).c_str());
       ++failures;
     }
     for (std::size_t corner = 0; corner < indices.size(); ++corner) {

@@ -88,9 +88,9 @@ int main(int argc, char** argv) {
   options.all = true;
   const tangent::gltf::BakeResult result = tangent::gltf::bakeFile(folder / "quad.gltf", folder / "quad-baked.gltf", options);
   int failures = 0;
-  if (result.primitives.size() != 1 || result.primitives[0].action != "baked" || result.primitives[0].tangents.corners != 6) {
+  if (result.primitives.size() != 1 || result.primitives[0].action != tangent::gltf::PrimitiveAction::baked || result.primitives[0].tangents.corners != 6) {
     std::printf("bake: %zu primitives, first %s (%s)\n", result.primitives.size(),
-                result.primitives.empty() ? "-" : result.primitives[0].action.c_str(),
+                result.primitives.empty() ? "-" : tangent::gltf::toString(result.primitives[0].action),
                 result.primitives.empty() ? "-" : result.primitives[0].reason.c_str());
     ++failures;
   }
