@@ -98,7 +98,9 @@ TEST(Workspace, VertexSplitKeepsEveryVertexAndAddsOnePerExtraTangent) {
       ASSERT_EQ(it->second.first, m.indices[c]) << "output vertex " << o << " mixes input vertices";
       ASSERT_EQ(it->second.second, bits) << "output vertex " << o << " mixes tangents";
     }
-    if (o < vertexCount) ASSERT_EQ(o, m.indices[c]) << "an input vertex keeps its index";
+    if (o < vertexCount) {
+      ASSERT_EQ(o, m.indices[c]) << "an input vertex keeps its index";
+    }
   }
   std::size_t extra = 0;
   for (const auto& [vertex, tangents] : tangentsOfVertex) extra += tangents.size() - 1;

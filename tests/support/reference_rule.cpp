@@ -189,8 +189,8 @@ RuleResult applyReferenceRule(const MeshArrays& mesh, std::span<const float> our
         const double d = (r[0] * double{normal[0]} + r[1] * double{normal[1]} + r[2] * double{normal[2]}) / len2;
         for (int i = 0; i < 3; ++i) inPlane[i] -= d * normal[i];
       }
-      const double ours[3] = {tangent[0], tangent[1], tangent[2]};
-      result.degrees[c] = degreesBetween(ours, inPlane);
+      const double ourTangent[3] = {tangent[0], tangent[1], tangent[2]};
+      result.degrees[c] = degreesBetween(ourTangent, inPlane);
     }
     bool failed = false;
     if (!validOurs(tangent)) {
