@@ -221,7 +221,7 @@ bool triangleBefore(const Arrays& a, std::size_t s, std::size_t t) {
 // Union-find over the corners of one bucket (local indices), the smaller root winning.
 class BucketUnionFind {
  public:
-  explicit BucketUnionFind(std::vector<std::uint32_t>& parent, std::uint32_t count) : parent_(parent) {
+  explicit BucketUnionFind(ScratchVector<std::uint32_t>& parent, std::uint32_t count) : parent_(parent) {
     parent_.resize(count);
     for (std::uint32_t i = 0; i < count; ++i) parent_[i] = i;
   }
@@ -236,7 +236,7 @@ class BucketUnionFind {
   }
 
  private:
-  std::vector<std::uint32_t>& parent_;
+  ScratchVector<std::uint32_t>& parent_;
 };
 
 class Kernel {
@@ -484,7 +484,7 @@ void Kernel::resolveGroupWithAny() {
     }
     std::sort(buckets.begin(), buckets.end());
     buckets.erase(std::unique(buckets.begin(), buckets.end()), buckets.end());
-    std::vector<std::uint32_t> parent;
+    ScratchVector<std::uint32_t> parent;
     std::vector<std::uint8_t> reached;
     for (std::uint32_t bucket : buckets) {
       const std::uint32_t first = start_[bucket], count = start_[bucket + 1] - first;
