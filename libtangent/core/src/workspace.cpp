@@ -93,17 +93,38 @@ void stableCountingSort(const WorkspaceData& ws, std::size_t count, std::size_t 
       for (std::size_t i = k * length; i < std::min(count, (k + 1) * length); ++i) ++counter[key(i)];
     }
   });
-  // Key-major offsets: each group's items chunk by chunk.
-  std::uint32_t total = 0;
-  for (std::size_t g = 0; g < keys; ++g) {
-    groupStart[g] = total;
-    for (std::size_t k = 0; k < chunks; ++k) {
-      const std::uint32_t n = counters[k * keys + g];
-      counters[k * keys + g] = total;
-      total += n;
+  // Key-major offsets: each group's items chunk by chunk. In blocks of keys, so that the
+  // scan runs in parallel too (one thread scanning a vertex's worth of keys per corner bucket
+  // was most of the bucketing's serial time): each block's total, the blocks' starts, then
+  // each block's offsets from its start.
+  constexpr std::size_t kKeyBlock = 1 << 14;
+  const std::size_t blocks = (keys + kKeyBlock - 1) / kKeyBlock;
+  std::vector<std::uint32_t> blockStart(blocks + 1, 0);
+  forRange(ws, blocks, 1, [&](std::size_t begin, std::size_t end) {
+    for (std::size_t b = begin; b < end; ++b) {
+      std::uint32_t n = 0;
+      for (std::size_t k = 0; k < chunks; ++k) {
+        const std::uint32_t* counter = counters + k * keys;
+        for (std::size_t g = b * kKeyBlock; g < std::min(keys, (b + 1) * kKeyBlock); ++g) n += counter[g];
+      }
+      blockStart[b + 1] = n;
     }
-  }
-  groupStart[keys] = total;
+  });
+  for (std::size_t b = 0; b < blocks; ++b) blockStart[b + 1] += blockStart[b];
+  forRange(ws, blocks, 1, [&](std::size_t begin, std::size_t end) {
+    for (std::size_t b = begin; b < end; ++b) {
+      std::uint32_t total = blockStart[b];
+      for (std::size_t g = b * kKeyBlock; g < std::min(keys, (b + 1) * kKeyBlock); ++g) {
+        groupStart[g] = total;
+        for (std::size_t k = 0; k < chunks; ++k) {
+          const std::uint32_t n = counters[k * keys + g];
+          counters[k * keys + g] = total;
+          total += n;
+        }
+      }
+    }
+  });
+  groupStart[keys] = blockStart[blocks];
   forRange(ws, chunks, 1, [&](std::size_t begin, std::size_t end) {
     for (std::size_t k = begin; k < end; ++k) {
       std::uint32_t* next = counters + k * keys;
@@ -236,7 +257,6 @@ void weldAndBucket(WorkspaceData& ws, const MeshArrays& mesh) {
   std::uint32_t* cursor = ws.bucketExtra.data();
   std::uint32_t* corners = ws.bucketCorners.data();
   const std::uint32_t* indices = mesh.indices.data();
-  forRange(ws, vertexCount + 1, 1 << 16, [&](std::size_t begin, std::size_t end) { std::fill(start + begin, start + end, 0u); });
   // Counting and filling: below four threads, each thread counts and fills its own slice of
   // the corners with its own counters (in the weld table, free by now), which keeps every
   // bucket in corner order; from four, atomic counters, then each bucket sorted (measured at
@@ -247,6 +267,7 @@ void weldAndBucket(WorkspaceData& ws, const MeshArrays& mesh) {
     stableCountingSort(ws, cornerCount, vertexCount, slices, [&](std::size_t c) { return vertexId[indices[c]]; }, ws.table.data(),
                        start, corners);
   } else {
+    forRange(ws, vertexCount + 1, 1 << 16, [&](std::size_t begin, std::size_t end) { std::fill(start + begin, start + end, 0u); });
     forRange(ws, cornerCount, 1 << 14, [&](std::size_t begin, std::size_t end) {
       for (std::size_t c = begin; c < end; ++c)
         AtomicRef<std::uint32_t>(start[vertexId[indices[c]] + 1]).fetch_add(1, std::memory_order_relaxed);
