@@ -99,18 +99,14 @@ void stableCountingSort(const WorkspaceData& ws, std::size_t count, std::size_t 
   // each block's offsets from its start.
   constexpr std::size_t kKeyBlock = 1 << 14;
   const std::size_t blocks = (keys + kKeyBlock - 1) / kKeyBlock;
-  std::vector<std::uint32_t> blockStart(blocks + 1, 0);
-  forRange(ws, blocks, 1, [&](std::size_t begin, std::size_t end) {
-    for (std::size_t b = begin; b < end; ++b) {
-      std::uint32_t n = 0;
-      for (std::size_t k = 0; k < chunks; ++k) {
-        const std::uint32_t* counter = counters + k * keys;
-        for (std::size_t g = b * kKeyBlock; g < std::min(keys, (b + 1) * kKeyBlock); ++g) n += counter[g];
-      }
-      blockStart[b + 1] = n;
+  const std::vector<std::uint32_t> blockStart = blockStarts<std::uint32_t>(ws, blocks, [&](std::size_t b) {
+    std::uint32_t n = 0;
+    for (std::size_t k = 0; k < chunks; ++k) {
+      const std::uint32_t* counter = counters + k * keys;
+      for (std::size_t g = b * kKeyBlock; g < std::min(keys, (b + 1) * kKeyBlock); ++g) n += counter[g];
     }
+    return n;
   });
-  for (std::size_t b = 0; b < blocks; ++b) blockStart[b + 1] += blockStart[b];
   forRange(ws, blocks, 1, [&](std::size_t begin, std::size_t end) {
     for (std::size_t b = begin; b < end; ++b) {
       std::uint32_t total = blockStart[b];

@@ -223,6 +223,13 @@ void forRange(const WorkspaceData& ws, std::size_t count, std::size_t grain, con
 template <typename Body>
 void onThreads(const WorkspaceData& ws, const Body& body);
 
+// Where each of `blocks` blocks starts when they are laid out one after another: start[b] is
+// the sum of total(b') for b' < b, start[blocks] the sum of all; the totals are worked out in
+// parallel (the first half of a two-pass parallel scan; the caller fills each block from its
+// start).
+template <typename Count, typename Total>
+std::vector<Count> blockStarts(const WorkspaceData& ws, std::size_t blocks, const Total& total);
+
 // The indices in [0, count) where keep(i) holds, in increasing order, gathered in parallel
 // (fixed chunks: counted, then filled at their offsets).
 template <typename Keep>
@@ -252,19 +259,25 @@ void forRange(const WorkspaceData& ws, std::size_t count, std::size_t grain, con
 #endif
 }
 
+template <typename Count, typename Total>
+std::vector<Count> blockStarts(const WorkspaceData& ws, std::size_t blocks, const Total& total) {
+  std::vector<Count> start(blocks + 1, 0);
+  forRange(ws, blocks, 1, [&](std::size_t begin, std::size_t end) {
+    for (std::size_t b = begin; b < end; ++b) start[b + 1] = total(b);
+  });
+  for (std::size_t b = 0; b < blocks; ++b) start[b + 1] += start[b];
+  return start;
+}
+
 template <typename Keep>
 std::vector<std::uint32_t> collectIf(const WorkspaceData& ws, std::size_t count, const Keep& keep) {
   constexpr std::size_t kChunk = 1 << 16;
   const std::size_t chunkCount = (count + kChunk - 1) / kChunk;
-  std::vector<std::size_t> offset(chunkCount + 1, 0);
-  forRange(ws, chunkCount, 1, [&](std::size_t begin, std::size_t end) {
-    for (std::size_t k = begin; k < end; ++k) {
-      std::size_t n = 0;
-      for (std::size_t i = k * kChunk; i < std::min(count, (k + 1) * kChunk); ++i) n += keep(i) ? 1 : 0;
-      offset[k + 1] = n;
-    }
+  const std::vector<std::size_t> offset = blockStarts<std::size_t>(ws, chunkCount, [&](std::size_t k) {
+    std::size_t n = 0;
+    for (std::size_t i = k * kChunk; i < std::min(count, (k + 1) * kChunk); ++i) n += keep(i) ? 1 : 0;
+    return n;
   });
-  for (std::size_t k = 0; k < chunkCount; ++k) offset[k + 1] += offset[k];
   std::vector<std::uint32_t> kept(offset[chunkCount]);
   forRange(ws, chunkCount, 1, [&](std::size_t begin, std::size_t end) {
     for (std::size_t k = begin; k < end; ++k) {
