@@ -265,6 +265,23 @@ class Kernel {
   void resolveGroupWithAny();
   V3 bucketNormal(std::uint32_t bucket, bool& invalid) const;
   void groupBucket(std::uint32_t bucket, BucketScratch& scratch);
+  // Whether the links of a bucket's corners form one cycle through all of them with one UV
+  // orientation: the common closed fan around a vertex, one group without a union-find.
+  // Links pair distinct half-edges, so a walk of `count` steps back to its start has seen
+  // every corner once.
+  bool closedFan(const std::uint32_t* list, std::uint32_t count) const {
+    const std::uint32_t start = list[0];
+    const std::int8_t orientation = ws_.orientation[start / 3];
+    std::uint32_t c = start;
+    for (std::uint32_t step = 0; step < count; ++step) {
+      if (!participates(c) || (ws_.cornerState[c] & kCopy)) return false;
+      const std::uint32_t d = ws_.cornerLink[c];
+      if (d == kNone || ws_.orientation[d / 3] != orientation) return false;
+      c = d;
+      if (c == start) return step + 1 == count;
+    }
+    return false;
+  }
   void inheritInBucket(std::uint32_t bucket, std::uint32_t corner, float w, bool anyW);
   void fallbacks();
   // The reference's corner angle (EvalTspace): float projections on the raw normal, float
@@ -698,23 +715,29 @@ void Kernel::groupBucket(std::uint32_t bucket, BucketScratch& scratch) {
     for (std::uint32_t i = 0; i < count; ++i) ws_.cornerState[list[i]] |= kInvalidNormal;
   }
 
-  // Union-find over the bucket's corners through pairs of equal orientation.
-  BucketUnionFind components(scratch.parent, count);
-  auto find = [&](std::uint32_t x) { return components.find(x); };
-  for (std::uint32_t i = 0; i < count; ++i) {
-    const std::uint32_t c = list[i];
-    if (!participates(c) || (ws_.cornerState[c] & kCopy)) continue;
-    const std::uint32_t d = ws_.cornerLink[c];
-    if (d == kNone || ws_.orientation[c / 3] != ws_.orientation[d / 3]) continue;
-    components.unite(i, localIndex(bucket, d));
-  }
   // Members of each group, group by group: keys = (root, local index).
   scratch.keys.clear();
-  for (std::uint32_t i = 0; i < count; ++i) {
-    const std::uint32_t c = list[i];
-    if (participates(c) && !(ws_.cornerState[c] & kCopy)) scratch.keys.push_back((std::uint64_t(find(i)) << 32) | i);
+  if (closedFan(list, count)) {
+    // One group of every corner (what the union-find below finds for a closed fan).
+    scratch.keys.resize(count);
+    for (std::uint32_t i = 0; i < count; ++i) scratch.keys[i] = i;
+  } else {
+    // Union-find over the bucket's corners through pairs of equal orientation.
+    BucketUnionFind components(scratch.parent, count);
+    auto find = [&](std::uint32_t x) { return components.find(x); };
+    for (std::uint32_t i = 0; i < count; ++i) {
+      const std::uint32_t c = list[i];
+      if (!participates(c) || (ws_.cornerState[c] & kCopy)) continue;
+      const std::uint32_t d = ws_.cornerLink[c];
+      if (d == kNone || ws_.orientation[c / 3] != ws_.orientation[d / 3]) continue;
+      components.unite(i, localIndex(bucket, d));
+    }
+    for (std::uint32_t i = 0; i < count; ++i) {
+      const std::uint32_t c = list[i];
+      if (participates(c) && !(ws_.cornerState[c] & kCopy)) scratch.keys.push_back((std::uint64_t(find(i)) << 32) | i);
+    }
+    sortSmall(scratch.keys.data(), scratch.keys.data() + scratch.keys.size());
   }
-  sortSmall(scratch.keys.data(), scratch.keys.data() + scratch.keys.size());
   const std::size_t memberCount = scratch.keys.size();
   auto member = [&](std::size_t m) { return static_cast<std::uint32_t>(scratch.keys[m]); };
   auto rootOf = [&](std::size_t m) { return static_cast<std::uint32_t>(scratch.keys[m] >> 32); };
