@@ -337,12 +337,13 @@ class Kernel {
   const std::uint32_t* vertexId_;
   const std::uint32_t* start_;
   const std::uint32_t* corners_;
+  std::uint64_t groupWithAny_ = 0;  // triangles that group with any (not coincident)
 };
 
 void Kernel::evaluateTriangles(Report& report) {
   const std::size_t triangleCount = ws_.cornerCount / 3;
   struct Counts {
-    std::uint64_t flat = 0, zeroUv = 0, nonFinite = 0;
+    std::uint64_t flat = 0, zeroUv = 0, nonFinite = 0, groupWithAny = 0;
   };
   Combinable<Counts> counts;
   forRange(ws_, triangleCount, 4096, [&](std::size_t begin, std::size_t end) {
@@ -354,16 +355,19 @@ void Kernel::evaluateTriangles(Report& report) {
       local.flat += (flags & (kFlat | kNonFinite)) == kFlat;
       local.zeroUv += (flags & kZeroUv) != 0;
       local.nonFinite += (flags & kNonFinite) != 0;
+      local.groupWithAny += (flags & (kGroupWithAny | kCoincident)) == kGroupWithAny;
     }
     Counts& total = counts.local();
     total.flat += local.flat;
     total.zeroUv += local.zeroUv;
     total.nonFinite += local.nonFinite;
+    total.groupWithAny += local.groupWithAny;
   });
   counts.combine_each([&](const Counts& c) {
     report.degenerateTriangles += c.flat;
     report.zeroUvAreaTriangles += c.zeroUv;
     report.nonFiniteTriangles += c.nonFinite;
+    groupWithAny_ += c.groupWithAny;
   });
 }
 
@@ -1042,9 +1046,16 @@ void Kernel::run(Report& report) {
   evaluateTriangles(report);
 
   const std::size_t bucketCount = ws_.vertexCount;
+  // Pairing and grouping touch only the bucket's own corners, except where a zero-UV
+  // triangle takes its orientation from its neighbours between them (resolveGroupWithAny):
+  // without one, each bucket is paired and grouped at once, while its data is in cache.
+  const bool fused = groupWithAny_ == 0;
   forRange(ws_, bucketCount, 1024, [&](std::size_t begin, std::size_t end) {
     BucketScratch& scratch = ws_.scratch.local();
-    for (std::size_t b = begin; b < end; ++b) pairBucket(static_cast<std::uint32_t>(b), scratch);
+    for (std::size_t b = begin; b < end; ++b) {
+      pairBucket(static_cast<std::uint32_t>(b), scratch);
+      if (fused) groupBucket(static_cast<std::uint32_t>(b), scratch);
+    }
   });
   {
     Combinable<std::uint64_t> nonManifold;
@@ -1056,11 +1067,13 @@ void Kernel::run(Report& report) {
     });
     report.nonManifoldFaces = nonManifold.combine(std::plus<>());
   }
-  resolveGroupWithAny();
-  forRange(ws_, bucketCount, 1024, [&](std::size_t begin, std::size_t end) {
-    BucketScratch& scratch = ws_.scratch.local();
-    for (std::size_t b = begin; b < end; ++b) groupBucket(static_cast<std::uint32_t>(b), scratch);
-  });
+  if (!fused) {
+    resolveGroupWithAny();
+    forRange(ws_, bucketCount, 1024, [&](std::size_t begin, std::size_t end) {
+      BucketScratch& scratch = ws_.scratch.local();
+      for (std::size_t b = begin; b < end; ++b) groupBucket(static_cast<std::uint32_t>(b), scratch);
+    });
+  }
   fallbacks();
   ws_.bucketUniformKnown = true;
 }
