@@ -620,7 +620,8 @@ void Kernel::resolveGroupWithAny() {
 // triangles' unit normals (summed in value order), else +z.
 V3 Kernel::bucketNormal(std::uint32_t bucket, bool& invalid) const {
   const std::uint32_t first = start_[bucket], last = start_[bucket + 1];
-  V3 n = a_.normal(a_.indices[corners_[first]]);
+  // The bucket's id is its smallest input vertex, one of its identity: read in bucket order.
+  V3 n = a_.normal(bucket);
   n = {n.x == 0 ? 0.0 : n.x, n.y == 0 ? 0.0 : n.y, n.z == 0 ? 0.0 : n.z};
   const double len = length(n);
   invalid = !(len > 0 && std::isfinite(len));
@@ -748,8 +749,7 @@ void Kernel::groupBucket(std::uint32_t bucket, BucketScratch& scratch) {
 
   // Per contributing member: weighted tangent (3), dP/du projected as the reference projects
   // it (float arithmetic on the raw normal), the triangle's unit dP/dv (3), angle.
-  const F3 rawNormal{a_.normals[3 * a_.indices[list[0]]], a_.normals[3 * a_.indices[list[0]] + 1],
-                     a_.normals[3 * a_.indices[list[0]] + 2]};
+  const F3 rawNormal{a_.normals[3 * bucket], a_.normals[3 * bucket + 1], a_.normals[3 * bucket + 2]};
   constexpr int kStride = 10;
   // Every corner of the bucket given the one shared frame of one group (see bucketUniform).
   bool oneFrame = memberCount == count;
