@@ -382,6 +382,35 @@ void Kernel::pairBucket(std::uint32_t bucket, BucketScratch& scratch) {
     ws_.cornerLink[list[i]] = kNone;
   }
   if (count < 2) return;
+  // Most buckets: a few corners whose next identities are all different, and whose previous
+  // identities are too. Then no triangle duplicates another here and every edge has at most
+  // one half-edge each way: each outgoing edge pairs with the one incoming edge of its
+  // identity, if any (what the sorted merge below finds), with no sort.
+  constexpr std::uint32_t kSmall = 16;
+  if (count <= kSmall) {
+    std::uint32_t outId[kSmall], inId[kSmall], corner[kSmall];
+    std::uint32_t n = 0;
+    for (std::uint32_t i = 0; i < count; ++i) {
+      const std::uint32_t c = list[i];
+      if (!participates(c)) continue;
+      corner[n] = c;
+      outId[n] = id(nextCorner(c));
+      inId[n] = id(previousCorner(c));
+      ++n;
+    }
+    bool distinct = true;
+    for (std::uint32_t i = 1; i < n; ++i) {
+      for (std::uint32_t j = 0; j < i; ++j) distinct &= (outId[i] != outId[j]) & (inId[i] != inId[j]);
+    }
+    if (distinct) {
+      for (std::uint32_t i = 0; i < n; ++i) {
+        std::uint32_t match = kNone;
+        for (std::uint32_t j = 0; j < n; ++j) match = outId[i] == inId[j] ? corner[j] : match;
+        ws_.cornerLink[corner[i]] = match;
+      }
+      return;
+    }
+  }
   // keys: [0, n) outgoing (next id, corner), [n, 2n) incoming (previous id, corner).
   scratch.keys.resize(2 * count);
   std::uint64_t* outs = scratch.keys.data();
