@@ -241,8 +241,9 @@ class BucketUnionFind {
 
 class Kernel {
  public:
-  Kernel(WorkspaceData& ws, const MeshArrays& mesh, const CornerOutputs& outputs)
-      : ws_(ws),
+  Kernel(WorkspaceData& ws, const MeshArrays& mesh, const CornerOutputs& outputs, UvOrigin origin)
+      : wSign_(handedness(1.0f, origin)),
+        ws_(ws),
         a_{mesh.positions.data(), mesh.normals.data(), mesh.uvs.data(), mesh.indices.data()},
         tangents_(outputs.tangents.data()),
         vertexId_(ws.vertexId.data()),
@@ -264,7 +265,8 @@ class Kernel {
   void pairNonManifold(const std::uint32_t* outs, std::size_t outCount, const std::uint32_t* ins, std::size_t inCount);
   void resolveGroupWithAny();
   V3 bucketNormal(std::uint32_t bucket, bool& invalid) const;
-  void groupBucket(std::uint32_t bucket, BucketScratch& scratch);
+  // Adds the bucket's corners with a negative w (as stored) to `mirrored`, copies aside.
+  void groupBucket(std::uint32_t bucket, BucketScratch& scratch, std::uint64_t& mirrored);
   // Whether the links of a bucket's corners form one cycle through all of them with one UV
   // orientation: the common closed fan around a vertex, one group without a union-find.
   // Links pair distinct half-edges, so a walk of `count` steps back to its start has seen
@@ -306,13 +308,13 @@ class Kernel {
     tangents_[4 * corner] = static_cast<float>(tangent.x);
     tangents_[4 * corner + 1] = static_cast<float>(tangent.y);
     tangents_[4 * corner + 2] = static_cast<float>(tangent.z);
-    tangents_[4 * corner + 3] = w;
+    tangents_[4 * corner + 3] = w * wSign_;
     ws_.cornerState[corner] = static_cast<std::uint8_t>((ws_.cornerState[corner] & ~(kSourceMask | kUndefined)) |
                                                         static_cast<std::uint8_t>(source));
     setWeight(corner, weight);
   }
   void markUndefined(std::size_t corner, float w) {
-    tangents_[4 * corner + 3] = w;
+    tangents_[4 * corner + 3] = w * wSign_;
     ws_.cornerState[corner] |= kUndefined;
     setWeight(corner, 0);
   }
@@ -326,11 +328,18 @@ class Kernel {
   bool betterCandidate(std::size_t a, std::size_t b) const {
     if (weight(a) != weight(b)) return weight(a) > weight(b);
     std::uint32_t bitsA[4], bitsB[4];
-    std::memcpy(bitsA, &tangents_[4 * a], sizeof bitsA);
-    std::memcpy(bitsB, &tangents_[4 * b], sizeof bitsB);
+    std::memcpy(bitsA, &tangents_[4 * a], 3 * sizeof(float));
+    std::memcpy(bitsB, &tangents_[4 * b], 3 * sizeof(float));
+    bitsA[3] = bitCast<std::uint32_t>(w(a));
+    bitsB[3] = bitCast<std::uint32_t>(w(b));
     return std::lexicographical_compare(bitsB, bitsB + 4, bitsA, bitsA + 4);
   }
 
+  // Every w is stored in the output convention (times wSign_); the rules here compare the
+  // reference's own w (bottom-left), read back through w().
+  float w(std::size_t corner) const { return tangents_[4 * corner + 3] * wSign_; }
+
+  const float wSign_;
   WorkspaceData& ws_;
   Arrays a_;
   float* tangents_;
@@ -437,6 +446,7 @@ void Kernel::pairBucket(std::uint32_t bucket, BucketScratch& scratch) {
         const auto cx = static_cast<std::uint32_t>(outs[x]);
         if (!(ws_.cornerState[cx] & kCopy) && id(previousCorner(cx)) == id(previousCorner(cy))) {
           ws_.cornerState[cy] |= kCopy;
+          ws_.anyCopy.store(true, std::memory_order_relaxed);
           ws_.cornerLink[cy] = cx;
           break;
         }
@@ -738,7 +748,7 @@ inline void angleBetweenPair(const double y[2], const double x[2], double angle[
 }
 
 // Groups of one welded vertex, their sums, and the frames of its corners.
-void Kernel::groupBucket(std::uint32_t bucket, BucketScratch& scratch) {
+void Kernel::groupBucket(std::uint32_t bucket, BucketScratch& scratch, std::uint64_t& mirrored) {
   const std::uint32_t first = start_[bucket], count = start_[bucket + 1] - first;
   ws_.bucketUniform[bucket] = 0;
   if (count == 0) return;
@@ -960,6 +970,7 @@ void Kernel::groupBucket(std::uint32_t bucket, BucketScratch& scratch) {
     bool oneVertex = true;
     for (std::uint32_t i = 1; i < count; ++i) oneVertex = oneVertex && a_.indices[list[i]] == vertex;
     ws_.bucketUniform[bucket] = oneVertex;
+    if (tangents_[4 * list[0] + 3] < 0) mirrored += count;
     return;  // no coincident corners here
   }
 
@@ -967,6 +978,10 @@ void Kernel::groupBucket(std::uint32_t bucket, BucketScratch& scratch) {
   for (std::uint32_t i = 0; i < count; ++i) {
     const std::uint32_t c = list[i];
     if (!participates(c)) inheritInBucket(bucket, c, 0, true);
+  }
+  for (std::uint32_t i = 0; i < count; ++i) {
+    const std::uint32_t c = list[i];
+    mirrored += !(ws_.cornerState[c] & kCopy) && tangents_[4 * c + 3] < 0;
   }
 }
 
@@ -977,7 +992,7 @@ void Kernel::inheritInBucket(std::uint32_t bucket, std::uint32_t corner, float w
     const std::uint32_t c = corners_[i];
     if (!participates(c) || (ws_.cornerState[c] & kCopy) || (ws_.cornerState[c] & kUndefined)) continue;
     if (static_cast<FrameSource>(ws_.cornerState[c] & kSourceMask) != FrameSource::computed) continue;
-    if (!anyW && tangents_[4 * c + 3] != w) continue;
+    if (!anyW && this->w(c) != w) continue;
     if (best == kNone || betterCandidate(c, best)) best = c;
   }
   if (best == kNone) {
@@ -985,7 +1000,7 @@ void Kernel::inheritInBucket(std::uint32_t bucket, std::uint32_t corner, float w
     return;
   }
   const float* from = &tangents_[4 * best];
-  writeCorner(corner, {from[0], from[1], from[2]}, from[3], FrameSource::inherited, weight(best));
+  writeCorner(corner, {from[0], from[1], from[2]}, this->w(best), FrameSource::inherited, weight(best));
 }
 
 // The rare corners without a frame of their own, after every group is done: one w per
@@ -999,13 +1014,15 @@ void Kernel::fallbacks() {
     for (int k = 0; k < 3; ++k) {
       const std::size_t c = 3 * t + k;
       if (ws_.cornerState[c] & kUndefined) continue;
-      (tangents_[4 * c + 3] > 0 ? plus : minus) += 1;
+      (this->w(c) > 0 ? plus : minus) += 1;
     }
     const float w = plus + minus == 0 ? -1.0f : (minus > plus ? -1.0f : 1.0f);
     for (int k = 0; k < 3; ++k) {
-      const std::size_t c = 3 * t + k;
-      if (ws_.cornerState[c] & kUndefined) tangents_[4 * c + 3] = w;
-      else if (tangents_[4 * c + 3] != w) inheritInBucket(id(c), static_cast<std::uint32_t>(c), w, false);
+      const std::size_t c = 3 * t + k;  // never a copy: coincident triangles pair with nothing
+      const bool wasMirrored = tangents_[4 * c + 3] < 0;
+      if (ws_.cornerState[c] & kUndefined) tangents_[4 * c + 3] = w * wSign_;
+      else if (this->w(c) != w) inheritInBucket(id(c), static_cast<std::uint32_t>(c), w, false);
+      ws_.mirroredCorners += (tangents_[4 * c + 3] < 0) - static_cast<int>(wasMirrored);
     }
   }
   const std::vector<std::uint32_t> undefined = collectIf(ws_, ws_.cornerCount, [&](std::size_t c) {
@@ -1020,7 +1037,7 @@ void Kernel::fallbacks() {
   std::vector<Decision> decisions;
   decisions.reserve(undefined.size());
   for (std::uint32_t c : undefined) {
-    const float w = tangents_[4 * c + 3];
+    const float w = this->w(c);
     const std::uint32_t bucket = id(c);
     bool invalid;
     const V3 n = bucketNormal(bucket, invalid);
@@ -1029,7 +1046,7 @@ void Kernel::fallbacks() {
     std::uint32_t best = kNone;
     for (std::uint32_t i = start_[bucket]; i < start_[bucket + 1]; ++i) {
       const std::uint32_t d = corners_[i];
-      if (d != c && defined(d) && !(ws_.cornerState[d] & kCopy) && tangents_[4 * d + 3] == w && (best == kNone || betterCandidate(d, best))) best = d;
+      if (d != c && defined(d) && !(ws_.cornerState[d] & kCopy) && this->w(d) == w && (best == kNone || betterCandidate(d, best))) best = d;
     }
     if (best != kNone) {
       const float* from = &tangents_[4 * best];
@@ -1041,14 +1058,14 @@ void Kernel::fallbacks() {
       for (int k = 1; k < 3; ++k) {
         const std::size_t other = 3 * (c / 3) + (c % 3 + k) % 3;
         if (pass == 0) {
-          if (defined(other) && !(ws_.cornerState[other] & kCopy) && tangents_[4 * other + 3] == w && (best == kNone || betterCandidate(other, best)))
+          if (defined(other) && !(ws_.cornerState[other] & kCopy) && this->w(other) == w && (best == kNone || betterCandidate(other, best)))
             best = static_cast<std::uint32_t>(other);
           continue;
         }
         const std::uint32_t otherBucket = id(other);
         for (std::uint32_t i = start_[otherBucket]; i < start_[otherBucket + 1]; ++i) {
           const std::uint32_t d = corners_[i];
-          if (defined(d) && !(ws_.cornerState[d] & kCopy) && tangents_[4 * d + 3] == w && (best == kNone || betterCandidate(d, best))) best = d;
+          if (defined(d) && !(ws_.cornerState[d] & kCopy) && this->w(d) == w && (best == kNone || betterCandidate(d, best))) best = d;
         }
       }
     }
@@ -1061,7 +1078,7 @@ void Kernel::fallbacks() {
     axisPerpendicular(&n.x, &tangent.x);
     decisions.push_back({c, tangent, FrameSource::fixed});
   }
-  for (const Decision& d : decisions) writeCorner(d.corner, d.tangent, tangents_[4 * d.corner + 3], d.source, 0);
+  for (const Decision& d : decisions) writeCorner(d.corner, d.tangent, w(d.corner), d.source, 0);
 }
 
 void Kernel::run(Report& report) {
@@ -1079,12 +1096,15 @@ void Kernel::run(Report& report) {
   // triangle takes its orientation from its neighbours between them (resolveGroupWithAny):
   // without one, each bucket is paired and grouped at once, while its data is in cache.
   const bool fused = groupWithAny_ == 0;
+  Combinable<std::uint64_t> mirrored;
   forRange(ws_, bucketCount, 1024, [&](std::size_t begin, std::size_t end) {
     BucketScratch& scratch = ws_.scratch.local();
+    std::uint64_t local = 0;
     for (std::size_t b = begin; b < end; ++b) {
       pairBucket(static_cast<std::uint32_t>(b), scratch);
-      if (fused) groupBucket(static_cast<std::uint32_t>(b), scratch);
+      if (fused) groupBucket(static_cast<std::uint32_t>(b), scratch, local);
     }
+    mirrored.local() += local;
   });
   {
     Combinable<std::uint64_t> nonManifold;
@@ -1100,27 +1120,31 @@ void Kernel::run(Report& report) {
     resolveGroupWithAny();
     forRange(ws_, bucketCount, 1024, [&](std::size_t begin, std::size_t end) {
       BucketScratch& scratch = ws_.scratch.local();
-      for (std::size_t b = begin; b < end; ++b) groupBucket(static_cast<std::uint32_t>(b), scratch);
+      std::uint64_t local = 0;
+      for (std::size_t b = begin; b < end; ++b) groupBucket(static_cast<std::uint32_t>(b), scratch, local);
+      mirrored.local() += local;
     });
   }
+  ws_.mirroredCorners = mirrored.combine(std::plus<>());
   fallbacks();
   ws_.bucketUniformKnown = true;
+  ws_.wInOutputConvention = true;
 }
 
 }  // namespace
 
-void mikktspaceOnBuckets(WorkspaceData& ws, const MeshArrays& mesh, const CornerOutputs& outputs, Report& report) {
+void mikktspaceOnBuckets(WorkspaceData& ws, const MeshArrays& mesh, const CornerOutputs& outputs, UvOrigin origin, Report& report) {
   report.method = Method::mikktspace;
   report.weighting = Weighting::angle;
   report.triangles = ws.cornerCount / 3;
   report.corners = ws.cornerCount;
-  Kernel(ws, mesh, outputs).run(report);
+  Kernel(ws, mesh, outputs, origin).run(report);
 }
 
 Report mikktspaceOnArrays(WorkspaceData& ws, const MeshArrays& mesh, const CornerOutputs& outputs, const Options& options) {
   Report report;
   weldAndBucket(ws, mesh);
-  mikktspaceOnBuckets(ws, mesh, outputs, report);
+  mikktspaceOnBuckets(ws, mesh, outputs, options.uvOrigin, report);
   finishOutputs(ws, mesh, outputs, options, report);
   return report;
 }

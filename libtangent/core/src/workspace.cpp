@@ -137,6 +137,8 @@ void weldAndBucket(WorkspaceData& ws, const MeshArrays& mesh) {
   ws.vertexCount = vertexCount;
   ws.cornerCount = cornerCount;
   ws.bucketUniformKnown = false;
+  ws.wInOutputConvention = false;
+  ws.anyCopy.store(false, std::memory_order_relaxed);
 
   // Weld: open-addressing tables of vertex + 1; the smallest vertex of equal values wins.
   ensureSize(ws.vertexId, vertexCount);
@@ -322,22 +324,34 @@ void finishOutputs(WorkspaceData& ws, const MeshArrays& mesh, const CornerOutput
   const std::uint32_t* link = ws.cornerLink.data();
   const float wSign = handedness(1.0f, options.uvOrigin);
 
-  // Duplicates copy their original (never itself a copy); then w convention and counts.
-  forRange(ws, cornerCount, 1 << 14, [&](std::size_t begin, std::size_t end) {
-    for (std::size_t c = begin; c < end; ++c) {
-      if (!(state[c] & kCopy)) continue;
-      const std::uint32_t original = link[c];
-      std::memcpy(&tangents[4 * c], &tangents[4 * original], 4 * sizeof(float));
-      state[c] = static_cast<std::uint8_t>((state[c] & ~kSourceMask) | (state[original] & kSourceMask));
-    }
-  });
+  // Duplicates copy their original (never itself a copy); then w convention and counts. Where
+  // the kernel counted the mirrored corners (all but the copies) and wrote w in the output
+  // convention, the counts pass need not read the tangents, and without copies the copy pass
+  // is skipped.
+  const bool kernelCounts = ws.wInOutputConvention;
+  Combinable<std::uint64_t> mirroredCopies;
+  if (!kernelCounts || ws.anyCopy.load(std::memory_order_relaxed)) {
+    forRange(ws, cornerCount, 1 << 14, [&](std::size_t begin, std::size_t end) {
+      std::uint64_t local = 0;
+      for (std::size_t c = begin; c < end; ++c) {
+        if (!(state[c] & kCopy)) continue;
+        const std::uint32_t original = link[c];
+        std::memcpy(&tangents[4 * c], &tangents[4 * original], 4 * sizeof(float));
+        state[c] = static_cast<std::uint8_t>((state[c] & ~kSourceMask) | (state[original] & kSourceMask));
+        local += tangents[4 * c + 3] < 0;
+      }
+      mirroredCopies.local() += local;
+    });
+  }
   Combinable<Counts> counts;
   forRange(ws, cornerCount, 1 << 14, [&](std::size_t begin, std::size_t end) {
     Counts local;
     for (std::size_t c = begin; c < end; ++c) {
       const std::uint8_t s = state[c];
-      tangents[4 * c + 3] *= wSign;
-      local.mirrored += tangents[4 * c + 3] < 0;
+      if (!kernelCounts) {
+        tangents[4 * c + 3] *= wSign;
+        local.mirrored += tangents[4 * c + 3] < 0;
+      }
       switch (static_cast<FrameSource>(s & kSourceMask)) {
         case FrameSource::computed: break;
         case FrameSource::inherited: ++local.inherited; break;
@@ -351,7 +365,7 @@ void finishOutputs(WorkspaceData& ws, const MeshArrays& mesh, const CornerOutput
   });
   Counts total;
   counts.combine_each([&](const Counts& c) { total.add(c); });
-  report.mirroredCorners = total.mirrored;
+  report.mirroredCorners = kernelCounts ? ws.mirroredCorners + mirroredCopies.combine(std::plus<>()) : total.mirrored;
   report.inheritedCorners = total.inherited;
   report.fallbackFromNeighbours = total.neighbour;
   report.fallbackFixed = total.fixed;

@@ -130,6 +130,12 @@ struct WorkspaceData {
                                              // one frame, which nothing after it changes, so
                                              // that the vertex split need not compare them
   bool bucketUniformKnown = false;          // set by the mikktspace kernel, reset by the weld
+  bool wInOutputConvention = false;         // the kernel wrote w with the UV origin applied
+                                             // (set by the mikktspace kernel, reset by the weld)
+  std::uint64_t mirroredCorners = 0;        // where wInOutputConvention: corners with w < 0,
+                                             // copies of duplicate triangles aside
+  std::atomic<bool> anyCopy{false};         // a corner is kCopy (set by the kernel, reset by
+                                             // the weld)
   PerThread<BucketScratch> scratch;
   // The OpenMesh call's corners as arrays (corner_tangents.cpp).
   BulkVector<float> meshPositions, meshNormals, meshUvs, meshTangents;
@@ -206,11 +212,13 @@ void weldAndBucket(WorkspaceData& ws, const MeshArrays& mesh);
 // mikktspaceOnBuckets, finishOutputs), on the calling thread's arena.
 Report mikktspaceOnArrays(WorkspaceData& ws, const MeshArrays& mesh, const CornerOutputs& outputs, const Options& options);
 
-// The method `mikktspace` on the welded buckets: writes outputs.tangents (bottom-left w) and
-// ws.cornerState, fills the triangle counts of the report.
-void mikktspaceOnBuckets(WorkspaceData& ws, const MeshArrays& mesh, const CornerOutputs& outputs, Report& report);
+// The method `mikktspace` on the welded buckets: writes outputs.tangents (w in the convention
+// of `origin`, so that the output pass need not rewrite every tangent) and ws.cornerState,
+// fills the triangle counts of the report.
+void mikktspaceOnBuckets(WorkspaceData& ws, const MeshArrays& mesh, const CornerOutputs& outputs, UvOrigin origin, Report& report);
 
-// Copies duplicate corners, applies the UV origin to w, counts sources and mirrored corners,
+// Copies duplicate corners, applies the UV origin to w (unless ws.wInOutputConvention), counts
+// sources and mirrored corners,
 // and works out the vertex split (outputs.cornerVertex when asked for).
 void finishOutputs(WorkspaceData& ws, const MeshArrays& mesh, const CornerOutputs& outputs, const Options& options,
                    Report& report);
