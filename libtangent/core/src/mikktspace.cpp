@@ -28,6 +28,7 @@
 // each item's result depends only on the input, so any thread count gives the same bits.
 #include <algorithm>
 #include <array>
+#include <atomic>
 #include <bit>
 #include <cmath>
 #include <cstring>
@@ -314,6 +315,7 @@ class Kernel {
     setWeight(corner, weight);
   }
   void markUndefined(std::size_t corner, float w) {
+    if (!anyUndefined_.load(std::memory_order_relaxed)) anyUndefined_.store(true, std::memory_order_relaxed);
     tangents_[4 * corner + 3] = w * wSign_;
     ws_.cornerState[corner] |= kUndefined;
     setWeight(corner, 0);
@@ -347,12 +349,16 @@ class Kernel {
   const std::uint32_t* start_;
   const std::uint32_t* corners_;
   std::uint64_t groupWithAny_ = 0;  // triangles that group with any (not coincident)
+  std::uint64_t coincident_ = 0;    // coincident triangles
+  // Whether any corner was marked undefined, any edge is non-manifold: where not, the passes
+  // that look for them are skipped.
+  std::atomic<bool> anyUndefined_{false}, anyNonManifold_{false};
 };
 
 void Kernel::evaluateTriangles(Report& report) {
   const std::size_t triangleCount = ws_.cornerCount / 3;
   struct Counts {
-    std::uint64_t flat = 0, zeroUv = 0, nonFinite = 0, groupWithAny = 0;
+    std::uint64_t flat = 0, zeroUv = 0, nonFinite = 0, groupWithAny = 0, coincident = 0;
   };
   Combinable<Counts> counts;
   forRange(ws_, triangleCount, 4096, [&](std::size_t begin, std::size_t end) {
@@ -365,18 +371,21 @@ void Kernel::evaluateTriangles(Report& report) {
       local.zeroUv += (flags & kZeroUv) != 0;
       local.nonFinite += (flags & kNonFinite) != 0;
       local.groupWithAny += (flags & (kGroupWithAny | kCoincident)) == kGroupWithAny;
+      local.coincident += (flags & kCoincident) != 0;
     }
     Counts& total = counts.local();
     total.flat += local.flat;
     total.zeroUv += local.zeroUv;
     total.nonFinite += local.nonFinite;
     total.groupWithAny += local.groupWithAny;
+    total.coincident += local.coincident;
   });
   counts.combine_each([&](const Counts& c) {
     report.degenerateTriangles += c.flat;
     report.zeroUvAreaTriangles += c.zeroUv;
     report.nonFiniteTriangles += c.nonFinite;
     groupWithAny_ += c.groupWithAny;
+    coincident_ += c.coincident;
   });
 }
 
@@ -504,6 +513,7 @@ void Kernel::pairNonManifold(const std::uint32_t* outs, std::size_t outCount, co
             [&](const HalfEdge& x, const HalfEdge& y) { return triangleBefore(a_, x.corner / 3, y.corner / 3); });
   for (std::size_t i = 0; i < halfEdges.size(); ++i) {
     if (halfEdges[i].outgoing) ws_.cornerState[halfEdges[i].corner] |= 32;  // on a non-manifold edge
+    anyNonManifold_.store(true, std::memory_order_relaxed);
     if (halfEdges[i].paired) continue;
     for (std::size_t j = i + 1; j < halfEdges.size(); ++j) {
       if (halfEdges[j].paired || halfEdges[j].outgoing == halfEdges[i].outgoing) continue;
@@ -1008,7 +1018,8 @@ void Kernel::inheritInBucket(std::uint32_t bucket, std::uint32_t corner, float w
 void Kernel::fallbacks() {
   const std::size_t triangleCount = ws_.cornerCount / 3;
   const std::vector<std::uint32_t> coincident =
-      collectIf(ws_, triangleCount, [&](std::size_t t) { return (ws_.triangleFlags[t] & kCoincident) != 0; });
+      coincident_ == 0 ? std::vector<std::uint32_t>{}
+                       : collectIf(ws_, triangleCount, [&](std::size_t t) { return (ws_.triangleFlags[t] & kCoincident) != 0; });
   for (std::uint32_t t : coincident) {
     int plus = 0, minus = 0;
     for (int k = 0; k < 3; ++k) {
@@ -1025,6 +1036,7 @@ void Kernel::fallbacks() {
       ws_.mirroredCorners += (tangents_[4 * c + 3] < 0) - static_cast<int>(wasMirrored);
     }
   }
+  if (!anyUndefined_.load(std::memory_order_relaxed)) return;
   const std::vector<std::uint32_t> undefined = collectIf(ws_, ws_.cornerCount, [&](std::size_t c) {
     return (ws_.cornerState[c] & kUndefined) && !(ws_.cornerState[c] & kCopy);
   });
@@ -1106,7 +1118,7 @@ void Kernel::run(Report& report) {
     }
     mirrored.local() += local;
   });
-  {
+  if (anyNonManifold_.load(std::memory_order_relaxed)) {
     Combinable<std::uint64_t> nonManifold;
     forRange(ws_, triangleCount, 1 << 14, [&](std::size_t begin, std::size_t end) {
       std::uint64_t local = 0;
