@@ -511,9 +511,9 @@ void Kernel::pairNonManifold(const std::uint32_t* outs, std::size_t outCount, co
   for (std::size_t i = 0; i < inCount; ++i) halfEdges.push_back({ins[i], false, false});
   std::sort(halfEdges.begin(), halfEdges.end(),
             [&](const HalfEdge& x, const HalfEdge& y) { return triangleBefore(a_, x.corner / 3, y.corner / 3); });
+  anyNonManifold_.store(true, std::memory_order_relaxed);
   for (std::size_t i = 0; i < halfEdges.size(); ++i) {
     if (halfEdges[i].outgoing) ws_.cornerState[halfEdges[i].corner] |= 32;  // on a non-manifold edge
-    anyNonManifold_.store(true, std::memory_order_relaxed);
     if (halfEdges[i].paired) continue;
     for (std::size_t j = i + 1; j < halfEdges.size(); ++j) {
       if (halfEdges[j].paired || halfEdges[j].outgoing == halfEdges[i].outgoing) continue;

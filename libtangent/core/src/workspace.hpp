@@ -218,8 +218,8 @@ Report mikktspaceOnArrays(WorkspaceData& ws, const MeshArrays& mesh, const Corne
 void mikktspaceOnBuckets(WorkspaceData& ws, const MeshArrays& mesh, const CornerOutputs& outputs, UvOrigin origin, Report& report);
 
 // Copies duplicate corners, applies the UV origin to w (unless ws.wInOutputConvention), counts
-// sources and mirrored corners,
-// and works out the vertex split (outputs.cornerVertex when asked for).
+// sources and mirrored corners, and works out the vertex split (outputs.cornerVertex when
+// asked for).
 void finishOutputs(WorkspaceData& ws, const MeshArrays& mesh, const CornerOutputs& outputs, const Options& options,
                    Report& report);
 
