@@ -53,6 +53,10 @@ inline double dot(V3 a, V3 b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
 inline V3 cross(V3 a, V3 b) { return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x}; }
 inline double length(V3 a) { return std::sqrt(dot(a, a)); }
 inline bool operator==(V3 a, V3 b) { return a.x == b.x && a.y == b.y && a.z == b.z; }
+// v == V3{} (every component +0 or -0; NaN is not zero) without branches.
+inline bool isZero(V3 v) {
+  return ((bitCast<std::uint64_t>(v.x) | bitCast<std::uint64_t>(v.y) | bitCast<std::uint64_t>(v.z)) << 1) == 0;
+}
 
 inline std::size_t nextCorner(std::size_t c) { return c % 3 == 2 ? c - 2 : c + 1; }
 inline std::size_t previousCorner(std::size_t c) { return c % 3 == 0 ? c + 2 : c - 1; }
@@ -144,7 +148,7 @@ void evaluateTriangle(const Arrays& a, std::size_t t, float* frame, std::int8_t&
     return;
   }
   flags = 0;
-  auto same = [](F3 x, F3 y) { return x.x == y.x && x.y == y.y && x.z == y.z; };
+  auto same = [](F3 x, F3 y) { return (x.x == y.x) & (x.y == y.y) & (x.z == y.z); };
   const bool coincident = same(pf[0], pf[1]) || same(pf[1], pf[2]) || same(pf[0], pf[2]);
   const V3 p[3] = {{pf[0].x, pf[0].y, pf[0].z}, {pf[1].x, pf[1].y, pf[1].z}, {pf[2].x, pf[2].y, pf[2].z}};
   const V3 e1 = p[1] - p[0], e2 = p[2] - p[0];
@@ -769,13 +773,11 @@ void Kernel::groupBucket(std::uint32_t bucket, BucketScratch& scratch, std::uint
     for (std::uint32_t i = 0; i < count; ++i) ws_.cornerState[list[i]] |= kInvalidNormal;
   }
 
-  // Members of each group, group by group: keys = (root, local index).
-  scratch.keys.clear();
-  if (closedFan(list, count)) {
-    // One group of every corner (what the union-find below finds for a closed fan).
-    scratch.keys.resize(count);
-    for (std::uint32_t i = 0; i < count; ++i) scratch.keys[i] = i;
-  } else {
+  // Members of each group, group by group: keys = (root, local index); a closed fan is one
+  // group of every corner (what the union-find below finds for it), without keys.
+  const bool fan = closedFan(list, count);
+  if (!fan) {
+    scratch.keys.clear();
     // Union-find over the bucket's corners through pairs of equal orientation.
     BucketUnionFind components(scratch.parent, count);
     auto find = [&](std::uint32_t x) { return components.find(x); };
@@ -792,8 +794,8 @@ void Kernel::groupBucket(std::uint32_t bucket, BucketScratch& scratch, std::uint
     }
     sortSmall(scratch.keys.data(), scratch.keys.data() + scratch.keys.size());
   }
-  const std::size_t memberCount = scratch.keys.size();
-  auto member = [&](std::size_t m) { return static_cast<std::uint32_t>(scratch.keys[m]); };
+  const std::size_t memberCount = fan ? count : scratch.keys.size();
+  auto member = [&](std::size_t m) { return fan ? static_cast<std::uint32_t>(m) : static_cast<std::uint32_t>(scratch.keys[m]); };
   auto rootOf = [&](std::size_t m) { return static_cast<std::uint32_t>(scratch.keys[m] >> 32); };
 
   // Per contributing member: weighted tangent (3), dP/du projected as the reference projects
@@ -803,7 +805,7 @@ void Kernel::groupBucket(std::uint32_t bucket, BucketScratch& scratch, std::uint
   // Every corner of the bucket given the one shared frame of one group (see bucketUniform).
   bool oneFrame = memberCount == count;
   for (std::size_t g = 0; g < memberCount;) {
-    std::size_t gEnd = g + 1;
+    std::size_t gEnd = fan ? memberCount : g + 1;
     while (gEnd < memberCount && rootOf(gEnd) == rootOf(g)) ++gEnd;
     const std::int8_t orientation = ws_.orientation[list[member(g)] / 3];
     const float w = orientation > 0 ? 1.0f : -1.0f;  // reference: fSign = +1 where the UV area is positive
@@ -823,7 +825,7 @@ void Kernel::groupBucket(std::uint32_t bucket, BucketScratch& scratch, std::uint
       const V3 toNext = projected(a_.position(a_.indices[nextCorner(c)]) - here, n);
       const F3 referenceS = referenceProjected({frame[0], frame[1], frame[2]}, rawNormal);
       double* row = values + kStride * scratch.items.size();
-      const bool edges = !(toPrevious == V3{}) && !(toNext == V3{});
+      const bool edges = !isZero(toPrevious) & !isZero(toNext);
       row[0] = edges ? length(cross(toPrevious, toNext)) : 1.0;
       row[1] = edges ? dot(toPrevious, toNext) : 0.0;
       row[2] = edges ? 1.0 : 0.0;
@@ -914,7 +916,7 @@ void Kernel::groupBucket(std::uint32_t bucket, BucketScratch& scratch, std::uint
       for (std::size_t i = 0; i < contributing && halfSpace; ++i) {
         const double* x = values + kStride * i;
         const V3 si{x[3], x[4], x[5]}, ti{x[6], x[7], x[8]};
-        halfSpace = (si == V3{} || dot(si, sumS) > 1e-3 * lengthS) && dot(ti, sumT) > 1e-3 * lengthT;
+        halfSpace = (isZero(si) || dot(si, sumS) > 1e-3 * lengthS) && dot(ti, sumT) > 1e-3 * lengthT;
       }
       if (!halfSpace && contributing <= 4096) {
         for (std::size_t i = 0; i < contributing && !anyOpposite; ++i) {
@@ -957,6 +959,12 @@ void Kernel::groupBucket(std::uint32_t bucket, BucketScratch& scratch, std::uint
     V3 shared;
     const bool sharedDefined = contributing > 0 && orthonormalize(sumOver(kNone), n, shared);
     oneFrame = oneFrame && g == 0 && gEnd == memberCount && sharedDefined && !anyOpposite;
+    if (contributing > 0 && !anyOpposite && sharedDefined) {
+      // The common case: every member gets the shared frame.
+      for (std::size_t m = g; m < gEnd; ++m) writeCorner(list[member(m)], shared, w, FrameSource::computed, groupWeight);
+      g = gEnd;
+      continue;
+    }
     std::size_t nextContributing = 0;
     for (std::size_t m = g; m < gEnd; ++m) {
       const std::uint32_t c = list[member(m)];
