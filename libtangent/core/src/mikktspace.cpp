@@ -33,6 +33,7 @@
 #include <cmath>
 #include <cstring>
 #include <limits>
+#include <type_traits>
 
 #if defined(__SSE2__)
 #include <emmintrin.h>
@@ -99,6 +100,13 @@ bool shapeBefore(const Arrays& a, std::uint32_t u, std::uint32_t v) {
 // First corner (0..2) of triangle t in value order, so that rotations give the same bits.
 int firstCorner(const Arrays& a, std::size_t t) {
   const std::uint32_t* v = a.indices + 3 * t;
+  // Nearly always the first values (x) differ and decide.
+  const std::uint32_t x0 = canonicalBits(a.positions[3 * v[0]]), x1 = canonicalBits(a.positions[3 * v[1]]),
+                      x2 = canonicalBits(a.positions[3 * v[2]]);
+  if (x0 != x1 && x1 != x2 && x0 != x2) {
+    const int lower = x1 < x0 ? 1 : 0;
+    return x2 < (lower ? x1 : x0) ? 2 : lower;
+  }
   int first = shapeBefore(a, v[1], v[0]) ? 1 : 0;
   if (shapeBefore(a, v[2], v[first])) first = 2;
   return first;
@@ -130,26 +138,44 @@ inline F3 referenceProjected(F3 v, F3 n) {
 // arithmetic resolves (denormal or huge coordinates), the double result.
 void evaluateTriangle(const Arrays& a, std::size_t t, float* frame, std::int8_t& orientation, std::uint8_t& flags) {
   const int first = firstCorner(a, t);
+  const std::uint32_t* triangle = a.indices + 3 * t;
+  const std::uint32_t rotated[5] = {triangle[0], triangle[1], triangle[2], triangle[0], triangle[1]};
   F3 pf[3];
   float uf[3], vf[3];
-  bool allFinite = true;
   for (int k = 0; k < 3; ++k) {
-    const std::uint32_t vertex = a.indices[3 * t + (first + k) % 3];
+    const std::uint32_t vertex = rotated[first + k];
     pf[k] = {a.positions[3 * vertex], a.positions[3 * vertex + 1], a.positions[3 * vertex + 2]};
     uf[k] = a.uvs[2 * vertex];
     vf[k] = a.uvs[2 * vertex + 1];
-    allFinite = allFinite && std::isfinite(pf[k].x) && std::isfinite(pf[k].y) && std::isfinite(pf[k].z) &&
-                std::isfinite(uf[k]) && std::isfinite(vf[k]);
   }
   std::fill(frame, frame + 6, 0.0f);
   orientation = 0;
+#if defined(__SSE2__)
+  // Four lanes at a time: x - x is 0 where x is finite (NaN where not); equal positions
+  // compare equal in all lanes (the fourth holds 0 in both).
+  const __m128 p0 = _mm_setr_ps(pf[0].x, pf[0].y, pf[0].z, 0), p1 = _mm_setr_ps(pf[1].x, pf[1].y, pf[1].z, 0),
+               p2 = _mm_setr_ps(pf[2].x, pf[2].y, pf[2].z, 0);
+  const __m128 uv01 = _mm_setr_ps(uf[0], vf[0], uf[1], vf[1]), uv2 = _mm_setr_ps(uf[2], vf[2], 0, 0);
+  auto zeroIfFinite = [](__m128 x) { return _mm_sub_ps(x, x); };
+  const __m128 finite = _mm_add_ps(_mm_add_ps(zeroIfFinite(p0), zeroIfFinite(p1)),
+                                   _mm_add_ps(zeroIfFinite(p2), _mm_add_ps(zeroIfFinite(uv01), zeroIfFinite(uv2))));
+  const bool allFinite = _mm_movemask_ps(_mm_cmpeq_ps(finite, _mm_setzero_ps())) == 0xF;
+  auto same = [](__m128 x, __m128 y) { return _mm_movemask_ps(_mm_cmpeq_ps(x, y)) == 0xF; };
+#else
+  bool allFinite = true;
+  for (int k = 0; k < 3; ++k) {
+    allFinite = allFinite && std::isfinite(pf[k].x) && std::isfinite(pf[k].y) && std::isfinite(pf[k].z) &&
+                std::isfinite(uf[k]) && std::isfinite(vf[k]);
+  }
+  auto same = [](F3 x, F3 y) { return (x.x == y.x) & (x.y == y.y) & (x.z == y.z); };
+  const F3 &p0 = pf[0], &p1 = pf[1], &p2 = pf[2];
+#endif
   if (!allFinite) {
     flags = kNonFinite | kGroupWithAny;
     return;
   }
   flags = 0;
-  auto same = [](F3 x, F3 y) { return (x.x == y.x) & (x.y == y.y) & (x.z == y.z); };
-  const bool coincident = same(pf[0], pf[1]) || same(pf[1], pf[2]) || same(pf[0], pf[2]);
+  const bool coincident = same(p0, p1) | same(p1, p2) | same(p0, p2);
   const V3 p[3] = {{pf[0].x, pf[0].y, pf[0].z}, {pf[1].x, pf[1].y, pf[1].z}, {pf[2].x, pf[2].y, pf[2].z}};
   const V3 e1 = p[1] - p[0], e2 = p[2] - p[0];
   if (!(dot(cross(e1, e2), cross(e1, e2)) > kAreaZero * kAreaZero * dot(e1, e1) * dot(e2, e2))) flags |= kFlat;
@@ -404,13 +430,16 @@ void Kernel::pairBucket(std::uint32_t bucket, BucketScratch& scratch) {
     ws_.cornerLink[list[i]] = kNone;
   }
   if (count < 2) return;
-  // Most buckets: a few corners whose next identities are all different, and whose previous
-  // identities are too. Then no triangle duplicates another here and every edge has at most
-  // one half-edge each way: each outgoing edge pairs with the one incoming edge of its
-  // identity, if any (what the sorted merge below finds), with no sort.
+  // Most buckets: a few corners whose next identities are all different, each of which is
+  // the previous identity of at most one corner. Then no triangle duplicates another here
+  // (a duplicate has the same next identity) and no edge has more than one half-edge each
+  // way: each outgoing edge pairs with the one incoming edge of its identity, if any (what
+  // the sorted merge below finds), with no sort. (Previous identities that no next one
+  // matches may repeat: the merge links nothing there either.)
   constexpr std::uint32_t kSmall = 16;
   if (count <= kSmall) {
-    std::uint32_t outId[kSmall], inId[kSmall], corner[kSmall];
+    alignas(16) std::uint32_t outId[kSmall], inId[kSmall];
+    std::uint32_t corner[kSmall];
     std::uint32_t n = 0;
     for (std::uint32_t i = 0; i < count; ++i) {
       const std::uint32_t c = list[i];
@@ -420,16 +449,50 @@ void Kernel::pairBucket(std::uint32_t bucket, BucketScratch& scratch) {
       inId[n] = id(previousCorner(c));
       ++n;
     }
-    bool distinct = true;
-    for (std::uint32_t i = 1; i < n; ++i) {
-      for (std::uint32_t j = 0; j < i; ++j) distinct &= (outId[i] != outId[j]) & (inId[i] != inId[j]);
-    }
-    if (distinct) {
-      for (std::uint32_t i = 0; i < n; ++i) {
-        std::uint32_t match = kNone;
-        for (std::uint32_t j = 0; j < n; ++j) match = outId[i] == inId[j] ? corner[j] : match;
-        ws_.cornerLink[corner[i]] = match;
+    std::uint32_t match[kSmall];
+    bool simple = true;
+#if defined(__SSE2__)
+    // Lane masks of equal identities, four lanes a compare (8 or 16 lanes, those past n
+    // zeroed and masked off).
+    const std::uint32_t width = n <= 8 ? 8 : 16;
+    for (std::uint32_t j = n; j < width; ++j) outId[j] = inId[j] = 0;
+    const std::uint32_t lanes = (std::uint32_t(1) << n) - 1;
+    auto masks = [&](auto vectorCount) {
+      constexpr int kVectors = decltype(vectorCount)::value;
+      __m128i outs[kVectors], ins[kVectors];
+      for (int v = 0; v < kVectors; ++v) {
+        outs[v] = _mm_load_si128(reinterpret_cast<const __m128i*>(outId + 4 * v));
+        ins[v] = _mm_load_si128(reinterpret_cast<const __m128i*>(inId + 4 * v));
       }
+      std::uint32_t bad = 0;
+      for (std::uint32_t i = 0; i < n; ++i) {
+        const __m128i key = _mm_set1_epi32(static_cast<int>(outId[i]));
+        std::uint32_t sameOut = 0, sameIn = 0;
+        for (int v = 0; v < kVectors; ++v) {
+          sameOut |= static_cast<std::uint32_t>(_mm_movemask_ps(_mm_castsi128_ps(_mm_cmpeq_epi32(key, outs[v])))) << (4 * v);
+          sameIn |= static_cast<std::uint32_t>(_mm_movemask_ps(_mm_castsi128_ps(_mm_cmpeq_epi32(key, ins[v])))) << (4 * v);
+        }
+        sameOut &= lanes, sameIn &= lanes;
+        bad |= (sameOut ^ (std::uint32_t(1) << i)) | (sameIn & (sameIn - 1));
+        match[i] = sameIn ? corner[std::countr_zero(sameIn)] : kNone;
+      }
+      return bad == 0;
+    };
+    simple = width == 8 ? masks(std::integral_constant<int, 2>{}) : masks(std::integral_constant<int, 4>{});
+#else
+    for (std::uint32_t i = 0; i < n; ++i) {
+      std::uint32_t sameOut = 0, sameIn = 0;
+      match[i] = kNone;
+      for (std::uint32_t j = 0; j < n; ++j) {
+        sameOut += outId[i] == outId[j];
+        sameIn += outId[i] == inId[j];
+        match[i] = outId[i] == inId[j] ? corner[j] : match[i];
+      }
+      simple &= (sameOut == 1) & (sameIn <= 1);
+    }
+#endif
+    if (simple) {
+      for (std::uint32_t i = 0; i < n; ++i) ws_.cornerLink[corner[i]] = match[i];
       return;
     }
   }
