@@ -865,6 +865,9 @@ void Kernel::groupBucket(std::uint32_t bucket, BucketScratch& scratch, std::uint
   // it (float arithmetic on the raw normal), the triangle's unit dP/dv (3), angle.
   const F3 rawNormal{a_.normals[3 * bucket], a_.normals[3 * bucket + 1], a_.normals[3 * bucket + 2]};
   constexpr int kStride = 10;
+  // The corners' common position (equal values; where a component is zero its sign may
+  // differ between corners, which moves no angle: only signs of zero terms follow it).
+  const V3 here = a_.position(bucket);
   // Every corner of the bucket given the one shared frame of one group (see bucketUniform).
   bool oneFrame = memberCount == count;
   for (std::size_t g = 0; g < memberCount;) {
@@ -883,7 +886,6 @@ void Kernel::groupBucket(std::uint32_t bucket, BucketScratch& scratch, std::uint
       const std::size_t t = c / 3;
       if (ws_.triangleFlags[t] & kGroupWithAny) continue;
       const float* frame = &ws_.triangleFrames[6 * t];
-      const V3 here = a_.position(a_.indices[c]);
       const V3 toPrevious = projected(a_.position(a_.indices[previousCorner(c)]) - here, n);
       const V3 toNext = projected(a_.position(a_.indices[nextCorner(c)]) - here, n);
       const F3 referenceS = referenceProjected({frame[0], frame[1], frame[2]}, rawNormal);
