@@ -911,7 +911,6 @@ void Kernel::groupBucket(std::uint32_t bucket, BucketScratch& scratch, std::uint
         row[9] = angleBetween(row[0], row[1]);
       }
     }
-    double angleSum = 0;
     for (std::size_t i = 0; i < contributingCorners; ++i) {
       double* row = values + kStride * i;
       double angle = row[2] != 0 ? row[9] : kHalfPi;  // a zero edge counts as perpendicular, as in the reference
@@ -925,7 +924,6 @@ void Kernel::groupBucket(std::uint32_t bucket, BucketScratch& scratch, std::uint
       angle = std::max(angle, 1e-12);
       row[0] = row[3] * angle, row[1] = row[4] * angle, row[2] = row[5] * angle;
       row[9] = angle;
-      angleSum += angle;
     }
     const std::size_t contributing = scratch.items.size();
     // Sum in value order so that face order cannot change a bit.
@@ -995,9 +993,9 @@ void Kernel::groupBucket(std::uint32_t bucket, BucketScratch& scratch, std::uint
     // their order. With more terms the reference's float sum does depend on its face order
     // (measured: 0.03 degrees over the orders of a 7-triangle fan) and the double sum is the
     // better estimate of all of them.
-    auto sumOver = [&](std::size_t self) {
+    auto sumOver = [&](std::size_t self, double& weights) {
       V3 sum;
-      double weights = 0;
+      weights = 0;
       std::size_t terms = 0;
       for (std::size_t i = 0; i < contributing; ++i) {
         if (self != kNone && sorted[i] != self && opposite(sorted[i], self)) continue;
@@ -1020,9 +1018,11 @@ void Kernel::groupBucket(std::uint32_t bucket, BucketScratch& scratch, std::uint
       }
       return terms > 2 ? doubleSum : V3{floatSum.x, floatSum.y, floatSum.z};
     };
-    const auto groupWeight = static_cast<float>(angleSum);
+    // The group's weight (its angles' sum) in value order too, so that no face order moves it.
+    double angleSum = 0;
     V3 shared;
-    const bool sharedDefined = contributing > 0 && orthonormalize(sumOver(kNone), n, shared);
+    const bool sharedDefined = contributing > 0 && orthonormalize(sumOver(kNone, angleSum), n, shared);
+    const auto groupWeight = static_cast<float>(angleSum);
     oneFrame = oneFrame && g == 0 && gEnd == memberCount && sharedDefined && !anyOpposite;
     if (contributing > 0 && !anyOpposite && sharedDefined) {
       // The common case: every member gets the shared frame.
@@ -1042,7 +1042,8 @@ void Kernel::groupBucket(std::uint32_t bucket, BucketScratch& scratch, std::uint
         else markUndefined(c, w);
       } else {
         V3 own;
-        if (orthonormalize(sumOver(self), n, own)) writeCorner(c, own, w, FrameSource::computed, groupWeight);
+        double weights;
+        if (orthonormalize(sumOver(self, weights), n, own)) writeCorner(c, own, w, FrameSource::computed, groupWeight);
         else markUndefined(c, w);
       }
     }
