@@ -53,8 +53,7 @@ inline V3 operator*(V3 a, double s) { return {a.x * s, a.y * s, a.z * s}; }
 inline double dot(V3 a, V3 b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
 inline V3 cross(V3 a, V3 b) { return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x}; }
 inline double length(V3 a) { return std::sqrt(dot(a, a)); }
-inline bool operator==(V3 a, V3 b) { return a.x == b.x && a.y == b.y && a.z == b.z; }
-// v == V3{} (every component +0 or -0; NaN is not zero) without branches.
+// Whether every component is +0 or -0 (NaN is not zero), without branches.
 inline bool isZero(V3 v) {
   return ((bitCast<std::uint64_t>(v.x) | bitCast<std::uint64_t>(v.y) | bitCast<std::uint64_t>(v.z)) << 1) == 0;
 }
@@ -468,9 +467,12 @@ void Kernel::pairBucket(std::uint32_t bucket, BucketScratch& scratch) {
       for (std::uint32_t i = 0; i < n; ++i) {
         const __m128i key = _mm_set1_epi32(static_cast<int>(outId[i]));
         std::uint32_t sameOut = 0, sameIn = 0;
+        auto laneMask = [&](__m128i lanesOf) {
+          return static_cast<std::uint32_t>(_mm_movemask_ps(_mm_castsi128_ps(_mm_cmpeq_epi32(key, lanesOf))));
+        };
         for (int v = 0; v < kVectors; ++v) {
-          sameOut |= static_cast<std::uint32_t>(_mm_movemask_ps(_mm_castsi128_ps(_mm_cmpeq_epi32(key, outs[v])))) << (4 * v);
-          sameIn |= static_cast<std::uint32_t>(_mm_movemask_ps(_mm_castsi128_ps(_mm_cmpeq_epi32(key, ins[v])))) << (4 * v);
+          sameOut |= laneMask(outs[v]) << (4 * v);
+          sameIn |= laneMask(ins[v]) << (4 * v);
         }
         sameOut &= lanes, sameIn &= lanes;
         bad |= (sameOut ^ (std::uint32_t(1) << i)) | (sameIn & (sameIn - 1));
@@ -858,7 +860,9 @@ void Kernel::groupBucket(std::uint32_t bucket, BucketScratch& scratch, std::uint
     sortSmall(scratch.keys.data(), scratch.keys.data() + scratch.keys.size());
   }
   const std::size_t memberCount = fan ? count : scratch.keys.size();
-  auto member = [&](std::size_t m) { return fan ? static_cast<std::uint32_t>(m) : static_cast<std::uint32_t>(scratch.keys[m]); };
+  auto member = [&](std::size_t m) {
+    return fan ? static_cast<std::uint32_t>(m) : static_cast<std::uint32_t>(scratch.keys[m]);
+  };
   auto rootOf = [&](std::size_t m) { return static_cast<std::uint32_t>(scratch.keys[m] >> 32); };
 
   // Per contributing member: weighted tangent (3), dP/du projected as the reference projects
@@ -1026,7 +1030,9 @@ void Kernel::groupBucket(std::uint32_t bucket, BucketScratch& scratch, std::uint
     oneFrame = oneFrame && g == 0 && gEnd == memberCount && sharedDefined && !anyOpposite;
     if (contributing > 0 && !anyOpposite && sharedDefined) {
       // The common case: every member gets the shared frame.
-      for (std::size_t m = g; m < gEnd; ++m) writeCorner(list[member(m)], shared, w, FrameSource::computed, groupWeight);
+      for (std::size_t m = g; m < gEnd; ++m) {
+        writeCorner(list[member(m)], shared, w, FrameSource::computed, groupWeight);
+      }
       g = gEnd;
       continue;
     }
