@@ -1023,9 +1023,17 @@ void Kernel::groupBucket(std::uint32_t bucket, BucketScratch& scratch, std::uint
       return terms > 2 ? doubleSum : V3{floatSum.x, floatSum.y, floatSum.z};
     };
     // The group's weight (its angles' sum) in value order too, so that no face order moves it.
+    // sumOver(kNone), written out for the common case: no subgroup test per term.
     double angleSum = 0;
+    V3 all;
+    for (std::size_t i = 0; i < contributing; ++i) {
+      const double* x = values + kStride * sorted[i];
+      all = all + V3{x[0], x[1], x[2]};
+      angleSum += x[9];
+    }
+    if (!(length(all) >= 0.05 * angleSum)) all = sumOver(kNone, angleSum);
     V3 shared;
-    const bool sharedDefined = contributing > 0 && orthonormalize(sumOver(kNone, angleSum), n, shared);
+    const bool sharedDefined = contributing > 0 && orthonormalize(all, n, shared);
     const auto groupWeight = static_cast<float>(angleSum);
     oneFrame = oneFrame && g == 0 && gEnd == memberCount && sharedDefined && !anyOpposite;
     if (contributing > 0 && !anyOpposite && sharedDefined) {
