@@ -49,7 +49,10 @@ echo "== error against run time"
 tail -n 3 "$out/error.txt"
 
 echo "== kernel (Google Benchmark; the library and the peers in one process)"
+# Repetitions in random order across all benchmarks: this host's speed drifts over minutes,
+# and consecutive repetitions would put the library and a peer in different phases of it.
 "$bin/tangent-kernel-bench" --benchmark_filter="$kernel_filter" --benchmark_repetitions=$runs \
+  --benchmark_enable_random_interleaving=$([ $runs -gt 1 ] && echo true || echo false) \
   --benchmark_report_aggregates_only=$([ $runs -gt 1 ] && echo true || echo false) --benchmark_format=json \
   > "$out/kernel.json" 2> "$out/kernel.err" || { cat "$out/kernel.err" >&2; exit 1; }
 cat "$out/kernel.err"
@@ -119,10 +122,12 @@ for b in kernel["benchmarks"]:
     name = b.get("run_name", b["name"]).split("/")[-2]
     if name not in inputs: inputs.append(name)
 triangles = {i: next((int(b["triangles"]) for b in kernel["benchmarks"] if f"/{i}/" in b["name"] and "triangles" in b), 0) for i in inputs}
+# Spheres by size, then assets by name, whatever order the repetitions ran in.
+inputs.sort(key=lambda i: (not i.startswith("sphere-"), triangles[i] if i.startswith("sphere-") else 0, i))
 npm = {r[7]: float(r[8]) if r[8] else float("nan") for r in rows}
 threads = context.get("hardware_threads", "?")
 peers_built = any(b["name"].startswith("mikktspace.c/") for b in kernel["benchmarks"])
-runs_note = "one run each, --quick" if quick else "medians of 3 repetitions"
+runs_note = "one run each, --quick" if quick else "medians of 3 repetitions; the kernel benchmark's in random order"
 
 lines = ["# Benchmarks", "",
          f"Machine: {cpu}, {os.cpu_count()} hardware threads, {platform.system()} {platform.release()}. "
