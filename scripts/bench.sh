@@ -51,9 +51,10 @@ tail -n 3 "$out/error.txt"
 echo "== kernel (Google Benchmark; the library and the peers in one process)"
 # Repetitions in random order across all benchmarks: this host's speed drifts over minutes,
 # and consecutive repetitions would put the library and a peer in different phases of it.
+repeated=$([ $runs -gt 1 ] && echo true || echo false)
 "$bin/tangent-kernel-bench" --benchmark_filter="$kernel_filter" --benchmark_repetitions=$runs \
-  --benchmark_enable_random_interleaving=$([ $runs -gt 1 ] && echo true || echo false) \
-  --benchmark_report_aggregates_only=$([ $runs -gt 1 ] && echo true || echo false) --benchmark_format=json \
+  --benchmark_enable_random_interleaving=$repeated \
+  --benchmark_report_aggregates_only=$repeated --benchmark_format=json \
   > "$out/kernel.json" 2> "$out/kernel.err" || { cat "$out/kernel.err" >&2; exit 1; }
 cat "$out/kernel.err"
 
