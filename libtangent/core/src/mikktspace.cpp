@@ -232,6 +232,125 @@ void evaluateTriangle(const Arrays& a, std::size_t t, float* frame, std::int8_t&
   if (!(flags & kFlat)) flags |= kZeroUv;
 }
 
+#if defined(__SSE2__)
+// evaluateTriangle for the four triangles t .. t + 3 in SSE lanes: the same IEEE float and
+// double operations in the same order (no fused multiply-add in this build), so the same bits.
+// A lane outside the common case (a non-finite value, coincident corners, or a UV area or
+// direction that the float formulas do not resolve) is redone by evaluateTriangle.
+void evaluateFour(const Arrays& a, std::size_t t, float* frames, std::int8_t* orientation, std::uint8_t* flags) {
+  std::uint32_t v[3][4];  // [corner][lane]: the vertices from each triangle's first corner
+  #pragma GCC unroll 4
+  for (int j = 0; j < 4; ++j) {
+    const std::uint32_t* triangle = a.indices + 3 * (t + j);
+    const int first = firstCorner(a, t + j);
+    const std::uint32_t rotated[5] = {triangle[0], triangle[1], triangle[2], triangle[0], triangle[1]};
+    v[0][j] = rotated[first], v[1][j] = rotated[first + 1], v[2][j] = rotated[first + 2];
+  }
+  __m128 P[3][3], U[3], V[3];
+  #pragma GCC unroll 4
+  for (int k = 0; k < 3; ++k) {
+    const std::uint32_t* w = v[k];
+    #pragma GCC unroll 4
+    for (int i = 0; i < 3; ++i) {
+      const float* x = a.positions + i;
+      P[k][i] = _mm_setr_ps(x[3 * w[0]], x[3 * w[1]], x[3 * w[2]], x[3 * w[3]]);
+    }
+    U[k] = _mm_setr_ps(a.uvs[2 * w[0]], a.uvs[2 * w[1]], a.uvs[2 * w[2]], a.uvs[2 * w[3]]);
+    V[k] = _mm_setr_ps(a.uvs[2 * w[0] + 1], a.uvs[2 * w[1] + 1], a.uvs[2 * w[2] + 1], a.uvs[2 * w[3] + 1]);
+  }
+  // Finite: x - x is 0 (NaN otherwise). Coincident: two corners equal in every component.
+  __m128 sum = _mm_setzero_ps();
+  #pragma GCC unroll 4
+  for (int k = 0; k < 3; ++k) {
+    #pragma GCC unroll 4
+    for (int i = 0; i < 3; ++i) sum = _mm_add_ps(sum, _mm_sub_ps(P[k][i], P[k][i]));
+    sum = _mm_add_ps(sum, _mm_add_ps(_mm_sub_ps(U[k], U[k]), _mm_sub_ps(V[k], V[k])));
+  }
+  const __m128 finite = _mm_cmpeq_ps(sum, _mm_setzero_ps());
+  auto same = [&](int k, int l) {
+    return _mm_and_ps(_mm_and_ps(_mm_cmpeq_ps(P[k][0], P[l][0]), _mm_cmpeq_ps(P[k][1], P[l][1])), _mm_cmpeq_ps(P[k][2], P[l][2]));
+  };
+  const __m128 coincident = _mm_or_ps(_mm_or_ps(same(0, 1), same(1, 2)), same(0, 2));
+
+  // Zero 3D area, in double, two lanes at a time (evaluateTriangle's kFlat test).
+  int flat = 0;
+  #pragma GCC unroll 4
+  for (int half = 0; half < 2; ++half) {
+    auto wide = [&](__m128 x) { return _mm_cvtps_pd(half == 0 ? x : _mm_movehl_ps(x, x)); };
+    __m128d e1[3], e2[3];
+    #pragma GCC unroll 4
+    for (int i = 0; i < 3; ++i) {
+      const __m128d p0 = wide(P[0][i]);
+      e1[i] = _mm_sub_pd(wide(P[1][i]), p0);
+      e2[i] = _mm_sub_pd(wide(P[2][i]), p0);
+    }
+    auto mul = [](__m128d x, __m128d y) { return _mm_mul_pd(x, y); };
+    const __m128d cx = _mm_sub_pd(mul(e1[1], e2[2]), mul(e1[2], e2[1]));
+    const __m128d cy = _mm_sub_pd(mul(e1[2], e2[0]), mul(e1[0], e2[2]));
+    const __m128d cz = _mm_sub_pd(mul(e1[0], e2[1]), mul(e1[1], e2[0]));
+    const __m128d area = _mm_add_pd(_mm_add_pd(mul(cx, cx), mul(cy, cy)), mul(cz, cz));
+    const __m128d l1 = _mm_add_pd(_mm_add_pd(mul(e1[0], e1[0]), mul(e1[1], e1[1])), mul(e1[2], e1[2]));
+    const __m128d l2 = _mm_add_pd(_mm_add_pd(mul(e2[0], e2[0]), mul(e2[1], e2[1])), mul(e2[2], e2[2]));
+    constexpr double kAreaZero2 = kAreaZero * kAreaZero;
+    const __m128d bound = mul(mul(_mm_set1_pd(kAreaZero2), l1), l2);
+    flat |= (~_mm_movemask_pd(_mm_cmpgt_pd(area, bound)) & 3) << (2 * half);
+  }
+
+  // The reference, in float (evaluateTriangle's common case).
+  auto mul = [](__m128 x, __m128 y) { return _mm_mul_ps(x, y); };
+  auto sub = [](__m128 x, __m128 y) { return _mm_sub_ps(x, y); };
+  auto add = [](__m128 x, __m128 y) { return _mm_add_ps(x, y); };
+  const __m128 signMask = _mm_set1_ps(-0.0f), tiny = _mm_set1_ps(std::numeric_limits<float>::min());
+  auto notZero = [&](__m128 x) { return _mm_cmpgt_ps(_mm_andnot_ps(signMask, x), tiny); };
+  const __m128 t21x = sub(U[1], U[0]), t21y = sub(V[1], V[0]), t31x = sub(U[2], U[0]), t31y = sub(V[2], V[0]);
+  const __m128 minusT31x = _mm_xor_ps(t31x, signMask);
+  __m128 s[3], tv[3];
+  #pragma GCC unroll 4
+  for (int i = 0; i < 3; ++i) {
+    const __m128 d1 = sub(P[1][i], P[0][i]), d2 = sub(P[2][i], P[0][i]);
+    s[i] = sub(mul(t31y, d1), mul(t21y, d2));
+    tv[i] = add(mul(minusT31x, d1), mul(t21x, d2));
+  }
+  const __m128 signedArea = sub(mul(t21x, t31y), mul(t21y, t31x));
+  const __m128 absArea = _mm_andnot_ps(signMask, signedArea);
+  const __m128 lengthS = _mm_sqrt_ps(add(add(mul(s[0], s[0]), mul(s[1], s[1])), mul(s[2], s[2])));
+  const __m128 lengthT = _mm_sqrt_ps(add(add(mul(tv[0], tv[0]), mul(tv[1], tv[1])), mul(tv[2], tv[2])));
+  const __m128 positive = _mm_cmpgt_ps(signedArea, _mm_setzero_ps());
+  const __m128 sign = _mm_or_ps(_mm_and_ps(positive, _mm_set1_ps(1.0f)), _mm_andnot_ps(positive, _mm_set1_ps(-1.0f)));
+  auto select = [](__m128 mask, __m128 x, __m128 y) { return _mm_or_ps(_mm_and_ps(mask, x), _mm_andnot_ps(mask, y)); };
+  const __m128 scaleS = _mm_div_ps(sign, lengthS), scaleT = _mm_div_ps(sign, lengthT);
+  const __m128 normS = notZero(lengthS), normT = notZero(lengthT);
+  #pragma GCC unroll 4
+  for (int i = 0; i < 3; ++i) {
+    s[i] = select(normS, mul(scaleS, s[i]), s[i]);
+    tv[i] = select(normT, mul(scaleT, tv[i]), tv[i]);
+  }
+  auto isFinite = [&](__m128 x) { return _mm_cmpeq_ps(sub(x, x), _mm_setzero_ps()); };
+  const __m128 usable =
+      _mm_and_ps(_mm_and_ps(notZero(signedArea), _mm_and_ps(notZero(_mm_div_ps(lengthS, absArea)), notZero(_mm_div_ps(lengthT, absArea)))),
+                 _mm_and_ps(isFinite(lengthS), isFinite(lengthT)));
+  const int common = _mm_movemask_ps(_mm_andnot_ps(coincident, _mm_and_ps(finite, usable)));
+  const int positiveLanes = _mm_movemask_ps(positive);
+  alignas(16) float out[6][4];
+  #pragma GCC unroll 4
+  for (int i = 0; i < 3; ++i) {
+    _mm_store_ps(out[i], s[i]);
+    _mm_store_ps(out[3 + i], tv[i]);
+  }
+  #pragma GCC unroll 4
+  for (int j = 0; j < 4; ++j) {
+    if (!(common >> j & 1)) {
+      evaluateTriangle(a, t + j, frames + 6 * j, orientation[j], flags[j]);
+      continue;
+    }
+    #pragma GCC unroll 4
+    for (int i = 0; i < 6; ++i) frames[6 * j + i] = out[i][j];
+    orientation[j] = (positiveLanes >> j & 1) ? 1 : -1;
+    flags[j] = (flat >> j & 1) ? kFlat : 0;
+  }
+}
+#endif
+
 // Strict order of triangles by value (rotation-free): the order non-manifold edges pair in.
 bool triangleBefore(const Arrays& a, std::size_t s, std::size_t t) {
   auto sequence = [&](std::size_t tri) {
@@ -392,10 +511,15 @@ void Kernel::evaluateTriangles(Report& report) {
   Combinable<Counts> counts;
   forRange(ws_, triangleCount, 4096, [&](std::size_t begin, std::size_t end) {
     Counts local;
-    for (std::size_t t = begin; t < end; ++t) {
-      std::uint8_t flags;
-      evaluateTriangle(a_, t, &ws_.triangleFrames[6 * t], ws_.orientation[t], flags);
-      ws_.triangleFlags[t] = flags;
+    std::size_t t = begin;
+#if defined(__SSE2__)
+    for (; t + 4 <= end; t += 4) {
+      evaluateFour(a_, t, &ws_.triangleFrames[6 * t], &ws_.orientation[t], &ws_.triangleFlags[t]);
+    }
+#endif
+    for (; t < end; ++t) evaluateTriangle(a_, t, &ws_.triangleFrames[6 * t], ws_.orientation[t], ws_.triangleFlags[t]);
+    for (t = begin; t < end; ++t) {
+      const std::uint8_t flags = ws_.triangleFlags[t];
       local.flat += (flags & (kFlat | kNonFinite)) == kFlat;
       local.zeroUv += (flags & kZeroUv) != 0;
       local.nonFinite += (flags & kNonFinite) != 0;
