@@ -238,11 +238,31 @@ void evaluateTriangle(const Arrays& a, std::size_t t, float* frame, std::int8_t&
 // A lane outside the common case (a non-finite value, coincident corners, or a UV area or
 // direction that the float formulas do not resolve) is redone by evaluateTriangle.
 void evaluateFour(const Arrays& a, std::size_t t, float* frames, std::int8_t* orientation, std::uint8_t* flags) {
+  // First corners (firstCorner): where a triangle's three x values differ, the smallest, as
+  // canonical bits (+0 for -0) compared unsigned; otherwise firstCorner itself.
+  const std::uint32_t* triangles = a.indices + 3 * t;
+  __m128i x[3];
+  const __m128i bias = _mm_set1_epi32(std::numeric_limits<std::int32_t>::min());
+  #pragma GCC unroll 4
+  for (int k = 0; k < 3; ++k) {
+    const float* p = a.positions;
+    const __m128 value = _mm_setr_ps(p[3 * std::size_t(triangles[k])], p[3 * std::size_t(triangles[3 + k])],
+                                     p[3 * std::size_t(triangles[6 + k])], p[3 * std::size_t(triangles[9 + k])]);
+    x[k] = _mm_xor_si128(_mm_castps_si128(_mm_andnot_ps(_mm_cmpeq_ps(value, _mm_setzero_ps()), value)), bias);
+  }
+  const __m128i equalX = _mm_or_si128(_mm_or_si128(_mm_cmpeq_epi32(x[0], x[1]), _mm_cmpeq_epi32(x[1], x[2])), _mm_cmpeq_epi32(x[0], x[2]));
+  const __m128i lower = _mm_cmplt_epi32(x[1], x[0]);  // corner 1 before corner 0
+  const __m128i least = _mm_or_si128(_mm_and_si128(lower, x[1]), _mm_andnot_si128(lower, x[0]));
+  const __m128i two = _mm_cmplt_epi32(x[2], least);
+  alignas(16) std::int32_t firsts[4];
+  _mm_store_si128(reinterpret_cast<__m128i*>(firsts),
+                  _mm_or_si128(_mm_and_si128(two, _mm_set1_epi32(2)), _mm_andnot_si128(two, _mm_and_si128(lower, _mm_set1_epi32(1)))));
+  const int ties = _mm_movemask_ps(_mm_castsi128_ps(equalX));
   std::uint32_t v[3][4];  // [corner][lane]: the vertices from each triangle's first corner
   #pragma GCC unroll 4
   for (int j = 0; j < 4; ++j) {
-    const std::uint32_t* triangle = a.indices + 3 * (t + j);
-    const int first = firstCorner(a, t + j);
+    const std::uint32_t* triangle = triangles + 3 * j;
+    const int first = (ties >> j & 1) ? firstCorner(a, t + j) : firsts[j];
     const std::uint32_t rotated[5] = {triangle[0], triangle[1], triangle[2], triangle[0], triangle[1]};
     v[0][j] = rotated[first], v[1][j] = rotated[first + 1], v[2][j] = rotated[first + 2];
   }
@@ -519,6 +539,14 @@ void Kernel::evaluateTriangles(Report& report) {
 #endif
     for (; t < end; ++t) evaluateTriangle(a_, t, &ws_.triangleFrames[6 * t], ws_.orientation[t], ws_.triangleFlags[t]);
     for (t = begin; t < end; ++t) {
+      if (t + 8 <= end) {  // most triangles have no flags: eight at a time where all are 0
+        std::uint64_t eight;
+        std::memcpy(&eight, &ws_.triangleFlags[t], sizeof eight);
+        if (eight == 0) {
+          t += 7;
+          continue;
+        }
+      }
       const std::uint8_t flags = ws_.triangleFlags[t];
       local.flat += (flags & (kFlat | kNonFinite)) == kFlat;
       local.zeroUv += (flags & kZeroUv) != 0;
