@@ -241,19 +241,19 @@ void evaluateFour(const Arrays& a, std::size_t t, float* frames, std::int8_t* or
   // First corners (firstCorner): where a triangle's three x values differ, the smallest, as
   // canonical bits (+0 for -0) compared unsigned; otherwise firstCorner itself.
   const std::uint32_t* triangles = a.indices + 3 * t;
-  __m128i x[3];
+  __m128i xBits[3];
   const __m128i bias = _mm_set1_epi32(std::numeric_limits<std::int32_t>::min());
   #pragma GCC unroll 4
   for (int k = 0; k < 3; ++k) {
     const float* p = a.positions;
     const __m128 value = _mm_setr_ps(p[3 * std::size_t(triangles[k])], p[3 * std::size_t(triangles[3 + k])],
                                      p[3 * std::size_t(triangles[6 + k])], p[3 * std::size_t(triangles[9 + k])]);
-    x[k] = _mm_xor_si128(_mm_castps_si128(_mm_andnot_ps(_mm_cmpeq_ps(value, _mm_setzero_ps()), value)), bias);
+    xBits[k] = _mm_xor_si128(_mm_castps_si128(_mm_andnot_ps(_mm_cmpeq_ps(value, _mm_setzero_ps()), value)), bias);
   }
-  const __m128i equalX = _mm_or_si128(_mm_or_si128(_mm_cmpeq_epi32(x[0], x[1]), _mm_cmpeq_epi32(x[1], x[2])), _mm_cmpeq_epi32(x[0], x[2]));
-  const __m128i lower = _mm_cmplt_epi32(x[1], x[0]);  // corner 1 before corner 0
-  const __m128i least = _mm_or_si128(_mm_and_si128(lower, x[1]), _mm_andnot_si128(lower, x[0]));
-  const __m128i two = _mm_cmplt_epi32(x[2], least);
+  const __m128i equalX = _mm_or_si128(_mm_or_si128(_mm_cmpeq_epi32(xBits[0], xBits[1]), _mm_cmpeq_epi32(xBits[1], xBits[2])), _mm_cmpeq_epi32(xBits[0], xBits[2]));
+  const __m128i lower = _mm_cmplt_epi32(xBits[1], xBits[0]);  // corner 1 before corner 0
+  const __m128i least = _mm_or_si128(_mm_and_si128(lower, xBits[1]), _mm_andnot_si128(lower, xBits[0]));
+  const __m128i two = _mm_cmplt_epi32(xBits[2], least);
   alignas(16) std::int32_t firsts[4];
   _mm_store_si128(reinterpret_cast<__m128i*>(firsts),
                   _mm_or_si128(_mm_and_si128(two, _mm_set1_epi32(2)), _mm_andnot_si128(two, _mm_and_si128(lower, _mm_set1_epi32(1)))));
