@@ -116,13 +116,22 @@ Report computeTangents(CornerMesh& cornerMesh, const Options& options, TangentWo
     return v;
   };
   // 1. Each corner: its own array vertex (kNone) or that of its mesh vertex's representative
-  // (the corner of the face of the vertex's stored halfedge), vertex by vertex, so that the
-  // representative's values are read once. Equal bits imply the same NaN-free state.
+  // (the corner of the face of the vertex's stored halfedge). First each vertex's
+  // representative and its values, where they hold no NaN; then the corners in halfedge
+  // order, which reads the mesh's per-halfedge normals and UVs front to back (in corner or
+  // vertex order those reads land anywhere in arrays of tens of megabytes). Equal bits imply
+  // the same NaN-free state.
   inArena([&](std::size_t begin, std::size_t end) { std::fill(indices + begin, indices + end, detail::kNone); });
   const std::size_t meshVertices = mesh.n_vertices();
+  detail::ensureSize(ws.meshRepresentative, meshVertices);
+  detail::ensureSize(ws.meshRepresentativeValues, meshVertices);
+  std::uint32_t* representative = ws.meshRepresentative.data();
+  detail::RepresentativeValues* representativeValues = ws.meshRepresentativeValues.data();
+  static_assert(sizeof(detail::RepresentativeValues) == sizeof(CornerValues));
   detail::onThreads(ws, [&] {
     detail::forRange(ws, meshVertices, 1 << 12, [&](std::size_t begin, std::size_t end) {
       for (std::size_t v = begin; v < end; ++v) {
+        representative[v] = detail::kNone;
         const TriMesh::VertexHandle vertex(static_cast<int>(v));
         const auto out = mesh.halfedge_handle(vertex);
         if (!out.is_valid()) continue;
@@ -131,10 +140,32 @@ Report computeTangents(CornerMesh& cornerMesh, const Options& options, TangentWo
         if (r == CornerMesh::kNoCorner) continue;
         const CornerValues shared = values(r);
         if (!shared.shareable()) continue;
-        for (const auto halfedge : mesh.vih_range(vertex)) {
-          const std::uint32_t c = cornerMesh.halfedgeCorner[static_cast<std::size_t>(halfedge.idx())];
-          if (c != CornerMesh::kNoCorner && c != r && values(c) == shared) indices[c] = r;
+        representative[v] = r;
+        std::memcpy(&representativeValues[v], &shared, sizeof shared);
+      }
+    });
+  });
+  const std::size_t halfedgeCount = std::min<std::size_t>(mesh.n_halfedges(), cornerMesh.halfedgeCorner.size());
+  detail::onThreads(ws, [&] {
+    detail::forRange(ws, halfedgeCount, 1 << 14, [&](std::size_t begin, std::size_t end) {
+      for (std::size_t h = begin; h < end; ++h) {
+        const std::uint32_t c = cornerMesh.halfedgeCorner[h];
+        if (c == CornerMesh::kNoCorner) continue;
+        const TriMesh::HalfedgeHandle halfedge(static_cast<int>(h));
+        const auto vertex = mesh.to_vertex_handle(halfedge);
+        const std::uint32_t r = representative[static_cast<std::size_t>(vertex.idx())];
+        if (r == detail::kNone || r == c) continue;
+        const auto& p = mesh.point(vertex);
+        const auto& n = mesh.normal(halfedge);
+        const auto& uv = mesh.texcoord2D(halfedge);
+        CornerValues own;
+        for (int i = 0; i < 3; ++i) {
+          own.position[i] = static_cast<float>(p[i]);
+          own.normal[i] = static_cast<float>(n[i]);
         }
+        own.uv[0] = static_cast<float>(uv[0]);
+        own.uv[1] = static_cast<float>(uv[1]);
+        if (std::memcmp(&own, &representativeValues[static_cast<std::size_t>(vertex.idx())], sizeof own) == 0) indices[c] = r;
       }
     });
   });
@@ -178,11 +209,16 @@ Report computeTangents(CornerMesh& cornerMesh, const Options& options, TangentWo
   report.nonManifoldFaces = std::max(report.nonManifoldFaces, cornerMesh.nonManifoldFaces);
   report.splitVertices = 0;  // corners of the half-edge mesh are its vertices here
   report.outputVertices = cornerCount;
-  inArena([&](std::size_t begin, std::size_t end) {
-    for (std::size_t c = begin; c < end; ++c) {
-      const float* t = &tangents[4 * c];
-      cornerMesh.mesh.property(cornerMesh.tangent, cornerMesh.cornerHalfedge[c]) = TangentVec(t[0], t[1], t[2], t[3]);
-    }
+  // Frames back into the mesh in halfedge order: its tangent array written front to back.
+  detail::onThreads(ws, [&] {
+    detail::forRange(ws, halfedgeCount, 1 << 14, [&](std::size_t begin, std::size_t end) {
+      for (std::size_t h = begin; h < end; ++h) {
+        const std::uint32_t c = cornerMesh.halfedgeCorner[h];
+        if (c == CornerMesh::kNoCorner) continue;
+        const float* t = &tangents[4 * std::size_t(c)];
+        cornerMesh.mesh.property(cornerMesh.tangent, TriMesh::HalfedgeHandle(static_cast<int>(h))) = TangentVec(t[0], t[1], t[2], t[3]);
+      }
+    });
   });
   return report;
 }

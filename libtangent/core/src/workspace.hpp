@@ -108,6 +108,11 @@ struct BucketScratch {
   ScratchVector<double> values;
 };
 
+// A corner's position, normal and UV as the OpenMesh call compares them (float bits).
+struct RepresentativeValues {
+  float values[8];
+};
+
 struct WorkspaceData {
   unsigned threads = 1;
   std::size_t vertexCount = 0, cornerCount = 0;
@@ -140,6 +145,9 @@ struct WorkspaceData {
   // The OpenMesh call's corners as arrays (corner_tangents.cpp).
   BulkVector<float> meshPositions, meshNormals, meshUvs, meshTangents;
   BulkVector<std::uint32_t> meshIndices;
+  // The OpenMesh call: each mesh vertex's representative corner (kNone: none) and its values.
+  BulkVector<std::uint32_t> meshRepresentative;
+  BulkVector<RepresentativeValues> meshRepresentativeValues;
 
   std::size_t bytes() const;
 };
