@@ -137,7 +137,7 @@ Report computeTangents(CornerMesh& cornerMesh, const Options& options, TangentWo
         if (!out.is_valid()) continue;
         const auto in = mesh.is_boundary(out) ? mesh.opposite_halfedge_handle(out) : mesh.prev_halfedge_handle(out);
         const std::uint32_t r = cornerMesh.halfedgeCorner[static_cast<std::size_t>(in.idx())];
-        if (r == CornerMesh::kNoCorner) continue;
+        if (r >= cornerCount) continue;  // kNoCorner
         const CornerValues shared = values(r);
         if (!shared.shareable()) continue;
         representative[v] = r;
@@ -150,7 +150,7 @@ Report computeTangents(CornerMesh& cornerMesh, const Options& options, TangentWo
     detail::forRange(ws, halfedgeCount, 1 << 14, [&](std::size_t begin, std::size_t end) {
       for (std::size_t h = begin; h < end; ++h) {
         const std::uint32_t c = cornerMesh.halfedgeCorner[h];
-        if (c == CornerMesh::kNoCorner) continue;
+        if (c >= cornerCount) continue;  // kNoCorner (a boundary halfedge)
         const TriMesh::HalfedgeHandle halfedge(static_cast<int>(h));
         const auto vertex = mesh.to_vertex_handle(halfedge);
         const std::uint32_t r = representative[static_cast<std::size_t>(vertex.idx())];
@@ -214,7 +214,7 @@ Report computeTangents(CornerMesh& cornerMesh, const Options& options, TangentWo
     detail::forRange(ws, halfedgeCount, 1 << 14, [&](std::size_t begin, std::size_t end) {
       for (std::size_t h = begin; h < end; ++h) {
         const std::uint32_t c = cornerMesh.halfedgeCorner[h];
-        if (c == CornerMesh::kNoCorner) continue;
+        if (c >= cornerCount) continue;  // kNoCorner
         const float* t = &tangents[4 * std::size_t(c)];
         cornerMesh.mesh.property(cornerMesh.tangent, TriMesh::HalfedgeHandle(static_cast<int>(h))) = TangentVec(t[0], t[1], t[2], t[3]);
       }
