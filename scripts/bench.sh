@@ -35,9 +35,11 @@ out=$build/bench
 mkdir -p "$out"
 # Sphere sizes: "segments kernel-input triangles", the same UV sphere parameters everywhere.
 if [ $quick = 1 ]; then
-  sizes=("224 1e5 100000"); runs=1; max=10000; kernel_filter='/sphere-1e5/'
+  sizes=("224 1e5 100000"); runs=1; kernel_reps=1; max=10000; kernel_filter='/sphere-1e5/'
 else
-  sizes=("224 1e5 100000" "707 1e6 1000000" "1414 4e6 4000000"); runs=3; max=1000000; kernel_filter='.'
+  # The kernel benchmark's ratios are what the issues judge, on a host whose speed drifts:
+  # 5 repetitions of it, 3 of the rest.
+  sizes=("224 1e5 100000" "707 1e6 1000000" "1414 4e6 4000000"); runs=3; kernel_reps=5; max=1000000; kernel_filter='.'
 fi
 if ! "$bin/tangent-kernel-bench" --benchmark_list_tests 2>/dev/null | grep -q '^mikktspace\.c/'; then
   echo "NOTE: peers left out: ../shared/peers (reference MikkTSpace C, meshoptimizer) was not found when $build was configured;"
@@ -51,8 +53,8 @@ tail -n 3 "$out/error.txt"
 echo "== kernel (Google Benchmark; the library and the peers in one process)"
 # Repetitions in random order across all benchmarks: this host's speed drifts over minutes,
 # and consecutive repetitions would put the library and a peer in different phases of it.
-repeated=$([ $runs -gt 1 ] && echo true || echo false)
-"$bin/tangent-kernel-bench" --benchmark_filter="$kernel_filter" --benchmark_repetitions=$runs \
+repeated=$([ $kernel_reps -gt 1 ] && echo true || echo false)
+"$bin/tangent-kernel-bench" --benchmark_filter="$kernel_filter" --benchmark_repetitions=$kernel_reps \
   --benchmark_enable_random_interleaving=$repeated \
   --benchmark_report_aggregates_only=$repeated --benchmark_format=json \
   > "$out/kernel.json" 2> "$out/kernel.err" || { cat "$out/kernel.err" >&2; exit 1; }
@@ -98,7 +100,7 @@ done
 export TANGENT_WASM_ASSETS="$(printf '%s\n' "${wasm_assets[@]}")"
 
 # The report.
-python3 - "$out" $quick "${rows[@]}" <<'PY'
+KERNEL_REPS=$kernel_reps python3 - "$out" $quick "${rows[@]}" <<'PY'
 import json, math, sys, platform, os
 out, quick, rows = sys.argv[1], sys.argv[2] == "1", [r.split() for r in sys.argv[3:]]
 kernel = json.load(open(os.path.join(out, "kernel.json")))
@@ -128,7 +130,8 @@ inputs.sort(key=lambda i: (not i.startswith("sphere-"), triangles[i] if i.starts
 npm = {r[7]: float(r[8]) if r[8] else float("nan") for r in rows}
 threads = context.get("hardware_threads", "?")
 peers_built = any(b["name"].startswith("mikktspace.c/") for b in kernel["benchmarks"])
-runs_note = "one run each, --quick" if quick else "medians of 3 repetitions; the kernel benchmark's in random order"
+runs_note = ("one run each, --quick" if quick else
+             f"medians of 3 repetitions; the kernel benchmark's: {os.environ.get('KERNEL_REPS', '3')}, in random order")
 
 lines = ["# Benchmarks", "",
          f"Machine: {cpu}, {os.cpu_count()} hardware threads, {platform.system()} {platform.release()}. "
