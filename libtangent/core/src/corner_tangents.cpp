@@ -101,8 +101,7 @@ Report computeTangents(CornerMesh& cornerMesh, const Options& options, TangentWo
     }
     bool operator==(const CornerValues& o) const { return std::memcmp(this, &o, sizeof o) == 0; }
   };
-  auto values = [&](std::size_t c) {
-    const auto halfedge = cornerMesh.cornerHalfedge[c];
+  auto valuesAt = [&](TriMesh::HalfedgeHandle halfedge) {
     const auto& p = mesh.point(mesh.to_vertex_handle(halfedge));
     const auto& n = mesh.normal(halfedge);
     const auto& uv = mesh.texcoord2D(halfedge);
@@ -115,6 +114,7 @@ Report computeTangents(CornerMesh& cornerMesh, const Options& options, TangentWo
     v.uv[1] = static_cast<float>(uv[1]);
     return v;
   };
+  auto values = [&](std::size_t c) { return valuesAt(cornerMesh.cornerHalfedge[c]); };
   // 1. Each corner: its own array vertex (kNone) or that of its mesh vertex's representative
   // (the corner of the face of the vertex's stored halfedge). First each vertex's
   // representative and its values, where they hold no NaN; then the corners in halfedge
@@ -152,20 +152,11 @@ Report computeTangents(CornerMesh& cornerMesh, const Options& options, TangentWo
         const std::uint32_t c = cornerMesh.halfedgeCorner[h];
         if (c >= cornerCount) continue;  // kNoCorner (a boundary halfedge)
         const TriMesh::HalfedgeHandle halfedge(static_cast<int>(h));
-        const auto vertex = mesh.to_vertex_handle(halfedge);
-        const std::uint32_t r = representative[static_cast<std::size_t>(vertex.idx())];
+        const auto v = static_cast<std::size_t>(mesh.to_vertex_handle(halfedge).idx());
+        const std::uint32_t r = representative[v];
         if (r == detail::kNone || r == c) continue;
-        const auto& p = mesh.point(vertex);
-        const auto& n = mesh.normal(halfedge);
-        const auto& uv = mesh.texcoord2D(halfedge);
-        CornerValues own;
-        for (int i = 0; i < 3; ++i) {
-          own.position[i] = static_cast<float>(p[i]);
-          own.normal[i] = static_cast<float>(n[i]);
-        }
-        own.uv[0] = static_cast<float>(uv[0]);
-        own.uv[1] = static_cast<float>(uv[1]);
-        if (std::memcmp(&own, &representativeValues[static_cast<std::size_t>(vertex.idx())], sizeof own) == 0) indices[c] = r;
+        const CornerValues own = valuesAt(halfedge);
+        if (std::memcmp(&own, &representativeValues[v], sizeof own) == 0) indices[c] = r;
       }
     });
   });
