@@ -92,15 +92,7 @@ Report computeTangents(CornerMesh& cornerMesh, const Options& options, TangentWo
   std::uint32_t* indices = ws.meshIndices.data();
   ws.threads = threadCount(options);
   auto inArena = [&](const auto& body) { detail::onThreads(ws, [&] { detail::forRange(ws, cornerCount, 1 << 14, body); }); };
-  struct CornerValues {
-    float position[3], normal[3], uv[2];
-    bool shareable() const {  // no NaN: the weld never joins a NaN vertex with another
-      for (float x : position) if (x != x) return false;
-      for (float x : normal) if (x != x) return false;
-      return uv[0] == uv[0] && uv[1] == uv[1];
-    }
-    bool operator==(const CornerValues& o) const { return std::memcmp(this, &o, sizeof o) == 0; }
-  };
+  using detail::CornerValues;
   auto valuesAt = [&](TriMesh::HalfedgeHandle halfedge) {
     const auto& p = mesh.point(mesh.to_vertex_handle(halfedge));
     const auto& n = mesh.normal(halfedge);
@@ -126,8 +118,7 @@ Report computeTangents(CornerMesh& cornerMesh, const Options& options, TangentWo
   detail::ensureSize(ws.meshRepresentative, meshVertices);
   detail::ensureSize(ws.meshRepresentativeValues, meshVertices);
   std::uint32_t* representative = ws.meshRepresentative.data();
-  detail::RepresentativeValues* representativeValues = ws.meshRepresentativeValues.data();
-  static_assert(sizeof(detail::RepresentativeValues) == sizeof(CornerValues));
+  CornerValues* representativeValues = ws.meshRepresentativeValues.data();
   detail::onThreads(ws, [&] {
     detail::forRange(ws, meshVertices, 1 << 12, [&](std::size_t begin, std::size_t end) {
       for (std::size_t v = begin; v < end; ++v) {
@@ -141,7 +132,7 @@ Report computeTangents(CornerMesh& cornerMesh, const Options& options, TangentWo
         const CornerValues shared = values(r);
         if (!shared.shareable()) continue;
         representative[v] = r;
-        std::memcpy(&representativeValues[v], &shared, sizeof shared);
+        representativeValues[v] = shared;
       }
     });
   });
@@ -156,7 +147,7 @@ Report computeTangents(CornerMesh& cornerMesh, const Options& options, TangentWo
         const std::uint32_t r = representative[v];
         if (r == detail::kNone || r == c) continue;
         const CornerValues own = valuesAt(halfedge);
-        if (std::memcmp(&own, &representativeValues[v], sizeof own) == 0) indices[c] = r;
+        if (own == representativeValues[v]) indices[c] = r;
       }
     });
   });

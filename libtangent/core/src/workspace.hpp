@@ -109,8 +109,14 @@ struct BucketScratch {
 };
 
 // A corner's position, normal and UV as the OpenMesh call compares them (float bits).
-struct RepresentativeValues {
-  float values[8];
+struct CornerValues {
+  float position[3], normal[3], uv[2];
+  bool shareable() const {  // no NaN: the weld never joins a NaN vertex with another
+    for (float x : position) if (x != x) return false;
+    for (float x : normal) if (x != x) return false;
+    return uv[0] == uv[0] && uv[1] == uv[1];
+  }
+  bool operator==(const CornerValues& o) const { return std::memcmp(this, &o, sizeof o) == 0; }
 };
 
 struct WorkspaceData {
@@ -147,7 +153,7 @@ struct WorkspaceData {
   BulkVector<std::uint32_t> meshIndices;
   // The OpenMesh call: each mesh vertex's representative corner (kNone: none) and its values.
   BulkVector<std::uint32_t> meshRepresentative;
-  BulkVector<RepresentativeValues> meshRepresentativeValues;
+  BulkVector<CornerValues> meshRepresentativeValues;
 
   std::size_t bytes() const;
 };
