@@ -183,11 +183,12 @@ if "sphere-1e5" in inputs and "sphere-4e6" in inputs:
         field = "real_time" if "wall" in label else "cpu_time"
         t0, t1 = ms(f"{run}/sphere-1e5", field), ms(f"{run}/sphere-4e6", field)
         f0, f1 = fastest(f"{run}/sphere-1e5", field), fastest(f"{run}/sphere-4e6", field)
+        growth = lambda a, b: (b / n1) / (a / n0)  # time per triangle at 4e6 over that at 1e5
+        slope = lambda a, b: math.log(growth(a, b)) / math.log(n1 / n0)
         if t0 == t0 and t1 == t1:
-            slope = math.log((t1 / n1) / (t0 / n0)) / math.log(n1 / n0)
-            line = f"- {label}: {slope:+.3f} (time per triangle x{(t1 / n1) / (t0 / n0):.2f} from 1e5 to 4e6)"
+            line = f"- {label}: {slope(t0, t1):+.3f} (time per triangle x{growth(t0, t1):.2f} from 1e5 to 4e6)"
             if f0 == f0 and f1 == f1:
-                line += f"; fastest repetitions: {math.log((f1 / n1) / (f0 / n0)) / math.log(n1 / n0):+.3f}"
+                line += f"; fastest repetitions: {slope(f0, f1):+.3f}"
             slopes.append(line)
 lines += ["", "Log-log slope of time per triangle against triangles, sphere-1e5 to sphere-4e6 (0: time linear in size), "
           "from the medians; beside it the same from each size's fastest repetition, which shows how much of the "
