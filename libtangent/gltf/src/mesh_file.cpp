@@ -42,8 +42,13 @@ class CheckedImporter : public OpenMesh::IO::ImporterT<ImportMesh> {
   using Base = OpenMesh::IO::ImporterT<ImportMesh>;
 
  public:
-  CheckedImporter(ImportMesh& mesh, std::string label, std::uintmax_t fileBytes)
-      : Base(mesh), mesh_(mesh), label_(std::move(label)), limit_(fileBytes / 3 + 16) {}
+  // uvSet: which vertices' and halfedges' UVs the file gave (by index). OpenMesh reports
+  // texture coordinates when the file has any "vt" line, also where no face refers to them,
+  // and leaves the UVs it never set uninitialized.
+  CheckedImporter(ImportMesh& mesh, std::string label, std::uintmax_t fileBytes, std::vector<char>& vertexUvSet,
+                  std::vector<char>& halfedgeUvSet)
+      : Base(mesh), mesh_(mesh), label_(std::move(label)), limit_(fileBytes / 3 + 16), vertexUvSet_(vertexUvSet),
+        halfedgeUvSet_(halfedgeUvSet) {}
 
   OpenMesh::VertexHandle add_vertex(const OpenMesh::Vec3f& point) override {
     countVertex();
@@ -76,10 +81,15 @@ class CheckedImporter : public OpenMesh::IO::ImporterT<ImportMesh> {
   void set_point(OpenMesh::VertexHandle v, const OpenMesh::Vec3f& p) override { vertex(v, "position"), Base::set_point(v, p); }
   void set_normal(OpenMesh::VertexHandle v, const OpenMesh::Vec3f& n) override { vertex(v, "normal"), Base::set_normal(v, n); }
   void set_normal(OpenMesh::VertexHandle v, const OpenMesh::Vec3d& n) override { vertex(v, "normal"), Base::set_normal(v, n); }
-  void set_texcoord(OpenMesh::VertexHandle v, const OpenMesh::Vec2f& t) override { vertex(v, "UV"), Base::set_texcoord(v, t); }
+  void set_texcoord(OpenMesh::VertexHandle v, const OpenMesh::Vec2f& t) override {
+    vertex(v, "UV"), Base::set_texcoord(v, t);
+    mark(vertexUvSet_, static_cast<std::size_t>(v.idx()));
+  }
   void set_texcoord(OpenMesh::VertexHandle v, const OpenMesh::Vec3f& t) override { vertex(v, "UV"), Base::set_texcoord(v, t); }
   void set_texcoord(OpenMesh::HalfedgeHandle h, const OpenMesh::Vec2f& t) override {
-    if (h.is_valid() && static_cast<std::size_t>(h.idx()) < mesh_.n_halfedges()) Base::set_texcoord(h, t);
+    if (!h.is_valid() || static_cast<std::size_t>(h.idx()) >= mesh_.n_halfedges()) return;
+    Base::set_texcoord(h, t);
+    mark(halfedgeUvSet_, static_cast<std::size_t>(h.idx()));
   }
   void set_texcoord(OpenMesh::HalfedgeHandle h, const OpenMesh::Vec3f& t) override {
     if (h.is_valid() && static_cast<std::size_t>(h.idx()) < mesh_.n_halfedges()) Base::set_texcoord(h, t);
@@ -110,6 +120,10 @@ class CheckedImporter : public OpenMesh::IO::ImporterT<ImportMesh> {
       throw InputError(label_ + ": " + what + " given for vertex " + std::to_string(v.idx() + 1) + " (1-based), but the file has " +
                        std::to_string(mesh_.n_vertices()) + " vertices there");
   }
+  static void mark(std::vector<char>& set, std::size_t i) {
+    if (set.size() <= i) set.resize(i + 1, 0);
+    set[i] = 1;
+  }
   void countVertex() {
     if (++vertices_ > limit_) throw InputError(label_ + ": more vertices than the file's size allows; the file is malformed");
   }
@@ -118,6 +132,8 @@ class CheckedImporter : public OpenMesh::IO::ImporterT<ImportMesh> {
   std::string label_;
   std::uintmax_t limit_;
   std::uintmax_t vertices_ = 0, faces_ = 0;
+  std::vector<char>& vertexUvSet_;
+  std::vector<char>& halfedgeUvSet_;
 };
 
 std::vector<std::string> words(const std::string& line) {
@@ -342,17 +358,19 @@ std::vector<std::uint8_t> meshFileToGlb(const std::filesystem::path& path) {
     if (extension == ".off") checkOffHeader(header, fileBytes, path.string());
     if (extension == ".obj") checkObj(header, path.string());
   }
+  std::vector<char> vertexUvSet, halfedgeUvSet;
   {
     MutedOpenMeshErrors muted;
-    CheckedImporter importer(mesh, path.string(), fileBytes);
+    CheckedImporter importer(mesh, path.string(), fileBytes, vertexUvSet, halfedgeUvSet);
     if (!OpenMesh::IO::IOManager().read(path.string(), importer, options))
       throw InputError(path.string() + ": OpenMesh cannot read this file (malformed, or not " +
                        path.extension().string() + " at all)");
   }
   if (mesh.n_faces() == 0) throw InputError(path.string() + ": has no faces");
   const bool haveNormals = options.check(OpenMesh::IO::Options::VertexNormal);
-  const bool cornerUvs = options.check(OpenMesh::IO::Options::FaceTexCoord);
-  const bool vertexUvs = options.check(OpenMesh::IO::Options::VertexTexCoord);
+  auto isSet = [](const std::vector<char>& set, int i) { return static_cast<std::size_t>(i) < set.size() && set[i]; };
+  const bool cornerUvs = options.check(OpenMesh::IO::Options::FaceTexCoord) && !halfedgeUvSet.empty();
+  const bool vertexUvs = options.check(OpenMesh::IO::Options::VertexTexCoord) && !vertexUvSet.empty();
   if (!cornerUvs && !vertexUvs) throw InputError(path.string() + ": has no texture coordinates; tangents need UVs");
   if (!haveNormals) {
     mesh.update_face_normals();
@@ -368,7 +386,12 @@ std::vector<std::uint8_t> meshFileToGlb(const std::filesystem::path& path) {
     polygon.clear();
     for (auto halfedge : mesh.fh_range(face)) {
       const auto vertex = mesh.to_vertex_handle(halfedge);
-      const auto uv = cornerUvs ? mesh.texcoord2D(halfedge) : mesh.texcoord2D(vertex);
+      // A corner's own UV where the file gave one, else its vertex's.
+      const bool own = cornerUvs && isSet(halfedgeUvSet, halfedge.idx());
+      if (!own && !(vertexUvs && isSet(vertexUvSet, vertex.idx())))
+        throw InputError(path.string() + ": face " + std::to_string(face.idx() + 1) + " (1-based) has no texture coordinate at its vertex " +
+                         std::to_string(vertex.idx() + 1) + "; tangents need UVs on every face");
+      const auto uv = own ? mesh.texcoord2D(halfedge) : mesh.texcoord2D(vertex);
       const float u = uv[0], v = 1.0f - uv[1];
       auto key = std::make_tuple(vertex.idx(), std::bit_cast<std::uint32_t>(u), std::bit_cast<std::uint32_t>(v));
       auto [it, inserted] = vertexOf.try_emplace(key, static_cast<std::uint32_t>(positions.size() / 3));
