@@ -131,6 +131,171 @@ inline F3 referenceProjected(F3 v, F3 n) {
   return p;
 }
 
+// The group pass's common case, prepared in corner order by the triangle pass: each corner's
+// angle-weighted term, parked in its own output slot until the group pass replaces it with
+// the frame. Float arithmetic, four triangles at a time where SSE2 is there; the scalar
+// function does the same operations in the same order, so either gives the same bits.
+//
+// Slot of corner c: {S.x * angle, S.y * angle, S.z * angle, angle}, S the reference's
+// projection of the triangle's dP/du on the corner's raw normal N, angle the corner's angle
+// between its edges e1, e2 projected on the plane of N: atan2(|N.A| |N|, |N|^2 (e1.e2) -
+// (N.e1)(N.e2)), A = e1 x e2 (from the corner's own edges, so that a rotation of the
+// triangle's corners moves no bit). The low kConeBits of the angle's bits say on which side of +-kConeMargin each component of S
+// and of the projected dP/dv (as a direction) lies; 0 where the corner is not the common
+// case (then its bucket takes the full path).
+constexpr std::uint32_t kConeBits = 0xFFF;
+constexpr float kConeMargin = 1.0f / 64, kConeMargin2 = kConeMargin * kConeMargin;
+constexpr float kQuarterPiF = 0.785398163f, kHalfPiF = 1.57079633f, kPiF = 3.14159265f;
+constexpr float kSmallestAngle = 0.1f;           // below (or within this of pi) the full path's rules apply
+constexpr float kSmallestProduct = 1e-30f;       // below, float products lose digits
+constexpr float kSmallestNormal2 = 1e-20f;       // |N|^2 below: the full path
+
+// atan2(y, x) for y >= 0 in float: the double angleBetween's reduction and series.
+inline float angleBetweenFloat(float y, float x) {
+  const float ax = std::abs(x);
+  const bool steep = y > ax;
+  const float num = steep ? ax : y, den = steep ? y : ax;
+  const bool shift = num > 0.414213562f * den;
+  const float t = (shift ? num - den : num) / (shift ? num + den : den);
+  const float t2 = t * t, t4 = t2 * t2, t8 = t4 * t4;
+  const float p01 = 1.0f - t2 * (1.0f / 3), p23 = 1.0f / 5 - t2 * (1.0f / 7), p45 = 1.0f / 9 - t2 * (1.0f / 11),
+              p67 = 1.0f / 13 - t2 * (1.0f / 15);
+  float r = t * ((p01 + t4 * p23) + t8 * (p45 + t4 * p67));
+  r = r + (shift ? kQuarterPiF : 0.0f);
+  if (steep) r = kHalfPiF - r;
+  return x < 0 ? kPiF - r : r;
+}
+
+// Which side of +-kConeMargin each component of v / |v| lies on (two bits per component),
+// without the division: v.i^2 against kConeMargin^2 |v|^2.
+inline std::uint32_t coneBits(F3 v) {
+  const float bound = kConeMargin2 * fdot(v, v);
+  auto side = [&](float x) { return x * x > bound ? (x > 0 ? 1u : 2u) : 0u; };
+  return side(v.x) | side(v.y) << 2 | side(v.z) << 4;
+}
+
+// The parked terms of triangle t's three corners (frame: its dP/du, dP/dv; flags: its bits).
+void cornerTermsOne(const Arrays& a, std::size_t t, const float* frame, std::uint8_t flags, float* tangents) {
+  const std::uint32_t* triangle = a.indices + 3 * t;
+  auto at = [&](const float* p, std::uint32_t v) { return F3{p[3 * std::size_t(v)], p[3 * std::size_t(v) + 1], p[3 * std::size_t(v) + 2]}; };
+  const F3 p[3] = {at(a.positions, triangle[0]), at(a.positions, triangle[1]), at(a.positions, triangle[2])};
+  const F3 e01 = fsub(p[1], p[0]), e02 = fsub(p[2], p[0]), e12 = fsub(p[2], p[1]);
+  // Corner k's edges to its previous and next corners, and their dot product.
+  const F3 toPrevious[3] = {e02, fscale(-1.0f, e01), fscale(-1.0f, e12)};
+  const F3 toNext[3] = {e01, e12, fscale(-1.0f, e02)};
+  const float edgeDot[3] = {fdot(e02, e01), -fdot(e01, e12), fdot(e12, e02)};
+  for (int k = 0; k < 3; ++k) {
+    const F3 raw = at(a.normals, triangle[k]);
+    const float normal2 = fdot(raw, raw);
+    const F3 e1 = toPrevious[k], e2 = toNext[k];
+    const F3 area{e1.y * e2.z - e1.z * e2.y, e1.z * e2.x - e1.x * e2.z, e1.x * e2.y - e1.y * e2.x};
+    const float y = std::abs(fdot(raw, area)) * std::sqrt(normal2);
+    const float x = normal2 * edgeDot[k] - fdot(raw, toPrevious[k]) * fdot(raw, toNext[k]);
+    const float angle = angleBetweenFloat(y, x);
+    const F3 s = referenceProjected({frame[0], frame[1], frame[2]}, raw);
+    const F3 tv{frame[3], frame[4], frame[5]};
+    const F3 projectedT = fsub(tv, fscale(fdot(raw, tv), raw));
+    const bool usable = flags == 0 && normal2 >= kSmallestNormal2 && y - y == 0 && x - x == 0 &&
+                        std::max(y, std::abs(x)) >= kSmallestProduct && angle >= kSmallestAngle &&
+                        angle <= kPiF - kSmallestAngle && notZero(s);
+    const std::uint32_t cone = usable ? coneBits(s) | coneBits(projectedT) << 6 : 0;
+    float* slot = tangents + 4 * (3 * t + k);
+    slot[0] = s.x * angle, slot[1] = s.y * angle, slot[2] = s.z * angle;
+    slot[3] = bitCast<float>((bitCast<std::uint32_t>(angle) & ~kConeBits) | cone);
+  }
+}
+
+#if defined(__SSE2__)
+// cornerTermsOne for triangles t .. t + 3 in SSE lanes, from evaluateFour's lanes: P[k][i]
+// component i of corner k counted from each triangle's first corner (v[k][j] its vertex in
+// lane j, first[j] its place in the triangle), S and T the frames, usable the lanes to
+// compute (the others get 0 bits; evaluateFour redoes them with cornerTermsOne). A corner's
+// term depends on the cyclic order of the corners only (the negations and products below are
+// exact either way round), so the same bits as cornerTermsOne's.
+void cornerTermsLanes(const Arrays& a, std::size_t t, const __m128 (&P)[3][3], const std::uint32_t (&v)[3][4], const int (&first)[4],
+                      const __m128 (&S)[3], const __m128 (&T)[3], __m128 usableLanes, float* tangents) {
+  auto mul = [](__m128 x, __m128 y) { return _mm_mul_ps(x, y); };
+  auto sub = [](__m128 x, __m128 y) { return _mm_sub_ps(x, y); };
+  auto add = [](__m128 x, __m128 y) { return _mm_add_ps(x, y); };
+  auto dot3 = [&](const __m128* u, const __m128* w) { return add(add(mul(u[0], w[0]), mul(u[1], w[1])), mul(u[2], w[2])); };
+  auto select = [](__m128 mask, __m128 x, __m128 y) { return _mm_or_ps(_mm_and_ps(mask, x), _mm_andnot_ps(mask, y)); };
+  auto constant = [](float c) { return _mm_set1_ps(c); };
+  const __m128 signMask = constant(-0.0f), tiny = constant(std::numeric_limits<float>::min()), zero = _mm_setzero_ps();
+  auto notZero = [&](__m128 x) { return _mm_cmpgt_ps(_mm_andnot_ps(signMask, x), tiny); };
+  auto negate = [&](__m128 x) { return _mm_xor_ps(x, signMask); };
+  auto cone = [&](const __m128* w) {
+    const __m128 bound = mul(constant(kConeMargin2), dot3(w, w));
+    __m128i bits = _mm_setzero_si128();
+    for (int i = 0; i < 3; ++i) {
+      const __m128 large = _mm_cmpgt_ps(mul(w[i], w[i]), bound);
+      const __m128i positive = _mm_castps_si128(_mm_cmpgt_ps(w[i], zero));
+      const __m128i side = _mm_or_si128(_mm_and_si128(positive, _mm_set1_epi32(1 << (2 * i))), _mm_andnot_si128(positive, _mm_set1_epi32(2 << (2 * i))));
+      bits = _mm_or_si128(bits, _mm_and_si128(_mm_castps_si128(large), side));
+    }
+    return bits;
+  };
+  __m128 e01[3], e02[3], e12[3];
+  #pragma GCC unroll 4
+  for (int i = 0; i < 3; ++i) e01[i] = sub(P[1][i], P[0][i]), e02[i] = sub(P[2][i], P[0][i]), e12[i] = sub(P[2][i], P[1][i]);
+  __m128 minus01[3], minus12[3], minus02[3];
+  #pragma GCC unroll 4
+  for (int i = 0; i < 3; ++i) minus01[i] = negate(e01[i]), minus12[i] = negate(e12[i]), minus02[i] = negate(e02[i]);
+  const __m128* toPrevious[3] = {e02, minus01, minus12};
+  const __m128* toNext[3] = {e01, e12, minus02};
+  const __m128 edgeDot[3] = {dot3(e02, e01), negate(dot3(e01, e12)), dot3(e12, e02)};
+  #pragma GCC unroll 4
+  for (int k = 0; k < 3; ++k) {
+    __m128 raw[3];
+    #pragma GCC unroll 4
+    for (int i = 0; i < 3; ++i) {
+      const float* n = a.normals + i;
+      raw[i] = _mm_setr_ps(n[3 * std::size_t(v[k][0])], n[3 * std::size_t(v[k][1])], n[3 * std::size_t(v[k][2])], n[3 * std::size_t(v[k][3])]);
+    }
+    const __m128 normal2 = dot3(raw, raw);
+    const __m128* e1 = toPrevious[k];
+    const __m128* e2 = toNext[k];
+    const __m128 area[3] = {sub(mul(e1[1], e2[2]), mul(e1[2], e2[1])), sub(mul(e1[2], e2[0]), mul(e1[0], e2[2])),
+                            sub(mul(e1[0], e2[1]), mul(e1[1], e2[0]))};
+    const __m128 y = mul(_mm_andnot_ps(signMask, dot3(raw, area)), _mm_sqrt_ps(normal2));
+    const __m128 x = sub(mul(normal2, edgeDot[k]), mul(dot3(raw, toPrevious[k]), dot3(raw, toNext[k])));
+    // angleBetweenFloat
+    const __m128 ax = _mm_andnot_ps(signMask, x);
+    const __m128 steep = _mm_cmpgt_ps(y, ax);
+    const __m128 num = select(steep, ax, y), den = select(steep, y, ax);
+    const __m128 shift = _mm_cmpgt_ps(num, mul(constant(0.414213562f), den));
+    const __m128 tt = _mm_div_ps(select(shift, sub(num, den), num), select(shift, add(num, den), den));
+    const __m128 t2 = mul(tt, tt), t4 = mul(t2, t2), t8 = mul(t4, t4);
+    const __m128 p01 = sub(constant(1.0f), mul(t2, constant(1.0f / 3))), p23 = sub(constant(1.0f / 5), mul(t2, constant(1.0f / 7)));
+    const __m128 p45 = sub(constant(1.0f / 9), mul(t2, constant(1.0f / 11))), p67 = sub(constant(1.0f / 13), mul(t2, constant(1.0f / 15)));
+    __m128 angle = mul(tt, add(add(p01, mul(t4, p23)), mul(t8, add(p45, mul(t4, p67)))));
+    angle = add(angle, _mm_and_ps(shift, constant(kQuarterPiF)));
+    angle = select(steep, sub(constant(kHalfPiF), angle), angle);
+    angle = select(_mm_cmplt_ps(x, zero), sub(constant(kPiF), angle), angle);
+
+    // referenceProjected(S, raw); dP/dv projected the same way, not normalized.
+    __m128 s[3], projectedT[3];
+    const __m128 alongS = dot3(raw, S), alongT = dot3(raw, T);
+    #pragma GCC unroll 4
+    for (int i = 0; i < 3; ++i) s[i] = sub(S[i], mul(alongS, raw[i])), projectedT[i] = sub(T[i], mul(alongT, raw[i]));
+    const __m128 sNonZero = _mm_or_ps(_mm_or_ps(notZero(s[0]), notZero(s[1])), notZero(s[2]));
+    const __m128 inverse = _mm_div_ps(constant(1.0f), _mm_sqrt_ps(dot3(s, s)));
+    #pragma GCC unroll 4
+    for (int i = 0; i < 3; ++i) s[i] = select(sNonZero, mul(inverse, s[i]), s[i]);
+
+    const __m128 finite = _mm_and_ps(_mm_cmpeq_ps(sub(y, y), zero), _mm_cmpeq_ps(sub(x, x), zero));
+    const __m128 measurable = _mm_and_ps(_mm_cmpge_ps(normal2, constant(kSmallestNormal2)), _mm_cmpge_ps(_mm_max_ps(y, ax), constant(kSmallestProduct)));
+    const __m128 inRange = _mm_and_ps(_mm_cmpge_ps(angle, constant(kSmallestAngle)), _mm_cmple_ps(angle, constant(kPiF - kSmallestAngle)));
+    const __m128 usable = _mm_and_ps(_mm_and_ps(_mm_and_ps(usableLanes, finite), _mm_and_ps(measurable, inRange)), sNonZero);
+    const __m128i bits = _mm_and_si128(_mm_castps_si128(usable), _mm_or_si128(cone(s), _mm_slli_epi32(cone(projectedT), 6)));
+    __m128 slot[4] = {mul(s[0], angle), mul(s[1], angle), mul(s[2], angle),
+                      _mm_castsi128_ps(_mm_or_si128(_mm_andnot_si128(_mm_set1_epi32(kConeBits), _mm_castps_si128(angle)), bits))};
+    _MM_TRANSPOSE4_PS(slot[0], slot[1], slot[2], slot[3]);
+    #pragma GCC unroll 4
+    for (int j = 0; j < 4; ++j) _mm_storeu_ps(tangents + 4 * (3 * (t + j) + (first[j] + k) % 3), slot[j]);
+  }
+}
+#endif
+
 // Unit dP/du and dP/dv of triangle t (signed by the UV orientation), its orientation and
 // flags. The reference's float formulas (eq. 18, 19 of its source) from the triangle's first
 // corner in value order; where float under- or overflows on a triangle that double
@@ -237,7 +402,7 @@ void evaluateTriangle(const Arrays& a, std::size_t t, float* frame, std::int8_t&
 // double operations in the same order (no fused multiply-add in this build), so the same bits.
 // A lane outside the common case (a non-finite value, coincident corners, or a UV area or
 // direction that the float formulas do not resolve) is redone by evaluateTriangle.
-void evaluateFour(const Arrays& a, std::size_t t, float* frames, std::int8_t* orientation, std::uint8_t* flags) {
+void evaluateFour(const Arrays& a, std::size_t t, float* frames, std::int8_t* orientation, std::uint8_t* flags, float* tangents) {
   // First corners (firstCorner): where a triangle's three x values differ, the smallest, as
   // canonical bits (+0 for -0) compared unsigned; otherwise firstCorner itself.
   const std::uint32_t* triangles = a.indices + 3 * t;
@@ -259,12 +424,13 @@ void evaluateFour(const Arrays& a, std::size_t t, float* frames, std::int8_t* or
                   _mm_or_si128(_mm_and_si128(two, _mm_set1_epi32(2)), _mm_andnot_si128(two, _mm_and_si128(lower, _mm_set1_epi32(1)))));
   const int ties = _mm_movemask_ps(_mm_castsi128_ps(equalX));
   std::uint32_t v[3][4];  // [corner][lane]: the vertices from each triangle's first corner
+  int first[4];
   #pragma GCC unroll 4
   for (int j = 0; j < 4; ++j) {
     const std::uint32_t* triangle = triangles + 3 * j;
-    const int first = (ties >> j & 1) ? firstCorner(a, t + j) : firsts[j];
+    first[j] = (ties >> j & 1) ? firstCorner(a, t + j) : firsts[j];
     const std::uint32_t rotated[5] = {triangle[0], triangle[1], triangle[2], triangle[0], triangle[1]};
-    v[0][j] = rotated[first], v[1][j] = rotated[first + 1], v[2][j] = rotated[first + 2];
+    v[0][j] = rotated[first[j]], v[1][j] = rotated[first[j] + 1], v[2][j] = rotated[first[j] + 2];
   }
   __m128 P[3][3], U[3], V[3];
   #pragma GCC unroll 4
@@ -351,6 +517,10 @@ void evaluateFour(const Arrays& a, std::size_t t, float* frames, std::int8_t* or
                  _mm_and_ps(isFinite(lengthS), isFinite(lengthT)));
   const int common = _mm_movemask_ps(_mm_andnot_ps(coincident, _mm_and_ps(finite, usable)));
   const int positiveLanes = _mm_movemask_ps(positive);
+  // Lanes that keep these frames and have no flags: their corners' parked terms from here.
+  const __m128 flatLanes = _mm_castsi128_ps(_mm_cmpgt_epi32(_mm_and_si128(_mm_set1_epi32(flat), _mm_setr_epi32(1, 2, 4, 8)), _mm_setzero_si128()));
+  const __m128 usableLanes = _mm_andnot_ps(_mm_or_ps(coincident, flatLanes), _mm_and_ps(finite, usable));
+  cornerTermsLanes(a, t, P, v, first, s, tv, usableLanes, tangents);
   alignas(16) float out[6][4];
   #pragma GCC unroll 4
   for (int i = 0; i < 3; ++i) {
@@ -361,186 +531,13 @@ void evaluateFour(const Arrays& a, std::size_t t, float* frames, std::int8_t* or
   for (int j = 0; j < 4; ++j) {
     if (!(common >> j & 1)) {
       evaluateTriangle(a, t + j, frames + 6 * j, orientation[j], flags[j]);
+      cornerTermsOne(a, t + j, frames + 6 * j, flags[j], tangents);
       continue;
     }
     #pragma GCC unroll 4
     for (int i = 0; i < 6; ++i) frames[6 * j + i] = out[i][j];
     orientation[j] = (positiveLanes >> j & 1) ? 1 : -1;
     flags[j] = (flat >> j & 1) ? kFlat : 0;
-  }
-}
-#endif
-
-// The group pass's common case, prepared in corner order by the triangle pass: each corner's
-// angle-weighted term, parked in its own output slot until the group pass replaces it with
-// the frame. Float arithmetic, four triangles at a time where SSE2 is there; the scalar
-// function does the same operations in the same order, so either gives the same bits.
-//
-// Slot of corner c: {S.x * angle, S.y * angle, S.z * angle, angle}, S the reference's
-// projection of the triangle's dP/du on the corner's raw normal N, angle the corner's angle
-// between its edges e1, e2 projected on the plane of N: atan2(|N.A| |N|, |N|^2 (e1.e2) -
-// (N.e1)(N.e2)), A = e1 x e2 (from the corner's own edges, so that a rotation of the
-// triangle's corners moves no bit). The low kConeBits of the angle's bits say on which side of +-kConeMargin each component of S
-// and of the projected dP/dv (as a direction) lies; 0 where the corner is not the common
-// case (then its bucket takes the full path).
-constexpr std::uint32_t kConeBits = 0xFFF;
-constexpr float kConeMargin = 1.0f / 64, kConeMargin2 = kConeMargin * kConeMargin;
-constexpr float kQuarterPiF = 0.785398163f, kHalfPiF = 1.57079633f, kPiF = 3.14159265f;
-constexpr float kSmallestAngle = 0.1f;           // below (or within this of pi) the full path's rules apply
-constexpr float kSmallestProduct = 1e-30f;       // below, float products lose digits
-constexpr float kSmallestNormal2 = 1e-20f;       // |N|^2 below: the full path
-
-// atan2(y, x) for y >= 0 in float: the double angleBetween's reduction and series.
-inline float angleBetweenFloat(float y, float x) {
-  const float ax = std::abs(x);
-  const bool steep = y > ax;
-  const float num = steep ? ax : y, den = steep ? y : ax;
-  const bool shift = num > 0.414213562f * den;
-  const float t = (shift ? num - den : num) / (shift ? num + den : den);
-  const float t2 = t * t, t4 = t2 * t2, t8 = t4 * t4;
-  const float p01 = 1.0f - t2 * (1.0f / 3), p23 = 1.0f / 5 - t2 * (1.0f / 7), p45 = 1.0f / 9 - t2 * (1.0f / 11),
-              p67 = 1.0f / 13 - t2 * (1.0f / 15);
-  float r = t * ((p01 + t4 * p23) + t8 * (p45 + t4 * p67));
-  r = r + (shift ? kQuarterPiF : 0.0f);
-  if (steep) r = kHalfPiF - r;
-  return x < 0 ? kPiF - r : r;
-}
-
-// Which side of +-kConeMargin each component of v / |v| lies on (two bits per component),
-// without the division: v.i^2 against kConeMargin^2 |v|^2.
-inline std::uint32_t coneBits(F3 v) {
-  const float bound = kConeMargin2 * fdot(v, v);
-  auto side = [&](float x) { return x * x > bound ? (x > 0 ? 1u : 2u) : 0u; };
-  return side(v.x) | side(v.y) << 2 | side(v.z) << 4;
-}
-
-// The parked terms of triangle t's three corners (frame: its dP/du, dP/dv; flags: its bits).
-void cornerTermsOne(const Arrays& a, std::size_t t, const float* frame, std::uint8_t flags, float* tangents) {
-  const std::uint32_t* triangle = a.indices + 3 * t;
-  auto at = [&](const float* p, std::uint32_t v) { return F3{p[3 * std::size_t(v)], p[3 * std::size_t(v) + 1], p[3 * std::size_t(v) + 2]}; };
-  const F3 p[3] = {at(a.positions, triangle[0]), at(a.positions, triangle[1]), at(a.positions, triangle[2])};
-  const F3 e01 = fsub(p[1], p[0]), e02 = fsub(p[2], p[0]), e12 = fsub(p[2], p[1]);
-  // Corner k's edges to its previous and next corners, and their dot product.
-  const F3 toPrevious[3] = {e02, fscale(-1.0f, e01), fscale(-1.0f, e12)};
-  const F3 toNext[3] = {e01, e12, fscale(-1.0f, e02)};
-  const float edgeDot[3] = {fdot(e02, e01), -fdot(e01, e12), fdot(e12, e02)};
-  for (int k = 0; k < 3; ++k) {
-    const F3 raw = at(a.normals, triangle[k]);
-    const float normal2 = fdot(raw, raw);
-    const F3 e1 = toPrevious[k], e2 = toNext[k];
-    const F3 area{e1.y * e2.z - e1.z * e2.y, e1.z * e2.x - e1.x * e2.z, e1.x * e2.y - e1.y * e2.x};
-    const float y = std::abs(fdot(raw, area)) * std::sqrt(normal2);
-    const float x = normal2 * edgeDot[k] - fdot(raw, toPrevious[k]) * fdot(raw, toNext[k]);
-    const float angle = angleBetweenFloat(y, x);
-    const F3 s = referenceProjected({frame[0], frame[1], frame[2]}, raw);
-    const F3 tv{frame[3], frame[4], frame[5]};
-    const F3 projectedT = fsub(tv, fscale(fdot(raw, tv), raw));
-    const bool usable = flags == 0 && normal2 >= kSmallestNormal2 && y - y == 0 && x - x == 0 &&
-                        std::max(y, std::abs(x)) >= kSmallestProduct && angle >= kSmallestAngle &&
-                        angle <= kPiF - kSmallestAngle && notZero(s);
-    const std::uint32_t cone = usable ? coneBits(s) | coneBits(projectedT) << 6 : 0;
-    float* slot = tangents + 4 * (3 * t + k);
-    slot[0] = s.x * angle, slot[1] = s.y * angle, slot[2] = s.z * angle;
-    slot[3] = bitCast<float>((bitCast<std::uint32_t>(angle) & ~kConeBits) | cone);
-  }
-}
-
-#if defined(__SSE2__)
-// cornerTermsOne for triangles t .. t + 3, operation for operation in SSE lanes.
-void cornerTermsFour(const Arrays& a, std::size_t t, const float* frames, const std::uint8_t* flags, float* tangents) {
-  const std::uint32_t* triangles = a.indices + 3 * t;
-  auto gather = [&](const float* p, int k, int i) {
-    return _mm_setr_ps(p[3 * std::size_t(triangles[k]) + i], p[3 * std::size_t(triangles[3 + k]) + i],
-                       p[3 * std::size_t(triangles[6 + k]) + i], p[3 * std::size_t(triangles[9 + k]) + i]);
-  };
-  auto mul = [](__m128 x, __m128 y) { return _mm_mul_ps(x, y); };
-  auto sub = [](__m128 x, __m128 y) { return _mm_sub_ps(x, y); };
-  auto add = [](__m128 x, __m128 y) { return _mm_add_ps(x, y); };
-  auto dot3 = [&](const __m128* u, const __m128* v) { return add(add(mul(u[0], v[0]), mul(u[1], v[1])), mul(u[2], v[2])); };
-  auto select = [](__m128 mask, __m128 x, __m128 y) { return _mm_or_ps(_mm_and_ps(mask, x), _mm_andnot_ps(mask, y)); };
-  auto constant = [](float c) { return _mm_set1_ps(c); };
-  const __m128 signMask = constant(-0.0f), tiny = constant(std::numeric_limits<float>::min()), zero = _mm_setzero_ps();
-  auto notZero = [&](__m128 x) { return _mm_cmpgt_ps(_mm_andnot_ps(signMask, x), tiny); };
-  auto negate = [&](__m128 x) { return _mm_xor_ps(x, signMask); };
-  auto cone = [&](const __m128* v) {
-    const __m128 bound = mul(constant(kConeMargin2), dot3(v, v));
-    __m128i bits = _mm_setzero_si128();
-    for (int i = 0; i < 3; ++i) {
-      const __m128 large = _mm_cmpgt_ps(mul(v[i], v[i]), bound);
-      const __m128i positive = _mm_castps_si128(_mm_cmpgt_ps(v[i], zero));
-      const __m128i side = _mm_or_si128(_mm_and_si128(positive, _mm_set1_epi32(1 << (2 * i))), _mm_andnot_si128(positive, _mm_set1_epi32(2 << (2 * i))));
-      bits = _mm_or_si128(bits, _mm_and_si128(_mm_castps_si128(large), side));
-    }
-    return bits;
-  };
-  __m128 P[3][3];
-  #pragma GCC unroll 4
-  for (int k = 0; k < 3; ++k) {
-    #pragma GCC unroll 4
-    for (int i = 0; i < 3; ++i) P[k][i] = gather(a.positions, k, i);
-  }
-  __m128 e01[3], e02[3], e12[3];
-  #pragma GCC unroll 4
-  for (int i = 0; i < 3; ++i) e01[i] = sub(P[1][i], P[0][i]), e02[i] = sub(P[2][i], P[0][i]), e12[i] = sub(P[2][i], P[1][i]);
-  __m128 minus01[3], minus12[3], minus02[3];
-  #pragma GCC unroll 4
-  for (int i = 0; i < 3; ++i) minus01[i] = negate(e01[i]), minus12[i] = negate(e12[i]), minus02[i] = negate(e02[i]);
-  const __m128* toPrevious[3] = {e02, minus01, minus12};
-  const __m128* toNext[3] = {e01, e12, minus02};
-  const __m128 edgeDot[3] = {dot3(e02, e01), negate(dot3(e01, e12)), dot3(e12, e02)};
-  __m128 S[3], T[3];
-  #pragma GCC unroll 4
-  for (int i = 0; i < 3; ++i) {
-    S[i] = _mm_setr_ps(frames[i], frames[6 + i], frames[12 + i], frames[18 + i]);
-    T[i] = _mm_setr_ps(frames[3 + i], frames[9 + i], frames[15 + i], frames[21 + i]);
-  }
-  const __m128 flagless = _mm_castsi128_ps(_mm_cmpeq_epi32(_mm_setr_epi32(flags[0], flags[1], flags[2], flags[3]), _mm_setzero_si128()));
-  #pragma GCC unroll 4
-  for (int k = 0; k < 3; ++k) {
-    __m128 raw[3];
-    #pragma GCC unroll 4
-    for (int i = 0; i < 3; ++i) raw[i] = gather(a.normals, k, i);
-    const __m128 normal2 = dot3(raw, raw);
-    const __m128* e1 = toPrevious[k];
-    const __m128* e2 = toNext[k];
-    const __m128 area[3] = {sub(mul(e1[1], e2[2]), mul(e1[2], e2[1])), sub(mul(e1[2], e2[0]), mul(e1[0], e2[2])),
-                            sub(mul(e1[0], e2[1]), mul(e1[1], e2[0]))};
-    const __m128 y = mul(_mm_andnot_ps(signMask, dot3(raw, area)), _mm_sqrt_ps(normal2));
-    const __m128 x = sub(mul(normal2, edgeDot[k]), mul(dot3(raw, toPrevious[k]), dot3(raw, toNext[k])));
-    // angleBetweenFloat
-    const __m128 ax = _mm_andnot_ps(signMask, x);
-    const __m128 steep = _mm_cmpgt_ps(y, ax);
-    const __m128 num = select(steep, ax, y), den = select(steep, y, ax);
-    const __m128 shift = _mm_cmpgt_ps(num, mul(constant(0.414213562f), den));
-    const __m128 tt = _mm_div_ps(select(shift, sub(num, den), num), select(shift, add(num, den), den));
-    const __m128 t2 = mul(tt, tt), t4 = mul(t2, t2), t8 = mul(t4, t4);
-    const __m128 p01 = sub(constant(1.0f), mul(t2, constant(1.0f / 3))), p23 = sub(constant(1.0f / 5), mul(t2, constant(1.0f / 7)));
-    const __m128 p45 = sub(constant(1.0f / 9), mul(t2, constant(1.0f / 11))), p67 = sub(constant(1.0f / 13), mul(t2, constant(1.0f / 15)));
-    __m128 angle = mul(tt, add(add(p01, mul(t4, p23)), mul(t8, add(p45, mul(t4, p67)))));
-    angle = add(angle, _mm_and_ps(shift, constant(kQuarterPiF)));
-    angle = select(steep, sub(constant(kHalfPiF), angle), angle);
-    angle = select(_mm_cmplt_ps(x, zero), sub(constant(kPiF), angle), angle);
-
-    // referenceProjected(S, raw); dP/dv projected the same way, not normalized.
-    __m128 s[3], projectedT[3];
-    const __m128 alongS = dot3(raw, S), alongT = dot3(raw, T);
-    #pragma GCC unroll 4
-    for (int i = 0; i < 3; ++i) s[i] = sub(S[i], mul(alongS, raw[i])), projectedT[i] = sub(T[i], mul(alongT, raw[i]));
-    const __m128 sNonZero = _mm_or_ps(_mm_or_ps(notZero(s[0]), notZero(s[1])), notZero(s[2]));
-    const __m128 inverse = _mm_div_ps(constant(1.0f), _mm_sqrt_ps(dot3(s, s)));
-    #pragma GCC unroll 4
-    for (int i = 0; i < 3; ++i) s[i] = select(sNonZero, mul(inverse, s[i]), s[i]);
-
-    const __m128 finite = _mm_and_ps(_mm_cmpeq_ps(sub(y, y), zero), _mm_cmpeq_ps(sub(x, x), zero));
-    const __m128 measurable = _mm_and_ps(_mm_cmpge_ps(normal2, constant(kSmallestNormal2)), _mm_cmpge_ps(_mm_max_ps(y, ax), constant(kSmallestProduct)));
-    const __m128 inRange = _mm_and_ps(_mm_cmpge_ps(angle, constant(kSmallestAngle)), _mm_cmple_ps(angle, constant(kPiF - kSmallestAngle)));
-    const __m128 usable = _mm_and_ps(_mm_and_ps(_mm_and_ps(flagless, finite), _mm_and_ps(measurable, inRange)), sNonZero);
-    const __m128i bits = _mm_and_si128(_mm_castps_si128(usable), _mm_or_si128(cone(s), _mm_slli_epi32(cone(projectedT), 6)));
-    __m128 slot[4] = {mul(s[0], angle), mul(s[1], angle), mul(s[2], angle),
-                      _mm_castsi128_ps(_mm_or_si128(_mm_andnot_si128(_mm_set1_epi32(kConeBits), _mm_castps_si128(angle)), bits))};
-    _MM_TRANSPOSE4_PS(slot[0], slot[1], slot[2], slot[3]);
-    #pragma GCC unroll 4
-    for (int j = 0; j < 4; ++j) _mm_storeu_ps(tangents + 4 * (3 * (t + j) + k), slot[j]);
   }
 }
 #endif
@@ -709,8 +706,7 @@ void Kernel::evaluateTriangles(Report& report) {
     std::size_t t = begin;
 #if defined(__SSE2__)
     for (; t + 4 <= end; t += 4) {
-      evaluateFour(a_, t, &ws_.triangleFrames[6 * t], &ws_.orientation[t], &ws_.triangleFlags[t]);
-      cornerTermsFour(a_, t, &ws_.triangleFrames[6 * t], &ws_.triangleFlags[t], tangents_);
+      evaluateFour(a_, t, &ws_.triangleFrames[6 * t], &ws_.orientation[t], &ws_.triangleFlags[t], tangents_);
     }
 #endif
     for (; t < end; ++t) {
