@@ -3,6 +3,7 @@
 #include <tbb/task_arena.h>
 
 #include <algorithm>
+#include <cstddef>
 #include <cstring>
 #include <stdexcept>
 #include <string>
@@ -93,6 +94,7 @@ Report computeTangents(CornerMesh& cornerMesh, const Options& options, TangentWo
   ws.threads = threadCount(options);
   auto inArena = [&](const auto& body) { detail::onThreads(ws, [&] { detail::forRange(ws, cornerCount, 1 << 14, body); }); };
   using detail::CornerValues;
+  static_assert(offsetof(CornerValues, uv) == offsetof(CornerValues, normal) + 3 * sizeof(float), "normal, then UV");
   auto valuesAt = [&](TriMesh::HalfedgeHandle halfedge) {
     const auto& p = mesh.point(mesh.to_vertex_handle(halfedge));
     const auto& n = mesh.normal(halfedge);
@@ -106,7 +108,6 @@ Report computeTangents(CornerMesh& cornerMesh, const Options& options, TangentWo
     v.uv[1] = static_cast<float>(uv[1]);
     return v;
   };
-  auto values = [&](std::size_t c) { return valuesAt(cornerMesh.cornerHalfedge[c]); };
   // 1. Each corner: its own array vertex (kNone) or that of its mesh vertex's representative
   // (the corner of the face of the vertex's stored halfedge). First each vertex's
   // representative and its values, where they hold no NaN; then the corners in halfedge
@@ -129,7 +130,7 @@ Report computeTangents(CornerMesh& cornerMesh, const Options& options, TangentWo
         const auto in = mesh.is_boundary(out) ? mesh.opposite_halfedge_handle(out) : mesh.prev_halfedge_handle(out);
         const std::uint32_t r = cornerMesh.halfedgeCorner[static_cast<std::size_t>(in.idx())];
         if (r >= cornerCount) continue;  // kNoCorner
-        const CornerValues shared = values(r);
+        const CornerValues shared = valuesAt(in);  // corner r's halfedge is `in`
         if (!shared.shareable()) continue;
         representative[v] = r;
         representativeValues[v] = shared;
@@ -146,8 +147,12 @@ Report computeTangents(CornerMesh& cornerMesh, const Options& options, TangentWo
         const auto v = static_cast<std::size_t>(mesh.to_vertex_handle(halfedge).idx());
         const std::uint32_t r = representative[v];
         if (r == detail::kNone || r == c) continue;
-        const CornerValues own = valuesAt(halfedge);
-        if (own == representativeValues[v]) indices[c] = r;
+        // Corners of one mesh vertex share its point: normal and UV decide.
+        const auto& n = mesh.normal(halfedge);
+        const auto& uv = mesh.texcoord2D(halfedge);
+        const float attributes[5] = {static_cast<float>(n[0]), static_cast<float>(n[1]), static_cast<float>(n[2]),
+                                     static_cast<float>(uv[0]), static_cast<float>(uv[1])};
+        if (std::memcmp(attributes, representativeValues[v].normal, sizeof attributes) == 0) indices[c] = r;
       }
     });
   });
@@ -165,7 +170,10 @@ Report computeTangents(CornerMesh& cornerMesh, const Options& options, TangentWo
     detail::forRange(ws, vertexCount, 1 << 14, [&](std::size_t begin, std::size_t end) {
       for (std::size_t next = begin; next < end; ++next) {
         const std::uint32_t c = own[next];
-        const CornerValues v = values(c);
+        // A vertex's representative has its values gathered already (one read, not three).
+        const TriMesh::HalfedgeHandle halfedge = cornerMesh.cornerHalfedge[c];
+        const auto vertex = static_cast<std::size_t>(mesh.to_vertex_handle(halfedge).idx());
+        const CornerValues v = representative[vertex] == c ? representativeValues[vertex] : valuesAt(halfedge);
         std::memcpy(&positions[3 * next], v.position, sizeof v.position);
         std::memcpy(&normals[3 * next], v.normal, sizeof v.normal);
         std::memcpy(&uvs[2 * next], v.uv, sizeof v.uv);
