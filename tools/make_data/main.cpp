@@ -381,11 +381,20 @@ int main(int argc, char** argv) {
   namespace fs = std::filesystem;
   if ((argc == 4 || (argc == 5 && std::string(argv[4]) == "--one-primitive")) && std::string(argv[1]) == "--sphere")
     return writeBenchmarkSphere(std::atoi(argv[2]), argv[3], argc == 5);
-  if (argc != 2) {
-    std::cerr << "usage: tangent-make-data OUT_DIR              the bundled demo data\n"
-                 "       tangent-make-data --sphere N OUT_DIR [--one-primitive]\n"
-                 "                                              a textured N x N UV sphere for benchmarks (split into\n"
-                 "                                              uint16-indexed meshes, or one uint32-indexed primitive)\n";
+  const char* usage =
+      "usage: tangent-make-data OUT_DIR              the bundled demo data\n"
+      "       tangent-make-data --sphere N OUT_DIR [--one-primitive]\n"
+      "                                              a textured N x N UV sphere for benchmarks (split into\n"
+      "                                              uint16-indexed meshes, or one uint32-indexed primitive)\n";
+  // An argument that starts with '-' is an option, never the output folder ("--help" was
+  // taken for one, and the data written into a folder named --help).
+  if (argc == 2 && (std::string(argv[1]) == "-h" || std::string(argv[1]) == "--help")) {
+    std::cout << usage;
+    return 0;
+  }
+  if (argc != 2 || argv[1][0] == '-') {
+    if (argc == 2) std::cerr << "tangent-make-data: unknown option " << argv[1] << " (a folder starting with '-': write ./" << argv[1] << ")\n";
+    std::cerr << usage;
     return 2;
   }
   const fs::path dir = argv[1];
