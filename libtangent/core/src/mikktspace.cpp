@@ -26,6 +26,13 @@
 // Layout: a few passes over packed arrays. Weld by hashing, bucket corners by welded vertex
 // (counting sort), then every phase runs per triangle or per bucket in parallel (oneTBB);
 // each item's result depends only on the input, so any thread count gives the same bits.
+// Two paths per bucket. The triangle pass parks each corner's angle-weighted term in its
+// output slot (float, four triangles at a time); a bucket that is one closed fan of one UV
+// orientation, with every corner in the common case and no pair the subgroup rule could
+// split, sums its parked terms rounded to multiples of 2^-40 (exact double sums, so no order
+// moves a bit) and writes one frame (fastBucket). Every other bucket takes the full path
+// (groupBucket): double-precision angles, sums in value order, the subgroup test, the
+// reference's own float sums where terms cancel.
 #include <algorithm>
 #include <array>
 #include <atomic>
