@@ -393,7 +393,9 @@ int main(int argc, char** argv) {
     return 0;
   }
   if (argc != 2 || argv[1][0] == '-') {
-    if (argc == 2) std::cerr << "tangent-make-data: unknown option " << argv[1] << " (a folder starting with '-': write ./" << argv[1] << ")\n";
+    if (argc == 2)
+      std::cerr << "tangent-make-data: unknown option " << argv[1] << " (a folder starting with '-': write ./"
+                << argv[1] << ")\n";
     std::cerr << usage;
     return 2;
   }

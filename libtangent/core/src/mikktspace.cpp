@@ -147,15 +147,15 @@ inline F3 referenceProjected(F3 v, F3 n) {
 // projection of the triangle's dP/du on the corner's raw normal N, angle the corner's angle
 // between its edges e1, e2 projected on the plane of N: atan2(|N.A| |N|, |N|^2 (e1.e2) -
 // (N.e1)(N.e2)), A = e1 x e2 (from the corner's own edges, so that a rotation of the
-// triangle's corners moves no bit). The low kConeBits of the angle's bits say on which side of +-kConeMargin each component of S
-// and of the projected dP/dv (as a direction) lies; 0 where the corner is not the common
-// case (then its bucket takes the full path).
+// triangle's corners moves no bit). The low kConeBits of the angle's bits say on which side
+// of +-kConeMargin each component of S and of the projected dP/dv (as a direction) lies; 0
+// where the corner is not the common case (then its bucket takes the full path).
 constexpr std::uint32_t kConeBits = 0xFFF;
 constexpr float kConeMargin = 1.0f / 64, kConeMargin2 = kConeMargin * kConeMargin;
 constexpr float kQuarterPiF = 0.785398163f, kHalfPiF = 1.57079633f, kPiF = 3.14159265f;
-constexpr float kSmallestAngle = 0.1f;           // below (or within this of pi) the full path's rules apply
-constexpr float kSmallestProduct = 1e-30f;       // below, float products lose digits
-constexpr float kSmallestNormal2 = 1e-20f;       // |N|^2 below: the full path
+constexpr float kSmallestAngle = 0.1f;      // below (or within this of pi) the full path's rules apply
+constexpr float kSmallestProduct = 1e-30f;  // below, float products lose digits
+constexpr float kSmallestNormal2 = 1e-20f;  // |N|^2 below: the full path
 
 // atan2(y, x) for y >= 0 in float: the double angleBetween's reduction and series.
 inline float angleBetweenFloat(float y, float x) {
@@ -184,7 +184,9 @@ inline std::uint32_t coneBits(F3 v) {
 // The parked terms of triangle t's three corners (frame: its dP/du, dP/dv; flags: its bits).
 void cornerTermsOne(const Arrays& a, std::size_t t, const float* frame, std::uint8_t flags, float* tangents) {
   const std::uint32_t* triangle = a.indices + 3 * t;
-  auto at = [&](const float* p, std::uint32_t v) { return F3{p[3 * std::size_t(v)], p[3 * std::size_t(v) + 1], p[3 * std::size_t(v) + 2]}; };
+  auto at = [&](const float* p, std::uint32_t v) {
+    return F3{p[3 * std::size_t(v)], p[3 * std::size_t(v) + 1], p[3 * std::size_t(v) + 2]};
+  };
   const F3 p[3] = {at(a.positions, triangle[0]), at(a.positions, triangle[1]), at(a.positions, triangle[2])};
   const F3 e01 = fsub(p[1], p[0]), e02 = fsub(p[2], p[0]), e12 = fsub(p[2], p[1]);
   // Corner k's edges to its previous and next corners, and their dot product.
@@ -219,12 +221,15 @@ void cornerTermsOne(const Arrays& a, std::size_t t, const float* frame, std::uin
 // compute (the others get 0 bits; evaluateFour redoes them with cornerTermsOne). A corner's
 // term depends on the cyclic order of the corners only (the negations and products below are
 // exact either way round), so the same bits as cornerTermsOne's.
-void cornerTermsLanes(const Arrays& a, std::size_t t, const __m128 (&P)[3][3], const std::uint32_t (&v)[3][4], const int (&first)[4],
-                      const __m128 (&S)[3], const __m128 (&T)[3], __m128 usableLanes, float* tangents) {
+void cornerTermsLanes(const Arrays& a, std::size_t t, const __m128 (&P)[3][3], const std::uint32_t (&v)[3][4],
+                      const int (&first)[4], const __m128 (&S)[3], const __m128 (&T)[3], __m128 usableLanes,
+                      float* tangents) {
   auto mul = [](__m128 x, __m128 y) { return _mm_mul_ps(x, y); };
   auto sub = [](__m128 x, __m128 y) { return _mm_sub_ps(x, y); };
   auto add = [](__m128 x, __m128 y) { return _mm_add_ps(x, y); };
-  auto dot3 = [&](const __m128* u, const __m128* w) { return add(add(mul(u[0], w[0]), mul(u[1], w[1])), mul(u[2], w[2])); };
+  auto dot3 = [&](const __m128* u, const __m128* w) {
+    return add(add(mul(u[0], w[0]), mul(u[1], w[1])), mul(u[2], w[2]));
+  };
   auto select = [](__m128 mask, __m128 x, __m128 y) { return _mm_or_ps(_mm_and_ps(mask, x), _mm_andnot_ps(mask, y)); };
   auto constant = [](float c) { return _mm_set1_ps(c); };
   const __m128 signMask = constant(-0.0f), tiny = constant(std::numeric_limits<float>::min()), zero = _mm_setzero_ps();
@@ -236,27 +241,30 @@ void cornerTermsLanes(const Arrays& a, std::size_t t, const __m128 (&P)[3][3], c
     for (int i = 0; i < 3; ++i) {
       const __m128 large = _mm_cmpgt_ps(mul(w[i], w[i]), bound);
       const __m128i positive = _mm_castps_si128(_mm_cmpgt_ps(w[i], zero));
-      const __m128i side = _mm_or_si128(_mm_and_si128(positive, _mm_set1_epi32(1 << (2 * i))), _mm_andnot_si128(positive, _mm_set1_epi32(2 << (2 * i))));
+      const __m128i side = _mm_or_si128(_mm_and_si128(positive, _mm_set1_epi32(1 << (2 * i))),
+                                        _mm_andnot_si128(positive, _mm_set1_epi32(2 << (2 * i))));
       bits = _mm_or_si128(bits, _mm_and_si128(_mm_castps_si128(large), side));
     }
     return bits;
   };
   __m128 e01[3], e02[3], e12[3];
-  #pragma GCC unroll 4
-  for (int i = 0; i < 3; ++i) e01[i] = sub(P[1][i], P[0][i]), e02[i] = sub(P[2][i], P[0][i]), e12[i] = sub(P[2][i], P[1][i]);
+#pragma GCC unroll 4
+  for (int i = 0; i < 3; ++i)
+    e01[i] = sub(P[1][i], P[0][i]), e02[i] = sub(P[2][i], P[0][i]), e12[i] = sub(P[2][i], P[1][i]);
   __m128 minus01[3], minus12[3], minus02[3];
-  #pragma GCC unroll 4
+#pragma GCC unroll 4
   for (int i = 0; i < 3; ++i) minus01[i] = negate(e01[i]), minus12[i] = negate(e12[i]), minus02[i] = negate(e02[i]);
   const __m128* toPrevious[3] = {e02, minus01, minus12};
   const __m128* toNext[3] = {e01, e12, minus02};
   const __m128 edgeDot[3] = {dot3(e02, e01), negate(dot3(e01, e12)), dot3(e12, e02)};
-  #pragma GCC unroll 4
+#pragma GCC unroll 4
   for (int k = 0; k < 3; ++k) {
     __m128 raw[3];
-    #pragma GCC unroll 4
+#pragma GCC unroll 4
     for (int i = 0; i < 3; ++i) {
       const float* n = a.normals + i;
-      raw[i] = _mm_setr_ps(n[3 * std::size_t(v[k][0])], n[3 * std::size_t(v[k][1])], n[3 * std::size_t(v[k][2])], n[3 * std::size_t(v[k][3])]);
+      raw[i] = _mm_setr_ps(n[3 * std::size_t(v[k][0])], n[3 * std::size_t(v[k][1])], n[3 * std::size_t(v[k][2])],
+                           n[3 * std::size_t(v[k][3])]);
     }
     const __m128 normal2 = dot3(raw, raw);
     const __m128* e1 = toPrevious[k];
@@ -272,8 +280,10 @@ void cornerTermsLanes(const Arrays& a, std::size_t t, const __m128 (&P)[3][3], c
     const __m128 shift = _mm_cmpgt_ps(num, mul(constant(0.414213562f), den));
     const __m128 tt = _mm_div_ps(select(shift, sub(num, den), num), select(shift, add(num, den), den));
     const __m128 t2 = mul(tt, tt), t4 = mul(t2, t2), t8 = mul(t4, t4);
-    const __m128 p01 = sub(constant(1.0f), mul(t2, constant(1.0f / 3))), p23 = sub(constant(1.0f / 5), mul(t2, constant(1.0f / 7)));
-    const __m128 p45 = sub(constant(1.0f / 9), mul(t2, constant(1.0f / 11))), p67 = sub(constant(1.0f / 13), mul(t2, constant(1.0f / 15)));
+    const __m128 p01 = sub(constant(1.0f), mul(t2, constant(1.0f / 3))),
+                 p23 = sub(constant(1.0f / 5), mul(t2, constant(1.0f / 7)));
+    const __m128 p45 = sub(constant(1.0f / 9), mul(t2, constant(1.0f / 11))),
+                 p67 = sub(constant(1.0f / 13), mul(t2, constant(1.0f / 15)));
     __m128 angle = mul(tt, add(add(p01, mul(t4, p23)), mul(t8, add(p45, mul(t4, p67)))));
     angle = add(angle, _mm_and_ps(shift, constant(kQuarterPiF)));
     angle = select(steep, sub(constant(kHalfPiF), angle), angle);
@@ -282,22 +292,27 @@ void cornerTermsLanes(const Arrays& a, std::size_t t, const __m128 (&P)[3][3], c
     // referenceProjected(S, raw); dP/dv projected the same way, not normalized.
     __m128 s[3], projectedT[3];
     const __m128 alongS = dot3(raw, S), alongT = dot3(raw, T);
-    #pragma GCC unroll 4
+#pragma GCC unroll 4
     for (int i = 0; i < 3; ++i) s[i] = sub(S[i], mul(alongS, raw[i])), projectedT[i] = sub(T[i], mul(alongT, raw[i]));
     const __m128 sNonZero = _mm_or_ps(_mm_or_ps(notZero(s[0]), notZero(s[1])), notZero(s[2]));
     const __m128 inverse = _mm_div_ps(constant(1.0f), _mm_sqrt_ps(dot3(s, s)));
-    #pragma GCC unroll 4
+#pragma GCC unroll 4
     for (int i = 0; i < 3; ++i) s[i] = select(sNonZero, mul(inverse, s[i]), s[i]);
 
     const __m128 finite = _mm_and_ps(_mm_cmpeq_ps(sub(y, y), zero), _mm_cmpeq_ps(sub(x, x), zero));
-    const __m128 measurable = _mm_and_ps(_mm_cmpge_ps(normal2, constant(kSmallestNormal2)), _mm_cmpge_ps(_mm_max_ps(y, ax), constant(kSmallestProduct)));
-    const __m128 inRange = _mm_and_ps(_mm_cmpge_ps(angle, constant(kSmallestAngle)), _mm_cmple_ps(angle, constant(kPiF - kSmallestAngle)));
-    const __m128 usable = _mm_and_ps(_mm_and_ps(_mm_and_ps(usableLanes, finite), _mm_and_ps(measurable, inRange)), sNonZero);
-    const __m128i bits = _mm_and_si128(_mm_castps_si128(usable), _mm_or_si128(cone(s), _mm_slli_epi32(cone(projectedT), 6)));
-    __m128 slot[4] = {mul(s[0], angle), mul(s[1], angle), mul(s[2], angle),
-                      _mm_castsi128_ps(_mm_or_si128(_mm_andnot_si128(_mm_set1_epi32(kConeBits), _mm_castps_si128(angle)), bits))};
+    const __m128 measurable = _mm_and_ps(_mm_cmpge_ps(normal2, constant(kSmallestNormal2)),
+                                         _mm_cmpge_ps(_mm_max_ps(y, ax), constant(kSmallestProduct)));
+    const __m128 inRange =
+        _mm_and_ps(_mm_cmpge_ps(angle, constant(kSmallestAngle)), _mm_cmple_ps(angle, constant(kPiF - kSmallestAngle)));
+    const __m128 usable =
+        _mm_and_ps(_mm_and_ps(_mm_and_ps(usableLanes, finite), _mm_and_ps(measurable, inRange)), sNonZero);
+    const __m128i bits =
+        _mm_and_si128(_mm_castps_si128(usable), _mm_or_si128(cone(s), _mm_slli_epi32(cone(projectedT), 6)));
+    __m128 slot[4] = {
+        mul(s[0], angle), mul(s[1], angle), mul(s[2], angle),
+        _mm_castsi128_ps(_mm_or_si128(_mm_andnot_si128(_mm_set1_epi32(kConeBits), _mm_castps_si128(angle)), bits))};
     _MM_TRANSPOSE4_PS(slot[0], slot[1], slot[2], slot[3]);
-    #pragma GCC unroll 4
+#pragma GCC unroll 4
     for (int j = 0; j < 4; ++j) _mm_storeu_ps(tangents + 4 * (3 * (t + j) + (first[j] + k) % 3), slot[j]);
   }
 }
@@ -409,7 +424,8 @@ void evaluateTriangle(const Arrays& a, std::size_t t, float* frame, std::int8_t&
 // double operations in the same order (no fused multiply-add in this build), so the same bits.
 // A lane outside the common case (a non-finite value, coincident corners, or a UV area or
 // direction that the float formulas do not resolve) is redone by evaluateTriangle.
-void evaluateFour(const Arrays& a, std::size_t t, float* frames, std::int8_t* orientation, std::uint8_t* flags, float* tangents) {
+void evaluateFour(const Arrays& a, std::size_t t, float* frames, std::int8_t* orientation, std::uint8_t* flags,
+                  float* tangents) {
   // First corners (firstCorner): where a triangle's three x values differ, the smallest, as
   // canonical bits (+0 for -0) compared unsigned; otherwise firstCorner itself.
   const std::uint32_t* triangles = a.indices + 3 * t;
@@ -432,7 +448,7 @@ void evaluateFour(const Arrays& a, std::size_t t, float* frames, std::int8_t* or
   const int ties = _mm_movemask_ps(_mm_castsi128_ps(equalX));
   std::uint32_t v[3][4];  // [corner][lane]: the vertices from each triangle's first corner
   int first[4];
-  #pragma GCC unroll 4
+#pragma GCC unroll 4
   for (int j = 0; j < 4; ++j) {
     const std::uint32_t* triangle = triangles + 3 * j;
     first[j] = (ties >> j & 1) ? firstCorner(a, t + j) : firsts[j];
@@ -525,7 +541,8 @@ void evaluateFour(const Arrays& a, std::size_t t, float* frames, std::int8_t* or
   const int common = _mm_movemask_ps(_mm_andnot_ps(coincident, _mm_and_ps(finite, usable)));
   const int positiveLanes = _mm_movemask_ps(positive);
   // Lanes that keep these frames and have no flags: their corners' parked terms from here.
-  const __m128 flatLanes = _mm_castsi128_ps(_mm_cmpgt_epi32(_mm_and_si128(_mm_set1_epi32(flat), _mm_setr_epi32(1, 2, 4, 8)), _mm_setzero_si128()));
+  const __m128 flatLanes = _mm_castsi128_ps(
+      _mm_cmpgt_epi32(_mm_and_si128(_mm_set1_epi32(flat), _mm_setr_epi32(1, 2, 4, 8)), _mm_setzero_si128()));
   const __m128 usableLanes = _mm_andnot_ps(_mm_or_ps(coincident, flatLanes), _mm_and_ps(finite, usable));
   cornerTermsLanes(a, t, P, v, first, s, tv, usableLanes, tangents);
   alignas(16) float out[6][4];
@@ -1163,7 +1180,9 @@ inline void angleBetweenPair(const double y[2], const double x[2], double angle[
 // Rounds x to a multiple of 2^-40 (|x| < 2^11): sums of up to 2^13 / pi such values are exact
 // in double, so they come out the same in any order, with no sort.
 constexpr double kQuantizer = 0x1.8p12;
-inline double quantized(float x) { return (static_cast<double>(x) + kQuantizer) - kQuantizer; }
+inline double quantized(float x) {
+  return (static_cast<double>(x) + kQuantizer) - kQuantizer;
+}
 constexpr std::uint32_t kMostQuantizedTerms = 2048;
 
 // The common bucket from the terms the triangle pass parked in its corners' slots: a closed
@@ -1214,7 +1233,8 @@ bool Kernel::fastBucket(std::uint32_t bucket, const std::uint32_t* list, std::ui
   if (!(t2 > 1e-24 * sum2)) return false;
   const V3 unit = t * (1.0 / std::sqrt(t2));
   const float w = ws_.orientation[list[0] / 3] > 0 ? 1.0f : -1.0f;
-  const float frame[4] = {static_cast<float>(unit.x), static_cast<float>(unit.y), static_cast<float>(unit.z), w * wSign_};
+  const float frame[4] = {static_cast<float>(unit.x), static_cast<float>(unit.y), static_cast<float>(unit.z),
+                          w * wSign_};
   const std::uint32_t weight = bitCast<std::uint32_t>(static_cast<float>(angleSum));
   const std::uint32_t vertex = a_.indices[list[0]];
   bool oneVertex = true;

@@ -47,7 +47,11 @@ class CheckedImporter : public OpenMesh::IO::ImporterT<ImportMesh> {
   // and leaves the UVs it never set uninitialized.
   CheckedImporter(ImportMesh& mesh, std::string label, std::uintmax_t fileBytes, std::vector<char>& vertexUvSet,
                   std::vector<char>& halfedgeUvSet)
-      : Base(mesh), mesh_(mesh), label_(std::move(label)), limit_(fileBytes / 3 + 16), vertexUvSet_(vertexUvSet),
+      : Base(mesh),
+        mesh_(mesh),
+        label_(std::move(label)),
+        limit_(fileBytes / 3 + 16),
+        vertexUvSet_(vertexUvSet),
         halfedgeUvSet_(halfedgeUvSet) {}
 
   OpenMesh::VertexHandle add_vertex(const OpenMesh::Vec3f& point) override {
@@ -389,8 +393,9 @@ std::vector<std::uint8_t> meshFileToGlb(const std::filesystem::path& path) {
       // A corner's own UV where the file gave one, else its vertex's.
       const bool own = cornerUvs && isSet(halfedgeUvSet, halfedge.idx());
       if (!own && !(vertexUvs && isSet(vertexUvSet, vertex.idx())))
-        throw InputError(path.string() + ": face " + std::to_string(face.idx() + 1) + " (1-based) has no texture coordinate at its vertex " +
-                         std::to_string(vertex.idx() + 1) + "; tangents need UVs on every face");
+        throw InputError(path.string() + ": face " + std::to_string(face.idx() + 1) +
+                         " (1-based) has no texture coordinate at its vertex " + std::to_string(vertex.idx() + 1) +
+                         "; tangents need UVs on every face");
       const auto uv = own ? mesh.texcoord2D(halfedge) : mesh.texcoord2D(vertex);
       const float u = uv[0], v = 1.0f - uv[1];
       auto key = std::make_tuple(vertex.idx(), std::bit_cast<std::uint32_t>(u), std::bit_cast<std::uint32_t>(v));
