@@ -181,6 +181,17 @@ inline std::uint32_t coneBits(F3 v) {
   return side(v.x) | side(v.y) << 2 | side(v.z) << 4;
 }
 
+// The reference's corner angle (EvalTspace, as Kernel::referenceAngle computes it): float
+// projections of the edges on the raw normal, float cosine clamped to [-1, 1], acos. The
+// weight of a corner outside [kSmallestAngle, pi - kSmallestAngle], as in the full path, where
+// the reference's rounding moves small angles by a visible fraction.
+inline float referenceAngleOf(F3 here, F3 previous, F3 next, F3 raw) {
+  const F3 toPrevious = referenceProjected(fsub(previous, here), raw);
+  const F3 toNext = referenceProjected(fsub(next, here), raw);
+  const float cosine = std::clamp(fdot(toPrevious, toNext), -1.0f, 1.0f);
+  return static_cast<float>(std::acos(static_cast<double>(cosine)));
+}
+
 // The parked terms of triangle t's three corners (frame: its dP/du, dP/dv; flags: its bits).
 void cornerTermsOne(const Arrays& a, std::size_t t, const float* frame, std::uint8_t flags, float* tangents) {
   const std::uint32_t* triangle = a.indices + 3 * t;
@@ -200,13 +211,15 @@ void cornerTermsOne(const Arrays& a, std::size_t t, const float* frame, std::uin
     const F3 area{e1.y * e2.z - e1.z * e2.y, e1.z * e2.x - e1.x * e2.z, e1.x * e2.y - e1.y * e2.x};
     const float y = std::abs(fdot(raw, area)) * std::sqrt(normal2);
     const float x = normal2 * edgeDot[k] - fdot(raw, toPrevious[k]) * fdot(raw, toNext[k]);
-    const float angle = angleBetweenFloat(y, x);
+    float angle = angleBetweenFloat(y, x);
     const F3 s = referenceProjected({frame[0], frame[1], frame[2]}, raw);
     const F3 tv{frame[3], frame[4], frame[5]};
     const F3 projectedT = fsub(tv, fscale(fdot(raw, tv), raw));
-    const bool usable = flags == 0 && normal2 >= kSmallestNormal2 && y - y == 0 && x - x == 0 &&
-                        std::max(y, std::abs(x)) >= kSmallestProduct && angle >= kSmallestAngle &&
-                        angle <= kPiF - kSmallestAngle && notZero(s);
+    const bool common = flags == 0 && normal2 >= kSmallestNormal2 && y - y == 0 && x - x == 0 &&
+                        std::max(y, std::abs(x)) >= kSmallestProduct && notZero(s);
+    if (common && !(angle >= kSmallestAngle && angle <= kPiF - kSmallestAngle))
+      angle = referenceAngleOf(p[k], p[(k + 2) % 3], p[(k + 1) % 3], raw);
+    const bool usable = common && angle > 0;
     const std::uint32_t cone = usable ? coneBits(s) | coneBits(projectedT) << 6 : 0;
     float* slot = tangents + 4 * (3 * t + k);
     slot[0] = s.x * angle, slot[1] = s.y * angle, slot[2] = s.z * angle;
@@ -304,8 +317,24 @@ void cornerTermsLanes(const Arrays& a, std::size_t t, const __m128 (&P)[3][3], c
                                          _mm_cmpge_ps(_mm_max_ps(y, ax), constant(kSmallestProduct)));
     const __m128 inRange =
         _mm_and_ps(_mm_cmpge_ps(angle, constant(kSmallestAngle)), _mm_cmple_ps(angle, constant(kPiF - kSmallestAngle)));
-    const __m128 usable =
-        _mm_and_ps(_mm_and_ps(_mm_and_ps(usableLanes, finite), _mm_and_ps(measurable, inRange)), sNonZero);
+    const __m128 common = _mm_and_ps(_mm_and_ps(usableLanes, finite), _mm_and_ps(measurable, sNonZero));
+    // Outside the window (a few percent of a real asset's corners), the reference's angle, as
+    // cornerTermsOne computes it, lane by lane.
+    if (const int outside = _mm_movemask_ps(_mm_andnot_ps(inRange, common))) {
+      alignas(16) float angles[4], corner[3][3][4], normal[3][4];
+      _mm_store_ps(angles, angle);
+      for (int i = 0; i < 3; ++i) {
+        for (int c = 0; c < 3; ++c) _mm_store_ps(corner[c][i], P[c][i]);
+        _mm_store_ps(normal[i], raw[i]);
+      }
+      for (int j = 0; j < 4; ++j) {
+        if (!(outside >> j & 1)) continue;
+        auto at = [&](int c) { return F3{corner[c][0][j], corner[c][1][j], corner[c][2][j]}; };
+        angles[j] = referenceAngleOf(at(k), at((k + 2) % 3), at((k + 1) % 3), F3{normal[0][j], normal[1][j], normal[2][j]});
+      }
+      angle = _mm_load_ps(angles);
+    }
+    const __m128 usable = _mm_and_ps(common, _mm_cmpgt_ps(angle, zero));
     const __m128i bits =
         _mm_and_si128(_mm_castps_si128(usable), _mm_or_si128(cone(s), _mm_slli_epi32(cone(projectedT), 6)));
     __m128 slot[4] = {
