@@ -181,7 +181,12 @@ inline std::uint32_t coneBits(F3 v) {
   return side(v.x) | side(v.y) << 2 | side(v.z) << 4;
 }
 
-// The reference's corner angle (EvalTspace, as Kernel::referenceAngle computes it): float
+// Three floats of p at vertex v (a position or a normal), as the reference reads them.
+inline F3 floatsAt(const float* p, std::uint32_t v) {
+  return F3{p[3 * std::size_t(v)], p[3 * std::size_t(v) + 1], p[3 * std::size_t(v) + 2]};
+}
+
+// The reference's corner angle (EvalTspace; Kernel::referenceAngle for a corner): float
 // projections of the edges on the raw normal, float cosine clamped to [-1, 1], acos. The
 // weight of a corner outside [kSmallestAngle, pi - kSmallestAngle], as in the full path, where
 // the reference's rounding moves small angles by a visible fraction.
@@ -195,17 +200,15 @@ inline float referenceAngleOf(F3 here, F3 previous, F3 next, F3 raw) {
 // The parked terms of triangle t's three corners (frame: its dP/du, dP/dv; flags: its bits).
 void cornerTermsOne(const Arrays& a, std::size_t t, const float* frame, std::uint8_t flags, float* tangents) {
   const std::uint32_t* triangle = a.indices + 3 * t;
-  auto at = [&](const float* p, std::uint32_t v) {
-    return F3{p[3 * std::size_t(v)], p[3 * std::size_t(v) + 1], p[3 * std::size_t(v) + 2]};
-  };
-  const F3 p[3] = {at(a.positions, triangle[0]), at(a.positions, triangle[1]), at(a.positions, triangle[2])};
+  const F3 p[3] = {floatsAt(a.positions, triangle[0]), floatsAt(a.positions, triangle[1]),
+                   floatsAt(a.positions, triangle[2])};
   const F3 e01 = fsub(p[1], p[0]), e02 = fsub(p[2], p[0]), e12 = fsub(p[2], p[1]);
   // Corner k's edges to its previous and next corners, and their dot product.
   const F3 toPrevious[3] = {e02, fscale(-1.0f, e01), fscale(-1.0f, e12)};
   const F3 toNext[3] = {e01, e12, fscale(-1.0f, e02)};
   const float edgeDot[3] = {fdot(e02, e01), -fdot(e01, e12), fdot(e12, e02)};
   for (int k = 0; k < 3; ++k) {
-    const F3 raw = at(a.normals, triangle[k]);
+    const F3 raw = floatsAt(a.normals, triangle[k]);
     const float normal2 = fdot(raw, raw);
     const F3 e1 = toPrevious[k], e2 = toNext[k];
     const F3 area{e1.y * e2.z - e1.z * e2.y, e1.z * e2.x - e1.x * e2.z, e1.x * e2.y - e1.y * e2.x};
@@ -567,12 +570,13 @@ void evaluateFour(const Arrays& a, std::size_t t, float* frames, std::int8_t* or
   const __m128 usable =
       _mm_and_ps(_mm_and_ps(notZero(signedArea), _mm_and_ps(notZero(_mm_div_ps(lengthS, absArea)), notZero(_mm_div_ps(lengthT, absArea)))),
                  _mm_and_ps(isFinite(lengthS), isFinite(lengthT)));
-  const int common = _mm_movemask_ps(_mm_andnot_ps(coincident, _mm_and_ps(finite, usable)));
+  const __m128 commonLanes = _mm_andnot_ps(coincident, _mm_and_ps(finite, usable));
+  const int common = _mm_movemask_ps(commonLanes);
   const int positiveLanes = _mm_movemask_ps(positive);
   // Lanes that keep these frames and have no flags: their corners' parked terms from here.
   const __m128 flatLanes = _mm_castsi128_ps(
       _mm_cmpgt_epi32(_mm_and_si128(_mm_set1_epi32(flat), _mm_setr_epi32(1, 2, 4, 8)), _mm_setzero_si128()));
-  const __m128 usableLanes = _mm_andnot_ps(_mm_or_ps(coincident, flatLanes), _mm_and_ps(finite, usable));
+  const __m128 usableLanes = _mm_andnot_ps(flatLanes, commonLanes);
   cornerTermsLanes(a, t, P, v, first, s, tv, usableLanes, tangents);
   alignas(16) float out[6][4];
   #pragma GCC unroll 4
@@ -683,29 +687,35 @@ class Kernel {
   // The reference's corner angle (EvalTspace): float projections on the raw normal, float
   // cosine clamped to [-1, 1], acos.
   double referenceAngle(std::size_t corner, F3 rawNormal) const {
-    auto at = [&](std::size_t c) {
-      const std::uint32_t v = a_.indices[c];
-      return F3{a_.positions[3 * v], a_.positions[3 * v + 1], a_.positions[3 * v + 2]};
-    };
-    const F3 here = at(corner);
-    const F3 toPrevious = referenceProjected(fsub(at(previousCorner(corner)), here), rawNormal);
-    const F3 toNext = referenceProjected(fsub(at(nextCorner(corner)), here), rawNormal);
-    const float cosine = std::clamp(fdot(toPrevious, toNext), -1.0f, 1.0f);
-    return static_cast<float>(std::acos(static_cast<double>(cosine)));
+    auto at = [&](std::size_t c) { return floatsAt(a_.positions, a_.indices[c]); };
+    return referenceAngleOf(at(corner), at(previousCorner(corner)), at(nextCorner(corner)), rawNormal);
   }
   // Once a bucket's groups are built its corners' neighbour links are spent: the same slot
   // then holds the corner's group weight (the sum of its angles), which ranks candidate
   // frames; corners of duplicate triangles keep their link to the original.
   void setWeight(std::size_t corner, float weight) { ws_.cornerLink[corner] = bitCast<std::uint32_t>(weight); }
   float weight(std::size_t corner) const { return bitCast<float>(ws_.cornerLink[corner]); }
-  void writeCorner(std::size_t corner, V3 tangent, float w, FrameSource source, float weight) {
-    tangents_[4 * corner] = static_cast<float>(tangent.x);
-    tangents_[4 * corner + 1] = static_cast<float>(tangent.y);
-    tangents_[4 * corner + 2] = static_cast<float>(tangent.z);
-    tangents_[4 * corner + 3] = w * wSign_;
+  // A frame as stored (xyz, w in the output convention) into the corner's slot, with its source
+  // and weight.
+  void storeFrame(std::size_t corner, const float (&frame)[4], FrameSource source, float weight) {
+    std::memcpy(&tangents_[4 * corner], frame, sizeof frame);
     ws_.cornerState[corner] = static_cast<std::uint8_t>((ws_.cornerState[corner] & ~(kSourceMask | kUndefined)) |
                                                         static_cast<std::uint8_t>(source));
     setWeight(corner, weight);
+  }
+  void writeCorner(std::size_t corner, V3 tangent, float w, FrameSource source, float weight) {
+    const float frame[4] = {static_cast<float>(tangent.x), static_cast<float>(tangent.y), static_cast<float>(tangent.z),
+                            w * wSign_};
+    storeFrame(corner, frame, source, weight);
+  }
+  // A bucket whose corners all got one frame: whether they are one input vertex (bucketUniform,
+  // so that the vertex split need not compare them), and its mirrored corners counted.
+  void finishOneFrame(std::uint32_t bucket, const std::uint32_t* list, std::uint32_t count, std::uint64_t& mirrored) {
+    const std::uint32_t vertex = a_.indices[list[0]];
+    bool oneVertex = true;
+    for (std::uint32_t i = 1; i < count; ++i) oneVertex = oneVertex && a_.indices[list[i]] == vertex;
+    ws_.bucketUniform[bucket] = oneVertex;
+    if (tangents_[4 * list[0] + 3] < 0) mirrored += count;
   }
   void markUndefined(std::size_t corner, float w) {
     if (!anyUndefined_.load(std::memory_order_relaxed)) anyUndefined_.store(true, std::memory_order_relaxed);
@@ -1264,19 +1274,8 @@ bool Kernel::fastBucket(std::uint32_t bucket, const std::uint32_t* list, std::ui
   const float w = ws_.orientation[list[0] / 3] > 0 ? 1.0f : -1.0f;
   const float frame[4] = {static_cast<float>(unit.x), static_cast<float>(unit.y), static_cast<float>(unit.z),
                           w * wSign_};
-  const std::uint32_t weight = bitCast<std::uint32_t>(static_cast<float>(angleSum));
-  const std::uint32_t vertex = a_.indices[list[0]];
-  bool oneVertex = true;
-  for (std::uint32_t i = 0; i < count; ++i) {
-    const std::uint32_t c = list[i];
-    std::memcpy(&tangents_[4 * std::size_t(c)], frame, sizeof frame);
-    ws_.cornerState[c] = static_cast<std::uint8_t>((ws_.cornerState[c] & ~(kSourceMask | kUndefined)) |
-                                                   static_cast<std::uint8_t>(FrameSource::computed));
-    ws_.cornerLink[c] = weight;  // setWeight
-    oneVertex = oneVertex && a_.indices[c] == vertex;
-  }
-  ws_.bucketUniform[bucket] = oneVertex;
-  if (frame[3] < 0) mirrored += count;
+  for (std::uint32_t i = 0; i < count; ++i) storeFrame(list[i], frame, FrameSource::computed, static_cast<float>(angleSum));
+  finishOneFrame(bucket, list, count, mirrored);
   return true;
 }
 
@@ -1519,11 +1518,7 @@ void Kernel::groupBucket(std::uint32_t bucket, BucketScratch& scratch, std::uint
     g = gEnd;
   }
   if (oneFrame) {
-    const std::uint32_t vertex = a_.indices[list[0]];
-    bool oneVertex = true;
-    for (std::uint32_t i = 1; i < count; ++i) oneVertex = oneVertex && a_.indices[list[i]] == vertex;
-    ws_.bucketUniform[bucket] = oneVertex;
-    if (tangents_[4 * list[0] + 3] < 0) mirrored += count;
+    finishOneFrame(bucket, list, count, mirrored);
     return;  // no coincident corners here
   }
 
