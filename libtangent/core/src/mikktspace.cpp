@@ -636,6 +636,11 @@ class BucketUnionFind {
   ScratchVector<std::uint32_t>& parent_;
 };
 
+// What pairBucket leaves in a bucket's bucketUniform slot for groupBucket (which then writes
+// the slot's own value): whether its links form one chain through all its corners, all
+// taking part and none a copy, where the pairing could tell.
+constexpr std::uint8_t kNotOneChain = 0, kOneChain = 1, kChainUnknown = 2;
+
 class Kernel {
  public:
   Kernel(WorkspaceData& ws, const MeshArrays& mesh, const CornerOutputs& outputs, UvOrigin origin)
@@ -669,6 +674,12 @@ class Kernel {
   // orientation: the common closed fan around a vertex, one group without a union-find.
   // Links pair distinct half-edges, so a walk of `count` steps back to its start has seen
   // every corner once.
+  bool oneOrientation(const std::uint32_t* list, std::uint32_t count) const {
+    const std::int8_t orientation = ws_.orientation[list[0] / 3];
+    bool same = true;
+    for (std::uint32_t i = 1; i < count; ++i) same &= ws_.orientation[list[i] / 3] == orientation;
+    return same;
+  }
   bool closedFan(const std::uint32_t* list, std::uint32_t count) const {
     const std::uint32_t start = list[0];
     const std::int8_t orientation = ws_.orientation[start / 3];
@@ -814,11 +825,18 @@ void Kernel::evaluateTriangles(Report& report) {
 void Kernel::pairBucket(std::uint32_t bucket, BucketScratch& scratch) {
   const std::uint32_t first = start_[bucket], count = start_[bucket + 1] - first;
   const std::uint32_t* list = corners_ + first;
-  for (std::uint32_t i = 0; i < count; ++i) {
-    ws_.cornerState[list[i]] = 0;
-    ws_.cornerLink[list[i]] = kNone;
+  auto reset = [&] {
+    for (std::uint32_t i = 0; i < count; ++i) {
+      ws_.cornerState[list[i]] = 0;
+      ws_.cornerLink[list[i]] = kNone;
+    }
+  };
+  if (count < 2) {  // one corner: a chain of one where it takes part
+    reset();
+    ws_.bucketUniform[bucket] = count == 1 && participates(list[0]) ? kOneChain : kNotOneChain;
+    return;
   }
-  if (count < 2) return;
+  ws_.bucketUniform[bucket] = kChainUnknown;
   // Most buckets: a few corners whose next identities are all different, each of which is
   // the previous identity of at most one corner. Then no triangle duplicates another here
   // (a duplicate has the same next identity) and no edge has more than one half-edge each
@@ -832,13 +850,19 @@ void Kernel::pairBucket(std::uint32_t bucket, BucketScratch& scratch) {
     std::uint32_t n = 0;
     for (std::uint32_t i = 0; i < count; ++i) {
       const std::uint32_t c = list[i];
-      if (!participates(c)) continue;
+      ws_.cornerState[c] = 0;
+      if (!participates(c)) {
+        ws_.cornerLink[c] = kNone;
+        continue;
+      }
       corner[n] = c;
       outId[n] = id(nextCorner(c));
       inId[n] = id(previousCorner(c));
       ++n;
     }
     std::uint32_t match[kSmall];
+    std::uint8_t successor[kSmall];  // local index of match[i], kSmall where none
+    std::uint32_t targets = 0;       // local indices some link reaches
     bool simple = true;
 #if defined(__SSE2__)
     // Lane masks of equal identities, four lanes a compare (8 or 16 lanes, those past n
@@ -867,6 +891,8 @@ void Kernel::pairBucket(std::uint32_t bucket, BucketScratch& scratch) {
         sameOut &= lanes, sameIn &= lanes;
         bad |= (sameOut ^ (std::uint32_t(1) << i)) | (sameIn & (sameIn - 1));
         match[i] = sameIn ? corner[std::countr_zero(sameIn)] : kNone;
+        successor[i] = static_cast<std::uint8_t>(sameIn ? std::countr_zero(sameIn) : kSmall);
+        targets |= sameIn;
       }
       return bad == 0;
     };
@@ -875,19 +901,41 @@ void Kernel::pairBucket(std::uint32_t bucket, BucketScratch& scratch) {
     for (std::uint32_t i = 0; i < n; ++i) {
       std::uint32_t sameOut = 0, sameIn = 0;
       match[i] = kNone;
+      successor[i] = kSmall;
       for (std::uint32_t j = 0; j < n; ++j) {
         sameOut += outId[i] == outId[j];
         sameIn += outId[i] == inId[j];
         match[i] = outId[i] == inId[j] ? corner[j] : match[i];
+        successor[i] = outId[i] == inId[j] ? static_cast<std::uint8_t>(j) : successor[i];
+        targets |= outId[i] == inId[j] ? std::uint32_t(1) << j : 0;
       }
       simple &= (sameOut == 1) & (sameIn <= 1);
     }
 #endif
     if (simple) {
       for (std::uint32_t i = 0; i < n; ++i) ws_.cornerLink[corner[i]] = match[i];
+      // Each corner has at most one successor and one predecessor here, so the links form
+      // paths and cycles. One chain through every corner: a cycle from corner 0, or the
+      // path from the one corner that no link reaches (one head: one path; a walk from it
+      // that sees every corner: no cycle beside it).
+      bool oneChain = false;
+      if (n == count) {
+        const std::uint32_t heads = ((std::uint32_t(1) << n) - 1) & ~targets;
+        if (heads == 0 || (heads & (heads - 1)) == 0) {
+          const std::uint32_t start = heads == 0 ? 0 : static_cast<std::uint32_t>(std::countr_zero(heads));
+          std::uint32_t k = start, seen = 0;
+          do {
+            k = successor[k];
+            ++seen;
+          } while (k != kSmall && k != start && seen < n);
+          oneChain = seen == n && (heads == 0 ? k == start : k == kSmall);
+        }
+      }
+      ws_.bucketUniform[bucket] = oneChain ? kOneChain : kNotOneChain;
       return;
     }
   }
+  reset();
   // keys: [0, n) outgoing (next id, corner), [n, 2n) incoming (previous id, corner).
   scratch.keys.resize(2 * count);
   std::uint64_t* outs = scratch.keys.data();
@@ -1282,12 +1330,14 @@ bool Kernel::fastBucket(std::uint32_t bucket, const std::uint32_t* list, std::ui
 // Groups of one welded vertex, their sums, and the frames of its corners.
 void Kernel::groupBucket(std::uint32_t bucket, BucketScratch& scratch, std::uint64_t& mirrored) {
   const std::uint32_t first = start_[bucket], count = start_[bucket + 1] - first;
+  const std::uint8_t chain = ws_.bucketUniform[bucket];
   ws_.bucketUniform[bucket] = 0;
   if (count == 0) return;
   const std::uint32_t* list = corners_ + first;
-  // Members of each group, group by group: keys = (root, local index); a closed fan is one
+  // Members of each group, group by group: keys = (root, local index); one chain of links
+  // between triangles of one orientation (a fan around the vertex, closed or open) is one
   // group of every corner (what the union-find below finds for it), without keys.
-  const bool fan = closedFan(list, count);
+  const bool fan = chain == kOneChain ? oneOrientation(list, count) : chain == kChainUnknown && closedFan(list, count);
   if (fan && count <= kMostQuantizedTerms && fastBucket(bucket, list, count, mirrored)) return;
   bool invalidNormal = false;
   const V3 n = bucketNormal(bucket, invalidNormal);
@@ -1557,7 +1607,8 @@ void Kernel::fallbacks() {
   const std::size_t triangleCount = ws_.cornerCount / 3;
   const std::vector<std::uint32_t> coincident =
       coincident_ == 0 ? std::vector<std::uint32_t>{}
-                       : collectIf(ws_, triangleCount, [&](std::size_t t) { return (ws_.triangleFlags[t] & kCoincident) != 0; });
+                       : collectFlagged(ws_, ws_.triangleFlags.data(), kCoincident, triangleCount,
+                                        [&](std::size_t t) { return (ws_.triangleFlags[t] & kCoincident) != 0; });
   for (std::uint32_t t : coincident) {
     int plus = 0, minus = 0;
     for (int k = 0; k < 3; ++k) {
@@ -1575,9 +1626,10 @@ void Kernel::fallbacks() {
     }
   }
   if (!anyUndefined_.load(std::memory_order_relaxed)) return;
-  const std::vector<std::uint32_t> undefined = collectIf(ws_, ws_.cornerCount, [&](std::size_t c) {
-    return (ws_.cornerState[c] & kUndefined) && !(ws_.cornerState[c] & kCopy);
-  });
+  const std::vector<std::uint32_t> undefined =
+      collectFlagged(ws_, ws_.cornerState.data(), kUndefined, ws_.cornerCount, [&](std::size_t c) {
+        return (ws_.cornerState[c] & kUndefined) && !(ws_.cornerState[c] & kCopy);
+      });
   // Each borrows only from frames that were there before this loop: decide all, then write.
   struct Decision {
     std::uint32_t corner;

@@ -256,6 +256,11 @@ std::vector<Count> blockStarts(const WorkspaceData& ws, std::size_t blocks, cons
 // (fixed chunks: counted, then filled at their offsets).
 template <typename Keep>
 std::vector<std::uint32_t> collectIf(const WorkspaceData& ws, std::size_t count, const Keep& keep);
+// The same where keep(i) can hold only if flags[i] has `flag`: runs of eight bytes without it
+// are skipped (these lists are rare corners of large arrays).
+template <typename Keep>
+std::vector<std::uint32_t> collectFlagged(const WorkspaceData& ws, const std::uint8_t* flags, std::uint8_t flag,
+                                          std::size_t count, const Keep& keep);
 
 }  // namespace tangent::detail
 
@@ -291,25 +296,52 @@ std::vector<Count> blockStarts(const WorkspaceData& ws, std::size_t blocks, cons
   return start;
 }
 
+// Calls each(i) for the i in [begin, end) where keep(i) holds, in increasing order.
+template <typename Keep, typename Each>
+void scanKept(const std::uint8_t* flags, std::uint8_t flag, std::size_t begin, std::size_t end, const Keep& keep,
+              const Each& each) {
+  std::size_t i = begin;
+  if (flags != nullptr) {
+    const std::uint64_t any = 0x0101010101010101ull * flag;
+    for (; i + 8 <= end; i += 8) {
+      std::uint64_t eight;
+      std::memcpy(&eight, flags + i, sizeof eight);
+      if (!(eight & any)) continue;
+      for (std::size_t j = i; j < i + 8; ++j) {
+        if (keep(j)) each(j);
+      }
+    }
+  }
+  for (; i < end; ++i) {
+    if (keep(i)) each(i);
+  }
+}
+
 template <typename Keep>
-std::vector<std::uint32_t> collectIf(const WorkspaceData& ws, std::size_t count, const Keep& keep) {
+std::vector<std::uint32_t> collectFlagged(const WorkspaceData& ws, const std::uint8_t* flags, std::uint8_t flag,
+                                          std::size_t count, const Keep& keep) {
   constexpr std::size_t kChunk = 1 << 16;
   const std::size_t chunkCount = (count + kChunk - 1) / kChunk;
+  auto chunkEnd = [&](std::size_t k) { return std::min(count, (k + 1) * kChunk); };
   const std::vector<std::size_t> offset = blockStarts<std::size_t>(ws, chunkCount, [&](std::size_t k) {
     std::size_t n = 0;
-    for (std::size_t i = k * kChunk; i < std::min(count, (k + 1) * kChunk); ++i) n += keep(i) ? 1 : 0;
+    scanKept(flags, flag, k * kChunk, chunkEnd(k), keep, [&](std::size_t) { ++n; });
     return n;
   });
   std::vector<std::uint32_t> kept(offset[chunkCount]);
   forRange(ws, chunkCount, 1, [&](std::size_t begin, std::size_t end) {
     for (std::size_t k = begin; k < end; ++k) {
       std::size_t at = offset[k];
-      for (std::size_t i = k * kChunk; i < std::min(count, (k + 1) * kChunk); ++i) {
-        if (keep(i)) kept[at++] = static_cast<std::uint32_t>(i);
-      }
+      scanKept(flags, flag, k * kChunk, chunkEnd(k), keep,
+               [&](std::size_t i) { kept[at++] = static_cast<std::uint32_t>(i); });
     }
   });
   return kept;
+}
+
+template <typename Keep>
+std::vector<std::uint32_t> collectIf(const WorkspaceData& ws, std::size_t count, const Keep& keep) {
+  return collectFlagged(ws, nullptr, 0, count, keep);
 }
 
 template <typename Body>
