@@ -215,8 +215,10 @@ void ensureSize(Vector& v, std::size_t n) {
   if (v.size() < n) v.resize(n);
 }
 
-// Checks the sizes and every index; throws std::invalid_argument naming the array.
+// Check the arrays' sizes, and (in parallel, inside the call's arena) every index; throw
+// std::invalid_argument naming the array, or the first index out of range.
 void checkArrays(const MeshArrays& mesh, const CornerOutputs& outputs);
+void checkIndices(const WorkspaceData& ws, const MeshArrays& mesh);
 
 // Welds vertices by exact (position, normal, UV) value as the reference does (+0 and -0
 // equal), then buckets the corners by welded id, each bucket in corner order.
