@@ -373,9 +373,21 @@ void finishOutputs(WorkspaceData& ws, const MeshArrays& mesh, const CornerOutput
     });
   }
   Combinable<Counts> counts;
+  // Where the kernel counted and no sources are asked for, eight corners at a time are skipped
+  // when all are computed with a valid normal (all but a few).
+  const bool skipCommon = kernelCounts && outputs.sources.empty();
+  constexpr std::uint64_t kCounted = 0x0101010101010101ull * (kSourceMask | kInvalidNormal);
   forRange(ws, cornerCount, 1 << 14, [&](std::size_t begin, std::size_t end) {
     Counts local;
     for (std::size_t c = begin; c < end; ++c) {
+      if (skipCommon && c % 8 == 0 && c + 8 <= end) {
+        std::uint64_t eight;
+        std::memcpy(&eight, state + c, sizeof eight);
+        if (!(eight & kCounted)) {
+          c += 7;
+          continue;
+        }
+      }
       const std::uint8_t s = state[c];
       if (!kernelCounts) {
         tangents[4 * c + 3] *= wSign;
