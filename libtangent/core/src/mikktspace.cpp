@@ -27,10 +27,10 @@
 // (counting sort), then every phase runs per triangle or per bucket in parallel (oneTBB);
 // each item's result depends only on the input, so any thread count gives the same bits.
 // Two paths per bucket. The triangle pass parks each corner's angle-weighted term in its
-// output slot (float, four triangles at a time); a bucket that is one closed fan of one UV
-// orientation, with every corner in the common case and no pair the subgroup rule could
-// split, sums its parked terms rounded to multiples of 2^-40 (exact double sums, so no order
-// moves a bit) and writes one frame (fastBucket). Every other bucket takes the full path
+// output slot (float, four triangles at a time); a bucket that is one fan (closed or open)
+// of one UV orientation, with every corner in the common case and no pair the subgroup rule
+// could split, sums its parked terms rounded to multiples of 2^-40 (exact double sums, so no
+// order moves a bit) and writes one frame (fastBucket). Every other bucket takes the full path
 // (groupBucket): double-precision angles, sums in value order, the subgroup test, the
 // reference's own float sums where terms cancel.
 #include <algorithm>
@@ -670,16 +670,18 @@ class Kernel {
   // Adds the bucket's corners with a negative w (as stored) to `mirrored`, copies aside.
   void groupBucket(std::uint32_t bucket, BucketScratch& scratch, std::uint64_t& mirrored);
   bool fastBucket(std::uint32_t bucket, const std::uint32_t* list, std::uint32_t count, std::uint64_t& mirrored);
-  // Whether the links of a bucket's corners form one cycle through all of them with one UV
-  // orientation: the common closed fan around a vertex, one group without a union-find.
-  // Links pair distinct half-edges, so a walk of `count` steps back to its start has seen
-  // every corner once.
+  // Whether the triangles of a bucket's corners share one UV orientation (with a chain of
+  // links through all of them from pairBucket: one group of every corner).
   bool oneOrientation(const std::uint32_t* list, std::uint32_t count) const {
     const std::int8_t orientation = ws_.orientation[list[0] / 3];
     bool same = true;
     for (std::uint32_t i = 1; i < count; ++i) same &= ws_.orientation[list[i] / 3] == orientation;
     return same;
   }
+  // Whether the links of a bucket's corners form one cycle through all of them with one UV
+  // orientation: the common closed fan around a vertex, one group without a union-find.
+  // Links pair distinct half-edges, so a walk of `count` steps back to its start has seen
+  // every corner once.
   bool closedFan(const std::uint32_t* list, std::uint32_t count) const {
     const std::uint32_t start = list[0];
     const std::int8_t orientation = ws_.orientation[start / 3];
@@ -1272,12 +1274,12 @@ inline double quantized(float x) {
 }
 constexpr std::uint32_t kMostQuantizedTerms = 2048;
 
-// The common bucket from the terms the triangle pass parked in its corners' slots: a closed
-// fan of one orientation, every corner usable (cornerTermsOne), its dP/du and its dP/dv
-// each inside one half-space (no pair the reference could find opposite, so no subgroups),
-// a sum that does not nearly cancel, a normal that is neither zero nor infinite. Then every
-// corner gets the one shared frame, as the full path would give it. False (nothing written)
-// where the bucket is not that case.
+// The common bucket from the terms the triangle pass parked in its corners' slots: one fan
+// (closed or open) of one orientation, every corner usable (cornerTermsOne), its dP/du and
+// its dP/dv each inside one half-space (no pair the reference could find opposite, so no
+// subgroups), a sum that does not nearly cancel, a normal that is neither zero nor infinite.
+// Then every corner gets the one shared frame, as the full path would give it. False
+// (nothing written) where the bucket is not that case.
 bool Kernel::fastBucket(std::uint32_t bucket, const std::uint32_t* list, std::uint32_t count, std::uint64_t& mirrored) {
   std::uint32_t cone = kConeBits;
   double x, y, z, angleSum;

@@ -254,6 +254,10 @@ void onThreads(const WorkspaceData& ws, const Body& body);
 template <typename Count, typename Total>
 std::vector<Count> blockStarts(const WorkspaceData& ws, std::size_t blocks, const Total& total);
 
+// Replaces values[i] by the sum of values[0, i), block by block in parallel; returns the sum
+// of all (which the caller checks against its own limit: each value is stored as it comes).
+inline std::uint64_t exclusiveScan(const WorkspaceData& ws, std::uint32_t* values, std::size_t count);
+
 // The indices in [0, count) where keep(i) holds, in increasing order, gathered in parallel
 // (fixed chunks: counted, then filled at their offsets).
 template <typename Keep>
@@ -344,6 +348,28 @@ std::vector<std::uint32_t> collectFlagged(const WorkspaceData& ws, const std::ui
 template <typename Keep>
 std::vector<std::uint32_t> collectIf(const WorkspaceData& ws, std::size_t count, const Keep& keep) {
   return collectFlagged(ws, nullptr, 0, count, keep);
+}
+
+inline std::uint64_t exclusiveScan(const WorkspaceData& ws, std::uint32_t* values, std::size_t count) {
+  constexpr std::size_t kBlock = 1 << 14;
+  const std::size_t blocks = (count + kBlock - 1) / kBlock;
+  auto blockEnd = [&](std::size_t k) { return std::min(count, (k + 1) * kBlock); };
+  const std::vector<std::uint64_t> start = blockStarts<std::uint64_t>(ws, blocks, [&](std::size_t k) {
+    std::uint64_t n = 0;
+    for (std::size_t i = k * kBlock; i < blockEnd(k); ++i) n += values[i];
+    return n;
+  });
+  forRange(ws, blocks, 1, [&](std::size_t begin, std::size_t end) {
+    for (std::size_t k = begin; k < end; ++k) {
+      std::uint64_t sum = start[k];
+      for (std::size_t i = k * kBlock; i < blockEnd(k); ++i) {
+        const std::uint32_t n = values[i];
+        values[i] = static_cast<std::uint32_t>(sum);
+        sum += n;
+      }
+    }
+  });
+  return start[blocks];
 }
 
 template <typename Body>
