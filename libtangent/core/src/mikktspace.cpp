@@ -638,8 +638,9 @@ class BucketUnionFind {
 
 // What pairBucket leaves in a bucket's bucketUniform slot for groupBucket (which then writes
 // the slot's own value): whether its links form one chain through all its corners, all
-// taking part and none a copy, where the pairing could tell.
-constexpr std::uint8_t kNotOneChain = 0, kOneChain = 1, kChainUnknown = 2;
+// taking part and none a copy, where the pairing could tell; kOneFan: such a chain whose
+// triangles have one UV orientation, where orientations are final at pairing.
+constexpr std::uint8_t kNotOneChain = 0, kOneChain = 1, kChainUnknown = 2, kOneFan = 3;
 
 class Kernel {
  public:
@@ -769,6 +770,9 @@ class Kernel {
   // Whether any corner was marked undefined, any edge is non-manifold: where not, the passes
   // that look for them are skipped.
   std::atomic<bool> anyUndefined_{false}, anyNonManifold_{false};
+  // Whether the UV orientations are final when the buckets are paired (no zero-UV triangle
+  // waits for its neighbours'), so that pairing may vouch for one orientation.
+  bool orientationsFinal_ = false;
 };
 
 void Kernel::evaluateTriangles(Report& report) {
@@ -838,6 +842,8 @@ void Kernel::pairBucket(std::uint32_t bucket, BucketScratch& scratch) {
     ws_.bucketUniform[bucket] = count == 1 && participates(list[0]) ? kOneChain : kNotOneChain;
     return;
   }
+  const std::int8_t firstOrientation = ws_.orientation[list[0] / 3];
+  bool oneOrientation = true;
   ws_.bucketUniform[bucket] = kChainUnknown;
   // Most buckets: a few corners whose next identities are all different, each of which is
   // the previous identity of at most one corner. Then no triangle duplicates another here
@@ -857,6 +863,7 @@ void Kernel::pairBucket(std::uint32_t bucket, BucketScratch& scratch) {
         ws_.cornerLink[c] = kNone;
         continue;
       }
+      oneOrientation &= ws_.orientation[c / 3] == firstOrientation;
       corner[n] = c;
       outId[n] = id(nextCorner(c));
       inId[n] = id(previousCorner(c));
@@ -933,7 +940,8 @@ void Kernel::pairBucket(std::uint32_t bucket, BucketScratch& scratch) {
           oneChain = seen == n && (heads == 0 ? k == start : k == kSmall);
         }
       }
-      ws_.bucketUniform[bucket] = oneChain ? kOneChain : kNotOneChain;
+      ws_.bucketUniform[bucket] =
+          !oneChain ? kNotOneChain : (oneOrientation && orientationsFinal_ ? kOneFan : kOneChain);
       return;
     }
   }
@@ -1324,7 +1332,13 @@ bool Kernel::fastBucket(std::uint32_t bucket, const std::uint32_t* list, std::ui
   const float w = ws_.orientation[list[0] / 3] > 0 ? 1.0f : -1.0f;
   const float frame[4] = {static_cast<float>(unit.x), static_cast<float>(unit.y), static_cast<float>(unit.z),
                           w * wSign_};
-  for (std::uint32_t i = 0; i < count; ++i) storeFrame(list[i], frame, FrameSource::computed, static_cast<float>(angleSum));
+  // storeFrame without its state write: a corner's source and undefined bits are still clear
+  // here (pairing cleared them; only its bucket's group pass sets them), and computed is 0.
+  static_assert(static_cast<int>(FrameSource::computed) == 0);
+  for (std::uint32_t i = 0; i < count; ++i) {
+    std::memcpy(&tangents_[4 * std::size_t(list[i])], frame, sizeof frame);
+    setWeight(list[i], static_cast<float>(angleSum));
+  }
   finishOneFrame(bucket, list, count, mirrored);
   return true;
 }
@@ -1339,7 +1353,8 @@ void Kernel::groupBucket(std::uint32_t bucket, BucketScratch& scratch, std::uint
   // Members of each group, group by group: keys = (root, local index); one chain of links
   // between triangles of one orientation (a fan around the vertex, closed or open) is one
   // group of every corner (what the union-find below finds for it), without keys.
-  const bool fan = chain == kOneChain ? oneOrientation(list, count) : chain == kChainUnknown && closedFan(list, count);
+  const bool fan = chain == kOneFan ||
+                   (chain == kOneChain ? oneOrientation(list, count) : chain == kChainUnknown && closedFan(list, count));
   if (fan && count <= kMostQuantizedTerms && fastBucket(bucket, list, count, mirrored)) return;
   bool invalidNormal = false;
   const V3 n = bucketNormal(bucket, invalidNormal);
@@ -1700,6 +1715,7 @@ void Kernel::run(Report& report) {
   // triangle takes its orientation from its neighbours between them (resolveGroupWithAny):
   // without one, each bucket is paired and grouped at once, while its data is in cache.
   const bool fused = groupWithAny_ == 0;
+  orientationsFinal_ = fused;
   Combinable<std::uint64_t> mirrored;
   forRange(ws_, bucketCount, 1024, [&](std::size_t begin, std::size_t end) {
     BucketScratch& scratch = ws_.scratch.local();
