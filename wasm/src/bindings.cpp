@@ -77,7 +77,6 @@ EMSCRIPTEN_KEEPALIVE int tangent_run(const float* positions, const float* normal
     tangent::detail::checkArrays(mesh, outputs);
     tangent::detail::WorkspaceData& ws = s.workspace.data();
     ws.threads = 1;
-    tangent::detail::checkIndices(ws, mesh);
     const tangent::Report report = tangent::detail::mikktspaceOnArrays(ws, mesh, outputs, options);
     const double values[10] = {double(report.triangles),          double(report.outputVertices),
                                double(report.splitVertices),      double(report.degenerateTriangles),

@@ -51,7 +51,6 @@ Report computeCornerTangents(const MeshArrays& mesh, const CornerOutputs& output
   ws.threads = threadCount(options);
   Report report;
   auto body = [&] {
-    detail::checkIndices(ws, mesh);
     if (options.method == Method::mikktspace) {
       report = detail::mikktspaceOnArrays(ws, mesh, outputs, options);
     } else {

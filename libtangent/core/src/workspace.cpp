@@ -71,6 +71,8 @@ void checkArrays(const MeshArrays& mesh, const CornerOutputs& outputs) {
          std::to_string(outputs.cornerVertex.size()));
 }
 
+namespace {
+
 // The largest index, in parallel (a pass over the whole index array: serial, it was 8% of the
 // call's wall time on 16 CPUs); only where it is out of range, the first such index, named.
 void checkIndices(const WorkspaceData& ws, const MeshArrays& mesh) {
@@ -90,6 +92,8 @@ void checkIndices(const WorkspaceData& ws, const MeshArrays& mesh) {
                                   " is out of range (vertex count " + std::to_string(vertexCount) + ")");
   }
 }
+
+}  // namespace
 
 namespace {
 
@@ -147,6 +151,7 @@ void stableCountingSort(const WorkspaceData& ws, std::size_t count, std::size_t 
 }  // namespace
 
 void weldAndBucket(WorkspaceData& ws, const MeshArrays& mesh) {
+  checkIndices(ws, mesh);
   const std::size_t vertexCount = mesh.positions.size() / 3;
   const std::size_t cornerCount = mesh.indices.size();
   ws.vertexCount = vertexCount;
@@ -373,21 +378,13 @@ void finishOutputs(WorkspaceData& ws, const MeshArrays& mesh, const CornerOutput
     });
   }
   Combinable<Counts> counts;
-  // Where the kernel counted and no sources are asked for, eight corners at a time are skipped
-  // when all are computed with a valid normal (all but a few).
+  // Where the kernel counted and no sources are asked for, only corners not computed or with
+  // an invalid normal count: runs of eight without either are skipped (all but a few).
   const bool skipCommon = kernelCounts && outputs.sources.empty();
-  constexpr std::uint64_t kCounted = 0x0101010101010101ull * (kSourceMask | kInvalidNormal);
   forRange(ws, cornerCount, 1 << 14, [&](std::size_t begin, std::size_t end) {
     Counts local;
-    for (std::size_t c = begin; c < end; ++c) {
-      if (skipCommon && c % 8 == 0 && c + 8 <= end) {
-        std::uint64_t eight;
-        std::memcpy(&eight, state + c, sizeof eight);
-        if (!(eight & kCounted)) {
-          c += 7;
-          continue;
-        }
-      }
+    auto all = [](std::size_t) { return true; };
+    scanKept(skipCommon ? state : nullptr, kSourceMask | kInvalidNormal, begin, end, all, [&](std::size_t c) {
       const std::uint8_t s = state[c];
       if (!kernelCounts) {
         tangents[4 * c + 3] *= wSign;
@@ -401,7 +398,7 @@ void finishOutputs(WorkspaceData& ws, const MeshArrays& mesh, const CornerOutput
       }
       local.invalidNormals += (s & kInvalidNormal) != 0;
       if (!outputs.sources.empty()) outputs.sources[c] = static_cast<FrameSource>(s & kSourceMask);
-    }
+    });
     counts.local().add(local);
   });
   Counts total;

@@ -215,13 +215,13 @@ void ensureSize(Vector& v, std::size_t n) {
   if (v.size() < n) v.resize(n);
 }
 
-// Check the arrays' sizes, and (in parallel, inside the call's arena) every index; throw
-// std::invalid_argument naming the array, or the first index out of range.
+// Checks the arrays' sizes; throws std::invalid_argument naming the array.
 void checkArrays(const MeshArrays& mesh, const CornerOutputs& outputs);
-void checkIndices(const WorkspaceData& ws, const MeshArrays& mesh);
 
-// Welds vertices by exact (position, normal, UV) value as the reference does (+0 and -0
-// equal), then buckets the corners by welded id, each bucket in corner order.
+// Checks every index (in parallel, inside the call's arena; std::invalid_argument naming the
+// first one out of range), then welds vertices by exact (position, normal, UV) value as the
+// reference does (+0 and -0 equal), then buckets the corners by welded id, each bucket in
+// corner order. Every path reads the indices here first.
 void weldAndBucket(WorkspaceData& ws, const MeshArrays& mesh);
 
 // The method `mikktspace` on checked arrays: weld, groups, output pass (weldAndBucket,
