@@ -7,8 +7,12 @@
 #include <bit>
 #include <cstring>
 #include <limits>
+#include <cstdlib>
+#include <iostream>
 #include <map>
+#include <optional>
 #include <set>
+#include <string>
 
 #include "support/random_meshes.hpp"
 #include "support/test_assets.hpp"
@@ -77,6 +81,87 @@ TEST(Workspace, SameBitsForOneTwoThreeAndEightThreadsAndShuffledInput) {
       EXPECT_EQ(s.report.splitVertices, one.report.splitVertices);
     }
   }
+}
+
+// Sets TANGENT_MAX_CPU_ISA for its lifetime, then puts back what was there.
+class ScopedVectorIsa {
+ public:
+  explicit ScopedVectorIsa(const char* isa) {
+    if (const char* old = std::getenv(kName)) saved_ = old;
+    if (isa) {
+      setenv(kName, isa, 1);
+    } else {
+      unsetenv(kName);
+    }
+  }
+  ~ScopedVectorIsa() {
+    if (saved_) {
+      setenv(kName, saved_->c_str(), 1);
+    } else {
+      unsetenv(kName);
+    }
+  }
+  ScopedVectorIsa(const ScopedVectorIsa&) = delete;
+  ScopedVectorIsa& operator=(const ScopedVectorIsa&) = delete;
+
+ private:
+  static constexpr const char* kName = "TANGENT_MAX_CPU_ISA";
+  std::optional<std::string> saved_;
+};
+
+// The triangle pass in AVX2 (eight triangles a step), SSE2 (four) and scalar code: every width
+// this build and processor have gives the scalar code's bits.
+TEST(Workspace, SameBitsForEveryVectorWidth) {
+  std::string widest;
+  {
+    const ScopedVectorIsa uncapped(nullptr);
+    widest = tangent::vectorIsa();
+  }
+#if defined(__SSE2__) && defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
+  EXPECT_EQ(widest, __builtin_cpu_supports("avx2") ? "avx2" : "sse2") << "the widest this processor has";
+#endif
+  // A torus with values the float formulas do not resolve: NaN, infinite, huge, tiny.
+  GridMesh extreme = tangent::testing::makeTorus(128, 64);
+  for (std::size_t v = 0; v < extreme.positions.size() / 3; ++v) {
+    float* p = &extreme.positions[3 * v];
+    if (v % 97 == 0) p[0] = std::numeric_limits<float>::quiet_NaN();
+    if (v % 89 == 0) extreme.uvs[2 * v + 1] = std::numeric_limits<float>::infinity();
+    if (v % 83 == 0) p[1] *= 1e30f;
+    if (v % 79 == 0) p[2] *= 1e-30f;
+    if (v % 73 == 0) extreme.uvs[2 * v] *= 1e-25f;
+  }
+  const GridMesh meshes[] = {hardMesh(), tangent::testing::makeTorus(256, 128), extreme};
+  for (const GridMesh& m : meshes) {
+    Output scalar;
+    {
+      const ScopedVectorIsa cap("scalar");
+      ASSERT_EQ(tangent::vectorIsa(), "scalar");
+      scalar = compute(arraysOf(m), 2);
+    }
+    int compared = 0;
+    for (const char* isa : {"sse2", "avx2"}) {
+      const ScopedVectorIsa cap(isa);
+      if (tangent::vectorIsa() != isa) {
+        std::cout << "[ NOTE     ] " << isa << " not compared: this build and processor run " << tangent::vectorIsa()
+                  << " at most\n";
+        continue;
+      }
+      const Output wide = compute(arraysOf(m), 2);
+      const std::size_t bytes = scalar.tangents.size() * sizeof(float);
+      ASSERT_EQ(0, std::memcmp(scalar.tangents.data(), wide.tangents.data(), bytes)) << isa;
+      ASSERT_EQ(scalar.cornerVertex, wide.cornerVertex) << isa;
+      ASSERT_EQ(scalar.report.degenerateTriangles, wide.report.degenerateTriangles) << isa;
+      ASSERT_EQ(scalar.report.zeroUvAreaTriangles, wide.report.zeroUvAreaTriangles) << isa;
+      ASSERT_EQ(scalar.report.nonFiniteTriangles, wide.report.nonFiniteTriangles) << isa;
+      ++compared;
+    }
+    EXPECT_EQ(compared, widest == "avx2" ? 2 : widest == "sse2" ? 1 : 0);
+  }
+  // Lanes that leave to the scalar code: not vacuous.
+  const Output hard = compute(arraysOf(meshes[0]), 2), odd = compute(arraysOf(meshes[2]), 2);
+  EXPECT_GT(hard.report.zeroUvAreaTriangles, 0u);
+  EXPECT_GT(hard.report.degenerateTriangles, 0u);
+  EXPECT_GT(odd.report.nonFiniteTriangles, 0u);
 }
 
 TEST(Workspace, VertexSplitKeepsEveryVertexAndAddsOnePerExtraTangent) {

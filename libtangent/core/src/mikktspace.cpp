@@ -27,9 +27,9 @@
 // (counting sort), then every phase runs per triangle or per bucket in parallel (oneTBB);
 // each item's result depends only on the input, so any thread count gives the same bits.
 // Two paths per bucket. The triangle pass parks each corner's angle-weighted term in its
-// output slot (float, four triangles at a time); a bucket that is one fan (closed or open)
-// of one UV orientation, with every corner in the common case and no pair the subgroup rule
-// could split, sums its parked terms rounded to multiples of 2^-40 (exact double sums, so no
+// output slot (float, eight or four triangles at a time: triangle_lanes.inc); a bucket that
+// is one fan (closed or open) of one UV orientation, with every corner in the common case and
+// no pair the subgroup rule could split, sums its parked terms rounded to multiples of 2^-40 (exact double sums, so no
 // order moves a bit) and writes one frame (fastBucket). Every other bucket takes the full path
 // (groupBucket): double-precision angles, sums in value order, the subgroup test, the
 // reference's own float sums where terms cancel.
@@ -38,12 +38,19 @@
 #include <atomic>
 #include <bit>
 #include <cmath>
+#include <cstdlib>
 #include <cstring>
 #include <limits>
+#include <string_view>
 #include <type_traits>
 
 #if defined(__SSE2__)
 #include <emmintrin.h>
+#endif
+// GCC on x86-64 also builds the triangle pass for AVX2, chosen at run time (vectorIsa).
+#if defined(__SSE2__) && defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
+#define TANGENT_LANES8 1
+#include <immintrin.h>
 #endif
 
 #include "workspace.hpp"
@@ -140,8 +147,9 @@ inline F3 referenceProjected(F3 v, F3 n) {
 
 // The group pass's common case, prepared in corner order by the triangle pass: each corner's
 // angle-weighted term, parked in its own output slot until the group pass replaces it with
-// the frame. Float arithmetic, four triangles at a time where SSE2 is there; the scalar
-// function does the same operations in the same order, so either gives the same bits.
+// the frame. Float arithmetic, eight triangles at a time where AVX2 is there, four where SSE2
+// is (triangle_lanes.inc); the scalar function does the same operations in the same order, so
+// every width gives the same bits.
 //
 // Slot of corner c: {S.x * angle, S.y * angle, S.z * angle, angle}, S the reference's
 // projection of the triangle's dP/du on the corner's raw normal N, angle the corner's angle
@@ -229,126 +237,6 @@ void cornerTermsOne(const Arrays& a, std::size_t t, const float* frame, std::uin
     slot[3] = bitCast<float>((bitCast<std::uint32_t>(angle) & ~kConeBits) | cone);
   }
 }
-
-#if defined(__SSE2__)
-// cornerTermsOne for triangles t .. t + 3 in SSE lanes, from evaluateFour's lanes: P[k][i]
-// component i of corner k counted from each triangle's first corner (v[k][j] its vertex in
-// lane j, first[j] its place in the triangle), S and T the frames, usable the lanes to
-// compute (the others get 0 bits; evaluateFour redoes them with cornerTermsOne). A corner's
-// term depends on the cyclic order of the corners only (the negations and products below are
-// exact either way round), so the same bits as cornerTermsOne's.
-void cornerTermsLanes(const Arrays& a, std::size_t t, const __m128 (&P)[3][3], const std::uint32_t (&v)[3][4],
-                      const int (&first)[4], const __m128 (&S)[3], const __m128 (&T)[3], __m128 usableLanes,
-                      float* tangents) {
-  auto mul = [](__m128 x, __m128 y) { return _mm_mul_ps(x, y); };
-  auto sub = [](__m128 x, __m128 y) { return _mm_sub_ps(x, y); };
-  auto add = [](__m128 x, __m128 y) { return _mm_add_ps(x, y); };
-  auto dot3 = [&](const __m128* u, const __m128* w) {
-    return add(add(mul(u[0], w[0]), mul(u[1], w[1])), mul(u[2], w[2]));
-  };
-  auto select = [](__m128 mask, __m128 x, __m128 y) { return _mm_or_ps(_mm_and_ps(mask, x), _mm_andnot_ps(mask, y)); };
-  auto constant = [](float c) { return _mm_set1_ps(c); };
-  const __m128 signMask = constant(-0.0f), tiny = constant(std::numeric_limits<float>::min()), zero = _mm_setzero_ps();
-  auto notZero = [&](__m128 x) { return _mm_cmpgt_ps(_mm_andnot_ps(signMask, x), tiny); };
-  auto negate = [&](__m128 x) { return _mm_xor_ps(x, signMask); };
-  auto cone = [&](const __m128* w) {
-    const __m128 bound = mul(constant(kConeMargin2), dot3(w, w));
-    __m128i bits = _mm_setzero_si128();
-    for (int i = 0; i < 3; ++i) {
-      const __m128 large = _mm_cmpgt_ps(mul(w[i], w[i]), bound);
-      const __m128i positive = _mm_castps_si128(_mm_cmpgt_ps(w[i], zero));
-      const __m128i side = _mm_or_si128(_mm_and_si128(positive, _mm_set1_epi32(1 << (2 * i))),
-                                        _mm_andnot_si128(positive, _mm_set1_epi32(2 << (2 * i))));
-      bits = _mm_or_si128(bits, _mm_and_si128(_mm_castps_si128(large), side));
-    }
-    return bits;
-  };
-  __m128 e01[3], e02[3], e12[3];
-#pragma GCC unroll 4
-  for (int i = 0; i < 3; ++i)
-    e01[i] = sub(P[1][i], P[0][i]), e02[i] = sub(P[2][i], P[0][i]), e12[i] = sub(P[2][i], P[1][i]);
-  __m128 minus01[3], minus12[3], minus02[3];
-#pragma GCC unroll 4
-  for (int i = 0; i < 3; ++i) minus01[i] = negate(e01[i]), minus12[i] = negate(e12[i]), minus02[i] = negate(e02[i]);
-  const __m128* toPrevious[3] = {e02, minus01, minus12};
-  const __m128* toNext[3] = {e01, e12, minus02};
-  const __m128 edgeDot[3] = {dot3(e02, e01), negate(dot3(e01, e12)), dot3(e12, e02)};
-#pragma GCC unroll 4
-  for (int k = 0; k < 3; ++k) {
-    __m128 raw[3];
-#pragma GCC unroll 4
-    for (int i = 0; i < 3; ++i) {
-      const float* n = a.normals + i;
-      raw[i] = _mm_setr_ps(n[3 * std::size_t(v[k][0])], n[3 * std::size_t(v[k][1])], n[3 * std::size_t(v[k][2])],
-                           n[3 * std::size_t(v[k][3])]);
-    }
-    const __m128 normal2 = dot3(raw, raw);
-    const __m128* e1 = toPrevious[k];
-    const __m128* e2 = toNext[k];
-    const __m128 area[3] = {sub(mul(e1[1], e2[2]), mul(e1[2], e2[1])), sub(mul(e1[2], e2[0]), mul(e1[0], e2[2])),
-                            sub(mul(e1[0], e2[1]), mul(e1[1], e2[0]))};
-    const __m128 y = mul(_mm_andnot_ps(signMask, dot3(raw, area)), _mm_sqrt_ps(normal2));
-    const __m128 x = sub(mul(normal2, edgeDot[k]), mul(dot3(raw, toPrevious[k]), dot3(raw, toNext[k])));
-    // angleBetweenFloat
-    const __m128 ax = _mm_andnot_ps(signMask, x);
-    const __m128 steep = _mm_cmpgt_ps(y, ax);
-    const __m128 num = select(steep, ax, y), den = select(steep, y, ax);
-    const __m128 shift = _mm_cmpgt_ps(num, mul(constant(0.414213562f), den));
-    const __m128 tt = _mm_div_ps(select(shift, sub(num, den), num), select(shift, add(num, den), den));
-    const __m128 t2 = mul(tt, tt), t4 = mul(t2, t2), t8 = mul(t4, t4);
-    const __m128 p01 = sub(constant(1.0f), mul(t2, constant(1.0f / 3))),
-                 p23 = sub(constant(1.0f / 5), mul(t2, constant(1.0f / 7)));
-    const __m128 p45 = sub(constant(1.0f / 9), mul(t2, constant(1.0f / 11))),
-                 p67 = sub(constant(1.0f / 13), mul(t2, constant(1.0f / 15)));
-    __m128 angle = mul(tt, add(add(p01, mul(t4, p23)), mul(t8, add(p45, mul(t4, p67)))));
-    angle = add(angle, _mm_and_ps(shift, constant(kQuarterPiF)));
-    angle = select(steep, sub(constant(kHalfPiF), angle), angle);
-    angle = select(_mm_cmplt_ps(x, zero), sub(constant(kPiF), angle), angle);
-
-    // referenceProjected(S, raw); dP/dv projected the same way, not normalized.
-    __m128 s[3], projectedT[3];
-    const __m128 alongS = dot3(raw, S), alongT = dot3(raw, T);
-#pragma GCC unroll 4
-    for (int i = 0; i < 3; ++i) s[i] = sub(S[i], mul(alongS, raw[i])), projectedT[i] = sub(T[i], mul(alongT, raw[i]));
-    const __m128 sNonZero = _mm_or_ps(_mm_or_ps(notZero(s[0]), notZero(s[1])), notZero(s[2]));
-    const __m128 inverse = _mm_div_ps(constant(1.0f), _mm_sqrt_ps(dot3(s, s)));
-#pragma GCC unroll 4
-    for (int i = 0; i < 3; ++i) s[i] = select(sNonZero, mul(inverse, s[i]), s[i]);
-
-    const __m128 finite = _mm_and_ps(_mm_cmpeq_ps(sub(y, y), zero), _mm_cmpeq_ps(sub(x, x), zero));
-    const __m128 measurable = _mm_and_ps(_mm_cmpge_ps(normal2, constant(kSmallestNormal2)),
-                                         _mm_cmpge_ps(_mm_max_ps(y, ax), constant(kSmallestProduct)));
-    const __m128 inRange =
-        _mm_and_ps(_mm_cmpge_ps(angle, constant(kSmallestAngle)), _mm_cmple_ps(angle, constant(kPiF - kSmallestAngle)));
-    const __m128 common = _mm_and_ps(_mm_and_ps(usableLanes, finite), _mm_and_ps(measurable, sNonZero));
-    // Outside the window (a few percent of a real asset's corners), the reference's angle, as
-    // cornerTermsOne computes it, lane by lane.
-    if (const int outside = _mm_movemask_ps(_mm_andnot_ps(inRange, common))) {
-      alignas(16) float angles[4], corner[3][3][4], normal[3][4];
-      _mm_store_ps(angles, angle);
-      for (int i = 0; i < 3; ++i) {
-        for (int c = 0; c < 3; ++c) _mm_store_ps(corner[c][i], P[c][i]);
-        _mm_store_ps(normal[i], raw[i]);
-      }
-      for (int j = 0; j < 4; ++j) {
-        if (!(outside >> j & 1)) continue;
-        auto at = [&](int c) { return F3{corner[c][0][j], corner[c][1][j], corner[c][2][j]}; };
-        angles[j] = referenceAngleOf(at(k), at((k + 2) % 3), at((k + 1) % 3), F3{normal[0][j], normal[1][j], normal[2][j]});
-      }
-      angle = _mm_load_ps(angles);
-    }
-    const __m128 usable = _mm_and_ps(common, _mm_cmpgt_ps(angle, zero));
-    const __m128i bits =
-        _mm_and_si128(_mm_castps_si128(usable), _mm_or_si128(cone(s), _mm_slli_epi32(cone(projectedT), 6)));
-    __m128 slot[4] = {
-        mul(s[0], angle), mul(s[1], angle), mul(s[2], angle),
-        _mm_castsi128_ps(_mm_or_si128(_mm_andnot_si128(_mm_set1_epi32(kConeBits), _mm_castps_si128(angle)), bits))};
-    _MM_TRANSPOSE4_PS(slot[0], slot[1], slot[2], slot[3]);
-#pragma GCC unroll 4
-    for (int j = 0; j < 4; ++j) _mm_storeu_ps(tangents + 4 * (3 * (t + j) + (first[j] + k) % 3), slot[j]);
-  }
-}
-#endif
 
 // Unit dP/du and dP/dv of triangle t (signed by the UV orientation), its orientation and
 // flags. The reference's float formulas (eq. 18, 19 of its source) from the triangle's first
@@ -452,151 +340,155 @@ void evaluateTriangle(const Arrays& a, std::size_t t, float* frame, std::int8_t&
 }
 
 #if defined(__SSE2__)
-// evaluateTriangle for the four triangles t .. t + 3 in SSE lanes: the same IEEE float and
-// double operations in the same order (no fused multiply-add in this build), so the same bits.
-// A lane outside the common case (a non-finite value, coincident corners, or a UV area or
-// direction that the float formulas do not resolve) is redone by evaluateTriangle.
-void evaluateFour(const Arrays& a, std::size_t t, float* frames, std::int8_t* orientation, std::uint8_t* flags,
-                  float* tangents) {
-  // First corners (firstCorner): where a triangle's three x values differ, the smallest, as
-  // canonical bits (+0 for -0) compared unsigned; otherwise firstCorner itself.
-  const std::uint32_t* triangles = a.indices + 3 * t;
-  __m128i xBits[3];
-  const __m128i bias = _mm_set1_epi32(std::numeric_limits<std::int32_t>::min());
-  #pragma GCC unroll 4
-  for (int k = 0; k < 3; ++k) {
-    const float* p = a.positions;
-    const __m128 value = _mm_setr_ps(p[3 * std::size_t(triangles[k])], p[3 * std::size_t(triangles[3 + k])],
-                                     p[3 * std::size_t(triangles[6 + k])], p[3 * std::size_t(triangles[9 + k])]);
-    xBits[k] = _mm_xor_si128(_mm_castps_si128(_mm_andnot_ps(_mm_cmpeq_ps(value, _mm_setzero_ps()), value)), bias);
-  }
-  const __m128i equalX = _mm_or_si128(_mm_or_si128(_mm_cmpeq_epi32(xBits[0], xBits[1]), _mm_cmpeq_epi32(xBits[1], xBits[2])), _mm_cmpeq_epi32(xBits[0], xBits[2]));
-  const __m128i lower = _mm_cmplt_epi32(xBits[1], xBits[0]);  // corner 1 before corner 0
-  const __m128i least = _mm_or_si128(_mm_and_si128(lower, xBits[1]), _mm_andnot_si128(lower, xBits[0]));
-  const __m128i two = _mm_cmplt_epi32(xBits[2], least);
-  alignas(16) std::int32_t firsts[4];
-  _mm_store_si128(reinterpret_cast<__m128i*>(firsts),
-                  _mm_or_si128(_mm_and_si128(two, _mm_set1_epi32(2)), _mm_andnot_si128(two, _mm_and_si128(lower, _mm_set1_epi32(1)))));
-  const int ties = _mm_movemask_ps(_mm_castsi128_ps(equalX));
-  std::uint32_t v[3][4];  // [corner][lane]: the vertices from each triangle's first corner
-  int first[4];
+// Four lanes in SSE2 registers.
+namespace lanes4 {
+using F = __m128;
+using I = __m128i;
+using D = __m128d;
+constexpr int kWidth = 4;
+inline F set1(float x) { return _mm_set1_ps(x); }
+inline F zeros() { return _mm_setzero_ps(); }
+inline F add(F x, F y) { return _mm_add_ps(x, y); }
+inline F sub(F x, F y) { return _mm_sub_ps(x, y); }
+inline F mul(F x, F y) { return _mm_mul_ps(x, y); }
+inline F div(F x, F y) { return _mm_div_ps(x, y); }
+inline F root(F x) { return _mm_sqrt_ps(x); }
+inline F maxF(F x, F y) { return _mm_max_ps(x, y); }
+inline F andF(F x, F y) { return _mm_and_ps(x, y); }
+inline F orF(F x, F y) { return _mm_or_ps(x, y); }
+inline F xorF(F x, F y) { return _mm_xor_ps(x, y); }
+inline F andnot(F x, F y) { return _mm_andnot_ps(x, y); }  // ~x & y
+inline F select(F mask, F x, F y) { return _mm_or_ps(_mm_and_ps(mask, x), _mm_andnot_ps(mask, y)); }
+inline F cmpgt(F x, F y) { return _mm_cmpgt_ps(x, y); }
+inline F cmpge(F x, F y) { return _mm_cmpge_ps(x, y); }
+inline F cmplt(F x, F y) { return _mm_cmplt_ps(x, y); }
+inline F cmple(F x, F y) { return _mm_cmple_ps(x, y); }
+inline F cmpeq(F x, F y) { return _mm_cmpeq_ps(x, y); }
+inline int movemask(F x) { return _mm_movemask_ps(x); }
+inline void store(float* p, F x) { _mm_store_ps(p, x); }
+inline F load(const float* p) { return _mm_load_ps(p); }
+// Lane j: base[stride * index[j]].
+inline F gather(const float* base, std::size_t stride, const std::uint32_t (&index)[kWidth]) {
+  return _mm_setr_ps(base[stride * index[0]], base[stride * index[1]], base[stride * index[2]],
+                     base[stride * index[3]]);
+}
+inline I asI(F x) { return _mm_castps_si128(x); }
+inline F asF(I x) { return _mm_castsi128_ps(x); }
+inline I set1I(std::int32_t x) { return _mm_set1_epi32(x); }
+inline I andI(I x, I y) { return _mm_and_si128(x, y); }
+inline I orI(I x, I y) { return _mm_or_si128(x, y); }
+inline I xorI(I x, I y) { return _mm_xor_si128(x, y); }
+inline I andnotI(I x, I y) { return _mm_andnot_si128(x, y); }
+inline I cmpeqI(I x, I y) { return _mm_cmpeq_epi32(x, y); }
+inline I cmpgtI(I x, I y) { return _mm_cmpgt_epi32(x, y); }
+inline I shiftLeft6(I x) { return _mm_slli_epi32(x, 6); }
+inline void storeI(std::int32_t* p, I x) { _mm_store_si128(reinterpret_cast<I*>(p), x); }
+// All ones in lane j where bit j of bits is set.
+inline F laneMask(int bits) {
+  return asF(_mm_cmpgt_epi32(_mm_and_si128(_mm_set1_epi32(bits), _mm_setr_epi32(1, 2, 4, 8)), _mm_setzero_si128()));
+}
+inline D lowHalf(F x) { return _mm_cvtps_pd(x); }
+inline D highHalf(F x) { return _mm_cvtps_pd(_mm_movehl_ps(x, x)); }
+inline D set1D(double x) { return _mm_set1_pd(x); }
+inline D addD(D x, D y) { return _mm_add_pd(x, y); }
+inline D subD(D x, D y) { return _mm_sub_pd(x, y); }
+inline D mulD(D x, D y) { return _mm_mul_pd(x, y); }
+inline D cmpgtD(D x, D y) { return _mm_cmpgt_pd(x, y); }
+inline int movemaskD(D x) { return _mm_movemask_pd(x); }
+// Corner k's slot of each lane's triangle from its four components in four vectors.
+inline void storeSlots(float* tangents, std::size_t t, const int (&first)[kWidth], int k, F c0, F c1, F c2, F c3) {
+  _MM_TRANSPOSE4_PS(c0, c1, c2, c3);
+  const F slot[4] = {c0, c1, c2, c3};
+#pragma GCC unroll 4
+  for (int j = 0; j < 4; ++j) _mm_storeu_ps(tangents + 4 * (3 * (t + j) + (first[j] + k) % 3), slot[j]);
+}
+#include "triangle_lanes.inc"
+}  // namespace lanes4
+#endif
+
+#if defined(TANGENT_LANES8)
+// Eight lanes in AVX2 registers: this code only, compiled for AVX2 (no FMA, so no operation
+// is fused) and run where the processor has it (vectorIsa).
+#pragma GCC push_options
+#pragma GCC target("avx2")
+// The lambdas here take and return AVX vectors; they are all inlined in this file, so the
+// note that such calls pass them differently without AVX does not apply.
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wpsabi"
+namespace lanes8 {
+using F = __m256;
+using I = __m256i;
+using D = __m256d;
+constexpr int kWidth = 8;
+inline F set1(float x) { return _mm256_set1_ps(x); }
+inline F zeros() { return _mm256_setzero_ps(); }
+inline F add(F x, F y) { return _mm256_add_ps(x, y); }
+inline F sub(F x, F y) { return _mm256_sub_ps(x, y); }
+inline F mul(F x, F y) { return _mm256_mul_ps(x, y); }
+inline F div(F x, F y) { return _mm256_div_ps(x, y); }
+inline F root(F x) { return _mm256_sqrt_ps(x); }
+inline F maxF(F x, F y) { return _mm256_max_ps(x, y); }
+inline F andF(F x, F y) { return _mm256_and_ps(x, y); }
+inline F orF(F x, F y) { return _mm256_or_ps(x, y); }
+inline F xorF(F x, F y) { return _mm256_xor_ps(x, y); }
+inline F andnot(F x, F y) { return _mm256_andnot_ps(x, y); }  // ~x & y
+inline F select(F mask, F x, F y) { return _mm256_or_ps(_mm256_and_ps(mask, x), _mm256_andnot_ps(mask, y)); }
+// Ordered, non-signalling: the predicates SSE's cmpgt/cmpge/cmplt/cmple/cmpeq have (false
+// where either is NaN).
+inline F cmpgt(F x, F y) { return _mm256_cmp_ps(x, y, _CMP_GT_OQ); }
+inline F cmpge(F x, F y) { return _mm256_cmp_ps(x, y, _CMP_GE_OQ); }
+inline F cmplt(F x, F y) { return _mm256_cmp_ps(x, y, _CMP_LT_OQ); }
+inline F cmple(F x, F y) { return _mm256_cmp_ps(x, y, _CMP_LE_OQ); }
+inline F cmpeq(F x, F y) { return _mm256_cmp_ps(x, y, _CMP_EQ_OQ); }
+inline int movemask(F x) { return _mm256_movemask_ps(x); }
+inline void store(float* p, F x) { _mm256_store_ps(p, x); }
+inline F load(const float* p) { return _mm256_load_ps(p); }
+inline F gather(const float* base, std::size_t stride, const std::uint32_t (&index)[kWidth]) {
+  return _mm256_setr_ps(base[stride * index[0]], base[stride * index[1]], base[stride * index[2]],
+                        base[stride * index[3]], base[stride * index[4]], base[stride * index[5]],
+                        base[stride * index[6]], base[stride * index[7]]);
+}
+inline I asI(F x) { return _mm256_castps_si256(x); }
+inline F asF(I x) { return _mm256_castsi256_ps(x); }
+inline I set1I(std::int32_t x) { return _mm256_set1_epi32(x); }
+inline I andI(I x, I y) { return _mm256_and_si256(x, y); }
+inline I orI(I x, I y) { return _mm256_or_si256(x, y); }
+inline I xorI(I x, I y) { return _mm256_xor_si256(x, y); }
+inline I andnotI(I x, I y) { return _mm256_andnot_si256(x, y); }
+inline I cmpeqI(I x, I y) { return _mm256_cmpeq_epi32(x, y); }
+inline I cmpgtI(I x, I y) { return _mm256_cmpgt_epi32(x, y); }
+inline I shiftLeft6(I x) { return _mm256_slli_epi32(x, 6); }
+inline void storeI(std::int32_t* p, I x) { _mm256_store_si256(reinterpret_cast<I*>(p), x); }
+inline F laneMask(int bits) {
+  const I bit = _mm256_setr_epi32(1, 2, 4, 8, 16, 32, 64, 128);
+  return asF(_mm256_cmpgt_epi32(_mm256_and_si256(_mm256_set1_epi32(bits), bit), _mm256_setzero_si256()));
+}
+inline D lowHalf(F x) { return _mm256_cvtps_pd(_mm256_castps256_ps128(x)); }
+inline D highHalf(F x) { return _mm256_cvtps_pd(_mm256_extractf128_ps(x, 1)); }
+inline D set1D(double x) { return _mm256_set1_pd(x); }
+inline D addD(D x, D y) { return _mm256_add_pd(x, y); }
+inline D subD(D x, D y) { return _mm256_sub_pd(x, y); }
+inline D mulD(D x, D y) { return _mm256_mul_pd(x, y); }
+inline D cmpgtD(D x, D y) { return _mm256_cmp_pd(x, y, _CMP_GT_OQ); }
+inline int movemaskD(D x) { return _mm256_movemask_pd(x); }
+// A 4x4 transpose in each 128-bit half: lane j's slot in the low half of row j, lane j + 4's
+// in its high half.
+inline void storeSlots(float* tangents, std::size_t t, const int (&first)[kWidth], int k, F c0, F c1, F c2, F c3) {
+  const F l01 = _mm256_unpacklo_ps(c0, c1), h01 = _mm256_unpackhi_ps(c0, c1);
+  const F l23 = _mm256_unpacklo_ps(c2, c3), h23 = _mm256_unpackhi_ps(c2, c3);
+  const F rows[4] = {
+      _mm256_shuffle_ps(l01, l23, _MM_SHUFFLE(1, 0, 1, 0)), _mm256_shuffle_ps(l01, l23, _MM_SHUFFLE(3, 2, 3, 2)),
+      _mm256_shuffle_ps(h01, h23, _MM_SHUFFLE(1, 0, 1, 0)), _mm256_shuffle_ps(h01, h23, _MM_SHUFFLE(3, 2, 3, 2))};
 #pragma GCC unroll 4
   for (int j = 0; j < 4; ++j) {
-    const std::uint32_t* triangle = triangles + 3 * j;
-    first[j] = (ties >> j & 1) ? firstCorner(a, t + j) : firsts[j];
-    const std::uint32_t rotated[5] = {triangle[0], triangle[1], triangle[2], triangle[0], triangle[1]};
-    v[0][j] = rotated[first[j]], v[1][j] = rotated[first[j] + 1], v[2][j] = rotated[first[j] + 2];
-  }
-  __m128 P[3][3], U[3], V[3];
-  #pragma GCC unroll 4
-  for (int k = 0; k < 3; ++k) {
-    const std::uint32_t* w = v[k];
-    #pragma GCC unroll 4
-    for (int i = 0; i < 3; ++i) {
-      const float* x = a.positions + i;
-      P[k][i] = _mm_setr_ps(x[3 * w[0]], x[3 * w[1]], x[3 * w[2]], x[3 * w[3]]);
-    }
-    U[k] = _mm_setr_ps(a.uvs[2 * w[0]], a.uvs[2 * w[1]], a.uvs[2 * w[2]], a.uvs[2 * w[3]]);
-    V[k] = _mm_setr_ps(a.uvs[2 * w[0] + 1], a.uvs[2 * w[1] + 1], a.uvs[2 * w[2] + 1], a.uvs[2 * w[3] + 1]);
-  }
-  // Finite: x - x is 0 (NaN otherwise). Coincident: two corners equal in every component.
-  __m128 sum = _mm_setzero_ps();
-  #pragma GCC unroll 4
-  for (int k = 0; k < 3; ++k) {
-    #pragma GCC unroll 4
-    for (int i = 0; i < 3; ++i) sum = _mm_add_ps(sum, _mm_sub_ps(P[k][i], P[k][i]));
-    sum = _mm_add_ps(sum, _mm_add_ps(_mm_sub_ps(U[k], U[k]), _mm_sub_ps(V[k], V[k])));
-  }
-  const __m128 finite = _mm_cmpeq_ps(sum, _mm_setzero_ps());
-  auto same = [&](int k, int l) {
-    return _mm_and_ps(_mm_and_ps(_mm_cmpeq_ps(P[k][0], P[l][0]), _mm_cmpeq_ps(P[k][1], P[l][1])), _mm_cmpeq_ps(P[k][2], P[l][2]));
-  };
-  const __m128 coincident = _mm_or_ps(_mm_or_ps(same(0, 1), same(1, 2)), same(0, 2));
-
-  // Zero 3D area, in double, two lanes at a time (evaluateTriangle's kFlat test).
-  int flat = 0;
-  #pragma GCC unroll 4
-  for (int half = 0; half < 2; ++half) {
-    auto wide = [&](__m128 x) { return _mm_cvtps_pd(half == 0 ? x : _mm_movehl_ps(x, x)); };
-    __m128d e1[3], e2[3];
-    #pragma GCC unroll 4
-    for (int i = 0; i < 3; ++i) {
-      const __m128d p0 = wide(P[0][i]);
-      e1[i] = _mm_sub_pd(wide(P[1][i]), p0);
-      e2[i] = _mm_sub_pd(wide(P[2][i]), p0);
-    }
-    auto mul = [](__m128d x, __m128d y) { return _mm_mul_pd(x, y); };
-    const __m128d cx = _mm_sub_pd(mul(e1[1], e2[2]), mul(e1[2], e2[1]));
-    const __m128d cy = _mm_sub_pd(mul(e1[2], e2[0]), mul(e1[0], e2[2]));
-    const __m128d cz = _mm_sub_pd(mul(e1[0], e2[1]), mul(e1[1], e2[0]));
-    const __m128d area = _mm_add_pd(_mm_add_pd(mul(cx, cx), mul(cy, cy)), mul(cz, cz));
-    const __m128d l1 = _mm_add_pd(_mm_add_pd(mul(e1[0], e1[0]), mul(e1[1], e1[1])), mul(e1[2], e1[2]));
-    const __m128d l2 = _mm_add_pd(_mm_add_pd(mul(e2[0], e2[0]), mul(e2[1], e2[1])), mul(e2[2], e2[2]));
-    constexpr double kAreaZero2 = kAreaZero * kAreaZero;
-    const __m128d bound = mul(mul(_mm_set1_pd(kAreaZero2), l1), l2);
-    flat |= (~_mm_movemask_pd(_mm_cmpgt_pd(area, bound)) & 3) << (2 * half);
-  }
-
-  // The reference, in float (evaluateTriangle's common case).
-  auto mul = [](__m128 x, __m128 y) { return _mm_mul_ps(x, y); };
-  auto sub = [](__m128 x, __m128 y) { return _mm_sub_ps(x, y); };
-  auto add = [](__m128 x, __m128 y) { return _mm_add_ps(x, y); };
-  const __m128 signMask = _mm_set1_ps(-0.0f), tiny = _mm_set1_ps(std::numeric_limits<float>::min());
-  auto notZero = [&](__m128 x) { return _mm_cmpgt_ps(_mm_andnot_ps(signMask, x), tiny); };
-  const __m128 t21x = sub(U[1], U[0]), t21y = sub(V[1], V[0]), t31x = sub(U[2], U[0]), t31y = sub(V[2], V[0]);
-  const __m128 minusT31x = _mm_xor_ps(t31x, signMask);
-  __m128 s[3], tv[3];
-  #pragma GCC unroll 4
-  for (int i = 0; i < 3; ++i) {
-    const __m128 d1 = sub(P[1][i], P[0][i]), d2 = sub(P[2][i], P[0][i]);
-    s[i] = sub(mul(t31y, d1), mul(t21y, d2));
-    tv[i] = add(mul(minusT31x, d1), mul(t21x, d2));
-  }
-  const __m128 signedArea = sub(mul(t21x, t31y), mul(t21y, t31x));
-  const __m128 absArea = _mm_andnot_ps(signMask, signedArea);
-  const __m128 lengthS = _mm_sqrt_ps(add(add(mul(s[0], s[0]), mul(s[1], s[1])), mul(s[2], s[2])));
-  const __m128 lengthT = _mm_sqrt_ps(add(add(mul(tv[0], tv[0]), mul(tv[1], tv[1])), mul(tv[2], tv[2])));
-  const __m128 positive = _mm_cmpgt_ps(signedArea, _mm_setzero_ps());
-  const __m128 sign = _mm_or_ps(_mm_and_ps(positive, _mm_set1_ps(1.0f)), _mm_andnot_ps(positive, _mm_set1_ps(-1.0f)));
-  auto select = [](__m128 mask, __m128 x, __m128 y) { return _mm_or_ps(_mm_and_ps(mask, x), _mm_andnot_ps(mask, y)); };
-  const __m128 scaleS = _mm_div_ps(sign, lengthS), scaleT = _mm_div_ps(sign, lengthT);
-  const __m128 normS = notZero(lengthS), normT = notZero(lengthT);
-  #pragma GCC unroll 4
-  for (int i = 0; i < 3; ++i) {
-    s[i] = select(normS, mul(scaleS, s[i]), s[i]);
-    tv[i] = select(normT, mul(scaleT, tv[i]), tv[i]);
-  }
-  auto isFinite = [&](__m128 x) { return _mm_cmpeq_ps(sub(x, x), _mm_setzero_ps()); };
-  const __m128 usable =
-      _mm_and_ps(_mm_and_ps(notZero(signedArea), _mm_and_ps(notZero(_mm_div_ps(lengthS, absArea)), notZero(_mm_div_ps(lengthT, absArea)))),
-                 _mm_and_ps(isFinite(lengthS), isFinite(lengthT)));
-  const __m128 commonLanes = _mm_andnot_ps(coincident, _mm_and_ps(finite, usable));
-  const int common = _mm_movemask_ps(commonLanes);
-  const int positiveLanes = _mm_movemask_ps(positive);
-  // Lanes that keep these frames and have no flags: their corners' parked terms from here.
-  const __m128 flatLanes = _mm_castsi128_ps(
-      _mm_cmpgt_epi32(_mm_and_si128(_mm_set1_epi32(flat), _mm_setr_epi32(1, 2, 4, 8)), _mm_setzero_si128()));
-  const __m128 usableLanes = _mm_andnot_ps(flatLanes, commonLanes);
-  cornerTermsLanes(a, t, P, v, first, s, tv, usableLanes, tangents);
-  alignas(16) float out[6][4];
-  #pragma GCC unroll 4
-  for (int i = 0; i < 3; ++i) {
-    _mm_store_ps(out[i], s[i]);
-    _mm_store_ps(out[3 + i], tv[i]);
-  }
-  #pragma GCC unroll 4
-  for (int j = 0; j < 4; ++j) {
-    if (!(common >> j & 1)) {
-      evaluateTriangle(a, t + j, frames + 6 * j, orientation[j], flags[j]);
-      cornerTermsOne(a, t + j, frames + 6 * j, flags[j], tangents);
-      continue;
-    }
-    #pragma GCC unroll 4
-    for (int i = 0; i < 6; ++i) frames[6 * j + i] = out[i][j];
-    orientation[j] = (positiveLanes >> j & 1) ? 1 : -1;
-    flags[j] = (flat >> j & 1) ? kFlat : 0;
+    _mm_storeu_ps(tangents + 4 * (3 * (t + j) + (first[j] + k) % 3), _mm256_castps256_ps128(rows[j]));
+    _mm_storeu_ps(tangents + 4 * (3 * (t + j + 4) + (first[j + 4] + k) % 3), _mm256_extractf128_ps(rows[j], 1));
   }
 }
+#include "triangle_lanes.inc"
+}  // namespace lanes8
+#pragma GCC diagnostic pop
+#pragma GCC pop_options
 #endif
 
 // Strict order of triangles by value (rotation-free): the order non-manifold edges pair in.
@@ -770,6 +662,7 @@ class Kernel {
   // Whether any corner was marked undefined, any edge is non-manifold: where not, the passes
   // that look for them are skipped.
   std::atomic<bool> anyUndefined_{false}, anyNonManifold_{false};
+  const VectorIsa isa_ = activeVectorIsa();
   // Whether the UV orientations are final when the buckets are paired (no zero-UV triangle
   // waits for its neighbours'), so that pairing may vouch for one orientation.
   bool orientationsFinal_ = false;
@@ -784,9 +677,18 @@ void Kernel::evaluateTriangles(Report& report) {
   forRange(ws_, triangleCount, 4096, [&](std::size_t begin, std::size_t end) {
     Counts local;
     std::size_t t = begin;
+#if defined(TANGENT_LANES8)
+    if (isa_ == VectorIsa::avx2) {
+      for (; t + 8 <= end; t += 8) {
+        lanes8::evaluateLanes(a_, t, &ws_.triangleFrames[6 * t], &ws_.orientation[t], &ws_.triangleFlags[t], tangents_);
+      }
+    }
+#endif
 #if defined(__SSE2__)
-    for (; t + 4 <= end; t += 4) {
-      evaluateFour(a_, t, &ws_.triangleFrames[6 * t], &ws_.orientation[t], &ws_.triangleFlags[t], tangents_);
+    if (isa_ != VectorIsa::scalar) {
+      for (; t + 4 <= end; t += 4) {
+        lanes4::evaluateLanes(a_, t, &ws_.triangleFrames[6 * t], &ws_.orientation[t], &ws_.triangleFlags[t], tangents_);
+      }
     }
 #endif
     for (; t < end; ++t) {
@@ -1752,6 +1654,26 @@ void Kernel::run(Report& report) {
 }
 
 }  // namespace
+
+VectorIsa activeVectorIsa() {
+#if defined(TANGENT_LANES8)
+  static const VectorIsa widest = [] {
+    __builtin_cpu_init();
+    return __builtin_cpu_supports("avx2") ? VectorIsa::avx2 : VectorIsa::sse2;
+  }();
+#elif defined(__SSE2__)
+  constexpr VectorIsa widest = VectorIsa::sse2;
+#else
+  constexpr VectorIsa widest = VectorIsa::scalar;
+#endif
+  VectorIsa cap = VectorIsa::avx2;
+  if (const char* name = std::getenv("TANGENT_MAX_CPU_ISA")) {
+    const std::string_view value(name);
+    if (value == "scalar") cap = VectorIsa::scalar;
+    if (value == "sse2") cap = VectorIsa::sse2;
+  }
+  return std::min(widest, cap);
+}
 
 void mikktspaceOnBuckets(WorkspaceData& ws, const MeshArrays& mesh, const CornerOutputs& outputs, UvOrigin origin, Report& report) {
   report.method = Method::mikktspace;

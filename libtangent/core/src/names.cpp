@@ -1,7 +1,18 @@
 // SPDX-License-Identifier: MIT
 #include "tangent/tangent.hpp"
 
+#include "workspace.hpp"
+
 namespace tangent {
+
+std::string_view vectorIsa() {
+  switch (detail::activeVectorIsa()) {
+    case detail::VectorIsa::avx2: return "avx2";
+    case detail::VectorIsa::sse2: return "sse2";
+    case detail::VectorIsa::scalar: return "scalar";
+  }
+  return "scalar";
+}
 
 std::string_view toString(Method method) {
   switch (method) {

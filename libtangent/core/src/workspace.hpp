@@ -231,6 +231,11 @@ Report mikktspaceOnArrays(WorkspaceData& ws, const MeshArrays& mesh, const Corne
 // The method `mikktspace` on the welded buckets: writes outputs.tangents (w in the convention
 // of `origin`, so that the output pass need not rewrite every tangent) and ws.cornerState,
 // fills the triangle counts of the report.
+// The vector width of mikktspace's triangle pass. Every width gives the same bits.
+enum class VectorIsa : std::uint8_t { scalar, sse2, avx2 };
+// The widest this build and this processor have, capped by the environment variable
+// TANGENT_MAX_CPU_ISA where it names one of them (scalar, sse2, avx2). Read at each call.
+VectorIsa activeVectorIsa();
 void mikktspaceOnBuckets(WorkspaceData& ws, const MeshArrays& mesh, const CornerOutputs& outputs, UvOrigin origin, Report& report);
 
 // Copies duplicate corners, applies the UV origin to w (unless ws.wInOutputConvention), counts
