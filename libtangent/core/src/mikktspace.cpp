@@ -533,6 +533,10 @@ class BucketUnionFind {
 // taking part and none a copy, where the pairing could tell; kOneFan: such a chain whose
 // triangles have one UV orientation, where orientations are final at pairing.
 constexpr std::uint8_t kNotOneChain = 0, kOneChain = 1, kChainUnknown = 2, kOneFan = 3;
+// What groupBucket leaves there: bit 0 (kUniformVertex, see WorkspaceData::bucketUniform), and
+// kBucketWeight where the fast path kept the group weight of all the bucket's corners once, in
+// the bucket's bucketExtra slot (free between the weld and the output pass), not per corner.
+constexpr std::uint8_t kUniformVertex = 1, kBucketWeight = 2;
 
 class Kernel {
  public:
@@ -598,9 +602,13 @@ class Kernel {
   }
   // Once a bucket's groups are built its corners' neighbour links are spent: the same slot
   // then holds the corner's group weight (the sum of its angles), which ranks candidate
-  // frames; corners of duplicate triangles keep their link to the original.
+  // frames; corners of duplicate triangles keep their link to the original. A fast bucket
+  // keeps its one weight per bucket instead (kBucketWeight).
   void setWeight(std::size_t corner, float weight) { ws_.cornerLink[corner] = bitCast<std::uint32_t>(weight); }
-  float weight(std::size_t corner) const { return bitCast<float>(ws_.cornerLink[corner]); }
+  float weight(std::size_t corner) const {
+    const std::uint32_t bucket = id(corner);
+    return bitCast<float>((ws_.bucketUniform[bucket] & kBucketWeight) ? ws_.bucketExtra[bucket] : ws_.cornerLink[corner]);
+  }
   // A frame as stored (xyz, w in the output convention) into the corner's slot, with its source
   // and weight.
   void storeFrame(std::size_t corner, const float (&frame)[4], FrameSource source, float weight) {
@@ -620,7 +628,7 @@ class Kernel {
     const std::uint32_t vertex = a_.indices[list[0]];
     bool oneVertex = true;
     for (std::uint32_t i = 1; i < count; ++i) oneVertex = oneVertex && a_.indices[list[i]] == vertex;
-    ws_.bucketUniform[bucket] = oneVertex;
+    ws_.bucketUniform[bucket] = oneVertex ? kUniformVertex : 0;
     if (tangents_[4 * list[0] + 3] < 0) mirrored += count;
   }
   void markUndefined(std::size_t corner, float w) {
@@ -1237,11 +1245,10 @@ bool Kernel::fastBucket(std::uint32_t bucket, const std::uint32_t* list, std::ui
   // storeFrame without its state write: a corner's source and undefined bits are still clear
   // here (pairing cleared them; only its bucket's group pass sets them), and computed is 0.
   static_assert(static_cast<int>(FrameSource::computed) == 0);
-  for (std::uint32_t i = 0; i < count; ++i) {
-    std::memcpy(&tangents_[4 * std::size_t(list[i])], frame, sizeof frame);
-    setWeight(list[i], static_cast<float>(angleSum));
-  }
+  for (std::uint32_t i = 0; i < count; ++i) std::memcpy(&tangents_[4 * std::size_t(list[i])], frame, sizeof frame);
   finishOneFrame(bucket, list, count, mirrored);
+  ws_.bucketExtra[bucket] = bitCast<std::uint32_t>(static_cast<float>(angleSum));
+  ws_.bucketUniform[bucket] |= kBucketWeight;
   return true;
 }
 

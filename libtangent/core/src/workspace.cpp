@@ -432,7 +432,7 @@ void finishOutputs(WorkspaceData& ws, const MeshArrays& mesh, const CornerOutput
       // Most buckets: one input vertex, one tangent (known from the kernel for most of those).
       const std::uint32_t c0 = corners[first];
       bool uniform = true;
-      if (knownUniform && knownUniform[b]) {
+      if (knownUniform && (knownUniform[b] & 1)) {
         if (wantVertices) {
           const std::uint32_t vertex = indices[c0];
           for (std::uint32_t i = first; i < last; ++i) cornerVertex[corners[i]] = vertex;

@@ -136,10 +136,11 @@ struct WorkspaceData {
                                              // after grouping, the group weight (mikktspace.cpp)
   BulkVector<std::uint8_t> cornerState;     // per corner: CornerState bits
   BulkVector<std::uint32_t> bucketExtra;    // per welded id: extra output vertices, then offsets
-  BulkVector<std::uint8_t> bucketUniform;   // per welded id, where bucketUniformKnown: 1 when the
-                                             // kernel gave all its corners one input vertex's
-                                             // one frame, which nothing after it changes, so
-                                             // that the vertex split need not compare them
+  BulkVector<std::uint8_t> bucketUniform;   // per welded id, where bucketUniformKnown: bit 0 set
+                                             // when the kernel gave all its corners one input
+                                             // vertex's one frame, which nothing after it
+                                             // changes, so that the vertex split need not
+                                             // compare them (other bits: the kernel's own)
   bool bucketUniformKnown = false;          // set by the mikktspace kernel, reset by the weld
   bool wInOutputConvention = false;         // the kernel wrote w with the UV origin applied
                                              // (set by the mikktspace kernel, reset by the weld)
