@@ -832,7 +832,6 @@ void Kernel::pairBucket(std::uint32_t bucket, BucketScratch& scratch) {
     }
 #endif
     if (simple) {
-      for (std::uint32_t i = 0; i < n; ++i) ws_.cornerLink[corner[i]] = match[i];
       // Each corner has at most one successor and one predecessor here, so the links form
       // paths and cycles. One chain through every corner: a cycle from corner 0, or the
       // path from the one corner that no link reaches (one head: one path; a walk from it
@@ -850,8 +849,14 @@ void Kernel::pairBucket(std::uint32_t bucket, BucketScratch& scratch) {
           oneChain = seen == n && (heads == 0 ? k == start : k == kSmall);
         }
       }
-      ws_.bucketUniform[bucket] =
-          !oneChain ? kNotOneChain : (oneOrientation && orientationsFinal_ ? kOneFan : kOneChain);
+      const std::uint8_t chain = !oneChain ? kNotOneChain : (oneOrientation && orientationsFinal_ ? kOneFan : kOneChain);
+      ws_.bucketUniform[bucket] = chain;
+      // One fan of one orientation is one group whatever its links (groupBucket), and where
+      // orientations are final nothing after grouping reads the links of corners that are not
+      // copies: those links are not written.
+      if (chain != kOneFan) {
+        for (std::uint32_t i = 0; i < n; ++i) ws_.cornerLink[corner[i]] = match[i];
+      }
       return;
     }
   }
