@@ -222,6 +222,7 @@ int main(int argc, char** argv) {
   // In the JSON's context, for the report: what "library" and the peers were in this build.
   benchmark::AddCustomContext("library_call", LibraryCall::description());
   benchmark::AddCustomContext("peers", tangent::bench::peersNote());
+  benchmark::AddCustomContext("vector_isa", std::string(tangent::vectorIsa()));
   benchmark::AddCustomContext("hardware_threads", std::to_string(std::max(1u, std::thread::hardware_concurrency())));
   std::vector<InputSource> sources = {sphere("sphere-1e5", 100000), sphere("sphere-1e6", 1000000),
                                       sphere("sphere-4e6", 4000000)};

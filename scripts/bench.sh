@@ -141,7 +141,8 @@ runs_note = ("one run each, --quick" if quick else
              f"medians of 3 repetitions; the kernel benchmark's: {os.environ.get('KERNEL_REPS', '3')}, in random order")
 
 lines = ["# Benchmarks", "",
-         f"Machine: {cpu}, {os.cpu_count()} hardware threads, {platform.system()} {platform.release()}. "
+         f"Machine: {cpu}, {os.cpu_count()} hardware threads, {platform.system()} {platform.release()}; "
+         f"the library's triangle pass in {context.get('vector_isa', '?')} (`tangent::vectorIsa()`). "
          f"Measured by `scripts/bench.sh` in one run ({runs_note}); ratios against peers measured in the same run.", "",
          "## Library call against the peers, same arrays, one process (`tangent-kernel-bench`)", "",
          "Milliseconds per call; CPU time of the whole process (all threads), except where marked wall. "
