@@ -1269,7 +1269,7 @@ void Kernel::groupBucket(std::uint32_t bucket, BucketScratch& scratch, std::uint
   // group of every corner (what the union-find below finds for it), without keys.
   const bool fan = chain == kOneFan ||
                    (chain == kOneChain ? oneOrientation(list, count) : chain == kChainUnknown && closedFan(list, count));
-  if (fan && count <= kMostQuantizedTerms && fastBucket(bucket, list, count, mirrored)) return;
+  if (fan && count <= kMostQuantizedTerms && ws_.fastBuckets && fastBucket(bucket, list, count, mirrored)) return;
   bool invalidNormal = false;
   const V3 n = bucketNormal(bucket, invalidNormal);
   if (invalidNormal) {

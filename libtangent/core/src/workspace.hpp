@@ -121,6 +121,9 @@ struct CornerValues {
 
 struct WorkspaceData {
   unsigned threads = 1;
+  // The mikktspace kernel's shortcut for a plain fan (fastBucket); off, every bucket takes the
+  // full grouping. Only tests turn it off, to check that both give the same bits.
+  bool fastBuckets = true;
   std::size_t vertexCount = 0, cornerCount = 0;
   BulkVector<std::uint32_t> table;          // open-addressing weld table(s) (vertex + 1, 0 empty)
   BulkVector<std::uint32_t> weldCounts;     // threaded weld: per-chunk counts, partition starts
