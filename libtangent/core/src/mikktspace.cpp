@@ -688,20 +688,21 @@ void Kernel::evaluateTriangles(Report& report) {
 #if defined(TANGENT_LANES8)
     if (isa_ == VectorIsa::avx2) {
       for (; t + 8 <= end; t += 8) {
-        lanes8::evaluateLanes(a_, t, &ws_.triangleFrames[6 * t], &ws_.orientation[t], &ws_.triangleFlags[t], tangents_);
+        lanes8::evaluateLanes(a_, t, &ws_.orientation[t], &ws_.triangleFlags[t], tangents_);
       }
     }
 #endif
 #if defined(__SSE2__)
     if (isa_ != VectorIsa::scalar) {
       for (; t + 4 <= end; t += 4) {
-        lanes4::evaluateLanes(a_, t, &ws_.triangleFrames[6 * t], &ws_.orientation[t], &ws_.triangleFlags[t], tangents_);
+        lanes4::evaluateLanes(a_, t, &ws_.orientation[t], &ws_.triangleFlags[t], tangents_);
       }
     }
 #endif
     for (; t < end; ++t) {
-      evaluateTriangle(a_, t, &ws_.triangleFrames[6 * t], ws_.orientation[t], ws_.triangleFlags[t]);
-      cornerTermsOne(a_, t, &ws_.triangleFrames[6 * t], ws_.triangleFlags[t], tangents_);
+      float frame[6];
+      evaluateTriangle(a_, t, frame, ws_.orientation[t], ws_.triangleFlags[t]);
+      cornerTermsOne(a_, t, frame, ws_.triangleFlags[t], tangents_);
     }
     for (t = begin; t < end; ++t) {
       if (t + 8 <= end) {  // most triangles have no flags: eight at a time where all are 0
@@ -1324,7 +1325,12 @@ void Kernel::groupBucket(std::uint32_t bucket, BucketScratch& scratch, std::uint
       const std::uint32_t c = list[member(m)];
       const std::size_t t = c / 3;
       if (ws_.triangleFlags[t] & kGroupWithAny) continue;
-      const float* frame = &ws_.triangleFrames[6 * t];
+      // The triangle's frame again (the triangle pass keeps none: most buckets take the fan
+      // shortcut, which needs only the parked terms); the same function, the same bits.
+      float frame[6];
+      std::int8_t orientationAgain;
+      std::uint8_t flagsAgain;
+      evaluateTriangle(a_, t, frame, orientationAgain, flagsAgain);
       const V3 toPrevious = projected(a_.position(a_.indices[previousCorner(c)]) - here, n);
       const V3 toNext = projected(a_.position(a_.indices[nextCorner(c)]) - here, n);
       const F3 referenceS = referenceProjected({frame[0], frame[1], frame[2]}, rawNormal);
@@ -1616,7 +1622,6 @@ void Kernel::fallbacks() {
 
 void Kernel::run(Report& report) {
   const std::size_t cornerCount = ws_.cornerCount, triangleCount = cornerCount / 3;
-  ensureSize(ws_.triangleFrames, 6 * triangleCount);
   ensureSize(ws_.orientation, triangleCount);
   ensureSize(ws_.triangleFlags, triangleCount);
   ensureSize(ws_.cornerLink, cornerCount);

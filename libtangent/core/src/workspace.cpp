@@ -42,7 +42,7 @@ bool sameVertex(const MeshArrays& mesh, std::size_t a, std::size_t b) {
 
 std::size_t WorkspaceData::bytes() const {
   auto size = [](const auto& v) { return v.capacity() * sizeof(v[0]); };
-  return size(table) + size(weldCounts) + size(vertexId) + size(bucketStart) + size(bucketCorners) + size(triangleFrames) +
+  return size(table) + size(weldCounts) + size(vertexId) + size(bucketStart) + size(bucketCorners) +
          size(orientation) + size(triangleFlags) + size(cornerLink) + size(cornerState) + size(meshPositions) + size(meshNormals) + size(meshUvs) + size(meshTangents) + size(meshIndices) +
          size(meshRepresentative) + size(meshRepresentativeValues) +
          size(bucketExtra) + size(bucketUniform);

@@ -131,7 +131,6 @@ struct WorkspaceData {
                                              // vertex index with the same values
   BulkVector<std::uint32_t> bucketStart;    // vertexCount + 1: corners of welded id v are
   BulkVector<std::uint32_t> bucketCorners;  // bucketCorners[bucketStart[v] .. bucketStart[v+1])
-  BulkVector<float> triangleFrames;         // 6 per triangle: unit dP/du, dP/dv, signed
   BulkVector<std::int8_t> orientation;      // per triangle: sign of the UV area (resolved)
   BulkVector<std::uint8_t> triangleFlags;   // per triangle: TriangleFlag bits
   BulkVector<std::uint32_t> cornerLink;     // per corner: neighbour corner across the corner's
