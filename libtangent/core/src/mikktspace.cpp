@@ -339,6 +339,14 @@ void evaluateTriangle(const Arrays& a, std::size_t t, float* frame, std::int8_t&
   if (!(flags & kFlat)) flags |= kZeroUv;
 }
 
+// One triangle the scalar way, for the lanes' leftovers and tails: its orientation and flags,
+// and its corners' parked terms (cornerTermsOne), from a frame that is not kept.
+void evaluateAndParkOne(const Arrays& a, std::size_t t, std::int8_t& orientation, std::uint8_t& flags, float* tangents) {
+  float frame[6];
+  evaluateTriangle(a, t, frame, orientation, flags);
+  cornerTermsOne(a, t, frame, flags, tangents);
+}
+
 #if defined(__SSE2__)
 // Four lanes in SSE2 registers.
 namespace lanes4 {
@@ -699,11 +707,7 @@ void Kernel::evaluateTriangles(Report& report) {
       }
     }
 #endif
-    for (; t < end; ++t) {
-      float frame[6];
-      evaluateTriangle(a_, t, frame, ws_.orientation[t], ws_.triangleFlags[t]);
-      cornerTermsOne(a_, t, frame, ws_.triangleFlags[t], tangents_);
-    }
+    for (; t < end; ++t) evaluateAndParkOne(a_, t, ws_.orientation[t], ws_.triangleFlags[t], tangents_);
     for (t = begin; t < end; ++t) {
       if (t + 8 <= end) {  // most triangles have no flags: eight at a time where all are 0
         std::uint64_t eight;

@@ -122,7 +122,8 @@ struct CornerValues {
 struct WorkspaceData {
   unsigned threads = 1;
   // The mikktspace kernel's shortcut for a plain fan (fastBucket); off, every bucket takes the
-  // full grouping. Only tests turn it off, to check that both give the same bits.
+  // full grouping. Only tests turn it off, to check that both agree (to the last bits of a
+  // frame: the shortcut's sums are rounded to a grid, the full grouping's are not).
   bool fastBuckets = true;
   std::size_t vertexCount = 0, cornerCount = 0;
   BulkVector<std::uint32_t> table;          // open-addressing weld table(s) (vertex + 1, 0 empty)
