@@ -554,13 +554,14 @@ class Kernel {
         a_{mesh.positions.data(), mesh.normals.data(), mesh.uvs.data(), mesh.indices.data()},
         tangents_(outputs.tangents.data()),
         vertexId_(ws.vertexId.data()),
+        identity_(ws.weldMergedNone),
         start_(ws.bucketStart.data()),
         corners_(ws.bucketCorners.data()) {}
 
   void run(Report& report);
 
  private:
-  std::uint32_t id(std::size_t corner) const { return vertexId_[a_.indices[corner]]; }
+  std::uint32_t id(std::size_t corner) const { return identity_ ? a_.indices[corner] : vertexId_[a_.indices[corner]]; }
   bool participates(std::size_t corner) const { return !(ws_.triangleFlags[corner / 3] & kCoincident); }
   std::uint32_t localIndex(std::uint32_t bucket, std::uint32_t corner) const {
     const std::uint32_t* begin = corners_ + start_[bucket];
@@ -671,6 +672,7 @@ class Kernel {
   Arrays a_;
   float* tangents_;
   const std::uint32_t* vertexId_;
+  const bool identity_;  // the weld merged nothing: id(corner) is the corner's index
   const std::uint32_t* start_;
   const std::uint32_t* corners_;
   std::uint64_t groupWithAny_ = 0;  // triangles that group with any (not coincident)
@@ -1623,6 +1625,7 @@ void Kernel::fallbacks() {
   }
   for (const Decision& d : decisions) writeCorner(d.corner, d.tangent, w(d.corner), d.source, 0);
 }
+
 
 void Kernel::run(Report& report) {
   const std::size_t cornerCount = ws_.cornerCount, triangleCount = cornerCount / 3;

@@ -130,6 +130,8 @@ struct WorkspaceData {
   BulkVector<std::uint32_t> weldCounts;     // threaded weld: per-chunk counts, partition starts
   BulkVector<std::uint32_t> vertexId;       // welded id of each input vertex: the smallest
                                              // vertex index with the same values
+  bool weldMergedNone = false;              // set by the weld: every vertex is its own welded id
+                                             // (vertexId[v] == v), so a corner's id is its index
   BulkVector<std::uint32_t> bucketStart;    // vertexCount + 1: corners of welded id v are
   BulkVector<std::uint32_t> bucketCorners;  // bucketCorners[bucketStart[v] .. bucketStart[v+1])
   BulkVector<std::int8_t> orientation;      // per triangle: sign of the UV area (resolved)
