@@ -7,6 +7,7 @@
 #pragma once
 
 #include <cstddef>
+#include <cstdint>
 #include <cstdlib>
 #include <new>
 #include <utility>
@@ -32,6 +33,37 @@ inline void* allocateHugePages(std::size_t bytes) noexcept {
   return p;
 }
 
+// At least `bytes` of memory fresh from the kernel, on 2 MiB boundaries, rounded up to whole
+// 2 MiB, with transparent huge pages asked for; null when out of memory. Free with
+// unmapHugePages(p, bytes). Unlike allocateHugePages, never memory the heap hands out again:
+// that was first touched in 4 KiB pages, which advice no longer changes. Measured on the
+// kernel benchmark at 4e6 triangles: a third of the workspace came back from the heap in
+// small pages (the input's temporaries, freed), and the call ran 25% slower for it.
+inline void* mapHugePages(std::size_t bytes) noexcept {
+#if defined(__linux__) && defined(MADV_HUGEPAGE)
+  const std::size_t rounded = (bytes + kHugePage - 1) / kHugePage * kHugePage;
+  void* raw = mmap(nullptr, rounded + kHugePage, PROT_READ | PROT_WRITE, MAP_PRIVATE | MAP_ANONYMOUS, -1, 0);
+  if (raw == MAP_FAILED) return nullptr;
+  // Keep the 2 MiB-aligned part, give back the rest on either side.
+  const auto start = reinterpret_cast<std::uintptr_t>(raw);
+  const std::uintptr_t aligned = (start + kHugePage - 1) & ~(kHugePage - 1), end = start + rounded + kHugePage;
+  if (aligned > start) munmap(raw, aligned - start);
+  if (end > aligned + rounded) munmap(reinterpret_cast<void*>(aligned + rounded), end - (aligned + rounded));
+  madvise(reinterpret_cast<void*>(aligned), rounded, MADV_HUGEPAGE);
+  return reinterpret_cast<void*>(aligned);
+#else
+  return allocateHugePages(bytes);
+#endif
+}
+inline void unmapHugePages(void* p, std::size_t bytes) noexcept {
+#if defined(__linux__) && defined(MADV_HUGEPAGE)
+  munmap(p, (bytes + kHugePage - 1) / kHugePage * kHugePage);
+#else
+  (void)bytes;
+  std::free(p);
+#endif
+}
+
 template <typename T>
 struct BulkAllocator {
   using value_type = T;
@@ -43,13 +75,13 @@ struct BulkAllocator {
   T* allocate(std::size_t n) {
     const std::size_t bytes = n * sizeof(T);
     if (bytes < kHugePage) return static_cast<T*>(::operator new(bytes));
-    void* p = allocateHugePages(bytes);
+    void* p = mapHugePages(bytes);
     if (!p) throw std::bad_alloc();
     return static_cast<T*>(p);
   }
   void deallocate(T* p, std::size_t n) noexcept {
     if (n * sizeof(T) < kHugePage) ::operator delete(p);
-    else std::free(p);
+    else unmapHugePages(p, n * sizeof(T));
   }
   // Default-initialize: no zero fill for arithmetic types.
   template <typename U>
