@@ -79,7 +79,8 @@ Report computeTangents(CornerMesh& cornerMesh, const Options& options, TangentWo
   if (!cornerSources.empty() && cornerSources.size() != cornerCount)
     throw std::invalid_argument("cornerSources: expected one per corner");
   if (options.method != Method::mikktspace) return detail::lengyelTangents(cornerMesh, options, cornerSources);
-  // Below, one index array holds corner links (< cornerCount) and numbers counted down from 2^32.
+  // Below, one index array holds vertex numbers (< cornerCount), corner links counted down
+  // from 2^32 - 1 (kNone - 1 - corner) and kNone.
   if (cornerCount >= (std::size_t(1) << 31)) throw std::invalid_argument("mesh: more than 2^31 corners");
   // The same kernel as the array call, on the corners' values: the same bits. The corners of
   // one mesh vertex mostly carry the same normal and UV; those share one array vertex, so the
@@ -91,6 +92,7 @@ Report computeTangents(CornerMesh& cornerMesh, const Options& options, TangentWo
   detail::ensureSize(ws.meshIndices, cornerCount);
   float* tangents = ws.meshTangents.data();
   std::uint32_t* indices = ws.meshIndices.data();
+  const auto kLinkFrom = static_cast<std::uint32_t>(detail::kNone - cornerCount);  // links: [kLinkFrom, kNone)
   ws.threads = threadCount(options);
   auto inArena = [&](const auto& body) { detail::onThreads(ws, [&] { detail::forRange(ws, cornerCount, 1 << 14, body); }); };
   using detail::CornerValues;
@@ -152,7 +154,7 @@ Report computeTangents(CornerMesh& cornerMesh, const Options& options, TangentWo
         const auto& uv = mesh.texcoord2D(halfedge);
         const float attributes[5] = {static_cast<float>(n[0]), static_cast<float>(n[1]), static_cast<float>(n[2]),
                                      static_cast<float>(uv[0]), static_cast<float>(uv[1])};
-        if (std::memcmp(attributes, representativeValues[v].normal, sizeof attributes) == 0) indices[c] = r;
+        if (std::memcmp(attributes, representativeValues[v].normal, sizeof attributes) == 0) indices[c] = detail::kNone - 1 - r;
       }
     });
   });
@@ -177,20 +179,17 @@ Report computeTangents(CornerMesh& cornerMesh, const Options& options, TangentWo
         std::memcpy(&positions[3 * next], v.position, sizeof v.position);
         std::memcpy(&normals[3 * next], v.normal, sizeof v.normal);
         std::memcpy(&uvs[2 * next], v.uv, sizeof v.uv);
-        indices[c] = static_cast<std::uint32_t>(detail::kNone - 1 - next);  // numbered, told apart from corner links
+        indices[c] = static_cast<std::uint32_t>(next);  // below cornerCount: told apart from links
       }
     });
   });
-  // 3. Links to representatives become their numbers (a representative is always numbered).
+  // 3. Links to representatives become their numbers (a representative is always numbered,
+  // and this pass writes only links, so no read meets a write).
   inArena([&](std::size_t begin, std::size_t end) {
     for (std::size_t c = begin; c < end; ++c) {
       const std::uint32_t i = indices[c];
-      if (i >= detail::kNone - vertexCount) continue;
-      indices[c] = indices[i];
+      if (i >= kLinkFrom) indices[c] = indices[detail::kNone - 1 - i];
     }
-  });
-  inArena([&](std::size_t begin, std::size_t end) {
-    for (std::size_t c = begin; c < end; ++c) indices[c] = detail::kNone - 1 - indices[c];
   });
   const MeshArrays arrays{std::span<const float>(positions, 3 * vertexCount), std::span<const float>(normals, 3 * vertexCount),
                           std::span<const float>(uvs, 2 * vertexCount), std::span<const std::uint32_t>(indices, cornerCount)};
