@@ -404,6 +404,35 @@ TEST(CoreErrors, IndexOutOfRange) {
   EXPECT_THROW(tangent::computeCornerTangents({m.positions, m.normals, m.uvs, m.indices}, out), std::invalid_argument);
 }
 
+// The check reads the indices sixteen at a time, then one at a time: a bad index in any
+// lane, in the tail, or with its top bit set (which a signed compare would miss) is found,
+// and the message names the first one; the largest valid index passes.
+TEST(CoreErrors, IndexOutOfRangeAnywhere) {
+  const GridMesh grid = tangent::testing::makeGrid(7, 5, false);  // 210 corners: 13 blocks and a tail
+  const auto vertexCount = static_cast<std::uint32_t>(grid.positions.size() / 3);
+  std::vector<float> out(grid.indices.size() * 4);
+  {
+    GridMesh m = grid;
+    m.indices[17] = vertexCount - 1;
+    EXPECT_NO_THROW(tangent::computeCornerTangents({m.positions, m.normals, m.uvs, m.indices}, out));
+  }
+  const std::size_t last = grid.indices.size() - 1;
+  for (std::size_t at : {std::size_t(0), std::size_t(5), std::size_t(16), std::size_t(31), std::size_t(100), last}) {
+    for (std::uint32_t bad : {vertexCount, vertexCount + 1, 0x7FFFFFFFu, 0x80000000u, 0xFFFFFFFFu}) {
+      GridMesh m = grid;
+      m.indices[at] = bad;
+      if (at + 7 <= last) m.indices[at + 7] = bad;  // a later one too: the first is named
+      try {
+        tangent::computeCornerTangents({m.positions, m.normals, m.uvs, m.indices}, out);
+        ADD_FAILURE() << "index " << bad << " at " << at << " was accepted";
+      } catch (const std::invalid_argument& e) {
+        EXPECT_NE(std::string(e.what()).find("indices[" + std::to_string(at) + "] = " + std::to_string(bad)), std::string::npos)
+            << e.what();
+      }
+    }
+  }
+}
+
 TEST(CoreErrors, IndicesNotTriangles) {
   GridMesh m = quad();
   m.indices.pop_back();
