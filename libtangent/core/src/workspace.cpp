@@ -191,48 +191,34 @@ void weldAndBucket(WorkspaceData& ws, const MeshArrays& mesh) {
   ensureSize(ws.vertexId, vertexCount);
   std::uint32_t* vertexId = ws.vertexId.data();
   std::atomic<bool> merged{false};  // a vertex took another's id (stored only then: rare)
-  auto insert = [&](std::uint32_t* table, std::size_t mask, std::size_t v, std::uint64_t hash) {
-    for (std::size_t slot = hash & mask;; slot = (slot + 1) & mask) {
-      if (table[slot] == 0) {
-        table[slot] = static_cast<std::uint32_t>(v + 1);
+  // Each slot of a table holds vertex + 1 and a tag (other bits of the hash than the slot's):
+  // a probe that meets another vertex compares tags before that vertex's values, which lie
+  // anywhere in the input (a cache miss per collision otherwise). Equal values have equal
+  // tags, so the same slots match as without them.
+  auto insert = [&](std::uint32_t* table, std::size_t mask, std::size_t v, std::uint64_t slotHash, std::uint32_t tag) {
+    for (std::size_t slot = slotHash & mask;; slot = (slot + 1) & mask) {
+      std::uint32_t* entry = table + 2 * slot;
+      if (entry[0] == 0) {
+        entry[0] = static_cast<std::uint32_t>(v + 1);
+        entry[1] = tag;
         vertexId[v] = static_cast<std::uint32_t>(v);
         return;
       }
-      if (sameVertex(mesh, table[slot] - 1, v)) {
-        vertexId[v] = table[slot] - 1;
+      if (entry[1] == tag && sameVertex(mesh, entry[0] - 1, v)) {
+        vertexId[v] = entry[0] - 1;
         merged.store(true, std::memory_order_relaxed);
         return;
       }
     }
   };
   if (ws.threads < 2) {
-    // One table, vertices in order. Each slot holds vertex + 1 and a tag, the hash's top 32
-    // bits: a probe that meets another vertex compares tags before that vertex's values, which
-    // lie anywhere in the input (a cache miss per collision otherwise). Equal values have
-    // equal tags, so the same slots match as without them.
+    // One table, vertices in order; the tag is the hash's top 32 bits.
     std::size_t tableSize = 16;
     while (tableSize < 2 * vertexCount) tableSize *= 2;
     ensureSize(ws.table, 2 * tableSize);
     std::uint32_t* table = ws.table.data();
     std::fill(table, table + 2 * tableSize, 0u);
     const std::size_t mask = tableSize - 1;
-    auto insertTagged = [&](std::size_t v, std::uint64_t hash) {
-      const auto tag = static_cast<std::uint32_t>(hash >> 32);
-      for (std::size_t slot = hash & mask;; slot = (slot + 1) & mask) {
-        std::uint32_t* entry = table + 2 * slot;
-        if (entry[0] == 0) {
-          entry[0] = static_cast<std::uint32_t>(v + 1);
-          entry[1] = tag;
-          vertexId[v] = static_cast<std::uint32_t>(v);
-          return;
-        }
-        if (entry[1] == tag && sameVertex(mesh, entry[0] - 1, v)) {
-          vertexId[v] = entry[0] - 1;
-          merged.store(true, std::memory_order_relaxed);
-          return;
-        }
-      }
-    };
     // The table (megabytes) is probed at random: each vertex's hash is worked out kAhead
     // vertices early and its slot prefetched, so that the probe finds it in cache.
     constexpr std::size_t kAhead = 16;
@@ -248,21 +234,24 @@ void weldAndBucket(WorkspaceData& ws, const MeshArrays& mesh) {
         ahead[v % kAhead] = later;
         prefetch(table + 2 * (later & mask));
       }
-      insertTagged(v, hash);
+      insert(table, mask, v, hash, static_cast<std::uint32_t>(hash >> 32));
     }
   } else {
     // Threads: the vertices split by the top bits of their hash into partitions (a counting
     // sort that keeps vertex order inside each), one small table per partition, partitions
     // in parallel. Equal values share a hash, so each partition welds on its own; no atomics,
-    // and the tables stay in cache. The hashes (partition in the top 8 bits, 24 bits of slot)
-    // and the order live in the bucket arrays, which are filled only after the weld.
+    // and the tables stay in cache. The hashes (partition in the top 8 bits, 24 bits of slot),
+    // the tags (32 bits of the hash from bit 24) and the order live in the bucket arrays,
+    // which are filled only after the weld.
     constexpr int kPartitionBits = 8;
     constexpr std::size_t kPartitions = std::size_t(1) << kPartitionBits, kChunk = 1 << 15;
     const std::size_t chunkCount = (vertexCount + kChunk - 1) / kChunk;
     ensureSize(ws.bucketExtra, vertexCount + 1);
+    ensureSize(ws.bucketStart, vertexCount + 1);
     ensureSize(ws.bucketCorners, std::max(cornerCount, vertexCount));
     ensureSize(ws.weldCounts, chunkCount * kPartitions + kPartitions + 1);
     std::uint32_t* hashes = ws.bucketExtra.data();
+    std::uint32_t* tags = ws.bucketStart.data();
     std::uint32_t* order = ws.bucketCorners.data();
     std::uint32_t* counts = ws.weldCounts.data();  // [chunk][partition], then partition starts
     std::uint32_t* partitionStart = counts + chunkCount * kPartitions;
@@ -271,6 +260,7 @@ void weldAndBucket(WorkspaceData& ws, const MeshArrays& mesh) {
       for (std::size_t v = begin; v < end; ++v) {
         const std::uint64_t hash = vertexHash(mesh, v);
         hashes[v] = static_cast<std::uint32_t>(hash >> 32 & 0xFF000000u) | static_cast<std::uint32_t>(hash & 0xFFFFFFu);
+        tags[v] = static_cast<std::uint32_t>(hash >> 24);
       }
     });
     stableCountingSort(ws, vertexCount, kPartitions, chunkCount, [&](std::size_t v) { return partitionOf(hashes[v]); }, counts,
@@ -285,14 +275,17 @@ void weldAndBucket(WorkspaceData& ws, const MeshArrays& mesh) {
       tableSize += size;
     }
     tableStart[kPartitions] = tableSize;
-    ensureSize(ws.table, tableSize);
+    ensureSize(ws.table, 2 * tableSize);
     std::uint32_t* table = ws.table.data();
     forRange(ws, kPartitions, 1, [&](std::size_t begin, std::size_t end) {
       for (std::size_t p = begin; p < end; ++p) {
-        std::uint32_t* part = table + tableStart[p];
+        std::uint32_t* part = table + 2 * tableStart[p];
         const std::size_t mask = tableStart[p + 1] - tableStart[p] - 1;
-        std::fill(part, part + mask + 1, 0u);
-        for (std::uint32_t i = partitionStart[p]; i < partitionStart[p + 1]; ++i) insert(part, mask, order[i], hashes[order[i]] & 0xFFFFFFu);
+        std::fill(part, part + 2 * (mask + 1), 0u);
+        for (std::uint32_t i = partitionStart[p]; i < partitionStart[p + 1]; ++i) {
+          const std::uint32_t v = order[i];
+          insert(part, mask, v, hashes[v] & 0xFFFFFFu, tags[v]);
+        }
       }
     });
   }
