@@ -16,6 +16,7 @@
 
 #include "support/random_meshes.hpp"
 #include "support/test_assets.hpp"
+#include "tangent/bulk_buffer.hpp"
 #include "tangent/halfedge_mesh.hpp"
 #include "tangent/tangent.hpp"
 #include "workspace.hpp"
@@ -237,6 +238,28 @@ TEST(Workspace, RepeatedCallsReuseTheirMemory) {
   const Output smaller = compute(arraysOf(small), 1, workspace);
   EXPECT_EQ(workspace.bytesReserved(), reserved);
   EXPECT_EQ(smaller.tangents, compute(arraysOf(small), 1).tangents);  // a reused workspace changes nothing
+}
+
+// The workspace's large arrays: blocks of 2 MiB and more are mapped fresh on 2 MiB
+// boundaries (Linux), keep their elements when the vector grows, and are given back whole.
+TEST(BulkVector, LargeBlocksAreAlignedAndKeepTheirElementsWhenGrown) {
+  tangent::BulkVector<std::uint32_t> v;
+  v.resize(3 << 19);  // 6 MiB
+#if defined(__linux__)
+  EXPECT_EQ(reinterpret_cast<std::uintptr_t>(v.data()) % tangent::kHugePage, 0u);
+#endif
+  for (std::size_t i = 0; i < v.size(); ++i) v[i] = static_cast<std::uint32_t>(i * 2654435761u);
+  v.resize(v.size() + (5 << 18) + 3);  // grows past the block: moved into a new one
+  bool kept = true;
+  for (std::size_t i = 0; i < (3 << 19); ++i) kept = kept && v[i] == static_cast<std::uint32_t>(i * 2654435761u);
+  EXPECT_TRUE(kept);
+  v.back() = 7;  // the whole new block is usable
+  EXPECT_EQ(v.back(), 7u);
+  tangent::BulkVector<std::uint32_t> small(100, 5);  // under 2 MiB: the heap
+  EXPECT_EQ(small[99], 5u);
+  v.clear();
+  v.shrink_to_fit();
+  EXPECT_EQ(v.capacity(), 0u);
 }
 
 TEST(Workspace, OpenMeshCallGivesTheArrayCallsBitsOnHardCases) {
