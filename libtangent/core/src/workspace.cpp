@@ -282,7 +282,21 @@ void weldAndBucket(WorkspaceData& ws, const MeshArrays& mesh) {
         std::uint32_t* part = table + 2 * tableStart[p];
         const std::size_t mask = tableStart[p + 1] - tableStart[p] - 1;
         std::fill(part, part + 2 * (mask + 1), 0u);
-        for (std::uint32_t i = partitionStart[p]; i < partitionStart[p + 1]; ++i) {
+        // A partition's vertices lie all over the arrays (every 256th or so): their hash,
+        // tag and id are asked for kAhead vertices early.
+        constexpr std::uint32_t kAhead = 8;
+        const std::uint32_t first = partitionStart[p], last = partitionStart[p + 1];
+        for (std::uint32_t i = first; i < std::min(last, first + kAhead); ++i) {
+          prefetch(hashes + order[i]);
+          prefetch(tags + order[i]);
+        }
+        for (std::uint32_t i = first; i < last; ++i) {
+          if (i + kAhead < last) {
+            const std::uint32_t later = order[i + kAhead];
+            prefetch(hashes + later);
+            prefetch(tags + later);
+            prefetch(vertexId + later);
+          }
           const std::uint32_t v = order[i];
           insert(part, mask, v, hashes[v] & 0xFFFFFFu, tags[v]);
         }
