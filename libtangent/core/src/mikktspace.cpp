@@ -1626,7 +1626,6 @@ void Kernel::fallbacks() {
   for (const Decision& d : decisions) writeCorner(d.corner, d.tangent, w(d.corner), d.source, 0);
 }
 
-
 void Kernel::run(Report& report) {
   const std::size_t cornerCount = ws_.cornerCount, triangleCount = cornerCount / 3;
   ensureSize(ws_.orientation, triangleCount);
