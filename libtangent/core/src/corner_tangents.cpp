@@ -54,6 +54,7 @@ Report computeCornerTangents(const MeshArrays& mesh, const CornerOutputs& output
     if (options.method == Method::mikktspace) {
       report = detail::mikktspaceOnArrays(ws, mesh, outputs, options);
     } else {
+      detail::beginCall(ws, mesh);
       detail::weldAndBucket(ws, mesh);
       lengyelOnArrays(ws, mesh, outputs, options, report);
     }

@@ -551,13 +551,13 @@ class Kernel {
   Kernel(WorkspaceData& ws, const MeshArrays& mesh, const CornerOutputs& outputs, UvOrigin origin)
       : wSign_(handedness(1.0f, origin)),
         ws_(ws),
+        mesh_(mesh),
         a_{mesh.positions.data(), mesh.normals.data(), mesh.uvs.data(), mesh.indices.data()},
-        tangents_(outputs.tangents.data()),
-        vertexId_(ws.vertexId.data()),
-        identity_(ws.weldMergedNone),
-        start_(ws.bucketStart.data()),
-        corners_(ws.bucketCorners.data()) {}
+        tangents_(outputs.tangents.data()) {}
 
+  // Welds and buckets (weldAndBucket), then writes the tangents (w in the convention of the
+  // call's UV origin, so that the output pass need not rewrite every tangent) and
+  // ws.cornerState, and fills the triangle counts of the report.
   void run(Report& report);
 
  private:
@@ -669,12 +669,14 @@ class Kernel {
 
   const float wSign_;
   WorkspaceData& ws_;
+  const MeshArrays& mesh_;
   Arrays a_;
   float* tangents_;
-  const std::uint32_t* vertexId_;
-  const bool identity_;  // the weld merged nothing: id(corner) is the corner's index
-  const std::uint32_t* start_;
-  const std::uint32_t* corners_;
+  // The weld's and the buckets' arrays, taken once they are filled.
+  const std::uint32_t* vertexId_ = nullptr;
+  bool identity_ = false;  // the weld merged nothing: id(corner) is the corner's index
+  const std::uint32_t* start_ = nullptr;
+  const std::uint32_t* corners_ = nullptr;
   std::uint64_t groupWithAny_ = 0;  // triangles that group with any (not coincident)
   std::uint64_t coincident_ = 0;    // coincident triangles
   // Whether any corner was marked undefined, any edge is non-manifold: where not, the passes
@@ -1633,7 +1635,13 @@ void Kernel::run(Report& report) {
   ensureSize(ws_.cornerLink, cornerCount);
   ensureSize(ws_.cornerState, cornerCount);
   ensureSize(ws_.bucketUniform, ws_.vertexCount);
-  evaluateTriangles(report);
+  // The triangle pass needs no weld: on two threads and more it runs beside the weld and the
+  // bucketing, which mostly wait on memory while it computes.
+  invokeBoth(ws_, [&] { weldAndBucket(ws_, mesh_); }, [&] { evaluateTriangles(report); });
+  vertexId_ = ws_.vertexId.data();
+  identity_ = ws_.weldMergedNone;
+  start_ = ws_.bucketStart.data();
+  corners_ = ws_.bucketCorners.data();
 
   const std::size_t bucketCount = ws_.vertexCount;
   // Pairing and grouping touch only the bucket's own corners, except where a zero-UV
@@ -1698,18 +1706,14 @@ VectorIsa activeVectorIsa() {
   return std::min(widest, cap);
 }
 
-void mikktspaceOnBuckets(WorkspaceData& ws, const MeshArrays& mesh, const CornerOutputs& outputs, UvOrigin origin, Report& report) {
+Report mikktspaceOnArrays(WorkspaceData& ws, const MeshArrays& mesh, const CornerOutputs& outputs, const Options& options) {
+  Report report;
+  beginCall(ws, mesh);
   report.method = Method::mikktspace;
   report.weighting = Weighting::angle;
   report.triangles = ws.cornerCount / 3;
   report.corners = ws.cornerCount;
-  Kernel(ws, mesh, outputs, origin).run(report);
-}
-
-Report mikktspaceOnArrays(WorkspaceData& ws, const MeshArrays& mesh, const CornerOutputs& outputs, const Options& options) {
-  Report report;
-  weldAndBucket(ws, mesh);
-  mikktspaceOnBuckets(ws, mesh, outputs, options.uvOrigin, report);
+  Kernel(ws, mesh, outputs, options.uvOrigin).run(report);
   finishOutputs(ws, mesh, outputs, options, report);
   return report;
 }

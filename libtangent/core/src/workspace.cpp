@@ -182,15 +182,17 @@ void stableCountingSort(const WorkspaceData& ws, std::size_t count, std::size_t 
 
 }  // namespace
 
-void weldAndBucket(WorkspaceData& ws, const MeshArrays& mesh) {
-  checkIndices(ws, mesh);
-  const std::size_t vertexCount = mesh.positions.size() / 3;
-  const std::size_t cornerCount = mesh.indices.size();
-  ws.vertexCount = vertexCount;
-  ws.cornerCount = cornerCount;
+void beginCall(WorkspaceData& ws, const MeshArrays& mesh) {
+  ws.vertexCount = mesh.positions.size() / 3;
+  ws.cornerCount = mesh.indices.size();
   ws.bucketUniformKnown = false;
   ws.wInOutputConvention = false;
   ws.anyCopy.store(false, std::memory_order_relaxed);
+  checkIndices(ws, mesh);
+}
+
+void weldAndBucket(WorkspaceData& ws, const MeshArrays& mesh) {
+  const std::size_t vertexCount = ws.vertexCount, cornerCount = ws.cornerCount;
 
   // Weld: open-addressing tables of vertex + 1; the smallest vertex of equal values wins.
   ensureSize(ws.vertexId, vertexCount);

@@ -224,25 +224,27 @@ void ensureSize(Vector& v, std::size_t n) {
 // Checks the arrays' sizes; throws std::invalid_argument naming the array.
 void checkArrays(const MeshArrays& mesh, const CornerOutputs& outputs);
 
-// Checks every index (in parallel, inside the call's arena; std::invalid_argument naming the
-// first one out of range), then welds vertices by exact (position, normal, UV) value as the
-// reference does (+0 and -0 equal), then buckets the corners by welded id, each bucket in
-// corner order. Every path reads the indices here first.
+// Starts a call on checked arrays: records the counts in ws, resets its per-call state and
+// checks every index (in parallel, inside the call's arena; std::invalid_argument naming the
+// first one out of range). Every path calls it before anything reads through the indices.
+void beginCall(WorkspaceData& ws, const MeshArrays& mesh);
+
+// Welds vertices by exact (position, normal, UV) value as the reference does (+0 and -0
+// equal), then buckets the corners by welded id, each bucket in corner order (after
+// beginCall). Writes only the weld's and the buckets' arrays (table, weldCounts, vertexId,
+// bucketStart, bucketCorners, bucketExtra; cornerLink from four threads, which the caller
+// sizes first), so that passes on other arrays may run beside it.
 void weldAndBucket(WorkspaceData& ws, const MeshArrays& mesh);
 
-// The method `mikktspace` on checked arrays: weld, groups, output pass (weldAndBucket,
-// mikktspaceOnBuckets, finishOutputs), on the calling thread's arena.
+// The method `mikktspace` on checked arrays: beginCall, then the weld and buckets beside the
+// triangle pass, groups, output pass (finishOutputs), on the calling thread's arena.
 Report mikktspaceOnArrays(WorkspaceData& ws, const MeshArrays& mesh, const CornerOutputs& outputs, const Options& options);
 
-// The method `mikktspace` on the welded buckets: writes outputs.tangents (w in the convention
-// of `origin`, so that the output pass need not rewrite every tangent) and ws.cornerState,
-// fills the triangle counts of the report.
 // The vector width of mikktspace's triangle pass. Every width gives the same bits.
 enum class VectorIsa : std::uint8_t { scalar, sse2, avx2 };
 // The widest this build and this processor have, capped by the environment variable
 // TANGENT_MAX_CPU_ISA where it names one of them (scalar, sse2, avx2). Read at each call.
 VectorIsa activeVectorIsa();
-void mikktspaceOnBuckets(WorkspaceData& ws, const MeshArrays& mesh, const CornerOutputs& outputs, UvOrigin origin, Report& report);
 
 // Copies duplicate corners, applies the UV origin to w (unless ws.wInOutputConvention), counts
 // sources and mirrored corners, and works out the vertex split (outputs.cornerVertex when
@@ -257,6 +259,11 @@ void forRange(const WorkspaceData& ws, std::size_t count, std::size_t grain, con
 // Runs body() in an arena of ws.threads worker threads (inline for one).
 template <typename Body>
 void onThreads(const WorkspaceData& ws, const Body& body);
+
+// Runs first() and second() side by side on the workspace's threads (one after the other on
+// one); they must write no common data.
+template <typename First, typename Second>
+void invokeBoth(const WorkspaceData& ws, const First& first, const Second& second);
 
 // Where each of `blocks` blocks starts when they are laid out one after another: start[b] is
 // the sum of total(b') for b' < b, start[blocks] the sum of all; the totals are worked out in
@@ -284,6 +291,7 @@ std::vector<std::uint32_t> collectFlagged(const WorkspaceData& ws, const std::ui
 #if !defined(TANGENT_SERIAL)
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
+#include <tbb/parallel_invoke.h>
 #include <tbb/task_arena.h>
 #endif
 
@@ -301,6 +309,20 @@ void forRange(const WorkspaceData& ws, std::size_t count, std::size_t grain, con
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, count, grain),
                     [&](const tbb::blocked_range<std::size_t>& range) { body(range.begin(), range.end()); });
 #endif
+}
+
+template <typename First, typename Second>
+void invokeBoth(const WorkspaceData& ws, const First& first, const Second& second) {
+#if !defined(TANGENT_SERIAL)
+  if (ws.threads > 1) {
+    tbb::parallel_invoke(first, second);
+    return;
+  }
+#else
+  (void)ws;
+#endif
+  first();
+  second();
 }
 
 template <typename Count, typename Total>
