@@ -55,7 +55,7 @@ Report computeCornerTangents(const MeshArrays& mesh, const CornerOutputs& output
       report = detail::mikktspaceOnArrays(ws, mesh, outputs, options);
     } else {
       detail::beginCall(ws, mesh);
-      detail::weldAndBucket(ws, mesh);
+      detail::weldAndBucket(ws, mesh, ws.threads);
       lengyelOnArrays(ws, mesh, outputs, options, report);
     }
   };

@@ -1636,8 +1636,11 @@ void Kernel::run(Report& report) {
   ensureSize(ws_.cornerState, cornerCount);
   ensureSize(ws_.bucketUniform, ws_.vertexCount);
   // The triangle pass needs no weld: on two threads and more it runs beside the weld and the
-  // bucketing, which mostly wait on memory while it computes.
-  invokeBoth(ws_, [&] { weldAndBucket(ws_, mesh_); }, [&] { evaluateTriangles(report); });
+  // bucketing. Below four threads, those take the one-thread way, the least work: while one
+  // thread welds and buckets, the others evaluate triangles, then all finish them. From four,
+  // the weld alone would take longer than the triangle pass on the other threads.
+  const unsigned weldThreads = ws_.threads < 4 ? 1 : ws_.threads;
+  invokeBoth(ws_, [&] { weldAndBucket(ws_, mesh_, weldThreads); }, [&] { evaluateTriangles(report); });
   vertexId_ = ws_.vertexId.data();
   identity_ = ws_.weldMergedNone;
   start_ = ws_.bucketStart.data();

@@ -191,7 +191,7 @@ void beginCall(WorkspaceData& ws, const MeshArrays& mesh) {
   checkIndices(ws, mesh);
 }
 
-void weldAndBucket(WorkspaceData& ws, const MeshArrays& mesh) {
+void weldAndBucket(WorkspaceData& ws, const MeshArrays& mesh, unsigned threads) {
   const std::size_t vertexCount = ws.vertexCount, cornerCount = ws.cornerCount;
 
   // Weld: open-addressing tables of vertex + 1; the smallest vertex of equal values wins.
@@ -218,7 +218,7 @@ void weldAndBucket(WorkspaceData& ws, const MeshArrays& mesh) {
       }
     }
   };
-  if (ws.threads < 2) {
+  if (threads < 2) {
     // One table, vertices in order; the tag is the hash's top 32 bits.
     std::size_t tableSize = 16;
     while (tableSize < 2 * vertexCount) tableSize *= 2;
@@ -330,8 +330,8 @@ void weldAndBucket(WorkspaceData& ws, const MeshArrays& mesh) {
   // Where the weld merged no vertex, a corner's bucket is its index: one load fewer per corner.
   const bool identity = ws.weldMergedNone;
   auto bucketOf = [&](std::size_t c) { return identity ? indices[c] : vertexId[indices[c]]; };
-  if (ws.threads < 4) {
-    const std::size_t slices = ws.threads;
+  if (threads < 4) {
+    const std::size_t slices = threads;
     ensureSize(ws.table, slices * vertexCount);
     if (identity)
       stableCountingSort(ws, cornerCount, vertexCount, slices, [&](std::size_t c) { return indices[c]; }, ws.table.data(), start, corners);
