@@ -23,9 +23,10 @@
 // exact duplicate triangles share one frame. One triangle never gets mixed w, and no corner is
 // left without a frame: FrameSource says where a frame was borrowed or made up.
 //
-// Layout: a few passes over packed arrays. Weld by hashing, bucket corners by welded vertex
-// (counting sort), then every phase runs per triangle or per bucket in parallel (oneTBB);
-// each item's result depends only on the input, so any thread count gives the same bits.
+// Layout: a few passes over packed arrays. Weld by hashing and bucket corners by welded
+// vertex (counting sort) beside the triangle pass, which needs no weld; then every phase runs
+// per triangle or per bucket in parallel (oneTBB); each item's result depends only on the
+// input, so any thread count gives the same bits.
 // Two paths per bucket. The triangle pass parks each corner's angle-weighted term in its
 // output slot (float, eight or four triangles at a time: triangle_lanes.inc); a bucket that
 // is one fan (closed or open) of one UV orientation, with every corner in the common case and

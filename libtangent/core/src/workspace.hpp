@@ -231,10 +231,11 @@ void beginCall(WorkspaceData& ws, const MeshArrays& mesh);
 
 // Welds vertices by exact (position, normal, UV) value as the reference does (+0 and -0
 // equal), then buckets the corners by welded id, each bucket in corner order (after
-// beginCall). `threads` picks the way (one table and one slice of counters for one thread;
-// the same bits for any): at most ws.threads, fewer where other work runs beside it. Writes only the weld's and the buckets' arrays (table, weldCounts, vertexId,
-// bucketStart, bucketCorners, bucketExtra; cornerLink from four threads, which the caller
-// sizes first), so that passes on other arrays may run beside it.
+// beginCall). `threads` picks the way, with the same bits for any: one table and one slice
+// of counters for one thread, the least work; at most ws.threads, fewer where other work
+// runs beside it. Writes only the weld's and the buckets' arrays (table, weldCounts,
+// vertexId, bucketStart, bucketCorners, bucketExtra; cornerLink from four threads, which the
+// caller sizes first), so that passes on other arrays may run beside it.
 void weldAndBucket(WorkspaceData& ws, const MeshArrays& mesh, unsigned threads);
 
 // The method `mikktspace` on checked arrays: beginCall, then the weld and buckets beside the
