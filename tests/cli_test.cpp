@@ -81,6 +81,20 @@ TEST(Cli, BakeWritesReportAndLeavesInputAlone) {
   EXPECT_EQ(report[0]["primitives"][0]["tangents"]["method"], "mikktspace");
 }
 
+// More threads than the machine runs: the same bytes as one thread, and no warning from the
+// thread pool about workers it will not grant (64 is more than any machine CI runs on).
+TEST(Cli, MoreThreadsThanTheMachineBakeTheSameBytesQuietly) {
+  TempDir dir;
+  const auto assets = tangent::testing::makeTestAssets();
+  const fs::path in = tangent::testing::writeAsset(assets[0], dir / "in", true);
+  const CliRun one = tangentCli("bake " + quoted(in) + " -o " + quoted(dir / "one.glb") + " --quiet --threads 1");
+  ASSERT_EQ(one.exitCode, 0) << one.output;
+  const CliRun many = tangentCli("bake " + quoted(in) + " -o " + quoted(dir / "many.glb") + " --quiet --threads 64");
+  ASSERT_EQ(many.exitCode, 0) << many.output;
+  EXPECT_EQ(many.output, "");
+  EXPECT_EQ(fileBytes(dir / "one.glb"), fileBytes(dir / "many.glb"));
+}
+
 TEST(Cli, OneBadInputFailsOnlyItself) {
   TempDir dir;
   const auto assets = tangent::testing::makeTestAssets();

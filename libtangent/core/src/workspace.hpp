@@ -292,6 +292,7 @@ std::vector<std::uint32_t> collectFlagged(const WorkspaceData& ws, const std::ui
 
 #if !defined(TANGENT_SERIAL)
 #include <tbb/blocked_range.h>
+#include <tbb/global_control.h>
 #include <tbb/parallel_for.h>
 #include <tbb/parallel_invoke.h>
 #include <tbb/task_arena.h>
@@ -417,7 +418,12 @@ void onThreads(const WorkspaceData& ws, const Body& body) {
     body();
     return;
   }
-  tbb::task_arena arena(static_cast<int>(ws.threads));
+  // No more slots than the process may run threads: the pool never grants the extra workers,
+  // only warns on standard error that it will not. ws.threads still picks the methods (the
+  // same bits for any count).
+  const std::size_t limit = tbb::global_control::active_value(tbb::global_control::max_allowed_parallelism);
+  const auto slots = static_cast<int>(std::min<std::size_t>(ws.threads, std::max<std::size_t>(limit, 1)));
+  tbb::task_arena arena(slots);
   arena.execute(body);
 #endif
 }
