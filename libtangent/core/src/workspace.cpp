@@ -292,18 +292,15 @@ void weldAndBucket(WorkspaceData& ws, const MeshArrays& mesh, unsigned threads) 
         // A partition's vertices lie all over the arrays (every 256th or so): their hash,
         // tag and id are asked for kAhead vertices early.
         constexpr std::uint32_t kAhead = 8;
+        auto ask = [&](std::uint32_t v) {
+          prefetch(hashes + v);
+          prefetch(tags + v);
+          prefetch(vertexId + v);
+        };
         const std::uint32_t first = partitionStart[p], last = partitionStart[p + 1];
-        for (std::uint32_t i = first; i < std::min(last, first + kAhead); ++i) {
-          prefetch(hashes + order[i]);
-          prefetch(tags + order[i]);
-        }
+        for (std::uint32_t i = first; i < std::min(last, first + kAhead); ++i) ask(order[i]);
         for (std::uint32_t i = first; i < last; ++i) {
-          if (i + kAhead < last) {
-            const std::uint32_t later = order[i + kAhead];
-            prefetch(hashes + later);
-            prefetch(tags + later);
-            prefetch(vertexId + later);
-          }
+          if (i + kAhead < last) ask(order[i + kAhead]);
           const std::uint32_t v = order[i];
           insert(part, mask, v, hashes[v] & 0xFFFFFFu, tags[v]);
         }
