@@ -16,13 +16,14 @@
 #include "tangent/check.hpp"
 #include "tangent/gltf.hpp"
 #include "tangent/tangent.hpp"
+#include "tangent/text.hpp"
 
 namespace py = pybind11;
 
 namespace {
 
 // nlohmann JSON to Python objects, through Python's own json module (reports are small).
-py::object toPython(const nlohmann::ordered_json& json) { return py::module_::import("json").attr("loads")(json.dump()); }
+py::object toPython(const nlohmann::ordered_json& json) { return py::module_::import("json").attr("loads")(tangent::text::dumpJson(json)); }
 
 [[noreturn]] void badArgument(const std::string& argument, const std::string& what) {
   throw py::value_error("libtangent: " + argument + ": " + what);

@@ -4,13 +4,16 @@
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <memory>
 #include <optional>
 #include <stdexcept>
 #include <string>
+#include <utility>
 
 #include "commands.hpp"
 #include "tangent/batch.hpp"
 #include "tangent/gltf.hpp"
+#include "tangent/text.hpp"
 
 namespace tangent::cli {
 namespace {
@@ -53,10 +56,14 @@ class StdoutTarget {
       dir_ = fs::temp_directory_path() / ("tangent-bake-" + std::to_string(::getpid()) + "-" + std::to_string(attempt));
       if (fs::create_directory(dir_)) break;  // throws where the folder cannot be made at all
     }
+    dirGuard_ = std::make_unique<output::TemporaryGuard>(dir_);
+    fileGuard_ = std::make_unique<output::TemporaryGuard>(file());
   }
   ~StdoutTarget() {
     std::error_code ec;
     std::filesystem::remove_all(dir_, ec);
+    fileGuard_.reset();
+    dirGuard_.reset();
   }
   StdoutTarget(const StdoutTarget&) = delete;
   StdoutTarget& operator=(const StdoutTarget&) = delete;
@@ -78,6 +85,7 @@ class StdoutTarget {
 
  private:
   std::filesystem::path dir_;
+  std::unique_ptr<output::TemporaryGuard> dirGuard_, fileGuard_;  // removed on SIGINT/SIGTERM
 };
 
 int usageError(const std::string& message) {
@@ -88,7 +96,7 @@ int usageError(const std::string& message) {
 // --report FILE ("-": standard output, the human-readable lines then go to stderr).
 int writeReport(const std::filesystem::path& reportPath, const nlohmann::ordered_json& report) {
   if (reportPath.empty()) return kExitOk;
-  return writeTextOutput(reportPath.string(), report.dump(2) + "\n", "bake") ? kExitOk : kExitInputFailed;
+  return writeTextOutput(reportPath.string(), text::dumpJson(report, 2) + "\n", "bake") ? kExitOk : kExitInputFailed;
 }
 
 // --recursive: each folder into --out-dir (into --out-dir/NAME when there are several).
@@ -97,6 +105,25 @@ int bakeTrees(const std::vector<std::filesystem::path>& folders, const std::file
   gltf::BatchOptions batch;
   batch.bake = options;
   batch.force = force;
+  // Every output of the run known before anything is written: two folders of one name, or two
+  // files of one folder that become the same .glb, are refused as a whole.
+  std::vector<std::filesystem::path> allInputs, allOutputs;
+  for (const auto& folder : folders) {
+    const std::filesystem::path target = folders.size() == 1 ? outDir : outDir / folder.filename();
+    try {
+      for (const auto& input : gltf::findInputs(folder, target)) {
+        allInputs.push_back(input);
+        allOutputs.push_back(gltf::outputPathFor(input, target / input.lexically_relative(folder).parent_path()));
+      }
+    } catch (const std::exception& e) {
+      std::cerr << "error: " << shown(e.what()) << "\n";
+      return kExitInputFailed;
+    }
+  }
+  if (const auto collisions = gltf::outputCollisions(allInputs, allOutputs); !collisions.empty()) {
+    std::cerr << "error: " << shown(gltf::describeCollisions(collisions)) << "\n";
+    return kExitInputFailed;
+  }
   nlohmann::ordered_json report = nlohmann::ordered_json::array();
   std::size_t baked = 0, unchanged = 0, failed = 0;
   for (const auto& folder : folders) {
@@ -106,14 +133,14 @@ int bakeTrees(const std::vector<std::filesystem::path>& folders, const std::file
         if (entry.skipped) ++unchanged;
         else if (entry.ok) ++baked;
         if (!entry.ok) ++failed;  // a file that failed last time and has not changed still fails
-        if (!entry.ok) std::cerr << "error: " << entry.error << (entry.skipped ? " (unchanged since the last run)" : "") << "\n";
+        if (!entry.ok) std::cerr << "error: " << shown(entry.error) << (entry.skipped ? " (unchanged since the last run)" : "") << "\n";
         else if (!quiet)
-          (reportPath == "-" ? std::cerr : std::cout) << entry.input.string() << " -> " << entry.output.string() << (entry.skipped ? ": unchanged\n" : ": baked\n");
+          (reportPath == "-" ? std::cerr : std::cout) << shown(entry.input.string()) << " -> " << shown(entry.output.string()) << (entry.skipped ? ": unchanged\n" : ": baked\n");
         report.push_back(gltf::toJson(entry));
       });
     } catch (const std::exception& e) {
       ++failed;
-      std::cerr << "error: " << e.what() << "\n";
+      std::cerr << "error: " << shown(e.what()) << "\n";
     }
   }
   std::ostream& log = reportPath == "-" ? std::cerr : std::cout;
@@ -129,9 +156,13 @@ int bakeCommand(const std::vector<std::string>& args) {
   std::vector<fs::path> inputs;
   fs::path output, outDir, reportPath;
   gltf::BakeOptions options;
-  bool quiet = false, recursive = false, force = false;
+  bool quiet = false, recursive = false, force = false, operandsOnly = false;
   for (std::size_t i = 0; i < args.size(); ++i) {
     const std::string& arg = args[i];
+    if (operandsOnly || arg == "--") {  // "--" ends the options
+      if (std::exchange(operandsOnly, true)) inputs.emplace_back(arg);
+      continue;
+    }
     auto value = [&](const char* name) -> const std::string* {
       if (i + 1 >= args.size()) return nullptr;
       (void)name;
@@ -217,6 +248,15 @@ int bakeCommand(const std::vector<std::string>& args) {
     if (!fs::is_directory(outDir)) return usageError("--out-dir " + outDir.string() + " is not a directory");
   }
 
+  if (!outDir.empty()) {
+    std::vector<fs::path> targets;
+    for (const fs::path& input : inputs) targets.push_back(gltf::outputPathFor(input, outDir));
+    if (const auto collisions = gltf::outputCollisions(inputs, targets); !collisions.empty()) {
+      std::cerr << "error: " << shown(gltf::describeCollisions(collisions)) << "\n";
+      return kExitInputFailed;
+    }
+  }
+
   const bool progress = !quiet && inputs.size() > 1 && ::isatty(STDERR_FILENO);
   std::ostream& log = reportPath == "-" || toStdout ? std::cerr : std::cout;
   int failed = 0;
@@ -224,10 +264,18 @@ int bakeCommand(const std::vector<std::string>& args) {
   for (std::size_t n = 0; n < inputs.size(); ++n) {
     const fs::path& input = inputs[n];
     std::optional<StdoutTarget> stream;
-    if (toStdout) stream.emplace();
+    if (toStdout) {
+      try {
+        stream.emplace();
+      } catch (const std::exception& e) {
+        std::cerr << "error: " << shown(input.string()) << ": -o - bakes into a temporary folder first, and none can be made ("
+                  << shown(e.what()) << "); set TMPDIR to a writable folder\n";
+        return kExitInputFailed;
+      }
+    }
     const fs::path target = stream ? stream->file() : output.empty() ? gltf::outputPathFor(input, outDir) : output;
     const std::string targetName = stream ? "-" : target.string();
-    if (progress) std::cerr << "\r[" << n + 1 << "/" << inputs.size() << "] " << input.filename().string() << "\033[K" << std::flush;
+    if (progress) std::cerr << "\r[" << n + 1 << "/" << inputs.size() << "] " << shown(input.filename().string()) << "\033[K" << std::flush;
     nlohmann::ordered_json entry = {{"input", input.string()}, {"output", targetName}};
     try {
       const gltf::BakeResult result = gltf::bakeFile(input, target, options);
@@ -244,10 +292,10 @@ int bakeCommand(const std::vector<std::string>& args) {
           skipped += p.action == gltf::PrimitiveAction::skipped;
           split += p.action == gltf::PrimitiveAction::baked ? p.verticesOut - p.verticesIn : 0;
         }
-        log << input.string() << " -> " << targetName << ": " << baked << " baked, " << kept << " kept, "
+        log << shown(input.string()) << " -> " << shown(targetName) << ": " << baked << " baked, " << kept << " kept, "
                   << skipped << " skipped; " << split << " vertices added by splits\n";
         for (const auto& p : result.primitives) {
-          log << "  mesh " << p.mesh << (p.meshName.empty() ? "" : " '" + p.meshName + "'") << " primitive "
+          log << "  mesh " << p.mesh << (p.meshName.empty() ? "" : " '" + text::quoted(p.meshName) + "'") << " primitive "
                     << p.primitive << ": " << gltf::toString(p.action) << " - " << p.reason;
           if (p.action == gltf::PrimitiveAction::baked) {
             const Report& r = p.tangents;
@@ -267,12 +315,12 @@ int bakeCommand(const std::vector<std::string>& args) {
         }
         for (const auto& name : result.extensionsRemoved)
           log << "  " << name << " removed from extensionsUsed/extensionsRequired: nothing in the output uses it\n";
-        for (const auto& w : result.warnings) std::cerr << "warning: " << w << "\n";
+        for (const auto& w : result.warnings) std::cerr << "warning: " << shown(w) << "\n";
       }
     } catch (const std::exception& e) {
       ++failed;
       if (progress) std::cerr << "\r\033[K";
-      std::cerr << "error: " << e.what() << "\n";
+      std::cerr << "error: " << shown(e.what()) << "\n";
       entry["status"] = "failed";
       entry["error"] = e.what();
     }

@@ -11,10 +11,12 @@
 #include <iostream>
 #include <optional>
 #include <sstream>
+#include <utility>
 
 #include "commands.hpp"
 #include "tangent/check.hpp"
 #include "tangent/gltf.hpp"
+#include "tangent/text.hpp"
 
 namespace tangent::cli {
 namespace {
@@ -45,9 +47,11 @@ const char* kCheckUsage =
     "checks: present format finite unit w w-uniform orthogonal handedness reference\n"
     "exit codes: 0 clean, 1 findings, 2 unreadable input or usage error\n";
 
-std::string xmlEscape(const std::string& text) {
+// XML 1.0 text: the markup characters as entities, control characters XML forbids as a space,
+// bytes that are not UTF-8 as \xHH (the document declares UTF-8).
+std::string xmlEscape(const std::string& raw) {
   std::string out;
-  for (char c : text) {
+  for (char c : text::utf8Safe(raw)) {
     switch (c) {
       case '&': out += "&amp;"; break;
       case '<': out += "&lt;"; break;
@@ -63,7 +67,7 @@ std::string xmlEscape(const std::string& text) {
 }
 
 std::string primitiveName(const gltf::PrimitiveCheck& p) {
-  return "mesh " + std::to_string(p.mesh) + (p.meshName.empty() ? "" : " '" + p.meshName + "'") + " primitive " +
+  return "mesh " + std::to_string(p.mesh) + (p.meshName.empty() ? "" : " '" + text::quoted(p.meshName) + "'") + " primitive " +
          std::to_string(p.primitive);
 }
 
@@ -74,10 +78,10 @@ std::string findingSummary(const gltf::CheckFinding& f) {
 void writeText(std::ostream& out, const std::vector<gltf::FileCheck>& checks) {
   std::size_t primitives = 0, findings = 0, errors = 0;
   for (const auto& file : checks) {
-    out << file.file << "\n";
+    out << shown(file.file) << "\n";
     if (!file.error.empty()) {
       ++errors;
-      out << "  ERROR " << file.error << "\n";
+      out << "  ERROR " << shown(file.error) << "\n";
       continue;
     }
     for (const auto& p : file.primitives) {
@@ -128,7 +132,7 @@ void writeJson(std::ostream& out, const std::vector<gltf::FileCheck>& checks, co
       {"settings", gltf::toJson(options)},
       {"summary", {{"files", checks.size()}, {"primitives", primitives}, {"findings", findings}, {"unreadable", errors}}},
       {"files", files}};
-  out << report.dump(2) << "\n";
+  out << text::dumpJson(report, 2) << "\n";
 }
 
 // One run of the command: what JUnit's timestamps need.
@@ -217,9 +221,10 @@ void writeJunit(std::ostream& out, const std::vector<gltf::FileCheck>& checks, c
 
 // GitHub Actions workflow commands: `::error file=F,title=T::message`. Data escapes % CR LF;
 // property values also : and , (actions/toolkit, command.ts).
-std::string githubData(const std::string& text) {
+// Control characters (ESC: the runner's log is a terminal) and bytes that are not UTF-8 as \xHH.
+std::string githubData(const std::string& raw) {
   std::string out;
-  for (char c : text) {
+  for (char c : shown(raw)) {
     if (c == '%') out += "%25";
     else if (c == '\r') out += "%0D";
     else if (c == '\n') out += "%0A";
@@ -340,7 +345,7 @@ void writeSarif(std::ostream& out, const std::vector<gltf::FileCheck>& checks, c
                                                    {"rules", rules}}}}},
                              {"invocations", Json::array({invocation})},
                              {"results", results}}})}};
-  out << log.dump(2) << "\n";
+  out << text::dumpJson(log, 2) << "\n";
 }
 
 int usageError(const std::string& message) {
@@ -381,17 +386,22 @@ int checkCommand(const std::vector<std::string>& args) {
   std::string formatName = "text", output = "-";
   gltf::CheckOptions options;
   // The config file first, whatever its place: the command line overrides it.
-  for (std::size_t i = 0; i < args.size(); ++i) {
+  for (std::size_t i = 0; i < args.size() && args[i] != "--"; ++i) {
     if (args[i] != "--config") continue;
     if (i + 1 >= args.size()) return usageError("--config needs a JSON file");
     try {
       gltf::applyCheckConfig(args[i + 1], options);
     } catch (const std::exception& e) {
-      return usageError(e.what());
+      return usageError(shown(e.what()));
     }
   }
+  bool operandsOnly = false;
   for (std::size_t i = 0; i < args.size(); ++i) {
     const std::string& arg = args[i];
+    if (operandsOnly || arg == "--") {  // "--" ends the options
+      if (std::exchange(operandsOnly, true)) inputs.push_back(arg);
+      continue;
+    }
     const bool hasValue = i + 1 < args.size();
     if (arg == "-h" || arg == "--help") {
       std::cout << kCheckUsage;
@@ -470,7 +480,7 @@ int checkCommand(const std::vector<std::string>& args) {
   else writeText(report, checks);
   if (!writeTextOutput(output, report.str(), "check")) return kExitUsage;
   for (const auto& check : checks) {
-    if (!check.error.empty()) std::cerr << "error: " << check.error << "\n";
+    if (!check.error.empty()) std::cerr << "error: " << shown(check.error) << "\n";
   }
   return unreadable ? kExitUsage : findings ? kExitInputFailed : kExitOk;
 }

@@ -6,7 +6,14 @@
 #include <string>
 #include <vector>
 
+#include "tangent/output.hpp"
+#include "tangent/text.hpp"
+
 namespace tangent::cli {
+
+// File-derived text (paths, names, messages that quote them) on its way to a terminal or a
+// log: control characters and bytes that are not UTF-8 escaped, cut past a few kilobytes.
+inline std::string shown(std::string_view text) { return text::terminalSafe(text, 4096); }
 
 // Exit codes shared by every command.
 constexpr int kExitOk = 0;
@@ -15,16 +22,20 @@ constexpr int kExitUsage = 2;
 
 // Writes `text` to `path`, or to standard output when `path` is "-" (every report and output
 // file a command writes takes "-"). Returns false, after a message on stderr, when it cannot.
+// Files are written atomically (tangent/output.hpp): a failure leaves the previous file.
 inline bool writeTextOutput(const std::string& path, const std::string& text, const char* command) {
   if (path == "-") {
     std::cout << text << std::flush;
+    if (!std::cout) std::cerr << "tangent " << command << ": cannot write to standard output\n";
     return static_cast<bool>(std::cout);
   }
-  std::ofstream file(path, std::ios::binary);
-  file << text;
-  file.close();
-  if (!file) std::cerr << "tangent " << command << ": cannot write " << path << "\n";
-  return static_cast<bool>(file);
+  try {
+    output::writeFileAtomic(path, text);
+    return true;
+  } catch (const std::exception& e) {
+    std::cerr << "tangent " << command << ": " << shown(e.what()) << "\n";
+    return false;
+  }
 }
 
 int bakeCommand(const std::vector<std::string>& args);

@@ -1,18 +1,24 @@
 // SPDX-License-Identifier: MIT
 #include <filesystem>
 #include <iostream>
+#include <utility>
 
 #include "commands.hpp"
 #include "tangent/gltf.hpp"
+#include "tangent/text.hpp"
 
 namespace tangent::cli {
 
 int infoCommand(const std::vector<std::string>& args) {
   std::vector<std::string> inputs;
   std::filesystem::path assetRoot;
-  bool json = false;
+  bool json = false, operandsOnly = false;
   for (std::size_t i = 0; i < args.size(); ++i) {
     const std::string& arg = args[i];
+    if (operandsOnly || arg == "--") {  // "--" ends the options
+      if (std::exchange(operandsOnly, true)) inputs.push_back(arg);
+      continue;
+    }
     if (arg == "--json") json = true;
     else if (arg == "--asset-root") {
       if (i + 1 >= args.size() || !std::filesystem::is_directory(args[i + 1])) {
@@ -40,13 +46,13 @@ int infoCommand(const std::vector<std::string>& args) {
     try {
       const auto info = gltf::describeFile(input, assetRoot);
       if (json) {
-        std::cout << info.dump(2) << "\n";
+        std::cout << text::dumpJson(info, 2) << "\n";
         continue;
       }
-      std::cout << info["file"].get<std::string>() << " (" << info["container"].get<std::string>() << ")\n";
+      std::cout << shown(info["file"].get<std::string>()) << " (" << info["container"].get<std::string>() << ")\n";
       for (const auto& mesh : info["meshes"]) {
         std::cout << "  mesh " << mesh["index"].get<int>();
-        if (mesh.contains("name")) std::cout << " '" << mesh["name"].get<std::string>() << "'";
+        if (mesh.contains("name")) std::cout << " '" << text::quoted(mesh["name"].get<std::string>()) << "'";
         std::cout << "\n";
         for (const auto& primitive : mesh["primitives"]) {
           std::cout << "    primitive " << primitive["index"].get<int>() << ": mode " << primitive["mode"].get<int>();
@@ -61,10 +67,10 @@ int infoCommand(const std::vector<std::string>& args) {
             std::cout << "      morph targets: " << primitive["morphTargets"].dump() << "\n";
         }
       }
-      for (const auto& w : info["warnings"]) std::cerr << "warning: " << w.get<std::string>() << "\n";
+      for (const auto& w : info["warnings"]) std::cerr << "warning: " << shown(w.get<std::string>()) << "\n";
     } catch (const std::exception& e) {
       ++failed;
-      std::cerr << "error: " << e.what() << "\n";
+      std::cerr << "error: " << shown(e.what()) << "\n";
     }
   }
   return failed ? kExitInputFailed : kExitOk;

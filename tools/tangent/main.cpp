@@ -1,5 +1,7 @@
 // SPDX-License-Identifier: MIT
 // `tangent`: bake tangents into glTF, describe assets.
+#include <cerrno>
+#include <cstring>
 #include <iostream>
 
 #include "commands.hpp"
@@ -18,10 +20,34 @@ const char* kUsage =
     "'tangent <command> --help' describes a command's options.\n"
     "exit codes: 0 done (check: clean), 1 an input failed (check: findings), 2 usage error\n";
 
+int run(std::vector<std::string> args);
+
 }  // namespace
 
 int main(int argc, char** argv) {
-  std::vector<std::string> args(argv + 1, argv + argc);
+  // Ctrl-C and kill: the files being written are removed (a batch's journal keeps what is done).
+  tangent::output::removeTemporariesOnSignal("tangent: interrupted; files being written were removed\n");
+  int status = tangent::cli::kExitInputFailed;
+  try {
+    status = run(std::vector<std::string>(argv + 1, argv + argc));
+  } catch (const std::exception& e) {
+    // Every command answers bad input itself; this is what none foresaw (memory, the system).
+    std::cerr << "tangent: " << tangent::cli::shown(e.what()) << "\n";
+    status = tangent::cli::kExitInputFailed;
+  }
+  // Output that did not reach its destination (a full disk, a closed pipe) is a failure.
+  errno = 0;
+  std::cout.flush();
+  if (!std::cout) {
+    std::cerr << "tangent: cannot write to standard output" << (errno ? std::string(": ") + std::strerror(errno) : "") << "\n";
+    if (status == tangent::cli::kExitOk) status = tangent::cli::kExitInputFailed;
+  }
+  return status;
+}
+
+namespace {
+
+int run(std::vector<std::string> args) {
   if (args.empty()) {
     std::cerr << kUsage;
     return tangent::cli::kExitUsage;
@@ -43,3 +69,5 @@ int main(int argc, char** argv) {
   std::cerr << "tangent: unknown command '" << command << "'\n" << kUsage;
   return tangent::cli::kExitUsage;
 }
+
+}  // namespace

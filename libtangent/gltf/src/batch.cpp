@@ -4,10 +4,13 @@
 #include <algorithm>
 #include <fstream>
 #include <iterator>
+#include <map>
 
 #include "asset.hpp"
 #include "document.hpp"
 #include "sha256.hpp"
+#include "tangent/output.hpp"
+#include "tangent/text.hpp"
 #include "uri.hpp"
 #include "validate.hpp"
 
@@ -112,28 +115,128 @@ std::string inputDigest(const fs::path& input, const fs::path& assetRoot) {
   return hash.hexDigest();
 }
 
+std::vector<OutputCollision> outputCollisions(const std::vector<fs::path>& inputs, const std::vector<fs::path>& outputs) {
+  std::map<fs::path, std::size_t> firstWriter;
+  std::vector<OutputCollision> collisions;
+  for (std::size_t i = 0; i < inputs.size() && i < outputs.size(); ++i) {
+    std::error_code ec;
+    const fs::path key = fs::absolute(outputs[i], ec).lexically_normal();
+    const auto [at, inserted] = firstWriter.emplace(key, i);
+    if (!inserted) collisions.push_back({inputs[at->second], inputs[i], outputs[i]});
+  }
+  return collisions;
+}
+
+std::string describeCollisions(const std::vector<OutputCollision>& collisions) {
+  std::string text;
+  for (const auto& c : collisions) {
+    if (!text.empty()) text += "; ";
+    text += text::quoted(c.first.string()) + " and " + text::quoted(c.second.string()) + " would both be written to " +
+            text::quoted(c.output.string());
+  }
+  return text + " (nothing was written; bake them into different folders or rename one)";
+}
+
+namespace {
+
+// The journal beside the manifest: one line per finished file, appended as the run goes, so
+// that a run that is interrupted (Ctrl-C, kill -9, a full disk) is resumed by the next one.
+// Its first line holds the options; the manifest replaces it when the run ends.
+class Journal {
+ public:
+  Journal(const fs::path& path, const Json& options) : path_(path), options_(options) {}
+
+  // Records of a journal left by an earlier run with the same options.
+  Json read() const {
+    Json records = Json::object();
+    std::ifstream in(path_, std::ios::binary);
+    std::string line;
+    bool sameOptions = false, first = true;
+    while (std::getline(in, line)) {
+      Json item;
+      try {
+        if (line.size() > (std::size_t(1) << 20)) break;
+        detail::checkJsonDepth(line, path_.string());
+        item = Json::parse(line);
+      } catch (const std::exception&) {
+        break;  // a line cut short by the interruption: the rest is unknown
+      }
+      if (first) {
+        sameOptions = item.is_object() && item.contains("options") && item["options"] == options_;
+        first = false;
+        if (!sameOptions) break;
+        continue;
+      }
+      if (item.is_object() && item.contains("file") && item["file"].is_string() && item.contains("record"))
+        records[item["file"].get<std::string>()] = item["record"];
+    }
+    return records;
+  }
+
+  // Starts a new journal with the records carried over from an interrupted run.
+  void start(const Json& carried) {
+    out_.open(path_, std::ios::binary | std::ios::trunc);
+    out_ << text::dumpJson(Json{{"options", options_}}) << "\n";
+    for (const auto& [key, record] : carried.items()) append(key, record);
+    out_.flush();
+  }
+
+  void append(const std::string& key, const Json& record) {
+    out_ << text::dumpJson(Json{{"file", key}, {"record", record}}) << "\n";
+    out_.flush();
+  }
+
+  void remove() {
+    out_.close();
+    std::error_code ec;
+    fs::remove(path_, ec);
+  }
+
+ private:
+  fs::path path_;
+  Json options_;
+  std::ofstream out_;
+};
+
+}  // namespace
+
 std::vector<BatchEntry> bakeTree(const fs::path& inputFolder, const fs::path& outputFolder, const BatchOptions& options,
                                  const std::function<void(const BatchEntry&)>& onFile) {
   std::error_code ec;
+  const std::vector<fs::path> inputs = findInputs(inputFolder, outputFolder);
+  std::vector<fs::path> outputs;
+  for (const fs::path& input : inputs) {
+    const fs::path relative = input.lexically_relative(inputFolder);
+    outputs.push_back(outputPathFor(input, outputFolder / relative.parent_path()));
+  }
+  if (const auto collisions = outputCollisions(inputs, outputs); !collisions.empty())
+    throw InputError(inputFolder.string() + ": " + describeCollisions(collisions));
+
   fs::create_directories(outputFolder, ec);
   if (!fs::is_directory(outputFolder, ec)) throw std::runtime_error(outputFolder.string() + ": cannot create the output folder");
   const fs::path manifestPath = outputFolder / kManifestName;
   const Json previous = readManifest(manifestPath);
   const Json optionsNow = optionsJson(options.bake);
-  const bool sameOptions = previous.contains("options") && previous["options"] == optionsNow;
-  const Json previousFiles = previous.contains("files") && previous["files"].is_object() ? previous["files"] : Json::object();
+  Json previousFiles = previous.contains("options") && previous["options"] == optionsNow && previous.contains("files") &&
+                               previous["files"].is_object()
+                           ? previous["files"]
+                           : Json::object();
+  Journal journal(outputFolder / kJournalName, optionsNow);
+  const Json interrupted = journal.read();
+  for (const auto& [key, record] : interrupted.items()) previousFiles[key] = record;
+  journal.start(interrupted);
 
   Json files = Json::object();
   std::vector<BatchEntry> entries;
-  for (const fs::path& input : findInputs(inputFolder, outputFolder)) {
+  for (std::size_t i = 0; i < inputs.size(); ++i) {
+    const fs::path& input = inputs[i];
     BatchEntry entry;
     entry.input = input;
-    const fs::path relative = input.lexically_relative(inputFolder);
-    entry.output = outputPathFor(input, outputFolder / relative.parent_path());
-    const std::string key = relative.generic_string();
+    entry.output = outputs[i];
+    const std::string key = text::utf8Safe(input.lexically_relative(inputFolder).generic_string());
     entry.digest = inputDigest(input, options.bake.assetRoot);
     const auto before = previousFiles.find(key);
-    if (!options.force && sameOptions && before != previousFiles.end() && before->is_object() &&
+    if (!options.force && before != previousFiles.end() && before->is_object() &&
         before->value("digest", "") == entry.digest && (!before->value("ok", false) || fs::exists(entry.output, ec))) {
       entry.skipped = true;
       entry.ok = before->value("ok", false);
@@ -146,16 +249,18 @@ std::vector<BatchEntry> bakeTree(const fs::path& inputFolder, const fs::path& ou
         entry.error = e.what();
       }
     }
-    Json record = {{"digest", entry.digest}, {"output", entry.output.lexically_relative(outputFolder).generic_string()},
+    Json record = {{"digest", entry.digest},
+                   {"output", text::utf8Safe(entry.output.lexically_relative(outputFolder).generic_string())},
                    {"ok", entry.ok}};
     if (!entry.ok) record["error"] = entry.error;
+    if (!entry.skipped) journal.append(key, record);
     files[key] = std::move(record);
     if (onFile) onFile(entry);
     entries.push_back(std::move(entry));
   }
   const Json manifest = {{"schema", "libtangent-manifest/1"}, {"options", optionsNow}, {"files", files}};
-  const std::string text = manifest.dump(2) + "\n";
-  detail::writeFileAtomic(manifestPath, std::span(reinterpret_cast<const std::uint8_t*>(text.data()), text.size()));
+  output::writeFileAtomic(manifestPath, text::dumpJson(manifest, 2) + "\n");
+  journal.remove();
   return entries;
 }
 

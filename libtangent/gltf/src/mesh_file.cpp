@@ -19,6 +19,7 @@
 
 #include "asset.hpp"
 #include "tangent/gltf.hpp"
+#include "tangent/text.hpp"
 
 namespace tangent::gltf::detail {
 namespace {
@@ -446,7 +447,7 @@ std::vector<std::uint8_t> meshFileToGlb(const std::filesystem::path& path) {
                                    {{"buffer", 0}, {"byteOffset", n * 24}, {"byteLength", n * 8}, {"target", 34962}},
                                    {{"buffer", 0}, {"byteOffset", indexOffset}, {"byteLength", indices.size() * 4}, {"target", 34963}}})},
       {"buffers", Json::array({{{"byteLength", bin.size()}}})}};
-  return makeGlb(doc.dump(), bin);
+  return makeGlb(text::dumpJson(doc), bin);
 }
 
 }  // namespace tangent::gltf::detail

@@ -12,7 +12,10 @@
 #include "compression.hpp"
 #include "document.hpp"
 #include "tangent/gltf.hpp"
+#include "tangent/output.hpp"
+#include "tangent/text.hpp"
 #include "uri.hpp"
+#include "validate.hpp"
 
 namespace tangent::gltf::detail {
 
@@ -73,6 +76,47 @@ void dropAndRenumber(Json& doc, const char* arrayName, const std::set<int>& orph
     const int old = ref.get<int>();
     if (old >= 0 && old < static_cast<int>(newIndex.size())) ref = newIndex[old];
   });
+}
+
+// The .bin files an existing .gltf at `output` refers to that bake's naming gives (STEM.bin,
+// STEM.N.bin) and that lie beside it; empty when there is no such file or it cannot be read.
+std::vector<std::filesystem::path> binsOfPreviousOutput(const std::filesystem::path& output) {
+  namespace fs = std::filesystem;
+  std::vector<fs::path> bins;
+  std::error_code ec;
+  if (!fs::is_regular_file(output, ec) || fs::file_size(output, ec) > (std::uintmax_t(64) << 20)) return bins;
+  std::vector<std::uint8_t> bytes;
+  if (!readFileInto(output, bytes)) return bins;
+  try {
+    const std::string text(bytes.begin(), bytes.end());
+    checkJsonDepth(text, output.string());
+    const Json previous = Json::parse(text);
+    if (!previous.is_object() || !previous.contains("buffers") || !previous["buffers"].is_array()) return bins;
+    const std::string stem = output.stem().string();
+    for (const Json& buffer : previous["buffers"]) {
+      if (!buffer.is_object() || !buffer.contains("uri") || !buffer["uri"].is_string()) continue;
+      const std::string name = percentDecode(buffer["uri"].get<std::string>());
+      const bool ours = name == stem + ".bin" ||
+                        (name.size() > stem.size() + 5 && name.rfind(stem + ".", 0) == 0 && name.ends_with(".bin") &&
+                         std::all_of(name.begin() + static_cast<std::ptrdiff_t>(stem.size()) + 1, name.end() - 4,
+                                     [](char c) { return c >= '0' && c <= '9'; }));
+      if (ours) bins.push_back(output.parent_path() / name);
+    }
+  } catch (const std::exception&) {
+    bins.clear();
+  }
+  return bins;
+}
+
+// STEM.bin, or STEM.1.bin, STEM.2.bin... : the first that the previous .gltf does not use.
+std::filesystem::path freeBinName(const std::filesystem::path& output, const std::vector<std::filesystem::path>& previousBins) {
+  std::filesystem::path candidate = output;
+  candidate.replace_extension(".bin");
+  for (int n = 1; std::find(previousBins.begin(), previousBins.end(), candidate) != previousBins.end(); ++n) {
+    candidate = output;
+    candidate.replace_extension("." + std::to_string(n) + ".bin");
+  }
+  return candidate;
 }
 
 }  // namespace
@@ -330,12 +374,17 @@ std::uint64_t OutputDocument::write(const std::filesystem::path& output) {
   extensionsRemoved_ = dropUnusedCompressionExtensions(asset_.json);
   const std::vector<std::span<const std::uint8_t>> bin = packBuffers();
   const fs::path outputDir = fs::absolute(output).parent_path();
-  placeImages(outputDir);
   const bool glb = output.extension() == ".glb";
   Json& doc = asset_.json;
+  std::uint64_t binBytes = 0;
+  for (const auto& piece : bin) binBytes += piece.size();
   if (glb) {
+    // Refused before anything is written, images included.
+    output::checkGlbFits(output, 0, binBytes);
+    placeImages(outputDir);
+    const std::string json = text::dumpJson(doc);
+    output::checkGlbFits(output, json.size(), binBytes);
     // Written from the pieces' own memory: no whole copy of the file.
-    const std::string json = doc.dump();
     std::vector<std::uint8_t> frame;
     const auto pieces = glbPieces(json, bin, frame);
     writeFileAtomic(output, pieces);
@@ -343,17 +392,40 @@ std::uint64_t OutputDocument::write(const std::filesystem::path& output) {
     for (const auto& piece : pieces) total += piece.size();
     return total;
   }
-  std::uint64_t written = 0;
-  if (!bin.empty()) {
-    fs::path binPath = output;
-    binPath.replace_extension(".bin");
-    doc["buffers"][0]["uri"] = percentEncodePath(binPath.filename().string());
-    writeFileAtomic(binPath, bin);
-    for (const auto& piece : bin) written += piece.size();
+  placeImages(outputDir);
+  if (bin.empty()) {
+    const std::string text = text::dumpJson(doc, 2) + "\n";
+    writeFileAtomic(output, std::span(reinterpret_cast<const std::uint8_t*>(text.data()), text.size()));
+    return text.size();
   }
-  const std::string text = doc.dump(2) + "\n";
-  writeFileAtomic(output, std::span(reinterpret_cast<const std::uint8_t*>(text.data()), text.size()));
-  return written + text.size();
+  // A .gltf and its .bin are one file in two: the new .bin goes under a name the previous
+  // .gltf does not use, so that until the .gltf is renamed into place the previous pair is
+  // whole, and after it the new one is.
+  const std::vector<fs::path> previousBins = binsOfPreviousOutput(output);
+  const fs::path binPath = freeBinName(output, previousBins);
+  for (const fs::path& used : referencedFiles(asset_)) {
+    std::error_code ec;
+    if (fs::exists(used, ec) && fs::exists(binPath, ec) && fs::equivalent(used, binPath, ec))
+      throw InputError(output.string() + ": would overwrite " + used.string() + ", which the input uses");
+  }
+  doc["buffers"][0]["uri"] = percentEncodePath(binPath.filename().string());
+  const std::string text = text::dumpJson(doc, 2) + "\n";
+  writeFileAtomic(binPath, bin);
+  try {
+    writeFileAtomic(output, std::span(reinterpret_cast<const std::uint8_t*>(text.data()), text.size()));
+  } catch (...) {
+    if (std::find(previousBins.begin(), previousBins.end(), binPath) == previousBins.end()) {
+      std::error_code ignored;
+      fs::remove(binPath, ignored);
+    }
+    throw;
+  }
+  // The previous .bin, now used by nothing we wrote.
+  for (const fs::path& previous : previousBins) {
+    std::error_code ec;
+    if (previous != binPath) fs::remove(previous, ec);
+  }
+  return binBytes + text.size();
 }
 
 bool readFileInto(const std::filesystem::path& path, std::vector<std::uint8_t>& out) {
@@ -370,33 +442,11 @@ bool readFileInto(const std::filesystem::path& path, std::vector<std::uint8_t>& 
 }
 
 void writeFileAtomic(const std::filesystem::path& path, std::span<const std::uint8_t> bytes) {
-  writeFileAtomic(path, std::vector<std::span<const std::uint8_t>>{bytes});
+  output::writeFileAtomic(path, {bytes});
 }
 
 void writeFileAtomic(const std::filesystem::path& path, const std::vector<std::span<const std::uint8_t>>& pieces) {
-  namespace fs = std::filesystem;
-  static std::atomic<unsigned> counter{0};
-  const fs::path temp = path.parent_path() / ("." + path.filename().string() + ".tmp-" + std::to_string(::getpid()) + "-" +
-                                              std::to_string(counter++));
-  {
-    std::ofstream out(temp, std::ios::binary | std::ios::trunc);
-    if (!out) throw std::runtime_error(path.string() + ": cannot create " + temp.string());
-    for (const auto& piece : pieces) out.write(reinterpret_cast<const char*>(piece.data()), static_cast<std::streamsize>(piece.size()));
-    out.flush();
-    if (!out) {
-      out.close();
-      std::error_code ec;
-      fs::remove(temp, ec);
-      throw std::runtime_error(path.string() + ": write failed");
-    }
-  }
-  std::error_code ec;
-  fs::rename(temp, path, ec);
-  if (ec) {
-    std::error_code ignored;
-    fs::remove(temp, ignored);
-    throw std::runtime_error(path.string() + ": cannot rename temporary file into place: " + ec.message());
-  }
+  output::writeFileAtomic(path, pieces);
 }
 
 std::vector<std::filesystem::path> referencedFiles(const Asset& asset) {

@@ -16,6 +16,9 @@
 namespace tangent::gltf {
 
 inline constexpr const char* kManifestName = "tangent-manifest.json";
+// Beside the manifest while a run goes on: a line per finished file, so that an interrupted run
+// is resumed; merged into the manifest when the run ends.
+inline constexpr const char* kJournalName = "tangent-manifest.journal";
 
 struct BatchOptions {
   BakeOptions bake;
@@ -39,7 +42,21 @@ std::vector<std::filesystem::path> findInputs(const std::filesystem::path& folde
 // asset root (hex).
 std::string inputDigest(const std::filesystem::path& input, const std::filesystem::path& assetRoot = {});
 
-// Bakes the tree; `onFile` is called after each file. Writes the manifest (atomically) at the end.
+// Two inputs of one run whose outputs are the same file (m.glb, m.obj and m.ply all become
+// m.glb; a/x.glb and b/x.glb in one --out-dir).
+struct OutputCollision {
+  std::filesystem::path first, second, output;
+};
+// Every input after the first that maps to an output an earlier one has (outputs[i] is
+// inputs[i]'s), in input order.
+std::vector<OutputCollision> outputCollisions(const std::vector<std::filesystem::path>& inputs,
+                                              const std::vector<std::filesystem::path>& outputs);
+// One message for them all, naming both inputs of each and the output.
+std::string describeCollisions(const std::vector<OutputCollision>& collisions);
+
+// Bakes the tree (refused as a whole, before anything is written, when two inputs would write
+// the same output); `onFile` is called after each file. Each finished file is recorded in the
+// journal at once; the manifest is written (atomically) at the end.
 std::vector<BatchEntry> bakeTree(const std::filesystem::path& inputFolder, const std::filesystem::path& outputFolder,
                                  const BatchOptions& options, const std::function<void(const BatchEntry&)>& onFile = {});
 

@@ -1,0 +1,51 @@
+// SPDX-License-Identifier: MIT
+// The one way every writer of this project puts a file on disk (glb, gltf + bin, copied
+// images, reports, manifests): the bytes go to a temporary beside the destination, named
+// ".NAME.tmp-PID-N", are written, synced and closed with every step checked, and only then
+// renamed over the destination. A failure at any step removes the temporary and names the
+// file and the reason ("No space left on device"); the previous file stays as it was.
+#pragma once
+
+#include <cstdint>
+#include <filesystem>
+#include <span>
+#include <string_view>
+#include <vector>
+
+namespace tangent::output {
+
+// Writes the pieces, one after another, to `path` atomically (see above). Throws
+// std::runtime_error naming `path` and the reason.
+void writeFileAtomic(const std::filesystem::path& path, const std::vector<std::span<const std::uint8_t>>& pieces);
+void writeFileAtomic(const std::filesystem::path& path, std::string_view text);
+
+// Temporaries of processes that no longer run (killed, or the machine went down) in
+// `folder`: removed, once per folder and process. Called for every folder a writer writes to.
+void removeStaleTemporaries(const std::filesystem::path& folder);
+
+// A path (file or empty folder) removed when the process dies of SIGINT, SIGTERM or SIGHUP
+// while the guard lives. writeFileAtomic guards its temporaries this way.
+class TemporaryGuard {
+ public:
+  explicit TemporaryGuard(const std::filesystem::path& path);
+  ~TemporaryGuard();
+  TemporaryGuard(const TemporaryGuard&) = delete;
+  TemporaryGuard& operator=(const TemporaryGuard&) = delete;
+
+ private:
+  int slot_ = -1;
+};
+
+// For programs (the CLI, the viewer), not libraries: installs handlers for SIGINT, SIGTERM and
+// SIGHUP that remove the guarded temporaries, print `message` (when not empty) on stderr, and
+// then let the signal end the process as it would have (exit status 128 + signal).
+void removeTemporariesOnSignal(const char* message = "");
+
+// Largest .glb the format can describe (its length fields are 32-bit).
+inline constexpr std::uint64_t kMaxGlbBytes = 0xFFFFFFFFull;
+
+// Throws std::runtime_error naming `path`, the size and the way out (.gltf output) when a .glb of
+// these chunk sizes (unpadded) would not fit the format's 32-bit lengths.
+void checkGlbFits(const std::filesystem::path& path, std::uint64_t jsonBytes, std::uint64_t binBytes);
+
+}  // namespace tangent::output

@@ -1,0 +1,35 @@
+// SPDX-License-Identifier: MIT
+// Text that leaves the program. Names, URIs and paths come from files written by strangers:
+// they may hold bytes that are not UTF-8 (Latin-1 exporters, file names in other encodings),
+// terminal control sequences (ESC, CR, NUL) or megabytes of data: URI. Every string read from a
+// file or a path goes through one of these where it enters a report, a document or a terminal.
+#pragma once
+
+#include <cstddef>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <string_view>
+
+namespace tangent::text {
+
+// Longest file-derived text a message carries before it is cut.
+inline constexpr std::size_t kMaxMessageText = 160;
+
+// Valid UTF-8 as it is; every byte that does not belong to a valid UTF-8 sequence (overlong
+// forms, surrogates and code points past U+10FFFF included) as the four characters "\xHH".
+// The result is valid UTF-8, and different byte strings stay different in practice.
+std::string utf8Safe(std::string_view bytes);
+
+// For a terminal or a one-line log: utf8Safe, then control characters (C0 but tab and newline,
+// DEL, C1) as "\xHH", so that no escape sequence reaches the terminal. Longer than maxBytes:
+// cut on a character boundary and ended with "... (N bytes)".
+std::string terminalSafe(std::string_view text, std::size_t maxBytes = static_cast<std::size_t>(-1));
+
+// A piece of file-derived text inside a message: terminalSafe, cut to kMaxMessageText.
+std::string quoted(std::string_view text);
+
+// JSON as every writer writes it (reports, manifests, glTF documents): strings and keys that
+// are not valid UTF-8 pass through utf8Safe first, where nlohmann's dump would throw.
+std::string dumpJson(const nlohmann::ordered_json& json, int indent = -1);
+
+}  // namespace tangent::text

@@ -1,0 +1,164 @@
+// SPDX-License-Identifier: MIT
+#include "tangent/output.hpp"
+
+#include <fcntl.h>
+#include <signal.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <atomic>
+#include <cerrno>
+#include <cstring>
+#include <mutex>
+#include <set>
+#include <stdexcept>
+#include <string>
+
+namespace tangent::output {
+namespace fs = std::filesystem;
+
+namespace {
+
+// Guarded paths, readable from a signal handler: fixed slots, each claimed with an atomic flag.
+constexpr int kSlots = 256;
+constexpr std::size_t kSlotBytes = 4096;
+struct Slot {
+  std::atomic<int> state{0};  // 0 free, 1 being filled, 2 guarded
+  char path[kSlotBytes];
+};
+Slot slots[kSlots];
+
+const char* signalMessage = "";
+
+void onSignal(int signal) {
+  // Newest first: a folder guarded before the files inside it goes after them.
+  for (int i = kSlots - 1; i >= 0; --i) {
+    if (slots[i].state.load() != 2) continue;
+    if (::unlink(slots[i].path) != 0) ::rmdir(slots[i].path);
+  }
+  if (signalMessage[0] != '\0') {
+    const ssize_t ignored = ::write(STDERR_FILENO, signalMessage, std::strlen(signalMessage));
+    (void)ignored;
+  }
+  ::signal(signal, SIG_DFL);
+  ::raise(signal);
+}
+
+std::string reason(int error) { return std::strerror(error); }
+
+// ".NAME.tmp-PID-N" -> PID, or -1 when `name` is not one of ours.
+long temporaryOwner(const std::string& name) {
+  if (name.size() < 2 || name[0] != '.') return -1;
+  const std::size_t tag = name.rfind(".tmp-");
+  if (tag == std::string::npos || tag == 0) return -1;
+  const std::size_t dash = name.find('-', tag + 5);
+  if (dash == std::string::npos || dash == tag + 5 || dash + 1 == name.size()) return -1;
+  long pid = 0;
+  for (std::size_t i = tag + 5; i < dash; ++i) {
+    if (name[i] < '0' || name[i] > '9' || pid > 100000000) return -1;
+    pid = pid * 10 + (name[i] - '0');
+  }
+  for (std::size_t i = dash + 1; i < name.size(); ++i) {
+    if (name[i] < '0' || name[i] > '9') return -1;
+  }
+  return pid;
+}
+
+}  // namespace
+
+TemporaryGuard::TemporaryGuard(const fs::path& path) {
+  const std::string text = path.string();
+  if (text.size() >= kSlotBytes) return;  // not guarded: the path cannot be opened either
+  for (int i = 0; i < kSlots; ++i) {
+    int expected = 0;
+    if (slots[i].state.compare_exchange_strong(expected, 1)) {
+      std::memcpy(slots[i].path, text.c_str(), text.size() + 1);
+      slots[i].state.store(2);
+      slot_ = i;
+      return;
+    }
+  }
+}
+
+TemporaryGuard::~TemporaryGuard() {
+  if (slot_ >= 0) slots[slot_].state.store(0);
+}
+
+void removeTemporariesOnSignal(const char* message) {
+  signalMessage = message ? message : "";
+  struct sigaction action {};
+  action.sa_handler = onSignal;
+  sigemptyset(&action.sa_mask);
+  for (int signal : {SIGINT, SIGTERM, SIGHUP}) sigaction(signal, &action, nullptr);
+}
+
+void removeStaleTemporaries(const fs::path& folder) {
+  static std::mutex mutex;
+  static std::set<fs::path> cleaned;
+  std::error_code ec;
+  const fs::path key = fs::absolute(folder, ec).lexically_normal();
+  {
+    std::lock_guard lock(mutex);
+    if (!cleaned.insert(key).second) return;
+  }
+  for (fs::directory_iterator it(key, ec), end; !ec && it != end; it.increment(ec)) {
+    const long pid = temporaryOwner(it->path().filename().string());
+    if (pid <= 0 || pid == ::getpid()) continue;
+    if (::kill(static_cast<pid_t>(pid), 0) == 0 || errno != ESRCH) continue;  // still running (or not ours to ask)
+    std::error_code ignored;
+    if (it->is_regular_file(ignored)) fs::remove(it->path(), ignored);
+  }
+}
+
+void writeFileAtomic(const fs::path& path, std::string_view text) {
+  writeFileAtomic(path, {std::span(reinterpret_cast<const std::uint8_t*>(text.data()), text.size())});
+}
+
+void writeFileAtomic(const fs::path& path, const std::vector<std::span<const std::uint8_t>>& pieces) {
+  static std::atomic<unsigned> counter{0};
+  const fs::path folder = path.parent_path().empty() ? fs::path(".") : path.parent_path();
+  removeStaleTemporaries(folder);
+  const fs::path temp =
+      folder / ("." + path.filename().string() + ".tmp-" + std::to_string(::getpid()) + "-" + std::to_string(counter++));
+  TemporaryGuard guard(temp);
+  const int fd = ::open(temp.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0666);
+  if (fd < 0) throw std::runtime_error(path.string() + ": cannot create a temporary file beside it: " + reason(errno));
+  auto fail = [&](const char* step, int error) {
+    ::close(fd);
+    ::unlink(temp.c_str());
+    throw std::runtime_error(path.string() + ": " + step + ": " + reason(error));
+  };
+  for (const auto& piece : pieces) {
+    const std::uint8_t* at = piece.data();
+    std::size_t left = piece.size();
+    while (left > 0) {
+      const ssize_t written = ::write(fd, at, std::min<std::size_t>(left, std::size_t(1) << 30));
+      if (written < 0 && errno == EINTR) continue;
+      if (written <= 0) fail("write failed", written < 0 ? errno : ENOSPC);
+      at += written;
+      left -= static_cast<std::size_t>(written);
+    }
+  }
+  // Delayed allocation can report a full disk only here.
+  if (::fsync(fd) != 0 && errno != EINVAL && errno != EROFS) fail("write failed", errno);
+  if (::close(fd) != 0) {
+    const int error = errno;
+    ::unlink(temp.c_str());
+    throw std::runtime_error(path.string() + ": write failed: " + reason(error));
+  }
+  if (::rename(temp.c_str(), path.c_str()) != 0) {
+    const int error = errno;
+    ::unlink(temp.c_str());
+    throw std::runtime_error(path.string() + ": cannot rename the temporary file into place: " + reason(error));
+  }
+}
+
+void checkGlbFits(const fs::path& path, std::uint64_t jsonBytes, std::uint64_t binBytes) {
+  const std::uint64_t total = 12 + 8 + (jsonBytes + 3) / 4 * 4 + (binBytes == 0 ? 0 : 8 + (binBytes + 3) / 4 * 4);
+  if (total <= kMaxGlbBytes) return;
+  throw std::runtime_error(path.string() + ": a .glb would be " + std::to_string(total) +
+                           " bytes, but the format's 32-bit lengths allow at most " + std::to_string(kMaxGlbBytes) +
+                           " (4 GiB); write .gltf output instead (its .bin has no such limit)");
+}
+
+}  // namespace tangent::output
