@@ -1,0 +1,97 @@
+// SPDX-License-Identifier: MIT
+// tangent/text.hpp and tangent/output.hpp: exact results on hand-made byte strings, the glb
+// size limit at its boundary, the atomic writer's failures.
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+#include "support/temp_dir.hpp"
+#include "tangent/output.hpp"
+#include "tangent/text.hpp"
+
+namespace {
+
+using namespace std::string_literals;
+
+TEST(Text, Utf8SafeKeepsValidUtf8AndEscapesEveryOtherByte) {
+  EXPECT_EQ(tangent::text::utf8Safe("plain"), "plain");
+  EXPECT_EQ(tangent::text::utf8Safe("caf\xC3\xA9 \xE2\x82\xAC \xF0\x9F\x98\x80"), "caf\xC3\xA9 \xE2\x82\xAC \xF0\x9F\x98\x80");
+  EXPECT_EQ(tangent::text::utf8Safe("n\xFF.glb"), "n\\xFF.glb");
+  EXPECT_EQ(tangent::text::utf8Safe("gen\xC0"), "gen\\xC0");                   // a lead byte with nothing after it
+  EXPECT_EQ(tangent::text::utf8Safe("\xC0\xAF"), "\\xC0\\xAF");                // overlong '/'
+  EXPECT_EQ(tangent::text::utf8Safe("\xED\xA0\x80"), "\\xED\\xA0\\x80");       // a UTF-16 surrogate
+  EXPECT_EQ(tangent::text::utf8Safe("\xF4\x90\x80\x80"), "\\xF4\\x90\\x80\\x80");  // past U+10FFFF
+  EXPECT_EQ(tangent::text::utf8Safe("\xE2\x82"), "\\xE2\\x82");                // cut short
+  EXPECT_EQ(tangent::text::utf8Safe("a\0b"s), "a\0b"s);                        // NUL is valid UTF-8
+}
+
+TEST(Text, TerminalSafeEscapesControlCharactersAndCuts) {
+  EXPECT_EQ(tangent::text::terminalSafe("a\x1B[31mb\rc\0d\x7F"s), "a\\x1B[31mb\\x0Dc\\x00d\\x7F");
+  EXPECT_EQ(tangent::text::terminalSafe("tab\tnew\nline"), "tab\tnew\nline");
+  EXPECT_EQ(tangent::text::terminalSafe("c1 \xC2\x9B" "2J"), "c1 \\u009B2J");  // U+009B is CSI on some terminals
+  EXPECT_EQ(tangent::text::terminalSafe("\xFF"), "\\xFF");
+  EXPECT_EQ(tangent::text::terminalSafe("abcdefgh", 3), "abc... (8 bytes)");
+  // Cut on a character boundary, never inside a UTF-8 sequence.
+  EXPECT_EQ(tangent::text::terminalSafe("ab\xE2\x82\xAC" "cd", 3), "ab\xE2\x82\xAC... (7 bytes)");
+  EXPECT_EQ(tangent::text::quoted(std::string(100000, 'x')).size(), tangent::text::kMaxMessageText + std::string("... (100000 bytes)").size());
+}
+
+TEST(Text, DumpJsonRepairsStringsAndKeysThatAreNotUtf8) {
+  nlohmann::ordered_json json = {{"name", "bad\xC0"}, {"list", {"ok", "\xFF"}}};
+  json["k\xFE"] = 1;
+  EXPECT_THROW((void)json.dump(), nlohmann::json::type_error);
+  const std::string text = tangent::text::dumpJson(json);
+  EXPECT_EQ(text, R"({"name":"bad\\xC0","list":["ok","\\xFF"],"k\\xFE":1})");
+  EXPECT_EQ(nlohmann::ordered_json::parse(text)["name"], "bad\\xC0");
+  const nlohmann::ordered_json good = {{"a", "caf\xC3\xA9"}};
+  EXPECT_EQ(tangent::text::dumpJson(good, 2), good.dump(2));
+}
+
+TEST(Output, GlbSizeLimitAtTheFormatsBoundary) {
+  namespace out = tangent::output;
+  // 12 (header) + 8 + json + 8 + bin: the largest that fits ends exactly at 2^32 - 1... which is
+  // not a multiple of 4, so the largest a writer can make is 2^32 - 4.
+  const std::uint64_t json = 1000, frame = 12 + 8 + 8;
+  const std::uint64_t binFits = 0xFFFFFFFCull - frame - json;
+  EXPECT_NO_THROW(out::checkGlbFits("x.glb", json, binFits));
+  EXPECT_THROW(out::checkGlbFits("x.glb", json, binFits + 1), std::runtime_error);  // padded to 2^32
+  EXPECT_NO_THROW(out::checkGlbFits("x.glb", json, 0));
+  try {
+    out::checkGlbFits("big.glb", json, std::uint64_t(5) << 30);
+    FAIL() << "a 5 GiB .glb was accepted";
+  } catch (const std::runtime_error& e) {
+    const std::string message = e.what();
+    EXPECT_NE(message.find("big.glb"), std::string::npos) << message;
+    EXPECT_NE(message.find(std::to_string(frame + json + (std::uint64_t(5) << 30))), std::string::npos) << message;
+    EXPECT_NE(message.find(".gltf"), std::string::npos) << message;
+  }
+}
+
+TEST(Output, AtomicWriteReplacesWholeAndFailsWithoutATrace) {
+  tangent::testing::TempDir dir;
+  const auto path = dir.path() / "file.txt";
+  tangent::output::writeFileAtomic(path, "first");
+  tangent::output::writeFileAtomic(path, "second");
+  std::ifstream in(path);
+  std::string text((std::istreambuf_iterator<char>(in)), {});
+  EXPECT_EQ(text, "second");
+  // A folder that does not exist: the message names the file and why.
+  try {
+    tangent::output::writeFileAtomic(dir.path() / "missing" / "x.txt", "x");
+    FAIL() << "wrote into a folder that does not exist";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("x.txt"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("No such file"), std::string::npos) << e.what();
+  }
+  // The destination is a folder: the rename fails and the temporary is gone.
+  std::filesystem::create_directory(dir.path() / "taken");
+  std::ofstream(dir.path() / "taken" / "inside") << "x";
+  EXPECT_THROW(tangent::output::writeFileAtomic(dir.path() / "taken", "x"), std::runtime_error);
+  for (const auto& entry : std::filesystem::directory_iterator(dir.path()))
+    EXPECT_EQ(entry.path().filename().string().find(".tmp-"), std::string::npos) << entry.path();
+}
+
+}  // namespace

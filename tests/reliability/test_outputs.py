@@ -1,0 +1,440 @@
+# SPDX-License-Identifier: MIT
+"""Nothing lost, nothing crashes: `tangent` on the trees, names and machines users have.
+
+Output collisions, full disks (a small tmpfs in a private mount namespace), standard output
+that cannot be written, an unusable TMPDIR, names that are not UTF-8 or carry terminal control
+characters, stale temporaries, and `bake --recursive` interrupted by SIGINT and SIGKILL at
+several points and run again. Each asserts exit codes, messages naming the file, that no
+temporary or partial file remains, that inputs are unchanged and that earlier outputs stay
+whole. Runs against the `tangent` of the build tree it is registered in (TANGENT_CLI), so the
+sanitizer build runs it too."""
+import base64
+import hashlib
+import json
+import os
+import pathlib
+import shutil
+import signal
+import struct
+import subprocess
+import sys
+import time
+import xml.dom.minidom
+
+import pytest
+
+from conftest import skip_or_fail
+
+CLI = os.environ["TANGENT_CLI"]
+PNG = base64.b64decode(
+    "iVBORw0KGgoAAAANSUhEUgAAAAEAAAABCAIAAACQd1PeAAAADElEQVR4nGP4//8/AAX+Av4N70a4AAAAAElFTkSuQmCC")
+
+
+# --- assets -------------------------------------------------------------------------------
+
+def grid(n, mesh_name="grid", generator="libtangent tests/reliability", extras=None, material=True):
+    """An n x n vertex grid (a gently curved sheet) with NORMAL, TEXCOORD_0 and a normal-mapped
+    material: (document, binary chunk)."""
+    positions, normals, uvs, indices = [], [], [], []
+    for j in range(n):
+        for i in range(n):
+            u, v = i / (n - 1), j / (n - 1)
+            positions += [u, v, 0.1 * (u * u - v * v)]
+            nx, ny = -0.2 * u, 0.2 * v
+            length = (nx * nx + ny * ny + 1) ** 0.5
+            normals += [nx / length, ny / length, 1 / length]
+            uvs += [u, 1 - v]
+    for j in range(n - 1):
+        for i in range(n - 1):
+            a = j * n + i
+            indices += [a, a + 1, a + n + 1, a, a + n + 1, a + n]
+    count = n * n
+    blob = struct.pack(f"<{3 * count}f", *positions) + struct.pack(f"<{3 * count}f", *normals)
+    blob += struct.pack(f"<{2 * count}f", *uvs) + struct.pack(f"<{len(indices)}I", *indices)
+    primitive = {"attributes": {"POSITION": 0, "NORMAL": 1, "TEXCOORD_0": 2}, "indices": 3, "mode": 4}
+    doc = {
+        "asset": {"version": "2.0", "generator": generator},
+        "scene": 0, "scenes": [{"nodes": [0]}], "nodes": [{"mesh": 0}],
+        "meshes": [{"name": mesh_name, "primitives": [primitive]}],
+        "accessors": [
+            {"bufferView": 0, "componentType": 5126, "count": count, "type": "VEC3",
+             "min": [0, 0, -0.1], "max": [1, 1, 0.1]},
+            {"bufferView": 1, "componentType": 5126, "count": count, "type": "VEC3"},
+            {"bufferView": 2, "componentType": 5126, "count": count, "type": "VEC2"},
+            {"bufferView": 3, "componentType": 5125, "count": len(indices), "type": "SCALAR"},
+        ],
+        "bufferViews": [
+            {"buffer": 0, "byteOffset": 0, "byteLength": 12 * count},
+            {"buffer": 0, "byteOffset": 12 * count, "byteLength": 12 * count},
+            {"buffer": 0, "byteOffset": 24 * count, "byteLength": 8 * count},
+            {"buffer": 0, "byteOffset": 32 * count, "byteLength": 4 * len(indices)},
+        ],
+        "buffers": [{"byteLength": len(blob)}],
+    }
+    if material:
+        primitive["material"] = 0
+        doc["materials"] = [{"normalTexture": {"index": 0}}]
+        doc["textures"] = [{"source": 0}]
+        doc["images"] = [{"uri": "data:image/png;base64," + base64.b64encode(PNG).decode(), "mimeType": "image/png"}]
+    if extras is not None:
+        doc["asset"]["extras"] = extras
+    return doc, blob
+
+
+def glb_bytes(doc, blob):
+    text = json.dumps(doc).encode()
+    text += b" " * (-len(text) % 4)
+    blob += b"\0" * (-len(blob) % 4)
+    body = struct.pack("<II", len(text), 0x4E4F534A) + text + struct.pack("<II", len(blob), 0x004E4942) + blob
+    return struct.pack("<III", 0x46546C67, 2, 12 + len(body)) + body
+
+
+def gltf_bytes(doc, blob):
+    """A .gltf with its buffer as a data: URI (one file)."""
+    doc = json.loads(json.dumps(doc))
+    doc["buffers"][0]["uri"] = "data:application/octet-stream;base64," + base64.b64encode(blob).decode()
+    return json.dumps(doc).encode()
+
+
+def write(path, data):
+    path = pathlib.Path(os.fsdecode(path))  # bytes: a name that is not UTF-8, kept byte for byte
+    path.parent.mkdir(parents=True, exist_ok=True)
+    path.write_bytes(data)
+    return path
+
+
+# --- checks -------------------------------------------------------------------------------
+
+def tangent(*args, env=None, stdout=subprocess.PIPE, timeout=300):
+    done = subprocess.run([CLI, *map(os.fsdecode, args)], stdout=stdout, stderr=subprocess.PIPE, env=env, timeout=timeout)
+    assert done.returncode >= 0, f"killed by signal {-done.returncode}: {done.stderr[-2000:]!r}"
+    assert b"AddressSanitizer" not in done.stderr and b"runtime error:" not in done.stderr, done.stderr[-4000:]
+    return done
+
+
+def snapshot(folder):
+    folder = pathlib.Path(folder)
+    return {p.relative_to(folder).as_posix(): hashlib.sha256(p.read_bytes()).hexdigest()
+            for p in sorted(folder.rglob("*")) if p.is_file()}
+
+
+def temporaries(folder):
+    return sorted(p.name for p in pathlib.Path(folder).rglob("*") if ".tmp-" in p.name or p.name.startswith("tangent-bake-"))
+
+
+def assert_valid_glb(path):
+    data = pathlib.Path(os.fsdecode(path)).read_bytes()
+    magic, version, length = struct.unpack_from("<III", data, 0)
+    assert (magic, version, length) == (0x46546C67, 2, len(data)), path
+    json_length, kind = struct.unpack_from("<II", data, 12)
+    assert kind == 0x4E4F534A
+    doc = json.loads(data[20:20 + json_length])
+    assert any("TANGENT" in p["attributes"] for m in doc["meshes"] for p in m["primitives"]), path
+    return doc
+
+
+def assert_gltf_pair_loads(path):
+    """The .gltf parses and its .bin is there with the byteLength it declares."""
+    path = pathlib.Path(path)
+    doc = json.loads(path.read_bytes())
+    for buffer in doc.get("buffers", []):
+        if "uri" in buffer:
+            assert (path.parent / buffer["uri"]).stat().st_size == buffer["byteLength"], buffer
+    return doc
+
+
+# --- output collisions --------------------------------------------------------------------
+
+def test_two_inputs_of_one_name_into_one_folder_are_refused_before_anything_is_written(tmp_path):
+    doc, blob = grid(4)
+    a = write(tmp_path / "a" / "x.glb", glb_bytes(doc, blob))
+    b = write(tmp_path / "b" / "x.glb", glb_bytes(doc, blob))
+    (tmp_path / "out").mkdir()
+    done = tangent("bake", a, b, "--out-dir", tmp_path / "out")
+    assert done.returncode == 1
+    assert str(a).encode() in done.stderr and str(b).encode() in done.stderr, done.stderr
+    assert list((tmp_path / "out").iterdir()) == []
+
+
+def test_recursive_inputs_that_become_one_glb_are_refused_with_no_manifest(tmp_path):
+    doc, blob = grid(4)
+    write(tmp_path / "in" / "m.glb", glb_bytes(doc, blob))
+    write(tmp_path / "in" / "m.obj", b"v 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nvt 1 0\nvt 0 1\nf 1/1 2/2 3/3\n")
+    write(tmp_path / "in" / "m.ply", b"ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+          b"property float z\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n"
+          b"0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n")
+    before = snapshot(tmp_path / "in")
+    done = tangent("bake", tmp_path / "in", "--recursive", "--out-dir", tmp_path / "out")
+    assert done.returncode == 1
+    for name in (b"m.glb", b"m.obj", b"m.ply"):
+        assert name in done.stderr, done.stderr
+    assert not (tmp_path / "out").exists() or list((tmp_path / "out").rglob("*")) == []
+    assert snapshot(tmp_path / "in") == before
+
+
+def test_two_folders_of_one_name_are_refused(tmp_path):
+    doc, blob = grid(4)
+    write(tmp_path / "p" / "set" / "a.glb", glb_bytes(doc, blob))
+    write(tmp_path / "q" / "set" / "a.glb", glb_bytes(doc, blob))
+    done = tangent("bake", tmp_path / "p" / "set", tmp_path / "q" / "set", "--recursive", "--out-dir", tmp_path / "out")
+    assert done.returncode == 1
+    assert b"would both be written" in done.stderr
+    assert not list((tmp_path / "out").rglob("*.glb")) if (tmp_path / "out").exists() else True
+
+
+# --- standard output and TMPDIR -------------------------------------------------------------
+
+def test_output_to_a_full_device_fails(tmp_path):
+    doc, blob = grid(4)
+    asset = write(tmp_path / "a.glb", glb_bytes(doc, blob))
+    with open("/dev/full", "wb") as full:
+        for args in (("info", asset), ("info", asset, "--json"), ("check", asset, "--format", "json"),
+                     ("bake", asset, "-o", "-"), ("bake", asset, "-o", tmp_path / "o.glb", "--report", "-")):
+            done = tangent(*args, stdout=full)
+            assert done.returncode != 0, args
+            assert b"standard output" in done.stderr, (args, done.stderr)
+    assert temporaries(tmp_path) == []
+
+
+# (A read-only TMPDIR is left out: the tests run as root, for whom no folder is read-only.)
+@pytest.mark.parametrize("tmpdir_kind", ["missing", "a file"])
+def test_stdout_bake_with_an_unusable_tmpdir_says_so(tmp_path, tmpdir_kind):
+    doc, blob = grid(4)
+    asset = write(tmp_path / "a.glb", glb_bytes(doc, blob))
+    tmpdir = tmp_path / "tmp"
+    if tmpdir_kind == "a file":
+        tmpdir.write_bytes(b"x")
+    done = tangent("bake", asset, "-o", "-", env={**os.environ, "TMPDIR": str(tmpdir)})
+    assert done.returncode == 1
+    assert b"TMPDIR" in done.stderr and str(asset).encode() in done.stderr, done.stderr
+    assert done.stdout == b""
+
+
+# --- names that are not UTF-8, control characters --------------------------------------------
+
+def test_file_names_that_are_not_utf8_reach_reports_as_valid_json(tmp_path):
+    doc, blob = grid(4)
+    folder = os.fsencode(tmp_path)
+    asset = write(os.path.join(folder, b"n\xff.glb"), glb_bytes(doc, blob))
+    report = tmp_path / "report.json"
+    done = tangent("bake", asset, "-o", os.path.join(folder, b"o\xff.glb"), "--report", report)
+    assert done.returncode == 0, done.stderr
+    entries = json.loads(report.read_text(encoding="utf-8"))
+    assert entries[0]["status"] == "ok" and entries[0]["input"].endswith("n\\xFF.glb")
+    assert_valid_glb(os.path.join(folder, b"o\xff.glb"))
+    for fmt in ("json", "sarif"):
+        done = tangent("check", asset, "--format", fmt)
+        assert done.returncode == 1  # the input has no TANGENT: a finding
+        json.loads(done.stdout.decode("utf-8"))
+
+
+def test_a_latin1_byte_in_the_asset_gives_valid_reports_in_every_format(tmp_path):
+    doc, blob = grid(4, generator="GEN_MARK")
+    data = glb_bytes(doc, blob).replace(b"GEN_MARK", b"gen\xc0\xe9_X")
+    asset = write(tmp_path / "latin1.glb", data)
+    for fmt in ("json", "sarif", "junit", "github", "text"):
+        done = tangent("check", asset, "--format", fmt)
+        assert done.returncode in (1, 2), (fmt, done.returncode, done.stderr)
+        text = done.stdout.decode("utf-8")  # valid UTF-8, whatever the input held
+        if fmt in ("json", "sarif"):
+            json.loads(text)
+        elif fmt == "junit":
+            xml.dom.minidom.parseString(done.stdout)
+        assert b"latin1.glb" in done.stdout + done.stderr
+    done = tangent("bake", asset, "-o", tmp_path / "o.glb", "--report", tmp_path / "r.json")
+    json.loads((tmp_path / "r.json").read_text(encoding="utf-8"))
+    assert done.returncode in (0, 1)
+
+
+def test_control_characters_from_names_never_reach_the_terminal(tmp_path):
+    doc, blob = grid(4, mesh_name="m\x1b[2J\x1b]0;owned\x07\rX\x00Y")
+    name = "e\x1b[31mvil\r.glb"
+    asset = write(tmp_path / name, glb_bytes(doc, blob))
+    runs = [("bake", asset, "-o", tmp_path / "o.glb"), ("info", asset), ("check", asset),
+            ("check", asset, "--format", "github"), ("check", asset, "--format", "junit")]
+    for args in runs:
+        done = tangent(*args)
+        for stream in (done.stdout, done.stderr):
+            assert b"\x1b" not in stream and b"\r" not in stream and b"\x00" not in stream and b"\x07" not in stream, (
+                args, stream)
+        assert b"vil" in done.stdout + done.stderr
+
+
+def test_recursive_manifest_with_names_that_are_not_utf8_resumes(tmp_path):
+    doc, blob = grid(4)
+    folder = os.fsencode(tmp_path / "in")
+    write(os.path.join(folder, b"caf\xe9.glb"), glb_bytes(doc, blob))
+    write(os.path.join(folder, b"ok.glb"), glb_bytes(doc, blob))
+    out = tmp_path / "out"
+    done = tangent("bake", tmp_path / "in", "--recursive", "--out-dir", out)
+    assert done.returncode == 0, done.stderr
+    manifest = json.loads((out / "tangent-manifest.json").read_text(encoding="utf-8"))
+    assert sorted(manifest["files"]) == ["caf\\xE9.glb", "ok.glb"]
+    done = tangent("bake", tmp_path / "in", "--recursive", "--out-dir", out)
+    assert done.returncode == 0
+    assert done.stdout.count(b": unchanged") == 2, done.stdout
+
+
+def test_double_dash_ends_the_options(tmp_path):
+    doc, blob = grid(4)
+    asset = write(tmp_path / "-dash.glb", glb_bytes(doc, blob))
+    os.chdir(tmp_path)
+    assert tangent("info", "--", "-dash.glb").returncode == 0
+    assert tangent("check", "--allow-missing", "--", "-dash.glb").returncode == 0
+    assert tangent("bake", "-o", "o.glb", "--", "-dash.glb").returncode == 0
+    assert_valid_glb(tmp_path / "o.glb")
+    assert tangent("info", "-dash.glb").returncode == 2  # without it: an unknown option
+
+
+# --- temporaries --------------------------------------------------------------------------
+
+def dead_pid():
+    for pid in range(4_000_000, 3_000_000, -1):
+        if not os.path.exists(f"/proc/{pid}"):
+            return pid
+    pytest.skip("no free process id found")
+
+
+def test_stale_temporaries_of_dead_processes_are_removed_and_live_ones_kept(tmp_path):
+    doc, blob = grid(4)
+    asset = write(tmp_path / "a.glb", glb_bytes(doc, blob))
+    out = tmp_path / "out"
+    stale = write(out / f".o.glb.tmp-{dead_pid()}-0", b"half a file")
+    live = write(out / f".o.glb.tmp-{os.getpid()}-0", b"being written by a running process")
+    other = write(out / ".notes.tmp-abc", b"not of our pattern")
+    assert tangent("bake", asset, "-o", out / "o.glb").returncode == 0
+    assert not stale.exists()
+    assert live.exists() and other.exists()
+
+
+# --- full disks -----------------------------------------------------------------------------
+
+def on_small_disk(tmp_path, script, size="1m"):
+    """Runs `script` (sh) with $DISK a fresh tmpfs of `size`, in a private mount namespace (no
+    mount outlives it); returns (exit status, output). Skips where mounting is not allowed."""
+    disk = tmp_path / "disk"
+    disk.mkdir()
+    probe = subprocess.run(["unshare", "-m", "sh", "-c", f"mount -t tmpfs -o size=64k tmpfs '{disk}'"],
+                           capture_output=True)
+    if probe.returncode != 0:
+        skip_or_fail("mounting a small tmpfs needs root and unshare: " + probe.stderr.decode(errors="replace").strip())
+    full = f"mount -t tmpfs -o size={size} tmpfs \"$DISK\" && {script}"
+    done = subprocess.run(["unshare", "-m", "sh", "-c", full], capture_output=True, timeout=300,
+                          env={**os.environ, "DISK": str(disk), "T": CLI})
+    return done.returncode, (done.stdout + done.stderr).decode(errors="replace")
+
+
+# Fills the disk but for one page (tmpfs counts pages): a file grown until the disk is full,
+# then cut by one page.
+FILL_BUT_ONE_PAGE = ('(dd if=/dev/zero of="$DISK/filler" bs=4096 2>/dev/null || true) && '
+                     'truncate -s -4096 "$DISK/filler"')
+
+
+def test_a_full_disk_between_the_bin_and_the_gltf_leaves_the_previous_pair_whole(tmp_path):
+    # 6 KB of extras: the .gltf needs two pages, its .bin (a 3x3 grid) one.
+    doc, blob = grid(3, extras={"note": "x" * 6000}, material=False)
+    asset = write(tmp_path / "in.gltf", gltf_bytes(doc, blob))
+    script = f"""
+      "$T" bake '{asset}' -o "$DISK/p.gltf" --all --quiet || exit 10
+      mkdir "$DISK/before" && cp "$DISK"/p.* "$DISK/before/" || exit 11
+      {FILL_BUT_ONE_PAGE}
+      "$T" bake '{asset}' -o "$DISK/p.gltf" --all --method flat; echo "exit=$?"
+      rm -f "$DISK/filler"
+      for f in "$DISK"/before/*; do cmp "$f" "$DISK/$(basename "$f")" || echo "changed $f"; done
+      ls -a "$DISK"
+      cp -r "$DISK" '{tmp_path}/after'
+    """
+    status, output = on_small_disk(tmp_path, script)
+    assert status == 0, output
+    assert "exit=1" in output, output
+    assert "No space left on device" in output and "p.gltf" in output, output
+    assert "changed" not in output, output
+    after = tmp_path / "after"
+    assert sorted(p.name for p in after.iterdir() if p.is_file()) == ["p.bin", "p.gltf"], output
+    assert_gltf_pair_loads(after / "p.gltf")
+
+
+def test_a_full_disk_leaves_the_previous_glb_and_no_temporary(tmp_path):
+    doc, blob = grid(24)
+    asset = write(tmp_path / "in.glb", glb_bytes(doc, blob))
+    script = f"""
+      "$T" bake '{asset}' -o "$DISK/o.glb" --quiet || exit 10
+      cp "$DISK/o.glb" "$DISK/o.before"
+      {FILL_BUT_ONE_PAGE}
+      "$T" bake '{asset}' -o "$DISK/o.glb" --method flat --report "$DISK/r.json"; echo "exit=$?"
+      cmp "$DISK/o.glb" "$DISK/o.before" && echo same
+      ls -a "$DISK"
+    """
+    status, output = on_small_disk(tmp_path, script)
+    assert status == 0, output
+    assert "exit=1" in output and "same" in output, output
+    assert "No space left on device" in output and "o.glb" in output, output
+    assert ".tmp-" not in output, output
+
+
+# --- interrupted batches ------------------------------------------------------------------
+
+def journal_files(out):
+    """The files the journal recorded as finished."""
+    path = out / "tangent-manifest.journal"
+    if not path.exists():
+        return set()
+    lines = path.read_bytes().split(b"\n")
+    finished = set()
+    for line in lines[1:]:
+        try:
+            finished.add(json.loads(line)["file"])
+        except (ValueError, KeyError):
+            pass  # the last line may be cut
+    return finished
+
+
+def interrupt_after(tree, out, finished, sig):
+    """Starts a recursive bake and sends `sig` once the journal holds `finished` more files."""
+    already = len(journal_files(out))
+    process = subprocess.Popen([CLI, "bake", str(tree), "--recursive", "--out-dir", str(out)],
+                               stdout=subprocess.DEVNULL, stderr=subprocess.PIPE)
+    deadline = time.monotonic() + 300
+    while len(journal_files(out)) < already + finished and process.poll() is None and time.monotonic() < deadline:
+        time.sleep(0.005)
+    process.send_signal(sig)
+    _, stderr = process.communicate(timeout=120)
+    return process.returncode, stderr
+
+
+def test_recursive_bake_interrupted_by_sigint_and_sigkill_resumes_where_it_stopped(tmp_path):
+    tree, out = tmp_path / "tree", tmp_path / "out"
+    doc, blob = grid(90)
+    for k in range(24):
+        write(tree / f"part{k // 8}" / f"g{k:02}.glb", glb_bytes(doc, blob))
+    before = snapshot(tree)
+    finished = set()
+    for sig, count in ((signal.SIGINT, 2), (signal.SIGKILL, 4), (signal.SIGINT, 5), (signal.SIGKILL, 3)):
+        status, stderr = interrupt_after(tree, out, count, sig)
+        print(f"signal {sig.name} after {count} more files: exit {status}, {len(journal_files(out))} finished")
+        if status == 0:
+            break  # it finished first: nothing left to interrupt
+        assert status == -sig, (sig, status, stderr)
+        if sig == signal.SIGINT:
+            assert b"interrupted" in stderr, stderr
+            assert temporaries(out) == []  # SIGINT: its own temporaries removed at once
+        now = journal_files(out)
+        assert finished <= now
+        finished = now
+        for glb in out.rglob("*.glb"):
+            assert_valid_glb(glb)  # every output in place is whole
+    assert finished, "no file finished before the interruptions"
+    done = tangent("bake", tree, "--recursive", "--out-dir", out)
+    assert done.returncode == 0, done.stderr
+    lines = done.stdout.decode().splitlines()
+    for key in finished:
+        assert any(f"/{key} -> " in line and line.endswith(": unchanged") for line in lines), (key, lines)
+    baked = sum(line.endswith(": baked") for line in lines)
+    assert baked == 24 - len(finished), lines
+    assert temporaries(out) == []  # SIGKILL's leftovers removed by the next run
+    assert not (out / "tangent-manifest.journal").exists()
+    manifest = json.loads((out / "tangent-manifest.json").read_text())
+    assert len(manifest["files"]) == 24 and all(r["ok"] for r in manifest["files"].values())
+    for glb in out.rglob("*.glb"):
+        assert_valid_glb(glb)
+    assert snapshot(tree) == before
