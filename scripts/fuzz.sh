@@ -10,14 +10,14 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 seconds=${1:-40}
-declare -A ci_runs=([gltf]=150000 [mesh_file]=25000 [core]=30000)
+declare -A ci_runs=([gltf]=150000 [mesh_file]=25000 [core]=30000 [reports]=60000)
 build=build-fuzz
 if [ ! -f "$build/build.ninja" ]; then
   CC=clang CXX=clang++ cmake -S . -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DTANGENT_FUZZ=ON >/dev/null
 fi
-cmake --build "$build" --parallel "$(nproc)" --target fuzz_gltf fuzz_mesh_file fuzz_core
+cmake --build "$build" --parallel "$(nproc)" --target fuzz_gltf fuzz_mesh_file fuzz_core fuzz_reports
 status=0
-for target in gltf mesh_file core; do
+for target in gltf mesh_file core reports; do
   work="$build/fuzz-work/$target"
   rm -rf "$work" && mkdir -p "$work/corpus" "$work/artifacts"
   cp tests/fuzz/corpus/$target/* "$work/corpus/"

@@ -229,7 +229,7 @@ int benchCommand(const std::vector<std::string>& args) {
   std::error_code ec;
   fs::create_directories(outDir, ec);
 
-  std::ofstream csv(outDir / "bench.csv");
+  std::ostringstream csv;  // written with the others at the end, each file atomically
   csv << "surface,triangles,method,threads,mean_deg,p99_deg,max_deg,w_errors,corners,build_ms,compute_ms,output_ms,total_ms\n";
   Json results = Json::array();
   // The plot reads a copy sorted by series, so that each series' points are consecutive rows
@@ -340,16 +340,17 @@ int benchCommand(const std::vector<std::string>& args) {
       }
     }
   }
-  csv.close();
   std::sort(plotRows.begin(), plotRows.end());
-  std::ofstream plotCsv(outDir / "plot.csv");
+  std::ostringstream plotCsv;
   for (const auto& [key, row] : plotRows) plotCsv << row;
-  plotCsv.close();
   Json report = {{"machine", {{"hardwareThreads", std::thread::hardware_concurrency()}}},
                  {"repeats", repeats},
                  {"analytic", results},
                  {"assetsAgainstMikktspace", assetResults}};
-  std::ofstream(outDir / "bench.json") << report.dump(2) << "\n";
+  if (!writeTextOutput((outDir / "bench.csv").string(), csv.str(), "bench") ||
+      !writeTextOutput((outDir / "plot.csv").string(), plotCsv.str(), "bench") ||
+      !writeTextOutput((outDir / "bench.json").string(), text::dumpJson(report, 2) + "\n", "bench"))
+    return kExitInputFailed;
   if (plot) writePlot(outDir, bench::surfaceNames());
   std::printf("\nwrote %s/bench.csv, bench.json%s\n", outDir.string().c_str(), plot ? ", plot.png, plot.svg" : "");
   return kExitOk;
