@@ -7,6 +7,7 @@
 #include <cstring>
 #include <numeric>
 #include <optional>
+#include <unordered_map>
 #include <utility>
 
 #include "accessors.hpp"
@@ -188,10 +189,32 @@ struct ComputedTangents {
   bool rebuild = false;  // every vertex accessor and the indices are written anew
 };
 
-// Bakes one primitive in three steps: plan (does it need tangents, is it valid), compute
-// (tangents, vertex split, morph deltas; reads the document only) and emit (new accessors, the
-// primitive's references to them). Emit holds no reference into the document across an
-// insertion: it appends an accessor first, then looks the primitive up again to refer to it.
+// The accessors emit() wrote for a primitive, by name: every later primitive with the same
+// inputs (detail::sameInputKey) refers to these instead of computing and writing its own.
+struct EmittedAccessors {
+  std::vector<std::pair<std::string, int>> attributes;                // TANGENT and, when rebuilt, the others
+  std::vector<std::vector<std::pair<std::string, int>>> targets;      // per morph target, likewise
+  int indices = -1;                                                   // rebuilt indices, -1 when kept
+  bool dropDraco = false;                                             // the Draco extension goes
+};
+
+// What baking one set of inputs gave: the accessors and the result's fields that depend on
+// the inputs only (the reason names the material, so it stays per primitive).
+struct SharedBake {
+  bool baked = false;
+  std::string notBaked;              // why not, when not baked (no triangles)
+  EmittedAccessors emitted;
+  Report tangents;
+  std::uint64_t verticesIn = 0;
+  std::uint64_t verticesOut = 0;
+  std::string compressionNote;       // "; written uncompressed (was ...)", or ""
+};
+
+// Bakes one primitive in four steps: plan (does it need tangents, is it valid), compute
+// (tangents, vertex split, morph deltas; reads the document only), emit (new accessors) and
+// refer (the primitive's references to them). Compute and emit run once per set of inputs;
+// a primitive with the inputs of an earlier one only refers. Nothing holds a reference into
+// the document across an insertion: refer looks the primitive up after emit has appended.
 class PrimitiveBaker {
  public:
   PrimitiveBaker(detail::Asset& asset, detail::OutputDocument& output, const BakeOptions& options)
@@ -200,8 +223,18 @@ class PrimitiveBaker {
   PrimitiveResult bake(int meshIndex, int primitiveIndex) {
     PrimitivePlan plan = planPrimitive(meshIndex, primitiveIndex);
     if (!plan.bake) return std::move(plan.result);
-    std::optional<ComputedTangents> computed = compute(plan);
-    if (computed) emit(plan, *computed);
+    const std::string key = detail::sameInputKey(output_.json(), primitiveJson(plan), plan.needs);
+    auto found = baked_.find(key);
+    if (found == baked_.end()) {
+      SharedBake shared;
+      if (std::optional<ComputedTangents> computed = compute(plan)) {
+        shared = emit(plan, *computed);
+      } else {
+        shared.notBaked = plan.result.reason;
+      }
+      found = baked_.emplace(key, std::move(shared)).first;
+    }
+    refer(plan, found->second);
     return std::move(plan.result);
   }
 
@@ -211,15 +244,19 @@ class PrimitiveBaker {
   }
   PrimitivePlan planPrimitive(int meshIndex, int primitiveIndex);
   std::optional<ComputedTangents> compute(PrimitivePlan& plan);
-  void emit(PrimitivePlan& plan, const ComputedTangents& computed);
-  void rebuildAttributes(const PrimitivePlan& plan, const ComputedTangents& computed);
-  void rebuildTargets(const PrimitivePlan& plan, const ComputedTangents& computed);
-  void writeIndices(const PrimitivePlan& plan, const ComputedTangents& computed);
-  void writeTangents(const PrimitivePlan& plan, const ComputedTangents& computed);
+  SharedBake emit(const PrimitivePlan& plan, const ComputedTangents& computed);
+  void refer(PrimitivePlan& plan, const SharedBake& shared);
+  void rebuildAttributes(const PrimitivePlan& plan, const ComputedTangents& computed, EmittedAccessors& emitted);
+  void rebuildTargets(const PrimitivePlan& plan, const ComputedTangents& computed, EmittedAccessors& emitted);
+  void writeIndices(const ComputedTangents& computed, EmittedAccessors& emitted);
+  void writeTangents(const ComputedTangents& computed, EmittedAccessors& emitted);
 
   detail::Asset& asset_;
   detail::OutputDocument& output_;
   const BakeOptions& options_;
+  TangentWorkspace workspace_;                              // reused by every compute
+  std::unordered_map<std::string, SharedBake> baked_;       // by detail::sameInputKey
+  std::unordered_map<std::string, PrimitiveCheck> verdicts_;  // of existing TANGENTs, by key and accessor
 };
 
 // Eligibility (a triangle primitive that needs tangents and has what they are computed from)
@@ -263,8 +300,16 @@ PrimitivePlan PrimitiveBaker::planPrimitive(int meshIndex, int primitiveIndex) {
   }
   if (detail::accessorOf(attributes, "TANGENT") >= 0) {
     // Keep exactly what `tangent check` passes at its default settings: the same function decides.
-    PrimitiveCheck verdict;
-    detail::checkPrimitiveTangents(asset_, primitive, needs, plan.where, CheckOptions{}, verdict);
+    // Primitives with the same inputs and TANGENT get the same verdict: checked once.
+    const std::string verdictKey =
+        detail::sameInputKey(doc, primitive, needs) + std::to_string(detail::accessorOf(attributes, "TANGENT"));
+    auto known = verdicts_.find(verdictKey);
+    if (known == verdicts_.end()) {
+      PrimitiveCheck checked;
+      detail::checkPrimitiveTangents(asset_, primitive, needs, plan.where, CheckOptions{}, checked);
+      known = verdicts_.emplace(verdictKey, std::move(checked)).first;
+    }
+    const PrimitiveCheck& verdict = known->second;
     if (verdict.findings.empty() && !options_.overwrite) {
       result.action = PrimitiveAction::kept;
       result.reason = "valid TANGENT present: tangent check passes it (use --overwrite to recompute)";
@@ -298,7 +343,8 @@ std::optional<ComputedTangents> PrimitiveBaker::compute(PrimitivePlan& plan) {
   BulkVector<std::uint32_t> cornerVertex(corners.size());
   Options coreOptions = options_.tangents;
   coreOptions.uvOrigin = kGltfUvOrigin;
-  TangentWorkspace workspace;
+  coreOptions.threads = detail::threadsFor(corners.size(), coreOptions.threads);
+  TangentWorkspace& workspace = workspace_;
   result.tangents = computeCornerTangents({geometry.positions, geometry.normals, geometry.uvs, corners},
                                           CornerOutputs{cornerTangents, {}, cornerVertex}, coreOptions, workspace);
   computed.split = splitVertices(corners, cornerTangents, std::move(cornerVertex), result.tangents.outputVertices,
@@ -343,26 +389,61 @@ std::optional<ComputedTangents> PrimitiveBaker::compute(PrimitivePlan& plan) {
 
 // New accessors in a fixed order (carried attributes, carried target attributes, indices,
 // TANGENT, target TANGENT deltas), so that the output's bytes depend on the input only.
-void PrimitiveBaker::emit(PrimitivePlan& plan, const ComputedTangents& computed) {
+SharedBake PrimitiveBaker::emit(const PrimitivePlan& plan, const ComputedTangents& computed) {
+  SharedBake shared;
+  shared.baked = true;
+  EmittedAccessors& emitted = shared.emitted;
+  emitted.targets.resize(computed.targetTangentDeltas.size());
   if (computed.rebuild) {
-    rebuildAttributes(plan, computed);
-    rebuildTargets(plan, computed);
-    writeIndices(plan, computed);
+    rebuildAttributes(plan, computed, emitted);
+    rebuildTargets(plan, computed, emitted);
+    writeIndices(computed, emitted);
+    emitted.dropDraco = computed.compression.draco;
   }
-  writeTangents(plan, computed);
-  PrimitiveResult& result = plan.result;
-  result.action = PrimitiveAction::baked;
-  result.tangentFormat = options_.tangentFormat;
-  if (!plan.replacesTangent) result.reason = plan.why;
+  writeTangents(computed, emitted);
+  shared.tangents = plan.result.tangents;
+  shared.verticesIn = plan.result.verticesIn;
+  shared.verticesOut = plan.result.verticesOut;
   if (computed.compression.any()) {
     std::string names;
     for (const std::string& name : detail::compressionNames(computed.compression)) names += (names.empty() ? "" : ", ") + name;
-    result.reason += "; written uncompressed (was " + names + ")";
+    shared.compressionNote = "; written uncompressed (was " + names + ")";
   }
+  return shared;
+}
+
+// The primitive refers to the accessors baked for its inputs, and its result says so.
+void PrimitiveBaker::refer(PrimitivePlan& plan, const SharedBake& shared) {
+  PrimitiveResult& result = plan.result;
+  if (!shared.baked) {
+    result.reason = shared.notBaked;
+    return;
+  }
+  const EmittedAccessors& emitted = shared.emitted;
+  Json& primitive = primitiveJson(plan);
+  for (const auto& [name, index] : emitted.attributes) primitive["attributes"][name] = index;
+  for (std::size_t t = 0; t < emitted.targets.size(); ++t) {
+    for (const auto& [name, index] : emitted.targets[t]) primitive["targets"][t][name] = index;
+  }
+  if (emitted.indices >= 0) {
+    primitive["indices"] = emitted.indices;  // may insert: members of `primitive` are looked up by name from here on
+    if (primitive.contains("mode")) primitive["mode"] = 4;
+  }
+  if (emitted.dropDraco) {
+    primitive["extensions"].erase(detail::kDracoExtension);
+    if (primitive["extensions"].empty()) primitive.erase("extensions");
+  }
+  result.action = PrimitiveAction::baked;
+  result.tangentFormat = options_.tangentFormat;
+  result.tangents = shared.tangents;
+  result.verticesIn = shared.verticesIn;
+  result.verticesOut = shared.verticesOut;
+  if (!plan.replacesTangent) result.reason = plan.why;
+  result.reason += shared.compressionNote;
 }
 
 // Every attribute but TANGENT, gathered into the split vertices.
-void PrimitiveBaker::rebuildAttributes(const PrimitivePlan& plan, const ComputedTangents& computed) {
+void PrimitiveBaker::rebuildAttributes(const PrimitivePlan& plan, const ComputedTangents& computed, EmittedAccessors& emitted) {
   std::vector<std::pair<std::string, int>> carried;  // taken first: the loop below appends to the document
   for (const auto& [name, accessorRef] : primitiveJson(plan)["attributes"].items()) {
     if (name != "TANGENT") carried.emplace_back(name, accessorRef.get<int>());
@@ -377,15 +458,16 @@ void PrimitiveBaker::rebuildAttributes(const PrimitivePlan& plan, const Computed
     if (computed.compression.draco) recomputeBounds(accessor, data);
     const int written =
         output_.addAccessor(std::move(accessor), gather(data, computed.split.source), data.elementSize(), detail::kArrayBuffer);
-    primitiveJson(plan)["attributes"][name] = written;
+    emitted.attributes.emplace_back(name, written);
   }
 }
 
 // The morph targets' attributes (TANGENT aside), gathered the same way.
-void PrimitiveBaker::rebuildTargets(const PrimitivePlan& plan, const ComputedTangents& computed) {
+void PrimitiveBaker::rebuildTargets(const PrimitivePlan& plan, const ComputedTangents& computed, EmittedAccessors& emitted) {
   if (!primitiveJson(plan).contains("targets")) return;
   const std::size_t targetCount = primitiveJson(plan)["targets"].size();
   const std::size_t outCount = computed.split.source.size();
+  emitted.targets.resize(std::max(emitted.targets.size(), targetCount));
   for (std::size_t t = 0; t < targetCount; ++t) {
     std::vector<std::pair<std::string, int>> carried;
     for (const auto& [name, accessorRef] : primitiveJson(plan)["targets"][t].items()) {
@@ -398,14 +480,14 @@ void PrimitiveBaker::rebuildTargets(const PrimitivePlan& plan, const ComputedTan
         throw InputError(what + " has " + std::to_string(data.count) + " elements, POSITION has " + std::to_string(computed.vertexCount));
       const int written = output_.addAccessor(carriedAccessor(output_.json()["accessors"][index], outCount),
                                               gather(data, computed.split.source), data.elementSize(), detail::kArrayBuffer);
-      primitiveJson(plan)["targets"][t][name] = written;
+      emitted.targets[t].emplace_back(name, written);
     }
   }
 }
 
 // Indices of the split vertices as a triangle list: the original component type, widened when
 // the split outgrows it (the largest value of each type is primitive restart and not allowed).
-void PrimitiveBaker::writeIndices(const PrimitivePlan& plan, const ComputedTangents& computed) {
+void PrimitiveBaker::writeIndices(const ComputedTangents& computed, EmittedAccessors& emitted) {
   const std::size_t outCount = computed.split.source.size();
   const BulkVector<std::uint32_t>& cornerVertex = computed.split.cornerVertex;
   int indexComponentType = computed.indexComponentType;
@@ -424,25 +506,18 @@ void PrimitiveBaker::writeIndices(const PrimitivePlan& plan, const ComputedTange
     } else std::memcpy(&indexBytes[4 * c], &value, 4);
   }
   const Json indexAccessor = {{"componentType", indexComponentType}, {"count", cornerVertex.size()}, {"type", "SCALAR"}};
-  const int indices = output_.addAccessor(indexAccessor, std::move(indexBytes), indexSize, detail::kElementArrayBuffer);
-  Json& primitive = primitiveJson(plan);
-  primitive["indices"] = indices;  // may insert: members of `primitive` are looked up by name from here on
-  if (primitive.contains("mode")) primitive["mode"] = 4;
-  if (computed.compression.draco) {
-    primitive["extensions"].erase(detail::kDracoExtension);
-    if (primitive["extensions"].empty()) primitive.erase("extensions");
-  }
+  emitted.indices = output_.addAccessor(indexAccessor, std::move(indexBytes), indexSize, detail::kElementArrayBuffer);
 }
 
-void PrimitiveBaker::writeTangents(const PrimitivePlan& plan, const ComputedTangents& computed) {
+void PrimitiveBaker::writeTangents(const ComputedTangents& computed, EmittedAccessors& emitted) {
   EncodedTangents encoded = encodeTangents(computed.split.tangents, options_.tangentFormat);
-  const int tangents = output_.addAccessor(encoded.accessor, std::move(encoded.bytes), encoded.stride, detail::kArrayBuffer);
-  primitiveJson(plan)["attributes"]["TANGENT"] = tangents;
+  emitted.attributes.emplace_back(
+      "TANGENT", output_.addAccessor(encoded.accessor, std::move(encoded.bytes), encoded.stride, detail::kArrayBuffer));
   const std::size_t outCount = computed.split.source.size();
   for (std::size_t t = 0; t < computed.targetTangentDeltas.size(); ++t) {
     const int deltas = output_.addAccessor(floatAccessor(outCount, "VEC3"), floatBytes(computed.targetTangentDeltas[t]), 12,
                                            detail::kArrayBuffer);
-    primitiveJson(plan)["targets"][t]["TANGENT"] = deltas;
+    emitted.targets[t].emplace_back("TANGENT", deltas);
   }
 }
 
@@ -573,14 +648,16 @@ nlohmann::ordered_json toJson(const BakeResult& result) {
       entry["verticesOut"] = p.verticesOut;
       entry["tangents"] = toJson(p.tangents);
     }
-    primitives.push_back(entry);
+    primitives.push_back(std::move(entry));
   }
   Json warnings = Json::array();
   for (const auto& w : result.warnings) warnings.push_back(w);
-  return Json{{"primitives", primitives},
-              {"extensionsRemoved", result.extensionsRemoved},
-              {"warnings", warnings},
-              {"bytesWritten", result.bytesWritten}};
+  Json out = Json::object();  // members moved in: an initializer list would copy every primitive's entry
+  out["primitives"] = std::move(primitives);
+  out["extensionsRemoved"] = result.extensionsRemoved;
+  out["warnings"] = std::move(warnings);
+  out["bytesWritten"] = result.bytesWritten;
+  return out;
 }
 
 }  // namespace tangent::gltf

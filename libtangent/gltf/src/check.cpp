@@ -9,6 +9,7 @@
 #include <chrono>
 #include <cstdio>
 #include <fstream>
+#include <unordered_map>
 
 #include "accessors.hpp"
 #include "asset.hpp"
@@ -209,6 +210,7 @@ void checkPrimitiveTangents(const Asset& asset, const Json& primitive, const Pri
     Options core;
     core.method = options.method;
     core.uvOrigin = kGltfUvOrigin;
+    core.threads = threadsFor(geometry.corners.size(), core.threads);
     std::vector<float> computed(geometry.corners.size() * 4);
     std::vector<FrameSource> sources(geometry.corners.size());
     computeCornerTangents({geometry.positions, geometry.normals, geometry.uvs, geometry.corners}, computed, core, sources);
@@ -278,6 +280,7 @@ FileCheck checkAsset(const std::filesystem::path& input, const CheckOptions& opt
   {
     const detail::Asset asset = detail::loadAsset(input, options.assetRoot);
     const Json& doc = asset.json;
+    std::unordered_map<std::string, PrimitiveCheck> verdicts;  // by detail::sameInputKey and TANGENT
     const std::size_t meshCount = doc.contains("meshes") ? doc["meshes"].size() : 0;
     for (std::size_t m = 0; m < meshCount; ++m) {
       const Json& mesh = doc["meshes"][m];
@@ -317,8 +320,21 @@ FileCheck checkAsset(const std::filesystem::path& input, const CheckOptions& opt
                                    std::to_string(needs.texCoord) + ")");
           continue;
         }
-        PrimitiveCheck check = newCheck();
-        checkPrimitiveTangents(asset, primitive, needs, input.string() + ": " + label, options, check);
+        // Primitives with the same inputs and TANGENT get the same verdict: checked once.
+        const std::string key = detail::sameInputKey(doc, primitive, needs) +
+                                std::to_string(detail::accessorOf(primitive["attributes"], "TANGENT"));
+        auto known = verdicts.find(key);
+        if (known == verdicts.end()) {
+          PrimitiveCheck verdict;
+          checkPrimitiveTangents(asset, primitive, needs, input.string() + ": " + label, options, verdict);
+          known = verdicts.emplace(key, std::move(verdict)).first;
+        }
+        PrimitiveCheck check = known->second;
+        const PrimitiveCheck named = newCheck();
+        check.mesh = named.mesh;
+        check.primitive = named.primitive;
+        check.meshName = named.meshName;
+        check.texCoord = named.texCoord;
         result.primitives.push_back(std::move(check));
       }
     }

@@ -6,6 +6,8 @@
 
 #include <cmath>
 #include <numeric>
+#include <set>
+#include <unordered_map>
 
 #include "tangent/gltf.hpp"
 
@@ -61,6 +63,44 @@ std::string missingUvSet(const Json& primitive, const PrimitiveNeeds& needs) {
   const std::string uvName = "TEXCOORD_" + std::to_string(needs.texCoord);
   if (accessorOf(primitive["attributes"], uvName) >= 0) return {};
   return needs.why + ", but the primitive has no " + uvName + " attribute";
+}
+
+std::string sameInputKey(const Json& doc, const Json& primitive, const PrimitiveNeeds& needs) {
+  auto withoutTangent = [](const Json& map) {
+    Json copy = Json::object();
+    if (!map.is_object()) return copy;
+    for (const auto& [name, value] : map.items()) {
+      if (name != "TANGENT") copy[name] = value;
+    }
+    return copy;
+  };
+  Json key = Json::array();
+  key.push_back(withoutTangent(primitive.value("attributes", Json::object())));
+  Json targets = Json::array();
+  if (primitive.contains("targets") && primitive["targets"].is_array()) {
+    for (const Json& target : primitive["targets"]) targets.push_back(withoutTangent(target));
+  }
+  key.push_back(std::move(targets));
+  key.push_back(primitive.value("indices", Json(-1)));
+  key.push_back(primitive.value("mode", Json(4)));
+  const Json* draco = nullptr;
+  if (primitive.contains("extensions") && primitive["extensions"].is_object() &&
+      primitive["extensions"].contains("KHR_draco_mesh_compression"))
+    draco = &primitive["extensions"]["KHR_draco_mesh_compression"];
+  key.push_back(draco ? *draco : Json(nullptr));
+  key.push_back(needs.texCoord);
+  Json transform = nullptr;
+  if (needs.hasNormalTexture && primitive.contains("material")) {
+    const Json& normalTexture = doc["materials"][primitive["material"].get<int>()]["normalTexture"];
+    if (normalTexture.contains("extensions") && normalTexture["extensions"].contains("KHR_texture_transform"))
+      transform = normalTexture["extensions"]["KHR_texture_transform"];
+  }
+  key.push_back(std::move(transform));
+  return key.dump();
+}
+
+unsigned threadsFor(std::size_t corners, unsigned requested) {
+  return corners < kCornersPerExtraThread ? 1u : requested;
 }
 
 int accessorOf(const Json& object, const std::string& name) {
@@ -175,6 +215,15 @@ PrimitiveGeometry readGeometry(const Asset& asset, const Json& primitive, const 
 void verifyMeshData(const Asset& asset) {
   const Json& doc = asset.json;
   const std::string file = asset.path.string();
+  // Each accessor is checked once, and an index accessor once per vertex count, however many
+  // primitives share it (CAD scenes: 1e5 primitives on a few accessors).
+  std::unordered_map<int, std::size_t> countOf;
+  std::set<std::pair<int, std::size_t>> indicesChecked;
+  auto checkAccessor = [&](const tinygltf::Model& model, int accessor, const std::string& where) {
+    auto known = countOf.find(accessor);
+    if (known == countOf.end()) known = countOf.emplace(accessor, detail::checkAccessor(model, accessor, where)).first;
+    return known->second;
+  };
   const std::size_t meshCount = doc.contains("meshes") ? doc["meshes"].size() : 0;
   for (std::size_t m = 0; m < meshCount; ++m) {
     const Json& primitives = doc["meshes"][m]["primitives"];
@@ -198,7 +247,7 @@ void verifyMeshData(const Asset& asset) {
           attributes(primitive["targets"][t], "target " + std::to_string(t) + " ");
       }
       const int indices = accessorOf(primitive, "indices");
-      if (indices >= 0 && position >= 0)
+      if (indices >= 0 && position >= 0 && indicesChecked.emplace(indices, vertexCount).second)
         checkIndexRange(asset.model, indices, vertexCount, where + ": indices (accessor " + std::to_string(indices) + ")");
     }
   }

@@ -32,6 +32,21 @@ std::string missingUvSet(const nlohmann::ordered_json& primitive, const Primitiv
 // stitching triangles of joined strips (a repeated index) draw nothing and are left out.
 std::vector<std::uint32_t> triangleList(int mode, std::vector<std::uint32_t> vertices);
 
+// What tangents of a primitive are computed from, as a string: two primitives with the same key
+// get the same tangents, vertex split and rebuilt accessors, so bake and check compute them
+// once and bake writes them once (CAD scenes draw one geometry in 1e4-1e5 primitives). The
+// key holds every attribute and morph target accessor but TANGENT, the indices, the mode, the
+// KHR_draco_mesh_compression object, the UV set and the normal texture's KHR_texture_transform;
+// the material otherwise does not matter. The caller adds the options, which are per file.
+std::string sameInputKey(const nlohmann::ordered_json& doc, const nlohmann::ordered_json& primitive, const PrimitiveNeeds& needs);
+
+// Threads for computing a primitive of `corners` corners when `requested` were asked for (0:
+// all): one below kCornersPerExtraThread, where starting a thread arena costs more than the
+// work (a 2-triangle primitive took 100 us on two threads, 2 us on one). The core's output
+// never depends on the count.
+constexpr std::size_t kCornersPerExtraThread = 1 << 14;
+unsigned threadsFor(std::size_t corners, unsigned requested);
+
 // "mesh 0 'Name' primitive 1"
 std::string primitiveLabel(const nlohmann::ordered_json& doc, int mesh, int primitive);
 

@@ -1,0 +1,111 @@
+#!/usr/bin/env python3
+# SPDX-License-Identifier: MIT
+"""Limits of the input that the malformed-input table does not cover, through the `tangent`
+command. Each test makes its own temporary folder.
+
+  test_limits.py shared TANGENT NODE_DIR   2,000 primitives sharing accessors bake to one TANGENT
+                                           accessor (and, split, to one set of rebuilt
+                                           accessors); the outputs pass the Khronos validator
+  test_limits.py inputs TANGENT            a check configuration nested 1e6 deep, and an input
+                                           path longer than PATH_MAX: refused with a message
+"""
+import json
+import os
+import struct
+import subprocess
+import sys
+import tempfile
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import shared_accessors  # noqa: E402
+
+failures = []
+
+
+def expect(condition, what):
+    if not condition:
+        failures.append(what)
+
+
+def run(argv):
+    done = subprocess.run(argv, capture_output=True, timeout=300)
+    return done.returncode, (done.stdout + done.stderr).decode(errors="replace")
+
+
+def glb_json(path):
+    with open(path, "rb") as f:
+        data = f.read()
+    length = struct.unpack_from("<I", data, 12)[0]
+    return json.loads(data[20:20 + length])
+
+
+def test_shared(tangent, node_dir):
+    count = 2000
+    with tempfile.TemporaryDirectory() as folder:
+        outputs = []
+        for split in (False, True):
+            source = os.path.join(folder, f"in-{int(split)}.gltf")
+            shared_accessors.write(count, source, split)
+            output = os.path.join(folder, f"out-{int(split)}.glb")
+            code, message = run([tangent, "bake", source, "-o", output, "--quiet"])
+            expect(code == 0, f"bake split={split}: exit {code}: {message[:400]}")
+            if code != 0:
+                continue
+            outputs.append(output)
+            doc = glb_json(output)
+            primitives = [p for mesh in doc["meshes"] for p in mesh["primitives"]]
+            expect(len(primitives) == count, f"split={split}: {len(primitives)} primitives, expected {count}")
+            tangents = {p["attributes"].get("TANGENT") for p in primitives}
+            expect(len(tangents) == 1 and None not in tangents,
+                   f"split={split}: TANGENT accessors {sorted(map(str, tangents))[:5]}, expected one shared")
+            layouts = {json.dumps([p["attributes"], p.get("indices")], sort_keys=True) for p in primitives}
+            expect(len(layouts) == 1, f"split={split}: {len(layouts)} different attribute sets, expected one")
+            # Only what the primitives use: the four inputs (or their rebuilt copies) and TANGENT.
+            expect(len(doc["accessors"]) == 5, f"split={split}: {len(doc['accessors'])} accessors, expected 5")
+            vertices = doc["accessors"][primitives[0]["attributes"]["POSITION"]]["count"]
+            expect(vertices == (6 if split else 4), f"split={split}: {vertices} vertices after the bake")
+            code, message = run([tangent, "check", output])
+            expect(code == 0, f"check of the baked split={split}: exit {code}: {message[:400]}")
+        if os.path.isdir(os.path.join(node_dir, "node_modules", "gltf-validator")) and outputs:
+            code, message = run(["node", os.path.join(node_dir, "validate.mjs")] + outputs)
+            expect(code == 0, f"validator: exit {code}: {message[:800]}")
+        else:
+            failures.append(f"gltf-validator is not installed in {node_dir} (scripts/test.sh runs npm ci)")
+
+
+def test_inputs(tangent):
+    with tempfile.TemporaryDirectory() as folder:
+        source = os.path.join(folder, "in.gltf")
+        shared_accessors.write(1, source)
+        # A check configuration nested a million deep: refused like a deep glTF, no crash.
+        config = os.path.join(folder, "deep.json")
+        with open(config, "w") as f:
+            f.write("{\"only\": " + "[" * 1000000 + "]" * 1000000 + "}")
+        code, message = run([tangent, "check", source, "--config", config])
+        expect(code == 2, f"deep config: exit {code}, expected 2: {message[:400]}")
+        expect("deep.json" in message and "nests deeper than" in message, f"deep config: message {message[:400]!r}")
+        # An input name longer than PATH_MAX: the name is too long, not missing.
+        long_name = os.path.join(folder, "/".join(["d" * 200] * 30) + ".gltf")
+        for command in (["bake", long_name, "-o", os.path.join(folder, "out.glb")], ["check", long_name], ["info", long_name]):
+            code, message = run([tangent] + command)
+            expect(code in (1, 2), f"{command[0]} long path: exit {code}: {message[:300]}")
+            expect("too long" in message and "no such file" not in message,
+                   f"{command[0]} long path: message {message[:300]!r}")
+            expect(len(message) < 2000, f"{command[0]} long path: a message of {len(message)} characters")
+
+
+def main():
+    if len(sys.argv) >= 4 and sys.argv[1] == "shared":
+        test_shared(sys.argv[2], sys.argv[3])
+    elif len(sys.argv) >= 3 and sys.argv[1] == "inputs":
+        test_inputs(sys.argv[2])
+    else:
+        sys.exit(__doc__)
+    for failure in failures:
+        print("FAIL " + failure)
+    print(f"{sys.argv[1]}: {len(failures)} failures")
+    return 1 if failures else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
