@@ -38,8 +38,8 @@ def output_path(input_folder, output_folder, input_path):
 
 def bake_one(input_path, output, options, previous, force):
     """One task: skip when the manifest's record matches, else bake. Runs on a worker."""
-    digest = libtangent.input_digest(input_path, asset_root=options.get("asset_root"))
-    entry = {"input": str(input_path), "output": str(output), "digest": digest}
+    digest, stamps = libtangent.manifest_digest(input_path, asset_root=options.get("asset_root"), previous=previous)
+    entry = {"input": str(input_path), "output": str(output), "digest": digest, "stamps": stamps}
     if (not force and previous and previous.get("digest") == digest
             and (not previous.get("ok") or os.path.exists(output))):
         entry.update(status="ok" if previous.get("ok") else "failed", unchanged=True)
@@ -105,7 +105,7 @@ def main(argv=None):
     for entry in entries:
         key = pathlib.Path(entry["input"]).relative_to(input_folder).as_posix()
         record = {"digest": entry["digest"], "output": pathlib.Path(entry["output"]).relative_to(output_folder).as_posix(),
-                  "ok": entry["status"] == "ok"}
+                  "ok": entry["status"] == "ok", "stamps": entry.pop("stamps")}
         if entry["status"] != "ok":
             record["error"] = entry.get("error", "")
         files[key] = record

@@ -1,7 +1,7 @@
 # SPDX-License-Identifier: MIT
 """Type stubs of the libtangent module (python/module.cpp): see help(libtangent)."""
 import os
-from typing import Any, Optional, TypedDict, Union
+from typing import Any, Dict, List, Optional, Tuple, TypedDict, Union
 
 import numpy as np
 import numpy.typing as npt
@@ -74,3 +74,5 @@ def bake_tree(
 def find_inputs(folder: PathLike) -> list[str]: ...
 
 def input_digest(input: PathLike, *, asset_root: Optional[PathLike] = None) -> str: ...
+def manifest_digest(input: PathLike, *, asset_root: Optional[PathLike] = None, previous: Optional[Dict[str, Any]] = None,
+                    verify: bool = False) -> Tuple[str, List[Dict[str, Any]]]: ...

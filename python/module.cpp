@@ -261,6 +261,21 @@ and the bake report when baked in this run.)");
       }, py::arg("input"), py::kw_only(), py::arg("asset_root") = py::none(),
       "SHA-256 (hex) of a file and of every buffer and image it names: the manifest's digest.");
 
+  m.def("manifest_digest", [](const std::filesystem::path& input, std::optional<std::filesystem::path> assetRoot,
+                              const py::object& previous, bool verify) {
+        const std::string previousText = py::module_::import("json").attr("dumps")(previous).cast<std::string>();
+        const nlohmann::ordered_json previousJson = nlohmann::ordered_json::parse(previousText);
+        tangent::gltf::InputDigest digest;
+        {
+          py::gil_scoped_release released;
+          digest = tangent::gltf::digestForManifest(input, assetRoot.value_or(std::filesystem::path()), previousJson, verify);
+        }
+        return py::make_tuple(digest.digest, toPython(digest.stamps));
+      }, py::arg("input"), py::kw_only(), py::arg("asset_root") = py::none(), py::arg("previous") = py::none(),
+      py::arg("verify") = false,
+      "(digest, stamps) as the manifest records them: where `previous` (the input's manifest record) has size and\n"
+      "modification-time stamps that all still hold, its digest is returned without reading the files (unless verify).");
+
   m.def(
       "check",
       [](const std::filesystem::path& input, const std::string& methodName, double tolerance, bool all,

@@ -374,28 +374,30 @@ def test_a_full_disk_leaves_the_previous_glb_and_no_temporary(tmp_path):
 
 # --- interrupted batches ------------------------------------------------------------------
 
-def journal_files(out):
-    """The files the journal recorded as finished."""
-    path = out / "tangent-manifest.journal"
-    if not path.exists():
-        return set()
-    lines = path.read_bytes().split(b"\n")
+def finished_files(out):
+    """The files recorded as done: in the journal (a run in progress or killed) and in the
+    manifest (a run that ended or stopped)."""
     finished = set()
-    for line in lines[1:]:
-        try:
-            finished.add(json.loads(line)["file"])
-        except (ValueError, KeyError):
-            pass  # the last line may be cut
+    journal = out / "tangent-manifest.journal"
+    if journal.exists():
+        for line in journal.read_bytes().split(b"\n")[1:]:
+            try:
+                finished.add(json.loads(line)["file"])
+            except (ValueError, KeyError):
+                pass  # the last line may be cut
+    manifest = out / "tangent-manifest.json"
+    if manifest.exists():
+        finished |= {key for key, record in json.loads(manifest.read_text())["files"].items() if record["ok"]}
     return finished
 
 
-def interrupt_after(tree, out, finished, sig):
-    """Starts a recursive bake and sends `sig` once the journal holds `finished` more files."""
-    already = len(journal_files(out))
+def interrupt_after(tree, out, more, sig):
+    """Starts a recursive bake and sends `sig` once `more` further files are recorded as done."""
+    already = len(finished_files(out))
     process = subprocess.Popen([CLI, "bake", str(tree), "--recursive", "--out-dir", str(out)],
                                stdout=subprocess.DEVNULL, stderr=subprocess.PIPE)
     deadline = time.monotonic() + 300
-    while len(journal_files(out)) < already + finished and process.poll() is None and time.monotonic() < deadline:
+    while len(finished_files(out)) < already + more and process.poll() is None and time.monotonic() < deadline:
         time.sleep(0.005)
     process.send_signal(sig)
     _, stderr = process.communicate(timeout=120)
@@ -409,16 +411,20 @@ def test_recursive_bake_interrupted_by_sigint_and_sigkill_resumes_where_it_stopp
         write(tree / f"part{k // 8}" / f"g{k:02}.glb", glb_bytes(doc, blob))
     before = snapshot(tree)
     finished = set()
-    for sig, count in ((signal.SIGINT, 2), (signal.SIGKILL, 4), (signal.SIGINT, 5), (signal.SIGKILL, 3)):
+    for sig, count in ((signal.SIGINT, 2), (signal.SIGKILL, 4), (signal.SIGTERM, 5), (signal.SIGKILL, 3)):
         status, stderr = interrupt_after(tree, out, count, sig)
-        print(f"signal {sig.name} after {count} more files: exit {status}, {len(journal_files(out))} finished")
+        print(f"{sig.name} after {count} more files: exit {status}, {len(finished_files(out))} finished")
         if status == 0:
             break  # it finished first: nothing left to interrupt
-        assert status == -sig, (sig, status, stderr)
-        if sig == signal.SIGINT:
-            assert b"interrupted" in stderr, stderr
-            assert temporaries(out) == []  # SIGINT: its own temporaries removed at once
-        now = journal_files(out)
+        if sig == signal.SIGKILL:
+            assert status == -sig, (sig, status, stderr)
+        else:
+            # SIGINT and SIGTERM: the current file is finished, the manifest written, exit 130.
+            assert status == 130, (sig, status, stderr)
+            assert b"stopped after" in stderr and b"stopping after the current file" in stderr, stderr
+            assert temporaries(out) == []
+            assert not (out / "tangent-manifest.journal").exists()
+        now = finished_files(out)
         assert finished <= now
         finished = now
         for glb in out.rglob("*.glb"):
@@ -438,3 +444,92 @@ def test_recursive_bake_interrupted_by_sigint_and_sigkill_resumes_where_it_stopp
     for glb in out.rglob("*.glb"):
         assert_valid_glb(glb)
     assert snapshot(tree) == before
+
+
+def test_a_second_ctrl_c_stops_at_once(tmp_path):
+    tree, out = tmp_path / "tree", tmp_path / "out"
+    doc, blob = grid(250)
+    for k in range(6):
+        write(tree / f"g{k}.glb", glb_bytes(doc, blob))
+    process = subprocess.Popen([CLI, "bake", str(tree), "--recursive", "--out-dir", str(out)],
+                               stdout=subprocess.DEVNULL, stderr=subprocess.PIPE)
+    while not finished_files(out) and process.poll() is None:
+        time.sleep(0.002)
+    process.send_signal(signal.SIGINT)
+    notice = process.stderr.readline()  # the first signal handled: the second comes mid-file
+    assert b"stopping after the current file" in notice, notice
+    process.send_signal(signal.SIGINT)
+    stderr = notice + process.stderr.read()
+    process.wait(timeout=120)
+    assert process.returncode == -signal.SIGINT, (process.returncode, stderr)
+    assert b"files being written were removed" in stderr
+    assert temporaries(out) == []
+
+
+# --- batch outcomes, progress, the size-and-time shortcut -------------------------------------
+
+def test_batch_lines_say_baked_kept_unchanged_and_failed_as_the_report_does(tmp_path):
+    tree, out = tmp_path / "tree", tmp_path / "out"
+    doc, blob = grid(6)
+    write(tree / "plain.glb", glb_bytes(doc, blob))
+    write(tree / "broken.gltf", b'{"asset": ')
+    # Baked once already: its tangents are kept.
+    write(tmp_path / "plain.glb", glb_bytes(doc, blob))
+    assert tangent("bake", tmp_path / "plain.glb", "-o", tree / "done.glb").returncode == 0
+    done = tangent("bake", tree, "--recursive", "--out-dir", out, "--report", tmp_path / "r.json")
+    assert done.returncode == 1
+    lines = done.stdout.decode().splitlines()
+    report = {pathlib.Path(e["input"]).name: e for e in json.loads((tmp_path / "r.json").read_text())}
+    assert report["plain.glb"]["outcome"] == "baked" and report["done.glb"]["outcome"] == "kept"
+    assert report["broken.gltf"]["outcome"] == "failed"
+    for name, entry in report.items():
+        if entry["outcome"] != "failed":
+            assert any(name in line and line.endswith(": " + entry["outcome"]) for line in lines), (name, lines)
+    assert "1 baked, 1 kept, 0 unchanged, 1 failed" in lines
+    done = tangent("bake", tree, "--recursive", "--out-dir", out)
+    assert "0 baked, 0 kept, 2 unchanged, 1 failed" in done.stdout.decode().splitlines()
+
+
+def test_progress_line_on_a_terminal_only(tmp_path):
+    tree, out = tmp_path / "tree", tmp_path / "out"
+    doc, blob = grid(6)
+    for k in range(3):
+        write(tree / f"g{k}.glb", glb_bytes(doc, blob))
+    # On a pipe: no progress line, no cursor movement.
+    done = tangent("bake", tree, "--recursive", "--out-dir", out)
+    assert b"\r" not in done.stderr and b"[1/3]" not in done.stderr + done.stdout
+    # On a terminal (script(1) gives the command a pty): "[done/total] file" lines, cleared.
+    if shutil.which("script") is None:
+        skip_or_fail("script(1) from util-linux is not installed")
+    command = f"'{CLI}' bake '{tree}' --recursive --out-dir '{tmp_path / 'out2'}'"
+    shown = subprocess.run(["script", "-qec", command, "/dev/null"], capture_output=True, timeout=120)
+    assert shown.returncode == 0, shown.stdout
+    assert b"[0/3] g0.glb" in shown.stdout and b"[2/3] g2.glb" in shown.stdout, shown.stdout
+    assert b"left" in shown.stdout and b"\r\x1b[K" in shown.stdout
+    done = subprocess.run(["script", "-qec", command + " --quiet", "/dev/null"], capture_output=True, timeout=120)
+    assert b"[0/3]" not in done.stdout
+
+
+def test_unchanged_size_and_time_skip_hashing_and_verify_hashes(tmp_path):
+    tree, out = tmp_path / "tree", tmp_path / "out"
+    doc, blob = grid(6)
+    asset = write(tree / "a.glb", glb_bytes(doc, blob))
+    assert tangent("bake", tree, "--recursive", "--out-dir", out).returncode == 0
+    stamps = json.loads((out / "tangent-manifest.json").read_text())["files"]["a.glb"]["stamps"]
+    assert stamps[0]["size"] == asset.stat().st_size and stamps[0]["mtimeNs"] == asset.stat().st_mtime_ns
+    # Same size, same modification time, other bytes (as no editor would leave it): taken as
+    # unchanged without reading it...
+    times = (asset.stat().st_atime_ns, asset.stat().st_mtime_ns)
+    asset.write_bytes(asset.read_bytes().replace(b"tests/reliability", b"tests/reliabilitY"))
+    os.utime(asset, ns=times)
+    done = tangent("bake", tree, "--recursive", "--out-dir", out)
+    assert done.stdout.decode().splitlines()[0].endswith(": unchanged"), done.stdout
+    # ...and --verify reads every byte, so it sees the change.
+    done = tangent("bake", tree, "--recursive", "--out-dir", out, "--verify")
+    assert done.stdout.decode().splitlines()[0].endswith(": baked"), done.stdout
+    # A new modification time: hashed again (same bytes now: unchanged).
+    os.utime(asset, ns=(times[0], times[1] + 10**9))
+    done = tangent("bake", tree, "--recursive", "--out-dir", out)
+    assert done.stdout.decode().splitlines()[0].endswith(": unchanged"), done.stdout
+    new_stamps = json.loads((out / "tangent-manifest.json").read_text())["files"]["a.glb"]["stamps"]
+    assert new_stamps[0]["mtimeNs"] == times[1] + 10**9

@@ -1,9 +1,12 @@
 // SPDX-License-Identifier: MIT
 #include <unistd.h>
 
+#include <chrono>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <map>
 #include <memory>
 #include <optional>
 #include <stdexcept>
@@ -41,6 +44,8 @@ const char* kBakeUsage =
     "                         into the same relative path under --out-dir, keeping a manifest\n"
     "                         (DIR/tangent-manifest.json) so that a re-run skips unchanged files\n"
     "  --force                with --recursive: bake everything, whatever the manifest says\n"
+    "  --verify               with --recursive: hash every input, even where its size and modification\n"
+    "                         time say it is unchanged\n"
     "  --tangent-format F     float (default) | short | byte: TANGENT as float or normalized SHORT/BYTE\n"
     "                         (KHR_mesh_quantization, declared used and required); kept TANGENTs stay as they are\n"
     "  --report FILE.json     write what was done, per file and primitive (\"-\": standard output)\n"
@@ -99,12 +104,45 @@ int writeReport(const std::filesystem::path& reportPath, const nlohmann::ordered
   return writeTextOutput(reportPath.string(), text::dumpJson(report, 2) + "\n", "bake") ? kExitOk : kExitInputFailed;
 }
 
+// One line on a terminal (stderr) while a batch runs: files done of all, the current file,
+// time so far and the time left at the pace so far. Nothing when off (not a terminal, --quiet).
+class ProgressLine {
+ public:
+  explicit ProgressLine(bool on) : on_(on), started_(std::chrono::steady_clock::now()) {}
+  void show(std::size_t done, std::size_t total, const std::filesystem::path& current) {
+    if (!on_) return;
+    const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - started_).count();
+    std::cerr << "\r[" << done << "/" << total << "] " << shown(current.filename().string()).substr(0, 40) << "  "
+              << clock(elapsed);
+    if (done > 0) std::cerr << ", about " << clock(elapsed / static_cast<double>(done) * static_cast<double>(total - done)) << " left";
+    std::cerr << "\033[K" << std::flush;
+    visible_ = true;
+  }
+  void clear() {
+    if (!visible_) return;
+    std::cerr << "\r\033[K" << std::flush;
+    visible_ = false;
+  }
+
+ private:
+  static std::string clock(double seconds) {
+    const auto whole = static_cast<long long>(seconds + 0.5);
+    char text[32];
+    std::snprintf(text, sizeof text, "%lld:%02lld", whole / 60, whole % 60);
+    return text;
+  }
+  bool on_;
+  bool visible_ = false;
+  std::chrono::steady_clock::time_point started_;
+};
+
 // --recursive: each folder into --out-dir (into --out-dir/NAME when there are several).
 int bakeTrees(const std::vector<std::filesystem::path>& folders, const std::filesystem::path& outDir,
-              const gltf::BakeOptions& options, bool force, bool quiet, const std::filesystem::path& reportPath) {
+              const gltf::BakeOptions& options, bool force, bool verify, bool quiet, const std::filesystem::path& reportPath) {
   gltf::BatchOptions batch;
   batch.bake = options;
   batch.force = force;
+  batch.verify = verify;
   // Every output of the run known before anything is written: two folders of one name, or two
   // files of one folder that become the same .glb, are refused as a whole.
   std::vector<std::filesystem::path> allInputs, allOutputs;
@@ -125,27 +163,48 @@ int bakeTrees(const std::vector<std::filesystem::path>& folders, const std::file
     return kExitInputFailed;
   }
   nlohmann::ordered_json report = nlohmann::ordered_json::array();
-  std::size_t baked = 0, unchanged = 0, failed = 0;
+  std::map<gltf::FileOutcome, std::size_t> counts;
+  std::ostream& log = reportPath == "-" ? std::cerr : std::cout;
+  ProgressLine progress(!quiet && ::isatty(STDERR_FILENO));
+  std::size_t done = 0;
+  batch.stopRequested = output::stopRequested;
+  batch.onStart = [&](std::size_t, std::size_t, const std::filesystem::path& input) {
+    progress.show(done, allInputs.size(), input);
+  };
+  output::stopGracefullyOnSignal("tangent: stopping after the current file (press Ctrl-C again to stop at once)\n");
   for (const auto& folder : folders) {
     const std::filesystem::path target = folders.size() == 1 ? outDir : outDir / folder.filename();
+    if (output::stopRequested()) break;
     try {
       gltf::bakeTree(folder, target, batch, [&](const gltf::BatchEntry& entry) {
-        if (entry.skipped) ++unchanged;
-        else if (entry.ok) ++baked;
-        if (!entry.ok) ++failed;  // a file that failed last time and has not changed still fails
-        if (!entry.ok) std::cerr << "error: " << shown(entry.error) << (entry.skipped ? " (unchanged since the last run)" : "") << "\n";
+        ++done;
+        ++counts[entry.outcome];
+        progress.clear();
+        // A file that failed last time and has not changed still fails.
+        if (entry.outcome == gltf::FileOutcome::failed)
+          std::cerr << "error: " << shown(entry.error) << (entry.skipped ? " (unchanged since the last run)" : "") << "\n";
         else if (!quiet)
-          (reportPath == "-" ? std::cerr : std::cout) << shown(entry.input.string()) << " -> " << shown(entry.output.string()) << (entry.skipped ? ": unchanged\n" : ": baked\n");
+          log << shown(entry.input.string()) << " -> " << shown(entry.output.string()) << ": " << gltf::toString(entry.outcome)
+              << "\n" << std::flush;
         report.push_back(gltf::toJson(entry));
       });
     } catch (const std::exception& e) {
-      ++failed;
+      ++counts[gltf::FileOutcome::failed];
+      progress.clear();
       std::cerr << "error: " << shown(e.what()) << "\n";
     }
   }
-  std::ostream& log = reportPath == "-" ? std::cerr : std::cout;
-  if (!quiet) log << baked << " baked, " << unchanged << " unchanged, " << failed << " failed\n";
+  progress.clear();
+  const std::size_t failed = counts[gltf::FileOutcome::failed];
+  if (!quiet)
+    log << counts[gltf::FileOutcome::baked] << " baked, " << counts[gltf::FileOutcome::kept] << " kept, "
+        << counts[gltf::FileOutcome::unchanged] << " unchanged, " << failed << " failed\n";
   const int written = writeReport(reportPath, report);
+  if (output::stopRequested()) {
+    std::cerr << "tangent bake: stopped after " << done << " of " << allInputs.size()
+              << " files; the manifest records them, so the same command continues where this one stopped\n";
+    return kExitInterrupted;
+  }
   return failed ? kExitInputFailed : written;
 }
 
@@ -156,7 +215,7 @@ int bakeCommand(const std::vector<std::string>& args) {
   std::vector<fs::path> inputs;
   fs::path output, outDir, reportPath;
   gltf::BakeOptions options;
-  bool quiet = false, recursive = false, force = false, operandsOnly = false;
+  bool quiet = false, recursive = false, force = false, verify = false, operandsOnly = false;
   for (std::size_t i = 0; i < args.size(); ++i) {
     const std::string& arg = args[i];
     if (operandsOnly || arg == "--") {  // "--" ends the options
@@ -212,6 +271,8 @@ int bakeCommand(const std::vector<std::string>& args) {
       recursive = true;
     } else if (arg == "--force") {
       force = true;
+    } else if (arg == "--verify") {
+      verify = true;
     } else if (arg == "--all") {
       options.all = true;
     } else if (arg == "--overwrite") {
@@ -235,9 +296,9 @@ int bakeCommand(const std::vector<std::string>& args) {
     for (const fs::path& input : inputs) {
       if (!fs::is_directory(input)) return usageError("--recursive: " + input.string() + " is not a folder");
     }
-    return bakeTrees(inputs, outDir, options, force, quiet, reportPath);
+    return bakeTrees(inputs, outDir, options, force, verify, quiet, reportPath);
   }
-  if (force) return usageError("--force goes with --recursive");
+  if (force || verify) return usageError(std::string(force ? "--force" : "--verify") + " goes with --recursive");
   if (output.empty() == outDir.empty()) return usageError("give exactly one of -o FILE and --out-dir DIR");
   if (!output.empty() && inputs.size() > 1) return usageError("-o takes one input; use --out-dir for several");
   const bool toStdout = output == "-";
@@ -261,7 +322,10 @@ int bakeCommand(const std::vector<std::string>& args) {
   std::ostream& log = reportPath == "-" || toStdout ? std::cerr : std::cout;
   int failed = 0;
   nlohmann::ordered_json report = nlohmann::ordered_json::array();
-  for (std::size_t n = 0; n < inputs.size(); ++n) {
+  if (inputs.size() > 1)
+    output::stopGracefullyOnSignal("tangent: stopping after the current file (press Ctrl-C again to stop at once)\n");
+  std::size_t done = 0;
+  for (std::size_t n = 0; n < inputs.size() && !output::stopRequested(); ++n, ++done) {
     const fs::path& input = inputs[n];
     std::optional<StdoutTarget> stream;
     if (toStdout) {
@@ -328,6 +392,10 @@ int bakeCommand(const std::vector<std::string>& args) {
   }
   if (progress) std::cerr << "\r\033[K";
   if (const int written = writeReport(reportPath, report); written != kExitOk) return written;
+  if (output::stopRequested()) {
+    std::cerr << "tangent bake: stopped after " << done << " of " << inputs.size() << " inputs\n";
+    return kExitInterrupted;
+  }
   if (failed && !quiet && inputs.size() > 1) std::cerr << failed << " of " << inputs.size() << " inputs failed\n";
   return failed ? kExitInputFailed : kExitOk;
 }

@@ -19,6 +19,7 @@ inline std::string shown(std::string_view text) { return text::terminalSafe(text
 constexpr int kExitOk = 0;
 constexpr int kExitInputFailed = 1;
 constexpr int kExitUsage = 2;
+constexpr int kExitInterrupted = 130;  // 128 + SIGINT, as shells report a process Ctrl-C ended
 
 // Writes `text` to `path`, or to standard output when `path` is "-" (every report and output
 // file a command writes takes "-"). Returns false, after a message on stderr, when it cannot.

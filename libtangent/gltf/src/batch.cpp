@@ -2,6 +2,7 @@
 #include "tangent/batch.hpp"
 
 #include <algorithm>
+#include <chrono>
 #include <fstream>
 #include <iterator>
 #include <map>
@@ -76,10 +77,14 @@ std::vector<fs::path> findInputs(const fs::path& folder, const fs::path& skip) {
   return inputs;
 }
 
-std::string inputDigest(const fs::path& input, const fs::path& assetRoot) {
+namespace {
+
+// SHA-256 over the input and the files it names; `hashed` gets every file read for it.
+std::string digestOf(const fs::path& input, const fs::path& assetRoot, std::vector<fs::path>& hashed) {
   detail::Sha256 hash;
   const std::vector<std::uint8_t> bytes = fileBytes(input);
   hash.update(bytes);
+  hashed.push_back(input);
   if (detail::isMeshFile(input)) return hash.hexDigest();
   // The files a glTF names: found without loading it (a bad one fails in bake, not here).
   try {
@@ -106,6 +111,7 @@ std::string inputDigest(const fs::path& input, const fs::path& assetRoot) {
           hash.update({reinterpret_cast<const std::uint8_t*>(uri.data()), uri.size()});
           hash.update({&separator, 1});
           hash.update(fileBytes(file));
+          hashed.push_back(file);
         } catch (const InputError&) {
         }
       }
@@ -113,6 +119,70 @@ std::string inputDigest(const fs::path& input, const fs::path& assetRoot) {
   } catch (const std::exception&) {
   }
   return hash.hexDigest();
+}
+
+// Size and modification time of each file a digest read, as the manifest records them: while
+// every one is the same, the input and the set of files it names are too, and the digest
+// is taken from the manifest without reading a byte (--verify reads them all the same).
+Json stampsOf(const std::vector<fs::path>& files) {
+  Json stamps = Json::array();
+  for (const fs::path& file : files) {
+    std::error_code ec;
+    const auto size = fs::file_size(file, ec);
+    if (ec) return Json::array();  // unreadable: no shortcut
+    const auto time = fs::last_write_time(file, ec);
+    if (ec) return Json::array();
+    stamps.push_back({{"file", text::utf8Safe(fs::absolute(file).lexically_normal().string())},
+                      {"size", size},
+                      {"mtimeNs", std::chrono::duration_cast<std::chrono::nanoseconds>(
+                                      std::chrono::file_clock::to_sys(time).time_since_epoch()).count()}});
+  }
+  return stamps;
+}
+
+bool stampsUnchanged(const Json& recorded, const fs::path& input) {
+  if (!recorded.is_array() || recorded.empty()) return false;
+  const fs::path absoluteInput = fs::absolute(input).lexically_normal();
+  try {
+    if (recorded.front().at("file").get<std::string>() != text::utf8Safe(absoluteInput.string())) return false;
+    std::vector<fs::path> files;
+    for (const Json& stamp : recorded) {
+      const std::string name = stamp.at("file").get<std::string>();
+      if (name.find("\\x") != std::string::npos) return false;  // escaped name: cannot be looked up again
+      files.emplace_back(name);
+    }
+    return stampsOf(files) == recorded;
+  } catch (const std::exception&) {
+    return false;
+  }
+}
+
+}  // namespace
+
+std::string inputDigest(const fs::path& input, const fs::path& assetRoot) {
+  std::vector<fs::path> hashed;
+  return digestOf(input, assetRoot, hashed);
+}
+
+InputDigest digestForManifest(const fs::path& input, const fs::path& assetRoot, const Json& previous, bool verify) {
+  if (!verify && previous.is_object() && previous.contains("digest") && previous["digest"].is_string() &&
+      previous.contains("stamps") && stampsUnchanged(previous["stamps"], input))
+    return {previous["digest"].get<std::string>(), previous["stamps"]};
+  std::vector<fs::path> hashed;
+  InputDigest result;
+  result.digest = digestOf(input, assetRoot, hashed);
+  result.stamps = stampsOf(hashed);
+  return result;
+}
+
+const char* toString(FileOutcome outcome) {
+  switch (outcome) {
+    case FileOutcome::baked: return "baked";
+    case FileOutcome::kept: return "kept";
+    case FileOutcome::unchanged: return "unchanged";
+    case FileOutcome::failed: return "failed";
+  }
+  return "failed";
 }
 
 std::vector<OutputCollision> outputCollisions(const std::vector<fs::path>& inputs, const std::vector<fs::path>& outputs) {
@@ -228,35 +298,55 @@ std::vector<BatchEntry> bakeTree(const fs::path& inputFolder, const fs::path& ou
 
   Json files = Json::object();
   std::vector<BatchEntry> entries;
+  bool stopped = false;
   for (std::size_t i = 0; i < inputs.size(); ++i) {
+    if (options.stopRequested && options.stopRequested()) {
+      stopped = true;
+      break;
+    }
     const fs::path& input = inputs[i];
+    if (options.onStart) options.onStart(i, inputs.size(), input);
     BatchEntry entry;
     entry.input = input;
     entry.output = outputs[i];
     const std::string key = text::utf8Safe(input.lexically_relative(inputFolder).generic_string());
-    entry.digest = inputDigest(input, options.bake.assetRoot);
     const auto before = previousFiles.find(key);
-    if (!options.force && before != previousFiles.end() && before->is_object() &&
-        before->value("digest", "") == entry.digest && (!before->value("ok", false) || fs::exists(entry.output, ec))) {
+    const bool known = before != previousFiles.end() && before->is_object();
+    InputDigest digest = digestForManifest(input, options.bake.assetRoot, known ? *before : Json(), options.verify);
+    entry.digest = digest.digest;
+    if (!options.force && known && before->value("digest", "") == entry.digest &&
+        (!before->value("ok", false) || fs::exists(entry.output, ec))) {
       entry.skipped = true;
       entry.ok = before->value("ok", false);
       entry.error = before->value("error", "");
+      entry.outcome = entry.ok ? FileOutcome::unchanged : FileOutcome::failed;
     } else {
       try {
-        entry.report = toJson(bakeFile(input, entry.output, options.bake));
+        const BakeResult result = bakeFile(input, entry.output, options.bake);
+        entry.report = toJson(result);
         entry.ok = true;
+        const bool anyBaked = std::any_of(result.primitives.begin(), result.primitives.end(),
+                                          [](const PrimitiveResult& p) { return p.action == PrimitiveAction::baked; });
+        entry.outcome = anyBaked ? FileOutcome::baked : FileOutcome::kept;
       } catch (const std::exception& e) {
         entry.error = e.what();
+        entry.outcome = FileOutcome::failed;
       }
     }
     Json record = {{"digest", entry.digest},
                    {"output", text::utf8Safe(entry.output.lexically_relative(outputFolder).generic_string())},
-                   {"ok", entry.ok}};
+                   {"ok", entry.ok}, {"stamps", std::move(digest.stamps)}};
     if (!entry.ok) record["error"] = entry.error;
-    if (!entry.skipped) journal.append(key, record);
+    if (!entry.skipped || !known || (*before) != record) journal.append(key, record);
     files[key] = std::move(record);
     if (onFile) onFile(entry);
     entries.push_back(std::move(entry));
+  }
+  if (stopped) {
+    // What this run did not reach keeps what the manifest knew of it.
+    for (const auto& [key, record] : previousFiles.items()) {
+      if (!files.contains(key)) files[key] = record;
+    }
   }
   const Json manifest = {{"schema", "libtangent-manifest/1"}, {"options", optionsNow}, {"files", files}};
   output::writeFileAtomic(manifestPath, text::dumpJson(manifest, 2) + "\n");
@@ -266,7 +356,7 @@ std::vector<BatchEntry> bakeTree(const fs::path& inputFolder, const fs::path& ou
 
 Json toJson(const BatchEntry& entry) {
   Json out = {{"input", entry.input.string()}, {"output", entry.output.string()}, {"status", entry.ok ? "ok" : "failed"},
-              {"unchanged", entry.skipped}, {"digest", entry.digest}};
+              {"outcome", toString(entry.outcome)}, {"unchanged", entry.skipped}, {"digest", entry.digest}};
   if (!entry.ok) out["error"] = entry.error;
   if (!entry.report.is_null()) out.update(entry.report);
   return out;

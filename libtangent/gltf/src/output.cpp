@@ -29,8 +29,16 @@ struct Slot {
 Slot slots[kSlots];
 
 const char* signalMessage = "";
+const char* gracefulNotice = "";
+std::atomic<bool> graceful{false}, stopAsked{false};
+static_assert(std::atomic<bool>::is_always_lock_free, "read from a signal handler");
 
 void onSignal(int signal) {
+  if (graceful.load() && (signal == SIGINT || signal == SIGTERM) && !stopAsked.exchange(true)) {
+    const ssize_t ignored = ::write(STDERR_FILENO, gracefulNotice, std::strlen(gracefulNotice));
+    (void)ignored;
+    return;
+  }
   // Newest first: a folder guarded before the files inside it goes after them.
   for (int i = kSlots - 1; i >= 0; --i) {
     if (slots[i].state.load() != 2) continue;
@@ -91,6 +99,13 @@ void removeTemporariesOnSignal(const char* message) {
   sigemptyset(&action.sa_mask);
   for (int signal : {SIGINT, SIGTERM, SIGHUP}) sigaction(signal, &action, nullptr);
 }
+
+void stopGracefullyOnSignal(const char* notice) {
+  gracefulNotice = notice ? notice : "";
+  graceful.store(true);
+}
+
+bool stopRequested() { return stopAsked.load(); }
 
 void removeStaleTemporaries(const fs::path& folder) {
   static std::mutex mutex;

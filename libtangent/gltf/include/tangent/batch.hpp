@@ -22,14 +22,26 @@ inline constexpr const char* kJournalName = "tangent-manifest.journal";
 
 struct BatchOptions {
   BakeOptions bake;
-  bool force = false;  // bake everything, whatever the manifest says
+  bool force = false;   // bake everything, whatever the manifest says
+  bool verify = false;  // hash every input, even where size and modification time are unchanged
+  // Asked before each file; true: stop there (the manifest records what was done).
+  std::function<bool()> stopRequested;
+  // Called before each file: its index among `total` and its path (a progress display).
+  std::function<void(std::size_t index, std::size_t total, const std::filesystem::path& input)> onStart;
 };
+
+// What a run did with a file: baked (some primitive got tangents), kept (written, but every
+// primitive kept its tangents or needed none), unchanged (skipped: the manifest's digest
+// matches and the output is there), failed.
+enum class FileOutcome { baked, kept, unchanged, failed };
+const char* toString(FileOutcome outcome);
 
 struct BatchEntry {
   std::filesystem::path input, output;
   bool ok = false;          // baked (now or, when skipped, last time)
   bool skipped = false;     // input, the files it names and the options unchanged since the manifest
   std::string error;        // why it failed
+  FileOutcome outcome = FileOutcome::failed;
   std::string digest;       // SHA-256 of the input and every file it names (buffers, images)
   nlohmann::ordered_json report;  // toJson(BakeResult) when baked in this run
 };
@@ -39,7 +51,8 @@ struct BatchEntry {
 std::vector<std::filesystem::path> findInputs(const std::filesystem::path& folder, const std::filesystem::path& skip = {});
 
 // SHA-256 over the input's bytes and those of every buffer and image it names inside its
-// asset root (hex).
+// asset root (hex). The manifest also records each such file's size and modification time: a
+// re-run in which none changed takes the digest from there (BatchOptions::verify: never).
 std::string inputDigest(const std::filesystem::path& input, const std::filesystem::path& assetRoot = {});
 
 // Two inputs of one run whose outputs are the same file (m.glb, m.obj and m.ply all become
@@ -54,9 +67,21 @@ std::vector<OutputCollision> outputCollisions(const std::vector<std::filesystem:
 // One message for them all, naming both inputs of each and the output.
 std::string describeCollisions(const std::vector<OutputCollision>& collisions);
 
+// The manifest's record of an input's contents: its digest, and the size and modification
+// time of every file the digest read ("stamps"). Where `previous` (the input's record in the
+// manifest, or null) has stamps that all still hold, its digest is taken as it is, without
+// reading a byte; `verify` reads every file all the same.
+struct InputDigest {
+  std::string digest;
+  nlohmann::ordered_json stamps;
+};
+InputDigest digestForManifest(const std::filesystem::path& input, const std::filesystem::path& assetRoot,
+                              const nlohmann::ordered_json& previous, bool verify = false);
+
 // Bakes the tree (refused as a whole, before anything is written, when two inputs would write
 // the same output); `onFile` is called after each file. Each finished file is recorded in the
-// journal at once; the manifest is written (atomically) at the end.
+// journal at once; the manifest is written (atomically) at the end, also when
+// `stopRequested` stopped the run early (then files not reached keep their earlier records).
 std::vector<BatchEntry> bakeTree(const std::filesystem::path& inputFolder, const std::filesystem::path& outputFolder,
                                  const BatchOptions& options, const std::function<void(const BatchEntry&)>& onFile = {});
 

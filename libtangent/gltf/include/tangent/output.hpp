@@ -41,6 +41,13 @@ class TemporaryGuard {
 // then let the signal end the process as it would have (exit status 128 + signal).
 void removeTemporariesOnSignal(const char* message = "");
 
+// For a batch (several files, each written whole): while on, the first SIGINT or SIGTERM only
+// asks to stop (stopRequested() turns true; `notice` is printed), so that the current file is
+// finished and recorded; a second one ends the process as the handler above does. Needs
+// removeTemporariesOnSignal() first.
+void stopGracefullyOnSignal(const char* notice);
+bool stopRequested();
+
 // Largest .glb the format can describe (its length fields are 32-bit).
 inline constexpr std::uint64_t kMaxGlbBytes = 0xFFFFFFFFull;
 
