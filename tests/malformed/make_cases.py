@@ -191,6 +191,28 @@ doc["accessors"][2]["sparse"] = {"count": 1, "indices": {"bufferView": 2, "compo
 add("sparse_index_target_out_of_range", {"in.gltf": json.dumps(doc).encode(), "base.bin": BIN, "tex.png": PNG},
     "is out of range (count 4)")
 
+# Strictly increasing sparse indices (glTF 2.0 3.6.2.3): the index view read from byte 4 is 2, 0.
+gltf_case("sparse_indices_not_increasing", sparse(count=2, index_offset=4), "/accessors/2/sparse/indices")
+cases[-1]["expect2"] = "must strictly increase"
+
+
+# Accessors without a bufferView are zeros the file does not store: three of 2 GiB each in a
+# file of 2 KB, refused at load (the limit on such data, 2 GiB per file), before any allocation.
+def unstored(with_sparse):
+    def mutate(doc):
+        for a in doc["accessors"][:3]:
+            del a["bufferView"]
+            a["count"] = 2 ** 31 // 12
+            if with_sparse:
+                a["sparse"] = {"count": 1, "indices": {"bufferView": 3, "componentType": 5123},
+                               "values": {"bufferView": 0 if a["type"] == "VEC3" else 2}}
+    return mutate
+
+
+for tag, with_sparse in (("", False), ("_sparse", True)):
+    gltf_case("accessors_unstored_huge" + tag, unstored(with_sparse), "/accessors/1: has no bufferView")
+    cases[-1]["expect2"] = "the limit is 2147483648 bytes"
+
 # --- meshes and primitives
 gltf_case("primitives_empty", setter(["meshes", 0, "primitives"], []), "/meshes/0/primitives")
 gltf_case("primitives_not_array", setter(["meshes", 0, "primitives"], {}), "/meshes/0/primitives")
@@ -206,6 +228,11 @@ gltf_case("targets_not_array", setter(["meshes", 0, "primitives", 0, "targets"],
 gltf_case("target_dangling", setter(["meshes", 0, "primitives", 0, "targets"], [{"POSITION": 12}]), "/targets/0/POSITION")
 gltf_case("index_count_not_triangles", setter(["accessors", 3, "count"], 5), "is not a multiple of 3")
 gltf_case("attribute_count_mismatch", setter(["accessors", 1, "count"], 3), "POSITION has 4")
+# What bake refuses, info refuses too (it used to describe these and exit 0).
+gltf_case("normal_type_vec2", setter(["accessors", 1, "type"], "VEC2"), "NORMAL (accessor 1): must be VEC3, found VEC2")
+gltf_case("position_type_vec2", setter(["accessors", 0, "type"], "VEC2"), "POSITION (accessor 0): must be VEC3, found VEC2")
+gltf_case("position_missing", setter(["meshes", 0, "primitives", 0, "attributes", "POSITION"], DELETE),
+          "primitive 0: has no POSITION attribute")
 
 
 files = {"in.gltf": json.dumps(base_document()).encode(), "tex.png": PNG,
@@ -287,6 +314,14 @@ for tag, uri, phrase in [
         ("absolute", "/etc/passwd", "is an absolute path"),
         ("file_scheme", "file:///etc/passwd", "has a scheme")]:
     gltf_case(f"image_uri_{tag}", setter(["images", 0, "uri"], uri), "/images/0 uri")
+    cases[-1]["expect2"] = phrase
+
+# data: URIs that are not base64 (tinygltf said "File not found" and echoed the whole URI):
+# the message names the buffer, says what is wrong and quotes none of the payload.
+for tag, uri, phrase in [
+        ("bad_character", "data:application/octet-stream;base64," + "@" * 200000, "has a character that is not base64"),
+        ("not_base64", "data:application/octet-stream," + "x" * 200000, "data: URI is not base64")]:
+    add(f"buffer_data_uri_{tag}", {"in.gltf": json.dumps(base_document(uri)).encode(), "tex.png": PNG}, "/buffers/0 uri")
     cases[-1]["expect2"] = phrase
 
 # --- GLB container: truncated at every header field, lengths that lie

@@ -187,16 +187,29 @@ AccessorLayout locate(const tinygltf::Model& model, int accessorIndex, const std
                                      layout.sparseCount * indexSize, where, accessorIndex, "sparse index");
     layout.sparseValues = viewRange(model, sparse.values.bufferView, static_cast<std::size_t>(sparse.values.byteOffset),
                                     layout.sparseCount * elementSize, where, accessorIndex, "sparse value");
+    // glTF 2.0 3.6.2.3: sparse indices strictly increase.
+    std::int64_t previous = -1;
     for (std::size_t i = 0; i < layout.sparseCount; ++i) {
       const std::uint32_t target = readUnsigned(layout.sparseIndices + i * indexSize, layout.sparseIndexType);
       if (target >= data.count)
         fail(where, accessorIndex, "sparse index " + std::to_string(target) + " is out of range (count " + std::to_string(data.count) + ")");
+      if (target <= previous)
+        fail(where, accessorIndex, "/accessors/" + std::to_string(accessorIndex) + "/sparse/indices: index " + std::to_string(target) +
+                                       " at position " + std::to_string(i) + " follows " + std::to_string(previous) +
+                                       "; sparse indices must strictly increase");
+      previous = target;
     }
   }
   return layout;
 }
 
 }  // namespace
+
+std::uint64_t unstoredBytes(const tinygltf::Model& model, int accessorIndex) {
+  const tinygltf::Accessor& accessor = model.accessors[accessorIndex];
+  if (accessor.bufferView >= 0) return 0;
+  return static_cast<std::uint64_t>(accessor.count) * static_cast<std::uint64_t>(componentCount(accessor.type)) * 4;
+}
 
 AccessorData readAccessor(const tinygltf::Model& model, int accessorIndex, const std::string& where) {
   const AccessorLayout layout = locate(model, accessorIndex, where);

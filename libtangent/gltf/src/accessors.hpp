@@ -29,6 +29,17 @@ std::size_t componentBytes(int componentType);  // 0 when unknown
 const char* typeName(int type);
 const char* componentTypeName(int componentType);
 
+// Memory for data a file declares but does not store: an accessor without a bufferView is
+// count zeros, which a 4 KB file can declare by the gigabyte. Decoded (as floats or 32-bit
+// indices), the accessors of a file's meshes without a bufferView may take this much in all;
+// loading refuses more, naming the accessor. Everything else bake, check and info allocate is
+// bounded by the bytes the file stores (each range is checked against them), times a constant.
+inline constexpr std::uint64_t kMaxUnstoredBytes = std::uint64_t(2) << 30;
+
+// What decoding accessor `accessorIndex` takes beyond the bytes the file stores for it: its
+// decoded size (4 bytes per component) when it has no bufferView, else 0. The index must exist.
+std::uint64_t unstoredBytes(const tinygltf::Model& model, int accessorIndex);
+
 // `where` prefixes every error message ("file.glb: mesh 0 primitive 0: NORMAL").
 AccessorData readAccessor(const tinygltf::Model& model, int accessorIndex, const std::string& where);
 

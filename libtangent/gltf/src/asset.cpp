@@ -1,12 +1,15 @@
 // SPDX-License-Identifier: MIT
 #include "asset.hpp"
 
+#include <climits>
 #include <algorithm>
 #include <cstring>
 #include <fstream>
 #include <iterator>
+#include <string_view>
 
 #include "tangent/gltf.hpp"
+#include "tangent/text.hpp"
 #include "compression.hpp"
 #include "document.hpp"
 #include "primitive.hpp"
@@ -34,12 +37,23 @@ void appendU32(std::vector<std::uint8_t>& out, std::uint32_t v) {
 // Largest input file read whole (a GLB cannot be larger than 4 GiB).
 constexpr std::uintmax_t kMaxInputBytes = std::uintmax_t(4) << 30;
 
-std::vector<std::uint8_t> readFileBytes(const std::filesystem::path& path) {
+// The input is a regular file, or an InputError says why not: a name the system refuses as too
+// long (it was reported as missing), missing, a directory, something else. `kind`: "a glTF file".
+void requireRegularFile(const std::filesystem::path& path, const char* kind) {
   std::error_code ec;
   const auto status = std::filesystem::status(path, ec);
+  if (ec == std::errc::filename_too_long)
+    throw InputError(text::quoted(path.string()) + ": the name is too long (" + std::to_string(path.string().size()) +
+                     " bytes; the system allows " + std::to_string(PATH_MAX) + " in a path and " + std::to_string(NAME_MAX) +
+                     " in one of its names)");
   if (!std::filesystem::exists(status)) throw InputError(path.string() + ": no such file");
-  if (std::filesystem::is_directory(status)) throw InputError(path.string() + ": is a directory, not a glTF file");
+  if (std::filesystem::is_directory(status)) throw InputError(path.string() + ": is a directory, not " + kind);
   if (!std::filesystem::is_regular_file(status)) throw InputError(path.string() + ": is not a regular file");
+}
+
+std::vector<std::uint8_t> readFileBytes(const std::filesystem::path& path) {
+  requireRegularFile(path, "a glTF file");
+  std::error_code ec;
   const std::uintmax_t size = std::filesystem::file_size(path, ec);
   if (ec || size >= kMaxInputBytes)
     throw InputError(path.string() + ": is " + std::to_string(size) + " bytes; inputs are limited to 4 GiB");
@@ -109,7 +123,7 @@ void checkUris(const Json& doc, const std::filesystem::path& baseDir, const std:
         const std::uintmax_t size = std::filesystem::file_size(file, ec);
         const auto declared = item.value("byteLength", std::int64_t(0));
         if (buffers && !ec && size < static_cast<std::uintmax_t>(declared))
-          throw InputError(label + ": " + what + ": byteLength is " + std::to_string(declared) + " but '" + uri + "' has " +
+          throw InputError(label + ": " + what + ": byteLength is " + std::to_string(declared) + " but '" + text::quoted(uri) + "' has " +
                            std::to_string(size) + " bytes");
       } catch (const MissingFileError&) {
         if (buffers) throw;
@@ -118,11 +132,35 @@ void checkUris(const Json& doc, const std::filesystem::path& baseDir, const std:
   }
 }
 
-// The members of a document tinygltf needs: see loadAssetBytes.
-Json loaderDocument(const Json& doc) {
+// The members of a document tinygltf needs (see loadAssetBytes), with each buffer in a data:
+// URI decoded into `decoded` (by buffer index; empty for the others) and replaced by a
+// one-byte placeholder. validateDocument checked the buffers' types and byteLength.
+Json loaderDocument(const Json& doc, const std::string& label, std::vector<std::vector<std::uint8_t>>& decoded) {
   Json subset = Json::object();
-  for (const char* key : {"asset", "extensionsUsed", "extensionsRequired", "buffers", "bufferViews", "accessors", "images"}) {
+  for (const char* key : {"asset", "extensionsUsed", "extensionsRequired", "bufferViews", "accessors", "images"}) {
     if (doc.contains(key)) subset[key] = doc[key];
+  }
+  if (!doc.contains("buffers")) return subset;
+  subset["buffers"] = Json::array();
+  decoded.assign(doc["buffers"].size(), {});
+  for (std::size_t i = 0; i < doc["buffers"].size(); ++i) {
+    const Json& buffer = doc["buffers"][i];
+    const auto uri = buffer.find("uri");
+    if (uri == buffer.end() || !uri->is_string() || !isDataUri(uri->get_ref<const std::string&>())) {
+      subset["buffers"].push_back(buffer);
+      continue;
+    }
+    const std::string what = label + ": /buffers/" + std::to_string(i) + " uri";
+    decoded[i] = decodeDataUri(uri->get_ref<const std::string&>(), what);
+    const auto byteLength = buffer.value("byteLength", std::uint64_t(0));
+    if (decoded[i].size() < byteLength)
+      throw InputError(what + ": the data: URI holds " + std::to_string(decoded[i].size()) + " bytes, byteLength is " +
+                       std::to_string(byteLength));
+    decoded[i].resize(byteLength);
+    Json placeholder = Json::object();
+    placeholder["byteLength"] = 1;
+    placeholder["uri"] = "data:application/octet-stream;base64,AA==";
+    subset["buffers"].push_back(std::move(placeholder));
   }
   return subset;
 }
@@ -213,9 +251,7 @@ std::vector<std::uint8_t> makeGlb(const std::string& json, std::span<const std::
 Asset loadAsset(const std::filesystem::path& path, const std::filesystem::path& assetRoot) {
   const std::string label = path.string();
   if (isMeshFile(path)) {
-    std::error_code ec;
-    if (std::filesystem::is_directory(path, ec)) throw InputError(label + ": is a directory, not a mesh file");
-    if (!std::filesystem::is_regular_file(path, ec)) throw InputError(label + ": no such file");
+    requireRegularFile(path, "a mesh file");
     return loadAssetBytes(meshFileToGlb(path), path, assetRoot, true);
   }
   return loadAssetBytes(readFileBytes(path), path, assetRoot, false);
@@ -231,19 +267,20 @@ Asset loadAssetBytes(std::vector<std::uint8_t> bytes, const std::filesystem::pat
   if (bytes.size() >= kMaxInputBytes) throw InputError(label + ": inputs are limited to 4 GiB");
   asset.binary = bytes.size() >= 4 && readU32(bytes.data()) == kGlbMagic;
 
+  // A .gltf is parsed from the bytes read and they are freed after: no copy of the text.
   std::string jsonText;
   std::span<const std::uint8_t> bin;
-  if (asset.binary) {
-    splitGlb(bytes, label, jsonText, bin);
-  } else {
-    jsonText.assign(bytes.begin(), bytes.end());
-  }
-  checkJsonDepth(jsonText, label);
+  if (asset.binary) splitGlb(bytes, label, jsonText, bin);
+  const std::string_view text = asset.binary ? std::string_view(jsonText)
+                                             : std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size());
+  checkJsonDepth(text, label);
   try {
-    asset.json = nlohmann::ordered_json::parse(jsonText);
+    asset.json = nlohmann::ordered_json::parse(text);
   } catch (const nlohmann::json::exception& e) {
-    throw InputError(label + ": not valid glTF JSON: " + e.what());
+    throw InputError(label + ": not valid glTF JSON: " + text::quoted(e.what()));  // it quotes the text it stopped at
   }
+  if (asset.binary) std::string().swap(jsonText);
+  else std::vector<std::uint8_t>().swap(bytes);
   if (!asset.json.is_object()) throw InputError(label + ": glTF JSON must be an object");
   validateDocument(asset.json, label);
   const std::filesystem::path baseDir = std::filesystem::absolute(path).parent_path();
@@ -254,8 +291,11 @@ Asset loadAssetBytes(std::vector<std::uint8_t> bytes, const std::filesystem::pat
   // missing files it warns of): the scene is read from asset.json. With the whole document it
   // parsed and copied 1e5 meshes and nodes a second time (38% of `check` on 64k primitives).
   // Compressed data: a document it accepts (see adaptForLoader); the data is decoded below.
+  // Buffers in data: URIs are decoded here, not by tinygltf, which kept several copies of the
+  // text (a 100 MB URI took 1.4 GB) and answered a URI that is not base64 with "File not found".
+  std::vector<std::vector<std::uint8_t>> dataUriBuffers;
   {
-    nlohmann::ordered_json forLoader = loaderDocument(asset.json);
+    nlohmann::ordered_json forLoader = loaderDocument(asset.json, label, dataUriBuffers);
     adaptForLoader(forLoader);
     jsonText = forLoader.dump();
     if (asset.binary) replaceGlbJson(bytes, jsonText, bin);
@@ -277,9 +317,12 @@ Asset loadAssetBytes(std::vector<std::uint8_t> bytes, const std::filesystem::pat
   }
   if (!ok) {
     while (!err.empty() && (err.back() == '\n' || err.back() == ' ')) err.pop_back();
-    throw InputError(label + ": cannot be loaded: " + (err.empty() ? std::string("unknown tinygltf error") : err));
+    throw InputError(label + ": cannot be loaded: " + (err.empty() ? std::string("unknown tinygltf error") : text::quoted(err)));
   }
   if (!warn.empty()) asset.warnings.push_back(label + ": " + warn);
+  for (std::size_t i = 0; i < dataUriBuffers.size(); ++i) {
+    if (!dataUriBuffers[i].empty()) asset.model.buffers[i].data = std::move(dataUriBuffers[i]);
+  }
   decodeCompressedData(asset);
   verifyMeshData(asset);
   return asset;

@@ -285,7 +285,8 @@ PrimitivePlan PrimitiveBaker::planPrimitive(int meshIndex, int primitiveIndex) {
     throw InputError(plan.where + ": has no attributes object");
   const Json& attributes = primitive["attributes"];
   const std::string uvName = "TEXCOORD_" + std::to_string(needs.texCoord);
-  if (detail::accessorOf(attributes, "POSITION") < 0) throw InputError(plan.where + ": has no POSITION attribute");
+  if (const std::string problem = detail::missingPosition(primitive, needs); !problem.empty())
+    throw InputError(plan.where + ": " + problem);
   if (detail::accessorOf(attributes, "NORMAL") < 0) {
     result.reason = "no NORMAL attribute; tangents need normals, primitive left as it is";
     return plan;

@@ -9,6 +9,7 @@
 #include <chrono>
 #include <cstdio>
 #include <fstream>
+#include <iterator>
 #include <unordered_map>
 
 #include "accessors.hpp"
@@ -17,7 +18,9 @@
 #include "check_primitive.hpp"
 #include "entry_point.hpp"
 #include "tangent_rules.hpp"
+#include "validate.hpp"
 #include "tangent/gltf.hpp"
+#include "tangent/text.hpp"
 
 namespace tangent::gltf {
 namespace {
@@ -417,13 +420,22 @@ double toleranceValue(const Json& value, const std::string& where) {
 }  // namespace
 
 void applyCheckConfig(const std::filesystem::path& file, CheckOptions& options) {
-  std::ifstream in(file);
+  // The limits of a glTF's JSON (size, then nesting before the parser recurses): a config
+  // nested a million deep overflowed the stack.
+  std::error_code ec;
+  const std::uintmax_t size = std::filesystem::file_size(file, ec);
+  if (!ec && size > kMaxJsonBytes)
+    throw std::runtime_error(file.string() + ": the check configuration is " + std::to_string(size) + " bytes; the limit is " +
+                             std::to_string(kMaxJsonBytes));
+  std::ifstream in(file, std::ios::binary);
   if (!in) throw std::runtime_error(file.string() + ": cannot read the check configuration");
+  const std::string text{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+  checkJsonDepth(text, file.string(), "the check configuration");
   Json config;
   try {
-    config = Json::parse(in);
+    config = Json::parse(text);
   } catch (const nlohmann::json::exception& e) {
-    throw std::runtime_error(file.string() + ": not JSON: " + e.what());
+    throw std::runtime_error(file.string() + ": not JSON: " + text::quoted(e.what()));
   }
   const std::string where = file.string();
   if (!config.is_object()) throw std::runtime_error(where + ": must be a JSON object");

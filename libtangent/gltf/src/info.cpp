@@ -29,9 +29,12 @@ nlohmann::ordered_json describe(const std::filesystem::path& input, const std::f
     for (std::size_t p = 0; p < primitiveCount; ++p) {
       const Json& primitive = mesh["primitives"][p];
       const detail::PrimitiveNeeds needs = detail::primitiveNeeds(doc, primitive, asset.fromMeshFile);
-      // What bake refuses, info refuses: a normal texture on a UV set the primitive lacks.
-      if (const std::string problem = detail::missingUvSet(primitive, needs); !problem.empty())
-        throw InputError(input.string() + ": " + detail::primitiveLabel(doc, static_cast<int>(m), static_cast<int>(p)) + ": " + problem);
+      // What bake refuses, info refuses: a normal texture on a UV set the primitive lacks, or
+      // on a primitive without POSITION (the rest bake refuses, loadAsset refused above).
+      for (const std::string& problem : {detail::missingUvSet(primitive, needs), detail::missingPosition(primitive, needs)}) {
+        if (!problem.empty())
+          throw InputError(input.string() + ": " + detail::primitiveLabel(doc, static_cast<int>(m), static_cast<int>(p)) + ": " + problem);
+      }
       Json primitiveOut = Json::object();
       primitiveOut["index"] = p;
       primitiveOut["mode"] = primitive.value("mode", 4);

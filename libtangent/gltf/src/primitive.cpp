@@ -103,6 +103,18 @@ unsigned threadsFor(std::size_t corners, unsigned requested) {
   return corners < kCornersPerExtraThread ? 1u : requested;
 }
 
+std::string missingPosition(const Json& primitive, const PrimitiveNeeds& needs) {
+  if (!needs.triangles || needs.texCoord < 0) return {};
+  if (primitive.contains("attributes") && accessorOf(primitive["attributes"], "POSITION") >= 0) return {};
+  return "has no POSITION attribute";
+}
+
+int requiredAttributeType(const std::string& semantic) {
+  if (semantic == "POSITION" || semantic == "NORMAL") return TINYGLTF_TYPE_VEC3;
+  if (semantic.rfind("TEXCOORD_", 0) == 0) return TINYGLTF_TYPE_VEC2;
+  return 0;
+}
+
 int accessorOf(const Json& object, const std::string& name) {
   auto it = object.find(name);
   return it != object.end() && it->is_number_integer() ? it->get<int>() : -1;
@@ -219,10 +231,20 @@ void verifyMeshData(const Asset& asset) {
   // primitives share it (CAD scenes: 1e5 primitives on a few accessors).
   std::unordered_map<int, std::size_t> countOf;
   std::set<std::pair<int, std::size_t>> indicesChecked;
+  std::uint64_t unstored = 0;  // decoded bytes of the accessors seen that the file does not store
   auto checkAccessor = [&](const tinygltf::Model& model, int accessor, const std::string& where) {
     auto known = countOf.find(accessor);
-    if (known == countOf.end()) known = countOf.emplace(accessor, detail::checkAccessor(model, accessor, where)).first;
-    return known->second;
+    if (known != countOf.end()) return known->second;
+    const std::size_t count = detail::checkAccessor(model, accessor, where);
+    if (const std::uint64_t bytes = unstoredBytes(model, accessor); bytes > 0) {
+      unstored += bytes;
+      if (unstored > kMaxUnstoredBytes)
+        throw InputError(file + ": /accessors/" + std::to_string(accessor) + ": has no bufferView: its " + std::to_string(count) +
+                         " elements are zeros the file does not store, " + std::to_string(bytes) + " bytes decoded (" +
+                         std::to_string(unstored) + " with the accessors before it); the limit is " +
+                         std::to_string(kMaxUnstoredBytes) + " bytes of such data per file");
+    }
+    return countOf.emplace(accessor, count).first->second;
   };
   const std::size_t meshCount = doc.contains("meshes") ? doc["meshes"].size() : 0;
   for (std::size_t m = 0; m < meshCount; ++m) {
@@ -236,6 +258,9 @@ void verifyMeshData(const Asset& asset) {
         for (const auto& [name, value] : map.items()) {
           const std::string at = where + ": " + prefix + name;
           const std::size_t count = checkAccessor(asset.model, value.get<int>(), at);
+          const int type = asset.model.accessors[value.get<int>()].type;
+          if (const int required = requiredAttributeType(name); required != 0 && type != required)
+            throw InputError(at + " (accessor " + value.dump() + "): must be " + typeName(required) + ", found " + typeName(type));
           if (position >= 0 && count != vertexCount)
             throw InputError(at + " (accessor " + value.dump() + "): has " + std::to_string(count) + " elements, POSITION has " +
                              std::to_string(vertexCount));

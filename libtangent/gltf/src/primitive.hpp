@@ -27,6 +27,14 @@ PrimitiveNeeds primitiveNeeds(const nlohmann::ordered_json& doc, const nlohmann:
 // The one rule for a normal texture on a UV set the primitive does not have (a broken file:
 // bake and info refuse it, check reports a finding): what is wrong, or "" when nothing is.
 std::string missingUvSet(const nlohmann::ordered_json& primitive, const PrimitiveNeeds& needs);
+// Likewise for a primitive that needs tangents (triangles and a UV set to bake from) and has
+// no POSITION: what is wrong, or "".
+std::string missingPosition(const nlohmann::ordered_json& primitive, const PrimitiveNeeds& needs);
+
+// The accessor type the spec gives an attribute semantic (POSITION and NORMAL VEC3,
+// TEXCOORD_n VEC2, morph target deltas alike), or 0 where it leaves the type open or the
+// stored-tangent checks judge it (TANGENT). verifyMeshData refuses any other type.
+int requiredAttributeType(const std::string& semantic);
 
 // Triangle list (3 vertex indices per triangle) from glTF modes 4, 5 and 6 (spec 3.7.2.1);
 // stitching triangles of joined strips (a repeated index) draw nothing and are left out.

@@ -6,6 +6,7 @@
 #include <string_view>
 
 #include "tangent/gltf.hpp"
+#include "tangent/text.hpp"
 
 namespace tangent::gltf::detail {
 namespace fs = std::filesystem;
@@ -27,11 +28,6 @@ bool hasScheme(const std::string& uri) {
   return std::all_of(uri.begin(), uri.begin() + static_cast<std::ptrdiff_t>(colon), [](char c) {
     return std::isalnum(static_cast<unsigned char>(c)) || c == '+' || c == '-' || c == '.';
   });
-}
-
-std::string shown(const std::string& uri) {
-  constexpr std::size_t kShown = 120;  // a data: URI or a hostile name can be megabytes long
-  return uri.size() <= kShown ? uri : uri.substr(0, kShown) + "...";
 }
 
 }  // namespace
@@ -119,7 +115,7 @@ bool isInside(const fs::path& path, const fs::path& root) {
 
 fs::path resolveFileUri(const std::string& uri, const fs::path& baseDir, const fs::path& root, const std::string& label,
                         const std::string& what) {
-  const std::string prefix = label + ": " + what + " uri '" + shown(uri) + "' ";
+  const std::string prefix = label + ": " + what + " uri '" + text::quoted(uri) + "' ";  // a hostile name can be megabytes long
   if (uri.empty()) throw InputError(prefix + "is empty");
   if (hasScheme(uri)) throw InputError(prefix + "has a scheme; only data: URIs and relative paths are allowed");
   const std::string decoded = percentDecode(uri);

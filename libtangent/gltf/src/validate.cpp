@@ -13,9 +13,9 @@ namespace tangent::gltf::detail {
 
 using Json = nlohmann::ordered_json;
 
-void checkJsonDepth(std::string_view text, const std::string& label) {
+void checkJsonDepth(std::string_view text, const std::string& label, const char* what) {
   if (text.size() > kMaxJsonBytes)
-    throw InputError(label + ": glTF JSON is " + std::to_string(text.size()) + " bytes; the limit is " +
+    throw InputError(label + ": " + what + " is " + std::to_string(text.size()) + " bytes; the limit is " +
                      std::to_string(kMaxJsonBytes));
   std::size_t depth = 0;
   bool inString = false;
@@ -30,7 +30,7 @@ void checkJsonDepth(std::string_view text, const std::string& label) {
       inString = true;
     } else if (c == '[' || c == '{') {
       if (++depth > kMaxJsonDepth)
-        throw InputError(label + ": glTF JSON nests deeper than " + std::to_string(kMaxJsonDepth) +
+        throw InputError(label + ": " + what + " nests deeper than " + std::to_string(kMaxJsonDepth) +
                          " levels (at byte " + std::to_string(i) + ")");
     } else if ((c == ']' || c == '}') && depth > 0) {
       --depth;

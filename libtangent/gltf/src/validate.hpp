@@ -18,8 +18,9 @@ inline constexpr std::size_t kMaxJsonDepth = 256;
 // Largest glTF JSON text accepted (a JSON chunk or .gltf file).
 inline constexpr std::size_t kMaxJsonBytes = std::size_t(512) << 20;
 
-// Throws InputError when `text` nests deeper than kMaxJsonDepth (strings are skipped).
-void checkJsonDepth(std::string_view text, const std::string& label);
+// Throws InputError when `text` is longer than kMaxJsonBytes or nests deeper than kMaxJsonDepth
+// (strings are skipped). `what` names the text in the message: a glTF, a check configuration.
+void checkJsonDepth(std::string_view text, const std::string& label, const char* what = "glTF JSON");
 
 // Types, references and declared sizes of the whole document (glTF 2.0 schema rules the tools
 // depend on); throws InputError "<label>: /pointer/to/element: what is wrong".
