@@ -10,7 +10,7 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 seconds=${1:-40}
-declare -A ci_runs=([gltf]=150000 [mesh_file]=25000 [core]=30000 [reports]=60000)
+declare -A ci_runs=([gltf]=150000 [mesh_file]=25000 [core]=30000 [reports]=40000)
 build=build-fuzz
 if [ ! -f "$build/build.ninja" ]; then
   CC=clang CXX=clang++ cmake -S . -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DTANGENT_FUZZ=ON >/dev/null
