@@ -16,6 +16,7 @@
 #include <iostream>
 #include <optional>
 #include <stdexcept>
+#include <utility>
 
 #include "camera.hpp"
 #include "renderer.hpp"
@@ -59,6 +60,9 @@ const char* kUsage =
     "  --reflectivity F, --sphere-map FILE, --uv-scale F\n"
     "  --frames N               with --screenshot: render N frames and print the median frame time and\n"
     "                           how many shadow-map passes they drew\n"
+    "  --stats                  print what the file's scene holds (primitives, the instances that draw\n"
+    "                           them, triangles, images, lights); without --screenshot, load the file, print\n"
+    "                           and exit without a window (1 when it cannot be loaded)\n"
     "  --asset-root DIR         folder buffer and image URIs may not leave (default: the file's folder)\n"
     "  --shader-dir DIR         where the shaders are (default: the source tree's shaders/)\n"
     "  --check-shaders          link the programs in a spread of variants, compare their vertex inputs\n"
@@ -86,6 +90,7 @@ struct Options {
   fs::path assetRoot;  // --asset-root: the folder buffer and image URIs may not leave
   int frames = 1;
   bool checkShaders = false;
+  bool stats = false;  // --stats
   int msaaSamples = -1;  // 0: off; -1: 4, or off on a software rasteriser (softwareRasteriser)
 };
 
@@ -140,6 +145,7 @@ int parseOptions(int argc, char** argv, Options& options) {
       else if (arg == "--shader-dir") options.shaderDir = value();
       else if (arg == "--asset-root") options.assetRoot = value();
       else if (arg == "--check-shaders") options.checkShaders = true;
+      else if (arg == "--stats") options.stats = true;
       else if (arg == "--depth-prepass") options.settings.depthPrePass = true;
       else if (arg == "--exposure") {
         const std::string text = value();
@@ -169,6 +175,22 @@ int parseOptions(int argc, char** argv, Options& options) {
   return -1;
 }
 
+tangent::gltf::SceneOptions sceneOptionsFor(const Options& options) {
+  tangent::gltf::SceneOptions sceneOptions;
+  sceneOptions.negateFileW = options.negateW;
+  sceneOptions.assetRoot = options.assetRoot;
+  return sceneOptions;
+}
+
+// --stats: one line on what a scene holds.
+void printSceneStats(const fs::path& file, const tangent::gltf::Scene& scene) {
+  std::size_t triangles = 0;
+  for (const auto& instance : scene.instances) triangles += scene.items[instance.item].positions.size() / 9;
+  std::printf("scene %s: %zu primitive(s), %zu instance(s), %zu triangle(s) drawn, %zu image(s), %zu light(s)\n", file.string().c_str(),
+              scene.items.size(), scene.instances.size(), triangles, scene.images.size(), scene.lights.size());
+  std::fflush(stdout);
+}
+
 // Everything about the loaded asset the window shows.
 struct Viewer {
   Options options;
@@ -184,12 +206,10 @@ struct Viewer {
   bool load(const fs::path& file) {
     messages.clear();
     try {
-      tangent::gltf::SceneOptions sceneOptions;
-      sceneOptions.negateFileW = options.negateW;
-      sceneOptions.assetRoot = options.assetRoot;
-      const tangent::gltf::Scene scene = tangent::gltf::loadScene(file, sceneOptions);
+      tangent::gltf::Scene scene = tangent::gltf::loadScene(file, sceneOptionsFor(options));
+      if (options.stats) printSceneStats(file, scene);
       messages = scene.messages;
-      renderer.setScene(scene, messages);
+      renderer.setScene(std::move(scene), messages);
       loaded = file;
       loadedDemo = -1;
       for (int i = 0; i < static_cast<int>(std::size(kDemoFiles)); ++i) {
@@ -496,6 +516,18 @@ int interactive(Viewer& viewer, GLFWwindow* window) {
 int main(int argc, char** argv) {
   Options options;
   if (const int exit = parseOptions(argc, argv, options); exit >= 0) return exit;
+  if (options.stats && !options.screenshot && !options.checkShaders) {
+    // The scene alone: no window, no GL.
+    try {
+      const tangent::gltf::Scene scene = tangent::gltf::loadScene(options.input, sceneOptionsFor(options));
+      for (const auto& m : scene.messages) std::cerr << "note: " << m << "\n";
+      printSceneStats(options.input, scene);
+      return 0;
+    } catch (const std::exception& e) {
+      std::cerr << "error: " << e.what() << "\n";
+      return 1;
+    }
+  }
   glfwSetErrorCallback([](int code, const char* text) { std::cerr << "GLFW error " << code << ": " << text << "\n"; });
   if (!glfwInit()) {
     std::cerr << "error: cannot initialize GLFW (no display? run under xvfb-run)\n";

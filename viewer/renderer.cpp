@@ -133,15 +133,20 @@ std::vector<Light> lightsFrom(const gltf::Scene& scene, glm::vec3 center, float 
 // at their alphaCutoff: a half-transparent surface casts where it is mostly opaque.
 constexpr float kBlendShadowCutoff = 0.5f;
 
+// A node whose transform mirrors (negative determinant) turns its triangles' winding around, so
+// its front faces are the clockwise ones (glTF 2.0 3.7.4).
+void frontFace(bool mirrored) { glFrontFace(mirrored ? GL_CW : GL_CCW); }
+
 const gltf::MaterialDesc* materialOf(const gltf::Scene& scene, int material) {
   return material >= 0 && material < static_cast<int>(scene.materials.size()) ? &scene.materials[material] : nullptr;
 }
 
 }  // namespace
 
-void Renderer::setScene(const gltf::Scene& scene, std::vector<std::string>& messages) {
-  scene_ = scene;
+void Renderer::setScene(gltf::Scene scene, std::vector<std::string>& messages) {
+  scene_ = std::move(scene);
   meshes_.clear();
+  instances_.clear();
   textures_.clear();
   srgbTextures_.clear();
   glyphsBuiltFor_ = -1;
@@ -176,24 +181,26 @@ void Renderer::setScene(const gltf::Scene& scene, std::vector<std::string>& mess
   for (const auto& item : scene_.items) {
     GpuMesh mesh;
     mesh.material = item.material;
-    mesh.model = glm::make_mat4(item.world.data());
-    const std::size_t corners = item.positions.size() / 3;
     const std::vector<float> data = packMeshVertices(item);
-    glm::vec3 lo(std::numeric_limits<float>::max()), hi(-std::numeric_limits<float>::max());
-    for (std::size_t c = 0; c < corners; ++c) {
-      const glm::vec3 p = glm::vec3(mesh.model * glm::vec4(glm::make_vec3(&item.positions[3 * c]), 1));
-      lo = glm::min(lo, p);
-      hi = glm::max(hi, p);
-    }
-    mesh.centerWorld = corners > 0 ? (lo + hi) * 0.5f : glm::vec3(0);
     mesh.vertexArray = makeVertexArray();
     mesh.vertices = makeBuffer();
     glBindVertexArray(mesh.vertexArray.get());
     glBindBuffer(GL_ARRAY_BUFFER, mesh.vertices.get());
     glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(data.size() * sizeof(float)), data.data(), GL_STATIC_DRAW);
     setVertexLayout(kMeshVertexLayout);
-    mesh.count = static_cast<GLsizei>(corners);
+    mesh.count = static_cast<GLsizei>(item.positions.size() / 3);
     meshes_.push_back(std::move(mesh));
+  }
+  instances_.reserve(scene_.instances.size());
+  for (const auto& source : scene_.instances) {
+    GpuInstance instance;
+    instance.mesh = source.item;
+    instance.model = glm::make_mat4(source.world.data());
+    instance.mirrored = glm::determinant(glm::mat3(instance.model)) < 0;
+    const gltf::DrawItem& item = scene_.items[source.item];
+    const glm::vec3 centerObject = (glm::make_vec3(item.boundsMin.data()) + glm::make_vec3(item.boundsMax.data())) * 0.5f;
+    instance.centerWorld = item.boundsMin[0] <= item.boundsMax[0] ? glm::vec3(instance.model * glm::vec4(centerObject, 1)) : glm::vec3(0);
+    instances_.push_back(instance);
   }
   glBindVertexArray(0);
   boundsMin_ = glm::make_vec3(scene_.boundsMin.data());
@@ -273,41 +280,47 @@ FeatureSet Renderer::alphaTestFeatures(const GpuMesh& mesh, bool blendCasts) con
   return features;
 }
 
-// Front faces and culling as glTF defines them for a mesh: a node whose transform mirrors
-// (negative determinant) turns its triangles' winding around, so its front faces are the
-// clockwise ones (glTF 2.0 3.7.4); back faces are culled unless the material is doubleSided.
+// Culling as glTF defines it for a mesh: back faces are culled unless the material is
+// doubleSided. Which faces are front is the instance's (frontFace).
 void Renderer::applyCulling(const GpuMesh& mesh, const RenderSettings& settings) const {
-  const bool mirrored = glm::determinant(glm::mat3(mesh.model)) < 0;
-  glFrontFace(mirrored ? GL_CW : GL_CCW);
   const gltf::MaterialDesc* material = materialOf(scene_, mesh.material);
   if ((material && material->doubleSided) || settings.view == DebugView::faceOrientation) glDisable(GL_CULL_FACE);
   else glEnable(GL_CULL_FACE), glCullFace(GL_BACK);
 }
 
-void Renderer::drawDepth(const std::vector<const GpuMesh*>& meshes, const glm::mat4& viewProjection, const RenderSettings& settings,
+void Renderer::drawDepth(std::span<const GpuInstance* const> instances, const glm::mat4& viewProjection, const RenderSettings& settings,
                          bool blendCasts, bool cullAsLit) {
-  for (const GpuMesh* mesh : meshes) {
-    const FeatureSet features = alphaTestFeatures(*mesh, blendCasts);
-    const GLuint program = shaders_.depthOnly(features);
-    glUseProgram(program);
-    setUniform(program, "u_viewProjection", viewProjection);
-    setUniform(program, "u_model", mesh->model);
-    if (has(features, Feature::alphaMask)) {
-      const gltf::MaterialDesc& material = *materialOf(scene_, mesh->material);
-      setUniform(program, "u_uvScale", settings.uvScale);
-      setUniform(program, "u_baseColorFactor", glm::make_vec4(material.baseColor.data()));
-      setUniform(program, "u_alphaCutoff",
-                 material.alphaMode == gltf::MaterialDesc::AlphaMode::mask ? material.alphaCutoff : kBlendShadowCutoff);
-      if (has(features, Feature::baseColorMap)) {
-        glActiveTexture(GL_TEXTURE0);
-        glBindTexture(GL_TEXTURE_2D, textureOf(material.baseColorTexture));
-        setUniform(program, "u_baseColorMap", 0);
-        setUvUniforms(program, "u_baseColor", material.baseColorTexture);
+  BoundMesh bound;
+  for (const GpuInstance* instance : instances) {
+    const GpuMesh& mesh = meshes_[instance->mesh];
+    if (bound.mesh != instance->mesh) {
+      const FeatureSet features = alphaTestFeatures(mesh, blendCasts);
+      const GLuint program = shaders_.depthOnly(features);
+      glUseProgram(program);
+      setUniform(program, "u_viewProjection", viewProjection);
+      if (has(features, Feature::alphaMask)) {
+        const gltf::MaterialDesc& material = *materialOf(scene_, mesh.material);
+        setUniform(program, "u_uvScale", settings.uvScale);
+        setUniform(program, "u_baseColorFactor", glm::make_vec4(material.baseColor.data()));
+        setUniform(program, "u_alphaCutoff",
+                   material.alphaMode == gltf::MaterialDesc::AlphaMode::mask ? material.alphaCutoff : kBlendShadowCutoff);
+        if (has(features, Feature::baseColorMap)) {
+          glActiveTexture(GL_TEXTURE0);
+          glBindTexture(GL_TEXTURE_2D, textureOf(material.baseColorTexture));
+          setUniform(program, "u_baseColorMap", 0);
+          setUvUniforms(program, "u_baseColor", material.baseColorTexture);
+        }
       }
+      if (cullAsLit) applyCulling(mesh, settings);
+      glBindVertexArray(mesh.vertexArray.get());
+      bound = BoundMesh{instance->mesh, glGetUniformLocation(program, "u_model"), -1, -1, -1};
     }
-    if (cullAsLit) applyCulling(*mesh, settings);
-    glBindVertexArray(mesh->vertexArray.get());
-    glDrawArrays(GL_TRIANGLES, 0, mesh->count);
+    if (cullAsLit && bound.mirrored != int(instance->mirrored)) {
+      frontFace(instance->mirrored);
+      bound.mirrored = instance->mirrored;
+    }
+    glUniformMatrix4fv(bound.model, 1, GL_FALSE, glm::value_ptr(instance->model));
+    glDrawArrays(GL_TRIANGLES, 0, mesh.count);
   }
 }
 
@@ -353,8 +366,11 @@ void Renderer::drawShadowMap(const RenderSettings& settings) {
   glDisable(GL_CULL_FACE);
   // Every mesh casts: opaque ones whole, MASK ones cut out at their alphaCutoff, BLEND ones cut
   // out at kBlendShadowCutoff.
-  std::vector<const GpuMesh*> casters;
-  for (const GpuMesh& mesh : meshes_) casters.push_back(&mesh);
+  // Grouped by mesh, so that each mesh's state is set once.
+  std::vector<const GpuInstance*> casters;
+  casters.reserve(instances_.size());
+  for (const GpuInstance& instance : instances_) casters.push_back(&instance);
+  std::stable_sort(casters.begin(), casters.end(), [](const GpuInstance* a, const GpuInstance* b) { return a->mesh < b->mesh; });
   drawDepth(casters, lightViewProjection(), settings, true, false);
   glDisable(GL_POLYGON_OFFSET_FILL);
   glBindFramebuffer(GL_FRAMEBUFFER, static_cast<GLuint>(previous));
@@ -363,7 +379,7 @@ void Renderer::drawShadowMap(const RenderSettings& settings) {
 
 FrameStats Renderer::render(const CameraMatrices& camera, const RenderSettings& settings, int width, int height) {
   FrameStats stats;
-  const bool anyShadows = settings.shadows && !meshes_.empty() && !lights_.empty() && lights_[0].directional &&
+  const bool anyShadows = settings.shadows && !instances_.empty() && !lights_.empty() && lights_[0].directional &&
                           settings.view == DebugView::lit;
   if (anyShadows) {
     // The map depends on the scene, light 0's direction and the map size only: a camera that
@@ -373,7 +389,7 @@ FrameStats Renderer::render(const CameraMatrices& camera, const RenderSettings& 
       drawShadowMap(settings);
       shadowKey_ = key;
       stats.depthPass = true;
-      stats.drawCalls += static_cast<int>(meshes_.size());
+      stats.drawCalls += static_cast<int>(instances_.size());
     }
   }
   glViewport(0, 0, width, height);
@@ -383,34 +399,53 @@ FrameStats Renderer::render(const CameraMatrices& camera, const RenderSettings& 
   glEnable(GL_DEPTH_TEST);
   glDisable(GL_CULL_FACE);
 
-  // Opaque and masked meshes front to back (less overdraw), then blended ones back to front
-  // over them without writing depth.
+  // Opaque and masked meshes front to back (less overdraw): the mesh with the nearest instance
+  // first, its instances front to back, so that each mesh's state is set once. Then blended
+  // instances back to front over them without writing depth (one by one: the order matters).
   auto blended = [&](const GpuMesh& mesh) {
     return mesh.material >= 0 && mesh.material < static_cast<int>(scene_.materials.size()) &&
            scene_.materials[mesh.material].alphaMode == gltf::MaterialDesc::AlphaMode::blend && settings.view == DebugView::lit;
   };
-  std::vector<std::pair<float, const GpuMesh*>> opaque, transparent;
-  for (const GpuMesh& mesh : meshes_) {
-    const float distance = glm::length(mesh.centerWorld - camera.eye);
-    (blended(mesh) ? transparent : opaque).emplace_back(distance, &mesh);
+  struct Ordered {
+    float distance;
+    const GpuInstance* instance;
+  };
+  std::vector<Ordered> opaqueOrder, transparentOrder;
+  std::vector<float> nearestOfMesh(meshes_.size(), std::numeric_limits<float>::max());
+  for (const GpuInstance& instance : instances_) {
+    const float distance = glm::length(instance.centerWorld - camera.eye);
+    if (blended(meshes_[instance.mesh])) {
+      transparentOrder.push_back({distance, &instance});
+    } else {
+      opaqueOrder.push_back({distance, &instance});
+      nearestOfMesh[instance.mesh] = std::min(nearestOfMesh[instance.mesh], distance);
+    }
   }
-  std::stable_sort(opaque.begin(), opaque.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
-  std::stable_sort(transparent.begin(), transparent.end(), [](const auto& a, const auto& b) { return a.first > b.first; });
+  std::stable_sort(opaqueOrder.begin(), opaqueOrder.end(), [&](const Ordered& a, const Ordered& b) {
+    const float nearA = nearestOfMesh[a.instance->mesh], nearB = nearestOfMesh[b.instance->mesh];
+    if (nearA != nearB) return nearA < nearB;
+    if (a.instance->mesh != b.instance->mesh) return a.instance->mesh < b.instance->mesh;
+    return a.distance < b.distance;
+  });
+  std::stable_sort(transparentOrder.begin(), transparentOrder.end(),
+                   [](const Ordered& a, const Ordered& b) { return a.distance > b.distance; });
+  std::vector<const GpuInstance*> opaque, transparent;
+  opaque.reserve(opaqueOrder.size());
+  for (const Ordered& entry : opaqueOrder) opaque.push_back(entry.instance);
+  for (const Ordered& entry : transparentOrder) transparent.push_back(entry.instance);
   stats.exposure = exposure(settings);
   const bool prePass = settings.depthPrePass && settings.view == DebugView::lit && !opaque.empty();
   if (prePass) {
     // Depth of the opaque and masked meshes first, so that the shading pass below runs the
     // fragment shader once per pixel; same culling, same invariant positions, GL_LEQUAL.
-    std::vector<const GpuMesh*> occluders;
-    for (const auto& [distance, mesh] : opaque) occluders.push_back(mesh);
     glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
-    drawDepth(occluders, camera.projection * camera.view, settings, false, true);
-    stats.drawCalls += static_cast<int>(occluders.size());
+    drawDepth(opaque, camera.projection * camera.view, settings, false, true);
+    stats.drawCalls += static_cast<int>(opaque.size());
     glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
     glDepthFunc(GL_LEQUAL);
     glDepthMask(GL_FALSE);
   }
-  for (const auto& [distance, mesh] : opaque) drawMesh(*mesh, camera, settings, anyShadows, stats);
+  drawInstances(opaque, camera, settings, anyShadows, stats);
   if (prePass) {
     glDepthFunc(GL_LESS);
     glDepthMask(GL_TRUE);
@@ -419,7 +454,7 @@ FrameStats Renderer::render(const CameraMatrices& camera, const RenderSettings& 
     glEnable(GL_BLEND);
     glBlendFuncSeparate(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA, GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
     glDepthMask(GL_FALSE);
-    for (const auto& [distance, mesh] : transparent) drawMesh(*mesh, camera, settings, anyShadows, stats);
+    drawInstances(transparent, camera, settings, anyShadows, stats);
     glDepthMask(GL_TRUE);
     glDisable(GL_BLEND);
   }
@@ -433,9 +468,36 @@ FrameStats Renderer::render(const CameraMatrices& camera, const RenderSettings& 
   return stats;
 }
 
-void Renderer::drawMesh(const GpuMesh& mesh, const CameraMatrices& camera, const RenderSettings& settings, bool shadows, FrameStats& stats) {
-  const bool mirrored = glm::determinant(glm::mat3(mesh.model)) < 0;
-  applyCulling(mesh, settings);
+void Renderer::drawInstances(std::span<const GpuInstance* const> instances, const CameraMatrices& camera, const RenderSettings& settings,
+                             bool shadows, FrameStats& stats) {
+  BoundMesh bound;
+  for (const GpuInstance* instance : instances) {
+    const GpuMesh& mesh = meshes_[instance->mesh];
+    if (bound.mesh != instance->mesh) {
+      const GLuint program = bindMesh(mesh, camera, settings, shadows);
+      applyCulling(mesh, settings);
+      bound = BoundMesh{instance->mesh, glGetUniformLocation(program, "u_model"), glGetUniformLocation(program, "u_normalMatrix"),
+                        glGetUniformLocation(program, "u_mirror"), -1};
+    }
+    drawInstance(*instance, bound);
+    ++stats.drawCalls;
+    stats.triangles += static_cast<std::size_t>(mesh.count / 3);
+  }
+}
+
+void Renderer::drawInstance(const GpuInstance& instance, BoundMesh& bound) {
+  if (bound.mirrored != int(instance.mirrored)) {
+    frontFace(instance.mirrored);
+    glUniform1f(bound.mirror, instance.mirrored ? -1.0f : 1.0f);
+    bound.mirrored = instance.mirrored;
+  }
+  glUniformMatrix4fv(bound.model, 1, GL_FALSE, glm::value_ptr(instance.model));
+  const glm::mat3 normalMatrix = glm::transpose(glm::inverse(glm::mat3(instance.model)));
+  glUniformMatrix3fv(bound.normalMatrix, 1, GL_FALSE, glm::value_ptr(normalMatrix));
+  glDrawArrays(GL_TRIANGLES, 0, meshes_[instance.mesh].count);
+}
+
+GLuint Renderer::bindMesh(const GpuMesh& mesh, const CameraMatrices& camera, const RenderSettings& settings, bool shadows) {
   gltf::MaterialDesc material;
   material.roughness = 0.5f;
   material.metallic = 0.0f;
@@ -444,14 +506,11 @@ void Renderer::drawMesh(const GpuMesh& mesh, const CameraMatrices& camera, const
   if (!shadows) features &= ~static_cast<FeatureSet>(Feature::shadows);
   const GLuint program = shaders_.mesh(features, settings.view, settings.toneMapping);
   glUseProgram(program);
-  setUniform(program, "u_model", mesh.model);
-  setUniform(program, "u_normalMatrix", glm::transpose(glm::inverse(glm::mat3(mesh.model))));
   setUniform(program, "u_viewProjection", camera.projection * camera.view);
   setUniform(program, "u_view", camera.view);
   setUniform(program, "u_lightViewProjection", shadows ? lightViewProjection() : glm::mat4(1));
   setUniform(program, "u_eyeWorld", camera.eye);
   setUniform(program, "u_uvScale", settings.uvScale);
-  setUniform(program, "u_mirror", mirrored ? -1.0f : 1.0f);
   setUniform(program, "u_useNormalMap", settings.normalMapping ? 1 : 0);
   setUniform(program, "u_useSpecular", settings.specular ? 1 : 0);
   setUniform(program, "u_flipGreen", settings.flipGreen ? 1 : 0);
@@ -520,23 +579,31 @@ void Renderer::drawMesh(const GpuMesh& mesh, const CameraMatrices& camera, const
     setUniform(program, "u_shadowBiasSlope", settings.shadowBiasSlope);
   }
   glBindVertexArray(mesh.vertexArray.get());
-  glDrawArrays(GL_TRIANGLES, 0, mesh.count);
-  ++stats.drawCalls;
-  stats.triangles += static_cast<std::size_t>(mesh.count / 3);
+  return program;
 }
 
 void Renderer::drawGlyphs(const CameraMatrices& camera, const RenderSettings& settings) {
   if (glyphsBuiltFor_ != settings.maxGlyphs) {
+    // Every stride-th corner of all instances together, so that the count stays near maxGlyphs
+    // however many instances there are.
     std::size_t corners = 0;
-    for (const auto& item : scene_.items) corners += item.positions.size() / 3;
+    for (const auto& instance : scene_.instances) corners += scene_.items[instance.item].positions.size() / 3;
     const std::size_t stride = std::max<std::size_t>(1, corners / std::max(settings.maxGlyphs, 1));
     const float length = 0.04f * boundsRadius();
     std::vector<float> lines;
-    for (const auto& item : scene_.items) {
-      const glm::mat4 model = glm::make_mat4(item.world.data());
+    std::size_t next = 0;  // the next glyph's corner, counted from the current instance's first
+    for (const auto& instance : scene_.instances) {
+      const gltf::DrawItem& item = scene_.items[instance.item];
+      const std::size_t itemCorners = item.positions.size() / 3;
+      if (next >= itemCorners) {
+        next -= itemCorners;
+        continue;
+      }
+      const glm::mat4 model = glm::make_mat4(instance.world.data());
       const glm::mat3 normalMatrix = glm::transpose(glm::inverse(glm::mat3(model)));
       const float mirror = glm::determinant(glm::mat3(model)) < 0 ? -1.0f : 1.0f;  // see mesh.vert
-      for (std::size_t c = 0; c < item.positions.size() / 3; c += stride) {
+      for (; next < itemCorners; next += stride) {
+        const std::size_t c = next;
         const glm::vec3 p = glm::vec3(model * glm::vec4(glm::make_vec3(&item.positions[3 * c]), 1));
         const glm::vec3 n = glm::normalize(normalMatrix * glm::make_vec3(&item.normals[3 * c]));
         const glm::vec3 t = glm::normalize(glm::mat3(model) * glm::make_vec3(&item.tangents[4 * c]));
@@ -549,6 +616,7 @@ void Renderer::drawGlyphs(const CameraMatrices& camera, const RenderSettings& se
           lines.insert(lines.end(), {p.x, p.y, p.z, colors[a].r, colors[a].g, colors[a].b, end.x, end.y, end.z, colors[a].r, colors[a].g, colors[a].b});
         }
       }
+      next -= itemCorners;
     }
     glyphArray_ = makeVertexArray();
     glyphBuffer_ = makeBuffer();

@@ -5,6 +5,9 @@
 
 #include <glm/glm.hpp>
 
+#include <cstdint>
+#include <limits>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -69,8 +72,8 @@ class Renderer {
  public:
   explicit Renderer(ShaderLibrary& shaders) : shaders_(shaders) {}
 
-  // Uploads meshes and decodes textures; problems go to `messages`.
-  void setScene(const gltf::Scene& scene, std::vector<std::string>& messages);
+  // Uploads each item once and decodes textures; problems go to `messages`.
+  void setScene(gltf::Scene scene, std::vector<std::string>& messages);
   bool loadSphereMap(const std::filesystem::path& file, std::string& error);
 
   // Draws into the bound framebuffer of the given size.
@@ -93,13 +96,25 @@ class Renderer {
   bool physicalLights(const RenderSettings& settings) const;
 
  private:
+  // One per scene item: its corners on the GPU, uploaded once however many nodes show it.
   struct GpuMesh {
     VertexArray vertexArray;
     Buffer vertices;
     GLsizei count = 0;
     int material = -1;
+  };
+  // One per scene instance: a mesh where a node puts it.
+  struct GpuInstance {
+    std::uint32_t mesh = 0;  // index into meshes_
     glm::mat4 model{1};
+    bool mirrored = false;     // negative determinant: its front faces are the clockwise ones
     glm::vec3 centerWorld{0};  // of its bounds, for draw order
+  };
+  // What a run of draws has bound: an instance of the mesh bound last sets its transform only.
+  struct BoundMesh {
+    std::uint32_t mesh = std::numeric_limits<std::uint32_t>::max();  // none yet
+    GLint model = -1, normalMatrix = -1, mirror = -1;  // the program's uniform locations (-1: absent)
+    int mirrored = -1;  // the front face set for: -1 not yet, 0 counter-clockwise, 1 clockwise
   };
   // What the shadow map was drawn for; a frame that matches it reuses the map.
   struct ShadowKey {
@@ -109,11 +124,17 @@ class Renderer {
     float uvScale = 1;  // alpha-tested materials' cut-outs move with it
     bool operator==(const ShadowKey&) const = default;
   };
-  void drawMesh(const GpuMesh& mesh, const CameraMatrices& camera, const RenderSettings& settings, bool shadows, FrameStats& stats);
+  // Each instance with the shader variant its material needs, in the order given.
+  void drawInstances(std::span<const GpuInstance* const> instances, const CameraMatrices& camera, const RenderSettings& settings,
+                     bool shadows, FrameStats& stats);
+  // Binds a mesh's program, material, lights and vertices for drawInstance; returns the program.
+  GLuint bindMesh(const GpuMesh& mesh, const CameraMatrices& camera, const RenderSettings& settings, bool shadows);
+  // Sets the instance's transform (and front face) and draws it.
+  void drawInstance(const GpuInstance& instance, BoundMesh& bound);
   void drawShadowMap(const RenderSettings& settings);
-  // Depth only: each mesh through the depth program of its alpha test (MASK, or BLEND by the
-  // shadow rule when `blendCasts`), under `viewProjection`.
-  void drawDepth(const std::vector<const GpuMesh*>& meshes, const glm::mat4& viewProjection, const RenderSettings& settings,
+  // Depth only: each instance through the depth program of its mesh's alpha test (MASK, or BLEND
+  // by the shadow rule when `blendCasts`), under `viewProjection`.
+  void drawDepth(std::span<const GpuInstance* const> instances, const glm::mat4& viewProjection, const RenderSettings& settings,
                  bool blendCasts, bool cullAsLit);
   FeatureSet alphaTestFeatures(const GpuMesh& mesh, bool blendCasts) const;
   void applyCulling(const GpuMesh& mesh, const RenderSettings& settings) const;
@@ -125,6 +146,7 @@ class Renderer {
   ShaderLibrary& shaders_;
   gltf::Scene scene_;
   std::vector<GpuMesh> meshes_;
+  std::vector<GpuInstance> instances_;
   std::vector<Texture> textures_;      // per scene image, linear data (empty when unused or failed)
   std::vector<Texture> srgbTextures_;  // per scene image, sRGB colour (empty when unused or failed)
   Texture sphereMap_;

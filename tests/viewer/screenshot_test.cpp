@@ -6,7 +6,9 @@
 
 #include <algorithm>
 #include <array>
+#include <chrono>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -805,6 +807,74 @@ TEST(Viewer, BadInputIsAnErrorNotACrash) {
   EXPECT_NE(output.find("missing.glb"), std::string::npos) << output;
   EXPECT_EQ(run("--view nonsense --screenshot x.png", output), 2);
   EXPECT_FALSE(fs::exists(dir / "x.png"));
+}
+
+// ---- Bounded by the input's size ----
+
+// quadAsset's quad, drawn by `nodes` (the glTF nodes array) from the scene's `roots`.
+fs::path nodesAsset(const TempDir& dir, const std::string& name, nlohmann::json nodes, nlohmann::json roots) {
+  writeRgbaPng(dir / "white.png", 4, 4, [](int, int) { return std::array<unsigned char, 4>{255, 255, 255, 255}; });
+  return quadAsset(dir, name, nlohmann::json::object(), "white.png",
+                   {{"nodes", std::move(nodes)}, {"scenes", {{{"nodes", std::move(roots)}}}}});
+}
+
+// 100,000 nodes showing one mesh: its corners are read, its tangents computed and its vertices
+// uploaded once, and each node draws them (it used to take all three per node: 100 KB of
+// vertices a node for a small sphere, past 300 s and out of memory at 10^5 to 10^6 nodes).
+TEST(Viewer, HundredThousandInstancesShareOnePrimitive) {
+  TempDir dir;
+  constexpr int kNodes = 100000, kColumns = 400;
+  nlohmann::json nodes = nlohmann::json::array(), roots = nlohmann::json::array();
+  for (int n = 0; n < kNodes; ++n) {
+    nodes.push_back({{"mesh", 0}, {"translation", {2.2 * (n % kColumns), -2.2 * (n / kColumns), 0.0}}});
+    roots.push_back(n);
+  }
+  const fs::path file = nodesAsset(dir, "instances", std::move(nodes), std::move(roots));
+  const auto start = std::chrono::steady_clock::now();
+  std::string output;
+  const int exit = run("'" + file.string() + "' --stats --camera front --ortho --size 400x250 --no-shadows --screenshot '" +
+                           (dir / "instances.png").string() + "'",
+                       output);
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  std::printf("%d instances: %.1f s\n%s", kNodes, seconds, output.c_str());
+  ASSERT_EQ(exit, 0) << output;
+  EXPECT_NE(output.find(": 1 primitive(s), 100000 instance(s), 200000 triangle(s) drawn"), std::string::npos) << output;
+  EXPECT_NE(output.find("200000 triangles, 100000 draw calls"), std::string::npos) << output;
+  EXPECT_LT(seconds, 120);
+  // The grid of quads (83% of it quad) covers the frame's middle: few background pixels there.
+  const Image image = readPng(dir / "instances.png");
+  ASSERT_EQ(image.width, 400);
+  int background = 0, samples = 0;
+  for (int y = 100; y < 150; ++y) {
+    for (int x = 150; x < 250; ++x, ++samples) {
+      const auto c = image.at(x, y);
+      background += std::abs(c[0] - 0.16f) < 0.02f && std::abs(c[1] - 0.17f) < 0.02f && std::abs(c[2] - 0.19f) < 0.02f;
+    }
+  }
+  std::printf("background in the frame's middle: %d of %d pixels\n", background, samples);
+  EXPECT_LT(background, samples / 2);
+}
+
+// The scene loader walks a chain of 150,001 nodes, deeper than the 100,000 node visits it used to
+// call a cycle, without a call stack of that depth; a real cycle is still refused (by the
+// validation every load runs). --stats loads without GL, so this also runs under the sanitizers.
+TEST(Viewer, LongAcyclicChainLoadsAndACycleDoesNot) {
+  TempDir dir;
+  constexpr int kNodes = 150001;
+  nlohmann::json nodes = nlohmann::json::array();
+  for (int n = 0; n < kNodes; ++n) {
+    nlohmann::json node = {{"mesh", 0}, {"translation", {0.0, 0.0, -1e-4}}};
+    if (n + 1 < kNodes) node["children"] = {n + 1};
+    nodes.push_back(std::move(node));
+  }
+  std::string output;
+  const fs::path chain = nodesAsset(dir, "chain", std::move(nodes), {0});
+  ASSERT_EQ(run("'" + chain.string() + "' --stats", output), 0) << output;
+  EXPECT_NE(output.find(": 1 primitive(s), 150001 instance(s)"), std::string::npos) << output;
+  // Nodes 1 and 2 are each other's child: one parent each, and no root reaches them.
+  const fs::path cycle = nodesAsset(dir, "cycle", {{{"mesh", 0}}, {{"children", {2}}}, {{"children", {1}}}}, {0});
+  EXPECT_EQ(run("'" + cycle.string() + "' --stats", output), 1) << output;
+  EXPECT_NE(output.find("cycle"), std::string::npos) << output;
 }
 
 }  // namespace

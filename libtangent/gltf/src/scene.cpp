@@ -11,6 +11,7 @@
 #include <cmath>
 #include <limits>
 #include <numeric>
+#include <optional>
 
 #include "accessors.hpp"
 #include "asset.hpp"
@@ -307,6 +308,89 @@ DrawItem makeDrawItem(const detail::Asset& asset, const Json& primitive, const s
   return item;
 }
 
+// The items that a mesh's primitives become, read on the mesh's first instance and shared by the
+// rest: per primitive, an index into scene.items, or -1 where it is not shown (the message says
+// why, once).
+std::vector<std::int64_t> readMeshItems(const detail::Asset& asset, int meshIndex, const SceneOptions& options, Scene& scene) {
+  const Json& doc = asset.json;
+  const Json& primitives = doc["meshes"][meshIndex]["primitives"];
+  std::vector<std::int64_t> items(primitives.size(), -1);
+  for (std::size_t p = 0; p < primitives.size(); ++p) {
+    const std::string label = detail::primitiveLabel(doc, meshIndex, static_cast<int>(p));
+    const detail::PrimitiveNeeds needs = detail::primitiveNeeds(doc, primitives[p], true);
+    if (!needs.triangles) {
+      scene.messages.push_back(label + ": " + needs.why + "; not shown");
+      continue;
+    }
+    DrawItem item = makeDrawItem(asset, primitives[p], label, options, scene.messages);
+    glm::vec3 lo(std::numeric_limits<float>::max()), hi(-std::numeric_limits<float>::max());
+    for (std::size_t c = 0; c < item.positions.size() / 3; ++c) {
+      const glm::vec3 position = glm::make_vec3(&item.positions[3 * c]);
+      if (!std::isfinite(position.x) || !std::isfinite(position.y) || !std::isfinite(position.z)) continue;
+      lo = glm::min(lo, position);
+      hi = glm::max(hi, position);
+    }
+    item.boundsMin = {lo.x, lo.y, lo.z};
+    item.boundsMax = {hi.x, hi.y, hi.z};
+    items[p] = static_cast<std::int64_t>(scene.items.size());
+    scene.items.push_back(std::move(item));
+  }
+  return items;
+}
+
+// Grows [lo, hi] by an item's object-space box under `world`: its eight corners, so that the cost
+// per instance does not grow with the mesh (exact unless the transform turns the box off its axes).
+void growBounds(const DrawItem& item, const glm::mat4& world, glm::vec3& lo, glm::vec3& hi) {
+  if (item.boundsMin[0] > item.boundsMax[0]) return;
+  for (int corner = 0; corner < 8; ++corner) {
+    const glm::vec3 p(corner & 1 ? item.boundsMax[0] : item.boundsMin[0], corner & 2 ? item.boundsMax[1] : item.boundsMin[1],
+                      corner & 4 ? item.boundsMax[2] : item.boundsMin[2]);
+    const glm::vec3 q = glm::vec3(world * glm::vec4(p, 1));
+    if (!std::isfinite(q.x) || !std::isfinite(q.y) || !std::isfinite(q.z)) continue;
+    lo = glm::min(lo, q);
+    hi = glm::max(hi, q);
+  }
+}
+
+LightDesc lightAt(const Json& definition, const glm::mat4& world) {
+  LightDesc light;
+  const std::string type = definition.value("type", "directional");
+  light.type = type == "point" ? LightDesc::Type::point : type == "spot" ? LightDesc::Type::spot : LightDesc::Type::directional;
+  light.name = definition.value("name", "");
+  readFloats(definition, "color", light.color);
+  light.intensity = definition.value("intensity", 1.0f);
+  light.range = definition.value("range", 0.0f);
+  if (definition.contains("spot")) {
+    light.innerConeAngle = definition["spot"].value("innerConeAngle", 0.0f);
+    light.outerConeAngle = definition["spot"].value("outerConeAngle", 0.785398f);
+  }
+  const glm::vec3 position = glm::vec3(world * glm::vec4(0, 0, 0, 1));
+  const glm::vec3 direction = glm::normalize(glm::vec3(world * glm::vec4(0, 0, -1, 0)));
+  light.position = {position.x, position.y, position.z};
+  light.direction = {direction.x, direction.y, direction.z};
+  return light;
+}
+
+// The nodes the walk starts from: the default scene's, or, in a file without one, every node
+// without a parent.
+std::vector<int> rootNodes(const Json& doc) {
+  std::vector<int> roots;
+  const int sceneIndex = doc.value("scene", 0);
+  const std::size_t nodeCount = doc.contains("nodes") ? doc["nodes"].size() : 0;
+  if (doc.contains("scenes") && sceneIndex >= 0 && sceneIndex < static_cast<int>(doc["scenes"].size())) {
+    for (const Json& root : doc["scenes"][sceneIndex].value("nodes", Json::array())) roots.push_back(root.get<int>());
+  } else if (nodeCount > 0) {
+    std::vector<char> isChild(nodeCount, 0);
+    for (const Json& node : doc["nodes"]) {
+      if (!node.contains("children")) continue;
+      for (const Json& child : node["children"]) isChild[child.get<std::size_t>()] = 1;
+    }
+    for (std::size_t n = 0; n < nodeCount; ++n)
+      if (!isChild[n]) roots.push_back(static_cast<int>(n));
+  }
+  return roots;
+}
+
 Scene flattenScene(const std::filesystem::path& input, const SceneOptions& options) {
   const detail::Asset asset = detail::loadAsset(input, options.assetRoot);
   const Json& doc = asset.json;
@@ -321,71 +405,54 @@ Scene flattenScene(const std::filesystem::path& input, const SceneOptions& optio
     for (const Json& light : doc["extensions"]["KHR_lights_punctual"]["lights"]) lightDefinitions.push_back(light);
   }
 
+  // Depth first with a stack of its own, so that a chain of a million nodes needs no call stack.
+  // loadAsset's validation leaves each node one parent at most and no cycle; a node that the
+  // scene lists twice, or lists beside an ancestor, is shown once, so each node costs one visit.
+  const std::size_t nodeCount = doc.contains("nodes") ? doc["nodes"].size() : 0;
+  std::vector<char> visited(nodeCount, 0);
+  std::size_t reachedAgain = 0;
+  std::vector<std::optional<std::vector<std::int64_t>>> meshItems(doc.contains("meshes") ? doc["meshes"].size() : 0);
   glm::vec3 lo(std::numeric_limits<float>::max()), hi(-std::numeric_limits<float>::max());
-  const int sceneIndex = doc.value("scene", 0);
   std::vector<std::pair<int, glm::mat4>> stack;
-  if (doc.contains("scenes") && sceneIndex >= 0 && sceneIndex < static_cast<int>(doc["scenes"].size())) {
-    const Json roots = doc["scenes"][sceneIndex].value("nodes", Json::array());
-    for (auto it = roots.rbegin(); it != roots.rend(); ++it) stack.emplace_back(it->get<int>(), glm::mat4(1));
-  } else if (doc.contains("nodes")) {
-    for (std::size_t n = doc["nodes"].size(); n-- > 0;) stack.emplace_back(static_cast<int>(n), glm::mat4(1));
-  }
-  std::size_t visited = 0;
+  const std::vector<int> roots = rootNodes(doc);
+  for (auto it = roots.rbegin(); it != roots.rend(); ++it) stack.emplace_back(*it, glm::mat4(1));
   while (!stack.empty()) {
-    auto [nodeIndex, parent] = stack.back();
+    const auto [nodeIndex, parent] = stack.back();
     stack.pop_back();
-    if (!doc.contains("nodes") || nodeIndex < 0 || nodeIndex >= static_cast<int>(doc["nodes"].size())) continue;
-    if (++visited > 100000) throw InputError(input.string() + ": node hierarchy has a cycle");
+    if (nodeIndex < 0 || nodeIndex >= static_cast<int>(nodeCount)) continue;
+    if (visited[nodeIndex]) {
+      ++reachedAgain;
+      continue;
+    }
+    visited[nodeIndex] = 1;
     const Json& node = doc["nodes"][nodeIndex];
     const glm::mat4 world = parent * localTransform(node);
     // Pushed in reverse so that nodes are visited in document order (depth first).
-    const Json children = node.value("children", Json::array());
-    for (auto it = children.rbegin(); it != children.rend(); ++it) stack.emplace_back(it->get<int>(), world);
+    if (node.contains("children")) {
+      const Json& children = node["children"];
+      for (auto it = children.rbegin(); it != children.rend(); ++it) stack.emplace_back(it->get<int>(), world);
+    }
     if (node.contains("extensions") && node["extensions"].contains("KHR_lights_punctual")) {
       const int lightIndex = node["extensions"]["KHR_lights_punctual"].value("light", -1);
-      if (lightIndex >= 0 && lightIndex < static_cast<int>(lightDefinitions.size())) {
-        const Json& definition = lightDefinitions[lightIndex];
-        LightDesc light;
-        const std::string type = definition.value("type", "directional");
-        light.type = type == "point" ? LightDesc::Type::point : type == "spot" ? LightDesc::Type::spot : LightDesc::Type::directional;
-        light.name = definition.value("name", "");
-        readFloats(definition, "color", light.color);
-        light.intensity = definition.value("intensity", 1.0f);
-        light.range = definition.value("range", 0.0f);
-        if (definition.contains("spot")) {
-          light.innerConeAngle = definition["spot"].value("innerConeAngle", 0.0f);
-          light.outerConeAngle = definition["spot"].value("outerConeAngle", 0.785398f);
-        }
-        const glm::vec3 position = glm::vec3(world * glm::vec4(0, 0, 0, 1));
-        const glm::vec3 direction = glm::normalize(glm::vec3(world * glm::vec4(0, 0, -1, 0)));
-        light.position = {position.x, position.y, position.z};
-        light.direction = {direction.x, direction.y, direction.z};
-        scene.lights.push_back(light);
-      }
+      if (lightIndex >= 0 && lightIndex < static_cast<int>(lightDefinitions.size()))
+        scene.lights.push_back(lightAt(lightDefinitions[lightIndex], world));
     }
     if (!node.contains("mesh")) continue;
     const int meshIndex = node["mesh"].get<int>();
-    if (!doc.contains("meshes") || meshIndex < 0 || meshIndex >= static_cast<int>(doc["meshes"].size())) continue;
-    const Json& primitives = doc["meshes"][meshIndex]["primitives"];
-    for (std::size_t p = 0; p < primitives.size(); ++p) {
-      const std::string label = detail::primitiveLabel(doc, meshIndex, static_cast<int>(p));
-      const detail::PrimitiveNeeds needs = detail::primitiveNeeds(doc, primitives[p], true);
-      if (!needs.triangles) {
-        scene.messages.push_back(label + ": " + needs.why + "; not shown");
-        continue;
-      }
-      DrawItem item = makeDrawItem(asset, primitives[p], label, options, scene.messages);
-      std::copy(glm::value_ptr(world), glm::value_ptr(world) + 16, item.world.begin());
-      for (std::size_t c = 0; c < item.positions.size() / 3; ++c) {
-        const glm::vec3 p3 = glm::vec3(world * glm::vec4(glm::make_vec3(&item.positions[3 * c]), 1));
-        if (std::isfinite(p3.x) && std::isfinite(p3.y) && std::isfinite(p3.z)) {
-          lo = glm::min(lo, p3);
-          hi = glm::max(hi, p3);
-        }
-      }
-      scene.items.push_back(std::move(item));
+    if (meshIndex < 0 || meshIndex >= static_cast<int>(meshItems.size())) continue;
+    if (!meshItems[meshIndex]) meshItems[meshIndex] = readMeshItems(asset, meshIndex, options, scene);
+    for (const std::int64_t item : *meshItems[meshIndex]) {
+      if (item < 0) continue;
+      DrawInstance instance;
+      instance.item = static_cast<std::uint32_t>(item);
+      std::copy(glm::value_ptr(world), glm::value_ptr(world) + 16, instance.world.begin());
+      growBounds(scene.items[static_cast<std::size_t>(item)], world, lo, hi);
+      scene.instances.push_back(instance);
     }
   }
+  if (reachedAgain > 0)
+    scene.messages.push_back(input.string() + ": " + std::to_string(reachedAgain) +
+                             " node(s) reached again from the scene's roots (listed twice, or beside an ancestor); each shown once");
   if (lo.x <= hi.x) {
     scene.boundsMin = {lo.x, lo.y, lo.z};
     scene.boundsMax = {hi.x, hi.y, hi.z};

@@ -1,8 +1,10 @@
 // SPDX-License-Identifier: MIT
-// A glTF file flattened for display: every triangle primitive of the default scene as a draw
-// item in world space, one vertex per corner, with the file's tangents (or computed ones when
-// the file has none), freshly computed tangents, and what `tangent check` would say of each
-// corner. Images are referenced, never decoded here (the viewer decodes them).
+// A glTF file flattened for display: every triangle primitive the default scene shows, once,
+// as a draw item in object space, one vertex per corner, with the file's tangents (or computed
+// ones when the file has none), freshly computed tangents, and what `tangent check` would say of
+// each corner; and every node that shows it as an instance: which item, where. A mesh that
+// 100,000 nodes share is read and its tangents computed once. Images are referenced, never
+// decoded here (the viewer decodes them).
 #pragma once
 
 #include <array>
@@ -69,10 +71,12 @@ enum CornerProblem : std::uint8_t {
   kProblemFarFromReference = 32,
 };
 
+// One triangle primitive of a mesh, as every node that shows it draws it.
 struct DrawItem {
   std::string label;  // "mesh 0 'Name' primitive 1"
   int material = -1;  // -1: default material
-  std::array<float, 16> world{};  // column-major node transform
+  // Of the finite positions; boundsMin > boundsMax when there is none.
+  std::array<float, 3> boundsMin{0, 0, 0}, boundsMax{0, 0, 0};  // object space
   // One entry per corner (3 per triangle).
   std::vector<float> positions;      // 3 per corner, object space
   std::vector<float> normals;        // 3
@@ -87,6 +91,12 @@ struct DrawItem {
   Report report;  // of the fresh computation
 };
 
+// A node showing a draw item.
+struct DrawInstance {
+  std::uint32_t item = 0;         // index into Scene::items
+  std::array<float, 16> world{};  // column-major node transform
+};
+
 struct SceneOptions {
   Method method = Method::mikktspace;
   bool negateFileW = false;   // for tests and demonstrations: flip the file's handedness
@@ -95,7 +105,8 @@ struct SceneOptions {
 };
 
 struct Scene {
-  std::vector<DrawItem> items;
+  std::vector<DrawItem> items;          // one per (mesh, primitive) shown, however many nodes show it
+  std::vector<DrawInstance> instances;  // one per (node, primitive), in document order (depth first)
   std::vector<MaterialDesc> materials;
   std::vector<ImageSource> images;
   std::vector<LightDesc> lights;  // KHR_lights_punctual, in world space
