@@ -22,7 +22,8 @@ namespace tangent::cli {
 namespace {
 
 const char* kBakeUsage =
-    "usage: tangent bake IN... (-o OUT | --out-dir DIR) [options]\n"
+    "usage: tangent bake IN OUT [options]\n"
+    "       tangent bake IN... (-o OUT | --out-dir DIR) [options]\n"
     "       tangent bake FOLDER... --recursive --out-dir DIR [options]\n"
     "\n"
     "Computes TANGENT for every triangle primitive whose material has a normalTexture, from the\n"
@@ -299,9 +300,20 @@ int bakeCommand(const std::vector<std::string>& args) {
     return bakeTrees(inputs, outDir, options, force, verify, quiet, reportPath);
   }
   if (force || verify) return usageError(std::string(force ? "--force" : "--verify") + " goes with --recursive");
+  // glTF-Transform's form: `tangent bake in.glb out.glb`, the same as -o.
+  if (inputs.size() == 2 && output.empty() && outDir.empty()) {
+    const std::string ext = inputs[1].extension().string();
+    if (ext != ".glb" && ext != ".gltf")
+      return usageError("two files and no -o or --out-dir: the second (" + shown(inputs[1].string()) +
+                        ") is taken as the output, and must end in .glb or .gltf");
+    output = inputs[1];
+    inputs.pop_back();
+  }
   if (output.empty() == outDir.empty()) return usageError("give exactly one of -o FILE and --out-dir DIR");
   if (!output.empty() && inputs.size() > 1) return usageError("-o takes one input; use --out-dir for several");
   const bool toStdout = output == "-";
+  if (toStdout && ::isatty(STDOUT_FILENO))
+    return usageError("-o - writes a binary .glb, and standard output is a terminal; redirect it (> out.glb) or pipe it");
   if (toStdout && reportPath == "-") return usageError("-o - and --report - cannot both write to standard output");
   if (!outDir.empty()) {
     std::error_code ec;

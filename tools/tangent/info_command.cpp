@@ -27,10 +27,15 @@ int infoCommand(const std::vector<std::string>& args) {
       }
       assetRoot = args[++i];
     } else if (arg == "-h" || arg == "--help") {
-      std::cout << "usage: tangent info IN... [--json] [--asset-root DIR]\n"
+      std::cout << "usage: tangent info IN... [options]\n"
+                   "\n"
                    "Lists meshes, primitives and attributes, and which primitives need tangents and why.\n"
-                   "Fails (exit 1) on any file bake would refuse. --asset-root DIR: the folder buffer and\n"
-                   "image URIs may not leave (default: the input's folder).\n";
+                   "Fails (exit 1) on any file bake would refuse.\n"
+                   "\n"
+                   "options:\n"
+                   "  --json             the description as JSON, one document per input\n"
+                   "  --asset-root DIR   folder buffer and image URIs may not leave (default: the input's folder)\n"
+                   "  -h, --help         this text\n";
       return kExitOk;
     } else if (!arg.empty() && arg[0] == '-') {
       std::cerr << "tangent info: unknown option '" << arg << "'\n";

@@ -12,10 +12,15 @@ const char* kUsage =
     "usage: tangent <command> [options]\n"
     "\n"
     "commands:\n"
-    "  bake IN... (-o OUT | --out-dir DIR)   compute TANGENT for primitives with a normal texture\n"
-    "  check IN... [--format text|json|junit] validate stored tangents (for CI)\n"
-    "  info IN [--json]                      meshes, primitives, attributes, which need tangents\n"
+    "  bake IN OUT | IN... (-o OUT | --out-dir DIR) | DIR... --recursive --out-dir DIR\n"
+    "                                        compute TANGENT for primitives with a normal texture\n"
+    "  check IN... [--format text|json|junit|github|sarif]\n"
+    "                                        validate stored tangents (for CI)\n"
+    "  info IN... [--json]                   meshes, primitives, attributes, which need tangents\n"
     "  bench [--stress]                      error against run time; the stress suite\n"
+    "\n"
+    "  -V, --version                         the version\n"
+    "  -h, --help                            this text\n"
     "\n"
     "'tangent <command> --help' describes a command's options.\n"
     "exit codes: 0 done (check: clean), 1 an input failed (check: findings), 2 usage error\n";
@@ -58,7 +63,7 @@ int run(std::vector<std::string> args) {
     std::cout << kUsage;
     return tangent::cli::kExitOk;
   }
-  if (command == "--version") {
+  if (command == "--version" || command == "-V") {
     std::cout << "tangent 0.1.0\n";
     return tangent::cli::kExitOk;
   }

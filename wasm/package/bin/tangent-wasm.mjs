@@ -1,6 +1,6 @@
 #!/usr/bin/env node
 // SPDX-License-Identifier: MIT
-// tangent-wasm IN OUT [--overwrite]: bakes MikkTSpace tangents into every normal-mapped
+// tangent-wasm IN OUT [--force]: bakes MikkTSpace tangents into every normal-mapped
 // triangle primitive of a glTF/GLB with glTF-Transform (its unweld, tangents and weld steps)
 // and this package's generateTangents. Needs @gltf-transform/core, /extensions and /functions
 // (peer dependencies). Never writes over IN; OUT appears whole or not at all.
@@ -14,16 +14,22 @@ function fail(message) {
 }
 
 const args = process.argv.slice(2);
-const overwrite = args.includes('--overwrite');
-const files = args.filter((a) => a !== '--overwrite');
+// --force replaces an existing OUT. (--overwrite means "recompute valid tangents too" in
+// `tangent bake` and glTF-Transform's tangents(); here every tangent is recomputed anyway.)
+if (args.includes('--overwrite')) {
+  console.error('tangent-wasm: --overwrite is not an option here; --force replaces an existing output');
+  process.exit(2);
+}
+const force = args.includes('--force');
+const files = args.filter((a) => a !== '--force');
 if (files.length !== 2 || args.includes('--help')) {
-  console.error('usage: tangent-wasm IN.gltf|IN.glb OUT.gltf|OUT.glb [--overwrite]');
+  console.error('usage: tangent-wasm IN.gltf|IN.glb OUT.gltf|OUT.glb [--force]');
   process.exit(2);
 }
 const [input, output] = files.map((f) => path.resolve(f));
 if (!fs.existsSync(input)) fail(`${input}: no such file`);
 if (input === output) fail(`${output}: is the input; choose another output`);
-if (fs.existsSync(output) && !overwrite) fail(`${output}: exists (pass --overwrite to replace it)`);
+if (fs.existsSync(output) && !force) fail(`${output}: exists (pass --force to replace it)`);
 
 let gltf;
 try {
