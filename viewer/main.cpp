@@ -225,8 +225,12 @@ struct Viewer {
     camera.frame(renderer.boundsMin(), renderer.boundsMax(), options.camera, float(options.width) / float(options.height));
     camera.orthographic = options.orthographic;
     if (options.settings.reflectivity > 0 || fs::exists(options.sphereMap)) {
-      std::string error;
-      if (!renderer.loadSphereMap(options.sphereMap, error) && options.settings.reflectivity > 0) messages.push_back(error);
+      std::vector<std::string> sphereMessages;
+      // A default sphere map that fails matters only when reflections are on.
+      if (renderer.loadSphereMap(options.sphereMap, sphereMessages) || options.settings.reflectivity > 0) {
+        for (const auto& m : sphereMessages) std::cerr << "note: " << m << "\n";
+        messages.insert(messages.end(), sphereMessages.begin(), sphereMessages.end());
+      }
     }
     return true;
   }
@@ -241,7 +245,11 @@ bool softwareRasteriser() {
 
 std::string glErrors() {
   std::string errors;
-  for (GLenum error = glGetError(); error != GL_NO_ERROR; error = glGetError()) errors += " 0x" + std::to_string(error);
+  for (GLenum error = glGetError(); error != GL_NO_ERROR; error = glGetError()) {
+    char hex[16];
+    std::snprintf(hex, sizeof hex, " 0x%04x", error);
+    errors += hex;
+  }
   return errors;
 }
 

@@ -167,6 +167,7 @@ void Renderer::setScene(gltf::Scene scene, std::vector<std::string>& messages) {
   }
   textures_.resize(imageCount);
   srgbTextures_.resize(imageCount);
+  const int maxSize = maxTextureSize();
   for (std::size_t i = 0; i < imageCount; ++i) {
     if (!usedAsColour[i] && !usedAsData[i]) continue;
     DecodedImage image;
@@ -175,6 +176,7 @@ void Renderer::setScene(gltf::Scene scene, std::vector<std::string>& messages) {
       messages.push_back(error);
       continue;
     }
+    if (std::string note = fitTextureSize(image, maxSize, scene_.images[i].label); !note.empty()) messages.push_back(std::move(note));
     if (usedAsColour[i]) srgbTextures_[i] = uploadTexture(image, true);
     if (usedAsData[i]) textures_[i] = uploadTexture(image, false);
   }
@@ -208,11 +210,11 @@ void Renderer::setScene(gltf::Scene scene, std::vector<std::string>& messages) {
   lights_ = lightsFrom(scene_, boundsCenter(), boundsRadius());
 }
 
-bool Renderer::loadSphereMap(const std::filesystem::path& file, std::string& error) {
+bool Renderer::loadSphereMap(const std::filesystem::path& file, std::vector<std::string>& messages) {
   gltf::ImageSource source;
   source.file = file;
   source.label = file.string();
-  sphereMap_ = loadTexture(source, true, error);
+  sphereMap_ = loadTexture(source, true, messages);
   return static_cast<bool>(sphereMap_);
 }
 

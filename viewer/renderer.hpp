@@ -74,7 +74,8 @@ class Renderer {
 
   // Uploads each item once and decodes textures; problems go to `messages`.
   void setScene(gltf::Scene scene, std::vector<std::string>& messages);
-  bool loadSphereMap(const std::filesystem::path& file, std::string& error);
+  // Errors and notes go to `messages`.
+  bool loadSphereMap(const std::filesystem::path& file, std::vector<std::string>& messages);
 
   // Draws into the bound framebuffer of the given size.
   FrameStats render(const CameraMatrices& camera, const RenderSettings& settings, int width, int height);

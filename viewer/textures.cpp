@@ -2,8 +2,13 @@
 #include "textures.hpp"
 
 #include <OpenImageIO/filesystem.h>
+#include <OpenImageIO/imagebuf.h>
+#include <OpenImageIO/imagebufalgo.h>
 #include <OpenImageIO/imageio.h>
 
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
 #include <vector>
 
 namespace tangent::viewer {
@@ -14,6 +19,19 @@ std::string extensionFor(const std::string& mimeType) {
   if (mimeType == "image/webp") return ".webp";
   if (mimeType == "image/ktx2") return ".ktx2";
   return ".png";
+}
+
+// Why an image of this header cannot be decoded here, or "" when it can: no pixels, a volume,
+// or more decoded bytes than kMaxDecodedImageBytes.
+std::string refusal(const OIIO::ImageSpec& spec) {
+  if (spec.width <= 0 || spec.height <= 0) return "has no pixels (" + std::to_string(spec.width) + " x " + std::to_string(spec.height) + ")";
+  if (spec.depth > 1) return "is a volume (depth " + std::to_string(spec.depth) + "), not a 2D texture";
+  const std::uint64_t bytes = std::uint64_t(spec.width) * std::uint64_t(spec.height) * 4;
+  if (bytes <= kMaxDecodedImageBytes) return "";
+  char size[64];
+  std::snprintf(size, sizeof size, "%.1f GiB", static_cast<double>(bytes) / double(std::uint64_t(1) << 30));
+  return "its header claims " + std::to_string(spec.width) + " x " + std::to_string(spec.height) + " pixels, " + size +
+         " decoded, over the viewer's limit of " + std::to_string(kMaxDecodedImageBytes >> 30) + " GiB; not decoded";
 }
 
 }  // namespace
@@ -37,7 +55,12 @@ bool decodeImage(const gltf::ImageSource& source, DecodedImage& image, std::stri
     return false;
   }
   const OIIO::ImageSpec& spec = input->spec();
-  const int width = spec.width, height = spec.height, channels = spec.nchannels;
+  if (const std::string why = refusal(spec); !why.empty()) {
+    error = source.label + ": " + why;
+    return false;
+  }
+  // At most four channels are read: RGBA.
+  const int width = spec.width, height = spec.height, channels = std::clamp(spec.nchannels, 1, 4);
   std::vector<unsigned char> pixels(static_cast<std::size_t>(width) * height * channels);
   if (!input->read_image(0, 0, 0, channels, OIIO::TypeDesc::UINT8, pixels.data())) {
     error = source.label + ": cannot be read: " + input->geterror();
@@ -56,6 +79,37 @@ bool decodeImage(const gltf::ImageSource& source, DecodedImage& image, std::stri
   return true;
 }
 
+std::string fitTextureSize(DecodedImage& image, int maxSize, const std::string& label) {
+  if (maxSize <= 0 || (image.width <= maxSize && image.height <= maxSize)) return "";
+  const double scale = static_cast<double>(maxSize) / std::max(image.width, image.height);
+  const int width = std::clamp(static_cast<int>(std::lround(image.width * scale)), 1, maxSize);
+  const int height = std::clamp(static_cast<int>(std::lround(image.height * scale)), 1, maxSize);
+  const OIIO::ImageBuf source(OIIO::ImageSpec(image.width, image.height, 4, OIIO::TypeDesc::UINT8), image.rgba.data());
+  const OIIO::ImageBuf resized = OIIO::ImageBufAlgo::resize(source, "", 0.0f, OIIO::ROI(0, width, 0, height, 0, 1, 0, 4));
+  std::vector<unsigned char> rgba(static_cast<std::size_t>(width) * height * 4);
+  if (resized.has_error() || !resized.get_pixels(OIIO::ROI(0, width, 0, height, 0, 1, 0, 4), OIIO::TypeDesc::UINT8, rgba.data())) {
+    // Keep every n-th texel instead: coarse, but it fits.
+    for (int y = 0; y < height; ++y)
+      for (int x = 0; x < width; ++x)
+        std::copy_n(&image.rgba[(static_cast<std::size_t>(y) * image.height / height * image.width +
+                                 static_cast<std::size_t>(x) * image.width / width) * 4],
+                    4, &rgba[(static_cast<std::size_t>(y) * width + x) * 4]);
+  }
+  std::string note = label + ": " + std::to_string(image.width) + " x " + std::to_string(image.height) +
+                     " pixels, over this GL's largest texture (" + std::to_string(maxSize) + "); shown downscaled to " +
+                     std::to_string(width) + " x " + std::to_string(height);
+  image.width = width;
+  image.height = height;
+  image.rgba = std::move(rgba);
+  return note;
+}
+
+int maxTextureSize() {
+  GLint size = 0;
+  glGetIntegerv(GL_MAX_TEXTURE_SIZE, &size);
+  return size;
+}
+
 Texture uploadTexture(const DecodedImage& image, bool srgb) {
   Texture texture = makeTexture();
   glBindTexture(GL_TEXTURE_2D, texture.get());
@@ -71,9 +125,14 @@ Texture uploadTexture(const DecodedImage& image, bool srgb) {
   return texture;
 }
 
-Texture loadTexture(const gltf::ImageSource& source, bool srgb, std::string& error) {
+Texture loadTexture(const gltf::ImageSource& source, bool srgb, std::vector<std::string>& messages) {
   DecodedImage image;
-  if (!decodeImage(source, image, error)) return {};
+  std::string error;
+  if (!decodeImage(source, image, error)) {
+    messages.push_back(error);
+    return {};
+  }
+  if (std::string note = fitTextureSize(image, maxTextureSize(), source.label); !note.empty()) messages.push_back(std::move(note));
   return uploadTexture(image, srgb);
 }
 

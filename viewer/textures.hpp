@@ -2,6 +2,7 @@
 // Images decoded through OpenImageIO (files or embedded bytes) into GL textures.
 #pragma once
 
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -15,15 +16,29 @@ struct DecodedImage {
   std::vector<unsigned char> rgba;  // rows as stored (glTF's UV origin is the first row)
 };
 
-// RGBA8 pixels of an image (grey spread to RGB, alpha 255 when absent); false + error.
+// The most memory an image may take decoded, as RGBA8: 1 GiB, a 16384 x 16384 texture. The
+// header's size is checked before decoding, so that a small file claiming 60000 x 60000 pixels is
+// refused instead of asking for 14 GB.
+inline constexpr std::uint64_t kMaxDecodedImageBytes = std::uint64_t(1) << 30;
+
+// RGBA8 pixels of an image (grey spread to RGB, alpha 255 when absent); false + error, which
+// names the image (ImageSource::label), also for one over kMaxDecodedImageBytes.
 bool decodeImage(const gltf::ImageSource& source, DecodedImage& image, std::string& error);
+
+// Downscales an image wider or taller than maxSize (GL_MAX_TEXTURE_SIZE) to fit, keeping its
+// aspect ratio; returns a note naming it (`label`) and both sizes, or "" when it fits already.
+std::string fitTextureSize(DecodedImage& image, int maxSize, const std::string& label);
+
+// GL_MAX_TEXTURE_SIZE of the current context.
+int maxTextureSize();
 
 // A mipmapped, repeating texture: SRGB8_ALPHA8 storage for colour (the sampler decodes it to
 // linear), RGBA8 for data (normals, metallic-roughness, occlusion, specular strength).
 Texture uploadTexture(const DecodedImage& image, bool srgb);
 
-// decodeImage then uploadTexture; on failure an empty Texture and `error` says why.
-Texture loadTexture(const gltf::ImageSource& source, bool srgb, std::string& error);
+// decodeImage, fitTextureSize, then uploadTexture; on failure an empty Texture. Errors and notes
+// go to `messages`.
+Texture loadTexture(const gltf::ImageSource& source, bool srgb, std::vector<std::string>& messages);
 
 // Writes RGBA8 pixels (rows bottom-up, as glReadPixels gives them) as a PNG; false + error.
 bool writePng(const std::string& path, int width, int height, const std::vector<unsigned char>& rgbaBottomUp, std::string& error);

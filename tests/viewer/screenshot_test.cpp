@@ -877,4 +877,66 @@ TEST(Viewer, LongAcyclicChainLoadsAndACycleDoesNot) {
   EXPECT_NE(output.find("cycle"), std::string::npos) << output;
 }
 
+// A PNG of a few bytes whose header claims width x height RGBA pixels, with an IDAT too short
+// for them: decoding would allocate width x height x 4 bytes before finding that out.
+void writePngHeader(const fs::path& path, std::uint32_t width, std::uint32_t height) {
+  auto crc32 = [](const std::string& bytes) {
+    std::uint32_t crc = 0xffffffffu;
+    for (const unsigned char byte : bytes) {
+      crc ^= byte;
+      for (int bit = 0; bit < 8; ++bit) crc = (crc >> 1) ^ (0xedb88320u & (0u - (crc & 1u)));
+    }
+    return ~crc;
+  };
+  auto bigEndian = [](std::uint32_t value) {
+    return std::string{static_cast<char>(value >> 24), static_cast<char>(value >> 16), static_cast<char>(value >> 8), static_cast<char>(value)};
+  };
+  auto chunk = [&](const std::string& type, const std::string& data) { return bigEndian(static_cast<std::uint32_t>(data.size())) + type + data + bigEndian(crc32(type + data)); };
+  const std::string ihdr = bigEndian(width) + bigEndian(height) + std::string{8, 6, 0, 0, 0};  // 8 bits, RGBA
+  const std::string idat{0x78, 0x01, 0x01, 0x01, 0x00, static_cast<char>(0xfe), static_cast<char>(0xff), 0x00, 0x00, 0x01, 0x00, 0x01};  // zlib: one zero byte
+  std::ofstream(path, std::ios::binary) << std::string("\x89PNG\r\n\x1a\n", 8) << chunk("IHDR", ihdr) << chunk("IDAT", idat) << chunk("IEND", "");
+}
+
+// An image whose header claims 60000 x 60000 pixels (14.4 GB as RGBA8) is refused from its
+// header, with a note naming the file and the image; the quad is drawn without it. It used to be
+// decoded into a 14.4 GB buffer (std::bad_alloc where memory is short, naming nothing).
+TEST(Viewer, HugeImageHeaderIsRefusedBeforeDecoding) {
+  TempDir dir;
+  writePngHeader(dir / "huge.png", 60000, 60000);
+  ASSERT_LT(fs::file_size(dir / "huge.png"), 100u);
+  const nlohmann::json material = {{"pbrMetallicRoughness", {{"baseColorTexture", {{"index", 0}}}}},
+                                   {"extensions", {{"KHR_materials_unlit", nlohmann::json::object()}}}};
+  const fs::path file = quadAsset(dir, "huge", material, "huge.png");
+  std::string output;
+  const int exit = run("'" + file.string() + "'" + kQuadView + " --screenshot '" + (dir / "huge-shot.png").string() + "'", output);
+  std::printf("%s", output.c_str());
+  EXPECT_EQ(exit, 0) << output;
+  EXPECT_NE(output.find("huge.gltf: image 0 'huge.png': its header claims 60000 x 60000 pixels"), std::string::npos) << output;
+  EXPECT_NE(output.find("not decoded"), std::string::npos) << output;
+  EXPECT_EQ(output.find("bad_alloc"), std::string::npos) << output;
+}
+
+// A valid 20000 x 1 texture, wider than llvmpipe's largest (16384), is downscaled to fit with a
+// note; it used to fail the screenshot with GL_INVALID_VALUE (0x501). Left half red, right half
+// green, as the texels say.
+TEST(Viewer, TextureWiderThanTheGlLimitIsDownscaled) {
+  TempDir dir;
+  writeRgbaPng(dir / "wide.png", 20000, 1, [](int x, int) {
+    return x < 10000 ? std::array<unsigned char, 4>{255, 0, 0, 255} : std::array<unsigned char, 4>{0, 255, 0, 255};
+  });
+  const nlohmann::json material = {{"pbrMetallicRoughness", {{"baseColorTexture", {{"index", 0}}}}},
+                                   {"extensions", {{"KHR_materials_unlit", nlohmann::json::object()}}}};
+  const fs::path file = quadAsset(dir, "wide", material, "wide.png");
+  std::string output;
+  const int exit = run("'" + file.string() + "'" + kQuadView + " --screenshot '" + (dir / "wide-shot.png").string() + "'", output);
+  std::printf("%s", output.c_str());
+  ASSERT_EQ(exit, 0) << output;
+  EXPECT_EQ(output.find("OpenGL errors"), std::string::npos) << output;
+  EXPECT_NE(output.find("wide.gltf: image 0 'wide.png': 20000 x 1 pixels"), std::string::npos) << output;
+  const Image image = readPng(dir / "wide-shot.png");
+  ASSERT_EQ(image.width, 200);
+  EXPECT_EQ(colourName(quadPixel(image, -0.5, 0)), 'R');
+  EXPECT_EQ(colourName(quadPixel(image, 0.5, 0)), 'G');
+}
+
 }  // namespace

@@ -33,7 +33,8 @@ std::vector<ImageSource> readImages(const detail::Asset& asset, std::vector<std:
   for (std::size_t i = 0; i < asset.json["images"].size(); ++i) {
     const Json& image = asset.json["images"][i];
     ImageSource source;
-    source.label = asset.path.filename().string() + " image " + std::to_string(i);
+    // Names the file and the image (and its URI) in the viewer's messages.
+    source.label = asset.path.string() + ": image " + std::to_string(i);
     source.mimeType = image.value("mimeType", "");
     if (image.contains("uri") && image["uri"].is_string()) {
       const std::string uri = image["uri"].get<std::string>();
@@ -44,7 +45,7 @@ std::vector<ImageSource> readImages(const detail::Asset& asset, std::vector<std:
         // loadAsset refused URIs that leave the asset root; a missing file leaves the image empty.
         try {
           source.file = detail::resolveFileUri(uri, dir, asset.root, asset.path.string(), "/images/" + std::to_string(i));
-          source.label = source.file.string();
+          source.label += " '" + uri + "'";
         } catch (const detail::MissingFileError& e) {
           messages.push_back(e.what());
         }
