@@ -357,7 +357,7 @@ int bakeCommand(const std::vector<std::string>& args) {
       const gltf::BakeResult result = gltf::bakeFile(input, target, options);
       if (stream) stream->send(input);
       entry["status"] = "ok";
-      entry.update(gltf::toJson(result));
+      if (!reportPath.empty()) entry.update(gltf::toJson(result));  // the per-primitive report: only when asked for
       if (!quiet) {
         if (progress) std::cerr << "\r\033[K";
         int baked = 0, kept = 0, skipped = 0;
@@ -400,7 +400,7 @@ int bakeCommand(const std::vector<std::string>& args) {
       entry["status"] = "failed";
       entry["error"] = e.what();
     }
-    report.push_back(entry);
+    if (!reportPath.empty()) report.push_back(std::move(entry));
   }
   if (progress) std::cerr << "\r\033[K";
   if (const int written = writeReport(reportPath, report); written != kExitOk) return written;
