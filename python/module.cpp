@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
-// The Python module `libtangent` (pybind11): the core on numpy arrays, and bake and check on
-// files with the options and the reports of the `tangent` command. The GIL is released while
+// The compiled module `libtangent._libtangent` (pybind11) of the package `libtangent`
+// (python/libtangent re-exports it): the core on numpy arrays, and bake and check on files with
+// the options and the reports of the `tangent` command. The GIL is released while
 // C++ runs, so other Python threads (and Dask workers' threads) go on.
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
@@ -141,11 +142,13 @@ py::dict computeTangents(const py::handle& positionsIn, const py::handle& normal
 
 }  // namespace
 
-PYBIND11_MODULE(libtangent, m) {
+PYBIND11_MODULE(_libtangent, m) {
   m.doc() =
       "libtangent: MikkTSpace-exact tangent frames for glTF and plain arrays.\n\n"
       "compute_tangents() works on numpy arrays; bake() and check() work on files, with the\n"
       "options and the JSON reports of the `tangent bake` and `tangent check` commands.";
+  // The project's version (CMakeLists.txt `project(... VERSION ...)`), given by the build.
+  m.attr("__version__") = TANGENT_VERSION;
   static py::exception<std::runtime_error> error(m, "Error", PyExc_RuntimeError);
   static py::exception<tangent::gltf::InputError> inputError(m, "InputError", error.ptr());
   error.doc() = "Base class of libtangent's errors (I/O failures).";

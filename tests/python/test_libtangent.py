@@ -237,7 +237,7 @@ def test_help_reads_like_the_cli():
     assert "as `tangent bake INPUT -o OUTPUT` does" in libtangent.bake.__doc__
     for option in ("method", "weighting", "threads", "all", "overwrite", "asset_root"):
         assert option + ":" in libtangent.bake.__doc__
-    stub = pathlib.Path(libtangent.__file__).with_name("libtangent.pyi")
+    stub = pathlib.Path(libtangent.__file__).with_name("__init__.pyi")
     assert "def compute_tangents(" in stub.read_text()
 
 

@@ -1,5 +1,6 @@
 # SPDX-License-Identifier: MIT
-"""Type stubs of the libtangent module (python/module.cpp): see help(libtangent)."""
+"""Type stubs of the package libtangent, whose __init__.py re-exports the compiled module
+libtangent._libtangent (python/module.cpp): see help(libtangent)."""
 import os
 from typing import Any, Dict, List, Optional, Tuple, TypedDict, Union
 
@@ -7,6 +8,8 @@ import numpy as np
 import numpy.typing as npt
 
 PathLike = Union[str, os.PathLike[str]]
+
+__version__: str
 
 class Error(RuntimeError):
     """Base class of libtangent's errors (I/O failures)."""
