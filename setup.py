@@ -53,12 +53,17 @@ class CMakeExtension(Extension):
 class BuildWithCMake(build_ext):
     def build_extension(self, ext):
         build_dir = cmake_build_dir()
-        # A build folder configured from another checkout (a moved or copied tree) is started over.
+        # The interpreter running the build (a venv's python resolves to the one it was made
+        # from): the module is built for its headers and ABI.
+        python = os.path.realpath(sys.executable)
+        # A build folder configured from another checkout (a moved or copied tree) or for another
+        # interpreter is configured afresh; one whose configuring did not finish, again. Else the
+        # build itself reruns CMake where a CMakeLists.txt changed.
         home = cache_value(build_dir, "CMAKE_HOME_DIRECTORY")
-        if home is not None and pathlib.Path(home).resolve() != SOURCE:
-            shutil.rmtree(build_dir)
-        if cache_value(build_dir, "CMAKE_HOME_DIRECTORY") is None:
-            self.configure(build_dir)
+        stale = home is not None and (pathlib.Path(home).resolve() != SOURCE or cache_value(build_dir, "Python_EXECUTABLE") != python)
+        generated = (build_dir / "build.ninja").is_file() or (build_dir / "Makefile").is_file()
+        if stale or not generated:
+            self.configure(build_dir, python, fresh=home is not None)
         jobs = self.parallel or os.cpu_count() or 1
         subprocess.run(["cmake", "--build", str(build_dir), "--target", ext.target, "--parallel", str(jobs)], check=True)
         built = sorted((build_dir / "python" / "libtangent").glob("_libtangent.*.so"))
@@ -72,14 +77,13 @@ class BuildWithCMake(build_ext):
         if shutil.which("strip"):
             subprocess.run(["strip", "--strip-debug", str(destination)], check=True)
 
-    def configure(self, build_dir):
-        # The interpreter running the build (a venv's python resolves to the one it was made
-        # from): the module is built for its headers and ABI.
-        python = os.path.realpath(sys.executable)
+    def configure(self, build_dir, python, fresh):
         arguments = ["cmake", "-S", str(SOURCE), "-B", str(build_dir), "-DCMAKE_BUILD_TYPE=RelWithDebInfo",
                      f"-DPython_EXECUTABLE={python}", "-DTANGENT_BUILD_GLTF=ON", "-DTANGENT_BUILD_PYTHON=ON",
                      "-DTANGENT_BUILD_TOOLS=OFF", "-DTANGENT_BUILD_VIEWER=OFF", "-DTANGENT_BUILD_TESTS=OFF",
                      "-DTANGENT_BUILD_BENCHMARKS=OFF"]
+        if fresh:
+            arguments.append("--fresh")  # a new cache, as if the folder were empty (CMake 3.24)
         if shutil.which("ninja"):
             arguments += ["-G", "Ninja"]
         if shutil.which("ccache"):
