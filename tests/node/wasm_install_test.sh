@@ -33,8 +33,10 @@ node "$source_dir/tests/node/validate.mjs" out.glb
 rm out.glb
 bash -euo pipefail "$work/blocks/2.sh"
 node "$source_dir/tests/node/validate.mjs" out.glb
-# Never over its input; an existing output only with --overwrite.
+# Never over its input; an existing output only with --force (--overwrite, which means
+# "recompute valid tangents" in tangent bake and glTF-Transform, is refused).
 if npx --no-install tangent-wasm out.glb out.glb 2>/dev/null; then echo "tangent-wasm overwrote its input" >&2; exit 1; fi
-if npx --no-install tangent-wasm in.glb out.glb 2>/dev/null; then echo "tangent-wasm replaced an output without --overwrite" >&2; exit 1; fi
-npx --no-install tangent-wasm in.glb out.glb --overwrite >/dev/null
+if npx --no-install tangent-wasm in.glb out.glb 2>/dev/null; then echo "tangent-wasm replaced an output without --force" >&2; exit 1; fi
+if npx --no-install tangent-wasm in.glb out.glb --overwrite 2>/dev/null; then echo "tangent-wasm took --overwrite" >&2; exit 1; fi
+npx --no-install tangent-wasm in.glb out.glb --force >/dev/null
 echo "installed package: ok"
