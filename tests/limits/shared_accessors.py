@@ -4,12 +4,18 @@
 part, every part drawing the same small geometry with its own material): the scaling
 benchmark for `tangent bake`, and the input of the correctness test (test_limits.py).
 
-  shared_accessors.py write N OUT.gltf [--split]   one file of N primitives
-  shared_accessors.py bench TANGENT [N ...]         times bake, check and info at each N
+  shared_accessors.py write N OUT.gltf [--split] [--vertex-buffer]   one file of N primitives
+  shared_accessors.py write-conflict OUT.gltf                       two primitives, one mirrored
+  shared_accessors.py bench TANGENT [N ...] [--vertex-buffer]       times bake, check and info
 
 Every primitive refers to the same POSITION, NORMAL, TEXCOORD_0 and indices accessors; with
 --split the UVs have a seam (a vertex whose corners get different frames), so bake must split
-vertices. Not a timed test: the numbers are printed, nothing is asserted.
+vertices. With --vertex-buffer the layout of CAD and architecture exporters: one vertex buffer
+of N quads (4N vertices) that every primitive shares, and per primitive its own indices
+accessor drawing its own quad; with --split each quad is folded as above. write-conflict: two
+quads of one vertex buffer that share an edge, the second's UVs mirrored, so the frames the two
+primitives give the edge's vertices disagree. Not a timed test: the numbers are printed, nothing
+is asserted.
 """
 import base64
 import json
@@ -66,9 +72,67 @@ def document(count, split=False, materials=2):
     }
 
 
-def write(count, path, split=False):
+def vertex_buffer_document(positions, uvs, quads, materials=2):
+    """One vertex buffer (POSITION, NORMAL +z, TEXCOORD_0) and one primitive per entry of
+    `quads` (a list of 6 vertex indices each, UNSIGNED_INT), each with its own indices accessor
+    into one index bufferView, each in its own mesh and node, every material normal-mapped."""
+    vertices = len(positions) // 3
+    count = len(quads)
+    blob = struct.pack(f"<{len(positions)}f", *positions)
+    blob += struct.pack(f"<{3 * vertices}f", *([0, 0, 1] * vertices))
+    blob += struct.pack(f"<{len(uvs)}f", *uvs)
+    index_offset = len(blob)
+    blob += b"".join(struct.pack("<6I", *quad) for quad in quads)
+    attributes = {"POSITION": 0, "NORMAL": 1, "TEXCOORD_0": 2}
+    meshes = [{"primitives": [{"attributes": attributes, "indices": 3 + i, "material": i % materials, "mode": 4}]}
+              for i in range(count)]
+    low = [min(positions[axis::3]) for axis in range(3)]
+    high = [max(positions[axis::3]) for axis in range(3)]
+    doc = document(count, materials=materials)
+    doc["meshes"] = meshes
+    doc["accessors"] = [
+        {"bufferView": 0, "componentType": 5126, "count": vertices, "type": "VEC3", "min": low, "max": high},
+        {"bufferView": 1, "componentType": 5126, "count": vertices, "type": "VEC3"},
+        {"bufferView": 2, "componentType": 5126, "count": vertices, "type": "VEC2"},
+    ] + [{"bufferView": 3, "byteOffset": 24 * i, "componentType": 5125, "count": 6, "type": "SCALAR"} for i in range(count)]
+    doc["bufferViews"] = [
+        {"buffer": 0, "byteOffset": 0, "byteLength": 12 * vertices, "target": 34962},
+        {"buffer": 0, "byteOffset": 12 * vertices, "byteLength": 12 * vertices, "target": 34962},
+        {"buffer": 0, "byteOffset": 24 * vertices, "byteLength": 8 * vertices, "target": 34962},
+        {"buffer": 0, "byteOffset": index_offset, "byteLength": 24 * count, "target": 34963},
+    ]
+    doc["buffers"] = [{"uri": "data:application/octet-stream;base64," + base64.b64encode(blob).decode(),
+                       "byteLength": len(blob)}]
+    return doc
+
+
+def vertex_buffer(count, split=False):
+    """N quads side by side in rows of 256, each drawn by its own primitive."""
+    positions, uvs, quads = [], [], []
+    quad_uvs = [0, 1, 1, 1, 1, 0, 0, 0] if not split else [0, 1, 1, 1, 1, 0, 2, 0]
+    for i in range(count):
+        x, y = 2 * (i % 256), 2 * (i // 256)
+        positions += [x, y, 0, x + 1, y, 0, x + 1, y + 1, 0, x, y + 1, 0]
+        uvs += quad_uvs
+        quads.append([4 * i, 4 * i + 1, 4 * i + 2, 4 * i, 4 * i + 2, 4 * i + 3])
+    return vertex_buffer_document(positions, uvs, quads)
+
+
+def conflict():
+    """Two quads sharing the edge of vertices 1 and 2; the second quad's u runs against x (its
+    UVs mirrored), so at vertices 1 and 2 the first primitive's frame is (+x, w) and the
+    second's (-x, -w)."""
+    positions = [0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 1, 0, 2, 0, 0, 2, 1, 0]
+    uvs = [0, 1, 1, 1, 1, 0, 0, 0, 0, 1, 0, 0]
+    quads = [[0, 1, 2, 0, 2, 3], [1, 4, 5, 1, 5, 2]]
+    return vertex_buffer_document(positions, uvs, quads)
+
+
+def write(count, path, split=False, layout="shared"):
+    doc = {"shared": lambda: document(count, split), "vertex-buffer": lambda: vertex_buffer(count, split),
+           "conflict": conflict}[layout]()
     with open(path, "w") as f:
-        json.dump(document(count, split), f, separators=(",", ":"))
+        json.dump(doc, f, separators=(",", ":"))
 
 
 def timed(argv):
@@ -77,31 +141,41 @@ def timed(argv):
     return time.perf_counter() - start, done.returncode
 
 
-def bench(tangent, counts):
-    print("primitives  file-bytes  bake-s  bake-split-s  check-s  info-s  (exit codes)")
+def bench(tangent, counts, layout="shared"):
+    """Bake without and with a split, then check and info of the input and of the baked output
+    (the unsplit one): wall seconds, and the size of the unsplit input and output."""
+    print(f"layout {layout}")
+    print("primitives  in-bytes  out-bytes  bake-s  bake-split-s  check-in-s  info-in-s  check-out-s  info-out-s  (exit codes)")
     with tempfile.TemporaryDirectory() as folder:
         for count in counts:
             row, codes = [], []
             for split in (False, True):
                 source = os.path.join(folder, f"in-{count}-{int(split)}.gltf")
-                write(count, source, split)
-                seconds, code = timed([tangent, "bake", source, "-o", os.path.join(folder, "out.glb"), "--quiet"])
+                write(count, source, split, layout)
+                seconds, code = timed([tangent, "bake", source, "-o", os.path.join(folder, f"out-{int(split)}.glb"), "--quiet"])
                 row.append(seconds)
                 codes.append(code)
-            size = os.path.getsize(os.path.join(folder, f"in-{count}-0.gltf"))
-            for command in ("check", "info"):
-                seconds, code = timed([tangent, command, os.path.join(folder, f"in-{count}-0.gltf")])
-                row.append(seconds)
-                codes.append(code)
-            print(f"{count:10d}  {size:10d}  " + "  ".join(f"{s:6.2f}" for s in row) + f"  {codes}", flush=True)
+            source = os.path.join(folder, f"in-{count}-0.gltf")
+            baked = os.path.join(folder, "out-0.glb")
+            for path in (source, baked):
+                for command in ("check", "info"):
+                    seconds, code = timed([tangent, command, path])
+                    row.append(seconds)
+                    codes.append(code)
+            sizes = f"{os.path.getsize(source):9d}  {os.path.getsize(baked) if os.path.exists(baked) else -1:9d}"
+            print(f"{count:10d}  {sizes}  " + "  ".join(f"{s:6.2f}" for s in row) + f"  {codes}", flush=True)
 
 
 def main():
     args = sys.argv[1:]
+    layout = "vertex-buffer" if "--vertex-buffer" in args else "shared"
+    args = [a for a in args if a != "--vertex-buffer"]
     if len(args) >= 3 and args[0] == "write":
-        write(int(args[1]), args[2], "--split" in args[3:])
+        write(int(args[1]), args[2], "--split" in args[3:], layout)
+    elif len(args) == 2 and args[0] == "write-conflict":
+        write(2, args[1], layout="conflict")
     elif len(args) >= 2 and args[0] == "bench":
-        bench(args[1], [int(a) for a in args[2:]] or [1000, 8000, 64000])
+        bench(args[1], [int(a) for a in args[2:]] or [1000, 8000, 64000], layout)
     else:
         sys.exit(__doc__)
 

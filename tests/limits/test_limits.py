@@ -6,6 +6,13 @@ command. Each test makes its own temporary folder.
   test_limits.py shared TANGENT NODE_DIR   2,000 primitives sharing accessors bake to one TANGENT
                                            accessor (and, split, to one set of rebuilt
                                            accessors); the outputs pass the Khronos validator
+  test_limits.py vertex-buffer TANGENT NODE_DIR
+                                           2,000 primitives on one vertex buffer, each with its own
+                                           indices, bake to one shared TANGENT accessor (and, each
+                                           split, to a compacted set per primitive); two that
+                                           disagree on shared vertices (one mirrored) to one shared
+                                           and one compacted; the outputs check clean and pass the
+                                           Khronos validator
   test_limits.py inputs TANGENT            a check configuration nested 1e6 deep, a broken data:
                                            URI of 2 MB and an input path longer than PATH_MAX:
                                            refused with a short message that says what is wrong
@@ -74,6 +81,87 @@ def test_shared(tangent, node_dir):
             failures.append(f"gltf-validator is not installed in {node_dir} (scripts/test.sh runs npm ci)")
 
 
+def primitives_of(doc):
+    return [p for mesh in doc["meshes"] for p in mesh["primitives"]]
+
+
+def bake_checked(tangent, source, output, what, extra=()):
+    """Bakes and checks; the baked document, or None when bake failed."""
+    code, message = run([tangent, "bake", source, "-o", output, "--quiet", *extra])
+    expect(code == 0, f"{what}: bake exit {code}: {message[:400]}")
+    if code != 0:
+        return None
+    code, message = run([tangent, "check", output])
+    expect(code == 0, f"{what}: check of the baked file: exit {code}: {message[:400]}")
+    doc = glb_json(output)
+    for p in primitives_of(doc):
+        attributes = p["attributes"]
+        counts = {doc["accessors"][attributes[name]]["count"] for name in ("POSITION", "NORMAL", "TEXCOORD_0", "TANGENT")}
+        expect(len(counts) == 1, f"{what}: a primitive's attribute counts differ: {counts}")
+    return doc
+
+
+def test_vertex_buffer(tangent, node_dir):
+    count = 2000
+    with tempfile.TemporaryDirectory() as folder:
+        outputs = []
+        # Disjoint quads: one TANGENT over the whole buffer, the input's accessors kept.
+        for tangent_format in ("float", "short"):
+            source = os.path.join(folder, "in.gltf")
+            shared_accessors.write(count, source, layout="vertex-buffer")
+            output = os.path.join(folder, f"out-{tangent_format}.glb")
+            doc = bake_checked(tangent, source, output, f"vertex buffer, {tangent_format}", ["--tangent-format", tangent_format])
+            if doc is None:
+                continue
+            outputs.append(output)
+            primitives = primitives_of(doc)
+            expect(len(primitives) == count, f"vertex buffer: {len(primitives)} primitives, expected {count}")
+            tangents = {p["attributes"].get("TANGENT") for p in primitives}
+            expect(len(tangents) == 1 and None not in tangents, f"vertex buffer: {len(tangents)} TANGENT accessors, expected one shared")
+            positions = {p["attributes"]["POSITION"] for p in primitives}
+            indices = {p["indices"] for p in primitives}
+            expect(len(positions) == 1 and len(indices) == count, f"vertex buffer: {len(positions)} POSITION and {len(indices)} "
+                   f"indices accessors, expected 1 and {count}")
+            expect(len(doc["accessors"]) == 3 + count + 1, f"vertex buffer: {len(doc['accessors'])} accessors, expected {count + 4}")
+            vertices = doc["accessors"][positions.pop()]["count"]
+            expect(vertices == 4 * count, f"vertex buffer: {vertices} vertices after the bake, expected {4 * count}")
+            # About 420 bytes a primitive (4 vertices, 6 indices, its JSON); quadratic was 64 kB each at 1,000.
+            size = os.path.getsize(output)
+            expect(size < 1000 * count, f"vertex buffer: {size} bytes written for {count} primitives")
+        # Each quad folded (a vertex split in each): every primitive its own compacted set.
+        source = os.path.join(folder, "in-split.gltf")
+        shared_accessors.write(count, source, split=True, layout="vertex-buffer")
+        output = os.path.join(folder, "out-split.glb")
+        doc = bake_checked(tangent, source, output, "vertex buffer, split")
+        if doc is not None:
+            outputs.append(output)
+            primitives = primitives_of(doc)
+            tangents = {p["attributes"]["TANGENT"] for p in primitives}
+            expect(len(tangents) == count, f"vertex buffer, split: {len(tangents)} TANGENT accessors, expected {count}")
+            expect(len(doc["accessors"]) == 5 * count, f"vertex buffer, split: {len(doc['accessors'])} accessors, expected {5 * count}")
+            vertices = {doc["accessors"][p["attributes"]["POSITION"]]["count"] for p in primitives}
+            expect(vertices == {6}, f"vertex buffer, split: vertex counts {vertices}, expected 6 (4 used, the fold splits 2)")
+            size = os.path.getsize(output)
+            expect(size < 2000 * count, f"vertex buffer, split: {size} bytes written for {count} primitives")
+        # Two quads sharing an edge, the second mirrored: the first shares the buffer's TANGENT,
+        # the second gets its own 4 vertices.
+        source = os.path.join(folder, "in-conflict.gltf")
+        shared_accessors.write(2, source, layout="conflict")
+        output = os.path.join(folder, "out-conflict.glb")
+        doc = bake_checked(tangent, source, output, "vertex buffer, conflict")
+        if doc is not None:
+            outputs.append(output)
+            first, second = primitives_of(doc)
+            counts = [doc["accessors"][p["attributes"]["POSITION"]]["count"] for p in (first, second)]
+            expect(counts == [6, 4], f"vertex buffer, conflict: vertex counts {counts}, expected [6, 4]")
+            expect(first["attributes"]["TANGENT"] != second["attributes"]["TANGENT"], "vertex buffer, conflict: one TANGENT for both")
+        if os.path.isdir(os.path.join(node_dir, "node_modules", "gltf-validator")) and outputs:
+            code, message = run(["node", os.path.join(node_dir, "validate.mjs")] + outputs)
+            expect(code == 0, f"validator: exit {code}: {message[:800]}")
+        else:
+            failures.append(f"gltf-validator is not installed in {node_dir} (scripts/test.sh runs npm ci)")
+
+
 def test_inputs(tangent):
     with tempfile.TemporaryDirectory() as folder:
         source = os.path.join(folder, "in.gltf")
@@ -108,6 +196,8 @@ def test_inputs(tangent):
 def main():
     if len(sys.argv) >= 4 and sys.argv[1] == "shared":
         test_shared(sys.argv[2], sys.argv[3])
+    elif len(sys.argv) >= 4 and sys.argv[1] == "vertex-buffer":
+        test_vertex_buffer(sys.argv[2], sys.argv[3])
     elif len(sys.argv) >= 3 and sys.argv[1] == "inputs":
         test_inputs(sys.argv[2])
     else:

@@ -40,6 +40,23 @@ struct VertexSplit {
   std::vector<float> tangents;            // 4 per output vertex
 };
 
+// A vertex no triangle uses still needs a valid TANGENT (the validator and loaders read every
+// element): a unit vector orthogonal to its normal, w = +1, from the normal alone.
+void unusedVertexTangent(const float* normal, float* tangent) {
+  const double n[3] = {normal[0], normal[1], normal[2]};
+  const bool alongX = std::abs(n[0]) > 0.9 || !std::isfinite(n[0] + n[1] + n[2]);
+  const double axis[3] = {alongX ? 0.0 : 1.0, alongX ? 1.0 : 0.0, 0.0};
+  double t[3] = {axis[0], axis[1], axis[2]};
+  const double len2 = n[0] * n[0] + n[1] * n[1] + n[2] * n[2];
+  if (std::isfinite(len2) && len2 > 0) {
+    const double d = (n[0] * axis[0] + n[1] * axis[1] + n[2] * axis[2]) / len2;
+    for (int i = 0; i < 3; ++i) t[i] = axis[i] - d * n[i];
+  }
+  const double length = std::sqrt(t[0] * t[0] + t[1] * t[1] + t[2] * t[2]);
+  for (int i = 0; i < 3; ++i) tangent[i] = static_cast<float>(t[i] / length);
+  tangent[3] = 1.0f;
+}
+
 // One pass over the core's corner -> output vertex map (CornerOutputs::cornerVertex).
 VertexSplit splitVertices(const std::vector<std::uint32_t>& corners, const BulkVector<float>& cornerTangents,
                           BulkVector<std::uint32_t> cornerVertex, std::size_t outputVertices, std::size_t vertexCount,
@@ -57,21 +74,8 @@ VertexSplit splitVertices(const std::vector<std::uint32_t>& corners, const BulkV
     std::copy(&cornerTangents[4 * c], &cornerTangents[4 * c + 4], &split.tangents[4 * o]);
   }
   split.cornerVertex = std::move(cornerVertex);
-  // Vertices no triangle uses still need a valid tangent: any unit vector orthogonal to N.
   for (std::size_t v = 0; v < vertexCount; ++v) {
-    if (split.firstCorner[v] >= 0) continue;
-    const double n[3] = {normals[3 * v], normals[3 * v + 1], normals[3 * v + 2]};
-    const bool alongX = std::abs(n[0]) > 0.9 || !std::isfinite(n[0] + n[1] + n[2]);
-    const double axis[3] = {alongX ? 0.0 : 1.0, alongX ? 1.0 : 0.0, 0.0};
-    double t[3] = {axis[0], axis[1], axis[2]};
-    const double len2 = n[0] * n[0] + n[1] * n[1] + n[2] * n[2];
-    if (std::isfinite(len2) && len2 > 0) {
-      const double d = (n[0] * axis[0] + n[1] * axis[1] + n[2] * axis[2]) / len2;
-      for (int i = 0; i < 3; ++i) t[i] = axis[i] - d * n[i];
-    }
-    const double length = std::sqrt(t[0] * t[0] + t[1] * t[1] + t[2] * t[2]);
-    for (int i = 0; i < 3; ++i) split.tangents[4 * v + i] = static_cast<float>(t[i] / length);
-    split.tangents[4 * v + 3] = 1.0f;
+    if (split.firstCorner[v] < 0) unusedVertexTangent(&normals[3 * v], &split.tangents[4 * v]);
   }
   return split;
 }
@@ -187,6 +191,66 @@ struct ComputedTangents {
   std::vector<std::vector<float>> targetTangentDeltas;
   detail::PrimitiveCompression compression;
   bool rebuild = false;  // every vertex accessor and the indices are written anew
+  // The split's vertices are a part of a shared vertex buffer (VertexGroup): rebuilt accessors
+  // get the min/max of the part (the spec requires them for POSITION, the validator compares).
+  bool partOfBuffer = false;
+};
+
+// A morph target's deltas as the tangents are computed from them: empty where absent.
+struct TargetDeltas {
+  std::vector<float> positions, normals;
+};
+
+// Primitives that share their vertex attributes (detail::sameVertexKey) and draw with
+// different indices: one vertex buffer of a CAD model, one indices accessor per part. Each
+// part gets its frames from the vertices it uses (time in its corners, not in the buffer).
+struct VertexGroup {
+  std::vector<std::size_t> firstOfInput;  // the first plan of each input key (sameInputKey), in document order
+};
+
+// The frames of the primitives of a VertexGroup that share one TANGENT accessor, per vertex of
+// the buffer: a primitive joins when its vertices are not split and each vertex it uses has no
+// frame yet or the same bits (tangent and every target's delta) as the one it has.
+class BufferFrames {
+ public:
+  BufferFrames(std::size_t vertexCount, std::size_t targetCount)
+      : tangents_(vertexCount * 4), claimed_(vertexCount, 0), targetDeltas_(targetCount, std::vector<float>(vertexCount * 3)) {}
+
+  bool agrees(const std::vector<std::uint32_t>& used, const ComputedTangents& part) const {
+    for (std::size_t v = 0; v < used.size(); ++v) {
+      const std::size_t b = used[v];
+      if (!claimed_[b]) continue;
+      if (std::memcmp(&tangents_[4 * b], &part.split.tangents[4 * v], 4 * sizeof(float)) != 0) return false;
+      for (std::size_t t = 0; t < targetDeltas_.size(); ++t) {
+        if (std::memcmp(&targetDeltas_[t][3 * b], &part.targetTangentDeltas[t][3 * v], 3 * sizeof(float)) != 0) return false;
+      }
+    }
+    return true;
+  }
+
+  void claim(const std::vector<std::uint32_t>& used, const ComputedTangents& part) {
+    for (std::size_t v = 0; v < used.size(); ++v) {
+      const std::size_t b = used[v];
+      claimed_[b] = 1;
+      std::copy_n(&part.split.tangents[4 * v], 4, &tangents_[4 * b]);
+      for (std::size_t t = 0; t < targetDeltas_.size(); ++t) std::copy_n(&part.targetTangentDeltas[t][3 * v], 3, &targetDeltas_[t][3 * b]);
+    }
+  }
+
+  // Every vertex's tangent, those no sharing primitive uses made valid from their normals
+  // (target deltas stay 0 there); the object is spent.
+  std::vector<float> takeTangents(const std::vector<float>& normals) {
+    for (std::size_t b = 0; b < claimed_.size(); ++b) {
+      if (!claimed_[b]) unusedVertexTangent(&normals[3 * b], &tangents_[4 * b]);
+    }
+    return std::move(tangents_);
+  }
+  std::vector<std::vector<float>>& targetDeltas() { return targetDeltas_; }
+
+ private:
+  std::vector<float> tangents_;           // 4 per vertex of the buffer
+  std::vector<std::uint8_t> claimed_;     // 1 where a sharing primitive set the vertex's frame
+  std::vector<std::vector<float>> targetDeltas_;  // per target, 3 per vertex
 };
 
 // The accessors emit() wrote for a primitive, by name: every later primitive with the same
@@ -210,43 +274,37 @@ struct SharedBake {
   std::string compressionNote;       // "; written uncompressed (was ...)", or ""
 };
 
-// Bakes one primitive in four steps: plan (does it need tangents, is it valid), compute
+// Bakes every primitive in four steps: plan (does it need tangents, is it valid), compute
 // (tangents, vertex split, morph deltas; reads the document only), emit (new accessors) and
 // refer (the primitive's references to them). Compute and emit run once per set of inputs;
-// a primitive with the inputs of an earlier one only refers. Nothing holds a reference into
-// the document across an insertion: refer looks the primitive up after emit has appended.
+// a primitive with the inputs of an earlier one only refers. Primitives that share a vertex
+// buffer with different indices are computed and emitted together (bakeVertexGroup). Nothing
+// holds a reference into the document across an insertion: refer looks the primitive up after
+// emit has appended.
 class PrimitiveBaker {
  public:
   PrimitiveBaker(detail::Asset& asset, detail::OutputDocument& output, const BakeOptions& options)
       : asset_(asset), output_(output), options_(options) {}
 
-  PrimitiveResult bake(int meshIndex, int primitiveIndex) {
-    PrimitivePlan plan = planPrimitive(meshIndex, primitiveIndex);
-    if (!plan.bake) return std::move(plan.result);
-    const std::string key = detail::sameInputKey(output_.json(), primitiveJson(plan), plan.needs);
-    auto found = baked_.find(key);
-    if (found == baked_.end()) {
-      SharedBake shared;
-      if (std::optional<ComputedTangents> computed = compute(plan)) {
-        shared = emit(plan, *computed);
-      } else {
-        shared.notBaked = plan.result.reason;
-      }
-      found = baked_.emplace(key, std::move(shared)).first;
-    }
-    refer(plan, found->second);
-    return std::move(plan.result);
-  }
+  // Every primitive's result, in mesh and primitive order.
+  std::vector<PrimitiveResult> bakeAll();
 
  private:
   Json& primitiveJson(const PrimitivePlan& plan) {
     return output_.json()["meshes"][plan.mesh]["primitives"][plan.primitive];
   }
   PrimitivePlan planPrimitive(int meshIndex, int primitiveIndex);
+  SharedBake bakeInputs(PrimitivePlan& plan);
+  void bakeVertexGroup(const VertexGroup& group, std::vector<PrimitivePlan>& plans);
   std::optional<ComputedTangents> compute(PrimitivePlan& plan);
+  std::vector<TargetDeltas> readTargetDeltas(const PrimitivePlan& plan, std::size_t vertexCount);
+  std::optional<ComputedTangents> computeFrames(PrimitivePlan& plan, const detail::PrimitiveGeometry& geometry,
+                                                const std::vector<TargetDeltas>& targets);
+  const AccessorData& carriedData(int index, const std::string& what);
   SharedBake emit(const PrimitivePlan& plan, const ComputedTangents& computed);
   void refer(PrimitivePlan& plan, const SharedBake& shared);
   void rebuildAttributes(const PrimitivePlan& plan, const ComputedTangents& computed, EmittedAccessors& emitted);
+  int addGathered(int index, const AccessorData& data, const ComputedTangents& computed);
   void rebuildTargets(const PrimitivePlan& plan, const ComputedTangents& computed, EmittedAccessors& emitted);
   void writeIndices(const ComputedTangents& computed, EmittedAccessors& emitted);
   void writeTangents(const ComputedTangents& computed, EmittedAccessors& emitted);
@@ -256,6 +314,8 @@ class PrimitiveBaker {
   const BakeOptions& options_;
   TangentWorkspace workspace_;                              // reused by every compute
   std::unordered_map<std::string, SharedBake> baked_;       // by detail::sameInputKey
+  std::unordered_map<int, AccessorData> carried_;           // accessors rebuilt from, while one group is emitted
+  std::unordered_map<std::size_t, SharedBake> groupBakes_;  // bakeVertexGroup's, by the plan of each input key
   std::unordered_map<std::string, PrimitiveCheck> verdicts_;  // of existing TANGENTs, by key and accessor
 };
 
@@ -325,12 +385,182 @@ PrimitivePlan PrimitiveBaker::planPrimitive(int meshIndex, int primitiveIndex) {
   return plan;
 }
 
+std::vector<PrimitiveResult> PrimitiveBaker::bakeAll() {
+  // Every plan first: which primitives share a vertex buffer decides how each is baked.
+  std::vector<PrimitivePlan> plans;
+  {
+    const Json& doc = output_.json();
+    const std::size_t meshCount = doc.contains("meshes") ? doc["meshes"].size() : 0;
+    for (std::size_t m = 0; m < meshCount; ++m) {
+      if (!output_.json()["meshes"][m].contains("primitives")) continue;
+      const std::size_t primitiveCount = output_.json()["meshes"][m]["primitives"].size();
+      for (std::size_t p = 0; p < primitiveCount; ++p) plans.push_back(planPrimitive(static_cast<int>(m), static_cast<int>(p)));
+    }
+  }
+  std::vector<std::string> inputKeys(plans.size());
+  std::vector<std::size_t> groupOfPlan(plans.size(), 0);
+  std::vector<VertexGroup> groups;
+  {
+    std::unordered_map<std::string, std::size_t> groupOfVertexKey;
+    std::unordered_map<std::string, std::size_t> firstOfInputKey;
+    for (std::size_t i = 0; i < plans.size(); ++i) {
+      if (!plans[i].bake) continue;
+      const Json& primitive = primitiveJson(plans[i]);
+      inputKeys[i] = detail::sameInputKey(output_.json(), primitive, plans[i].needs);
+      const auto group = groupOfVertexKey.emplace(detail::sameVertexKey(output_.json(), primitive, plans[i].needs), groups.size());
+      if (group.second) groups.emplace_back();
+      groupOfPlan[i] = group.first->second;
+      if (firstOfInputKey.emplace(inputKeys[i], i).second) groups[groupOfPlan[i]].firstOfInput.push_back(i);
+    }
+  }
+  std::vector<PrimitiveResult> results;
+  results.reserve(plans.size());
+  for (std::size_t i = 0; i < plans.size(); ++i) {
+    PrimitivePlan& plan = plans[i];
+    if (plan.bake) {
+      auto found = baked_.find(inputKeys[i]);
+      if (found == baked_.end()) {
+        const VertexGroup& group = groups[groupOfPlan[i]];
+        if (group.firstOfInput.size() == 1) {
+          found = baked_.emplace(inputKeys[i], bakeInputs(plan)).first;
+        } else {
+          bakeVertexGroup(group, plans);  // every input key of the group
+          for (const std::size_t first : group.firstOfInput) baked_.emplace(inputKeys[first], std::move(groupBakes_[first]));
+          groupBakes_.clear();
+          found = baked_.find(inputKeys[i]);
+        }
+      }
+      refer(plan, found->second);
+    }
+    results.push_back(std::move(plan.result));
+  }
+  return results;
+}
+
+// The primitive's inputs alone: its tangents over the whole of its vertex accessors.
+SharedBake PrimitiveBaker::bakeInputs(PrimitivePlan& plan) {
+  SharedBake shared;
+  if (std::optional<ComputedTangents> computed = compute(plan)) {
+    shared = emit(plan, *computed);
+  } else {
+    shared.notBaked = plan.result.reason;
+  }
+  carried_.clear();
+  return shared;
+}
+
+// The vertex attributes are read once; each input key's frames come from the vertices its
+// corners use. Those whose frames fit BufferFrames share one TANGENT accessor over the whole
+// buffer with the original attributes and indices; the others (a vertex split, a frame that
+// differs from another primitive's on a shared vertex, strips or fans, compressed data) get
+// their own attributes, only the vertices they use, re-indexed. Time and output are linear in
+// the buffer plus the corners of the group. Emitted: the rebuilt sets in document order, then
+// the shared TANGENT (and target TANGENT deltas).
+void PrimitiveBaker::bakeVertexGroup(const VertexGroup& group, std::vector<PrimitivePlan>& plans) {
+  const PrimitivePlan& first = plans[group.firstOfInput.front()];
+  const detail::PrimitiveGeometry buffer = detail::readVertices(asset_, primitiveJson(first), first.needs, first.where);
+  const std::vector<TargetDeltas> targets = readTargetDeltas(first, buffer.vertexCount);
+  BufferFrames frames(buffer.vertexCount, targets.size());
+  std::vector<std::uint32_t> slotOf(buffer.vertexCount, detail::kNoSlot);
+  std::vector<std::size_t> sharing;  // plans whose frames are in `frames`
+  for (const std::size_t index : group.firstOfInput) {
+    PrimitivePlan& plan = plans[index];
+    const Json& primitive = primitiveJson(plan);
+    detail::PrimitiveGeometry drawn;
+    drawn.vertexCount = buffer.vertexCount;
+    detail::readCorners(asset_, primitive, plan.where, drawn);
+    const detail::UsedVertices used = detail::usedVertices(drawn.corners, slotOf);
+    detail::PrimitiveGeometry part = detail::gatherGeometry(buffer, used);
+    part.mode = drawn.mode;
+    part.indexComponentType = drawn.indexComponentType;
+    std::vector<TargetDeltas> partTargets(targets.size());
+    for (std::size_t t = 0; t < targets.size(); ++t) {
+      for (auto [whole, gathered] : {std::pair{&targets[t].positions, &partTargets[t].positions},
+                                     std::pair{&targets[t].normals, &partTargets[t].normals}}) {
+        if (whole->empty()) continue;
+        gathered->resize(3 * used.vertices.size());
+        for (std::size_t v = 0; v < used.vertices.size(); ++v) std::copy_n(&(*whole)[3 * used.vertices[v]], 3, &(*gathered)[3 * v]);
+      }
+    }
+    std::optional<ComputedTangents> computed = computeFrames(plan, part, partTargets);
+    SharedBake& shared = groupBakes_[index];
+    if (!computed) {
+      shared.notBaked = plan.result.reason;
+      continue;
+    }
+    computed->compression = detail::primitiveCompression(asset_, primitive);
+    const bool unsplit = computed->split.source.size() == used.vertices.size();
+    if (unsplit && part.mode == 4 && !computed->compression.any() && frames.agrees(used.vertices, *computed)) {
+      frames.claim(used.vertices, *computed);
+      sharing.push_back(index);
+      continue;
+    }
+    for (std::uint32_t& source : computed->split.source) source = used.vertices[source];
+    computed->vertexCount = buffer.vertexCount;
+    computed->rebuild = true;
+    computed->partOfBuffer = true;
+    shared = emit(plan, *computed);
+  }
+  carried_.clear();
+  if (sharing.empty()) return;
+  // The shared TANGENT, and each target's TANGENT deltas, over the whole buffer.
+  EmittedAccessors emitted;
+  EncodedTangents encoded = encodeTangents(frames.takeTangents(buffer.normals), options_.tangentFormat);
+  emitted.attributes.emplace_back(
+      "TANGENT", output_.addAccessor(encoded.accessor, std::move(encoded.bytes), encoded.stride, detail::kArrayBuffer));
+  emitted.targets.resize(targets.size());
+  for (std::size_t t = 0; t < targets.size(); ++t) {
+    const int deltas = output_.addAccessor(floatAccessor(buffer.vertexCount, "VEC3"), floatBytes(frames.targetDeltas()[t]), 12,
+                                           detail::kArrayBuffer);
+    emitted.targets[t].emplace_back("TANGENT", deltas);
+  }
+  for (const std::size_t index : sharing) {
+    SharedBake& shared = groupBakes_[index];
+    shared.baked = true;
+    shared.emitted = emitted;
+    shared.tangents = plans[index].result.tangents;
+    shared.verticesIn = plans[index].result.verticesIn;
+    shared.verticesOut = plans[index].result.verticesOut;
+  }
+}
+
 // Tangents per corner from the core, the vertex split, and TANGENT deltas for the morph
 // targets (tangents of the morphed shape minus the base ones). Reads the document only.
 std::optional<ComputedTangents> PrimitiveBaker::compute(PrimitivePlan& plan) {
   const Json& primitive = primitiveJson(plan);
-  PrimitiveResult& result = plan.result;
   const detail::PrimitiveGeometry geometry = detail::readGeometry(asset_, primitive, plan.needs, plan.where);
+  if (geometry.corners.empty()) {
+    plan.result.reason = "primitive has no triangles; left as it is";
+    return std::nullopt;
+  }
+  std::optional<ComputedTangents> computed = computeFrames(plan, geometry, readTargetDeltas(plan, geometry.vertexCount));
+  // Compressed data is written uncompressed: every accessor of a baked primitive is new.
+  computed->compression = detail::primitiveCompression(asset_, primitive);
+  computed->rebuild = computed->split.source.size() != geometry.vertexCount || geometry.mode != 4 || computed->compression.any();
+  return computed;
+}
+
+std::vector<TargetDeltas> PrimitiveBaker::readTargetDeltas(const PrimitivePlan& plan, std::size_t vertexCount) {
+  std::vector<TargetDeltas> deltas;
+  const Json& primitive = primitiveJson(plan);
+  if (!primitive.contains("targets") || !primitive["targets"].is_array()) return deltas;
+  for (std::size_t t = 0; t < primitive["targets"].size(); ++t) {
+    const Json& target = primitive["targets"][t];
+    const std::string targetWhere = plan.where + ": target " + std::to_string(t);
+    TargetDeltas& delta = deltas.emplace_back();
+    if (const int position = detail::accessorOf(target, "POSITION"); position >= 0)
+      delta.positions = detail::readVectors(asset_.model, position, 3, vertexCount, targetWhere + " POSITION");
+    if (const int normal = detail::accessorOf(target, "NORMAL"); normal >= 0)
+      delta.normals = detail::readVectors(asset_.model, normal, 3, vertexCount, targetWhere + " NORMAL");
+  }
+  return deltas;
+}
+
+// The core on one geometry (a whole primitive, or its part of a shared buffer): corner frames,
+// the vertex split and, per morph target, the TANGENT deltas of the split vertices.
+std::optional<ComputedTangents> PrimitiveBaker::computeFrames(PrimitivePlan& plan, const detail::PrimitiveGeometry& geometry,
+                                                              const std::vector<TargetDeltas>& targets) {
+  PrimitiveResult& result = plan.result;
   const std::vector<std::uint32_t>& corners = geometry.corners;
   if (corners.empty()) {
     result.reason = "primitive has no triangles; left as it is";
@@ -354,38 +584,31 @@ std::optional<ComputedTangents> PrimitiveBaker::compute(PrimitivePlan& plan) {
   const VertexSplit& split = computed.split;
   result.verticesIn = geometry.vertexCount;
   result.verticesOut = split.source.size();
-  // Compressed data is written uncompressed: every accessor of a baked primitive is new.
-  computed.compression = detail::primitiveCompression(asset_, primitive);
-  computed.rebuild = split.source.size() != geometry.vertexCount || geometry.mode != 4 || computed.compression.any();
 
-  if (primitive.contains("targets") && primitive["targets"].is_array()) {
-    for (std::size_t t = 0; t < primitive["targets"].size(); ++t) {
-      const Json& target = primitive["targets"][t];
-      const std::string targetWhere = plan.where + ": target " + std::to_string(t);
-      std::vector<float> morphedPositions = geometry.positions, morphedNormals = geometry.normals;
-      const int deltaPosition = detail::accessorOf(target, "POSITION");
-      const int deltaNormal = detail::accessorOf(target, "NORMAL");
-      if (deltaPosition >= 0) {
-        const auto delta = detail::readVectors(asset_.model, deltaPosition, 3, geometry.vertexCount, targetWhere + " POSITION");
-        for (std::size_t i = 0; i < delta.size(); ++i) morphedPositions[i] += delta[i];
-      }
-      if (deltaNormal >= 0) {
-        const auto delta = detail::readVectors(asset_.model, deltaNormal, 3, geometry.vertexCount, targetWhere + " NORMAL");
-        for (std::size_t i = 0; i < delta.size(); ++i) morphedNormals[i] += delta[i];
-      }
-      BulkVector<float> morphedTangents(corners.size() * 4);
-      computeCornerTangents({morphedPositions, morphedNormals, geometry.uvs, corners}, CornerOutputs{morphedTangents},
-                            coreOptions, workspace);
-      std::vector<float> deltas(split.source.size() * 3, 0.0f);
-      for (std::size_t v = 0; v < split.source.size(); ++v) {
-        if (split.firstCorner[v] < 0) continue;
-        const float* morphed = &morphedTangents[4 * split.firstCorner[v]];
-        for (int i = 0; i < 3; ++i) deltas[3 * v + i] = morphed[i] - split.tangents[4 * v + i];
-      }
-      computed.targetTangentDeltas.push_back(std::move(deltas));
+  for (const TargetDeltas& target : targets) {
+    std::vector<float> morphedPositions = geometry.positions, morphedNormals = geometry.normals;
+    for (std::size_t i = 0; i < target.positions.size(); ++i) morphedPositions[i] += target.positions[i];
+    for (std::size_t i = 0; i < target.normals.size(); ++i) morphedNormals[i] += target.normals[i];
+    BulkVector<float> morphedTangents(corners.size() * 4);
+    computeCornerTangents({morphedPositions, morphedNormals, geometry.uvs, corners}, CornerOutputs{morphedTangents},
+                          coreOptions, workspace);
+    std::vector<float> deltas(split.source.size() * 3, 0.0f);
+    for (std::size_t v = 0; v < split.source.size(); ++v) {
+      if (split.firstCorner[v] < 0) continue;
+      const float* morphed = &morphedTangents[4 * split.firstCorner[v]];
+      for (int i = 0; i < 3; ++i) deltas[3 * v + i] = morphed[i] - split.tangents[4 * v + i];
     }
+    computed.targetTangentDeltas.push_back(std::move(deltas));
   }
   return computed;
+}
+
+// An accessor rebuilt attributes are gathered from, decoded once while one primitive or group is
+// emitted (the parts of a shared buffer would otherwise each decode the whole of it).
+const AccessorData& PrimitiveBaker::carriedData(int index, const std::string& what) {
+  auto found = carried_.find(index);
+  if (found == carried_.end()) found = carried_.emplace(index, detail::readAccessor(asset_.model, index, what)).first;
+  return found->second;
 }
 
 // New accessors in a fixed order (carried attributes, carried target attributes, indices,
@@ -449,25 +672,43 @@ void PrimitiveBaker::rebuildAttributes(const PrimitivePlan& plan, const Computed
   for (const auto& [name, accessorRef] : primitiveJson(plan)["attributes"].items()) {
     if (name != "TANGENT") carried.emplace_back(name, accessorRef.get<int>());
   }
-  const std::size_t outCount = computed.split.source.size();
   for (const auto& [name, index] : carried) {
-    const AccessorData data = detail::readAccessor(asset_.model, index, plan.where + ": " + name);
+    const AccessorData& data = carriedData(index, plan.where + ": " + name);
     if (data.count != computed.vertexCount)
       throw InputError(plan.where + ": " + name + " (accessor " + std::to_string(index) + ") has " + std::to_string(data.count) +
                        " elements, POSITION has " + std::to_string(computed.vertexCount));
-    Json accessor = carriedAccessor(output_.json()["accessors"][index], outCount);
-    if (computed.compression.draco) recomputeBounds(accessor, data);
-    const int written =
-        output_.addAccessor(std::move(accessor), gather(data, computed.split.source), data.elementSize(), detail::kArrayBuffer);
-    emitted.attributes.emplace_back(name, written);
+    emitted.attributes.emplace_back(name, addGathered(index, data, computed));
   }
+}
+
+// Accessor `index` (decoded as `data`) gathered into the split vertices, as a new accessor. Its
+// min/max are those of the data written where they may not hold: Draco's quantization moves
+// values, and a part of a shared buffer spans less than the whole.
+int PrimitiveBaker::addGathered(int index, const AccessorData& data, const ComputedTangents& computed) {
+  const std::size_t outCount = computed.split.source.size();
+  Json accessor = carriedAccessor(output_.json()["accessors"][index], outCount);
+  std::vector<std::uint8_t> bytes = gather(data, computed.split.source);
+  if (computed.partOfBuffer) {
+    AccessorData written;  // data's header, the gathered bytes (a copy of data would copy the whole buffer)
+    written.componentType = data.componentType;
+    written.type = data.type;
+    written.normalized = data.normalized;
+    written.components = data.components;
+    written.componentSize = data.componentSize;
+    written.count = outCount;
+    written.bytes = std::move(bytes);
+    recomputeBounds(accessor, written);
+    bytes = std::move(written.bytes);
+  } else if (computed.compression.draco) {
+    recomputeBounds(accessor, data);
+  }
+  return output_.addAccessor(std::move(accessor), std::move(bytes), data.elementSize(), detail::kArrayBuffer);
 }
 
 // The morph targets' attributes (TANGENT aside), gathered the same way.
 void PrimitiveBaker::rebuildTargets(const PrimitivePlan& plan, const ComputedTangents& computed, EmittedAccessors& emitted) {
   if (!primitiveJson(plan).contains("targets")) return;
   const std::size_t targetCount = primitiveJson(plan)["targets"].size();
-  const std::size_t outCount = computed.split.source.size();
   emitted.targets.resize(std::max(emitted.targets.size(), targetCount));
   for (std::size_t t = 0; t < targetCount; ++t) {
     std::vector<std::pair<std::string, int>> carried;
@@ -476,12 +717,10 @@ void PrimitiveBaker::rebuildTargets(const PrimitivePlan& plan, const ComputedTan
     }
     for (const auto& [name, index] : carried) {
       const std::string what = plan.where + ": target " + std::to_string(t) + " " + name;
-      const AccessorData data = detail::readAccessor(asset_.model, index, what);
+      const AccessorData& data = carriedData(index, what);
       if (data.count != computed.vertexCount)
         throw InputError(what + " has " + std::to_string(data.count) + " elements, POSITION has " + std::to_string(computed.vertexCount));
-      const int written = output_.addAccessor(carriedAccessor(output_.json()["accessors"][index], outCount),
-                                              gather(data, computed.split.source), data.elementSize(), detail::kArrayBuffer);
-      emitted.targets[t].emplace_back(name, written);
+      emitted.targets[t].emplace_back(name, addGathered(index, data, computed));
     }
   }
 }
@@ -591,22 +830,17 @@ BakeResult bakeChecked(const std::filesystem::path& input, const std::filesystem
   detail::OutputDocument document(asset);
   PrimitiveBaker baker(asset, document, options);
   Json& doc = document.json();
-  const std::size_t meshCount = doc.contains("meshes") ? doc["meshes"].size() : 0;
-  for (std::size_t m = 0; m < meshCount; ++m) {
-    if (!doc["meshes"][m].contains("primitives")) continue;
-    const std::size_t primitiveCount = doc["meshes"][m]["primitives"].size();
-    for (std::size_t p = 0; p < primitiveCount; ++p) {
-      result.primitives.push_back(baker.bake(static_cast<int>(m), static_cast<int>(p)));
-      // Non-finite input is baked (its corners get fallback frames) but never silently.
-      const PrimitiveResult& baked = result.primitives.back();
-      const std::string where = input.string() + ": " + detail::primitiveLabel(doc, static_cast<int>(m), static_cast<int>(p));
-      if (baked.tangents.nonFiniteTriangles)
-        result.warnings.push_back(where + ": " + std::to_string(baked.tangents.nonFiniteTriangles) +
-                                  " triangles have non-finite (NaN or infinite) positions or UVs; their corners got fallback frames");
-      if (baked.tangents.invalidNormals)
-        result.warnings.push_back(where + ": " + std::to_string(baked.tangents.invalidNormals) +
-                                  " corners have zero or non-finite normals; replaced by their faces' normals");
-    }
+  result.primitives = baker.bakeAll();
+  for (const PrimitiveResult& baked : result.primitives) {
+    // Non-finite input is baked (its corners get fallback frames) but never silently.
+    if (!baked.tangents.nonFiniteTriangles && !baked.tangents.invalidNormals) continue;
+    const std::string where = input.string() + ": " + detail::primitiveLabel(doc, baked.mesh, baked.primitive);
+    if (baked.tangents.nonFiniteTriangles)
+      result.warnings.push_back(where + ": " + std::to_string(baked.tangents.nonFiniteTriangles) +
+                                " triangles have non-finite (NaN or infinite) positions or UVs; their corners got fallback frames");
+    if (baked.tangents.invalidNormals)
+      result.warnings.push_back(where + ": " + std::to_string(baked.tangents.invalidNormals) +
+                                " corners have zero or non-finite normals; replaced by their faces' normals");
   }
   // Declared after the loop: no reference into the document is held across the insertion.
   if (std::any_of(result.primitives.begin(), result.primitives.end(),

@@ -4,6 +4,7 @@
 // KHR_texture_transform on the normal texture may override that set and turns the UVs.
 #include "primitive.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <numeric>
 #include <set>
@@ -65,7 +66,11 @@ std::string missingUvSet(const Json& primitive, const PrimitiveNeeds& needs) {
   return needs.why + ", but the primitive has no " + uvName + " attribute";
 }
 
-std::string sameInputKey(const Json& doc, const Json& primitive, const PrimitiveNeeds& needs) {
+namespace {
+
+// sameInputKey and sameVertexKey: every input of the tangents, with or without the indices and
+// the mode.
+std::string inputKey(const Json& doc, const Json& primitive, const PrimitiveNeeds& needs, bool withIndices) {
   auto withoutTangent = [](const Json& map) {
     Json copy = Json::object();
     if (!map.is_object()) return copy;
@@ -81,8 +86,10 @@ std::string sameInputKey(const Json& doc, const Json& primitive, const Primitive
     for (const Json& target : primitive["targets"]) targets.push_back(withoutTangent(target));
   }
   key.push_back(std::move(targets));
-  key.push_back(primitive.value("indices", Json(-1)));
-  key.push_back(primitive.value("mode", Json(4)));
+  if (withIndices) {
+    key.push_back(primitive.value("indices", Json(-1)));
+    key.push_back(primitive.value("mode", Json(4)));
+  }
   const Json* draco = nullptr;
   if (primitive.contains("extensions") && primitive["extensions"].is_object() &&
       primitive["extensions"].contains("KHR_draco_mesh_compression"))
@@ -97,6 +104,16 @@ std::string sameInputKey(const Json& doc, const Json& primitive, const Primitive
   }
   key.push_back(std::move(transform));
   return key.dump();
+}
+
+}  // namespace
+
+std::string sameInputKey(const Json& doc, const Json& primitive, const PrimitiveNeeds& needs) {
+  return inputKey(doc, primitive, needs, true);
+}
+
+std::string sameVertexKey(const Json& doc, const Json& primitive, const PrimitiveNeeds& needs) {
+  return inputKey(doc, primitive, needs, false);
 }
 
 unsigned threadsFor(std::size_t corners, unsigned requested) {
@@ -184,6 +201,12 @@ std::vector<std::uint32_t> triangleList(int mode, std::vector<std::uint32_t> ver
 
 
 PrimitiveGeometry readGeometry(const Asset& asset, const Json& primitive, const PrimitiveNeeds& needs, const std::string& where) {
+  PrimitiveGeometry geometry = readVertices(asset, primitive, needs, where);
+  readCorners(asset, primitive, where, geometry);
+  return geometry;
+}
+
+PrimitiveGeometry readVertices(const Asset& asset, const Json& primitive, const PrimitiveNeeds& needs, const std::string& where) {
   const tinygltf::Model& model = asset.model;
   const Json& attributes = primitive["attributes"];
   const int positionAccessor = accessorOf(attributes, "POSITION");
@@ -208,7 +231,11 @@ PrimitiveGeometry readGeometry(const Asset& asset, const Json& primitive, const 
     if (normalTexture.contains("extensions") && normalTexture["extensions"].contains("KHR_texture_transform"))
       applyTextureTransform(geometry.uvs, normalTexture["extensions"]["KHR_texture_transform"]);
   }
+  return geometry;
+}
 
+void readCorners(const Asset& asset, const Json& primitive, const std::string& where, PrimitiveGeometry& geometry) {
+  const tinygltf::Model& model = asset.model;
   geometry.mode = primitive.value("mode", 4);
   std::vector<std::uint32_t> sequence;
   const int indicesAccessor = accessorOf(primitive, "indices");
@@ -221,7 +248,38 @@ PrimitiveGeometry readGeometry(const Asset& asset, const Json& primitive, const 
     std::iota(sequence.begin(), sequence.end(), 0u);
   }
   geometry.corners = triangleList(geometry.mode, std::move(sequence));
-  return geometry;
+}
+
+UsedVertices usedVertices(const std::vector<std::uint32_t>& corners, std::vector<std::uint32_t>& slotOf) {
+  UsedVertices used;
+  for (const std::uint32_t v : corners) {
+    if (slotOf[v] != kNoSlot) continue;
+    slotOf[v] = 0;
+    used.vertices.push_back(v);
+  }
+  std::sort(used.vertices.begin(), used.vertices.end());
+  for (std::size_t i = 0; i < used.vertices.size(); ++i) slotOf[used.vertices[i]] = static_cast<std::uint32_t>(i);
+  used.corners.resize(corners.size());
+  for (std::size_t c = 0; c < corners.size(); ++c) used.corners[c] = slotOf[corners[c]];
+  for (const std::uint32_t v : used.vertices) slotOf[v] = kNoSlot;
+  return used;
+}
+
+PrimitiveGeometry gatherGeometry(const PrimitiveGeometry& buffer, const UsedVertices& used) {
+  PrimitiveGeometry part;
+  const std::size_t n = used.vertices.size();
+  part.vertexCount = n;
+  part.positions.resize(3 * n);
+  part.normals.resize(3 * n);
+  part.uvs.resize(2 * n);
+  for (std::size_t i = 0; i < n; ++i) {
+    const std::size_t v = used.vertices[i];
+    std::copy_n(&buffer.positions[3 * v], 3, &part.positions[3 * i]);
+    std::copy_n(&buffer.normals[3 * v], 3, &part.normals[3 * i]);
+    std::copy_n(&buffer.uvs[2 * v], 2, &part.uvs[2 * i]);
+  }
+  part.corners = used.corners;
+  return part;
 }
 
 void verifyMeshData(const Asset& asset) {

@@ -47,6 +47,11 @@ std::vector<std::uint32_t> triangleList(int mode, std::vector<std::uint32_t> ver
 // KHR_draco_mesh_compression object, the UV set and the normal texture's KHR_texture_transform;
 // the material otherwise does not matter. The caller adds the options, which are per file.
 std::string sameInputKey(const nlohmann::ordered_json& doc, const nlohmann::ordered_json& primitive, const PrimitiveNeeds& needs);
+// sameInputKey without the indices and the mode: primitives with the same key draw from one
+// vertex buffer, each with its own indices (the usual layout of CAD and architecture exporters:
+// one buffer for a whole model, one indices accessor per part), so the vertex attributes are
+// read once for all of them.
+std::string sameVertexKey(const nlohmann::ordered_json& doc, const nlohmann::ordered_json& primitive, const PrimitiveNeeds& needs);
 
 // Threads for computing a primitive of `corners` corners when `requested` were asked for (0:
 // all): one below kCornersPerExtraThread, where starting a thread arena costs more than the
@@ -89,6 +94,29 @@ struct PrimitiveGeometry {
 // InputError naming `where` and the accessor when one is missing or malformed.
 PrimitiveGeometry readGeometry(const Asset& asset, const nlohmann::ordered_json& primitive, const PrimitiveNeeds& needs,
                                const std::string& where);
+// readGeometry in two steps, for primitives that share a vertex buffer (sameVertexKey): the
+// vertex attributes (corners left empty), read once for all of them...
+PrimitiveGeometry readVertices(const Asset& asset, const nlohmann::ordered_json& primitive, const PrimitiveNeeds& needs,
+                               const std::string& where);
+// ...and each primitive's triangle list, mode and index component type, into `geometry`
+// (whose vertexCount bounds the indices): time in the primitive's indices only.
+void readCorners(const Asset& asset, const nlohmann::ordered_json& primitive, const std::string& where,
+                 PrimitiveGeometry& geometry);
+
+// The part of a shared vertex buffer one primitive draws: the vertices its corners use, in
+// ascending order, and its corners renumbered into that list.
+struct UsedVertices {
+  std::vector<std::uint32_t> vertices;  // input vertex of each used vertex
+  std::vector<std::uint32_t> corners;   // 3 per triangle, indices into `vertices`
+};
+inline constexpr std::uint32_t kNoSlot = 0xffffffffu;
+// `slotOf` has an entry per vertex of the buffer, each kNoSlot on entry and again on return: one
+// allocation for all the primitives of a buffer, so the time is in the corners, not the buffer.
+UsedVertices usedVertices(const std::vector<std::uint32_t>& corners, std::vector<std::uint32_t>& slotOf);
+// The used vertices' positions, normals and UVs, with the renumbered corners: a geometry of its
+// own, whose vertex v is the buffer's vertex used.vertices[v] (mode and index type left to the
+// caller).
+PrimitiveGeometry gatherGeometry(const PrimitiveGeometry& buffer, const UsedVertices& used);
 
 // Every mesh primitive's accessors against the bytes loaded (ranges, sparse targets, equal
 // attribute counts, indices < vertex count), copying nothing: loadAsset runs it (after
