@@ -1,24 +1,29 @@
 #!/usr/bin/env bash
 # SPDX-License-Identifier: MIT
-# The WebAssembly package as a user gets it, by the README's own blocks (its section
-# "WebAssembly (Node, browsers, glTF-Transform)", not the benchmark table's heading), run as
-# written: the first (sh) at the repository root builds and packs it; the package is
-# installed from that tarball into a new project (beside glTF-Transform, from the npm cache
-# that tests/node's npm ci filled); there the js block and the last sh block run on a copy of
-# ASSET as in.glb, and what they write must pass the Khronos validator.
+# The WebAssembly package as a user gets it, by the documents' own blocks (docs/npm.md, and the
+# js block of the README's "## npm" section), run as written: docs/npm.md's first (sh) at the
+# repository root builds and packs it; the package is installed from that tarball into a new
+# project (beside glTF-Transform, from the npm cache that tests/node's npm ci filled); there
+# the js blocks and the last sh block run on a copy of ASSET as in.glb, and what they write
+# must pass the Khronos validator.
 # Usage: wasm_install_test.sh SOURCE_DIR WORK_DIR ASSET
 set -euo pipefail
 source_dir=$1 work=$2 asset=$3
 rm -rf "$work" && mkdir -p "$work/project" "$work/blocks"
-python3 - "$source_dir/README.md" "$work/blocks" <<'PY'
+python3 - "$source_dir" "$work/blocks" <<'PY'
 import re, sys
-text = open(sys.argv[1]).read()
-start = text.index("\n## WebAssembly (Node, browsers, glTF-Transform)\n")
-section = text[start:text.index("\n## ", start + 1)]
-blocks = re.findall(r"```(sh|js)\n(.*?)```", section, re.S)
+source, out = sys.argv[1], sys.argv[2]
+page = open(f"{source}/docs/npm.md").read()
+blocks = re.findall(r"```(sh|js)\n(.*?)```", page, re.S)
 assert [lang for lang, _ in blocks] == ["sh", "js", "sh"], [lang for lang, _ in blocks]
 for i, (lang, body) in enumerate(blocks):
-    open(f"{sys.argv[2]}/{i}.{lang}", "w").write(body)
+    open(f"{out}/{i}.{lang}", "w").write(body)
+readme = open(f"{source}/README.md").read()
+start = readme.index("\n## npm (glTF-Transform, Node)\n")
+section = readme[start:readme.index("\n## ", start + 1)]
+js = re.findall(r"```js\n(.*?)```", section, re.S)
+assert len(js) == 1, js
+open(f"{out}/readme.js", "w").write(js[0])
 PY
 (cd "$source_dir" && bash -euo pipefail "$work/blocks/0.sh")
 tarball=$(ls "$source_dir"/wasm/libtangent-wasm-*.tgz)
@@ -29,6 +34,10 @@ npm install --prefer-offline --no-audit --no-fund --loglevel=error "$tarball" \
 cp "$asset" in.glb
 cp "$work/blocks/1.js" readme.mjs
 node readme.mjs
+node "$source_dir/tests/node/validate.mjs" out.glb
+rm out.glb
+cp "$work/blocks/readme.js" readme-short.mjs
+node readme-short.mjs
 node "$source_dir/tests/node/validate.mjs" out.glb
 rm out.glb
 bash -euo pipefail "$work/blocks/2.sh"
