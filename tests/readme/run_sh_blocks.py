@@ -1,28 +1,35 @@
 #!/usr/bin/env python3
 # SPDX-License-Identifier: MIT
-"""Runs the ```sh blocks of the README's usage sections (Bake, Check in CI, View) as written,
-in order, with bash from the repository root, where the README's paths start (build/bin is
-the build that scripts/test.sh makes). A block that fails fails the test.
-Usage: run_sh_blocks.py README.md SECTION..."""
+"""Runs ```sh blocks of the README and the docs pages as written, in order, with bash from the
+repository root, where their paths start (build/bin is the build that scripts/test.sh makes).
+An item is FILE (every sh block of it) or FILE#SECTION (the blocks of its "## SECTION"). A
+block that fails fails the test.
+Usage: run_sh_blocks.py ROOT ITEM..."""
 import os
 import re
 import subprocess
 import sys
 
-readme, sections = os.path.abspath(sys.argv[1]), sys.argv[2:]
-text = open(readme, encoding="utf-8").read()
-os.chdir(os.path.dirname(readme))
+root, items = sys.argv[1], sys.argv[2:]
+if not items:
+    sys.exit(__doc__)
+os.chdir(root)
 os.makedirs("build/readme", exist_ok=True)
+os.makedirs("build/docs", exist_ok=True)
 ran = 0
-for name in sections:
-    match = re.search(rf"^## {re.escape(name)}\n(.*?)(?=^## |\Z)", text, flags=re.S | re.M)
-    if not match:
-        sys.exit(f"README.md has no section '## {name}'")
-    blocks = re.findall(r"^```sh\n(.*?)^```", match.group(1), flags=re.S | re.M)
+for item in items:
+    name, _, section = item.partition("#")
+    text = open(name, encoding="utf-8").read()
+    if section:
+        match = re.search(rf"^## {re.escape(section)}\n(.*?)(?=^## |\Z)", text, flags=re.S | re.M)
+        if not match:
+            sys.exit(f"{name} has no section '## {section}'")
+        text = match.group(1)
+    blocks = re.findall(r"^```sh\n(.*?)^```", text, flags=re.S | re.M)
     if not blocks:
-        sys.exit(f"README.md section '{name}' has no sh block")
+        sys.exit(f"{item}: no sh block")
     for block in blocks:
-        print(f"--- README '{name}':\n{block}", flush=True)
+        print(f"--- {item}:\n{block}", flush=True)
         subprocess.run(["bash", "-euo", "pipefail", "-c", block], check=True)
         ran += 1
-print(f"{ran} README sh blocks ran")
+print(f"{ran} sh blocks ran")
