@@ -13,11 +13,18 @@ command. Each test makes its own temporary folder.
                                            disagree on shared vertices (one mirrored) to one shared
                                            and one compacted; the outputs check clean and pass the
                                            Khronos validator
+  test_limits.py check-vertex-buffer TANGENT
+                                           2,000 baked primitives on one vertex buffer check clean,
+                                           each judged on the 4 vertices it draws; with one
+                                           primitive's stored tangents turned on its own vertices,
+                                           exactly that primitive has findings; a re-bake keeps
+                                           every TANGENT (and recomputes only the turned one)
   test_limits.py inputs TANGENT            a check configuration nested 1e6 deep, a broken data:
                                            URI of 2 MB and an input path longer than PATH_MAX:
                                            refused with a short message that says what is wrong
 """
 import json
+import math
 import os
 import struct
 import subprocess
@@ -162,6 +169,104 @@ def test_vertex_buffer(tangent, node_dir):
             failures.append(f"gltf-validator is not installed in {node_dir} (scripts/test.sh runs npm ci)")
 
 
+def glb_chunks(path):
+    """The JSON document and the BIN chunk of a .glb."""
+    with open(path, "rb") as f:
+        data = f.read()
+    length = struct.unpack_from("<I", data, 12)[0]
+    bin_start = 20 + length
+    bin_length = struct.unpack_from("<I", data, bin_start)[0]
+    return json.loads(data[20:20 + length]), bytearray(data[bin_start + 8:bin_start + 8 + bin_length])
+
+
+def write_glb(path, doc, binary):
+    text = json.dumps(doc).encode()
+    text += b" " * (-len(text) % 4)
+    binary = bytes(binary) + b"\0" * (-len(binary) % 4)
+    with open(path, "wb") as f:
+        f.write(struct.pack("<III", 0x46546C67, 2, 28 + len(text) + len(binary)))
+        f.write(struct.pack("<II", len(text), 0x4E4F534A) + text)
+        f.write(struct.pack("<II", len(binary), 0x004E4942) + binary)
+
+
+def accessor_offset(doc, index):
+    """Byte offset and stride of a tightly stored accessor in the BIN chunk."""
+    accessor = doc["accessors"][index]
+    view = doc["bufferViews"][accessor["bufferView"]]
+    size = {5121: 1, 5123: 2, 5125: 4, 5126: 4}[accessor["componentType"]] * {"SCALAR": 1, "VEC4": 4}[accessor["type"]]
+    return view.get("byteOffset", 0) + accessor.get("byteOffset", 0), view.get("byteStride", size)
+
+
+def check_json(tangent, path):
+    done = subprocess.run([tangent, "check", path, "--format", "json"], capture_output=True, timeout=300)
+    try:
+        return done.returncode, json.loads(done.stdout)["files"][0]
+    except (ValueError, KeyError, IndexError):
+        return done.returncode, {"primitives": [], "error": (done.stdout + done.stderr).decode(errors="replace")[:400]}
+
+
+def test_check_vertex_buffer(tangent):
+    """check judges each primitive of a shared vertex buffer on the vertices it draws (not the
+    whole buffer), and bake keeps what check passes."""
+    count, turned = 2000, 1234
+    with tempfile.TemporaryDirectory() as folder:
+        source = os.path.join(folder, "in.gltf")
+        shared_accessors.write(count, source, layout="vertex-buffer")
+        baked = os.path.join(folder, "baked.glb")
+        code, message = run([tangent, "bake", source, "-o", baked, "--quiet"])
+        expect(code == 0, f"bake: exit {code}: {message[:400]}")
+        if code != 0:
+            return
+        code, report = check_json(tangent, baked)
+        primitives = report["primitives"]
+        expect(code == 0 and report.get("status") == "clean", f"check of the baked file: exit {code}, {report.get('error', '')}")
+        expect(len(primitives) == count, f"check: {len(primitives)} primitives, expected {count}")
+        vertices = {p["vertices"] for p in primitives}
+        expect(vertices == {4}, f"check: vertex counts {vertices}, expected 4 (the vertices each primitive draws)")
+
+        # Turn the stored tangents of one primitive's 4 vertices by 30 degrees in their plane
+        # (still orthogonal, of the right w: `reference` sees it) and lengthen its first one by
+        # 20% (`unit`, a per-vertex check: it must not reach the other primitives).
+        doc, binary = glb_chunks(baked)
+        primitive = primitives_of(doc)[turned]
+        start, stride = accessor_offset(doc, primitive["indices"])
+        fmt = {5121: "<B", 5123: "<H", 5125: "<I"}[doc["accessors"][primitive["indices"]]["componentType"]]
+        drawn = {struct.unpack_from(fmt, binary, start + i * stride)[0] for i in range(doc["accessors"][primitive["indices"]]["count"])}
+        expect(len(drawn) == 4, f"primitive {turned} draws {len(drawn)} vertices, expected 4")
+        start, stride = accessor_offset(doc, primitive["attributes"]["TANGENT"])
+        expect(doc["accessors"][primitive["attributes"]["TANGENT"]]["componentType"] == 5126, "the baked TANGENT is not float")
+        c, s = math.cos(math.radians(30)), math.sin(math.radians(30))
+        for v in drawn:
+            x, y, z, w = struct.unpack_from("<4f", binary, start + v * stride)
+            # The quads lie in z = 0 with normal +z: a turn about z stays in the tangent plane.
+            scale = 1.2 if v == min(drawn) else 1.0
+            struct.pack_into("<4f", binary, start + v * stride, scale * (c * x - s * y), scale * (s * x + c * y), scale * z, w)
+        corrupted = os.path.join(folder, "turned.glb")
+        write_glb(corrupted, doc, binary)
+        code, report = check_json(tangent, corrupted)
+        flagged = [(p["mesh"], p["primitive"], [f["check"] for f in p["findings"]]) for p in report["primitives"] if p["findings"]]
+        expect(code == 1, f"check of the turned file: exit {code}, expected 1 {report.get('error', '')}")
+        expect(flagged == [(turned, 0, ["unit", "reference"])], f"check of the turned file: findings {flagged[:3]} on "
+               f"{len(flagged)} primitives, expected only on mesh {turned} primitive 0 (unit, reference)")
+
+        # Re-bakes: every TANGENT of the baked file kept; of the turned file, all but one.
+        for path, expected in ((baked, {"kept": count}), (corrupted, {"kept": count - 1, "baked": 1})):
+            rebaked, report_path = os.path.join(folder, "rebaked.glb"), os.path.join(folder, "report.json")
+            code, message = run([tangent, "bake", path, "-o", rebaked, "--quiet", "--report", report_path])
+            expect(code == 0, f"re-bake of {os.path.basename(path)}: exit {code}: {message[:400]}")
+            if code != 0:
+                continue
+            with open(report_path) as f:
+                results = [r for entry in json.load(f) for r in entry["primitives"]]
+            actions = {}
+            for r in results:
+                actions[r["action"]] = actions.get(r["action"], 0) + 1
+            expect(actions == expected, f"re-bake of {os.path.basename(path)}: actions {actions}, expected {expected}")
+            if path == corrupted:
+                recomputed = [(r["mesh"], r["primitive"]) for r in results if r["action"] == "baked"]
+                expect(recomputed == [(turned, 0)], f"re-bake of the turned file: recomputed {recomputed[:5]} ({len(recomputed)})")
+
+
 def test_inputs(tangent):
     with tempfile.TemporaryDirectory() as folder:
         source = os.path.join(folder, "in.gltf")
@@ -198,6 +303,8 @@ def main():
         test_shared(sys.argv[2], sys.argv[3])
     elif len(sys.argv) >= 4 and sys.argv[1] == "vertex-buffer":
         test_vertex_buffer(sys.argv[2], sys.argv[3])
+    elif len(sys.argv) >= 3 and sys.argv[1] == "check-vertex-buffer":
+        test_check_vertex_buffer(sys.argv[2])
     elif len(sys.argv) >= 3 and sys.argv[1] == "inputs":
         test_inputs(sys.argv[2])
     else:

@@ -178,6 +178,7 @@ struct PrimitivePlan {
   detail::PrimitiveNeeds needs;
   std::string why;    // why the primitive gets tangents
   bool bake = false;
+  bool hasTangent = false;       // an existing TANGENT, kept or recomputed as decideExisting says
   bool replacesTangent = false;  // an existing TANGENT is recomputed
   PrimitiveResult result;
 };
@@ -294,6 +295,7 @@ class PrimitiveBaker {
     return output_.json()["meshes"][plan.mesh]["primitives"][plan.primitive];
   }
   PrimitivePlan planPrimitive(int meshIndex, int primitiveIndex);
+  void decideExisting(std::vector<PrimitivePlan>& plans);
   SharedBake bakeInputs(PrimitivePlan& plan);
   void bakeVertexGroup(const VertexGroup& group, std::vector<PrimitivePlan>& plans);
   std::optional<ComputedTangents> compute(PrimitivePlan& plan);
@@ -316,7 +318,6 @@ class PrimitiveBaker {
   std::unordered_map<std::string, SharedBake> baked_;       // by detail::sameInputKey
   std::unordered_map<int, AccessorData> carried_;           // accessors rebuilt from, while one group is emitted
   std::unordered_map<std::size_t, SharedBake> groupBakes_;  // bakeVertexGroup's, by the plan of each input key
-  std::unordered_map<std::string, PrimitiveCheck> verdicts_;  // of existing TANGENTs, by key and accessor
 };
 
 // Eligibility (a triangle primitive that needs tangents and has what they are computed from)
@@ -359,30 +360,38 @@ PrimitivePlan PrimitiveBaker::planPrimitive(int meshIndex, int primitiveIndex) {
     result.reason = needs.why + ", but the primitive has no " + uvName + "; left as it is";
     return plan;
   }
-  if (detail::accessorOf(attributes, "TANGENT") >= 0) {
-    // Keep exactly what `tangent check` passes at its default settings: the same function decides.
-    // Primitives with the same inputs and TANGENT get the same verdict: checked once.
-    const std::string verdictKey =
-        detail::sameInputKey(doc, primitive, needs) + std::to_string(detail::accessorOf(attributes, "TANGENT"));
-    auto known = verdicts_.find(verdictKey);
-    if (known == verdicts_.end()) {
-      PrimitiveCheck checked;
-      detail::checkPrimitiveTangents(asset_, primitive, needs, plan.where, CheckOptions{}, checked);
-      known = verdicts_.emplace(verdictKey, std::move(checked)).first;
-    }
-    const PrimitiveCheck& verdict = known->second;
+  // An existing TANGENT is judged by decideExisting, once every primitive is planned.
+  plan.hasTangent = detail::accessorOf(attributes, "TANGENT") >= 0;
+  plan.bake = !plan.hasTangent;
+  return plan;
+}
+
+// Keep exactly what `tangent check` passes at its default settings: the same function decides.
+void PrimitiveBaker::decideExisting(std::vector<PrimitivePlan>& plans) {
+  std::vector<detail::PrimitiveToCheck> toCheck;
+  std::vector<std::size_t> planOf;
+  for (std::size_t i = 0; i < plans.size(); ++i) {
+    if (!plans[i].hasTangent) continue;
+    toCheck.push_back({&primitiveJson(plans[i]), plans[i].needs, plans[i].where});
+    planOf.push_back(i);
+  }
+  if (toCheck.empty()) return;
+  const std::vector<PrimitiveCheck> verdicts = detail::checkPrimitives(asset_, toCheck, CheckOptions{});
+  for (std::size_t k = 0; k < planOf.size(); ++k) {
+    PrimitivePlan& plan = plans[planOf[k]];
+    PrimitiveResult& result = plan.result;
+    const PrimitiveCheck& verdict = verdicts[k];
     if (verdict.findings.empty() && !options_.overwrite) {
       result.action = PrimitiveAction::kept;
       result.reason = "valid TANGENT present: tangent check passes it (use --overwrite to recompute)";
-      return plan;
+      continue;
     }
     for (const CheckFinding& finding : verdict.findings) result.failedChecks.push_back(finding.check);
     result.reason = verdict.findings.empty() ? "TANGENT recomputed (--overwrite)"
                                              : "existing TANGENT fails tangent check (" + detail::findingsSummary(verdict) + "); recomputed";
     plan.replacesTangent = true;
+    plan.bake = true;
   }
-  plan.bake = true;
-  return plan;
 }
 
 std::vector<PrimitiveResult> PrimitiveBaker::bakeAll() {
@@ -397,6 +406,7 @@ std::vector<PrimitiveResult> PrimitiveBaker::bakeAll() {
       for (std::size_t p = 0; p < primitiveCount; ++p) plans.push_back(planPrimitive(static_cast<int>(m), static_cast<int>(p)));
     }
   }
+  decideExisting(plans);
   std::vector<std::string> inputKeys(plans.size());
   std::vector<std::size_t> groupOfPlan(plans.size(), 0);
   std::vector<VertexGroup> groups;

@@ -55,6 +55,13 @@ class FindingBuilder {
     finding_.worst.push_back({element, severity, wDiffers, std::move(detail)});
     if (finding_.worst.size() > 4 * kWorstKept) trim();
   }
+  // Adds the failures `other` collected (the same check, on other elements of the primitive).
+  void merge(const FindingBuilder& other) {
+    if (!enabled_) return;
+    finding_.failed += other.finding_.failed;
+    finding_.worst.insert(finding_.worst.end(), other.finding_.worst.begin(), other.finding_.worst.end());
+    if (finding_.worst.size() > 4 * kWorstKept) trim();
+  }
   // Adds the finding to `primitive` (or records a pass, or that the check was ignored).
   void finish(PrimitiveCheck& primitive, std::string message) {
     if (!enabled_) {
@@ -71,9 +78,13 @@ class FindingBuilder {
   }
 
  private:
+  // The worst first (w differs, then severity), the lower element first among equals: the same
+  // samples whatever order the elements were failed or merged in.
   void trim() {
     std::stable_sort(finding_.worst.begin(), finding_.worst.end(), [](const CheckSample& a, const CheckSample& b) {
-      return a.wDiffers != b.wDiffers ? a.wDiffers : a.severity > b.severity;
+      if (a.wDiffers != b.wDiffers) return a.wDiffers;
+      if (a.severity != b.severity) return a.severity > b.severity;
+      return a.element < b.element;
     });
     if (finding_.worst.size() > kWorstKept) finding_.worst.resize(kWorstKept);
   }
@@ -91,97 +102,79 @@ void skipFrom(CheckId first, const CheckOptions& options, PrimitiveCheck& result
     (options.enabled.test(i) ? result.notRun : result.ignored).push_back(kCheckNames[i]);
 }
 
-}  // namespace
+// The stored TANGENT of a vertex group, read once, and the limits its component types give.
+struct StoredTangents {
+  std::vector<float> values;  // 4 per vertex of the buffer
+  StoredTangentLimits limits;
+  const char* component = "";
+  double orthogonalLimit = 0;
+  double referenceLimit = 0;
+};
 
-namespace detail {
-
-void checkPrimitiveTangents(const Asset& asset, const Json& primitive, const PrimitiveNeeds& needs, const std::string& where,
-                            const CheckOptions& options, PrimitiveCheck& result) {
-  const Json& attributes = primitive["attributes"];
-  const PrimitiveGeometry geometry = readGeometry(asset, primitive, needs, where);
-  result.vertices = geometry.vertexCount;
-  result.triangles = geometry.corners.size() / 3;
-
-  const int tangentAccessor = accessorOf(attributes, "TANGENT");
-  if (tangentAccessor < 0) {
-    FindingBuilder present(CheckId::present, "primitive", 1, "none", 0, options);
-    present.fail(0, 1, "no TANGENT attribute");
-    present.finish(result, "TANGENT is missing: the material's normal texture needs it (run tangent bake, or pass "
-                           "--allow-missing when clients compute MikkTSpace)");
-    skipFrom(CheckId::format, options, result);
-    return;
-  }
-  (options.runs(CheckId::present) ? result.passed : result.ignored).push_back("present");
-  const AccessorData data = readAccessor(asset.model, tangentAccessor, where + ": TANGENT");
-  const std::optional<StoredComponent> tangentComponent = storedComponentOf(data.componentType, data.normalized);
-  const int normalAccessor = accessorOf(attributes, "NORMAL");
-  const Json& normalJson = asset.json["accessors"][normalAccessor];
-  const std::optional<StoredComponent> normalComponent =
-      storedComponentOf(normalJson.value("componentType", 0), normalJson.value("normalized", false));
-  if (data.type != TINYGLTF_TYPE_VEC4 || !tangentComponent || data.count != geometry.vertexCount) {
-    FindingBuilder formatCheck(CheckId::format, "primitive", 1, "none", 0, options);
-    formatCheck.fail(0, 1, format("%s of %s%s, %zu elements", typeName(data.type), componentTypeName(data.componentType),
-                                  data.normalized ? " normalized" : "", data.count));
-    formatCheck.finish(result, format("TANGENT (accessor %d) must be VEC4 of FLOAT or normalized BYTE/SHORT with one element "
-                                      "per vertex (%zu)", tangentAccessor, geometry.vertexCount));
-    skipFrom(CheckId::finite, options, result);
-    return;
-  }
-  (options.runs(CheckId::format) ? result.passed : result.ignored).push_back("format");
-  const StoredTangentLimits limits =
-      storedTangentLimits(*tangentComponent, normalComponent.value_or(StoredComponent::float32));
-  const double orthogonalLimit = orthogonalLimitDegrees(limits, options.orthogonalToleranceDegrees);
-  const double referenceLimit = referenceLimitDegrees(limits, options.referenceToleranceDegrees, 0);
-  result.tangentComponent = toString(*tangentComponent);
-  result.normalComponent = normalComponent ? toString(*normalComponent) : "";
-  result.unitLimit = limits.unitDeviation;
-  result.orthogonalLimitDegrees = orthogonalLimit;
-  result.referenceLimitDegrees = referenceLimit;
-
-  const std::vector<float> tangents = toFloats(data);
-  const std::size_t n = geometry.vertexCount;
-  const char* component = toString(*tangentComponent);
-
-  FindingBuilder finite(CheckId::finite, "vertices", n, "none", 0, options);
-  FindingBuilder unit(CheckId::unit, "vertices", n, "length", limits.unitDeviation, options);
-  FindingBuilder w(CheckId::w, "vertices", n, "none", 0, options);
-  for (std::size_t v = 0; v < n; ++v) {
-    const float* t = &tangents[4 * v];
+// The checks of one stored tangent on its own (finite, unit, w): one rule for the vertices a
+// primitive draws and those no primitive of its buffer draws.
+struct VertexFindings {
+  VertexFindings(std::uint64_t total, const StoredTangents& stored, const CheckOptions& options)
+      : finite(CheckId::finite, "vertices", total, "none", 0, options),
+        unit(CheckId::unit, "vertices", total, "length", stored.limits.unitDeviation, options),
+        w(CheckId::w, "vertices", total, "none", 0, options) {}
+  void check(std::size_t v, const StoredTangents& stored) {
+    const float* t = &stored.values[4 * v];
     if (!finite4(t)) {
       finite.fail(v, 1, "vertex " + std::to_string(v) + " " + tangentText(t));
-      continue;
+      return;
     }
-    if (!unitOk(t, limits))
+    if (!unitOk(t, stored.limits))
       unit.fail(v, unitDeviation(t), format("vertex %zu |xyz| = %.6g ", v, length3(t)) + tangentText(t));
     if (!validW(t[3])) w.fail(v, std::abs(std::abs(t[3]) - 1.0), format("vertex %zu w = %.6g", v, t[3]));
   }
-  finite.finish(result, "TANGENT has NaN or infinite components");
-  unit.finish(result, format("|xyz| differs from 1 by more than %.3g (%s)", limits.unitDeviation, component));
-  w.finish(result, "w must be exactly +1 or -1");
+  void merge(const VertexFindings& other) {
+    finite.merge(other.finite);
+    unit.merge(other.unit);
+    w.merge(other.w);
+  }
+  void finish(PrimitiveCheck& result, const StoredTangents& stored) {
+    finite.finish(result, "TANGENT has NaN or infinite components");
+    unit.finish(result, format("|xyz| differs from 1 by more than %.3g (%s)", stored.limits.unitDeviation, stored.component));
+    w.finish(result, "w must be exactly +1 or -1");
+  }
+  FindingBuilder finite, unit, w;
+};
+
+// The checks of one primitive that need its triangles (w-uniform, handedness, orthogonal on the
+// vertices it draws, reference), after the per-vertex ones. `used` is the part of `buffer` it
+// draws; elements in messages are the buffer's vertices and the primitive's triangles and corners.
+void checkDrawnPart(const PrimitiveGeometry& buffer, const UsedVertices& used, const StoredTangents& stored,
+                    const VertexFindings& undrawn, const InputRounding& rounding, const CheckOptions& options,
+                    TangentWorkspace& workspace, PrimitiveCheck& result) {
+  const std::vector<float>& tangents = stored.values;
+  VertexFindings vertexFindings(result.vertices, stored, options);
+  for (const std::uint32_t v : used.vertices) vertexFindings.check(v, stored);
+  vertexFindings.merge(undrawn);
+  vertexFindings.finish(result, stored);
 
   // Rounded positions and UVs (KHR_mesh_quantization) move the recomputed frame: per vertex
   // allowance, and triangles whose UV orientation the rounding leaves open.
-  const ReferenceAllowance allowance =
-      referenceAllowance(geometry, inputRounding(asset, primitive, needs.texCoord, needs.hasNormalTexture));
+  const PrimitiveGeometry part = gatherGeometry(buffer, used);
+  const ReferenceAllowance allowance = referenceAllowance(part, rounding);
 
-  const std::size_t triangleCount = geometry.corners.size() / 3;
+  const std::size_t triangleCount = part.corners.size() / 3;
   FindingBuilder uniform(CheckId::wUniform, "triangles", triangleCount, "none", 0, options);
   FindingBuilder handedness(CheckId::handedness, "triangles", triangleCount, "uv-area", 0, options);
-  FindingBuilder orthogonal(CheckId::orthogonal, "vertices", n, "degrees", orthogonalLimit, options);
-  std::vector<char> usedVertex(n, 0);
+  FindingBuilder orthogonal(CheckId::orthogonal, "vertices", result.vertices, "degrees", stored.orthogonalLimit, options);
   for (std::size_t t = 0; t < triangleCount; ++t) {
-    const std::uint32_t* c = &geometry.corners[3 * t];
-    for (int k = 0; k < 3; ++k) usedVertex[c[k]] = 1;
+    const std::uint32_t* local = &part.corners[3 * t];
+    const std::uint32_t c[3] = {used.vertices[local[0]], used.vertices[local[1]], used.vertices[local[2]]};
     const float w0 = tangents[4 * c[0] + 3], w1 = tangents[4 * c[1] + 3], w2 = tangents[4 * c[2] + 3];
     if (!(w0 == w1 && w1 == w2)) {
       uniform.fail(t, 1, format("triangle %zu (vertices %u %u %u) w = %.6g %.6g %.6g", t, c[0], c[1], c[2], w0, w1, w2));
       continue;
     }
     // Orientation in the normal texture's UV set, on triangles with UV and 3D area.
-    const float* uv[3] = {&geometry.uvs[2 * c[0]], &geometry.uvs[2 * c[1]], &geometry.uvs[2 * c[2]]};
+    const float* uv[3] = {&buffer.uvs[2 * c[0]], &buffer.uvs[2 * c[1]], &buffer.uvs[2 * c[2]]};
     const double det = uvAreaTimesTwo(uv[0], uv[1], uv[2]);
     const float expected = expectedW(det);
-    const double area = areaTimesTwo(&geometry.positions[3 * c[0]], &geometry.positions[3 * c[1]], &geometry.positions[3 * c[2]]);
+    const double area = areaTimesTwo(&buffer.positions[3 * c[0]], &buffer.positions[3 * c[1]], &buffer.positions[3 * c[2]]);
     if (expected == 0 || !std::isfinite(det) || !(area > 0) || !validW(w0) || !allowance.decided(t)) continue;
     if (w0 != expected)
       handedness.fail(t, std::abs(det), format("triangle %zu (vertices %u %u %u) has w = %.0f, its UV orientation needs %.0f", t, c[0],
@@ -190,56 +183,58 @@ void checkPrimitiveTangents(const Asset& asset, const Json& primitive, const Pri
   uniform.finish(result, "w differs between the corners of a triangle (a vertex shared across a mirror seam?)");
   handedness.finish(result, "w disagrees with the triangle's orientation in the normal texture's UV set (w = -sign(UV area) in glTF)");
 
-  for (std::size_t v = 0; v < n; ++v) {
+  for (const std::uint32_t v : used.vertices) {
     const float* t = &tangents[4 * v];
-    const float* normal = &geometry.normals[3 * v];
-    if (!usedVertex[v] || !finite4(t)) continue;
+    const float* normal = &buffer.normals[3 * v];
+    if (!finite4(t)) continue;
     const double offPlane = offPlaneDegrees(t, normal);
-    if (offPlane > orthogonalLimit)
-      orthogonal.fail(v, offPlane, format("vertex %zu is %.4g deg out of the tangent plane, N = (%.4g, %.4g, %.4g), T = ", v, offPlane,
+    if (offPlane > stored.orthogonalLimit)
+      orthogonal.fail(v, offPlane, format("vertex %u is %.4g deg out of the tangent plane, N = (%.4g, %.4g, %.4g), T = ", v, offPlane,
                                           normal[0], normal[1], normal[2]) + tangentText(t));
   }
   // The limits in words: the tolerance, plus rounding where there is any.
-  const bool roundedFrame = limits.tangentAngleDegrees > 0 || limits.normalAngleDegrees > 0;
+  const bool roundedFrame = stored.limits.tangentAngleDegrees > 0 || stored.limits.normalAngleDegrees > 0;
   const std::string frameRounding =
-      roundedFrame ? format(" (%.3g + rounding of %s TANGENT and %s NORMAL)", options.orthogonalToleranceDegrees, component,
+      roundedFrame ? format(" (%.3g + rounding of %s TANGENT and %s NORMAL)", options.orthogonalToleranceDegrees, stored.component,
                             result.normalComponent.c_str())
                    : "";
-  orthogonal.finish(result, format("xyz leaves the plane normal to NORMAL by more than %.3g deg", orthogonalLimit) + frameRounding);
+  orthogonal.finish(result, format("xyz leaves the plane normal to NORMAL by more than %.3g deg", stored.orthogonalLimit) + frameRounding);
 
-  // Against freshly computed tangents, on corners where the method defines a frame.
-  FindingBuilder reference(CheckId::reference, "corners", geometry.corners.size(), "degrees", referenceLimit, options);
+  // Against freshly computed tangents, on corners where the method defines a frame: computed on
+  // the vertices the primitive draws, as bake computes them.
+  FindingBuilder reference(CheckId::reference, "corners", part.corners.size(), "degrees", stored.referenceLimit, options);
   if (options.runs(CheckId::reference)) {
     Options core;
     core.method = options.method;
     core.uvOrigin = kGltfUvOrigin;
-    core.threads = threadsFor(geometry.corners.size(), core.threads);
-    std::vector<float> computed(geometry.corners.size() * 4);
-    std::vector<FrameSource> sources(geometry.corners.size());
-    computeCornerTangents({geometry.positions, geometry.normals, geometry.uvs, geometry.corners}, computed, core, sources);
-    for (std::size_t c = 0; c < geometry.corners.size(); ++c) {
+    core.threads = threadsFor(part.corners.size(), core.threads);
+    std::vector<float> computed(part.corners.size() * 4);
+    std::vector<FrameSource> sources(part.corners.size());
+    computeCornerTangents({part.positions, part.normals, part.uvs, part.corners}, CornerOutputs{computed, sources}, core, workspace);
+    for (std::size_t c = 0; c < part.corners.size(); ++c) {
       if (sources[c] == FrameSource::neighbour || sources[c] == FrameSource::fixed) {
         ++result.referenceUndefined;
         continue;
       }
-      const std::uint32_t v = geometry.corners[c];
-      const float extra = allowance.vertex(v);
+      const std::uint32_t local = part.corners[c];
+      const std::uint32_t v = used.vertices[local];
+      const float extra = allowance.vertex(local);
       if (extra >= kUncomparableDegrees) {
         ++result.referenceUnresolved;
         continue;
       }
       result.referenceAllowanceMaxDegrees = std::max(result.referenceAllowanceMaxDegrees, double(extra));
-      const float* stored = &tangents[4 * v];
+      const float* storedTangent = &tangents[4 * v];
       const float* fresh = &computed[4 * c];
-      if (!finite4(stored)) continue;  // `finite` reported it
-      const double angle = angleBetweenDegrees(stored, fresh);
-      const double limit = referenceLimitDegrees(limits, options.referenceToleranceDegrees, extra);
-      if (referenceFails(angle, stored[3], fresh[3], limit)) {
-        const bool wDiffers = (stored[3] < 0) != (fresh[3] < 0);
+      if (!finite4(storedTangent)) continue;  // `finite` reported it
+      const double angle = angleBetweenDegrees(storedTangent, fresh);
+      const double limit = referenceLimitDegrees(stored.limits, options.referenceToleranceDegrees, extra);
+      if (referenceFails(angle, storedTangent[3], fresh[3], limit)) {
+        const bool wDiffers = (storedTangent[3] < 0) != (fresh[3] < 0);
         reference.fail(c, angle,
                        format("corner %zu (vertex %u): %.4g deg from %s (limit %.3g)%s; stored ", c, v, angle,
                               std::string(toString(options.method)).c_str(), limit, wDiffers ? ", w differs" : "") +
-                           tangentText(stored) + ", computed " + tangentText(fresh),
+                           tangentText(storedTangent) + ", computed " + tangentText(fresh),
                        wDiffers);
       }
     }
@@ -249,13 +244,132 @@ void checkPrimitiveTangents(const Asset& asset, const Json& primitive, const Pri
             [](const std::string& a, const std::string& b) { return *parseCheck(a) < *parseCheck(b); });
   std::string referenceRounding;
   if (roundedFrame)
-    referenceRounding = format(" (%.3g + rounding of %s TANGENT and %s NORMAL)", options.referenceToleranceDegrees, component,
+    referenceRounding = format(" (%.3g + rounding of %s TANGENT and %s NORMAL)", options.referenceToleranceDegrees, stored.component,
                                result.normalComponent.c_str());
   if (allowance.orientationDecided.size())
     referenceRounding += format(", plus up to %.3g deg per corner for rounded positions/UVs", result.referenceAllowanceMaxDegrees);
   reference.finish(result, format("differs from freshly computed %s tangents by more than %.3g deg",
-                                  std::string(toString(options.method)).c_str(), referenceLimit) +
+                                  std::string(toString(options.method)).c_str(), stored.referenceLimit) +
                                referenceRounding + ", or in w");
+}
+
+// The primitives `members` of `primitives`, which share their vertex attributes and TANGENT
+// (sameVertexKey and the TANGENT accessor): the buffer and the stored tangents are read once;
+// the vertices no member draws are checked once and count for every member.
+void checkVertexGroup(const Asset& asset, const std::vector<PrimitiveToCheck>& primitives, const std::vector<std::size_t>& members,
+                      const CheckOptions& options, TangentWorkspace& workspace, std::vector<PrimitiveCheck>& results) {
+  const PrimitiveToCheck& first = primitives[members.front()];
+  const PrimitiveGeometry buffer = readVertices(asset, *first.primitive, first.needs, first.where);
+
+  // The vertices each member draws, and those none draws.
+  std::vector<UsedVertices> parts;
+  parts.reserve(members.size());
+  {
+    std::vector<std::uint32_t> slotOf(buffer.vertexCount, kNoSlot);
+    std::vector<char> drawnByAny(buffer.vertexCount, 0);
+    for (const std::size_t member : members) {
+      PrimitiveGeometry drawn;
+      drawn.vertexCount = buffer.vertexCount;
+      readCorners(asset, *primitives[member].primitive, primitives[member].where, drawn);
+      parts.push_back(usedVertices(drawn.corners, slotOf));
+      for (const std::uint32_t v : parts.back().vertices) drawnByAny[v] = 1;
+    }
+    const std::size_t undrawnCount = static_cast<std::size_t>(std::count(drawnByAny.begin(), drawnByAny.end(), 0));
+    for (std::size_t k = 0; k < members.size(); ++k) {
+      results[members[k]].vertices = parts[k].vertices.size() + undrawnCount;
+      results[members[k]].triangles = parts[k].corners.size() / 3;
+    }
+    // Kept in `parts` as an extra entry: the undrawn vertices, ascending.
+    UsedVertices undrawn;
+    for (std::uint32_t v = 0; v < buffer.vertexCount; ++v) {
+      if (!drawnByAny[v]) undrawn.vertices.push_back(v);
+    }
+    parts.push_back(std::move(undrawn));
+  }
+  const std::vector<std::uint32_t>& undrawnVertices = parts.back().vertices;
+
+  const Json& attributes = (*first.primitive)["attributes"];
+  const int tangentAccessor = accessorOf(attributes, "TANGENT");
+  if (tangentAccessor < 0) {
+    for (const std::size_t member : members) {
+      FindingBuilder present(CheckId::present, "primitive", 1, "none", 0, options);
+      present.fail(0, 1, "no TANGENT attribute");
+      present.finish(results[member], "TANGENT is missing: the material's normal texture needs it (run tangent bake, or pass "
+                                      "--allow-missing when clients compute MikkTSpace)");
+      skipFrom(CheckId::format, options, results[member]);
+    }
+    return;
+  }
+  for (const std::size_t member : members) (options.runs(CheckId::present) ? results[member].passed : results[member].ignored).push_back("present");
+  const AccessorData data = readAccessor(asset.model, tangentAccessor, first.where + ": TANGENT");
+  const std::optional<StoredComponent> tangentComponent = storedComponentOf(data.componentType, data.normalized);
+  const int normalAccessor = accessorOf(attributes, "NORMAL");
+  const Json& normalJson = asset.json["accessors"][normalAccessor];
+  const std::optional<StoredComponent> normalComponent =
+      storedComponentOf(normalJson.value("componentType", 0), normalJson.value("normalized", false));
+  if (data.type != TINYGLTF_TYPE_VEC4 || !tangentComponent || data.count != buffer.vertexCount) {
+    for (const std::size_t member : members) {
+      FindingBuilder formatCheck(CheckId::format, "primitive", 1, "none", 0, options);
+      formatCheck.fail(0, 1, format("%s of %s%s, %zu elements", typeName(data.type), componentTypeName(data.componentType),
+                                    data.normalized ? " normalized" : "", data.count));
+      formatCheck.finish(results[member], format("TANGENT (accessor %d) must be VEC4 of FLOAT or normalized BYTE/SHORT with one "
+                                                 "element per vertex (%zu)", tangentAccessor, buffer.vertexCount));
+      skipFrom(CheckId::finite, options, results[member]);
+    }
+    return;
+  }
+  StoredTangents stored;
+  stored.limits = storedTangentLimits(*tangentComponent, normalComponent.value_or(StoredComponent::float32));
+  stored.orthogonalLimit = orthogonalLimitDegrees(stored.limits, options.orthogonalToleranceDegrees);
+  stored.referenceLimit = referenceLimitDegrees(stored.limits, options.referenceToleranceDegrees, 0);
+  stored.component = toString(*tangentComponent);
+  stored.values = toFloats(data);
+  for (const std::size_t member : members) {
+    PrimitiveCheck& result = results[member];
+    (options.runs(CheckId::format) ? result.passed : result.ignored).push_back("format");
+    result.tangentComponent = stored.component;
+    result.normalComponent = normalComponent ? toString(*normalComponent) : "";
+    result.unitLimit = stored.limits.unitDeviation;
+    result.orthogonalLimitDegrees = stored.orthogonalLimit;
+    result.referenceLimitDegrees = stored.referenceLimit;
+  }
+
+  VertexFindings undrawn(0, stored, options);
+  for (const std::uint32_t v : undrawnVertices) undrawn.check(v, stored);
+  const InputRounding rounding = inputRounding(asset, *first.primitive, first.needs.texCoord, first.needs.hasNormalTexture);
+  for (std::size_t k = 0; k < members.size(); ++k)
+    checkDrawnPart(buffer, parts[k], stored, undrawn, rounding, options, workspace, results[members[k]]);
+}
+
+}  // namespace
+
+namespace detail {
+
+std::vector<PrimitiveCheck> checkPrimitives(const Asset& asset, const std::vector<PrimitiveToCheck>& primitives,
+                                            const CheckOptions& options) {
+  std::vector<PrimitiveCheck> results(primitives.size());
+  // One verdict per set of inputs and TANGENT; those sets grouped by vertex buffer and TANGENT.
+  std::vector<std::size_t> sameAs(primitives.size());
+  std::vector<std::vector<std::size_t>> groups;
+  {
+    std::unordered_map<std::string, std::size_t> firstOfInput, groupOfVertices;
+    for (std::size_t i = 0; i < primitives.size(); ++i) {
+      const PrimitiveToCheck& p = primitives[i];
+      const std::string tangent = " TANGENT " + std::to_string(accessorOf((*p.primitive)["attributes"], "TANGENT"));
+      const auto input = firstOfInput.emplace(sameInputKey(asset.json, *p.primitive, p.needs) + tangent, i);
+      sameAs[i] = input.first->second;
+      if (!input.second) continue;
+      const auto group = groupOfVertices.emplace(sameVertexKey(asset.json, *p.primitive, p.needs) + tangent, groups.size());
+      if (group.second) groups.emplace_back();
+      groups[group.first->second].push_back(i);
+    }
+  }
+  TangentWorkspace workspace;
+  for (const std::vector<std::size_t>& members : groups) checkVertexGroup(asset, primitives, members, options, workspace, results);
+  for (std::size_t i = 0; i < primitives.size(); ++i) {
+    if (sameAs[i] != i) results[i] = results[sameAs[i]];
+  }
+  return results;
 }
 
 std::string findingsSummary(const PrimitiveCheck& check) {
@@ -283,7 +397,8 @@ FileCheck checkAsset(const std::filesystem::path& input, const CheckOptions& opt
   {
     const detail::Asset asset = detail::loadAsset(input, options.assetRoot);
     const Json& doc = asset.json;
-    std::unordered_map<std::string, PrimitiveCheck> verdicts;  // by detail::sameInputKey and TANGENT
+    std::vector<detail::PrimitiveToCheck> pending;  // primitives to check, and their slots in result.primitives
+    std::vector<std::size_t> pendingSlot;
     const std::size_t meshCount = doc.contains("meshes") ? doc["meshes"].size() : 0;
     for (std::size_t m = 0; m < meshCount; ++m) {
       const Json& mesh = doc["meshes"][m];
@@ -323,23 +438,21 @@ FileCheck checkAsset(const std::filesystem::path& input, const CheckOptions& opt
                                    std::to_string(needs.texCoord) + ")");
           continue;
         }
-        // Primitives with the same inputs and TANGENT get the same verdict: checked once.
-        const std::string key = detail::sameInputKey(doc, primitive, needs) +
-                                std::to_string(detail::accessorOf(primitive["attributes"], "TANGENT"));
-        auto known = verdicts.find(key);
-        if (known == verdicts.end()) {
-          PrimitiveCheck verdict;
-          checkPrimitiveTangents(asset, primitive, needs, input.string() + ": " + label, options, verdict);
-          known = verdicts.emplace(key, std::move(verdict)).first;
-        }
-        PrimitiveCheck check = known->second;
-        const PrimitiveCheck named = newCheck();
-        check.mesh = named.mesh;
-        check.primitive = named.primitive;
-        check.meshName = named.meshName;
-        check.texCoord = named.texCoord;
-        result.primitives.push_back(std::move(check));
+        // Checked below, all together: primitives that share inputs or a vertex buffer share work.
+        pendingSlot.push_back(result.primitives.size());
+        pending.push_back({&primitive, needs, input.string() + ": " + label});
+        result.primitives.push_back(newCheck());
       }
+    }
+    std::vector<PrimitiveCheck> verdicts = detail::checkPrimitives(asset, pending, options);
+    for (std::size_t i = 0; i < pending.size(); ++i) {
+      PrimitiveCheck& named = result.primitives[pendingSlot[i]];
+      PrimitiveCheck& verdict = verdicts[i];
+      verdict.mesh = named.mesh;
+      verdict.primitive = named.primitive;
+      verdict.meshName = std::move(named.meshName);
+      verdict.texCoord = named.texCoord;
+      named = std::move(verdict);
     }
   }
   result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();

@@ -5,6 +5,7 @@
 
 #include <nlohmann/json.hpp>
 #include <string>
+#include <vector>
 
 #include "asset.hpp"
 #include "primitive.hpp"
@@ -12,10 +13,23 @@
 
 namespace tangent::gltf::detail {
 
-// `primitive` needs tangents (triangles, a UV set and NORMAL present). Throws InputError for
-// malformed accessors.
-void checkPrimitiveTangents(const Asset& asset, const nlohmann::ordered_json& primitive, const PrimitiveNeeds& needs,
-                            const std::string& where, const CheckOptions& options, PrimitiveCheck& result);
+// A primitive that needs tangents (triangles, a UV set and NORMAL present), as checkPrimitives
+// takes it. `primitive` points into the document; nothing may be inserted into it meanwhile.
+struct PrimitiveToCheck {
+  const nlohmann::ordered_json* primitive = nullptr;
+  PrimitiveNeeds needs;
+  std::string where;  // "<file>: mesh M 'name' primitive P", for messages
+};
+
+// check's verdict on each of `primitives`, in their order (mesh, primitive, meshName and texCoord
+// left to the caller). Primitives with the same inputs and TANGENT (sameInputKey) are checked
+// once. Those that draw from one vertex buffer with their own indices and share its TANGENT
+// (sameVertexKey and the TANGENT accessor: CAD exporters write 1e4-1e5 of them) read the buffer
+// and the stored tangents once; each is judged on the vertices it draws, plus those no primitive
+// of the buffer draws (the validator requires them valid too), and on its own triangles, so the
+// time is linear in the buffer plus the corners. Throws InputError for malformed accessors.
+std::vector<PrimitiveCheck> checkPrimitives(const Asset& asset, const std::vector<PrimitiveToCheck>& primitives,
+                                            const CheckOptions& options);
 
 // "unit: 3 of 24 vertices; reference: 12 of 36 corners": the findings in one line.
 std::string findingsSummary(const PrimitiveCheck& check);
