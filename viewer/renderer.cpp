@@ -403,22 +403,24 @@ FrameStats Renderer::render(const CameraMatrices& camera, const RenderSettings& 
 
   // Opaque and masked meshes front to back (less overdraw): the mesh with the nearest instance
   // first, its instances front to back, so that each mesh's state is set once. Then blended
-  // instances back to front over them without writing depth (one by one: the order matters).
+  // instances back to front over them, one by one (the order matters), as the Khronos glTF
+  // Sample Viewer draws them: sorted by the view-space depth of their centre, with depth test
+  // and depth writes on, so that a closed blended mesh hides its own far side.
   auto blended = [&](const GpuMesh& mesh) {
     return mesh.material >= 0 && mesh.material < static_cast<int>(scene_.materials.size()) &&
            scene_.materials[mesh.material].alphaMode == gltf::MaterialDesc::AlphaMode::blend && settings.view == DebugView::lit;
   };
   struct Ordered {
-    float distance;
+    float distance;  // opaque: from the eye; blended: view-space depth (-z)
     const GpuInstance* instance;
   };
   std::vector<Ordered> opaqueOrder, transparentOrder;
   std::vector<float> nearestOfMesh(meshes_.size(), std::numeric_limits<float>::max());
   for (const GpuInstance& instance : instances_) {
-    const float distance = glm::length(instance.centerWorld - camera.eye);
     if (blended(meshes_[instance.mesh])) {
-      transparentOrder.push_back({distance, &instance});
+      transparentOrder.push_back({-(camera.view * glm::vec4(instance.centerWorld, 1)).z, &instance});
     } else {
+      const float distance = glm::length(instance.centerWorld - camera.eye);
       opaqueOrder.push_back({distance, &instance});
       nearestOfMesh[instance.mesh] = std::min(nearestOfMesh[instance.mesh], distance);
     }
@@ -455,9 +457,7 @@ FrameStats Renderer::render(const CameraMatrices& camera, const RenderSettings& 
   if (!transparent.empty()) {
     glEnable(GL_BLEND);
     glBlendFuncSeparate(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA, GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
-    glDepthMask(GL_FALSE);
     drawInstances(transparent, camera, settings, anyShadows, stats);
-    glDepthMask(GL_TRUE);
     glDisable(GL_BLEND);
   }
   glFrontFace(GL_CCW);

@@ -940,3 +940,55 @@ TEST(Viewer, TextureWiderThanTheGlLimitIsDownscaled) {
 }
 
 }  // namespace
+
+// ---- Transparency, debug views, morph targets, skinning, animation (issue 38) ----
+
+// A copy of a demo mesh (data/demo/NAME.gltf and its .bin) with one untextured material.
+fs::path demoWithMaterial(const TempDir& dir, const std::string& demo, const std::string& name, const nlohmann::json& material) {
+  const fs::path source = fs::path(TANGENT_SOURCE_DIR) / "data" / "demo";
+  const fs::path folder = dir / name;
+  fs::create_directories(folder);
+  fs::copy_file(source / (demo + ".bin"), folder / (demo + ".bin"));
+  nlohmann::json doc = nlohmann::json::parse(std::ifstream(source / (demo + ".gltf")));
+  doc.erase("textures");
+  doc.erase("images");
+  doc.erase("samplers");
+  doc.erase("extensionsUsed");
+  doc["materials"] = {material};
+  for (auto& mesh : doc["meshes"])
+    for (auto& primitive : mesh["primitives"]) primitive["material"] = 0;
+  std::ofstream(folder / (demo + ".gltf")) << doc.dump();
+  return folder / (demo + ".gltf");
+}
+
+// Pixels whose colour differs by more than `tolerance` in some channel.
+int differingPixels(const Image& a, const Image& b, float tolerance) {
+  int count = 0;
+  for (std::size_t i = 0; i + 2 < std::min(a.rgb.size(), b.rgb.size()); i += 3) {
+    count += std::abs(a.rgb[i] - b.rgb[i]) > tolerance || std::abs(a.rgb[i + 1] - b.rgb[i + 1]) > tolerance ||
+             std::abs(a.rgb[i + 2] - b.rgb[i + 2]) > tolerance;
+  }
+  return count;
+}
+
+// A closed BLEND mesh whose alpha is 1 renders as its OPAQUE copy: blended primitives keep depth
+// test and depth writes (as the Khronos Sample Viewer draws them), so the far side of a
+// double-sided sphere, or of a torus, does not paint over the near side.
+TEST(Viewer, BlendClosedMeshWithAlphaOneLooksOpaque) {
+  TempDir dir;
+  for (const auto& [demo, doubleSided] : {std::pair{"sphere", true}, std::pair{"torus", false}}) {
+    auto render = [&](const std::string& mode) {
+      const nlohmann::json material = {{"pbrMetallicRoughness", {{"baseColorFactor", {0.8, 0.5, 0.3, 1.0}}, {"metallicFactor", 0.0}}},
+                                       {"alphaMode", mode},
+                                       {"doubleSided", doubleSided}};
+      const std::string name = std::string(demo) + "-" + mode;
+      return screenshot(dir, name, "'" + demoWithMaterial(dir, demo, name, material).string() + "' --size 300x300 --no-shadows");
+    };
+    const Image opaque = render("OPAQUE"), blend = render("BLEND");
+    ASSERT_EQ(opaque.rgb.size(), blend.rgb.size());
+    ASSERT_LT(backgroundShare(opaque), 0.9f) << demo;
+    const int differing = differingPixels(opaque, blend, 2.5f / 255);
+    std::printf("%s: %d of %d pixels differ between BLEND (alpha 1) and OPAQUE\n", demo, differing, opaque.width * opaque.height);
+    EXPECT_EQ(differing, 0) << demo;
+  }
+}
