@@ -1,7 +1,8 @@
 // SPDX-License-Identifier: MIT
-// Validation views: geometry normal, tangent, bitangent, shading normal, UVs, handedness
-// (w = +1 teal, w = -1 orange) and the angular error against freshly computed tangents as a
-// heatmap (0 blue, 1 deg green, 5 deg yellow, >= 20 deg red; failing corners magenta).
+// Validation views: geometry normal (the NORMAL attribute), tangent, bitangent, shading normal,
+// UVs, handedness (the file's w, or the world-space w after the node's mirroring: +1 teal,
+// -1 orange) and the angular error against freshly computed tangents as a heatmap (0 blue,
+// 1 deg green, 5 deg yellow, >= 20 deg red; failing corners magenta).
 
 vec3 heatmap(float degrees) {
   if (degrees < 1.0) return mix(vec3(0.10, 0.25, 0.90), vec3(0.10, 0.80, 0.20), degrees);

@@ -28,6 +28,9 @@ uniform float u_roughness;
 uniform float u_metallic;
 uniform bool u_blend;          // alphaMode BLEND: the output keeps the base colour's alpha
 uniform float u_exposure;      // linear factor on the lit colour before tone mapping
+#ifdef DEBUG_HANDEDNESS
+uniform float u_mirror;        // sign of det(u_model), as mesh.vert has it
+#endif
 
 #include "colour.glsl"
 #include "texture_uv.glsl"
@@ -105,7 +108,8 @@ void main() {
 #endif
 
 #if defined(DEBUG_GEOMETRY_NORMAL)
-  fragColor = vec4(signedColor(cross(dFdx(v_positionWorld), dFdy(v_positionWorld))), 1.0);
+  // The interpolated NORMAL attribute (world space; reversed on back faces as T and B are).
+  fragColor = vec4(signedColor(normal), 1.0);
   return;
 #elif defined(DEBUG_TANGENT)
   fragColor = vec4(signedColor(tangent.xyz), 1.0);
@@ -120,6 +124,11 @@ void main() {
   fragColor = vec4(fract(v_uvNormal), 0.0, 1.0);
   return;
 #elif defined(DEBUG_HANDEDNESS)
+  // The file's w: the world-space sign divided by the node's mirroring again.
+  fragColor = vec4(handednessColor(v_tangentWorld.w * u_mirror), 1.0);
+  return;
+#elif defined(DEBUG_HANDEDNESS_WORLD)
+  // w after the node's mirroring: the sign that B = cross(N, T) * w uses in world space.
   fragColor = vec4(handednessColor(v_tangentWorld.w), 1.0);
   return;
 #elif defined(DEBUG_TANGENT_ERROR)

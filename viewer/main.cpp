@@ -44,7 +44,8 @@ const char* kUsage =
     "  --camera NAME            front | back | left | right | top | bottom | iso (default iso)\n"
     "  --ortho                  orthographic projection\n"
     "  --view NAME              lit | geometry-normal | tangent | bitangent | shading-normal | uv |\n"
-    "                           handedness | error | face-orientation (front blue, back red) (default lit)\n"
+    "                           handedness (the file's w) | error | face-orientation (front blue, back red) |\n"
+    "                           handedness-world (w after the node's mirroring) (default lit)\n"
     "  --glyphs                 draw tangent frames (T red, B green, N blue)\n"
     "  --no-shadows, --pcf N (0 off, 1 = 3x3, 2 = 5x5), --shadow-map-size N (1024..4096)\n"
     "  --shading NAME           pbr (glTF metallic-roughness, default) | blinn-phong | phong (specular-map mode)\n"
@@ -67,7 +68,7 @@ const char* kUsage =
     "  --shader-dir DIR         where the shaders are (default: the source tree's shaders/)\n"
     "  --check-shaders          link the programs in a spread of variants, compare their vertex inputs\n"
     "                           with the layout tables (viewer/vertex_layout.hpp) and exit (1 on a mismatch)\n"
-    "keys: m normal map, s specular, h shadows, p PCF, f green flip, 1-9 views, g glyphs,\n"
+    "keys: m normal map, s specular, h shadows, p PCF, f green flip, 1-9 and 0 views, g glyphs,\n"
     "      r reload shaders, o open, mouse: left orbit, right/middle pan, wheel zoom\n";
 
 // The demo files the panel offers (data/demo/NAME.gltf), and where they are.
@@ -350,7 +351,7 @@ void drawPanel(Viewer& viewer, GLFWwindow* window, const FrameStats& stats, doub
     int view = static_cast<int>(s.view);
     const char* names[std::size(kDebugViews)];
     for (std::size_t i = 0; i < std::size(kDebugViews); ++i) names[i] = kDebugViews[i].name;
-    if (ImGui::Combo("view (1-9)", &view, names, static_cast<int>(std::size(kDebugViews)))) s.view = static_cast<DebugView>(view);
+    if (ImGui::Combo("view (1-9, 0)", &view, names, static_cast<int>(std::size(kDebugViews)))) s.view = static_cast<DebugView>(view);
     if (s.view == DebugView::tangentError) {
       ImGui::TextWrapped("error vs freshly computed: blue 0, green 1 deg, yellow 5 deg, red >= 20 deg; magenta: fails tangent check");
       const auto& items = viewer.renderer.scene().items;
@@ -359,7 +360,9 @@ void drawPanel(Viewer& viewer, GLFWwindow* window, const FrameStats& stats, doub
                            "themselves and the view is all blue. Bake the file to judge stored tangents.");
     }
     if (s.view == DebugView::faceOrientation) ImGui::TextWrapped("blue: front face, red: back face (culling off in this view)");
-    if (s.view == DebugView::handedness) ImGui::TextWrapped("teal: w = +1, orange: w = -1");
+    if (s.view == DebugView::handedness) ImGui::TextWrapped("the file's TANGENT w: teal +1, orange -1");
+    if (s.view == DebugView::handednessWorld)
+      ImGui::TextWrapped("w in world space, after the node's mirroring (a mirrored node swaps it): teal +1, orange -1");
     ImGui::Checkbox("tangent frames (g)", &s.glyphs);
     ImGui::SliderInt("glyph count", &s.maxGlyphs, 100, 50000);
     ImGui::Checkbox("orthographic", &viewer.camera.orthographic);
@@ -463,7 +466,9 @@ int interactive(Viewer& viewer, GLFWwindow* window) {
         break;
       case GLFW_KEY_ESCAPE: glfwSetWindowShouldClose(w, GLFW_TRUE); break;
       default:
-        if (key >= GLFW_KEY_1 && key < GLFW_KEY_1 + static_cast<int>(std::size(kDebugViews))) s.view = static_cast<DebugView>(key - GLFW_KEY_1);
+        if (key >= GLFW_KEY_1 && key <= GLFW_KEY_9 && key - GLFW_KEY_1 < static_cast<int>(std::size(kDebugViews)))
+          s.view = static_cast<DebugView>(key - GLFW_KEY_1);
+        else if (key == GLFW_KEY_0 && std::size(kDebugViews) > 9) s.view = static_cast<DebugView>(9);
     }
   });
   glfwSetScrollCallback(window, [](GLFWwindow* w, double x, double y) {

@@ -35,6 +35,7 @@ enum class DebugView : std::uint8_t {
   handedness,
   tangentError,
   faceOrientation,
+  handednessWorld,  // after faceOrientation: keys 1-9 keep their views
 };
 
 struct FeatureDefine {
@@ -89,6 +90,7 @@ inline constexpr DebugViewInfo kDebugViews[] = {
     {DebugView::handedness, "DEBUG_HANDEDNESS", "handedness"},
     {DebugView::tangentError, "DEBUG_TANGENT_ERROR", "error"},
     {DebugView::faceOrientation, "DEBUG_FACE_ORIENTATION", "face-orientation"},
+    {DebugView::handednessWorld, "DEBUG_HANDEDNESS_WORLD", "handedness-world"},
 };
 
 // Tone mapping of the lit views' linear colour before the sRGB encoding, as the Khronos glTF

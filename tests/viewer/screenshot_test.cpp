@@ -992,3 +992,71 @@ TEST(Viewer, BlendClosedMeshWithAlphaOneLooksOpaque) {
     EXPECT_EQ(differing, 0) << demo;
   }
 }
+
+// 'T' teal (w = +1), 'O' orange (w = -1), '.' anything else (background, edges).
+char handednessName(std::array<float, 3> c) {
+  if (std::abs(c[0] - 0.10f) < 0.03f && std::abs(c[1] - 0.70f) < 0.03f && std::abs(c[2] - 0.75f) < 0.03f) return 'T';
+  if (std::abs(c[0] - 0.95f) < 0.03f && std::abs(c[1] - 0.55f) < 0.03f && std::abs(c[2] - 0.10f) < 0.03f) return 'O';
+  return '.';
+}
+
+// The handedness view shows the file's w: a mirrored copy of the sphere (node scale -1, 1, 1)
+// shows the colour of the original at the mirrored pixel. The handedness-world view shows w
+// after the mirroring, so there the copy swaps teal and orange.
+TEST(Viewer, HandednessViewShowsTheFilesWUnderAMirroringNode) {
+  TempDir dir;
+  const fs::path original = fs::path(TANGENT_SOURCE_DIR) / "data" / "demo" / "sphere.gltf";
+  const fs::path mirrored = demoCopy(dir, "sphere", {{"scale", {-1, 1, 1}}}, false);
+  for (const std::string view : {"handedness", "handedness-world"}) {
+    const std::string common = " --view " + view + " --camera front --ortho --size 200x200";
+    const Image a = screenshot(dir, "sphere-" + view, "'" + original.string() + "'" + common);
+    const Image b = screenshot(dir, "mirrored-" + view, "'" + mirrored.string() + "'" + common);
+    ASSERT_EQ(a.rgb.size(), b.rgb.size());
+    int same = 0, swapped = 0, coloured = 0;
+    for (int y = 0; y < a.height; ++y) {
+      for (int x = 0; x < a.width; ++x) {
+        const char p = handednessName(a.at(a.width - 1 - x, y)), q = handednessName(b.at(x, y));
+        if (p == '.' || q == '.') continue;
+        ++coloured;
+        same += p == q;
+        swapped += p != q;
+      }
+    }
+    std::printf("%s: %d coloured pixels, %d the same colour mirrored, %d swapped\n", view.c_str(), coloured, same, swapped);
+    ASSERT_GT(coloured, 8000) << view;
+    if (view == "handedness") EXPECT_GT(same, coloured * 99 / 100);
+    else EXPECT_GT(swapped, coloured * 99 / 100);
+  }
+}
+
+// The geometry-normal view shows the interpolated NORMAL attribute: on the demo's smooth unit
+// sphere (48 x 24 segments, facets 7.5 degrees apart) the colour follows the analytic normal,
+// without the facets that screen-space face normals show.
+TEST(Viewer, GeometryNormalViewShowsTheInterpolatedNormal) {
+  TempDir dir;
+  const fs::path sphere = fs::path(TANGENT_SOURCE_DIR) / "data" / "demo" / "sphere.gltf";
+  const Image image = screenshot(dir, "normals", "'" + sphere.string() + "' --view geometry-normal --camera front --ortho --size 300x300");
+  ASSERT_EQ(image.width, 300);
+  // Orthographic framing of the bounding box [-1, 1]^3: half height sqrt(3) * 1.02.
+  const double pixelsPerUnit = 150 / (std::sqrt(3.0) * 1.02);
+  double error = 0, worst = 0;
+  int samples = 0;
+  for (int y = 0; y < image.height; ++y) {
+    for (int x = 0; x < image.width; ++x) {
+      const double nx = (x + 0.5 - 150) / pixelsPerUnit, ny = (150 - y - 0.5) / pixelsPerUnit;
+      if (nx * nx + ny * ny > 0.8) continue;  // inside, away from the silhouette
+      const double normal[3] = {nx, ny, std::sqrt(1 - nx * nx - ny * ny)};
+      const auto c = image.at(x, y);
+      for (int i = 0; i < 3; ++i) {
+        const double e = std::abs(c[i] - (normal[i] * 0.5 + 0.5));
+        error += e;
+        worst = std::max(worst, e);
+      }
+      ++samples;
+    }
+  }
+  ASSERT_GT(samples, 15000);
+  std::printf("geometry-normal view vs the analytic normal: mean %.4f, worst %.4f per channel over %d pixels\n", error / (3 * samples), worst, samples);
+  EXPECT_LT(error / (3 * samples), 0.006);
+  EXPECT_LT(worst, 0.02);
+}
