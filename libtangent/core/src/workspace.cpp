@@ -547,6 +547,20 @@ void finishOutputs(WorkspaceData& ws, const MeshArrays& mesh, const CornerOutput
                             (cornerVertex[c] & ~kExtraFlag);
       }
     });
+    // The numbering CornerOutputs documents: new vertices in order of their first corner (the
+    // buckets above number them by welded vertex, then by tangent bits). One serial pass: a
+    // new vertex is renumbered where its first corner is met. The weld table is free by now.
+    ensureSize(ws.table, splits);
+    std::uint32_t* renumbered = ws.table.data();
+    std::fill(renumbered, renumbered + splits, 0u);  // 0: not met yet (a new vertex is >= vertexCount > 0)
+    auto next = static_cast<std::uint32_t>(vertexCount);
+    for (std::size_t c = 0; c < cornerCount; ++c) {
+      const std::uint32_t v = cornerVertex[c];
+      if (v < vertexCount) continue;
+      std::uint32_t& to = renumbered[v - vertexCount];
+      if (to == 0) to = next++;
+      cornerVertex[c] = to;
+    }
   }
 }
 
