@@ -15,7 +15,9 @@
 # stops: update it when the code it targets changes. The goal: every mutation caught by at
 # least two tests, one of them independent of the library's own code (the reference C or npm
 # MikkTSpace, the Khronos validator, values computed by hand in the test, tangents an
-# exporter wrote): those are marked with *.
+# exporter wrote): those are marked with *. The last line is the score: mutations caught
+# (killed) out of those that build. The copy's mutated file is restored however the run ends.
+# Not part of CI (one build and test run per mutation): run it nightly or by hand.
 set -euo pipefail
 source_dir=$(cd "$(dirname "$0")/.." && pwd)
 work=${TANGENT_MUTATE_DIR:-/tmp/libtangent-mutate}
@@ -23,10 +25,11 @@ copy=$work/src build=$work/build
 python=/usr/bin/python3
 
 # Independent of the library's own code (see above).
-independent='^(ReferenceC\.|MikkTSpaceReference\.|validator\.|SharedAssets\.MirrorTestHandedness|MeshFiles\.|Core\.(QuadExactFrame|TopLeftUvOriginNegatesWOnly|MirroredQuadsSplitSharedVertices|Cube24ExactFrames|EachWeightingGivesItsHandComputedFrame|TorusTangentFollowsU)$|Bake\.(MirroredColumnsSplitAndIndicesWiden|NormalTextureUvSetAndTextureTransformChooseTheFrame)$|Cli\.BakeWritesReportAndLeavesInputAlone$)'
-# The tests each kind of mutation runs (CTest -R).
-core_tests='^(Core|CoreNames|MikkTSpace|MikkTSpaceReference|Workspace|ReferenceC|Stress|StressReport|Check|CheckNegative|SharedAssets|MeshFiles)\.|^Methods/|^validator\.'
-gltf_tests='^(Bake|BakeErrors|MeshFiles|Check|CheckNegative|Cli|SharedAssets)\.|RoundTrip|^MikkTSpaceReference\.(ObjInputThroughBake|SharedAssets)$|^validator\.'
+independent='^(ReferenceC\.|MikkTSpaceReference\.|validator\.|SharedAssets\.MirrorTestHandedness|MeshFiles\.|Core\.(QuadExactFrame|TopLeftUvOriginNegatesWOnly|MirroredQuadsSplitSharedVertices|Cube24ExactFrames|EachWeightingGivesItsHandComputedFrame|TorusTangentFollowsU)$|Bake\.(MirroredColumnsSplitAndIndicesWiden|NormalTextureUvSetAndTextureTransformChooseTheFrame)$|Cli\.BakeWritesReportAndLeavesInputAlone$|(Boundaries/IndexBoundary|WeldIdentity|SplitOrder|ComponentTypes/CheckLimit|CheckLimits|Containment|MorphTangents)[./])'
+# The tests each kind of mutation runs (CTest -R); tests/boundary_test.cpp's in both.
+boundary_tests='^(Boundaries/IndexBoundary|WeldIdentity|SplitOrder|ComponentTypes/CheckLimit|CheckLimits|Containment|MorphTangents)[./]'
+core_tests='^(Core|CoreNames|MikkTSpace|MikkTSpaceReference|Workspace|ReferenceC|Stress|StressReport|Check|CheckNegative|SharedAssets|MeshFiles)\.|^Methods/|^validator\.|$boundary_tests'
+gltf_tests='^(Bake|BakeErrors|MeshFiles|Check|CheckNegative|Cli|SharedAssets)\.|RoundTrip|^MikkTSpaceReference\.(ObjInputThroughBake|SharedAssets)$|^validator\.|$boundary_tests'
 
 names=() files=() tests=() olds=() news=()
 # mutation NAME FILE TESTS OLD NEW: OLD must occur exactly once in FILE.
@@ -61,6 +64,27 @@ mutation attribute-carry libtangent/gltf/src/bake.cpp "$gltf_tests" \
   'if (name == "TANGENT") continue;' \
   "if (name == \"TANGENT\" || name[0] == '_') continue;  // custom attributes not gathered"
 
+# The classes of issue 42 (tests/boundary_test.cpp), one mutation each.
+mutation index-restart-boundary libtangent/gltf/src/bake.cpp "$gltf_tests" \
+  'if (outCount - 1 >= 65535 && indexComponentType == TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT)' \
+  'if (outCount - 1 > 65535 && indexComponentType == TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT)'
+mutation weld-by-bits libtangent/core/src/workspace.cpp "$core_tests" \
+  'if (mesh.positions[3 * a + i] != mesh.positions[3 * b + i] || mesh.normals[3 * a + i] != mesh.normals[3 * b + i])' \
+  'if (bitCast<std::uint32_t>(mesh.positions[3 * a + i]) != bitCast<std::uint32_t>(mesh.positions[3 * b + i]) || bitCast<std::uint32_t>(mesh.normals[3 * a + i]) != bitCast<std::uint32_t>(mesh.normals[3 * b + i]))'
+mutation split-last-corner-keeps libtangent/core/src/workspace.cpp "$core_tests" \
+  'if (entries[j].corner < firstCorner) firstCorner = entries[j].corner, firstAt = j;' \
+  'if (entries[j].corner > firstCorner) firstCorner = entries[j].corner, firstAt = j;'
+mutation check-rounding-twice-as-loose libtangent/gltf/src/tangent_rules.cpp "$gltf_tests" \
+  'const double vectorError = std::sqrt(3.0) * rounding.componentError;' \
+  'const double vectorError = 2 * std::sqrt(3.0) * rounding.componentError;'
+mutation containment-string-prefix libtangent/gltf/src/uri.cpp "$gltf_tests" \
+  'bool isInside(const fs::path& path, const fs::path& root) {' \
+  'bool isInside(const fs::path& path, const fs::path& root) {
+  if (const std::string r = root.lexically_normal().string(); true) return path.lexically_normal().string().starts_with(r.ends_with("/") ? r.substr(0, r.size() - 1) : r);'
+mutation morph-delta-sign libtangent/gltf/src/bake.cpp "$gltf_tests" \
+  'deltas[3 * v + i] = morphed[i] - split.tangents[4 * v + i];' \
+  'deltas[3 * v + i] = split.tangents[4 * v + i] - morphed[i];'
+
 mkdir -p "$copy"
 ln -sfn "$(cd "$source_dir/.." && pwd)/shared" "$work/shared"
 # Copy with the files' own times (tar keeps them), so unchanged files do not rebuild.
@@ -72,7 +96,7 @@ if [ ! -f "$build/build.ninja" ]; then
   cmake -S "$copy" -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DTANGENT_BUILD_VIEWER=OFF \
     -DTANGENT_BUILD_BENCHMARKS=OFF -DTANGENT_BUILD_PYTHON=OFF >/dev/null
 fi
-targets=(tangent tangent-test-assets tangent_tests tangent_reference_c_tests)
+targets=(tangent tangent-test-assets tangent_tests tangent_reference_c_tests tangent_boundary_tests)
 echo "== unmutated build and tests (all must pass)"
 cmake --build "$build" --parallel 2 --target "${targets[@]}" >/dev/null
 
@@ -103,13 +127,28 @@ if [ -n "$baseline" ]; then
   echo "tests fail without any mutation:"; echo "$baseline"; exit 1
 fi
 
+# The copy's mutated file goes back to its pristine bytes however the run ends (a failed
+# build or test command, set -e, Ctrl-C, kill): the next run then starts from the same sources.
+mutated_file=""
+restore() {
+  if [ -n "$mutated_file" ]; then
+    cp -p "$work/pristine" "$copy/$mutated_file"
+    touch "$copy/$mutated_file"
+    mutated_file=""
+  fi
+}
+trap restore EXIT
+trap 'restore; exit 130' INT TERM
+
 selected=("$@")
 rows=()
+killed=0 survived=0 stillborn=0
 for i in "${!names[@]}"; do
   name=${names[$i]} file=${files[$i]}
   if [ ${#selected[@]} -gt 0 ] && [[ ! " ${selected[*]} " == *" $name "* ]]; then continue; fi
   echo "== $name ($file)"
   cp -p "$copy/$file" "$work/pristine"
+  mutated_file=$file
   apply "$copy/$file" "${olds[$i]}" "${news[$i]}"
   if cmake --build "$build" --parallel 2 --target "${targets[@]}" >"$work/build.log" 2>&1; then
     caught=$(run_tests "${tests[$i]}")
@@ -117,8 +156,7 @@ for i in "${!names[@]}"; do
     tail -20 "$work/build.log"
     caught="(does not build)"
   fi
-  cp -p "$work/pristine" "$copy/$file"
-  touch "$copy/$file"
+  restore
   count=0 independent_count=0 list=""
   while read -r test; do
     [ -n "$test" ] || continue
@@ -127,10 +165,10 @@ for i in "${!names[@]}"; do
     if [[ $test =~ $independent ]]; then mark="*"; independent_count=$((independent_count + 1)); fi
     list+="${list:+, }$test$mark"
   done <<<"$caught"
-  if [ "$caught" = "(does not build)" ]; then verdict="does not build"
-  elif [ "$count" -eq 0 ]; then verdict="SURVIVED"
-  elif [ "$count" -ge 2 ] && [ "$independent_count" -ge 1 ]; then verdict="caught"
-  else verdict="caught (thinly)"
+  if [ "$caught" = "(does not build)" ]; then verdict="does not build" stillborn=$((stillborn + 1))
+  elif [ "$count" -eq 0 ]; then verdict="SURVIVED" survived=$((survived + 1))
+  elif [ "$count" -ge 2 ] && [ "$independent_count" -ge 1 ]; then verdict="caught" killed=$((killed + 1))
+  else verdict="caught (thinly)" killed=$((killed + 1))
   fi
   echo "   $verdict: $count tests, $independent_count independent"
   rows+=("$name|$verdict|$count|$independent_count|$list")
@@ -145,3 +183,6 @@ for row in "${rows[@]}"; do
   IFS='|' read -r name verdict count independent_count list <<<"$row"
   echo "| $name | $verdict | $count | $independent_count | $list |"
 done
+echo
+# Mutations that do not build are not counted (the compiler caught them, not the tests).
+echo "score: $killed killed / $((killed + survived)) mutations ($survived survived, $stillborn did not build)"
