@@ -64,7 +64,8 @@ void checkWriters(std::string_view bytes) {
   for (const nlohmann::ordered_json& json : {tangent::gltf::toJson(file), tangent::gltf::toJson(entry), manifest}) {
     const std::string text = tangent::text::dumpJson(json, 2);
     try {
-      (void)nlohmann::ordered_json::parse(text);  // strict: rejects anything that is not UTF-8
+      const auto parsed = nlohmann::ordered_json::parse(text);  // strict: rejects anything that is not UTF-8
+      if (parsed.is_discarded()) broken("dumpJson wrote JSON that does not parse", text);
     } catch (const std::exception&) {
       broken("dumpJson wrote JSON that does not parse", text);
     }
