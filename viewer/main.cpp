@@ -55,6 +55,9 @@ const char* kUsage =
     "                           over the brightest KHR_lights_punctual illuminance at the scene's centre in\n"
     "                           pbr, where those lights are in lux and candela; 1 otherwise)\n"
     "  --depth-prepass          draw opaque depth first, then shade each pixel once\n"
+    "  --animation N|NAME       pose the scene by this animation (index or name; default: none, the nodes'\n"
+    "                           own transforms, morph weights and skins in the rest pose)\n"
+    "  --time SECONDS           the animation's time (default 0; alone, it picks animation 0)\n"
     "  --msaa N                 samples per pixel in the window and screenshots (default 4, or 0 on a\n"
     "                           software rasteriser such as llvmpipe, where 4x costs 3-4 times the frame)\n"
     "  --no-normal-map, --no-specular, --phong (= --shading phong), --flip-green, --negate-w\n"
@@ -93,6 +96,8 @@ struct Options {
   bool checkShaders = false;
   bool stats = false;  // --stats
   int msaaSamples = -1;  // 0: off; -1: 4, or off on a software rasteriser (softwareRasteriser)
+  std::optional<std::string> animation;  // --animation N|NAME (with --time alone: animation 0)
+  std::optional<float> time;             // --time SECONDS
 };
 
 int parseOptions(int argc, char** argv, Options& options) {
@@ -148,6 +153,12 @@ int parseOptions(int argc, char** argv, Options& options) {
       else if (arg == "--check-shaders") options.checkShaders = true;
       else if (arg == "--stats") options.stats = true;
       else if (arg == "--depth-prepass") options.settings.depthPrePass = true;
+      else if (arg == "--animation") options.animation = value();
+      else if (arg == "--time") {
+        const float seconds = std::stof(value());
+        if (!std::isfinite(seconds)) throw std::invalid_argument("--time must be a number of seconds");
+        options.time = seconds;
+      }
       else if (arg == "--exposure") {
         const std::string text = value();
         if (text == "auto") options.settings.exposure = 0;
@@ -201,8 +212,31 @@ struct Viewer {
   std::vector<std::string> messages;
   fs::path loaded;
   int loadedDemo = -1;  // index into kDemoFiles of the file loaded, -1 for any other file
+  PoseTime pose;        // the animation shown and its time
+  bool playing = false; // the window advances the time (looping over the animation)
 
   explicit Viewer(const Options& o) : options(o), shaders(o.shaderDir), renderer(shaders) {}
+
+  // The pose the options ask for: --animation and --time, else the rest pose. False (with a
+  // message) for an animation the file does not have.
+  bool choosePose() {
+    pose = PoseTime{};
+    playing = false;
+    const auto& scene = renderer.scene();
+    if (options.animation || options.time) {
+      const std::optional<int> animation = findAnimation(scene, options.animation.value_or("0"));
+      if (!animation) {
+        const std::string text = "no animation '" + options.animation.value_or("0") + "' in " + loaded.string() + " (it has " +
+                                 std::to_string(scene.animations.size()) + ")";
+        messages.push_back(text);
+        std::cerr << "error: " << text << "\n";
+        return !options.screenshot;  // a screenshot of another pose would mislead
+      }
+      pose = PoseTime{*animation, options.time.value_or(0.0f)};
+    }
+    renderer.setPose(pose);
+    return true;
+  }
 
   bool load(const fs::path& file) {
     messages.clear();
@@ -223,6 +257,7 @@ struct Viewer {
       return false;
     }
     for (const auto& m : messages) std::cerr << "note: " << m << "\n";
+    if (!choosePose()) return false;
     camera.frame(renderer.boundsMin(), renderer.boundsMax(), options.camera, float(options.width) / float(options.height));
     camera.orthographic = options.orthographic;
     if (options.settings.reflectivity > 0 || fs::exists(options.sphereMap)) {
@@ -367,6 +402,22 @@ void drawPanel(Viewer& viewer, GLFWwindow* window, const FrameStats& stats, doub
     ImGui::SliderInt("glyph count", &s.maxGlyphs, 100, 50000);
     ImGui::Checkbox("orthographic", &viewer.camera.orthographic);
   }
+  if (const auto& animations = viewer.renderer.scene().animations; !animations.empty() && ImGui::CollapsingHeader("Animation", ImGuiTreeNodeFlags_DefaultOpen)) {
+    std::vector<std::string> names{"none (rest pose)"};
+    for (std::size_t a = 0; a < animations.size(); ++a)
+      names.push_back(std::to_string(a) + (animations[a].name.empty() ? "" : " '" + animations[a].name + "'"));
+    std::vector<const char*> pointers;
+    for (const auto& name : names) pointers.push_back(name.c_str());
+    int chosen = viewer.pose.animation + 1;
+    if (ImGui::Combo("animation", &chosen, pointers.data(), static_cast<int>(pointers.size()))) {
+      viewer.pose = PoseTime{chosen - 1, 0.0f};
+      viewer.playing = chosen > 0;
+    }
+    if (viewer.pose.animation >= 0) {
+      ImGui::Checkbox("play", &viewer.playing);
+      ImGui::SliderFloat("time (s)", &viewer.pose.seconds, 0.0f, std::max(animations[viewer.pose.animation].duration, 1e-3f), "%.3f");
+    }
+  }
   if (ImGui::CollapsingHeader("Shading", ImGuiTreeNodeFlags_DefaultOpen)) {
     ImGui::Checkbox("normal mapping (m)", &s.normalMapping);
     ImGui::Checkbox("flip green (f)", &s.flipGreen);
@@ -497,6 +548,11 @@ int interactive(Viewer& viewer, GLFWwindow* window) {
     }
     input.lastX = x;
     input.lastY = y;
+    if (viewer.playing && viewer.pose.animation >= 0) {
+      const float duration = viewer.renderer.scene().animations[viewer.pose.animation].duration;
+      viewer.pose.seconds = duration > 0 ? std::fmod(viewer.pose.seconds + static_cast<float>(frameMs) / 1000.0f, duration) : 0.0f;
+    }
+    viewer.renderer.setPose(viewer.pose);
     int width, height;
     glfwGetFramebufferSize(window, &width, &height);
     if (width > 0 && height > 0) {

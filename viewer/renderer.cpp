@@ -27,8 +27,9 @@ void setVertexLayout(std::span<const VertexAttribute> layout) {
   }
 }
 
-// A draw item's corners packed as kMeshVertexLayout says.
-std::vector<float> packMeshVertices(const gltf::DrawItem& item) {
+// A draw item's corners packed as kMeshVertexLayout says; positions, normals and tangents from
+// `frame` (the item's own, or deformed ones).
+std::vector<float> packMeshVertices(const gltf::DrawItem& item, const CornerFrames& frame) {
   const std::size_t corners = item.positions.size() / 3;
   std::vector<float> data(corners * kMeshFloatsPerVertex);
   for (const VertexAttribute& attribute : kMeshVertexLayout) {
@@ -36,9 +37,9 @@ std::vector<float> packMeshVertices(const gltf::DrawItem& item) {
       float* out = &data[c * kMeshFloatsPerVertex + attribute.offset];
       const auto n = static_cast<std::size_t>(attribute.components);
       switch (attribute.source) {
-        case VertexSource::position: std::copy_n(&item.positions[n * c], n, out); break;
-        case VertexSource::normal: std::copy_n(&item.normals[n * c], n, out); break;
-        case VertexSource::tangent: std::copy_n(&item.tangents[n * c], n, out); break;
+        case VertexSource::position: std::copy_n(&frame.positions[n * c], n, out); break;
+        case VertexSource::normal: std::copy_n(&frame.normals[n * c], n, out); break;
+        case VertexSource::tangent: std::copy_n(&frame.tangents[n * c], n, out); break;
         case VertexSource::uvNormal: std::copy_n(&item.uvNormal[n * c], n, out); break;
         case VertexSource::uv0: std::copy_n(&item.uvSets[0][n * c], n, out); break;
         case VertexSource::uv1: std::copy_n(&item.uvSets[1][n * c], n, out); break;
@@ -147,6 +148,7 @@ void Renderer::setScene(gltf::Scene scene, std::vector<std::string>& messages) {
   scene_ = std::move(scene);
   meshes_.clear();
   instances_.clear();
+  deformed_.clear();
   textures_.clear();
   srgbTextures_.clear();
   glyphsBuiltFor_ = -1;
@@ -180,34 +182,120 @@ void Renderer::setScene(gltf::Scene scene, std::vector<std::string>& messages) {
     if (usedAsColour[i]) srgbTextures_[i] = uploadTexture(image, true);
     if (usedAsData[i]) textures_[i] = uploadTexture(image, false);
   }
-  for (const auto& item : scene_.items) {
+  auto upload = [&](const gltf::DrawItem& item, GLenum usage) {
     GpuMesh mesh;
     mesh.material = item.material;
-    const std::vector<float> data = packMeshVertices(item);
+    const std::vector<float> data = packMeshVertices(item, itemFrames(item));
     mesh.vertexArray = makeVertexArray();
     mesh.vertices = makeBuffer();
     glBindVertexArray(mesh.vertexArray.get());
     glBindBuffer(GL_ARRAY_BUFFER, mesh.vertices.get());
-    glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(data.size() * sizeof(float)), data.data(), GL_STATIC_DRAW);
+    glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(data.size() * sizeof(float)), data.data(), usage);
     setVertexLayout(kMeshVertexLayout);
     mesh.count = static_cast<GLsizei>(item.positions.size() / 3);
     meshes_.push_back(std::move(mesh));
-  }
+  };
+  for (const auto& item : scene_.items) upload(item, GL_STATIC_DRAW);
   instances_.reserve(scene_.instances.size());
-  for (const auto& source : scene_.instances) {
+  for (std::size_t i = 0; i < scene_.instances.size(); ++i) {
+    const gltf::DrawInstance& source = scene_.instances[i];
     GpuInstance instance;
     instance.mesh = source.item;
-    instance.model = glm::make_mat4(source.world.data());
-    instance.mirrored = glm::determinant(glm::mat3(instance.model)) < 0;
     const gltf::DrawItem& item = scene_.items[source.item];
-    const glm::vec3 centerObject = (glm::make_vec3(item.boundsMin.data()) + glm::make_vec3(item.boundsMax.data())) * 0.5f;
-    instance.centerWorld = item.boundsMin[0] <= item.boundsMax[0] ? glm::vec3(instance.model * glm::vec4(centerObject, 1)) : glm::vec3(0);
+    // A morphing or skinned instance gets vertices of its own, deformed on the CPU per pose.
+    if (deforms(source)) {
+      instance.mesh = static_cast<std::uint32_t>(meshes_.size());
+      upload(item, GL_DYNAMIC_DRAW);
+      deformed_.push_back({static_cast<std::uint32_t>(i), {}});
+    }
+    placeInstance(instance, glm::make_mat4(source.world.data()), item);
     instances_.push_back(instance);
   }
   glBindVertexArray(0);
   boundsMin_ = glm::make_vec3(scene_.boundsMin.data());
   boundsMax_ = glm::make_vec3(scene_.boundsMax.data());
   lights_ = lightsFrom(scene_, boundsCenter(), boundsRadius());
+  pose_.reset();
+}
+
+bool Renderer::deforms(const gltf::DrawInstance& instance) const {
+  if (scene_.nodes.empty() || instance.node >= scene_.nodes.size()) return false;
+  const gltf::DrawItem& item = scene_.items[instance.item];
+  return !item.morphTargets.empty() || (scene_.nodes[instance.node].skin >= 0 && item.influencesPerCorner > 0);
+}
+
+void Renderer::placeInstance(GpuInstance& instance, const glm::mat4& model, const gltf::DrawItem& item) {
+  instance.model = model;
+  instance.mirrored = glm::determinant(glm::mat3(model)) < 0;
+  const glm::vec3 centerObject = (glm::make_vec3(item.boundsMin.data()) + glm::make_vec3(item.boundsMax.data())) * 0.5f;
+  instance.centerWorld = item.boundsMin[0] <= item.boundsMax[0] ? glm::vec3(model * glm::vec4(centerObject, 1)) : glm::vec3(0);
+}
+
+CornerFrames Renderer::framesOf(std::size_t instance) const {
+  for (const DeformedInstance& deformed : deformed_)
+    if (deformed.instance == instance && !deformed.corners.positions.empty())
+      return {deformed.corners.positions, deformed.corners.normals, deformed.corners.tangents};
+  return itemFrames(scene_.items[scene_.instances[instance].item]);
+}
+
+bool Renderer::setPose(PoseTime time) {
+  if (scene_.nodes.empty() || (pose_ && *pose_ == time)) return false;
+  pose_ = time;
+  const ScenePose pose = poseScene(scene_, time);
+  for (std::size_t i = 0; i < scene_.instances.size(); ++i) {
+    const gltf::DrawInstance& source = scene_.instances[i];
+    if (source.node < pose.world.size()) placeInstance(instances_[i], pose.world[source.node], scene_.items[source.item]);
+  }
+  glm::vec3 lo(std::numeric_limits<float>::max()), hi(-std::numeric_limits<float>::max());
+  auto grow = [&](const glm::vec3& p) {
+    if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z)) return;
+    lo = glm::min(lo, p);
+    hi = glm::max(hi, p);
+  };
+  std::vector<char> isDeformed(instances_.size(), 0);
+  for (DeformedInstance& deformed : deformed_) {
+    const gltf::DrawInstance& source = scene_.instances[deformed.instance];
+    const gltf::DrawItem& item = scene_.items[source.item];
+    const int skin = scene_.nodes[source.node].skin;
+    std::vector<glm::mat4> joints;
+    if (skin >= 0 && item.influencesPerCorner > 0) joints = jointMatrices(scene_.skins[skin], pose, source.node);
+    deformItem(item, pose.weights[source.node], joints, deformed.corners);
+    const std::vector<float> data =
+        packMeshVertices(item, {deformed.corners.positions, deformed.corners.normals, deformed.corners.tangents});
+    GpuMesh& mesh = meshes_[instances_[deformed.instance].mesh];
+    glBindBuffer(GL_ARRAY_BUFFER, mesh.vertices.get());
+    glBufferSubData(GL_ARRAY_BUFFER, 0, static_cast<GLsizeiptr>(data.size() * sizeof(float)), data.data());
+    // Bounds and draw order from the deformed corners.
+    const glm::mat4& model = instances_[deformed.instance].model;
+    glm::vec3 itemLo(std::numeric_limits<float>::max()), itemHi(-std::numeric_limits<float>::max());
+    for (std::size_t c = 0; c < deformed.corners.positions.size() / 3; ++c) {
+      const glm::vec3 p = glm::vec3(model * glm::vec4(glm::make_vec3(&deformed.corners.positions[3 * c]), 1));
+      if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z)) continue;
+      itemLo = glm::min(itemLo, p);
+      itemHi = glm::max(itemHi, p);
+    }
+    if (itemLo.x <= itemHi.x) {
+      grow(itemLo);
+      grow(itemHi);
+      instances_[deformed.instance].centerWorld = (itemLo + itemHi) * 0.5f;
+    }
+    isDeformed[deformed.instance] = 1;
+  }
+  for (std::size_t i = 0; i < instances_.size(); ++i) {
+    if (isDeformed[i]) continue;
+    const gltf::DrawItem& item = scene_.items[scene_.instances[i].item];
+    if (item.boundsMin[0] > item.boundsMax[0]) continue;
+    for (int corner = 0; corner < 8; ++corner)
+      grow(glm::vec3(instances_[i].model * glm::vec4(corner & 1 ? item.boundsMax[0] : item.boundsMin[0], corner & 2 ? item.boundsMax[1] : item.boundsMin[1],
+                                                     corner & 4 ? item.boundsMax[2] : item.boundsMin[2], 1)));
+  }
+  if (lo.x <= hi.x) {
+    boundsMin_ = lo;
+    boundsMax_ = hi;
+  }
+  ++sceneVersion_;  // the shadow map and the glyphs follow the pose
+  glyphsBuiltFor_ = -1;
+  return true;
 }
 
 bool Renderer::loadSphereMap(const std::filesystem::path& file, std::vector<std::string>& messages) {
@@ -590,26 +678,28 @@ void Renderer::drawGlyphs(const CameraMatrices& camera, const RenderSettings& se
     // however many instances there are.
     std::size_t corners = 0;
     for (const auto& instance : scene_.instances) corners += scene_.items[instance.item].positions.size() / 3;
+    // Each instance as posed: its node's transform now, its deformed corners.
     const std::size_t stride = std::max<std::size_t>(1, corners / std::max(settings.maxGlyphs, 1));
     const float length = 0.04f * boundsRadius();
     std::vector<float> lines;
     std::size_t next = 0;  // the next glyph's corner, counted from the current instance's first
-    for (const auto& instance : scene_.instances) {
-      const gltf::DrawItem& item = scene_.items[instance.item];
+    for (std::size_t i = 0; i < scene_.instances.size(); ++i) {
+      const gltf::DrawItem& item = scene_.items[scene_.instances[i].item];
       const std::size_t itemCorners = item.positions.size() / 3;
       if (next >= itemCorners) {
         next -= itemCorners;
         continue;
       }
-      const glm::mat4 model = glm::make_mat4(instance.world.data());
+      const CornerFrames frame = framesOf(i);
+      const glm::mat4 model = instances_[i].model;
       const glm::mat3 normalMatrix = glm::transpose(glm::inverse(glm::mat3(model)));
       const float mirror = glm::determinant(glm::mat3(model)) < 0 ? -1.0f : 1.0f;  // see mesh.vert
       for (; next < itemCorners; next += stride) {
         const std::size_t c = next;
-        const glm::vec3 p = glm::vec3(model * glm::vec4(glm::make_vec3(&item.positions[3 * c]), 1));
-        const glm::vec3 n = glm::normalize(normalMatrix * glm::make_vec3(&item.normals[3 * c]));
-        const glm::vec3 t = glm::normalize(glm::mat3(model) * glm::make_vec3(&item.tangents[4 * c]));
-        const glm::vec3 b = glm::cross(n, t) * (item.tangents[4 * c + 3] < 0 ? -mirror : mirror);
+        const glm::vec3 p = glm::vec3(model * glm::vec4(glm::make_vec3(&frame.positions[3 * c]), 1));
+        const glm::vec3 n = glm::normalize(normalMatrix * glm::make_vec3(&frame.normals[3 * c]));
+        const glm::vec3 t = glm::normalize(glm::mat3(model) * glm::make_vec3(&frame.tangents[4 * c]));
+        const glm::vec3 b = glm::cross(n, t) * (frame.tangents[4 * c + 3] < 0 ? -mirror : mirror);
         const glm::vec3 axes[3] = {t, b, n};
         const glm::vec3 colors[3] = {{1, 0.2f, 0.2f}, {0.2f, 1, 0.2f}, {0.3f, 0.5f, 1}};
         for (int a = 0; a < 3; ++a) {

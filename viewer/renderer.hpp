@@ -7,11 +7,13 @@
 
 #include <cstdint>
 #include <limits>
+#include <optional>
 #include <span>
 #include <string>
 #include <vector>
 
 #include "gl_objects.hpp"
+#include "pose.hpp"
 #include "shader_library.hpp"
 #include "tangent/scene.hpp"
 
@@ -56,6 +58,13 @@ struct RenderSettings {
   bool depthPrePass = false; // opaque meshes' depth first, then shading with GL_LEQUAL and no depth writes
 };
 
+// Positions (3 per corner), normals (3) and tangents (4) of a primitive's corners: its own, or
+// as deformed by the pose.
+struct CornerFrames {
+  std::span<const float> positions, normals, tangents;
+};
+inline CornerFrames itemFrames(const gltf::DrawItem& item) { return {item.positions, item.normals, item.tangents}; }
+
 struct CameraMatrices {
   glm::mat4 view{1}, projection{1};
   glm::vec3 eye{0, 0, 5};
@@ -77,6 +86,10 @@ class Renderer {
   // Errors and notes go to `messages`.
   bool loadSphereMap(const std::filesystem::path& file, std::vector<std::string>& messages);
 
+  // Poses the scene (node transforms, morph weights, skins) at `time`, deforming morphing and
+  // skinned instances on the CPU and updating the bounds; the rest pose until called. Returns
+  // whether anything changed (false for a scene without nodes to pose, or the same time).
+  bool setPose(PoseTime time);
   // Draws into the bound framebuffer of the given size.
   FrameStats render(const CameraMatrices& camera, const RenderSettings& settings, int width, int height);
 
@@ -138,6 +151,11 @@ class Renderer {
   void drawDepth(std::span<const GpuInstance* const> instances, const glm::mat4& viewProjection, const RenderSettings& settings,
                  bool blendCasts, bool cullAsLit);
   FeatureSet alphaTestFeatures(const GpuMesh& mesh, bool blendCasts) const;
+  // Whether a scene instance morphs or is skinned (and so has vertices of its own).
+  bool deforms(const gltf::DrawInstance& instance) const;
+  void placeInstance(GpuInstance& instance, const glm::mat4& model, const gltf::DrawItem& item);
+  // Scene instance i's corners as drawn: deformed when it deforms, else its item's.
+  CornerFrames framesOf(std::size_t instance) const;
   void applyCulling(const GpuMesh& mesh, const RenderSettings& settings) const;
   void drawGlyphs(const CameraMatrices& camera, const RenderSettings& settings);
   glm::mat4 lightViewProjection() const;
@@ -147,7 +165,14 @@ class Renderer {
   ShaderLibrary& shaders_;
   gltf::Scene scene_;
   std::vector<GpuMesh> meshes_;
-  std::vector<GpuInstance> instances_;
+  std::vector<GpuInstance> instances_;  // parallel to scene_.instances
+  // A morphing or skinned instance: its corners at the current pose (empty until posed).
+  struct DeformedInstance {
+    std::uint32_t instance = 0;  // index into scene_.instances and instances_
+    DeformedCorners corners;
+  };
+  std::vector<DeformedInstance> deformed_;
+  std::optional<PoseTime> pose_;  // the pose drawn; none: the rest pose as loaded
   std::vector<Texture> textures_;      // per scene image, linear data (empty when unused or failed)
   std::vector<Texture> srgbTextures_;  // per scene image, sRGB colour (empty when unused or failed)
   Texture sphereMap_;

@@ -1060,3 +1060,230 @@ TEST(Viewer, GeometryNormalViewShowsTheInterpolatedNormal) {
   EXPECT_LT(error / (3 * samples), 0.006);
   EXPECT_LT(worst, 0.02);
 }
+
+// Writes a .gltf with one embedded buffer: accessors added one by one (floats or 16-bit
+// integers), the document completed by the caller.
+struct GltfWriter {
+  std::string bin;
+  nlohmann::json accessors = nlohmann::json::array(), bufferViews = nlohmann::json::array();
+  int add(const void* data, std::size_t bytes, int componentType, std::size_t count, const char* type, bool indices = false) {
+    while (bin.size() % 4 != 0) bin.push_back('\0');
+    nlohmann::json view = {{"buffer", 0}, {"byteOffset", bin.size()}, {"byteLength", bytes}};
+    if (indices) view["target"] = 34963;
+    bufferViews.push_back(view);
+    bin.append(static_cast<const char*>(data), bytes);
+    accessors.push_back({{"bufferView", bufferViews.size() - 1}, {"componentType", componentType}, {"count", count}, {"type", type}});
+    return static_cast<int>(accessors.size() - 1);
+  }
+  int floats(const std::vector<float>& values, const char* type, int components) {
+    const int index = add(values.data(), values.size() * sizeof(float), 5126, values.size() / components, type);
+    if (std::string(type) == "VEC3" && values.size() >= 3) {  // POSITION needs min and max
+      std::array<float, 3> lo{values[0], values[1], values[2]}, hi = lo;
+      for (std::size_t i = 0; i < values.size(); ++i) lo[i % 3] = std::min(lo[i % 3], values[i]), hi[i % 3] = std::max(hi[i % 3], values[i]);
+      accessors[index]["min"] = lo;
+      accessors[index]["max"] = hi;
+    }
+    return index;
+  }
+  int shorts(const std::vector<std::uint16_t>& values, const char* type, int components, bool indices = false) {
+    return add(values.data(), values.size() * 2, 5123, values.size() / components, type, indices);
+  }
+  fs::path write(const fs::path& file, nlohmann::json doc) {
+    std::string base64;
+    static const char* kAlphabet = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+    for (std::size_t i = 0; i < bin.size(); i += 3) {
+      const std::uint32_t n = (std::uint32_t(std::uint8_t(bin[i])) << 16) | (i + 1 < bin.size() ? std::uint32_t(std::uint8_t(bin[i + 1])) << 8 : 0) |
+                              (i + 2 < bin.size() ? std::uint32_t(std::uint8_t(bin[i + 2])) : 0);
+      base64 += kAlphabet[(n >> 18) & 63];
+      base64 += kAlphabet[(n >> 12) & 63];
+      base64 += i + 1 < bin.size() ? kAlphabet[(n >> 6) & 63] : '=';
+      base64 += i + 2 < bin.size() ? kAlphabet[n & 63] : '=';
+    }
+    doc["asset"] = {{"version", "2.0"}};
+    doc["buffers"] = {{{"byteLength", bin.size()}, {"uri", "data:application/octet-stream;base64," + base64}}};
+    doc["bufferViews"] = bufferViews;
+    doc["accessors"] = accessors;
+    std::ofstream(file) << doc.dump(1);
+    return file;
+  }
+};
+
+// The tangent a tangent-view pixel shows (signedColor: t * 0.5 + 0.5), in the xy plane, as an
+// angle in degrees from +x.
+double tangentAngleDegrees(std::array<float, 3> c) { return std::atan2(2.0 * c[1] - 1, 2.0 * c[0] - 1) * 180 / 3.14159265358979; }
+
+// A quad facing +z whose TANGENT is +x, with one morph target whose TANGENT deltas turn it 45
+// degrees towards +y (and whose POSITION deltas lift nothing): the tangent view shows 0 degrees
+// at weight 0, 45 at weight 1 (node.weights over mesh.weights) and 22.5 at weight 0.5 (the
+// mean of the two, normalized).
+TEST(Viewer, MorphTargetTangentDeltasTurnTheTangent) {
+  TempDir dir;
+  const double c45 = std::sqrt(0.5);
+  auto asset = [&](const std::string& name, const nlohmann::json& nodeWeights) {
+    GltfWriter gltf;
+    const int position = gltf.floats({-1, -1, 0, 1, -1, 0, 1, 1, 0, -1, 1, 0}, "VEC3", 3);
+    const int normal = gltf.floats({0, 0, 1, 0, 0, 1, 0, 0, 1, 0, 0, 1}, "VEC3", 3);
+    const int tangent = gltf.floats({1, 0, 0, 1, 1, 0, 0, 1, 1, 0, 0, 1, 1, 0, 0, 1}, "VEC4", 4);
+    const int uv = gltf.floats({0, 1, 1, 1, 1, 0, 0, 0}, "VEC2", 2);
+    const float dx = static_cast<float>(c45 - 1), dy = static_cast<float>(c45);
+    const int tangentDelta = gltf.floats({dx, dy, 0, dx, dy, 0, dx, dy, 0, dx, dy, 0}, "VEC3", 3);
+    const int positionDelta = gltf.floats({0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0}, "VEC3", 3);
+    const int indices = gltf.shorts({0, 1, 2, 0, 2, 3}, "SCALAR", 1, true);
+    nlohmann::json node = {{"mesh", 0}};
+    if (!nodeWeights.is_null()) node["weights"] = nodeWeights;
+    return gltf.write(dir / (name + ".gltf"),
+                      {{"scene", 0},
+                       {"scenes", {{{"nodes", {0}}}}},
+                       {"nodes", {node}},
+                       {"meshes", {{{"weights", {0.0}},
+                                    {"primitives", {{{"attributes", {{"POSITION", position}, {"NORMAL", normal}, {"TANGENT", tangent}, {"TEXCOORD_0", uv}}},
+                                                     {"indices", indices},
+                                                     {"targets", {{{"POSITION", positionDelta}, {"TANGENT", tangentDelta}}}}}}}}}}});
+  };
+  const std::pair<const char*, nlohmann::json> cases[] = {{"weight0", nullptr}, {"weight1", {1.0}}, {"weight-half", {0.5}}};
+  const double expected[] = {0, 45, 22.5};
+  for (int i = 0; i < 3; ++i) {
+    const Image image = screenshot(dir, cases[i].first, "'" + asset(cases[i].first, cases[i].second).string() + "' --view tangent" + kQuadView);
+    ASSERT_EQ(image.width, 200);
+    for (const auto& [x, y] : {std::pair{0.0, 0.0}, std::pair{-0.5, 0.5}, std::pair{0.5, -0.5}}) {
+      const auto colour = quadPixel(image, x, y);
+      std::printf("%s at (%.1f, %.1f): tangent at %.2f degrees (expected %.1f), z colour %.3f\n", cases[i].first, x, y, tangentAngleDegrees(colour),
+                  expected[i], colour[2]);
+      EXPECT_NEAR(tangentAngleDegrees(colour), expected[i], 1.0) << cases[i].first;
+      EXPECT_NEAR(colour[2], 0.5f, 0.01f) << cases[i].first;
+    }
+  }
+}
+
+// A cylinder of radius 0.25 along +y from 0 to 2 (rings every 0.1, 16 sides), its TANGENT +y
+// everywhere, skinned to two joints: joint 0 at the origin holds y <= 0.8, joint 1 at y = 1
+// (bound unrotated) holds y >= 1.2, linearly blended between; joint 0's influence in
+// JOINTS_0/WEIGHTS_0, joint 1's in JOINTS_1/WEIGHTS_1. Joint 1's own rotation about z is
+// `restDegrees`; with `animated`, animation 'bend' turns it from 0 to 90 degrees over 1 s.
+fs::path bentCylinder(const TempDir& dir, const std::string& name, double restDegrees, bool animated) {
+  const int rings = 21, sides = 16;
+  const float radius = 0.25f;
+  std::vector<float> positions, normals, tangents, uvs, weights0, weights1;
+  std::vector<std::uint16_t> joints0, joints1, indices;
+  for (int r = 0; r < rings; ++r) {
+    const float y = 0.1f * static_cast<float>(r);
+    const float w1 = std::clamp((y - 0.8f) / 0.4f, 0.0f, 1.0f);
+    for (int s = 0; s <= sides; ++s) {
+      const double theta = 2 * 3.14159265358979 * s / sides;
+      const auto sx = static_cast<float>(std::sin(theta)), cz = static_cast<float>(std::cos(theta));
+      positions.insert(positions.end(), {radius * sx, y, radius * cz});
+      normals.insert(normals.end(), {sx, 0, cz});
+      tangents.insert(tangents.end(), {0, 1, 0, 1});
+      uvs.insert(uvs.end(), {y / 2, static_cast<float>(s) / sides});
+      joints0.insert(joints0.end(), {0, 0, 0, 0});
+      joints1.insert(joints1.end(), {1, 0, 0, 0});
+      weights0.insert(weights0.end(), {1 - w1, 0, 0, 0});
+      weights1.insert(weights1.end(), {w1, 0, 0, 0});
+    }
+  }
+  for (int r = 0; r + 1 < rings; ++r) {
+    for (int s = 0; s < sides; ++s) {
+      const auto a = static_cast<std::uint16_t>(r * (sides + 1) + s), b = static_cast<std::uint16_t>(a + 1),
+                 c = static_cast<std::uint16_t>(a + sides + 2), d = static_cast<std::uint16_t>(a + sides + 1);
+      indices.insert(indices.end(), {a, b, c, a, c, d});  // counter-clockwise seen from outside
+    }
+  }
+  GltfWriter gltf;
+  const int position = gltf.floats(positions, "VEC3", 3), normal = gltf.floats(normals, "VEC3", 3), tangent = gltf.floats(tangents, "VEC4", 4),
+            uv = gltf.floats(uvs, "VEC2", 2), j0 = gltf.shorts(joints0, "VEC4", 4), j1 = gltf.shorts(joints1, "VEC4", 4),
+            w0 = gltf.floats(weights0, "VEC4", 4), w1 = gltf.floats(weights1, "VEC4", 4), index = gltf.shorts(indices, "SCALAR", 1, true);
+  const int inverseBind = gltf.floats({1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, -1, 0, 1}, "MAT4", 16);
+  const double half = restDegrees * 3.14159265358979 / 360;
+  nlohmann::json doc = {
+      {"scene", 0},
+      {"scenes", {{{"nodes", {0, 1}}}}},
+      {"nodes", {{{"mesh", 0}, {"skin", 0}}, {{"children", {2}}}, {{"translation", {0, 1, 0}}, {"rotation", {0, 0, std::sin(half), std::cos(half)}}}}},
+      {"skins", {{{"joints", {1, 2}}, {"inverseBindMatrices", inverseBind}}}},
+      {"meshes", {{{"primitives", {{{"attributes", {{"POSITION", position}, {"NORMAL", normal}, {"TANGENT", tangent}, {"TEXCOORD_0", uv},
+                                                     {"JOINTS_0", j0}, {"WEIGHTS_0", w0}, {"JOINTS_1", j1}, {"WEIGHTS_1", w1}}},
+                                      {"indices", index}}}}}}},
+  };
+  if (animated) {
+    const int times = gltf.floats({0, 1}, "SCALAR", 1);
+    const int rotations = gltf.floats({0, 0, 0, 1, 0, 0, static_cast<float>(std::sqrt(0.5)), static_cast<float>(std::sqrt(0.5))}, "VEC4", 4);
+    const nlohmann::json sampler = {{"input", times}, {"output", rotations}, {"interpolation", "LINEAR"}};
+    const nlohmann::json channel = {{"sampler", 0}, {"target", {{"node", 2}, {"path", "rotation"}}}};
+    doc["animations"] = nlohmann::json::array({{{"name", "bend"}, {"samplers", nlohmann::json::array({sampler})},
+                                                 {"channels", nlohmann::json::array({channel})}}});
+  }
+  return gltf.write(dir / (name + ".gltf"), doc);
+}
+
+// The front orthographic view (300 x 300) of bentCylinder with joint 1 turned `degrees`: the
+// tangent view's angle (from +x, in the xy plane) at the front surface of the lower part (y =
+// 0.4, held by joint 0: 90 degrees), the blend's middle (y = 1: 90 + degrees / 2, the mean of
+// the two joints' tangents) and the upper part (y = 1.7, held by joint 1: 90 + degrees).
+std::array<double, 3> cylinderTangentAngles(const Image& image, double degrees) {
+  const double a = degrees * 3.14159265358979 / 180;
+  // Where the corners go (linear blend skinning, as the viewer should do it), for the framing.
+  std::array<double, 3> lo{1e9, 1e9, 1e9}, hi{-1e9, -1e9, -1e9};
+  for (int r = 0; r < 21; ++r) {
+    const double y = 0.1 * r, w1 = std::clamp((y - 0.8) / 0.4, 0.0, 1.0);
+    for (int s = 0; s < 16; ++s) {
+      const double theta = 2 * 3.14159265358979 * s / 16, x = 0.25 * std::sin(theta), z = 0.25 * std::cos(theta);
+      const double bentX = -(y - 1) * std::sin(a) + x * std::cos(a), bentY = 1 + (y - 1) * std::cos(a) + x * std::sin(a);
+      const std::array<double, 3> p{(1 - w1) * x + w1 * bentX, (1 - w1) * y + w1 * bentY, z};
+      for (int i = 0; i < 3; ++i) lo[i] = std::min(lo[i], p[i]), hi[i] = std::max(hi[i], p[i]);
+    }
+  }
+  const double radius = std::sqrt((hi[0] - lo[0]) * (hi[0] - lo[0]) + (hi[1] - lo[1]) * (hi[1] - lo[1]) + (hi[2] - lo[2]) * (hi[2] - lo[2])) / 2;
+  const double pixelsPerUnit = image.height / (2 * radius * 1.02), cx = (lo[0] + hi[0]) / 2, cy = (lo[1] + hi[1]) / 2;
+  auto angleAt = [&](double x, double y) {
+    return tangentAngleDegrees(image.at(static_cast<int>(image.width / 2.0 + (x - cx) * pixelsPerUnit), static_cast<int>(image.height / 2.0 - (y - cy) * pixelsPerUnit)));
+  };
+  return {angleAt(0, 0.4), angleAt(0, 1), angleAt(-0.7 * std::sin(a), 1 + 0.7 * std::cos(a))};
+}
+
+// Two joints bend a skinned cylinder 90 degrees in its rest pose (joint 1's node rotation; the
+// inverse bind matrices are of the straight cylinder): the tangent view shows the skinned
+// tangents, transformed by the joints' matrices as the positions are.
+TEST(Viewer, SkinnedCylinderBentNinetyDegreesShowsSkinnedTangents) {
+  TempDir dir;
+  const Image image = screenshot(dir, "bent", "'" + bentCylinder(dir, "bent", 90, false).string() + "' --view tangent --camera front --ortho --size 300x300");
+  ASSERT_EQ(image.width, 300);
+  const auto angles = cylinderTangentAngles(image, 90);
+  const double expected[] = {90, 135, 180};
+  for (int i = 0; i < 3; ++i) {
+    std::printf("bent cylinder, %s: tangent at %.2f degrees, expected %.1f\n", i == 0 ? "lower part" : i == 1 ? "blend" : "upper part",
+                angles[i] < 0 ? angles[i] + 360 : angles[i], expected[i]);
+    EXPECT_NEAR(angles[i] < 0 ? angles[i] + 360 : angles[i], expected[i], 3.0) << i;
+  }
+}
+
+// An animated node at several times: animation 'bend' turns joint 1 of the skinned cylinder
+// from 0 to 90 degrees over 1 s (LINEAR, so slerp: 45 degrees at 0.5 s; held after the last
+// key). Without --animation the scene shows its rest pose, joint 1's own 30 degrees.
+TEST(Viewer, AnimationPosesTheNodeAtTheTimeAsked) {
+  TempDir dir;
+  const fs::path file = bentCylinder(dir, "animated", 30, true);
+  const std::string common = " --view tangent --camera front --ortho --size 300x300";
+  struct Case {
+    const char* name;
+    const char* options;
+    double degrees;
+  };
+  const Case cases[] = {{"rest", "", 30},
+                        {"start", " --animation bend --time 0", 0},
+                        {"middle", " --animation bend --time 0.5", 45},
+                        {"end", " --animation 0 --time 1", 90},
+                        {"after", " --time 2.5", 90}};
+  for (const Case& c : cases) {
+    const Image image = screenshot(dir, c.name, "'" + file.string() + "'" + common + c.options);
+    ASSERT_EQ(image.width, 300) << c.name;
+    const auto angles = cylinderTangentAngles(image, c.degrees);
+    const double expected[] = {90, 90 + c.degrees / 2, 90 + c.degrees};
+    for (int i = 0; i < 3; ++i) {
+      const double seen = angles[i] < 0 ? angles[i] + 360 : angles[i];
+      std::printf("%s: tangent at %.2f degrees, expected %.1f\n", c.name, seen, expected[i]);
+      EXPECT_NEAR(seen, expected[i], 3.0) << c.name << " " << i;
+    }
+  }
+  std::string output;
+  EXPECT_NE(run("'" + file.string() + "' --animation walk --screenshot '" + (dir / "none.png").string() + "'", output), 0);
+  EXPECT_NE(output.find("no animation 'walk'"), std::string::npos) << output;
+}

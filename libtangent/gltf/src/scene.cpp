@@ -185,6 +185,70 @@ detail::PrimitiveGeometry readForDisplay(const detail::Asset& asset, const Json&
   return geometry;
 }
 
+// Per-vertex values (components each) spread over the corners.
+std::vector<float> perCorner(const std::vector<float>& values, int components, const std::vector<std::uint32_t>& corners) {
+  std::vector<float> out(corners.size() * static_cast<std::size_t>(components));
+  for (std::size_t c = 0; c < corners.size(); ++c)
+    std::copy_n(&values[static_cast<std::size_t>(components) * corners[c]], components, &out[static_cast<std::size_t>(components) * c]);
+  return out;
+}
+
+// Morph targets (POSITION, NORMAL, TANGENT deltas) and skin influences (every JOINTS_n /
+// WEIGHTS_n pair) of a primitive, per corner. A malformed one is left out with a message: the
+// primitive is still shown, undeformed.
+void readDeformation(const detail::Asset& asset, const Json& primitive, std::size_t vertexCount, const std::vector<std::uint32_t>& corners,
+                     const std::string& where, DrawItem& item, std::vector<std::string>& messages) {
+  try {
+    if (primitive.contains("targets") && primitive["targets"].is_array()) {
+      for (std::size_t t = 0; t < primitive["targets"].size(); ++t) {
+        const Json& target = primitive["targets"][t];
+        MorphTarget morph;
+        const std::string prefix = where + ": morph target " + std::to_string(t) + " ";
+        if (const int a = detail::accessorOf(target, "POSITION"); a >= 0)
+          morph.positions = perCorner(detail::readVectors(asset.model, a, 3, vertexCount, prefix + "POSITION"), 3, corners);
+        if (const int a = detail::accessorOf(target, "NORMAL"); a >= 0)
+          morph.normals = perCorner(detail::readVectors(asset.model, a, 3, vertexCount, prefix + "NORMAL"), 3, corners);
+        if (const int a = detail::accessorOf(target, "TANGENT"); a >= 0 && item.tangentsFromFile)
+          morph.tangents = perCorner(detail::readVectors(asset.model, a, 3, vertexCount, prefix + "TANGENT"), 3, corners);
+        item.morphTargets.push_back(std::move(morph));
+      }
+    }
+  } catch (const InputError& e) {
+    item.morphTargets.clear();
+    messages.push_back(std::string(e.what()) + "; morph targets not applied");
+  }
+  try {
+    const Json& attributes = primitive["attributes"];
+    std::vector<std::vector<float>> joints, weights;
+    for (int set = 0;; ++set) {
+      const int j = detail::accessorOf(attributes, "JOINTS_" + std::to_string(set));
+      const int w = detail::accessorOf(attributes, "WEIGHTS_" + std::to_string(set));
+      if (j < 0 || w < 0) break;
+      joints.push_back(detail::readVectors(asset.model, j, 4, vertexCount, where + ": JOINTS_" + std::to_string(set)));
+      weights.push_back(detail::readVectors(asset.model, w, 4, vertexCount, where + ": WEIGHTS_" + std::to_string(set)));
+    }
+    const int sets = static_cast<int>(joints.size());
+    item.influencesPerCorner = 4 * sets;
+    item.joints.resize(corners.size() * item.influencesPerCorner);
+    item.jointWeights.resize(corners.size() * item.influencesPerCorner);
+    for (std::size_t c = 0; c < corners.size(); ++c) {
+      for (int set = 0; set < sets; ++set) {
+        for (int k = 0; k < 4; ++k) {
+          const std::size_t out = c * item.influencesPerCorner + 4 * set + k;
+          const float joint = joints[set][4 * corners[c] + k];
+          item.joints[out] = static_cast<std::uint16_t>(std::clamp(joint, 0.0f, 65535.0f));
+          item.jointWeights[out] = weights[set][4 * corners[c] + k];
+        }
+      }
+    }
+  } catch (const InputError& e) {
+    item.influencesPerCorner = 0;
+    item.joints.clear();
+    item.jointWeights.clear();
+    messages.push_back(std::string(e.what()) + "; skin not applied");
+  }
+}
+
 DrawItem makeDrawItem(const detail::Asset& asset, const Json& primitive, const std::string& label, const SceneOptions& options,
                       std::vector<std::string>& messages) {
   const Json& doc = asset.json;
@@ -306,6 +370,7 @@ DrawItem makeDrawItem(const detail::Asset& asset, const Json& primitive, const s
       item.cornerProblems[c] = problems;
     }
   }
+  readDeformation(asset, primitive, geometry.vertexCount, corners, where, item, messages);
   return item;
 }
 
@@ -370,6 +435,147 @@ LightDesc lightAt(const Json& definition, const glm::mat4& world) {
   light.position = {position.x, position.y, position.z};
   light.direction = {direction.x, direction.y, direction.z};
   return light;
+}
+
+bool posable(const Json& doc) {
+  auto nonEmpty = [&](const char* key) { return doc.contains(key) && doc[key].is_array() && !doc[key].empty(); };
+  if (nonEmpty("animations") || nonEmpty("skins")) return true;
+  if (!nonEmpty("meshes")) return false;
+  for (const Json& mesh : doc["meshes"]) {
+    for (const Json& primitive : mesh.value("primitives", Json::array()))
+      if (primitive.contains("targets") && !primitive["targets"].empty()) return true;
+  }
+  return false;
+}
+
+// Every node's parent, local transform, morph weights and skin (glTF 2.0 3.5).
+std::vector<SceneNode> readNodes(const Json& doc) {
+  const std::size_t nodeCount = doc["nodes"].size();
+  std::vector<SceneNode> nodes(nodeCount);
+  for (std::size_t n = 0; n < nodeCount; ++n) {
+    const Json& node = doc["nodes"][n];
+    SceneNode& out = nodes[n];
+    if (node.contains("matrix") && node["matrix"].is_array() && node["matrix"].size() == 16) {
+      out.hasMatrix = true;
+      readFloats(node, "matrix", out.matrix);
+    }
+    readFloats(node, "translation", out.translation);
+    readFloats(node, "rotation", out.rotation);
+    readFloats(node, "scale", out.scale);
+    out.skin = node.value("skin", -1);
+    const Json* weights = nullptr;
+    if (node.contains("weights") && node["weights"].is_array()) weights = &node["weights"];
+    else if (node.contains("mesh") && node["mesh"].is_number_integer() && doc.contains("meshes")) {
+      const int mesh = node["mesh"].get<int>();
+      if (mesh >= 0 && mesh < static_cast<int>(doc["meshes"].size()) && doc["meshes"][mesh].contains("weights"))
+        weights = &doc["meshes"][mesh]["weights"];
+    }
+    if (weights)
+      for (const Json& w : *weights) out.weights.push_back(w.is_number() ? w.get<float>() : 0.0f);
+    for (const Json& child : node.value("children", Json::array())) {
+      const auto c = child.get<std::size_t>();
+      if (c < nodeCount) nodes[c].parent = static_cast<int>(n);
+    }
+  }
+  return nodes;
+}
+
+std::vector<Skin> readSkins(const detail::Asset& asset, std::size_t nodeCount, std::vector<SceneNode>& nodes, std::vector<std::string>& messages) {
+  const Json& doc = asset.json;
+  std::vector<Skin> skins;
+  if (!doc.contains("skins")) return skins;
+  for (std::size_t s = 0; s < doc["skins"].size(); ++s) {
+    const Json& json = doc["skins"][s];
+    const std::string where = asset.path.string() + ": skin " + std::to_string(s);
+    Skin skin;
+    try {
+      for (const Json& joint : json.value("joints", Json::array())) {
+        const auto node = joint.get<std::int64_t>();
+        if (node < 0 || static_cast<std::size_t>(node) >= nodeCount) throw InputError(where + ": joint " + std::to_string(node) + " is not a node");
+        skin.joints.push_back(static_cast<std::uint32_t>(node));
+      }
+      const std::array<float, 16> identity{1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1};
+      skin.inverseBindMatrices.assign(skin.joints.size(), identity);
+      if (const int a = detail::accessorOf(json, "inverseBindMatrices"); a >= 0) {
+        const std::vector<float> matrices = detail::readVectors(asset.model, a, 16, skin.joints.size(), where + ": inverseBindMatrices");
+        for (std::size_t j = 0; j < skin.joints.size(); ++j) std::copy_n(&matrices[16 * j], 16, skin.inverseBindMatrices[j].begin());
+      }
+    } catch (const InputError& e) {
+      messages.push_back(std::string(e.what()) + "; meshes with this skin shown unskinned");
+      skin = Skin{};
+    }
+    skins.push_back(std::move(skin));
+  }
+  for (SceneNode& node : nodes)
+    if (node.skin >= static_cast<int>(skins.size()) || (node.skin >= 0 && skins[node.skin].joints.empty())) node.skin = -1;
+  return skins;
+}
+
+// glTF 2.0 3.11. A channel or sampler that cannot be used is left out with a message.
+std::vector<Animation> readAnimations(const detail::Asset& asset, std::size_t nodeCount, std::vector<std::string>& messages) {
+  const Json& doc = asset.json;
+  std::vector<Animation> animations;
+  if (!doc.contains("animations")) return animations;
+  for (std::size_t a = 0; a < doc["animations"].size(); ++a) {
+    const Json& json = doc["animations"][a];
+    const std::string where = asset.path.string() + ": animation " + std::to_string(a);
+    Animation animation;
+    animation.name = json.value("name", "");
+    const Json samplers = json.value("samplers", Json::array());
+    std::vector<int> usable(samplers.size(), 0);
+    for (std::size_t s = 0; s < samplers.size(); ++s) {
+      AnimationSampler sampler;
+      const std::string interpolation = samplers[s].value("interpolation", "LINEAR");
+      sampler.interpolation = interpolation == "STEP"          ? AnimationSampler::Interpolation::step
+                              : interpolation == "CUBICSPLINE" ? AnimationSampler::Interpolation::cubicSpline
+                                                               : AnimationSampler::Interpolation::linear;
+      try {
+        const int input = detail::accessorOf(samplers[s], "input"), output = detail::accessorOf(samplers[s], "output");
+        if (input < 0 || output < 0) throw InputError(where + ": sampler " + std::to_string(s) + " lacks input or output");
+        sampler.times = detail::readVectors(asset.model, input, 1, 0, where + ": sampler " + std::to_string(s) + " input");
+        detail::AccessorData header;
+        sampler.values = detail::readFloats(asset.model, output, where + ": sampler " + std::to_string(s) + " output", header);
+        if (sampler.times.empty()) throw InputError(where + ": sampler " + std::to_string(s) + " has no keyframes");
+        for (std::size_t k = 1; k < sampler.times.size(); ++k)
+          if (!(sampler.times[k] > sampler.times[k - 1]))
+            throw InputError(where + ": sampler " + std::to_string(s) + " input times do not increase");
+        animation.duration = std::max(animation.duration, sampler.times.back());
+        usable[s] = 1;
+      } catch (const InputError& e) {
+        messages.push_back(std::string(e.what()) + "; its channels left out");
+      }
+      animation.samplers.push_back(std::move(sampler));
+    }
+    for (const Json& channel : json.value("channels", Json::array())) {
+      const int sampler = channel.value("sampler", -1);
+      const Json target = channel.value("target", Json::object());
+      const int node = target.value("node", -1);
+      const std::string path = target.value("path", "");
+      AnimationChannel out;
+      if (path == "translation") out.path = AnimationChannel::Path::translation;
+      else if (path == "rotation") out.path = AnimationChannel::Path::rotation;
+      else if (path == "scale") out.path = AnimationChannel::Path::scale;
+      else if (path == "weights") out.path = AnimationChannel::Path::weights;
+      else continue;  // pointer (KHR_animation_pointer) and unknown paths are not shown
+      if (sampler < 0 || sampler >= static_cast<int>(usable.size()) || !usable[sampler] || node < 0 || node >= static_cast<int>(nodeCount))
+        continue;
+      const std::size_t components = path == "rotation" ? 4 : path == "weights" ? 0 : 3;
+      const AnimationSampler& source = animation.samplers[sampler];
+      const std::size_t perKey = source.interpolation == AnimationSampler::Interpolation::cubicSpline ? 3 : 1;
+      const std::size_t expected = components * perKey * source.times.size();
+      const bool fits = components > 0 ? source.values.size() == expected
+                                       : source.values.size() % (perKey * source.times.size()) == 0;
+      if (!fits) {
+        messages.push_back(where + ": a " + path + " channel's output does not match its input's keyframes; left out");
+        continue;
+      }
+      out.node = static_cast<std::uint32_t>(node);
+      out.sampler = static_cast<std::uint32_t>(sampler);
+      animation.channels.push_back(out);
+    }
+    animations.push_back(std::move(animation));
+  }
+  return animations;
 }
 
 // The nodes the walk starts from: the default scene's, or, in a file without one, every node
@@ -446,10 +652,16 @@ Scene flattenScene(const std::filesystem::path& input, const SceneOptions& optio
       if (item < 0) continue;
       DrawInstance instance;
       instance.item = static_cast<std::uint32_t>(item);
+      instance.node = static_cast<std::uint32_t>(nodeIndex);
       std::copy(glm::value_ptr(world), glm::value_ptr(world) + 16, instance.world.begin());
       growBounds(scene.items[static_cast<std::size_t>(item)], world, lo, hi);
       scene.instances.push_back(instance);
     }
+  }
+  if (nodeCount > 0 && posable(doc)) {
+    scene.nodes = readNodes(doc);
+    scene.skins = readSkins(asset, nodeCount, scene.nodes, scene.messages);
+    scene.animations = readAnimations(asset, nodeCount, scene.messages);
   }
   if (reachedAgain > 0)
     scene.messages.push_back(input.string() + ": " + std::to_string(reachedAgain) +

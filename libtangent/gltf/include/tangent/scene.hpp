@@ -71,6 +71,14 @@ enum CornerProblem : std::uint8_t {
   kProblemFarFromReference = 32,
 };
 
+// A morph target of a primitive (glTF 2.0 3.7.2.2): deltas added, times the target's weight, to
+// the attributes. Per corner, as DrawItem's arrays; empty where the target lacks the attribute.
+struct MorphTarget {
+  std::vector<float> positions;  // 3 per corner
+  std::vector<float> normals;    // 3
+  std::vector<float> tangents;   // 3: TANGENT deltas are xyz, w stays the base's
+};
+
 // One triangle primitive of a mesh, as every node that shows it draws it.
 struct DrawItem {
   std::string label;  // "mesh 0 'Name' primitive 1"
@@ -89,12 +97,60 @@ struct DrawItem {
   bool tangentsFromFile = false;
   bool hasUvs = false;
   Report report;  // of the fresh computation
+  std::vector<MorphTarget> morphTargets;  // the primitive's targets, in the file's order
+  // Skin influences (JOINTS_n / WEIGHTS_n, every pair the file has): influencesPerCorner per
+  // corner, each a joint (an index into the skin's joints) and its weight; 0 when unskinned.
+  int influencesPerCorner = 0;
+  std::vector<std::uint16_t> joints;
+  std::vector<float> jointWeights;
 };
 
 // A node showing a draw item.
 struct DrawInstance {
   std::uint32_t item = 0;         // index into Scene::items
-  std::array<float, 16> world{};  // column-major node transform
+  std::array<float, 16> world{};  // column-major node transform, in the rest pose
+  std::uint32_t node = 0;         // the glTF node: an index into Scene::nodes when they are kept
+};
+
+// A glTF node as posing needs it (kept only for a file with animations, skins or morph targets).
+struct SceneNode {
+  int parent = -1;
+  // The local transform: `matrix` when the node has one, else T * R * S (glTF 2.0 3.5.3).
+  bool hasMatrix = false;
+  std::array<float, 16> matrix{1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1};
+  std::array<float, 3> translation{0, 0, 0};
+  std::array<float, 4> rotation{0, 0, 0, 1};  // quaternion x, y, z, w
+  std::array<float, 3> scale{1, 1, 1};
+  std::vector<float> weights;  // morph target weights: node.weights, else its mesh's weights
+  int skin = -1;               // index into Scene::skins
+};
+
+// glTF 2.0 3.7.3: joint j's matrix is inverse(world(mesh node)) * world(joints[j]) *
+// inverseBindMatrices[j].
+struct Skin {
+  std::vector<std::uint32_t> joints;                     // node indices
+  std::vector<std::array<float, 16>> inverseBindMatrices;  // column-major; identity when absent
+};
+
+// glTF 2.0 3.11: keyframes of one property. CUBICSPLINE outputs hold (in-tangent, value,
+// out-tangent) per keyframe.
+struct AnimationSampler {
+  enum class Interpolation { step, linear, cubicSpline } interpolation = Interpolation::linear;
+  std::vector<float> times;   // seconds, increasing
+  std::vector<float> values;  // components per element: 3 (translation, scale), 4 (rotation), targets (weights)
+};
+
+struct AnimationChannel {
+  enum class Path { translation, rotation, scale, weights } path = Path::translation;
+  std::uint32_t node = 0;
+  std::uint32_t sampler = 0;  // index into Animation::samplers
+};
+
+struct Animation {
+  std::string name;
+  std::vector<AnimationSampler> samplers;
+  std::vector<AnimationChannel> channels;
+  float duration = 0;  // the last keyframe time of any sampler
 };
 
 struct SceneOptions {
@@ -110,6 +166,12 @@ struct Scene {
   std::vector<MaterialDesc> materials;
   std::vector<ImageSource> images;
   std::vector<LightDesc> lights;  // KHR_lights_punctual, in world space
+  // For posing (animation, skinning, morph weights): every node of the file, in its order, when
+  // the file has animations, skins or morph targets; empty otherwise (instances' `world` is the
+  // whole story then).
+  std::vector<SceneNode> nodes;
+  std::vector<Skin> skins;
+  std::vector<Animation> animations;  // those that could be read; the others are in `messages`
   std::array<float, 3> boundsMin{0, 0, 0}, boundsMax{0, 0, 0};  // world space
   std::vector<std::string> messages;  // what was skipped or substituted, for the panel
 };
