@@ -8,6 +8,10 @@
 
 #include <algorithm>
 #include <charconv>
+#include <cmath>
+#include <numeric>
+
+#include "tangent/tangent.hpp"
 
 namespace tangent::viewer {
 namespace {
@@ -206,6 +210,31 @@ void deformItem(const gltf::DrawItem& item, std::span<const float> weights, std:
     std::copy_n(glm::value_ptr(n), 3, &out.normals[3 * c]);
     std::copy_n(glm::value_ptr(t), 3, &out.tangents[4 * c]);
   }
+}
+
+std::vector<float> morphedTangentErrors(const gltf::DrawItem& item, std::span<const float> weights) {
+  DeformedCorners morphed;
+  deformItem(item, weights, {}, morphed);
+  const std::size_t corners = item.positions.size() / 3;
+  std::vector<std::uint32_t> identity(corners);
+  std::iota(identity.begin(), identity.end(), 0u);
+  std::vector<float> fresh(corners * 4);
+  std::vector<FrameSource> sources(corners);
+  std::vector<float> errors(corners, 0.0f);
+  if (corners == 0) return errors;
+  computeCornerTangents({morphed.positions, morphed.normals, item.uvNormal, identity}, fresh, Options{}, sources);
+  for (std::size_t c = 0; c < corners; ++c) {
+    if (sources[c] != FrameSource::computed && sources[c] != FrameSource::inherited) continue;
+    const glm::vec3 stored = glm::make_vec3(&morphed.tangents[4 * c]), computed = glm::make_vec3(&fresh[4 * c]);
+    const float lengths = glm::length(stored) * glm::length(computed);
+    if (!(lengths > 0) || !std::isfinite(lengths)) {
+      errors[c] = 180.0f;
+      continue;
+    }
+    const float cosine = std::clamp(glm::dot(stored, computed) / lengths, -1.0f, 1.0f);
+    errors[c] = (morphed.tangents[4 * c + 3] < 0) != (fresh[4 * c + 3] < 0) ? 180.0f : glm::degrees(std::acos(cosine));
+  }
+  return errors;
 }
 
 }  // namespace tangent::viewer

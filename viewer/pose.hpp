@@ -49,4 +49,11 @@ struct DeformedCorners {
 // (none: unskinned). Writes into `out`, reusing its memory.
 void deformItem(const gltf::DrawItem& item, std::span<const float> weights, std::span<const glm::mat4> joints, DeformedCorners& out);
 
+// For the error view on a morphing primitive: per corner, the angle in degrees between its
+// morphed tangent (the file's TANGENT plus its weighted deltas) and MikkTSpace tangents
+// computed afresh on its morphed positions and normals (180 where the handedness differs, 0
+// where the fresh frame had no triangle of its own to come from). Skinning moves both alike, so
+// it is left out: this is what judges a file's TANGENT deltas.
+std::vector<float> morphedTangentErrors(const gltf::DrawItem& item, std::span<const float> weights);
+
 }  // namespace tangent::viewer

@@ -43,7 +43,7 @@ std::vector<float> packMeshVertices(const gltf::DrawItem& item, const CornerFram
         case VertexSource::uvNormal: std::copy_n(&item.uvNormal[n * c], n, out); break;
         case VertexSource::uv0: std::copy_n(&item.uvSets[0][n * c], n, out); break;
         case VertexSource::uv1: std::copy_n(&item.uvSets[1][n * c], n, out); break;
-        case VertexSource::tangentError: *out = item.tangentErrorDegrees[c]; break;
+        case VertexSource::tangentError: *out = frame.tangentErrorDegrees[c]; break;
         case VertexSource::cornerProblems: *out = static_cast<float>(item.cornerProblems[c]); break;
       }
     }
@@ -233,9 +233,18 @@ void Renderer::placeInstance(GpuInstance& instance, const glm::mat4& model, cons
 
 CornerFrames Renderer::framesOf(std::size_t instance) const {
   for (const DeformedInstance& deformed : deformed_)
-    if (deformed.instance == instance && !deformed.corners.positions.empty())
-      return {deformed.corners.positions, deformed.corners.normals, deformed.corners.tangents};
+    if (deformed.instance == instance && !deformed.corners.positions.empty()) {
+      const gltf::DrawItem& item = scene_.items[scene_.instances[instance].item];
+      return {deformed.corners.positions, deformed.corners.normals, deformed.corners.tangents,
+              deformed.tangentErrorDegrees.empty() ? std::span<const float>(item.tangentErrorDegrees) : deformed.tangentErrorDegrees};
+    }
   return itemFrames(scene_.items[scene_.instances[instance].item]);
+}
+
+void Renderer::uploadDeformed(const DeformedInstance& deformed) {
+  const std::vector<float> data = packMeshVertices(scene_.items[scene_.instances[deformed.instance].item], framesOf(deformed.instance));
+  glBindBuffer(GL_ARRAY_BUFFER, meshes_[instances_[deformed.instance].mesh].vertices.get());
+  glBufferSubData(GL_ARRAY_BUFFER, 0, static_cast<GLsizeiptr>(data.size() * sizeof(float)), data.data());
 }
 
 bool Renderer::setPose(PoseTime time) {
@@ -260,11 +269,12 @@ bool Renderer::setPose(PoseTime time) {
     std::vector<glm::mat4> joints;
     if (skin >= 0 && item.influencesPerCorner > 0) joints = jointMatrices(scene_.skins[skin], pose, source.node);
     deformItem(item, pose.weights[source.node], joints, deformed.corners);
-    const std::vector<float> data =
-        packMeshVertices(item, {deformed.corners.positions, deformed.corners.normals, deformed.corners.tangents});
-    GpuMesh& mesh = meshes_[instances_[deformed.instance].mesh];
-    glBindBuffer(GL_ARRAY_BUFFER, mesh.vertices.get());
-    glBufferSubData(GL_ARRAY_BUFFER, 0, static_cast<GLsizeiptr>(data.size() * sizeof(float)), data.data());
+    if (deformed.weights != pose.weights[source.node]) {
+      deformed.weights = pose.weights[source.node];
+      deformed.tangentErrorDegrees.clear();  // the load's until the error view asks (render)
+      deformed.errorsCurrent = item.morphTargets.empty();
+    }
+    uploadDeformed(deformed);
     // Bounds and draw order from the deformed corners.
     const glm::mat4& model = instances_[deformed.instance].model;
     glm::vec3 itemLo(std::numeric_limits<float>::max()), itemHi(-std::numeric_limits<float>::max());
@@ -469,6 +479,16 @@ void Renderer::drawShadowMap(const RenderSettings& settings) {
 
 FrameStats Renderer::render(const CameraMatrices& camera, const RenderSettings& settings, int width, int height) {
   FrameStats stats;
+  if (settings.view == DebugView::tangentError) {
+    // Morphing instances: their tangents against fresh ones on the morphed mesh, computed when
+    // this view first shows a pose (a MikkTSpace run per instance).
+    for (DeformedInstance& deformed : deformed_) {
+      if (deformed.errorsCurrent) continue;
+      deformed.tangentErrorDegrees = morphedTangentErrors(scene_.items[scene_.instances[deformed.instance].item], deformed.weights);
+      deformed.errorsCurrent = true;
+      uploadDeformed(deformed);
+    }
+  }
   const bool anyShadows = settings.shadows && !instances_.empty() && !lights_.empty() && lights_[0].directional &&
                           settings.view == DebugView::lit;
   if (anyShadows) {

@@ -62,8 +62,11 @@ struct RenderSettings {
 // as deformed by the pose.
 struct CornerFrames {
   std::span<const float> positions, normals, tangents;
+  std::span<const float> tangentErrorDegrees;  // 1 per corner, for the error view
 };
-inline CornerFrames itemFrames(const gltf::DrawItem& item) { return {item.positions, item.normals, item.tangents}; }
+inline CornerFrames itemFrames(const gltf::DrawItem& item) {
+  return {item.positions, item.normals, item.tangents, item.tangentErrorDegrees};
+}
 
 struct CameraMatrices {
   glm::mat4 view{1}, projection{1};
@@ -170,7 +173,13 @@ class Renderer {
   struct DeformedInstance {
     std::uint32_t instance = 0;  // index into scene_.instances and instances_
     DeformedCorners corners;
+    std::vector<float> weights;  // the morph weights of the pose
+    // The error view's angles at this pose (morphedTangentErrors); empty: the item's, from load.
+    std::vector<float> tangentErrorDegrees;
+    bool errorsCurrent = false;  // tangentErrorDegrees belong to the pose drawn
   };
+  // Packs a deformed instance's corners into its vertex buffer.
+  void uploadDeformed(const DeformedInstance& deformed);
   std::vector<DeformedInstance> deformed_;
   std::optional<PoseTime> pose_;  // the pose drawn; none: the rest pose as loaded
   std::vector<Texture> textures_;      // per scene image, linear data (empty when unused or failed)

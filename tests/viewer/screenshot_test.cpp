@@ -1112,38 +1112,42 @@ struct GltfWriter {
 // angle in degrees from +x.
 double tangentAngleDegrees(std::array<float, 3> c) { return std::atan2(2.0 * c[1] - 1, 2.0 * c[0] - 1) * 180 / 3.14159265358979; }
 
-// A quad facing +z whose TANGENT is +x, with one morph target whose TANGENT deltas turn it 45
-// degrees towards +y (and whose POSITION deltas lift nothing): the tangent view shows 0 degrees
-// at weight 0, 45 at weight 1 (node.weights over mesh.weights) and 22.5 at weight 0.5 (the
-// mean of the two, normalized).
+// A quad over [-1, 1]^2 facing +z whose TANGENT is +x (UVs as quadAsset's), with one morph
+// target: `positionDeltas` (12 floats, or empty) and the same TANGENT delta at every vertex;
+// mesh.weights 0, node.weights `nodeWeights` when not null.
+fs::path morphQuad(const TempDir& dir, const std::string& name, const std::vector<float>& positionDeltas, std::array<float, 3> tangentDelta,
+                   const nlohmann::json& nodeWeights) {
+  GltfWriter gltf;
+  const int position = gltf.floats({-1, -1, 0, 1, -1, 0, 1, 1, 0, -1, 1, 0}, "VEC3", 3);
+  const int normal = gltf.floats({0, 0, 1, 0, 0, 1, 0, 0, 1, 0, 0, 1}, "VEC3", 3);
+  const int tangent = gltf.floats({1, 0, 0, 1, 1, 0, 0, 1, 1, 0, 0, 1, 1, 0, 0, 1}, "VEC4", 4);
+  const int uv = gltf.floats({0, 1, 1, 1, 1, 0, 0, 0}, "VEC2", 2);
+  const auto [dx, dy, dz] = tangentDelta;
+  const int tangentDeltas = gltf.floats({dx, dy, dz, dx, dy, dz, dx, dy, dz, dx, dy, dz}, "VEC3", 3);
+  nlohmann::json target = {{"TANGENT", tangentDeltas}};
+  target["POSITION"] = gltf.floats(positionDeltas.empty() ? std::vector<float>(12, 0.0f) : positionDeltas, "VEC3", 3);
+  const int indices = gltf.shorts({0, 1, 2, 0, 2, 3}, "SCALAR", 1, true);
+  nlohmann::json node = {{"mesh", 0}};
+  if (!nodeWeights.is_null()) node["weights"] = nodeWeights;
+  const nlohmann::json attributes = {{"POSITION", position}, {"NORMAL", normal}, {"TANGENT", tangent}, {"TEXCOORD_0", uv}};
+  const nlohmann::json primitive = {{"attributes", attributes}, {"indices", indices}, {"targets", nlohmann::json::array({target})}};
+  return gltf.write(dir / (name + ".gltf"), {{"scene", 0},
+                                              {"scenes", {{{"nodes", {0}}}}},
+                                              {"nodes", {node}},
+                                              {"meshes", {{{"weights", {0.0}}, {"primitives", nlohmann::json::array({primitive})}}}}});
+}
+
+// TANGENT deltas that turn the quad's tangent 45 degrees towards +y: the tangent view shows 0
+// degrees at weight 0, 45 at weight 1 (node.weights over mesh.weights) and 22.5 at weight 0.5
+// (the mean of the two, normalized).
 TEST(Viewer, MorphTargetTangentDeltasTurnTheTangent) {
   TempDir dir;
-  const double c45 = std::sqrt(0.5);
-  auto asset = [&](const std::string& name, const nlohmann::json& nodeWeights) {
-    GltfWriter gltf;
-    const int position = gltf.floats({-1, -1, 0, 1, -1, 0, 1, 1, 0, -1, 1, 0}, "VEC3", 3);
-    const int normal = gltf.floats({0, 0, 1, 0, 0, 1, 0, 0, 1, 0, 0, 1}, "VEC3", 3);
-    const int tangent = gltf.floats({1, 0, 0, 1, 1, 0, 0, 1, 1, 0, 0, 1, 1, 0, 0, 1}, "VEC4", 4);
-    const int uv = gltf.floats({0, 1, 1, 1, 1, 0, 0, 0}, "VEC2", 2);
-    const float dx = static_cast<float>(c45 - 1), dy = static_cast<float>(c45);
-    const int tangentDelta = gltf.floats({dx, dy, 0, dx, dy, 0, dx, dy, 0, dx, dy, 0}, "VEC3", 3);
-    const int positionDelta = gltf.floats({0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0}, "VEC3", 3);
-    const int indices = gltf.shorts({0, 1, 2, 0, 2, 3}, "SCALAR", 1, true);
-    nlohmann::json node = {{"mesh", 0}};
-    if (!nodeWeights.is_null()) node["weights"] = nodeWeights;
-    return gltf.write(dir / (name + ".gltf"),
-                      {{"scene", 0},
-                       {"scenes", {{{"nodes", {0}}}}},
-                       {"nodes", {node}},
-                       {"meshes", {{{"weights", {0.0}},
-                                    {"primitives", {{{"attributes", {{"POSITION", position}, {"NORMAL", normal}, {"TANGENT", tangent}, {"TEXCOORD_0", uv}}},
-                                                     {"indices", indices},
-                                                     {"targets", {{{"POSITION", positionDelta}, {"TANGENT", tangentDelta}}}}}}}}}}});
-  };
+  const float c45 = static_cast<float>(std::sqrt(0.5));
   const std::pair<const char*, nlohmann::json> cases[] = {{"weight0", nullptr}, {"weight1", {1.0}}, {"weight-half", {0.5}}};
   const double expected[] = {0, 45, 22.5};
   for (int i = 0; i < 3; ++i) {
-    const Image image = screenshot(dir, cases[i].first, "'" + asset(cases[i].first, cases[i].second).string() + "' --view tangent" + kQuadView);
+    const fs::path file = morphQuad(dir, cases[i].first, {}, {c45 - 1, c45, 0}, cases[i].second);
+    const Image image = screenshot(dir, cases[i].first, "'" + file.string() + "' --view tangent" + kQuadView);
     ASSERT_EQ(image.width, 200);
     for (const auto& [x, y] : {std::pair{0.0, 0.0}, std::pair{-0.5, 0.5}, std::pair{0.5, -0.5}}) {
       const auto colour = quadPixel(image, x, y);
@@ -1151,6 +1155,39 @@ TEST(Viewer, MorphTargetTangentDeltasTurnTheTangent) {
                   expected[i], colour[2]);
       EXPECT_NEAR(tangentAngleDegrees(colour), expected[i], 1.0) << cases[i].first;
       EXPECT_NEAR(colour[2], 0.5f, 0.01f) << cases[i].first;
+    }
+  }
+}
+
+// The error view on a morphed mesh compares its morphed tangents with tangents computed afresh
+// on the morphed corners. A target turning the quad 45 degrees in its plane (UVs unchanged)
+// with TANGENT deltas turning the tangent along shows no error (blue) at weight 1; the same
+// target without TANGENT deltas, a wrong morph tangent, shows 45 degrees (red); at weight 0
+// both are blue.
+TEST(Viewer, ErrorViewJudgesMorphTangentDeltas) {
+  TempDir dir;
+  const float c45 = static_cast<float>(std::sqrt(0.5));
+  std::vector<float> turn;  // R(45 deg) p - p for the quad's corners
+  for (const auto& [x, y] : {std::pair{-1.0f, -1.0f}, std::pair{1.0f, -1.0f}, std::pair{1.0f, 1.0f}, std::pair{-1.0f, 1.0f}})
+    turn.insert(turn.end(), {c45 * x - c45 * y - x, c45 * x + c45 * y - y, 0.0f});
+  const std::array<float, 3> blue{0.10f, 0.25f, 0.90f}, red{0.90f, 0.10f, 0.10f};
+  struct Case {
+    const char* name;
+    std::array<float, 3> tangentDelta;
+    double weight;
+    std::array<float, 3> expected;
+  };
+  const Case cases[] = {{"right-0", {c45 - 1, c45, 0}, 0, blue},
+                        {"right-1", {c45 - 1, c45, 0}, 1, blue},
+                        {"wrong-0", {0, 0, 0}, 0, blue},
+                        {"wrong-1", {0, 0, 0}, 1, red}};
+  for (const Case& c : cases) {
+    const Image image = screenshot(dir, c.name, "'" + morphQuad(dir, c.name, turn, c.tangentDelta, {c.weight}).string() + "' --view error" + kQuadView);
+    ASSERT_EQ(image.width, 200);
+    for (const auto& [dx, dy] : {std::pair{0, 0}, std::pair{-20, 10}, std::pair{15, -20}}) {
+      const auto colour = image.at(100 + dx, 100 + dy);
+      std::printf("%s at +(%d, %d): %.3f %.3f %.3f\n", c.name, dx, dy, colour[0], colour[1], colour[2]);
+      for (int i = 0; i < 3; ++i) EXPECT_NEAR(colour[i], c.expected[i], 0.02f) << c.name;
     }
   }
 }
