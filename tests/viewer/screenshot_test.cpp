@@ -12,6 +12,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <map>
 #include <numeric>
 
@@ -1114,9 +1115,10 @@ double tangentAngleDegrees(std::array<float, 3> c) { return std::atan2(2.0 * c[1
 
 // A quad over [-1, 1]^2 facing +z whose TANGENT is +x (UVs as quadAsset's), with one morph
 // target: `positionDeltas` (12 floats, or empty) and the same TANGENT delta at every vertex;
-// mesh.weights 0, node.weights `nodeWeights` when not null.
+// mesh.weights 0, node.weights `nodeWeights` when not null; `extend` may add to the document
+// (animations) before it is written.
 fs::path morphQuad(const TempDir& dir, const std::string& name, const std::vector<float>& positionDeltas, std::array<float, 3> tangentDelta,
-                   const nlohmann::json& nodeWeights) {
+                   const nlohmann::json& nodeWeights, const std::function<void(GltfWriter&, nlohmann::json&)>& extend = {}) {
   GltfWriter gltf;
   const int position = gltf.floats({-1, -1, 0, 1, -1, 0, 1, 1, 0, -1, 1, 0}, "VEC3", 3);
   const int normal = gltf.floats({0, 0, 1, 0, 0, 1, 0, 0, 1, 0, 0, 1}, "VEC3", 3);
@@ -1131,10 +1133,12 @@ fs::path morphQuad(const TempDir& dir, const std::string& name, const std::vecto
   if (!nodeWeights.is_null()) node["weights"] = nodeWeights;
   const nlohmann::json attributes = {{"POSITION", position}, {"NORMAL", normal}, {"TANGENT", tangent}, {"TEXCOORD_0", uv}};
   const nlohmann::json primitive = {{"attributes", attributes}, {"indices", indices}, {"targets", nlohmann::json::array({target})}};
-  return gltf.write(dir / (name + ".gltf"), {{"scene", 0},
-                                              {"scenes", {{{"nodes", {0}}}}},
-                                              {"nodes", {node}},
-                                              {"meshes", {{{"weights", {0.0}}, {"primitives", nlohmann::json::array({primitive})}}}}});
+  nlohmann::json doc = {{"scene", 0},
+                        {"scenes", {{{"nodes", {0}}}}},
+                        {"nodes", {node}},
+                        {"meshes", {{{"weights", {0.0}}, {"primitives", nlohmann::json::array({primitive})}}}}};
+  if (extend) extend(gltf, doc);
+  return gltf.write(dir / (name + ".gltf"), doc);
 }
 
 // TANGENT deltas that turn the quad's tangent 45 degrees towards +y: the tangent view shows 0
@@ -1323,4 +1327,31 @@ TEST(Viewer, AnimationPosesTheNodeAtTheTimeAsked) {
   std::string output;
   EXPECT_NE(run("'" + file.string() + "' --animation walk --screenshot '" + (dir / "none.png").string() + "'", output), 0);
   EXPECT_NE(output.find("no animation 'walk'"), std::string::npos) << output;
+}
+
+// A weights channel on morphQuad's target (TANGENT deltas turning the tangent 45 degrees) from
+// weight 0 at 0 s to 1 at 1 s, in each interpolation: at 0.25 s STEP holds 0, LINEAR gives
+// 0.25, CUBICSPLINE with zero tangents the Hermite 3u^2 - 2u^3 = 0.15625.
+TEST(Viewer, AnimationSamplersInterpolateAsTheSpecSays) {
+  TempDir dir;
+  const float c45 = static_cast<float>(std::sqrt(0.5));
+  const fs::path file = morphQuad(dir, "animated", {}, {c45 - 1, c45, 0}, nullptr, [](GltfWriter& gltf, nlohmann::json& doc) {
+    const int times = gltf.floats({0, 1}, "SCALAR", 1);
+    const int values = gltf.floats({0, 1}, "SCALAR", 1);
+    const int cubicValues = gltf.floats({0, 0, 0, 0, 1, 0}, "SCALAR", 1);  // (in-tangent, value, out-tangent) per key
+    for (const auto& [name, output] : {std::pair{"STEP", values}, std::pair{"LINEAR", values}, std::pair{"CUBICSPLINE", cubicValues}}) {
+      const nlohmann::json sampler = {{"input", times}, {"output", output}, {"interpolation", name}};
+      const nlohmann::json channel = {{"sampler", 0}, {"target", {{"node", 0}, {"path", "weights"}}}};
+      doc["animations"].push_back({{"name", name}, {"samplers", nlohmann::json::array({sampler})}, {"channels", nlohmann::json::array({channel})}});
+    }
+  });
+  const std::pair<const char*, double> cases[] = {{"STEP", 0}, {"LINEAR", 0.25}, {"CUBICSPLINE", 0.15625}};
+  for (const auto& [name, weight] : cases) {
+    const Image image = screenshot(dir, name, "'" + file.string() + "' --view tangent --animation " + name + " --time 0.25" + kQuadView);
+    ASSERT_EQ(image.width, 200) << name;
+    const double expected = std::atan2(weight * c45, 1 + weight * (c45 - 1)) * 180 / 3.14159265358979;
+    const double seen = tangentAngleDegrees(quadPixel(image, 0, 0));
+    std::printf("%s at 0.25 s: tangent at %.2f degrees, expected %.2f (weight %.5f)\n", name, seen, expected, weight);
+    EXPECT_NEAR(seen, expected, 0.8) << name;
+  }
 }
