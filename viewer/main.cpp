@@ -233,6 +233,7 @@ struct Viewer {
         return !options.screenshot;  // a screenshot of another pose would mislead
       }
       pose = PoseTime{*animation, options.time.value_or(0.0f)};
+      playing = !options.screenshot && !options.time;  // the window plays an animation named without a time
     }
     renderer.setPose(pose);
     return true;
