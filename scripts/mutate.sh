@@ -89,6 +89,11 @@ mkdir -p "$copy"
 ln -sfn "$(cd "$source_dir/.." && pwd)/shared" "$work/shared"
 # Copy with the files' own times (tar keeps them), so unchanged files do not rebuild.
 (cd "$source_dir" && git ls-files -co --exclude-standard -z | tar --null -T - -cf -) | tar -xf - -C "$copy"
+# A file a mutation touched gets its source's older time back from tar, which ninja would take
+# for up to date against an object built mutated: those files (listed by restore) are touched.
+if [ -f "$work/touched" ]; then
+  while read -r touched; do touch "$copy/$touched"; done <"$work/touched"
+fi
 if [ -d "$source_dir/tests/node/node_modules" ]; then
   ln -sfn "$source_dir/tests/node/node_modules" "$copy/tests/node/node_modules"
 fi
@@ -99,6 +104,7 @@ fi
 targets=(tangent tangent-test-assets tangent_tests tangent_reference_c_tests tangent_boundary_tests)
 echo "== unmutated build and tests (all must pass)"
 cmake --build "$build" --parallel 2 --target "${targets[@]}" >/dev/null
+rm -f "$work/touched"
 
 # apply FILE OLD NEW: replaces the one occurrence of OLD, or fails.
 apply() {
@@ -134,6 +140,7 @@ restore() {
   if [ -n "$mutated_file" ]; then
     cp -p "$work/pristine" "$copy/$mutated_file"
     touch "$copy/$mutated_file"
+    echo "$mutated_file" >>"$work/touched"
     mutated_file=""
   fi
 }
@@ -181,6 +188,7 @@ for i in "${!names[@]}"; do
 done
 # Leave the copy's build unmutated for the next run.
 cmake --build "$build" --parallel 2 --target "${targets[@]}" >/dev/null
+rm -f "$work/touched"
 
 echo
 echo "| mutation | result | tests failing | of them independent (*) | tests |"
