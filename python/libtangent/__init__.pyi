@@ -2,7 +2,7 @@
 """Type stubs of the package libtangent, whose __init__.py re-exports the compiled module
 libtangent._libtangent (python/module.cpp): see help(libtangent)."""
 import os
-from typing import Any, Dict, List, Optional, Tuple, TypedDict, Union
+from typing import Any, Optional, TypedDict, Union
 
 import numpy as np
 import numpy.typing as npt
@@ -77,5 +77,5 @@ def bake_tree(
 def find_inputs(folder: PathLike) -> list[str]: ...
 
 def input_digest(input: PathLike, *, asset_root: Optional[PathLike] = None) -> str: ...
-def manifest_digest(input: PathLike, *, asset_root: Optional[PathLike] = None, previous: Optional[Dict[str, Any]] = None,
-                    verify: bool = False) -> Tuple[str, List[Dict[str, Any]]]: ...
+def manifest_digest(input: PathLike, *, asset_root: Optional[PathLike] = None, previous: Optional[dict[str, Any]] = None,
+                    verify: bool = False) -> tuple[str, list[dict[str, Any]]]: ...

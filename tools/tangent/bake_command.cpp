@@ -152,7 +152,7 @@ int bakeTrees(const std::vector<std::filesystem::path>& folders, const std::file
     try {
       for (const auto& input : gltf::findInputs(folder, target)) {
         allInputs.push_back(input);
-        allOutputs.push_back(gltf::outputPathFor(input, target / input.lexically_relative(folder).parent_path()));
+        allOutputs.push_back(gltf::outputPathInTree(input, folder, target));
       }
     } catch (const std::exception& e) {
       std::cerr << "error: " << shown(e.what()) << "\n";
@@ -330,7 +330,7 @@ int bakeCommand(const std::vector<std::string>& args) {
     }
   }
 
-  const bool progress = !quiet && inputs.size() > 1 && ::isatty(STDERR_FILENO);
+  ProgressLine progress(!quiet && inputs.size() > 1 && ::isatty(STDERR_FILENO));
   std::ostream& log = reportPath == "-" || toStdout ? std::cerr : std::cout;
   int failed = 0;
   nlohmann::ordered_json report = nlohmann::ordered_json::array();
@@ -351,7 +351,7 @@ int bakeCommand(const std::vector<std::string>& args) {
     }
     const fs::path target = stream ? stream->file() : output.empty() ? gltf::outputPathFor(input, outDir) : output;
     const std::string targetName = stream ? "-" : target.string();
-    if (progress) std::cerr << "\r[" << n + 1 << "/" << inputs.size() << "] " << shown(input.filename().string()) << "\033[K" << std::flush;
+    progress.show(n, inputs.size(), input);
     nlohmann::ordered_json entry = {{"input", input.string()}, {"output", targetName}};
     try {
       const gltf::BakeResult result = gltf::bakeFile(input, target, options);
@@ -359,7 +359,7 @@ int bakeCommand(const std::vector<std::string>& args) {
       entry["status"] = "ok";
       if (!reportPath.empty()) entry.update(gltf::toJson(result));  // the per-primitive report: only when asked for
       if (!quiet) {
-        if (progress) std::cerr << "\r\033[K";
+        progress.clear();
         int baked = 0, kept = 0, skipped = 0;
         std::uint64_t split = 0;
         for (const auto& p : result.primitives) {
@@ -395,14 +395,14 @@ int bakeCommand(const std::vector<std::string>& args) {
       }
     } catch (const std::exception& e) {
       ++failed;
-      if (progress) std::cerr << "\r\033[K";
+      progress.clear();
       std::cerr << "error: " << shown(e.what()) << "\n";
       entry["status"] = "failed";
       entry["error"] = e.what();
     }
     if (!reportPath.empty()) report.push_back(std::move(entry));
   }
-  if (progress) std::cerr << "\r\033[K";
+  progress.clear();
   if (const int written = writeReport(reportPath, report); written != kExitOk) return written;
   if (output::stopRequested()) {
     std::cerr << "tangent bake: stopped after " << done << " of " << inputs.size() << " inputs\n";

@@ -185,6 +185,10 @@ const char* toString(FileOutcome outcome) {
   return "failed";
 }
 
+fs::path outputPathInTree(const fs::path& input, const fs::path& inputFolder, const fs::path& outputFolder) {
+  return outputPathFor(input, outputFolder / input.lexically_relative(inputFolder).parent_path());
+}
+
 std::vector<OutputCollision> outputCollisions(const std::vector<fs::path>& inputs, const std::vector<fs::path>& outputs) {
   std::map<fs::path, std::size_t> firstWriter;
   std::vector<OutputCollision> collisions;
@@ -275,10 +279,7 @@ std::vector<BatchEntry> bakeTree(const fs::path& inputFolder, const fs::path& ou
   std::error_code ec;
   const std::vector<fs::path> inputs = findInputs(inputFolder, outputFolder);
   std::vector<fs::path> outputs;
-  for (const fs::path& input : inputs) {
-    const fs::path relative = input.lexically_relative(inputFolder);
-    outputs.push_back(outputPathFor(input, outputFolder / relative.parent_path()));
-  }
+  for (const fs::path& input : inputs) outputs.push_back(outputPathInTree(input, inputFolder, outputFolder));
   if (const auto collisions = outputCollisions(inputs, outputs); !collisions.empty())
     throw InputError(inputFolder.string() + ": " + describeCollisions(collisions));
 

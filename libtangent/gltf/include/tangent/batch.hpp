@@ -55,6 +55,11 @@ std::vector<std::filesystem::path> findInputs(const std::filesystem::path& folde
 // re-run in which none changed takes the digest from there (BatchOptions::verify: never).
 std::string inputDigest(const std::filesystem::path& input, const std::filesystem::path& assetRoot = {});
 
+// Where bakeTree writes `input`, found under `inputFolder`: the same relative path under
+// `outputFolder`, with outputPathFor's name.
+std::filesystem::path outputPathInTree(const std::filesystem::path& input, const std::filesystem::path& inputFolder,
+                                       const std::filesystem::path& outputFolder);
+
 // Two inputs of one run whose outputs are the same file (m.glb, m.obj and m.ply all become
 // m.glb; a/x.glb and b/x.glb in one --out-dir).
 struct OutputCollision {
