@@ -1355,3 +1355,106 @@ TEST(Viewer, AnimationSamplersInterpolateAsTheSpecSays) {
     EXPECT_NEAR(seen, expected, 0.8) << name;
   }
 }
+
+// ---- Back faces of double-sided materials (issue 42, last class) ----
+
+// glTF 2.0 3.9.6: a double-sided material's back face "MUST have its normals reversed before
+// the lighting equation is evaluated". The rule derived from it for the tangent frame: the back
+// face is the same bumpy surface seen from its other side, so its shading normal at a point must
+// be the front's negated, whatever the normal map holds: T' x + B' y + N' z = -(T x + B y + N z)
+// for every texel (x, y, z) needs N' = -N, T' = -T and B' = -B. With B' = cross(N', T') * w' =
+// cross(N, T) * w' that means w' = -w (the Khronos Sample Viewer negates t, b and n alike).
+//
+// The quad: [-1, 1]^2 at z = 0, NORMAL +z, TEXCOORD_0 mirrored in u, u = (1 - x) / 2,
+// v = (1 - y) / 2. Its tangent follows increasing u: T = -x. The normal map's +green points to
+// the image's top, decreasing v (glTF's v points down): B = +y, and cross(N, T) = cross(z, -x) =
+// -y, so w = -1. The file stores TANGENT (-1, 0, 0, -1). Seen from the back: N' = -z, T' = +x,
+// B' = -y.
+fs::path mirroredDoubleSidedQuad(const TempDir& dir, const std::array<unsigned char, 3>& normalTexel) {
+  writeRgbaPng(dir / "normal.png", 4, 4, [&](int, int) { return std::array<unsigned char, 4>{normalTexel[0], normalTexel[1], normalTexel[2], 255}; });
+  GltfWriter gltf;
+  const int position = gltf.floats({-1, -1, 0, 1, -1, 0, 1, 1, 0, -1, 1, 0}, "VEC3", 3);
+  const int normal = gltf.floats({0, 0, 1, 0, 0, 1, 0, 0, 1, 0, 0, 1}, "VEC3", 3);
+  const int tangent = gltf.floats({-1, 0, 0, -1, -1, 0, 0, -1, -1, 0, 0, -1, -1, 0, 0, -1}, "VEC4", 4);
+  const int uv = gltf.floats({1, 1, 0, 1, 0, 0, 1, 0}, "VEC2", 2);
+  const int indices = gltf.shorts({0, 1, 2, 0, 2, 3}, "SCALAR", 1, true);
+  const nlohmann::json attributes = {{"POSITION", position}, {"NORMAL", normal}, {"TANGENT", tangent}, {"TEXCOORD_0", uv}};
+  // Two directional lights in the quad's plane: red shining down (towards -y, so it lights
+  // normals leaning to +y), green shining up (lighting normals leaning to -y), intensity 1.
+  const float h = static_cast<float>(std::sqrt(0.5));
+  const nlohmann::json lights = {{{"type", "directional"}, {"color", {1, 0, 0}}, {"intensity", 1}},
+                                 {{"type", "directional"}, {"color", {0, 1, 0}}, {"intensity", 1}}};
+  nlohmann::json doc = {
+      {"scene", 0},
+      {"scenes", {{{"nodes", {0, 1, 2}}}}},
+      // The light nodes' -z: rotated -90 deg about x it becomes -y, +90 deg +y.
+      {"nodes", {{{"mesh", 0}},
+                 {{"rotation", {-h, 0, 0, h}}, {"extensions", {{"KHR_lights_punctual", {{"light", 0}}}}}},
+                 {{"rotation", {h, 0, 0, h}}, {"extensions", {{"KHR_lights_punctual", {{"light", 1}}}}}}}},
+      {"meshes", {{{"primitives", {{{"attributes", attributes}, {"indices", indices}, {"material", 0}}}}}}},
+      {"materials", {{{"doubleSided", true},
+                      {"normalTexture", {{"index", 0}}},
+                      {"pbrMetallicRoughness", {{"baseColorFactor", {1, 1, 1, 1}}, {"metallicFactor", 0.0}, {"roughnessFactor", 1.0}}}}}},
+      {"textures", {{{"source", 0}}}},
+      {"images", {{{"uri", "normal.png"}}}},
+      {"extensionsUsed", {"KHR_lights_punctual"}},
+      {"extensions", {{"KHR_lights_punctual", {{"lights", lights}}}}},
+  };
+  return gltf.write(dir / "mirrored-double-sided.gltf", doc);
+}
+
+// The mirrored double-sided quad from the front and from the back, in the tangent, bitangent
+// and lit views, against colours worked out by hand from the rule above (the back face's
+// frame reversed, w included). Turning the back face's T and N around but keeping w (B not
+// reversed) turns the back's bitangent view from (0.5, 0, 0.5) to (0.5, 1, 0.5) and its lit
+// colour from green to red.
+TEST(Viewer, DoubleSidedMirroredQuadBackFaceReversesTheWholeFrame) {
+  TempDir dir;
+  // Normal map texel: tangent-space (x, y, z) = texel / 255 * 2 - 1, leaning towards +B.
+  const std::array<unsigned char, 3> texel{128, 204, 230};
+  const fs::path file = mirroredDoubleSidedQuad(dir, texel);
+  double m[3];
+  for (int i = 0; i < 3; ++i) m[i] = texel[i] / 255.0 * 2 - 1;
+  const double length = std::sqrt(m[0] * m[0] + m[1] * m[1] + m[2] * m[2]);
+  // Shading normal, front: T m.x + B m.y + N m.z = (-m.x, m.y, m.z) / length; back: its negation.
+  // Its y is what the lights (along -y and +y) see: red gets max(n.y, 0), green max(-n.y, 0).
+  const double frontY = m[1] / length;
+  struct Side {
+    const char* camera;
+    std::array<float, 3> tangent, bitangent;
+    double red, green;  // lambert of the red and green lights
+  };
+  const Side sides[] = {{"front", {0.0f, 0.5f, 0.5f}, {0.5f, 1.0f, 0.5f}, frontY, 0.0},
+                        {"back", {1.0f, 0.5f, 0.5f}, {0.5f, 0.0f, 0.5f}, 0.0, frontY}};
+  for (const Side& side : sides) {
+    const std::string common = "'" + file.string() + "' --camera " + side.camera + " --ortho --size 200x200 --no-shadows";
+    {
+      const std::string name = side.camera;
+      const Image tangentView = screenshot(dir, name + "-tangent", common + " --view tangent");
+      const Image bitangentView = screenshot(dir, name + "-bitangent", common + " --view bitangent");
+      ASSERT_EQ(tangentView.width, 200);
+      ASSERT_EQ(bitangentView.width, 200);
+      for (const auto& [x, y] : {std::pair{100, 100}, std::pair{70, 130}, std::pair{130, 75}}) {
+        const auto t = tangentView.at(x, y), b = bitangentView.at(x, y);
+        std::printf("%s at (%d, %d): tangent %.3f %.3f %.3f, bitangent %.3f %.3f %.3f\n", name.c_str(), x, y, t[0], t[1], t[2], b[0], b[1], b[2]);
+        for (int i = 0; i < 3; ++i) {
+          EXPECT_NEAR(t[i], side.tangent[i], 0.01f) << name;
+          EXPECT_NEAR(b[i], side.bitangent[i], 0.01f) << name;
+        }
+      }
+    }
+    // Lit, specular-map mode without specular: base colour (white) times the lights' ambient
+    // (6% of each light's diffuse colour, tangent-view's rule for file lights) plus diffuse
+    // colour times lambert; no tone mapping, exposure 1, sRGB-encoded.
+    const Image lit = screenshot(dir, std::string(side.camera) + "-lit",
+                                 common + " --shading blinn-phong --no-specular --tone-map none --exposure 1");
+    ASSERT_EQ(lit.width, 200);
+    const double expected[3] = {linearToSrgb(0.06 + side.red), linearToSrgb(0.06 + side.green), linearToSrgb(0.0)};
+    for (const auto& [x, y] : {std::pair{100, 100}, std::pair{70, 130}, std::pair{130, 75}}) {
+      const auto c = lit.at(x, y);
+      std::printf("%s lit at (%d, %d): %.3f %.3f %.3f, expected %.3f %.3f %.3f\n", side.camera, x, y, c[0], c[1], c[2], expected[0], expected[1],
+                  expected[2]);
+      for (int i = 0; i < 3; ++i) EXPECT_NEAR(c[i], expected[i], 0.01) << side.camera << " lit channel " << i;
+    }
+  }
+}
