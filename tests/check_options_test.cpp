@@ -4,6 +4,7 @@
 // whose findings are known exactly; `-o -` and `bake --report -` write to standard output.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <fstream>
@@ -236,7 +237,13 @@ TEST(CheckFormats, SarifStructureAndContent) {
   ASSERT_EQ(sarifRun["results"].size(), 1u);
   const Json& result = sarifRun["results"][0];
   EXPECT_EQ(result["ruleId"], "unit");
-  EXPECT_EQ(result["ruleIndex"], 3);
+  // SARIF 2.1.0 result.ruleIndex: "the index within the tool component rules array of the rule
+  // object associated with this result", here tool.driver.rules.
+  std::size_t unitRule = driver["rules"].size();
+  for (std::size_t i = 0; i < driver["rules"].size(); ++i)
+    if (driver["rules"][i]["id"] == "unit") unitRule = i;
+  ASSERT_LT(unitRule, driver["rules"].size());
+  EXPECT_EQ(result["ruleIndex"], unitRule);
   EXPECT_EQ(result["level"], "error");
   EXPECT_EQ(result["message"]["text"], "mesh 0 primitive 0: 1 of 4 vertices: |xyz| differs from 1 by more than 0.001 (float)");
   EXPECT_EQ(result["locations"][0]["physicalLocation"]["artifactLocation"]["uri"], quad.string());
@@ -295,7 +302,10 @@ for suite in root.findall('testsuite'):
     assert re.fullmatch(r'\d{4}-\d\d-\d\dT\d\d:\d\d:\d\d', suite.get('timestamp')), suite.get('timestamp')
     assert float(suite.get('time')) >= 0
     print(suite.get('name') == suite.get('file'), suite.get('tests'), suite.get('failures'), suite.get('skipped'))
-    for case in suite.findall('testcase'):
+    # In the order docs/check.md lists the checks (argv[2]): the JUnit format fixes no order of
+    # test cases, and the writer lists passes before failures.
+    order = sys.argv[2].split(',')
+    for case in sorted(suite.findall('testcase'), key=lambda case: order.index(case.get('name'))):
         assert case.get('file') == suite.get('file')
         state = 'failure' if case.find('failure') is not None else 'skipped' if case.find('skipped') is not None else 'ok'
         print(' ', case.get('name'), state)
@@ -314,14 +324,24 @@ for suite in root.findall('testsuite'):
   EXPECT_NE(invalid.exitCode, 0);
   EXPECT_NE(invalid.output.find("The attribute 'name' is required but missing"), std::string::npos) << invalid.output;
   std::ofstream(dir / "read.py") << script;
-  const auto parsed = runCommand("/usr/bin/python3 " + quoted(dir / "read.py") + " " + quoted(report));
+  // The checks in the order docs/check.md lists them (kCheckNames follows it).
+  const std::vector<std::string> documentedOrder = {"present",   "format",     "finite",     "unit",     "w",
+                                                    "w-uniform", "orthogonal", "handedness", "reference"};
+  ASSERT_TRUE(std::equal(documentedOrder.begin(), documentedOrder.end(), std::begin(tangent::gltf::kCheckNames),
+                         std::end(tangent::gltf::kCheckNames)));
+  std::string orderArgument;
+  for (const auto& name : documentedOrder) orderArgument += (orderArgument.empty() ? "" : ",") + name;
+  const auto parsed = runCommand("/usr/bin/python3 " + quoted(dir / "read.py") + " " + quoted(report) + " " + orderArgument);
   ASSERT_EQ(parsed.exitCode, 0) << parsed.output;
-  EXPECT_EQ(parsed.output,
-            "testsuites 18 2 0 8 True\n"
-            "True 9 1 0\n  present ok\n  format ok\n  finite ok\n  w ok\n  w-uniform ok\n  handedness ok\n  orthogonal ok\n"
-            "  reference ok\n  unit failure\n"
-            "True 9 1 8\n  present failure\n  format skipped\n  finite skipped\n  unit skipped\n  w skipped\n  w-uniform skipped\n"
-            "  orthogonal skipped\n  handedness skipped\n  reference skipped\n");
+  // A case per check and file. The non-unit quad: every check passes but unit (vertex 2 is
+  // twice too long). The quad without TANGENT: present fails and gates the rest, skipped.
+  const std::size_t checks = documentedOrder.size();
+  std::string expected = "testsuites " + std::to_string(2 * checks) + " 2 0 " + std::to_string(checks - 1) + " True\n";
+  expected += "True " + std::to_string(checks) + " 1 0\n";
+  for (const auto& name : documentedOrder) expected += "  " + name + (name == "unit" ? " failure\n" : " ok\n");
+  expected += "True " + std::to_string(checks) + " 1 " + std::to_string(checks - 1) + "\n";
+  for (const auto& name : documentedOrder) expected += "  " + name + (name == "present" ? " failure\n" : " skipped\n");
+  EXPECT_EQ(parsed.output, expected);
 }
 
 TEST(CheckFormats, DashWritesToStandardOutput) {

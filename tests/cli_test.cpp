@@ -197,7 +197,9 @@ TEST(Cli, EveryAssimpTestModelBakedWithAllChecksClean) {
     if (check.exitCode != 0) failures.push_back(entry.path().string() + ":\n" + check.output.substr(0, 600));
   }
   std::printf("assimp-testmodels: %d baked and checked, %d refused by bake\n", baked, refused);
-  // 37 with assimp-testmodels 5.2.5; the rest are glTF 1.0, Draco, refused as malformed
+  // A regression pin, not a derived value: 37 is how many bake accepted with
+  // assimp-testmodels 5.2.5 when this was written (a floor, so that a new refusal fails here
+  // while a newly accepted model does not); the rest are glTF 1.0, Draco, refused as malformed
   // (indices out of range, references to nothing, node cycles, a PLY header with free text:
   // see tests/malformed), or OBJ files whose faces refer to no "vt" (OBJ/regr01.obj,
   // OBJ/multiple_spaces.obj: their UVs were uninitialized memory until they were refused).

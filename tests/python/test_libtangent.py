@@ -4,6 +4,7 @@
 Run by CTest (python.pytest) with PYTHONPATH at build/python and TANGENT_CLI,
 TANGENT_ARRAYS_TOOL and TANGENT_SOURCE_DIR set."""
 import json
+import math
 import os
 import pathlib
 import shutil
@@ -115,7 +116,7 @@ def test_check_equals_the_cli_json(tmp_path):
     libtangent.bake(DEMO / "demo.gltf", output)
     done = subprocess.run([CLI, "check", str(output), "--format", "json"], capture_output=True, check=True)
     assert libtangent.check(output) == json.loads(done.stdout)["files"][0]
-    # Findings are returned, not raised: w negated is caught by the handedness check.
+    # Findings are returned, not raised: the demo as committed has no TANGENT, which `present` reports.
     unbaked = libtangent.check(DEMO / "demo.gltf")
     assert unbaked["status"] == "findings"
     assert unbaked["primitives"][0]["findings"][0]["check"] == "present"
@@ -133,8 +134,17 @@ def test_check_options_match_the_cli(tmp_path):
     assert libtangent.bake(unbaked, output, tangent_format="short")["primitives"][0]["tangentFormat"] == "short"
     checked = libtangent.check(output, orthogonal_tolerance=0.5, reference_tolerance=2)
     assert checked["status"] == "clean"
-    assert checked["primitives"][0]["limits"]["tangentComponent"] == "normalized SHORT"
-    assert checked["primitives"][0]["limits"]["referenceDegrees"] > 2
+    limits = checked["primitives"][0]["limits"]
+    assert limits["tangentComponent"] == "normalized SHORT" and limits["normalComponent"] == "float"
+    # docs/check.md: SHORT tangents are accepted down to 10 significant bits, a component off by
+    # 0.5/511 + 0.5/32767, the vector by sqrt(3) times that, its direction by asin of it. The
+    # float NORMAL adds no angle, and the demo's float positions and UVs no allowance.
+    vector_error = math.sqrt(3) * (0.5 / 511 + 0.5 / 32767)
+    direction = math.degrees(math.asin(vector_error))
+    assert limits["unitDeviation"] == pytest.approx(vector_error, rel=1e-12)
+    assert limits["referenceAllowanceMaxDegrees"] == 0
+    assert limits["orthogonalDegrees"] == pytest.approx(0.5 + direction, rel=1e-12)
+    assert limits["referenceDegrees"] == pytest.approx(2 + direction, rel=1e-12)
     with pytest.raises(ValueError, match="only: 'units' is not a check name"):
         libtangent.check(unbaked, only=["units"])
     with pytest.raises(ValueError, match="tangent_format"):
