@@ -83,15 +83,43 @@ def test_bit_identical_to_the_cpp_library(tmp_path, method, uv_origin, mesh):
     assert again["tangents"].tobytes() == result["tangents"].tobytes()
 
 
+def documented_split(indices, tangents, vertex_count):
+    """The vertex split compute_tangents documents, worked out here from its tangents: corners of
+    input vertex v with the tangent of v's first corner keep v; each other distinct tangent of v
+    is a new vertex, numbered from vertex_count up in order of first corner. Tangents compare by
+    value (-0 and +0 alike: adding +0 turns -0 into +0), then by bits."""
+    keys = [tuple(row) for row in (tangents + np.float32(0)).view(np.uint32).reshape(-1, 4).tolist()]
+    first_key, new_vertex, corner_vertex = {}, {}, []
+    for corner, vertex in enumerate(indices.ravel().tolist()):
+        key = keys[corner]
+        first_key.setdefault(vertex, key)
+        if key == first_key[vertex]:
+            corner_vertex.append(vertex)
+        else:
+            corner_vertex.append(new_vertex.setdefault((vertex, key), vertex_count + len(new_vertex)))
+    return corner_vertex, len(new_vertex)
+
+
 def test_report_and_vertex_split():
-    result = libtangent.compute_tangents(*uv_sphere(24, 12))
+    arrays = uv_sphere(24, 12)
+    result = libtangent.compute_tangents(*arrays)
     report = result["report"]
     assert report["method"] == "mikktspace" and report["triangles"] == 24 * 12 * 2
     assert report["corners"] == 3 * report["triangles"]
-    vertices = 25 * 13
-    assert report["splitVertices"] == result["corner_vertex"].max() + 1 - vertices
+    # The sphere needs no split: smooth normals, one UV per vertex (the seam has its own
+    # vertices) and no mirrored UVs, so every corner of a vertex gets that vertex's one frame;
+    # the corners of the collapsed pole triangles take their vertex's frame too. Every corner
+    # keeps its input vertex.
+    assert report["splitVertices"] == 0
+    assert result["corner_vertex"].tolist() == arrays[3].ravel().tolist()
     assert np.allclose(np.linalg.norm(result["tangents"][:, :3], axis=1), 1.0, atol=1e-6)
     assert set(np.unique(result["tangents"][:, 3])) <= {-1.0, 1.0}
+    # A soup with a mirrored half does split: the whole numbering against the documented rule.
+    soup = mirrored_soup(1)
+    split = libtangent.compute_tangents(*soup)
+    expected, extra = documented_split(soup[3], split["tangents"], len(soup[0]))
+    assert extra > 0 and split["report"]["splitVertices"] == extra
+    assert split["corner_vertex"].tolist() == expected
 
 
 def cli_bake_report(tmp_path, source, output):
