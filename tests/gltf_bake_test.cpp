@@ -514,7 +514,7 @@ TEST(SharedAssets, MirrorTestHandednessMatchesSuppliedTangents) {
     angles.push_back(std::acos(std::clamp(dot, -1.0, 1.0)) * 180 / M_PI);
   }
   std::sort(angles.begin(), angles.end());
-  std::printf("NormalTangentMirrorTest, lengyel/angle vs supplied: %zu vertices, %zu corners, median %.4f deg, p99 %.4f deg, max %.4f deg, w mismatches %zu\n",
+  std::printf("NormalTangentMirrorTest, mikktspace vs supplied: %zu vertices, %zu corners, median %.4f deg, p99 %.4f deg, max %.4f deg, w mismatches %zu\n",
               n, corners.size(), angles[angles.size() / 2], angles[angles.size() * 99 / 100], angles.back(), wMismatch);
   EXPECT_EQ(wMismatch, 0u);
 }
