@@ -8,6 +8,11 @@
 in vec3 v_positionWorld;
 in vec3 v_normalWorld;
 in vec4 v_tangentWorld;
+in vec3 v_bitangentWorld;
+#ifdef DEBUG_COMPARE_ANGLE
+in vec4 v_tangentCompareWorld;
+in vec3 v_bitangentCompareWorld;
+#endif
 in vec2 v_uvNormal;
 in vec4 v_shadowCoord;
 in float v_tangentError;
@@ -102,9 +107,10 @@ void main() {
     normal = -normal;
     tangent = vec4(-tangent.xyz, -tangent.w);
   }
+  vec3 bitangent = frameBitangent(normal, tangent, gl_FrontFacing ? v_bitangentWorld : -v_bitangentWorld);
   vec3 shadingNormal = normal;
 #ifdef HAS_NORMAL_MAP
-  if (u_useNormalMap) shadingNormal = perturbedNormal(normal, tangent, v_uvNormal);
+  if (u_useNormalMap) shadingNormal = perturbedNormal(normal, tangent, bitangent, v_uvNormal);
 #endif
 
 #if defined(DEBUG_GEOMETRY_NORMAL)
@@ -115,7 +121,7 @@ void main() {
   fragColor = vec4(signedColor(tangent.xyz), 1.0);
   return;
 #elif defined(DEBUG_BITANGENT)
-  fragColor = vec4(signedColor(cross(normal, tangent.xyz) * tangent.w), 1.0);
+  fragColor = vec4(signedColor(bitangent), 1.0);
   return;
 #elif defined(DEBUG_SHADING_NORMAL)
   fragColor = vec4(signedColor(shadingNormal), 1.0);
@@ -133,6 +139,12 @@ void main() {
   return;
 #elif defined(DEBUG_TANGENT_ERROR)
   fragColor = vec4(v_cornerProblems > 0.5 ? vec3(1.0, 0.0, 1.0) : heatmap(v_tangentError), 1.0);
+  return;
+#elif defined(DEBUG_COMPARE_ANGLE)
+  // The compare set's frame here, reversed on back faces as the file's is, against the file's.
+  vec4 other = gl_FrontFacing ? v_tangentCompareWorld : vec4(-v_tangentCompareWorld.xyz, -v_tangentCompareWorld.w);
+  vec3 otherBitangent = frameBitangent(normal, other, gl_FrontFacing ? v_bitangentCompareWorld : -v_bitangentCompareWorld);
+  fragColor = vec4(heatmap(frameAngleDegrees(normal, tangent, bitangent, other, otherBitangent)), 1.0);
   return;
 #endif
 

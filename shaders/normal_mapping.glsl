@@ -1,6 +1,19 @@
 // SPDX-License-Identifier: MIT
 // Tangent-space normal mapping: the frame (T, B, N) with B = cross(N, T) * w, as glTF defines
 // TANGENT; the map's green channel can be flipped for DirectX-convention maps.
+
+// The frame's bitangent (Substance's "compute tangent space per fragment" choice): per fragment,
+// B = cross(N, T) * sign(w) from the interpolated N and T, T made orthogonal to N first
+// (MikkTSpace's recommendation, the default); or the per-vertex B = cross(N, T) * w, interpolated,
+// as bakers that interpolate it expect (`vertexBitangent`, reversed on back faces by the caller).
+uniform bool u_bitangentPerFragment;
+vec3 frameBitangent(vec3 normal, vec4 tangent, vec3 vertexBitangent) {
+  if (!u_bitangentPerFragment) return normalize(vertexBitangent);
+  vec3 n = normalize(normal);
+  vec3 t = normalize(tangent.xyz - n * dot(n, tangent.xyz));
+  return cross(n, t) * (tangent.w < 0.0 ? -1.0 : 1.0);
+}
+
 #ifdef HAS_NORMAL_MAP
 // w = tangent::handedness(UV orientation, glTF's top-left origin), passed in by the viewer:
 // counter-clockwise UVs get w = -1, so cross(N, T) * w points to the image's top (+green).
@@ -11,10 +24,10 @@ uniform sampler2D u_normalMap;
 uniform float u_normalScale;
 uniform bool u_flipGreen;
 
-vec3 perturbedNormal(vec3 normal, vec4 tangent, vec2 uv) {
+vec3 perturbedNormal(vec3 normal, vec4 tangent, vec3 bitangent, vec2 uv) {
   vec3 n = normalize(normal);
   vec3 t = normalize(tangent.xyz - n * dot(n, tangent.xyz));
-  vec3 b = cross(n, t) * (tangent.w < 0.0 ? -1.0 : 1.0);
+  vec3 b = bitangent;  // frameBitangent's
   vec3 m = texture(u_normalMap, uv).xyz * 2.0 - 1.0;
   if (u_flipGreen) m.y = -m.y;
   m.xy *= u_normalScale;

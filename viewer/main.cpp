@@ -45,7 +45,16 @@ const char* kUsage =
     "  --ortho                  orthographic projection\n"
     "  --view NAME              lit | geometry-normal | tangent | bitangent | shading-normal | uv |\n"
     "                           handedness (the file's w) | error | face-orientation (front blue, back red) |\n"
-    "                           handedness-world (w after the node's mirroring) (default lit)\n"
+    "                           handedness-world (w after the node's mirroring) | compare-angle (the\n"
+    "                           per-pixel angle between the file's tangent frames and the --compare set's:\n"
+    "                           blue 0, green 1 deg, yellow 5 deg, red >= 20 deg) (default lit)\n"
+    "  --compare SET            split view: left of the divider the file's TANGENT, right of it SET:\n"
+    "                           fresh (MikkTSpace computed at load, the default set of compare-angle) |\n"
+    "                           file (the file's TANGENT again: both sides alike) | FILE.gltf/.glb (a second\n"
+    "                           file's TANGENT, for the same triangles in the same order, e.g. another bake)\n"
+    "  --split F                the divider's place, a fraction of the width from the left (default 0.5)\n"
+    "  --bitangent MODE         per-fragment (B = cross(N, T) * w from the interpolated N and T, default) |\n"
+    "                           per-vertex (B interpolated from the vertices), to match the baker\n"
     "  --glyphs                 draw tangent frames (T red, B green, N blue)\n"
     "  --no-shadows, --pcf N (0 off, 1 = 3x3, 2 = 5x5), --shadow-map-size N (1024..4096)\n"
     "  --shading NAME           pbr (glTF metallic-roughness, default) | blinn-phong | phong (specular-map mode)\n"
@@ -72,7 +81,8 @@ const char* kUsage =
     "  --check-shaders          link the programs in a spread of variants, compare their vertex inputs\n"
     "                           with the layout tables (viewer/vertex_layout.hpp) and exit (1 on a mismatch)\n"
     "keys: m normal map, s specular, h shadows, p PCF, f green flip, 1-9 and 0 views, g glyphs,\n"
-    "      r reload shaders, o open, mouse: left orbit, right/middle pan, wheel zoom\n";
+    "      c split compare view, a compare-angle view, b per-vertex/per-fragment bitangent,\n"
+    "      r reload shaders, o open, mouse: left orbit (drag the divider to move it), right/middle pan, wheel zoom\n";
 
 // The demo files the panel offers (data/demo/NAME.gltf), and where they are.
 const char* const kDemoFiles[] = {"scene", "quad", "cube", "sphere", "torus"};
@@ -98,6 +108,7 @@ struct Options {
   int msaaSamples = -1;  // 0: off; -1: 4, or off on a software rasteriser (softwareRasteriser)
   std::optional<std::string> animation;  // --animation N|NAME (with --time alone: animation 0)
   std::optional<float> time;             // --time SECONDS
+  std::string compare = "fresh";         // --compare: fresh, file or a second file's path
 };
 
 int parseOptions(int argc, char** argv, Options& options) {
@@ -154,6 +165,21 @@ int parseOptions(int argc, char** argv, Options& options) {
       else if (arg == "--stats") options.stats = true;
       else if (arg == "--depth-prepass") options.settings.depthPrePass = true;
       else if (arg == "--animation") options.animation = value();
+      else if (arg == "--compare") {
+        options.compare = value();
+        options.settings.split = true;
+      } else if (arg == "--split") {
+        const float place = std::stof(value());
+        if (!(place >= 0 && place <= 1)) throw std::invalid_argument("--split must be within 0..1");
+        options.settings.splitPosition = place;
+      } else if (arg == "--bitangent") {
+        const std::string name = value();
+        bool found = false;
+        for (const auto& mode : kBitangentModes) {
+          if (name == mode.name) options.settings.bitangent = mode.mode, found = true;
+        }
+        if (!found) throw std::invalid_argument("unknown --bitangent " + name);
+      }
       else if (arg == "--time") {
         const float seconds = std::stof(value());
         if (!std::isfinite(seconds)) throw std::invalid_argument("--time must be a number of seconds");
@@ -239,6 +265,54 @@ struct Viewer {
     return true;
   }
 
+  // Hands the renderer the set that the split view's right side and the compare-angle view
+  // compare with the file's tangents, as options.compare names it: fresh (the renderer's
+  // default), file (the file's own) or a second file, whose primitives must hold the same
+  // triangles in the same order. False, with a message, when that file cannot be used.
+  bool applyCompare() {
+    const auto& items = renderer.scene().items;
+    std::vector<std::vector<float>> sets;
+    auto refuse = [&](const std::string& why) {
+      const std::string text = "--compare " + options.compare + ": " + why + "; compared with fresh tangents instead";
+      messages.push_back(text);
+      std::cerr << "error: " << text << "\n";
+      options.compare = "fresh";
+      renderer.setCompareTangents({});
+      return false;
+    };
+    if (options.compare == "file") {
+      for (const auto& item : items) sets.push_back(item.tangents);
+    } else if (options.compare != "fresh") {
+      tangent::gltf::Scene other;
+      try {
+        other = tangent::gltf::loadScene(options.compare);
+      } catch (const std::exception& e) {
+        return refuse(e.what());
+      }
+      if (other.items.size() != items.size())
+        return refuse("it has " + std::to_string(other.items.size()) + " primitive(s) to show, " + loaded.filename().string() + " has " +
+                      std::to_string(items.size()));
+      // The same corners, up to a rounding of the positions: a baked copy keeps the triangles
+      // and their order (vertices split or not).
+      const float tolerance = 1e-4f * renderer.boundsRadius();
+      for (std::size_t i = 0; i < items.size(); ++i) {
+        const auto& mine = items[i].positions;
+        const auto& theirs = other.items[i].positions;
+        if (mine.size() != theirs.size())
+          return refuse(other.items[i].label + " has " + std::to_string(theirs.size() / 9) + " triangle(s), " + items[i].label + " has " +
+                        std::to_string(mine.size() / 9));
+        for (std::size_t k = 0; k < mine.size(); ++k)
+          if (!(std::abs(mine[k] - theirs[k]) <= tolerance))
+            return refuse(other.items[i].label + "'s corner " + std::to_string(k / 3) + " is elsewhere than " + items[i].label + "'s");
+        if (!other.items[i].tangentsFromFile)
+          messages.push_back("--compare " + options.compare + ": " + other.items[i].label + " has no TANGENT; its tangents were computed at load");
+        sets.push_back(std::move(other.items[i].tangents));
+      }
+    }
+    renderer.setCompareTangents(std::move(sets));
+    return true;
+  }
+
   bool load(const fs::path& file) {
     messages.clear();
     try {
@@ -247,6 +321,7 @@ struct Viewer {
       messages = scene.messages;
       renderer.setScene(std::move(scene), messages);
       loaded = file;
+      if (!applyCompare() && options.screenshot) return false;  // a screenshot of another comparison would mislead
       loadedDemo = -1;
       for (int i = 0; i < static_cast<int>(std::size(kDemoFiles)); ++i) {
         std::error_code ec;
@@ -367,6 +442,23 @@ int screenshot(Viewer& viewer) {
   return 0;
 }
 
+// The heatmap of the error and compare-angle views: debug_views.glsl's heatmap() stops.
+void drawHeatmapLegend() {
+  struct Stop {
+    const char* label;
+    ImVec4 colour;
+  };
+  static const Stop stops[] = {{"0", {0.10f, 0.25f, 0.90f, 1}}, {"1 deg", {0.10f, 0.80f, 0.20f, 1}}, {"5 deg", {0.95f, 0.90f, 0.10f, 1}},
+                               {">= 20 deg", {0.90f, 0.10f, 0.10f, 1}}};
+  for (const Stop& stop : stops) {
+    ImGui::ColorButton(stop.label, stop.colour, ImGuiColorEditFlags_NoTooltip, ImVec2(14, 14));
+    ImGui::SameLine();
+    ImGui::TextUnformatted(stop.label);
+    ImGui::SameLine();
+  }
+  ImGui::NewLine();
+}
+
 void drawPanel(Viewer& viewer, GLFWwindow* window, const FrameStats& stats, double frameMs, char (&openPath)[1024], bool& focusOpen) {
   RenderSettings& s = viewer.options.settings;
   ImGui::SetNextWindowPos(ImVec2(10, 10), ImGuiCond_FirstUseEver);
@@ -389,11 +481,16 @@ void drawPanel(Viewer& viewer, GLFWwindow* window, const FrameStats& stats, doub
     for (std::size_t i = 0; i < std::size(kDebugViews); ++i) names[i] = kDebugViews[i].name;
     if (ImGui::Combo("view (1-9, 0)", &view, names, static_cast<int>(std::size(kDebugViews)))) s.view = static_cast<DebugView>(view);
     if (s.view == DebugView::tangentError) {
-      ImGui::TextWrapped("error vs freshly computed: blue 0, green 1 deg, yellow 5 deg, red >= 20 deg; magenta: fails tangent check");
+      ImGui::TextWrapped("error vs freshly computed, per vertex; magenta: fails tangent check");
+      drawHeatmapLegend();
       const auto& items = viewer.renderer.scene().items;
       if (std::none_of(items.begin(), items.end(), [](const auto& item) { return item.tangentsFromFile; }))
         ImGui::TextWrapped("This file has no TANGENT: the tangents shown were computed at load, so they are compared with "
                            "themselves and the view is all blue. Bake the file to judge stored tangents.");
+    }
+    if (s.view == DebugView::compareAngle) {
+      ImGui::TextWrapped("angle per pixel between the file's tangent frames and the compare set's (Compare below)");
+      drawHeatmapLegend();
     }
     if (s.view == DebugView::faceOrientation) ImGui::TextWrapped("blue: front face, red: back face (culling off in this view)");
     if (s.view == DebugView::handedness) ImGui::TextWrapped("the file's TANGENT w: teal +1, orange -1");
@@ -418,6 +515,36 @@ void drawPanel(Viewer& viewer, GLFWwindow* window, const FrameStats& stats, doub
       ImGui::Checkbox("play", &viewer.playing);
       ImGui::SliderFloat("time (s)", &viewer.pose.seconds, 0.0f, std::max(animations[viewer.pose.animation].duration, 1e-3f), "%.3f");
     }
+  }
+  if (ImGui::CollapsingHeader("Compare", ImGuiTreeNodeFlags_DefaultOpen)) {
+    ImGui::Checkbox("split view (c)", &s.split);
+    if (s.split) ImGui::SliderFloat("divider", &s.splitPosition, 0, 1, "%.2f");
+    static char otherFile[1024] = {};
+    static bool secondFileChosen = false;  // in the combo, before a file is named
+    int source = viewer.options.compare == "fresh" ? (secondFileChosen ? 2 : 0) : viewer.options.compare == "file" ? 1 : 2;
+    if (ImGui::Combo("compare with", &source, "fresh MikkTSpace\0" "the file itself\0" "a second file\0")) {
+      secondFileChosen = source == 2;
+      if (source < 2) {
+        viewer.options.compare = source == 0 ? "fresh" : "file";
+        viewer.applyCompare();
+      } else if (otherFile[0]) {
+        viewer.options.compare = otherFile;
+        viewer.applyCompare();
+      }
+    }
+    if (source == 2) {
+      if (ImGui::InputText("second file", otherFile, sizeof otherFile, ImGuiInputTextFlags_EnterReturnsTrue)) {
+        viewer.options.compare = otherFile;
+        viewer.applyCompare();
+      }
+    }
+    ImGui::TextWrapped("left: the file's TANGENT; right (and compare-angle, key a): %s", viewer.options.compare == "fresh"  ? "MikkTSpace computed at load"
+                                                                                     : viewer.options.compare == "file" ? "the file's TANGENT again"
+                                                                                                                        : viewer.options.compare.c_str());
+    int mode = static_cast<int>(s.bitangent);
+    const char* modeNames[std::size(kBitangentModes)];
+    for (std::size_t i = 0; i < std::size(kBitangentModes); ++i) modeNames[i] = kBitangentModes[i].name;
+    if (ImGui::Combo("bitangent (b)", &mode, modeNames, static_cast<int>(std::size(kBitangentModes)))) s.bitangent = static_cast<BitangentMode>(mode);
   }
   if (ImGui::CollapsingHeader("Shading", ImGuiTreeNodeFlags_DefaultOpen)) {
     ImGui::Checkbox("normal mapping (m)", &s.normalMapping);
@@ -489,6 +616,8 @@ struct Input {
   Viewer* viewer = nullptr;
   double lastX = 0, lastY = 0;
   bool focusOpen = false;
+  bool leftWasDown = false;
+  bool draggingDivider = false;  // a left drag that began on the split view's divider moves it
 };
 
 int interactive(Viewer& viewer, GLFWwindow* window) {
@@ -511,6 +640,11 @@ int interactive(Viewer& viewer, GLFWwindow* window) {
       case GLFW_KEY_P: s.pcfRadius = s.pcfRadius == 0 ? 1 : 0; break;
       case GLFW_KEY_F: s.flipGreen = !s.flipGreen; break;
       case GLFW_KEY_G: s.glyphs = !s.glyphs; break;
+      case GLFW_KEY_C: s.split = !s.split; break;
+      case GLFW_KEY_A: s.view = s.view == DebugView::compareAngle ? DebugView::lit : DebugView::compareAngle; break;
+      case GLFW_KEY_B:
+        s.bitangent = s.bitangent == BitangentMode::perFragment ? BitangentMode::perVertex : BitangentMode::perFragment;
+        break;
       case GLFW_KEY_O: in.focusOpen = true; break;
       case GLFW_KEY_R:
         in.viewer->shaders.reload();
@@ -540,15 +674,24 @@ int interactive(Viewer& viewer, GLFWwindow* window) {
     glfwPollEvents();
     double x, y;
     glfwGetCursorPos(window, &x, &y);
+    const bool leftDown = glfwGetMouseButton(window, GLFW_MOUSE_BUTTON_LEFT) == GLFW_PRESS;
+    if (!leftDown) input.draggingDivider = false;
     if (!ImGui::GetIO().WantCaptureMouse) {
       const float dx = static_cast<float>(x - input.lastX), dy = static_cast<float>(y - input.lastY);
       const CameraMatrices m = viewer.camera.matrices(1.0f);
-      if (glfwGetMouseButton(window, GLFW_MOUSE_BUTTON_LEFT) == GLFW_PRESS) viewer.camera.orbit(dx, dy);
+      RenderSettings& s = viewer.options.settings;
+      int windowWidth, windowHeight;
+      glfwGetWindowSize(window, &windowWidth, &windowHeight);
+      if (leftDown && !input.leftWasDown && s.split && s.view != DebugView::compareAngle && windowWidth > 0)
+        input.draggingDivider = std::abs(x - s.splitPosition * windowWidth) <= 6;
+      if (input.draggingDivider) s.splitPosition = std::clamp(static_cast<float>(x / std::max(windowWidth, 1)), 0.0f, 1.0f);
+      else if (leftDown) viewer.camera.orbit(dx, dy);
       if (glfwGetMouseButton(window, GLFW_MOUSE_BUTTON_RIGHT) == GLFW_PRESS || glfwGetMouseButton(window, GLFW_MOUSE_BUTTON_MIDDLE) == GLFW_PRESS)
         viewer.camera.pan(dx, dy, m.view);
     }
     input.lastX = x;
     input.lastY = y;
+    input.leftWasDown = leftDown;
     if (viewer.playing && viewer.pose.animation >= 0) {
       const float duration = viewer.renderer.scene().animations[viewer.pose.animation].duration;
       viewer.pose.seconds = duration > 0 ? std::fmod(viewer.pose.seconds + static_cast<float>(frameMs) / 1000.0f, duration) : 0.0f;

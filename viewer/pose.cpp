@@ -169,11 +169,14 @@ std::vector<glm::mat4> jointMatrices(const gltf::Skin& skin, const ScenePose& po
   return joints;
 }
 
-void deformItem(const gltf::DrawItem& item, std::span<const float> weights, std::span<const glm::mat4> joints, DeformedCorners& out) {
+void deformItem(const gltf::DrawItem& item, std::span<const float> weights, std::span<const glm::mat4> joints, DeformedCorners& out,
+                std::span<const float> compareTangents) {
   const std::size_t corners = item.positions.size() / 3;
   out.positions = item.positions;
   out.normals = item.normals;
   out.tangents = item.tangents;
+  out.compareTangents.assign(compareTangents.begin(), compareTangents.end());
+  const bool compare = out.compareTangents.size() == out.tangents.size();
   // Morph targets: base + sum of weight * delta (TANGENT deltas are xyz; w stays).
   for (std::size_t t = 0; t < item.morphTargets.size() && t < weights.size(); ++t) {
     const float w = weights[t];
@@ -185,7 +188,10 @@ void deformItem(const gltf::DrawItem& item, std::span<const float> weights, std:
       for (std::size_t i = 0; i < 3 * corners; ++i) out.normals[i] += w * target.normals[i];
     if (!target.tangents.empty())
       for (std::size_t c = 0; c < corners; ++c)
-        for (int i = 0; i < 3; ++i) out.tangents[4 * c + i] += w * target.tangents[3 * c + i];
+        for (int i = 0; i < 3; ++i) {
+          out.tangents[4 * c + i] += w * target.tangents[3 * c + i];
+          if (compare) out.compareTangents[4 * c + i] += w * target.tangents[3 * c + i];
+        }
   }
   if (joints.empty() || item.influencesPerCorner == 0) return;
   // Skinning: the weighted sum of the joint matrices per corner; normals by its inverse
@@ -209,6 +215,10 @@ void deformItem(const gltf::DrawItem& item, std::span<const float> weights, std:
     std::copy_n(glm::value_ptr(p), 3, &out.positions[3 * c]);
     std::copy_n(glm::value_ptr(n), 3, &out.normals[3 * c]);
     std::copy_n(glm::value_ptr(t), 3, &out.tangents[4 * c]);
+    if (compare) {
+      const glm::vec3 other = linear * glm::make_vec3(&out.compareTangents[4 * c]);
+      std::copy_n(glm::value_ptr(other), 3, &out.compareTangents[4 * c]);
+    }
   }
 }
 

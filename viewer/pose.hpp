@@ -43,11 +43,14 @@ struct DeformedCorners {
   std::vector<float> positions;  // 3 per corner
   std::vector<float> normals;    // 3
   std::vector<float> tangents;   // 4, w the item's
+  std::vector<float> compareTangents;  // 4: the compare set given to deformItem, deformed alike (empty without one)
 };
 
 // The item's corners with morph `weights` (missing ones 0) added, then skinned by `joints`
-// (none: unskinned). Writes into `out`, reusing its memory.
-void deformItem(const gltf::DrawItem& item, std::span<const float> weights, std::span<const glm::mat4> joints, DeformedCorners& out);
+// (none: unskinned). Writes into `out`, reusing its memory. A `compareTangents` set (4 per
+// corner) gets the same TANGENT deltas and skinning as the item's tangents.
+void deformItem(const gltf::DrawItem& item, std::span<const float> weights, std::span<const glm::mat4> joints, DeformedCorners& out,
+                std::span<const float> compareTangents = {});
 
 // For the error view on a morphing primitive: per corner, the angle in degrees between its
 // morphed tangent (the file's TANGENT plus its weighted deltas) and MikkTSpace tangents

@@ -45,6 +45,7 @@ std::vector<float> packMeshVertices(const gltf::DrawItem& item, const CornerFram
         case VertexSource::uv1: std::copy_n(&item.uvSets[1][n * c], n, out); break;
         case VertexSource::tangentError: *out = frame.tangentErrorDegrees[c]; break;
         case VertexSource::cornerProblems: *out = static_cast<float>(item.cornerProblems[c]); break;
+        case VertexSource::compareTangent: std::copy_n(&frame.compareTangents[n * c], n, out); break;
       }
     }
   }
@@ -149,6 +150,7 @@ void Renderer::setScene(gltf::Scene scene, std::vector<std::string>& messages) {
   meshes_.clear();
   instances_.clear();
   deformed_.clear();
+  compareTangents_.clear();
   textures_.clear();
   srgbTextures_.clear();
   glyphsBuiltFor_ = -1;
@@ -185,7 +187,7 @@ void Renderer::setScene(gltf::Scene scene, std::vector<std::string>& messages) {
   auto upload = [&](const gltf::DrawItem& item, GLenum usage) {
     GpuMesh mesh;
     mesh.material = item.material;
-    const std::vector<float> data = packMeshVertices(item, itemFrames(item));
+    const std::vector<float> data = packMeshVertices(item, itemFrames(item, compareTangentsOf(static_cast<std::size_t>(&item - scene_.items.data()))));
     mesh.vertexArray = makeVertexArray();
     mesh.vertices = makeBuffer();
     glBindVertexArray(mesh.vertexArray.get());
@@ -236,9 +238,35 @@ CornerFrames Renderer::framesOf(std::size_t instance) const {
     if (deformed.instance == instance && !deformed.corners.positions.empty()) {
       const gltf::DrawItem& item = scene_.items[scene_.instances[instance].item];
       return {deformed.corners.positions, deformed.corners.normals, deformed.corners.tangents,
-              deformed.tangentErrorDegrees.empty() ? std::span<const float>(item.tangentErrorDegrees) : deformed.tangentErrorDegrees};
+              deformed.tangentErrorDegrees.empty() ? std::span<const float>(item.tangentErrorDegrees) : deformed.tangentErrorDegrees,
+              deformed.corners.compareTangents};
     }
-  return itemFrames(scene_.items[scene_.instances[instance].item]);
+  const std::uint32_t item = scene_.instances[instance].item;
+  return itemFrames(scene_.items[item], compareTangentsOf(item));
+}
+
+std::span<const float> Renderer::compareTangentsOf(std::size_t item) const {
+  const gltf::DrawItem& drawItem = scene_.items[item];
+  if (item < compareTangents_.size() && compareTangents_[item].size() == drawItem.tangents.size()) return compareTangents_[item];
+  if (drawItem.computedTangents.size() == drawItem.tangents.size()) return drawItem.computedTangents;
+  return drawItem.tangents;
+}
+
+void Renderer::setCompareTangents(std::vector<std::vector<float>> perItem) {
+  compareTangents_ = std::move(perItem);
+  // Every mesh's vertices again (each deforming instance's own buffer starts from its item's),
+  // then the pose again, which deforms the new set along.
+  auto upload = [&](std::size_t item, std::size_t mesh) {
+    const std::vector<float> data = packMeshVertices(scene_.items[item], itemFrames(scene_.items[item], compareTangentsOf(item)));
+    glBindBuffer(GL_ARRAY_BUFFER, meshes_[mesh].vertices.get());
+    glBufferSubData(GL_ARRAY_BUFFER, 0, static_cast<GLsizeiptr>(data.size() * sizeof(float)), data.data());
+  };
+  for (std::size_t item = 0; item < scene_.items.size(); ++item) upload(item, item);  // setScene uploads items first
+  for (const DeformedInstance& deformed : deformed_) upload(scene_.instances[deformed.instance].item, instances_[deformed.instance].mesh);
+  if (const std::optional<PoseTime> pose = pose_) {
+    pose_.reset();
+    setPose(*pose);
+  }
 }
 
 void Renderer::uploadDeformed(const DeformedInstance& deformed) {
@@ -268,7 +296,7 @@ bool Renderer::setPose(PoseTime time) {
     const int skin = scene_.nodes[source.node].skin;
     std::vector<glm::mat4> joints;
     if (skin >= 0 && item.influencesPerCorner > 0) joints = jointMatrices(scene_.skins[skin], pose, source.node);
-    deformItem(item, pose.weights[source.node], joints, deformed.corners);
+    deformItem(item, pose.weights[source.node], joints, deformed.corners, compareTangentsOf(source.item));
     if (deformed.weights != pose.weights[source.node]) {
       deformed.weights = pose.weights[source.node];
       deformed.tangentErrorDegrees.clear();  // the load's until the error view asks (render)
@@ -504,10 +532,6 @@ FrameStats Renderer::render(const CameraMatrices& camera, const RenderSettings& 
   }
   glViewport(0, 0, width, height);
   glClearColor(0.16f, 0.17f, 0.19f, 1.0f);
-  glDepthMask(GL_TRUE);
-  glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
-  glEnable(GL_DEPTH_TEST);
-  glDisable(GL_CULL_FACE);
 
   // Opaque and masked meshes front to back (less overdraw): the mesh with the nearest instance
   // first, its instances front to back, so that each mesh's state is set once. Then blended
@@ -547,44 +571,68 @@ FrameStats Renderer::render(const CameraMatrices& camera, const RenderSettings& 
   for (const Ordered& entry : transparentOrder) transparent.push_back(entry.instance);
   stats.exposure = exposure(settings);
   const bool prePass = settings.depthPrePass && settings.view == DebugView::lit && !opaque.empty();
-  if (prePass) {
-    // Depth of the opaque and masked meshes first, so that the shading pass below runs the
-    // fragment shader once per pixel; same culling, same invariant positions, GL_LEQUAL.
-    glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
-    drawDepth(opaque, camera.projection * camera.view, settings, false, true);
-    stats.drawCalls += static_cast<int>(opaque.size());
-    glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
-    glDepthFunc(GL_LEQUAL);
-    glDepthMask(GL_FALSE);
-  }
-  drawInstances(opaque, camera, settings, anyShadows, stats);
-  if (prePass) {
-    glDepthFunc(GL_LESS);
+  // The whole scene with one tangent set, into the framebuffer's scissor box (when enabled).
+  auto drawScene = [&](TangentSet tangents) {
     glDepthMask(GL_TRUE);
+    glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+    glEnable(GL_DEPTH_TEST);
+    glDisable(GL_CULL_FACE);
+    if (prePass) {
+      // Depth of the opaque and masked meshes first, so that the shading pass below runs the
+      // fragment shader once per pixel; same culling, same invariant positions, GL_LEQUAL.
+      glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
+      drawDepth(opaque, camera.projection * camera.view, settings, false, true);
+      stats.drawCalls += static_cast<int>(opaque.size());
+      glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+      glDepthFunc(GL_LEQUAL);
+      glDepthMask(GL_FALSE);
+    }
+    drawInstances(opaque, camera, settings, anyShadows, tangents, stats);
+    if (prePass) {
+      glDepthFunc(GL_LESS);
+      glDepthMask(GL_TRUE);
+    }
+    if (!transparent.empty()) {
+      glEnable(GL_BLEND);
+      glBlendFuncSeparate(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA, GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
+      drawInstances(transparent, camera, settings, anyShadows, tangents, stats);
+      glDisable(GL_BLEND);
+    }
+    glFrontFace(GL_CCW);
+    glDisable(GL_CULL_FACE);
+  };
+  // Split view: the same scene twice, each into its side of the divider, then the divider.
+  const bool split = settings.split && settings.view != DebugView::compareAngle;
+  const int divider = std::clamp(static_cast<int>(std::lround(settings.splitPosition * static_cast<float>(width))), 0, width);
+  if (split) {
+    glEnable(GL_SCISSOR_TEST);
+    glScissor(divider, 0, width - divider, height);
+    drawScene(TangentSet::compare);
+    glScissor(0, 0, divider, height);
   }
-  if (!transparent.empty()) {
-    glEnable(GL_BLEND);
-    glBlendFuncSeparate(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA, GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
-    drawInstances(transparent, camera, settings, anyShadows, stats);
-    glDisable(GL_BLEND);
-  }
-  glFrontFace(GL_CCW);
-  glDisable(GL_CULL_FACE);
+  drawScene(TangentSet::file);
   if (settings.glyphs) {
-    drawGlyphs(camera, settings);
+    drawGlyphs(camera, settings);  // the file's frames, left of the divider in the split view
     ++stats.drawCalls;
+  }
+  if (split) {
+    glScissor(std::max(divider - 1, 0), 0, 2, height);
+    glClearColor(0.85f, 0.85f, 0.85f, 1.0f);
+    glClear(GL_COLOR_BUFFER_BIT);
+    glClearColor(0.16f, 0.17f, 0.19f, 1.0f);
+    glDisable(GL_SCISSOR_TEST);
   }
   glBindVertexArray(0);
   return stats;
 }
 
 void Renderer::drawInstances(std::span<const GpuInstance* const> instances, const CameraMatrices& camera, const RenderSettings& settings,
-                             bool shadows, FrameStats& stats) {
+                             bool shadows, TangentSet tangents, FrameStats& stats) {
   BoundMesh bound;
   for (const GpuInstance* instance : instances) {
     const GpuMesh& mesh = meshes_[instance->mesh];
     if (bound.mesh != instance->mesh) {
-      const GLuint program = bindMesh(mesh, camera, settings, shadows);
+      const GLuint program = bindMesh(mesh, camera, settings, shadows, tangents);
       applyCulling(mesh, settings);
       bound = BoundMesh{instance->mesh, glGetUniformLocation(program, "u_model"), glGetUniformLocation(program, "u_normalMatrix"),
                         glGetUniformLocation(program, "u_mirror"), -1};
@@ -607,7 +655,8 @@ void Renderer::drawInstance(const GpuInstance& instance, BoundMesh& bound) {
   glDrawArrays(GL_TRIANGLES, 0, meshes_[instance.mesh].count);
 }
 
-GLuint Renderer::bindMesh(const GpuMesh& mesh, const CameraMatrices& camera, const RenderSettings& settings, bool shadows) {
+GLuint Renderer::bindMesh(const GpuMesh& mesh, const CameraMatrices& camera, const RenderSettings& settings, bool shadows,
+                          TangentSet tangents) {
   gltf::MaterialDesc material;
   material.roughness = 0.5f;
   material.metallic = 0.0f;
@@ -624,6 +673,8 @@ GLuint Renderer::bindMesh(const GpuMesh& mesh, const CameraMatrices& camera, con
   setUniform(program, "u_useNormalMap", settings.normalMapping ? 1 : 0);
   setUniform(program, "u_useSpecular", settings.specular ? 1 : 0);
   setUniform(program, "u_flipGreen", settings.flipGreen ? 1 : 0);
+  setUniform(program, "u_compareSide", tangents == TangentSet::compare ? 1 : 0);
+  setUniform(program, "u_bitangentPerFragment", settings.bitangent == BitangentMode::perFragment ? 1 : 0);
   setUniform(program, "u_specularModel", settings.shading == Shading::phong ? 1 : 0);
   setUniform(program, "u_blend", material.alphaMode == gltf::MaterialDesc::AlphaMode::blend ? 1 : 0);
   setUniform(program, "u_alphaCutoff", material.alphaCutoff);

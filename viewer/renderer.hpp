@@ -37,6 +37,21 @@ struct Light {
 // The share of a light's direct illuminance that the viewer adds as ambient (sky) light.
 inline constexpr float kAmbientShare = 0.06f;
 
+// Where the normal-mapping frame's bitangent comes from (Substance's "compute tangent space per
+// fragment" choice): per fragment, B = cross(N, T) * w from the interpolated N and T (MikkTSpace's
+// recommendation), or per vertex, B = cross(N, T) * w at each vertex, interpolated.
+enum class BitangentMode : std::uint8_t { perFragment, perVertex };
+
+struct BitangentModeInfo {
+  BitangentMode mode;
+  const char* name;  // for --bitangent and the panel
+};
+
+inline constexpr BitangentModeInfo kBitangentModes[] = {
+    {BitangentMode::perFragment, "per-fragment"},
+    {BitangentMode::perVertex, "per-vertex"},
+};
+
 struct RenderSettings {
   DebugView view = DebugView::lit;
   bool normalMapping = true;
@@ -56,16 +71,26 @@ struct RenderSettings {
   ToneMapping toneMapping = ToneMapping::khrPbrNeutral;
   float exposure = 0;        // linear factor before tone mapping; <= 0: automatic (Renderer::exposure)
   bool depthPrePass = false; // opaque meshes' depth first, then shading with GL_LEQUAL and no depth writes
+  BitangentMode bitangent = BitangentMode::perFragment;
+  // Split view: left of the divider the file's TANGENT, right of it the compare set
+  // (Renderer::setCompareTangents); not in the compare-angle view, which shows both at once.
+  bool split = false;
+  float splitPosition = 0.5f;  // the divider, as a fraction of the width from the left
 };
+
+// Which tangents a draw shades with: the file's TANGENT (or those computed at load when it has
+// none), or the compare set.
+enum class TangentSet : std::uint8_t { file, compare };
 
 // Positions (3 per corner), normals (3) and tangents (4) of a primitive's corners: its own, or
 // as deformed by the pose.
 struct CornerFrames {
   std::span<const float> positions, normals, tangents;
   std::span<const float> tangentErrorDegrees;  // 1 per corner, for the error view
+  std::span<const float> compareTangents;      // 4 per corner, the set compared with `tangents`
 };
-inline CornerFrames itemFrames(const gltf::DrawItem& item) {
-  return {item.positions, item.normals, item.tangents, item.tangentErrorDegrees};
+inline CornerFrames itemFrames(const gltf::DrawItem& item, std::span<const float> compareTangents) {
+  return {item.positions, item.normals, item.tangents, item.tangentErrorDegrees, compareTangents};
 }
 
 struct CameraMatrices {
@@ -93,6 +118,11 @@ class Renderer {
   // skinned instances on the CPU and updating the bounds; the rest pose until called. Returns
   // whether anything changed (false for a scene without nodes to pose, or the same time).
   bool setPose(PoseTime time);
+  // The tangent set the split view's right side and the compare-angle view compare with the
+  // file's: per scene item, 4 floats per corner (deformed with the pose as the file's are). An
+  // item without a set of its corner count, and every item when `perItem` is empty (the default),
+  // compares with its freshly computed tangents (DrawItem::computedTangents).
+  void setCompareTangents(std::vector<std::vector<float>> perItem);
   // Draws into the bound framebuffer of the given size.
   FrameStats render(const CameraMatrices& camera, const RenderSettings& settings, int width, int height);
 
@@ -143,9 +173,9 @@ class Renderer {
   };
   // Each instance with the shader variant its material needs, in the order given.
   void drawInstances(std::span<const GpuInstance* const> instances, const CameraMatrices& camera, const RenderSettings& settings,
-                     bool shadows, FrameStats& stats);
+                     bool shadows, TangentSet tangents, FrameStats& stats);
   // Binds a mesh's program, material, lights and vertices for drawInstance; returns the program.
-  GLuint bindMesh(const GpuMesh& mesh, const CameraMatrices& camera, const RenderSettings& settings, bool shadows);
+  GLuint bindMesh(const GpuMesh& mesh, const CameraMatrices& camera, const RenderSettings& settings, bool shadows, TangentSet tangents);
   // Sets the instance's transform (and front face) and draws it.
   void drawInstance(const GpuInstance& instance, BoundMesh& bound);
   void drawShadowMap(const RenderSettings& settings);
@@ -159,6 +189,8 @@ class Renderer {
   void placeInstance(GpuInstance& instance, const glm::mat4& model, const gltf::DrawItem& item);
   // Scene instance i's corners as drawn: deformed when it deforms, else its item's.
   CornerFrames framesOf(std::size_t instance) const;
+  // Scene item i's compare set: compareTangents_[i] when it fits, else its fresh tangents.
+  std::span<const float> compareTangentsOf(std::size_t item) const;
   void applyCulling(const GpuMesh& mesh, const RenderSettings& settings) const;
   void drawGlyphs(const CameraMatrices& camera, const RenderSettings& settings);
   glm::mat4 lightViewProjection() const;
@@ -182,6 +214,7 @@ class Renderer {
   void uploadDeformed(const DeformedInstance& deformed);
   std::vector<DeformedInstance> deformed_;
   std::optional<PoseTime> pose_;  // the pose drawn; none: the rest pose as loaded
+  std::vector<std::vector<float>> compareTangents_;  // per scene item (setCompareTangents)
   std::vector<Texture> textures_;      // per scene image, linear data (empty when unused or failed)
   std::vector<Texture> srgbTextures_;  // per scene image, sRGB colour (empty when unused or failed)
   Texture sphereMap_;

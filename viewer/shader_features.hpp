@@ -36,6 +36,7 @@ enum class DebugView : std::uint8_t {
   tangentError,
   faceOrientation,
   handednessWorld,  // after faceOrientation: keys 1-9 keep their views
+  compareAngle,     // the per-pixel angle between the file's frames and the compare set's
 };
 
 struct FeatureDefine {
@@ -91,6 +92,7 @@ inline constexpr DebugViewInfo kDebugViews[] = {
     {DebugView::tangentError, "DEBUG_TANGENT_ERROR", "error"},
     {DebugView::faceOrientation, "DEBUG_FACE_ORIENTATION", "face-orientation"},
     {DebugView::handednessWorld, "DEBUG_HANDEDNESS_WORLD", "handedness-world"},
+    {DebugView::compareAngle, "DEBUG_COMPARE_ANGLE", "compare-angle"},
 };
 
 // Tone mapping of the lit views' linear colour before the sRGB encoding, as the Khronos glTF

@@ -11,7 +11,7 @@
 namespace tangent::viewer {
 
 // Where a mesh vertex attribute's values come from in a gltf::DrawItem.
-enum class VertexSource : unsigned char { position, normal, tangent, uvNormal, uv0, uv1, tangentError, cornerProblems };
+enum class VertexSource : unsigned char { position, normal, tangent, uvNormal, uv0, uv1, tangentError, cornerProblems, compareTangent };
 
 struct VertexAttribute {
   const char* name;      // the GLSL input
@@ -31,6 +31,7 @@ inline constexpr VertexAttribute kMeshVertexLayout[] = {
     {"a_uv1", 5, 2, 14, VertexSource::uv1},
     {"a_tangentError", 6, 1, 16, VertexSource::tangentError},
     {"a_cornerProblems", 7, 1, 17, VertexSource::cornerProblems},
+    {"a_tangentCompare", 8, 4, 18, VertexSource::compareTangent},  // the set compared with the file's
 };
 
 // lines.vert: tangent-frame glyphs.
@@ -51,6 +52,6 @@ constexpr int floatsPerVertex(std::span<const VertexAttribute> layout) {
 
 inline constexpr int kMeshFloatsPerVertex = floatsPerVertex(kMeshVertexLayout);
 inline constexpr int kLineFloatsPerVertex = floatsPerVertex(kLineVertexLayout);
-static_assert(kMeshFloatsPerVertex == 18 && kLineFloatsPerVertex == 6, "offsets must follow each other");
+static_assert(kMeshFloatsPerVertex == 22 && kLineFloatsPerVertex == 6, "offsets must follow each other");
 
 }  // namespace tangent::viewer

@@ -1405,7 +1405,7 @@ fs::path mirroredDoubleSidedQuad(const TempDir& dir, const std::array<unsigned c
 
 // The mirrored double-sided quad from the front and from the back, in the tangent, bitangent
 // and lit views, against colours worked out by hand from the rule above (the back face's
-// frame reversed, w included). Turning the back face's T and N around but keeping w (B not
+// frame reversed, w included), the bitangent view with either bitangent mode. Turning the back face's T and N around but keeping w (B not
 // reversed) turns the back's bitangent view from (0.5, 0, 0.5) to (0.5, 1, 0.5) and its lit
 // colour from green to red.
 TEST(Viewer, DoubleSidedMirroredQuadBackFaceReversesTheWholeFrame) {
@@ -1428,10 +1428,10 @@ TEST(Viewer, DoubleSidedMirroredQuadBackFaceReversesTheWholeFrame) {
                         {"back", {1.0f, 0.5f, 0.5f}, {0.5f, 0.0f, 0.5f}, 0.0, frontY}};
   for (const Side& side : sides) {
     const std::string common = "'" + file.string() + "' --camera " + side.camera + " --ortho --size 200x200 --no-shadows";
-    {
-      const std::string name = side.camera;
-      const Image tangentView = screenshot(dir, name + "-tangent", common + " --view tangent");
-      const Image bitangentView = screenshot(dir, name + "-bitangent", common + " --view bitangent");
+    for (const char* mode : {"per-fragment", "per-vertex"}) {
+      const std::string name = std::string(side.camera) + "-" + mode;
+      const Image tangentView = screenshot(dir, name + "-tangent", common + " --view tangent --bitangent " + mode);
+      const Image bitangentView = screenshot(dir, name + "-bitangent", common + " --view bitangent --bitangent " + mode);
       ASSERT_EQ(tangentView.width, 200);
       ASSERT_EQ(bitangentView.width, 200);
       for (const auto& [x, y] : {std::pair{100, 100}, std::pair{70, 130}, std::pair{130, 75}}) {
@@ -1455,6 +1455,158 @@ TEST(Viewer, DoubleSidedMirroredQuadBackFaceReversesTheWholeFrame) {
       std::printf("%s lit at (%d, %d): %.3f %.3f %.3f, expected %.3f %.3f %.3f\n", side.camera, x, y, c[0], c[1], c[2], expected[0], expected[1],
                   expected[2]);
       for (int i = 0; i < 3; ++i) EXPECT_NEAR(c[i], expected[i], 0.01) << side.camera << " lit channel " << i;
+    }
+  }
+}
+
+// ---- Comparing two tangent sets (issue 38, item 4) ----
+
+// A quad over [-1, 1]^2 at z = 0 with quadAsset's UVs (u = (x + 1) / 2, v = (1 - y) / 2), a
+// plain material, and per vertex (corners at (-1, -1), (1, -1), (1, 1), (-1, 1)) the given
+// NORMAL (3 each) and TANGENT (4 each). For those UVs MikkTSpace's tangent follows increasing
+// u, +x, and the bitangent the image's top (decreasing v), +y = cross(+z, +x): w = +1.
+fs::path framedQuad(const TempDir& dir, const std::string& name, const std::vector<float>& normals, const std::vector<float>& tangents) {
+  GltfWriter gltf;
+  const int position = gltf.floats({-1, -1, 0, 1, -1, 0, 1, 1, 0, -1, 1, 0}, "VEC3", 3);
+  const int normal = gltf.floats(normals, "VEC3", 3);
+  const int tangent = gltf.floats(tangents, "VEC4", 4);
+  const int uv = gltf.floats({0, 1, 1, 1, 1, 0, 0, 0}, "VEC2", 2);
+  const int indices = gltf.shorts({0, 1, 2, 0, 2, 3}, "SCALAR", 1, true);
+  const nlohmann::json attributes = {{"POSITION", position}, {"NORMAL", normal}, {"TANGENT", tangent}, {"TEXCOORD_0", uv}};
+  nlohmann::json doc = {{"scene", 0},
+                        {"scenes", {{{"nodes", {0}}}}},
+                        {"nodes", {{{"mesh", 0}}}},
+                        {"meshes", {{{"primitives", {{{"attributes", attributes}, {"indices", indices}, {"material", 0}}}}}}},
+                        {"materials", {{{"pbrMetallicRoughness", {{"metallicFactor", 0.0}}}}}}};
+  return gltf.write(dir / (name + ".gltf"), doc);
+}
+
+// framedQuad facing +z with the same tangent (x, y, 0, w) at every vertex.
+fs::path flatQuad(const TempDir& dir, const std::string& name, float x, float y, float w) {
+  return framedQuad(dir, name, {0, 0, 1, 0, 0, 1, 0, 0, 1, 0, 0, 1}, {x, y, 0, w, x, y, 0, w, x, y, 0, w, x, y, 0, w});
+}
+
+// The angle the compare-angle view's heatmap (debug_views.glsl: blue 0, green 1, yellow 5, red 20
+// degrees and more, linear between) gives a colour, read from its green channel; -1 where the
+// colour is off the scale.
+double heatmapDegrees(std::array<float, 3> c) {
+  const std::array<float, 3> blue{0.10f, 0.25f, 0.90f}, green{0.10f, 0.80f, 0.20f}, yellow{0.95f, 0.90f, 0.10f}, red{0.90f, 0.10f, 0.10f};
+  const std::array<std::pair<std::array<float, 3>, std::array<float, 3>>, 3> segments{{{blue, green}, {green, yellow}, {yellow, red}}};
+  const double from[] = {0, 1, 5}, to[] = {1, 5, 20};
+  for (int s = 0; s < 3; ++s) {
+    const auto& [a, b] = segments[s];
+    // The segment's parameter from its channel that changes most, then the others must agree.
+    int channel = 0;
+    for (int i = 1; i < 3; ++i)
+      if (std::abs(b[i] - a[i]) > std::abs(b[channel] - a[channel])) channel = i;
+    const double u = (c[channel] - a[channel]) / (b[channel] - a[channel]);
+    if (u < -0.01 || u > 1.01) continue;
+    bool fits = true;
+    for (int i = 0; i < 3; ++i) fits = fits && std::abs(c[i] - (a[i] + u * (b[i] - a[i]))) < 0.01;
+    if (fits) return from[s] + std::clamp(u, 0.0, 1.0) * (to[s] - from[s]);
+  }
+  return -1;
+}
+
+// The compare-angle view: a set against itself shows 0 degrees; the quad's hand-derived
+// MikkTSpace tangent (+x, w = +1) against freshly computed ones shows 0; the tangent turned 10
+// degrees about the normal (cos 10, sin 10, 0), against either, shows 10 degrees (read back within
+// 0.3 degrees, about four steps of the 8-bit green channel), in both bitangent modes; w = -1
+// against +1, opposite bitangents, shows red (20 degrees and more).
+TEST(Viewer, CompareAngleViewShowsTheAngleBetweenTwoTangentSets) {
+  TempDir dir;
+  const float c10 = static_cast<float>(std::cos(10 * 3.14159265358979 / 180)), s10 = static_cast<float>(std::sin(10 * 3.14159265358979 / 180));
+  const fs::path mikk = flatQuad(dir, "mikk", 1, 0, 1);
+  const fs::path turned = flatQuad(dir, "turned", c10, s10, 1);
+  const fs::path flipped = flatQuad(dir, "flipped", 1, 0, -1);
+  struct Case {
+    const char* name;
+    fs::path file;
+    std::string options;
+    double degrees;
+  };
+  const Case cases[] = {{"itself", mikk, "--compare file", 0},
+                        {"fresh", mikk, "", 0},
+                        {"turned-vs-fresh", turned, "--compare fresh", 10},
+                        {"turned-vs-file", mikk, "--compare '" + turned.string() + "'", 10},
+                        {"turned-per-vertex", mikk, "--compare '" + turned.string() + "' --bitangent per-vertex", 10},
+                        {"flipped", mikk, "--compare '" + flipped.string() + "'", 20}};
+  for (const Case& c : cases) {
+    const Image image = screenshot(dir, c.name, "'" + c.file.string() + "' --view compare-angle " + c.options + kQuadView);
+    ASSERT_EQ(image.width, 200) << c.name;
+    for (const auto& [x, y] : {std::pair{0.0, 0.0}, std::pair{-0.6, 0.5}, std::pair{0.7, -0.6}}) {
+      const auto colour = quadPixel(image, x, y);
+      const double seen = heatmapDegrees(colour);
+      std::printf("%s at (%.1f, %.1f): %.3f %.3f %.3f = %.2f degrees, expected %.0f\n", c.name, x, y, colour[0], colour[1], colour[2], seen, c.degrees);
+      EXPECT_NEAR(seen, c.degrees, 0.3) << c.name;
+    }
+  }
+  // A second file of other triangles is refused, naming it.
+  std::string output;
+  const fs::path sphere = fs::path(TANGENT_SOURCE_DIR) / "data" / "demo" / "sphere.gltf";
+  EXPECT_EQ(run("'" + mikk.string() + "' --compare '" + sphere.string() + "' --screenshot '" + (dir / "refused.png").string() + "'", output), 1);
+  EXPECT_NE(output.find("--compare " + sphere.string() + ": "), std::string::npos) << output;
+}
+
+// The split view: left of the divider the file's TANGENT, right of it the compare set, with a
+// light divider between (at --split's fraction of the width). The tangent view of the turned quad
+// against fresh tangents shows 10 degrees on the left and 0 on the right; the unturned quad
+// against the turned file the other way round.
+TEST(Viewer, SplitViewShowsEachTangentSetOnItsSide) {
+  TempDir dir;
+  const float c10 = static_cast<float>(std::cos(10 * 3.14159265358979 / 180)), s10 = static_cast<float>(std::sin(10 * 3.14159265358979 / 180));
+  const fs::path mikk = flatQuad(dir, "mikk", 1, 0, 1);
+  const fs::path turned = flatQuad(dir, "turned", c10, s10, 1);
+  struct Case {
+    const char* name;
+    std::string arguments;
+    int divider;  // pixel column
+    double left, right;
+  };
+  const Case cases[] = {{"turned-fresh", "'" + turned.string() + "' --compare fresh", 100, 10, 0},
+                        {"mikk-turned", "'" + mikk.string() + "' --compare '" + turned.string() + "'", 100, 0, 10},
+                        {"quarter", "'" + turned.string() + "' --compare fresh --split 0.25", 50, 10, 0}};
+  for (const Case& c : cases) {
+    const Image image = screenshot(dir, c.name, c.arguments + " --view tangent" + kQuadView);
+    ASSERT_EQ(image.width, 200) << c.name;
+    for (const int y : {60, 100, 140}) {
+      const double left = tangentAngleDegrees(image.at(c.divider - 12, y)), right = tangentAngleDegrees(image.at(c.divider + 12, y));
+      const auto line = image.at(c.divider, y);
+      std::printf("%s, row %d: left %.2f degrees, right %.2f, divider %.3f %.3f %.3f\n", c.name, y, left, right, line[0], line[1], line[2]);
+      EXPECT_NEAR(left, c.left, 0.5) << c.name;
+      EXPECT_NEAR(right, c.right, 0.5) << c.name;
+      for (int i = 0; i < 3; ++i) EXPECT_NEAR(line[i], 0.85f, 0.01f) << c.name;
+    }
+  }
+}
+
+// Per-vertex and per-fragment bitangents, on a quad whose frame twists across it: the left
+// vertices have N = +z, T = +x (B = cross(N, T) = +y), the right ones N = +x, T = +y (B = +z).
+// At a point a fraction r of the way from left to right, the bitangent view shows, per fragment,
+// cross(N, T) of the interpolated N = (1 - r) z + r x and T = (1 - r) x + r y (T made orthogonal
+// to N first does not turn it); per vertex, the interpolated B = (1 - r) y + r z. Midway these
+// are (-1, 1, 1) / sqrt 3 and (0, 1, 1) / sqrt 2, 35 degrees apart.
+TEST(Viewer, BitangentModesMatchTheirDefinitions) {
+  TempDir dir;
+  const fs::path file = framedQuad(dir, "twisted", {0, 0, 1, 1, 0, 0, 1, 0, 0, 0, 0, 1}, {1, 0, 0, 1, 0, 1, 0, 1, 0, 1, 0, 1, 1, 0, 0, 1});
+  for (const char* mode : {"per-fragment", "per-vertex"}) {
+    const Image image = screenshot(dir, mode, "'" + file.string() + "' --view bitangent --bitangent " + std::string(mode) + kQuadView);
+    ASSERT_EQ(image.width, 200) << mode;
+    const double pixelsPerUnit = image.height / (2 * std::sqrt(2.0) * 1.02);
+    for (const int px : {60, 100, 130, 150}) {
+      const double x = (px + 0.5 - image.width / 2.0) / pixelsPerUnit, r = (x + 1) / 2;
+      double b[3];
+      if (std::string(mode) == "per-fragment") {
+        const double n[3] = {r, 0, 1 - r}, t[3] = {1 - r, r, 0};
+        b[0] = n[1] * t[2] - n[2] * t[1], b[1] = n[2] * t[0] - n[0] * t[2], b[2] = n[0] * t[1] - n[1] * t[0];
+      } else {
+        b[0] = 0, b[1] = 1 - r, b[2] = r;
+      }
+      const double length = std::sqrt(b[0] * b[0] + b[1] * b[1] + b[2] * b[2]);
+      const auto c = image.at(px, 100);
+      std::printf("%s at x = %.3f: %.3f %.3f %.3f, expected %.3f %.3f %.3f\n", mode, x, c[0], c[1], c[2], b[0] / length * 0.5 + 0.5,
+                  b[1] / length * 0.5 + 0.5, b[2] / length * 0.5 + 0.5);
+      for (int i = 0; i < 3; ++i) EXPECT_NEAR(c[i], b[i] / length * 0.5 + 0.5, 0.012) << mode << " x " << x << " channel " << i;
     }
   }
 }
