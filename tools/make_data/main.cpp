@@ -1,7 +1,9 @@
 // SPDX-License-Identifier: MIT
 // Generates the bundled demo asset in data/demo/: a UV sphere, two quads with a mirrored UV
-// island, and a ground plane without a normal map, plus the bump normal map they use.
-// Usage: tangent-make-data OUT_DIR
+// island, and a ground plane without a normal map, plus the bump normal map they use; the
+// viewer's demo scene and primitives. On request (not committed): a skinned and a morphing
+// asset, animated, for the README's images, and a textured sphere for benchmarks.
+// Usage: tangent-make-data OUT_DIR | --animated OUT_DIR | --sphere N OUT_DIR [--one-primitive]
 #include <OpenImageIO/imageio.h>
 
 #include <cmath>
@@ -162,6 +164,49 @@ MeshData torus(int rings, int sides, float major, float minor) {
   return mesh;
 }
 
+// A cylinder of `radius` along +y from 0 to `height`, rings every `height / (rings - 1)`, open at
+// both ends; u goes twice around, v once per unit of height. Rings from the top down, wound
+// as uvSphere's (counter-clockwise seen from outside).
+MeshData cylinder(int rings, int sides, float radius, float height) {
+  MeshData mesh;
+  for (int j = 0; j < rings; ++j) {
+    const double y = height * (1.0 - double(j) / (rings - 1));
+    for (int i = 0; i <= sides; ++i) {
+      const double a = 2 * std::numbers::pi * i / sides;
+      mesh.positions.insert(mesh.positions.end(), {static_cast<float>(radius * std::cos(a)), static_cast<float>(y), static_cast<float>(-radius * std::sin(a))});
+      mesh.normals.insert(mesh.normals.end(), {static_cast<float>(std::cos(a)), 0.0f, static_cast<float>(-std::sin(a))});
+      mesh.uvs.insert(mesh.uvs.end(), {static_cast<float>(2.0 * i / sides), static_cast<float>(height - y)});
+    }
+  }
+  for (int j = 0; j + 1 < rings; ++j) {
+    for (int i = 0; i < sides; ++i) {
+      const auto a = static_cast<std::uint16_t>(j * (sides + 1) + i), b = static_cast<std::uint16_t>(a + sides + 1);
+      mesh.indices.insert(mesh.indices.end(), {a, b, static_cast<std::uint16_t>(a + 1), static_cast<std::uint16_t>(a + 1), b, static_cast<std::uint16_t>(b + 1)});
+    }
+  }
+  return mesh;
+}
+
+// A grid over [-1, 1]^2 at z = 0 facing +z, `segments` squares a side; the map tiles twice.
+MeshData grid(int segments) {
+  MeshData mesh;
+  for (int j = 0; j <= segments; ++j) {
+    for (int i = 0; i <= segments; ++i) {
+      const float x = -1.0f + 2.0f * i / segments, y = 1.0f - 2.0f * j / segments;
+      mesh.positions.insert(mesh.positions.end(), {x, y, 0.0f});
+      mesh.normals.insert(mesh.normals.end(), {0.0f, 0.0f, 1.0f});
+      mesh.uvs.insert(mesh.uvs.end(), {x + 1, 1 - y});
+    }
+  }
+  for (int j = 0; j < segments; ++j) {
+    for (int i = 0; i < segments; ++i) {
+      const auto a = static_cast<std::uint16_t>(j * (segments + 1) + i), b = static_cast<std::uint16_t>(a + segments + 1);
+      mesh.indices.insert(mesh.indices.end(), {a, b, static_cast<std::uint16_t>(a + 1), static_cast<std::uint16_t>(a + 1), b, static_cast<std::uint16_t>(b + 1)});
+    }
+  }
+  return mesh;
+}
+
 MeshData quad(float half) {
   MeshData mesh;
   mesh.positions = {-half, -half, 0, half, -half, 0, half, half, 0, -half, half, 0};
@@ -262,13 +307,38 @@ class DocumentWriter {
     nodes_.push_back(node);
   }
   void addNode(Json node) { nodes_.push_back(std::move(node)); }
+  Json& node(std::size_t index) { return nodes_[index]; }
+  Json& accessor(std::size_t index) { return accessors_[index]; }
+  // The primitive of the mesh added last, to give more attributes or morph targets.
+  Json& lastPrimitive() { return meshes_.back()["primitives"][0]; }
+  Json& lastMesh() { return meshes_.back(); }
+  // An accessor over `count` elements of `type` (SCALAR, VEC3, ...) of float (5126) or unsigned
+  // short (5123) components; its index.
+  std::size_t addAccessor(const void* data, std::size_t count, int componentType, const std::string& type, int target = 0) {
+    const int components = type == "SCALAR" ? 1 : type == "MAT4" ? 16 : type.back() - '0';
+    const std::size_t bytes = count * components * (componentType == 5126 ? 4 : 2);
+    const std::size_t view = target ? addView(data, bytes, target) : addView(data, bytes);
+    accessors_.push_back({{"bufferView", view}, {"componentType", componentType}, {"count", count}, {"type", type}});
+    if (type == "SCALAR" && componentType == 5126 && count > 0) {  // animation inputs need min and max
+      const auto* values = static_cast<const float*>(data);
+      accessors_.back()["min"] = {*std::min_element(values, values + count)};
+      accessors_.back()["max"] = {*std::max_element(values, values + count)};
+    }
+    return accessors_.size() - 1;
+  }
 
   // Writes dir/stem.gltf and dir/stem.bin; `extra` holds materials, textures and the rest.
   void write(const std::filesystem::path& dir, const std::string& stem, Json extra) const {
     std::vector<std::uint8_t> bin = bin_;
     while (bin.size() % 4) bin.push_back(0);
+    // The scene's roots: every node that is no other node's child.
+    std::vector<bool> isChild(nodes_.size(), false);
+    for (const Json& node : nodes_)
+      if (node.contains("children"))
+        for (const Json& child : node["children"]) isChild[child.get<std::size_t>()] = true;
     Json sceneNodes = Json::array();
-    for (std::size_t i = 0; i < nodes_.size(); ++i) sceneNodes.push_back(i);
+    for (std::size_t i = 0; i < nodes_.size(); ++i)
+      if (!isChild[i]) sceneNodes.push_back(i);
     Json doc = {{"asset", {{"version", "2.0"}, {"generator", "libtangent tangent-make-data"}, {"copyright", "libtangent authors, CC0"}}}};
     if (extra.contains("extensionsUsed")) doc["extensionsUsed"] = extra["extensionsUsed"];
     doc["scene"] = 0;
@@ -286,9 +356,10 @@ class DocumentWriter {
   }
 
  private:
-  std::size_t addView(const void* data, std::size_t bytes, int target) {
+  std::size_t addView(const void* data, std::size_t bytes, int target = 0) {
     while (bin_.size() % 4) bin_.push_back(0);
-    views_.push_back({{"buffer", 0}, {"byteOffset", bin_.size()}, {"byteLength", bytes}, {"target", target}});
+    views_.push_back({{"buffer", 0}, {"byteOffset", bin_.size()}, {"byteLength", bytes}});
+    if (target) views_.back()["target"] = target;
     const auto* p = static_cast<const std::uint8_t*>(data);
     bin_.insert(bin_.end(), p, p + bytes);
     return views_.size() - 1;
@@ -318,6 +389,91 @@ Json sharedMaterials(const std::string& imagePrefix) {
        {{{"uri", imagePrefix + "bumps_normal.png"}, {"mimeType", "image/png"}},
         {{"uri", imagePrefix + "white.png"}, {"mimeType", "image/png"}},
         {{"uri", imagePrefix + "specular_regions.png"}, {"mimeType", "image/png"}}}}};
+}
+
+// An animation of one LINEAR sampler driving `path` of `node`.
+Json animation(const std::string& name, std::size_t input, std::size_t output, int node, const std::string& path) {
+  Json sampler = {{"input", input}, {"output", output}, {"interpolation", "LINEAR"}};
+  Json target = {{"node", node}, {"path", path}};
+  Json channel = {{"sampler", 0}, {"target", target}};
+  return {{"name", name}, {"samplers", Json::array({sampler})}, {"channels", Json::array({channel})}};
+}
+
+// The material of the skinned and morphing assets: the bump normal map on a light grey.
+Json bumpsOnly() {
+  return {{"materials", {{{"name", "Bumps"},
+                          {"pbrMetallicRoughness", {{"baseColorFactor", {0.8, 0.8, 0.8, 1}}, {"metallicFactor", 0.0}, {"roughnessFactor", 0.5}}},
+                          {"normalTexture", {{"index", 0}}}}}},
+          {"textures", {{{"source", 0}, {"sampler", 0}}}},
+          {"samplers", {{{"magFilter", 9729}, {"minFilter", 9987}, {"wrapS", 10497}, {"wrapT", 10497}}}},
+          {"images", {{{"uri", "bumps_normal.png"}, {"mimeType", "image/png"}}}}};
+}
+
+// skinned.gltf: a normal-mapped cylinder (radius 0.35, 2 high) skinned to two joints, Root at
+// the origin and Bend at y = 1 (its child), blended linearly from y = 0.8 to 1.2; the animation
+// "bend" turns Bend 90 degrees about z at 1 s and back at 2 s (LINEAR). No TANGENT: bake adds it.
+void writeSkinned(const std::filesystem::path& dir) {
+  DocumentWriter writer;
+  const MeshData mesh = cylinder(21, 32, 0.35f, 2.0f);
+  const float origin[3] = {0, 0, 0};
+  writer.addMesh(mesh, "Cylinder", 0, origin);
+  const std::size_t vertices = mesh.positions.size() / 3;
+  std::vector<std::uint16_t> joints;
+  std::vector<float> weights;
+  for (std::size_t v = 0; v < vertices; ++v) {
+    const float bend = std::clamp((mesh.positions[3 * v + 1] - 0.8f) / 0.4f, 0.0f, 1.0f);
+    // A joint of weight 0 is given as 0 (the validator's ACCESSOR_JOINTS_USED_ZERO_WEIGHT).
+    joints.insert(joints.end(), {0, static_cast<std::uint16_t>(bend > 0 ? 1 : 0), 0, 0});
+    weights.insert(weights.end(), {1 - bend, bend, 0, 0});
+  }
+  writer.lastPrimitive()["attributes"]["JOINTS_0"] = writer.addAccessor(joints.data(), vertices, 5123, "VEC4", 34962);
+  writer.lastPrimitive()["attributes"]["WEIGHTS_0"] = writer.addAccessor(weights.data(), vertices, 5126, "VEC4", 34962);
+  writer.node(0)["skin"] = 0;
+  writer.addNode({{"name", "Root"}, {"children", {2}}});
+  writer.addNode({{"name", "Bend"}, {"translation", {0.0, 1.0, 0.0}}});
+  // Inverse bind matrices (column-major): the joints' world transforms at rest undone.
+  const float inverseBind[32] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, -1, 0, 1};
+  const std::size_t bindMatrices = writer.addAccessor(inverseBind, 2, 5126, "MAT4");
+  const float times[3] = {0, 1, 2};
+  const float h = static_cast<float>(std::sqrt(0.5));
+  const float rotations[12] = {0, 0, 0, 1, 0, 0, h, h, 0, 0, 0, 1};
+  const std::size_t input = writer.addAccessor(times, 3, 5126, "SCALAR"), output = writer.addAccessor(rotations, 3, 5126, "VEC4");
+  Json extra = bumpsOnly();
+  extra["skins"] = {{{"joints", {1, 2}}, {"skeleton", 1}, {"inverseBindMatrices", bindMatrices}}};
+  extra["animations"] = Json::array({animation("bend", input, output, 2, "rotation")});
+  writer.write(dir, "skinned", extra);
+}
+
+// morphing.gltf: a normal-mapped 2 x 2 grid facing +z with one morph target that bends it about
+// the y axis into an arc of 135 degrees (radius 2 / (0.75 pi), its width kept), POSITION and
+// NORMAL deltas analytic; the animation "bend" takes the weight from 0 to 1 at 1 s and back at
+// 2 s (LINEAR). No TANGENT: bake adds it and its deltas.
+void writeMorphing(const std::filesystem::path& dir) {
+  DocumentWriter writer;
+  const MeshData mesh = grid(24);
+  const float origin[3] = {0, 0, 0};
+  writer.addMesh(mesh, "Sheet", 0, origin);
+  const std::size_t vertices = mesh.positions.size() / 3;
+  const double radius = 2.0 / (0.75 * std::numbers::pi);
+  std::vector<float> positionDeltas, normalDeltas;
+  for (std::size_t v = 0; v < vertices; ++v) {
+    const double x = mesh.positions[3 * v], angle = x / radius;
+    positionDeltas.insert(positionDeltas.end(), {static_cast<float>(radius * std::sin(angle) - x), 0.0f, static_cast<float>(radius * std::cos(angle) - radius)});
+    normalDeltas.insert(normalDeltas.end(), {static_cast<float>(std::sin(angle)), 0.0f, static_cast<float>(std::cos(angle) - 1)});
+  }
+  const std::size_t positions = writer.addAccessor(positionDeltas.data(), vertices, 5126, "VEC3", 34962);
+  // A POSITION morph target needs its bounds (glTF 2.0 3.7.2.2).
+  float lo[3] = {1e30f, 1e30f, 1e30f}, hi[3] = {-1e30f, -1e30f, -1e30f};
+  for (std::size_t i = 0; i < positionDeltas.size(); ++i) lo[i % 3] = std::min(lo[i % 3], positionDeltas[i]), hi[i % 3] = std::max(hi[i % 3], positionDeltas[i]);
+  writer.accessor(positions)["min"] = {lo[0], lo[1], lo[2]};
+  writer.accessor(positions)["max"] = {hi[0], hi[1], hi[2]};
+  writer.lastPrimitive()["targets"] = {{{"POSITION", positions}, {"NORMAL", writer.addAccessor(normalDeltas.data(), vertices, 5126, "VEC3", 34962)}}};
+  writer.lastMesh()["weights"] = {0.0};
+  const float times[3] = {0, 1, 2}, weights[3] = {0, 1, 0};
+  const std::size_t input = writer.addAccessor(times, 3, 5126, "SCALAR"), output = writer.addAccessor(weights, 3, 5126, "SCALAR");
+  Json extra = bumpsOnly();
+  extra["animations"] = Json::array({animation("bend", input, output, 0, "weights")});
+  writer.write(dir, "morphing", extra);
 }
 
 }  // namespace
@@ -381,8 +537,21 @@ int main(int argc, char** argv) {
   namespace fs = std::filesystem;
   if ((argc == 4 || (argc == 5 && std::string(argv[4]) == "--one-primitive")) && std::string(argv[1]) == "--sphere")
     return writeBenchmarkSphere(std::atoi(argv[2]), argv[3], argc == 5);
+  if (argc == 3 && std::string(argv[1]) == "--animated") {
+    const fs::path dir = argv[2];
+    fs::create_directories(dir);
+    if (!writeBumpNormalMap(dir / "bumps_normal.png", 256, 4)) {
+      std::cerr << "tangent-make-data: cannot write " << (dir / "bumps_normal.png") << ": " << OIIO::geterror() << "\n";
+      return 1;
+    }
+    writeSkinned(dir);
+    writeMorphing(dir);
+    std::cout << "wrote " << dir.string() << ": skinned.gltf, morphing.gltf and bumps_normal.png\n";
+    return 0;
+  }
   const char* usage =
       "usage: tangent-make-data OUT_DIR              the bundled demo data\n"
+      "       tangent-make-data --animated OUT_DIR   a skinned and a morphing asset with a \"bend\" animation\n"
       "       tangent-make-data --sphere N OUT_DIR [--one-primitive]\n"
       "                                              a textured N x N UV sphere for benchmarks (split into\n"
       "                                              uint16-indexed meshes, or one uint32-indexed primitive)\n";
