@@ -1610,3 +1610,28 @@ TEST(Viewer, BitangentModesMatchTheirDefinitions) {
     }
   }
 }
+
+// The compare set deforms as the file's tangents do: with the divider at the left edge
+// (--split 0) the whole tangent view shows the compare set, here the file's own TANGENT again,
+// and it must show the skinned cylinder's bent tangents (90, 135, 180 degrees, as the file's
+// side does) and the morphed quad's tangent turned 45 degrees at weight 1, not the rest pose's.
+TEST(Viewer, CompareSetIsSkinnedAndMorphedAlong) {
+  TempDir dir;
+  const Image bent = screenshot(dir, "bent", "'" + bentCylinder(dir, "bent", 90, false).string() +
+                                                 "' --view tangent --compare file --split 0 --camera front --ortho --size 300x300");
+  ASSERT_EQ(bent.width, 300);
+  const auto angles = cylinderTangentAngles(bent, 90);
+  const double expected[] = {90, 135, 180};
+  for (int i = 0; i < 3; ++i) {
+    const double seen = angles[i] < 0 ? angles[i] + 360 : angles[i];
+    std::printf("compare set on the bent cylinder, part %d: tangent at %.2f degrees, expected %.1f\n", i, seen, expected[i]);
+    EXPECT_NEAR(seen, expected[i], 3.0) << i;
+  }
+  const float c45 = static_cast<float>(std::sqrt(0.5));
+  const Image morphed = screenshot(dir, "morphed", "'" + morphQuad(dir, "morphed", {}, {c45 - 1, c45, 0}, {1.0}).string() +
+                                                       "' --view tangent --compare file --split 0" + kQuadView);
+  ASSERT_EQ(morphed.width, 200);
+  const double seen = tangentAngleDegrees(quadPixel(morphed, 0.3, 0.2));
+  std::printf("compare set on the morphed quad: tangent at %.2f degrees, expected 45\n", seen);
+  EXPECT_NEAR(seen, 45, 1.0);
+}
