@@ -91,6 +91,10 @@ const fs::path& demoFolder() {
   return folder;
 }
 
+// What the split view's right side and the compare-angle view compare the file's tangents with
+// (--compare): MikkTSpace computed at load, the file's own TANGENT again, or a second file's.
+enum class CompareSource : std::uint8_t { fresh, file, otherFile };
+
 struct Options {
   fs::path input = demoFolder() / "scene.gltf";
   std::optional<fs::path> screenshot;
@@ -108,7 +112,8 @@ struct Options {
   int msaaSamples = -1;  // 0: off; -1: 4, or off on a software rasteriser (softwareRasteriser)
   std::optional<std::string> animation;  // --animation N|NAME (with --time alone: animation 0)
   std::optional<float> time;             // --time SECONDS
-  std::string compare = "fresh";         // --compare: fresh, file or a second file's path
+  CompareSource compare = CompareSource::fresh;
+  fs::path compareFile;                  // --compare FILE
 };
 
 int parseOptions(int argc, char** argv, Options& options) {
@@ -166,7 +171,9 @@ int parseOptions(int argc, char** argv, Options& options) {
       else if (arg == "--depth-prepass") options.settings.depthPrePass = true;
       else if (arg == "--animation") options.animation = value();
       else if (arg == "--compare") {
-        options.compare = value();
+        const std::string source = value();
+        options.compare = source == "fresh" ? CompareSource::fresh : source == "file" ? CompareSource::file : CompareSource::otherFile;
+        if (options.compare == CompareSource::otherFile) options.compareFile = source;
         options.settings.split = true;
       } else if (arg == "--split") {
         const float place = std::stof(value());
@@ -266,26 +273,26 @@ struct Viewer {
   }
 
   // Hands the renderer the set that the split view's right side and the compare-angle view
-  // compare with the file's tangents, as options.compare names it: fresh (the renderer's
+  // compare with the file's tangents, as options.compare says: fresh (the renderer's
   // default), file (the file's own) or a second file, whose primitives must hold the same
   // triangles in the same order. False, with a message, when that file cannot be used.
   bool applyCompare() {
     const auto& items = renderer.scene().items;
     std::vector<std::vector<float>> sets;
     auto refuse = [&](const std::string& why) {
-      const std::string text = "--compare " + options.compare + ": " + why + "; compared with fresh tangents instead";
+      const std::string text = "--compare " + options.compareFile.string() + ": " + why + "; compared with fresh tangents instead";
       messages.push_back(text);
       std::cerr << "error: " << text << "\n";
-      options.compare = "fresh";
+      options.compare = CompareSource::fresh;
       renderer.setCompareTangents({});
       return false;
     };
-    if (options.compare == "file") {
+    if (options.compare == CompareSource::file) {
       for (const auto& item : items) sets.push_back(item.tangents);
-    } else if (options.compare != "fresh") {
+    } else if (options.compare == CompareSource::otherFile) {
       tangent::gltf::Scene other;
       try {
-        other = tangent::gltf::loadScene(options.compare);
+        other = tangent::gltf::loadScene(options.compareFile);
       } catch (const std::exception& e) {
         return refuse(e.what());
       }
@@ -305,7 +312,7 @@ struct Viewer {
           if (!(std::abs(mine[k] - theirs[k]) <= tolerance))
             return refuse(other.items[i].label + "'s corner " + std::to_string(k / 3) + " is elsewhere than " + items[i].label + "'s");
         if (!other.items[i].tangentsFromFile)
-          messages.push_back("--compare " + options.compare + ": " + other.items[i].label + " has no TANGENT; its tangents were computed at load");
+          messages.push_back("--compare " + options.compareFile.string() + ": " + other.items[i].label + " has no TANGENT; its tangents were computed at load");
         sets.push_back(std::move(other.items[i].tangents));
       }
     }
@@ -519,28 +526,31 @@ void drawPanel(Viewer& viewer, GLFWwindow* window, const FrameStats& stats, doub
   if (ImGui::CollapsingHeader("Compare", ImGuiTreeNodeFlags_DefaultOpen)) {
     ImGui::Checkbox("split view (c)", &s.split);
     if (s.split) ImGui::SliderFloat("divider", &s.splitPosition, 0, 1, "%.2f");
+    Options& o = viewer.options;
     static char otherFile[1024] = {};
-    static bool secondFileChosen = false;  // in the combo, before a file is named
-    int source = viewer.options.compare == "fresh" ? (secondFileChosen ? 2 : 0) : viewer.options.compare == "file" ? 1 : 2;
+    if (!otherFile[0] && !o.compareFile.empty()) std::snprintf(otherFile, sizeof otherFile, "%s", o.compareFile.string().c_str());
+    static bool secondFileChosen = o.compare == CompareSource::otherFile;  // in the combo, also before a file is named
+    int source = secondFileChosen ? static_cast<int>(CompareSource::otherFile) : static_cast<int>(o.compare);
+    auto compareWithFile = [&] {
+      o.compare = CompareSource::otherFile;
+      o.compareFile = otherFile;
+      viewer.applyCompare();
+    };
     if (ImGui::Combo("compare with", &source, "fresh MikkTSpace\0" "the file itself\0" "a second file\0")) {
-      secondFileChosen = source == 2;
-      if (source < 2) {
-        viewer.options.compare = source == 0 ? "fresh" : "file";
+      secondFileChosen = static_cast<CompareSource>(source) == CompareSource::otherFile;
+      if (!secondFileChosen) {
+        o.compare = static_cast<CompareSource>(source);
         viewer.applyCompare();
       } else if (otherFile[0]) {
-        viewer.options.compare = otherFile;
-        viewer.applyCompare();
+        compareWithFile();
       }
     }
-    if (source == 2) {
-      if (ImGui::InputText("second file", otherFile, sizeof otherFile, ImGuiInputTextFlags_EnterReturnsTrue)) {
-        viewer.options.compare = otherFile;
-        viewer.applyCompare();
-      }
-    }
-    ImGui::TextWrapped("left: the file's TANGENT; right (and compare-angle, key a): %s", viewer.options.compare == "fresh"  ? "MikkTSpace computed at load"
-                                                                                     : viewer.options.compare == "file" ? "the file's TANGENT again"
-                                                                                                                        : viewer.options.compare.c_str());
+    if (secondFileChosen && ImGui::InputText("second file", otherFile, sizeof otherFile, ImGuiInputTextFlags_EnterReturnsTrue))
+      compareWithFile();
+    const std::string right = o.compare == CompareSource::fresh  ? "MikkTSpace computed at load"
+                              : o.compare == CompareSource::file ? "the file's TANGENT again"
+                                                                 : o.compareFile.string() + "'s TANGENT";
+    ImGui::TextWrapped("left: the file's TANGENT; right (and compare-angle, key a): %s", right.c_str());
     int mode = static_cast<int>(s.bitangent);
     const char* modeNames[std::size(kBitangentModes)];
     for (std::size_t i = 0; i < std::size(kBitangentModes); ++i) modeNames[i] = kBitangentModes[i].name;
