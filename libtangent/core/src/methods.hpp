@@ -6,9 +6,12 @@
 #include <span>
 
 #include "tangent/halfedge_mesh.hpp"
+#include "workspace.hpp"
 
 namespace tangent::detail {
 
-Report lengyelTangents(CornerMesh& mesh, const Options& options, std::span<FrameSource> sources);  // and flat
+// Runs on ws's threads: the caller resolves them (threadCount) and enters onThreads(ws).
+Report lengyelTangents(const WorkspaceData& ws, CornerMesh& mesh, const Options& options,
+                       std::span<FrameSource> sources);  // and flat
 
 }  // namespace tangent::detail
