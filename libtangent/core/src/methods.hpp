@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: MIT
 // The methods on the half-edge mesh (`lengyel`, `flat`); `mikktspace` runs on packed arrays
-// (mikktspace.cpp, workspace.hpp).
+// (mikktspace/kernel.cpp, workspace.hpp).
 #pragma once
 
 #include <span>
