@@ -37,6 +37,32 @@ class BucketUnionFind {
 };
 
 
+// One bucket on the full path (grouping.cpp): what its steps share.
+struct FullBucket {
+  std::uint32_t bucket;
+  const std::uint32_t* list;  // its corners
+  std::uint32_t count;
+  bool fan;                   // one group of every corner, in list order (no keys)
+  V3 n;                       // unit normal (bucketNormal)
+  F3 rawNormal;               // the normal as stored, for the reference's float rules
+  V3 here;                    // the corners' common position (where a component is zero its
+                              // sign may differ between corners, which moves no angle)
+  BucketScratch& scratch;     // keys: (root, local index) per member, group by group
+  std::size_t memberCount;
+  std::uint32_t member(std::size_t m) const {
+    return fan ? static_cast<std::uint32_t>(m) : static_cast<std::uint32_t>(scratch.keys[m]);
+  }
+  std::uint32_t rootOf(std::size_t m) const { return static_cast<std::uint32_t>(scratch.keys[m] >> 32); }
+};
+
+// A group's rows (Kernel::groupRows): kRowStride doubles each, and their value order.
+constexpr int kRowStride = 10;
+struct GroupRows {
+  const double* values = nullptr;
+  std::size_t contributing = 0;
+  const std::uint32_t* sorted = nullptr;
+};
+
 class Kernel {
  public:
   Kernel(WorkspaceData& ws, const MeshArrays& mesh, const CornerOutputs& outputs, UvOrigin origin)
@@ -61,11 +87,19 @@ class Kernel {
 
   void evaluateTriangles(Report& report);
   void pairBucket(std::uint32_t bucket, BucketScratch& scratch);
+  void resetLinks(const std::uint32_t* list, std::uint32_t count);
+  bool pairSmallBucket(std::uint32_t bucket, const std::uint32_t* list, std::uint32_t count);
+  void pairSorted(const std::uint32_t* list, std::uint32_t count, BucketScratch& scratch);
+  void markDuplicates(const std::uint64_t* outs, std::size_t n);
   void pairNonManifold(const std::uint32_t* outs, std::size_t outCount, const std::uint32_t* ins, std::size_t inCount);
   void resolveGroupWithAny();
   V3 bucketNormal(std::uint32_t bucket, bool& invalid) const;
   // Adds the bucket's corners with a negative w (as stored) to `mirrored`, copies aside.
   void groupBucket(std::uint32_t bucket, BucketScratch& scratch, std::uint64_t& mirrored);
+  void groupMembers(FullBucket& b);
+  std::size_t groupRows(FullBucket& b, std::size_t g, std::size_t gEnd);
+  V3 subgroupSum(const FullBucket& b, const GroupRows& rows, std::size_t self, double& weights) const;
+  bool groupFrames(FullBucket& b, std::size_t g, std::size_t gEnd);
   bool fastBucket(std::uint32_t bucket, const std::uint32_t* list, std::uint32_t count, std::uint64_t& mirrored);
   // Whether the triangles of a bucket's corners share one UV orientation (with a chain of
   // links through all of them from pairBucket: one group of every corner).
