@@ -10,6 +10,7 @@
 #include <cstdint>
 #include <limits>
 
+#include "../gram_schmidt.hpp"
 #include "../workspace.hpp"
 
 namespace tangent::detail::mikk {
@@ -54,12 +55,10 @@ inline F3 referenceProjected(F3 v, F3 n) {
 // Gram-Schmidt of `sum` against the unit normal n; false where nothing of it lies in the
 // tangent plane.
 inline bool orthonormalize(V3 sum, V3 n, V3& out) {
-  const double sumLength = length(sum);
-  if (!(sumLength > 0) || !std::isfinite(sumLength)) return false;
-  const V3 t = sum - n * dot(n, sum);
-  const double l = length(t);
-  if (!(l > 1e-12 * sumLength)) return false;
-  out = t * (1.0 / l);
+  const double s[3] = {sum.x, sum.y, sum.z}, unit[3] = {n.x, n.y, n.z};
+  double t[3];
+  if (!detail::orthonormalize(s, unit, t)) return false;
+  out = {t[0], t[1], t[2]};
   return true;
 }
 
