@@ -140,7 +140,9 @@ void counters(benchmark::State& state, const Input& in, unsigned threads) {
 }
 
 unsigned actualThreads(unsigned requested) {
-  return requested ? requested : std::max(1u, std::thread::hardware_concurrency());
+  tangent::Options options;
+  options.threads = requested;
+  return tangent::threadCount(options);  // the library's own rule for 0
 }
 
 // Process CPU time counts the worker threads too; wall time (real_time) is reported beside it.

@@ -218,9 +218,9 @@ lines += ["",
           "Mean angular error against the exact tangent on analytic surfaces, per method, one point per resolution, "
           "with the reference MikkTSpace C and both meshoptimizer modes when built with the peers "
           "(data: [bench.csv](bench.csv), from `tangent bench`).",
-          "", "## How the kernel got here", "",
-          "The design choices of the kernel, what the profiles showed and the measurements that decided them "
-          "(written by hand, not by this script): [kernel-notes.md](kernel-notes.md)."]
+          "", "## The kernel", "",
+          "Its phases, the data each reads and writes and where each rule lives: [design.md](design.md); "
+          "what was tried and measured is in the commit messages."]
 if quick:  # a smoke run: the committed figures stay as they are
     open(os.path.join(out, "benchmarks.md"), "w").write("\n".join(lines) + "\n")
     sys.exit(0)

@@ -34,20 +34,20 @@ gltf_tests='^(Bake|BakeErrors|MeshFiles|Check|CheckNegative|Cli|SharedAssets)\.|
 names=() files=() tests=() olds=() news=()
 # mutation NAME FILE TESTS OLD NEW: OLD must occur exactly once in FILE.
 mutation() { names+=("$1"); files+=("$2"); tests+=("$3"); olds+=("$4"); news+=("$5"); }
-mutation w-sign libtangent/core/src/mikktspace.cpp "$core_tests" \
+mutation w-sign libtangent/core/src/mikktspace/grouping.cpp "$core_tests" \
   'const float w = orientation > 0 ? 1.0f : -1.0f;' \
   'const float w = orientation > 0 ? -1.0f : 1.0f;'
 mutation w-convention-in-bake libtangent/gltf/src/bake.cpp "$gltf_tests" \
   'coreOptions.uvOrigin = kGltfUvOrigin;' \
   'coreOptions.uvOrigin = UvOrigin::bottomLeft;'
-mutation weighting-mikktspace-area libtangent/core/src/mikktspace.cpp "$core_tests" \
+mutation weighting-mikktspace-area libtangent/core/src/mikktspace/grouping.cpp "$core_tests" \
   'angle = std::max(angle, 1e-12);' \
   'const std::uint32_t c = list[member(scratch.items[i])];
       angle = std::max(0.5 * length(cross(a_.position(a_.indices[previousCorner(c)]) - here, a_.position(a_.indices[nextCorner(c)]) - here)), 1e-12);'
 mutation weighting-lengyel-area libtangent/core/src/lengyel.cpp "$core_tests" \
   'case Weighting::angle: cornerWeights[corner] = cornerAngle(positions, k); break;' \
   'case Weighting::angle: cornerWeights[corner] = triangle.area; break;'
-mutation projection-mikktspace libtangent/core/src/mikktspace.cpp "$core_tests" \
+mutation projection-mikktspace libtangent/core/src/mikktspace/grouping.cpp "$core_tests" \
   'const F3 referenceS = referenceProjected({frame[0], frame[1], frame[2]}, rawNormal);' \
   'const F3 referenceS{frame[0], frame[1], frame[2]};'
 mutation projection-lengyel libtangent/core/src/corner_groups.cpp "$core_tests" \
@@ -69,10 +69,10 @@ mutation attribute-carry libtangent/gltf/src/bake.cpp "$gltf_tests" \
 mutation index-restart-boundary libtangent/gltf/src/bake.cpp "$gltf_tests" \
   'if (outCount - 1 >= 65535 && indexComponentType == TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT)' \
   'if (outCount - 1 > 65535 && indexComponentType == TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT)'
-mutation weld-by-bits libtangent/core/src/workspace.cpp "$core_tests" \
+mutation weld-by-bits libtangent/core/src/weld.cpp "$core_tests" \
   'if (mesh.positions[3 * a + i] != mesh.positions[3 * b + i] || mesh.normals[3 * a + i] != mesh.normals[3 * b + i])' \
   'if (bitCast<std::uint32_t>(mesh.positions[3 * a + i]) != bitCast<std::uint32_t>(mesh.positions[3 * b + i]) || bitCast<std::uint32_t>(mesh.normals[3 * a + i]) != bitCast<std::uint32_t>(mesh.normals[3 * b + i]))'
-mutation split-last-corner-keeps libtangent/core/src/workspace.cpp "$core_tests" \
+mutation split-last-corner-keeps libtangent/core/src/outputs.cpp "$core_tests" \
   'if (entries[j].corner < firstCorner) firstCorner = entries[j].corner, firstAt = j;' \
   'if (entries[j].corner > firstCorner) firstCorner = entries[j].corner, firstAt = j;'
 mutation check-rounding-twice-as-loose libtangent/gltf/src/tangent_rules.cpp "$gltf_tests" \

@@ -7,11 +7,13 @@
 #include <array>
 #include <bit>
 #include <cmath>
+#include <cstring>
 #include <limits>
 #include <numbers>
 #include <random>
 
 #include "support/test_assets.hpp"
+#include "tangent/frame_rules.hpp"
 #include "tangent/halfedge_mesh.hpp"
 #include "tangent/tangent.hpp"
 
@@ -457,6 +459,37 @@ TEST(CoreNames, ParseAndPrint) {
   ASSERT_TRUE(weighting);
   EXPECT_EQ(tangent::toString(*weighting), "area");
   EXPECT_EQ(tangent::parseWeighting(""), std::nullopt);
+}
+
+}  // namespace
+
+namespace {
+
+// The tangent of a vertex no triangle uses is the core's own fixed frame (FrameSource::fixed):
+// bake, the WebAssembly package and the kernel's fallback give the same bits.
+TEST(Core, UnusedVertexTangentIsTheKernelsFixedFrame) {
+  for (const std::array<float, 3> normal : {std::array<float, 3>{1, 2, 3}, {0, 0, 1}, {-0.6f, 0.0f, 0.8f}, {-0.0f, 0.6f, -0.8f}, {5, -1, 0.5f}}) {
+    GridMesh m;  // one triangle with its three corners at one point: nothing to borrow
+    m.positions = {1, 1, 1, 1, 1, 1, 1, 1, 1};
+    m.normals = {normal[0], normal[1], normal[2], normal[0], normal[1], normal[2], normal[0], normal[1], normal[2]};
+    m.uvs = {0, 0, 1, 0, 0, 1};
+    m.indices = {0, 1, 2};
+    std::vector<tangent::FrameSource> sources(3);
+    std::vector<float> tangents(12, kGarbage);
+    tangent::computeCornerTangents({m.positions, m.normals, m.uvs, m.indices}, tangents, {}, sources);
+    float unused[4];
+    tangent::unusedVertexTangent(normal, unused);
+    EXPECT_EQ(unused[3], 1.0f);
+    for (int c = 0; c < 3; ++c) {
+      ASSERT_EQ(sources[c], tangent::FrameSource::fixed);
+      for (int i = 0; i < 3; ++i) EXPECT_EQ(std::bit_cast<std::uint32_t>(tangents[4 * c + i]), std::bit_cast<std::uint32_t>(unused[i]));
+    }
+  }
+  // A zero or non-finite normal counts as +z.
+  float fromZero[4], fromUp[4];
+  tangent::unusedVertexTangent(std::array<float, 3>{0, 0, 0}, fromZero);
+  tangent::unusedVertexTangent(std::array<float, 3>{0, 0, 1}, fromUp);
+  EXPECT_EQ(0, std::memcmp(fromZero, fromUp, sizeof fromZero));
 }
 
 }  // namespace

@@ -4,6 +4,12 @@
 // the same kernel.
 #include <gtest/gtest.h>
 
+#include <tbb/global_control.h>
+#include <tbb/info.h>
+#include <tbb/task_arena.h>
+
+#include <algorithm>
+#include <atomic>
 #include <bit>
 #include <cstring>
 #include <limits>
@@ -19,6 +25,7 @@
 #include "tangent/bulk_buffer.hpp"
 #include "tangent/halfedge_mesh.hpp"
 #include "tangent/tangent.hpp"
+#include "corner_groups.hpp"
 #include "workspace.hpp"
 
 namespace {
@@ -319,6 +326,73 @@ TEST(WorkspaceErrors, CornerVertexOfTheWrongSize) {
   tangent::TangentWorkspace workspace;
   EXPECT_THROW(tangent::computeCornerTangents(arraysOf(m), tangent::CornerOutputs{tangents, {}, cornerVertex}, {}, workspace),
                std::invalid_argument);
+}
+
+
+// One pool and one rule for every method: threads = 0 is every hardware thread this process may
+// use, for lengyel and flat as for mikktspace; the pass each method starts with runs on the
+// pool the call resolved, even where the caller sits in an arena of one; and no thread count
+// moves a bit, on the array call or the OpenMesh call.
+TEST(Workspace, ZeroThreadsIsEveryHardwareThreadForEveryMethod) {
+  tangent::Options automatic;
+  const unsigned hardware = static_cast<unsigned>(std::max(1, tbb::info::default_concurrency()));
+  EXPECT_EQ(tangent::threadCount(automatic), hardware);
+  tangent::Options three;
+  three.threads = 3;
+  EXPECT_EQ(tangent::threadCount(three), 3u);
+
+  const GridMesh sphere = tangent::testing::makeSphere(160, 80);  // 25,000 triangles
+  tangent::CornerMesh cornerMesh = tangent::buildCornerMesh(arraysOf(sphere));
+  tangent::detail::WorkspaceData ws;
+  ws.threads = tangent::threadCount(automatic);
+  std::atomic<int> widestArena{0};
+  tangent::Report report;
+  tbb::task_arena(1).execute([&] {
+    tangent::detail::onThreads(ws, [&] {
+      tangent::detail::evaluateTriangles(ws, cornerMesh, report, [&](std::size_t, int, const auto&, const auto&, const auto&) {
+        int seen = widestArena.load();
+        const int here = tbb::this_task_arena::max_concurrency();
+        while (here > seen && !widestArena.compare_exchange_weak(seen, here)) {
+        }
+      });
+    });
+  });
+  const auto allowed = tbb::global_control::active_value(tbb::global_control::max_allowed_parallelism);
+  EXPECT_EQ(static_cast<std::size_t>(widestArena.load()), std::min<std::size_t>(hardware, allowed));
+
+  for (auto method : {tangent::Method::lengyel, tangent::Method::flat}) {
+    for (auto weighting : {tangent::Weighting::angle, tangent::Weighting::area, tangent::Weighting::uniform}) {
+      auto arrayCall = [&](unsigned threads) {
+        tangent::Options options;
+        options.method = method;
+        options.weighting = weighting;
+        options.threads = threads;
+        std::vector<float> tangents(4 * sphere.indices.size(), std::numeric_limits<float>::quiet_NaN());
+        tangent::computeCornerTangents(arraysOf(sphere), tangents, options);
+        return tangents;
+      };
+      auto meshCall = [&](unsigned threads) {
+        tangent::Options options;
+        options.method = method;
+        options.weighting = weighting;
+        options.threads = threads;
+        tangent::CornerMesh m = tangent::buildCornerMesh(arraysOf(sphere));
+        tangent::computeTangents(m, options);
+        std::vector<float> tangents;
+        for (auto halfedge : m.cornerHalfedge) {
+          const auto& t = m.mesh.property(m.tangent, halfedge);
+          for (int i = 0; i < 4; ++i) tangents.push_back(static_cast<float>(t[i]));
+        }
+        return tangents;
+      };
+      const std::vector<float> one = arrayCall(1), oneMesh = meshCall(1);
+      for (unsigned threads : {0u, 2u, 5u}) {
+        const std::vector<float> many = arrayCall(threads), manyMesh = meshCall(threads);
+        ASSERT_EQ(0, std::memcmp(one.data(), many.data(), one.size() * sizeof(float))) << threads;
+        ASSERT_EQ(0, std::memcmp(oneMesh.data(), manyMesh.data(), oneMesh.size() * sizeof(float))) << threads;
+      }
+    }
+  }
 }
 
 }  // namespace

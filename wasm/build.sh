@@ -14,7 +14,8 @@ mkdir -p "$out"
 export NODE_PATH=/usr/share/nodejs${NODE_PATH:+:$NODE_PATH}
 em++ -std=c++20 -O3 -fexceptions -DTANGENT_SERIAL -DNDEBUG \
   -I libtangent/core/include -I libtangent/core/src \
-  libtangent/core/src/mikktspace.cpp libtangent/core/src/workspace.cpp libtangent/core/src/names.cpp wasm/src/bindings.cpp \
+  libtangent/core/src/workspace.cpp libtangent/core/src/weld.cpp libtangent/core/src/outputs.cpp \
+  libtangent/core/src/mikktspace/*.cpp libtangent/core/src/names.cpp libtangent/core/src/frame_rules.cpp wasm/src/bindings.cpp \
   -sMODULARIZE=1 -sEXPORT_NAME=createTangentModule -sSINGLE_FILE=1 -sALLOW_MEMORY_GROWTH=1 -sMAXIMUM_MEMORY=4GB \
   -sENVIRONMENT=web,worker,node -sFILESYSTEM=0 \
   -sEXPORTED_FUNCTIONS=_malloc,_free,_tangent_run,_tangent_error,_tangent_corner_tangents,_tangent_corner_vertices,_tangent_vertex_tangents,_tangent_vertex_sources,_tangent_report \

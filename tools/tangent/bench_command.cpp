@@ -119,7 +119,7 @@ Timing timedRun(const MeshArrays& mesh, const Options& options, int repeats, std
 }
 
 // A peer (reference MikkTSpace in C, meshoptimizer) on the same arrays: one call, no phases.
-// Its w is in the bottom-left convention; topLeft negates it, as the library does.
+// Its w is in the bottom-left convention; tangent::handedness turns it into uvOrigin's.
 Timing timedPeerRun(bench::Peer peer, const MeshArrays& mesh, UvOrigin uvOrigin, int repeats, std::vector<float>& cornerTangents) {
   std::vector<double> total;
   cornerTangents.resize(mesh.indices.size() * 4);
@@ -128,8 +128,7 @@ Timing timedPeerRun(bench::Peer peer, const MeshArrays& mesh, UvOrigin uvOrigin,
     bench::runPeer(peer, mesh, cornerTangents);
     total.push_back(std::chrono::duration<double, std::milli>(Clock::now() - t0).count());
   }
-  if (uvOrigin == UvOrigin::topLeft)
-    for (std::size_t c = 0; c < mesh.indices.size(); ++c) cornerTangents[4 * c + 3] = -cornerTangents[4 * c + 3];
+  for (std::size_t c = 0; c < mesh.indices.size(); ++c) cornerTangents[4 * c + 3] = handedness(cornerTangents[4 * c + 3], uvOrigin);
   Timing timing;
   timing.compute = median(total);
   return timing;

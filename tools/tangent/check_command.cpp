@@ -266,23 +266,6 @@ void writeGithub(std::ostream& out, const std::vector<gltf::FileCheck>& checks) 
       << " finding(s)" << (errors ? ", " + std::to_string(errors) + " unreadable" : "") << "\n";
 }
 
-// A file path as a SARIF artifactLocation.uri (RFC 3986 relative reference): unreserved
-// characters and '/' as they are, everything else percent-encoded.
-std::string uriReference(const std::string& path) {
-  static const char* hex = "0123456789ABCDEF";
-  std::string out;
-  for (unsigned char c : path) {
-    if (std::isalnum(c) || c == '-' || c == '.' || c == '_' || c == '~' || c == '/') {
-      out += static_cast<char>(c);
-    } else {
-      out += '%';
-      out += hex[c >> 4];
-      out += hex[c & 15];
-    }
-  }
-  return out;
-}
-
 const char* checkDescription(std::size_t index) {
   static const char* descriptions[] = {
       "A primitive whose material has a normal texture stores TANGENT.",
@@ -307,7 +290,7 @@ void writeSarif(std::ostream& out, const std::vector<gltf::FileCheck>& checks, c
                      {"defaultConfiguration", {{"level", "error"}, {"enabled", options.enabled.test(i)}}}});
   Json results = Json::array(), notifications = Json::array();
   for (const auto& file : checks) {
-    const Json artifact = {{"uri", uriReference(file.file)}};
+    const Json artifact = {{"uri", text::uriPath(file.file)}};
     if (!file.error.empty())
       notifications.push_back({{"level", "error"}, {"message", {{"text", file.error}}},
                                {"locations", Json::array({{{"physicalLocation", {{"artifactLocation", artifact}}}}})}});

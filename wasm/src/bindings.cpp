@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "tangent/frame_rules.hpp"
 #include "tangent/tangent.hpp"
 #include "workspace.hpp"
 
@@ -33,18 +34,6 @@ State& state() {
   return s;
 }
 
-// A unit tangent for a vertex no triangle uses (the core's rule for a corner with nothing to
-// borrow from), so that no output tangent is ever zero; +z where the normal is not usable.
-void unusedVertexTangent(const float* normal, float* out) {
-  double n[3] = {normal[0], normal[1], normal[2]};
-  const double len = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
-  if (!(len > 0) || !std::isfinite(len)) n[0] = 0, n[1] = 0, n[2] = 1;
-  else n[0] /= len, n[1] /= len, n[2] /= len;
-  double t[3];
-  tangent::detail::axisPerpendicular(n, t);
-  out[0] = static_cast<float>(t[0]), out[1] = static_cast<float>(t[1]), out[2] = static_cast<float>(t[2]);
-  out[3] = 1.0f;
-}
 
 }  // namespace
 
@@ -98,7 +87,7 @@ EMSCRIPTEN_KEEPALIVE int tangent_run(const float* positions, const float* normal
     for (std::size_t v = 0; v < outputVertices; ++v) {
       if (used[v]) continue;
       s.vertexSource[v] = static_cast<std::uint32_t>(v);  // unused input vertices keep their place
-      unusedVertexTangent(&normals[3 * v], &s.vertexTangents[4 * v]);
+      tangent::unusedVertexTangent(std::span<const float, 3>(&normals[3 * v], 3), std::span<float, 4>(&s.vertexTangents[4 * v], 4));
     }
     return 0;
   } catch (const std::exception& e) {

@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: MIT
 #include "corner_groups.hpp"
 
+#include "gram_schmidt.hpp"
+
 #include <algorithm>
 #include <bit>
 #include <cmath>
@@ -62,13 +64,7 @@ void sumInValueOrder(std::vector<Contribution>& contributions, std::vector<Group
 }
 
 bool orthonormalize(const Vec3& sum, const Vec3& n, Vec3& out) {
-  const double sumLength = sum.norm();
-  if (!(sumLength > 0) || !std::isfinite(sumLength)) return false;
-  Vec3 t = sum - n * (n | sum);
-  const double length = t.norm();
-  if (!(length > 1e-12 * sumLength)) return false;
-  out = t / length;
-  return true;
+  return orthonormalize(sum.data(), n.data(), out.data());  // gram_schmidt.hpp
 }
 
 void triangleCorners(const CornerMesh& cornerMesh, std::size_t t, std::array<Vec3, 3>& positions, std::array<Vec2, 3>& uvs) {

@@ -7,8 +7,8 @@
 #include <vector>
 
 #include "tangent/halfedge_mesh.hpp"
-#include "parallel.hpp"
 #include "triangle_tangent.hpp"
+#include "workspace.hpp"
 
 namespace tangent::detail {
 
@@ -65,17 +65,18 @@ struct TriangleData {
   std::vector<Vec3> cornerNormals;  // unit (see cornerNormal)
 };
 
-// The pass every method starts with, in parallel: each triangle evaluated, each corner given
-// its normal; perCorner(corner, k, positions, triangle, normal) adds the method's own term.
-// Counts degenerate, zero-UV, non-finite triangles and invalid normals into the report.
+// The pass every method starts with, in parallel on the workspace's threads (inside the call's
+// onThreads): each triangle evaluated, each corner given its normal; perCorner(corner, k,
+// positions, triangle, normal) adds the method's own term. Counts degenerate, zero-UV,
+// non-finite triangles and invalid normals into the report.
 template <typename PerCorner>
-TriangleData evaluateTriangles(const CornerMesh& cornerMesh, const Options& options, Report& report, const PerCorner& perCorner) {
+TriangleData evaluateTriangles(const WorkspaceData& ws, const CornerMesh& cornerMesh, Report& report, const PerCorner& perCorner) {
   const std::size_t triangleCount = cornerMesh.cornerHalfedge.size() / 3;
   TriangleData data;
   data.triangles.resize(triangleCount);
   data.cornerNormals.resize(triangleCount * 3);
   std::vector<std::uint8_t> invalidNormal(triangleCount * 3, 0);
-  parallelFor(triangleCount, options.threads, [&](std::size_t begin, std::size_t end) {
+  forRange(ws, triangleCount, 1024, [&](std::size_t begin, std::size_t end) {
     for (std::size_t t = begin; t < end; ++t) {
       std::array<Vec3, 3> positions;
       std::array<Vec2, 3> uvs;

@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: MIT
 // The entry points: the plain-array call (every method) and the OpenMesh call.
-#include <tbb/task_arena.h>
+#include <tbb/info.h>
 
 #include <algorithm>
 #include <cstddef>
@@ -13,12 +13,13 @@
 #include "workspace.hpp"
 
 namespace tangent {
-namespace {
 
 unsigned threadCount(const Options& options) {
   if (options.threads > 0) return options.threads;
-  return static_cast<unsigned>(std::max(1, tbb::this_task_arena::max_concurrency()));
+  return static_cast<unsigned>(std::max(1, tbb::info::default_concurrency()));
 }
+
+namespace {
 
 // Methods `lengyel` and `flat` run on the half-edge mesh; their frames come back per corner
 // in the bottom-left convention with their sources, for finishOutputs.
@@ -28,7 +29,7 @@ void lengyelOnArrays(detail::WorkspaceData& ws, const MeshArrays& mesh, const Co
   Options native = options;
   native.uvOrigin = UvOrigin::bottomLeft;
   std::vector<FrameSource> sources(ws.cornerCount);
-  report = detail::lengyelTangents(cornerMesh, native, sources);
+  report = detail::lengyelTangents(ws, cornerMesh, native, sources);
   detail::ensureSize(ws.cornerState, ws.cornerCount);
   detail::ensureSize(ws.cornerLink, ws.cornerCount);
   for (std::size_t c = 0; c < ws.cornerCount; ++c) {
@@ -79,7 +80,13 @@ Report computeTangents(CornerMesh& cornerMesh, const Options& options, TangentWo
   const std::size_t cornerCount = cornerMesh.cornerHalfedge.size();
   if (!cornerSources.empty() && cornerSources.size() != cornerCount)
     throw std::invalid_argument("cornerSources: expected one per corner");
-  if (options.method != Method::mikktspace) return detail::lengyelTangents(cornerMesh, options, cornerSources);
+  if (options.method != Method::mikktspace) {
+    detail::WorkspaceData& ws = workspace.data();
+    ws.threads = threadCount(options);
+    Report report;
+    detail::onThreads(ws, [&] { report = detail::lengyelTangents(ws, cornerMesh, options, cornerSources); });
+    return report;
+  }
   // Below, one index array holds vertex numbers (< cornerCount), corner links counted down
   // from 2^32 - 1 (kNone - 1 - corner) and kNone.
   if (cornerCount >= (std::size_t(1) << 31)) throw std::invalid_argument("mesh: more than 2^31 corners");

@@ -16,7 +16,8 @@
 
 namespace tangent::detail {
 
-Report lengyelTangents(CornerMesh& cornerMesh, const Options& options, std::span<FrameSource> sources) {
+Report lengyelTangents(const WorkspaceData& ws, CornerMesh& cornerMesh, const Options& options,
+                       std::span<FrameSource> sources) {
   const std::size_t cornerCount = cornerMesh.cornerHalfedge.size();
   const std::size_t triangleCount = cornerCount / 3;
   const bool flat = options.method == Method::flat;
@@ -29,7 +30,7 @@ Report lengyelTangents(CornerMesh& cornerMesh, const Options& options, std::span
   report.nonManifoldFaces = cornerMesh.nonManifoldFaces;
 
   std::vector<double> cornerWeights(cornerCount, 0.0);
-  TriangleData data = evaluateTriangles(cornerMesh, options, report,
+  TriangleData data = evaluateTriangles(ws, cornerMesh, report,
                                         [&](std::size_t corner, int k, const std::array<Vec3, 3>& positions,
                                             const TriangleTangent& triangle, const Vec3&) {
                                           if (triangle.kind != TriangleKind::usable) return;

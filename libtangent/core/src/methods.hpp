@@ -1,14 +1,17 @@
 // SPDX-License-Identifier: MIT
 // The methods on the half-edge mesh (`lengyel`, `flat`); `mikktspace` runs on packed arrays
-// (mikktspace.cpp, workspace.hpp).
+// (mikktspace/kernel.cpp, workspace.hpp).
 #pragma once
 
 #include <span>
 
 #include "tangent/halfedge_mesh.hpp"
+#include "workspace.hpp"
 
 namespace tangent::detail {
 
-Report lengyelTangents(CornerMesh& mesh, const Options& options, std::span<FrameSource> sources);  // and flat
+// Runs on ws's threads: the caller resolves them (threadCount) and enters onThreads(ws).
+Report lengyelTangents(const WorkspaceData& ws, CornerMesh& mesh, const Options& options,
+                       std::span<FrameSource> sources);  // and flat
 
 }  // namespace tangent::detail

@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: MIT
 #include "triangle_tangent.hpp"
 
+#include "workspace.hpp"
+
 #include <bit>
 #include <cmath>
 #include <tuple>
@@ -84,15 +86,9 @@ double cornerAngle(const std::array<Vec3, 3>& positions, int corner) {
 }
 
 Vec3 fixedPerpendicular(const Vec3& n) {
-  // The axis least aligned with n, made orthogonal to it.
-  int axis = 0;
-  for (int i = 1; i < 3; ++i) {
-    if (std::abs(n[i]) < std::abs(n[axis])) axis = i;
-  }
-  Vec3 unit(0, 0, 0);
-  unit[axis] = 1;
-  Vec3 t = unit - n * (n | unit);
-  return t / t.norm();
+  Vec3 t;
+  axisPerpendicular(n.data(), t.data());  // the one rule (workspace.hpp), mikktspace's too
+  return t;
 }
 
 }  // namespace tangent::detail

@@ -18,28 +18,12 @@
 #include <vector>
 
 #include "tangent/bulk_buffer.hpp"
+#include "state_bits.hpp"
 #include "tangent/tangent.hpp"
 
 namespace tangent::detail {
 
 constexpr std::uint32_t kNone = ~std::uint32_t(0);
-
-// Per-corner state bits (WorkspaceData::cornerState).
-enum CornerState : std::uint8_t {
-  kSourceMask = 3,      // FrameSource
-  kUndefined = 4,       // no frame yet: a fallback must give one
-  kCopy = 8,            // corner of an exact duplicate triangle: copies cornerLink's frame
-  kInvalidNormal = 16,  // zero or non-finite normal, replaced
-};
-
-// Per-triangle bits (WorkspaceData::triangleFlags).
-enum TriangleFlag : std::uint8_t {
-  kCoincident = 1,    // two corners with the same position: the reference's "degenerate"
-  kGroupWithAny = 2,  // contributes nothing and takes the orientation of its neighbours
-  kNonFinite = 4,
-  kFlat = 8,          // zero 3D area (report: degenerate)
-  kZeroUv = 16,       // zero UV area (report: zeroUvArea)
-};
 
 #if defined(TANGENT_SERIAL)
 // Built without threads (TANGENT_SERIAL: the WebAssembly package): one of each, in the
@@ -136,16 +120,12 @@ struct WorkspaceData {
   BulkVector<std::uint32_t> bucketCorners;  // bucketCorners[bucketStart[v] .. bucketStart[v+1])
   BulkVector<std::int8_t> orientation;      // per triangle: sign of the UV area (resolved)
   BulkVector<std::uint8_t> triangleFlags;   // per triangle: TriangleFlag bits
-  BulkVector<std::uint32_t> cornerLink;     // per corner: neighbour corner across the corner's
-                                             // outgoing edge, or the original of a kCopy corner;
-                                             // after grouping, the group weight (mikktspace.cpp)
-  BulkVector<std::uint8_t> cornerState;     // per corner: CornerState bits
+  BulkVector<std::uint32_t> cornerLink;     // per corner: neighbour, then group weight bits
+                                             // (state_bits.hpp says which when)
+  BulkVector<std::uint8_t> cornerState;     // per corner: CornerState bits (state_bits.hpp)
   BulkVector<std::uint32_t> bucketExtra;    // per welded id: extra output vertices, then offsets
-  BulkVector<std::uint8_t> bucketUniform;   // per welded id, where bucketUniformKnown: bit 0 set
-                                             // when the kernel gave all its corners one input
-                                             // vertex's one frame, which nothing after it
-                                             // changes, so that the vertex split need not
-                                             // compare them (other bits: the kernel's own)
+  BulkVector<std::uint8_t> bucketUniform;   // per welded id: BucketChain, then BucketUniform
+                                             // bits (state_bits.hpp)
   bool bucketUniformKnown = false;          // set by the mikktspace kernel, reset by the weld
   bool wInOutputConvention = false;         // the kernel wrote w with the UV origin applied
                                              // (set by the mikktspace kernel, reset by the weld)

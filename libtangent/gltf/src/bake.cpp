@@ -18,6 +18,7 @@
 #include "entry_point.hpp"
 #include "primitive.hpp"
 #include "tangent/bulk_buffer.hpp"
+#include "tangent/frame_rules.hpp"
 #include "tangent/gltf.hpp"
 
 namespace tangent::gltf {
@@ -40,23 +41,6 @@ struct VertexSplit {
   std::vector<float> tangents;            // 4 per output vertex
 };
 
-// A vertex no triangle uses still needs a valid TANGENT (the validator and loaders read every
-// element): a unit vector orthogonal to its normal, w = +1, from the normal alone.
-void unusedVertexTangent(const float* normal, float* tangent) {
-  const double n[3] = {normal[0], normal[1], normal[2]};
-  const bool alongX = std::abs(n[0]) > 0.9 || !std::isfinite(n[0] + n[1] + n[2]);
-  const double axis[3] = {alongX ? 0.0 : 1.0, alongX ? 1.0 : 0.0, 0.0};
-  double t[3] = {axis[0], axis[1], axis[2]};
-  const double len2 = n[0] * n[0] + n[1] * n[1] + n[2] * n[2];
-  if (std::isfinite(len2) && len2 > 0) {
-    const double d = (n[0] * axis[0] + n[1] * axis[1] + n[2] * axis[2]) / len2;
-    for (int i = 0; i < 3; ++i) t[i] = axis[i] - d * n[i];
-  }
-  const double length = std::sqrt(t[0] * t[0] + t[1] * t[1] + t[2] * t[2]);
-  for (int i = 0; i < 3; ++i) tangent[i] = static_cast<float>(t[i] / length);
-  tangent[3] = 1.0f;
-}
-
 // One pass over the core's corner -> output vertex map (CornerOutputs::cornerVertex).
 VertexSplit splitVertices(const std::vector<std::uint32_t>& corners, const BulkVector<float>& cornerTangents,
                           BulkVector<std::uint32_t> cornerVertex, std::size_t outputVertices, std::size_t vertexCount,
@@ -75,7 +59,8 @@ VertexSplit splitVertices(const std::vector<std::uint32_t>& corners, const BulkV
   }
   split.cornerVertex = std::move(cornerVertex);
   for (std::size_t v = 0; v < vertexCount; ++v) {
-    if (split.firstCorner[v] < 0) unusedVertexTangent(&normals[3 * v], &split.tangents[4 * v]);
+    if (split.firstCorner[v] < 0)
+      unusedVertexTangent(std::span<const float, 3>(&normals[3 * v], 3), std::span<float, 4>(&split.tangents[4 * v], 4));
   }
   return split;
 }
@@ -242,7 +227,8 @@ class BufferFrames {
   // (target deltas stay 0 there); the object is spent.
   std::vector<float> takeTangents(const std::vector<float>& normals) {
     for (std::size_t b = 0; b < claimed_.size(); ++b) {
-      if (!claimed_[b]) unusedVertexTangent(&normals[3 * b], &tangents_[4 * b]);
+      if (!claimed_[b])
+        unusedVertexTangent(std::span<const float, 3>(&normals[3 * b], 3), std::span<float, 4>(&tangents_[4 * b], 4));
     }
     return std::move(tangents_);
   }

@@ -129,4 +129,21 @@ std::string dumpJson(const nlohmann::ordered_json& json, int indent) {
   }
 }
 
+std::string uriPath(std::string_view path) {
+  static const char* hex = "0123456789ABCDEF";
+  constexpr std::string_view kKept = "-._~/!$&'()*+,;=@";  // unreserved, '/', sub-delims, '@'
+  std::string out;
+  for (unsigned char c : path) {
+    const bool alphanumeric = (c >= '0' && c <= '9') || (c >= 'A' && c <= 'Z') || (c >= 'a' && c <= 'z');
+    if (alphanumeric || kKept.find(static_cast<char>(c)) != std::string_view::npos) {
+      out += static_cast<char>(c);
+    } else {
+      out += '%';
+      out += hex[c >> 4];
+      out += hex[c & 15];
+    }
+  }
+  return out;
+}
+
 }  // namespace tangent::text

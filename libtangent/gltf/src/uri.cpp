@@ -48,21 +48,6 @@ std::string percentDecode(const std::string& uri) {
   return out;
 }
 
-std::string percentEncodePath(const std::string& path) {
-  static const char* hex = "0123456789ABCDEF";
-  std::string out;
-  for (unsigned char c : path) {
-    if (std::isalnum(c) || std::string_view("-._~/!$&'()*+,;=:@").find(static_cast<char>(c)) != std::string_view::npos) {
-      out += static_cast<char>(c);
-    } else {
-      out += '%';
-      out += hex[c >> 4];
-      out += hex[c & 15];
-    }
-  }
-  return out;
-}
-
 bool isDataUri(const std::string& uri) { return uri.rfind("data:", 0) == 0; }
 
 std::vector<std::uint8_t> decodeDataUri(const std::string& uri, const std::string& what) {

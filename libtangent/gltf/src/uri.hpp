@@ -15,8 +15,6 @@ namespace tangent::gltf::detail {
 
 // RFC 3986 percent-decoding; a '%' not followed by two hex digits stays as it is.
 std::string percentDecode(const std::string& uri);
-// Percent-encodes what a relative path may not carry in a URI ('/' stays).
-std::string percentEncodePath(const std::string& path);
 
 bool isDataUri(const std::string& uri);
 // Base64 payload of a data: URI; throws InputError (naming `what`) when it is not base64.

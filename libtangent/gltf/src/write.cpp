@@ -360,10 +360,10 @@ void OutputDocument::placeImages(const std::filesystem::path& outputDir) {
       std::vector<std::uint8_t> bytes;
       if (!readFileInto(source, bytes)) throw std::runtime_error(source.string() + ": cannot be read to copy beside the output");
       writeFileAtomic(target, bytes);
-      image["uri"] = percentEncodePath(relative.generic_string());
+      image["uri"] = text::uriPath(relative.generic_string());
     } else {
       // Outside the input's folder (allowed by --asset-root): referred to where it is.
-      image["uri"] = percentEncodePath(source.lexically_relative(targetDir).generic_string());
+      image["uri"] = text::uriPath(source.lexically_relative(targetDir).generic_string());
     }
   }
 }
@@ -408,7 +408,7 @@ std::uint64_t OutputDocument::write(const std::filesystem::path& output) {
     if (fs::exists(used, ec) && fs::exists(binPath, ec) && fs::equivalent(used, binPath, ec))
       throw InputError(output.string() + ": would overwrite " + used.string() + ", which the input uses");
   }
-  doc["buffers"][0]["uri"] = percentEncodePath(binPath.filename().string());
+  doc["buffers"][0]["uri"] = text::uriPath(binPath.filename().string());
   const std::string text = text::dumpJson(doc, 2) + "\n";
   writeFileAtomic(binPath, bin);
   try {

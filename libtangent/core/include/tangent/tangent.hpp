@@ -69,6 +69,11 @@ struct Options {
                                            // never depends on it
 };
 
+// The worker threads a call with these options runs on, whatever the method: options.threads,
+// or where that is 0 every hardware thread this process may use (oneTBB's default
+// concurrency, which follows the process's CPU affinity). One pool (oneTBB) runs them all.
+unsigned threadCount(const Options& options);
+
 // Where a corner's frame came from.
 enum class FrameSource : std::uint8_t {
   computed,   // from the triangles of its group

@@ -28,6 +28,13 @@ std::string terminalSafe(std::string_view text, std::size_t maxBytes = static_ca
 // A piece of file-derived text inside a message: terminalSafe, cut to kMaxMessageText.
 std::string quoted(std::string_view text);
 
+// A relative file path as a URI reference (RFC 3986 section 4.2): glTF's buffer and image
+// URIs, SARIF's artifactLocation.uri. A path segment may carry unreserved characters,
+// sub-delimiters, ':' and '@' (section 3.3), '/' separates segments; everything else is
+// percent-encoded, and ':' too: in the first segment of a relative reference it would read
+// as a scheme (section 4.2), and an encoded one means the same anywhere.
+std::string uriPath(std::string_view path);
+
 // JSON as every writer writes it (reports, manifests, glTF documents): strings and keys that
 // are not valid UTF-8 pass through utf8Safe first, where nlohmann's dump would throw.
 std::string dumpJson(const nlohmann::ordered_json& json, int indent = -1);

@@ -1,0 +1,224 @@
+// SPDX-License-Identifier: MIT
+// Method `mikktspace`'s kernel: the state one call's phases share and the phases, one file
+// each (see kernel.cpp for the rules and the order of the phases).
+#pragma once
+
+#include <algorithm>
+#include <atomic>
+#include <cstring>
+
+#include "../state_bits.hpp"
+#include "../workspace.hpp"
+#include "angles.hpp"
+#include "arrays.hpp"
+#include "triangle.hpp"
+
+namespace tangent::detail::mikk {
+
+// Union-find over the corners of one bucket (local indices), the smaller root winning.
+class BucketUnionFind {
+ public:
+  explicit BucketUnionFind(ScratchVector<std::uint32_t>& parent, std::uint32_t count) : parent_(parent) {
+    parent_.resize(count);
+    for (std::uint32_t i = 0; i < count; ++i) parent_[i] = i;
+  }
+  std::uint32_t find(std::uint32_t x) {
+    while (parent_[x] != x) x = parent_[x] = parent_[parent_[x]];
+    return x;
+  }
+  void unite(std::uint32_t a, std::uint32_t b) {
+    a = find(a);
+    b = find(b);
+    if (a != b) parent_[std::max(a, b)] = std::min(a, b);
+  }
+
+ private:
+  ScratchVector<std::uint32_t>& parent_;
+};
+
+
+// One bucket on the full path (grouping.cpp): what its steps share.
+struct FullBucket {
+  std::uint32_t bucket;
+  const std::uint32_t* list;  // its corners
+  std::uint32_t count;
+  bool fan;                   // one group of every corner, in list order (no keys)
+  V3 n;                       // unit normal (bucketNormal)
+  F3 rawNormal;               // the normal as stored, for the reference's float rules
+  V3 here;                    // the corners' common position (where a component is zero its
+                              // sign may differ between corners, which moves no angle)
+  BucketScratch& scratch;     // keys: (root, local index) per member, group by group
+  std::size_t memberCount;
+  std::uint32_t member(std::size_t m) const {
+    return fan ? static_cast<std::uint32_t>(m) : static_cast<std::uint32_t>(scratch.keys[m]);
+  }
+  std::uint32_t rootOf(std::size_t m) const { return static_cast<std::uint32_t>(scratch.keys[m] >> 32); }
+};
+
+// A group's rows (Kernel::groupRows): kRowStride doubles each, and their value order.
+constexpr int kRowStride = 10;
+struct GroupRows {
+  const double* values = nullptr;
+  std::size_t contributing = 0;
+  const std::uint32_t* sorted = nullptr;
+};
+
+class Kernel {
+ public:
+  Kernel(WorkspaceData& ws, const MeshArrays& mesh, const CornerOutputs& outputs, UvOrigin origin)
+      : wSign_(handedness(1.0f, origin)),
+        ws_(ws),
+        mesh_(mesh),
+        a_{mesh.positions.data(), mesh.normals.data(), mesh.uvs.data(), mesh.indices.data()},
+        tangents_(outputs.tangents.data()) {}
+
+  // Welds and buckets (weldAndBucket), then writes the tangents (w in the convention of the
+  // call's UV origin, so that the output pass need not rewrite every tangent) and
+  // ws.cornerState, and fills the triangle counts of the report.
+  void run(Report& report);
+
+ private:
+  std::uint32_t id(std::size_t corner) const { return identity_ ? a_.indices[corner] : vertexId_[a_.indices[corner]]; }
+  bool participates(std::size_t corner) const { return !(ws_.triangleFlags[corner / 3] & kCoincident); }
+  std::uint32_t localIndex(std::uint32_t bucket, std::uint32_t corner) const {
+    const std::uint32_t* begin = corners_ + start_[bucket];
+    return static_cast<std::uint32_t>(std::lower_bound(begin, corners_ + start_[bucket + 1], corner) - begin);
+  }
+
+  void evaluateTriangles(Report& report);
+  void pairBucket(std::uint32_t bucket, BucketScratch& scratch);
+  void resetLinks(const std::uint32_t* list, std::uint32_t count);
+  bool pairSmallBucket(std::uint32_t bucket, const std::uint32_t* list, std::uint32_t count);
+  void pairSorted(const std::uint32_t* list, std::uint32_t count, BucketScratch& scratch);
+  void markDuplicates(const std::uint64_t* outs, std::size_t n);
+  void pairNonManifold(const std::uint32_t* outs, std::size_t outCount, const std::uint32_t* ins, std::size_t inCount);
+  void resolveGroupWithAny();
+  V3 bucketNormal(std::uint32_t bucket, bool& invalid) const;
+  // Adds the bucket's corners with a negative w (as stored) to `mirrored`, copies aside.
+  void groupBucket(std::uint32_t bucket, BucketScratch& scratch, std::uint64_t& mirrored);
+  void groupMembers(FullBucket& b);
+  std::size_t groupRows(FullBucket& b, std::size_t g, std::size_t gEnd);
+  V3 subgroupSum(const FullBucket& b, const GroupRows& rows, std::size_t self, double& weights) const;
+  bool groupFrames(FullBucket& b, std::size_t g, std::size_t gEnd);
+  bool fastBucket(std::uint32_t bucket, const std::uint32_t* list, std::uint32_t count, std::uint64_t& mirrored);
+  // Whether the triangles of a bucket's corners share one UV orientation (with a chain of
+  // links through all of them from pairBucket: one group of every corner).
+  bool oneOrientation(const std::uint32_t* list, std::uint32_t count) const {
+    const std::int8_t orientation = ws_.orientation[list[0] / 3];
+    bool same = true;
+    for (std::uint32_t i = 1; i < count; ++i) same &= ws_.orientation[list[i] / 3] == orientation;
+    return same;
+  }
+  // Whether the links of a bucket's corners form one cycle through all of them with one UV
+  // orientation: the common closed fan around a vertex, one group without a union-find.
+  // Links pair distinct half-edges, so a walk of `count` steps back to its start has seen
+  // every corner once.
+  bool closedFan(const std::uint32_t* list, std::uint32_t count) const {
+    const std::uint32_t start = list[0];
+    const std::int8_t orientation = ws_.orientation[start / 3];
+    std::uint32_t c = start;
+    for (std::uint32_t step = 0; step < count; ++step) {
+      if (!participates(c) || (ws_.cornerState[c] & kCopy)) return false;
+      const std::uint32_t d = ws_.cornerLink[c];
+      if (d == kNone || ws_.orientation[d / 3] != orientation) return false;
+      c = d;
+      if (c == start) return step + 1 == count;
+    }
+    return false;
+  }
+  void inheritInBucket(std::uint32_t bucket, std::uint32_t corner, float w, bool anyW);
+  void fallbacks();
+  // The reference's corner angle (EvalTspace): float projections on the raw normal, float
+  // cosine clamped to [-1, 1], acos.
+  double referenceAngle(std::size_t corner, F3 rawNormal) const {
+    auto at = [&](std::size_t c) { return floatsAt(a_.positions, a_.indices[c]); };
+    return referenceAngleOf(at(corner), at(previousCorner(corner)), at(nextCorner(corner)), rawNormal);
+  }
+  // Once a bucket's groups are built its corners' neighbour links are spent: the same slot
+  // then holds the corner's group weight (the sum of its angles), which ranks candidate
+  // frames; corners of duplicate triangles keep their link to the original. A fast bucket
+  // keeps its one weight per bucket instead (kBucketWeight).
+  void setWeight(std::size_t corner, float weight) { ws_.cornerLink[corner] = bitCast<std::uint32_t>(weight); }
+  float weight(std::size_t corner) const {
+    const std::uint32_t bucket = id(corner);
+    return bitCast<float>((ws_.bucketUniform[bucket] & kBucketWeight) ? ws_.bucketExtra[bucket] : ws_.cornerLink[corner]);
+  }
+  // A frame as stored (xyz, w in the output convention) into the corner's slot, with its source
+  // and weight.
+  void storeFrame(std::size_t corner, const float (&frame)[4], FrameSource source, float weight) {
+    std::memcpy(&tangents_[4 * corner], frame, sizeof frame);
+    ws_.cornerState[corner] = static_cast<std::uint8_t>((ws_.cornerState[corner] & ~(kSourceMask | kUndefined)) |
+                                                        static_cast<std::uint8_t>(source));
+    setWeight(corner, weight);
+  }
+  void writeCorner(std::size_t corner, V3 tangent, float w, FrameSource source, float weight) {
+    const float frame[4] = {static_cast<float>(tangent.x), static_cast<float>(tangent.y), static_cast<float>(tangent.z),
+                            w * wSign_};
+    storeFrame(corner, frame, source, weight);
+  }
+  // A bucket whose corners all got one frame: whether they are one input vertex (bucketUniform,
+  // so that the vertex split need not compare them), and its mirrored corners counted.
+  void finishOneFrame(std::uint32_t bucket, const std::uint32_t* list, std::uint32_t count, std::uint64_t& mirrored) {
+    const std::uint32_t vertex = a_.indices[list[0]];
+    bool oneVertex = true;
+    for (std::uint32_t i = 1; i < count; ++i) oneVertex = oneVertex && a_.indices[list[i]] == vertex;
+    ws_.bucketUniform[bucket] = oneVertex ? kUniformVertex : 0;
+    if (tangents_[4 * list[0] + 3] < 0) mirrored += count;
+  }
+  void markUndefined(std::size_t corner, float w) {
+    if (!anyUndefined_.load(std::memory_order_relaxed)) anyUndefined_.store(true, std::memory_order_relaxed);
+    tangents_[4 * corner + 3] = w * wSign_;
+    ws_.cornerState[corner] |= kUndefined;
+    setWeight(corner, 0);
+  }
+  bool defined(std::size_t corner) const {
+    const std::uint8_t s = ws_.cornerState[corner];
+    if (s & kUndefined) return false;
+    const auto source = static_cast<FrameSource>(s & kSourceMask);
+    return source == FrameSource::computed || source == FrameSource::inherited;
+  }
+  // Ranking of a candidate frame: heavier group first, then by value.
+  bool betterCandidate(std::size_t a, std::size_t b) const {
+    if (weight(a) != weight(b)) return weight(a) > weight(b);
+    std::uint32_t bitsA[4], bitsB[4];
+    std::memcpy(bitsA, &tangents_[4 * a], 3 * sizeof(float));
+    std::memcpy(bitsB, &tangents_[4 * b], 3 * sizeof(float));
+    bitsA[3] = bitCast<std::uint32_t>(w(a));
+    bitsB[3] = bitCast<std::uint32_t>(w(b));
+    return std::lexicographical_compare(bitsB, bitsB + 4, bitsA, bitsA + 4);
+  }
+
+  // Every w is stored in the output convention (times wSign_); the rules here compare the
+  // reference's own w (bottom-left), read back through w().
+  float w(std::size_t corner) const { return tangents_[4 * corner + 3] * wSign_; }
+
+  const float wSign_;
+  WorkspaceData& ws_;
+  const MeshArrays& mesh_;
+  Arrays a_;
+  float* tangents_;
+  // The weld's and the buckets' arrays, taken once they are filled.
+  const std::uint32_t* vertexId_ = nullptr;
+  bool identity_ = false;  // the weld merged nothing: id(corner) is the corner's index
+  const std::uint32_t* start_ = nullptr;
+  const std::uint32_t* corners_ = nullptr;
+  std::uint64_t groupWithAny_ = 0;  // triangles that group with any (not coincident)
+  std::uint64_t coincident_ = 0;    // coincident triangles
+  // Whether any corner was marked undefined, any edge is non-manifold: where not, the passes
+  // that look for them are skipped.
+  std::atomic<bool> anyUndefined_{false}, anyNonManifold_{false};
+  const VectorIsa isa_ = activeVectorIsa();
+  // Whether the UV orientations are final when the buckets are paired (no zero-UV triangle
+  // waits for its neighbours'), so that pairing may vouch for one orientation.
+  bool orientationsFinal_ = false;
+};
+
+// Rounds x to a multiple of 2^-40 (|x| < 2^11): sums of up to 2^13 / pi such values are exact
+// in double, so they come out the same in any order, with no sort.
+constexpr double kQuantizer = 0x1.8p12;
+inline double quantized(float x) {
+  return (static_cast<double>(x) + kQuantizer) - kQuantizer;
+}
+constexpr std::uint32_t kMostQuantizedTerms = 2048;
+
+}  // namespace tangent::detail::mikk

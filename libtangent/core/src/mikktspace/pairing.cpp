@@ -1,0 +1,258 @@
+// SPDX-License-Identifier: MIT
+// Phase 2, per welded vertex: neighbours across edges (the reference's adjacency), exact
+// duplicate triangles, and the greedy pairing of non-manifold edges in value order.
+#include "kernel.hpp"
+
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
+#include <bit>
+#include <type_traits>
+#include <vector>
+
+namespace tangent::detail::mikk {
+
+// Most buckets: at most this many corners (one SIMD compare covers them).
+constexpr std::uint32_t kSmall = 16;
+
+// Pairs the half-edges at one welded vertex: a corner's outgoing edge (to its next corner)
+// with the incoming edge of a corner whose previous corner has the same identity. Marks exact
+// duplicate triangles (same identities, same winding) as copies of the first of them. Leaves
+// in bucketUniform what the links say of the bucket (BucketChain, state_bits.hpp).
+void Kernel::pairBucket(std::uint32_t bucket, BucketScratch& scratch) {
+  const std::uint32_t first = start_[bucket], count = start_[bucket + 1] - first;
+  const std::uint32_t* list = corners_ + first;
+  if (count < 2) {  // one corner: a chain of one where it takes part
+    resetLinks(list, count);
+    ws_.bucketUniform[bucket] = count == 1 && participates(list[0]) ? kOneChain : kNotOneChain;
+    return;
+  }
+  ws_.bucketUniform[bucket] = kChainUnknown;
+  if (count <= kSmall && pairSmallBucket(bucket, list, count)) return;
+  resetLinks(list, count);
+  pairSorted(list, count, scratch);
+}
+
+// Clears the state and the links of a bucket's corners.
+void Kernel::resetLinks(const std::uint32_t* list, std::uint32_t count) {
+  for (std::uint32_t i = 0; i < count; ++i) {
+    ws_.cornerState[list[i]] = 0;
+    ws_.cornerLink[list[i]] = kNone;
+  }
+}
+
+// Most buckets: a few corners whose next identities are all different, each of which is
+// the previous identity of at most one corner. Then no triangle duplicates another here
+// (a duplicate has the same next identity) and no edge has more than one half-edge each
+// way: each outgoing edge pairs with the one incoming edge of its identity, if any (what
+// the sorted merge of pairSorted finds), with no sort. (Previous identities that no next one
+// matches may repeat: the merge links nothing there either.) False where the bucket is not
+// that case (then pairSorted pairs it).
+bool Kernel::pairSmallBucket(std::uint32_t bucket, const std::uint32_t* list, std::uint32_t count) {
+  const std::int8_t firstOrientation = ws_.orientation[list[0] / 3];
+  bool oneOrientation = true;
+  alignas(16) std::uint32_t outId[kSmall], inId[kSmall];
+  std::uint32_t corner[kSmall];
+  std::uint32_t n = 0;
+  for (std::uint32_t i = 0; i < count; ++i) {
+    const std::uint32_t c = list[i];
+    ws_.cornerState[c] = 0;
+    if (!participates(c)) {
+      ws_.cornerLink[c] = kNone;
+      continue;
+    }
+    oneOrientation &= ws_.orientation[c / 3] == firstOrientation;
+    corner[n] = c;
+    outId[n] = id(nextCorner(c));
+    inId[n] = id(previousCorner(c));
+    ++n;
+  }
+  std::uint32_t match[kSmall];
+  std::uint8_t successor[kSmall] = {};  // local index of match[i], kSmall where none (zeroed: GCC cannot see
+                                       // that only the first n are read)
+  std::uint32_t targets = 0;       // local indices some link reaches
+  bool simple = true;
+#if defined(__SSE2__)
+  // Lane masks of equal identities, four lanes a compare (8 or 16 lanes, those past n
+  // zeroed and masked off).
+  const std::uint32_t width = n <= 8 ? 8 : 16;
+  for (std::uint32_t j = n; j < width; ++j) outId[j] = inId[j] = 0;
+  const std::uint32_t lanes = (std::uint32_t(1) << n) - 1;
+  auto masks = [&](auto vectorCount) {
+    constexpr int kVectors = decltype(vectorCount)::value;
+    __m128i outs[kVectors], ins[kVectors];
+    for (int v = 0; v < kVectors; ++v) {
+      outs[v] = _mm_load_si128(reinterpret_cast<const __m128i*>(outId + 4 * v));
+      ins[v] = _mm_load_si128(reinterpret_cast<const __m128i*>(inId + 4 * v));
+    }
+    std::uint32_t bad = 0;
+    for (std::uint32_t i = 0; i < n; ++i) {
+      const __m128i key = _mm_set1_epi32(static_cast<int>(outId[i]));
+      std::uint32_t sameOut = 0, sameIn = 0;
+      auto laneMask = [&](__m128i lanesOf) {
+        return static_cast<std::uint32_t>(_mm_movemask_ps(_mm_castsi128_ps(_mm_cmpeq_epi32(key, lanesOf))));
+      };
+      for (int v = 0; v < kVectors; ++v) {
+        sameOut |= laneMask(outs[v]) << (4 * v);
+        sameIn |= laneMask(ins[v]) << (4 * v);
+      }
+      sameOut &= lanes, sameIn &= lanes;
+      bad |= (sameOut ^ (std::uint32_t(1) << i)) | (sameIn & (sameIn - 1));
+      match[i] = sameIn ? corner[std::countr_zero(sameIn)] : kNone;
+      successor[i] = static_cast<std::uint8_t>(sameIn ? std::countr_zero(sameIn) : kSmall);
+      targets |= sameIn;
+    }
+    return bad == 0;
+  };
+  simple = width == 8 ? masks(std::integral_constant<int, 2>{}) : masks(std::integral_constant<int, 4>{});
+#else
+  for (std::uint32_t i = 0; i < n; ++i) {
+    std::uint32_t sameOut = 0, sameIn = 0;
+    match[i] = kNone;
+    successor[i] = kSmall;
+    for (std::uint32_t j = 0; j < n; ++j) {
+      sameOut += outId[i] == outId[j];
+      sameIn += outId[i] == inId[j];
+      match[i] = outId[i] == inId[j] ? corner[j] : match[i];
+      successor[i] = outId[i] == inId[j] ? static_cast<std::uint8_t>(j) : successor[i];
+      targets |= outId[i] == inId[j] ? std::uint32_t(1) << j : 0;
+    }
+    simple &= (sameOut == 1) & (sameIn <= 1);
+  }
+#endif
+  if (!simple) return false;
+  // Each corner has at most one successor and one predecessor here, so the links form
+  // paths and cycles. One chain through every corner: a cycle from corner 0, or the
+  // path from the one corner that no link reaches (one head: one path; a walk from it
+  // that sees every corner: no cycle beside it).
+  bool oneChain = false;
+  if (n == count) {
+    const std::uint32_t heads = ((std::uint32_t(1) << n) - 1) & ~targets;
+    if (heads == 0 || (heads & (heads - 1)) == 0) {
+      const std::uint32_t start = heads == 0 ? 0 : static_cast<std::uint32_t>(std::countr_zero(heads));
+      std::uint32_t k = start, seen = 0;
+      do {
+        k = successor[k];
+        ++seen;
+      } while (k != kSmall && k != start && seen < n);
+      oneChain = seen == n && (heads == 0 ? k == start : k == kSmall);
+    }
+  }
+  const std::uint8_t chain = !oneChain ? kNotOneChain : (oneOrientation && orientationsFinal_ ? kOneFan : kOneChain);
+  ws_.bucketUniform[bucket] = chain;
+  // One fan of one orientation is one group whatever its links (groupBucket), and where
+  // orientations are final nothing after grouping reads the links of corners that are not
+  // copies: those links are not written.
+  if (chain != kOneFan) {
+    for (std::uint32_t i = 0; i < n; ++i) ws_.cornerLink[corner[i]] = match[i];
+  }
+  return true;
+}
+
+// The general case: outgoing and incoming half-edges sorted by the identity at their other
+// end and merged; duplicates marked first; edges with more than one half-edge each way
+// paired by pairNonManifold.
+void Kernel::pairSorted(const std::uint32_t* list, std::uint32_t count, BucketScratch& scratch) {
+  // keys: [0, n) outgoing (next id, corner), [n, 2n) incoming (previous id, corner).
+  scratch.keys.resize(2 * count);
+  std::uint64_t* outs = scratch.keys.data();
+  std::size_t n = 0;
+  for (std::uint32_t i = 0; i < count; ++i) {
+    const std::uint32_t c = list[i];
+    if (!participates(c)) continue;
+    outs[n++] = (std::uint64_t(id(nextCorner(c))) << 32) | c;
+  }
+  std::uint64_t* ins = outs + n;
+  for (std::size_t i = 0; i < n; ++i) {
+    const auto c = static_cast<std::uint32_t>(outs[i]);
+    ins[i] = (std::uint64_t(id(previousCorner(c))) << 32) | c;
+  }
+  sortSmall(outs, outs + n);
+  sortSmall(ins, ins + n);
+  markDuplicates(outs, n);
+  auto isCopy = [&](std::uint64_t key) { return (ws_.cornerState[static_cast<std::uint32_t>(key)] & kCopy) != 0; };
+  std::size_t o = 0, k = 0;
+  while (o < n && k < n) {
+    const std::uint64_t q = std::min(outs[o] >> 32, ins[k] >> 32);
+    std::size_t oEnd = o, kEnd = k;
+    while (oEnd < n && (outs[oEnd] >> 32) == q) ++oEnd;
+    while (kEnd < n && (ins[kEnd] >> 32) == q) ++kEnd;
+    std::size_t outCount = 0, inCount = 0;
+    std::uint32_t lastOut = kNone, lastIn = kNone;
+    for (std::size_t i = o; i < oEnd; ++i) {
+      if (!isCopy(outs[i])) ++outCount, lastOut = static_cast<std::uint32_t>(outs[i]);
+    }
+    for (std::size_t i = k; i < kEnd; ++i) {
+      if (!isCopy(ins[i])) ++inCount, lastIn = static_cast<std::uint32_t>(ins[i]);
+    }
+    if (outCount == 1 && inCount == 1) {
+      ws_.cornerLink[lastOut] = lastIn;
+    } else if (outCount > 0 && inCount > 0) {
+      scratch.items.clear();
+      for (std::size_t i = o; i < oEnd; ++i) {
+        if (!isCopy(outs[i])) scratch.items.push_back(static_cast<std::uint32_t>(outs[i]));
+      }
+      const std::size_t split = scratch.items.size();
+      for (std::size_t i = k; i < kEnd; ++i) {
+        if (!isCopy(ins[i])) scratch.items.push_back(static_cast<std::uint32_t>(ins[i]));
+      }
+      const std::uint32_t* items = scratch.items.data();
+      pairNonManifold(items, split, items + split, scratch.items.size() - split);
+    }
+    o = oEnd;
+    k = kEnd;
+  }
+}
+
+// Duplicates among a bucket's outgoing half-edges (sorted by next identity): same next and
+// same previous identity. Each becomes a copy (kCopy) of the first that is not one.
+void Kernel::markDuplicates(const std::uint64_t* outs, std::size_t n) {
+  for (std::size_t i = 0; i < n;) {
+    std::size_t j = i + 1;
+    while (j < n && (outs[j] >> 32) == (outs[i] >> 32)) ++j;
+    for (std::size_t y = i + 1; y < j; ++y) {
+      const auto cy = static_cast<std::uint32_t>(outs[y]);
+      for (std::size_t x = i; x < y; ++x) {
+        const auto cx = static_cast<std::uint32_t>(outs[x]);
+        if (!(ws_.cornerState[cx] & kCopy) && id(previousCorner(cx)) == id(previousCorner(cy))) {
+          ws_.cornerState[cy] |= kCopy;
+          ws_.anyCopy.store(true, std::memory_order_relaxed);
+          ws_.cornerLink[cy] = cx;
+          break;
+        }
+      }
+    }
+    i = j;
+  }
+}
+
+// The reference's greedy pairing of the half-edges of one edge, in value order of their
+// triangles: each unpaired one takes the first later unpaired one running the other way.
+void Kernel::pairNonManifold(const std::uint32_t* outs, std::size_t outCount, const std::uint32_t* ins, std::size_t inCount) {
+  struct HalfEdge {
+    std::uint32_t corner;
+    bool outgoing;
+    bool paired;
+  };
+  std::vector<HalfEdge> halfEdges;
+  halfEdges.reserve(outCount + inCount);
+  for (std::size_t i = 0; i < outCount; ++i) halfEdges.push_back({outs[i], true, false});
+  for (std::size_t i = 0; i < inCount; ++i) halfEdges.push_back({ins[i], false, false});
+  std::sort(halfEdges.begin(), halfEdges.end(),
+            [&](const HalfEdge& x, const HalfEdge& y) { return triangleBefore(a_, x.corner / 3, y.corner / 3); });
+  anyNonManifold_.store(true, std::memory_order_relaxed);
+  for (std::size_t i = 0; i < halfEdges.size(); ++i) {
+    if (halfEdges[i].outgoing) ws_.cornerState[halfEdges[i].corner] |= kNonManifoldEdge;
+    if (halfEdges[i].paired) continue;
+    for (std::size_t j = i + 1; j < halfEdges.size(); ++j) {
+      if (halfEdges[j].paired || halfEdges[j].outgoing == halfEdges[i].outgoing) continue;
+      halfEdges[i].paired = halfEdges[j].paired = true;
+      const HalfEdge& out = halfEdges[i].outgoing ? halfEdges[i] : halfEdges[j];
+      const HalfEdge& in = halfEdges[i].outgoing ? halfEdges[j] : halfEdges[i];
+      ws_.cornerLink[out.corner] = in.corner;
+      break;
+    }
+  }
+}
+
+}  // namespace tangent::detail::mikk

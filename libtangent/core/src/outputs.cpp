@@ -1,0 +1,218 @@
+// SPDX-License-Identifier: MIT
+// The output pass every method ends with: copies for duplicate triangles, the w convention,
+// the report's corner counts, and the vertex split (CornerOutputs::cornerVertex).
+#include "workspace.hpp"
+
+#include <algorithm>
+#include <array>
+#include <atomic>
+#include <bit>
+#include <cstring>
+#include <limits>
+#include <stdexcept>
+#include <string>
+
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
+
+namespace tangent::detail {
+
+namespace {
+
+struct Counts {
+  std::uint64_t mirrored = 0, inherited = 0, neighbour = 0, fixed = 0, invalidNormals = 0;
+  void add(const Counts& o) {
+    mirrored += o.mirrored;
+    inherited += o.inherited;
+    neighbour += o.neighbour;
+    fixed += o.fixed;
+    invalidNormals += o.invalidNormals;
+  }
+};
+
+// Sort key of a corner in the split: input vertex, then tangent bits, then corner.
+struct SplitEntry {
+  std::uint32_t vertex;
+  std::uint32_t bits[4];
+  std::uint32_t corner;
+  bool operator<(const SplitEntry& o) const {
+    if (vertex != o.vertex) return vertex < o.vertex;
+    const int c = std::memcmp(bits, o.bits, sizeof bits);
+    if (c != 0) return c < 0;
+    return corner < o.corner;
+  }
+  bool sameTangent(const SplitEntry& o) const { return vertex == o.vertex && std::memcmp(bits, o.bits, sizeof bits) == 0; }
+};
+
+}  // namespace
+
+void finishOutputs(WorkspaceData& ws, const MeshArrays& mesh, const CornerOutputs& outputs, const Options& options,
+                   Report& report) {
+  const std::size_t cornerCount = ws.cornerCount, vertexCount = ws.vertexCount;
+  float* tangents = outputs.tangents.data();
+  std::uint8_t* state = ws.cornerState.data();
+  const std::uint32_t* link = ws.cornerLink.data();
+  const float wSign = handedness(1.0f, options.uvOrigin);
+
+  // Duplicates copy their original (never itself a copy); then w convention and counts. Where
+  // the kernel counted the mirrored corners (all but the copies) and wrote w in the output
+  // convention, the counts pass need not read the tangents, and without copies the copy pass
+  // is skipped.
+  const bool kernelCounts = ws.wInOutputConvention;
+  Combinable<std::uint64_t> mirroredCopies;
+  if (!kernelCounts || ws.anyCopy.load(std::memory_order_relaxed)) {
+    forRange(ws, cornerCount, 1 << 14, [&](std::size_t begin, std::size_t end) {
+      std::uint64_t local = 0;
+      for (std::size_t c = begin; c < end; ++c) {
+        if (!(state[c] & kCopy)) continue;
+        const std::uint32_t original = link[c];
+        std::memcpy(&tangents[4 * c], &tangents[4 * original], 4 * sizeof(float));
+        state[c] = static_cast<std::uint8_t>((state[c] & ~kSourceMask) | (state[original] & kSourceMask));
+        local += tangents[4 * c + 3] < 0;
+      }
+      mirroredCopies.local() += local;
+    });
+  }
+  Combinable<Counts> counts;
+  // Where the kernel counted and no sources are asked for, only corners not computed or with
+  // an invalid normal count: runs of eight without either are skipped (all but a few).
+  const bool skipCommon = kernelCounts && outputs.sources.empty();
+  forRange(ws, cornerCount, 1 << 14, [&](std::size_t begin, std::size_t end) {
+    Counts local;
+    auto all = [](std::size_t) { return true; };
+    scanKept(skipCommon ? state : nullptr, kSourceMask | kInvalidNormal, begin, end, all, [&](std::size_t c) {
+      const std::uint8_t s = state[c];
+      if (!kernelCounts) {
+        tangents[4 * c + 3] *= wSign;
+        local.mirrored += tangents[4 * c + 3] < 0;
+      }
+      switch (static_cast<FrameSource>(s & kSourceMask)) {
+        case FrameSource::computed: break;
+        case FrameSource::inherited: ++local.inherited; break;
+        case FrameSource::neighbour: ++local.neighbour; break;
+        case FrameSource::fixed: ++local.fixed; break;
+      }
+      local.invalidNormals += (s & kInvalidNormal) != 0;
+      if (!outputs.sources.empty()) outputs.sources[c] = static_cast<FrameSource>(s & kSourceMask);
+    });
+    counts.local().add(local);
+  });
+  Counts total;
+  counts.combine_each([&](const Counts& c) { total.add(c); });
+  report.mirroredCorners = kernelCounts ? ws.mirroredCorners + mirroredCopies.combine(std::plus<>()) : total.mirrored;
+  report.inheritedCorners = total.inherited;
+  report.fallbackFromNeighbours = total.neighbour;
+  report.fallbackFixed = total.fixed;
+  report.invalidNormals = total.invalidNormals;
+
+  // Vertex split, bucket by bucket: the tangent of a vertex's first corner keeps the vertex,
+  // each other distinct tangent is one extra vertex.
+  const std::uint32_t* start = ws.bucketStart.data();
+  const std::uint32_t* corners = ws.bucketCorners.data();
+  const std::uint32_t* indices = mesh.indices.data();
+  std::uint32_t* extra = ws.bucketExtra.data();
+  const std::uint8_t* knownUniform = ws.bucketUniformKnown ? ws.bucketUniform.data() : nullptr;
+  const bool wantVertices = !outputs.cornerVertex.empty();
+  std::uint32_t* cornerVertex = wantVertices ? outputs.cornerVertex.data() : nullptr;
+  constexpr std::uint32_t kExtraFlag = 0x80000000u;
+  forRange(ws, vertexCount, 2048, [&](std::size_t begin, std::size_t end) {
+    std::vector<SplitEntry> entries;
+    for (std::size_t b = begin; b < end; ++b) {
+      const std::uint32_t first = start[b], last = start[b + 1];
+      extra[b] = 0;
+      if (last - first == 0) continue;
+      if (last - first == 1) {
+        if (wantVertices) cornerVertex[corners[first]] = indices[corners[first]];
+        continue;
+      }
+      // Most buckets: one input vertex, one tangent (known from the kernel for most of those).
+      const std::uint32_t c0 = corners[first];
+      bool uniform = true;
+      if (knownUniform && (knownUniform[b] & kUniformVertex)) {
+        if (wantVertices) {
+          const std::uint32_t vertex = indices[c0];
+          for (std::uint32_t i = first; i < last; ++i) cornerVertex[corners[i]] = vertex;
+        }
+        continue;
+      }
+      for (std::uint32_t i = first + 1; i < last && uniform; ++i) {
+        const std::uint32_t c = corners[i];
+        uniform = indices[c] == indices[c0] && std::memcmp(&tangents[4 * c], &tangents[4 * c0], 4 * sizeof(float)) == 0;
+      }
+      if (uniform) {
+        if (wantVertices) {
+          for (std::uint32_t i = first; i < last; ++i) cornerVertex[corners[i]] = indices[c0];
+        }
+        continue;
+      }
+      entries.clear();
+      for (std::uint32_t i = first; i < last; ++i) {
+        const std::uint32_t c = corners[i];
+        SplitEntry e;
+        e.vertex = indices[c];
+        for (int k = 0; k < 4; ++k) e.bits[k] = canonicalBits(tangents[4 * c + k]);  // -0 and +0 alike
+        e.corner = c;
+        entries.push_back(e);
+      }
+      std::sort(entries.begin(), entries.end());
+      std::uint32_t extras = 0;
+      for (std::size_t i = 0; i < entries.size();) {
+        // One input vertex: find the tangent of its first corner.
+        std::size_t j = i;
+        std::uint32_t firstCorner = entries[i].corner;
+        std::size_t firstAt = i;
+        while (j < entries.size() && entries[j].vertex == entries[i].vertex) {
+          if (entries[j].corner < firstCorner) firstCorner = entries[j].corner, firstAt = j;
+          ++j;
+        }
+        for (std::size_t k = i; k < j;) {
+          std::size_t l = k;
+          while (l < j && entries[l].sameTangent(entries[k])) ++l;
+          const bool keepsVertex = entries[k].sameTangent(entries[firstAt]);
+          const std::uint32_t id = keepsVertex ? entries[k].vertex : (kExtraFlag | extras++);
+          if (wantVertices) {
+            for (std::size_t m = k; m < l; ++m) cornerVertex[entries[m].corner] = id;
+          }
+          k = l;
+        }
+        i = j;
+      }
+      extra[b] = extras;
+    }
+  });
+  // Each bucket's first extra vertex (serial, this prefix sum was 2% of the call's wall time on
+  // 16 CPUs).
+  const std::uint64_t splits = exclusiveScan(ws, extra, vertexCount);
+  if (vertexCount + splits >= kExtraFlag) throw std::invalid_argument("indices: the vertex split needs more than 2^31 vertices");
+  report.splitVertices = splits;
+  report.outputVertices = vertexCount + splits;
+  if (wantVertices && splits > 0) {
+    const std::uint32_t* vertexId = ws.vertexId.data();
+    const bool identity = ws.weldMergedNone;
+    forRange(ws, cornerCount, 1 << 14, [&](std::size_t begin, std::size_t end) {
+      for (std::size_t c = begin; c < end; ++c) {
+        if (cornerVertex[c] & kExtraFlag)
+          cornerVertex[c] = static_cast<std::uint32_t>(vertexCount) + extra[identity ? indices[c] : vertexId[indices[c]]] +
+                            (cornerVertex[c] & ~kExtraFlag);
+      }
+    });
+    // The numbering CornerOutputs documents: new vertices in order of their first corner (the
+    // buckets above number them by welded vertex, then by tangent bits). One serial pass: a
+    // new vertex is renumbered where its first corner is met. The weld table is free by now.
+    ensureSize(ws.table, splits);
+    std::uint32_t* renumbered = ws.table.data();
+    std::fill(renumbered, renumbered + splits, 0u);  // 0: not met yet (a new vertex is >= vertexCount > 0)
+    auto next = static_cast<std::uint32_t>(vertexCount);
+    for (std::size_t c = 0; c < cornerCount; ++c) {
+      const std::uint32_t v = cornerVertex[c];
+      if (v < vertexCount) continue;
+      std::uint32_t& to = renumbered[v - vertexCount];
+      if (to == 0) to = next++;
+      cornerVertex[c] = to;
+    }
+  }
+}
+
+
+}  // namespace tangent::detail
