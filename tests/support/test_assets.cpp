@@ -418,6 +418,14 @@ std::vector<TestAsset> makeTestAssets() {
   return {interleaved(), quantized(), sparse(), stripsAndFans(), morphTargets(), secondUvSet(), documentFeatures(), manySplits()};
 }
 
+TestAsset meshAsset(const std::string& name, const GridMesh& mesh, bool withNormal) {
+  Builder b(name);
+  Json primitive = b.basicPrimitive(mesh);
+  if (!withNormal) primitive["attributes"].erase("NORMAL");
+  b.addMesh(Json::array({primitive}), name);
+  return b.take();
+}
+
 std::filesystem::path writeAsset(const TestAsset& asset, const std::filesystem::path& dir, bool glb) {
   std::filesystem::create_directories(dir);
   nlohmann::ordered_json doc = asset.json;

@@ -108,8 +108,12 @@ void writeText(std::ostream& out, const std::vector<gltf::FileCheck>& checks) {
         for (const auto& name : p.ignored) out << " " << name;
         out << "\n";
       }
+      for (const auto& warning : p.warnings) out << "    WARN " << warning << "\n";
       if (p.referenceUnresolved)
         out << "    (" << p.referenceUnresolved << " corners have a UV orientation their rounded positions/UVs leave open; not compared)\n";
+      if (p.handednessUndecided || p.referenceWUndecided)
+        out << "    (" << p.handednessUndecided << " triangles have a UV orientation their rounded positions/UVs leave open: handedness "
+            << "skips them, reference compares the angle but not w at their " << p.referenceWUndecided << " corners)\n";
       if (p.referenceUndefined) out << "    (" << p.referenceUndefined << " corners have no defined reference frame; not compared)\n";
     }
     for (const auto& s : file.skipped) out << "  skipped " << s << "\n";
@@ -260,6 +264,9 @@ void writeGithub(std::ostream& out, const std::vector<gltf::FileCheck>& checks) 
         out << "::error file=" << githubProperty(file.file) << ",title=" << githubProperty("tangent check " + f.check + " (" + primitiveName(p) + ")")
             << "::" << githubData(message) << "\n";
       }
+      for (const auto& warning : p.warnings)
+        out << "::warning file=" << githubProperty(file.file) << ",title=" << githubProperty("tangent check (" + primitiveName(p) + ")")
+            << "::" << githubData(warning) << "\n";
     }
   }
   out << "::notice title=tangent check::" << checks.size() << " file(s), " << primitives << " primitive(s) checked, " << findings

@@ -599,6 +599,8 @@ std::optional<ComputedTangents> PrimitiveBaker::computeFrames(PrimitivePlan& pla
     std::vector<float> morphedPositions = geometry.positions, morphedNormals = geometry.normals;
     for (std::size_t i = 0; i < target.positions.size(); ++i) morphedPositions[i] += target.positions[i];
     for (std::size_t i = 0; i < target.normals.size(); ++i) morphedNormals[i] += target.normals[i];
+    // Readers normalize the morphed normal (spec 3.7.2.2), as they do the base one.
+    if (!target.normals.empty()) detail::unitNormals(morphedNormals);
     BulkVector<float> morphedTangents(corners.size() * 4);
     computeCornerTangents({morphedPositions, morphedNormals, geometry.uvs, corners}, CornerOutputs{morphedTangents},
                           coreOptions, workspace);

@@ -175,7 +175,11 @@ void checkDrawnPart(const PrimitiveGeometry& buffer, const UsedVertices& used, c
     const double det = uvAreaTimesTwo(uv[0], uv[1], uv[2]);
     const float expected = expectedW(det);
     const double area = areaTimesTwo(&buffer.positions[3 * c[0]], &buffer.positions[3 * c[1]], &buffer.positions[3 * c[2]]);
-    if (expected == 0 || !std::isfinite(det) || !(area > 0) || !validW(w0) || !allowance.decided(t)) continue;
+    if (expected == 0 || !std::isfinite(det) || !(area > 0) || !validW(w0)) continue;
+    if (!allowance.decided(t)) {
+      ++result.handednessUndecided;
+      continue;
+    }
     if (w0 != expected)
       handedness.fail(t, std::abs(det), format("triangle %zu (vertices %u %u %u) has w = %.0f, its UV orientation needs %.0f", t, c[0],
                                                 c[1], c[2], w0, expected));
@@ -229,8 +233,13 @@ void checkDrawnPart(const PrimitiveGeometry& buffer, const UsedVertices& used, c
       if (!finite4(storedTangent)) continue;  // `finite` reported it
       const double angle = angleBetweenDegrees(storedTangent, fresh);
       const double limit = referenceLimitDegrees(stored.limits, options.referenceToleranceDegrees, extra);
-      if (referenceFails(angle, storedTangent[3], fresh[3], limit)) {
-        const bool wDiffers = (storedTangent[3] < 0) != (fresh[3] < 0);
+      // w follows the triangle's UV orientation: where rounding leaves that open, only the
+      // angle is compared (handedness skips the triangle alike).
+      const bool wDecided = allowance.decided(c / 3);
+      if (!wDecided) ++result.referenceWUndecided;
+      const float comparedW = wDecided ? storedTangent[3] : fresh[3];
+      if (referenceFails(angle, comparedW, fresh[3], limit)) {
+        const bool wDiffers = (comparedW < 0) != (fresh[3] < 0);
         reference.fail(c, angle,
                        format("corner %zu (vertex %u): %.4g deg from %s (limit %.3g)%s; stored ", c, v, angle,
                               std::string(toString(options.method)).c_str(), limit, wDiffers ? ", w differs" : "") +
@@ -324,8 +333,18 @@ void checkVertexGroup(const Asset& asset, const std::vector<PrimitiveToCheck>& p
   stored.referenceLimit = referenceLimitDegrees(stored.limits, options.referenceToleranceDegrees, 0);
   stored.component = toString(*tangentComponent);
   stored.values = toFloats(data);
+  const double normalLimit = normalLengthWarningLimit(normalComponent.value_or(StoredComponent::float32));
   for (const std::size_t member : members) {
     PrimitiveCheck& result = results[member];
+    result.normalsNormalized = buffer.normalLengths.normalized;
+    result.worstNormalLength = buffer.normalLengths.worstLength;
+    result.normalLengthLimit = normalLimit;
+    if (buffer.normalLengths.worstDeviation() > normalLimit)
+      result.warnings.push_back(format("NORMAL is not unit length: worst %.6g, beyond the %.3g of %s rounding; %llu normals normalized "
+                                       "first, as glTF readers do",
+                                       buffer.normalLengths.worstLength, normalLimit,
+                                       toString(normalComponent.value_or(StoredComponent::float32)),
+                                       static_cast<unsigned long long>(buffer.normalLengths.normalized)));
     (options.runs(CheckId::format) ? result.passed : result.ignored).push_back("format");
     result.tangentComponent = stored.component;
     result.normalComponent = normalComponent ? toString(*normalComponent) : "";
@@ -495,6 +514,10 @@ nlohmann::ordered_json toJson(const FileCheck& check) {
     entry["findings"] = findings;
     entry["referenceUndefinedCorners"] = p.referenceUndefined;
     entry["referenceUnresolvedCorners"] = p.referenceUnresolved;
+    entry["referenceWUndecidedCorners"] = p.referenceWUndecided;
+    entry["handednessUndecidedTriangles"] = p.handednessUndecided;
+    entry["normals"] = {{"normalized", p.normalsNormalized}, {"worstLength", p.worstNormalLength}, {"warningLimit", p.normalLengthLimit}};
+    entry["warnings"] = p.warnings;
     primitives.push_back(std::move(entry));
   }
   Json out = {{"file", check.file}, {"status", !check.error.empty() ? "error" : check.clean() ? "clean" : "findings"}};

@@ -225,6 +225,7 @@ PrimitiveGeometry readVertices(const Asset& asset, const Json& primitive, const 
                      typeName(positionData.type));
   geometry.vertexCount = positionData.count;
   geometry.normals = readVectors(model, normalAccessor, 3, geometry.vertexCount, where + ": NORMAL");
+  geometry.normalLengths = unitNormals(geometry.normals);
   geometry.uvs = readVectors(model, uvAccessor, 2, geometry.vertexCount, where + ": " + uvName);
   if (needs.hasNormalTexture) {
     const Json& normalTexture = asset.json["materials"][primitive["material"].get<int>()]["normalTexture"];

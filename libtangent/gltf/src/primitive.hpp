@@ -7,6 +7,7 @@
 
 #include "accessors.hpp"
 #include "asset.hpp"
+#include "normals.hpp"
 #include <array>
 #include <cstdint>
 #include <string>
@@ -83,15 +84,17 @@ void applyTextureTransform(std::vector<float>& uvs, const nlohmann::ordered_json
 
 struct PrimitiveGeometry {
   std::size_t vertexCount = 0;
-  std::vector<float> positions, normals;
+  std::vector<float> positions;
+  std::vector<float> normals;           // as glTF readers see them: normalized (unitNormals)
+  NormalLengths normalLengths;          // what NORMAL stored, before unitNormals
   std::vector<float> uvs;               // as the normal texture samples them (transform applied)
   std::vector<std::uint32_t> corners;   // triangle list, 3 vertex indices per triangle
   int mode = 4;
   int indexComponentType = 5123;        // of the original indices (UNSIGNED_SHORT when none)
 };
 
-// POSITION, NORMAL and the normal texture's UV set (needs.texCoord) of a primitive; throws
-// InputError naming `where` and the accessor when one is missing or malformed.
+// POSITION, NORMAL (unitNormals applied) and the normal texture's UV set (needs.texCoord) of a
+// primitive; throws InputError naming `where` and the accessor when one is missing or malformed.
 PrimitiveGeometry readGeometry(const Asset& asset, const nlohmann::ordered_json& primitive, const PrimitiveNeeds& needs,
                                const std::string& where);
 // readGeometry in two steps, for primitives that share a vertex buffer (sameVertexKey): the

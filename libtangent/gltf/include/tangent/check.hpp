@@ -81,6 +81,15 @@ struct PrimitiveCheck {
   std::uint64_t referenceUndefined = 0; // corners the reference method leaves arbitrary: not compared
   std::uint64_t referenceUnresolved = 0; // corners whose UV orientation rounded positions/UVs leave open: not compared
   double referenceAllowanceMaxDegrees = 0;  // largest per-corner allowance for rounded positions/UVs
+  std::uint64_t handednessUndecided = 0;  // triangles whose UV orientation rounded positions/UVs leave open: not judged
+  std::uint64_t referenceWUndecided = 0;  // corners of such triangles whose angle was compared but not their w
+  // NORMAL as glTF readers treat it: lengths further than kNormalLengthKept (normals.hpp) from 1
+  // are normalized before the reference is computed; a length beyond what the component type's
+  // rounding explains is a warning, not a finding.
+  std::uint64_t normalsNormalized = 0;  // vertices whose NORMAL was normalized
+  double worstNormalLength = 1;         // the stored length furthest from 1 (zero normals aside)
+  double normalLengthLimit = 0;         // largest | |N| - 1 | not warned about
+  std::vector<std::string> warnings;    // for people: what was accepted but is not as the spec says
 };
 
 struct FileCheck {

@@ -1,0 +1,135 @@
+// SPDX-License-Identifier: MIT
+// NORMAL as glTF readers treat it (issue 37, item 1): normals further than kNormalLengthKept
+// from unit length are normalized before the core sees them, so any nonzero length gives the
+// tangents of the unit normal; zero normals keep the core's fallback; check warns (and does not
+// fail) on non-unit NORMAL, naming the worst length.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "accessors.hpp"
+#include "asset.hpp"
+#include "normals.hpp"
+#include "support/temp_dir.hpp"
+#include "support/test_assets.hpp"
+#include "tangent/check.hpp"
+#include "tangent/gltf.hpp"
+#include "tangent_rules.hpp"
+
+namespace {
+
+namespace fs = std::filesystem;
+namespace detail = tangent::gltf::detail;
+using tangent::testing::GridMesh;
+using tangent::testing::TempDir;
+
+TEST(NormalLengths, NormalizesExactlyThoseBeyondTheThreshold) {
+  // By hand: (0, 0, L) has length L. Within 5e-5 of 1 the bits stay; beyond, the result is
+  // (0, 0, 1) exactly; zero is counted and left for the core.
+  std::vector<float> normals = {0, 0, 1.00004f, 0, 0, 0.99996f, 0, 0, 1.0001f, 0, 0, 0.0625f, 3, 0, 4, 0, 0, 0};
+  const std::vector<float> before = normals;
+  const detail::NormalLengths found = detail::unitNormals(normals);
+  EXPECT_EQ(normals[2], before[2]);
+  EXPECT_EQ(normals[5], before[5]);
+  EXPECT_EQ(normals[8], 1.0f);
+  EXPECT_EQ(normals[11], 1.0f);
+  EXPECT_EQ(normals[12], 0.6f);
+  EXPECT_EQ(normals[14], 0.8f);
+  EXPECT_EQ(normals[17], 0.0f);
+  EXPECT_EQ(found.normalized, 3u);
+  EXPECT_EQ(found.zero, 1u);
+  EXPECT_DOUBLE_EQ(found.worstLength, 5.0);
+  EXPECT_FALSE(detail::normalNeedsNormalizing(1 + 4e-5));
+  EXPECT_TRUE(detail::normalNeedsNormalizing(1 - 1e-4));
+}
+
+// The TANGENT a bake of `mesh` writes, 4 floats per output vertex.
+std::vector<float> bakedTangents(const GridMesh& mesh, const fs::path& dir, const std::string& name,
+                                 tangent::gltf::BakeResult* result = nullptr) {
+  const fs::path input = tangent::testing::writeAsset(tangent::testing::meshAsset(name, mesh), dir / "in", true);
+  const fs::path output = dir / (name + "-baked.glb");
+  const tangent::gltf::BakeResult baked = tangent::gltf::bakeFile(input, output, {});
+  if (result) *result = baked;
+  const detail::Asset asset = detail::loadAsset(output);
+  const int accessor = asset.json["meshes"][0]["primitives"][0]["attributes"]["TANGENT"].get<int>();
+  return detail::toFloats(detail::readAccessor(asset.model, accessor, "TANGENT"));
+}
+
+double angleDegrees(const float* a, const float* b) { return detail::angleBetweenDegrees(a, b); }
+
+// A grid whose normals lean up to ~30 deg away from the surface and whose UVs are jittered, so
+// that the triangles around a vertex have dP/du with different components along its normal:
+// a raw projection onto a normal of length L keeps (1 - L^2) of each, which changes how the
+// triangles' directions combine (on smooth meshes whose normals follow the surface the
+// difference hides below 1e-5 deg).
+GridMesh leaningGrid() {
+  GridMesh mesh = tangent::testing::makeGrid(6, 6, true);
+  for (std::size_t v = 0; v < mesh.normals.size() / 3; ++v) {
+    const double lean[3] = {mesh.normals[3 * v] + 0.5 * std::sin(1.3 * v), mesh.normals[3 * v + 1] + 0.5 * std::cos(0.7 * v),
+                            double(mesh.normals[3 * v + 2])};
+    const double length = std::sqrt(lean[0] * lean[0] + lean[1] * lean[1] + lean[2] * lean[2]);
+    for (int k = 0; k < 3; ++k) mesh.normals[3 * v + k] = static_cast<float>(lean[k] / length);
+    mesh.uvs[2 * v] += static_cast<float>(0.02 * std::sin(2.1 * v));
+    mesh.uvs[2 * v + 1] += static_cast<float>(0.02 * std::cos(1.1 * v));
+  }
+  return mesh;
+}
+
+TEST(NormalLengths, AnyNonzeroLengthGivesTheTangentsOfUnitNormals) {
+  TempDir dir;
+  const std::vector<std::pair<std::string, GridMesh>> meshes = {{"leaning", leaningGrid()},
+                                                                {"torus", tangent::testing::makeTorus(16, 8)},
+                                                                {"sphere", tangent::testing::makeSphere(12, 6)}};
+  for (const auto& [name, mesh] : meshes) {
+    const std::vector<float> unit = bakedTangents(mesh, dir.path(), name + "-unit");
+    for (const double length : {1.0 / 16, 0.5, 1 - 1e-4, 1 + 1e-4, 4.0}) {
+      GridMesh scaled = mesh;
+      for (float& n : scaled.normals) n = static_cast<float>(n * length);
+      const std::string label = name + "-" + std::to_string(length);
+      const std::vector<float> tangents = bakedTangents(scaled, dir.path(), label);
+      ASSERT_EQ(tangents.size(), unit.size()) << label;
+      double worst = 0;
+      for (std::size_t v = 0; v < unit.size() / 4; ++v) {
+        worst = std::max(worst, angleDegrees(&tangents[4 * v], &unit[4 * v]));
+        EXPECT_EQ(tangents[4 * v + 3], unit[4 * v + 3]) << label << " vertex " << v;
+      }
+      EXPECT_LE(worst, 1e-5) << label;
+
+      // check on the file with the stored (non-unit) NORMAL: clean, with a warning naming the length.
+      const tangent::gltf::FileCheck check = tangent::gltf::checkFile(dir / (label + "-baked.glb"), {});
+      ASSERT_EQ(check.primitives.size(), 1u) << label;
+      const tangent::gltf::PrimitiveCheck& p = check.primitives[0];
+      EXPECT_TRUE(check.clean()) << label;
+      EXPECT_NEAR(p.worstNormalLength, length, 1e-6) << label;
+      EXPECT_EQ(p.normalsNormalized, p.vertices) << label;  // every vertex, split ones included
+      ASSERT_EQ(p.warnings.size(), 1u) << label;
+      EXPECT_NE(p.warnings[0].find("NORMAL is not unit length"), std::string::npos) << p.warnings[0];
+    }
+  }
+}
+
+TEST(NormalLengths, UnitNormalsAreNotWarnedAbout) {
+  TempDir dir;
+  bakedTangents(tangent::testing::makeTorus(16, 8), dir.path(), "torus");
+  const tangent::gltf::FileCheck check = tangent::gltf::checkFile(dir / "torus-baked.glb", {});
+  ASSERT_EQ(check.primitives.size(), 1u);
+  EXPECT_TRUE(check.primitives[0].warnings.empty());
+  EXPECT_EQ(check.primitives[0].normalsNormalized, 0u);
+}
+
+TEST(NormalLengths, ZeroNormalsKeepTheFallback) {
+  TempDir dir;
+  GridMesh mesh = tangent::testing::makeGrid(4, 4, false);
+  const std::uint32_t vertex = mesh.indices[0];
+  for (int k = 0; k < 3; ++k) mesh.normals[3 * vertex + k] = 0;
+  tangent::gltf::BakeResult result;
+  const std::vector<float> tangents = bakedTangents(mesh, dir.path(), "zero", &result);
+  ASSERT_EQ(result.primitives.size(), 1u);
+  EXPECT_GT(result.primitives[0].tangents.invalidNormals, 0u);
+  for (std::size_t v = 0; v < tangents.size() / 4; ++v) {
+    EXPECT_NEAR(detail::length3(&tangents[4 * v]), 1.0, 1e-5) << v;
+  }
+  EXPECT_FALSE(result.warnings.empty());
+}
+
+}  // namespace
