@@ -6,6 +6,8 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstring>
+#include <fstream>
 
 #include "accessors.hpp"
 #include "asset.hpp"
@@ -133,3 +135,128 @@ TEST(NormalLengths, ZeroNormalsKeepTheFallback) {
 }
 
 }  // namespace
+
+// ---- bake --normals (issue 37, item 2) ----
+
+namespace generated {
+
+struct Baked {
+  std::vector<float> positions, normals;
+  std::vector<std::uint32_t> corners;
+  tangent::gltf::BakeResult result;
+  fs::path output;
+};
+
+Baked bakeWithoutNormals(const GridMesh& mesh, const fs::path& dir, const std::string& name, tangent::gltf::NormalsMode mode) {
+  Baked baked;
+  const fs::path input = tangent::testing::writeAsset(tangent::testing::meshAsset(name, mesh, false), dir / "in", true);
+  baked.output = dir / (name + "-baked.glb");
+  tangent::gltf::BakeOptions options;
+  options.normals = mode;
+  baked.result = tangent::gltf::bakeFile(input, baked.output, options);
+  const detail::Asset asset = detail::loadAsset(baked.output);
+  const auto& primitive = asset.json["meshes"][0]["primitives"][0];
+  if (!primitive["attributes"].contains("NORMAL")) return baked;
+  baked.positions = detail::toFloats(detail::readAccessor(asset.model, primitive["attributes"]["POSITION"].get<int>(), "POSITION"));
+  baked.normals = detail::toFloats(detail::readAccessor(asset.model, primitive["attributes"]["NORMAL"].get<int>(), "NORMAL"));
+  const auto indices = detail::readAccessor(asset.model, primitive["indices"].get<int>(), "indices");
+  for (const float index : detail::toFloats(indices)) baked.corners.push_back(static_cast<std::uint32_t>(index));
+  return baked;
+}
+
+TEST(GeneratedNormals, FlatNormalsAreTheFaceNormalsAndCheckClean) {
+  TempDir dir;
+  const Baked baked = bakeWithoutNormals(tangent::testing::makeTorus(12, 6), dir.path(), "torus", tangent::gltf::NormalsMode::flat);
+  ASSERT_EQ(baked.result.primitives.size(), 1u);
+  const auto& p = baked.result.primitives[0];
+  EXPECT_EQ(p.action, tangent::gltf::PrimitiveAction::baked) << p.reason;
+  ASSERT_TRUE(p.normalsGenerated.has_value());
+  EXPECT_EQ(*p.normalsGenerated, tangent::gltf::NormalsMode::flat);
+  ASSERT_FALSE(baked.normals.empty());
+  ASSERT_EQ(baked.corners.size(), 12u * 6 * 6);
+  // glTF 2.0 3.7.2.1: counter-clockwise front faces, so the face normal is cross(p1 - p0, p2 - p0).
+  for (std::size_t t = 0; t < baked.corners.size() / 3; ++t) {
+    const float* p0 = &baked.positions[3 * baked.corners[3 * t]];
+    const float* p1 = &baked.positions[3 * baked.corners[3 * t + 1]];
+    const float* p2 = &baked.positions[3 * baked.corners[3 * t + 2]];
+    const double e1[3] = {double(p1[0]) - p0[0], double(p1[1]) - p0[1], double(p1[2]) - p0[2]};
+    const double e2[3] = {double(p2[0]) - p0[0], double(p2[1]) - p0[1], double(p2[2]) - p0[2]};
+    double face[3] = {e1[1] * e2[2] - e1[2] * e2[1], e1[2] * e2[0] - e1[0] * e2[2], e1[0] * e2[1] - e1[1] * e2[0]};
+    const double length = std::sqrt(face[0] * face[0] + face[1] * face[1] + face[2] * face[2]);
+    for (double& f : face) f /= length;
+    for (int k = 0; k < 3; ++k) {
+      const float* n = &baked.normals[3 * baked.corners[3 * t + k]];
+      for (int i = 0; i < 3; ++i) EXPECT_NEAR(n[i], face[i], 1e-6) << "triangle " << t << " corner " << k;
+    }
+  }
+  const tangent::gltf::FileCheck check = tangent::gltf::checkFile(baked.output, {});
+  ASSERT_EQ(check.primitives.size(), 1u);
+  EXPECT_TRUE(check.clean());
+  const nlohmann::ordered_json report = tangent::gltf::toJson(baked.result);
+  EXPECT_EQ(report["primitives"][0]["normalsGenerated"], "flat");
+}
+
+TEST(GeneratedNormals, SmoothNormalsOnASphereFollowTheSurface) {
+  TempDir dir;
+  const Baked baked = bakeWithoutNormals(tangent::testing::makeSphere(32, 16), dir.path(), "sphere", tangent::gltf::NormalsMode::smooth);
+  ASSERT_FALSE(baked.normals.empty());
+  // A unit sphere about the origin: the analytic normal is the position.
+  double worst = 0;
+  for (std::size_t v = 0; v < baked.positions.size() / 3; ++v) {
+    const double angle = angleDegrees(&baked.normals[3 * v], &baked.positions[3 * v]);
+    if (angle > 0.5) ADD_FAILURE() << "vertex " << v << " at (" << baked.positions[3 * v] << ", " << baked.positions[3 * v + 1] << ", " << baked.positions[3 * v + 2] << "): " << angle << " deg";
+    worst = std::max(worst, angle);
+  }
+  EXPECT_LE(worst, 0.5);
+  EXPECT_TRUE(tangent::gltf::checkFile(baked.output, {}).clean());
+}
+
+TEST(GeneratedNormals, KeepLeavesThePrimitiveAsItIs) {
+  TempDir dir;
+  const Baked baked = bakeWithoutNormals(tangent::testing::makeTorus(12, 6), dir.path(), "torus", tangent::gltf::NormalsMode::keep);
+  ASSERT_EQ(baked.result.primitives.size(), 1u);
+  EXPECT_EQ(baked.result.primitives[0].action, tangent::gltf::PrimitiveAction::skipped);
+  EXPECT_TRUE(baked.normals.empty());
+}
+
+// The .glb at `path` with NORMAL taken out of mesh 0 primitive 0 (the bytes stay; the accessor
+// is then unused, which glTF allows).
+void removeNormal(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::vector<char> bytes((std::istreambuf_iterator<char>(in)), {});
+  in.close();
+  std::uint32_t jsonLength = 0;
+  std::memcpy(&jsonLength, &bytes[12], 4);
+  nlohmann::ordered_json json = nlohmann::ordered_json::parse(bytes.begin() + 20, bytes.begin() + 20 + jsonLength);
+  json["meshes"][0]["primitives"][0]["attributes"].erase("NORMAL");
+  std::string text = json.dump();
+  while (text.size() % 4) text += ' ';
+  const std::vector<char> rest(bytes.begin() + 20 + jsonLength, bytes.end());
+  const std::uint32_t header[5] = {0x46546C67, 2, static_cast<std::uint32_t>(20 + text.size() + rest.size()),
+                                   static_cast<std::uint32_t>(text.size()), 0x4E4F534A};
+  std::ofstream out(path, std::ios::binary);
+  out.write(reinterpret_cast<const char*>(header), sizeof header);
+  out << text;
+  out.write(rest.data(), static_cast<std::streamsize>(rest.size()));
+}
+
+TEST(GeneratedNormals, CheckWithoutNormalUsesTheSpecsFlatNormals) {
+  TempDir dir;
+  // Tangents baked from flat normals, NORMAL then removed: clean against the spec's flat normals.
+  const Baked flat = bakeWithoutNormals(tangent::testing::makeTorus(12, 6), dir.path(), "flat", tangent::gltf::NormalsMode::flat);
+  removeNormal(flat.output);
+  const tangent::gltf::FileCheck clean = tangent::gltf::checkFile(flat.output, {});
+  ASSERT_EQ(clean.primitives.size(), 1u) << "a primitive without NORMAL is checked, not skipped";
+  EXPECT_TRUE(clean.clean());
+  // Tangents baked from smooth normals, NORMAL removed: they leave the faces' planes.
+  const Baked smooth = bakeWithoutNormals(tangent::testing::makeTorus(12, 6), dir.path(), "smooth", tangent::gltf::NormalsMode::smooth);
+  removeNormal(smooth.output);
+  const tangent::gltf::FileCheck failing = tangent::gltf::checkFile(smooth.output, {});
+  ASSERT_EQ(failing.primitives.size(), 1u);
+  std::vector<std::string> failed;
+  for (const auto& f : failing.primitives[0].findings) failed.push_back(f.check);
+  EXPECT_NE(std::find(failed.begin(), failed.end(), "orthogonal"), failed.end());
+  EXPECT_NE(std::find(failed.begin(), failed.end(), "reference"), failed.end());
+}
+
+}  // namespace generated

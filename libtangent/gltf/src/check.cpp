@@ -156,7 +156,25 @@ void checkDrawnPart(const PrimitiveGeometry& buffer, const UsedVertices& used, c
   // Rounded positions and UVs (KHR_mesh_quantization) move the recomputed frame: per vertex
   // allowance, and triangles whose UV orientation the rounding leaves open.
   const PrimitiveGeometry part = gatherGeometry(buffer, used);
-  const ReferenceAllowance allowance = referenceAllowance(part, rounding);
+  // A primitive without NORMAL is judged against the spec's flat normals (glTF 2.0 3.7.2.1),
+  // as bake generates them: `flat` splits the part's vertices per face; `frames` is what the
+  // reference is computed from, its corners in the part's order.
+  const bool flatNormals = part.normals.empty();
+  PrimitiveGeometry flat;
+  if (flatNormals) {
+    GeneratedNormals generated = generateNormals(part.positions, part.corners, /*smooth=*/false, 0);
+    flat.vertexCount = generated.source.size();
+    flat.positions.resize(3 * flat.vertexCount);
+    flat.uvs.resize(2 * flat.vertexCount);
+    for (std::size_t v = 0; v < flat.vertexCount; ++v) {
+      std::copy_n(&part.positions[3 * generated.source[v]], 3, &flat.positions[3 * v]);
+      std::copy_n(&part.uvs[2 * generated.source[v]], 2, &flat.uvs[2 * v]);
+    }
+    flat.normals = std::move(generated.normals);
+    flat.corners = std::move(generated.corners);
+  }
+  const PrimitiveGeometry& frames = flatNormals ? flat : part;
+  const ReferenceAllowance allowance = referenceAllowance(frames, rounding);
 
   const std::size_t triangleCount = part.corners.size() / 3;
   FindingBuilder uniform(CheckId::wUniform, "triangles", triangleCount, "none", 0, options);
@@ -187,14 +205,29 @@ void checkDrawnPart(const PrimitiveGeometry& buffer, const UsedVertices& used, c
   uniform.finish(result, "w differs between the corners of a triangle (a vertex shared across a mirror seam?)");
   handedness.finish(result, "w disagrees with the triangle's orientation in the normal texture's UV set (w = -sign(UV area) in glTF)");
 
-  for (const std::uint32_t v : used.vertices) {
+  // Per vertex, the normal its tangent is judged against: NORMAL, or (flat normals) the face
+  // normal of its corner furthest from its tangent's plane.
+  std::vector<const float*> normalOf(part.vertexCount, nullptr);
+  if (flatNormals) {
+    std::vector<double> worstOffPlane(part.vertexCount, -2);
+    for (std::size_t c = 0; c < part.corners.size(); ++c) {
+      const std::uint32_t local = part.corners[c];
+      const float* n = &flat.normals[3 * flat.corners[c]];
+      const double offPlane = offPlaneDegrees(&tangents[4 * used.vertices[local]], n);
+      if (offPlane > worstOffPlane[local]) worstOffPlane[local] = offPlane, normalOf[local] = n;
+    }
+  } else {
+    for (std::size_t local = 0; local < part.vertexCount; ++local) normalOf[local] = &part.normals[3 * local];
+  }
+  for (std::size_t local = 0; local < part.vertexCount; ++local) {
+    const std::uint32_t v = used.vertices[local];
     const float* t = &tangents[4 * v];
-    const float* normal = &buffer.normals[3 * v];
-    if (!finite4(t)) continue;
+    const float* normal = normalOf[local];
+    if (!finite4(t) || !normal) continue;
     const double offPlane = offPlaneDegrees(t, normal);
     if (offPlane > stored.orthogonalLimit)
-      orthogonal.fail(v, offPlane, format("vertex %u is %.4g deg out of the tangent plane, N = (%.4g, %.4g, %.4g), T = ", v, offPlane,
-                                          normal[0], normal[1], normal[2]) + tangentText(t));
+      orthogonal.fail(v, offPlane, format("vertex %u is %.4g deg out of the tangent plane, N = (%.4g, %.4g, %.4g)%s, T = ", v, offPlane,
+                                          normal[0], normal[1], normal[2], flatNormals ? " (flat)" : "") + tangentText(t));
   }
   // The limits in words: the tolerance, plus rounding where there is any.
   const bool roundedFrame = stored.limits.tangentAngleDegrees > 0 || stored.limits.normalAngleDegrees > 0;
@@ -214,7 +247,7 @@ void checkDrawnPart(const PrimitiveGeometry& buffer, const UsedVertices& used, c
     core.threads = threadsFor(part.corners.size(), core.threads);
     std::vector<float> computed(part.corners.size() * 4);
     std::vector<FrameSource> sources(part.corners.size());
-    computeCornerTangents({part.positions, part.normals, part.uvs, part.corners}, CornerOutputs{computed, sources}, core, workspace);
+    computeCornerTangents({frames.positions, frames.normals, frames.uvs, frames.corners}, CornerOutputs{computed, sources}, core, workspace);
     for (std::size_t c = 0; c < part.corners.size(); ++c) {
       if (sources[c] == FrameSource::neighbour || sources[c] == FrameSource::fixed) {
         ++result.referenceUndefined;
@@ -222,7 +255,7 @@ void checkDrawnPart(const PrimitiveGeometry& buffer, const UsedVertices& used, c
       }
       const std::uint32_t local = part.corners[c];
       const std::uint32_t v = used.vertices[local];
-      const float extra = allowance.vertex(local);
+      const float extra = allowance.vertex(frames.corners[c]);
       if (extra >= kUncomparableDegrees) {
         ++result.referenceUnresolved;
         continue;
@@ -268,7 +301,7 @@ void checkDrawnPart(const PrimitiveGeometry& buffer, const UsedVertices& used, c
 void checkVertexGroup(const Asset& asset, const std::vector<PrimitiveToCheck>& primitives, const std::vector<std::size_t>& members,
                       const CheckOptions& options, TangentWorkspace& workspace, std::vector<PrimitiveCheck>& results) {
   const PrimitiveToCheck& first = primitives[members.front()];
-  const PrimitiveGeometry buffer = readVertices(asset, *first.primitive, first.needs, first.where);
+  const PrimitiveGeometry buffer = readVertices(asset, *first.primitive, first.needs, first.where, /*normalOptional=*/true);
 
   // The vertices each member draws, and those none draws.
   std::vector<UsedVertices> parts;
@@ -312,10 +345,12 @@ void checkVertexGroup(const Asset& asset, const std::vector<PrimitiveToCheck>& p
   for (const std::size_t member : members) (options.runs(CheckId::present) ? results[member].passed : results[member].ignored).push_back("present");
   const AccessorData data = readAccessor(asset.model, tangentAccessor, first.where + ": TANGENT");
   const std::optional<StoredComponent> tangentComponent = storedComponentOf(data.componentType, data.normalized);
+  // Without NORMAL the spec's flat normals are used: exact floats.
   const int normalAccessor = accessorOf(attributes, "NORMAL");
-  const Json& normalJson = asset.json["accessors"][normalAccessor];
   const std::optional<StoredComponent> normalComponent =
-      storedComponentOf(normalJson.value("componentType", 0), normalJson.value("normalized", false));
+      normalAccessor < 0 ? std::optional<StoredComponent>(StoredComponent::float32)
+                         : storedComponentOf(asset.json["accessors"][normalAccessor].value("componentType", 0),
+                                             asset.json["accessors"][normalAccessor].value("normalized", false));
   if (data.type != TINYGLTF_TYPE_VEC4 || !tangentComponent || data.count != buffer.vertexCount) {
     for (const std::size_t member : members) {
       FindingBuilder formatCheck(CheckId::format, "primitive", 1, "none", 0, options);
@@ -425,7 +460,6 @@ FileCheck checkAsset(const std::filesystem::path& input, const CheckOptions& opt
         const Json& primitive = mesh["primitives"][p];
         const std::string label = detail::primitiveLabel(doc, static_cast<int>(m), static_cast<int>(p));
         const detail::PrimitiveNeeds needs = detail::primitiveNeeds(doc, primitive, options.all || asset.fromMeshFile);
-        const bool hasNormal = detail::accessorOf(primitive["attributes"], "NORMAL") >= 0;
         const bool hasUv = detail::accessorOf(primitive["attributes"], "TEXCOORD_" + std::to_string(needs.texCoord)) >= 0;
         auto newCheck = [&] {
           PrimitiveCheck check;
@@ -445,10 +479,10 @@ FileCheck checkAsset(const std::filesystem::path& input, const CheckOptions& opt
           result.primitives.push_back(std::move(check));
           continue;
         }
-        if (!needs.triangles || needs.texCoord < 0 || !hasNormal || !hasUv) {
+        // A primitive without NORMAL is checked against the spec's flat normals (checkDrawnPart).
+        if (!needs.triangles || needs.texCoord < 0 || !hasUv) {
           std::string why = needs.why;
-          if (needs.triangles && needs.texCoord >= 0)
-            why = !hasNormal ? "no NORMAL attribute" : "no TEXCOORD_" + std::to_string(needs.texCoord) + " attribute";
+          if (needs.triangles && needs.texCoord >= 0) why = "no TEXCOORD_" + std::to_string(needs.texCoord) + " attribute";
           result.skipped.push_back(label + ": " + why);
           continue;
         }

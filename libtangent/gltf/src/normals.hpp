@@ -13,6 +13,7 @@
 
 #include <cstdint>
 #include <span>
+#include <vector>
 
 namespace tangent::gltf::detail {
 
@@ -41,5 +42,24 @@ struct NormalLengths {
 // Normalizes, in place, the normals (3 floats each) that normalNeedsNormalizing selects: each
 // divided by its length in double, then rounded to float.
 NormalLengths unitNormals(std::span<float> normals);
+
+// ---- NORMAL where a primitive has none (bake --normals) ----
+
+// glTF 2.0 (3.7.2.1): "When normals are not specified, client implementations MUST calculate
+// flat normals". Flat: each corner takes its triangle's unit normal, cross(p1 - p0, p2 - p0)
+// (counter-clockwise front faces). A triangle without area draws nothing: its corners get +Z,
+// which keeps the accessor valid (the validator requires unit normals). Smooth: each corner
+// takes the sum of the unit normals of the triangles that meet at its position (welded: within
+// 1e-6 of the bounding box's diagonal) within creaseAngleDegrees of its own triangle's, each
+// weighted by that triangle's corner angle there (Thuermer and Wuethrich 1998), normalized; the
+// corners of a triangle without area take every triangle at their position. A vertex whose
+// corners get different normals is split: the result is a new vertex list.
+struct GeneratedNormals {
+  std::vector<std::uint32_t> source;   // input vertex of each new vertex
+  std::vector<float> normals;          // 3 per new vertex
+  std::vector<std::uint32_t> corners;  // the triangle list over the new vertices
+};
+GeneratedNormals generateNormals(std::span<const float> positions, std::span<const std::uint32_t> corners, bool smooth,
+                                 double creaseAngleDegrees);
 
 }  // namespace tangent::gltf::detail

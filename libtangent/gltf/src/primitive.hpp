@@ -95,12 +95,13 @@ struct PrimitiveGeometry {
 
 // POSITION, NORMAL (unitNormals applied) and the normal texture's UV set (needs.texCoord) of a
 // primitive; throws InputError naming `where` and the accessor when one is missing or malformed.
+// With normalOptional, a primitive without NORMAL gives empty normals instead (bake --normals).
 PrimitiveGeometry readGeometry(const Asset& asset, const nlohmann::ordered_json& primitive, const PrimitiveNeeds& needs,
-                               const std::string& where);
+                               const std::string& where, bool normalOptional = false);
 // readGeometry in two steps, for primitives that share a vertex buffer (sameVertexKey): the
 // vertex attributes (corners left empty), read once for all of them...
 PrimitiveGeometry readVertices(const Asset& asset, const nlohmann::ordered_json& primitive, const PrimitiveNeeds& needs,
-                               const std::string& where);
+                               const std::string& where, bool normalOptional = false);
 // ...and each primitive's triangle list, mode and index component type, into `geometry`
 // (whose vertexCount bounds the indices): time in the primitive's indices only.
 void readCorners(const Asset& asset, const nlohmann::ordered_json& primitive, const std::string& where,
