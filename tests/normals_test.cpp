@@ -260,3 +260,76 @@ TEST(GeneratedNormals, CheckWithoutNormalUsesTheSpecsFlatNormals) {
 }
 
 }  // namespace generated
+
+// ---- check --identify (issue 37, item 3) ----
+
+namespace identify {
+
+TEST(Identify, NamesTheGeneratorEachBakeUsed) {
+  TempDir dir;
+  // Jittered UVs and leaning normals, so that the weightings give different frames.
+  const fs::path input = tangent::testing::writeAsset(tangent::testing::meshAsset("leaning", leaningGrid()), dir / "in", true);
+  const std::vector<std::pair<std::string, tangent::Options>> generators = {
+      {"mikktspace", {tangent::Method::mikktspace, tangent::Weighting::angle}},
+      {"lengyel/angle", {tangent::Method::lengyel, tangent::Weighting::angle}},
+      {"lengyel/area", {tangent::Method::lengyel, tangent::Weighting::area}},
+      {"lengyel/uniform", {tangent::Method::lengyel, tangent::Weighting::uniform}},
+      {"flat", {tangent::Method::flat, tangent::Weighting::angle}}};
+  tangent::gltf::CheckOptions options;
+  options.identify = true;
+  options.enabled.reset();  // only the identification: a lengyel bake fails the mikktspace reference
+  int index = 0;
+  for (const auto& [name, method] : generators) {
+    tangent::gltf::BakeOptions bake;
+    bake.tangents = method;
+    const fs::path output = dir / ("leaning-" + std::to_string(index++) + ".glb");
+    tangent::gltf::bakeFile(input, output, bake);
+    const tangent::gltf::FileCheck check = tangent::gltf::checkFile(output, options);
+    ASSERT_EQ(check.primitives.size(), 1u);
+    EXPECT_EQ(check.primitives[0].generator, name);
+    ASSERT_EQ(check.primitives[0].generators.size(), 5u);
+    EXPECT_EQ(check.primitives[0].generators[0].medianDegrees, 0.0) << name;  // the same computation, the same bits
+    EXPECT_GT(check.primitives[0].generators[1].medianDegrees, 0.0) << name;
+  }
+}
+
+TEST(Identify, RandomlyTurnedTangentsAreNoneOfThese) {
+  TempDir dir;
+  const fs::path input = tangent::testing::writeAsset(tangent::testing::meshAsset("torus", tangent::testing::makeTorus(16, 8)), dir / "in", true);
+  const fs::path output = dir / "torus.glb";
+  tangent::gltf::bakeFile(input, output, {});
+  // Each stored tangent turned about its normal by a pseudo-random angle of 5 to 85 degrees.
+  std::ifstream in(output, std::ios::binary);
+  std::vector<char> bytes((std::istreambuf_iterator<char>(in)), {});
+  in.close();
+  std::uint32_t jsonLength = 0;
+  std::memcpy(&jsonLength, &bytes[12], 4);
+  const nlohmann::ordered_json json = nlohmann::ordered_json::parse(bytes.begin() + 20, bytes.begin() + 20 + jsonLength);
+  const auto& attributes = json["meshes"][0]["primitives"][0]["attributes"];
+  auto floatsAt = [&](int accessor) {
+    const auto& a = json["accessors"][accessor];
+    const auto& view = json["bufferViews"][a["bufferView"].get<int>()];
+    return reinterpret_cast<float*>(&bytes[20 + jsonLength + 8 + view.value("byteOffset", 0) + a.value("byteOffset", 0)]);
+  };
+  float* tangents = floatsAt(attributes["TANGENT"].get<int>());
+  const float* normals = floatsAt(attributes["NORMAL"].get<int>());
+  const std::size_t count = json["accessors"][attributes["TANGENT"].get<int>()]["count"].get<std::size_t>();
+  for (std::size_t v = 0; v < count; ++v) {
+    float* t = &tangents[4 * v];
+    const float* n = &normals[3 * v];
+    const double angle = (5 + 80 * std::fmod(v * 0.618034, 1.0)) / detail::kDegreesPerRadian;
+    const double cross[3] = {n[1] * t[2] - n[2] * t[1], n[2] * t[0] - n[0] * t[2], n[0] * t[1] - n[1] * t[0]};
+    for (int k = 0; k < 3; ++k) t[k] = static_cast<float>(t[k] * std::cos(angle) + cross[k] * std::sin(angle));
+  }
+  std::ofstream out(output, std::ios::binary);
+  out.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
+  out.close();
+  tangent::gltf::CheckOptions options;
+  options.identify = true;
+  const tangent::gltf::FileCheck check = tangent::gltf::checkFile(output, options);
+  ASSERT_EQ(check.primitives.size(), 1u);
+  EXPECT_EQ(check.primitives[0].generator.rfind("none of these (nearest: ", 0), 0u) << check.primitives[0].generator;
+  EXPECT_GT(check.primitives[0].generators[0].medianDegrees, tangent::gltf::kIdentifyMedianDegrees);
+}
+
+}  // namespace identify

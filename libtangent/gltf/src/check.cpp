@@ -141,6 +141,56 @@ struct VertexFindings {
   FindingBuilder finite, unit, w;
 };
 
+// check --identify: the stored tangents against each generator the library has, on the same
+// geometry the reference uses (frames: the part, or its flat-normal split).
+void identifyGenerator(const PrimitiveGeometry& frames, const PrimitiveGeometry& part, const UsedVertices& used,
+                       const std::vector<float>& tangents, TangentWorkspace& workspace, PrimitiveCheck& result) {
+  struct Candidate {
+    Method method;
+    Weighting weighting;
+  };
+  const Candidate candidates[] = {{Method::mikktspace, Weighting::angle}, {Method::lengyel, Weighting::angle},
+                                  {Method::lengyel, Weighting::area}, {Method::lengyel, Weighting::uniform},
+                                  {Method::flat, Weighting::angle}};
+  for (const Candidate& candidate : candidates) {
+    Options core;
+    core.method = candidate.method;
+    core.weighting = candidate.weighting;
+    core.uvOrigin = kGltfUvOrigin;
+    core.threads = threadsFor(frames.corners.size(), core.threads);
+    std::vector<float> computed(frames.corners.size() * 4);
+    std::vector<FrameSource> sources(frames.corners.size());
+    computeCornerTangents({frames.positions, frames.normals, frames.uvs, frames.corners}, CornerOutputs{computed, sources}, core, workspace);
+    std::vector<double> angles;
+    std::size_t wAgree = 0;
+    for (std::size_t c = 0; c < frames.corners.size(); ++c) {
+      if (sources[c] == FrameSource::neighbour || sources[c] == FrameSource::fixed) continue;
+      const float* stored = &tangents[4 * used.vertices[part.corners[c]]];
+      if (!finite4(stored)) continue;
+      angles.push_back(angleBetweenDegrees(stored, &computed[4 * c]));
+      wAgree += (stored[3] < 0) == (computed[4 * c + 3] < 0);
+    }
+    GeneratorMatch match;
+    match.name = std::string(toString(candidate.method));
+    if (candidate.method == Method::lengyel) match.name += "/" + std::string(toString(candidate.weighting));
+    if (angles.empty()) {
+      match.medianDegrees = match.maxDegrees = 180;
+    } else {
+      std::sort(angles.begin(), angles.end());
+      match.medianDegrees = angles[angles.size() / 2];
+      match.maxDegrees = angles.back();
+      match.wAgreement = double(wAgree) / double(angles.size());
+    }
+    result.generators.push_back(std::move(match));
+  }
+  std::stable_sort(result.generators.begin(), result.generators.end(),
+                   [](const GeneratorMatch& a, const GeneratorMatch& b) { return a.medianDegrees < b.medianDegrees; });
+  const GeneratorMatch& best = result.generators.front();
+  result.generator = best.medianDegrees <= kIdentifyMedianDegrees && best.wAgreement >= kIdentifyWAgreement
+                         ? best.name
+                         : "none of these (nearest: " + best.name + ")";
+}
+
 // The checks of one primitive that need its triangles (w-uniform, handedness, orthogonal on the
 // vertices it draws, reference), after the per-vertex ones. `used` is the part of `buffer` it
 // draws; elements in messages are the buffer's vertices and the primitive's triangles and corners.
@@ -281,6 +331,7 @@ void checkDrawnPart(const PrimitiveGeometry& buffer, const UsedVertices& used, c
       }
     }
   }
+  if (options.identify) identifyGenerator(frames, part, used, tangents, workspace, result);
   // Ignored checks listed in check order (they finish in the order the passes run).
   std::sort(result.ignored.begin(), result.ignored.end(),
             [](const std::string& a, const std::string& b) { return *parseCheck(a) < *parseCheck(b); });
@@ -552,6 +603,13 @@ nlohmann::ordered_json toJson(const FileCheck& check) {
     entry["handednessUndecidedTriangles"] = p.handednessUndecided;
     entry["normals"] = {{"normalized", p.normalsNormalized}, {"worstLength", p.worstNormalLength}, {"warningLimit", p.normalLengthLimit}};
     entry["warnings"] = p.warnings;
+    if (!p.generator.empty()) {
+      Json generators = Json::array();
+      for (const GeneratorMatch& g : p.generators)
+        generators.push_back({{"name", g.name}, {"medianDegrees", g.medianDegrees}, {"maxDegrees", g.maxDegrees}, {"wAgreement", g.wAgreement}});
+      entry["generator"] = p.generator;
+      entry["generators"] = generators;
+    }
     primitives.push_back(std::move(entry));
   }
   Json out = {{"file", check.file}, {"status", !check.error.empty() ? "error" : check.clean() ? "clean" : "findings"}};

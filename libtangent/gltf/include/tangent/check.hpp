@@ -31,6 +31,7 @@ struct CheckOptions {
   std::bitset<kCheckCount> enabled = std::bitset<kCheckCount>().set();  // --only / --ignore
   bool allowMissing = false;               // no TANGENT: skipped (the client computes MikkTSpace)
   bool all = false;                        // every triangle primitive, not only normal-mapped ones
+  bool identify = false;                   // --identify: name the generator closest to the stored tangents
   std::filesystem::path assetRoot;         // folder buffer and image URIs may not leave (empty: the file's)
   std::string configFile;                  // where the settings came from, for the report ("" for none)
   bool runs(CheckId id) const { return enabled.test(static_cast<std::size_t>(id)); }
@@ -62,6 +63,18 @@ struct CheckFinding {
   std::vector<CheckSample> worst;  // up to 5, worst first
 };
 
+// How close the stored tangents are to one generator's (check --identify), over the corners
+// that generator defines a frame for.
+struct GeneratorMatch {
+  std::string name;            // "mikktspace", "lengyel/angle", "lengyel/area", "lengyel/uniform", "flat"
+  double medianDegrees = 0;
+  double maxDegrees = 0;
+  double wAgreement = 0;       // share of corners whose w agrees
+};
+// The largest median angle and smallest w agreement at which --identify still names a generator.
+inline constexpr double kIdentifyMedianDegrees = 0.5;
+inline constexpr double kIdentifyWAgreement = 0.99;
+
 struct PrimitiveCheck {
   int mesh = 0;
   std::string meshName;
@@ -90,6 +103,11 @@ struct PrimitiveCheck {
   double worstNormalLength = 1;         // the stored length furthest from 1 (zero normals aside)
   double normalLengthLimit = 0;         // largest | |N| - 1 | not warned about
   std::vector<std::string> warnings;    // for people: what was accepted but is not as the spec says
+  // --identify: every generator, closest first, and the verdict: the closest one's name, or
+  // "none of these (nearest: NAME)" when it is further than kIdentifyMedianDegrees or agrees on
+  // w at fewer than kIdentifyWAgreement of the corners.
+  std::vector<GeneratorMatch> generators;
+  std::string generator;
 };
 
 struct FileCheck {
