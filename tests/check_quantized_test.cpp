@@ -489,4 +489,115 @@ TEST(QuantizedOutput, CliTangentFormatAndValidator) {
   EXPECT_EQ(validated.exitCode, 0) << validated.output;
 }
 
+
+// ---- gltfpack's options (issue 37): every output of a clean bake checks clean, and a control
+// with one tangent turned 10 deg and one w flipped fails, naming both vertices ----
+
+namespace pipeline {
+
+// The vertex whose reference comparison is tightest (smallest allowance for rounded inputs,
+// every triangle's UV orientation decided), and the vertex with the fewest corners among the
+// other comparable ones sharing no triangle with it; -1 where none is comparable.
+std::pair<int, int> controlVertices(const fs::path& file) {
+  const detail::Asset asset = detail::loadAsset(file);
+  const Json& primitive = asset.json["meshes"][0]["primitives"][0];
+  const auto needs = detail::primitiveNeeds(asset.json, primitive, false);
+  const auto geometry = detail::readGeometry(asset, primitive, needs, "controls");
+  const auto allowance = detail::referenceAllowance(geometry, detail::inputRounding(asset, primitive, needs.texCoord, needs.hasNormalTexture));
+  std::vector<int> corners(geometry.vertexCount, 0);
+  std::vector<char> comparable(geometry.vertexCount, 1);
+  for (std::size_t c = 0; c < geometry.corners.size(); ++c) {
+    const std::uint32_t v = geometry.corners[c];
+    ++corners[v];
+    const float* p[3] = {&geometry.positions[3 * geometry.corners[c / 3 * 3]], &geometry.positions[3 * geometry.corners[c / 3 * 3 + 1]],
+                         &geometry.positions[3 * geometry.corners[c / 3 * 3 + 2]]};
+    if (!allowance.decided(c / 3) || !(detail::areaTimesTwo(p[0], p[1], p[2]) > 0)) comparable[v] = 0;
+  }
+  int turned = -1;
+  for (std::size_t v = 0; v < geometry.vertexCount; ++v) {
+    if (!comparable[v] || corners[v] == 0 || allowance.vertex(v) > 5) continue;
+    if (turned < 0 || allowance.vertex(v) < allowance.vertex(turned)) turned = static_cast<int>(v);
+  }
+  if (turned < 0) return {-1, -1};
+  std::vector<char> nearTurned(geometry.vertexCount, 0);
+  for (std::size_t t = 0; t < geometry.corners.size() / 3; ++t) {
+    const std::uint32_t* c = &geometry.corners[3 * t];
+    if (c[0] == std::uint32_t(turned) || c[1] == std::uint32_t(turned) || c[2] == std::uint32_t(turned))
+      nearTurned[c[0]] = nearTurned[c[1]] = nearTurned[c[2]] = 1;
+  }
+  int flipped = -1;
+  for (std::size_t v = 0; v < geometry.vertexCount; ++v) {
+    if (!comparable[v] || corners[v] == 0 || nearTurned[v] || allowance.vertex(v) > 5) continue;
+    if (flipped < 0 || corners[v] < corners[flipped]) flipped = static_cast<int>(v);
+  }
+  return {turned, flipped};
+}
+
+TEST(GltfpackPipeline, EveryOptionChecksCleanAndAControlIsNamed) {
+  if (gltfpack().empty()) TANGENT_SKIP_OR_FAIL("gltfpack is not installed (scripts/install-deps.sh): the pipeline was not tested");
+  TempDir dir;
+  bool sharedPresent = false;
+  std::vector<fs::path> bakes = cleanBakes(dir, sharedPresent);
+  for (const auto& [name, mesh] : {std::pair{std::string("sphere"), tangent::testing::makeSphere(16, 8)},
+                                   std::pair{std::string("torus"), tangent::testing::makeTorus(24, 12)}}) {
+    const fs::path input = tangent::testing::writeAsset(tangent::testing::meshAsset(name, mesh), dir / "in", true);
+    bakes.push_back(dir / (name + "-baked.glb"));
+    tangent::gltf::bakeFile(input, bakes.back(), {});
+  }
+  int controls = 0;
+  // Outputs whose every vertex has a reference allowance over 5 deg for rounded positions/UVs
+  // (tangent_rules.cpp estimates the UV step from the smallest gap between stored values, which
+  // on the regular grids of the generated meshes is the grid's own spacing): no control there.
+  std::string uncontrolled;
+  for (const fs::path& baked : bakes) {
+    for (const std::string flags : {"", " -vn 8", " -vn 10", " -vn 12", " -vn 16", " -vp 10", " -vt 8"}) {
+      std::string suffix = flags;
+      std::replace(suffix.begin(), suffix.end(), ' ', '_');
+      const fs::path out = dir / (baked.stem().string() + "-gltfpack" + suffix + ".glb");
+      const auto run = runCommand("gltfpack -i " + quoted(baked) + " -o " + quoted(out) + flags);
+      ASSERT_EQ(run.exitCode, 0) << run.output;
+      const FileCheck check = tangent::gltf::checkFile(out, {});
+      EXPECT_TRUE(check.clean()) << out << ": " << describe(check);
+
+      const auto [turned, flipped] = controlVertices(out);
+      if (turned < 0 || flipped < 0) {  // the rounding leaves no vertex comparable (counted below)
+        uncontrolled += " " + out.filename().string();
+        continue;
+      }
+      ++controls;
+      const fs::path control = dir / ("control-" + out.filename().string());
+      fs::copy_file(out, control);
+      const detail::Asset asset = detail::loadAsset(out);
+      const Json& primitive = asset.json["meshes"][0]["primitives"][0];
+      const auto geometry = detail::readGeometry(asset, primitive, detail::primitiveNeeds(asset.json, primitive, false), "control");
+      patchTangents(control, [&](TangentEdit& view) {
+        float* t = &view.tangents[4 * turned];
+        const float* n = &geometry.normals[3 * turned];
+        const double angle = 10 / detail::kDegreesPerRadian;
+        const double cross[3] = {n[1] * t[2] - n[2] * t[1], n[2] * t[0] - n[0] * t[2], n[0] * t[1] - n[1] * t[0]};
+        for (int k = 0; k < 3; ++k) t[k] = static_cast<float>(t[k] * std::cos(angle) + cross[k] * std::sin(angle));
+        view.tangents[4 * flipped + 3] = -view.tangents[4 * flipped + 3];
+      });
+      const FileCheck result = tangent::gltf::checkFile(control, {});
+      EXPECT_FALSE(result.clean()) << control;
+      std::string samples;
+      for (const auto& p : result.primitives)
+        for (const auto& f : p.findings)
+          for (const auto& s : f.worst) samples += f.check + ": " + s.detail + "\n";
+      EXPECT_NE(samples.find("reference: corner"), std::string::npos) << control << "\n" << samples;
+      EXPECT_NE(samples.find("(vertex " + std::to_string(turned) + "): "), std::string::npos)
+          << control << ": turned vertex " << turned << " not named\n" << samples;
+      EXPECT_NE(samples.find("(vertex " + std::to_string(flipped) + "): "), std::string::npos)
+          << control << ": flipped vertex " << flipped << " not named\n" << samples;
+    }
+  }
+  // The shared assets' outputs but -vt 8 have comparable vertices: 2 x 6.
+  if (sharedPresent) {
+    EXPECT_GE(controls, 12) << "outputs without a comparable vertex:" << uncontrolled;
+  }
+  if (!sharedPresent) TANGENT_SKIP_OR_FAIL("../shared/assets is absent: only the generated meshes went through gltfpack");
+}
+
+}  // namespace pipeline
+
 }  // namespace

@@ -81,12 +81,16 @@ std::string bytesKey(const std::vector<std::uint8_t>& bytes) {
 
 // The document with accessor and bufferView references replaced by their content, storage
 // arrays removed, and baked primitives reduced to their attribute names.
-Json canonical(const Asset& asset, const std::vector<std::pair<int, int>>& touched) {
+// `generatedNormals`: baked primitives that had no NORMAL, whose generated one is left out too.
+Json canonical(const Asset& asset, const std::vector<std::pair<int, int>>& touched,
+               const std::vector<std::pair<int, int>>& generatedNormals = {}) {
   Json doc = asset.json;
   for (auto [m, p] : touched) {
     Json& primitive = doc["meshes"][m]["primitives"][p];
+    const bool generated = std::find(generatedNormals.begin(), generatedNormals.end(), std::pair{m, p}) != generatedNormals.end();
     auto namesOnly = [&](Json& attributes) {
       attributes.erase("TANGENT");  // written by the bake (an input TANGENT check fails is replaced)
+      if (generated) attributes.erase("NORMAL");
       for (auto& [name, ref] : attributes.items()) ref = nullptr;
     };
     namesOnly(primitive["attributes"]);
@@ -132,9 +136,10 @@ TEST_P(RoundTrip, EveryCornerAndAllOtherJsonKept) {
       const tangent::gltf::BakeResult result = tangent::gltf::bakeFile(input, output, {});
       const Asset in = loadAsset(input);
       const Asset out = loadAsset(output);
-      std::vector<std::pair<int, int>> touched;
+      std::vector<std::pair<int, int>> touched, generatedNormals;
       for (const auto& p : result.primitives) {
         if (p.action == tangent::gltf::PrimitiveAction::baked) touched.emplace_back(p.mesh, p.primitive);
+        if (p.normalsGenerated) generatedNormals.emplace_back(p.mesh, p.primitive);
       }
       ASSERT_FALSE(touched.empty());
       for (const auto& p : result.primitives) {
@@ -151,13 +156,13 @@ TEST_P(RoundTrip, EveryCornerAndAllOtherJsonKept) {
           ASSERT_TRUE(t[3] == 1.0f || t[3] == -1.0f);
         }
       }
-      EXPECT_EQ(canonical(in, touched), canonical(out, touched));
+      EXPECT_EQ(canonical(in, touched), canonical(out, touched, generatedNormals));
       EXPECT_EQ(out.json["buffers"].size(), 1u);
     }
   }
 }
 
-INSTANTIATE_TEST_SUITE_P(GeneratedAssets, RoundTrip, ::testing::Range(0, 8),
+INSTANTIATE_TEST_SUITE_P(GeneratedAssets, RoundTrip, ::testing::Range(0, static_cast<int>(tangent::testing::makeTestAssets().size())),
                          [](const ::testing::TestParamInfo<int>& param) {
                            return tangent::testing::makeTestAssets()[static_cast<std::size_t>(param.param)].name;
                          });
@@ -308,8 +313,20 @@ TEST(Bake, PrimitivesThatNeedNothingAreLeftAlone) {
   EXPECT_EQ(result.primitives[0].action, tangent::gltf::PrimitiveAction::baked);
   EXPECT_EQ(result.primitives[1].action, tangent::gltf::PrimitiveAction::skipped);  // no normal texture
   EXPECT_EQ(result.primitives[2].action, tangent::gltf::PrimitiveAction::skipped);  // points
-  EXPECT_EQ(result.primitives[3].action, tangent::gltf::PrimitiveAction::skipped);  // no NORMAL
-  EXPECT_NE(result.primitives[3].reason.find("NORMAL"), std::string::npos);
+  // No NORMAL: flat normals generated and written (glTF 2.0 3.7.2.1), tangents from them;
+  // --normals keep leaves it as it is.
+  EXPECT_EQ(result.primitives[3].action, tangent::gltf::PrimitiveAction::baked);
+  EXPECT_EQ(result.primitives[3].normalsGenerated, tangent::gltf::NormalsMode::flat);
+  EXPECT_TRUE(out.json["meshes"][0]["primitives"][3]["attributes"].contains("NORMAL"));
+  {
+    const auto all = tangent::testing::makeTestAssets();
+    const fs::path input = tangent::testing::writeAsset(assetNamed(all, "document_features"), dir / "keep-in", true);
+    tangent::gltf::BakeOptions keep;
+    keep.normals = tangent::gltf::NormalsMode::keep;
+    const auto kept = tangent::gltf::bakeFile(input, dir / "keep.glb", keep);
+    EXPECT_EQ(kept.primitives[3].action, tangent::gltf::PrimitiveAction::skipped);
+    EXPECT_NE(kept.primitives[3].reason.find("NORMAL"), std::string::npos);
+  }
   // Its supplied TANGENT, constant +x on a curved sheet, is unit with w = +-1 but leaves the
   // tangent plane: check fails it, so bake replaces it and says which checks failed.
   EXPECT_EQ(result.primitives[4].action, tangent::gltf::PrimitiveAction::baked);

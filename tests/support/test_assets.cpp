@@ -250,6 +250,15 @@ TestAsset morphTargets() {
   return b.take();
 }
 
+// A normal-mapped torus without NORMAL: bake generates flat normals (glTF 2.0 3.7.2.1).
+TestAsset noNormals() {
+  Builder b("no_normals");
+  Json primitive = b.basicPrimitive(makeTorus(12, 6));
+  primitive["attributes"].erase("NORMAL");
+  b.addMesh(Json::array({primitive}), "NoNormals");
+  return b.take();
+}
+
 TestAsset secondUvSet() {
   Builder b("second_uv_set");
   // Flat (z = 0, normals +z), so that the frames the UV sets and the texture transform give
@@ -415,7 +424,16 @@ ShuffledMesh shuffleFacesAndRotateCorners(const GridMesh& mesh, unsigned seed) {
 }
 
 std::vector<TestAsset> makeTestAssets() {
-  return {interleaved(), quantized(), sparse(), stripsAndFans(), morphTargets(), secondUvSet(), documentFeatures(), manySplits()};
+  return {interleaved(), quantized(), sparse(), stripsAndFans(), morphTargets(), secondUvSet(), documentFeatures(), manySplits(),
+          noNormals()};
+}
+
+TestAsset meshAsset(const std::string& name, const GridMesh& mesh, bool withNormal) {
+  Builder b(name);
+  Json primitive = b.basicPrimitive(mesh);
+  if (!withNormal) primitive["attributes"].erase("NORMAL");
+  b.addMesh(Json::array({primitive}), name);
+  return b.take();
 }
 
 std::filesystem::path writeAsset(const TestAsset& asset, const std::filesystem::path& dir, bool glb) {

@@ -48,4 +48,8 @@ GridMesh makeSphere(int slices, int stacks, bool exactPoles = true);
 // over (two corners swapped), so they are wound against their normals; every = 1 turns all.
 GridMesh reverseWinding(GridMesh mesh, int every);
 
+// One normal-mapped primitive of `mesh` (float POSITION, NORMAL unless withNormal is false,
+// TEXCOORD_0, uint16 indices) in a complete document.
+TestAsset meshAsset(const std::string& name, const GridMesh& mesh, bool withNormal = true);
+
 }  // namespace tangent::testing

@@ -3,6 +3,7 @@
 
 #include <chrono>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
@@ -49,6 +50,10 @@ const char* kBakeUsage =
     "                         time say it is unchanged\n"
     "  --tangent-format F     float (default) | short | byte: TANGENT as float or normalized SHORT/BYTE\n"
     "                         (KHR_mesh_quantization, declared used and required); kept TANGENTs stay as they are\n"
+    "  --normals MODE         flat (default) | smooth | keep: for a primitive without NORMAL, write flat\n"
+    "                         normals (what the specification requires of clients) or smooth ones and\n"
+    "                         compute tangents from them, or leave it as it is\n"
+    "  --crease-angle DEG     with --normals smooth: triangles meeting at more than DEG stay sharp (default 60)\n"
     "  --report FILE.json     write what was done, per file and primitive (\"-\": standard output)\n"
     "  --quiet                print errors only\n"
     "  -h, --help             this text\n";
@@ -283,6 +288,18 @@ int bakeCommand(const std::vector<std::string>& args) {
       const std::optional<gltf::TangentFormat> format = v ? gltf::parseTangentFormat(*v) : std::nullopt;
       if (!format) return usageError("--tangent-format must be float, short or byte");
       options.tangentFormat = *format;
+    } else if (arg == "--normals") {
+      const std::string* v = value("--normals");
+      const std::optional<gltf::NormalsMode> mode = v ? gltf::parseNormalsMode(*v) : std::nullopt;
+      if (!mode) return usageError("--normals must be flat, smooth or keep");
+      options.normals = *mode;
+    } else if (arg == "--crease-angle") {
+      const std::string* v = value("--crease-angle");
+      char* end = nullptr;
+      const double degrees = v ? std::strtod(v->c_str(), &end) : -1;
+      if (!v || end == v->c_str() || *end != '\0' || !(degrees >= 0 && degrees <= 180))
+        return usageError("--crease-angle must be degrees in [0, 180]");
+      options.creaseAngleDegrees = degrees;
     } else if (arg == "--quiet" || arg == "-q") {
       quiet = true;
     } else if (!arg.empty() && arg[0] == '-') {
@@ -366,7 +383,8 @@ int bakeCommand(const std::vector<std::string>& args) {
           baked += p.action == gltf::PrimitiveAction::baked;
           kept += p.action == gltf::PrimitiveAction::kept;
           skipped += p.action == gltf::PrimitiveAction::skipped;
-          split += p.action == gltf::PrimitiveAction::baked ? p.verticesOut - p.verticesIn : 0;
+          // Generated normals may leave out vertices no triangle uses: only growth counts.
+          split += p.action == gltf::PrimitiveAction::baked && p.verticesOut > p.verticesIn ? p.verticesOut - p.verticesIn : 0;
         }
         log << shown(input.string()) << " -> " << shown(targetName) << ": " << baked << " baked, " << kept << " kept, "
                   << skipped << " skipped; " << split << " vertices added by splits\n";
@@ -377,6 +395,7 @@ int bakeCommand(const std::vector<std::string>& args) {
             const Report& r = p.tangents;
             log << " [" << toString(r.method) << (r.weighting ? "/" + std::string(toString(*r.weighting)) : "") << ", " << p.verticesIn << " -> "
                       << p.verticesOut << " vertices, " << r.mirroredCorners << " mirrored corners";
+            if (p.normalsGenerated) log << ", NORMAL generated (" << gltf::toString(*p.normalsGenerated) << ")";
             if (r.degenerateTriangles) log << ", " << r.degenerateTriangles << " degenerate triangles";
             if (r.zeroUvAreaTriangles) log << ", " << r.zeroUvAreaTriangles << " zero-UV-area triangles";
             if (r.nonFiniteTriangles) log << ", " << r.nonFiniteTriangles << " non-finite triangles";

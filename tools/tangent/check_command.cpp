@@ -42,6 +42,8 @@ const char* kCheckUsage =
     "                      options on the command line override it\n"
     "  --method NAME       mikktspace (default) | lengyel: what reference is measured against\n"
     "  --all               check every triangle primitive (TEXCOORD_0 without a normal texture)\n"
+    "  --identify          name the generator closest to the stored tangents (mikktspace, lengyel/angle,\n"
+    "                      lengyel/area, lengyel/uniform, flat) with its median and max angle, or none of these\n"
     "  --asset-root DIR    folder buffer and image URIs may not leave (default: the input's folder)\n"
     "  -h, --help          this text\n"
     "checks: present format finite unit w w-uniform orthogonal handedness reference\n"
@@ -108,8 +110,22 @@ void writeText(std::ostream& out, const std::vector<gltf::FileCheck>& checks) {
         for (const auto& name : p.ignored) out << " " << name;
         out << "\n";
       }
+      for (const auto& warning : p.warnings) out << "    WARN " << warning << "\n";
+      if (!p.generator.empty()) {
+        out << "    generator: " << p.generator;
+        for (const auto& g : p.generators) {
+          char line[160];
+          std::snprintf(line, sizeof line, "%s %s median %.3g max %.3g deg, w %.1f%%", &g == &p.generators.front() ? " (" : ";",
+                        g.name.c_str(), g.medianDegrees, g.maxDegrees, 100 * g.wAgreement);
+          out << line;
+        }
+        out << ")\n";
+      }
       if (p.referenceUnresolved)
         out << "    (" << p.referenceUnresolved << " corners have a UV orientation their rounded positions/UVs leave open; not compared)\n";
+      if (p.handednessUndecided || p.referenceWUndecided)
+        out << "    (" << p.handednessUndecided << " triangles have a UV orientation their rounded positions/UVs leave open: handedness "
+            << "skips them, reference compares the angle but not w at their " << p.referenceWUndecided << " corners)\n";
       if (p.referenceUndefined) out << "    (" << p.referenceUndefined << " corners have no defined reference frame; not compared)\n";
     }
     for (const auto& s : file.skipped) out << "  skipped " << s << "\n";
@@ -260,6 +276,9 @@ void writeGithub(std::ostream& out, const std::vector<gltf::FileCheck>& checks) 
         out << "::error file=" << githubProperty(file.file) << ",title=" << githubProperty("tangent check " + f.check + " (" + primitiveName(p) + ")")
             << "::" << githubData(message) << "\n";
       }
+      for (const auto& warning : p.warnings)
+        out << "::warning file=" << githubProperty(file.file) << ",title=" << githubProperty("tangent check (" + primitiveName(p) + ")")
+            << "::" << githubData(warning) << "\n";
     }
   }
   out << "::notice title=tangent check::" << checks.size() << " file(s), " << primitives << " primitive(s) checked, " << findings
@@ -423,6 +442,8 @@ int checkCommand(const std::vector<std::string>& args) {
       options.method = *method;
     } else if (arg == "--all") {
       options.all = true;
+    } else if (arg == "--identify") {
+      options.identify = true;
     } else if (arg == "--asset-root") {
       if (!hasValue) return usageError("--asset-root needs a directory");
       options.assetRoot = args[++i];

@@ -165,6 +165,7 @@ struct PrimitivePlan {
   bool bake = false;
   bool hasTangent = false;       // an existing TANGENT, kept or recomputed as decideExisting says
   bool replacesTangent = false;  // an existing TANGENT is recomputed
+  bool generatesNormals = false; // no NORMAL: bake writes one (BakeOptions::normals) and computes from it
   PrimitiveResult result;
 };
 
@@ -177,6 +178,7 @@ struct ComputedTangents {
   std::vector<std::vector<float>> targetTangentDeltas;
   detail::PrimitiveCompression compression;
   bool rebuild = false;  // every vertex accessor and the indices are written anew
+  std::vector<float> generatedNormals;  // 3 per output vertex where bake writes a NORMAL, else empty
   // The split's vertices are a part of a shared vertex buffer (VertexGroup): rebuilt accessors
   // get the min/max of the part (the spec requires them for POSITION, the validator compares).
   bool partOfBuffer = false;
@@ -259,6 +261,7 @@ struct SharedBake {
   std::uint64_t verticesIn = 0;
   std::uint64_t verticesOut = 0;
   std::string compressionNote;       // "; written uncompressed (was ...)", or ""
+  std::optional<NormalsMode> normalsGenerated;
 };
 
 // Bakes every primitive in four steps: plan (does it need tangents, is it valid), compute
@@ -285,6 +288,7 @@ class PrimitiveBaker {
   SharedBake bakeInputs(PrimitivePlan& plan);
   void bakeVertexGroup(const VertexGroup& group, std::vector<PrimitivePlan>& plans);
   std::optional<ComputedTangents> compute(PrimitivePlan& plan);
+  std::optional<ComputedTangents> computeWithGeneratedNormals(PrimitivePlan& plan, const detail::PrimitiveGeometry& geometry);
   std::vector<TargetDeltas> readTargetDeltas(const PrimitivePlan& plan, std::size_t vertexCount);
   std::optional<ComputedTangents> computeFrames(PrimitivePlan& plan, const detail::PrimitiveGeometry& geometry,
                                                 const std::vector<TargetDeltas>& targets);
@@ -335,8 +339,11 @@ PrimitivePlan PrimitiveBaker::planPrimitive(int meshIndex, int primitiveIndex) {
   if (const std::string problem = detail::missingPosition(primitive, needs); !problem.empty())
     throw InputError(plan.where + ": " + problem);
   if (detail::accessorOf(attributes, "NORMAL") < 0) {
-    result.reason = "no NORMAL attribute; tangents need normals, primitive left as it is";
-    return plan;
+    if (options_.normals == NormalsMode::keep) {
+      result.reason = "no NORMAL attribute; tangents need normals, primitive left as it is (--normals keep)";
+      return plan;
+    }
+    plan.generatesNormals = true;
   }
   if (detail::accessorOf(attributes, uvName) < 0) {
     // The material names a UV set the primitive lacks: a broken reference, refused (as check
@@ -346,9 +353,15 @@ PrimitivePlan PrimitiveBaker::planPrimitive(int meshIndex, int primitiveIndex) {
     result.reason = needs.why + ", but the primitive has no " + uvName + "; left as it is";
     return plan;
   }
-  // An existing TANGENT is judged by decideExisting, once every primitive is planned.
-  plan.hasTangent = detail::accessorOf(attributes, "TANGENT") >= 0;
+  // An existing TANGENT is judged by decideExisting, once every primitive is planned; one
+  // without NORMAL is recomputed with the NORMAL bake writes.
+  plan.hasTangent = detail::accessorOf(attributes, "TANGENT") >= 0 && !plan.generatesNormals;
   plan.bake = !plan.hasTangent;
+  if (plan.generatesNormals) {
+    plan.why += std::string("; no NORMAL: ") + toString(options_.normals) + " normals generated and written";
+    plan.replacesTangent = detail::accessorOf(attributes, "TANGENT") >= 0;
+    if (plan.replacesTangent) result.reason = plan.why + "; the existing TANGENT recomputed from them";
+  }
   return plan;
 }
 
@@ -403,7 +416,11 @@ std::vector<PrimitiveResult> PrimitiveBaker::bakeAll() {
       if (!plans[i].bake) continue;
       const Json& primitive = primitiveJson(plans[i]);
       inputKeys[i] = detail::sameInputKey(output_.json(), primitive, plans[i].needs);
-      const auto group = groupOfVertexKey.emplace(detail::sameVertexKey(output_.json(), primitive, plans[i].needs), groups.size());
+      // A primitive whose normals are generated is baked alone (its vertices are split by them).
+      const std::string vertexKey = plans[i].generatesNormals ? "generated normals " + std::to_string(i)
+                                                               : detail::sameVertexKey(output_.json(), primitive, plans[i].needs);
+      if (plans[i].generatesNormals) inputKeys[i] += " normals " + std::string(toString(options_.normals));
+      const auto group = groupOfVertexKey.emplace(vertexKey, groups.size());
       if (group.second) groups.emplace_back();
       groupOfPlan[i] = group.first->second;
       if (firstOfInputKey.emplace(inputKeys[i], i).second) groups[groupOfPlan[i]].firstOfInput.push_back(i);
@@ -524,15 +541,61 @@ void PrimitiveBaker::bakeVertexGroup(const VertexGroup& group, std::vector<Primi
 // targets (tangents of the morphed shape minus the base ones). Reads the document only.
 std::optional<ComputedTangents> PrimitiveBaker::compute(PrimitivePlan& plan) {
   const Json& primitive = primitiveJson(plan);
-  const detail::PrimitiveGeometry geometry = detail::readGeometry(asset_, primitive, plan.needs, plan.where);
+  const detail::PrimitiveGeometry geometry = detail::readGeometry(asset_, primitive, plan.needs, plan.where, plan.generatesNormals);
   if (geometry.corners.empty()) {
     plan.result.reason = "primitive has no triangles; left as it is";
     return std::nullopt;
   }
+  if (plan.generatesNormals) return computeWithGeneratedNormals(plan, geometry);
   std::optional<ComputedTangents> computed = computeFrames(plan, geometry, readTargetDeltas(plan, geometry.vertexCount));
   // Compressed data is written uncompressed: every accessor of a baked primitive is new.
   computed->compression = detail::primitiveCompression(asset_, primitive);
   computed->rebuild = computed->split.source.size() != geometry.vertexCount || geometry.mode != 4 || computed->compression.any();
+  return computed;
+}
+
+// A primitive without NORMAL: normals generated (detail::generateNormals), its vertices split
+// where they differ, tangents computed from them; the vertex split maps back to the input's
+// vertices, and emit writes the generated NORMAL beside the gathered attributes.
+std::optional<ComputedTangents> PrimitiveBaker::computeWithGeneratedNormals(PrimitivePlan& plan,
+                                                                             const detail::PrimitiveGeometry& geometry) {
+  const bool smooth = options_.normals == NormalsMode::smooth;
+  detail::GeneratedNormals generated = detail::generateNormals(geometry.positions, geometry.corners, smooth, options_.creaseAngleDegrees);
+  detail::PrimitiveGeometry expanded;
+  expanded.vertexCount = generated.source.size();
+  expanded.mode = 4;
+  expanded.indexComponentType = geometry.indexComponentType;
+  expanded.positions.resize(3 * expanded.vertexCount);
+  expanded.uvs.resize(2 * expanded.vertexCount);
+  for (std::size_t v = 0; v < expanded.vertexCount; ++v) {
+    std::copy_n(&geometry.positions[3 * generated.source[v]], 3, &expanded.positions[3 * v]);
+    std::copy_n(&geometry.uvs[2 * generated.source[v]], 2, &expanded.uvs[2 * v]);
+  }
+  expanded.normals = std::move(generated.normals);
+  expanded.corners = std::move(generated.corners);
+  std::vector<TargetDeltas> targets = readTargetDeltas(plan, geometry.vertexCount);
+  for (TargetDeltas& target : targets) {
+    for (std::vector<float>* deltas : {&target.positions, &target.normals}) {
+      if (deltas->empty()) continue;
+      std::vector<float> gathered(3 * expanded.vertexCount);
+      for (std::size_t v = 0; v < expanded.vertexCount; ++v) std::copy_n(&(*deltas)[3 * generated.source[v]], 3, &gathered[3 * v]);
+      *deltas = std::move(gathered);
+    }
+  }
+  std::optional<ComputedTangents> computed = computeFrames(plan, expanded, targets);
+  if (!computed) return computed;
+  computed->generatedNormals.resize(3 * computed->split.source.size());
+  for (std::size_t v = 0; v < computed->split.source.size(); ++v) {
+    const std::uint32_t inExpanded = computed->split.source[v];
+    std::copy_n(&expanded.normals[3 * inExpanded], 3, &computed->generatedNormals[3 * v]);
+    computed->split.source[v] = generated.source[inExpanded];
+  }
+  computed->vertexCount = geometry.vertexCount;
+  computed->indexComponentType = geometry.indexComponentType;
+  computed->compression = detail::primitiveCompression(asset_, primitiveJson(plan));
+  computed->rebuild = true;
+  plan.result.verticesIn = geometry.vertexCount;
+  plan.result.normalsGenerated = options_.normals;
   return computed;
 }
 
@@ -585,6 +648,8 @@ std::optional<ComputedTangents> PrimitiveBaker::computeFrames(PrimitivePlan& pla
     std::vector<float> morphedPositions = geometry.positions, morphedNormals = geometry.normals;
     for (std::size_t i = 0; i < target.positions.size(); ++i) morphedPositions[i] += target.positions[i];
     for (std::size_t i = 0; i < target.normals.size(); ++i) morphedNormals[i] += target.normals[i];
+    // Readers normalize the morphed normal (spec 3.7.2.2), as they do the base one.
+    if (!target.normals.empty()) detail::unitNormals(morphedNormals);
     BulkVector<float> morphedTangents(corners.size() * 4);
     computeCornerTangents({morphedPositions, morphedNormals, geometry.uvs, corners}, CornerOutputs{morphedTangents},
                           coreOptions, workspace);
@@ -616,6 +681,9 @@ SharedBake PrimitiveBaker::emit(const PrimitivePlan& plan, const ComputedTangent
   emitted.targets.resize(computed.targetTangentDeltas.size());
   if (computed.rebuild) {
     rebuildAttributes(plan, computed, emitted);
+    if (!computed.generatedNormals.empty())
+      emitted.attributes.emplace_back("NORMAL", output_.addAccessor(floatAccessor(computed.split.source.size(), "VEC3"),
+                                                                    floatBytes(computed.generatedNormals), 12, detail::kArrayBuffer));
     rebuildTargets(plan, computed, emitted);
     writeIndices(computed, emitted);
     emitted.dropDraco = computed.compression.draco;
@@ -624,6 +692,7 @@ SharedBake PrimitiveBaker::emit(const PrimitivePlan& plan, const ComputedTangent
   shared.tangents = plan.result.tangents;
   shared.verticesIn = plan.result.verticesIn;
   shared.verticesOut = plan.result.verticesOut;
+  shared.normalsGenerated = plan.result.normalsGenerated;
   if (computed.compression.any()) {
     std::string names;
     for (const std::string& name : detail::compressionNames(computed.compression)) names += (names.empty() ? "" : ", ") + name;
@@ -658,6 +727,7 @@ void PrimitiveBaker::refer(PrimitivePlan& plan, const SharedBake& shared) {
   result.tangents = shared.tangents;
   result.verticesIn = shared.verticesIn;
   result.verticesOut = shared.verticesOut;
+  result.normalsGenerated = shared.normalsGenerated;
   if (!plan.replacesTangent) result.reason = plan.why;
   result.reason += shared.compressionNote;
 }
@@ -764,6 +834,22 @@ std::optional<TangentFormat> parseTangentFormat(std::string_view name) {
   if (name == "short") return TangentFormat::normalizedShort;
   if (name == "byte") return TangentFormat::normalizedByte;
   return std::nullopt;
+}
+
+std::optional<NormalsMode> parseNormalsMode(std::string_view name) {
+  if (name == "flat") return NormalsMode::flat;
+  if (name == "smooth") return NormalsMode::smooth;
+  if (name == "keep") return NormalsMode::keep;
+  return std::nullopt;
+}
+
+const char* toString(NormalsMode mode) {
+  switch (mode) {
+    case NormalsMode::flat: return "flat";
+    case NormalsMode::smooth: return "smooth";
+    case NormalsMode::keep: return "keep";
+  }
+  return "?";
 }
 
 const char* toString(PrimitiveAction action) {
@@ -877,6 +963,7 @@ nlohmann::ordered_json toJson(const BakeResult& result) {
       entry["tangentFormat"] = toString(p.tangentFormat);
       entry["verticesIn"] = p.verticesIn;
       entry["verticesOut"] = p.verticesOut;
+      if (p.normalsGenerated) entry["normalsGenerated"] = toString(*p.normalsGenerated);
       entry["tangents"] = toJson(p.tangents);
     }
     primitives.push_back(std::move(entry));

@@ -141,6 +141,56 @@ struct VertexFindings {
   FindingBuilder finite, unit, w;
 };
 
+// check --identify: the stored tangents against each generator the library has, on the same
+// geometry the reference uses (frames: the part, or its flat-normal split).
+void identifyGenerator(const PrimitiveGeometry& frames, const PrimitiveGeometry& part, const UsedVertices& used,
+                       const std::vector<float>& tangents, TangentWorkspace& workspace, PrimitiveCheck& result) {
+  struct Candidate {
+    Method method;
+    Weighting weighting;
+  };
+  const Candidate candidates[] = {{Method::mikktspace, Weighting::angle}, {Method::lengyel, Weighting::angle},
+                                  {Method::lengyel, Weighting::area}, {Method::lengyel, Weighting::uniform},
+                                  {Method::flat, Weighting::angle}};
+  for (const Candidate& candidate : candidates) {
+    Options core;
+    core.method = candidate.method;
+    core.weighting = candidate.weighting;
+    core.uvOrigin = kGltfUvOrigin;
+    core.threads = threadsFor(frames.corners.size(), core.threads);
+    std::vector<float> computed(frames.corners.size() * 4);
+    std::vector<FrameSource> sources(frames.corners.size());
+    computeCornerTangents({frames.positions, frames.normals, frames.uvs, frames.corners}, CornerOutputs{computed, sources}, core, workspace);
+    std::vector<double> angles;
+    std::size_t wAgree = 0;
+    for (std::size_t c = 0; c < frames.corners.size(); ++c) {
+      if (sources[c] == FrameSource::neighbour || sources[c] == FrameSource::fixed) continue;
+      const float* stored = &tangents[4 * used.vertices[part.corners[c]]];
+      if (!finite4(stored)) continue;
+      angles.push_back(angleBetweenDegrees(stored, &computed[4 * c]));
+      wAgree += (stored[3] < 0) == (computed[4 * c + 3] < 0);
+    }
+    GeneratorMatch match;
+    match.name = std::string(toString(candidate.method));
+    if (candidate.method == Method::lengyel) match.name += "/" + std::string(toString(candidate.weighting));
+    if (angles.empty()) {
+      match.medianDegrees = match.maxDegrees = 180;
+    } else {
+      std::sort(angles.begin(), angles.end());
+      match.medianDegrees = angles[angles.size() / 2];
+      match.maxDegrees = angles.back();
+      match.wAgreement = double(wAgree) / double(angles.size());
+    }
+    result.generators.push_back(std::move(match));
+  }
+  std::stable_sort(result.generators.begin(), result.generators.end(),
+                   [](const GeneratorMatch& a, const GeneratorMatch& b) { return a.medianDegrees < b.medianDegrees; });
+  const GeneratorMatch& best = result.generators.front();
+  result.generator = best.medianDegrees <= kIdentifyMedianDegrees && best.wAgreement >= kIdentifyWAgreement
+                         ? best.name
+                         : "none of these (nearest: " + best.name + ")";
+}
+
 // The checks of one primitive that need its triangles (w-uniform, handedness, orthogonal on the
 // vertices it draws, reference), after the per-vertex ones. `used` is the part of `buffer` it
 // draws; elements in messages are the buffer's vertices and the primitive's triangles and corners.
@@ -156,7 +206,25 @@ void checkDrawnPart(const PrimitiveGeometry& buffer, const UsedVertices& used, c
   // Rounded positions and UVs (KHR_mesh_quantization) move the recomputed frame: per vertex
   // allowance, and triangles whose UV orientation the rounding leaves open.
   const PrimitiveGeometry part = gatherGeometry(buffer, used);
-  const ReferenceAllowance allowance = referenceAllowance(part, rounding);
+  // A primitive without NORMAL is judged against the spec's flat normals (glTF 2.0 3.7.2.1),
+  // as bake generates them: `flat` splits the part's vertices per face; `frames` is what the
+  // reference is computed from, its corners in the part's order.
+  const bool flatNormals = part.normals.empty();
+  PrimitiveGeometry flat;
+  if (flatNormals) {
+    GeneratedNormals generated = generateNormals(part.positions, part.corners, /*smooth=*/false, 0);
+    flat.vertexCount = generated.source.size();
+    flat.positions.resize(3 * flat.vertexCount);
+    flat.uvs.resize(2 * flat.vertexCount);
+    for (std::size_t v = 0; v < flat.vertexCount; ++v) {
+      std::copy_n(&part.positions[3 * generated.source[v]], 3, &flat.positions[3 * v]);
+      std::copy_n(&part.uvs[2 * generated.source[v]], 2, &flat.uvs[2 * v]);
+    }
+    flat.normals = std::move(generated.normals);
+    flat.corners = std::move(generated.corners);
+  }
+  const PrimitiveGeometry& frames = flatNormals ? flat : part;
+  const ReferenceAllowance allowance = referenceAllowance(frames, rounding);
 
   const std::size_t triangleCount = part.corners.size() / 3;
   FindingBuilder uniform(CheckId::wUniform, "triangles", triangleCount, "none", 0, options);
@@ -175,7 +243,11 @@ void checkDrawnPart(const PrimitiveGeometry& buffer, const UsedVertices& used, c
     const double det = uvAreaTimesTwo(uv[0], uv[1], uv[2]);
     const float expected = expectedW(det);
     const double area = areaTimesTwo(&buffer.positions[3 * c[0]], &buffer.positions[3 * c[1]], &buffer.positions[3 * c[2]]);
-    if (expected == 0 || !std::isfinite(det) || !(area > 0) || !validW(w0) || !allowance.decided(t)) continue;
+    if (expected == 0 || !std::isfinite(det) || !(area > 0) || !validW(w0)) continue;
+    if (!allowance.decided(t)) {
+      ++result.handednessUndecided;
+      continue;
+    }
     if (w0 != expected)
       handedness.fail(t, std::abs(det), format("triangle %zu (vertices %u %u %u) has w = %.0f, its UV orientation needs %.0f", t, c[0],
                                                 c[1], c[2], w0, expected));
@@ -183,14 +255,29 @@ void checkDrawnPart(const PrimitiveGeometry& buffer, const UsedVertices& used, c
   uniform.finish(result, "w differs between the corners of a triangle (a vertex shared across a mirror seam?)");
   handedness.finish(result, "w disagrees with the triangle's orientation in the normal texture's UV set (w = -sign(UV area) in glTF)");
 
-  for (const std::uint32_t v : used.vertices) {
+  // Per vertex, the normal its tangent is judged against: NORMAL, or (flat normals) the face
+  // normal of its corner furthest from its tangent's plane.
+  std::vector<const float*> normalOf(part.vertexCount, nullptr);
+  if (flatNormals) {
+    std::vector<double> worstOffPlane(part.vertexCount, -2);
+    for (std::size_t c = 0; c < part.corners.size(); ++c) {
+      const std::uint32_t local = part.corners[c];
+      const float* n = &flat.normals[3 * flat.corners[c]];
+      const double offPlane = offPlaneDegrees(&tangents[4 * used.vertices[local]], n);
+      if (offPlane > worstOffPlane[local]) worstOffPlane[local] = offPlane, normalOf[local] = n;
+    }
+  } else {
+    for (std::size_t local = 0; local < part.vertexCount; ++local) normalOf[local] = &part.normals[3 * local];
+  }
+  for (std::size_t local = 0; local < part.vertexCount; ++local) {
+    const std::uint32_t v = used.vertices[local];
     const float* t = &tangents[4 * v];
-    const float* normal = &buffer.normals[3 * v];
-    if (!finite4(t)) continue;
+    const float* normal = normalOf[local];
+    if (!finite4(t) || !normal) continue;
     const double offPlane = offPlaneDegrees(t, normal);
     if (offPlane > stored.orthogonalLimit)
-      orthogonal.fail(v, offPlane, format("vertex %u is %.4g deg out of the tangent plane, N = (%.4g, %.4g, %.4g), T = ", v, offPlane,
-                                          normal[0], normal[1], normal[2]) + tangentText(t));
+      orthogonal.fail(v, offPlane, format("vertex %u is %.4g deg out of the tangent plane, N = (%.4g, %.4g, %.4g)%s, T = ", v, offPlane,
+                                          normal[0], normal[1], normal[2], flatNormals ? " (flat)" : "") + tangentText(t));
   }
   // The limits in words: the tolerance, plus rounding where there is any.
   const bool roundedFrame = stored.limits.tangentAngleDegrees > 0 || stored.limits.normalAngleDegrees > 0;
@@ -210,7 +297,7 @@ void checkDrawnPart(const PrimitiveGeometry& buffer, const UsedVertices& used, c
     core.threads = threadsFor(part.corners.size(), core.threads);
     std::vector<float> computed(part.corners.size() * 4);
     std::vector<FrameSource> sources(part.corners.size());
-    computeCornerTangents({part.positions, part.normals, part.uvs, part.corners}, CornerOutputs{computed, sources}, core, workspace);
+    computeCornerTangents({frames.positions, frames.normals, frames.uvs, frames.corners}, CornerOutputs{computed, sources}, core, workspace);
     for (std::size_t c = 0; c < part.corners.size(); ++c) {
       if (sources[c] == FrameSource::neighbour || sources[c] == FrameSource::fixed) {
         ++result.referenceUndefined;
@@ -218,7 +305,7 @@ void checkDrawnPart(const PrimitiveGeometry& buffer, const UsedVertices& used, c
       }
       const std::uint32_t local = part.corners[c];
       const std::uint32_t v = used.vertices[local];
-      const float extra = allowance.vertex(local);
+      const float extra = allowance.vertex(frames.corners[c]);
       if (extra >= kUncomparableDegrees) {
         ++result.referenceUnresolved;
         continue;
@@ -229,8 +316,13 @@ void checkDrawnPart(const PrimitiveGeometry& buffer, const UsedVertices& used, c
       if (!finite4(storedTangent)) continue;  // `finite` reported it
       const double angle = angleBetweenDegrees(storedTangent, fresh);
       const double limit = referenceLimitDegrees(stored.limits, options.referenceToleranceDegrees, extra);
-      if (referenceFails(angle, storedTangent[3], fresh[3], limit)) {
-        const bool wDiffers = (storedTangent[3] < 0) != (fresh[3] < 0);
+      // w follows the triangle's UV orientation: where rounding leaves that open, only the
+      // angle is compared (handedness skips the triangle alike).
+      const bool wDecided = allowance.decided(c / 3);
+      if (!wDecided) ++result.referenceWUndecided;
+      const float comparedW = wDecided ? storedTangent[3] : fresh[3];
+      if (referenceFails(angle, comparedW, fresh[3], limit)) {
+        const bool wDiffers = (comparedW < 0) != (fresh[3] < 0);
         reference.fail(c, angle,
                        format("corner %zu (vertex %u): %.4g deg from %s (limit %.3g)%s; stored ", c, v, angle,
                               std::string(toString(options.method)).c_str(), limit, wDiffers ? ", w differs" : "") +
@@ -239,6 +331,7 @@ void checkDrawnPart(const PrimitiveGeometry& buffer, const UsedVertices& used, c
       }
     }
   }
+  if (options.identify) identifyGenerator(frames, part, used, tangents, workspace, result);
   // Ignored checks listed in check order (they finish in the order the passes run).
   std::sort(result.ignored.begin(), result.ignored.end(),
             [](const std::string& a, const std::string& b) { return *parseCheck(a) < *parseCheck(b); });
@@ -259,7 +352,7 @@ void checkDrawnPart(const PrimitiveGeometry& buffer, const UsedVertices& used, c
 void checkVertexGroup(const Asset& asset, const std::vector<PrimitiveToCheck>& primitives, const std::vector<std::size_t>& members,
                       const CheckOptions& options, TangentWorkspace& workspace, std::vector<PrimitiveCheck>& results) {
   const PrimitiveToCheck& first = primitives[members.front()];
-  const PrimitiveGeometry buffer = readVertices(asset, *first.primitive, first.needs, first.where);
+  const PrimitiveGeometry buffer = readVertices(asset, *first.primitive, first.needs, first.where, /*normalOptional=*/true);
 
   // The vertices each member draws, and those none draws.
   std::vector<UsedVertices> parts;
@@ -303,10 +396,12 @@ void checkVertexGroup(const Asset& asset, const std::vector<PrimitiveToCheck>& p
   for (const std::size_t member : members) (options.runs(CheckId::present) ? results[member].passed : results[member].ignored).push_back("present");
   const AccessorData data = readAccessor(asset.model, tangentAccessor, first.where + ": TANGENT");
   const std::optional<StoredComponent> tangentComponent = storedComponentOf(data.componentType, data.normalized);
+  // Without NORMAL the spec's flat normals are used: exact floats.
   const int normalAccessor = accessorOf(attributes, "NORMAL");
-  const Json& normalJson = asset.json["accessors"][normalAccessor];
   const std::optional<StoredComponent> normalComponent =
-      storedComponentOf(normalJson.value("componentType", 0), normalJson.value("normalized", false));
+      normalAccessor < 0 ? std::optional<StoredComponent>(StoredComponent::float32)
+                         : storedComponentOf(asset.json["accessors"][normalAccessor].value("componentType", 0),
+                                             asset.json["accessors"][normalAccessor].value("normalized", false));
   if (data.type != TINYGLTF_TYPE_VEC4 || !tangentComponent || data.count != buffer.vertexCount) {
     for (const std::size_t member : members) {
       FindingBuilder formatCheck(CheckId::format, "primitive", 1, "none", 0, options);
@@ -324,8 +419,18 @@ void checkVertexGroup(const Asset& asset, const std::vector<PrimitiveToCheck>& p
   stored.referenceLimit = referenceLimitDegrees(stored.limits, options.referenceToleranceDegrees, 0);
   stored.component = toString(*tangentComponent);
   stored.values = toFloats(data);
+  const double normalLimit = normalLengthWarningLimit(normalComponent.value_or(StoredComponent::float32));
   for (const std::size_t member : members) {
     PrimitiveCheck& result = results[member];
+    result.normalsNormalized = buffer.normalLengths.normalized;
+    result.worstNormalLength = buffer.normalLengths.worstLength;
+    result.normalLengthLimit = normalLimit;
+    if (buffer.normalLengths.worstDeviation() > normalLimit)
+      result.warnings.push_back(format("NORMAL is not unit length: worst %.6g, beyond the %.3g of %s rounding; %llu normals normalized "
+                                       "first, as glTF readers do",
+                                       buffer.normalLengths.worstLength, normalLimit,
+                                       toString(normalComponent.value_or(StoredComponent::float32)),
+                                       static_cast<unsigned long long>(buffer.normalLengths.normalized)));
     (options.runs(CheckId::format) ? result.passed : result.ignored).push_back("format");
     result.tangentComponent = stored.component;
     result.normalComponent = normalComponent ? toString(*normalComponent) : "";
@@ -406,7 +511,6 @@ FileCheck checkAsset(const std::filesystem::path& input, const CheckOptions& opt
         const Json& primitive = mesh["primitives"][p];
         const std::string label = detail::primitiveLabel(doc, static_cast<int>(m), static_cast<int>(p));
         const detail::PrimitiveNeeds needs = detail::primitiveNeeds(doc, primitive, options.all || asset.fromMeshFile);
-        const bool hasNormal = detail::accessorOf(primitive["attributes"], "NORMAL") >= 0;
         const bool hasUv = detail::accessorOf(primitive["attributes"], "TEXCOORD_" + std::to_string(needs.texCoord)) >= 0;
         auto newCheck = [&] {
           PrimitiveCheck check;
@@ -426,10 +530,10 @@ FileCheck checkAsset(const std::filesystem::path& input, const CheckOptions& opt
           result.primitives.push_back(std::move(check));
           continue;
         }
-        if (!needs.triangles || needs.texCoord < 0 || !hasNormal || !hasUv) {
+        // A primitive without NORMAL is checked against the spec's flat normals (checkDrawnPart).
+        if (!needs.triangles || needs.texCoord < 0 || !hasUv) {
           std::string why = needs.why;
-          if (needs.triangles && needs.texCoord >= 0)
-            why = !hasNormal ? "no NORMAL attribute" : "no TEXCOORD_" + std::to_string(needs.texCoord) + " attribute";
+          if (needs.triangles && needs.texCoord >= 0) why = "no TEXCOORD_" + std::to_string(needs.texCoord) + " attribute";
           result.skipped.push_back(label + ": " + why);
           continue;
         }
@@ -495,6 +599,17 @@ nlohmann::ordered_json toJson(const FileCheck& check) {
     entry["findings"] = findings;
     entry["referenceUndefinedCorners"] = p.referenceUndefined;
     entry["referenceUnresolvedCorners"] = p.referenceUnresolved;
+    entry["referenceWUndecidedCorners"] = p.referenceWUndecided;
+    entry["handednessUndecidedTriangles"] = p.handednessUndecided;
+    entry["normals"] = {{"normalized", p.normalsNormalized}, {"worstLength", p.worstNormalLength}, {"warningLimit", p.normalLengthLimit}};
+    entry["warnings"] = p.warnings;
+    if (!p.generator.empty()) {
+      Json generators = Json::array();
+      for (const GeneratorMatch& g : p.generators)
+        generators.push_back({{"name", g.name}, {"medianDegrees", g.medianDegrees}, {"maxDegrees", g.maxDegrees}, {"wAgreement", g.wAgreement}});
+      entry["generator"] = p.generator;
+      entry["generators"] = generators;
+    }
     primitives.push_back(std::move(entry));
   }
   Json out = {{"file", check.file}, {"status", !check.error.empty() ? "error" : check.clean() ? "clean" : "findings"}};

@@ -200,13 +200,15 @@ std::vector<std::uint32_t> triangleList(int mode, std::vector<std::uint32_t> ver
 }
 
 
-PrimitiveGeometry readGeometry(const Asset& asset, const Json& primitive, const PrimitiveNeeds& needs, const std::string& where) {
-  PrimitiveGeometry geometry = readVertices(asset, primitive, needs, where);
+PrimitiveGeometry readGeometry(const Asset& asset, const Json& primitive, const PrimitiveNeeds& needs, const std::string& where,
+                               bool normalOptional) {
+  PrimitiveGeometry geometry = readVertices(asset, primitive, needs, where, normalOptional);
   readCorners(asset, primitive, where, geometry);
   return geometry;
 }
 
-PrimitiveGeometry readVertices(const Asset& asset, const Json& primitive, const PrimitiveNeeds& needs, const std::string& where) {
+PrimitiveGeometry readVertices(const Asset& asset, const Json& primitive, const PrimitiveNeeds& needs, const std::string& where,
+                               bool normalOptional) {
   const tinygltf::Model& model = asset.model;
   const Json& attributes = primitive["attributes"];
   const int positionAccessor = accessorOf(attributes, "POSITION");
@@ -214,7 +216,7 @@ PrimitiveGeometry readVertices(const Asset& asset, const Json& primitive, const 
   const std::string uvName = "TEXCOORD_" + std::to_string(needs.texCoord);
   const int uvAccessor = accessorOf(attributes, uvName);
   if (positionAccessor < 0) throw InputError(where + ": has no POSITION attribute");
-  if (normalAccessor < 0) throw InputError(where + ": has no NORMAL attribute");
+  if (normalAccessor < 0 && !normalOptional) throw InputError(where + ": has no NORMAL attribute");
   if (uvAccessor < 0) throw InputError(where + ": has no " + uvName + " attribute");
 
   PrimitiveGeometry geometry;
@@ -224,7 +226,10 @@ PrimitiveGeometry readVertices(const Asset& asset, const Json& primitive, const 
     throw InputError(where + ": POSITION (accessor " + std::to_string(positionAccessor) + ") must be VEC3, found " +
                      typeName(positionData.type));
   geometry.vertexCount = positionData.count;
-  geometry.normals = readVectors(model, normalAccessor, 3, geometry.vertexCount, where + ": NORMAL");
+  if (normalAccessor >= 0) {
+    geometry.normals = readVectors(model, normalAccessor, 3, geometry.vertexCount, where + ": NORMAL");
+    geometry.normalLengths = unitNormals(geometry.normals);
+  }
   geometry.uvs = readVectors(model, uvAccessor, 2, geometry.vertexCount, where + ": " + uvName);
   if (needs.hasNormalTexture) {
     const Json& normalTexture = asset.json["materials"][primitive["material"].get<int>()]["normalTexture"];
@@ -270,12 +275,12 @@ PrimitiveGeometry gatherGeometry(const PrimitiveGeometry& buffer, const UsedVert
   const std::size_t n = used.vertices.size();
   part.vertexCount = n;
   part.positions.resize(3 * n);
-  part.normals.resize(3 * n);
+  if (!buffer.normals.empty()) part.normals.resize(3 * n);  // none where the primitive has no NORMAL
   part.uvs.resize(2 * n);
   for (std::size_t i = 0; i < n; ++i) {
     const std::size_t v = used.vertices[i];
     std::copy_n(&buffer.positions[3 * v], 3, &part.positions[3 * i]);
-    std::copy_n(&buffer.normals[3 * v], 3, &part.normals[3 * i]);
+    if (!buffer.normals.empty()) std::copy_n(&buffer.normals[3 * v], 3, &part.normals[3 * i]);
     std::copy_n(&buffer.uvs[2 * v], 2, &part.uvs[2 * i]);
   }
   part.corners = used.corners;

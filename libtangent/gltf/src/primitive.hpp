@@ -7,6 +7,7 @@
 
 #include "accessors.hpp"
 #include "asset.hpp"
+#include "normals.hpp"
 #include <array>
 #include <cstdint>
 #include <string>
@@ -83,21 +84,24 @@ void applyTextureTransform(std::vector<float>& uvs, const nlohmann::ordered_json
 
 struct PrimitiveGeometry {
   std::size_t vertexCount = 0;
-  std::vector<float> positions, normals;
+  std::vector<float> positions;
+  std::vector<float> normals;           // as glTF readers see them: normalized (unitNormals)
+  NormalLengths normalLengths;          // what NORMAL stored, before unitNormals
   std::vector<float> uvs;               // as the normal texture samples them (transform applied)
   std::vector<std::uint32_t> corners;   // triangle list, 3 vertex indices per triangle
   int mode = 4;
   int indexComponentType = 5123;        // of the original indices (UNSIGNED_SHORT when none)
 };
 
-// POSITION, NORMAL and the normal texture's UV set (needs.texCoord) of a primitive; throws
-// InputError naming `where` and the accessor when one is missing or malformed.
+// POSITION, NORMAL (unitNormals applied) and the normal texture's UV set (needs.texCoord) of a
+// primitive; throws InputError naming `where` and the accessor when one is missing or malformed.
+// With normalOptional, a primitive without NORMAL gives empty normals instead (bake --normals).
 PrimitiveGeometry readGeometry(const Asset& asset, const nlohmann::ordered_json& primitive, const PrimitiveNeeds& needs,
-                               const std::string& where);
+                               const std::string& where, bool normalOptional = false);
 // readGeometry in two steps, for primitives that share a vertex buffer (sameVertexKey): the
 // vertex attributes (corners left empty), read once for all of them...
 PrimitiveGeometry readVertices(const Asset& asset, const nlohmann::ordered_json& primitive, const PrimitiveNeeds& needs,
-                               const std::string& where);
+                               const std::string& where, bool normalOptional = false);
 // ...and each primitive's triangle list, mode and index component type, into `geometry`
 // (whose vertexCount bounds the indices): time in the primitive's indices only.
 void readCorners(const Asset& asset, const nlohmann::ordered_json& primitive, const std::string& where,

@@ -135,6 +135,11 @@ StoredVectorRounding storedVectorRounding(StoredComponent component) {
   return rounding;
 }
 
+double normalLengthWarningLimit(StoredComponent normal) {
+  if (normal == StoredComponent::float32) return kNormalLengthKept;
+  return std::max(kNormalLengthKept, storedVectorRounding(normal).lengthDeviation);
+}
+
 StoredTangentLimits storedTangentLimits(StoredComponent tangent, StoredComponent normal) {
   StoredTangentLimits limits;
   limits.tangent = tangent;

@@ -43,6 +43,11 @@ struct StoredVectorRounding {
 };
 StoredVectorRounding storedVectorRounding(StoredComponent component);
 
+// The largest | |N| - 1 | a stored NORMAL of this component type has from rounding alone, so
+// that check does not warn about it: kNormalLengthKept for float, the rounding's length
+// deviation for normalized BYTE/SHORT.
+double normalLengthWarningLimit(StoredComponent normal);
+
 // Limits for one primitive's TANGENT, from its component type and NORMAL's.
 struct StoredTangentLimits {
   StoredComponent tangent = StoredComponent::float32;

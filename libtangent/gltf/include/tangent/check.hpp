@@ -31,6 +31,7 @@ struct CheckOptions {
   std::bitset<kCheckCount> enabled = std::bitset<kCheckCount>().set();  // --only / --ignore
   bool allowMissing = false;               // no TANGENT: skipped (the client computes MikkTSpace)
   bool all = false;                        // every triangle primitive, not only normal-mapped ones
+  bool identify = false;                   // --identify: name the generator closest to the stored tangents
   std::filesystem::path assetRoot;         // folder buffer and image URIs may not leave (empty: the file's)
   std::string configFile;                  // where the settings came from, for the report ("" for none)
   bool runs(CheckId id) const { return enabled.test(static_cast<std::size_t>(id)); }
@@ -62,6 +63,18 @@ struct CheckFinding {
   std::vector<CheckSample> worst;  // up to 5, worst first
 };
 
+// How close the stored tangents are to one generator's (check --identify), over the corners
+// that generator defines a frame for.
+struct GeneratorMatch {
+  std::string name;            // "mikktspace", "lengyel/angle", "lengyel/area", "lengyel/uniform", "flat"
+  double medianDegrees = 0;
+  double maxDegrees = 0;
+  double wAgreement = 0;       // share of corners whose w agrees
+};
+// The largest median angle and smallest w agreement at which --identify still names a generator.
+inline constexpr double kIdentifyMedianDegrees = 0.5;
+inline constexpr double kIdentifyWAgreement = 0.99;
+
 struct PrimitiveCheck {
   int mesh = 0;
   std::string meshName;
@@ -81,6 +94,20 @@ struct PrimitiveCheck {
   std::uint64_t referenceUndefined = 0; // corners the reference method leaves arbitrary: not compared
   std::uint64_t referenceUnresolved = 0; // corners whose UV orientation rounded positions/UVs leave open: not compared
   double referenceAllowanceMaxDegrees = 0;  // largest per-corner allowance for rounded positions/UVs
+  std::uint64_t handednessUndecided = 0;  // triangles whose UV orientation rounded positions/UVs leave open: not judged
+  std::uint64_t referenceWUndecided = 0;  // corners of such triangles whose angle was compared but not their w
+  // NORMAL as glTF readers treat it: lengths further than kNormalLengthKept (normals.hpp) from 1
+  // are normalized before the reference is computed; a length beyond what the component type's
+  // rounding explains is a warning, not a finding.
+  std::uint64_t normalsNormalized = 0;  // vertices whose NORMAL was normalized
+  double worstNormalLength = 1;         // the stored length furthest from 1 (zero normals aside)
+  double normalLengthLimit = 0;         // largest | |N| - 1 | not warned about
+  std::vector<std::string> warnings;    // for people: what was accepted but is not as the spec says
+  // --identify: every generator, closest first, and the verdict: the closest one's name, or
+  // "none of these (nearest: NAME)" when it is further than kIdentifyMedianDegrees or agrees on
+  // w at fewer than kIdentifyWAgreement of the corners.
+  std::vector<GeneratorMatch> generators;
+  std::string generator;
 };
 
 struct FileCheck {

@@ -37,6 +37,13 @@ enum class TangentFormat { float32, normalizedShort, normalizedByte };
 std::optional<TangentFormat> parseTangentFormat(std::string_view name);  // "float", "short", "byte"
 const char* toString(TangentFormat format);
 
+// What bake does for a primitive without NORMAL (glTF 2.0 3.7.2.1: clients MUST then use flat
+// normals): generate flat ones (the default), smooth ones (welded by position, triangles within
+// the crease angle averaged), or keep the primitive as it is (no tangents either).
+enum class NormalsMode { flat, smooth, keep };
+std::optional<NormalsMode> parseNormalsMode(std::string_view name);  // "flat", "smooth", "keep"
+const char* toString(NormalsMode mode);
+
 struct BakeOptions {
   Options tangents;         // method, weighting (uvOrigin is always kGltfUvOrigin)
   bool all = false;         // every triangle primitive, not only those with a normalTexture
@@ -45,6 +52,8 @@ struct BakeOptions {
   // Folder that buffer and image URIs may not leave after resolving `..` and symbolic links
   // (empty: the input's own folder). See the README's "Security and limits".
   std::filesystem::path assetRoot;
+  NormalsMode normals = NormalsMode::flat;  // for primitives without NORMAL
+  double creaseAngleDegrees = 60;           // NormalsMode::smooth: larger angles between triangles stay sharp
 };
 
 // What bake did with a primitive; toString gives the report's "action" names.
@@ -64,6 +73,7 @@ struct PrimitiveResult {
   std::uint64_t verticesOut = 0;
   Report tangents;          // core report, when baked
   TangentFormat tangentFormat = TangentFormat::float32;  // of the TANGENT written, when baked
+  std::optional<NormalsMode> normalsGenerated;  // the NORMAL bake wrote (the primitive had none), when baked
 };
 
 struct BakeResult {
