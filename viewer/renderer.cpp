@@ -151,6 +151,7 @@ void Renderer::setScene(gltf::Scene scene, std::vector<std::string>& messages) {
   deformed_.clear();
   textures_.clear();
   srgbTextures_.clear();
+  samplers_.clear();
   glyphsBuiltFor_ = -1;
   ++sceneVersion_;
   shadowPasses_ = 0;
@@ -407,6 +408,7 @@ void Renderer::drawDepth(std::span<const GpuInstance* const> instances, const gl
         if (has(features, Feature::baseColorMap)) {
           glActiveTexture(GL_TEXTURE0);
           glBindTexture(GL_TEXTURE_2D, textureOf(material.baseColorTexture));
+          glBindSampler(0, samplers_.get(material.baseColorTexture.sampler));
           setUniform(program, "u_baseColorMap", 0);
           setUvUniforms(program, "u_baseColor", material.baseColorTexture);
         }
@@ -608,9 +610,7 @@ void Renderer::drawInstance(const GpuInstance& instance, BoundMesh& bound) {
 }
 
 GLuint Renderer::bindMesh(const GpuMesh& mesh, const CameraMatrices& camera, const RenderSettings& settings, bool shadows) {
-  gltf::MaterialDesc material;
-  material.roughness = 0.5f;
-  material.metallic = 0.0f;
+  gltf::MaterialDesc material;  // without one, glTF's default material (metallic 1, roughness 1, white; glTF 2.0 3.9.1)
   if (const gltf::MaterialDesc* own = materialOf(scene_, mesh.material)) material = *own;
   FeatureSet features = featuresFor(mesh, settings);
   if (!shadows) features &= ~static_cast<FeatureSet>(Feature::shadows);
@@ -664,18 +664,21 @@ GLuint Renderer::bindMesh(const GpuMesh& mesh, const CameraMatrices& camera, con
   }
 
   int unit = 0;
-  auto bind = [&](const char* name, GLuint texture) {
+  // `sampler` 0: the texture's own parameters (the viewer's maps); a file's textures sample
+  // through their glTF sampler.
+  auto bind = [&](const char* name, GLuint texture, GLuint sampler = 0) {
     glActiveTexture(GL_TEXTURE0 + unit);
     glBindTexture(GL_TEXTURE_2D, texture);
+    glBindSampler(static_cast<GLuint>(unit), sampler);
     setUniform(program, name, unit);
     ++unit;
   };
   auto bindMap = [&](const char* prefix, const gltf::TextureRef& ref) {
-    bind((std::string("u_") + prefix + "Map").c_str(), textureOf(ref));
+    bind((std::string("u_") + prefix + "Map").c_str(), textureOf(ref), samplers_.get(ref.sampler));
     setUvUniforms(program, std::string("u_") + prefix, ref);
   };
   if (has(features, Feature::baseColorMap)) bindMap("baseColor", material.baseColorTexture);
-  if (has(features, Feature::normalMap)) bind("u_normalMap", textureOf(material.normalTexture));
+  if (has(features, Feature::normalMap)) bind("u_normalMap", textureOf(material.normalTexture), samplers_.get(material.normalTexture.sampler));
   if (has(features, Feature::specularMap)) bindMap("specular", material.specularTexture);
   if (has(features, Feature::specularColorMap)) bindMap("specularColor", material.specularColorTexture);
   if (has(features, Feature::metallicRoughnessMap)) bindMap("metallicRoughness", material.metallicRoughnessTexture);

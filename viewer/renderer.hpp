@@ -14,6 +14,7 @@
 
 #include "gl_objects.hpp"
 #include "pose.hpp"
+#include "samplers.hpp"
 #include "shader_library.hpp"
 #include "tangent/scene.hpp"
 
@@ -185,6 +186,7 @@ class Renderer {
   std::vector<Texture> textures_;      // per scene image, linear data (empty when unused or failed)
   std::vector<Texture> srgbTextures_;  // per scene image, sRGB colour (empty when unused or failed)
   Texture sphereMap_;
+  SamplerCache samplers_;  // the glTF samplers the materials' textures name
   std::vector<Light> lights_;
   glm::vec3 boundsMin_{-1}, boundsMax_{1};
   Framebuffer shadowFramebuffer_;

@@ -1355,3 +1355,175 @@ TEST(Viewer, AnimationSamplersInterpolateAsTheSpecSays) {
     EXPECT_NEAR(seen, expected, 0.8) << name;
   }
 }
+
+// ---- Default material, glTF samplers, grey images (issue 38, smaller defects) ----
+
+// A primitive without a material is drawn with glTF's default material (glTF 2.0 3.9.1, the
+// spec's defaults of pbrMetallicRoughness: base colour 1, metallic 1, roughness 1): exactly as
+// the same sphere with that material written out, and not as the old white dielectric of
+// roughness 0.5: a metal has no diffuse term (appendix B), so away from the lights' highlights
+// it is far darker than the dielectric, as in PbrMetalHasNoDiffuseAndSmootherMeansSharperHighlights.
+TEST(Viewer, PrimitiveWithoutMaterialGetsTheSpecDefault) {
+  TempDir dir;
+  const fs::path bare = demoWithMaterial(dir, "sphere", "bare", nlohmann::json::object());
+  {
+    nlohmann::json doc = nlohmann::json::parse(std::ifstream(bare));
+    doc.erase("materials");
+    for (auto& primitive : doc["meshes"][0]["primitives"]) primitive.erase("material");
+    std::ofstream(bare) << doc.dump();
+  }
+  const std::string common = " --camera front --size 300x300 --no-shadows --shading pbr";
+  const Image none = screenshot(dir, "none", "'" + bare.string() + "'" + common);
+  const Image specDefault = screenshot(
+      dir, "spec",
+      "'" + demoWithMaterial(dir, "sphere", "spec", {{"pbrMetallicRoughness", {{"metallicFactor", 1.0}, {"roughnessFactor", 1.0}}}}).string() + "'" +
+          common);
+  const Image old = screenshot(
+      dir, "old",
+      "'" + demoWithMaterial(dir, "sphere", "old", {{"pbrMetallicRoughness", {{"metallicFactor", 0.0}, {"roughnessFactor", 0.5}}}}).string() + "'" +
+          common);
+  ASSERT_EQ(none.rgb.size(), specDefault.rgb.size());
+  ASSERT_LT(backgroundShare(none), 0.9f);
+  EXPECT_EQ(differingPixels(none, specDefault, 1.5f / 255), 0);
+  auto median = [](const Image& image) {
+    const auto v = objectLuminances(image);
+    return v.empty() ? 0.0f : v[v.size() / 2];
+  };
+  const float defaultMedian = median(none), oldMedian = median(old);
+  const int differing = differingPixels(none, old, 4.0f / 255);
+  std::printf("median linear luminance: no material %.3f, old metallic 0 roughness 0.5 %.3f; %d pixels differ from the old look\n",
+              defaultMedian, oldMedian, differing);
+  EXPECT_GT(differing, 5000);
+  EXPECT_LT(defaultMedian, 0.6f * oldMedian);
+}
+
+// quadAsset's base colour texture sampled through a glTF sampler; quadPixel's colour name.
+TEST(Viewer, SamplerWrapModesChooseTheTexels) {
+  TempDir dir;
+  writeRgbaPng(dir / "quadrants.png", 64, 64, quadrantColour);
+  // The texture transform scales UVs by 2: the quad's point (x, y) samples u = x + 1, v = 1 - y.
+  // At y = 0.75 (v = 0.25, the top row: red | green), x = 0.25 and 0.75 give u = 1.25 and 1.75:
+  // REPEAT 0.25 and 0.75 (red, green), CLAMP_TO_EDGE 1 (green, green), MIRRORED_REPEAT 0.75 and
+  // 0.25 (green, red). At x = -0.75 (u = 0.25, the left column: red over blue), y = -0.25 and
+  // -0.75 give v = 1.25 and 1.75: REPEAT red, blue; CLAMP blue, blue; MIRRORED blue, red.
+  struct Case {
+    const char* name;
+    int wrapS, wrapT;
+    const char* expected;  // two colours along S, then two along T
+  };
+  const Case cases[] = {
+      {"repeat", 10497, 10497, "RGRB"},
+      {"clamp", 33071, 33071, "GGBB"},
+      {"mirrored", 33648, 33648, "GRBR"},
+      {"clamp-s-mirrored-t", 33071, 33648, "GGBR"},
+  };
+  for (const Case& c : cases) {
+    const nlohmann::json material = {
+        {"pbrMetallicRoughness", {{"baseColorTexture", {{"index", 0}, {"extensions", {{"KHR_texture_transform", {{"scale", {2.0, 2.0}}}}}}}}}},
+        {"extensions", {{"KHR_materials_unlit", nlohmann::json::object()}}}};
+    const nlohmann::json patch = {{"samplers", {{{"wrapS", c.wrapS}, {"wrapT", c.wrapT}, {"magFilter", 9728}}}},
+                                  {"textures", {{{"source", 0}, {"sampler", 0}}}}};
+    const Image image = screenshot(dir, c.name, "'" + quadAsset(dir, c.name, material, "quadrants.png", patch).string() + "'" + kQuadView);
+    ASSERT_EQ(image.width, 200) << c.name;
+    const std::string seen{colourName(quadPixel(image, 0.25, 0.75)), colourName(quadPixel(image, 0.75, 0.75)),
+                           colourName(quadPixel(image, -0.75, -0.25)), colourName(quadPixel(image, -0.75, -0.75))};
+    EXPECT_EQ(seen, c.expected) << c.name;
+  }
+}
+
+// magFilter: a 2 x 1 texture, black | white, stretched over the quad. At u = 0.45 NEAREST takes
+// the black texel (u < 0.5); LINEAR blends the texel centres at u = 0.25 and 0.75 with weight
+// (0.45 - 0.25) / 0.5 = 0.4 of white, in linear light (an sRGB texture), encoded at the output.
+// minFilter: a one-texel checkerboard repeated 16 times shrinks below a texel per pixel: NEAREST
+// shows black and white pixels, LINEAR_MIPMAP_LINEAR (also what no filter means) their mean grey.
+TEST(Viewer, SamplerFiltersMagnifyAndMinifyAsAsked) {
+  TempDir dir;
+  writeRgbaPng(dir / "two.png", 2, 1, [](int x, int) { return x == 0 ? std::array<unsigned char, 4>{0, 0, 0, 255} : std::array<unsigned char, 4>{255, 255, 255, 255}; });
+  writeRgbaPng(dir / "checker.png", 64, 64, [](int x, int y) {
+    const auto v = static_cast<unsigned char>((x + y) % 2 ? 255 : 0);
+    return std::array<unsigned char, 4>{v, v, v, 255};
+  });
+  auto render = [&](const std::string& name, const std::string& image, const nlohmann::json& sampler, double scale) {
+    const nlohmann::json material = {
+        {"pbrMetallicRoughness", {{"baseColorTexture", {{"index", 0}, {"extensions", {{"KHR_texture_transform", {{"scale", {scale, scale}}}}}}}}}},
+        {"extensions", {{"KHR_materials_unlit", nlohmann::json::object()}}}};
+    nlohmann::json patch = {{"textures", {{{"source", 0}}}}};
+    if (!sampler.is_null()) patch = {{"samplers", {sampler}}, {"textures", {{{"source", 0}, {"sampler", 0}}}}};
+    return screenshot(dir, name, "'" + quadAsset(dir, name, material, image, patch).string() + "'" + kQuadView);
+  };
+  const double x = 2 * 0.45 - 1;  // u = (x + 1) / 2
+  const Image nearest = render("nearest", "two.png", {{"magFilter", 9728}, {"wrapS", 33071}}, 1.0);
+  const Image linear = render("linear", "two.png", {{"magFilter", 9729}, {"wrapS", 33071}}, 1.0);
+  ASSERT_EQ(nearest.width, 200);
+  const float expectedLinear = static_cast<float>(linearToSrgb(0.4));
+  std::printf("u = 0.45: NEAREST %.3f, LINEAR %.3f (expected %.3f)\n", quadPixel(nearest, x, 0)[0], quadPixel(linear, x, 0)[0], expectedLinear);
+  EXPECT_LT(quadPixel(nearest, x, 0)[0], 1.5f / 255);
+  EXPECT_NEAR(quadPixel(linear, x, 0)[0], expectedLinear, 3.0f / 255);
+  // Spread of the pixels over the middle of the quad.
+  auto spread = [](const Image& image) {
+    std::vector<float> values;
+    for (double y = -0.5; y <= 0.5; y += 0.05)
+      for (double px = -0.5; px <= 0.5; px += 0.05) values.push_back(quadPixel(image, px, y)[0]);
+    const auto [lo, hi] = std::minmax_element(values.begin(), values.end());
+    return std::make_pair(*lo, *hi);
+  };
+  const auto point = spread(render("min-nearest", "checker.png", {{"minFilter", 9728}}, 16.0));
+  const auto trilinear = spread(render("min-trilinear", "checker.png", {{"minFilter", 9987}}, 16.0));
+  const auto automatic = spread(render("min-auto", "checker.png", nullptr, 16.0));
+  const float grey = static_cast<float>(linearToSrgb(0.5));
+  std::printf("minified checkerboard: NEAREST %.3f..%.3f, LINEAR_MIPMAP_LINEAR %.3f..%.3f, no sampler %.3f..%.3f (mean grey %.3f)\n",
+              point.first, point.second, trilinear.first, trilinear.second, automatic.first, automatic.second, grey);
+  EXPECT_LT(point.first, 0.05f);
+  EXPECT_GT(point.second, 0.95f);
+  for (const auto& [lo, hi] : {trilinear, automatic}) {
+    EXPECT_NEAR(lo, grey, 0.04f);
+    EXPECT_NEAR(hi, grey, 0.04f);
+  }
+}
+
+// Writes a PNG of `channels` 8-bit channels (1 grey, 2 grey + alpha), every pixel `values`.
+void writeGreyPng(const fs::path& path, int channels, std::array<unsigned char, 2> values) {
+  std::vector<unsigned char> pixels;
+  for (int p = 0; p < 16; ++p) pixels.insert(pixels.end(), values.begin(), values.begin() + channels);
+  auto out = OIIO::ImageOutput::create(path.string());
+  OIIO::ImageSpec spec(4, 4, channels, OIIO::TypeDesc::UINT8);
+  if (channels == 2) spec.alpha_channel = 1;
+  spec.attribute("oiio:UnassociatedAlpha", 1);
+  ASSERT_TRUE(out && out->open(path.string(), spec));
+  out->write_image(OIIO::TypeDesc::UINT8, pixels.data());
+  out->close();
+  // PNG's IHDR colour type (byte 25): 0 grey, 4 grey + alpha.
+  std::ifstream in(path, std::ios::binary);
+  char header[26] = {};
+  in.read(header, sizeof header);
+  ASSERT_EQ(header[25], channels == 2 ? 4 : 0) << path;
+}
+
+// A grey + alpha PNG (grey 200, alpha 100) on an unlit quad: OPAQUE shows grey 200 in R, G and B
+// (an sRGB texel reads back as itself); BLEND mixes it over the background with alpha 100/255,
+// blending the encoded values as AlphaMaskCutsOutAndBlendMixes does. A one-channel grey PNG (90)
+// shows 90 in R, G and B.
+TEST(Viewer, GreyAndGreyAlphaPngsDecodeToGreyAndAlpha) {
+  TempDir dir;
+  writeGreyPng(dir / "grey-alpha.png", 2, {200, 100});
+  writeGreyPng(dir / "grey.png", 1, {90, 0});
+  const std::array<float, 3> background{0.16f, 0.17f, 0.19f};
+  auto render = [&](const std::string& name, const std::string& image, const std::string& mode) {
+    const nlohmann::json material = {{"pbrMetallicRoughness", {{"baseColorTexture", {{"index", 0}}}}},
+                                     {"alphaMode", mode},
+                                     {"extensions", {{"KHR_materials_unlit", nlohmann::json::object()}}}};
+    return screenshot(dir, name, "'" + quadAsset(dir, name, material, image).string() + "'" + kQuadView);
+  };
+  const Image opaque = render("ga-opaque", "grey-alpha.png", "OPAQUE"), blend = render("ga-blend", "grey-alpha.png", "BLEND");
+  const Image grey = render("grey", "grey.png", "OPAQUE");
+  ASSERT_EQ(opaque.width, 200);
+  const auto o = quadPixel(opaque, 0, 0), b = quadPixel(blend, 0, 0), g = quadPixel(grey, 0, 0);
+  std::printf("grey+alpha opaque (%.1f %.1f %.1f)/255, blended (%.1f %.1f %.1f)/255; grey (%.1f %.1f %.1f)/255\n", o[0] * 255, o[1] * 255, o[2] * 255,
+              b[0] * 255, b[1] * 255, b[2] * 255, g[0] * 255, g[1] * 255, g[2] * 255);
+  const float alpha = 100 / 255.0f;
+  for (int c = 0; c < 3; ++c) {
+    EXPECT_NEAR(o[c], 200 / 255.0f, 1.5f / 255) << c;
+    EXPECT_NEAR(b[c], alpha * 200 / 255.0f + (1 - alpha) * background[c], 2.0f / 255) << c;
+    EXPECT_NEAR(g[c], 90 / 255.0f, 1.5f / 255) << c;
+  }
+}
