@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <array>
+#include <chrono>
 #include <cmath>
 #include <limits>
 #include <span>
@@ -329,12 +330,13 @@ FeatureSet Renderer::featuresFor(const GpuMesh& mesh, const RenderSettings& sett
   if (settings.reflectivity > 0 && sphereMap_) features |= static_cast<FeatureSet>(Feature::reflection);
   if (settings.shading == Shading::pbr) features |= static_cast<FeatureSet>(Feature::pbr);
   if (physicalLights(settings)) features |= static_cast<FeatureSet>(Feature::physicalLights);
+  if (settings.ibl && settings.shading == Shading::pbr) features |= static_cast<FeatureSet>(Feature::ibl);
   if (mesh.material < 0 || mesh.material >= static_cast<int>(scene_.materials.size())) return features;
   const auto& material = scene_.materials[mesh.material];
   if (material.unlit) {
     // Unlit: base colour and alpha only.
     features &= ~(static_cast<FeatureSet>(Feature::shadows) | static_cast<FeatureSet>(Feature::reflection) |
-                  static_cast<FeatureSet>(Feature::physicalLights));
+                  static_cast<FeatureSet>(Feature::physicalLights) | static_cast<FeatureSet>(Feature::ibl));
     features |= static_cast<FeatureSet>(Feature::unlit);
   }
   if (material.alphaMode == gltf::MaterialDesc::AlphaMode::mask) features |= static_cast<FeatureSet>(Feature::alphaMask);
@@ -490,6 +492,11 @@ FrameStats Renderer::render(const CameraMatrices& camera, const RenderSettings& 
       deformed.errorsCurrent = true;
       uploadDeformed(deformed);
     }
+  }
+  if (settings.ibl && settings.shading == Shading::pbr && settings.view == DebugView::lit && !environment_) {
+    const auto start = std::chrono::steady_clock::now();
+    environment_ = uploadEnvironment(buildEnvironment());
+    environmentMilliseconds_ = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
   }
   const bool anyShadows = settings.shadows && !instances_.empty() && !lights_.empty() && lights_[0].directional &&
                           settings.view == DebugView::lit;
@@ -685,6 +692,16 @@ GLuint Renderer::bindMesh(const GpuMesh& mesh, const CameraMatrices& camera, con
   if (has(features, Feature::emissiveMap)) bindMap("emissive", material.emissiveTexture);
   if (has(features, Feature::occlusionMap)) bindMap("occlusion", material.occlusionTexture);
   if (has(features, Feature::reflection)) bind("u_sphereMap", sphereMap_.get());
+  if (has(features, Feature::ibl) && environment_) {
+    glActiveTexture(GL_TEXTURE0 + unit);
+    glBindTexture(GL_TEXTURE_CUBE_MAP, environment_->specularCube.get());
+    glBindSampler(static_cast<GLuint>(unit), 0);
+    setUniform(program, "u_environmentMap", unit++);
+    bind("u_brdfLut", environment_->brdfLut.get());
+    setUniform(program, "u_environmentMaxLod", environment_->maxLod);
+    setUniform(program, "u_environmentScale", settings.iblIntensity * kEnvironmentShare / kAmbientShare);
+    glUniform3fv(glGetUniformLocation(program, "u_irradianceSh"), 9, &environment_->irradianceSh[0].x);
+  }
   if (has(features, Feature::shadows)) {
     bind("u_shadowMap", shadowTexture_.get());
     setUniform(program, "u_pcfRadius", settings.pcfRadius);

@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "environment.hpp"
 #include "gl_objects.hpp"
 #include "pose.hpp"
 #include "samplers.hpp"
@@ -37,6 +38,10 @@ struct Light {
 
 // The share of a light's direct illuminance that the viewer adds as ambient (sky) light.
 inline constexpr float kAmbientShare = 0.06f;
+// With image-based lighting (pbr), the environment's mean radiance is this share of the lights'
+// direct level instead, times RenderSettings::iblIntensity: bright enough that metals, which
+// show nothing but their surroundings, read as metals.
+inline constexpr float kEnvironmentShare = 0.25f;
 
 struct RenderSettings {
   DebugView view = DebugView::lit;
@@ -57,6 +62,8 @@ struct RenderSettings {
   ToneMapping toneMapping = ToneMapping::khrPbrNeutral;
   float exposure = 0;        // linear factor before tone mapping; <= 0: automatic (Renderer::exposure)
   bool depthPrePass = false; // opaque meshes' depth first, then shading with GL_LEQUAL and no depth writes
+  bool ibl = true;           // pbr: image-based lighting from the built-in environment (else a plain sky term)
+  float iblIntensity = 1;    // factor on the environment's radiance
 };
 
 // Positions (3 per corner), normals (3) and tangents (4) of a primitive's corners: its own, or
@@ -112,6 +119,9 @@ class Renderer {
   float exposure(const RenderSettings& settings) const;
   // PBR mode with the file's KHR_lights_punctual lights: in the extension's units.
   bool physicalLights(const RenderSettings& settings) const;
+  // Milliseconds the image-based lighting's maps took to prepare (CPU and upload), once, on the
+  // first frame that needs them; 0 before.
+  double environmentMilliseconds() const { return environmentMilliseconds_; }
 
  private:
   // One per scene item: its corners on the GPU, uploaded once however many nodes show it.
@@ -187,6 +197,8 @@ class Renderer {
   std::vector<Texture> srgbTextures_;  // per scene image, sRGB colour (empty when unused or failed)
   Texture sphereMap_;
   SamplerCache samplers_;  // the glTF samplers the materials' textures name
+  std::optional<EnvironmentTextures> environment_;  // built on first use, kept across scenes
+  double environmentMilliseconds_ = 0;
   std::vector<Light> lights_;
   glm::vec3 boundsMin_{-1}, boundsMax_{1};
   Framebuffer shadowFramebuffer_;

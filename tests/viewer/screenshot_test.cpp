@@ -139,7 +139,9 @@ TEST(Viewer, NormalTangentTestHalvesShadeAlikeAndFlipsAreCaught) {
 
 TEST(Viewer, DemoSceneShadowFallsWhereTheSphereOccludesTheSun) {
   TempDir dir;
-  const std::string common = "--camera top --ortho --size 600x600";
+  // The environment of image-based lighting is not shadowed (as in the Sample Viewer): left out
+  // here, so that the shadow map's part is what is measured.
+  const std::string common = "--camera top --ortho --size 600x600 --no-ibl";
   const Image shadowed = screenshot(dir, "shadows", common);
   const Image plain = screenshot(dir, "no-shadows", common + " --no-shadows");
   ASSERT_EQ(shadowed.width, 600);
@@ -561,7 +563,9 @@ std::vector<float> objectLuminances(const Image& image) {
 // smoother metal has a brighter, smaller highlight.
 TEST(Viewer, PbrMetalHasNoDiffuseAndSmootherMeansSharperHighlights) {
   TempDir dir;
-  const std::string common = " --camera front --size 300x300 --no-shadows --shading pbr";
+  // The lights' BRDF only: with image-based lighting a metal shows its environment instead
+  // (ImageBasedLightingShowsSharperReflectionsOnSmootherMetal).
+  const std::string common = " --camera front --size 300x300 --no-shadows --shading pbr --no-ibl";
   auto lumas = [&](const std::string& name, double metallic, double roughness) {
     return objectLuminances(screenshot(dir, name, "'" + plainSphere(dir, name, metallic, roughness).string() + "'" + common));
   };
@@ -776,7 +780,7 @@ fs::path maskShadowAsset(const TempDir& dir) {
 TEST(Viewer, MaskedQuadCastsACutOutShadow) {
   TempDir dir;
   const fs::path file = maskShadowAsset(dir);
-  const std::string common = "'" + file.string() + "' --camera top --ortho --size 256x256";
+  const std::string common = "'" + file.string() + "' --camera top --ortho --size 256x256 --no-ibl";  // the shadow map's part only
   const Image shadowed = screenshot(dir, "shadows", common), plain = screenshot(dir, "no-shadows", common + " --no-shadows");
   ASSERT_EQ(shadowed.width, 256);
   // Top view: x to the right, z down; the bounds' sphere (centre (0, 0.5, 0)) framed with 1.02.
@@ -1525,5 +1529,136 @@ TEST(Viewer, GreyAndGreyAlphaPngsDecodeToGreyAndAlpha) {
     EXPECT_NEAR(o[c], 200 / 255.0f, 1.5f / 255) << c;
     EXPECT_NEAR(b[c], alpha * 200 / 255.0f + (1 - alpha) * background[c], 2.0f / 255) << c;
     EXPECT_NEAR(g[c], 90 / 255.0f, 1.5f / 255) << c;
+  }
+}
+
+// ---- Image-based lighting (issue 38 item 5) ----
+
+// Image-based lighting on a smooth (roughness 0.05) and a rough (0.6) metal sphere, base colour
+// 0.9, seen from the front: the environment's part of the picture is the render with IBL minus
+// the render with the environment at intensity 0 (linear, no tone mapping, fixed exposure). The built-in environment is a
+// bright sky over a dark ground, so a mirror-like sphere seen from the front shows the horizon
+// where its reflection vector is horizontal: R.y = 2 (N.V) N.y = 0 at N.y = 0, the sphere's
+// middle row; above it the sky, below it the ground. Prefiltering for roughness is a low-pass
+// filter: the rough sphere shows the same sky-over-ground in the same direction, with a smaller
+// step across the horizon and a smaller spread over the sphere, while the mean, the reflected
+// energy, stays about the same (both metals reflect a fraction of it near their base colour).
+TEST(Viewer, ImageBasedLightingShowsSharperReflectionsOnSmootherMetal) {
+  TempDir dir;
+  const std::string common = " --camera front --size 300x300 --no-shadows --shading pbr --tone-map none --exposure 1";
+  struct Environment {
+    float stepAcrossHorizon;  // mean linear luminance just above the middle row minus just below
+    float spread;             // standard deviation over the middle of the sphere
+    float mean;
+  };
+  auto environmentPart = [&](const std::string& name, double roughness) {
+    const fs::path file = plainSphere(dir, name, 1.0, roughness);
+    const Image on = screenshot(dir, name + "-ibl", "'" + file.string() + "'" + common);
+    const Image off = screenshot(dir, name + "-no-environment", "'" + file.string() + "'" + common + " --ibl-intensity 0");
+    EXPECT_EQ(on.rgb.size(), off.rgb.size());
+    auto part = [&](int x, int y) {
+      const auto a = on.at(x, y), b = off.at(x, y);
+      double sum = 0;
+      const double weights[3] = {0.2126, 0.7152, 0.0722};
+      for (int c = 0; c < 3; ++c) sum += weights[c] * (srgbToLinear(a[c]) - srgbToLinear(b[c]));
+      return static_cast<float>(sum);
+    };
+    // The sphere's centre and radius from its silhouette.
+    int top = on.height, bottom = -1, left = on.width, right = -1;
+    for (int y = 0; y < on.height; ++y)
+      for (int x = 0; x < on.width; ++x) {
+        const auto c = on.at(x, y);
+        if (std::abs(c[0] - 0.16f) < 0.01f && std::abs(c[1] - 0.17f) < 0.01f && std::abs(c[2] - 0.19f) < 0.01f) continue;
+        top = std::min(top, y), bottom = std::max(bottom, y), left = std::min(left, x), right = std::max(right, x);
+      }
+    const int cx = (left + right) / 2, cy = (top + bottom) / 2, radius = (bottom - top) / 2;
+    Environment result{};
+    double above = 0, below = 0;
+    int count = 0;
+    for (int dy = 3; dy <= 8; ++dy)
+      for (int dx = -radius / 4; dx <= radius / 4; ++dx) above += part(cx + dx, cy - dy), below += part(cx + dx, cy + dy), ++count;
+    result.stepAcrossHorizon = static_cast<float>((above - below) / count);
+    std::vector<float> values;
+    for (int y = cy - radius / 2; y <= cy + radius / 2; ++y)
+      for (int x = cx - radius / 2; x <= cx + radius / 2; ++x) values.push_back(part(x, y));
+    const double mean = std::accumulate(values.begin(), values.end(), 0.0) / static_cast<double>(values.size());
+    double variance = 0;
+    for (const float v : values) variance += (v - mean) * (v - mean);
+    result.spread = static_cast<float>(std::sqrt(variance / static_cast<double>(values.size())));
+    result.mean = static_cast<float>(mean);
+    return result;
+  };
+  const Environment smooth = environmentPart("smooth", 0.05), rough = environmentPart("rough", 0.6);
+  std::printf("environment's part: step across the horizon smooth %.3f, rough %.3f; spread smooth %.3f, rough %.3f; mean smooth %.3f, rough %.3f\n",
+              smooth.stepAcrossHorizon, rough.stepAcrossHorizon, smooth.spread, rough.spread, smooth.mean, rough.mean);
+  EXPECT_GT(smooth.stepAcrossHorizon, 0.1f);  // sky above, ground below
+  EXPECT_GT(rough.stepAcrossHorizon, 0.0f);
+  EXPECT_GT(smooth.stepAcrossHorizon, 2 * rough.stepAcrossHorizon);
+  EXPECT_GT(smooth.spread, 1.5f * rough.spread);
+  EXPECT_NEAR(rough.mean / smooth.mean, 1.0f, 0.35f);
+}
+
+// --ibl-intensity scales the environment's part linearly: a rough dielectric sphere's environment
+// part (minus the render at intensity 0) doubles from intensity 1 to 2.
+TEST(Viewer, IblIntensityScalesTheEnvironmentLinearly) {
+  TempDir dir;
+  const fs::path file = plainSphere(dir, "sphere", 0.0, 0.8);
+  const std::string common = "'" + file.string() + "' --camera front --size 200x200 --no-shadows --shading pbr --tone-map none --exposure 0.5";
+  const Image off = screenshot(dir, "off", common + " --ibl-intensity 0"), one = screenshot(dir, "one", common),
+              two = screenshot(dir, "two", common + " --ibl-intensity 2");
+  ASSERT_EQ(off.width, 200);
+  double partOne = 0, partTwo = 0;
+  for (int y = 80; y < 120; ++y)
+    for (int x = 80; x < 120; ++x) partOne += srgbToLinear(one.at(x, y)[1]) - srgbToLinear(off.at(x, y)[1]), partTwo += srgbToLinear(two.at(x, y)[1]) - srgbToLinear(off.at(x, y)[1]);
+  std::printf("environment's part at the centre: intensity 1 %.4f, 2 %.4f (ratio %.3f)\n", partOne / 1600, partTwo / 1600, partTwo / partOne);
+  EXPECT_GT(partOne, 0);
+  EXPECT_NEAR(partTwo / partOne, 2.0, 0.1);
+}
+
+// ---- Shadows from point and spot lights (issue 38 item 5) ----
+
+// maskShadowAsset's ground (6 x 6 at y = 0) and holed occluder (2 x 2 at y = 1, a see-through
+// hole over |x|, |z| < 0.5) lit by a point light, or a spot light pointing down, at (0, 3, 0)
+// and nothing else. Rays from the light spread: an occluder point at x reaches the ground at
+// 1.5 x (distances 2 and 3 from the light). So, seen from the top along z = 0, the ground at
+// x = 1.25 (occluder x = 0.83, the rim) is in shadow, though a light straight overhead at
+// infinity would light it; at x = 1.75 (occluder x = 1.17, past its edge) it is lit; at x = 0.3
+// (occluder x = 0.2, in the hole, seen through it) it is lit.
+TEST(Viewer, PointAndSpotLightsCastShadows) {
+  TempDir dir;
+  const fs::path base = maskShadowAsset(dir);
+  const double pixelsPerUnit = 256 / (2 * 1.02 * std::sqrt(36.0 + 36.0 + 1.0) / 2);  // as MaskedQuadCastsACutOutShadow
+  auto meanLuma = [&](const Image& image, double x, double z) {
+    const auto q = quadrantMeans(image, 128 + x * pixelsPerUnit, 128 + z * pixelsPerUnit, 3);
+    return (q[0] + q[1] + q[2] + q[3]) / 4;
+  };
+  const double s = std::sqrt(0.5);
+  const std::pair<nlohmann::json, nlohmann::json> lights[] = {
+      {{{"type", "point"}, {"intensity", 20.0}}, {{"translation", {0, 3, 0}}}},
+      // The spot shines along its node's -z, turned by -90 degrees about x to point down.
+      {{{"type", "spot"}, {"intensity", 20.0}, {"spot", {{"innerConeAngle", 0.5}, {"outerConeAngle", 0.9}}}},
+       {{"translation", {0, 3, 0}}, {"rotation", {-s, 0, 0, s}}}},
+  };
+  for (const auto& [light, node] : lights) {
+    const std::string type = light["type"];
+    nlohmann::json doc = nlohmann::json::parse(std::ifstream(base));
+    doc["extensions"]["KHR_lights_punctual"]["lights"] = {light};
+    nlohmann::json lightNode = node;
+    lightNode["extensions"] = {{"KHR_lights_punctual", {{"light", 0}}}};
+    doc["nodes"][2] = lightNode;
+    const fs::path file = dir / (type + "-shadow.gltf");
+    std::ofstream(file) << doc.dump(1);
+    const std::string common = "'" + file.string() + "' --camera top --ortho --size 256x256 --no-ibl";  // the shadow map's part only
+    const Image shadowed = screenshot(dir, type + "-shadows", common), plain = screenshot(dir, type + "-no-shadows", common + " --no-shadows");
+    ASSERT_EQ(shadowed.width, 256) << type;
+    const float rimOn = meanLuma(shadowed, 1.25, 0), rimOff = meanLuma(plain, 1.25, 0);
+    const float pastOn = meanLuma(shadowed, 1.75, 0), pastOff = meanLuma(plain, 1.75, 0);
+    const float holeOn = meanLuma(shadowed, 0.3, 0), holeOff = meanLuma(plain, 0.3, 0);
+    std::printf("%s light: ground under the rim %.3f with shadows, %.3f without; past the edge %.3f / %.3f; through the hole %.3f / %.3f\n",
+                type.c_str(), rimOn, rimOff, pastOn, pastOff, holeOn, holeOff);
+    EXPECT_GT(rimOff, 0.2f) << type;              // lit without shadows
+    EXPECT_LT(rimOn, 0.5f * rimOff) << type;      // the rim's shadow, spread by the light's position
+    EXPECT_NEAR(pastOn, pastOff, 0.02f) << type;  // past the occluder's shadow
+    EXPECT_NEAR(holeOn, holeOff, 0.02f) << type;  // light through the hole
   }
 }
