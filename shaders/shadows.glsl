@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: MIT
-// Shadow mapping for light 0: depth compare in a sampler2DShadow (hardware comparison with
+// Shadow mapping for light 0 (orthographic for a directional light, perspective from a point or
+// spot light; viewer/renderer.cpp's lightViewProjection): depth compare in a sampler2DShadow (hardware comparison with
 // bilinear filtering), with a constant plus slope bias and PCF over (2r+1)x(2r+1) texels
 // (r = 0 off, 1 = 3x3, 2 = 5x5) in (2r)^2 taps.
 #ifdef USE_SHADOWS
@@ -9,6 +10,7 @@ uniform float u_shadowBiasConstant;
 uniform float u_shadowBiasSlope;
 
 float shadowFactor(vec4 shadowCoord, vec3 normal, vec3 toLight) {
+  if (shadowCoord.w <= 0.0) return 1.0;  // behind a point or spot light's view
   vec3 coord = shadowCoord.xyz / shadowCoord.w * 0.5 + 0.5;
   if (coord.z > 1.0 || any(lessThan(coord.xy, vec2(0.0))) || any(greaterThan(coord.xy, vec2(1.0)))) return 1.0;
   float cosine = clamp(dot(normal, toLight), 0.0, 1.0);

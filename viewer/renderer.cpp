@@ -100,8 +100,22 @@ std::vector<Light> lightsFrom(const gltf::Scene& scene, glm::vec3 center, float 
     }
     lights.push_back(light);
   }
-  // Light 0 casts the shadow: the first directional light, when there is one.
+  // Light 0 casts the shadow: the first directional light, when there is one; else the point
+  // or spot light that gives the scene's centre the most illuminance.
   std::stable_partition(lights.begin(), lights.end(), [](const Light& light) { return light.directional; });
+  if (!lights.empty() && !lights[0].directional) {
+    auto illuminanceAtCenter = [&](const Light& light) {
+      const float d = std::max(glm::length(light.position - center), 0.1f * radius);
+      float e = light.intensity * std::max({light.color.r, light.color.g, light.color.b}) / (d * d);
+      if (light.range > 0) e *= std::clamp(1 - std::pow(d / light.range, 4.0f), 0.0f, 1.0f);
+      if (light.spotOuter >= 0 && glm::dot(glm::normalize(center - light.position), light.direction) < std::cos(light.spotOuter)) e = 0;
+      return e;
+    };
+    const auto strongest = std::max_element(lights.begin(), lights.end(), [&](const Light& a, const Light& b) {
+      return illuminanceAtCenter(a) < illuminanceAtCenter(b);
+    });
+    std::rotate(lights.begin(), strongest, strongest + 1);
+  }
   if (!lights.empty()) return lights;
   // Default rig: a key light that casts the shadow, a fill, a back point light and a spot.
   Light key;
@@ -326,7 +340,7 @@ GLuint Renderer::textureOf(const gltf::TextureRef& ref) const {
 
 FeatureSet Renderer::featuresFor(const GpuMesh& mesh, const RenderSettings& settings) const {
   FeatureSet features = 0;
-  if (settings.shadows && !lights_.empty() && lights_[0].directional) features |= static_cast<FeatureSet>(Feature::shadows);
+  if (settings.shadows && !lights_.empty()) features |= static_cast<FeatureSet>(Feature::shadows);
   if (settings.reflectivity > 0 && sphereMap_) features |= static_cast<FeatureSet>(Feature::reflection);
   if (settings.shading == Shading::pbr) features |= static_cast<FeatureSet>(Feature::pbr);
   if (physicalLights(settings)) features |= static_cast<FeatureSet>(Feature::physicalLights);
@@ -429,13 +443,35 @@ void Renderer::drawDepth(std::span<const GpuInstance* const> instances, const gl
 }
 
 glm::mat4 Renderer::lightViewProjection() const {
-  // Orthographic light view fitted to the scene's bounding sphere.
   const glm::vec3 center = boundsCenter();
   const float radius = boundsRadius();
-  const glm::vec3 direction = glm::normalize(lights_[0].direction);
-  const glm::vec3 up = std::abs(direction.y) > 0.99f ? glm::vec3(1, 0, 0) : glm::vec3(0, 1, 0);
-  const glm::mat4 view = glm::lookAt(center - direction * (2 * radius), center, up);
-  return glm::ortho(-radius, radius, -radius, radius, 0.01f * radius, 4 * radius) * view;
+  const Light& light = lights_[0];
+  auto upFor = [](const glm::vec3& direction) { return std::abs(direction.y) > 0.99f ? glm::vec3(1, 0, 0) : glm::vec3(0, 1, 0); };
+  if (light.directional) {
+    // Orthographic light view fitted to the scene's bounding sphere.
+    const glm::vec3 direction = glm::normalize(light.direction);
+    const glm::mat4 view = glm::lookAt(center - direction * (2 * radius), center, upFor(direction));
+    return glm::ortho(-radius, radius, -radius, radius, 0.01f * radius, 4 * radius) * view;
+  }
+  // A point or spot light: a perspective view from the light. A spot looks along its axis over
+  // its cone; a point light looks at the scene's centre over the cone that holds the scene's
+  // bounding sphere. Both are capped at 160 degrees across: from a point light inside the
+  // scene's bounds, only that cone around the centre's direction is shadowed (a cube map would
+  // take all six directions).
+  constexpr float kMaxHalfAngle = glm::radians(80.0f);
+  const float distance = glm::length(center - light.position);
+  glm::vec3 direction;
+  float halfAngle;
+  if (light.spotOuter >= 0) {
+    direction = glm::normalize(light.direction);
+    halfAngle = std::min(light.spotOuter * 1.05f, kMaxHalfAngle);
+  } else {
+    direction = distance > 1e-6f ? (center - light.position) / distance : glm::vec3(0, -1, 0);
+    halfAngle = distance > radius ? std::min(std::asin(radius / distance) * 1.05f, kMaxHalfAngle) : kMaxHalfAngle;
+  }
+  const float nearPlane = std::max(distance - radius, 0.01f * radius), farPlane = distance + radius;
+  const glm::mat4 view = glm::lookAt(light.position, light.position + direction, upFor(direction));
+  return glm::perspective(2 * halfAngle, 1.0f, nearPlane, farPlane) * view;
 }
 
 void Renderer::drawShadowMap(const RenderSettings& settings) {
@@ -498,12 +534,12 @@ FrameStats Renderer::render(const CameraMatrices& camera, const RenderSettings& 
     environment_ = uploadEnvironment(buildEnvironment());
     environmentMilliseconds_ = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
   }
-  const bool anyShadows = settings.shadows && !instances_.empty() && !lights_.empty() && lights_[0].directional &&
-                          settings.view == DebugView::lit;
+  const bool anyShadows = settings.shadows && !instances_.empty() && !lights_.empty() && settings.view == DebugView::lit;
   if (anyShadows) {
     // The map depends on the scene, light 0's direction and the map size only: a camera that
     // moves reuses it.
-    const ShadowKey key{glm::normalize(lights_[0].direction), settings.shadowMapSize, sceneVersion_, settings.uvScale};
+    const ShadowKey key{glm::normalize(lights_[0].direction), lights_[0].directional ? glm::vec3(0) : lights_[0].position,
+                        settings.shadowMapSize, sceneVersion_, settings.uvScale};
     if (!(key == shadowKey_) || !shadowTexture_) {
       drawShadowMap(settings);
       shadowKey_ = key;

@@ -147,6 +147,7 @@ class Renderer {
   // What the shadow map was drawn for; a frame that matches it reuses the map.
   struct ShadowKey {
     glm::vec3 direction{0};
+    glm::vec3 position{0};  // of a point or spot light
     int size = 0;
     int sceneVersion = -1;
     float uvScale = 1;  // alpha-tested materials' cut-outs move with it
