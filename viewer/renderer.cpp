@@ -12,6 +12,7 @@
 #include <limits>
 #include <span>
 
+#include "shadow_cube.hpp"
 #include "textures.hpp"
 #include "vertex_layout.hpp"
 
@@ -341,6 +342,7 @@ GLuint Renderer::textureOf(const gltf::TextureRef& ref) const {
 FeatureSet Renderer::featuresFor(const GpuMesh& mesh, const RenderSettings& settings) const {
   FeatureSet features = 0;
   if (settings.shadows && !lights_.empty()) features |= static_cast<FeatureSet>(Feature::shadows);
+  if (settings.shadows && pointShadow()) features |= static_cast<FeatureSet>(Feature::pointShadows);
   if (settings.reflectivity > 0 && sphereMap_) features |= static_cast<FeatureSet>(Feature::reflection);
   if (settings.shading == Shading::pbr) features |= static_cast<FeatureSet>(Feature::pbr);
   if (physicalLights(settings)) features |= static_cast<FeatureSet>(Feature::physicalLights);
@@ -349,8 +351,9 @@ FeatureSet Renderer::featuresFor(const GpuMesh& mesh, const RenderSettings& sett
   const auto& material = scene_.materials[mesh.material];
   if (material.unlit) {
     // Unlit: base colour and alpha only.
-    features &= ~(static_cast<FeatureSet>(Feature::shadows) | static_cast<FeatureSet>(Feature::reflection) |
-                  static_cast<FeatureSet>(Feature::physicalLights) | static_cast<FeatureSet>(Feature::ibl));
+    features &= ~(static_cast<FeatureSet>(Feature::shadows) | static_cast<FeatureSet>(Feature::pointShadows) |
+                  static_cast<FeatureSet>(Feature::reflection) | static_cast<FeatureSet>(Feature::physicalLights) |
+                  static_cast<FeatureSet>(Feature::ibl));
     features |= static_cast<FeatureSet>(Feature::unlit);
   }
   if (material.alphaMode == gltf::MaterialDesc::AlphaMode::mask) features |= static_cast<FeatureSet>(Feature::alphaMask);
@@ -453,11 +456,9 @@ glm::mat4 Renderer::lightViewProjection() const {
     const glm::mat4 view = glm::lookAt(center - direction * (2 * radius), center, upFor(direction));
     return glm::ortho(-radius, radius, -radius, radius, 0.01f * radius, 4 * radius) * view;
   }
-  // A point or spot light: a perspective view from the light. A spot looks along its axis over
-  // its cone; a point light looks at the scene's centre over the cone that holds the scene's
-  // bounding sphere. Both are capped at 160 degrees across: from a point light inside the
-  // scene's bounds, only that cone around the centre's direction is shadowed (a cube map would
-  // take all six directions).
+  // A spot light: a perspective view along its axis over its cone, at most 160 degrees across.
+  // (A point light's shadow is the cube map, shadow_cube.hpp; for it this view looks at the
+  // scene's centre over the cone that holds the bounding sphere, and the shaders do not read it.)
   constexpr float kMaxHalfAngle = glm::radians(80.0f);
   const float distance = glm::length(center - light.position);
   glm::vec3 direction;
@@ -474,10 +475,30 @@ glm::mat4 Renderer::lightViewProjection() const {
   return glm::perspective(2 * halfAngle, 1.0f, nearPlane, farPlane) * view;
 }
 
+bool Renderer::pointShadow() const { return !lights_.empty() && !lights_[0].directional && lights_[0].spotOuter < 0; }
+
+glm::vec2 Renderer::shadowCubeDepthRange() const {
+  // A point of the sphere is at least d - r from the light, and its face depth (the largest
+  // component of the offset) at least that over sqrt 3; at most d + r.
+  const float radius = boundsRadius(), distance = glm::length(boundsCenter() - lights_[0].position);
+  return {std::max((distance - radius) / 1.75f, 0.02f * radius), distance + radius};
+}
+
 void Renderer::drawShadowMap(const RenderSettings& settings) {
   GLint previous = 0;  // the caller's framebuffer, restored at the end
   glGetIntegerv(GL_FRAMEBUFFER_BINDING, &previous);
-  if (shadowSize_ != settings.shadowMapSize || !shadowTexture_) {
+  // A point light's cube: faces half the 2D map's size (six faces), at most 1024.
+  const int cubeSize = std::clamp(settings.shadowMapSize / 2, 256, 1024);
+  if (pointShadow() && (shadowCubeSize_ != cubeSize || !shadowCube_)) {
+    shadowCubeSize_ = cubeSize;
+    shadowCube_ = makeShadowCube(cubeSize);
+    shadowCubeFramebuffer_ = makeFramebuffer();
+    glBindFramebuffer(GL_FRAMEBUFFER, shadowCubeFramebuffer_.get());
+    glFramebufferTexture2D(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_TEXTURE_CUBE_MAP_POSITIVE_X, shadowCube_.get(), 0);
+    glDrawBuffer(GL_NONE);
+    glReadBuffer(GL_NONE);
+  }
+  if (!pointShadow() && (shadowSize_ != settings.shadowMapSize || !shadowTexture_)) {
     shadowSize_ = settings.shadowMapSize;
     shadowTexture_ = makeTexture();
     glBindTexture(GL_TEXTURE_2D, shadowTexture_.get());
@@ -496,11 +517,8 @@ void Renderer::drawShadowMap(const RenderSettings& settings) {
     glDrawBuffer(GL_NONE);
     glReadBuffer(GL_NONE);
   }
-  glBindFramebuffer(GL_FRAMEBUFFER, shadowFramebuffer_.get());
-  glViewport(0, 0, shadowSize_, shadowSize_);
   glEnable(GL_DEPTH_TEST);  // without it GL writes no depth
   glDepthMask(GL_TRUE);
-  glClear(GL_DEPTH_BUFFER_BIT);
   glEnable(GL_POLYGON_OFFSET_FILL);
   glPolygonOffset(2.0f, 4.0f);
   glDisable(GL_CULL_FACE);
@@ -511,7 +529,21 @@ void Renderer::drawShadowMap(const RenderSettings& settings) {
   casters.reserve(instances_.size());
   for (const GpuInstance& instance : instances_) casters.push_back(&instance);
   std::stable_sort(casters.begin(), casters.end(), [](const GpuInstance* a, const GpuInstance* b) { return a->mesh < b->mesh; });
-  drawDepth(casters, lightViewProjection(), settings, true, false);
+  if (pointShadow()) {
+    glBindFramebuffer(GL_FRAMEBUFFER, shadowCubeFramebuffer_.get());
+    glViewport(0, 0, shadowCubeSize_, shadowCubeSize_);
+    const glm::vec2 range = shadowCubeDepthRange();
+    for (int face = 0; face < 6; ++face) {
+      glFramebufferTexture2D(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_TEXTURE_CUBE_MAP_POSITIVE_X + face, shadowCube_.get(), 0);
+      glClear(GL_DEPTH_BUFFER_BIT);
+      drawDepth(casters, cubeFaceViewProjection(lights_[0].position, face, range.x, range.y), settings, true, false);
+    }
+  } else {
+    glBindFramebuffer(GL_FRAMEBUFFER, shadowFramebuffer_.get());
+    glViewport(0, 0, shadowSize_, shadowSize_);
+    glClear(GL_DEPTH_BUFFER_BIT);
+    drawDepth(casters, lightViewProjection(), settings, true, false);
+  }
   glDisable(GL_POLYGON_OFFSET_FILL);
   glBindFramebuffer(GL_FRAMEBUFFER, static_cast<GLuint>(previous));
   ++shadowPasses_;
@@ -538,9 +570,9 @@ FrameStats Renderer::render(const CameraMatrices& camera, const RenderSettings& 
   if (anyShadows) {
     // The map depends on the scene, light 0's direction and the map size only: a camera that
     // moves reuses it.
-    const ShadowKey key{glm::normalize(lights_[0].direction), lights_[0].directional ? glm::vec3(0) : lights_[0].position,
+    const ShadowKey key{glm::normalize(lights_[0].direction), lights_[0].directional ? glm::vec3(0) : lights_[0].position, pointShadow(),
                         settings.shadowMapSize, sceneVersion_, settings.uvScale};
-    if (!(key == shadowKey_) || !shadowTexture_) {
+    if (!(key == shadowKey_) || !(pointShadow() ? shadowCube_ : shadowTexture_)) {
       drawShadowMap(settings);
       shadowKey_ = key;
       stats.depthPass = true;
@@ -656,7 +688,7 @@ GLuint Renderer::bindMesh(const GpuMesh& mesh, const CameraMatrices& camera, con
   gltf::MaterialDesc material;  // without one, glTF's default material (metallic 1, roughness 1, white; glTF 2.0 3.9.1)
   if (const gltf::MaterialDesc* own = materialOf(scene_, mesh.material)) material = *own;
   FeatureSet features = featuresFor(mesh, settings);
-  if (!shadows) features &= ~static_cast<FeatureSet>(Feature::shadows);
+  if (!shadows) features &= ~(static_cast<FeatureSet>(Feature::shadows) | static_cast<FeatureSet>(Feature::pointShadows));
   const GLuint program = shaders_.mesh(features, settings.view, settings.toneMapping);
   glUseProgram(program);
   setUniform(program, "u_viewProjection", camera.projection * camera.view);
@@ -738,8 +770,17 @@ GLuint Renderer::bindMesh(const GpuMesh& mesh, const CameraMatrices& camera, con
     setUniform(program, "u_environmentScale", settings.iblIntensity * kEnvironmentShare / kAmbientShare);
     glUniform3fv(glGetUniformLocation(program, "u_irradianceSh"), 9, &environment_->irradianceSh[0].x);
   }
-  if (has(features, Feature::shadows)) {
+  if (has(features, Feature::pointShadows)) {
+    glActiveTexture(GL_TEXTURE0 + unit);
+    glBindTexture(GL_TEXTURE_CUBE_MAP, shadowCube_.get());
+    glBindSampler(static_cast<GLuint>(unit), 0);
+    setUniform(program, "u_shadowCube", unit++);
+    const glm::vec2 range = shadowCubeDepthRange();
+    setUniform(program, "u_shadowCubeDepth", glm::vec3(range, 4 * boundsRadius()));  // biases: fractions of the 2D map's depth range
+  } else if (has(features, Feature::shadows)) {
     bind("u_shadowMap", shadowTexture_.get());
+  }
+  if (has(features, Feature::shadows)) {
     setUniform(program, "u_pcfRadius", settings.pcfRadius);
     setUniform(program, "u_shadowBiasConstant", settings.shadowBiasConstant);
     setUniform(program, "u_shadowBiasSlope", settings.shadowBiasSlope);

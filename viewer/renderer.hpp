@@ -148,6 +148,7 @@ class Renderer {
   struct ShadowKey {
     glm::vec3 direction{0};
     glm::vec3 position{0};  // of a point or spot light
+    bool cube = false;      // a point light's cube map
     int size = 0;
     int sceneVersion = -1;
     float uvScale = 1;  // alpha-tested materials' cut-outs move with it
@@ -174,6 +175,11 @@ class Renderer {
   void applyCulling(const GpuMesh& mesh, const RenderSettings& settings) const;
   void drawGlyphs(const CameraMatrices& camera, const RenderSettings& settings);
   glm::mat4 lightViewProjection() const;
+  // Light 0 is a point light (not a spot): its shadow is the depth cube map.
+  bool pointShadow() const;
+  // The cube faces' near and far planes: every point of the scene's bounding sphere lies between
+  // them in the face it falls in.
+  glm::vec2 shadowCubeDepthRange() const;
   FeatureSet featuresFor(const GpuMesh& mesh, const RenderSettings& settings) const;
   GLuint textureOf(const gltf::TextureRef& ref) const;
 
@@ -205,6 +211,9 @@ class Renderer {
   Framebuffer shadowFramebuffer_;
   Texture shadowTexture_;
   int shadowSize_ = 0;
+  Framebuffer shadowCubeFramebuffer_;
+  Texture shadowCube_;
+  int shadowCubeSize_ = 0;
   ShadowKey shadowKey_;
   int sceneVersion_ = 0;
   int shadowPasses_ = 0;

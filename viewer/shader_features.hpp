@@ -24,6 +24,7 @@ enum class Feature : std::uint32_t {
   // Bits from 16 up: this session's additions, apart from any others appended above.
   physicalLights = 1u << 16,   // KHR_lights_punctual in its units (lux, candela), range window
   ibl = 1u << 17,              // image-based lighting from the built-in environment (pbr only)
+  pointShadows = 1u << 18,     // with shadows: light 0 is a point light, its shadow a depth cube map
 };
 
 enum class DebugView : std::uint8_t {
@@ -59,6 +60,7 @@ inline constexpr FeatureDefine kFeatureDefines[] = {
     {Feature::unlit, "MATERIAL_UNLIT"},
     {Feature::pbr, "SHADING_PBR"},
     {Feature::ibl, "USE_IBL"},
+    {Feature::pointShadows, "POINT_SHADOWS"},
 };
 
 // The lit view's shading: glTF's metallic-roughness model, or the tutorials' specular-map

@@ -1662,3 +1662,49 @@ TEST(Viewer, PointAndSpotLightsCastShadows) {
     EXPECT_NEAR(holeOn, holeOff, 0.02f) << type;  // light through the hole
   }
 }
+
+// A point light inside the scene shadows sideways too (a cube map, not one view towards the
+// scene's centre): quadAsset's quad as a 6 x 6 ground (y = 0) and two occluders 0.3 x 0.6 at
+// height 0.125 over x in [1.0, 1.3] and [-1.3, -1.0]; the light at (0, 0.25, 0), halfway up
+// from the occluders: each occluder point at x reaches the ground at 2 x, so the ground over
+// |x| in [2.0, 2.6] is in shadow, 84 degrees from straight down, and |x| = 1.7 and 2.9 are lit.
+// At x = 2.3 the light arrives at 84 degrees from the normal: E = 20 cd cos / d^2 = 0.404 lux,
+// radiance about E / pi = 0.129, while the plain sky term (--no-ibl; 6% of the light's
+// intensity over pi, times 1 / d^2 and the sky's 1.8 straight up) adds 0.128 that no shadow
+// removes: in linear light the shadow leaves about half (0.50), no shadow all of it.
+TEST(Viewer, PointLightInsideTheSceneShadowsSideways) {
+  TempDir dir;
+  writeRgbaPng(dir / "white.png", 4, 4, [](int, int) { return std::array<unsigned char, 4>{255, 255, 255, 255}; });
+  const double s = std::sqrt(0.5);
+  const nlohmann::json faceUp = {-s, 0, 0, s};  // turns the quad's +z normal to +y
+  nlohmann::json nodes = {{{"mesh", 0}, {"rotation", faceUp}, {"scale", {3, 3, 1}}}};
+  for (const double x : {1.15, -1.15}) nodes.push_back({{"mesh", 0}, {"rotation", faceUp}, {"scale", {0.15, 0.3, 1}}, {"translation", {x, 0.125, 0}}});
+  nodes.push_back({{"translation", {0, 0.25, 0}}, {"extensions", {{"KHR_lights_punctual", {{"light", 0}}}}}});
+  const nlohmann::json patch = {{"extensionsUsed", {"KHR_lights_punctual"}},
+                                {"extensions", {{"KHR_lights_punctual", {{"lights", {{{"type", "point"}, {"intensity", 20.0}}}}}}}},
+                                {"nodes", nodes},
+                                {"scenes", {{{"nodes", {0, 1, 2, 3}}}}}};
+  const fs::path file = quadAsset(dir, "sideways", kWhiteRough, "white.png", patch);
+  const std::string common = "'" + file.string() + "' --camera top --ortho --size 256x256 --no-ibl --tone-map none --exposure 2";
+  const Image shadowed = screenshot(dir, "shadows", common), plain = screenshot(dir, "no-shadows", common + " --no-shadows");
+  ASSERT_EQ(shadowed.width, 256);
+  const double pixelsPerUnit = 256 / (2 * 1.02 * std::sqrt(36.0 + 36.0 + 0.125 * 0.125) / 2);
+  auto meanLuma = [&](const Image& image, double x) {  // linear, of the grey's red channel
+    const int cx = static_cast<int>(128 + x * pixelsPerUnit);
+    double sum = 0;
+    for (int py = 126; py <= 130; ++py)
+      for (int px = cx - 2; px <= cx + 2; ++px) sum += srgbToLinear(image.at(px, py)[0]);
+    return static_cast<float>(sum / 25);
+  };
+  for (const double side : {1.0, -1.0}) {
+    const float shadowOn = meanLuma(shadowed, 2.3 * side), shadowOff = meanLuma(plain, 2.3 * side);
+    const float nearOn = meanLuma(shadowed, 1.7 * side), nearOff = meanLuma(plain, 1.7 * side);
+    const float farOn = meanLuma(shadowed, 2.9 * side), farOff = meanLuma(plain, 2.9 * side);
+    std::printf("x %+.1f: %.3f with shadows, %.3f without; x %+.1f: %.3f / %.3f; x %+.1f: %.3f / %.3f\n", 2.3 * side, shadowOn, shadowOff,
+                1.7 * side, nearOn, nearOff, 2.9 * side, farOn, farOff);
+    EXPECT_GT(shadowOff, 0.3f);
+    EXPECT_NEAR(shadowOn / shadowOff, 0.50f, 0.08f);
+    EXPECT_NEAR(nearOn, nearOff, 0.03f);
+    EXPECT_NEAR(farOn, farOff, 0.03f);
+  }
+}
