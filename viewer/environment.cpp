@@ -184,7 +184,7 @@ std::array<glm::vec3, 9> irradianceSh(const CubeLevel& level) {
 glm::vec3 proceduralSky(const glm::vec3& direction) {
   // Sky: a warm, bright horizon fading to a blue zenith; ground: a dim brown, meeting the sky in
   // a soft horizon line two degrees wide; a sun towards the default rig's key light.
-  const glm::vec3 horizon(1.25f, 1.15f, 1.0f), zenith(0.30f, 0.50f, 1.0f), ground(0.22f, 0.19f, 0.16f);
+  const glm::vec3 horizon(1.2f, 1.12f, 1.0f), zenith(0.5f, 0.65f, 0.95f), ground(0.22f, 0.19f, 0.16f);
   const float up = std::max(direction.y, 0.0f);
   const glm::vec3 sky = glm::mix(horizon, zenith, std::sqrt(up));
   const glm::vec3 below = ground * (0.6f + 0.4f * (1 + std::min(direction.y, 0.0f)));

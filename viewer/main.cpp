@@ -57,7 +57,7 @@ const char* kUsage =
     "  --depth-prepass          draw opaque depth first, then shade each pixel once\n"
     "  --no-ibl                 pbr without image-based lighting: a plain sky term instead of the built-in\n"
     "                           environment (a sky, a ground and a sun, prefiltered at start-up)\n"
-    "  --ibl-intensity F        factor on the environment's radiance (default 1: its mean radiance a quarter\n"
+    "  --ibl-intensity F        factor on the environment's radiance (default 1: its mean radiance a fifth\n"
     "                           of the lights' direct level)\n"
     "  --animation N|NAME       pose the scene by this animation (index or name; default: none, the nodes'\n"
     "                           own transforms, morph weights and skins in the rest pose)\n"

@@ -456,21 +456,14 @@ glm::mat4 Renderer::lightViewProjection() const {
     const glm::mat4 view = glm::lookAt(center - direction * (2 * radius), center, upFor(direction));
     return glm::ortho(-radius, radius, -radius, radius, 0.01f * radius, 4 * radius) * view;
   }
-  // A spot light: a perspective view along its axis over its cone, at most 160 degrees across.
-  // (A point light's shadow is the cube map, shadow_cube.hpp; for it this view looks at the
-  // scene's centre over the cone that holds the bounding sphere, and the shaders do not read it.)
-  constexpr float kMaxHalfAngle = glm::radians(80.0f);
+  // A point light's shadow is the cube map (shadow_cube.hpp), which this matrix plays no part in.
+  if (pointShadow()) return glm::mat4(1);
+  // A spot light: a perspective view along its axis over its cone, at most 160 degrees across,
+  // between the nearest and farthest points of the scene's bounding sphere.
+  const float halfAngle = std::min(light.spotOuter * 1.05f, glm::radians(80.0f));
   const float distance = glm::length(center - light.position);
-  glm::vec3 direction;
-  float halfAngle;
-  if (light.spotOuter >= 0) {
-    direction = glm::normalize(light.direction);
-    halfAngle = std::min(light.spotOuter * 1.05f, kMaxHalfAngle);
-  } else {
-    direction = distance > 1e-6f ? (center - light.position) / distance : glm::vec3(0, -1, 0);
-    halfAngle = distance > radius ? std::min(std::asin(radius / distance) * 1.05f, kMaxHalfAngle) : kMaxHalfAngle;
-  }
   const float nearPlane = std::max(distance - radius, 0.01f * radius), farPlane = distance + radius;
+  const glm::vec3 direction = glm::normalize(light.direction);
   const glm::mat4 view = glm::lookAt(light.position, light.position + direction, upFor(direction));
   return glm::perspective(2 * halfAngle, 1.0f, nearPlane, farPlane) * view;
 }

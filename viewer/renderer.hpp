@@ -41,7 +41,7 @@ inline constexpr float kAmbientShare = 0.06f;
 // With image-based lighting (pbr), the environment's mean radiance is this share of the lights'
 // direct level instead, times RenderSettings::iblIntensity: bright enough that metals, which
 // show nothing but their surroundings, read as metals.
-inline constexpr float kEnvironmentShare = 0.25f;
+inline constexpr float kEnvironmentShare = 0.2f;
 
 struct RenderSettings {
   DebugView view = DebugView::lit;
