@@ -48,6 +48,7 @@ configs=(
   "uv view (cheapest fragment shader)|--view uv"
   "depth pre-pass|--depth-prepass"
   "no tone mapping|--tone-map none"
+  "no image-based lighting|--no-ibl"
 )
 printf "%-34s %-40s %10s\n" "asset" "configuration" "median ms"
 for asset in "${assets[@]}"; do

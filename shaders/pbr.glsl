@@ -8,10 +8,12 @@
 // colour and its specular lobe by its strength. Plus an environment term: an ambient
 // radiance (the lights' ambient colours) through the same split into diffuse and specular,
 // with the Fresnel of the view angle (Schlick, roughness-limited) standing in for the
-// pre-integrated environment BRDF, from a sky brighter above than below. Occlusion scales the
+// pre-integrated environment BRDF, from a sky brighter above than below; or, with USE_IBL, the
+// built-in environment by the split-sum approximation (ibl.glsl). Occlusion scales the
 // environment term only.
 #ifdef SHADING_PBR
 const float kPi = 3.14159265;
+#include "ibl.glsl"
 
 struct PbrSurface {
   vec3 baseColor;
@@ -65,6 +67,17 @@ vec3 skyRadiance(vec3 direction, vec3 ambient) { return ambient * (0.2 + 0.8 * (
 
 vec3 pbrEnvironment(PbrSurface s, vec3 n, vec3 toEye, vec3 ambient) {
   float nv = clamp(abs(dot(n, toEye)), 0.0, 1.0);
+#ifdef USE_IBL
+  // The specular lobe's integral F0 A + F90 B (F90 = 1), KHR_materials_specular's strength
+  // scaling the dielectric's; the diffuse part keeps what the dielectric's specular leaves.
+  vec2 ab = environmentBrdf(nv, s.roughness);
+  vec3 dielectricSpecular = s.specularWeight * (s.dielectricF0 * ab.x + ab.y);
+  vec3 metalSpecular = (s.baseColor * ab.x + ab.y) * sign(s.specularWeight);
+  vec3 specular = mix(dielectricSpecular, metalSpecular, s.metallic);
+  vec3 diffuse = (1.0 - s.metallic) * s.baseColor * (1.0 - maxComponent(dielectricSpecular));
+  vec3 level = ambient * u_environmentScale;
+  return level * (diffuse * environmentIrradiance(n) + specular * environmentRadiance(reflect(-toEye, n), s.roughness));
+#else
   float fresnelWeight = pow5(1.0 - nv);
   vec3 dielectricF0 = s.specularWeight * s.dielectricF0;
   vec3 f0 = mix(dielectricF0, s.baseColor * sign(s.specularWeight), s.metallic);
@@ -74,5 +87,6 @@ vec3 pbrEnvironment(PbrSurface s, vec3 n, vec3 toEye, vec3 ambient) {
   // Rougher surfaces see the sky blurred towards the normal's direction.
   vec3 reflected = normalize(mix(reflect(-toEye, n), n, s.roughness * s.roughness));
   return diffuse * skyRadiance(n, ambient) + specular * skyRadiance(reflected, ambient);
+#endif
 }
 #endif

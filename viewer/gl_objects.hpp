@@ -43,6 +43,7 @@ inline void framebuffer(GLuint id) { glDeleteFramebuffers(1, &id); }
 inline void renderbuffer(GLuint id) { glDeleteRenderbuffers(1, &id); }
 inline void program(GLuint id) { glDeleteProgram(id); }
 inline void query(GLuint id) { glDeleteQueries(1, &id); }
+inline void sampler(GLuint id) { glDeleteSamplers(1, &id); }
 }  // namespace gl_delete
 
 using Buffer = GlObject<gl_delete::buffer>;
@@ -51,6 +52,7 @@ using Texture = GlObject<gl_delete::texture>;
 using Framebuffer = GlObject<gl_delete::framebuffer>;
 using Renderbuffer = GlObject<gl_delete::renderbuffer>;
 using Program = GlObject<gl_delete::program>;
+using Sampler = GlObject<gl_delete::sampler>;
 
 inline Buffer makeBuffer() {
   GLuint id = 0;

@@ -64,6 +64,10 @@ const char* kUsage =
     "                           over the brightest KHR_lights_punctual illuminance at the scene's centre in\n"
     "                           pbr, where those lights are in lux and candela; 1 otherwise)\n"
     "  --depth-prepass          draw opaque depth first, then shade each pixel once\n"
+    "  --no-ibl                 pbr without image-based lighting: a plain sky term instead of the built-in\n"
+    "                           environment (a sky, a ground and a sun, prefiltered at start-up)\n"
+    "  --ibl-intensity F        factor on the environment's radiance (default 1: its mean radiance a fifth\n"
+    "                           of the lights' direct level)\n"
     "  --animation N|NAME       pose the scene by this animation (index or name; default: none, the nodes'\n"
     "                           own transforms, morph weights and skins in the rest pose)\n"
     "  --time SECONDS           the animation's time (default 0; alone, it picks animation 0)\n"
@@ -169,6 +173,12 @@ int parseOptions(int argc, char** argv, Options& options) {
       else if (arg == "--check-shaders") options.checkShaders = true;
       else if (arg == "--stats") options.stats = true;
       else if (arg == "--depth-prepass") options.settings.depthPrePass = true;
+      else if (arg == "--no-ibl") options.settings.ibl = false;
+      else if (arg == "--ibl-intensity") {
+        const float intensity = std::stof(value());
+        if (!(intensity >= 0) || !std::isfinite(intensity)) throw std::invalid_argument("--ibl-intensity must be >= 0");
+        options.settings.iblIntensity = intensity;
+      }
       else if (arg == "--animation") options.animation = value();
       else if (arg == "--compare") {
         const std::string source = value();
@@ -446,6 +456,8 @@ int screenshot(Viewer& viewer) {
               "exposure %.4g, median frame %.2f ms over %d frame(s)\n",
               o.screenshot->string().c_str(), o.width, o.height, std::max(samples, 1), stats.triangles, stats.drawCalls,
               viewer.shaders.variantsCompiled(), viewer.renderer.shadowPasses(), stats.exposure, milliseconds[milliseconds.size() / 2], o.frames);
+  if (viewer.renderer.environmentMilliseconds() > 0)
+    std::printf("image-based lighting prepared in %.1f ms\n", viewer.renderer.environmentMilliseconds());
   return 0;
 }
 
@@ -576,6 +588,8 @@ void drawPanel(Viewer& viewer, GLFWwindow* window, const FrameStats& stats, doub
     if (!autoExposure) ImGui::SliderFloat("exposure", &s.exposure, 1e-4f, 1e4f, "%.4g", ImGuiSliderFlags_Logarithmic);
     else ImGui::Text("exposure %.4g%s", stats.exposure, viewer.renderer.physicalLights(s) ? " (lights in lux / candela)" : "");
     ImGui::Checkbox("depth pre-pass", &s.depthPrePass);
+    ImGui::Checkbox("image-based lighting", &s.ibl);
+    if (s.ibl) ImGui::SliderFloat("environment", &s.iblIntensity, 0.0f, 4.0f);
     ImGui::SliderFloat("reflectivity", &s.reflectivity, 0, 1);
     ImGui::SliderFloat("UV scale", &s.uvScale, 0.25f, 8);
   }

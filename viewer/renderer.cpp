@@ -7,10 +7,12 @@
 
 #include <algorithm>
 #include <array>
+#include <chrono>
 #include <cmath>
 #include <limits>
 #include <span>
 
+#include "shadow_cube.hpp"
 #include "textures.hpp"
 #include "vertex_layout.hpp"
 
@@ -100,8 +102,22 @@ std::vector<Light> lightsFrom(const gltf::Scene& scene, glm::vec3 center, float 
     }
     lights.push_back(light);
   }
-  // Light 0 casts the shadow: the first directional light, when there is one.
+  // Light 0 casts the shadow: the first directional light, when there is one; else the point
+  // or spot light that gives the scene's centre the most illuminance.
   std::stable_partition(lights.begin(), lights.end(), [](const Light& light) { return light.directional; });
+  if (!lights.empty() && !lights[0].directional) {
+    auto illuminanceAtCenter = [&](const Light& light) {
+      const float d = std::max(glm::length(light.position - center), 0.1f * radius);
+      float e = light.intensity * std::max({light.color.r, light.color.g, light.color.b}) / (d * d);
+      if (light.range > 0) e *= std::clamp(1 - std::pow(d / light.range, 4.0f), 0.0f, 1.0f);
+      if (light.spotOuter >= 0 && glm::dot(glm::normalize(center - light.position), light.direction) < std::cos(light.spotOuter)) e = 0;
+      return e;
+    };
+    const auto strongest = std::max_element(lights.begin(), lights.end(), [&](const Light& a, const Light& b) {
+      return illuminanceAtCenter(a) < illuminanceAtCenter(b);
+    });
+    std::rotate(lights.begin(), strongest, strongest + 1);
+  }
   if (!lights.empty()) return lights;
   // Default rig: a key light that casts the shadow, a fill, a back point light and a spot.
   Light key;
@@ -153,6 +169,7 @@ void Renderer::setScene(gltf::Scene scene, std::vector<std::string>& messages) {
   compareTangents_.clear();
   textures_.clear();
   srgbTextures_.clear();
+  samplers_.clear();
   glyphsBuiltFor_ = -1;
   ++sceneVersion_;
   shadowPasses_ = 0;
@@ -352,16 +369,19 @@ GLuint Renderer::textureOf(const gltf::TextureRef& ref) const {
 
 FeatureSet Renderer::featuresFor(const GpuMesh& mesh, const RenderSettings& settings) const {
   FeatureSet features = 0;
-  if (settings.shadows && !lights_.empty() && lights_[0].directional) features |= static_cast<FeatureSet>(Feature::shadows);
+  if (settings.shadows && !lights_.empty()) features |= static_cast<FeatureSet>(Feature::shadows);
+  if (settings.shadows && pointShadow()) features |= static_cast<FeatureSet>(Feature::pointShadows);
   if (settings.reflectivity > 0 && sphereMap_) features |= static_cast<FeatureSet>(Feature::reflection);
   if (settings.shading == Shading::pbr) features |= static_cast<FeatureSet>(Feature::pbr);
   if (physicalLights(settings)) features |= static_cast<FeatureSet>(Feature::physicalLights);
+  if (settings.ibl && settings.shading == Shading::pbr) features |= static_cast<FeatureSet>(Feature::ibl);
   if (mesh.material < 0 || mesh.material >= static_cast<int>(scene_.materials.size())) return features;
   const auto& material = scene_.materials[mesh.material];
   if (material.unlit) {
     // Unlit: base colour and alpha only.
-    features &= ~(static_cast<FeatureSet>(Feature::shadows) | static_cast<FeatureSet>(Feature::reflection) |
-                  static_cast<FeatureSet>(Feature::physicalLights));
+    features &= ~(static_cast<FeatureSet>(Feature::shadows) | static_cast<FeatureSet>(Feature::pointShadows) |
+                  static_cast<FeatureSet>(Feature::reflection) | static_cast<FeatureSet>(Feature::physicalLights) |
+                  static_cast<FeatureSet>(Feature::ibl));
     features |= static_cast<FeatureSet>(Feature::unlit);
   }
   if (material.alphaMode == gltf::MaterialDesc::AlphaMode::mask) features |= static_cast<FeatureSet>(Feature::alphaMask);
@@ -435,6 +455,7 @@ void Renderer::drawDepth(std::span<const GpuInstance* const> instances, const gl
         if (has(features, Feature::baseColorMap)) {
           glActiveTexture(GL_TEXTURE0);
           glBindTexture(GL_TEXTURE_2D, textureOf(material.baseColorTexture));
+          glBindSampler(0, samplers_.get(material.baseColorTexture.sampler));
           setUniform(program, "u_baseColorMap", 0);
           setUvUniforms(program, "u_baseColor", material.baseColorTexture);
         }
@@ -453,19 +474,52 @@ void Renderer::drawDepth(std::span<const GpuInstance* const> instances, const gl
 }
 
 glm::mat4 Renderer::lightViewProjection() const {
-  // Orthographic light view fitted to the scene's bounding sphere.
   const glm::vec3 center = boundsCenter();
   const float radius = boundsRadius();
-  const glm::vec3 direction = glm::normalize(lights_[0].direction);
-  const glm::vec3 up = std::abs(direction.y) > 0.99f ? glm::vec3(1, 0, 0) : glm::vec3(0, 1, 0);
-  const glm::mat4 view = glm::lookAt(center - direction * (2 * radius), center, up);
-  return glm::ortho(-radius, radius, -radius, radius, 0.01f * radius, 4 * radius) * view;
+  const Light& light = lights_[0];
+  auto upFor = [](const glm::vec3& direction) { return std::abs(direction.y) > 0.99f ? glm::vec3(1, 0, 0) : glm::vec3(0, 1, 0); };
+  if (light.directional) {
+    // Orthographic light view fitted to the scene's bounding sphere.
+    const glm::vec3 direction = glm::normalize(light.direction);
+    const glm::mat4 view = glm::lookAt(center - direction * (2 * radius), center, upFor(direction));
+    return glm::ortho(-radius, radius, -radius, radius, 0.01f * radius, 4 * radius) * view;
+  }
+  // A point light's shadow is the cube map (shadow_cube.hpp), which this matrix plays no part in.
+  if (pointShadow()) return glm::mat4(1);
+  // A spot light: a perspective view along its axis over its cone, at most 160 degrees across,
+  // between the nearest and farthest points of the scene's bounding sphere.
+  const float halfAngle = std::min(light.spotOuter * 1.05f, glm::radians(80.0f));
+  const float distance = glm::length(center - light.position);
+  const float nearPlane = std::max(distance - radius, 0.01f * radius), farPlane = distance + radius;
+  const glm::vec3 direction = glm::normalize(light.direction);
+  const glm::mat4 view = glm::lookAt(light.position, light.position + direction, upFor(direction));
+  return glm::perspective(2 * halfAngle, 1.0f, nearPlane, farPlane) * view;
+}
+
+bool Renderer::pointShadow() const { return !lights_.empty() && !lights_[0].directional && lights_[0].spotOuter < 0; }
+
+glm::vec2 Renderer::shadowCubeDepthRange() const {
+  // A point of the sphere is at least d - r from the light, and its face depth (the largest
+  // component of the offset) at least that over sqrt 3; at most d + r.
+  const float radius = boundsRadius(), distance = glm::length(boundsCenter() - lights_[0].position);
+  return {std::max((distance - radius) / 1.75f, 0.02f * radius), distance + radius};
 }
 
 void Renderer::drawShadowMap(const RenderSettings& settings) {
   GLint previous = 0;  // the caller's framebuffer, restored at the end
   glGetIntegerv(GL_FRAMEBUFFER_BINDING, &previous);
-  if (shadowSize_ != settings.shadowMapSize || !shadowTexture_) {
+  // A point light's cube: faces half the 2D map's size (six faces), at most 1024.
+  const int cubeSize = std::clamp(settings.shadowMapSize / 2, 256, 1024);
+  if (pointShadow() && (shadowCubeSize_ != cubeSize || !shadowCube_)) {
+    shadowCubeSize_ = cubeSize;
+    shadowCube_ = makeShadowCube(cubeSize);
+    shadowCubeFramebuffer_ = makeFramebuffer();
+    glBindFramebuffer(GL_FRAMEBUFFER, shadowCubeFramebuffer_.get());
+    glFramebufferTexture2D(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_TEXTURE_CUBE_MAP_POSITIVE_X, shadowCube_.get(), 0);
+    glDrawBuffer(GL_NONE);
+    glReadBuffer(GL_NONE);
+  }
+  if (!pointShadow() && (shadowSize_ != settings.shadowMapSize || !shadowTexture_)) {
     shadowSize_ = settings.shadowMapSize;
     shadowTexture_ = makeTexture();
     glBindTexture(GL_TEXTURE_2D, shadowTexture_.get());
@@ -484,11 +538,8 @@ void Renderer::drawShadowMap(const RenderSettings& settings) {
     glDrawBuffer(GL_NONE);
     glReadBuffer(GL_NONE);
   }
-  glBindFramebuffer(GL_FRAMEBUFFER, shadowFramebuffer_.get());
-  glViewport(0, 0, shadowSize_, shadowSize_);
   glEnable(GL_DEPTH_TEST);  // without it GL writes no depth
   glDepthMask(GL_TRUE);
-  glClear(GL_DEPTH_BUFFER_BIT);
   glEnable(GL_POLYGON_OFFSET_FILL);
   glPolygonOffset(2.0f, 4.0f);
   glDisable(GL_CULL_FACE);
@@ -499,7 +550,21 @@ void Renderer::drawShadowMap(const RenderSettings& settings) {
   casters.reserve(instances_.size());
   for (const GpuInstance& instance : instances_) casters.push_back(&instance);
   std::stable_sort(casters.begin(), casters.end(), [](const GpuInstance* a, const GpuInstance* b) { return a->mesh < b->mesh; });
-  drawDepth(casters, lightViewProjection(), settings, true, false);
+  if (pointShadow()) {
+    glBindFramebuffer(GL_FRAMEBUFFER, shadowCubeFramebuffer_.get());
+    glViewport(0, 0, shadowCubeSize_, shadowCubeSize_);
+    const glm::vec2 range = shadowCubeDepthRange();
+    for (int face = 0; face < 6; ++face) {
+      glFramebufferTexture2D(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_TEXTURE_CUBE_MAP_POSITIVE_X + face, shadowCube_.get(), 0);
+      glClear(GL_DEPTH_BUFFER_BIT);
+      drawDepth(casters, cubeFaceViewProjection(lights_[0].position, face, range.x, range.y), settings, true, false);
+    }
+  } else {
+    glBindFramebuffer(GL_FRAMEBUFFER, shadowFramebuffer_.get());
+    glViewport(0, 0, shadowSize_, shadowSize_);
+    glClear(GL_DEPTH_BUFFER_BIT);
+    drawDepth(casters, lightViewProjection(), settings, true, false);
+  }
   glDisable(GL_POLYGON_OFFSET_FILL);
   glBindFramebuffer(GL_FRAMEBUFFER, static_cast<GLuint>(previous));
   ++shadowPasses_;
@@ -517,13 +582,18 @@ FrameStats Renderer::render(const CameraMatrices& camera, const RenderSettings& 
       uploadDeformed(deformed);
     }
   }
-  const bool anyShadows = settings.shadows && !instances_.empty() && !lights_.empty() && lights_[0].directional &&
-                          settings.view == DebugView::lit;
+  if (settings.ibl && settings.shading == Shading::pbr && settings.view == DebugView::lit && !environment_) {
+    const auto start = std::chrono::steady_clock::now();
+    environment_ = uploadEnvironment(buildEnvironment());
+    environmentMilliseconds_ = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  }
+  const bool anyShadows = settings.shadows && !instances_.empty() && !lights_.empty() && settings.view == DebugView::lit;
   if (anyShadows) {
     // The map depends on the scene, light 0's direction and the map size only: a camera that
     // moves reuses it.
-    const ShadowKey key{glm::normalize(lights_[0].direction), settings.shadowMapSize, sceneVersion_, settings.uvScale};
-    if (!(key == shadowKey_) || !shadowTexture_) {
+    const ShadowKey key{glm::normalize(lights_[0].direction), lights_[0].directional ? glm::vec3(0) : lights_[0].position, pointShadow(),
+                        settings.shadowMapSize, sceneVersion_, settings.uvScale};
+    if (!(key == shadowKey_) || !(pointShadow() ? shadowCube_ : shadowTexture_)) {
       drawShadowMap(settings);
       shadowKey_ = key;
       stats.depthPass = true;
@@ -657,12 +727,10 @@ void Renderer::drawInstance(const GpuInstance& instance, BoundMesh& bound) {
 
 GLuint Renderer::bindMesh(const GpuMesh& mesh, const CameraMatrices& camera, const RenderSettings& settings, bool shadows,
                           TangentSet tangents) {
-  gltf::MaterialDesc material;
-  material.roughness = 0.5f;
-  material.metallic = 0.0f;
+  gltf::MaterialDesc material;  // without one, glTF's default material (metallic 1, roughness 1, white; glTF 2.0 3.9.1)
   if (const gltf::MaterialDesc* own = materialOf(scene_, mesh.material)) material = *own;
   FeatureSet features = featuresFor(mesh, settings);
-  if (!shadows) features &= ~static_cast<FeatureSet>(Feature::shadows);
+  if (!shadows) features &= ~(static_cast<FeatureSet>(Feature::shadows) | static_cast<FeatureSet>(Feature::pointShadows));
   const GLuint program = shaders_.mesh(features, settings.view, settings.toneMapping);
   glUseProgram(program);
   setUniform(program, "u_viewProjection", camera.projection * camera.view);
@@ -715,26 +783,48 @@ GLuint Renderer::bindMesh(const GpuMesh& mesh, const CameraMatrices& camera, con
   }
 
   int unit = 0;
-  auto bind = [&](const char* name, GLuint texture) {
+  // `sampler` 0: the texture's own parameters (the viewer's maps); a file's textures sample
+  // through their glTF sampler.
+  auto bind = [&](const char* name, GLuint texture, GLuint sampler = 0) {
     glActiveTexture(GL_TEXTURE0 + unit);
     glBindTexture(GL_TEXTURE_2D, texture);
+    glBindSampler(static_cast<GLuint>(unit), sampler);
     setUniform(program, name, unit);
     ++unit;
   };
   auto bindMap = [&](const char* prefix, const gltf::TextureRef& ref) {
-    bind((std::string("u_") + prefix + "Map").c_str(), textureOf(ref));
+    bind((std::string("u_") + prefix + "Map").c_str(), textureOf(ref), samplers_.get(ref.sampler));
     setUvUniforms(program, std::string("u_") + prefix, ref);
   };
   if (has(features, Feature::baseColorMap)) bindMap("baseColor", material.baseColorTexture);
-  if (has(features, Feature::normalMap)) bind("u_normalMap", textureOf(material.normalTexture));
+  if (has(features, Feature::normalMap)) bind("u_normalMap", textureOf(material.normalTexture), samplers_.get(material.normalTexture.sampler));
   if (has(features, Feature::specularMap)) bindMap("specular", material.specularTexture);
   if (has(features, Feature::specularColorMap)) bindMap("specularColor", material.specularColorTexture);
   if (has(features, Feature::metallicRoughnessMap)) bindMap("metallicRoughness", material.metallicRoughnessTexture);
   if (has(features, Feature::emissiveMap)) bindMap("emissive", material.emissiveTexture);
   if (has(features, Feature::occlusionMap)) bindMap("occlusion", material.occlusionTexture);
   if (has(features, Feature::reflection)) bind("u_sphereMap", sphereMap_.get());
-  if (has(features, Feature::shadows)) {
+  if (has(features, Feature::ibl) && environment_) {
+    glActiveTexture(GL_TEXTURE0 + unit);
+    glBindTexture(GL_TEXTURE_CUBE_MAP, environment_->specularCube.get());
+    glBindSampler(static_cast<GLuint>(unit), 0);
+    setUniform(program, "u_environmentMap", unit++);
+    bind("u_brdfLut", environment_->brdfLut.get());
+    setUniform(program, "u_environmentMaxLod", environment_->maxLod);
+    setUniform(program, "u_environmentScale", settings.iblIntensity * kEnvironmentShare / kAmbientShare);
+    glUniform3fv(glGetUniformLocation(program, "u_irradianceSh"), 9, &environment_->irradianceSh[0].x);
+  }
+  if (has(features, Feature::pointShadows)) {
+    glActiveTexture(GL_TEXTURE0 + unit);
+    glBindTexture(GL_TEXTURE_CUBE_MAP, shadowCube_.get());
+    glBindSampler(static_cast<GLuint>(unit), 0);
+    setUniform(program, "u_shadowCube", unit++);
+    const glm::vec2 range = shadowCubeDepthRange();
+    setUniform(program, "u_shadowCubeDepth", glm::vec3(range, 4 * boundsRadius()));  // biases: fractions of the 2D map's depth range
+  } else if (has(features, Feature::shadows)) {
     bind("u_shadowMap", shadowTexture_.get());
+  }
+  if (has(features, Feature::shadows)) {
     setUniform(program, "u_pcfRadius", settings.pcfRadius);
     setUniform(program, "u_shadowBiasConstant", settings.shadowBiasConstant);
     setUniform(program, "u_shadowBiasSlope", settings.shadowBiasSlope);

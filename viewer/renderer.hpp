@@ -12,8 +12,10 @@
 #include <string>
 #include <vector>
 
+#include "environment.hpp"
 #include "gl_objects.hpp"
 #include "pose.hpp"
+#include "samplers.hpp"
 #include "shader_library.hpp"
 #include "tangent/scene.hpp"
 
@@ -36,6 +38,10 @@ struct Light {
 
 // The share of a light's direct illuminance that the viewer adds as ambient (sky) light.
 inline constexpr float kAmbientShare = 0.06f;
+// With image-based lighting (pbr), the environment's mean radiance is this share of the lights'
+// direct level instead, times RenderSettings::iblIntensity: bright enough that metals, which
+// show nothing but their surroundings, read as metals.
+inline constexpr float kEnvironmentShare = 0.2f;
 
 // Where the normal-mapping frame's bitangent comes from (Substance's "compute tangent space per
 // fragment" choice): per fragment, B = cross(N, T) * w from the interpolated N and T (MikkTSpace's
@@ -76,6 +82,8 @@ struct RenderSettings {
   // (Renderer::setCompareTangents); not in the compare-angle view, which shows both at once.
   bool split = false;
   float splitPosition = 0.5f;  // the divider, as a fraction of the width from the left
+  bool ibl = true;           // pbr: image-based lighting from the built-in environment (else a plain sky term)
+  float iblIntensity = 1;    // factor on the environment's radiance
 };
 
 // Which tangents a draw shades with: the file's TANGENT (or those computed at load when it has
@@ -141,6 +149,9 @@ class Renderer {
   float exposure(const RenderSettings& settings) const;
   // PBR mode with the file's KHR_lights_punctual lights: in the extension's units.
   bool physicalLights(const RenderSettings& settings) const;
+  // Milliseconds the image-based lighting's maps took to prepare (CPU and upload), once, on the
+  // first frame that needs them; 0 before.
+  double environmentMilliseconds() const { return environmentMilliseconds_; }
 
  private:
   // One per scene item: its corners on the GPU, uploaded once however many nodes show it.
@@ -166,6 +177,8 @@ class Renderer {
   // What the shadow map was drawn for; a frame that matches it reuses the map.
   struct ShadowKey {
     glm::vec3 direction{0};
+    glm::vec3 position{0};  // of a point or spot light
+    bool cube = false;      // a point light's cube map
     int size = 0;
     int sceneVersion = -1;
     float uvScale = 1;  // alpha-tested materials' cut-outs move with it
@@ -194,6 +207,11 @@ class Renderer {
   void applyCulling(const GpuMesh& mesh, const RenderSettings& settings) const;
   void drawGlyphs(const CameraMatrices& camera, const RenderSettings& settings);
   glm::mat4 lightViewProjection() const;
+  // Light 0 is a point light (not a spot): its shadow is the depth cube map.
+  bool pointShadow() const;
+  // The cube faces' near and far planes: every point of the scene's bounding sphere lies between
+  // them in the face it falls in.
+  glm::vec2 shadowCubeDepthRange() const;
   FeatureSet featuresFor(const GpuMesh& mesh, const RenderSettings& settings) const;
   GLuint textureOf(const gltf::TextureRef& ref) const;
 
@@ -218,11 +236,17 @@ class Renderer {
   std::vector<Texture> textures_;      // per scene image, linear data (empty when unused or failed)
   std::vector<Texture> srgbTextures_;  // per scene image, sRGB colour (empty when unused or failed)
   Texture sphereMap_;
+  SamplerCache samplers_;  // the glTF samplers the materials' textures name
+  std::optional<EnvironmentTextures> environment_;  // built on first use, kept across scenes
+  double environmentMilliseconds_ = 0;
   std::vector<Light> lights_;
   glm::vec3 boundsMin_{-1}, boundsMax_{1};
   Framebuffer shadowFramebuffer_;
   Texture shadowTexture_;
   int shadowSize_ = 0;
+  Framebuffer shadowCubeFramebuffer_;
+  Texture shadowCube_;
+  int shadowCubeSize_ = 0;
   ShadowKey shadowKey_;
   int sceneVersion_ = 0;
   int shadowPasses_ = 0;

@@ -23,6 +23,8 @@ enum class Feature : std::uint32_t {
   pbr = 1u << 11,              // metallic-roughness shading (else the specular-map mode)
   // Bits from 16 up: this session's additions, apart from any others appended above.
   physicalLights = 1u << 16,   // KHR_lights_punctual in its units (lux, candela), range window
+  ibl = 1u << 17,              // image-based lighting from the built-in environment (pbr only)
+  pointShadows = 1u << 18,     // with shadows: light 0 is a point light, its shadow a depth cube map
 };
 
 enum class DebugView : std::uint8_t {
@@ -58,6 +60,8 @@ inline constexpr FeatureDefine kFeatureDefines[] = {
     {Feature::physicalLights, "LIGHTS_PHYSICAL"},
     {Feature::unlit, "MATERIAL_UNLIT"},
     {Feature::pbr, "SHADING_PBR"},
+    {Feature::ibl, "USE_IBL"},
+    {Feature::pointShadows, "POINT_SHADOWS"},
 };
 
 // The lit view's shading: glTF's metallic-roughness model, or the tutorials' specular-map

@@ -70,10 +70,17 @@ bool decodeImage(const gltf::ImageSource& source, DecodedImage& image, std::stri
   image.width = width;
   image.height = height;
   image.rgba.assign(static_cast<std::size_t>(width) * height * 4, 255);
+  // Grey (1 channel) and grey + alpha (2 channels, PNG's colour type 4): the grey into R, G and
+  // B, the alpha into A.
+  const bool grey = channels <= 2;
   for (std::size_t p = 0; p < static_cast<std::size_t>(width) * height; ++p) {
-    for (int c = 0; c < 4; ++c) {
-      if (c < channels) image.rgba[4 * p + c] = pixels[p * channels + c];
-      else if (c < 3) image.rgba[4 * p + c] = pixels[p * channels];  // grey: spread the one channel
+    const unsigned char* texel = &pixels[p * channels];
+    unsigned char* out = &image.rgba[4 * p];
+    if (grey) {
+      out[0] = out[1] = out[2] = texel[0];
+      if (channels == 2) out[3] = texel[1];
+    } else {
+      std::copy_n(texel, channels, out);
     }
   }
   return true;

@@ -139,7 +139,9 @@ TEST(Viewer, NormalTangentTestHalvesShadeAlikeAndFlipsAreCaught) {
 
 TEST(Viewer, DemoSceneShadowFallsWhereTheSphereOccludesTheSun) {
   TempDir dir;
-  const std::string common = "--camera top --ortho --size 600x600";
+  // The environment of image-based lighting is not shadowed (as in the Sample Viewer): left out
+  // here, so that the shadow map's part is what is measured.
+  const std::string common = "--camera top --ortho --size 600x600 --no-ibl";
   const Image shadowed = screenshot(dir, "shadows", common);
   const Image plain = screenshot(dir, "no-shadows", common + " --no-shadows");
   ASSERT_EQ(shadowed.width, 600);
@@ -561,7 +563,9 @@ std::vector<float> objectLuminances(const Image& image) {
 // smoother metal has a brighter, smaller highlight.
 TEST(Viewer, PbrMetalHasNoDiffuseAndSmootherMeansSharperHighlights) {
   TempDir dir;
-  const std::string common = " --camera front --size 300x300 --no-shadows --shading pbr";
+  // The lights' BRDF only: with image-based lighting a metal shows its environment instead
+  // (ImageBasedLightingShowsSharperReflectionsOnSmootherMetal).
+  const std::string common = " --camera front --size 300x300 --no-shadows --shading pbr --no-ibl";
   auto lumas = [&](const std::string& name, double metallic, double roughness) {
     return objectLuminances(screenshot(dir, name, "'" + plainSphere(dir, name, metallic, roughness).string() + "'" + common));
   };
@@ -776,7 +780,7 @@ fs::path maskShadowAsset(const TempDir& dir) {
 TEST(Viewer, MaskedQuadCastsACutOutShadow) {
   TempDir dir;
   const fs::path file = maskShadowAsset(dir);
-  const std::string common = "'" + file.string() + "' --camera top --ortho --size 256x256";
+  const std::string common = "'" + file.string() + "' --camera top --ortho --size 256x256 --no-ibl";  // the shadow map's part only
   const Image shadowed = screenshot(dir, "shadows", common), plain = screenshot(dir, "no-shadows", common + " --no-shadows");
   ASSERT_EQ(shadowed.width, 256);
   // Top view: x to the right, z down; the bounds' sphere (centre (0, 0.5, 0)) framed with 1.02.
@@ -1634,4 +1638,353 @@ TEST(Viewer, CompareSetIsSkinnedAndMorphedAlong) {
   const double seen = tangentAngleDegrees(quadPixel(morphed, 0.3, 0.2));
   std::printf("compare set on the morphed quad: tangent at %.2f degrees, expected 45\n", seen);
   EXPECT_NEAR(seen, 45, 1.0);
+}
+
+// ---- Default material, glTF samplers, grey images (issue 38, smaller defects) ----
+
+// A primitive without a material is drawn with glTF's default material (glTF 2.0 3.9.1, the
+// spec's defaults of pbrMetallicRoughness: base colour 1, metallic 1, roughness 1): exactly as
+// the same sphere with that material written out, and not as the old white dielectric of
+// roughness 0.5: a metal has no diffuse term (appendix B), so away from the lights' highlights
+// it is far darker than the dielectric, as in PbrMetalHasNoDiffuseAndSmootherMeansSharperHighlights.
+TEST(Viewer, PrimitiveWithoutMaterialGetsTheSpecDefault) {
+  TempDir dir;
+  const fs::path bare = demoWithMaterial(dir, "sphere", "bare", nlohmann::json::object());
+  {
+    nlohmann::json doc = nlohmann::json::parse(std::ifstream(bare));
+    doc.erase("materials");
+    for (auto& primitive : doc["meshes"][0]["primitives"]) primitive.erase("material");
+    std::ofstream(bare) << doc.dump();
+  }
+  const std::string common = " --camera front --size 300x300 --no-shadows --shading pbr";
+  const Image none = screenshot(dir, "none", "'" + bare.string() + "'" + common);
+  const Image specDefault = screenshot(
+      dir, "spec",
+      "'" + demoWithMaterial(dir, "sphere", "spec", {{"pbrMetallicRoughness", {{"metallicFactor", 1.0}, {"roughnessFactor", 1.0}}}}).string() + "'" +
+          common);
+  const Image old = screenshot(
+      dir, "old",
+      "'" + demoWithMaterial(dir, "sphere", "old", {{"pbrMetallicRoughness", {{"metallicFactor", 0.0}, {"roughnessFactor", 0.5}}}}).string() + "'" +
+          common);
+  ASSERT_EQ(none.rgb.size(), specDefault.rgb.size());
+  ASSERT_LT(backgroundShare(none), 0.9f);
+  EXPECT_EQ(differingPixels(none, specDefault, 1.5f / 255), 0);
+  auto median = [](const Image& image) {
+    const auto v = objectLuminances(image);
+    return v.empty() ? 0.0f : v[v.size() / 2];
+  };
+  const float defaultMedian = median(none), oldMedian = median(old);
+  const int differing = differingPixels(none, old, 4.0f / 255);
+  std::printf("median linear luminance: no material %.3f, old metallic 0 roughness 0.5 %.3f; %d pixels differ from the old look\n",
+              defaultMedian, oldMedian, differing);
+  EXPECT_GT(differing, 5000);
+  EXPECT_LT(defaultMedian, 0.6f * oldMedian);
+}
+
+// quadAsset's base colour texture sampled through a glTF sampler; quadPixel's colour name.
+TEST(Viewer, SamplerWrapModesChooseTheTexels) {
+  TempDir dir;
+  writeRgbaPng(dir / "quadrants.png", 64, 64, quadrantColour);
+  // The texture transform scales UVs by 2: the quad's point (x, y) samples u = x + 1, v = 1 - y.
+  // At y = 0.75 (v = 0.25, the top row: red | green), x = 0.25 and 0.75 give u = 1.25 and 1.75:
+  // REPEAT 0.25 and 0.75 (red, green), CLAMP_TO_EDGE 1 (green, green), MIRRORED_REPEAT 0.75 and
+  // 0.25 (green, red). At x = -0.75 (u = 0.25, the left column: red over blue), y = -0.25 and
+  // -0.75 give v = 1.25 and 1.75: REPEAT red, blue; CLAMP blue, blue; MIRRORED blue, red.
+  struct Case {
+    const char* name;
+    int wrapS, wrapT;
+    const char* expected;  // two colours along S, then two along T
+  };
+  const Case cases[] = {
+      {"repeat", 10497, 10497, "RGRB"},
+      {"clamp", 33071, 33071, "GGBB"},
+      {"mirrored", 33648, 33648, "GRBR"},
+      {"clamp-s-mirrored-t", 33071, 33648, "GGBR"},
+  };
+  for (const Case& c : cases) {
+    const nlohmann::json material = {
+        {"pbrMetallicRoughness", {{"baseColorTexture", {{"index", 0}, {"extensions", {{"KHR_texture_transform", {{"scale", {2.0, 2.0}}}}}}}}}},
+        {"extensions", {{"KHR_materials_unlit", nlohmann::json::object()}}}};
+    const nlohmann::json patch = {{"samplers", {{{"wrapS", c.wrapS}, {"wrapT", c.wrapT}, {"magFilter", 9728}}}},
+                                  {"textures", {{{"source", 0}, {"sampler", 0}}}}};
+    const Image image = screenshot(dir, c.name, "'" + quadAsset(dir, c.name, material, "quadrants.png", patch).string() + "'" + kQuadView);
+    ASSERT_EQ(image.width, 200) << c.name;
+    const std::string seen{colourName(quadPixel(image, 0.25, 0.75)), colourName(quadPixel(image, 0.75, 0.75)),
+                           colourName(quadPixel(image, -0.75, -0.25)), colourName(quadPixel(image, -0.75, -0.75))};
+    EXPECT_EQ(seen, c.expected) << c.name;
+  }
+}
+
+// magFilter: a 2 x 1 texture, black | white, stretched over the quad. At u = 0.45 NEAREST takes
+// the black texel (u < 0.5); LINEAR blends the texel centres at u = 0.25 and 0.75 with weight
+// (0.45 - 0.25) / 0.5 = 0.4 of white, in linear light (an sRGB texture), encoded at the output.
+// minFilter: a one-texel checkerboard repeated 16 times shrinks below a texel per pixel: NEAREST
+// shows black and white pixels, LINEAR_MIPMAP_LINEAR (also what no filter means) their mean grey.
+TEST(Viewer, SamplerFiltersMagnifyAndMinifyAsAsked) {
+  TempDir dir;
+  writeRgbaPng(dir / "two.png", 2, 1, [](int x, int) { return x == 0 ? std::array<unsigned char, 4>{0, 0, 0, 255} : std::array<unsigned char, 4>{255, 255, 255, 255}; });
+  writeRgbaPng(dir / "checker.png", 64, 64, [](int x, int y) {
+    const auto v = static_cast<unsigned char>((x + y) % 2 ? 255 : 0);
+    return std::array<unsigned char, 4>{v, v, v, 255};
+  });
+  auto render = [&](const std::string& name, const std::string& image, const nlohmann::json& sampler, double scale) {
+    const nlohmann::json material = {
+        {"pbrMetallicRoughness", {{"baseColorTexture", {{"index", 0}, {"extensions", {{"KHR_texture_transform", {{"scale", {scale, scale}}}}}}}}}},
+        {"extensions", {{"KHR_materials_unlit", nlohmann::json::object()}}}};
+    nlohmann::json patch = {{"textures", {{{"source", 0}}}}};
+    if (!sampler.is_null()) patch = {{"samplers", {sampler}}, {"textures", {{{"source", 0}, {"sampler", 0}}}}};
+    return screenshot(dir, name, "'" + quadAsset(dir, name, material, image, patch).string() + "'" + kQuadView);
+  };
+  const double x = 2 * 0.45 - 1;  // u = (x + 1) / 2
+  const Image nearest = render("nearest", "two.png", {{"magFilter", 9728}, {"wrapS", 33071}}, 1.0);
+  const Image linear = render("linear", "two.png", {{"magFilter", 9729}, {"wrapS", 33071}}, 1.0);
+  ASSERT_EQ(nearest.width, 200);
+  const float expectedLinear = static_cast<float>(linearToSrgb(0.4));
+  std::printf("u = 0.45: NEAREST %.3f, LINEAR %.3f (expected %.3f)\n", quadPixel(nearest, x, 0)[0], quadPixel(linear, x, 0)[0], expectedLinear);
+  EXPECT_LT(quadPixel(nearest, x, 0)[0], 1.5f / 255);
+  EXPECT_NEAR(quadPixel(linear, x, 0)[0], expectedLinear, 3.0f / 255);
+  // Spread of the pixels over the middle of the quad.
+  auto spread = [](const Image& image) {
+    std::vector<float> values;
+    for (double y = -0.5; y <= 0.5; y += 0.05)
+      for (double px = -0.5; px <= 0.5; px += 0.05) values.push_back(quadPixel(image, px, y)[0]);
+    const auto [lo, hi] = std::minmax_element(values.begin(), values.end());
+    return std::make_pair(*lo, *hi);
+  };
+  const auto point = spread(render("min-nearest", "checker.png", {{"minFilter", 9728}}, 16.0));
+  const auto trilinear = spread(render("min-trilinear", "checker.png", {{"minFilter", 9987}}, 16.0));
+  const auto automatic = spread(render("min-auto", "checker.png", nullptr, 16.0));
+  const float grey = static_cast<float>(linearToSrgb(0.5));
+  std::printf("minified checkerboard: NEAREST %.3f..%.3f, LINEAR_MIPMAP_LINEAR %.3f..%.3f, no sampler %.3f..%.3f (mean grey %.3f)\n",
+              point.first, point.second, trilinear.first, trilinear.second, automatic.first, automatic.second, grey);
+  EXPECT_LT(point.first, 0.05f);
+  EXPECT_GT(point.second, 0.95f);
+  for (const auto& [lo, hi] : {trilinear, automatic}) {
+    EXPECT_NEAR(lo, grey, 0.04f);
+    EXPECT_NEAR(hi, grey, 0.04f);
+  }
+}
+
+// Writes a PNG of `channels` 8-bit channels (1 grey, 2 grey + alpha), every pixel `values`.
+void writeGreyPng(const fs::path& path, int channels, std::array<unsigned char, 2> values) {
+  std::vector<unsigned char> pixels;
+  for (int p = 0; p < 16; ++p) pixels.insert(pixels.end(), values.begin(), values.begin() + channels);
+  auto out = OIIO::ImageOutput::create(path.string());
+  OIIO::ImageSpec spec(4, 4, channels, OIIO::TypeDesc::UINT8);
+  if (channels == 2) spec.alpha_channel = 1;
+  spec.attribute("oiio:UnassociatedAlpha", 1);
+  ASSERT_TRUE(out && out->open(path.string(), spec));
+  out->write_image(OIIO::TypeDesc::UINT8, pixels.data());
+  out->close();
+  // PNG's IHDR colour type (byte 25): 0 grey, 4 grey + alpha.
+  std::ifstream in(path, std::ios::binary);
+  char header[26] = {};
+  in.read(header, sizeof header);
+  ASSERT_EQ(header[25], channels == 2 ? 4 : 0) << path;
+}
+
+// A grey + alpha PNG (grey 200, alpha 100) on an unlit quad: OPAQUE shows grey 200 in R, G and B
+// (an sRGB texel reads back as itself); BLEND mixes it over the background with alpha 100/255,
+// blending the encoded values as AlphaMaskCutsOutAndBlendMixes does. A one-channel grey PNG (90)
+// shows 90 in R, G and B.
+TEST(Viewer, GreyAndGreyAlphaPngsDecodeToGreyAndAlpha) {
+  TempDir dir;
+  writeGreyPng(dir / "grey-alpha.png", 2, {200, 100});
+  writeGreyPng(dir / "grey.png", 1, {90, 0});
+  const std::array<float, 3> background{0.16f, 0.17f, 0.19f};
+  auto render = [&](const std::string& name, const std::string& image, const std::string& mode) {
+    const nlohmann::json material = {{"pbrMetallicRoughness", {{"baseColorTexture", {{"index", 0}}}}},
+                                     {"alphaMode", mode},
+                                     {"extensions", {{"KHR_materials_unlit", nlohmann::json::object()}}}};
+    return screenshot(dir, name, "'" + quadAsset(dir, name, material, image).string() + "'" + kQuadView);
+  };
+  const Image opaque = render("ga-opaque", "grey-alpha.png", "OPAQUE"), blend = render("ga-blend", "grey-alpha.png", "BLEND");
+  const Image grey = render("grey", "grey.png", "OPAQUE");
+  ASSERT_EQ(opaque.width, 200);
+  const auto o = quadPixel(opaque, 0, 0), b = quadPixel(blend, 0, 0), g = quadPixel(grey, 0, 0);
+  std::printf("grey+alpha opaque (%.1f %.1f %.1f)/255, blended (%.1f %.1f %.1f)/255; grey (%.1f %.1f %.1f)/255\n", o[0] * 255, o[1] * 255, o[2] * 255,
+              b[0] * 255, b[1] * 255, b[2] * 255, g[0] * 255, g[1] * 255, g[2] * 255);
+  const float alpha = 100 / 255.0f;
+  for (int c = 0; c < 3; ++c) {
+    EXPECT_NEAR(o[c], 200 / 255.0f, 1.5f / 255) << c;
+    EXPECT_NEAR(b[c], alpha * 200 / 255.0f + (1 - alpha) * background[c], 2.0f / 255) << c;
+    EXPECT_NEAR(g[c], 90 / 255.0f, 1.5f / 255) << c;
+  }
+}
+
+// ---- Image-based lighting (issue 38 item 5) ----
+
+// Image-based lighting on a smooth (roughness 0.05) and a rough (0.6) metal sphere, base colour
+// 0.9, seen from the front: the environment's part of the picture is the render with IBL minus
+// the render with the environment at intensity 0 (linear, no tone mapping, fixed exposure). The built-in environment is a
+// bright sky over a dark ground, so a mirror-like sphere seen from the front shows the horizon
+// where its reflection vector is horizontal: R.y = 2 (N.V) N.y = 0 at N.y = 0, the sphere's
+// middle row; above it the sky, below it the ground. Prefiltering for roughness is a low-pass
+// filter: the rough sphere shows the same sky-over-ground in the same direction, with a smaller
+// step across the horizon and a smaller spread over the sphere, while the mean, the reflected
+// energy, stays about the same (both metals reflect a fraction of it near their base colour).
+TEST(Viewer, ImageBasedLightingShowsSharperReflectionsOnSmootherMetal) {
+  TempDir dir;
+  const std::string common = " --camera front --size 300x300 --no-shadows --shading pbr --tone-map none --exposure 1";
+  struct Environment {
+    float stepAcrossHorizon;  // mean linear luminance just above the middle row minus just below
+    float spread;             // standard deviation over the middle of the sphere
+    float mean;
+  };
+  auto environmentPart = [&](const std::string& name, double roughness) {
+    const fs::path file = plainSphere(dir, name, 1.0, roughness);
+    const Image on = screenshot(dir, name + "-ibl", "'" + file.string() + "'" + common);
+    const Image off = screenshot(dir, name + "-no-environment", "'" + file.string() + "'" + common + " --ibl-intensity 0");
+    EXPECT_EQ(on.rgb.size(), off.rgb.size());
+    auto part = [&](int x, int y) {
+      const auto a = on.at(x, y), b = off.at(x, y);
+      double sum = 0;
+      const double weights[3] = {0.2126, 0.7152, 0.0722};
+      for (int c = 0; c < 3; ++c) sum += weights[c] * (srgbToLinear(a[c]) - srgbToLinear(b[c]));
+      return static_cast<float>(sum);
+    };
+    // The sphere's centre and radius from its silhouette.
+    int top = on.height, bottom = -1, left = on.width, right = -1;
+    for (int y = 0; y < on.height; ++y)
+      for (int x = 0; x < on.width; ++x) {
+        const auto c = on.at(x, y);
+        if (std::abs(c[0] - 0.16f) < 0.01f && std::abs(c[1] - 0.17f) < 0.01f && std::abs(c[2] - 0.19f) < 0.01f) continue;
+        top = std::min(top, y), bottom = std::max(bottom, y), left = std::min(left, x), right = std::max(right, x);
+      }
+    const int cx = (left + right) / 2, cy = (top + bottom) / 2, radius = (bottom - top) / 2;
+    Environment result{};
+    double above = 0, below = 0;
+    int count = 0;
+    for (int dy = 3; dy <= 8; ++dy)
+      for (int dx = -radius / 4; dx <= radius / 4; ++dx) above += part(cx + dx, cy - dy), below += part(cx + dx, cy + dy), ++count;
+    result.stepAcrossHorizon = static_cast<float>((above - below) / count);
+    std::vector<float> values;
+    for (int y = cy - radius / 2; y <= cy + radius / 2; ++y)
+      for (int x = cx - radius / 2; x <= cx + radius / 2; ++x) values.push_back(part(x, y));
+    const double mean = std::accumulate(values.begin(), values.end(), 0.0) / static_cast<double>(values.size());
+    double variance = 0;
+    for (const float v : values) variance += (v - mean) * (v - mean);
+    result.spread = static_cast<float>(std::sqrt(variance / static_cast<double>(values.size())));
+    result.mean = static_cast<float>(mean);
+    return result;
+  };
+  const Environment smooth = environmentPart("smooth", 0.05), rough = environmentPart("rough", 0.6);
+  std::printf("environment's part: step across the horizon smooth %.3f, rough %.3f; spread smooth %.3f, rough %.3f; mean smooth %.3f, rough %.3f\n",
+              smooth.stepAcrossHorizon, rough.stepAcrossHorizon, smooth.spread, rough.spread, smooth.mean, rough.mean);
+  EXPECT_GT(smooth.stepAcrossHorizon, 0.1f);  // sky above, ground below
+  EXPECT_GT(rough.stepAcrossHorizon, 0.0f);
+  EXPECT_GT(smooth.stepAcrossHorizon, 2 * rough.stepAcrossHorizon);
+  EXPECT_GT(smooth.spread, 1.5f * rough.spread);
+  EXPECT_NEAR(rough.mean / smooth.mean, 1.0f, 0.35f);
+}
+
+// --ibl-intensity scales the environment's part linearly: a rough dielectric sphere's environment
+// part (minus the render at intensity 0) doubles from intensity 1 to 2.
+TEST(Viewer, IblIntensityScalesTheEnvironmentLinearly) {
+  TempDir dir;
+  const fs::path file = plainSphere(dir, "sphere", 0.0, 0.8);
+  const std::string common = "'" + file.string() + "' --camera front --size 200x200 --no-shadows --shading pbr --tone-map none --exposure 0.5";
+  const Image off = screenshot(dir, "off", common + " --ibl-intensity 0"), one = screenshot(dir, "one", common),
+              two = screenshot(dir, "two", common + " --ibl-intensity 2");
+  ASSERT_EQ(off.width, 200);
+  double partOne = 0, partTwo = 0;
+  for (int y = 80; y < 120; ++y)
+    for (int x = 80; x < 120; ++x) partOne += srgbToLinear(one.at(x, y)[1]) - srgbToLinear(off.at(x, y)[1]), partTwo += srgbToLinear(two.at(x, y)[1]) - srgbToLinear(off.at(x, y)[1]);
+  std::printf("environment's part at the centre: intensity 1 %.4f, 2 %.4f (ratio %.3f)\n", partOne / 1600, partTwo / 1600, partTwo / partOne);
+  EXPECT_GT(partOne, 0);
+  EXPECT_NEAR(partTwo / partOne, 2.0, 0.1);
+}
+
+// ---- Shadows from point and spot lights (issue 38 item 5) ----
+
+// maskShadowAsset's ground (6 x 6 at y = 0) and holed occluder (2 x 2 at y = 1, a see-through
+// hole over |x|, |z| < 0.5) lit by a point light, or a spot light pointing down, at (0, 3, 0)
+// and nothing else. Rays from the light spread: an occluder point at x reaches the ground at
+// 1.5 x (distances 2 and 3 from the light). So, seen from the top along z = 0, the ground at
+// x = 1.25 (occluder x = 0.83, the rim) is in shadow, though a light straight overhead at
+// infinity would light it; at x = 1.75 (occluder x = 1.17, past its edge) it is lit; at x = 0.3
+// (occluder x = 0.2, in the hole, seen through it) it is lit.
+TEST(Viewer, PointAndSpotLightsCastShadows) {
+  TempDir dir;
+  const fs::path base = maskShadowAsset(dir);
+  const double pixelsPerUnit = 256 / (2 * 1.02 * std::sqrt(36.0 + 36.0 + 1.0) / 2);  // as MaskedQuadCastsACutOutShadow
+  auto meanLuma = [&](const Image& image, double x, double z) {
+    const auto q = quadrantMeans(image, 128 + x * pixelsPerUnit, 128 + z * pixelsPerUnit, 3);
+    return (q[0] + q[1] + q[2] + q[3]) / 4;
+  };
+  const double s = std::sqrt(0.5);
+  const std::pair<nlohmann::json, nlohmann::json> lights[] = {
+      {{{"type", "point"}, {"intensity", 20.0}}, {{"translation", {0, 3, 0}}}},
+      // The spot shines along its node's -z, turned by -90 degrees about x to point down.
+      {{{"type", "spot"}, {"intensity", 20.0}, {"spot", {{"innerConeAngle", 0.5}, {"outerConeAngle", 0.9}}}},
+       {{"translation", {0, 3, 0}}, {"rotation", {-s, 0, 0, s}}}},
+  };
+  for (const auto& [light, node] : lights) {
+    const std::string type = light["type"];
+    nlohmann::json doc = nlohmann::json::parse(std::ifstream(base));
+    doc["extensions"]["KHR_lights_punctual"]["lights"] = {light};
+    nlohmann::json lightNode = node;
+    lightNode["extensions"] = {{"KHR_lights_punctual", {{"light", 0}}}};
+    doc["nodes"][2] = lightNode;
+    const fs::path file = dir / (type + "-shadow.gltf");
+    std::ofstream(file) << doc.dump(1);
+    const std::string common = "'" + file.string() + "' --camera top --ortho --size 256x256 --no-ibl";  // the shadow map's part only
+    const Image shadowed = screenshot(dir, type + "-shadows", common), plain = screenshot(dir, type + "-no-shadows", common + " --no-shadows");
+    ASSERT_EQ(shadowed.width, 256) << type;
+    const float rimOn = meanLuma(shadowed, 1.25, 0), rimOff = meanLuma(plain, 1.25, 0);
+    const float pastOn = meanLuma(shadowed, 1.75, 0), pastOff = meanLuma(plain, 1.75, 0);
+    const float holeOn = meanLuma(shadowed, 0.3, 0), holeOff = meanLuma(plain, 0.3, 0);
+    std::printf("%s light: ground under the rim %.3f with shadows, %.3f without; past the edge %.3f / %.3f; through the hole %.3f / %.3f\n",
+                type.c_str(), rimOn, rimOff, pastOn, pastOff, holeOn, holeOff);
+    EXPECT_GT(rimOff, 0.2f) << type;              // lit without shadows
+    EXPECT_LT(rimOn, 0.5f * rimOff) << type;      // the rim's shadow, spread by the light's position
+    EXPECT_NEAR(pastOn, pastOff, 0.02f) << type;  // past the occluder's shadow
+    EXPECT_NEAR(holeOn, holeOff, 0.02f) << type;  // light through the hole
+  }
+}
+
+// A point light inside the scene shadows sideways too (a cube map, not one view towards the
+// scene's centre): quadAsset's quad as a 6 x 6 ground (y = 0) and two occluders 0.3 x 0.6 at
+// height 0.125 over x in [1.0, 1.3] and [-1.3, -1.0]; the light at (0, 0.25, 0), halfway up
+// from the occluders: each occluder point at x reaches the ground at 2 x, so the ground over
+// |x| in [2.0, 2.6] is in shadow, 84 degrees from straight down, and |x| = 1.7 and 2.9 are lit.
+// At x = 2.3 the light arrives at 84 degrees from the normal: E = 20 cd cos / d^2 = 0.404 lux,
+// radiance about E / pi = 0.129, while the plain sky term (--no-ibl; 6% of the light's
+// intensity over pi, times 1 / d^2 and the sky's 1.8 straight up) adds 0.128 that no shadow
+// removes: in linear light the shadow leaves about half (0.50), no shadow all of it.
+TEST(Viewer, PointLightInsideTheSceneShadowsSideways) {
+  TempDir dir;
+  writeRgbaPng(dir / "white.png", 4, 4, [](int, int) { return std::array<unsigned char, 4>{255, 255, 255, 255}; });
+  const double s = std::sqrt(0.5);
+  const nlohmann::json faceUp = {-s, 0, 0, s};  // turns the quad's +z normal to +y
+  nlohmann::json nodes = {{{"mesh", 0}, {"rotation", faceUp}, {"scale", {3, 3, 1}}}};
+  for (const double x : {1.15, -1.15}) nodes.push_back({{"mesh", 0}, {"rotation", faceUp}, {"scale", {0.15, 0.3, 1}}, {"translation", {x, 0.125, 0}}});
+  nodes.push_back({{"translation", {0, 0.25, 0}}, {"extensions", {{"KHR_lights_punctual", {{"light", 0}}}}}});
+  const nlohmann::json patch = {{"extensionsUsed", {"KHR_lights_punctual"}},
+                                {"extensions", {{"KHR_lights_punctual", {{"lights", {{{"type", "point"}, {"intensity", 20.0}}}}}}}},
+                                {"nodes", nodes},
+                                {"scenes", {{{"nodes", {0, 1, 2, 3}}}}}};
+  const fs::path file = quadAsset(dir, "sideways", kWhiteRough, "white.png", patch);
+  const std::string common = "'" + file.string() + "' --camera top --ortho --size 256x256 --no-ibl --tone-map none --exposure 2";
+  const Image shadowed = screenshot(dir, "shadows", common), plain = screenshot(dir, "no-shadows", common + " --no-shadows");
+  ASSERT_EQ(shadowed.width, 256);
+  const double pixelsPerUnit = 256 / (2 * 1.02 * std::sqrt(36.0 + 36.0 + 0.125 * 0.125) / 2);
+  auto meanLuma = [&](const Image& image, double x) {  // linear, of the grey's red channel
+    const int cx = static_cast<int>(128 + x * pixelsPerUnit);
+    double sum = 0;
+    for (int py = 126; py <= 130; ++py)
+      for (int px = cx - 2; px <= cx + 2; ++px) sum += srgbToLinear(image.at(px, py)[0]);
+    return static_cast<float>(sum / 25);
+  };
+  for (const double side : {1.0, -1.0}) {
+    const float shadowOn = meanLuma(shadowed, 2.3 * side), shadowOff = meanLuma(plain, 2.3 * side);
+    const float nearOn = meanLuma(shadowed, 1.7 * side), nearOff = meanLuma(plain, 1.7 * side);
+    const float farOn = meanLuma(shadowed, 2.9 * side), farOff = meanLuma(plain, 2.9 * side);
+    std::printf("x %+.1f: %.3f with shadows, %.3f without; x %+.1f: %.3f / %.3f; x %+.1f: %.3f / %.3f\n", 2.3 * side, shadowOn, shadowOff,
+                1.7 * side, nearOn, nearOff, 2.9 * side, farOn, farOff);
+    EXPECT_GT(shadowOff, 0.3f);
+    EXPECT_NEAR(shadowOn / shadowOff, 0.50f, 0.08f);
+    EXPECT_NEAR(nearOn, nearOff, 0.03f);
+    EXPECT_NEAR(farOn, farOff, 0.03f);
+  }
 }

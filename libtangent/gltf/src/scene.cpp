@@ -64,6 +64,43 @@ std::vector<ImageSource> readImages(const detail::Asset& asset, std::vector<std:
   return images;
 }
 
+// glTF's sampler codes (the GL enums' values) as TextureSampler's; an unknown code gives the
+// default (repeat, automatic).
+TextureSampler::Wrap wrapOf(const Json& sampler, const char* key) {
+  switch (sampler.contains(key) && sampler[key].is_number_integer() ? sampler[key].get<int>() : 10497) {
+    case 33071: return TextureSampler::Wrap::clampToEdge;
+    case 33648: return TextureSampler::Wrap::mirroredRepeat;
+    default: return TextureSampler::Wrap::repeat;
+  }
+}
+
+TextureSampler::Filter filterOf(const Json& sampler, const char* key) {
+  using Filter = TextureSampler::Filter;
+  switch (sampler.contains(key) && sampler[key].is_number_integer() ? sampler[key].get<int>() : 0) {
+    case 9728: return Filter::nearest;
+    case 9729: return Filter::linear;
+    case 9984: return Filter::nearestMipmapNearest;
+    case 9985: return Filter::linearMipmapNearest;
+    case 9986: return Filter::nearestMipmapLinear;
+    case 9987: return Filter::linearMipmapLinear;
+    default: return Filter::automatic;
+  }
+}
+
+TextureSampler samplerOf(const Json& doc, const Json& texture) {
+  TextureSampler sampler;
+  const int index = texture.contains("sampler") && texture["sampler"].is_number_integer() ? texture["sampler"].get<int>() : -1;
+  if (index < 0 || !doc.contains("samplers") || !doc["samplers"].is_array() || index >= static_cast<int>(doc["samplers"].size()))
+    return sampler;
+  const Json& json = doc["samplers"][index];
+  if (!json.is_object()) return sampler;
+  sampler.wrapS = wrapOf(json, "wrapS");
+  sampler.wrapT = wrapOf(json, "wrapT");
+  sampler.magFilter = filterOf(json, "magFilter");
+  sampler.minFilter = filterOf(json, "minFilter");
+  return sampler;
+}
+
 TextureRef textureRef(const Json& doc, const Json& info) {
   TextureRef ref;
   if (!info.is_object() || !info.contains("index")) return ref;
@@ -71,6 +108,7 @@ TextureRef textureRef(const Json& doc, const Json& info) {
   if (!doc.contains("textures") || texture < 0 || texture >= static_cast<int>(doc["textures"].size())) return ref;
   const Json& textureJson = doc["textures"][texture];
   ref.image = textureJson.value("source", -1);
+  ref.sampler = samplerOf(doc, textureJson);
   ref.texCoord = info.value("texCoord", 0);
   if (info.contains("extensions") && info["extensions"].contains("KHR_texture_transform")) {
     const Json& transform = info["extensions"]["KHR_texture_transform"];

@@ -17,8 +17,19 @@
 
 namespace tangent::gltf {
 
+// A texture's glTF sampler (glTF 2.0 3.8.4): wrapping per axis and filtering; `automatic` where
+// the file leaves a filter out (the viewer then uses linear, trilinear when minifying).
+struct TextureSampler {
+  enum class Wrap { repeat, clampToEdge, mirroredRepeat };
+  enum class Filter { automatic, nearest, linear, nearestMipmapNearest, linearMipmapNearest, nearestMipmapLinear, linearMipmapLinear };
+  Wrap wrapS = Wrap::repeat, wrapT = Wrap::repeat;
+  Filter magFilter = Filter::automatic, minFilter = Filter::automatic;
+  bool operator==(const TextureSampler&) const = default;
+};
+
 struct TextureRef {
   int image = -1;      // index into Scene::images; -1 when absent
+  TextureSampler sampler;
   int texCoord = 0;    // UV set (KHR_texture_transform's override applied)
   float scale = 1;     // normalTexture.scale, occlusionTexture.strength
   // KHR_texture_transform as a column-major 2x3 matrix: uv' = (t0 u + t2 v + t4, t1 u + t3 v + t5).
