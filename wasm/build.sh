@@ -1,7 +1,14 @@
 #!/usr/bin/env bash
 # SPDX-License-Identifier: MIT
-# Builds the WebAssembly package (wasm/package/dist/tangent_wasm.cjs, the .wasm embedded) with
-# Debian's emscripten: the core's MikkTSpace method, single-threaded (TANGENT_SERIAL), no OpenMesh.
+# Builds the WebAssembly package (wasm/package/dist) with Debian's emscripten: the core's
+# MikkTSpace method, single-threaded (TANGENT_SERIAL), no OpenMesh. The sources are compiled
+# once and linked twice, the .wasm embedded in each (-sSINGLE_FILE: nothing to locate at run
+# time, in Node, in a browser or in a bundler's output):
+#   dist/tangent_wasm.cjs          Node (CommonJS factory; index.mjs wraps it)
+#   dist/tangent_wasm.browser.mjs  browsers and workers (ES module factory, no Node code)
+#   dist/browser.mjs               index.mjs with its module taken from the browser build:
+#                                  the package's "browser" export (package.json)
+# emscripten 3.1.6's ES module output cannot serve Node (it uses __dirname), hence two links.
 # Usage: wasm/build.sh   (installs emscripten first where it is missing)
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -9,16 +16,34 @@ if ! command -v em++ >/dev/null; then
   apt-get update -qq && DEBIAN_FRONTEND=noninteractive apt-get install -y -qq emscripten
 fi
 out=wasm/package/dist
-mkdir -p "$out"
+objects=$out/obj
+rm -rf "$out" && mkdir -p "$objects"
 # emscripten's JS optimizer needs Debian's acorn where node is not Debian's own.
 export NODE_PATH=/usr/share/nodejs${NODE_PATH:+:$NODE_PATH}
-em++ -std=c++20 -O3 -fexceptions -DTANGENT_SERIAL -DNDEBUG \
-  -I libtangent/core/include -I libtangent/core/src \
-  libtangent/core/src/workspace.cpp libtangent/core/src/weld.cpp libtangent/core/src/outputs.cpp \
-  libtangent/core/src/mikktspace/*.cpp libtangent/core/src/names.cpp libtangent/core/src/frame_rules.cpp wasm/src/bindings.cpp \
-  -sMODULARIZE=1 -sEXPORT_NAME=createTangentModule -sSINGLE_FILE=1 -sALLOW_MEMORY_GROWTH=1 -sMAXIMUM_MEMORY=4GB \
-  -sENVIRONMENT=web,worker,node -sFILESYSTEM=0 \
-  -sEXPORTED_FUNCTIONS=_malloc,_free,_tangent_run,_tangent_error,_tangent_corner_tangents,_tangent_corner_vertices,_tangent_vertex_tangents,_tangent_vertex_sources,_tangent_report \
-  -sEXPORTED_RUNTIME_METHODS=UTF8ToString \
-  -o "$out/tangent_wasm.cjs"
-echo "built $out/tangent_wasm.cjs ($(stat -c %s "$out/tangent_wasm.cjs") bytes)"
+sources=(libtangent/core/src/workspace.cpp libtangent/core/src/weld.cpp libtangent/core/src/outputs.cpp
+  libtangent/core/src/mikktspace/*.cpp libtangent/core/src/names.cpp libtangent/core/src/frame_rules.cpp wasm/src/bindings.cpp)
+for source in "${sources[@]}"; do
+  em++ -std=c++20 -O3 -fexceptions -DTANGENT_SERIAL -DNDEBUG -I libtangent/core/include -I libtangent/core/src \
+    -c "$source" -o "$objects/$(tr / _ <<<"$source").o"
+done
+link=(em++ -O3 -fexceptions "$objects"/*.o
+  -sMODULARIZE=1 -sEXPORT_NAME=createTangentModule -sSINGLE_FILE=1 -sALLOW_MEMORY_GROWTH=1 -sMAXIMUM_MEMORY=4GB
+  -sFILESYSTEM=0
+  -sEXPORTED_FUNCTIONS=_malloc,_free,_tangent_run,_tangent_error,_tangent_corner_tangents,_tangent_corner_vertices,_tangent_vertex_tangents,_tangent_vertex_sources,_tangent_report
+  -sEXPORTED_RUNTIME_METHODS=UTF8ToString)
+"${link[@]}" -sENVIRONMENT=node -o "$out/tangent_wasm.cjs"
+"${link[@]}" -sENVIRONMENT=web,worker -sEXPORT_ES6=1 -o "$out/tangent_wasm.browser.mjs"
+rm -rf "$objects"
+# The browser entry: index.mjs as it is, its one import of the Node build swapped for the
+# browser build (one API source for both; a second relative import would need mapping here).
+node_import="import createTangentModule from './dist/tangent_wasm.cjs';"
+if [ "$(grep -c "^import .* from '\.\{1,2\}/" wasm/package/index.mjs)" != 1 ] || ! grep -qxF "$node_import" wasm/package/index.mjs; then
+  echo "wasm/build.sh: index.mjs must have exactly one relative import, \"$node_import\"" >&2
+  exit 1
+fi
+sed "s|^import createTangentModule from './dist/tangent_wasm.cjs';\$|import createTangentModule from './tangent_wasm.browser.mjs';|" \
+  wasm/package/index.mjs >"$out/browser.mjs"
+cp LICENSE wasm/package/LICENSE
+for file in tangent_wasm.cjs tangent_wasm.browser.mjs browser.mjs; do
+  echo "built $out/$file ($(stat -c %s "$out/$file") bytes)"
+done

@@ -27,10 +27,23 @@ open(f"{out}/readme.js", "w").write(js[0])
 PY
 (cd "$source_dir" && bash -euo pipefail "$work/blocks/0.sh")
 tarball=$(ls "$source_dir"/wasm/libtangent-wasm-*.tgz)
+# The tarball: README and LICENSE, both builds, the entry of every export.
+contents=$(tar tzf "$tarball")
+for file in README.md LICENSE package.json index.mjs index.d.ts require.cjs dist/tangent_wasm.cjs dist/tangent_wasm.browser.mjs dist/browser.mjs; do
+  grep -qx "package/$file" <<<"$contents" || { echo "the tarball lacks $file" >&2; exit 1; }
+done
 cd "$work/project"
 npm init -y >/dev/null
 npm install --prefer-offline --no-audit --no-fund --loglevel=error "$tarball" \
   @gltf-transform/core@4.5.1 @gltf-transform/extensions@4.5.1 @gltf-transform/functions@4.5.1
+# Node: import takes the Node build; require() says the package is an ES module and how to load it.
+node --input-type=module -e "
+  import { generateTangents } from 'libtangent-wasm';
+  const t = generateTangents(new Float32Array([0,0,0, 1,0,0, 0,1,0]), new Float32Array([0,0,1, 0,0,1, 0,0,1]), new Float32Array([0,0, 1,0, 0,1]));
+  if (t.length !== 12 || t[0] !== 1 || t[3] !== 1) throw new Error('import: unexpected tangents ' + t);"
+if message=$(node -e "require('libtangent-wasm')" 2>&1); then echo "require() of the ES module package succeeded silently" >&2; exit 1; fi
+grep -q "libtangent-wasm is an ES module package and cannot be loaded with require(): use .import" <<<"$message" ||
+  { echo "require() failed without saying the package is an ES module: $message" >&2; exit 1; }
 cp "$asset" in.glb
 cp "$work/blocks/1.js" readme.mjs
 node readme.mjs
