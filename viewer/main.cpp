@@ -43,6 +43,7 @@ const char* kUsage =
     "  --size WxH               window or screenshot size (default 1280x720)\n"
     "  --camera NAME            front | back | left | right | top | bottom | iso (default iso)\n"
     "  --ortho                  orthographic projection\n"
+    "  --frame-box X0,Y0,Z0,X1,Y1,Z1  frame the camera on this world-space box instead of the scene\n"
     "  --view NAME              lit | geometry-normal | tangent | bitangent | shading-normal | uv |\n"
     "                           handedness (the file's w) | error | face-orientation (front blue, back red) |\n"
     "                           handedness-world (w after the node's mirroring) | compare-angle (the\n"
@@ -104,6 +105,7 @@ struct Options {
   std::optional<fs::path> screenshot;
   int width = 1280, height = 720;
   std::string camera = "iso";
+  std::optional<std::pair<glm::vec3, glm::vec3>> frameBox;  // --frame-box: min, max (world space)
   bool orthographic = false;
   RenderSettings settings;
   bool negateW = false;
@@ -140,6 +142,13 @@ int parseOptions(int argc, char** argv, Options& options) {
           throw std::invalid_argument("--size must be WxH, 16..8192");
       } else if (arg == "--camera") options.camera = value();
       else if (arg == "--ortho") options.orthographic = true;
+      else if (arg == "--frame-box") {
+        glm::vec3 lo, hi;
+        if (std::sscanf(value().c_str(), "%f,%f,%f,%f,%f,%f", &lo.x, &lo.y, &lo.z, &hi.x, &hi.y, &hi.z) != 6 ||
+            !glm::all(glm::lessThanEqual(lo, hi)) || !std::isfinite(glm::length(hi - lo)))
+          throw std::invalid_argument("--frame-box must be X0,Y0,Z0,X1,Y1,Z1 with X0 <= X1, Y0 <= Y1, Z0 <= Z1");
+        options.frameBox = {lo, hi};
+      }
       else if (arg == "--view") {
         const std::string name = value();
         bool found = false;
@@ -351,7 +360,9 @@ struct Viewer {
     }
     for (const auto& m : messages) std::cerr << "note: " << m << "\n";
     if (!choosePose()) return false;
-    camera.frame(renderer.boundsMin(), renderer.boundsMax(), options.camera, float(options.width) / float(options.height));
+    camera.frame(options.frameBox ? options.frameBox->first : renderer.boundsMin(),
+                 options.frameBox ? options.frameBox->second : renderer.boundsMax(), options.camera,
+                 float(options.width) / float(options.height));
     camera.orthographic = options.orthographic;
     if (options.settings.reflectivity > 0 || fs::exists(options.sphereMap)) {
       std::vector<std::string> sphereMessages;

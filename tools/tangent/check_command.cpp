@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: MIT
 // `tangent check`: text for people, JSON for tools (docs/check-json.md), JUnit XML for CI
 // servers (one test case per primitive and check), GitHub workflow annotations and SARIF 2.1.0
-// for code-scanning tools.
+// for code-scanning tools, and a self-contained HTML page for people (check_html.cpp).
 #include <algorithm>
 #include <bitset>
 #include <cctype>
@@ -13,6 +13,8 @@
 #include <sstream>
 #include <utility>
 
+#include "check_html.hpp"
+#include "check_names.hpp"
 #include "commands.hpp"
 #include "tangent/check.hpp"
 #include "tangent/gltf.hpp"
@@ -31,7 +33,8 @@ const char* kCheckUsage =
     "quantized data follow from the rounding step (README, \"Limits per component type\").\n"
     "\n"
     "options:\n"
-    "  --format FORMAT     text (default) | json | junit | github | sarif\n"
+    "  --format FORMAT     text (default) | json | junit | github | sarif | html (one page with thumbnails\n"
+    "                      from tangent-view's error view: docs/check.md)\n"
     "  -o, --output FILE   write the report to FILE (\"-\": standard output, the default)\n"
     "  --only CHECKS       run only these checks (comma-separated names)\n"
     "  --ignore CHECKS     leave these checks out\n"
@@ -66,15 +69,6 @@ std::string xmlEscape(const std::string& raw) {
     }
   }
   return out;
-}
-
-std::string primitiveName(const gltf::PrimitiveCheck& p) {
-  return "mesh " + std::to_string(p.mesh) + (p.meshName.empty() ? "" : " '" + text::quoted(p.meshName) + "'") + " primitive " +
-         std::to_string(p.primitive);
-}
-
-std::string findingSummary(const gltf::CheckFinding& f) {
-  return std::to_string(f.failed) + " of " + std::to_string(f.total) + " " + f.unit + ": " + f.message;
 }
 
 void writeText(std::ostream& out, const std::vector<gltf::FileCheck>& checks) {
@@ -411,10 +405,11 @@ int checkCommand(const std::vector<std::string>& args) {
     } else if (arg == "--config") {
       ++i;  // read above
     } else if (arg == "--format") {
-      if (!hasValue) return usageError("--format needs text, json, junit, github or sarif");
+      if (!hasValue) return usageError("--format needs text, json, junit, github, sarif or html");
       formatName = args[++i];
-      if (formatName != "text" && formatName != "json" && formatName != "junit" && formatName != "github" && formatName != "sarif")
-        return usageError("--format must be text, json, junit, github or sarif");
+      if (formatName != "text" && formatName != "json" && formatName != "junit" && formatName != "github" && formatName != "sarif" &&
+          formatName != "html")
+        return usageError("--format must be text, json, junit, github, sarif or html");
     } else if (arg == "-o" || arg == "--output") {
       if (!hasValue) return usageError(arg + " needs a file name (\"-\" for standard output)");
       output = args[++i];
@@ -481,6 +476,7 @@ int checkCommand(const std::vector<std::string>& args) {
   else if (formatName == "junit") writeJunit(report, checks, times);
   else if (formatName == "github") writeGithub(report, checks);
   else if (formatName == "sarif") writeSarif(report, checks, options);
+  else if (formatName == "html") report << htmlReport(checks, options, output);
   else writeText(report, checks);
   if (!writeTextOutput(output, report.str(), "check")) return kExitUsage;
   for (const auto& check : checks) {
