@@ -13,6 +13,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cerrno>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -46,12 +47,23 @@ std::string html(std::string_view raw) {
   std::string out;
   for (char c : text::terminalSafe(raw)) {
     switch (c) {
-      case '&': out += "&amp;"; break;
-      case '<': out += "&lt;"; break;
-      case '>': out += "&gt;"; break;
-      case '"': out += "&quot;"; break;
-      case '\'': out += "&#39;"; break;
-      default: out += c;
+      case '&':
+        out += "&amp;";
+        break;
+      case '<':
+        out += "&lt;";
+        break;
+      case '>':
+        out += "&gt;";
+        break;
+      case '"':
+        out += "&quot;";
+        break;
+      case '\'':
+        out += "&#39;";
+        break;
+      default:
+        out += c;
     }
   }
   return out;
@@ -131,11 +143,15 @@ Renderer findRenderer() {
   } else {
     std::error_code ec;
     const fs::path beside = fs::read_symlink("/proc/self/exe", ec).parent_path() / "tangent-view";
-    if (!ec && isExecutable(beside)) viewer = beside;
-    else if (const auto found = onPath("tangent-view")) viewer = *found;
+    if (!ec && isExecutable(beside))
+      viewer = beside;
+    else if (const auto found = onPath("tangent-view"))
+      viewer = *found;
     else
-      return {{}, "tangent-view was found neither beside tangent" + (ec ? std::string() : " (" + beside.parent_path().string() + ")") +
-                      " nor on PATH (set TANGENT_VIEW to its path)"};
+      return {{},
+              "tangent-view was found neither beside tangent" +
+                  (ec ? std::string() : " (" + beside.parent_path().string() + ")") +
+                  " nor on PATH (set TANGENT_VIEW to its path)"};
   }
   const char* display = std::getenv("DISPLAY");
   if (!display || !*display) {
@@ -188,7 +204,8 @@ struct ScratchFolder {
   fs::path path;
   ScratchFolder() {
     std::random_device random;
-    path = fs::temp_directory_path() / ("tangent-check-html-" + std::to_string(::getpid()) + "-" + std::to_string(random()));
+    path = fs::temp_directory_path() /
+           ("tangent-check-html-" + std::to_string(::getpid()) + "-" + std::to_string(random()));
     fs::create_directories(path);
   }
   ~ScratchFolder() {
@@ -215,16 +232,19 @@ Vec3 transformPoint(const std::array<float, 16>& m, const float* p) {
 }
 
 Vec3 transformDirection(const std::array<float, 16>& m, const float* d) {
-  return {m[0] * d[0] + m[4] * d[1] + m[8] * d[2], m[1] * d[0] + m[5] * d[1] + m[9] * d[2], m[2] * d[0] + m[6] * d[1] + m[10] * d[2]};
+  return {m[0] * d[0] + m[4] * d[1] + m[8] * d[2], m[1] * d[0] + m[5] * d[1] + m[9] * d[2],
+          m[2] * d[0] + m[6] * d[1] + m[10] * d[2]};
 }
 
 std::optional<Framing> framingFor(const gltf::DrawItem& item, const std::array<float, 16>& world) {
   const std::size_t triangles = item.positions.size() / 9;
   Framing framing;
-  Vec3 lo{INFINITY, INFINITY, INFINITY}, hi{-INFINITY, -INFINITY, -INFINITY}, allLo = lo, allHi = hi, normalSum{0, 0, 0};
+  Vec3 lo{INFINITY, INFINITY, INFINITY}, hi{-INFINITY, -INFINITY, -INFINITY}, allLo = lo, allHi = hi,
+                                                                              normalSum{0, 0, 0};
   for (std::size_t t = 0; t < triangles; ++t) {
     bool flagged = false;
-    for (std::size_t k = 0; k < 3; ++k) flagged = flagged || (3 * t + k < item.cornerProblems.size() && item.cornerProblems[3 * t + k] != 0);
+    for (std::size_t k = 0; k < 3; ++k)
+      flagged = flagged || (3 * t + k < item.cornerProblems.size() && item.cornerProblems[3 * t + k] != 0);
     framing.flaggedTriangles += flagged;
     for (std::size_t k = 0; k < 3; ++k) {
       const std::size_t c = 3 * t + k;
@@ -236,7 +256,8 @@ std::optional<Framing> framingFor(const gltf::DrawItem& item, const std::array<f
       }
       if (flagged && 3 * c + 2 < item.normals.size()) {
         const Vec3 n = transformDirection(world, &item.normals[3 * c]);
-        if (std::isfinite(n[0] + n[1] + n[2])) normalSum = {normalSum[0] + n[0], normalSum[1] + n[1], normalSum[2] + n[2]};
+        if (std::isfinite(n[0] + n[1] + n[2]))
+          normalSum = {normalSum[0] + n[0], normalSum[1] + n[1], normalSum[2] + n[2]};
       }
     }
   }
@@ -252,7 +273,8 @@ std::optional<Framing> framingFor(const gltf::DrawItem& item, const std::array<f
   const float length = std::hypot(normalSum[0], normalSum[1], normalSum[2]);
   if (length > 0.1f * static_cast<float>(std::max<std::size_t>(framing.flaggedTriangles, 1))) {
     const int axis = static_cast<int>(std::max_element(normalSum.begin(), normalSum.end(),
-                                                       [](float a, float b) { return std::abs(a) < std::abs(b); }) - normalSum.begin());
+                                                       [](float a, float b) { return std::abs(a) < std::abs(b); }) -
+                                      normalSum.begin());
     static const char* sides[3][2] = {{"left", "right"}, {"bottom", "top"}, {"back", "front"}};
     framing.camera = sides[axis][normalSum[axis] > 0];
   }
@@ -260,15 +282,15 @@ std::optional<Framing> framingFor(const gltf::DrawItem& item, const std::array<f
 }
 
 struct Thumbnail {
-  std::string png;          // empty when there is none
+  std::string png;  // empty when there is none
   std::uint32_t width = 0, height = 0;
-  std::string caption;      // how it was framed
-  std::string missing;      // why there is none
+  std::string caption;  // how it was framed
+  std::string missing;  // why there is none
 };
 
 std::string scenePrimitiveLabel(const gltf::PrimitiveCheck& p, bool namedEvenIfEmpty) {
-  return "mesh " + std::to_string(p.mesh) + (p.meshName.empty() && !namedEvenIfEmpty ? "" : " '" + p.meshName + "'") + " primitive " +
-         std::to_string(p.primitive);
+  return "mesh " + std::to_string(p.mesh) + (p.meshName.empty() && !namedEvenIfEmpty ? "" : " '" + p.meshName + "'") +
+         " primitive " + std::to_string(p.primitive);
 }
 
 std::string numberList(const Vec3& lo, const Vec3& hi) {
@@ -279,10 +301,11 @@ std::string numberList(const Vec3& lo, const Vec3& hi) {
 
 // Thumbnails of one file's failing primitives, in the order of file.primitives (empty entries
 // for passing ones). `budget` counts down the report's thumbnails.
-std::vector<Thumbnail> renderFile(const gltf::FileCheck& file, const gltf::CheckOptions& options, const Renderer& renderer,
-                                  const ScratchFolder* scratch, std::size_t& budget) {
+std::vector<Thumbnail> renderFile(const gltf::FileCheck& file, const gltf::CheckOptions& options,
+                                  const Renderer& renderer, const ScratchFolder* scratch, std::size_t& budget) {
   std::vector<Thumbnail> thumbnails(file.primitives.size());
-  const bool anyFailing = std::any_of(file.primitives.begin(), file.primitives.end(), [](const auto& p) { return !p.findings.empty(); });
+  const bool anyFailing =
+      std::any_of(file.primitives.begin(), file.primitives.end(), [](const auto& p) { return !p.findings.empty(); });
   if (!anyFailing) return thumbnails;
   std::optional<gltf::Scene> scene;
   std::string sceneError;
@@ -309,12 +332,15 @@ std::vector<Thumbnail> renderFile(const gltf::FileCheck& file, const gltf::Check
       continue;
     }
     if (budget == 0) {
-      thumbnail.missing = "the report has its first " + std::to_string(kMaxThumbnails) + " thumbnails; this one is left out";
+      thumbnail.missing =
+          "the report has its first " + std::to_string(kMaxThumbnails) + " thumbnails; this one is left out";
       continue;
     }
     std::optional<std::size_t> item;
     for (std::size_t k = 0; k < scene->items.size() && !item; ++k) {
-      if (scene->items[k].label == scenePrimitiveLabel(p, false) || scene->items[k].label == scenePrimitiveLabel(p, true)) item = k;
+      if (scene->items[k].label == scenePrimitiveLabel(p, false) ||
+          scene->items[k].label == scenePrimitiveLabel(p, true))
+        item = k;
     }
     const auto instance = std::find_if(scene->instances.begin(), scene->instances.end(),
                                        [&](const gltf::DrawInstance& d) { return item && d.item == *item; });
@@ -333,9 +359,9 @@ std::vector<Thumbnail> renderFile(const gltf::FileCheck& file, const gltf::Check
     std::vector<std::string> command = renderer.prefix;
     for (const std::string& arg :
          {fs::absolute(file.file).string(), std::string("--screenshot"), png.string(), std::string("--size"),
-          std::to_string(kThumbnailWidth) + "x" + std::to_string(kThumbnailHeight), std::string("--view"), std::string("error"),
-          std::string("--camera"), framing->camera, std::string("--frame-box"), numberList(framing->lo, framing->hi),
-          std::string("--no-shadows")})
+          std::to_string(kThumbnailWidth) + "x" + std::to_string(kThumbnailHeight), std::string("--view"),
+          std::string("error"), std::string("--camera"), framing->camera, std::string("--frame-box"),
+          numberList(framing->lo, framing->hi), std::string("--no-shadows")})
       command.push_back(arg);
     if (!options.assetRoot.empty()) command.insert(command.end(), {"--asset-root", options.assetRoot.string()});
     const int status = runLogged(command, log);
@@ -343,13 +369,15 @@ std::vector<Thumbnail> renderFile(const gltf::FileCheck& file, const gltf::Check
     const auto size = pngSize(thumbnail.png);
     if (!size) {
       thumbnail.png.clear();
-      thumbnail.missing = status < 0 ? "tangent-view could not be started"
-                                     : "tangent-view failed (exit status " + std::to_string(status) + "): " + lastLine(readFile(log));
+      thumbnail.missing =
+          status < 0 ? "tangent-view could not be started"
+                     : "tangent-view failed (exit status " + std::to_string(status) + "): " + lastLine(readFile(log));
       continue;
     }
     std::tie(thumbnail.width, thumbnail.height) = *size;
     thumbnail.caption = "error view, " + framing->camera + " camera, framed on " +
-                        (framing->flaggedTriangles ? std::to_string(framing->flaggedTriangles) + " flagged triangle(s)" : "the primitive");
+                        (framing->flaggedTriangles ? std::to_string(framing->flaggedTriangles) + " flagged triangle(s)"
+                                                   : "the primitive");
   }
   return thumbnails;
 }
@@ -369,30 +397,35 @@ const char* kStyle =
     "body{font:14px/1.45 system-ui,sans-serif;margin:1.5rem auto;max-width:72rem;padding:0 1rem;color:#222}"
     "h1{font-size:1.5rem}h2{font-size:1.15rem;margin-top:2rem;border-bottom:1px solid #ccc;word-break:break-all}"
     "h3{font-size:1rem;margin:1rem 0 .4rem}.ok{color:#176f2c}.fail{color:#b3261e}.note{color:#666}"
-    "table{border-collapse:collapse;margin:.3rem 0}td,th{border:1px solid #ddd;padding:.2rem .45rem;text-align:left;vertical-align:top}"
+    "table{border-collapse:collapse;margin:.3rem 0}td,th{border:1px solid #ddd;padding:.2rem "
+    ".45rem;text-align:left;vertical-align:top}"
     "td.n{text-align:right;font-variant-numeric:tabular-nums}figure{float:right;margin:0 0 .5rem 1rem}"
     "figure img{border:1px solid #999;display:block}figcaption{font-size:12px;color:#666;max-width:320px}"
     ".primitive{overflow:auto;border-left:3px solid #ddd;padding-left:.8rem;margin:.6rem 0}"
     ".primitive.failing{border-color:#b3261e}pre{white-space:pre-wrap;margin:0;font-size:12px}";
 
-void writePrimitive(std::ostream& out, const gltf::PrimitiveCheck& p, const Thumbnail& thumbnail, const std::string& link) {
+void writePrimitive(std::ostream& out, const gltf::PrimitiveCheck& p, const Thumbnail& thumbnail,
+                    const std::string& link) {
   const bool failing = !p.findings.empty();
-  out << "<div class=\"primitive" << (failing ? " failing" : "") << "\">\n<h3>" << html(primitiveName(p)) << " <span class=\"note\">(TEXCOORD_"
-      << p.texCoord << ", " << p.vertices << " vertices, " << p.triangles << " triangles)</span> "
-      << (failing ? "<span class=\"fail\">" + std::to_string(p.findings.size()) + " finding(s)</span>" : std::string("<span class=\"ok\">ok</span>"))
+  out << "<div class=\"primitive" << (failing ? " failing" : "") << "\">\n<h3>" << html(primitiveName(p))
+      << " <span class=\"note\">(TEXCOORD_" << p.texCoord << ", " << p.vertices << " vertices, " << p.triangles
+      << " triangles)</span> "
+      << (failing ? "<span class=\"fail\">" + std::to_string(p.findings.size()) + " finding(s)</span>"
+                  : std::string("<span class=\"ok\">ok</span>"))
       << "</h3>\n";
   if (failing) {
     out << "<figure>";
     if (!thumbnail.png.empty())
-      out << "<img alt=\"" << html("error view of " + primitiveName(p)) << "\" width=\"" << thumbnail.width << "\" height=\"" << thumbnail.height
-          << "\" src=\"data:image/png;base64," << base64(thumbnail.png) << "\">";
+      out << "<img alt=\"" << html("error view of " + primitiveName(p)) << "\" width=\"" << thumbnail.width
+          << "\" height=\"" << thumbnail.height << "\" src=\"data:image/png;base64," << base64(thumbnail.png) << "\">";
     out << "<figcaption>" << html(thumbnail.png.empty() ? "no thumbnail: " + thumbnail.missing : thumbnail.caption);
     if (!link.empty()) out << "<br><a href=\"" << html(link) << "\">open in the web viewer</a>";
     out << "</figcaption></figure>\n";
     out << "<table><tr><th>check</th><th>failed</th><th>what</th><th>worst</th></tr>\n";
     for (const auto& f : p.findings) {
-      out << "<tr><td class=\"fail\">" << html(f.check) << "</td><td class=\"n\">" << html(findingSummary(f).substr(0, findingSummary(f).find(": ")))
-          << "</td><td>" << html(f.message) << "</td><td><pre>";
+      out << "<tr><td class=\"fail\">" << html(f.check) << "</td><td class=\"n\">"
+          << html(findingSummary(f).substr(0, findingSummary(f).find(": "))) << "</td><td>" << html(f.message)
+          << "</td><td><pre>";
       for (const auto& s : f.worst) out << html(s.detail) << "\n";
       out << "</pre></td></tr>\n";
     }
@@ -410,17 +443,22 @@ void writePrimitive(std::ostream& out, const gltf::PrimitiveCheck& p, const Thum
   for (const auto& warning : p.warnings) out << "<p>warning: " << html(warning) << "</p>\n";
   if (!p.generator.empty()) out << "<p class=\"note\">generator: " << html(p.generator) << "</p>\n";
   if (p.referenceUnresolved)
-    out << "<p class=\"note\">" << p.referenceUnresolved << " corners have a UV orientation their rounded positions/UVs leave open; not compared</p>\n";
+    out << "<p class=\"note\">" << p.referenceUnresolved
+        << " corners have a UV orientation their rounded positions/UVs leave open; not compared</p>\n";
   if (p.handednessUndecided || p.referenceWUndecided)
-    out << "<p class=\"note\">" << p.handednessUndecided << " triangles have a UV orientation their rounded positions/UVs leave open: handedness "
+    out << "<p class=\"note\">" << p.handednessUndecided
+        << " triangles have a UV orientation their rounded positions/UVs leave open: handedness "
         << "skips them, reference compares the angle but not w at their " << p.referenceWUndecided << " corners</p>\n";
-  if (p.referenceUndefined) out << "<p class=\"note\">" << p.referenceUndefined << " corners have no defined reference frame; not compared</p>\n";
+  if (p.referenceUndefined)
+    out << "<p class=\"note\">" << p.referenceUndefined
+        << " corners have no defined reference frame; not compared</p>\n";
   out << "</div>\n";
 }
 
 }  // namespace
 
-std::string htmlReport(const std::vector<gltf::FileCheck>& checks, const gltf::CheckOptions& options, const std::string& reportPath) {
+std::string htmlReport(const std::vector<gltf::FileCheck>& checks, const gltf::CheckOptions& options,
+                       const std::string& reportPath) {
   std::size_t primitives = 0, failing = 0, findings = 0, unreadable = 0;
   for (const auto& file : checks) {
     unreadable += !file.error.empty();
@@ -430,7 +468,8 @@ std::string htmlReport(const std::vector<gltf::FileCheck>& checks, const gltf::C
   const Renderer renderer = failing ? findRenderer() : Renderer{};
   std::optional<ScratchFolder> scratch;
   if (failing && renderer.unavailable.empty()) scratch.emplace();
-  const fs::path reportFolder = reportPath == "-" ? fs::current_path() : fs::weakly_canonical(fs::absolute(reportPath)).parent_path();
+  const fs::path reportFolder =
+      reportPath == "-" ? fs::current_path() : fs::weakly_canonical(fs::absolute(reportPath)).parent_path();
   std::size_t budget = kMaxThumbnails;
 
   std::ostringstream body;
@@ -441,30 +480,36 @@ std::string htmlReport(const std::vector<gltf::FileCheck>& checks, const gltf::C
       body << "<p class=\"fail\">unreadable: " << html(file.error) << "</p>\n</section>\n";
       continue;
     }
-    const std::vector<Thumbnail> thumbnails = renderFile(file, options, renderer, scratch ? &*scratch : nullptr, budget);
+    const std::vector<Thumbnail> thumbnails =
+        renderFile(file, options, renderer, scratch ? &*scratch : nullptr, budget);
     const std::string link = webViewerLink(file.file, reportFolder);
-    for (std::size_t k = 0; k < file.primitives.size(); ++k) writePrimitive(body, file.primitives[k], thumbnails[k], link);
+    for (std::size_t k = 0; k < file.primitives.size(); ++k)
+      writePrimitive(body, file.primitives[k], thumbnails[k], link);
     for (const auto& s : file.skipped) body << "<p class=\"note\">skipped " << html(s) << "</p>\n";
     if (file.primitives.empty() && file.skipped.empty()) body << "<p class=\"note\">no primitive needs tangents</p>\n";
     body << "</section>\n";
   }
 
   std::ostringstream out;
-  out << "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n<title>tangent check: " << findings << " finding(s)</title>\n"
+  out << "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n<title>tangent check: " << findings
+      << " finding(s)</title>\n"
       << "<style>" << kStyle << "</style>\n</head>\n<body>\n<h1>tangent check</h1>\n<p class=\""
-      << (findings || unreadable ? "fail" : "ok") << "\">" << checks.size() << " file(s), " << primitives << " primitive(s) checked, "
-      << failing << " with findings, " << findings << " finding(s)" << (unreadable ? ", " + std::to_string(unreadable) + " unreadable" : "")
-      << "</p>\n<p class=\"note\">method " << html(toString(options.method)) << ", tolerance orthogonal " << options.orthogonalToleranceDegrees
+      << (findings || unreadable ? "fail" : "ok") << "\">" << checks.size() << " file(s), " << primitives
+      << " primitive(s) checked, " << failing << " with findings, " << findings << " finding(s)"
+      << (unreadable ? ", " + std::to_string(unreadable) + " unreadable" : "") << "</p>\n<p class=\"note\">method "
+      << html(toString(options.method)) << ", tolerance orthogonal " << options.orthogonalToleranceDegrees
       << " deg, reference " << options.referenceToleranceDegrees << " deg";
   if (!options.configFile.empty()) out << ", settings from " << html(options.configFile);
   out << ".</p>\n";
   if (failing) {
     out << "<p class=\"note\">"
-        << html(renderer.unavailable.empty() ? "Thumbnails: tangent-view's error view (the angle to freshly computed tangents: blue 0 deg, "
-                                               "green 1, yellow 5, red 20 or more; corners that fail the checks magenta), the camera "
-                                               "framed on the triangles it flags."
-                                             : "No thumbnails: " + renderer.unavailable + ".")
-        << " The links open a file in the web viewer when this report sits beside a deployed build-web/ (scripts/web.sh).</p>\n";
+        << html(renderer.unavailable.empty()
+                    ? "Thumbnails: tangent-view's error view (the angle to freshly computed tangents: blue 0 deg, "
+                      "green 1, yellow 5, red 20 or more; corners that fail the checks magenta), the camera "
+                      "framed on the triangles it flags."
+                    : "No thumbnails: " + renderer.unavailable + ".")
+        << " The links open a file in the web viewer when this report sits beside a deployed build-web/ "
+           "(scripts/web.sh).</p>\n";
   }
   out << body.str() << "</body>\n</html>\n";
   return out.str();

@@ -15,6 +15,7 @@ namespace tangent::cli {
 // sits beside a deployed build-web/. Nothing in it reaches the network. `reportPath` is where
 // the page will be written ("-": standard output; links are then relative to the current
 // directory). Without tangent-view or a display the page says why it has no thumbnails.
-std::string htmlReport(const std::vector<gltf::FileCheck>& checks, const gltf::CheckOptions& options, const std::string& reportPath);
+std::string htmlReport(const std::vector<gltf::FileCheck>& checks, const gltf::CheckOptions& options,
+                       const std::string& reportPath);
 
 }  // namespace tangent::cli

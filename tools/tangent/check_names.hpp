@@ -10,8 +10,8 @@
 namespace tangent::cli {
 
 inline std::string primitiveName(const gltf::PrimitiveCheck& p) {
-  return "mesh " + std::to_string(p.mesh) + (p.meshName.empty() ? "" : " '" + text::quoted(p.meshName) + "'") + " primitive " +
-         std::to_string(p.primitive);
+  return "mesh " + std::to_string(p.mesh) + (p.meshName.empty() ? "" : " '" + text::quoted(p.meshName) + "'") +
+         " primitive " + std::to_string(p.primitive);
 }
 
 inline std::string findingSummary(const gltf::CheckFinding& f) {
