@@ -23,6 +23,7 @@
 #include <optional>
 #include <random>
 #include <sstream>
+#include <tuple>
 
 #include "check_names.hpp"
 #include "tangent/scene.hpp"
