@@ -198,7 +198,7 @@ class Browser:
         return reply.get("result", {})
 
     def open(self, url):
-        """A new tab on `url`, with its console collected; returns a Page."""
+        """A new tab on `url`, with its console collected, once loaded; returns a Page."""
         target = self.call("Target.createTarget", {"url": "about:blank"})["targetId"]
         session = self.call("Target.attachToTarget", {"targetId": target, "flatten": True})["sessionId"]
         page = Page(self, session)
@@ -206,4 +206,6 @@ class Browser:
         page.call("Runtime.enable")
         page.call("Page.enable")
         page.call("Page.navigate", url=url)
+        # Page.navigate answers before the new document replaces about:blank.
+        page.wait_for("location.href !== 'about:blank' && document.readyState === 'complete'", self.timeout)
         return page

@@ -4,7 +4,7 @@
 Usage: example_test.py SOURCE_DIR WORK_DIR TARBALL ARRAYS_TOOL GLB...
 
 The example is copied into a new project whose libtangent-wasm is the packed tarball (the other
-dependencies at the versions the example pins), built by its own `npm run build` (esbuild) and
+dependencies as the example's package-lock.json pins them), built by its own `npm run build` (esbuild) and
 served on 127.0.0.1. The page bakes the demo quad (data/demo/quad.gltf with its .bin and images)
 loaded by ?url= and chosen as files, and each GLB chosen as a file; what its download link holds
 goes to tests/node/baked_vs_library.mjs: every corner's tangent must have the C++ library's bits,
@@ -21,6 +21,9 @@ sys.path.insert(0, str(pathlib.Path(__file__).resolve().parent))
 import chromium  # noqa: E402
 
 PAGE_TIMEOUT_S = 120
+# The page's state once it is done with a file ("ready" or "error: ..."); falsy before.
+STATE = "!['busy', 'waiting'].includes(document.body.dataset.state) && document.body.dataset.state"
+WAITING = "document.body.dataset.state === 'waiting'"
 QUAD_FILES = ("quad.gltf", "quad.bin", "bumps_normal.png", "white.png", "specular_regions.png")
 BAKED = ("fetch(document.getElementById('download').href).then((r) => r.arrayBuffer()).then((b) => {"
          " let s = ''; const u = new Uint8Array(b);"
@@ -29,8 +32,7 @@ BAKED = ("fetch(document.getElementById('download').href).then((r) => r.arrayBuf
 
 
 def wait_state(page, label):
-    state = page.wait_for("document.body.dataset.state && document.body.dataset.state !== 'busy' && document.body.dataset.state",
-                          PAGE_TIMEOUT_S)
+    state = page.wait_for(STATE, PAGE_TIMEOUT_S)
     if state != "ready":
         raise RuntimeError(f"{label}: {state}\npage console:\n  " + "\n  ".join(page.console))
     status = page.evaluate("document.getElementById('status').textContent")
@@ -46,7 +48,7 @@ def main():
     project, out = work / "project", work / "out"
     project.mkdir(parents=True)
     out.mkdir()
-    for name in ("index.html", "main.mjs", "package.json"):
+    for name in ("index.html", "main.mjs", "package.json", "package-lock.json"):
         shutil.copy(example / name, project / name)
     manifest = json.loads((project / "package.json").read_text())
     manifest["dependencies"]["libtangent-wasm"] = f"file:{tarball}"
@@ -65,18 +67,18 @@ def main():
         page = browser.open(base + "index.html?url=assets/quad.gltf")
         baked.append(("quad-url.glb", wait_state(page, "quad.gltf by ?url=")))
         page = browser.open(base + "index.html")
-        page.wait_for("document.readyState === 'complete'", PAGE_TIMEOUT_S)
+        page.wait_for(WAITING, PAGE_TIMEOUT_S)
         page.set_input_files("#files", [assets / name for name in QUAD_FILES])
         baked.append(("quad-files.glb", wait_state(page, "quad.gltf with its files, chosen")))
         for glb in glbs:
             page = browser.open(base + "index.html")
-            page.wait_for("document.readyState === 'complete'", PAGE_TIMEOUT_S)
+            page.wait_for(WAITING, PAGE_TIMEOUT_S)
             page.set_input_files("#files", [glb])
             baked.append((glb.name, wait_state(page, f"{glb.name}, chosen")))
         page = browser.open(base + "index.html")
-        page.wait_for("document.readyState === 'complete'", PAGE_TIMEOUT_S)
+        page.wait_for(WAITING, PAGE_TIMEOUT_S)
         page.set_input_files("#files", [not_gltf])
-        state = page.wait_for("document.body.dataset.state !== 'busy' && document.body.dataset.state", PAGE_TIMEOUT_S)
+        state = page.wait_for(STATE, PAGE_TIMEOUT_S)
         if not state.startswith(f"error: {not_gltf.name}: "):
             print(f"FAIL a file that is not glTF gave state {state!r}")
             return 1

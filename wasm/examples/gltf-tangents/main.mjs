@@ -2,8 +2,9 @@
 // The example page's script (bundled into dist/main.js by `npm run build`): reads a dropped or
 // chosen glTF (or ?url=FILE), computes MikkTSpace tangents for every normal-mapped primitive
 // with libtangent-wasm through glTF-Transform's tangents(), lists the primitives and offers the
-// result as a .glb. When done, document.body.dataset.state is "ready" (or "error: MESSAGE"),
-// so that scripts and tests can wait for it.
+// result as a .glb. document.body.dataset.state is "waiting" once the page takes files, "busy"
+// while it works on one, then "ready" (or "error: FILE: MESSAGE"), so that scripts and tests can
+// wait for it.
 import { WebIO } from '@gltf-transform/core';
 import { ALL_EXTENSIONS } from '@gltf-transform/extensions';
 import { tangents, unweld, weld } from '@gltf-transform/functions';
@@ -116,6 +117,7 @@ drop.addEventListener('drop', (event) => {
 });
 document.getElementById('files').addEventListener('change', (event) => run(() => readDropped([...event.target.files])));
 
+document.body.dataset.state = 'waiting';  // for a file: the handlers are in place
 const url = new URLSearchParams(location.search).get('url');
 if (url) {
   const name = decodeURIComponent(new URL(url, location.href).pathname.split('/').pop());
