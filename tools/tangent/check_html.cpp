@@ -37,7 +37,8 @@ namespace {
 namespace fs = std::filesystem;
 
 constexpr int kThumbnailWidth = 320, kThumbnailHeight = 240;
-constexpr std::size_t kMaxThumbnails = 40;  // rendering one takes about a second
+constexpr std::size_t kMaxThumbnails = 40;          // rendering one takes about a second
+constexpr const char* kThumbnailTimeLimit = "120";  // seconds (coreutils' timeout): a hung viewer must not hang CI
 // A framed box's half-diagonal is at least this share of its primitive's, so that a sliver
 // shows with its surroundings.
 constexpr float kMinFrameShare = 0.4f;
@@ -154,11 +155,12 @@ Renderer findRenderer() {
                   (ec ? std::string() : " (" + beside.parent_path().string() + ")") +
                   " nor on PATH (set TANGENT_VIEW to its path)"};
   }
+  if (const auto timeout = onPath("timeout")) renderer.prefix = {timeout->string(), kThumbnailTimeLimit};
   const char* display = std::getenv("DISPLAY");
   if (!display || !*display) {
     const auto xvfbRun = onPath("xvfb-run");
     if (!xvfbRun) return {{}, "no display: DISPLAY is unset and xvfb-run is not installed (Debian package xvfb)"};
-    renderer.prefix = {xvfbRun->string(), "-a", "-s", "-screen 0 1280x1024x24"};
+    renderer.prefix.insert(renderer.prefix.end(), {xvfbRun->string(), "-a", "-s", "-screen 0 1280x1024x24"});
   }
   renderer.prefix.push_back(viewer.string());
   return renderer;
