@@ -174,6 +174,9 @@ class Browser:
         if message["method"] == "Runtime.consoleAPICalled":
             text = " ".join(str(a.get("value", a.get("description", ""))) for a in params.get("args", []))
             page.console.append(f"console.{params.get('type')}: {text}")
+        elif message["method"] == "Log.entryAdded":  # what the browser itself says: refused scripts, failed loads
+            entry = params.get("entry", {})
+            page.console.append(f"{entry.get('source')} {entry.get('level')}: {entry.get('text')} {entry.get('url', '')}".rstrip())
         elif message["method"] == "Runtime.exceptionThrown":
             details = params.get("exceptionDetails", {})
             page.console.append(f"uncaught: {details.get('exception', {}).get('description') or details.get('text')}")
@@ -204,6 +207,7 @@ class Browser:
         page = Page(self, session)
         self._pages[session] = page
         page.call("Runtime.enable")
+        page.call("Log.enable")
         page.call("Page.enable")
         page.call("Page.navigate", url=url)
         # Page.navigate answers before the new document replaces about:blank.
