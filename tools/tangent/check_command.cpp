@@ -122,10 +122,10 @@ void writeText(std::ostream& out, const std::vector<gltf::FileCheck>& checks) {
         out << ")\n";
       }
       if (p.referenceUnresolved)
-        out << "    (" << p.referenceUnresolved << " corners have a UV orientation their rounded positions/UVs leave open; not compared)\n";
+        out << "    (" << p.referenceUnresolved << " corners have a frame their rounded positions/UVs leave open; not compared)\n";
       if (p.handednessUndecided || p.referenceWUndecided)
         out << "    (" << p.handednessUndecided << " triangles have a UV orientation their rounded positions/UVs leave open: handedness "
-            << "skips them, reference compares the angle but not w at their " << p.referenceWUndecided << " corners)\n";
+            << "skips them, reference compares the angle but not w at the " << p.referenceWUndecided << " of their corners where w agrees)\n";
       if (p.referenceUndefined) out << "    (" << p.referenceUndefined << " corners have no defined reference frame; not compared)\n";
     }
     for (const auto& s : file.skipped) out << "  skipped " << s << "\n";

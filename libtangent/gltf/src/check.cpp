@@ -317,8 +317,14 @@ void checkDrawnPart(const PrimitiveGeometry& buffer, const UsedVertices& used, c
       const double angle = angleBetweenDegrees(storedTangent, fresh);
       const double limit = referenceLimitDegrees(stored.limits, options.referenceToleranceDegrees, extra);
       // w follows the triangle's UV orientation: where rounding leaves that open, only the
-      // angle is compared (handedness skips the triangle alike).
+      // angle is compared (handedness skips the triangle alike), and only where w agrees: where
+      // it differs, the rounding turned the triangle over, and its corner's frame now comes from
+      // the group of the other orientation at the vertex, which no allowance bounds.
       const bool wDecided = allowance.decided(c / 3);
+      if (!wDecided && (storedTangent[3] < 0) != (fresh[3] < 0)) {
+        ++result.referenceUnresolved;
+        continue;
+      }
       if (!wDecided) ++result.referenceWUndecided;
       const float comparedW = wDecided ? storedTangent[3] : fresh[3];
       if (referenceFails(angle, comparedW, fresh[3], limit)) {

@@ -92,10 +92,11 @@ struct PrimitiveCheck {
   double referenceLimitDegrees = 0;     // before the per-corner allowance for rounded positions/UVs
   std::vector<CheckFinding> findings;
   std::uint64_t referenceUndefined = 0; // corners the reference method leaves arbitrary: not compared
-  std::uint64_t referenceUnresolved = 0; // corners whose UV orientation rounded positions/UVs leave open: not compared
+  std::uint64_t referenceUnresolved = 0; // corners whose frame rounded positions/UVs leave open (the allowance reaches 180 deg, or
+                                         // their triangle's UV orientation is undecided and w differs): not compared
   double referenceAllowanceMaxDegrees = 0;  // largest per-corner allowance for rounded positions/UVs
   std::uint64_t handednessUndecided = 0;  // triangles whose UV orientation rounded positions/UVs leave open: not judged
-  std::uint64_t referenceWUndecided = 0;  // corners of such triangles whose angle was compared but not their w
+  std::uint64_t referenceWUndecided = 0;  // corners of such triangles whose angle was compared (w agrees) but not their w
   // NORMAL as glTF readers treat it: lengths further than kNormalLengthKept (normals.hpp) from 1
   // are normalized before the reference is computed; a length beyond what the component type's
   // rounding explains is a warning, not a finding.
