@@ -212,16 +212,8 @@ void checkDrawnPart(const PrimitiveGeometry& buffer, const UsedVertices& used, c
   const bool flatNormals = part.normals.empty();
   PrimitiveGeometry flat;
   if (flatNormals) {
-    GeneratedNormals generated = generateNormals(part.positions, part.corners, /*smooth=*/false, 0);
-    flat.vertexCount = generated.source.size();
-    flat.positions.resize(3 * flat.vertexCount);
-    flat.uvs.resize(2 * flat.vertexCount);
-    for (std::size_t v = 0; v < flat.vertexCount; ++v) {
-      std::copy_n(&part.positions[3 * generated.source[v]], 3, &flat.positions[3 * v]);
-      std::copy_n(&part.uvs[2 * generated.source[v]], 2, &flat.uvs[2 * v]);
-    }
-    flat.normals = std::move(generated.normals);
-    flat.corners = std::move(generated.corners);
+    std::vector<std::uint32_t> source;
+    flat = withGeneratedNormals(part, /*smooth=*/false, 0, source);
   }
   const PrimitiveGeometry& frames = flatNormals ? flat : part;
   const ReferenceAllowance allowance = referenceAllowance(frames, rounding);
