@@ -213,6 +213,11 @@ void writeJunit(std::ostream& out, const std::vector<gltf::FileCheck>& checks, c
         }
       }
     }
+    // Warnings (accepted, not failures) as the suite's standard output, a line per warning
+    // naming its primitive: JUnit has no warning state, and Jenkins shows the suite's output.
+    std::string warnings;
+    for (const auto& p : file.primitives)
+      for (const auto& warning : p.warnings) warnings += "WARN " + primitiveName(p) + ": " + warning + "\n";
     for (const auto& reason : file.skipped) {
       const std::size_t colon = reason.find(": ");
       ++skipped;
@@ -223,7 +228,9 @@ void writeJunit(std::ostream& out, const std::vector<gltf::FileCheck>& checks, c
     suites << "  <testsuite name=\"" << fileAttribute << "\" tests=\"" << tests << "\" failures=\"" << failures << "\" errors=\""
            << errors << "\" skipped=\"" << skipped << "\" time=\"" << seconds3(file.seconds) << "\" timestamp=\""
            << times.startedUtc[i] << "\" file=\"" << fileAttribute << "\">\n"
-           << cases.str() << "  </testsuite>\n";
+           << cases.str();
+    if (!warnings.empty()) suites << "    <system-out>" << xmlEscape(warnings) << "</system-out>\n";
+    suites << "  </testsuite>\n";
     allTests += tests;
     allFailures += failures;
     allErrors += errors;
@@ -300,13 +307,29 @@ const char* checkDescription(std::size_t index) {
 }
 
 // SARIF 2.1.0 (OASIS): one run, a rule per check, a result per finding located at the file and
-// the primitive (a logical location named as a JSON pointer into the document).
+// the primitive (a logical location named as a JSON pointer into the document); warnings as
+// results of level "warning" under one more rule.
+constexpr const char* kSarifWarningRule = "warning";
+
+nlohmann::ordered_json primitiveLocations(const nlohmann::ordered_json& artifact, const gltf::PrimitiveCheck& p) {
+  using Json = nlohmann::ordered_json;
+  const std::string pointer = "/meshes/" + std::to_string(p.mesh) + "/primitives/" + std::to_string(p.primitive);
+  return Json::array({{{"physicalLocation", {{"artifactLocation", artifact}}},
+                       {"logicalLocations", Json::array({{{"name", primitiveName(p)}, {"fullyQualifiedName", pointer}, {"kind", "object"}}})}}});
+}
+
 void writeSarif(std::ostream& out, const std::vector<gltf::FileCheck>& checks, const gltf::CheckOptions& options) {
   using Json = nlohmann::ordered_json;
   Json rules = Json::array();
   for (std::size_t i = 0; i < gltf::kCheckCount; ++i)
     rules.push_back({{"id", gltf::kCheckNames[i]}, {"name", gltf::kCheckNames[i]}, {"shortDescription", {{"text", checkDescription(i)}}},
                      {"defaultConfiguration", {{"level", "error"}, {"enabled", options.enabled.test(i)}}}});
+  // Warnings (PrimitiveCheck::warnings): accepted, not failures; one rule after the checks.
+  const std::size_t warningRule = rules.size();
+  rules.push_back({{"id", kSarifWarningRule},
+                   {"name", kSarifWarningRule},
+                   {"shortDescription", {{"text", "Accepted, but not as the glTF specification asks (NORMAL not unit length); not a failure."}}},
+                   {"defaultConfiguration", {{"level", "warning"}}}});
   Json results = Json::array(), notifications = Json::array();
   for (const auto& file : checks) {
     const Json artifact = {{"uri", text::uriPath(file.file)}};
@@ -320,18 +343,20 @@ void writeSarif(std::ostream& out, const std::vector<gltf::FileCheck>& checks, c
         Json worst = Json::array();
         for (const auto& s : f.worst) worst.push_back({{"element", s.element}, {"severity", s.severity}, {"detail", s.detail}});
         properties["worst"] = worst;
-        const std::string pointer = "/meshes/" + std::to_string(p.mesh) + "/primitives/" + std::to_string(p.primitive);
         results.push_back(
             {{"ruleId", f.check},
              {"ruleIndex", ruleIndex},
              {"level", "error"},
              {"message", {{"text", primitiveName(p) + ": " + findingSummary(f)}}},
-             {"locations", Json::array({{{"physicalLocation", {{"artifactLocation", artifact}}},
-                                         {"logicalLocations", Json::array({{{"name", primitiveName(p)},
-                                                                             {"fullyQualifiedName", pointer},
-                                                                             {"kind", "object"}}})}}})},
+             {"locations", primitiveLocations(artifact, p)},
              {"properties", properties}});
       }
+      for (const auto& warning : p.warnings)
+        results.push_back({{"ruleId", kSarifWarningRule},
+                           {"ruleIndex", warningRule},
+                           {"level", "warning"},
+                           {"message", {{"text", primitiveName(p) + ": " + warning}}},
+                           {"locations", primitiveLocations(artifact, p)}});
     }
   }
   bool unreadable = false;
