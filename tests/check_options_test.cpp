@@ -172,6 +172,27 @@ TEST(CheckOptions, AllowMissing) {
   EXPECT_EQ(runCommand(cli + " check --allow-missing " + quoted(nonUnitQuad(dir.path()))).exitCode, 1);
 }
 
+TEST(CheckOptions, ReferenceGeneratorByName) {
+  TempDir dir;
+  const fs::path quad = writeQuad(dir.path(), "quad");
+  // A flat quad: every generator gives its frames, so each reference passes; the settings name it.
+  for (const std::string name : {"mikktspace", "lengyel/angle", "lengyel/area", "lengyel/uniform", "flat"}) {
+    const auto run = runCommand(cli + " check --format json --reference " + name + " " + quoted(quad));
+    EXPECT_EQ(run.exitCode, 0) << name << ": " << run.output;
+    EXPECT_EQ(Json::parse(run.output)["settings"]["reference"], name);
+  }
+  EXPECT_EQ(checkJson("--reference lengyel " + quoted(quad))["settings"]["reference"], "lengyel/angle");
+  EXPECT_EQ(checkJson("--reference flat --method lengyel " + quoted(quad))["settings"]["reference"], "lengyel/angle");
+  const auto bad = runCommand("(" + cli + " check --reference lengyel/volume " + quoted(quad) + " 2>&1)");
+  EXPECT_EQ(bad.exitCode, 2);
+  EXPECT_NE(bad.output.find("--reference must be mikktspace, lengyel/angle"), std::string::npos) << bad.output;
+  const fs::path config = dir / "tangent-check.json";
+  std::ofstream(config) << R"({"reference": "lengyel/uniform"})";
+  EXPECT_EQ(checkJson("--config " + quoted(config) + " " + quoted(quad))["settings"]["reference"], "lengyel/uniform");
+  std::ofstream(config) << R"({"reference": "best"})";
+  EXPECT_EQ(runCommand("(" + cli + " check --config " + quoted(config) + " " + quoted(quad) + " 2>/dev/null)").exitCode, 2);
+}
+
 TEST(CheckOptions, ConfigFileWithTheSameSettingsAndCommandLineOverrides) {
   TempDir dir;
   const fs::path turned = turnedQuad(dir.path(), "turned", 5, 0);

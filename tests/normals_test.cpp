@@ -419,4 +419,43 @@ TEST(Identify, RandomlyTurnedTangentsAreNoneOfThese) {
   EXPECT_GT(check.primitives[0].generators[0].medianDegrees, tangent::gltf::kIdentifyMedianDegrees);
 }
 
+// check --reference NAME: each generator's bake passes `reference` measured against that
+// generator and fails it against at least one other (the leaning grid makes them differ).
+TEST(Identify, ReferenceMeasuresAgainstTheChosenGenerator) {
+  TempDir dir;
+  const fs::path input = tangent::testing::writeAsset(tangent::testing::meshAsset("leaning", leaningGrid()), dir / "in", true);
+  int index = 0;
+  for (const tangent::gltf::Generator& baked : tangent::gltf::kGenerators) {
+    tangent::gltf::BakeOptions bake;
+    bake.tangents.method = baked.method;
+    bake.tangents.weighting = baked.weighting;
+    const fs::path output = dir / ("leaning-" + std::to_string(index++) + ".glb");
+    tangent::gltf::bakeFile(input, output, bake);
+    int failedAgainstOthers = 0;
+    for (const tangent::gltf::Generator& reference : tangent::gltf::kGenerators) {
+      const std::string label = tangent::gltf::toString(baked) + " against " + tangent::gltf::toString(reference);
+      const std::optional<tangent::gltf::Generator> parsed = tangent::gltf::parseGenerator(tangent::gltf::toString(reference));
+      ASSERT_TRUE(parsed.has_value()) << label;
+      tangent::gltf::CheckOptions options;
+      options.method = parsed->method;
+      options.weighting = parsed->weighting;
+      const tangent::gltf::FileCheck check = tangent::gltf::checkFile(output, options);
+      ASSERT_EQ(check.primitives.size(), 1u) << label;
+      bool referenceFailed = false;
+      for (const auto& f : check.primitives[0].findings) {
+        referenceFailed = referenceFailed || f.check == "reference";
+        if (f.check == "reference") EXPECT_NE(f.message.find(tangent::gltf::toString(reference) + " tangents"), std::string::npos) << f.message;
+      }
+      if (reference == baked) {
+        EXPECT_FALSE(referenceFailed) << label;
+      } else {
+        failedAgainstOthers += referenceFailed;
+      }
+    }
+    EXPECT_GE(failedAgainstOthers, 1) << tangent::gltf::toString(baked);
+  }
+  EXPECT_FALSE(tangent::gltf::parseGenerator("lengyel/volume").has_value());
+  EXPECT_EQ(tangent::gltf::parseGenerator("lengyel"), (tangent::gltf::Generator{tangent::Method::lengyel, tangent::Weighting::angle}));
+}
+
 }  // namespace identify

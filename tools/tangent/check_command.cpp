@@ -40,7 +40,9 @@ const char* kCheckUsage =
     "  --allow-missing     a primitive without TANGENT is skipped, not a finding (clients compute MikkTSpace)\n"
     "  --config FILE.json  settings from a file (only, ignore, tolerance, method, allowMissing, all);\n"
     "                      options on the command line override it\n"
-    "  --method NAME       mikktspace (default) | lengyel: what reference is measured against\n"
+    "  --reference NAME    what reference is measured against: mikktspace (default) | lengyel/angle |\n"
+    "                      lengyel/area | lengyel/uniform | flat (the names --identify reports)\n"
+    "  --method NAME       mikktspace | lengyel: --reference mikktspace or lengyel/angle\n"
     "  --all               check every triangle primitive (TEXCOORD_0 without a normal texture)\n"
     "  --identify          name the generator closest to the stored tangents (mikktspace, lengyel/angle,\n"
     "                      lengyel/area, lengyel/uniform, flat) with its median and max angle, or none of these\n"
@@ -465,6 +467,12 @@ int checkCommand(const std::vector<std::string>& args) {
       const std::optional<Method> method = hasValue ? parseMethod(args[++i]) : std::nullopt;
       if (!method || *method == Method::flat) return usageError("--method must be mikktspace or lengyel");
       options.method = *method;
+      options.weighting = Weighting::angle;
+    } else if (arg == "--reference") {
+      const std::optional<gltf::Generator> generator = hasValue ? gltf::parseGenerator(args[++i]) : std::nullopt;
+      if (!generator) return usageError("--reference must be mikktspace, lengyel/angle, lengyel/area, lengyel/uniform or flat");
+      options.method = generator->method;
+      options.weighting = generator->weighting;
     } else if (arg == "--all") {
       options.all = true;
     } else if (arg == "--identify") {

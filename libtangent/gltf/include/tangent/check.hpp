@@ -24,8 +24,23 @@ inline constexpr std::size_t kCheckCount = std::size(kCheckNames);
 inline const char* toString(CheckId id) { return kCheckNames[static_cast<std::size_t>(id)]; }
 std::optional<CheckId> parseCheck(std::string_view name);
 
+// A tangent generator the library has, named as `check --reference` takes it and `--identify`
+// reports it: "mikktspace", "lengyel/angle", "lengyel/area", "lengyel/uniform", "flat" (the
+// weighting only matters to lengyel; "lengyel" alone is lengyel/angle).
+struct Generator {
+  Method method = Method::mikktspace;
+  Weighting weighting = Weighting::angle;
+  bool operator==(const Generator&) const = default;
+};
+inline constexpr Generator kGenerators[] = {{Method::mikktspace, Weighting::angle}, {Method::lengyel, Weighting::angle},
+                                            {Method::lengyel, Weighting::area},      {Method::lengyel, Weighting::uniform},
+                                            {Method::flat, Weighting::angle}};
+std::string toString(const Generator& generator);
+std::optional<Generator> parseGenerator(std::string_view name);
+
 struct CheckOptions {
-  Method method = Method::mikktspace;     // what `reference` recomputes with
+  Method method = Method::mikktspace;     // what `reference` recomputes with (--reference, --method)
+  Weighting weighting = Weighting::angle;  // with it: lengyel's weighting
   double orthogonalToleranceDegrees = 1.0;  // `orthogonal`, on top of the rounding limits
   double referenceToleranceDegrees = 1.0;   // `reference`, on top of the rounding limits
   std::bitset<kCheckCount> enabled = std::bitset<kCheckCount>().set();  // --only / --ignore
@@ -38,7 +53,7 @@ struct CheckOptions {
 };
 
 // Reads a check configuration (JSON: only, ignore, tolerance {orthogonal, reference}, method,
-// allowMissing, all; README "tangent check") into `options`. Throws std::runtime_error naming
+// reference (a generator name), allowMissing, all; README "tangent check") into `options`. Throws std::runtime_error naming
 // the file and the member that is wrong.
 void applyCheckConfig(const std::filesystem::path& file, CheckOptions& options);
 
