@@ -423,6 +423,39 @@ TEST(CheckFormats, WarningsInEveryFormat) {
   EXPECT_EQ(validated.exitCode, 0) << validated.output;
 }
 
+// --identify's generator per primitive in SARIF (the run's property bag, schema-valid) and JUnit
+// (suite properties, valid against tests/schemas/junit.xsd), as in JSON.
+TEST(CheckFormats, IdentifiedGeneratorInSarifAndJunit) {
+  TempDir dir;
+  const fs::path quad = writeQuad(dir.path(), "quad");
+  const std::string generator = checkJson("--identify " + quoted(quad))["files"][0]["primitives"][0]["generator"];
+  EXPECT_FALSE(generator.empty());
+  const fs::path sarifPath = dir / "check.sarif";
+  EXPECT_EQ(runCommand(cli + " check --identify --format sarif -o " + quoted(sarifPath) + " " + quoted(quad)).exitCode, 0);
+  const Json sarif = Json::parse(std::ifstream(sarifPath));
+  const Json& entry = sarif["runs"][0]["properties"]["generators"][0];
+  EXPECT_EQ(entry["generator"], generator);
+  EXPECT_EQ(entry["primitive"], "/meshes/0/primitives/0");
+  EXPECT_EQ(entry["uri"], quad.string());
+  const fs::path junitPath = dir / "report.xml";
+  EXPECT_EQ(runCommand(cli + " check --identify --format junit -o " + quoted(junitPath) + " " + quoted(quad)).exitCode, 0);
+  const auto valid = runCommand("xmllint --noout --schema " + quoted(fs::path(TANGENT_SOURCE_DIR) / "tests/schemas/junit.xsd") + " " +
+                                quoted(junitPath));
+  EXPECT_EQ(valid.exitCode, 0) << valid.output;
+  const auto property = runCommand("/usr/bin/python3 -c \"import sys, xml.etree.ElementTree as ET; "
+                                   "p = ET.parse(sys.argv[1]).getroot().find('testsuite/properties/property'); "
+                                   "print(p.get('name'), '=', p.get('value'), end='')\" " + quoted(junitPath));
+  EXPECT_EQ(property.output, "generator mesh 0 primitive 0 = " + generator);
+  // Without --identify neither carries it.
+  const auto plain = Json::parse(runCommand(cli + " check --format sarif " + quoted(quad)).output);
+  EXPECT_FALSE(plain["runs"][0].contains("properties"));
+  const fs::path node = fs::path(TANGENT_SOURCE_DIR) / "tests/node";
+  if (!fs::exists(node / "node_modules/@microsoft/sarif-multitool-linux/sarif-2.1.0.json") || !fs::exists(node / "node_modules/ajv-formats"))
+    TANGENT_SKIP_OR_FAIL("tests/node/node_modules lacks the SARIF schema or ajv: run `npm ci` in tests/node (scripts/test.sh does)");
+  const auto validated = runCommand("node " + quoted(node / "validate_sarif.mjs") + " " + quoted(sarifPath));
+  EXPECT_EQ(validated.exitCode, 0) << validated.output;
+}
+
 TEST(CheckFormats, DashWritesToStandardOutput) {
   TempDir dir;
   const fs::path quad = nonUnitQuad(dir.path());

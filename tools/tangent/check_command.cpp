@@ -227,10 +227,16 @@ void writeJunit(std::ostream& out, const std::vector<gltf::FileCheck>& checks, c
       cases << ">\n      <skipped message=\"" << xmlEscape(colon == std::string::npos ? reason : reason.substr(colon + 2))
             << "\"/>\n    </testcase>\n";
     }
+    // --identify: the generator named per primitive, as suite properties.
+    std::string properties;
+    for (const auto& p : file.primitives)
+      if (!p.generator.empty())
+        properties += "      <property name=\"" + xmlEscape("generator " + primitiveName(p)) + "\" value=\"" + xmlEscape(p.generator) + "\"/>\n";
     suites << "  <testsuite name=\"" << fileAttribute << "\" tests=\"" << tests << "\" failures=\"" << failures << "\" errors=\""
            << errors << "\" skipped=\"" << skipped << "\" time=\"" << seconds3(file.seconds) << "\" timestamp=\""
-           << times.startedUtc[i] << "\" file=\"" << fileAttribute << "\">\n"
-           << cases.str();
+           << times.startedUtc[i] << "\" file=\"" << fileAttribute << "\">\n";
+    if (!properties.empty()) suites << "    <properties>\n" << properties << "    </properties>\n";
+    suites << cases.str();
     if (!warnings.empty()) suites << "    <system-out>" << xmlEscape(warnings) << "</system-out>\n";
     suites << "  </testsuite>\n";
     allTests += tests;
@@ -332,9 +338,15 @@ void writeSarif(std::ostream& out, const std::vector<gltf::FileCheck>& checks, c
                    {"name", kSarifWarningRule},
                    {"shortDescription", {{"text", "Accepted, but not as the glTF specification asks (NORMAL not unit length); not a failure."}}},
                    {"defaultConfiguration", {{"level", "warning"}}}});
-  Json results = Json::array(), notifications = Json::array();
+  Json results = Json::array(), notifications = Json::array(), generators = Json::array();
   for (const auto& file : checks) {
     const Json artifact = {{"uri", text::uriPath(file.file)}};
+    // --identify: the generator named per primitive, in the run's property bag.
+    for (const auto& p : file.primitives)
+      if (!p.generator.empty())
+        generators.push_back({{"uri", artifact["uri"]},
+                              {"primitive", "/meshes/" + std::to_string(p.mesh) + "/primitives/" + std::to_string(p.primitive)},
+                              {"generator", p.generator}});
     if (!file.error.empty())
       notifications.push_back({{"level", "error"}, {"message", {{"text", file.error}}},
                                {"locations", Json::array({{{"physicalLocation", {{"artifactLocation", artifact}}}}})}});
@@ -366,7 +378,7 @@ void writeSarif(std::ostream& out, const std::vector<gltf::FileCheck>& checks, c
   Json invocation = {{"executionSuccessful", !unreadable}};
   if (!notifications.empty()) invocation["toolExecutionNotifications"] = notifications;
   invocation["properties"] = {{"settings", gltf::toJson(options)}};
-  const Json log = {
+  Json log = {
       {"$schema", "https://json.schemastore.org/sarif-2.1.0.json"},
       {"version", "2.1.0"},
       {"runs", Json::array({{{"tool", {{"driver", {{"name", "tangent check"},
@@ -374,6 +386,7 @@ void writeSarif(std::ostream& out, const std::vector<gltf::FileCheck>& checks, c
                                                    {"rules", rules}}}}},
                              {"invocations", Json::array({invocation})},
                              {"results", results}}})}};
+  if (!generators.empty()) log["runs"][0]["properties"] = {{"generators", generators}};
   out << text::dumpJson(log, 2) << "\n";
 }
 
