@@ -335,3 +335,17 @@ def test_check_result_carries_warnings(tmp_path):
     assert primitive["warnings"][0].startswith("NORMAL is not unit length: worst 0.5,")
     done = subprocess.run([CLI, "check", str(path), "--format", "json"], capture_output=True, check=True)
     assert result == json.loads(done.stdout)["files"][0]
+
+
+def test_check_reference_names_the_generator(tmp_path):
+    """reference= measures `reference` against a chosen generator, as the CLI's --reference."""
+    output = tmp_path / "out.glb"
+    libtangent.bake(DEMO / "demo.gltf", output, method="lengyel", weighting="area")
+    result = libtangent.check(output, reference="lengyel/area")
+    assert result["status"] == "clean"
+    done = subprocess.run([CLI, "check", str(output), "--format", "json", "--reference", "lengyel/area"], capture_output=True, check=True)
+    report = json.loads(done.stdout)
+    assert report["settings"]["reference"] == "lengyel/area"
+    assert result == report["files"][0]
+    with pytest.raises(ValueError, match="reference"):
+        libtangent.check(output, reference="lengyel/volume")
