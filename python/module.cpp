@@ -284,10 +284,16 @@ and the bake report when baked in this run.)");
       [](const std::filesystem::path& input, const std::string& methodName, double tolerance, bool all,
          std::optional<std::filesystem::path> assetRoot, std::optional<std::vector<std::string>> only,
          const std::vector<std::string>& ignore, bool allowMissing, std::optional<double> orthogonalTolerance,
-         std::optional<double> referenceTolerance) {
+         std::optional<double> referenceTolerance, std::optional<std::string> reference) {
         tangent::gltf::CheckOptions options;
         options.method = method(methodName);
         if (options.method == tangent::Method::flat) badArgument("method", "check compares with mikktspace or lengyel");
+        if (reference) {
+          const std::optional<tangent::gltf::Generator> generator = tangent::gltf::parseGenerator(*reference);
+          if (!generator) badArgument("reference", "'" + *reference + "' is not mikktspace, lengyel/angle, lengyel/area, lengyel/uniform or flat");
+          options.method = generator->method;
+          options.weighting = generator->weighting;
+        }
         auto degrees = [](const char* argument, double value) {
           if (!(value > 0 && value <= 180)) badArgument(argument, "must be degrees in (0, 180]");
           return value;
@@ -318,12 +324,15 @@ and the bake report when baked in this run.)");
       py::arg("path"), py::kw_only(), py::arg("method") = "mikktspace", py::arg("tolerance") = 1.0, py::arg("all") = false,
       py::arg("asset_root") = py::none(), py::arg("only") = py::none(), py::arg("ignore") = std::vector<std::string>(),
       py::arg("allow_missing") = false, py::arg("orthogonal_tolerance") = py::none(), py::arg("reference_tolerance") = py::none(),
+      py::arg("reference") = py::none(),
       R"(Check the TANGENTs stored in a glTF file, as `tangent check PATH --format json` does.
 
 Per primitive that needs tangents: present, format, finite, unit, w, w-uniform, orthogonal,
 handedness, reference (within `tolerance` degrees of freshly computed `method` tangents).
 
 method: mikktspace (default) | lengyel
+reference: the generator reference measures against, as `--reference` names it (mikktspace,
+  lengyel/angle, lengyel/area, lengyel/uniform, flat); overrides method
 tolerance: degrees, for orthogonal and reference (default 1), on top of the rounding limits
 orthogonal_tolerance, reference_tolerance: the same for one check (default: tolerance)
 only: run only these checks (names as above); ignore: leave these out

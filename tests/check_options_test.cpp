@@ -27,11 +27,14 @@ std::string quoted(const fs::path& path) { return "'" + path.string() + "'"; }
 
 // A unit quad in the XY plane, UVs with glTF's top-left origin, normal-mapped; the frame at
 // every vertex is T = (1, 0, 0), w = +1 (w = -sign(UV area), and the UV area is negative).
-// `tangents` (4 per vertex) replace that when given; `withTangent` false leaves TANGENT out.
-fs::path writeQuad(const fs::path& dir, const std::string& name, std::vector<float> tangents = {}, bool withTangent = true) {
+// `tangents` (4 per vertex) replace that when given; `withTangent` false leaves TANGENT out;
+// `normalLength` is the stored NORMAL's length.
+fs::path writeQuad(const fs::path& dir, const std::string& name, std::vector<float> tangents = {}, bool withTangent = true,
+                   float normalLength = 1) {
   fs::create_directories(dir);
   const std::vector<float> positions = {0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 1, 0};
-  const std::vector<float> normals = {0, 0, 1, 0, 0, 1, 0, 0, 1, 0, 0, 1};
+  const float n = normalLength;
+  const std::vector<float> normals = {0, 0, n, 0, 0, n, 0, 0, n, 0, 0, n};
   const std::vector<float> uvs = {0, 1, 1, 1, 1, 0, 0, 0};
   if (tangents.empty()) tangents = {1, 0, 0, 1, 1, 0, 0, 1, 1, 0, 0, 1, 1, 0, 0, 1};
   const std::vector<std::uint16_t> indices = {0, 1, 2, 0, 2, 3};
@@ -169,6 +172,27 @@ TEST(CheckOptions, AllowMissing) {
   EXPECT_EQ(runCommand(cli + " check --allow-missing " + quoted(nonUnitQuad(dir.path()))).exitCode, 1);
 }
 
+TEST(CheckOptions, ReferenceGeneratorByName) {
+  TempDir dir;
+  const fs::path quad = writeQuad(dir.path(), "quad");
+  // A flat quad: every generator gives its frames, so each reference passes; the settings name it.
+  for (const std::string name : {"mikktspace", "lengyel/angle", "lengyel/area", "lengyel/uniform", "flat"}) {
+    const auto run = runCommand(cli + " check --format json --reference " + name + " " + quoted(quad));
+    EXPECT_EQ(run.exitCode, 0) << name << ": " << run.output;
+    EXPECT_EQ(Json::parse(run.output)["settings"]["reference"], name);
+  }
+  EXPECT_EQ(checkJson("--reference lengyel " + quoted(quad))["settings"]["reference"], "lengyel/angle");
+  EXPECT_EQ(checkJson("--reference flat --method lengyel " + quoted(quad))["settings"]["reference"], "lengyel/angle");
+  const auto bad = runCommand("(" + cli + " check --reference lengyel/volume " + quoted(quad) + " 2>&1)");
+  EXPECT_EQ(bad.exitCode, 2);
+  EXPECT_NE(bad.output.find("--reference must be mikktspace, lengyel/angle"), std::string::npos) << bad.output;
+  const fs::path config = dir / "tangent-check.json";
+  std::ofstream(config) << R"({"reference": "lengyel/uniform"})";
+  EXPECT_EQ(checkJson("--config " + quoted(config) + " " + quoted(quad))["settings"]["reference"], "lengyel/uniform");
+  std::ofstream(config) << R"({"reference": "best"})";
+  EXPECT_EQ(runCommand("(" + cli + " check --config " + quoted(config) + " " + quoted(quad) + " 2>/dev/null)").exitCode, 2);
+}
+
 TEST(CheckOptions, ConfigFileWithTheSameSettingsAndCommandLineOverrides) {
   TempDir dir;
   const fs::path turned = turnedQuad(dir.path(), "turned", 5, 0);
@@ -229,8 +253,10 @@ TEST(CheckFormats, SarifStructureAndContent) {
   const Json& sarifRun = log["runs"][0];
   const Json& driver = sarifRun["tool"]["driver"];
   EXPECT_EQ(driver["name"], "tangent check");
-  ASSERT_EQ(driver["rules"].size(), std::size(tangent::gltf::kCheckNames));
-  for (std::size_t i = 0; i < driver["rules"].size(); ++i) {
+  // A rule per check, then the one for warnings (CheckFormats.WarningsInEveryFormat).
+  ASSERT_EQ(driver["rules"].size(), std::size(tangent::gltf::kCheckNames) + 1);
+  EXPECT_EQ(driver["rules"].back()["defaultConfiguration"]["level"], "warning");
+  for (std::size_t i = 0; i < std::size(tangent::gltf::kCheckNames); ++i) {
     EXPECT_EQ(driver["rules"][i]["id"], tangent::gltf::kCheckNames[i]);
     EXPECT_TRUE(driver["rules"][i]["shortDescription"]["text"].is_string());
   }
@@ -342,6 +368,92 @@ for suite in root.findall('testsuite'):
   expected += "True " + std::to_string(checks) + " 1 " + std::to_string(checks - 1) + "\n";
   for (const auto& name : documentedOrder) expected += "  " + name + (name == "present" ? " failure\n" : " skipped\n");
   EXPECT_EQ(parsed.output, expected);
+}
+
+// A warning (here: NORMAL stored at half length, which readers normalize; docs/check.md) is
+// not a failure, and every report format carries it: text WARN, JSON `warnings`, a GitHub
+// ::warning annotation, a SARIF result of level "warning" (valid against the schema), and the
+// JUnit suite's <system-out> (valid against tests/schemas/junit.xsd).
+TEST(CheckFormats, WarningsInEveryFormat) {
+  TempDir dir;
+  const fs::path quad = writeQuad(dir.path(), "short-normals", {}, true, 0.5f);
+  const std::string warning = "NORMAL is not unit length: worst 0.5, beyond the 5e-05 of float rounding; 4 normals normalized first, as glTF readers do";
+
+  const auto text = runCommand(cli + " check " + quoted(quad));
+  EXPECT_EQ(text.exitCode, 0) << text.output;
+  EXPECT_NE(text.output.find("    WARN " + warning + "\n"), std::string::npos) << text.output;
+
+  const Json json = checkJson(quoted(quad));
+  const Json& primitive = json["files"][0]["primitives"][0];
+  EXPECT_TRUE(primitive["findings"].empty());
+  EXPECT_EQ(primitive["warnings"], Json::array({warning}));
+
+  const auto github = runCommand(cli + " check --format github " + quoted(quad));
+  EXPECT_EQ(github.exitCode, 0);
+  EXPECT_EQ(github.output, "::warning file=" + quad.string() + ",title=tangent check (mesh 0 primitive 0)::" + warning + "\n"
+                           "::notice title=tangent check::1 file(s), 1 primitive(s) checked, 0 finding(s)\n");
+
+  const fs::path sarifPath = dir / "check.sarif";
+  EXPECT_EQ(runCommand(cli + " check --format sarif -o " + quoted(sarifPath) + " " + quoted(quad)).exitCode, 0);
+  const Json sarif = Json::parse(std::ifstream(sarifPath));
+  const Json& sarifRun = sarif["runs"][0];
+  ASSERT_EQ(sarifRun["results"].size(), 1u);
+  const Json& result = sarifRun["results"][0];
+  EXPECT_EQ(result["level"], "warning");
+  EXPECT_EQ(result["message"]["text"], "mesh 0 primitive 0: " + warning);
+  EXPECT_EQ(result["locations"][0]["logicalLocations"][0]["fullyQualifiedName"], "/meshes/0/primitives/0");
+  const Json& rule = sarifRun["tool"]["driver"]["rules"][result["ruleIndex"].get<std::size_t>()];
+  EXPECT_EQ(rule["id"], result["ruleId"]);
+  EXPECT_EQ(rule["defaultConfiguration"]["level"], "warning");
+
+  const fs::path junitPath = dir / "report.xml";
+  EXPECT_EQ(runCommand(cli + " check --format junit -o " + quoted(junitPath) + " " + quoted(quad)).exitCode, 0);
+  const std::string schema = quoted(fs::path(TANGENT_SOURCE_DIR) / "tests/schemas/junit.xsd");
+  const auto valid = runCommand("xmllint --noout --schema " + schema + " " + quoted(junitPath));
+  EXPECT_EQ(valid.exitCode, 0) << valid.output;
+  const auto systemOut = runCommand("/usr/bin/python3 -c \"import sys, xml.etree.ElementTree as ET; "
+                                    "suite = ET.parse(sys.argv[1]).getroot().find('testsuite'); "
+                                    "print(suite.get('failures'), suite.find('system-out').text, end='')\" " + quoted(junitPath));
+  EXPECT_EQ(systemOut.output, "0 WARN mesh 0 primitive 0: " + warning + "\n");
+
+  const fs::path node = fs::path(TANGENT_SOURCE_DIR) / "tests/node";
+  if (!fs::exists(node / "node_modules/@microsoft/sarif-multitool-linux/sarif-2.1.0.json") || !fs::exists(node / "node_modules/ajv-formats"))
+    TANGENT_SKIP_OR_FAIL("tests/node/node_modules lacks the SARIF schema or ajv: run `npm ci` in tests/node (scripts/test.sh does)");
+  const auto validated = runCommand("node " + quoted(node / "validate_sarif.mjs") + " " + quoted(sarifPath));
+  EXPECT_EQ(validated.exitCode, 0) << validated.output;
+}
+
+// --identify's generator per primitive in SARIF (the run's property bag, schema-valid) and JUnit
+// (suite properties, valid against tests/schemas/junit.xsd), as in JSON.
+TEST(CheckFormats, IdentifiedGeneratorInSarifAndJunit) {
+  TempDir dir;
+  const fs::path quad = writeQuad(dir.path(), "quad");
+  const std::string generator = checkJson("--identify " + quoted(quad))["files"][0]["primitives"][0]["generator"];
+  EXPECT_FALSE(generator.empty());
+  const fs::path sarifPath = dir / "check.sarif";
+  EXPECT_EQ(runCommand(cli + " check --identify --format sarif -o " + quoted(sarifPath) + " " + quoted(quad)).exitCode, 0);
+  const Json sarif = Json::parse(std::ifstream(sarifPath));
+  const Json& entry = sarif["runs"][0]["properties"]["generators"][0];
+  EXPECT_EQ(entry["generator"], generator);
+  EXPECT_EQ(entry["primitive"], "/meshes/0/primitives/0");
+  EXPECT_EQ(entry["uri"], quad.string());
+  const fs::path junitPath = dir / "report.xml";
+  EXPECT_EQ(runCommand(cli + " check --identify --format junit -o " + quoted(junitPath) + " " + quoted(quad)).exitCode, 0);
+  const auto valid = runCommand("xmllint --noout --schema " + quoted(fs::path(TANGENT_SOURCE_DIR) / "tests/schemas/junit.xsd") + " " +
+                                quoted(junitPath));
+  EXPECT_EQ(valid.exitCode, 0) << valid.output;
+  const auto property = runCommand("/usr/bin/python3 -c \"import sys, xml.etree.ElementTree as ET; "
+                                   "p = ET.parse(sys.argv[1]).getroot().find('testsuite/properties/property'); "
+                                   "print(p.get('name'), '=', p.get('value'), end='')\" " + quoted(junitPath));
+  EXPECT_EQ(property.output, "generator mesh 0 primitive 0 = " + generator);
+  // Without --identify neither carries it.
+  const auto plain = Json::parse(runCommand(cli + " check --format sarif " + quoted(quad)).output);
+  EXPECT_FALSE(plain["runs"][0].contains("properties"));
+  const fs::path node = fs::path(TANGENT_SOURCE_DIR) / "tests/node";
+  if (!fs::exists(node / "node_modules/@microsoft/sarif-multitool-linux/sarif-2.1.0.json") || !fs::exists(node / "node_modules/ajv-formats"))
+    TANGENT_SKIP_OR_FAIL("tests/node/node_modules lacks the SARIF schema or ajv: run `npm ci` in tests/node (scripts/test.sh does)");
+  const auto validated = runCommand("node " + quoted(node / "validate_sarif.mjs") + " " + quoted(sarifPath));
+  EXPECT_EQ(validated.exitCode, 0) << validated.output;
 }
 
 TEST(CheckFormats, DashWritesToStandardOutput) {

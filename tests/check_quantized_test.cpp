@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 #include <cstring>
 #include <fstream>
 #include <functional>
@@ -498,7 +499,7 @@ namespace pipeline {
 // The vertex whose reference comparison is tightest (smallest allowance for rounded inputs,
 // every triangle's UV orientation decided), and the vertex with the fewest corners among the
 // other comparable ones sharing no triangle with it; -1 where none is comparable.
-std::pair<int, int> controlVertices(const fs::path& file) {
+std::pair<int, int> controlVertices(const fs::path& file, double allowanceLimitDegrees) {
   const detail::Asset asset = detail::loadAsset(file);
   const Json& primitive = asset.json["meshes"][0]["primitives"][0];
   const auto needs = detail::primitiveNeeds(asset.json, primitive, false);
@@ -515,7 +516,7 @@ std::pair<int, int> controlVertices(const fs::path& file) {
   }
   int turned = -1;
   for (std::size_t v = 0; v < geometry.vertexCount; ++v) {
-    if (!comparable[v] || corners[v] == 0 || allowance.vertex(v) > 5) continue;
+    if (!comparable[v] || corners[v] == 0 || allowance.vertex(v) > allowanceLimitDegrees) continue;
     if (turned < 0 || allowance.vertex(v) < allowance.vertex(turned)) turned = static_cast<int>(v);
   }
   if (turned < 0) return {-1, -1};
@@ -527,10 +528,42 @@ std::pair<int, int> controlVertices(const fs::path& file) {
   }
   int flipped = -1;
   for (std::size_t v = 0; v < geometry.vertexCount; ++v) {
-    if (!comparable[v] || corners[v] == 0 || nearTurned[v] || allowance.vertex(v) > 5) continue;
+    if (!comparable[v] || corners[v] == 0 || nearTurned[v] || allowance.vertex(v) > allowanceLimitDegrees) continue;
     if (flipped < 0 || corners[v] < corners[flipped]) flipped = static_cast<int>(v);
   }
   return {turned, flipped};
+}
+
+// A copy of `out` with one tangent turned by `turnDegrees` and one w flipped (controlVertices,
+// among the vertices whose allowance is at most half the turn) fails `reference`, naming both
+// vertices; false where no vertex is comparable.
+bool expectControlNamed(const fs::path& out, const fs::path& control, double turnDegrees = 10) {
+  const auto [turned, flipped] = controlVertices(out, turnDegrees / 2);
+  if (turned < 0 || flipped < 0) return false;
+  fs::copy_file(out, control);
+  const detail::Asset asset = detail::loadAsset(out);
+  const Json& primitive = asset.json["meshes"][0]["primitives"][0];
+  const auto geometry = detail::readGeometry(asset, primitive, detail::primitiveNeeds(asset.json, primitive, false), "control");
+  patchTangents(control, [&](TangentEdit& view) {
+    float* t = &view.tangents[4 * turned];
+    const float* n = &geometry.normals[3 * turned];
+    const double angle = turnDegrees / detail::kDegreesPerRadian;
+    const double cross[3] = {n[1] * t[2] - n[2] * t[1], n[2] * t[0] - n[0] * t[2], n[0] * t[1] - n[1] * t[0]};
+    for (int k = 0; k < 3; ++k) t[k] = static_cast<float>(t[k] * std::cos(angle) + cross[k] * std::sin(angle));
+    view.tangents[4 * flipped + 3] = -view.tangents[4 * flipped + 3];
+  });
+  const FileCheck result = tangent::gltf::checkFile(control, {});
+  EXPECT_FALSE(result.clean()) << control;
+  std::string samples;
+  for (const auto& p : result.primitives)
+    for (const auto& f : p.findings)
+      for (const auto& s : f.worst) samples += f.check + ": " + s.detail + "\n";
+  EXPECT_NE(samples.find("reference: corner"), std::string::npos) << control << "\n" << samples;
+  EXPECT_NE(samples.find("(vertex " + std::to_string(turned) + "): "), std::string::npos)
+      << control << ": turned vertex " << turned << " not named\n" << samples;
+  EXPECT_NE(samples.find("(vertex " + std::to_string(flipped) + "): "), std::string::npos)
+      << control << ": flipped vertex " << flipped << " not named\n" << samples;
+  return true;
 }
 
 TEST(GltfpackPipeline, EveryOptionChecksCleanAndAControlIsNamed) {
@@ -545,9 +578,8 @@ TEST(GltfpackPipeline, EveryOptionChecksCleanAndAControlIsNamed) {
     tangent::gltf::bakeFile(input, bakes.back(), {});
   }
   int controls = 0;
-  // Outputs whose every vertex has a reference allowance over 5 deg for rounded positions/UVs
-  // (tangent_rules.cpp estimates the UV step from the smallest gap between stored values, which
-  // on the regular grids of the generated meshes is the grid's own spacing): no control there.
+  // Outputs whose every vertex has a reference allowance over 5 deg for rounded positions/UVs:
+  // no control there (the shared assets at -vt 8, whose small triangles span few 8-bit steps).
   std::string uncontrolled;
   for (const fs::path& baked : bakes) {
     for (const std::string flags : {"", " -vn 8", " -vn 10", " -vn 12", " -vn 16", " -vp 10", " -vt 8"}) {
@@ -559,43 +591,119 @@ TEST(GltfpackPipeline, EveryOptionChecksCleanAndAControlIsNamed) {
       const FileCheck check = tangent::gltf::checkFile(out, {});
       EXPECT_TRUE(check.clean()) << out << ": " << describe(check);
 
-      const auto [turned, flipped] = controlVertices(out);
-      if (turned < 0 || flipped < 0) {  // the rounding leaves no vertex comparable (counted below)
-        uncontrolled += " " + out.filename().string();
+      if (!expectControlNamed(out, dir / ("control-" + out.filename().string()))) {
+        uncontrolled += " " + out.filename().string();  // the rounding leaves no vertex comparable (counted below)
         continue;
       }
       ++controls;
-      const fs::path control = dir / ("control-" + out.filename().string());
-      fs::copy_file(out, control);
-      const detail::Asset asset = detail::loadAsset(out);
-      const Json& primitive = asset.json["meshes"][0]["primitives"][0];
-      const auto geometry = detail::readGeometry(asset, primitive, detail::primitiveNeeds(asset.json, primitive, false), "control");
-      patchTangents(control, [&](TangentEdit& view) {
-        float* t = &view.tangents[4 * turned];
-        const float* n = &geometry.normals[3 * turned];
-        const double angle = 10 / detail::kDegreesPerRadian;
-        const double cross[3] = {n[1] * t[2] - n[2] * t[1], n[2] * t[0] - n[0] * t[2], n[0] * t[1] - n[1] * t[0]};
-        for (int k = 0; k < 3; ++k) t[k] = static_cast<float>(t[k] * std::cos(angle) + cross[k] * std::sin(angle));
-        view.tangents[4 * flipped + 3] = -view.tangents[4 * flipped + 3];
-      });
-      const FileCheck result = tangent::gltf::checkFile(control, {});
-      EXPECT_FALSE(result.clean()) << control;
-      std::string samples;
-      for (const auto& p : result.primitives)
-        for (const auto& f : p.findings)
-          for (const auto& s : f.worst) samples += f.check + ": " + s.detail + "\n";
-      EXPECT_NE(samples.find("reference: corner"), std::string::npos) << control << "\n" << samples;
-      EXPECT_NE(samples.find("(vertex " + std::to_string(turned) + "): "), std::string::npos)
-          << control << ": turned vertex " << turned << " not named\n" << samples;
-      EXPECT_NE(samples.find("(vertex " + std::to_string(flipped) + "): "), std::string::npos)
-          << control << ": flipped vertex " << flipped << " not named\n" << samples;
     }
   }
-  // The shared assets' outputs but -vt 8 have comparable vertices: 2 x 6.
-  if (sharedPresent) {
-    EXPECT_GE(controls, 12) << "outputs without a comparable vertex:" << uncontrolled;
-  }
+  // Every output of the generated meshes (4 x 7) has comparable vertices, and the shared
+  // assets' outputs but -vt 8 (2 x 6).
+  EXPECT_GE(controls, 4 * 7 + (sharedPresent ? 12 : 0)) << "outputs without a comparable vertex:" << uncontrolled;
   if (!sharedPresent) TANGENT_SKIP_OR_FAIL("../shared/assets is absent: only the generated meshes went through gltfpack");
+}
+
+// Regular grids through gltfpack's UV quantization: the step `reference` allows for is the
+// quantization grid's (gltfpack -vt b maps each UV component's range onto 0 .. 2^b - 1 in the
+// low bits of a normalized UNSIGNED_SHORT and scales back with KHR_texture_transform), not the
+// mesh's own spacing, which a smallest-gap estimate took for it (it left every corner of a
+// 32 x 32 sphere from tangent-make-data uncompared, at 12 bits and at 8).
+TEST(GltfpackPipeline, RegularGridsKeepMostCornersCompared) {
+  if (gltfpack().empty()) TANGENT_SKIP_OR_FAIL("gltfpack is not installed (scripts/install-deps.sh): the pipeline was not tested");
+  TempDir dir;
+  for (const auto& [name, mesh] : {std::pair{std::string("sphere"), tangent::testing::makeSphere(32, 16)},
+                                   std::pair{std::string("torus"), tangent::testing::makeTorus(32, 16)},
+                                   std::pair{std::string("grid"), tangent::testing::makeGrid(16, 16, false)}}) {
+    const fs::path input = tangent::testing::writeAsset(tangent::testing::meshAsset(name, mesh), dir / "in", true);
+    const fs::path baked = dir / (name + "-baked.glb");
+    tangent::gltf::bakeFile(input, baked, {});
+    double uvRange = 0;
+    for (int k = 0; k < 2; ++k) {
+      float lo = mesh.uvs[k], hi = mesh.uvs[k];
+      for (std::size_t v = 0; v < mesh.uvs.size() / 2; ++v) lo = std::min(lo, mesh.uvs[2 * v + k]), hi = std::max(hi, mesh.uvs[2 * v + k]);
+      uvRange = std::max(uvRange, double(hi) - lo);
+    }
+    for (const auto& [flags, bits] : {std::pair{std::string(""), 12}, std::pair{std::string(" -vt 12"), 12}, std::pair{std::string(" -vt 8"), 8}}) {
+      std::string suffix = flags;
+      std::replace(suffix.begin(), suffix.end(), ' ', '_');
+      const fs::path out = dir / (name + "-gltfpack" + suffix + ".glb");
+      const auto run = runCommand("gltfpack -i " + quoted(baked) + " -o " + quoted(out) + flags);
+      ASSERT_EQ(run.exitCode, 0) << run.output;
+      const detail::Asset asset = detail::loadAsset(out);
+      const Json& primitive = asset.json["meshes"][0]["primitives"][0];
+      const auto needs = detail::primitiveNeeds(asset.json, primitive, false);
+      const double expectedHalfStep = 0.5 * uvRange / double((1 << bits) - 1);
+      EXPECT_NEAR(detail::inputRounding(asset, primitive, needs.texCoord, needs.hasNormalTexture).uv, expectedHalfStep, 1e-3 * expectedHalfStep)
+          << out;
+      const FileCheck check = tangent::gltf::checkFile(out, {});
+      EXPECT_TRUE(check.clean()) << out << ": " << describe(check);
+      ASSERT_EQ(check.primitives.size(), 1u);
+      const auto& p = check.primitives[0];
+      const double compared = 1.0 - double(p.referenceUnresolved + p.referenceUndefined) / double(3 * p.triangles);
+      std::printf("%s: reference compares %.1f%% of %llu corners\n", out.filename().c_str(), 100 * compared,
+                  static_cast<unsigned long long>(3 * p.triangles));
+      EXPECT_GE(compared, bits == 8 ? 0.8 : 0.95) << out;
+      // 8-bit UVs on triangles 1/32 of the range wide allow several degrees: a 30 deg turn there.
+      EXPECT_TRUE(expectControlNamed(out, dir / ("control-" + out.filename().string()), bits == 8 ? 30 : 10))
+          << out << ": no comparable vertex";
+    }
+  }
+}
+
+// gltf-transform quantize, draco and meshopt (the CLI pinned in tests/node/package.json) on
+// clean bakes of regular grids: every output checks clean with most corners compared, and a
+// control (one tangent turned 30 deg, one w flipped) still fails `reference`: patched after
+// quantize (its accessors are plain), before draco and meshopt (their streams cannot be patched
+// in place; the compressed control must then fail where the clean one passes).
+TEST(GltfTransformPipeline, CleanBakesCheckCleanAndControlsFail) {
+  if (gltfTransform().empty()) TANGENT_SKIP_OR_FAIL("tests/node/node_modules is absent (npm ci): gltf-transform not tested");
+  TempDir dir;
+  for (const auto& [name, mesh] : {std::pair{std::string("sphere"), tangent::testing::makeSphere(32, 16)},
+                                   std::pair{std::string("torus"), tangent::testing::makeTorus(32, 16)},
+                                   std::pair{std::string("grid"), tangent::testing::makeGrid(16, 16, true)}}) {
+    const fs::path input = tangent::testing::writeAsset(tangent::testing::meshAsset(name, mesh), dir / "in", true);
+    const fs::path baked = dir / (name + "-baked.glb");
+    tangent::gltf::bakeFile(input, baked, {});
+    const fs::path control = dir / (name + "-control.glb");
+    fs::copy_file(baked, control);
+    const auto [turned, flipped] = controlVertices(baked, 1);
+    ASSERT_GE(turned, 0);
+    ASSERT_GE(flipped, 0);
+    const detail::Asset asset = detail::loadAsset(baked);
+    const Json& primitive = asset.json["meshes"][0]["primitives"][0];
+    const auto geometry = detail::readGeometry(asset, primitive, detail::primitiveNeeds(asset.json, primitive, false), "control");
+    patchTangents(control, [&](TangentEdit& view) {
+      float* t = &view.tangents[4 * turned];
+      const float* n = &geometry.normals[3 * turned];
+      const double angle = 30 / detail::kDegreesPerRadian;
+      const double cross[3] = {n[1] * t[2] - n[2] * t[1], n[2] * t[0] - n[0] * t[2], n[0] * t[1] - n[1] * t[0]};
+      for (int k = 0; k < 3; ++k) t[k] = static_cast<float>(t[k] * std::cos(angle) + cross[k] * std::sin(angle));
+      view.tangents[4 * flipped + 3] = -view.tangents[4 * flipped + 3];
+    });
+    for (const std::string command : {"quantize", "draco", "meshopt"}) {
+      const fs::path out = dir / (name + "-" + command + ".glb");
+      const auto run = runCommand(quoted(gltfTransform()) + " " + command + " " + quoted(baked) + " " + quoted(out));
+      ASSERT_EQ(run.exitCode, 0) << run.output;
+      const FileCheck check = tangent::gltf::checkFile(out, {});
+      EXPECT_TRUE(check.clean()) << out << ": " << describe(check);
+      ASSERT_EQ(check.primitives.size(), 1u) << out;
+      const auto& p = check.primitives[0];
+      const double compared = 1.0 - double(p.referenceUnresolved + p.referenceUndefined) / double(3 * p.triangles);
+      std::printf("%s: reference compares %.1f%% of %llu corners\n", out.filename().c_str(), 100 * compared,
+                  static_cast<unsigned long long>(3 * p.triangles));
+      EXPECT_GE(compared, 0.95) << out;
+      if (command == "quantize") {
+        EXPECT_TRUE(expectControlNamed(out, dir / (name + "-quantize-control.glb"), 30)) << out << ": no comparable vertex";
+        continue;
+      }
+      const fs::path compressedControl = dir / (name + "-" + command + "-control.glb");
+      const auto packed = runCommand(quoted(gltfTransform()) + " " + command + " " + quoted(control) + " " + quoted(compressedControl));
+      ASSERT_EQ(packed.exitCode, 0) << packed.output;
+      const auto names = findingNames(tangent::gltf::checkFile(compressedControl, {}));
+      EXPECT_NE(std::find(names.begin(), names.end(), "reference"), names.end()) << compressedControl;
+    }
+  }
 }
 
 }  // namespace pipeline

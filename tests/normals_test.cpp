@@ -147,6 +147,8 @@ struct Baked {
   fs::path output;
 };
 
+void readBaked(Baked& baked);
+
 Baked bakeWithoutNormals(const GridMesh& mesh, const fs::path& dir, const std::string& name, tangent::gltf::NormalsMode mode) {
   Baked baked;
   const fs::path input = tangent::testing::writeAsset(tangent::testing::meshAsset(name, mesh, false), dir / "in", true);
@@ -154,14 +156,19 @@ Baked bakeWithoutNormals(const GridMesh& mesh, const fs::path& dir, const std::s
   tangent::gltf::BakeOptions options;
   options.normals = mode;
   baked.result = tangent::gltf::bakeFile(input, baked.output, options);
+  readBaked(baked);
+  return baked;
+}
+
+// The baked file's POSITION, NORMAL (when written) and triangle list.
+void readBaked(Baked& baked) {
   const detail::Asset asset = detail::loadAsset(baked.output);
   const auto& primitive = asset.json["meshes"][0]["primitives"][0];
-  if (!primitive["attributes"].contains("NORMAL")) return baked;
+  if (!primitive["attributes"].contains("NORMAL")) return;
   baked.positions = detail::toFloats(detail::readAccessor(asset.model, primitive["attributes"]["POSITION"].get<int>(), "POSITION"));
   baked.normals = detail::toFloats(detail::readAccessor(asset.model, primitive["attributes"]["NORMAL"].get<int>(), "NORMAL"));
   const auto indices = detail::readAccessor(asset.model, primitive["indices"].get<int>(), "indices");
   for (const float index : detail::toFloats(indices)) baked.corners.push_back(static_cast<std::uint32_t>(index));
-  return baked;
 }
 
 TEST(GeneratedNormals, FlatNormalsAreTheFaceNormalsAndCheckClean) {
@@ -259,6 +266,86 @@ TEST(GeneratedNormals, CheckWithoutNormalUsesTheSpecsFlatNormals) {
   EXPECT_NE(std::find(failed.begin(), failed.end(), "reference"), failed.end());
 }
 
+// OBJ, PLY and OFF without normals get them as a glTF primitive without NORMAL does (flat by
+// default, as glTF 3.7.2.1 asks and as Blender's OBJ importer shades a mesh without normals;
+// --normals smooth and keep alike). Two triangles folded along the diagonal (0,0,0)-(1,1,0):
+// face normals (0, 0, 1) and (1, -1, 1)/sqrt(3), 54.7 deg apart, within the default crease angle.
+const char* kBentObj =
+    "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 1\nvt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\nf 1/1 2/2 3/3\nf 1/1 3/3 4/4\n";
+const char* kBentPly =
+    "ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\nproperty float y\nproperty float z\nproperty float u\n"
+    "property float v\nelement face 2\nproperty list uchar int vertex_indices\nend_header\n"
+    "0 0 0 0 0\n1 0 0 1 0\n1 1 0 1 1\n0 1 1 0 1\n3 0 1 2\n3 0 2 3\n";
+const char* kBentOff = "STOFF\n4 2 0\n0 0 0 0 0\n1 0 0 1 0\n1 1 0 1 1\n0 1 1 0 1\n3 0 1 2\n3 0 2 3\n";
+
+Baked bakeMeshFile(const fs::path& input, const fs::path& output, tangent::gltf::NormalsMode mode) {
+  Baked baked;
+  baked.output = output;
+  tangent::gltf::BakeOptions options;
+  options.normals = mode;
+  baked.result = tangent::gltf::bakeFile(input, output, options);
+  readBaked(baked);
+  return baked;
+}
+
+TEST(GeneratedNormals, MeshFilesWithoutNormalsAreFlatByDefault) {
+  TempDir dir;
+  const double third = 1 / std::sqrt(3.0);
+  const double faceNormals[2][3] = {{0, 0, 1}, {third, -third, third}};
+  for (const auto& [name, text] : {std::pair{"bent.obj", kBentObj}, std::pair{"bent.ply", kBentPly}, std::pair{"bent.off", kBentOff}}) {
+    SCOPED_TRACE(name);
+    std::ofstream(dir / name) << text;
+    const Baked baked = bakeMeshFile(dir / name, dir / (std::string(name) + ".glb"), tangent::gltf::NormalsMode::flat);
+    ASSERT_EQ(baked.result.primitives.size(), 1u);
+    const auto& p = baked.result.primitives[0];
+    EXPECT_EQ(p.action, tangent::gltf::PrimitiveAction::baked) << p.reason;
+    ASSERT_TRUE(p.normalsGenerated.has_value()) << p.reason;
+    EXPECT_EQ(*p.normalsGenerated, tangent::gltf::NormalsMode::flat);
+    ASSERT_EQ(baked.corners.size(), 6u);
+    EXPECT_EQ(baked.positions.size(), 6u * 3);  // the two diagonal vertices split
+    for (std::size_t c = 0; c < 6; ++c)
+      for (int i = 0; i < 3; ++i) EXPECT_NEAR(baked.normals[3 * baked.corners[c] + i], faceNormals[c / 3][i], 1e-6) << "corner " << c;
+    tangent::gltf::CheckOptions every;  // these formats have no materials: every primitive gets tangents
+    every.all = true;
+    const tangent::gltf::FileCheck check = tangent::gltf::checkFile(baked.output, every);
+    ASSERT_EQ(check.primitives.size(), 1u);
+    EXPECT_TRUE(check.clean());
+  }
+}
+
+TEST(GeneratedNormals, MeshFilesWithoutNormalsSmoothOrKept) {
+  TempDir dir;
+  std::ofstream(dir / "bent.obj") << kBentObj;
+  const Baked smooth = bakeMeshFile(dir / "bent.obj", dir / "smooth.glb", tangent::gltf::NormalsMode::smooth);
+  ASSERT_EQ(smooth.result.primitives.size(), 1u);
+  ASSERT_TRUE(smooth.result.primitives[0].normalsGenerated.has_value());
+  EXPECT_EQ(*smooth.result.primitives[0].normalsGenerated, tangent::gltf::NormalsMode::smooth);
+  ASSERT_EQ(smooth.positions.size(), 4u * 3);  // nothing split
+  // On the diagonal both faces meet with corner angles 45 deg (first) and 60 deg (second) at
+  // either end: the normal is their angle-weighted sum, normalized (Thuermer and Wuethrich).
+  const double third = 1 / std::sqrt(3.0);
+  double sum[3] = {M_PI / 3 * third, -M_PI / 3 * third, M_PI / 4 + M_PI / 3 * third};
+  const double length = std::sqrt(sum[0] * sum[0] + sum[1] * sum[1] + sum[2] * sum[2]);
+  for (std::size_t v = 0; v < 4; ++v) {
+    const float* position = &smooth.positions[3 * v];
+    const bool onDiagonal = position[0] == position[1] && position[2] == 0;
+    const double expected[3] = {onDiagonal ? sum[0] / length : position[2] == 0 ? 0 : third,
+                                onDiagonal ? sum[1] / length : position[2] == 0 ? 0 : -third,
+                                onDiagonal ? sum[2] / length : position[2] == 0 ? 1 : third};
+    for (int i = 0; i < 3; ++i) EXPECT_NEAR(smooth.normals[3 * v + i], expected[i], 1e-6) << "vertex " << v;
+  }
+  tangent::gltf::CheckOptions every;
+  every.all = true;
+  const tangent::gltf::FileCheck check = tangent::gltf::checkFile(smooth.output, every);
+  ASSERT_EQ(check.primitives.size(), 1u);
+  EXPECT_TRUE(check.clean());
+
+  const Baked kept = bakeMeshFile(dir / "bent.obj", dir / "kept.glb", tangent::gltf::NormalsMode::keep);
+  ASSERT_EQ(kept.result.primitives.size(), 1u);
+  EXPECT_EQ(kept.result.primitives[0].action, tangent::gltf::PrimitiveAction::skipped);
+  EXPECT_TRUE(kept.normals.empty());
+}
+
 }  // namespace generated
 
 // ---- check --identify (issue 37, item 3) ----
@@ -330,6 +417,45 @@ TEST(Identify, RandomlyTurnedTangentsAreNoneOfThese) {
   ASSERT_EQ(check.primitives.size(), 1u);
   EXPECT_EQ(check.primitives[0].generator.rfind("none of these (nearest: ", 0), 0u) << check.primitives[0].generator;
   EXPECT_GT(check.primitives[0].generators[0].medianDegrees, tangent::gltf::kIdentifyMedianDegrees);
+}
+
+// check --reference NAME: each generator's bake passes `reference` measured against that
+// generator and fails it against at least one other (the leaning grid makes them differ).
+TEST(Identify, ReferenceMeasuresAgainstTheChosenGenerator) {
+  TempDir dir;
+  const fs::path input = tangent::testing::writeAsset(tangent::testing::meshAsset("leaning", leaningGrid()), dir / "in", true);
+  int index = 0;
+  for (const tangent::gltf::Generator& baked : tangent::gltf::kGenerators) {
+    tangent::gltf::BakeOptions bake;
+    bake.tangents.method = baked.method;
+    bake.tangents.weighting = baked.weighting;
+    const fs::path output = dir / ("leaning-" + std::to_string(index++) + ".glb");
+    tangent::gltf::bakeFile(input, output, bake);
+    int failedAgainstOthers = 0;
+    for (const tangent::gltf::Generator& reference : tangent::gltf::kGenerators) {
+      const std::string label = tangent::gltf::toString(baked) + " against " + tangent::gltf::toString(reference);
+      const std::optional<tangent::gltf::Generator> parsed = tangent::gltf::parseGenerator(tangent::gltf::toString(reference));
+      ASSERT_TRUE(parsed.has_value()) << label;
+      tangent::gltf::CheckOptions options;
+      options.method = parsed->method;
+      options.weighting = parsed->weighting;
+      const tangent::gltf::FileCheck check = tangent::gltf::checkFile(output, options);
+      ASSERT_EQ(check.primitives.size(), 1u) << label;
+      bool referenceFailed = false;
+      for (const auto& f : check.primitives[0].findings) {
+        referenceFailed = referenceFailed || f.check == "reference";
+        if (f.check == "reference") EXPECT_NE(f.message.find(tangent::gltf::toString(reference) + " tangents"), std::string::npos) << f.message;
+      }
+      if (reference == baked) {
+        EXPECT_FALSE(referenceFailed) << label;
+      } else {
+        failedAgainstOthers += referenceFailed;
+      }
+    }
+    EXPECT_GE(failedAgainstOthers, 1) << tangent::gltf::toString(baked);
+  }
+  EXPECT_FALSE(tangent::gltf::parseGenerator("lengyel/volume").has_value());
+  EXPECT_EQ(tangent::gltf::parseGenerator("lengyel"), (tangent::gltf::Generator{tangent::Method::lengyel, tangent::Weighting::angle}));
 }
 
 }  // namespace identify

@@ -59,6 +59,7 @@ def check(
     allow_missing: bool = False,
     orthogonal_tolerance: Optional[float] = None,
     reference_tolerance: Optional[float] = None,
+    reference: Optional[str] = None,
 ) -> dict[str, Any]: ...
 
 def bake_tree(

@@ -32,8 +32,8 @@ import numpy as np
 
 # check runs at its default settings on every compressed copy: meshopt and gltfpack store
 # quantized accessors, whose rounding check's rules allow for; Draco quantizes positions and
-# UVs inside its stream and decodes them to floats, and check takes the grid step from the
-# smallest gap between the decoded values (tangent_rules.cpp). A label listed here would run
+# UVs inside its stream and decodes them to floats, and check finds the Draco grid that holds
+# the decoded values (tangent_rules.cpp). A label listed here would run
 # with a wider --tolerance instead.
 CHECK_TOLERANCE = {}
 

@@ -293,3 +293,59 @@ def test_shared_assets_bake_to_the_cli_bytes(tmp_path, name):
     output.unlink()
     assert libtangent.bake(asset, output) == expected
     assert output.read_bytes() == cli_bytes
+
+
+def test_check_result_carries_warnings(tmp_path):
+    """A warning (NORMAL stored at half length, normalized as readers do) is in check's dict,
+    as in the CLI's JSON, and is no finding."""
+    positions = [0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 1, 0]
+    normals = [0, 0, 0.5] * 4
+    uvs = [0, 1, 1, 1, 1, 0, 0, 0]
+    tangents = [1, 0, 0, 1] * 4
+    data = np.array(positions + normals + uvs + tangents, dtype="<f4").tobytes() + np.array([0, 1, 2, 0, 2, 3], dtype="<u2").tobytes()
+    views = [{"buffer": 0, "byteOffset": 0, "byteLength": 192}, {"buffer": 0, "byteOffset": 192, "byteLength": 12}]
+    accessors = [
+        {"bufferView": 0, "byteOffset": 0, "componentType": 5126, "count": 4, "type": "VEC3", "min": [0, 0, 0], "max": [1, 1, 0]},
+        {"bufferView": 0, "byteOffset": 48, "componentType": 5126, "count": 4, "type": "VEC3"},
+        {"bufferView": 0, "byteOffset": 96, "componentType": 5126, "count": 4, "type": "VEC2"},
+        {"bufferView": 0, "byteOffset": 128, "componentType": 5126, "count": 4, "type": "VEC4"},
+        {"bufferView": 1, "componentType": 5123, "count": 6, "type": "SCALAR"},
+    ]
+    document = {
+        "asset": {"version": "2.0"},
+        "buffers": [{"uri": "quad.bin", "byteLength": len(data)}],
+        "bufferViews": views,
+        "accessors": accessors,
+        "materials": [{"normalTexture": {"index": 0}}],
+        "textures": [{"source": 0}],
+        "images": [{"uri": "normal.png"}],
+        "meshes": [{"primitives": [{"attributes": {"POSITION": 0, "NORMAL": 1, "TEXCOORD_0": 2, "TANGENT": 3}, "indices": 4, "material": 0}]}],
+        "nodes": [{"mesh": 0}],
+        "scenes": [{"nodes": [0]}],
+        "scene": 0,
+    }
+    (tmp_path / "quad.bin").write_bytes(data)
+    path = tmp_path / "quad.gltf"
+    path.write_text(json.dumps(document))
+    result = libtangent.check(path)
+    assert result["status"] == "clean"
+    primitive = result["primitives"][0]
+    assert primitive["findings"] == []
+    assert len(primitive["warnings"]) == 1
+    assert primitive["warnings"][0].startswith("NORMAL is not unit length: worst 0.5,")
+    done = subprocess.run([CLI, "check", str(path), "--format", "json"], capture_output=True, check=True)
+    assert result == json.loads(done.stdout)["files"][0]
+
+
+def test_check_reference_names_the_generator(tmp_path):
+    """reference= measures `reference` against a chosen generator, as the CLI's --reference."""
+    output = tmp_path / "out.glb"
+    libtangent.bake(DEMO / "demo.gltf", output, method="lengyel", weighting="area")
+    result = libtangent.check(output, reference="lengyel/area")
+    assert result["status"] == "clean"
+    done = subprocess.run([CLI, "check", str(output), "--format", "json", "--reference", "lengyel/area"], capture_output=True, check=True)
+    report = json.loads(done.stdout)
+    assert report["settings"]["reference"] == "lengyel/area"
+    assert result == report["files"][0]
+    with pytest.raises(ValueError, match="reference"):
+        libtangent.check(output, reference="lengyel/volume")

@@ -43,7 +43,9 @@ const char* kCheckUsage =
     "  --allow-missing     a primitive without TANGENT is skipped, not a finding (clients compute MikkTSpace)\n"
     "  --config FILE.json  settings from a file (only, ignore, tolerance, method, allowMissing, all);\n"
     "                      options on the command line override it\n"
-    "  --method NAME       mikktspace (default) | lengyel: what reference is measured against\n"
+    "  --reference NAME    what reference is measured against: mikktspace (default) | lengyel/angle |\n"
+    "                      lengyel/area | lengyel/uniform | flat (the names --identify reports)\n"
+    "  --method NAME       mikktspace | lengyel: --reference mikktspace or lengyel/angle\n"
     "  --all               check every triangle primitive (TEXCOORD_0 without a normal texture)\n"
     "  --identify          name the generator closest to the stored tangents (mikktspace, lengyel/angle,\n"
     "                      lengyel/area, lengyel/uniform, flat) with its median and max angle, or none of these\n"
@@ -116,10 +118,10 @@ void writeText(std::ostream& out, const std::vector<gltf::FileCheck>& checks) {
         out << ")\n";
       }
       if (p.referenceUnresolved)
-        out << "    (" << p.referenceUnresolved << " corners have a UV orientation their rounded positions/UVs leave open; not compared)\n";
+        out << "    (" << p.referenceUnresolved << " corners have a frame their rounded positions/UVs leave open; not compared)\n";
       if (p.handednessUndecided || p.referenceWUndecided)
         out << "    (" << p.handednessUndecided << " triangles have a UV orientation their rounded positions/UVs leave open: handedness "
-            << "skips them, reference compares the angle but not w at their " << p.referenceWUndecided << " corners)\n";
+            << "skips them, reference compares the angle but not w at the " << p.referenceWUndecided << " of their corners where w agrees)\n";
       if (p.referenceUndefined) out << "    (" << p.referenceUndefined << " corners have no defined reference frame; not compared)\n";
     }
     for (const auto& s : file.skipped) out << "  skipped " << s << "\n";
@@ -207,6 +209,11 @@ void writeJunit(std::ostream& out, const std::vector<gltf::FileCheck>& checks, c
         }
       }
     }
+    // Warnings (accepted, not failures) as the suite's standard output, a line per warning
+    // naming its primitive: JUnit has no warning state, and Jenkins shows the suite's output.
+    std::string warnings;
+    for (const auto& p : file.primitives)
+      for (const auto& warning : p.warnings) warnings += "WARN " + primitiveName(p) + ": " + warning + "\n";
     for (const auto& reason : file.skipped) {
       const std::size_t colon = reason.find(": ");
       ++skipped;
@@ -214,10 +221,18 @@ void writeJunit(std::ostream& out, const std::vector<gltf::FileCheck>& checks, c
       cases << ">\n      <skipped message=\"" << xmlEscape(colon == std::string::npos ? reason : reason.substr(colon + 2))
             << "\"/>\n    </testcase>\n";
     }
+    // --identify: the generator named per primitive, as suite properties.
+    std::string properties;
+    for (const auto& p : file.primitives)
+      if (!p.generator.empty())
+        properties += "      <property name=\"" + xmlEscape("generator " + primitiveName(p)) + "\" value=\"" + xmlEscape(p.generator) + "\"/>\n";
     suites << "  <testsuite name=\"" << fileAttribute << "\" tests=\"" << tests << "\" failures=\"" << failures << "\" errors=\""
            << errors << "\" skipped=\"" << skipped << "\" time=\"" << seconds3(file.seconds) << "\" timestamp=\""
-           << times.startedUtc[i] << "\" file=\"" << fileAttribute << "\">\n"
-           << cases.str() << "  </testsuite>\n";
+           << times.startedUtc[i] << "\" file=\"" << fileAttribute << "\">\n";
+    if (!properties.empty()) suites << "    <properties>\n" << properties << "    </properties>\n";
+    suites << cases.str();
+    if (!warnings.empty()) suites << "    <system-out>" << xmlEscape(warnings) << "</system-out>\n";
+    suites << "  </testsuite>\n";
     allTests += tests;
     allFailures += failures;
     allErrors += errors;
@@ -294,16 +309,38 @@ const char* checkDescription(std::size_t index) {
 }
 
 // SARIF 2.1.0 (OASIS): one run, a rule per check, a result per finding located at the file and
-// the primitive (a logical location named as a JSON pointer into the document).
+// the primitive (a logical location named as a JSON pointer into the document); warnings as
+// results of level "warning" under one more rule.
+constexpr const char* kSarifWarningRule = "warning";
+
+nlohmann::ordered_json primitiveLocations(const nlohmann::ordered_json& artifact, const gltf::PrimitiveCheck& p) {
+  using Json = nlohmann::ordered_json;
+  const std::string pointer = "/meshes/" + std::to_string(p.mesh) + "/primitives/" + std::to_string(p.primitive);
+  return Json::array({{{"physicalLocation", {{"artifactLocation", artifact}}},
+                       {"logicalLocations", Json::array({{{"name", primitiveName(p)}, {"fullyQualifiedName", pointer}, {"kind", "object"}}})}}});
+}
+
 void writeSarif(std::ostream& out, const std::vector<gltf::FileCheck>& checks, const gltf::CheckOptions& options) {
   using Json = nlohmann::ordered_json;
   Json rules = Json::array();
   for (std::size_t i = 0; i < gltf::kCheckCount; ++i)
     rules.push_back({{"id", gltf::kCheckNames[i]}, {"name", gltf::kCheckNames[i]}, {"shortDescription", {{"text", checkDescription(i)}}},
                      {"defaultConfiguration", {{"level", "error"}, {"enabled", options.enabled.test(i)}}}});
-  Json results = Json::array(), notifications = Json::array();
+  // Warnings (PrimitiveCheck::warnings): accepted, not failures; one rule after the checks.
+  const std::size_t warningRule = rules.size();
+  rules.push_back({{"id", kSarifWarningRule},
+                   {"name", kSarifWarningRule},
+                   {"shortDescription", {{"text", "Accepted, but not as the glTF specification asks (NORMAL not unit length); not a failure."}}},
+                   {"defaultConfiguration", {{"level", "warning"}}}});
+  Json results = Json::array(), notifications = Json::array(), generators = Json::array();
   for (const auto& file : checks) {
     const Json artifact = {{"uri", text::uriPath(file.file)}};
+    // --identify: the generator named per primitive, in the run's property bag.
+    for (const auto& p : file.primitives)
+      if (!p.generator.empty())
+        generators.push_back({{"uri", artifact["uri"]},
+                              {"primitive", "/meshes/" + std::to_string(p.mesh) + "/primitives/" + std::to_string(p.primitive)},
+                              {"generator", p.generator}});
     if (!file.error.empty())
       notifications.push_back({{"level", "error"}, {"message", {{"text", file.error}}},
                                {"locations", Json::array({{{"physicalLocation", {{"artifactLocation", artifact}}}}})}});
@@ -314,18 +351,20 @@ void writeSarif(std::ostream& out, const std::vector<gltf::FileCheck>& checks, c
         Json worst = Json::array();
         for (const auto& s : f.worst) worst.push_back({{"element", s.element}, {"severity", s.severity}, {"detail", s.detail}});
         properties["worst"] = worst;
-        const std::string pointer = "/meshes/" + std::to_string(p.mesh) + "/primitives/" + std::to_string(p.primitive);
         results.push_back(
             {{"ruleId", f.check},
              {"ruleIndex", ruleIndex},
              {"level", "error"},
              {"message", {{"text", primitiveName(p) + ": " + findingSummary(f)}}},
-             {"locations", Json::array({{{"physicalLocation", {{"artifactLocation", artifact}}},
-                                         {"logicalLocations", Json::array({{{"name", primitiveName(p)},
-                                                                             {"fullyQualifiedName", pointer},
-                                                                             {"kind", "object"}}})}}})},
+             {"locations", primitiveLocations(artifact, p)},
              {"properties", properties}});
       }
+      for (const auto& warning : p.warnings)
+        results.push_back({{"ruleId", kSarifWarningRule},
+                           {"ruleIndex", warningRule},
+                           {"level", "warning"},
+                           {"message", {{"text", primitiveName(p) + ": " + warning}}},
+                           {"locations", primitiveLocations(artifact, p)}});
     }
   }
   bool unreadable = false;
@@ -333,7 +372,7 @@ void writeSarif(std::ostream& out, const std::vector<gltf::FileCheck>& checks, c
   Json invocation = {{"executionSuccessful", !unreadable}};
   if (!notifications.empty()) invocation["toolExecutionNotifications"] = notifications;
   invocation["properties"] = {{"settings", gltf::toJson(options)}};
-  const Json log = {
+  Json log = {
       {"$schema", "https://json.schemastore.org/sarif-2.1.0.json"},
       {"version", "2.1.0"},
       {"runs", Json::array({{{"tool", {{"driver", {{"name", "tangent check"},
@@ -341,6 +380,7 @@ void writeSarif(std::ostream& out, const std::vector<gltf::FileCheck>& checks, c
                                                    {"rules", rules}}}}},
                              {"invocations", Json::array({invocation})},
                              {"results", results}}})}};
+  if (!generators.empty()) log["runs"][0]["properties"] = {{"generators", generators}};
   out << text::dumpJson(log, 2) << "\n";
 }
 
@@ -435,6 +475,12 @@ int checkCommand(const std::vector<std::string>& args) {
       const std::optional<Method> method = hasValue ? parseMethod(args[++i]) : std::nullopt;
       if (!method || *method == Method::flat) return usageError("--method must be mikktspace or lengyel");
       options.method = *method;
+      options.weighting = Weighting::angle;
+    } else if (arg == "--reference") {
+      const std::optional<gltf::Generator> generator = hasValue ? gltf::parseGenerator(args[++i]) : std::nullopt;
+      if (!generator) return usageError("--reference must be mikktspace, lengyel/angle, lengyel/area, lengyel/uniform or flat");
+      options.method = generator->method;
+      options.weighting = generator->weighting;
     } else if (arg == "--all") {
       options.all = true;
     } else if (arg == "--identify") {

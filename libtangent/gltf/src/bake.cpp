@@ -560,25 +560,14 @@ std::optional<ComputedTangents> PrimitiveBaker::compute(PrimitivePlan& plan) {
 std::optional<ComputedTangents> PrimitiveBaker::computeWithGeneratedNormals(PrimitivePlan& plan,
                                                                              const detail::PrimitiveGeometry& geometry) {
   const bool smooth = options_.normals == NormalsMode::smooth;
-  detail::GeneratedNormals generated = detail::generateNormals(geometry.positions, geometry.corners, smooth, options_.creaseAngleDegrees);
-  detail::PrimitiveGeometry expanded;
-  expanded.vertexCount = generated.source.size();
-  expanded.mode = 4;
-  expanded.indexComponentType = geometry.indexComponentType;
-  expanded.positions.resize(3 * expanded.vertexCount);
-  expanded.uvs.resize(2 * expanded.vertexCount);
-  for (std::size_t v = 0; v < expanded.vertexCount; ++v) {
-    std::copy_n(&geometry.positions[3 * generated.source[v]], 3, &expanded.positions[3 * v]);
-    std::copy_n(&geometry.uvs[2 * generated.source[v]], 2, &expanded.uvs[2 * v]);
-  }
-  expanded.normals = std::move(generated.normals);
-  expanded.corners = std::move(generated.corners);
+  std::vector<std::uint32_t> source;
+  const detail::PrimitiveGeometry expanded = detail::withGeneratedNormals(geometry, smooth, options_.creaseAngleDegrees, source);
   std::vector<TargetDeltas> targets = readTargetDeltas(plan, geometry.vertexCount);
   for (TargetDeltas& target : targets) {
     for (std::vector<float>* deltas : {&target.positions, &target.normals}) {
       if (deltas->empty()) continue;
       std::vector<float> gathered(3 * expanded.vertexCount);
-      for (std::size_t v = 0; v < expanded.vertexCount; ++v) std::copy_n(&(*deltas)[3 * generated.source[v]], 3, &gathered[3 * v]);
+      for (std::size_t v = 0; v < expanded.vertexCount; ++v) std::copy_n(&(*deltas)[3 * source[v]], 3, &gathered[3 * v]);
       *deltas = std::move(gathered);
     }
   }
@@ -588,7 +577,7 @@ std::optional<ComputedTangents> PrimitiveBaker::computeWithGeneratedNormals(Prim
   for (std::size_t v = 0; v < computed->split.source.size(); ++v) {
     const std::uint32_t inExpanded = computed->split.source[v];
     std::copy_n(&expanded.normals[3 * inExpanded], 3, &computed->generatedNormals[3 * v]);
-    computed->split.source[v] = generated.source[inExpanded];
+    computed->split.source[v] = source[inExpanded];
   }
   computed->vertexCount = geometry.vertexCount;
   computed->indexComponentType = geometry.indexComponentType;

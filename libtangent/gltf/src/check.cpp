@@ -145,14 +145,7 @@ struct VertexFindings {
 // geometry the reference uses (frames: the part, or its flat-normal split).
 void identifyGenerator(const PrimitiveGeometry& frames, const PrimitiveGeometry& part, const UsedVertices& used,
                        const std::vector<float>& tangents, TangentWorkspace& workspace, PrimitiveCheck& result) {
-  struct Candidate {
-    Method method;
-    Weighting weighting;
-  };
-  const Candidate candidates[] = {{Method::mikktspace, Weighting::angle}, {Method::lengyel, Weighting::angle},
-                                  {Method::lengyel, Weighting::area}, {Method::lengyel, Weighting::uniform},
-                                  {Method::flat, Weighting::angle}};
-  for (const Candidate& candidate : candidates) {
+  for (const Generator& candidate : kGenerators) {
     Options core;
     core.method = candidate.method;
     core.weighting = candidate.weighting;
@@ -171,8 +164,7 @@ void identifyGenerator(const PrimitiveGeometry& frames, const PrimitiveGeometry&
       wAgree += (stored[3] < 0) == (computed[4 * c + 3] < 0);
     }
     GeneratorMatch match;
-    match.name = std::string(toString(candidate.method));
-    if (candidate.method == Method::lengyel) match.name += "/" + std::string(toString(candidate.weighting));
+    match.name = toString(candidate);
     if (angles.empty()) {
       match.medianDegrees = match.maxDegrees = 180;
     } else {
@@ -212,16 +204,8 @@ void checkDrawnPart(const PrimitiveGeometry& buffer, const UsedVertices& used, c
   const bool flatNormals = part.normals.empty();
   PrimitiveGeometry flat;
   if (flatNormals) {
-    GeneratedNormals generated = generateNormals(part.positions, part.corners, /*smooth=*/false, 0);
-    flat.vertexCount = generated.source.size();
-    flat.positions.resize(3 * flat.vertexCount);
-    flat.uvs.resize(2 * flat.vertexCount);
-    for (std::size_t v = 0; v < flat.vertexCount; ++v) {
-      std::copy_n(&part.positions[3 * generated.source[v]], 3, &flat.positions[3 * v]);
-      std::copy_n(&part.uvs[2 * generated.source[v]], 2, &flat.uvs[2 * v]);
-    }
-    flat.normals = std::move(generated.normals);
-    flat.corners = std::move(generated.corners);
+    std::vector<std::uint32_t> source;
+    flat = withGeneratedNormals(part, /*smooth=*/false, 0, source);
   }
   const PrimitiveGeometry& frames = flatNormals ? flat : part;
   const ReferenceAllowance allowance = referenceAllowance(frames, rounding);
@@ -293,6 +277,7 @@ void checkDrawnPart(const PrimitiveGeometry& buffer, const UsedVertices& used, c
   if (options.runs(CheckId::reference)) {
     Options core;
     core.method = options.method;
+    core.weighting = options.weighting;
     core.uvOrigin = kGltfUvOrigin;
     core.threads = threadsFor(part.corners.size(), core.threads);
     std::vector<float> computed(part.corners.size() * 4);
@@ -317,15 +302,21 @@ void checkDrawnPart(const PrimitiveGeometry& buffer, const UsedVertices& used, c
       const double angle = angleBetweenDegrees(storedTangent, fresh);
       const double limit = referenceLimitDegrees(stored.limits, options.referenceToleranceDegrees, extra);
       // w follows the triangle's UV orientation: where rounding leaves that open, only the
-      // angle is compared (handedness skips the triangle alike).
+      // angle is compared (handedness skips the triangle alike), and only where w agrees: where
+      // it differs, the rounding turned the triangle over, and its corner's frame now comes from
+      // the group of the other orientation at the vertex, which no allowance bounds.
       const bool wDecided = allowance.decided(c / 3);
+      if (!wDecided && (storedTangent[3] < 0) != (fresh[3] < 0)) {
+        ++result.referenceUnresolved;
+        continue;
+      }
       if (!wDecided) ++result.referenceWUndecided;
       const float comparedW = wDecided ? storedTangent[3] : fresh[3];
       if (referenceFails(angle, comparedW, fresh[3], limit)) {
         const bool wDiffers = (comparedW < 0) != (fresh[3] < 0);
         reference.fail(c, angle,
                        format("corner %zu (vertex %u): %.4g deg from %s (limit %.3g)%s; stored ", c, v, angle,
-                              std::string(toString(options.method)).c_str(), limit, wDiffers ? ", w differs" : "") +
+                              toString(Generator{options.method, options.weighting}).c_str(), limit, wDiffers ? ", w differs" : "") +
                            tangentText(storedTangent) + ", computed " + tangentText(fresh),
                        wDiffers);
       }
@@ -342,7 +333,7 @@ void checkDrawnPart(const PrimitiveGeometry& buffer, const UsedVertices& used, c
   if (allowance.orientationDecided.size())
     referenceRounding += format(", plus up to %.3g deg per corner for rounded positions/UVs", result.referenceAllowanceMaxDegrees);
   reference.finish(result, format("differs from freshly computed %s tangents by more than %.3g deg",
-                                  std::string(toString(options.method)).c_str(), stored.referenceLimit) +
+                                  toString(Generator{options.method, options.weighting}).c_str(), stored.referenceLimit) +
                                referenceRounding + ", or in w");
 }
 
@@ -688,20 +679,41 @@ void applyCheckConfig(const std::filesystem::path& file, CheckOptions& options) 
       const std::optional<Method> method = value.is_string() ? parseMethod(value.get<std::string>()) : std::nullopt;
       if (!method || *method == Method::flat) throw std::runtime_error(where + ": method must be \"mikktspace\" or \"lengyel\"");
       options.method = *method;
+      options.weighting = Weighting::angle;
+    } else if (key == "reference") {
+      const std::optional<Generator> generator = value.is_string() ? parseGenerator(value.get<std::string>()) : std::nullopt;
+      if (!generator)
+        throw std::runtime_error(where + ": reference must be mikktspace, lengyel/angle, lengyel/area, lengyel/uniform or flat");
+      options.method = generator->method;
+      options.weighting = generator->weighting;
     } else if (key == "allowMissing" || key == "all") {
       if (!value.is_boolean()) throw std::runtime_error(where + ": " + key + " must be true or false");
       (key == "all" ? options.all : options.allowMissing) = value.get<bool>();
     } else {
-      throw std::runtime_error(where + ": unknown setting \"" + key + "\" (only, ignore, tolerance, method, allowMissing, all)");
+      throw std::runtime_error(where + ": unknown setting \"" + key + "\" (only, ignore, tolerance, method, reference, allowMissing, all)");
     }
   }
   options.configFile = file.string();
+}
+
+std::string toString(const Generator& generator) {
+  std::string name(toString(generator.method));
+  if (generator.method == Method::lengyel) name += "/" + std::string(toString(generator.weighting));
+  return name;
+}
+
+std::optional<Generator> parseGenerator(std::string_view name) {
+  if (name == "lengyel") return Generator{Method::lengyel, Weighting::angle};
+  for (const Generator& generator : kGenerators)
+    if (toString(generator) == name) return generator;
+  return std::nullopt;
 }
 
 nlohmann::ordered_json toJson(const CheckOptions& options) {
   Json checks = Json::array(), ignored = Json::array();
   for (std::size_t i = 0; i < kCheckCount; ++i) (options.enabled.test(i) ? checks : ignored).push_back(kCheckNames[i]);
   Json settings = {{"method", std::string(toString(options.method))},
+                   {"reference", toString(Generator{options.method, options.weighting})},
                    {"tolerance", {{"orthogonal", options.orthogonalToleranceDegrees}, {"reference", options.referenceToleranceDegrees}}},
                    {"checks", checks},
                    {"ignored", ignored},

@@ -1,7 +1,8 @@
 // SPDX-License-Identifier: MIT
 // OBJ, PLY and OFF through OpenMesh's readers, converted to an in-memory GLB so that the rest
 // of bake treats them like any glTF input. These formats carry no materials: every mesh
-// gets tangents. Their UV origin is bottom-left, so v becomes 1 - v for glTF.
+// gets tangents. Their UV origin is bottom-left, so v becomes 1 - v for glTF. A file without
+// normals gives a primitive without NORMAL, which bake then generates (--normals).
 #include <OpenMesh/Core/IO/IOManager.hh>
 #include <OpenMesh/Core/IO/MeshIO.hh>
 #include <OpenMesh/Core/IO/importer/ImporterT.hh>
@@ -377,10 +378,6 @@ std::vector<std::uint8_t> meshFileToGlb(const std::filesystem::path& path) {
   const bool cornerUvs = options.check(OpenMesh::IO::Options::FaceTexCoord) && !halfedgeUvSet.empty();
   const bool vertexUvs = options.check(OpenMesh::IO::Options::VertexTexCoord) && !vertexUvSet.empty();
   if (!cornerUvs && !vertexUvs) throw InputError(path.string() + ": has no texture coordinates; tangents need UVs");
-  if (!haveNormals) {
-    mesh.update_face_normals();
-    mesh.update_vertex_normals();
-  }
 
   // One glTF vertex per distinct (vertex, UV).
   std::map<std::tuple<int, std::uint32_t, std::uint32_t>, std::uint32_t> vertexOf;
@@ -403,9 +400,11 @@ std::vector<std::uint8_t> meshFileToGlb(const std::filesystem::path& path) {
       auto [it, inserted] = vertexOf.try_emplace(key, static_cast<std::uint32_t>(positions.size() / 3));
       if (inserted) {
         const auto p = mesh.point(vertex);
-        const auto n = mesh.normal(vertex);
         positions.insert(positions.end(), {p[0], p[1], p[2]});
-        normals.insert(normals.end(), {n[0], n[1], n[2]});
+        if (haveNormals) {
+          const auto n = mesh.normal(vertex);
+          normals.insert(normals.end(), {n[0], n[1], n[2]});
+        }
         uvs.insert(uvs.end(), {u, v});
       }
       polygon.push_back(it->second);
@@ -429,23 +428,34 @@ std::vector<std::uint8_t> meshFileToGlb(const std::filesystem::path& path) {
 
   using Json = nlohmann::ordered_json;
   const std::size_t n = vertexCount;
+  // Without normals in the file the primitive has no NORMAL, and bake generates it as for glTF
+  // (--normals: flat by default, as glTF 3.7.2.1 asks of readers and as Blender's OBJ importer
+  // shades a mesh without normals or smoothing groups).
+  Json attributes = {{"POSITION", 0}};
+  Json accessors = Json::array({{{"bufferView", 0}, {"componentType", 5126}, {"count", n}, {"type", "VEC3"},
+                                 {"min", Json::array({lo[0], lo[1], lo[2]})}, {"max", Json::array({hi[0], hi[1], hi[2]})}}});
+  Json bufferViews = Json::array({{{"buffer", 0}, {"byteLength", n * 12}, {"target", 34962}}});
+  std::size_t offset = n * 12;
+  auto addVertexAttribute = [&](const char* name, const char* type, std::size_t bytes) {
+    attributes[name] = accessors.size();
+    accessors.push_back({{"bufferView", bufferViews.size()}, {"componentType", 5126}, {"count", n}, {"type", type}});
+    bufferViews.push_back({{"buffer", 0}, {"byteOffset", offset}, {"byteLength", n * bytes}, {"target", 34962}});
+    offset += n * bytes;
+  };
+  if (haveNormals) addVertexAttribute("NORMAL", "VEC3", 12);
+  addVertexAttribute("TEXCOORD_0", "VEC2", 8);
+  const std::size_t indicesAccessor = accessors.size();
+  accessors.push_back({{"bufferView", bufferViews.size()}, {"componentType", 5125}, {"count", indices.size()}, {"type", "SCALAR"}});
+  bufferViews.push_back({{"buffer", 0}, {"byteOffset", indexOffset}, {"byteLength", indices.size() * 4}, {"target", 34963}});
   Json doc = {
       {"asset", {{"version", "2.0"}, {"generator", "libtangent (from " + path.filename().string() + ")"}}},
       {"scene", 0},
       {"scenes", Json::array({{{"nodes", Json::array({0})}}})},
       {"nodes", Json::array({{{"mesh", 0}, {"name", path.stem().string()}}})},
       {"meshes", Json::array({{{"name", path.stem().string()},
-                               {"primitives", Json::array({{{"attributes", {{"POSITION", 0}, {"NORMAL", 1}, {"TEXCOORD_0", 2}}},
-                                                            {"indices", 3}}})}}})},
-      {"accessors", Json::array({{{"bufferView", 0}, {"componentType", 5126}, {"count", n}, {"type", "VEC3"},
-                                  {"min", Json::array({lo[0], lo[1], lo[2]})}, {"max", Json::array({hi[0], hi[1], hi[2]})}},
-                                 {{"bufferView", 1}, {"componentType", 5126}, {"count", n}, {"type", "VEC3"}},
-                                 {{"bufferView", 2}, {"componentType", 5126}, {"count", n}, {"type", "VEC2"}},
-                                 {{"bufferView", 3}, {"componentType", 5125}, {"count", indices.size()}, {"type", "SCALAR"}}})},
-      {"bufferViews", Json::array({{{"buffer", 0}, {"byteLength", n * 12}, {"target", 34962}},
-                                   {{"buffer", 0}, {"byteOffset", n * 12}, {"byteLength", n * 12}, {"target", 34962}},
-                                   {{"buffer", 0}, {"byteOffset", n * 24}, {"byteLength", n * 8}, {"target", 34962}},
-                                   {{"buffer", 0}, {"byteOffset", indexOffset}, {"byteLength", indices.size() * 4}, {"target", 34963}}})},
+                               {"primitives", Json::array({{{"attributes", attributes}, {"indices", indicesAccessor}}})}}})},
+      {"accessors", accessors},
+      {"bufferViews", bufferViews},
       {"buffers", Json::array({{{"byteLength", bin.size()}}})}};
   return makeGlb(text::dumpJson(doc), bin);
 }

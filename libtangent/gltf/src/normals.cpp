@@ -2,6 +2,8 @@
 // NORMAL as glTF readers treat it (normals.hpp).
 #include "normals.hpp"
 
+#include "primitive.hpp"
+
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -174,6 +176,25 @@ GeneratedNormals generateNormals(std::span<const float> positions, std::span<con
     out.corners[c] = found;
   }
   return out;
+}
+
+PrimitiveGeometry withGeneratedNormals(const PrimitiveGeometry& geometry, bool smooth, double creaseAngleDegrees,
+                                       std::vector<std::uint32_t>& sourceVertex) {
+  GeneratedNormals generated = generateNormals(geometry.positions, geometry.corners, smooth, creaseAngleDegrees);
+  PrimitiveGeometry expanded;
+  expanded.vertexCount = generated.source.size();
+  expanded.mode = 4;
+  expanded.indexComponentType = geometry.indexComponentType;
+  expanded.positions.resize(3 * expanded.vertexCount);
+  expanded.uvs.resize(2 * expanded.vertexCount);
+  for (std::size_t v = 0; v < expanded.vertexCount; ++v) {
+    std::copy_n(&geometry.positions[3 * generated.source[v]], 3, &expanded.positions[3 * v]);
+    if (!geometry.uvs.empty()) std::copy_n(&geometry.uvs[2 * generated.source[v]], 2, &expanded.uvs[2 * v]);
+  }
+  expanded.normals = std::move(generated.normals);
+  expanded.corners = std::move(generated.corners);
+  sourceVertex = std::move(generated.source);
+  return expanded;
 }
 
 }  // namespace tangent::gltf::detail

@@ -17,6 +17,8 @@
 
 namespace tangent::gltf::detail {
 
+struct PrimitiveGeometry;
+
 // The largest | |N| - 1 | left as stored. Float rounding of a normalized vector is ~1e-7; DCC
 // exporters that hold normals in 16-bit integers and write them as floats leave a few 1e-5 (the
 // Blender export NormalTangentMirrorTest.glb: 4.4e-5). Within this the core keeps the reference
@@ -61,5 +63,12 @@ struct GeneratedNormals {
 };
 GeneratedNormals generateNormals(std::span<const float> positions, std::span<const std::uint32_t> corners, bool smooth,
                                  double creaseAngleDegrees);
+
+// The geometry the core sees for a primitive without NORMAL, in bake and in check's `reference`:
+// generateNormals' vertices with their positions and UVs copied from their input vertex, the
+// generated normals and triangle list, mode 4 and the input's index component type.
+// `sourceVertex` gets the input vertex of each vertex of the result.
+PrimitiveGeometry withGeneratedNormals(const PrimitiveGeometry& geometry, bool smooth, double creaseAngleDegrees,
+                                       std::vector<std::uint32_t>& sourceVertex);
 
 }  // namespace tangent::gltf::detail

@@ -21,6 +21,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <limits>
 
 #include "accessors.hpp"
@@ -36,6 +37,8 @@ using Json = nlohmann::ordered_json;
 constexpr double kFloatUnitDeviation = 1e-3;  // float writers' rounding and normalization
 constexpr int kByteBits = 8;
 constexpr int kFewestShortBits = 10;           // gltf-transform quantize's default for normals
+constexpr int kFewestSpreadBits = 8;           // the coarsest grid looked for in 16-bit positions and UVs
+constexpr int kMostDracoBits = 30;             // Draco's limit on quantization bits
 
 double gridStep(int bits) { return 1.0 / double((1 << (bits - 1)) - 1); }
 
@@ -52,10 +55,6 @@ double storageStep(int componentType, bool normalized) {
   }
 }
 
-// Half the rounding step of a position or UV accessor, in its decoded units. Normalized 16-bit
-// data may hold fewer significant bits (gltf-transform quantize: 14 for positions, 12 for UVs):
-// the smallest gap between distinct values estimates that step, bounded by 10 significant bits
-// so that a small mesh (few distinct values, wide gaps) is not given a coarse grid.
 // The smallest positive gap between two values of one component: no larger than the grid step
 // where the values lie on a grid, a bound from above on what rounding to it moved them.
 double smallestGap(const std::vector<float>& values, int components, std::size_t count, double start) {
@@ -74,26 +73,98 @@ double smallestGap(const std::vector<float>& values, int components, std::size_t
   return gap;
 }
 
-// `dracoFloats`: the accessor was decoded from a Draco stream, which quantizes positions and
-// UVs to a grid of its own (bits and range in the stream) and decodes to float; the grid step
-// is then taken as the smallest gap between decoded values, which is at least the step.
+// Normalized 16-bit data may hold b < 16 significant bits in one of two layouts:
+//  - in the low bits, 0 .. 2^b - 1, scaled back by KHR_texture_transform or the node (gltfpack
+//    -vt/-vp): the grid is the storage step itself;
+//  - spread over the whole range (gltf-transform quantize, meshoptimizer's quantizeUnorm
+//    rescaled): a b-bit value k is stored as k's bits repeated, (k << (16 - b)) | (k >> (2b - 16)),
+//    or as round(k * 65535 / (2^b - 1)); both approximate k / (2^b - 1).
+// A smallest-gap estimate cannot tell these apart: on a regular mesh the gaps are the mesh's
+// spacing, many grid steps wide. The stored integers can: the coarsest b whose spread grid holds
+// every magnitude exactly is the grid; none holds them all when the data use their full
+// precision or the low-bits layout. Sign (SHORT) takes one bit: b counts the magnitude's bits plus it.
+bool onSpreadGrid(std::uint32_t magnitude, int valueBits, int storageBits) {
+  const std::uint32_t k = magnitude >> (storageBits - valueBits);
+  const int low = 2 * valueBits - storageBits;  // fewer than half the bits: repeated once, the rest 0
+  const std::uint32_t replicated = (k << (storageBits - valueBits)) | (low >= 0 ? k >> low : 0);
+  if (replicated == magnitude) return true;
+  const double storageMax = double((1u << storageBits) - 1), valueMax = double((1u << valueBits) - 1);
+  const double nearest = std::round(double(magnitude) * valueMax / storageMax);
+  return std::lround(nearest * storageMax / valueMax) == long(magnitude);
+}
+
+// The decoded step of the grid normalized 16-bit `data` lies on (see onSpreadGrid).
+double normalizedShortGridStep(const AccessorData& data) {
+  const bool isSigned = data.componentType == TINYGLTF_COMPONENT_TYPE_SHORT;
+  const int storageBits = isSigned ? 15 : 16;
+  std::vector<std::uint32_t> magnitudes(data.count * data.components);
+  for (std::size_t i = 0; i < magnitudes.size(); ++i) {
+    std::uint16_t raw = 0;
+    std::memcpy(&raw, &data.bytes[2 * i], 2);
+    // SHORT -32768 decodes as -1, as 32767 does (spec 3.11).
+    magnitudes[i] = isSigned ? std::min<std::uint32_t>(std::abs(int(std::int16_t(raw))), 32767) : raw;
+  }
+  std::sort(magnitudes.begin(), magnitudes.end());
+  magnitudes.erase(std::unique(magnitudes.begin(), magnitudes.end()), magnitudes.end());
+  for (int valueBits = kFewestSpreadBits - (isSigned ? 1 : 0); valueBits < storageBits; ++valueBits) {
+    const bool fits = std::all_of(magnitudes.begin(), magnitudes.end(),
+                                  [&](std::uint32_t m) { return onSpreadGrid(m, valueBits, storageBits); });
+    if (fits) return 1.0 / double((1u << valueBits) - 1);
+  }
+  return 1.0 / double((1u << storageBits) - 1);
+}
+
+// Draco quantizes an attribute to b bits over one range for all its components (the widest
+// component's) from each component's minimum, and decodes to float: min_c + q * range / (2^b - 1).
+// The coarsest b whose grid holds every decoded value (to float's rounding) is the grid; where
+// none does, the smallest gap between values, which is at least the step.
+double dracoGridStep(const std::vector<float>& values, int components, std::size_t count) {
+  if (count == 0) return 0;
+  std::vector<double> minimum(components, std::numeric_limits<double>::infinity()), maximum(components, -minimum[0]);
+  for (std::size_t i = 0; i < count; ++i)
+    for (int c = 0; c < components; ++c) {
+      minimum[c] = std::min(minimum[c], double(values[i * components + c]));
+      maximum[c] = std::max(maximum[c], double(values[i * components + c]));
+    }
+  double range = 0, magnitude = 0;
+  for (int c = 0; c < components; ++c) {
+    range = std::max(range, maximum[c] - minimum[c]);
+    magnitude = std::max({magnitude, std::abs(minimum[c]), std::abs(maximum[c])});
+  }
+  if (!(range > 0) || !std::isfinite(range)) return 0;
+  constexpr double kFloatEpsilon = 1.2e-7;
+  for (int bits = kFewestSpreadBits; bits <= kMostDracoBits; ++bits) {
+    const double step = range / double((1u << bits) - 1);
+    const double slack = 4 * kFloatEpsilon * (magnitude + range) / step;  // float decoding's error, in steps
+    if (slack > 0.05) break;  // finer grids cannot be told apart from float data
+    bool fits = true;
+    for (std::size_t i = 0; i < count && fits; ++i)
+      for (int c = 0; c < components && fits; ++c) {
+        const double q = (double(values[i * components + c]) - minimum[c]) / step;
+        fits = std::abs(q - std::round(q)) <= slack + 1e-6;
+      }
+    if (fits) return step;
+  }
+  const double gap = smallestGap(values, components, count, std::numeric_limits<double>::infinity());
+  return std::isfinite(gap) ? gap : 0;
+}
+
+// Half the rounding step of a position or UV accessor, in its decoded units.
+// `dracoFloats`: the accessor was decoded from a Draco stream (dracoGridStep).
 double halfRoundingStep(const tinygltf::Model& model, int accessor, const std::string& where, bool dracoFloats) {
   if (accessor < 0 || static_cast<std::size_t>(accessor) >= model.accessors.size()) return 0;
   // The declared type first: other float data is never read here.
   const tinygltf::Accessor& declared = model.accessors[static_cast<std::size_t>(accessor)];
   if (dracoFloats && declared.componentType == TINYGLTF_COMPONENT_TYPE_FLOAT) {
     const AccessorData data = readAccessor(model, accessor, where);
-    const double gap = smallestGap(toFloats(data), data.components, data.count, std::numeric_limits<double>::infinity());
-    return std::isfinite(gap) ? gap / 2 : 0;
+    return dracoGridStep(toFloats(data), data.components, data.count) / 2;
   }
   const double storage = storageStep(declared.componentType, declared.normalized);
   if (storage == 0) return 0;
   if (!declared.normalized || componentBytes(declared.componentType) == 1) return storage / 2;
-  const AccessorData data = readAccessor(model, accessor, where);
-  const bool isSigned = data.componentType == TINYGLTF_COMPONENT_TYPE_SHORT;
-  const double coarsest = isSigned ? gridStep(kFewestShortBits) : 1.0 / double((1 << kFewestShortBits) - 1);
-  const double gap = smallestGap(toFloats(data), data.components, data.count, coarsest);
-  return (std::max(gap, storage) + storage) / 2;
+  // Rounded to the grid, then (spread layouts) to the storage step.
+  const double grid = normalizedShortGridStep(readAccessor(model, accessor, where));
+  return grid > storage ? (grid + storage) / 2 : storage / 2;
 }
 
 }  // namespace
@@ -173,6 +244,11 @@ InputRounding inputRounding(const Asset& asset, const Json& primitive, int texCo
       const Json& transform = texture["extensions"]["KHR_texture_transform"];
       if (transform.contains("scale") && transform["scale"].size() == 2)
         rounding.uv *= std::max(std::abs(transform["scale"][0].get<double>()), std::abs(transform["scale"][1].get<double>()));
+      // A rotation mixes the two components: each moves by up to (|cos| + |sin|) times as much.
+      if (transform.contains("rotation") && transform["rotation"].is_number()) {
+        const double rotation = transform["rotation"].get<double>();
+        rounding.uv *= std::abs(std::cos(rotation)) + std::abs(std::sin(rotation));
+      }
     }
   }
   return rounding;

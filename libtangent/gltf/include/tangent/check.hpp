@@ -24,8 +24,23 @@ inline constexpr std::size_t kCheckCount = std::size(kCheckNames);
 inline const char* toString(CheckId id) { return kCheckNames[static_cast<std::size_t>(id)]; }
 std::optional<CheckId> parseCheck(std::string_view name);
 
+// A tangent generator the library has, named as `check --reference` takes it and `--identify`
+// reports it: "mikktspace", "lengyel/angle", "lengyel/area", "lengyel/uniform", "flat" (the
+// weighting only matters to lengyel; "lengyel" alone is lengyel/angle).
+struct Generator {
+  Method method = Method::mikktspace;
+  Weighting weighting = Weighting::angle;
+  bool operator==(const Generator&) const = default;
+};
+inline constexpr Generator kGenerators[] = {{Method::mikktspace, Weighting::angle}, {Method::lengyel, Weighting::angle},
+                                            {Method::lengyel, Weighting::area},      {Method::lengyel, Weighting::uniform},
+                                            {Method::flat, Weighting::angle}};
+std::string toString(const Generator& generator);
+std::optional<Generator> parseGenerator(std::string_view name);
+
 struct CheckOptions {
-  Method method = Method::mikktspace;     // what `reference` recomputes with
+  Method method = Method::mikktspace;     // what `reference` recomputes with (--reference, --method)
+  Weighting weighting = Weighting::angle;  // with it: lengyel's weighting
   double orthogonalToleranceDegrees = 1.0;  // `orthogonal`, on top of the rounding limits
   double referenceToleranceDegrees = 1.0;   // `reference`, on top of the rounding limits
   std::bitset<kCheckCount> enabled = std::bitset<kCheckCount>().set();  // --only / --ignore
@@ -38,7 +53,7 @@ struct CheckOptions {
 };
 
 // Reads a check configuration (JSON: only, ignore, tolerance {orthogonal, reference}, method,
-// allowMissing, all; README "tangent check") into `options`. Throws std::runtime_error naming
+// reference (a generator name), allowMissing, all; README "tangent check") into `options`. Throws std::runtime_error naming
 // the file and the member that is wrong.
 void applyCheckConfig(const std::filesystem::path& file, CheckOptions& options);
 
@@ -92,10 +107,11 @@ struct PrimitiveCheck {
   double referenceLimitDegrees = 0;     // before the per-corner allowance for rounded positions/UVs
   std::vector<CheckFinding> findings;
   std::uint64_t referenceUndefined = 0; // corners the reference method leaves arbitrary: not compared
-  std::uint64_t referenceUnresolved = 0; // corners whose UV orientation rounded positions/UVs leave open: not compared
+  std::uint64_t referenceUnresolved = 0; // corners whose frame rounded positions/UVs leave open (the allowance reaches 180 deg, or
+                                         // their triangle's UV orientation is undecided and w differs): not compared
   double referenceAllowanceMaxDegrees = 0;  // largest per-corner allowance for rounded positions/UVs
   std::uint64_t handednessUndecided = 0;  // triangles whose UV orientation rounded positions/UVs leave open: not judged
-  std::uint64_t referenceWUndecided = 0;  // corners of such triangles whose angle was compared but not their w
+  std::uint64_t referenceWUndecided = 0;  // corners of such triangles whose angle was compared (w agrees) but not their w
   // NORMAL as glTF readers treat it: lengths further than kNormalLengthKept (normals.hpp) from 1
   // are normalized before the reference is computed; a length beyond what the component type's
   // rounding explains is a warning, not a finding.
