@@ -9,10 +9,6 @@
 # (viewer/CMakeLists.txt, viewer/web/native_stand_ins.cpp); the core's half-edge code compiles
 # against OpenMesh's headers but OpenMesh's compiled part is not linked, so the methods lengyel
 # and flat, which the viewer never calls, would stop the page. README.md lists what is left out.
-set(TANGENT_BUILD_TOOLS OFF)
-set(TANGENT_BUILD_TESTS OFF)
-set(TANGENT_BUILD_BENCHMARKS OFF)
-set(TANGENT_BUILD_PYTHON OFF)
 set(web_include ${PROJECT_BINARY_DIR}/web-include)
 file(MAKE_DIRECTORY ${web_include}/stb)
 foreach(entry nlohmann glm OpenMesh tiny_gltf.h stb/stb_image.h stb/stb_image_write.h stb/stb_image_resize.h)

@@ -6,7 +6,8 @@ scene (a .gltf whose .bin and textures the page fetches beside it): the page
 (index.html?url=...) reaches state "ready", and its frames of the lit, tangent, handedness and
 error views match tangent-view --screenshot of the same file, camera and size (llvmpipe under
 Xvfb) within the tolerance below. A truncated .glb and a missing URL reach "error: ..." naming
-the file; every shader variant of --check-shaders links under WebGL2. Load and frame times are
+the file; every shader variant of --check-shaders links under WebGL2; the page's "bake tangents"
+gives the bytes `tangent bake` writes for the same file. Load and frame times are
 printed (and written to --times as JSON).
 
 Tolerance. The two renderers are different software rasterisers (SwiftShader through ANGLE,
@@ -22,6 +23,7 @@ each view with another one (--break, which must fail) gives 17 % of the pixels a
 15-19: every pixel the asset covers.
 """
 import argparse
+import base64
 import json
 import pathlib
 import shutil
@@ -116,6 +118,23 @@ def main():
             frame_ms = chrome.evaluate(session, "Module._tangent_web_frame_ms(10)")
             times[file.name] = {"load_ms": round(load_ms), "frame_ms": round(frame_ms, 2)}
             print(f"{file.name}: ready after {load_ms:.0f} ms (navigation to first frame), median frame {frame_ms:.1f} ms")
+            if not file.name.endswith(".baked.glb"):
+                # "bake tangents" in the page: the same bytes as `tangent bake` of the same file.
+                reference = site / "cli-baked" / (file.stem + ".glb")
+                reference.parent.mkdir(exist_ok=True)
+                subprocess.run([args.tangent, "bake", str(file), str(reference)], check=True, capture_output=True)
+                baked = chrome.evaluate(session, """(() => { const b = bake(); if (!b) return null;
+                    let s = ""; for (let i = 0; i < b.length; i += 32768) s += String.fromCharCode.apply(null, b.subarray(i, i + 32768));
+                    return btoa(s); })()""")
+                if baked is None:
+                    failures.append(f"{file.name}: baking in the page failed: " + chrome.evaluate(session, "document.getElementById('message').textContent"))
+                else:
+                    same = base64.b64decode(baked) == reference.read_bytes()
+                    print(f"  bake in the page: {len(base64.b64decode(baked))} bytes, {'identical to' if same else 'DIFFERENT from'} tangent bake's")
+                    if not same:
+                        (out / f"{file.stem}.page-baked.glb").write_bytes(base64.b64decode(baked))
+                        failures.append(f"{file.name}: the page's bake differs from tangent bake's (both in {out})")
+                        shutil.copy(reference, out / f"{file.stem}.cli-baked.glb")
             for index, view in enumerate(VIEWS):
                 error = chrome.evaluate(session, f"Module.ccall('tangent_web_options', 'string', ['string'], ['--view {view} --msaa 0'])")
                 if error:
