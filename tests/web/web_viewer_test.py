@@ -7,7 +7,8 @@ scene (a .gltf whose .bin and textures the page fetches beside it): the page
 error views match tangent-view --screenshot of the same file, camera and size (llvmpipe under
 Xvfb) within the tolerance below. A truncated .glb and a missing URL reach "error: ..." naming
 the file; every shader variant of --check-shaders links under WebGL2; the page's "bake tangents"
-gives the bytes `tangent bake` writes for the same file. Load and frame times are
+gives the bytes `tangent bake` writes for the same file, and its list of checks the report
+`tangent check --format json` gives. Load and frame times are
 printed (and written to --times as JSON).
 
 Tolerance. The two renderers are different software rasterisers (SwiftShader through ANGLE,
@@ -135,6 +136,16 @@ def main():
                         (out / f"{file.stem}.page-baked.glb").write_bytes(base64.b64decode(baked))
                         failures.append(f"{file.name}: the page's bake differs from tangent bake's (both in {out})")
                         shutil.copy(reference, out / f"{file.stem}.cli-baked.glb")
+            # The page's list of `tangent check` findings: the report `tangent check --format json` gives.
+            page_check = chrome.evaluate(session, "check()")
+            cli = subprocess.run([args.tangent, "check", "--format", "json", str(file)], capture_output=True, text=True)
+            cli_check = json.loads(cli.stdout)["files"][0]
+            findings = sum(len(p["findings"]) for p in cli_check["primitives"])
+            same = page_check["primitives"] == cli_check["primitives"] and page_check["status"] == cli_check["status"]
+            print(f"  check in the page: {page_check['status']}, {findings} finding(s), {'the same as' if same else 'DIFFERENT from'} tangent check's")
+            if not same:
+                failures.append(f"{file.name}: the page's check differs from tangent check --format json:\n{json.dumps(page_check)[:2000]}\n"
+                                f"{json.dumps(cli_check)[:2000]}")
             for index, view in enumerate(VIEWS):
                 error = chrome.evaluate(session, f"Module.ccall('tangent_web_options', 'string', ['string'], ['--view {view} --msaa 0'])")
                 if error:
