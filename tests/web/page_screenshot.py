@@ -22,11 +22,11 @@ def main():
     site = pathlib.Path(tempfile.mkdtemp(prefix="tangent-web-shot-"))
     shutil.copytree(build_web, site / "web", ignore=shutil.ignore_patterns("cmake"))
     shutil.copytree(assets, site / "assets")
-    server, chrome = browser.Server(site), browser.Browser(width=720, height=520)
+    server, chrome = browser.Server(site), browser.Browser(width=720, height=640)
     try:
-        query = urllib.parse.urlencode({"url": f"../assets/{name}", "view": view, "size": "720x440", "msaa": "4"})
+        query = urllib.parse.urlencode({"url": f"../assets/{name}", "view": view, "size": "704x440", "msaa": "4"})
         session = chrome.open(server.url + "web/index.html?" + query)
-        chrome.send("Emulation.setDeviceMetricsOverride", {"width": 720, "height": 520, "deviceScaleFactor": 1, "mobile": False},
+        chrome.send("Emulation.setDeviceMetricsOverride", {"width": 720, "height": 640, "deviceScaleFactor": 1, "mobile": False},
                     session=session)
         state = chrome.wait_state(session)
         if state != "ready":
