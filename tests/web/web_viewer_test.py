@@ -4,12 +4,12 @@
 For each shared asset (../shared/assets/*.glb), raw and baked by `tangent bake`, and the demo
 scene (a .gltf whose .bin and textures the page fetches beside it): the page
 (index.html?url=...) reaches state "ready", and its frames of the lit, tangent, handedness and
-error views match tangent-view --screenshot of the same file, camera and size (llvmpipe under
-Xvfb) within the tolerance below. A truncated .glb and a missing URL reach "error: ..." naming
-the file; every shader variant of --check-shaders links under WebGL2; the page's "bake tangents"
+error views, the split compare view and the tangent-frame glyphs match tangent-view --screenshot of the same file, camera and size (llvmpipe under
+Xvfb) within the tolerance below. A truncated .glb, a missing URL and a meshopt-compressed file
+reach "error: ..." naming the file; every shader variant of --check-shaders links under WebGL2; the page's "bake tangents"
 gives the bytes `tangent bake` writes for the same file, and its list of checks the report
 `tangent check --format json` gives. Load and frame times are
-printed (and written to --times as JSON).
+printed (and written to OUT/times.json).
 
 Tolerance. The two renderers are different software rasterisers (SwiftShader through ANGLE,
 Mesa's llvmpipe) running the same GLSL with the same inputs: they differ in rounding of
@@ -37,11 +37,16 @@ import urllib.parse
 sys.path.insert(0, str(pathlib.Path(__file__).resolve().parent))
 import browser  # noqa: E402
 
-VIEWS = ["lit", "tangent", "handedness", "error"]
+# What is compared: tangent-view options, the same on both sides.
+VIEWS = {"lit": "--view lit", "tangent": "--view tangent", "handedness": "--view handedness", "error": "--view error",
+         "split": "--view lit --compare fresh", "glyphs": "--view tangent --glyphs"}
 SIZE = (320, 240)
 CHANNEL_TOLERANCE = 12      # of 255: a pixel differs when any channel is off by more
 MAX_DIFFERING = 0.01        # fraction of pixels that may differ
 MAX_MEAN = 1.5              # mean absolute channel difference, of 255
+# Tangent-frame glyphs are one-pixel lines: which pixels a line covers is where the two
+# rasterisers differ most (measured: up to 0.92 % of the pixels, mean 1.09).
+LIMITS = {"glyphs": (0.03, 3.0)}
 
 
 def compare(a, b):
@@ -55,9 +60,9 @@ def compare(a, b):
     return differing / pixels, total / (3 * pixels)
 
 
-def desktop_screenshot(args, asset, view, out):
+def desktop_screenshot(args, asset, options, out):
     command = [args.xvfb_run, "-a", "-s", "-screen 0 1280x1024x24", args.tangent_view, str(asset), "--screenshot", str(out),
-               "--size", f"{SIZE[0]}x{SIZE[1]}", "--view", view, "--msaa", "0"]
+               "--size", f"{SIZE[0]}x{SIZE[1]}", *options.split(), "--msaa", "0"]
     result = subprocess.run(command, capture_output=True, text=True, timeout=300)
     if result.returncode != 0:
         raise RuntimeError(f"{' '.join(command)}: {result.stderr}")
@@ -146,21 +151,23 @@ def main():
             if not same:
                 failures.append(f"{file.name}: the page's check differs from tangent check --format json:\n{json.dumps(page_check)[:2000]}\n"
                                 f"{json.dumps(cli_check)[:2000]}")
-            for index, view in enumerate(VIEWS):
-                error = chrome.evaluate(session, f"Module.ccall('tangent_web_options', 'string', ['string'], ['--view {view} --msaa 0'])")
+            names = list(VIEWS)
+            for index, view in enumerate(names):
+                error = chrome.evaluate(session, f"Module.ccall('tangent_web_options', 'string', ['string'], ['{VIEWS[view]} --msaa 0'])")
                 if error:
-                    failures.append(f"{file.name}: --view {view}: {error}")
+                    failures.append(f"{file.name}: {VIEWS[view]}: {error}")
                     continue
                 width, height, web = chrome.read_pixels(session)
                 browser.write_png(out / f"{file.stem}.{view}.web.png", width, height, web)
-                reference_view = VIEWS[(index + 1) % len(VIEWS)] if args.broken else view
-                _, _, desk = desktop_screenshot(args, file, reference_view, out / f"{file.stem}.{view}.desktop.png")
+                reference = VIEWS[names[(index + 1) % len(names)]] if args.broken else VIEWS[view]
+                _, _, desk = desktop_screenshot(args, file, reference, out / f"{file.stem}.{view}.desktop.png")
                 differing, mean = compare(web, desk)
-                verdict = "ok" if differing <= MAX_DIFFERING and mean <= MAX_MEAN else "DIFFERS"
+                max_differing, max_mean = LIMITS.get(view, (MAX_DIFFERING, MAX_MEAN))
+                verdict = "ok" if differing <= max_differing and mean <= max_mean else "DIFFERS"
                 print(f"  {view:<11} {differing * 100:5.2f} % of pixels differ by > {CHANNEL_TOLERANCE}, mean {mean:.2f}: {verdict}")
                 if verdict != "ok":
-                    failures.append(f"{file.name} --view {view}: {differing * 100:.2f} % of pixels differ (limit "
-                                    f"{MAX_DIFFERING * 100} %), mean {mean:.2f} (limit {MAX_MEAN}); see {out}")
+                    failures.append(f"{file.name} {VIEWS[view]}: {differing * 100:.2f} % of pixels differ (limit "
+                                    f"{max_differing * 100} %), mean {mean:.2f} (limit {max_mean}); see {out}")
             if file == files[0]:
                 linked = chrome.evaluate(session, "Module._tangent_web_check_shaders()")
                 print(f"--check-shaders under WebGL2: {linked} programs linked")
