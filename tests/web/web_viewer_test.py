@@ -6,7 +6,7 @@ scene (a .gltf whose .bin and textures the page fetches beside it): the page
 (index.html?url=...) reaches state "ready", and its frames of the lit, tangent, handedness and
 error views, the split compare view and the tangent-frame glyphs match tangent-view --screenshot of the same file, camera and size (llvmpipe under
 Xvfb) within the tolerance below. A truncated .glb, a missing URL and a meshopt-compressed file
-reach "error: ..." naming the file; every shader variant of --check-shaders links under WebGL2; the page's "bake tangents"
+reach "error: ..." naming the file, an unknown view "error: ..." naming it; every shader variant of --check-shaders links under WebGL2; the page's "bake tangents"
 gives the bytes `tangent bake` writes for the same file, and its list of checks the report
 `tangent check --format json` gives. Load and frame times are
 printed (and written to OUT/times.json).
@@ -103,7 +103,8 @@ def main():
         shutil.copytree(args.demo, site / "demo")
         files.append(site / "demo" / "scene.gltf")
     (site / "broken.glb").write_bytes((site / assets[0].name).read_bytes()[:200])
-    refusals = [("broken.glb", ["broken.glb"]), ("missing.glb", ["missing.glb"])]
+    refusals = [("broken.glb", ["broken.glb"]), ("missing.glb", ["missing.glb"]),
+                (assets[0].name + "&view=no-such-view", ["unknown --view no-such-view"])]
     if shutil.which("gltfpack"):  # a meshopt-compressed copy: refused by name, not a crash
         subprocess.run(["gltfpack", "-i", str(assets[0]), "-o", str(site / "meshopt.glb"), "-c"], check=True, capture_output=True)
         refusals.append(("meshopt.glb", ["meshopt.glb", "EXT_meshopt_compression"]))
@@ -175,7 +176,8 @@ def main():
                     failures.append("shader variants do not link under WebGL2: " + "\n".join(chrome.console[-20:]))
 
         for name, expected in refusals:
-            session = chrome.open(server.url + "index.html?" + urllib.parse.urlencode({"url": name, "size": "64x64"}))
+            url, _, extra = name.partition("&")
+            session = chrome.open(server.url + "index.html?" + urllib.parse.urlencode({"url": url, "size": "64x64"}) + (f"&{extra}" if extra else ""))
             state = chrome.wait_state(session)
             print(f"{name}: {state}")
             if not state.startswith("error: ") or not all(word in state for word in expected):
