@@ -288,7 +288,7 @@ EnvironmentTextures uploadEnvironment(const EnvironmentMaps& maps) {
   glTexParameteri(GL_TEXTURE_CUBE_MAP, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
   glTexParameteri(GL_TEXTURE_CUBE_MAP, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
   for (const GLenum wrap : {GL_TEXTURE_WRAP_S, GL_TEXTURE_WRAP_T, GL_TEXTURE_WRAP_R}) glTexParameteri(GL_TEXTURE_CUBE_MAP, wrap, GL_CLAMP_TO_EDGE);
-  glEnable(GL_TEXTURE_CUBE_MAP_SEAMLESS);  // filter across face edges
+  if (kDesktopGl) glEnable(GL_TEXTURE_CUBE_MAP_SEAMLESS);  // filter across face edges (always on in WebGL2)
   textures.brdfLut = makeTexture();
   glBindTexture(GL_TEXTURE_2D, textures.brdfLut.get());
   glTexImage2D(GL_TEXTURE_2D, 0, GL_RG16F, maps.brdfLutSize, maps.brdfLutSize, 0, GL_RG, GL_FLOAT, maps.brdfLut.data());

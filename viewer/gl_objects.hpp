@@ -2,7 +2,7 @@
 // Move-only owners of OpenGL objects: each deletes its object when it goes.
 #pragma once
 
-#include <epoxy/gl.h>
+#include "gl_platform.hpp"
 
 #include <utility>
 

@@ -1,12 +1,17 @@
 // SPDX-License-Identifier: MIT
 // tangent-view: shows a glTF asset with shadowed normal and specular mapping and the views that
 // validate its tangent frames; renders headless screenshots for tests and reports.
-#include <epoxy/gl.h>  // before GLFW: epoxy provides the GL declarations
+#include "gl_platform.hpp"  // before GLFW: epoxy (or GLES3 on the web) provides the GL declarations
 #define GLFW_INCLUDE_NONE
 #include <GLFW/glfw3.h>
+#ifdef __EMSCRIPTEN__
+// The web viewer: the page (viewer/web/index.html) holds the controls and calls web.inc's entry points.
+#include <emscripten.h>
+#else
 #include <imgui.h>
 #include <backends/imgui_impl_glfw.h>
 #include <backends/imgui_impl_opengl3.h>
+#endif
 
 #include <algorithm>
 #include <chrono>
@@ -472,6 +477,7 @@ int screenshot(Viewer& viewer) {
   return 0;
 }
 
+#ifndef __EMSCRIPTEN__
 // The heatmap of the error and compare-angle views: debug_views.glsl's heatmap() stops.
 void drawHeatmapLegend() {
   struct Stop {
@@ -758,8 +764,13 @@ int interactive(Viewer& viewer, GLFWwindow* window) {
   ImGui::DestroyContext();
   return 0;
 }
+#endif  // !__EMSCRIPTEN__
 
 }  // namespace
+
+#ifdef __EMSCRIPTEN__
+#include "web/web.inc"
+#else
 
 int main(int argc, char** argv) {
   Options options;
@@ -826,3 +837,4 @@ int main(int argc, char** argv) {
   glfwTerminate();
   return exit;
 }
+#endif  // !__EMSCRIPTEN__

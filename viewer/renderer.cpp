@@ -505,6 +505,9 @@ glm::vec2 Renderer::shadowCubeDepthRange() const {
   return {std::max((distance - radius) / 1.75f, 0.02f * radius), distance + radius};
 }
 
+// Depth-only framebuffers draw no colour (glDrawBuffers: GL 3.3 and WebGL2 alike).
+const GLenum kNoColour = GL_NONE;
+
 void Renderer::drawShadowMap(const RenderSettings& settings) {
   GLint previous = 0;  // the caller's framebuffer, restored at the end
   glGetIntegerv(GL_FRAMEBUFFER_BINDING, &previous);
@@ -516,14 +519,14 @@ void Renderer::drawShadowMap(const RenderSettings& settings) {
     shadowCubeFramebuffer_ = makeFramebuffer();
     glBindFramebuffer(GL_FRAMEBUFFER, shadowCubeFramebuffer_.get());
     glFramebufferTexture2D(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_TEXTURE_CUBE_MAP_POSITIVE_X, shadowCube_.get(), 0);
-    glDrawBuffer(GL_NONE);
+    glDrawBuffers(1, &kNoColour);
     glReadBuffer(GL_NONE);
   }
   if (!pointShadow() && (shadowSize_ != settings.shadowMapSize || !shadowTexture_)) {
     shadowSize_ = settings.shadowMapSize;
     shadowTexture_ = makeTexture();
     glBindTexture(GL_TEXTURE_2D, shadowTexture_.get());
-    glTexImage2D(GL_TEXTURE_2D, 0, GL_DEPTH_COMPONENT24, shadowSize_, shadowSize_, 0, GL_DEPTH_COMPONENT, GL_FLOAT, nullptr);
+    glTexImage2D(GL_TEXTURE_2D, 0, GL_DEPTH_COMPONENT24, shadowSize_, shadowSize_, 0, GL_DEPTH_COMPONENT, GL_UNSIGNED_INT, nullptr);
     // Hardware depth comparison (sampler2DShadow): with LINEAR filtering each tap is itself a
     // bilinear blend of four comparisons.
     glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
@@ -535,7 +538,7 @@ void Renderer::drawShadowMap(const RenderSettings& settings) {
     shadowFramebuffer_ = makeFramebuffer();
     glBindFramebuffer(GL_FRAMEBUFFER, shadowFramebuffer_.get());
     glFramebufferTexture2D(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_TEXTURE_2D, shadowTexture_.get(), 0);
-    glDrawBuffer(GL_NONE);
+    glDrawBuffers(1, &kNoColour);
     glReadBuffer(GL_NONE);
   }
   glEnable(GL_DEPTH_TEST);  // without it GL writes no depth

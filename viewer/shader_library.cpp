@@ -36,6 +36,23 @@ GLuint compile(GLenum stage, const std::string& text, const std::string& name) {
 
 }  // namespace
 
+// The shaders are GLSL 3.30 core. WebGL2 compiles GLSL ES 3.00: the same language for what they
+// use, with a different #version line and no default precision for floats in fragment shaders
+// nor for the shadow, 3D and array samplers in either stage. Everything a target needs is put
+// here, after the #version line, with the variant's defines.
+std::string forTarget(std::string text, const std::string& defines) {
+  const auto lineEnd = text.find('\n');  // after "#version ..."
+  if (lineEnd == std::string::npos || text.compare(0, 9, "#version ") != 0) throw std::runtime_error("shader does not begin with #version");
+  if (!kDesktopGl) {
+    text.replace(0, lineEnd, "#version 300 es");
+    return text.insert(std::string("#version 300 es").size() + 1,
+                       "precision highp float;\nprecision highp int;\nprecision highp sampler2D;\nprecision highp samplerCube;\n"
+                       "precision highp sampler2DShadow;\nprecision highp samplerCubeShadow;\nprecision highp sampler3D;\n"
+                       "precision highp sampler2DArray;\n" + defines);
+  }
+  return text.insert(lineEnd + 1, defines);
+}
+
 std::string ShaderLibrary::source(const std::string& file, int depth) const {
   if (depth > 8) throw std::runtime_error("shader includes nest too deep at " + file);
   std::ifstream in(directory_ / file);
@@ -57,10 +74,7 @@ std::string ShaderLibrary::source(const std::string& file, int depth) const {
 GLuint ShaderLibrary::program(const std::string& vertexFile, const std::string& fragmentFile, const std::string& defines) {
   const auto key = std::make_tuple(vertexFile, fragmentFile, defines);
   if (auto it = programs_.find(key); it != programs_.end()) return it->second.get();
-  auto withDefines = [&](std::string text) {
-    const auto lineEnd = text.find('\n');  // after "#version ..."
-    return text.insert(lineEnd + 1, defines);
-  };
+  auto withDefines = [&](std::string text) { return forTarget(std::move(text), defines); };
   const GLuint vertex = compile(GL_VERTEX_SHADER, withDefines(source(vertexFile)), vertexFile);
   GLuint fragment = 0;
   try {

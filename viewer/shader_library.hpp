@@ -14,6 +14,10 @@
 
 namespace tangent::viewer {
 
+// A shader file's text for this build's GL (GLSL 3.30 core, or GLSL ES 3.00 with precisions on
+// the web, kDesktopGl) with a variant's defines after the #version line.
+std::string forTarget(std::string text, const std::string& defines);
+
 class ShaderLibrary {
  public:
   explicit ShaderLibrary(std::filesystem::path directory) : directory_(std::move(directory)) {}

@@ -1,10 +1,12 @@
 // SPDX-License-Identifier: MIT
 #include "textures.hpp"
 
+#ifndef __EMSCRIPTEN__  // the web build decodes with stb_image (viewer/web/images.cpp)
 #include <OpenImageIO/filesystem.h>
 #include <OpenImageIO/imagebuf.h>
 #include <OpenImageIO/imagebufalgo.h>
 #include <OpenImageIO/imageio.h>
+#endif
 
 #include <algorithm>
 #include <cmath>
@@ -12,6 +14,7 @@
 #include <vector>
 
 namespace tangent::viewer {
+#ifndef __EMSCRIPTEN__
 namespace {
 
 std::string extensionFor(const std::string& mimeType) {
@@ -86,15 +89,22 @@ bool decodeImage(const gltf::ImageSource& source, DecodedImage& image, std::stri
   return true;
 }
 
+// A resampled copy of the image at width x height (false where it cannot be made).
+bool resizeImage(const DecodedImage& image, int width, int height, std::vector<unsigned char>& rgba) {
+  const OIIO::ImageBuf source(OIIO::ImageSpec(image.width, image.height, 4, OIIO::TypeDesc::UINT8),
+                              const_cast<unsigned char*>(image.rgba.data()));  // wrapped, only read
+  const OIIO::ImageBuf resized = OIIO::ImageBufAlgo::resize(source, "", 0.0f, OIIO::ROI(0, width, 0, height, 0, 1, 0, 4));
+  return !resized.has_error() && resized.get_pixels(OIIO::ROI(0, width, 0, height, 0, 1, 0, 4), OIIO::TypeDesc::UINT8, rgba.data());
+}
+#endif
+
 std::string fitTextureSize(DecodedImage& image, int maxSize, const std::string& label) {
   if (maxSize <= 0 || (image.width <= maxSize && image.height <= maxSize)) return "";
   const double scale = static_cast<double>(maxSize) / std::max(image.width, image.height);
   const int width = std::clamp(static_cast<int>(std::lround(image.width * scale)), 1, maxSize);
   const int height = std::clamp(static_cast<int>(std::lround(image.height * scale)), 1, maxSize);
-  const OIIO::ImageBuf source(OIIO::ImageSpec(image.width, image.height, 4, OIIO::TypeDesc::UINT8), image.rgba.data());
-  const OIIO::ImageBuf resized = OIIO::ImageBufAlgo::resize(source, "", 0.0f, OIIO::ROI(0, width, 0, height, 0, 1, 0, 4));
   std::vector<unsigned char> rgba(static_cast<std::size_t>(width) * height * 4);
-  if (resized.has_error() || !resized.get_pixels(OIIO::ROI(0, width, 0, height, 0, 1, 0, 4), OIIO::TypeDesc::UINT8, rgba.data())) {
+  if (!resizeImage(image, width, height, rgba)) {
     // Keep every n-th texel instead: coarse, but it fits.
     for (int y = 0; y < height; ++y)
       for (int x = 0; x < width; ++x)
@@ -143,6 +153,7 @@ Texture loadTexture(const gltf::ImageSource& source, bool srgb, std::vector<std:
   return uploadTexture(image, srgb);
 }
 
+#ifndef __EMSCRIPTEN__
 bool writePng(const std::string& path, int width, int height, const std::vector<unsigned char>& rgbaBottomUp, std::string& error) {
   auto out = OIIO::ImageOutput::create(path);
   if (!out) {
@@ -163,5 +174,7 @@ bool writePng(const std::string& path, int width, int height, const std::vector<
   }
   return true;
 }
+
+#endif
 
 }  // namespace tangent::viewer

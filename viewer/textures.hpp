@@ -27,6 +27,9 @@ bool decodeImage(const gltf::ImageSource& source, DecodedImage& image, std::stri
 
 // Downscales an image wider or taller than maxSize (GL_MAX_TEXTURE_SIZE) to fit, keeping its
 // aspect ratio; returns a note naming it (`label`) and both sizes, or "" when it fits already.
+// A resampled copy at width x height into rgba (OpenImageIO; stb_image_resize on the web).
+bool resizeImage(const DecodedImage& image, int width, int height, std::vector<unsigned char>& rgba);
+
 std::string fitTextureSize(DecodedImage& image, int maxSize, const std::string& label);
 
 // GL_MAX_TEXTURE_SIZE of the current context.

@@ -1,0 +1,198 @@
+# SPDX-License-Identifier: MIT
+"""The web viewer (build-web/, scripts/web.sh) in headless Chromium against the desktop viewer.
+
+For each shared asset (../shared/assets/*.glb), raw and baked by `tangent bake`, and the demo
+scene (a .gltf whose .bin and textures the page fetches beside it): the page
+(index.html?url=...) reaches state "ready", and its frames of the lit, tangent, handedness and
+error views, the split compare view and the tangent-frame glyphs match tangent-view --screenshot of the same file, camera and size (llvmpipe under
+Xvfb) within the tolerance below. A truncated .glb, a missing URL and a meshopt-compressed file
+reach "error: ..." naming the file, an unknown view "error: ..." naming it; every shader variant of --check-shaders links under WebGL2; the page's "bake tangents"
+gives the bytes `tangent bake` writes for the same file, and its list of checks the report
+`tangent check --format json` gives. Load and frame times are
+printed (and written to OUT/times.json).
+
+Tolerance. The two renderers are different software rasterisers (SwiftShader through ANGLE,
+Mesa's llvmpipe) running the same GLSL with the same inputs: they differ in rounding of
+interpolants and texture filtering (a few levels of 255 per channel over whole surfaces),
+in which pixels a triangle's edge covers, and in shadow-map depth comparison at the shadow's
+edge (single pixels that differ a lot). So: a pixel differs when a channel is off by more than
+12 of 255 (5 %), and at most 1 % of the pixels may differ, with a mean difference of at most
+1.5 of 255. Measured here (Chromium 156's SwiftShader against Mesa 22's llvmpipe, 320x240, both
+shared assets raw and baked, four views): at most 0.11 % of the pixels differ and the mean is at
+most 0.14, so the limits leave a factor of about ten for other versions of either. Comparing
+each view with another one (--break, which must fail) gives 17 % of the pixels and means of
+15-19: every pixel the asset covers.
+"""
+import argparse
+import base64
+import json
+import pathlib
+import shutil
+import subprocess
+import sys
+import tempfile
+import time
+import urllib.parse
+
+sys.path.insert(0, str(pathlib.Path(__file__).resolve().parent))
+import browser  # noqa: E402
+
+# What is compared: tangent-view options, the same on both sides.
+VIEWS = {"lit": "--view lit", "tangent": "--view tangent", "handedness": "--view handedness", "error": "--view error",
+         "split": "--view lit --compare fresh", "glyphs": "--view tangent --glyphs"}
+SIZE = (320, 240)
+CHANNEL_TOLERANCE = 12      # of 255: a pixel differs when any channel is off by more
+MAX_DIFFERING = 0.01        # fraction of pixels that may differ
+MAX_MEAN = 1.5              # mean absolute channel difference, of 255
+# Tangent-frame glyphs are one-pixel lines: which pixels a line covers is where the two
+# rasterisers differ most (measured: up to 0.92 % of the pixels, mean 1.09).
+LIMITS = {"glyphs": (0.03, 3.0)}
+
+
+def compare(a, b):
+    """(fraction of pixels differing by more than CHANNEL_TOLERANCE, mean channel difference)."""
+    differing, total = 0, 0
+    pixels = len(a) // 4
+    for p in range(pixels):
+        d = max(abs(a[4 * p + c] - b[4 * p + c]) for c in range(3))
+        total += abs(a[4 * p] - b[4 * p]) + abs(a[4 * p + 1] - b[4 * p + 1]) + abs(a[4 * p + 2] - b[4 * p + 2])
+        differing += d > CHANNEL_TOLERANCE
+    return differing / pixels, total / (3 * pixels)
+
+
+def desktop_screenshot(args, asset, options, out):
+    command = [args.xvfb_run, "-a", "-s", "-screen 0 1280x1024x24", args.tangent_view, str(asset), "--screenshot", str(out),
+               "--size", f"{SIZE[0]}x{SIZE[1]}", *options.split(), "--msaa", "0"]
+    result = subprocess.run(command, capture_output=True, text=True, timeout=300)
+    if result.returncode != 0:
+        raise RuntimeError(f"{' '.join(command)}: {result.stderr}")
+    return browser.read_png(out)
+
+
+def main():
+    parser = argparse.ArgumentParser()
+    parser.add_argument("--build-web", required=True, help="scripts/web.sh's output folder")
+    parser.add_argument("--tangent-view", required=True)
+    parser.add_argument("--tangent", required=True)
+    parser.add_argument("--xvfb-run", default="xvfb-run")
+    parser.add_argument("--assets", required=True, help="folder of .glb files")
+    parser.add_argument("--demo", help="data/demo: its scene.gltf (a .gltf with a .bin and textures beside it) is compared too")
+    parser.add_argument("--out", required=True, help="folder for the screenshots and times.json")
+    parser.add_argument("--break", dest="broken", action="store_true",
+                        help="compare each web view with the desktop's next view: must fail (checks the check)")
+    args = parser.parse_args()
+    out = pathlib.Path(args.out)
+    shutil.rmtree(out, ignore_errors=True)
+    out.mkdir(parents=True)
+    assets = sorted(pathlib.Path(args.assets).glob("*.glb"))
+    if not assets:
+        print(f"no .glb in {args.assets}")
+        return 1
+
+    # The page and the files it loads, served from one folder.
+    site = pathlib.Path(tempfile.mkdtemp(prefix="tangent-web-site-"))
+    for name in ("index.html", "tangent-view.js", "tangent-view.wasm"):
+        shutil.copy(pathlib.Path(args.build_web) / name, site / name)
+    files = []
+    for asset in assets:
+        shutil.copy(asset, site / asset.name)
+        baked = site / (asset.stem + ".baked.glb")
+        subprocess.run([args.tangent, "bake", str(asset), str(baked)], check=True, capture_output=True)
+        files += [site / asset.name, baked]
+    if args.demo:
+        shutil.copytree(args.demo, site / "demo")
+        files.append(site / "demo" / "scene.gltf")
+    (site / "broken.glb").write_bytes((site / assets[0].name).read_bytes()[:200])
+    refusals = [("broken.glb", ["broken.glb"]), ("missing.glb", ["missing.glb"]),
+                (assets[0].name + "&view=no-such-view", ["unknown --view no-such-view"])]
+    if shutil.which("gltfpack"):  # a meshopt-compressed copy: refused by name, not a crash
+        subprocess.run(["gltfpack", "-i", str(assets[0]), "-o", str(site / "meshopt.glb"), "-c"], check=True, capture_output=True)
+        refusals.append(("meshopt.glb", ["meshopt.glb", "EXT_meshopt_compression"]))
+
+    server = browser.Server(site)
+    chrome = browser.Browser()
+    failures, times = [], {}
+    try:
+        for file in files:
+            query = urllib.parse.urlencode({"url": str(file.relative_to(site)), "size": f"{SIZE[0]}x{SIZE[1]}", "msaa": "0"})
+            start = time.monotonic()
+            session = chrome.open(server.url + "index.html?" + query)
+            state = chrome.wait_state(session)
+            load_ms = (time.monotonic() - start) * 1000
+            if state != "ready":
+                failures.append(f"{file.name}: page state {state!r}, not ready")
+                continue
+            frame_ms = chrome.evaluate(session, "Module._tangent_web_frame_ms(10)")
+            times[file.name] = {"load_ms": round(load_ms), "frame_ms": round(frame_ms, 2)}
+            print(f"{file.name}: ready after {load_ms:.0f} ms (navigation to first frame), median frame {frame_ms:.1f} ms")
+            if not file.name.endswith(".baked.glb"):
+                # "bake tangents" in the page: the same bytes as `tangent bake` of the same file.
+                reference = site / "cli-baked" / (file.stem + ".glb")
+                reference.parent.mkdir(exist_ok=True)
+                subprocess.run([args.tangent, "bake", str(file), str(reference)], check=True, capture_output=True)
+                baked = chrome.evaluate(session, """(() => { const b = bake(); if (!b) return null;
+                    let s = ""; for (let i = 0; i < b.length; i += 32768) s += String.fromCharCode.apply(null, b.subarray(i, i + 32768));
+                    return btoa(s); })()""")
+                if baked is None:
+                    failures.append(f"{file.name}: baking in the page failed: " + chrome.evaluate(session, "document.getElementById('message').textContent"))
+                else:
+                    same = base64.b64decode(baked) == reference.read_bytes()
+                    print(f"  bake in the page: {len(base64.b64decode(baked))} bytes, {'identical to' if same else 'DIFFERENT from'} tangent bake's")
+                    if not same:
+                        (out / f"{file.stem}.page-baked.glb").write_bytes(base64.b64decode(baked))
+                        failures.append(f"{file.name}: the page's bake differs from tangent bake's (both in {out})")
+                        shutil.copy(reference, out / f"{file.stem}.cli-baked.glb")
+            # The page's list of `tangent check` findings: the report `tangent check --format json` gives.
+            page_check = chrome.evaluate(session, "check()")
+            cli = subprocess.run([args.tangent, "check", "--format", "json", str(file)], capture_output=True, text=True)
+            cli_check = json.loads(cli.stdout)["files"][0]
+            findings = sum(len(p["findings"]) for p in cli_check["primitives"])
+            same = page_check["primitives"] == cli_check["primitives"] and page_check["status"] == cli_check["status"]
+            print(f"  check in the page: {page_check['status']}, {findings} finding(s), {'the same as' if same else 'DIFFERENT from'} tangent check's")
+            if not same:
+                failures.append(f"{file.name}: the page's check differs from tangent check --format json:\n{json.dumps(page_check)[:2000]}\n"
+                                f"{json.dumps(cli_check)[:2000]}")
+            names = list(VIEWS)
+            for index, view in enumerate(names):
+                error = chrome.evaluate(session, f"Module.ccall('tangent_web_options', 'string', ['string'], ['{VIEWS[view]} --msaa 0'])")
+                if error:
+                    failures.append(f"{file.name}: {VIEWS[view]}: {error}")
+                    continue
+                width, height, web = chrome.read_pixels(session)
+                browser.write_png(out / f"{file.stem}.{view}.web.png", width, height, web)
+                reference = VIEWS[names[(index + 1) % len(names)]] if args.broken else VIEWS[view]
+                _, _, desk = desktop_screenshot(args, file, reference, out / f"{file.stem}.{view}.desktop.png")
+                differing, mean = compare(web, desk)
+                max_differing, max_mean = LIMITS.get(view, (MAX_DIFFERING, MAX_MEAN))
+                verdict = "ok" if differing <= max_differing and mean <= max_mean else "DIFFERS"
+                print(f"  {view:<11} {differing * 100:5.2f} % of pixels differ by > {CHANNEL_TOLERANCE}, mean {mean:.2f}: {verdict}")
+                if verdict != "ok":
+                    failures.append(f"{file.name} {VIEWS[view]}: {differing * 100:.2f} % of pixels differ (limit "
+                                    f"{max_differing * 100} %), mean {mean:.2f} (limit {max_mean}); see {out}")
+            if file == files[0]:
+                linked = chrome.evaluate(session, "Module._tangent_web_check_shaders()")
+                print(f"--check-shaders under WebGL2: {linked} programs linked")
+                if linked <= 0:
+                    failures.append("shader variants do not link under WebGL2: " + "\n".join(chrome.console[-20:]))
+
+        for name, expected in refusals:
+            url, _, extra = name.partition("&")
+            session = chrome.open(server.url + "index.html?" + urllib.parse.urlencode({"url": url, "size": "64x64"}) + (f"&{extra}" if extra else ""))
+            state = chrome.wait_state(session)
+            print(f"{name}: {state}")
+            if not state.startswith("error: ") or not all(word in state for word in expected):
+                failures.append(f"{name}: page state {state!r}, expected 'error: ...' naming {', '.join(expected)}")
+    finally:
+        chrome.close()
+        server.close()
+        shutil.rmtree(site, ignore_errors=True)
+    (out / "times.json").write_text(json.dumps(times, indent=1) + "\n")
+    for failure in failures:
+        print("FAIL:", failure)
+    if args.broken:
+        print("(--break: failures expected)")
+    return 1 if failures else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

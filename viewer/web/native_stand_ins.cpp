@@ -1,0 +1,44 @@
+// SPDX-License-Identifier: MIT
+// The web build's stand-ins for the glTF layer's three readers that need native libraries
+// (Debian ships OpenMesh, Draco and meshoptimizer as native code only): OBJ/PLY/OFF input
+// (libtangent/gltf/src/mesh_file.cpp), Draco and EXT_meshopt_compression decoding
+// (draco_decode.cpp, meshopt_decode.cpp). viewer/CMakeLists.txt swaps them in for those files;
+// each refuses what it is given with a message naming the file and element, as the library's
+// readers do, and README.md lists them as left out of the web viewer.
+#include "asset.hpp"
+#include "compression.hpp"
+#include "tangent/gltf.hpp"
+
+namespace tangent::gltf::detail {
+
+std::vector<std::uint8_t> meshFileToGlb(const std::filesystem::path& path) {
+  throw InputError(path.string() + ": OBJ, PLY and OFF files are not read by the web viewer (they need OpenMesh); open a .glb or .gltf");
+}
+
+void decodeMeshoptViews(Asset& asset) {
+  const auto& doc = asset.json;
+  if (!doc.contains("bufferViews")) return;
+  for (std::size_t i = 0; i < doc["bufferViews"].size(); ++i) {
+    const auto& view = doc["bufferViews"][i];
+    if (view.contains("extensions") && view["extensions"].is_object() && view["extensions"].contains(kMeshoptExtension))
+      throw InputError(asset.path.string() + ": bufferViews[" + std::to_string(i) + "] uses " + kMeshoptExtension +
+                       ", which the web viewer does not decode (meshoptimizer is native code only); open an uncompressed copy");
+  }
+}
+
+void decodeDracoPrimitives(Asset& asset) {
+  const auto& doc = asset.json;
+  if (!doc.contains("meshes")) return;
+  for (std::size_t m = 0; m < doc["meshes"].size(); ++m) {
+    const auto& mesh = doc["meshes"][m];
+    if (!mesh.contains("primitives")) continue;
+    for (std::size_t p = 0; p < mesh["primitives"].size(); ++p) {
+      const auto& primitive = mesh["primitives"][p];
+      if (primitive.contains("extensions") && primitive["extensions"].is_object() && primitive["extensions"].contains(kDracoExtension))
+        throw InputError(asset.path.string() + ": meshes[" + std::to_string(m) + "].primitives[" + std::to_string(p) + "] uses " +
+                         kDracoExtension + ", which the web viewer does not decode (Draco is native code only); open an uncompressed copy");
+    }
+  }
+}
+
+}  // namespace tangent::gltf::detail
