@@ -12,7 +12,6 @@ packages=(
   pybind11-dev python3-dev python3-numpy python3-pytest python3-distributed python3-dask
   python3-venv python3-setuptools python3-wheel python3-build mypy
   libglfw3-dev libepoxy-dev libimgui-dev libfreetype-dev libstb-dev xvfb xauth libgl1-mesa-dri
-  chromium
 )
 missing=()
 for package in "${packages[@]}"; do
