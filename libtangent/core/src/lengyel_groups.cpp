@@ -53,25 +53,37 @@ CornerGroups groupCorners(const WorkspaceData& ws, const MeshArrays& mesh, const
     }
   });
   sortInParallel(ws, keys.begin(), keys.end(), [](const CornerKey& a, const CornerKey& b) { return a < b; });
+  // Runs of equal keys are groups: where each starts, numbered by a scan, then filled in
+  // parallel. The first corner of a group is its smallest: it gives the group's normal and
+  // whether it may inherit, as the corner met first in corner order did before.
+  auto startsGroup = [&](std::size_t i) { return i == 0 || !keys[i].sameGroup(keys[i - 1]); };
+  std::vector<std::uint32_t> groupOf(cornerCount);
+  forRange(ws, cornerCount, 1 << 14, [&](std::size_t begin, std::size_t end) {
+    for (std::size_t i = begin; i < end; ++i) groupOf[i] = startsGroup(i);
+  });
+  const std::size_t groupCount = exclusiveScan(ws, groupOf.data(), cornerCount);  // groups before i
   CornerGroups result;
+  result.groups.resize(groupCount);
+  result.groupStart.resize(groupCount + 1);
   result.sortedCorners.resize(cornerCount);
   result.cornerGroup.resize(cornerCount);
-  for (std::size_t i = 0; i < cornerCount; ++i) {
-    const CornerKey& key = keys[i];
-    if (i == 0 || !key.sameGroup(keys[i - 1])) {
-      // The first corner of a group is its smallest: it gives the group's normal and
-      // whether it may inherit, as the corner met first in corner order did before.
-      Group group;
-      group.key = key;
-      group.normal = data.cornerNormals[key.corner];
-      group.mayInherit = data.triangles[key.corner / 3].kind != TriangleKind::usable;
-      result.groupStart.push_back(static_cast<std::uint32_t>(i));
-      result.groups.push_back(group);
+  forRange(ws, cornerCount, 1 << 14, [&](std::size_t begin, std::size_t end) {
+    for (std::size_t i = begin; i < end; ++i) {
+      const CornerKey& key = keys[i];
+      const bool first = startsGroup(i);
+      const std::uint32_t g = first ? groupOf[i] : groupOf[i] - 1;
+      if (first) {
+        Group& group = result.groups[g];
+        group.key = key;
+        group.normal = data.cornerNormals[key.corner];
+        group.mayInherit = data.triangles[key.corner / 3].kind != TriangleKind::usable;
+        result.groupStart[g] = static_cast<std::uint32_t>(i);
+      }
+      result.sortedCorners[i] = key.corner;
+      result.cornerGroup[key.corner] = g;
     }
-    result.sortedCorners[i] = key.corner;
-    result.cornerGroup[key.corner] = static_cast<std::uint32_t>(result.groups.size() - 1);
-  }
-  result.groupStart.push_back(static_cast<std::uint32_t>(cornerCount));
+  });
+  result.groupStart[groupCount] = static_cast<std::uint32_t>(cornerCount);
   return result;
 }
 
