@@ -26,7 +26,7 @@
 #include "asset.hpp"
 #include "peers.hpp"
 #include "primitive.hpp"
-#include "tangent/halfedge_mesh.hpp"
+#include "tangent/openmesh.hpp"
 
 namespace {
 

@@ -109,9 +109,9 @@ py::dict computeTangents(const py::handle& positionsIn, const py::handle& normal
   options.method = method(methodName);
   options.weighting = weighting(weightingName);
   options.threads = threadCount(threads);
-  if (uvOrigin == "top-left") options.uvOrigin = tangent::UvOrigin::topLeft;
-  else if (uvOrigin == "bottom-left") options.uvOrigin = tangent::UvOrigin::bottomLeft;
-  else badArgument("uv_origin", "'" + uvOrigin + "' is not top-left (glTF) or bottom-left (OpenGL, OBJ)");
+  const std::optional<tangent::UvOrigin> origin = tangent::parseUvOrigin(uvOrigin);  // the core's names
+  if (!origin) badArgument("uv_origin", "'" + uvOrigin + "' is not top-left (glTF) or bottom-left (OpenGL, OBJ)");
+  options.uvOrigin = *origin;
 
   const std::size_t corners = static_cast<std::size_t>(indices.size());
   py::array_t<float> tangents({static_cast<py::ssize_t>(corners), py::ssize_t(4)});

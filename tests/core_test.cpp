@@ -14,7 +14,7 @@
 
 #include "support/test_assets.hpp"
 #include "tangent/frame_rules.hpp"
-#include "tangent/halfedge_mesh.hpp"
+#include "tangent/openmesh.hpp"
 #include "tangent/tangent.hpp"
 
 namespace {

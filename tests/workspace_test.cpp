@@ -23,9 +23,9 @@
 #include "support/random_meshes.hpp"
 #include "support/test_assets.hpp"
 #include "tangent/bulk_buffer.hpp"
-#include "tangent/halfedge_mesh.hpp"
+#include "tangent/openmesh.hpp"
 #include "tangent/tangent.hpp"
-#include "corner_groups.hpp"
+#include "lengyel.hpp"
 #include "workspace.hpp"
 
 namespace {
@@ -56,9 +56,9 @@ Output compute(const tangent::MeshArrays& mesh, unsigned threads) {
 // A mesh with every hard case (non-manifold edges and vertices, duplicates, zero-UV and
 // degenerate triangles, mirrored islands) from the differential test's generator, made large
 // enough that several threads really split every phase.
-GridMesh hardMesh() {
+GridMesh hardMesh(std::size_t triangles = 60000) {
   GridMesh m;
-  for (std::uint64_t seed = 1; m.indices.size() < 3 * 60000; ++seed) {
+  for (std::uint64_t seed = 1; m.indices.size() < 3 * triangles; ++seed) {
     const tangent::testing::RandomMesh part = tangent::testing::randomMesh(seed);
     const auto base = static_cast<std::uint32_t>(m.positions.size() / 3);
     m.positions.insert(m.positions.end(), part.positions.begin(), part.positions.end());
@@ -319,6 +319,105 @@ TEST(Workspace, OpenMeshCallKeepsSignedZerosAndNaNsApart) {
   }
 }
 
+// Input as a vertex buffer holds it: the attributes interleaved in one buffer (in another
+// order, with padding, at an odd byte offset), indices 16-bit or unaligned 32-bit. Every
+// method gives the bits, the vertex split and the report of the packed 32-bit call.
+TEST(Workspace, StridedAnd16BitInputGiveThePackedBits) {
+  const GridMesh m = hardMesh(6000);
+  const std::size_t vertexCount = m.positions.size() / 3, cornerCount = m.indices.size();
+  ASSERT_LT(vertexCount, 65536u);
+  constexpr std::size_t kStride = 40, kUv = 4, kPosition = 12, kNormal = 24;  // bytes; 36..40 padding
+  std::vector<std::byte> buffer(2 + vertexCount * kStride, std::byte{0x7f});
+  std::byte* vertices = buffer.data() + 2;  // not aligned for float
+  for (std::size_t v = 0; v < vertexCount; ++v) {
+    std::memcpy(vertices + v * kStride + kUv, &m.uvs[2 * v], 8);
+    std::memcpy(vertices + v * kStride + kPosition, &m.positions[3 * v], 12);
+    std::memcpy(vertices + v * kStride + kNormal, &m.normals[3 * v], 12);
+  }
+  std::vector<std::uint16_t> narrow(m.indices.begin(), m.indices.end());
+  std::vector<std::byte> unaligned(2 + 4 * cornerCount);
+  std::memcpy(unaligned.data() + 2, m.indices.data(), 4 * cornerCount);
+  struct Case {
+    tangent::Method method;
+    tangent::Weighting weighting;
+  };
+  for (const Case& c : {Case{tangent::Method::mikktspace, tangent::Weighting::angle}, Case{tangent::Method::lengyel, tangent::Weighting::angle},
+                        Case{tangent::Method::lengyel, tangent::Weighting::area}, Case{tangent::Method::lengyel, tangent::Weighting::uniform},
+                        Case{tangent::Method::flat, tangent::Weighting::angle}}) {
+    tangent::Options options;
+    options.method = c.method;
+    options.weighting = c.weighting;
+    options.threads = 2;
+    tangent::TangentWorkspace workspace;
+    auto run = [&](auto&& input) {
+      Output out;
+      out.tangents.assign(cornerCount * 4, std::numeric_limits<float>::quiet_NaN());
+      out.cornerVertex.assign(cornerCount, ~0u);
+      out.report = tangent::computeCornerTangents(input, tangent::CornerOutputs{out.tangents, {}, out.cornerVertex}, options, workspace);
+      return out;
+    };
+    const Output packed = run(arraysOf(m));
+    tangent::StridedMesh strided;
+    strided.vertexCount = vertexCount;
+    strided.positions = vertices + kPosition;
+    strided.normals = vertices + kNormal;
+    strided.uvs = vertices + kUv;
+    strided.positionStride = strided.normalStride = strided.uvStride = kStride;
+    strided.indices = narrow.data();
+    strided.indexCount = cornerCount;
+    strided.indexType = tangent::IndexType::uint16;
+    tangent::StridedMesh packedFloatsUnalignedIndices;
+    packedFloatsUnalignedIndices.vertexCount = vertexCount;
+    packedFloatsUnalignedIndices.positions = m.positions.data();
+    packedFloatsUnalignedIndices.normals = m.normals.data();
+    packedFloatsUnalignedIndices.uvs = m.uvs.data();
+    packedFloatsUnalignedIndices.indices = unaligned.data() + 2;
+    packedFloatsUnalignedIndices.indexCount = cornerCount;
+    for (const tangent::StridedMesh& input : {strided, packedFloatsUnalignedIndices}) {
+      const Output other = run(input);
+      const std::string method(tangent::toString(c.method));
+      ASSERT_EQ(0, std::memcmp(packed.tangents.data(), other.tangents.data(), packed.tangents.size() * sizeof(float))) << method;
+      ASSERT_EQ(packed.cornerVertex, other.cornerVertex) << method;
+      EXPECT_EQ(packed.report.splitVertices, other.report.splitVertices) << method;
+      EXPECT_EQ(packed.report.mirroredCorners, other.report.mirroredCorners) << method;
+      EXPECT_EQ(packed.report.fallbackFixed, other.report.fallbackFixed) << method;
+      EXPECT_EQ(packed.report.nonManifoldFaces, other.report.nonManifoldFaces) << method;
+    }
+  }
+}
+
+TEST(WorkspaceErrors, StridedInputIsChecked) {
+  const GridMesh m = tangent::testing::makeGrid(2, 2, false);
+  std::vector<std::uint16_t> indices(m.indices.begin(), m.indices.end());
+  indices[4] = static_cast<std::uint16_t>(m.positions.size() / 3);  // one past the last vertex
+  std::vector<float> tangents(m.indices.size() * 4);
+  tangent::TangentWorkspace workspace;
+  tangent::StridedMesh mesh;
+  mesh.vertexCount = m.positions.size() / 3;
+  mesh.positions = m.positions.data();
+  mesh.normals = m.normals.data();
+  mesh.uvs = m.uvs.data();
+  mesh.indices = indices.data();
+  mesh.indexCount = indices.size();
+  mesh.indexType = tangent::IndexType::uint16;
+  auto message = [&](const tangent::StridedMesh& input) {
+    try {
+      tangent::computeCornerTangents(input, tangent::CornerOutputs{tangents}, {}, workspace);
+    } catch (const std::invalid_argument& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  EXPECT_EQ(message(mesh), "indices[4] = " + std::to_string(mesh.vertexCount) + " is out of range (vertex count " +
+                               std::to_string(mesh.vertexCount) + ")");
+  tangent::StridedMesh narrowStride = mesh;
+  narrowStride.normalStride = 8;
+  EXPECT_EQ(message(narrowStride), "normals: stride 8 is less than 12 bytes");
+  tangent::StridedMesh noUvs = mesh;
+  noUvs.uvs = nullptr;
+  EXPECT_EQ(message(noUvs), "uvs: null");
+}
+
 TEST(WorkspaceErrors, CornerVertexOfTheWrongSize) {
   const GridMesh m = tangent::testing::makeGrid(2, 2, false);
   std::vector<float> tangents(m.indices.size() * 4);
@@ -342,14 +441,13 @@ TEST(Workspace, ZeroThreadsIsEveryHardwareThreadForEveryMethod) {
   EXPECT_EQ(tangent::threadCount(three), 3u);
 
   const GridMesh sphere = tangent::testing::makeSphere(160, 80);  // 25,000 triangles
-  tangent::CornerMesh cornerMesh = tangent::buildCornerMesh(arraysOf(sphere));
+  // Every method's parallel passes are forRange inside the call's onThreads (entry.cpp).
   tangent::detail::WorkspaceData ws;
   ws.threads = tangent::threadCount(automatic);
   std::atomic<int> widestArena{0};
-  tangent::Report report;
   tbb::task_arena(1).execute([&] {
     tangent::detail::onThreads(ws, [&] {
-      tangent::detail::evaluateTriangles(ws, cornerMesh, report, [&](std::size_t, int, const auto&, const auto&, const auto&) {
+      tangent::detail::forRange(ws, sphere.indices.size() / 3, 1024, [&](std::size_t, std::size_t) {
         int seen = widestArena.load();
         const int here = tbb::this_task_arena::max_concurrency();
         while (here > seen && !widestArena.compare_exchange_weak(seen, here)) {

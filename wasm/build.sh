@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # SPDX-License-Identifier: MIT
 # Builds the WebAssembly package (wasm/package/dist) with Debian's emscripten: the core's
-# MikkTSpace method, single-threaded (TANGENT_SERIAL), no OpenMesh. The sources are compiled
+# array call (every method), single-threaded (TANGENT_SERIAL), no OpenMesh. The sources are compiled
 # once and linked twice, the .wasm embedded in each (-sSINGLE_FILE: nothing to locate at run
 # time, in Node, in a browser or in a bundler's output):
 #   dist/tangent_wasm.cjs          Node (CommonJS factory; index.mjs wraps it)
@@ -20,17 +20,16 @@ objects=$out/obj
 rm -rf "$out" && mkdir -p "$objects"
 # emscripten's JS optimizer needs Debian's acorn where node is not Debian's own.
 export NODE_PATH=/usr/share/nodejs${NODE_PATH:+:$NODE_PATH}
-sources=(libtangent/core/src/workspace.cpp libtangent/core/src/weld.cpp libtangent/core/src/outputs.cpp
-  libtangent/core/src/mikktspace/*.cpp libtangent/core/src/names.cpp libtangent/core/src/frame_rules.cpp wasm/src/bindings.cpp)
+sources=(libtangent/core/src/*.cpp libtangent/core/src/mikktspace/*.cpp wasm/src/bindings.cpp)
 for source in "${sources[@]}"; do
-  em++ -std=c++20 -O3 -fexceptions -DTANGENT_SERIAL -DNDEBUG -I libtangent/core/include -I libtangent/core/src \
+  em++ -std=c++20 -O3 -fexceptions -DTANGENT_SERIAL -DNDEBUG -I libtangent/core/include \
     -c "$source" -o "$objects/$(tr / _ <<<"$source").o"
 done
 link=(em++ -O3 -fexceptions "$objects"/*.o
   -sMODULARIZE=1 -sEXPORT_NAME=createTangentModule -sSINGLE_FILE=1 -sALLOW_MEMORY_GROWTH=1 -sMAXIMUM_MEMORY=4GB
   -sFILESYSTEM=0
   -sEXPORTED_FUNCTIONS=_malloc,_free,_tangent_run,_tangent_error,_tangent_corner_tangents,_tangent_corner_vertices,_tangent_vertex_tangents,_tangent_vertex_sources,_tangent_report
-  -sEXPORTED_RUNTIME_METHODS=UTF8ToString)
+  -sEXPORTED_RUNTIME_METHODS=UTF8ToString,stringToUTF8,lengthBytesUTF8)
 "${link[@]}" -sENVIRONMENT=node -o "$out/tangent_wasm.cjs"
 "${link[@]}" -sENVIRONMENT=web,worker -sEXPORT_ES6=1 -o "$out/tangent_wasm.browser.mjs"
 rm -rf "$objects"

@@ -8,6 +8,12 @@
 
 #include <tangent/tangent.hpp>
 
+// The core's headers include no OpenMesh header (OpenMesh's config.h defines OM_VERSION): an
+// arrays-only program needs none on its include path.
+#ifdef OM_VERSION
+#error "tangent/tangent.hpp included an OpenMesh header"
+#endif
+
 int main() {
   // Unit quad in the xy plane facing +z, texture turned a quarter: u = y, v = 1 - x. The
   // tangent (direction of increasing u) is +y everywhere. With v increasing along -x the

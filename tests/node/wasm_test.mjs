@@ -29,7 +29,7 @@ const fail = (message) => {
 
 // The C++ library on the same arrays: per-corner tangents and vertex split.
 let runs = 0;
-function library(position, normal, texcoord, indices, origin) {
+function library(position, normal, texcoord, indices, origin, method = 'mikktspace', weighting = 'angle') {
   const dir = path.join(workDir, `arrays-${runs++}`);
   fs.mkdirSync(dir);
   const write = (name, array) => fs.writeFileSync(path.join(dir, name), Buffer.from(array.buffer, array.byteOffset, array.byteLength));
@@ -37,7 +37,7 @@ function library(position, normal, texcoord, indices, origin) {
   write('normals.f32', normal);
   write('uvs.f32', texcoord);
   write('indices.u32', indices);
-  execFileSync(tool, [dir, 'mikktspace', origin]);
+  execFileSync(tool, [dir, method, origin, weighting]);
   const read = (name, Type) => {
     const bytes = fs.readFileSync(path.join(dir, name));
     return new Type(bytes.buffer.slice(bytes.byteOffset, bytes.byteOffset + bytes.byteLength));
@@ -151,6 +151,34 @@ for (const [segments, seed] of [[8, 1], [24, 2], [64, 3]]) {
   const plain = generateTangents(flat.position, flat.normal, flat.texcoord);
   const plainTheirs = library(flat.position, flat.normal, flat.texcoord, sequence, 'bottom-left');
   compare(`${label}, de-indexed`, mesh.indices.length, (c) => plain.subarray(4 * c, 4 * c + 4), plainTheirs.tangents);
+}
+
+// 1b. Every method and weighting, by the command line's names: the library's bits exactly, its
+// vertex split, and a report naming the method.
+for (const [segments, seed] of [[24, 2], [64, 3]]) {
+  const mesh = generated(segments, seed);
+  for (const [method, weighting] of [['mikktspace', 'angle'], ['lengyel', 'angle'], ['lengyel', 'area'], ['lengyel', 'uniform'], ['flat', 'angle']]) {
+    const label = `generated sphere ${segments}x${segments}, ${method} (${weighting})`;
+    const ours = generateTangentsIndexed(mesh.position, mesh.normal, mesh.texcoord, mesh.indices, { method, weighting });
+    const theirs = library(mesh.position, mesh.normal, mesh.texcoord, mesh.indices, 'top-left', method, weighting);
+    const bits = new Uint32Array(theirs.tangents.buffer);
+    const oursBits = new Uint32Array(ours.tangents.buffer);
+    let differing = 0;
+    ours.indices.forEach((v, c) => {
+      for (let i = 0; i < 4; ++i) differing += oursBits[4 * v + i] !== bits[4 * c + i] ? 1 : 0;
+    });
+    const sameSplit = ours.indices.every((v, c) => v === theirs.cornerVertex[c]);
+    const ok = differing === 0 && sameSplit && ours.report.method === method && ours.report.corners === mesh.indices.length;
+    console.log(`${ok ? 'ok  ' : 'FAIL'} ${label}: ${differing} values differ from the library's bits, split ${sameSplit ? 'the same' : 'differs'}`);
+    if (!ok) failures++;
+  }
+}
+try {
+  generateTangentsIndexed(new Float32Array(9), new Float32Array(9), new Float32Array(6), [0, 1, 2], { method: 'smooth' });
+  fail('an unknown method was accepted');
+} catch (e) {
+  if (!/method: 'smooth' is not mikktspace, lengyel or flat/.test(e.message)) fail(`unexpected error message: ${e.message}`);
+  else console.log(`ok   unknown method refused: ${e.message}`);
 }
 
 // 2. Errors surface as exceptions with the core's message.

@@ -25,13 +25,14 @@ gltf_dependency_disables=(-DCMAKE_DISABLE_FIND_PACKAGE_TinyGLTF=ON -DCMAKE_DISAB
                           -DCMAKE_DISABLE_FIND_PACKAGE_meshoptimizer=ON)
 
 # build_consumer SOURCE WORK PREFIX MAIN_BUILD ON|OFF: configures tests/consumer against the
-# package installed under PREFIX (with the glTF program, or the core alone with the glTF
-# layer's dependencies unfindable), checks that the package came from PREFIX, builds, runs.
+# package installed under PREFIX (with the OpenMesh and glTF programs, or the core alone with
+# OpenMesh and the glTF layer's dependencies unfindable), checks that the package came from
+# PREFIX, builds, runs.
 build_consumer() {
   local source=$1 work=$2 prefix=$3 main=$4 with_gltf=$5
-  local args=(-DCMAKE_PREFIX_PATH="$prefix" -DCONSUMER_WITH_GLTF="$with_gltf"
+  local args=(-DCMAKE_PREFIX_PATH="$prefix" -DCONSUMER_WITH_GLTF="$with_gltf" -DCONSUMER_WITH_OPENMESH="$with_gltf"
               -DCMAKE_BUILD_TYPE="$(cache_value "$main" CMAKE_BUILD_TYPE)" -DCMAKE_CXX_COMPILER="$(cache_value "$main" CMAKE_CXX_COMPILER)")
-  [ "$with_gltf" = ON ] || args+=("${gltf_dependency_disables[@]}")
+  [ "$with_gltf" = ON ] || args+=("${gltf_dependency_disables[@]}" -DCMAKE_DISABLE_FIND_PACKAGE_OpenMesh=ON)
   rm -rf "$work"
   echo "== consumer (glTF $with_gltf) against $prefix"
   cmake -S "$source" -B "$work" -G Ninja "${args[@]}" >"$work.configure.log" 2>&1 || { cat "$work.configure.log"; return 1; }
@@ -44,9 +45,11 @@ build_consumer() {
   cmake --build "$work" >"$work.build.log" 2>&1 || { cat "$work.build.log"; return 1; }
   "$work/consumer_core"
   if [ "$with_gltf" = ON ]; then
+    "$work/consumer_openmesh"
     "$work/consumer_gltf" "$work/bake"
   else
     [ ! -e "$work/consumer_gltf" ] || { echo "FAIL: the core-only consumer built the glTF program"; return 1; }
+    [ ! -e "$work/consumer_openmesh" ] || { echo "FAIL: the core-only consumer built the OpenMesh program"; return 1; }
   fi
 }
 
@@ -61,6 +64,13 @@ consumer_control() {
     return 1
   fi
   echo "control: COMPONENTS gltf with its dependencies unfindable fails to configure, as it must"
+  rm -rf "$work"
+  if cmake -S "$source" -B "$work" -G Ninja -DCMAKE_PREFIX_PATH="$prefix" -DCONSUMER_WITH_GLTF=OFF -DCONSUMER_WITH_OPENMESH=ON \
+       -DCMAKE_DISABLE_FIND_PACKAGE_OpenMesh=ON >"$work.configure.log" 2>&1; then
+    echo "FAIL: COMPONENTS openmesh configured although OpenMesh was made unfindable"
+    return 1
+  fi
+  echo "control: COMPONENTS openmesh with OpenMesh unfindable fails to configure, as it must"
 }
 
 # no_build_paths PACKAGE_DIR PATH...: the installed CMake package names none of the build

@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
 # SPDX-License-Identifier: MIT
 # A program of someone else's (tests/consumer) built against `cmake --install` of the build
-# tree into a temporary prefix, and run: the core alone (the glTF layer's dependencies made
-# unfindable, with a control showing that this bites), and core + glTF where the build has it.
+# tree into a temporary prefix, and run: the core alone (OpenMesh and the glTF layer's
+# dependencies made unfindable, with controls showing that this bites, and a compile-time check
+# that its headers include no OpenMesh header), and core + OpenMesh + glTF where the build has it.
 #   consumer_test.sh SOURCE_DIR BUILD_DIR WORK_DIR
 set -euo pipefail
 source=$1 build=$2 work=$3

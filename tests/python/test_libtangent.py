@@ -57,29 +57,31 @@ def mirrored_soup(seed):
     return positions, normals.astype(np.float32), uvs, indices
 
 
-def run_cpp(tmp_path, arrays, method, uv_origin):
+def run_cpp(tmp_path, arrays, method, uv_origin, weighting="angle"):
     positions, normals, uvs, indices = arrays
     for name, values in (("positions.f32", positions), ("normals.f32", normals), ("uvs.f32", uvs), ("indices.u32", indices)):
         np.ascontiguousarray(values).tofile(tmp_path / name)
-    subprocess.run([ARRAYS_TOOL, str(tmp_path), method, uv_origin], check=True)
+    subprocess.run([ARRAYS_TOOL, str(tmp_path), method, uv_origin, weighting], check=True)
     return (np.fromfile(tmp_path / "tangents.f32", dtype=np.float32).reshape(-1, 4),
             np.fromfile(tmp_path / "corner_vertex.u32", dtype=np.uint32))
 
 
-@pytest.mark.parametrize("method", ["mikktspace", "lengyel", "flat"])
+@pytest.mark.parametrize("method", ["mikktspace", "lengyel", "lengyel:area", "lengyel:uniform", "flat"])
 @pytest.mark.parametrize("uv_origin", ["top-left", "bottom-left"])
 @pytest.mark.parametrize("mesh", ["sphere", "soup1", "soup2"])
 def test_bit_identical_to_the_cpp_library(tmp_path, method, uv_origin, mesh):
+    method, _, weighting = method.partition(":")
+    weighting = weighting or "angle"
     arrays = uv_sphere(24, 12) if mesh == "sphere" else mirrored_soup(int(mesh[-1]))
-    expected_tangents, expected_vertex = run_cpp(tmp_path, arrays, method, uv_origin)
-    result = libtangent.compute_tangents(*arrays, method=method, uv_origin=uv_origin)
+    expected_tangents, expected_vertex = run_cpp(tmp_path, arrays, method, uv_origin, weighting)
+    result = libtangent.compute_tangents(*arrays, method=method, weighting=weighting, uv_origin=uv_origin)
     assert result["tangents"].dtype == np.float32 and result["tangents"].shape == (arrays[3].size, 4)
     assert result["tangents"].tobytes() == expected_tangents.tobytes()
-    if method == "mikktspace":
-        assert result["corner_vertex"].tobytes() == expected_vertex.tobytes()
+    assert result["corner_vertex"].tobytes() == expected_vertex.tobytes()
+    assert result["report"]["method"] == method
     # The same bits for any thread count, and from flat or float64 input.
     again = libtangent.compute_tangents(*(a.reshape(-1).astype(np.float64) if a.dtype == np.float32 else a.reshape(-1).astype(np.int64)
-                                          for a in arrays), method=method, uv_origin=uv_origin, threads=2)
+                                          for a in arrays), method=method, weighting=weighting, uv_origin=uv_origin, threads=2)
     assert again["tangents"].tobytes() == result["tangents"].tobytes()
 
 

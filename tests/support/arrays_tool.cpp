@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: MIT
 // For the Python tests: the C++ library on raw arrays read from files, so that the module's
 // results can be compared bit for bit with a call that does not go through Python.
-//   tangent-arrays-tool DIR METHOD UV_ORIGIN
+//   tangent-arrays-tool DIR METHOD UV_ORIGIN [WEIGHTING]
 // reads DIR/{positions,normals,uvs}.f32 and DIR/indices.u32, writes DIR/tangents.f32 and
 // DIR/corner_vertex.u32.
 #include <cstdint>
@@ -35,8 +35,8 @@ void writeRaw(const std::filesystem::path& file, const std::vector<T>& values) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  if (argc != 4) {
-    std::fprintf(stderr, "usage: tangent-arrays-tool DIR METHOD top-left|bottom-left\n");
+  if (argc != 4 && argc != 5) {
+    std::fprintf(stderr, "usage: tangent-arrays-tool DIR METHOD top-left|bottom-left [WEIGHTING]\n");
     return 2;
   }
   const std::filesystem::path dir = argv[1];
@@ -44,7 +44,11 @@ int main(int argc, char** argv) {
   const std::optional<tangent::Method> method = tangent::parseMethod(argv[2]);
   if (!method) return 2;
   options.method = *method;
-  options.uvOrigin = std::string(argv[3]) == "bottom-left" ? tangent::UvOrigin::bottomLeft : tangent::UvOrigin::topLeft;
+  const std::optional<tangent::UvOrigin> origin = tangent::parseUvOrigin(argv[3]);
+  const std::optional<tangent::Weighting> weighting = tangent::parseWeighting(argc == 5 ? argv[4] : "angle");
+  if (!origin || !weighting) return 2;
+  options.uvOrigin = *origin;
+  options.weighting = *weighting;
   const auto positions = readRaw<float>(dir / "positions.f32"), normals = readRaw<float>(dir / "normals.f32"),
              uvs = readRaw<float>(dir / "uvs.f32");
   const auto indices = readRaw<std::uint32_t>(dir / "indices.u32");

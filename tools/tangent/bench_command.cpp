@@ -22,7 +22,7 @@
 #include "peers.hpp"
 #include "stress_cases.hpp"
 #include "tangent/gltf.hpp"
-#include "tangent/halfedge_mesh.hpp"
+#include "tangent/openmesh.hpp"
 #include "tangent/scene.hpp"
 
 namespace tangent::cli {

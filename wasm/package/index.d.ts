@@ -2,23 +2,42 @@
 /** Resolves once the module is ready (it is by the time the module has loaded). */
 export declare const ready: Promise<void>;
 
+/** The command line's names (`tangent bake --method`, `--weighting`). */
+export type Method = 'mikktspace' | 'lengyel' | 'flat';
+export type Weighting = 'angle' | 'area' | 'uniform';
+
+export interface MethodOptions {
+  /** 'mikktspace' (default), 'lengyel' or 'flat'. */
+  method?: Method;
+  /** Lengyel's weighting: 'angle' (default), 'area' or 'uniform'. */
+  weighting?: Weighting;
+}
+
 /**
  * Tangents of a de-indexed triangle list, xyzw per vertex, w in MikkTSpace's own convention
  * (as the npm `mikktspace` package returns it; glTF-Transform's tangents() negates it).
  */
-export declare function generateTangents(position: Float32Array, normal: Float32Array, texcoord: Float32Array): Float32Array;
+export declare function generateTangents(position: Float32Array, normal: Float32Array, texcoord: Float32Array,
+  options?: MethodOptions): Float32Array;
 
+/** The core's Report, as `tangent bake --report` writes it (the `tangents` object). */
 export interface TangentReport {
+  method: Method;
+  /** '' for flat. */
+  weighting: Weighting | '';
   triangles: number;
-  outputVertices: number;
-  splitVertices: number;
+  corners: number;
   degenerateTriangles: number;
   zeroUvAreaTriangles: number;
   nonFiniteTriangles: number;
+  mirroredCorners: number;
+  splitVertices: number;
+  nonManifoldFaces: number;
+  invalidNormals: number;
   inheritedCorners: number;
   fallbackFromNeighbours: number;
   fallbackFixed: number;
-  mirroredCorners: number;
+  outputVertices: number;
 }
 
 export interface IndexedTangents {
@@ -33,7 +52,7 @@ export interface IndexedTangents {
   report: TangentReport;
 }
 
-export interface IndexedOptions {
+export interface IndexedOptions extends MethodOptions {
   /** 'top-left' (glTF; default) or 'bottom-left' (MikkTSpace's own w). */
   uvOrigin?: 'top-left' | 'bottom-left';
 }

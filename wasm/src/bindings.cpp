@@ -1,7 +1,9 @@
 // SPDX-License-Identifier: MIT
-// The WebAssembly entry points of the npm package (wasm/package): the core's MikkTSpace method
-// on arrays in the module's memory, built without threads (TANGENT_SERIAL), without OpenMesh.
-// One workspace is reused from call to call, so repeated calls allocate nothing new.
+// The WebAssembly entry points of the npm package (wasm/package): the core's public array call
+// (every method) on arrays in the module's memory, built without threads (TANGENT_SERIAL),
+// without OpenMesh. Method, weighting and UV origin come as the names the command line takes,
+// parsed by the core; the report goes back as the core's JSON (tangent::reportJson). One
+// workspace is reused from call to call, so repeated calls allocate nothing new.
 // Every function returns 0 on success; on failure 1 and tangent_error() says why.
 #include <emscripten/emscripten.h>
 
@@ -9,12 +11,12 @@
 #include <cstdint>
 #include <exception>
 #include <numeric>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
 #include "tangent/frame_rules.hpp"
 #include "tangent/tangent.hpp"
-#include "workspace.hpp"
 
 namespace {
 
@@ -25,7 +27,7 @@ struct State {
   std::vector<std::uint32_t> cornerVertex;
   std::vector<float> vertexTangents;    // 4 per output vertex
   std::vector<std::uint32_t> vertexSource;  // output vertex -> input vertex
-  double report[10] = {};
+  std::string report;  // JSON
   std::string error;
 };
 
@@ -40,13 +42,26 @@ State& state() {
 extern "C" {
 
 // Tangents per corner for `cornerCount` corners (a triangle list) of `vertexCount` vertices;
-// indices may be null (corner i is vertex i). topLeft: 1 for glTF's UV origin and w (the
-// core's default), 0 for MikkTSpace's own (its fSign, as the npm mikktspace package returns).
+// indices may be null (corner i is vertex i). method, weighting, uvOrigin: names as the
+// command line takes them (mikktspace | lengyel | flat; angle | area | uniform; top-left, glTF's
+// UV origin and w, | bottom-left, MikkTSpace's own fSign, as the npm mikktspace package returns).
 EMSCRIPTEN_KEEPALIVE int tangent_run(const float* positions, const float* normals, const float* uvs, const std::uint32_t* indices,
-                                     std::uint32_t vertexCount, std::uint32_t cornerCount, int topLeft) {
+                                     std::uint32_t vertexCount, std::uint32_t cornerCount, const char* method,
+                                     const char* weighting, const char* uvOrigin) {
   State& s = state();
   s.error.clear();
   try {
+    tangent::Options options;
+    const auto parsedMethod = tangent::parseMethod(method);
+    if (!parsedMethod) throw std::invalid_argument(std::string("method: '") + method + "' is not mikktspace, lengyel or flat");
+    const auto parsedWeighting = tangent::parseWeighting(weighting);
+    if (!parsedWeighting) throw std::invalid_argument(std::string("weighting: '") + weighting + "' is not angle, area or uniform");
+    const auto parsedOrigin = tangent::parseUvOrigin(uvOrigin);
+    if (!parsedOrigin) throw std::invalid_argument(std::string("uvOrigin: '") + uvOrigin + "' is not top-left or bottom-left");
+    options.method = *parsedMethod;
+    options.weighting = *parsedWeighting;
+    options.uvOrigin = *parsedOrigin;
+    options.threads = 1;
     if (!indices) {
       if (s.sequence.size() < cornerCount) {
         s.sequence.resize(cornerCount);
@@ -61,18 +76,8 @@ EMSCRIPTEN_KEEPALIVE int tangent_run(const float* positions, const float* normal
                                    {uvs, std::size_t(vertexCount) * 2},
                                    {indices, cornerCount}};
     const tangent::CornerOutputs outputs{s.cornerTangents, {}, s.cornerVertex};
-    tangent::Options options;
-    options.uvOrigin = topLeft ? tangent::UvOrigin::topLeft : tangent::UvOrigin::bottomLeft;
-    tangent::detail::checkArrays(mesh, outputs);
-    tangent::detail::WorkspaceData& ws = s.workspace.data();
-    ws.threads = 1;
-    const tangent::Report report = tangent::detail::mikktspaceOnArrays(ws, mesh, outputs, options);
-    const double values[10] = {double(report.triangles),          double(report.outputVertices),
-                               double(report.splitVertices),      double(report.degenerateTriangles),
-                               double(report.zeroUvAreaTriangles), double(report.nonFiniteTriangles),
-                               double(report.inheritedCorners),   double(report.fallbackFromNeighbours),
-                               double(report.fallbackFixed),      double(report.mirroredCorners)};
-    std::copy(values, values + 10, s.report);
+    const tangent::Report report = tangent::computeCornerTangents(mesh, outputs, options, s.workspace);
+    s.report = tangent::reportJson(report);
     // Per output vertex: the tangent of its corners and the input vertex it copies.
     const std::size_t outputVertices = static_cast<std::size_t>(report.outputVertices);
     s.vertexTangents.assign(outputVertices * 4, 0.0f);
@@ -103,6 +108,6 @@ EMSCRIPTEN_KEEPALIVE float* tangent_corner_tangents() { return state().cornerTan
 EMSCRIPTEN_KEEPALIVE std::uint32_t* tangent_corner_vertices() { return state().cornerVertex.data(); }
 EMSCRIPTEN_KEEPALIVE float* tangent_vertex_tangents() { return state().vertexTangents.data(); }
 EMSCRIPTEN_KEEPALIVE std::uint32_t* tangent_vertex_sources() { return state().vertexSource.data(); }
-EMSCRIPTEN_KEEPALIVE double* tangent_report() { return state().report; }
+EMSCRIPTEN_KEEPALIVE const char* tangent_report() { return state().report.c_str(); }
 
 }  // extern "C"

@@ -1,86 +1,180 @@
 // SPDX-License-Identifier: MIT
-// Methods `lengyel` and `flat`.
+// Methods `lengyel` and `flat` on packed arrays.
 // Source: E. Lengyel, "Computing Tangent Space Basis Vectors for an Arbitrary Mesh", 2001:
 // accumulate per-triangle tangents over the corners that will share a vertex, then
 // Gram-Schmidt orthogonalize against the normal; handedness w = sign(dot(cross(N, T), B)).
 // Corners share a frame when they share position, normal, UV and UV orientation, so mirrored
-// islands never average together. `flat` is the same pipeline with one group per corner.
+// islands never average together. `flat` is the same pipeline with one group per triangle.
 //
-// Determinism: per-triangle terms start at a canonical corner (triangle_tangent.cpp) and the
-// terms of a group are summed in an order given by their values, so neither face order nor
-// corner rotation changes a bit of the output.
-#include <unordered_map>
+// Determinism: per-triangle terms start at a canonical corner (triangle_tangent.cpp), groups
+// are runs of corners sorted by value, and the terms of a group are summed in an order given
+// by their values, so neither face order, corner rotation nor thread count moves a bit.
+#include "lengyel.hpp"
 
-#include "corner_groups.hpp"
-#include "methods.hpp"
+#include <algorithm>
+#include <array>
+#include <bit>
+#include <cstring>
+#include <tuple>
 
 namespace tangent::detail {
+namespace {
 
-Report lengyelTangents(const WorkspaceData& ws, CornerMesh& cornerMesh, const Options& options,
-                       std::span<FrameSource> sources) {
-  const std::size_t cornerCount = cornerMesh.cornerHalfedge.size();
-  const std::size_t triangleCount = cornerCount / 3;
-  const bool flat = options.method == Method::flat;
+// Each vertex's representative: the smallest vertex with the same position bits (+0 and -0
+// alike). Its position is the one every corner at that point is evaluated with.
+std::vector<std::uint32_t> positionWeld(const WorkspaceData& ws, const MeshArrays& mesh) {
+  struct Entry {
+    std::uint32_t bits[3];
+    std::uint32_t vertex;
+    bool operator<(const Entry& o) const {
+      return std::tie(bits[0], bits[1], bits[2], vertex) < std::tie(o.bits[0], o.bits[1], o.bits[2], o.vertex);
+    }
+  };
+  const std::size_t vertexCount = ws.vertexCount;
+  std::vector<Entry> entries(vertexCount);
+  forRange(ws, vertexCount, 1 << 14, [&](std::size_t begin, std::size_t end) {
+    for (std::size_t v = begin; v < end; ++v) {
+      for (int i = 0; i < 3; ++i) entries[v].bits[i] = canonicalBits(mesh.positions[3 * v + i]);
+      entries[v].vertex = static_cast<std::uint32_t>(v);
+    }
+  });
+  sortInParallel(ws, entries.begin(), entries.end(), [](const Entry& a, const Entry& b) { return a < b; });
+  std::vector<std::uint32_t> weldOf(vertexCount);
+  std::uint32_t representative = 0;
+  for (std::size_t i = 0; i < vertexCount; ++i) {
+    if (i == 0 || std::memcmp(entries[i].bits, entries[i - 1].bits, sizeof entries[i].bits) != 0) representative = entries[i].vertex;
+    weldOf[entries[i].vertex] = representative;
+  }
+  return weldOf;
+}
 
+Vec3 vec3At(std::span<const float> values, std::uint32_t vertex) {
+  return {values[3 * vertex], values[3 * vertex + 1], values[3 * vertex + 2]};
+}
+
+// Each triangle evaluated at its corners' positions (their representatives') and UVs, each
+// corner given its normal and its weighting's term; counts into the report.
+TriangleData evaluateTriangles(const WorkspaceData& ws, const MeshArrays& mesh, const std::vector<std::uint32_t>& weldOf,
+                               Weighting weighting, Report& report) {
+  const std::size_t triangleCount = ws.cornerCount / 3;
+  TriangleData data;
+  data.triangles.resize(triangleCount);
+  data.cornerNormals.resize(3 * triangleCount);
+  data.cornerWeights.assign(3 * triangleCount, 0.0);
+  data.invalidNormal.assign(3 * triangleCount, 0);
+  forRange(ws, triangleCount, 1024, [&](std::size_t begin, std::size_t end) {
+    for (std::size_t t = begin; t < end; ++t) {
+      std::array<Vec3, 3> positions;
+      std::array<Vec2, 3> uvs;
+      for (int k = 0; k < 3; ++k) {
+        const std::uint32_t vertex = mesh.indices[3 * t + k];
+        positions[k] = vec3At(mesh.positions, weldOf[vertex]);
+        uvs[k] = {mesh.uvs[2 * vertex], mesh.uvs[2 * vertex + 1]};
+      }
+      const TriangleTangent& triangle = data.triangles[t] = triangleTangent(positions, uvs);
+      for (int k = 0; k < 3; ++k) {
+        const std::size_t corner = 3 * t + k;
+        bool invalid = false;
+        data.cornerNormals[corner] = cornerNormal(vec3At(mesh.normals, mesh.indices[corner]), triangle, invalid);
+        data.invalidNormal[corner] = invalid;
+        if (triangle.kind != TriangleKind::usable) continue;
+        switch (weighting) {
+          case Weighting::angle: data.cornerWeights[corner] = cornerAngle(positions, k); break;
+          case Weighting::area: data.cornerWeights[corner] = triangle.area; break;
+          case Weighting::uniform: data.cornerWeights[corner] = 1.0; break;
+        }
+      }
+    }
+  });
+  for (const TriangleTangent& triangle : data.triangles) {
+    switch (triangle.kind) {
+      case TriangleKind::usable: break;
+      case TriangleKind::degenerate: ++report.degenerateTriangles; break;
+      case TriangleKind::zeroUvArea: ++report.zeroUvAreaTriangles; break;
+      case TriangleKind::nonFinite: ++report.nonFiniteTriangles; break;
+    }
+  }
+  return data;
+}
+
+// Faces on an edge (two distinct positions) that more than two faces share; triangles with two
+// corners at one position are left out, as the OpenMesh call's weld leaves them out.
+std::uint64_t countNonManifoldFaces(const WorkspaceData& ws, const MeshArrays& mesh, const std::vector<std::uint32_t>& weldOf) {
+  struct Edge {
+    std::uint64_t ends;
+    std::uint32_t triangle;
+    bool operator<(const Edge& o) const { return ends != o.ends ? ends < o.ends : triangle < o.triangle; }
+  };
+  const std::size_t cornerCount = ws.cornerCount;
+  std::vector<Edge> edges(cornerCount);
+  forRange(ws, cornerCount, 1 << 14, [&](std::size_t begin, std::size_t end) {
+    for (std::size_t c = begin; c < end; ++c) {
+      const std::size_t first = c - c % 3;
+      const std::uint32_t w0 = weldOf[mesh.indices[first]], w1 = weldOf[mesh.indices[first + 1]], w2 = weldOf[mesh.indices[first + 2]];
+      const std::uint32_t a = weldOf[mesh.indices[c]], b = weldOf[mesh.indices[c % 3 == 2 ? c - 2 : c + 1]];
+      // A collapsed triangle (two corners at one position) is no face of the surface: its
+      // edges get a key of their own, which counts nothing.
+      const bool collapsed = w0 == w1 || w1 == w2 || w0 == w2;
+      edges[c].ends = collapsed ? ~std::uint64_t(0) : std::uint64_t(std::min(a, b)) << 32 | std::max(a, b);
+      edges[c].triangle = static_cast<std::uint32_t>(c / 3);
+    }
+  });
+  sortInParallel(ws, edges.begin(), edges.end(), [](const Edge& a, const Edge& b) { return a < b; });
+  std::vector<std::uint8_t> onShared(cornerCount / 3, 0);
+  for (std::size_t i = 0; i < edges.size();) {
+    std::size_t j = i;
+    while (j < edges.size() && edges[j].ends == edges[i].ends) ++j;
+    if (j - i > 2 && edges[i].ends != ~std::uint64_t(0)) {
+      for (std::size_t k = i; k < j; ++k) onShared[edges[k].triangle] = 1;
+    }
+    i = j;
+  }
+  return static_cast<std::uint64_t>(std::count(onShared.begin(), onShared.end(), 1));
+}
+
+// Every corner's frame into the output (w on the stored UVs, bottom-left), its source and
+// invalid normal into cornerState, no links: what finishOutputs reads.
+void writeCorners(WorkspaceData& ws, const TriangleData& data, const CornerGroups& cornerGroups, const CornerOutputs& outputs) {
+  ensureSize(ws.cornerState, ws.cornerCount);
+  ensureSize(ws.cornerLink, ws.cornerCount);
+  float* tangents = outputs.tangents.data();
+  forRange(ws, ws.cornerCount, 1 << 14, [&](std::size_t begin, std::size_t end) {
+    for (std::size_t c = begin; c < end; ++c) {
+      const Group& group = cornerGroups.groups[cornerGroups.cornerGroup[c]];
+      for (int i = 0; i < 3; ++i) tangents[4 * c + i] = static_cast<float>(group.tangent[i]);
+      tangents[4 * c + 3] = static_cast<float>(group.w);
+      ws.cornerState[c] = static_cast<std::uint8_t>(static_cast<std::uint8_t>(group.source) | (data.invalidNormal[c] ? kInvalidNormal : 0));
+      ws.cornerLink[c] = kNone;
+    }
+  });
+}
+
+}  // namespace
+
+Report lengyelOnArrays(WorkspaceData& ws, const MeshArrays& mesh, const CornerOutputs& outputs, const Options& options,
+                       Grouping grouping) {
+  beginCall(ws, mesh);
   Report report;
   report.method = options.method;
-  if (!flat) report.weighting = options.weighting;
-  report.triangles = triangleCount;
-  report.corners = cornerCount;
-  report.nonManifoldFaces = cornerMesh.nonManifoldFaces;
-
-  std::vector<double> cornerWeights(cornerCount, 0.0);
-  TriangleData data = evaluateTriangles(ws, cornerMesh, report,
-                                        [&](std::size_t corner, int k, const std::array<Vec3, 3>& positions,
-                                            const TriangleTangent& triangle, const Vec3&) {
-                                          if (triangle.kind != TriangleKind::usable) return;
-                                          switch (options.weighting) {
-                                            case Weighting::angle: cornerWeights[corner] = cornerAngle(positions, k); break;
-                                            case Weighting::area: cornerWeights[corner] = triangle.area; break;
-                                            case Weighting::uniform: cornerWeights[corner] = 1.0; break;
-                                          }
-                                        });
-  const std::vector<TriangleTangent>& triangles = data.triangles;
-  const std::vector<Vec3>& cornerNormals = data.cornerNormals;
-
-  // Group the corners by value.
-  std::unordered_map<GroupKey, std::uint32_t, GroupKeyHash> groupIndex;
-  groupIndex.reserve(cornerCount);
-  std::vector<Group> groups;
-  std::vector<std::uint32_t> cornerGroup(cornerCount);
-  for (std::size_t corner = 0; corner < cornerCount; ++corner) {
-    const TriangleTangent& triangle = triangles[corner / 3];
-    const int orientation = triangle.kind == TriangleKind::usable ? triangle.orientation : 0;
-    const GroupKey key = makeGroupKey(cornerMesh, corner, cornerNormals[corner], orientation, flat ? corner / 3 + 1 : 0);
-    auto [it, inserted] = groupIndex.try_emplace(key, static_cast<std::uint32_t>(groups.size()));
-    if (inserted) {
-      Group group;
-      group.key = key;
-      group.normal = cornerNormals[corner];
-      group.mayInherit = triangle.kind != TriangleKind::usable;
-      groups.push_back(group);
-    }
-    cornerGroup[corner] = it->second;
-  }
-
-  std::vector<Contribution> contributions;
-  contributions.reserve(cornerCount);
-  for (std::size_t corner = 0; corner < cornerCount; ++corner) {
-    const TriangleTangent& triangle = triangles[corner / 3];
-    if (triangle.kind != TriangleKind::usable) continue;
-    const double weight = flat ? 1.0 : cornerWeights[corner];
-    if (!(weight > 0)) continue;
-    contributions.push_back({cornerGroup[corner], triangle.tangent * weight, triangle.bitangent * weight});
-  }
-  sumInValueOrder(contributions, groups);
-
-  for (Group& group : groups) {
-    if (!orthonormalize(group.tangentSum, group.normal, group.tangent)) continue;
-    const double handedness = (group.normal % group.tangent) | group.bitangentSum;
-    group.w = handedness > 0 ? 1.0 : handedness < 0 ? -1.0 : (group.key.orientation < 0 ? -1.0 : 1.0);
-    group.defined = true;
-  }
-  finishCorners(cornerMesh, groups, cornerGroup, options, report, sources);
+  if (grouping == Grouping::byValue) report.weighting = options.weighting;
+  report.triangles = ws.cornerCount / 3;
+  report.corners = ws.cornerCount;
+  std::vector<std::uint32_t> weldOf;
+  TriangleData data;
+  // The weld and buckets serve the vertex split only: beside the method's own first phases
+  // (on one thread below four, as mikktspace's kernel runs them).
+  ensureSize(ws.cornerLink, ws.cornerCount);
+  const unsigned weldThreads = ws.threads < 4 ? 1 : ws.threads;
+  invokeBoth(ws, [&] { weldAndBucket(ws, mesh, weldThreads); }, [&] {
+    weldOf = positionWeld(ws, mesh);
+    data = evaluateTriangles(ws, mesh, weldOf, options.weighting, report);
+    report.nonManifoldFaces = countNonManifoldFaces(ws, mesh, weldOf);
+  });
+  CornerGroups cornerGroups = groupCorners(ws, mesh, weldOf, data, grouping);
+  sumAndOrthonormalize(ws, data, cornerGroups, grouping == Grouping::perFace);
+  fillUndefinedGroups(mesh, weldOf, cornerGroups);
+  writeCorners(ws, data, cornerGroups, outputs);
+  finishOutputs(ws, mesh, outputs, options, report);
   return report;
 }
 

@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: MIT
 #include "tangent/tangent.hpp"
 
+#include <string>
+
 #include "workspace.hpp"
 
 namespace tangent {
@@ -44,6 +46,39 @@ std::optional<Weighting> parseWeighting(std::string_view name) {
     if (toString(candidate) == name) return candidate;
   }
   return std::nullopt;
+}
+
+std::string_view toString(UvOrigin origin) { return origin == UvOrigin::topLeft ? "top-left" : "bottom-left"; }
+
+std::optional<UvOrigin> parseUvOrigin(std::string_view name) {
+  for (UvOrigin candidate : {UvOrigin::topLeft, UvOrigin::bottomLeft}) {
+    if (toString(candidate) == name) return candidate;
+  }
+  return std::nullopt;
+}
+
+std::array<ReportCount, 13> reportCounts(const Report& report) {
+  return {{{"triangles", report.triangles},
+           {"corners", report.corners},
+           {"degenerateTriangles", report.degenerateTriangles},
+           {"zeroUvAreaTriangles", report.zeroUvAreaTriangles},
+           {"nonFiniteTriangles", report.nonFiniteTriangles},
+           {"mirroredCorners", report.mirroredCorners},
+           {"splitVertices", report.splitVertices},
+           {"nonManifoldFaces", report.nonManifoldFaces},
+           {"invalidNormals", report.invalidNormals},
+           {"inheritedCorners", report.inheritedCorners},
+           {"fallbackFromNeighbours", report.fallbackFromNeighbours},
+           {"fallbackFixed", report.fallbackFixed},
+           {"outputVertices", report.outputVertices}}};
+}
+
+std::string reportJson(const Report& report) {
+  // Names and enum strings are plain ASCII words: nothing to escape.
+  std::string json = "{\"method\":\"" + std::string(toString(report.method)) + "\",\"weighting\":\"" +
+                     std::string(report.weighting ? toString(*report.weighting) : std::string_view()) + "\"";
+  for (const ReportCount& count : reportCounts(report)) json += ",\"" + std::string(count.name) + "\":" + std::to_string(count.value);
+  return json + "}";
 }
 
 }  // namespace tangent

@@ -45,11 +45,13 @@ struct SplitEntry {
   bool sameTangent(const SplitEntry& o) const { return vertex == o.vertex && std::memcmp(bits, o.bits, sizeof bits) == 0; }
 };
 
-}  // namespace
 
-void finishOutputs(WorkspaceData& ws, const MeshArrays& mesh, const CornerOutputs& outputs, const Options& options,
-                   Report& report) {
-  const std::size_t cornerCount = ws.cornerCount, vertexCount = ws.vertexCount;
+constexpr std::uint32_t kExtraFlag = 0x80000000u;  // a corner's new vertex, numbered per bucket
+
+// Duplicates copy their original; w in the output convention; the report's corner counts
+// and each corner's source.
+void copyAndCount(WorkspaceData& ws, const CornerOutputs& outputs, const Options& options, Report& report) {
+  const std::size_t cornerCount = ws.cornerCount;
   float* tangents = outputs.tangents.data();
   std::uint8_t* state = ws.cornerState.data();
   const std::uint32_t* link = ws.cornerLink.data();
@@ -106,6 +108,13 @@ void finishOutputs(WorkspaceData& ws, const MeshArrays& mesh, const CornerOutput
   report.fallbackFixed = total.fixed;
   report.invalidNormals = total.invalidNormals;
 
+}
+
+// The vertex split, bucket by bucket: cornerVertex holds the input vertex or kExtraFlag | the
+// bucket's own number of the new vertex; bucketExtra each bucket's count of new vertices.
+void splitBuckets(WorkspaceData& ws, const MeshArrays& mesh, const CornerOutputs& outputs) {
+  const std::size_t vertexCount = ws.vertexCount;
+  const float* tangents = outputs.tangents.data();
   // Vertex split, bucket by bucket: the tangent of a vertex's first corner keeps the vertex,
   // each other distinct tangent is one extra vertex.
   const std::uint32_t* start = ws.bucketStart.data();
@@ -115,7 +124,6 @@ void finishOutputs(WorkspaceData& ws, const MeshArrays& mesh, const CornerOutput
   const std::uint8_t* knownUniform = ws.bucketUniformKnown ? ws.bucketUniform.data() : nullptr;
   const bool wantVertices = !outputs.cornerVertex.empty();
   std::uint32_t* cornerVertex = wantVertices ? outputs.cornerVertex.data() : nullptr;
-  constexpr std::uint32_t kExtraFlag = 0x80000000u;
   forRange(ws, vertexCount, 2048, [&](std::size_t begin, std::size_t end) {
     std::vector<SplitEntry> entries;
     for (std::size_t b = begin; b < end; ++b) {
@@ -181,6 +189,15 @@ void finishOutputs(WorkspaceData& ws, const MeshArrays& mesh, const CornerOutput
       extra[b] = extras;
     }
   });
+}
+
+// The new vertices numbered from the vertex count up, in order of their first corner.
+void numberExtraVertices(WorkspaceData& ws, const MeshArrays& mesh, const CornerOutputs& outputs, Report& report) {
+  const std::size_t cornerCount = ws.cornerCount, vertexCount = ws.vertexCount;
+  std::uint32_t* extra = ws.bucketExtra.data();
+  const std::uint32_t* indices = mesh.indices.data();
+  const bool wantVertices = !outputs.cornerVertex.empty();
+  std::uint32_t* cornerVertex = wantVertices ? outputs.cornerVertex.data() : nullptr;
   // Each bucket's first extra vertex (serial, this prefix sum was 2% of the call's wall time on
   // 16 CPUs).
   const std::uint64_t splits = exclusiveScan(ws, extra, vertexCount);
@@ -212,6 +229,15 @@ void finishOutputs(WorkspaceData& ws, const MeshArrays& mesh, const CornerOutput
       cornerVertex[c] = to;
     }
   }
+}
+
+}  // namespace
+
+void finishOutputs(WorkspaceData& ws, const MeshArrays& mesh, const CornerOutputs& outputs, const Options& options,
+                   Report& report) {
+  copyAndCount(ws, outputs, options, report);
+  splitBuckets(ws, mesh, outputs);
+  numberExtraVertices(ws, mesh, outputs, report);
 }
 
 

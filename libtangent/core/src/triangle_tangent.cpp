@@ -13,7 +13,7 @@ namespace {
 // Below this fraction of the operands' magnitude a result is rounding noise (~64 ulps).
 constexpr double kRelativeZero = 1e-14;
 
-std::uint64_t orderBits(double value) { return std::bit_cast<std::uint64_t>(value == 0.0 ? 0.0 : value); }
+std::uint64_t orderBits(double value) { return bitCast<std::uint64_t>(value == 0.0 ? 0.0 : value); }
 
 auto cornerKey(const Vec3& p, const Vec2& uv) {
   return std::make_tuple(orderBits(p[0]), orderBits(p[1]), orderBits(p[2]), orderBits(uv[0]), orderBits(uv[1]));

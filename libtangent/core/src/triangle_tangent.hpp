@@ -8,13 +8,11 @@
 #pragma once
 
 #include <array>
+#include <cstdint>
 
-#include "tangent/halfedge_mesh.hpp"
+#include "vec3.hpp"
 
 namespace tangent::detail {
-
-using Vec3 = OpenMesh::Vec3d;
-using Vec2 = OpenMesh::Vec2d;
 
 enum class TriangleKind : std::uint8_t { usable, degenerate, zeroUvArea, nonFinite };
 

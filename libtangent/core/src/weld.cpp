@@ -100,126 +100,108 @@ void stableCountingSort(const WorkspaceData& ws, std::size_t count, std::size_t 
 }
 
 
-}  // namespace
-
-void weldAndBucket(WorkspaceData& ws, const MeshArrays& mesh, unsigned threads) {
-  const std::size_t vertexCount = ws.vertexCount, cornerCount = ws.cornerCount;
-
-  // Weld: open-addressing tables of vertex + 1; the smallest vertex of equal values wins.
-  ensureSize(ws.vertexId, vertexCount);
-  std::uint32_t* vertexId = ws.vertexId.data();
-  std::atomic<bool> merged{false};  // a vertex took another's id (stored only then: rare)
-  // Each slot of a table holds vertex + 1 and a tag (other bits of the hash than the slot's):
-  // a probe that meets another vertex compares tags before that vertex's values, which lie
-  // anywhere in the input (a cache miss per collision otherwise). Equal values have equal
-  // tags, so the same slots match as without them.
-  auto insert = [&](std::uint32_t* table, std::size_t mask, std::size_t v, std::uint64_t slotHash, std::uint32_t tag) {
-    for (std::size_t slot = slotHash & mask;; slot = (slot + 1) & mask) {
-      std::uint32_t* entry = table + 2 * slot;
-      if (entry[0] == 0) {
-        entry[0] = static_cast<std::uint32_t>(v + 1);
-        entry[1] = tag;
-        vertexId[v] = static_cast<std::uint32_t>(v);
-        return;
-      }
-      if (entry[1] == tag && sameVertex(mesh, entry[0] - 1, v)) {
-        vertexId[v] = entry[0] - 1;
-        merged.store(true, std::memory_order_relaxed);
-        return;
-      }
-    }
-  };
-  if (threads < 2) {
-    // One table, vertices in order; the tag is the hash's top 32 bits.
-    std::size_t tableSize = 16;
-    while (tableSize < 2 * vertexCount) tableSize *= 2;
-    ensureSize(ws.table, 2 * tableSize);
-    std::uint32_t* table = ws.table.data();
-    std::fill(table, table + 2 * tableSize, 0u);
-    const std::size_t mask = tableSize - 1;
-    // The table (megabytes) is probed at random: each vertex's hash is worked out kAhead
-    // vertices early and its slot prefetched, so that the probe finds it in cache.
-    constexpr std::size_t kAhead = 16;
-    std::uint64_t ahead[kAhead];
-    for (std::size_t v = 0; v < std::min(kAhead, vertexCount); ++v) {
-      ahead[v] = vertexHash(mesh, v);
-      prefetch(table + 2 * (ahead[v] & mask));
-    }
-    for (std::size_t v = 0; v < vertexCount; ++v) {
-      const std::uint64_t hash = ahead[v % kAhead];
-      if (v + kAhead < vertexCount) {
-        const std::uint64_t later = vertexHash(mesh, v + kAhead);
-        ahead[v % kAhead] = later;
-        prefetch(table + 2 * (later & mask));
-      }
-      insert(table, mask, v, hash, static_cast<std::uint32_t>(hash >> 32));
-    }
-  } else {
-    // Threads: the vertices split by the top bits of their hash into partitions (a counting
-    // sort that keeps vertex order inside each), one small table per partition, partitions
-    // in parallel. Equal values share a hash, so each partition welds on its own; no atomics,
-    // and the tables stay in cache. The hashes (partition in the top 8 bits, 24 bits of slot),
-    // the tags (32 bits of the hash from bit 24) and the order live in the bucket arrays,
-    // which are filled only after the weld.
-    constexpr int kPartitionBits = 8;
-    constexpr std::size_t kPartitions = std::size_t(1) << kPartitionBits, kChunk = 1 << 15;
-    const std::size_t chunkCount = (vertexCount + kChunk - 1) / kChunk;
-    ensureSize(ws.bucketExtra, vertexCount + 1);
-    ensureSize(ws.bucketStart, vertexCount + 1);
-    ensureSize(ws.bucketCorners, std::max(cornerCount, vertexCount));
-    ensureSize(ws.weldCounts, chunkCount * kPartitions + kPartitions + 1);
-    std::uint32_t* hashes = ws.bucketExtra.data();
-    std::uint32_t* tags = ws.bucketStart.data();
-    std::uint32_t* order = ws.bucketCorners.data();
-    std::uint32_t* counts = ws.weldCounts.data();  // [chunk][partition], then partition starts
-    std::uint32_t* partitionStart = counts + chunkCount * kPartitions;
-    auto partitionOf = [](std::uint32_t hash) { return static_cast<std::size_t>(hash >> (32 - kPartitionBits)); };
-    forRange(ws, vertexCount, kChunk, [&](std::size_t begin, std::size_t end) {
-      for (std::size_t v = begin; v < end; ++v) {
-        const std::uint64_t hash = vertexHash(mesh, v);
-        hashes[v] = static_cast<std::uint32_t>(hash >> 32 & 0xFF000000u) | static_cast<std::uint32_t>(hash & 0xFFFFFFu);
-        tags[v] = static_cast<std::uint32_t>(hash >> 24);
-      }
-    });
-    stableCountingSort(ws, vertexCount, kPartitions, chunkCount, [&](std::size_t v) { return partitionOf(hashes[v]); }, counts,
-                       partitionStart, order);
-    // Table of partition p: a power of two of at least twice its vertices, at tableStart[p].
-    std::size_t tableSize = 0;
-    std::array<std::size_t, kPartitions + 1> tableStart;
-    for (std::size_t p = 0; p < kPartitions; ++p) {
-      std::size_t size = 16;
-      while (size < 2 * std::size_t(partitionStart[p + 1] - partitionStart[p])) size *= 2;
-      tableStart[p] = tableSize;
-      tableSize += size;
-    }
-    tableStart[kPartitions] = tableSize;
-    ensureSize(ws.table, 2 * tableSize);
-    std::uint32_t* table = ws.table.data();
-    forRange(ws, kPartitions, 1, [&](std::size_t begin, std::size_t end) {
-      for (std::size_t p = begin; p < end; ++p) {
-        std::uint32_t* part = table + 2 * tableStart[p];
-        const std::size_t mask = tableStart[p + 1] - tableStart[p] - 1;
-        std::fill(part, part + 2 * (mask + 1), 0u);
-        // A partition's vertices lie all over the arrays (every 256th or so): their hash,
-        // tag and id are asked for kAhead vertices early.
-        constexpr std::uint32_t kAhead = 8;
-        auto ask = [&](std::uint32_t v) {
-          prefetch(hashes + v);
-          prefetch(tags + v);
-          prefetch(vertexId + v);
-        };
-        const std::uint32_t first = partitionStart[p], last = partitionStart[p + 1];
-        for (std::uint32_t i = first; i < std::min(last, first + kAhead); ++i) ask(order[i]);
-        for (std::uint32_t i = first; i < last; ++i) {
-          if (i + kAhead < last) ask(order[i + kAhead]);
-          const std::uint32_t v = order[i];
-          insert(part, mask, v, hashes[v] & 0xFFFFFFu, tags[v]);
-        }
-      }
-    });
+// One table, vertices in order; the tag is the hash's top 32 bits.
+template <typename Insert>
+void weldInOneTable(WorkspaceData& ws, const MeshArrays& mesh, const Insert& insert) {
+  const std::size_t vertexCount = ws.vertexCount;
+  std::size_t tableSize = 16;
+  while (tableSize < 2 * vertexCount) tableSize *= 2;
+  ensureSize(ws.table, 2 * tableSize);
+  std::uint32_t* table = ws.table.data();
+  std::fill(table, table + 2 * tableSize, 0u);
+  const std::size_t mask = tableSize - 1;
+  // The table (megabytes) is probed at random: each vertex's hash is worked out kAhead
+  // vertices early and its slot prefetched, so that the probe finds it in cache.
+  constexpr std::size_t kAhead = 16;
+  std::uint64_t ahead[kAhead];
+  for (std::size_t v = 0; v < std::min(kAhead, vertexCount); ++v) {
+    ahead[v] = vertexHash(mesh, v);
+    prefetch(table + 2 * (ahead[v] & mask));
   }
+  for (std::size_t v = 0; v < vertexCount; ++v) {
+    const std::uint64_t hash = ahead[v % kAhead];
+    if (v + kAhead < vertexCount) {
+      const std::uint64_t later = vertexHash(mesh, v + kAhead);
+      ahead[v % kAhead] = later;
+      prefetch(table + 2 * (later & mask));
+    }
+    insert(table, mask, v, hash, static_cast<std::uint32_t>(hash >> 32));
+  }
+}
 
-  ws.weldMergedNone = !merged.load(std::memory_order_relaxed);
+// The vertices split into partitions by their hash, one small table per partition, in parallel.
+template <typename Insert>
+void weldInPartitions(WorkspaceData& ws, const MeshArrays& mesh, const Insert& insert) {
+  const std::size_t vertexCount = ws.vertexCount, cornerCount = ws.cornerCount;
+  std::uint32_t* vertexId = ws.vertexId.data();
+  // Threads: the vertices split by the top bits of their hash into partitions (a counting
+  // sort that keeps vertex order inside each), one small table per partition, partitions
+  // in parallel. Equal values share a hash, so each partition welds on its own; no atomics,
+  // and the tables stay in cache. The hashes (partition in the top 8 bits, 24 bits of slot),
+  // the tags (32 bits of the hash from bit 24) and the order live in the bucket arrays,
+  // which are filled only after the weld.
+  constexpr int kPartitionBits = 8;
+  constexpr std::size_t kPartitions = std::size_t(1) << kPartitionBits, kChunk = 1 << 15;
+  const std::size_t chunkCount = (vertexCount + kChunk - 1) / kChunk;
+  ensureSize(ws.bucketExtra, vertexCount + 1);
+  ensureSize(ws.bucketStart, vertexCount + 1);
+  ensureSize(ws.bucketCorners, std::max(cornerCount, vertexCount));
+  ensureSize(ws.weldCounts, chunkCount * kPartitions + kPartitions + 1);
+  std::uint32_t* hashes = ws.bucketExtra.data();
+  std::uint32_t* tags = ws.bucketStart.data();
+  std::uint32_t* order = ws.bucketCorners.data();
+  std::uint32_t* counts = ws.weldCounts.data();  // [chunk][partition], then partition starts
+  std::uint32_t* partitionStart = counts + chunkCount * kPartitions;
+  auto partitionOf = [](std::uint32_t hash) { return static_cast<std::size_t>(hash >> (32 - kPartitionBits)); };
+  forRange(ws, vertexCount, kChunk, [&](std::size_t begin, std::size_t end) {
+    for (std::size_t v = begin; v < end; ++v) {
+      const std::uint64_t hash = vertexHash(mesh, v);
+      hashes[v] = static_cast<std::uint32_t>(hash >> 32 & 0xFF000000u) | static_cast<std::uint32_t>(hash & 0xFFFFFFu);
+      tags[v] = static_cast<std::uint32_t>(hash >> 24);
+    }
+  });
+  stableCountingSort(ws, vertexCount, kPartitions, chunkCount, [&](std::size_t v) { return partitionOf(hashes[v]); }, counts,
+                     partitionStart, order);
+  // Table of partition p: a power of two of at least twice its vertices, at tableStart[p].
+  std::size_t tableSize = 0;
+  std::array<std::size_t, kPartitions + 1> tableStart;
+  for (std::size_t p = 0; p < kPartitions; ++p) {
+    std::size_t size = 16;
+    while (size < 2 * std::size_t(partitionStart[p + 1] - partitionStart[p])) size *= 2;
+    tableStart[p] = tableSize;
+    tableSize += size;
+  }
+  tableStart[kPartitions] = tableSize;
+  ensureSize(ws.table, 2 * tableSize);
+  std::uint32_t* table = ws.table.data();
+  forRange(ws, kPartitions, 1, [&](std::size_t begin, std::size_t end) {
+    for (std::size_t p = begin; p < end; ++p) {
+      std::uint32_t* part = table + 2 * tableStart[p];
+      const std::size_t mask = tableStart[p + 1] - tableStart[p] - 1;
+      std::fill(part, part + 2 * (mask + 1), 0u);
+      // A partition's vertices lie all over the arrays (every 256th or so): their hash,
+      // tag and id are asked for kAhead vertices early.
+      constexpr std::uint32_t kAhead = 8;
+      auto ask = [&](std::uint32_t v) {
+        prefetch(hashes + v);
+        prefetch(tags + v);
+        prefetch(vertexId + v);
+      };
+      const std::uint32_t first = partitionStart[p], last = partitionStart[p + 1];
+      for (std::uint32_t i = first; i < std::min(last, first + kAhead); ++i) ask(order[i]);
+      for (std::uint32_t i = first; i < last; ++i) {
+        if (i + kAhead < last) ask(order[i + kAhead]);
+        const std::uint32_t v = order[i];
+        insert(part, mask, v, hashes[v] & 0xFFFFFFu, tags[v]);
+      }
+    }
+  });
+}
+
+// Buckets: a counting sort of the corners by welded id.
+void bucketCorners(WorkspaceData& ws, const MeshArrays& mesh, unsigned threads) {
+  const std::size_t vertexCount = ws.vertexCount, cornerCount = ws.cornerCount;
+  const std::uint32_t* vertexId = ws.vertexId.data();
   // Buckets: a counting sort of the corners by welded id.
   ensureSize(ws.bucketStart, vertexCount + 1);
   ensureSize(ws.bucketCorners, cornerCount);
@@ -277,6 +259,46 @@ void weldAndBucket(WorkspaceData& ws, const MeshArrays& mesh, unsigned threads) 
     });
     start[vertexCount] = static_cast<std::uint32_t>(cornerCount);
   }
+}
+
+}  // namespace
+
+// Weld: open-addressing tables of vertex + 1; the smallest vertex of equal values wins. Then
+// the buckets.
+void weldAndBucket(WorkspaceData& ws, const MeshArrays& mesh, unsigned threads) {
+  const std::size_t vertexCount = ws.vertexCount;
+
+  // Weld: open-addressing tables of vertex + 1; the smallest vertex of equal values wins.
+  ensureSize(ws.vertexId, vertexCount);
+  std::uint32_t* vertexId = ws.vertexId.data();
+  std::atomic<bool> merged{false};  // a vertex took another's id (stored only then: rare)
+  // Each slot of a table holds vertex + 1 and a tag (other bits of the hash than the slot's):
+  // a probe that meets another vertex compares tags before that vertex's values, which lie
+  // anywhere in the input (a cache miss per collision otherwise). Equal values have equal
+  // tags, so the same slots match as without them.
+  auto insert = [&](std::uint32_t* table, std::size_t mask, std::size_t v, std::uint64_t slotHash, std::uint32_t tag) {
+    for (std::size_t slot = slotHash & mask;; slot = (slot + 1) & mask) {
+      std::uint32_t* entry = table + 2 * slot;
+      if (entry[0] == 0) {
+        entry[0] = static_cast<std::uint32_t>(v + 1);
+        entry[1] = tag;
+        vertexId[v] = static_cast<std::uint32_t>(v);
+        return;
+      }
+      if (entry[1] == tag && sameVertex(mesh, entry[0] - 1, v)) {
+        vertexId[v] = entry[0] - 1;
+        merged.store(true, std::memory_order_relaxed);
+        return;
+      }
+    }
+  };
+  if (threads < 2) {
+    weldInOneTable(ws, mesh, insert);
+  } else {
+    weldInPartitions(ws, mesh, insert);
+  }
+  ws.weldMergedNone = !merged.load(std::memory_order_relaxed);
+  bucketCorners(ws, mesh, threads);
 }
 
 }  // namespace tangent::detail

@@ -22,11 +22,12 @@ std::size_t WorkspaceData::bytes() const {
   auto size = [](const auto& v) { return v.capacity() * sizeof(v[0]); };
   return size(table) + size(weldCounts) + size(vertexId) + size(bucketStart) + size(bucketCorners) +
          size(orientation) + size(triangleFlags) + size(cornerLink) + size(cornerState) + size(meshPositions) + size(meshNormals) + size(meshUvs) + size(meshTangents) + size(meshIndices) +
-         size(meshRepresentative) + size(meshRepresentativeValues) +
+         size(meshRepresentative) + size(meshRepresentativeValues) + size(packedPositions) + size(packedNormals) +
+         size(packedUvs) + size(packedIndices) +
          size(bucketExtra) + size(bucketUniform);
 }
 
-void checkArrays(const MeshArrays& mesh, const CornerOutputs& outputs) {
+void checkArraySizes(const MeshArrays& mesh) {
   auto fail = [](const std::string& what) { throw std::invalid_argument(what); };
   if (mesh.positions.size() % 3 != 0) fail("positions: size " + std::to_string(mesh.positions.size()) + " is not a multiple of 3");
   const std::size_t vertexCount = mesh.positions.size() / 3;
@@ -38,6 +39,12 @@ void checkArrays(const MeshArrays& mesh, const CornerOutputs& outputs) {
   if (mesh.indices.size() % 3 != 0) fail("indices: size " + std::to_string(mesh.indices.size()) + " is not a multiple of 3");
   const std::size_t cornerCount = mesh.indices.size();
   if (cornerCount >= kNone) fail("indices: more than 2^32 - 2 corners");
+}
+
+void checkArrays(const MeshArrays& mesh, const CornerOutputs& outputs) {
+  auto fail = [](const std::string& what) { throw std::invalid_argument(what); };
+  checkArraySizes(mesh);
+  const std::size_t cornerCount = mesh.indices.size();
   if (outputs.tangents.size() != cornerCount * 4)
     fail("tangents: expected " + std::to_string(cornerCount * 4) + " floats (4 per corner), got " +
          std::to_string(outputs.tangents.size()));
@@ -73,6 +80,8 @@ bool anyAtLeast(const std::uint32_t* indices, std::size_t begin, std::size_t end
   return any;
 }
 
+}  // namespace
+
 // Whether every index is in range, in parallel (a pass over the whole index array: serial,
 // it was 8% of the call's wall time on 16 CPUs); only where one is not, the first such
 // index, named.
@@ -93,8 +102,6 @@ void checkIndices(const WorkspaceData& ws, const MeshArrays& mesh) {
                                   " is out of range (vertex count " + std::to_string(vertexCount) + ")");
   }
 }
-
-}  // namespace
 
 void beginCall(WorkspaceData& ws, const MeshArrays& mesh) {
   ws.vertexCount = mesh.positions.size() / 3;

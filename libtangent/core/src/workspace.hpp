@@ -134,7 +134,10 @@ struct WorkspaceData {
   std::atomic<bool> anyCopy{false};         // a corner is kCopy (set by the kernel, reset by
                                              // the weld)
   PerThread<BucketScratch> scratch;
-  // The OpenMesh call's corners as arrays (corner_tangents.cpp).
+  // Strided or 16-bit-indexed input, packed (entry.cpp).
+  BulkVector<float> packedPositions, packedNormals, packedUvs;
+  BulkVector<std::uint32_t> packedIndices;
+  // The OpenMesh call's corners as arrays (openmesh/src/compute_tangents.cpp).
   BulkVector<float> meshPositions, meshNormals, meshUvs, meshTangents;
   BulkVector<std::uint32_t> meshIndices;
   // The OpenMesh call: each mesh vertex's representative corner (kNone: none) and its values.
@@ -201,8 +204,14 @@ void ensureSize(Vector& v, std::size_t n) {
   if (v.size() < n) v.resize(n);
 }
 
-// Checks the arrays' sizes; throws std::invalid_argument naming the array.
+// Checks the input arrays' sizes; throws std::invalid_argument naming the array (the one
+// statement of these checks and their messages: every entry point and buildCornerMesh).
+void checkArraySizes(const MeshArrays& mesh);
+// The same, and the outputs' sizes.
 void checkArrays(const MeshArrays& mesh, const CornerOutputs& outputs);
+// Checks every index against the vertex count on ws's threads; std::invalid_argument naming
+// the first one out of range.
+void checkIndices(const WorkspaceData& ws, const MeshArrays& mesh);
 
 // Starts a call on checked arrays: records the counts in ws, resets its per-call state and
 // checks every index (in parallel, inside the call's arena; std::invalid_argument naming the
@@ -242,6 +251,11 @@ void forRange(const WorkspaceData& ws, std::size_t count, std::size_t grain, con
 template <typename Body>
 void onThreads(const WorkspaceData& ws, const Body& body);
 
+// Sorts [begin, end) by less on the workspace's threads (a total order gives the same result
+// for any count).
+template <typename Iterator, typename Less>
+void sortInParallel(const WorkspaceData& ws, Iterator begin, Iterator end, const Less& less);
+
 // Runs first() and second() side by side on the workspace's threads (one after the other on
 // one); they must write no common data.
 template <typename First, typename Second>
@@ -275,6 +289,7 @@ std::vector<std::uint32_t> collectFlagged(const WorkspaceData& ws, const std::ui
 #include <tbb/global_control.h>
 #include <tbb/parallel_for.h>
 #include <tbb/parallel_invoke.h>
+#include <tbb/parallel_sort.h>
 #include <tbb/task_arena.h>
 #endif
 
@@ -292,6 +307,19 @@ void forRange(const WorkspaceData& ws, std::size_t count, std::size_t grain, con
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, count, grain),
                     [&](const tbb::blocked_range<std::size_t>& range) { body(range.begin(), range.end()); });
 #endif
+}
+
+template <typename Iterator, typename Less>
+void sortInParallel(const WorkspaceData& ws, Iterator begin, Iterator end, const Less& less) {
+#if !defined(TANGENT_SERIAL)
+  if (ws.threads > 1) {
+    tbb::parallel_sort(begin, end, less);
+    return;
+  }
+#else
+  (void)ws;
+#endif
+  std::sort(begin, end, less);
 }
 
 template <typename First, typename Second>

@@ -925,20 +925,10 @@ BakeResult bakeChecked(const std::filesystem::path& input, const std::filesystem
 }  // namespace
 
 nlohmann::ordered_json toJson(const Report& report) {
-  return Json{{"method", toString(report.method)},
-              {"weighting", report.weighting ? toString(*report.weighting) : std::string_view()},
-              {"triangles", report.triangles},
-              {"corners", report.corners},
-              {"degenerateTriangles", report.degenerateTriangles},
-              {"zeroUvAreaTriangles", report.zeroUvAreaTriangles},
-              {"nonFiniteTriangles", report.nonFiniteTriangles},
-              {"mirroredCorners", report.mirroredCorners},
-              {"splitVertices", report.splitVertices},
-              {"nonManifoldFaces", report.nonManifoldFaces},
-              {"invalidNormals", report.invalidNormals},
-              {"inheritedCorners", report.inheritedCorners},
-              {"fallbackFromNeighbours", report.fallbackFromNeighbours},
-              {"fallbackFixed", report.fallbackFixed}};
+  Json json = {{"method", toString(report.method)},
+               {"weighting", report.weighting ? toString(*report.weighting) : std::string_view()}};
+  for (const ReportCount& count : reportCounts(report)) json[std::string(count.name)] = count.value;  // the core's one list
+  return json;
 }
 
 nlohmann::ordered_json toJson(const BakeResult& result) {

@@ -1,12 +1,13 @@
 // SPDX-License-Identifier: MIT
 // libtangent core API: tangent frames for triangle meshes.
 //
-// The core computes and opens no files. Two entry points:
-//  * computeCornerTangents() over plain arrays (positions, normals, UVs, indices in; one
-//    tangent per corner and a Report out) for callers that do not use OpenMesh;
-//  * computeTangents() on a CornerMesh (halfedge_mesh.hpp) for callers that do.
+// The core computes and opens no files, and needs no OpenMesh. One entry point,
+// computeCornerTangents(), over plain arrays (positions, normals, UVs, indices in; one tangent
+// per corner and a Report out), for every method. OpenMesh users have tangent/openmesh.hpp
+// (target tangent::openmesh), which calls this one.
 #pragma once
 
+#include <array>
 #include <concepts>
 #include <cstdint>
 #include <memory>
@@ -115,6 +116,21 @@ std::string_view toString(Weighting weighting);
 std::optional<Method> parseMethod(std::string_view name);
 std::optional<Weighting> parseWeighting(std::string_view name);
 
+// UV origins by the names the command line, Python and the npm package use: "top-left",
+// "bottom-left".
+std::string_view toString(UvOrigin origin);
+std::optional<UvOrigin> parseUvOrigin(std::string_view name);
+
+// The report's counts by name, the one list of its field names: bake's JSON, Python and the
+// npm package all give these, in this order.
+struct ReportCount {
+  std::string_view name;
+  std::uint64_t value;
+};
+std::array<ReportCount, 13> reportCounts(const Report& report);
+// The report as one JSON object: "method", "weighting" ("" for flat), then reportCounts.
+std::string reportJson(const Report& report);
+
 // Plain-array input. Corners are the entries of `indices`, three per triangle.
 struct MeshArrays {
   std::span<const float> positions;       // 3 per vertex
@@ -122,6 +138,29 @@ struct MeshArrays {
   std::span<const float> uvs;             // 2 per vertex
   std::span<const std::uint32_t> indices; // 3 per triangle
 };
+
+// Input in the layout a vertex buffer has, as meshoptimizer's meshopt_generateTangents takes
+// it: each attribute a pointer and a byte stride (attributes may interleave in one buffer;
+// any alignment), indices 16- or 32-bit. The call gives the bits computeCornerTangents gives
+// on the same values packed. Packed floats (strides 12, 12, 8) with 32-bit indices are read
+// in place; any other layout is gathered into the workspace once (no copy by the caller).
+enum class IndexType : std::uint8_t { uint16, uint32 };
+struct StridedMesh {
+  std::size_t vertexCount = 0;
+  const void* positions = nullptr;  // 3 floats per vertex
+  std::size_t positionStride = 3 * sizeof(float);  // bytes from one vertex's to the next's
+  const void* normals = nullptr;    // 3 floats per vertex
+  std::size_t normalStride = 3 * sizeof(float);
+  const void* uvs = nullptr;        // 2 floats per vertex
+  std::size_t uvStride = 2 * sizeof(float);
+  const void* indices = nullptr;    // indexCount entries of indexType, 3 per triangle
+  std::size_t indexCount = 0;
+  IndexType indexType = IndexType::uint32;
+};
+
+// Checks the arrays as every call does (sizes, then every index), with the same messages:
+// throws std::invalid_argument naming the array, or the first index out of range.
+void checkMeshArrays(const MeshArrays& mesh);
 
 namespace detail {
 struct WorkspaceData;
@@ -162,6 +201,11 @@ struct CornerOutputs {
 // input; the same bits for any thread count and any order of the triangles. Throws
 // std::invalid_argument when the array sizes disagree or an index is out of range.
 Report computeCornerTangents(const MeshArrays& mesh, const CornerOutputs& outputs, const Options& options,
+                             TangentWorkspace& workspace);
+
+// The same on strided or 16-bit-indexed input (see StridedMesh). Throws std::invalid_argument
+// also when a stride is smaller than its attribute or a pointer is null where data is needed.
+Report computeCornerTangents(const StridedMesh& mesh, const CornerOutputs& outputs, const Options& options,
                              TangentWorkspace& workspace);
 
 // The same with a workspace of its own. Computes one tangent (x, y, z, w) per corner into cornerTangents (4 floats per corner).

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// Builds the welded half-edge mesh the algorithms run on.
+// Builds the welded half-edge mesh of the OpenMesh call (tangent/openmesh.hpp).
 #include <OpenMesh/Core/System/omstream.hh>
 
 #include <algorithm>
@@ -10,7 +10,7 @@
 #include <string>
 #include <unordered_map>
 
-#include "tangent/halfedge_mesh.hpp"
+#include "tangent/openmesh.hpp"
 
 namespace tangent {
 
@@ -146,20 +146,8 @@ void addFaces(CornerMesh& result, const MeshArrays& arrays, const std::vector<st
 }  // namespace
 
 CornerMesh buildCornerMesh(const MeshArrays& arrays) {
-  if (arrays.positions.size() % 3 != 0) throw std::invalid_argument("positions: size is not a multiple of 3");
+  checkMeshArrays(arrays);  // the array call's checks and messages
   const std::size_t vertexCount = arrays.positions.size() / 3;
-  if (arrays.normals.size() != vertexCount * 3)
-    throw std::invalid_argument("normals: expected " + std::to_string(vertexCount * 3) + " floats, got " +
-                                std::to_string(arrays.normals.size()));
-  if (arrays.uvs.size() != vertexCount * 2)
-    throw std::invalid_argument("uvs: expected " + std::to_string(vertexCount * 2) + " floats, got " +
-                                std::to_string(arrays.uvs.size()));
-  if (arrays.indices.size() % 3 != 0) throw std::invalid_argument("indices: size is not a multiple of 3");
-  for (std::size_t i = 0; i < arrays.indices.size(); ++i) {
-    if (arrays.indices[i] >= vertexCount)
-      throw std::invalid_argument("indices[" + std::to_string(i) + "] = " + std::to_string(arrays.indices[i]) +
-                                  " is out of range (vertex count " + std::to_string(vertexCount) + ")");
-  }
 
   // Weld by exact position; the welded vertices are added in input vertex order.
   std::unordered_map<PositionKey, std::uint32_t, PositionKeyHash> weldIndex;

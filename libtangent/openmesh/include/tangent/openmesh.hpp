@@ -1,7 +1,10 @@
 // SPDX-License-Identifier: MIT
-// The OpenMesh representation the core works on: a triangle mesh welded by position, with
-// normal, UV and tangent stored per halfedge (that is, per face corner). The corner of face
-// f at vertex v is the halfedge of f that points to v, as OpenMesh's own readers use it.
+// libtangent for OpenMesh users (target tangent::openmesh; the core, tangent::core, needs no
+// OpenMesh): a triangle mesh welded by position, with normal, UV and tangent stored per
+// halfedge (that is, per face corner). The corner of face f at vertex v is the halfedge of f
+// that points to v, as OpenMesh's own readers use it. computeTangents() gathers the corners
+// into packed arrays and calls computeCornerTangents(), so every method gives the array
+// call's bits.
 #pragma once
 
 #include <OpenMesh/Core/Mesh/TriMesh_ArrayKernelT.hh>
@@ -53,11 +56,13 @@ struct CornerMesh {
 
 // Builds a CornerMesh from plain arrays: vertices welded by exact position (+0 and -0 equal),
 // normals and UVs copied to the corners' halfedges. Never drops a face. Which faces OpenMesh
-// refuses does not depend on the order of the triangles.
+// refuses does not depend on the order of the triangles. The arrays are checked as the array
+// call checks them (checkMeshArrays).
 CornerMesh buildCornerMesh(const MeshArrays& arrays);
 
-// Computes the tangent of every corner into mesh.tangent. w follows options.uvOrigin.
-// cornerSources, when not empty, receives one FrameSource per input corner.
+// Computes the tangent of every corner into mesh.tangent, for any options.method, with the
+// bits computeCornerTangents() gives on the arrays the mesh was built from. w follows
+// options.uvOrigin. cornerSources, when not empty, receives one FrameSource per input corner.
 Report computeTangents(CornerMesh& mesh, const Options& options = {}, std::span<FrameSource> cornerSources = {});
 // The same with a workspace that repeated calls reuse (see TangentWorkspace).
 Report computeTangents(CornerMesh& mesh, const Options& options, TangentWorkspace& workspace,

@@ -1,74 +1,17 @@
 // SPDX-License-Identifier: MIT
-// The entry points: the plain-array call (every method) and the OpenMesh call.
-#include <tbb/info.h>
-
+// The OpenMesh call: the mesh's corners gathered into packed arrays (in the workspace), the
+// array call on them for every method, and the frames written back per halfedge. The same
+// bits as the array call on the arrays the mesh was built from.
 #include <algorithm>
 #include <cstddef>
 #include <cstring>
 #include <stdexcept>
 #include <string>
 
-#include "methods.hpp"
-#include "tangent/halfedge_mesh.hpp"
+#include "tangent/openmesh.hpp"
 #include "workspace.hpp"
 
 namespace tangent {
-
-unsigned threadCount(const Options& options) {
-  if (options.threads > 0) return options.threads;
-  return static_cast<unsigned>(std::max(1, tbb::info::default_concurrency()));
-}
-
-namespace {
-
-// Methods `lengyel` and `flat` run on the half-edge mesh; their frames come back per corner
-// in the bottom-left convention with their sources, for finishOutputs.
-void lengyelOnArrays(detail::WorkspaceData& ws, const MeshArrays& mesh, const CornerOutputs& outputs, const Options& options,
-                     Report& report) {
-  CornerMesh cornerMesh = buildCornerMesh(mesh);
-  Options native = options;
-  native.uvOrigin = UvOrigin::bottomLeft;
-  std::vector<FrameSource> sources(ws.cornerCount);
-  report = detail::lengyelTangents(ws, cornerMesh, native, sources);
-  detail::ensureSize(ws.cornerState, ws.cornerCount);
-  detail::ensureSize(ws.cornerLink, ws.cornerCount);
-  for (std::size_t c = 0; c < ws.cornerCount; ++c) {
-    const TangentVec& t = cornerMesh.mesh.property(cornerMesh.tangent, cornerMesh.cornerHalfedge[c]);
-    for (int i = 0; i < 4; ++i) outputs.tangents[4 * c + i] = static_cast<float>(t[i]);
-    ws.cornerState[c] = static_cast<std::uint8_t>(sources[c]);
-    ws.cornerLink[c] = detail::kNone;
-  }
-  const std::uint64_t invalidNormals = report.invalidNormals;
-  detail::finishOutputs(ws, mesh, outputs, options, report);
-  report.invalidNormals = invalidNormals;
-}
-
-}  // namespace
-
-Report computeCornerTangents(const MeshArrays& mesh, const CornerOutputs& outputs, const Options& options,
-                             TangentWorkspace& workspace) {
-  detail::checkArrays(mesh, outputs);
-  detail::WorkspaceData& ws = workspace.data();
-  ws.threads = threadCount(options);
-  Report report;
-  auto body = [&] {
-    if (options.method == Method::mikktspace) {
-      report = detail::mikktspaceOnArrays(ws, mesh, outputs, options);
-    } else {
-      detail::beginCall(ws, mesh);
-      detail::weldAndBucket(ws, mesh, ws.threads);
-      lengyelOnArrays(ws, mesh, outputs, options, report);
-    }
-  };
-  detail::onThreads(ws, body);
-  return report;
-}
-
-Report computeCornerTangents(const MeshArrays& mesh, std::span<float> cornerTangents, const Options& options,
-                             std::span<FrameSource> cornerSources) {
-  TangentWorkspace workspace;
-  return computeCornerTangents(mesh, CornerOutputs{cornerTangents, cornerSources, {}}, options, workspace);
-}
 
 Report computeTangents(CornerMesh& cornerMesh, const Options& options, std::span<FrameSource> cornerSources) {
   TangentWorkspace workspace;
@@ -80,17 +23,10 @@ Report computeTangents(CornerMesh& cornerMesh, const Options& options, TangentWo
   const std::size_t cornerCount = cornerMesh.cornerHalfedge.size();
   if (!cornerSources.empty() && cornerSources.size() != cornerCount)
     throw std::invalid_argument("cornerSources: expected one per corner");
-  if (options.method != Method::mikktspace) {
-    detail::WorkspaceData& ws = workspace.data();
-    ws.threads = threadCount(options);
-    Report report;
-    detail::onThreads(ws, [&] { report = detail::lengyelTangents(ws, cornerMesh, options, cornerSources); });
-    return report;
-  }
   // Below, one index array holds vertex numbers (< cornerCount), corner links counted down
   // from 2^32 - 1 (kNone - 1 - corner) and kNone.
   if (cornerCount >= (std::size_t(1) << 31)) throw std::invalid_argument("mesh: more than 2^31 corners");
-  // The same kernel as the array call, on the corners' values: the same bits. The corners of
+  // The array call on the corners' values: the same bits. The corners of
   // one mesh vertex mostly carry the same normal and UV; those share one array vertex, so the
   // weld sees about as many vertices as the array call does (sharing changes no bits: the
   // kernel works on values, and corners share only where every value is equal and not NaN).

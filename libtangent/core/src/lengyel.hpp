@@ -1,0 +1,88 @@
+// SPDX-License-Identifier: MIT
+// Methods `lengyel` and `flat` on packed arrays: what their phases share (lengyel.cpp runs
+// them, lengyel_groups.cpp groups corners, sums and fills in fallbacks).
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <vector>
+
+#include "triangle_tangent.hpp"
+#include "workspace.hpp"
+
+namespace tangent::detail {
+
+// Which corners share one frame.
+enum class Grouping : std::uint8_t {
+  byValue,  // lengyel: corners with the same position, normal, UV and UV orientation
+  perFace,  // flat: the same, within one triangle only (no smoothing)
+};
+
+// The methods' own pipeline, inside the call's arena on checked arrays: beginCall, the weld and
+// buckets (for the vertex split), then the phases of lengyel.cpp and finishOutputs.
+Report lengyelOnArrays(WorkspaceData& ws, const MeshArrays& mesh, const CornerOutputs& outputs, const Options& options,
+                       Grouping grouping);
+
+std::uint64_t bitsOf(double value);  // +0 and -0 alike
+
+// Per corner, what the triangle pass found (one entry per corner of `indices`).
+struct TriangleData {
+  std::vector<TriangleTangent> triangles;
+  std::vector<Vec3> cornerNormals;       // unit (see cornerNormal)
+  std::vector<double> cornerWeights;     // the weighting's term; 0 where the triangle is not usable
+  std::vector<std::uint8_t> invalidNormal;
+};
+
+// The corners' key, sorted: equal keys (all but `corner`) are one group.
+struct CornerKey {
+  std::uint32_t weld = 0;  // the position's representative vertex (positionWeld)
+  std::int32_t orientation = 0;
+  std::uint64_t tag = 0;   // 0, or for `flat` the triangle + 1
+  std::uint64_t normal[3] = {};
+  std::uint64_t uv[2] = {};
+  std::uint32_t corner = 0;
+  bool sameGroup(const CornerKey& o) const;
+  bool sameAttributes(const CornerKey& o) const;  // normal and UV bits
+  bool operator<(const CornerKey& o) const;
+};
+
+struct Group {
+  CornerKey key;          // of its first corner (the smallest index)
+  Vec3 normal{0, 0, 1};   // unit: its first corner's
+  Vec3 tangentSum{0, 0, 0};
+  Vec3 bitangentSum{0, 0, 0};
+  Vec3 tangent{0, 0, 0};
+  double w = 1;           // handedness on the stored UVs (bottom-left convention)
+  FrameSource source = FrameSource::computed;
+  bool defined = false;
+  bool mayInherit = false;  // its first corner's triangle is not usable: copying a corner of
+                            // the same attributes is the method's own rule here
+};
+
+// The grouped corners: groups in key order; the corners of group g are
+// sortedCorners[groupStart[g] .. groupStart[g + 1]).
+struct CornerGroups {
+  std::vector<Group> groups;
+  std::vector<std::uint32_t> groupStart;
+  std::vector<std::uint32_t> sortedCorners;
+  std::vector<std::uint32_t> cornerGroup;
+};
+
+// Sorts the corners by key (in parallel) and cuts them into groups.
+CornerGroups groupCorners(const WorkspaceData& ws, const MeshArrays& mesh, const std::vector<std::uint32_t>& weldOf,
+                          const TriangleData& data, Grouping grouping);
+
+// Each group's weighted terms summed in value order (so no order of the input moves a bit),
+// then made orthogonal to its normal; w from the bitangents' side.
+void sumAndOrthonormalize(const WorkspaceData& ws, const TriangleData& data, CornerGroups& cornerGroups, bool flat);
+
+// Gives every group without a frame one (see FrameSource): a group of its position with the
+// same attributes, any group of its position, a group of a neighbouring position, or a fixed
+// perpendicular.
+void fillUndefinedGroups(const MeshArrays& mesh, const std::vector<std::uint32_t>& weldOf, CornerGroups& cornerGroups);
+
+// The unit normal a corner works with: its own, or when that is zero or not finite the
+// triangle's (or +z); `invalid` tells which.
+Vec3 cornerNormal(const Vec3& stored, const TriangleTangent& triangle, bool& invalid);
+
+}  // namespace tangent::detail

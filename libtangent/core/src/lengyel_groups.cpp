@@ -1,0 +1,222 @@
+// SPDX-License-Identifier: MIT
+// Groups of corners that get one frame (lengyel, flat): sorted by value, summed in value
+// order, and the fallbacks for groups no usable triangle reaches.
+#include <algorithm>
+#include <bit>
+#include <cmath>
+#include <cstring>
+#include <tuple>
+
+#include "gram_schmidt.hpp"
+#include "lengyel.hpp"
+
+namespace tangent::detail {
+
+std::uint64_t bitsOf(double value) { return bitCast<std::uint64_t>(value == 0.0 ? 0.0 : value); }
+
+bool CornerKey::sameAttributes(const CornerKey& o) const {
+  return std::equal(std::begin(normal), std::end(normal), std::begin(o.normal)) && std::equal(std::begin(uv), std::end(uv), std::begin(o.uv));
+}
+
+bool CornerKey::sameGroup(const CornerKey& o) const {
+  return weld == o.weld && orientation == o.orientation && tag == o.tag && sameAttributes(o);
+}
+
+bool CornerKey::operator<(const CornerKey& o) const {
+  return std::tie(weld, orientation, tag, normal[0], normal[1], normal[2], uv[0], uv[1], corner) <
+         std::tie(o.weld, o.orientation, o.tag, o.normal[0], o.normal[1], o.normal[2], o.uv[0], o.uv[1], o.corner);
+}
+
+Vec3 cornerNormal(const Vec3& stored, const TriangleTangent& triangle, bool& invalid) {
+  const double length = stored.norm();
+  invalid = !(length > 0 && std::isfinite(length));
+  if (!invalid) return stored / length;
+  return triangle.faceNormal.norm() > 0 ? triangle.faceNormal : Vec3(0, 0, 1);
+}
+
+CornerGroups groupCorners(const WorkspaceData& ws, const MeshArrays& mesh, const std::vector<std::uint32_t>& weldOf,
+                          const TriangleData& data, Grouping grouping) {
+  const std::size_t cornerCount = mesh.indices.size();
+  std::vector<CornerKey> keys(cornerCount);
+  forRange(ws, cornerCount, 1 << 14, [&](std::size_t begin, std::size_t end) {
+    for (std::size_t c = begin; c < end; ++c) {
+      const TriangleTangent& triangle = data.triangles[c / 3];
+      const std::uint32_t vertex = mesh.indices[c];
+      CornerKey& key = keys[c];
+      key.weld = weldOf[vertex];
+      key.orientation = triangle.kind == TriangleKind::usable ? triangle.orientation : 0;
+      key.tag = grouping == Grouping::perFace ? c / 3 + 1 : 0;
+      for (int i = 0; i < 3; ++i) key.normal[i] = bitsOf(data.cornerNormals[c][i]);
+      key.uv[0] = bitsOf(mesh.uvs[2 * vertex]);
+      key.uv[1] = bitsOf(mesh.uvs[2 * vertex + 1]);
+      key.corner = static_cast<std::uint32_t>(c);
+    }
+  });
+  sortInParallel(ws, keys.begin(), keys.end(), [](const CornerKey& a, const CornerKey& b) { return a < b; });
+  // Runs of equal keys are groups: where each starts, numbered by a scan, then filled in
+  // parallel. The first corner of a group is its smallest: it gives the group's normal and
+  // whether it may inherit, as the corner met first in corner order did before.
+  auto startsGroup = [&](std::size_t i) { return i == 0 || !keys[i].sameGroup(keys[i - 1]); };
+  std::vector<std::uint32_t> groupOf(cornerCount);
+  forRange(ws, cornerCount, 1 << 14, [&](std::size_t begin, std::size_t end) {
+    for (std::size_t i = begin; i < end; ++i) groupOf[i] = startsGroup(i);
+  });
+  const std::size_t groupCount = exclusiveScan(ws, groupOf.data(), cornerCount);  // groups before i
+  CornerGroups result;
+  result.groups.resize(groupCount);
+  result.groupStart.resize(groupCount + 1);
+  result.sortedCorners.resize(cornerCount);
+  result.cornerGroup.resize(cornerCount);
+  forRange(ws, cornerCount, 1 << 14, [&](std::size_t begin, std::size_t end) {
+    for (std::size_t i = begin; i < end; ++i) {
+      const CornerKey& key = keys[i];
+      const bool first = startsGroup(i);
+      const std::uint32_t g = first ? groupOf[i] : groupOf[i] - 1;
+      if (first) {
+        Group& group = result.groups[g];
+        group.key = key;
+        group.normal = data.cornerNormals[key.corner];
+        group.mayInherit = data.triangles[key.corner / 3].kind != TriangleKind::usable;
+        result.groupStart[g] = static_cast<std::uint32_t>(i);
+      }
+      result.sortedCorners[i] = key.corner;
+      result.cornerGroup[key.corner] = g;
+    }
+  });
+  result.groupStart[groupCount] = static_cast<std::uint32_t>(cornerCount);
+  return result;
+}
+
+namespace {
+
+struct Contribution {
+  Vec3 tangent;
+  Vec3 bitangent;
+  bool operator<(const Contribution& o) const {
+    return std::tie(tangent.v[0], tangent.v[1], tangent.v[2], bitangent.v[0], bitangent.v[1], bitangent.v[2]) <
+           std::tie(o.tangent.v[0], o.tangent.v[1], o.tangent.v[2], o.bitangent.v[0], o.bitangent.v[1], o.bitangent.v[2]);
+  }
+};
+
+}  // namespace
+
+void sumAndOrthonormalize(const WorkspaceData& ws, const TriangleData& data, CornerGroups& cornerGroups, bool flat) {
+  std::vector<Group>& groups = cornerGroups.groups;
+  forRange(ws, groups.size(), 1024, [&](std::size_t begin, std::size_t end) {
+    std::vector<Contribution> terms;
+    for (std::size_t g = begin; g < end; ++g) {
+      Group& group = groups[g];
+      terms.clear();
+      for (std::uint32_t i = cornerGroups.groupStart[g]; i < cornerGroups.groupStart[g + 1]; ++i) {
+        const std::uint32_t corner = cornerGroups.sortedCorners[i];
+        const TriangleTangent& triangle = data.triangles[corner / 3];
+        if (triangle.kind != TriangleKind::usable) continue;
+        const double weight = flat ? 1.0 : data.cornerWeights[corner];
+        if (!(weight > 0)) continue;
+        terms.push_back({triangle.tangent * weight, triangle.bitangent * weight});
+      }
+      if (terms.size() > 1) std::sort(terms.begin(), terms.end());
+      for (const Contribution& term : terms) {
+        group.tangentSum += term.tangent;
+        group.bitangentSum += term.bitangent;
+      }
+      if (!orthonormalize(group.tangentSum.data(), group.normal.data(), group.tangent.data())) continue;
+      const double side = (group.normal % group.tangent) | group.bitangentSum;
+      group.w = side > 0 ? 1.0 : side < 0 ? -1.0 : (group.key.orientation < 0 ? -1.0 : 1.0);
+      group.defined = true;
+    }
+  });
+}
+
+namespace {
+
+// One candidate, not a sum: opposite frames of a mirrored seam would cancel. The one whose
+// normal is nearest wins (then the heaviest, then by value); it is copied exactly when its
+// normal is the same, else projected onto ours.
+bool frameFromCandidates(const std::vector<const Group*>& candidates, Group& group) {
+  const Group* best = nullptr;
+  auto rank = [&](const Group* g) {
+    return std::make_tuple(g->normal | group.normal, g->tangentSum.sqrnorm(), g->tangent[0], g->tangent[1], g->tangent[2], g->w);
+  };
+  for (const Group* candidate : candidates) {
+    if (!best || rank(best) < rank(candidate)) best = candidate;
+  }
+  if (!best) return false;
+  if (std::equal(std::begin(best->key.normal), std::end(best->key.normal), std::begin(group.key.normal))) {
+    group.tangent = best->tangent;
+  } else if (!orthonormalize(best->tangent.data(), group.normal.data(), group.tangent.data())) {
+    return false;
+  }
+  group.w = best->w;
+  return true;
+}
+
+// The positions (welds) that share a triangle with each weld in `wanted`.
+std::vector<std::vector<std::uint32_t>> neighbourWelds(const MeshArrays& mesh, const std::vector<std::uint32_t>& weldOf,
+                                                       const std::vector<std::uint8_t>& wanted) {
+  std::vector<std::vector<std::uint32_t>> ring(wanted.size());
+  for (std::size_t t = 0; 3 * t < mesh.indices.size(); ++t) {
+    const std::uint32_t welds[3] = {weldOf[mesh.indices[3 * t]], weldOf[mesh.indices[3 * t + 1]], weldOf[mesh.indices[3 * t + 2]]};
+    for (int k = 0; k < 3; ++k) {
+      if (!wanted[welds[k]]) continue;
+      for (int other : {(k + 1) % 3, (k + 2) % 3}) {
+        if (welds[other] != welds[k]) ring[welds[k]].push_back(welds[other]);
+      }
+    }
+  }
+  return ring;
+}
+
+}  // namespace
+
+void fillUndefinedGroups(const MeshArrays& mesh, const std::vector<std::uint32_t>& weldOf, CornerGroups& cornerGroups) {
+  std::vector<Group>& groups = cornerGroups.groups;
+  if (std::all_of(groups.begin(), groups.end(), [](const Group& g) { return g.defined; })) return;
+  // The groups of one position are adjacent (the key starts with it): its defined ones.
+  const std::size_t vertexCount = weldOf.size();
+  std::vector<std::uint32_t> firstGroup(vertexCount, kNone), lastGroup(vertexCount, 0);
+  for (std::uint32_t g = 0; g < groups.size(); ++g) {
+    const std::uint32_t weld = groups[g].key.weld;
+    if (firstGroup[weld] == kNone) firstGroup[weld] = g;
+    lastGroup[weld] = g + 1;
+  }
+  auto definedAt = [&](std::uint32_t weld, auto&& each) {
+    if (firstGroup[weld] == kNone) return;
+    for (std::uint32_t g = firstGroup[weld]; g < lastGroup[weld]; ++g) {
+      if (groups[g].defined) each(groups[g]);
+    }
+  };
+  std::vector<const Group*> candidates;
+  std::vector<std::uint8_t> wantsRing(vertexCount, 0);
+  for (Group& group : groups) {
+    if (group.defined) continue;
+    bool found = false;
+    // Same normal and UV first (a degenerate corner of a smooth vertex), then any.
+    for (int pass = 0; pass < 2 && !found; ++pass) {
+      candidates.clear();
+      definedAt(group.key.weld, [&](const Group& other) {
+        if (pass == 1 || other.key.sameAttributes(group.key)) candidates.push_back(&other);
+      });
+      found = frameFromCandidates(candidates, group);
+      if (found) group.source = pass == 0 && group.mayInherit ? FrameSource::inherited : FrameSource::neighbour;
+    }
+    if (!found) {
+      group.source = FrameSource::fixed;  // for now: the 1-ring below may still give one
+      wantsRing[group.key.weld] = 1;
+    }
+  }
+  const std::vector<std::vector<std::uint32_t>> ring = neighbourWelds(mesh, weldOf, wantsRing);
+  for (Group& group : groups) {
+    if (group.defined || group.source != FrameSource::fixed) continue;
+    candidates.clear();
+    for (std::uint32_t neighbour : ring[group.key.weld]) definedAt(neighbour, [&](const Group& other) { candidates.push_back(&other); });
+    if (frameFromCandidates(candidates, group)) {
+      group.source = FrameSource::neighbour;
+      continue;
+    }
+    group.tangent = fixedPerpendicular(group.normal);
+    group.w = group.key.orientation < 0 ? -1.0 : 1.0;
+  }
+}
+
+}  // namespace tangent::detail
