@@ -45,14 +45,14 @@ mutation weighting-mikktspace-area libtangent/core/src/mikktspace/grouping.cpp "
   'const std::uint32_t c = list[member(scratch.items[i])];
       angle = std::max(0.5 * length(cross(a_.position(a_.indices[previousCorner(c)]) - here, a_.position(a_.indices[nextCorner(c)]) - here)), 1e-12);'
 mutation weighting-lengyel-area libtangent/core/src/lengyel.cpp "$core_tests" \
-  'case Weighting::angle: cornerWeights[corner] = cornerAngle(positions, k); break;' \
-  'case Weighting::angle: cornerWeights[corner] = triangle.area; break;'
+  'case Weighting::angle: data.cornerWeights[corner] = cornerAngle(positions, k); break;' \
+  'case Weighting::angle: data.cornerWeights[corner] = triangle.area; break;'
 mutation projection-mikktspace libtangent/core/src/mikktspace/grouping.cpp "$core_tests" \
   'const F3 referenceS = referenceProjected({frame[0], frame[1], frame[2]}, rawNormal);' \
   'const F3 referenceS{frame[0], frame[1], frame[2]};'
-mutation projection-lengyel libtangent/core/src/corner_groups.cpp "$core_tests" \
-  'Vec3 t = sum - n * (n | sum);' \
-  'Vec3 t = sum;'
+mutation projection-lengyel libtangent/core/src/lengyel_groups.cpp "$core_tests" \
+  'group.normal = data.cornerNormals[key.corner];' \
+  'group.normal = Vec3(0, 0, 1);  // projected onto +z, not the corner normal'
 mutation uv-set libtangent/gltf/src/primitive.cpp "$gltf_tests" \
   'const std::string uvName = "TEXCOORD_" + std::to_string(needs.texCoord);
   const int uvAccessor' \

@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: MIT
 // Gram-Schmidt against the normal, the one statement of it: mikktspace's groups and
-// fallbacks (mikktspace/math.hpp) and lengyel's groups (corner_groups.cpp) call it.
+// fallbacks (mikktspace/math.hpp) and lengyel's groups (lengyel_groups.cpp) call it.
 #pragma once
 
 #include <cmath>
