@@ -71,23 +71,6 @@ std::string html(std::string_view raw) {
   return out;
 }
 
-// A query parameter's value (RFC 3986 3.4): unreserved characters and '/' as they are, every
-// other byte percent-encoded ('&', '=', '#', '+' included).
-std::string queryValue(std::string_view raw) {
-  static const char* hex = "0123456789ABCDEF";
-  std::string out;
-  for (unsigned char c : raw) {
-    if (std::isalnum(c) || c == '-' || c == '.' || c == '_' || c == '~' || c == '/') {
-      out += static_cast<char>(c);
-    } else {
-      out += '%';
-      out += hex[c >> 4];
-      out += hex[c & 15];
-    }
-  }
-  return out;
-}
-
 std::string base64(std::string_view bytes) {
   static const char* alphabet = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
   std::string out;
@@ -393,7 +376,7 @@ std::string webViewerLink(const std::string& file, const fs::path& reportFolder)
   if (ec) return "";
   const fs::path relative = asset.lexically_relative(reportFolder / "build-web");
   if (relative.empty()) return "";
-  return "build-web/index.html?url=" + queryValue(relative.generic_string()) + "&view=error";
+  return "build-web/index.html?url=" + text::uriQueryValue(relative.generic_string()) + "&view=error";
 }
 
 const char* kStyle =

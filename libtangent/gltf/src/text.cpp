@@ -129,13 +129,14 @@ std::string dumpJson(const nlohmann::ordered_json& json, int indent) {
   }
 }
 
-std::string uriPath(std::string_view path) {
+namespace {
+// Every byte outside ASCII letters, digits and `kept` as %HH (RFC 3986 section 2.1).
+std::string percentEncode(std::string_view text, std::string_view kept) {
   static const char* hex = "0123456789ABCDEF";
-  constexpr std::string_view kKept = "-._~/!$&'()*+,;=@";  // unreserved, '/', sub-delims, '@'
   std::string out;
-  for (unsigned char c : path) {
+  for (unsigned char c : text) {
     const bool alphanumeric = (c >= '0' && c <= '9') || (c >= 'A' && c <= 'Z') || (c >= 'a' && c <= 'z');
-    if (alphanumeric || kKept.find(static_cast<char>(c)) != std::string_view::npos) {
+    if (alphanumeric || kept.find(static_cast<char>(c)) != std::string_view::npos) {
       out += static_cast<char>(c);
     } else {
       out += '%';
@@ -144,6 +145,15 @@ std::string uriPath(std::string_view path) {
     }
   }
   return out;
+}
+}  // namespace
+
+std::string uriPath(std::string_view path) {
+  return percentEncode(path, "-._~/!$&'()*+,;=@");  // unreserved, '/', sub-delims, '@'
+}
+
+std::string uriQueryValue(std::string_view value) {
+  return percentEncode(value, "-._~/");  // unreserved and '/'
 }
 
 }  // namespace tangent::text

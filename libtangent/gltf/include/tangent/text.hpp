@@ -35,6 +35,11 @@ std::string quoted(std::string_view text);
 // as a scheme (section 4.2), and an encoded one means the same anywhere.
 std::string uriPath(std::string_view path);
 
+// A query parameter's value (RFC 3986 section 3.4), as in a link `page.html?url=VALUE`:
+// unreserved characters and '/' as they are, every other byte percent-encoded ('&', '=', '#',
+// '+' included, which would end or change the value).
+std::string uriQueryValue(std::string_view value);
+
 // JSON as every writer writes it (reports, manifests, glTF documents): strings and keys that
 // are not valid UTF-8 pass through utf8Safe first, where nlohmann's dump would throw.
 std::string dumpJson(const nlohmann::ordered_json& json, int indent = -1);
