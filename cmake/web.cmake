@@ -6,9 +6,8 @@
 # header (viewer/web/tinygltf.cpp); oneTBB is left out (TANGENT_SERIAL, and a one-line
 # tbb/info.h in viewer/web/include). OpenMesh, Draco and meshoptimizer are native libraries
 # only: the glTF layer's readers that need them are swapped for stand-ins that refuse such files
-# (viewer/CMakeLists.txt, viewer/web/native_stand_ins.cpp); the core's half-edge code compiles
-# against OpenMesh's headers but OpenMesh's compiled part is not linked, so the methods lengyel
-# and flat, which the viewer never calls, would stop the page. README.md lists what is left out.
+# (viewer/CMakeLists.txt, viewer/web/native_stand_ins.cpp). The core is arrays-only, so every
+# method (lengyel and flat too) links and runs. README.md lists what is left out.
 set(web_include ${PROJECT_BINARY_DIR}/web-include)
 file(MAKE_DIRECTORY ${web_include}/stb)
 foreach(entry nlohmann glm OpenMesh tiny_gltf.h stb/stb_image.h stb/stb_image_write.h stb/stb_image_resize.h)
