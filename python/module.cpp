@@ -284,7 +284,7 @@ and the bake report when baked in this run.)");
       [](const std::filesystem::path& input, const std::string& methodName, double tolerance, bool all,
          std::optional<std::filesystem::path> assetRoot, std::optional<std::vector<std::string>> only,
          const std::vector<std::string>& ignore, bool allowMissing, std::optional<double> orthogonalTolerance,
-         std::optional<double> referenceTolerance, std::optional<std::string> reference) {
+         std::optional<double> referenceTolerance, std::optional<std::string> reference, double minCoverage) {
         tangent::gltf::CheckOptions options;
         options.method = method(methodName);
         if (options.method == tangent::Method::flat) badArgument("method", "check compares with mikktspace or lengyel");
@@ -313,6 +313,8 @@ and the bake report when baked in this run.)");
         options.enabled &= ~checkSet("ignore", ignore);
         options.allowMissing = allowMissing;
         options.all = all;
+        if (!(minCoverage >= 0 && minCoverage <= 1)) badArgument("min_coverage", "must be a fraction in [0, 1] (0: no coverage warning)");
+        options.minCoverage = minCoverage;
         if (assetRoot) options.assetRoot = *assetRoot;
         tangent::gltf::FileCheck result;
         {
@@ -324,7 +326,7 @@ and the bake report when baked in this run.)");
       py::arg("path"), py::kw_only(), py::arg("method") = "mikktspace", py::arg("tolerance") = 1.0, py::arg("all") = false,
       py::arg("asset_root") = py::none(), py::arg("only") = py::none(), py::arg("ignore") = std::vector<std::string>(),
       py::arg("allow_missing") = false, py::arg("orthogonal_tolerance") = py::none(), py::arg("reference_tolerance") = py::none(),
-      py::arg("reference") = py::none(),
+      py::arg("reference") = py::none(), py::arg("min_coverage") = tangent::gltf::kDefaultMinCoverage,
       R"(Check the TANGENTs stored in a glTF file, as `tangent check PATH --format json` does.
 
 Per primitive that needs tangents: present, format, finite, unit, w, w-uniform, orthogonal,
@@ -337,6 +339,8 @@ tolerance: degrees, for orthogonal and reference (default 1), on top of the roun
 orthogonal_tolerance, reference_tolerance: the same for one check (default: tolerance)
 only: run only these checks (names as above); ignore: leave these out
 allow_missing: a primitive without TANGENT is skipped, not a finding
+min_coverage: warn where reference or handedness compared less than this share of a primitive's
+  corners or triangles (default 0.5; 0: never), as `--min-coverage` does
 all: every triangle primitive, not only normal-mapped ones
 asset_root: folder buffer and image URIs may not leave (default: the file's folder)
 

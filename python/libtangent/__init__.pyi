@@ -60,6 +60,7 @@ def check(
     orthogonal_tolerance: Optional[float] = None,
     reference_tolerance: Optional[float] = None,
     reference: Optional[str] = None,
+    min_coverage: float = 0.5,
 ) -> dict[str, Any]: ...
 
 def bake_tree(

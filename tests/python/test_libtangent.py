@@ -351,3 +351,31 @@ def test_check_reference_names_the_generator(tmp_path):
     assert result == report["files"][0]
     with pytest.raises(ValueError, match="reference"):
         libtangent.check(output, reference="lengyel/volume")
+
+
+def test_shared_assets_check_warns_on_low_coverage(tmp_path):
+    """After gltfpack -vt 8 `reference` compares few corners of NormalTangentTest: check's dict
+    carries the coverage warning the CLI's JSON has, with the JSON's counts; min_coverage=0 turns
+    it off (docs/check.md, "Coverage")."""
+    asset = SHARED / "NormalTangentTest.glb"
+    if not asset.is_file():
+        skip_or_fail(f"{asset} is absent: the coverage warning is not tested")
+    if shutil.which("gltfpack") is None:
+        skip_or_fail("gltfpack is not installed (scripts/install-deps.sh): the coverage warning is not tested")
+    baked, packed = tmp_path / "baked.glb", tmp_path / "packed.glb"
+    libtangent.bake(asset, baked)
+    subprocess.run(["gltfpack", "-i", str(baked), "-o", str(packed), "-vt", "8"], capture_output=True, check=True)
+    result = libtangent.check(packed)
+    assert result["status"] == "clean"
+    done = subprocess.run([CLI, "check", str(packed), "--format", "json"], capture_output=True, check=True)
+    assert result == json.loads(done.stdout)["files"][0]
+    primitive = result["primitives"][0]
+    total = 3 * primitive["triangles"]
+    compared = total - primitive["referenceUnresolvedCorners"] - primitive["referenceUndefinedCorners"]
+    assert compared < total / 2
+    assert any(w.startswith(f"reference compared only {compared} of {total} corners (") for w in primitive["warnings"]), primitive["warnings"]
+    quiet = libtangent.check(packed, min_coverage=0)
+    assert not any(" compared only " in w for w in quiet["primitives"][0]["warnings"])
+    assert not any(" compared only " in w for w in libtangent.check(baked)["primitives"][0]["warnings"])
+    with pytest.raises(ValueError):
+        libtangent.check(packed, min_coverage=1.5)

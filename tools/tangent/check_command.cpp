@@ -6,6 +6,7 @@
 #include <bitset>
 #include <cctype>
 #include <chrono>
+#include <cstdlib>
 #include <ctime>
 #include <fstream>
 #include <iostream>
@@ -40,8 +41,11 @@ const char* kCheckUsage =
     "  --ignore CHECKS     leave these checks out\n"
     "  --tolerance DEG     for orthogonal and reference (default 1), on top of the rounding limits\n"
     "  --tolerance CHECK=DEG  for one of them: orthogonal=DEG or reference=DEG\n"
+    "  --min-coverage FRACTION  warn where reference compared fewer than FRACTION of a primitive's\n"
+    "                      corners, or handedness of its triangles (default 0.5; 0: never), as rounded\n"
+    "                      UVs/positions leave the rest undecided (a warning: the exit code stays)\n"
     "  --allow-missing     a primitive without TANGENT is skipped, not a finding (clients compute MikkTSpace)\n"
-    "  --config FILE.json  settings from a file (only, ignore, tolerance, method, allowMissing, all);\n"
+    "  --config FILE.json  settings from a file (only, ignore, tolerance, method, minCoverage, allowMissing, all);\n"
     "                      options on the command line override it\n"
     "  --reference NAME    what reference is measured against: mikktspace (default) | lengyel/angle |\n"
     "                      lengyel/area | lengyel/uniform | flat (the names --identify reports)\n"
@@ -469,6 +473,14 @@ int checkCommand(const std::vector<std::string>& args) {
       if (check.empty() || check == "reference") options.referenceToleranceDegrees = *degrees;
       if (!check.empty() && check != "orthogonal" && check != "reference")
         return usageError("--tolerance " + check + "=...: only orthogonal and reference have a tolerance");
+    } else if (arg == "--min-coverage") {
+      if (!hasValue) return usageError("--min-coverage needs a fraction in [0, 1]");
+      const std::string& value = args[++i];
+      char* end = nullptr;
+      const double fraction = std::strtod(value.c_str(), &end);
+      if (value.empty() || end != value.c_str() + value.size() || !(fraction >= 0) || fraction > 1)
+        return usageError("--min-coverage must be a fraction in [0, 1] (0: no coverage warning)");
+      options.minCoverage = fraction;
     } else if (arg == "--allow-missing") {
       options.allowMissing = true;
     } else if (arg == "--method") {

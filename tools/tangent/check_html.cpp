@@ -484,7 +484,7 @@ std::string htmlReport(const std::vector<gltf::FileCheck>& checks, const gltf::C
       << " primitive(s) checked, " << failing << " with findings, " << findings << " finding(s)"
       << (unreadable ? ", " + std::to_string(unreadable) + " unreadable" : "") << "</p>\n<p class=\"note\">method "
       << html(toString(options.method)) << ", tolerance orthogonal " << options.orthogonalToleranceDegrees
-      << " deg, reference " << options.referenceToleranceDegrees << " deg";
+      << " deg, reference " << options.referenceToleranceDegrees << " deg, min coverage " << options.minCoverage;
   if (!options.configFile.empty()) out << ", settings from " << html(options.configFile);
   out << ".</p>\n";
   if (failing) {

@@ -186,6 +186,21 @@ void identifyGenerator(const PrimitiveGeometry& frames, const PrimitiveGeometry&
 // The checks of one primitive that need its triangles (w-uniform, handedness, orthogonal on the
 // vertices it draws, reference), after the per-vertex ones. `used` is the part of `buffer` it
 // draws; elements in messages are the buffer's vertices and the primitive's triangles and corners.
+// A check that compared fewer than options.minCoverage of its elements: a warning (not a
+// finding: a file with 8-bit UVs cannot do better) with the counts and why the rest was left.
+void coverageWarning(const CheckOptions& options, const char* check, const char* unit, std::uint64_t total, std::uint64_t undecided,
+                     std::uint64_t undefined, const char* undecidedWhy, const char* undefinedWhy, PrimitiveCheck& result) {
+  if (total == 0 || undecided + undefined > total) return;
+  const std::uint64_t compared = total - undecided - undefined;
+  if (!(double(compared) < options.minCoverage * double(total))) return;
+  std::string why = format("%llu %s", static_cast<unsigned long long>(undecided), undecidedWhy);
+  if (undefined) why += format(", %llu %s", static_cast<unsigned long long>(undefined), undefinedWhy);
+  result.warnings.push_back(format("%s compared only %llu of %llu %s (%.1f%%, below --min-coverage %.3g): %s; its verdict says "
+                                   "nothing about the rest",
+                                   check, static_cast<unsigned long long>(compared), static_cast<unsigned long long>(total), unit,
+                                   100.0 * double(compared) / double(total), options.minCoverage, why.c_str()));
+}
+
 void checkDrawnPart(const PrimitiveGeometry& buffer, const UsedVertices& used, const StoredTangents& stored,
                     const VertexFindings& undrawn, const InputRounding& rounding, const CheckOptions& options,
                     TangentWorkspace& workspace, PrimitiveCheck& result) {
@@ -214,6 +229,7 @@ void checkDrawnPart(const PrimitiveGeometry& buffer, const UsedVertices& used, c
   FindingBuilder uniform(CheckId::wUniform, "triangles", triangleCount, "none", 0, options);
   FindingBuilder handedness(CheckId::handedness, "triangles", triangleCount, "uv-area", 0, options);
   FindingBuilder orthogonal(CheckId::orthogonal, "vertices", result.vertices, "degrees", stored.orthogonalLimit, options);
+  std::uint64_t handednessDegenerate = 0;  // no UV or 3D area: no orientation to judge
   for (std::size_t t = 0; t < triangleCount; ++t) {
     const std::uint32_t* local = &part.corners[3 * t];
     const std::uint32_t c[3] = {used.vertices[local[0]], used.vertices[local[1]], used.vertices[local[2]]};
@@ -227,7 +243,11 @@ void checkDrawnPart(const PrimitiveGeometry& buffer, const UsedVertices& used, c
     const double det = uvAreaTimesTwo(uv[0], uv[1], uv[2]);
     const float expected = expectedW(det);
     const double area = areaTimesTwo(&buffer.positions[3 * c[0]], &buffer.positions[3 * c[1]], &buffer.positions[3 * c[2]]);
-    if (expected == 0 || !std::isfinite(det) || !(area > 0) || !validW(w0)) continue;
+    if (expected == 0 || !std::isfinite(det) || !(area > 0)) {
+      ++handednessDegenerate;
+      continue;
+    }
+    if (!validW(w0)) continue;  // `w` reported it
     if (!allowance.decided(t)) {
       ++result.handednessUndecided;
       continue;
@@ -238,6 +258,9 @@ void checkDrawnPart(const PrimitiveGeometry& buffer, const UsedVertices& used, c
   }
   uniform.finish(result, "w differs between the corners of a triangle (a vertex shared across a mirror seam?)");
   handedness.finish(result, "w disagrees with the triangle's orientation in the normal texture's UV set (w = -sign(UV area) in glTF)");
+  if (options.runs(CheckId::handedness))
+    coverageWarning(options, "handedness", "triangles", triangleCount, result.handednessUndecided, handednessDegenerate,
+                    "whose UV orientation rounded positions/UVs leave undecided", "without UV or 3D area", result);
 
   // Per vertex, the normal its tangent is judged against: NORMAL, or (flat normals) the face
   // normal of its corner furthest from its tangent's plane.
@@ -322,6 +345,10 @@ void checkDrawnPart(const PrimitiveGeometry& buffer, const UsedVertices& used, c
       }
     }
   }
+  if (options.runs(CheckId::reference))
+    coverageWarning(options, "reference", "corners", part.corners.size(), result.referenceUnresolved, result.referenceUndefined,
+                    "whose frame or UV orientation rounded positions/UVs leave undecided",
+                    ("where " + toString(Generator{options.method, options.weighting}) + " defines no frame").c_str(), result);
   if (options.identify) identifyGenerator(frames, part, used, tangents, workspace, result);
   // Ignored checks listed in check order (they finish in the order the passes run).
   std::sort(result.ignored.begin(), result.ignored.end(),
@@ -686,11 +713,15 @@ void applyCheckConfig(const std::filesystem::path& file, CheckOptions& options) 
         throw std::runtime_error(where + ": reference must be mikktspace, lengyel/angle, lengyel/area, lengyel/uniform or flat");
       options.method = generator->method;
       options.weighting = generator->weighting;
+    } else if (key == "minCoverage") {
+      if (!value.is_number() || !(value.get<double>() >= 0) || value.get<double>() > 1)
+        throw std::runtime_error(where + ": minCoverage must be a fraction in [0, 1] (0: no warning)");
+      options.minCoverage = value.get<double>();
     } else if (key == "allowMissing" || key == "all") {
       if (!value.is_boolean()) throw std::runtime_error(where + ": " + key + " must be true or false");
       (key == "all" ? options.all : options.allowMissing) = value.get<bool>();
     } else {
-      throw std::runtime_error(where + ": unknown setting \"" + key + "\" (only, ignore, tolerance, method, reference, allowMissing, all)");
+      throw std::runtime_error(where + ": unknown setting \"" + key + "\" (only, ignore, tolerance, method, reference, minCoverage, allowMissing, all)");
     }
   }
   options.configFile = file.string();
@@ -715,6 +746,7 @@ nlohmann::ordered_json toJson(const CheckOptions& options) {
   Json settings = {{"method", std::string(toString(options.method))},
                    {"reference", toString(Generator{options.method, options.weighting})},
                    {"tolerance", {{"orthogonal", options.orthogonalToleranceDegrees}, {"reference", options.referenceToleranceDegrees}}},
+                   {"minCoverage", options.minCoverage},
                    {"checks", checks},
                    {"ignored", ignored},
                    {"allowMissing", options.allowMissing},
