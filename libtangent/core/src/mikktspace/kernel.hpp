@@ -8,7 +8,7 @@
 #include <cstring>
 
 #include "../state_bits.hpp"
-#include "../workspace.hpp"
+#include "../parallel.hpp"
 #include "angles.hpp"
 #include "arrays.hpp"
 #include "triangle.hpp"
