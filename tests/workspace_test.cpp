@@ -26,7 +26,7 @@
 #include "tangent/openmesh.hpp"
 #include "tangent/tangent.hpp"
 #include "lengyel.hpp"
-#include "workspace.hpp"
+#include "parallel.hpp"
 
 namespace {
 

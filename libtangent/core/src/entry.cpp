@@ -13,7 +13,7 @@
 #include <string>
 
 #include "lengyel.hpp"
-#include "workspace.hpp"
+#include "parallel.hpp"
 
 namespace tangent {
 

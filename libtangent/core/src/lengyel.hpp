@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "triangle_tangent.hpp"
-#include "workspace.hpp"
+#include "parallel.hpp"
 
 namespace tangent::detail {
 

@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: MIT
 // The output pass every method ends with: copies for duplicate triangles, the w convention,
 // the report's corner counts, and the vertex split (CornerOutputs::cornerVertex).
-#include "workspace.hpp"
+#include "parallel.hpp"
 
 #include <algorithm>
 #include <array>

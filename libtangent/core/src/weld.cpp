@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: MIT
 // Welding vertices by exact value, as the reference identifies corners, and bucketing the
 // corners by welded vertex (a parallel counting sort). Shared by every method.
-#include "workspace.hpp"
+#include "parallel.hpp"
 
 #include <algorithm>
 #include <array>

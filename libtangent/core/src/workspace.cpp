@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: MIT
 // The workspace, and the checks every call starts with: array sizes, then every index.
-#include "workspace.hpp"
+#include "parallel.hpp"
 
 #include <algorithm>
 #include <array>

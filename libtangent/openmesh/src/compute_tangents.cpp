@@ -9,7 +9,7 @@
 #include <string>
 
 #include "tangent/openmesh.hpp"
-#include "workspace.hpp"
+#include "parallel.hpp"
 
 namespace tangent {
 

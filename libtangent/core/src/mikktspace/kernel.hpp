@@ -8,7 +8,7 @@
 #include <cstring>
 
 #include "../state_bits.hpp"
-#include "../workspace.hpp"
+#include "../parallel.hpp"
 #include "angles.hpp"
 #include "arrays.hpp"
 #include "triangle.hpp"
@@ -93,6 +93,15 @@ class Kernel {
   void markDuplicates(const std::uint64_t* outs, std::size_t n);
   void pairNonManifold(const std::uint32_t* outs, std::size_t outCount, const std::uint32_t* ins, std::size_t inCount);
   void resolveGroupWithAny();
+  bool openForAny(std::size_t t) const;
+  std::size_t neighbourTriangle(std::size_t t, int k) const;
+  void orientReached(std::vector<std::uint32_t>& pending);
+  void markReached(std::uint32_t bucket, ScratchVector<std::uint32_t>& parent, std::vector<std::uint8_t>& reached);
+  void orientByNeighbours(std::vector<std::uint32_t>& pending);
+  void orientAcrossEdges(std::vector<std::uint32_t> layer, std::vector<std::int8_t>& decided);
+  void appendOpenNeighbours(const std::vector<std::uint32_t>& done, std::vector<std::uint32_t>& layer);
+  std::vector<std::uint32_t> decideByVotes(std::vector<std::uint32_t>& candidates, bool byVertex,
+                                           std::vector<std::int8_t>& decided);
   V3 bucketNormal(std::uint32_t bucket, bool& invalid) const;
   // Adds the bucket's corners with a negative w (as stored) to `mirrored`, copies aside.
   void groupBucket(std::uint32_t bucket, BucketScratch& scratch, std::uint64_t& mirrored);

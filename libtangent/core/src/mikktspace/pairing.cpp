@@ -41,53 +41,39 @@ void Kernel::resetLinks(const std::uint32_t* list, std::uint32_t count) {
   }
 }
 
-// Most buckets: a few corners whose next identities are all different, each of which is
-// the previous identity of at most one corner. Then no triangle duplicates another here
-// (a duplicate has the same next identity) and no edge has more than one half-edge each
-// way: each outgoing edge pairs with the one incoming edge of its identity, if any (what
-// the sorted merge of pairSorted finds), with no sort. (Previous identities that no next one
-// matches may repeat: the merge links nothing there either.) False where the bucket is not
-// that case (then pairSorted pairs it).
-bool Kernel::pairSmallBucket(std::uint32_t bucket, const std::uint32_t* list, std::uint32_t count) {
-  const std::int8_t firstOrientation = ws_.orientation[list[0] / 3];
-  bool oneOrientation = true;
-  alignas(16) std::uint32_t outId[kSmall], inId[kSmall];
+namespace {
+
+// The participating corners of one small bucket (pairSmallBucket) and their links.
+struct SmallBucket {
+  alignas(16) std::uint32_t outId[kSmall], inId[kSmall];  // next and previous identities
   std::uint32_t corner[kSmall];
   std::uint32_t n = 0;
-  for (std::uint32_t i = 0; i < count; ++i) {
-    const std::uint32_t c = list[i];
-    ws_.cornerState[c] = 0;
-    if (!participates(c)) {
-      ws_.cornerLink[c] = kNone;
-      continue;
-    }
-    oneOrientation &= ws_.orientation[c / 3] == firstOrientation;
-    corner[n] = c;
-    outId[n] = id(nextCorner(c));
-    inId[n] = id(previousCorner(c));
-    ++n;
-  }
-  std::uint32_t match[kSmall];
-  std::uint8_t successor[kSmall] = {};  // local index of match[i], kSmall where none (zeroed: GCC cannot see
-                                       // that only the first n are read)
-  std::uint32_t targets = 0;       // local indices some link reaches
-  bool simple = true;
+  std::uint32_t match[kSmall];          // the corner linked from corner[i], kNone where none
+  std::uint8_t successor[kSmall] = {};  // local index of match[i], kSmall where none (zeroed: GCC
+                                        // cannot see that only the first n are read)
+  std::uint32_t targets = 0;            // local indices some link reaches
+};
+
+// Fills match, successor and targets from the identities; false where the bucket is not the
+// simple case (a next identity repeats, or is the previous identity of two corners).
+inline bool linkSmallBucket(SmallBucket& b) {
+  const std::uint32_t n = b.n;
 #if defined(__SSE2__)
   // Lane masks of equal identities, four lanes a compare (8 or 16 lanes, those past n
   // zeroed and masked off).
   const std::uint32_t width = n <= 8 ? 8 : 16;
-  for (std::uint32_t j = n; j < width; ++j) outId[j] = inId[j] = 0;
+  for (std::uint32_t j = n; j < width; ++j) b.outId[j] = b.inId[j] = 0;
   const std::uint32_t lanes = (std::uint32_t(1) << n) - 1;
   auto masks = [&](auto vectorCount) {
     constexpr int kVectors = decltype(vectorCount)::value;
     __m128i outs[kVectors], ins[kVectors];
     for (int v = 0; v < kVectors; ++v) {
-      outs[v] = _mm_load_si128(reinterpret_cast<const __m128i*>(outId + 4 * v));
-      ins[v] = _mm_load_si128(reinterpret_cast<const __m128i*>(inId + 4 * v));
+      outs[v] = _mm_load_si128(reinterpret_cast<const __m128i*>(b.outId + 4 * v));
+      ins[v] = _mm_load_si128(reinterpret_cast<const __m128i*>(b.inId + 4 * v));
     }
     std::uint32_t bad = 0;
     for (std::uint32_t i = 0; i < n; ++i) {
-      const __m128i key = _mm_set1_epi32(static_cast<int>(outId[i]));
+      const __m128i key = _mm_set1_epi32(static_cast<int>(b.outId[i]));
       std::uint32_t sameOut = 0, sameIn = 0;
       auto laneMask = [&](__m128i lanesOf) {
         return static_cast<std::uint32_t>(_mm_movemask_ps(_mm_castsi128_ps(_mm_cmpeq_epi32(key, lanesOf))));
@@ -98,53 +84,86 @@ bool Kernel::pairSmallBucket(std::uint32_t bucket, const std::uint32_t* list, st
       }
       sameOut &= lanes, sameIn &= lanes;
       bad |= (sameOut ^ (std::uint32_t(1) << i)) | (sameIn & (sameIn - 1));
-      match[i] = sameIn ? corner[std::countr_zero(sameIn)] : kNone;
-      successor[i] = static_cast<std::uint8_t>(sameIn ? std::countr_zero(sameIn) : kSmall);
-      targets |= sameIn;
+      b.match[i] = sameIn ? b.corner[std::countr_zero(sameIn)] : kNone;
+      b.successor[i] = static_cast<std::uint8_t>(sameIn ? std::countr_zero(sameIn) : kSmall);
+      b.targets |= sameIn;
     }
     return bad == 0;
   };
-  simple = width == 8 ? masks(std::integral_constant<int, 2>{}) : masks(std::integral_constant<int, 4>{});
+  return width == 8 ? masks(std::integral_constant<int, 2>{}) : masks(std::integral_constant<int, 4>{});
 #else
+  bool simple = true;
   for (std::uint32_t i = 0; i < n; ++i) {
     std::uint32_t sameOut = 0, sameIn = 0;
-    match[i] = kNone;
-    successor[i] = kSmall;
+    b.match[i] = kNone;
+    b.successor[i] = kSmall;
     for (std::uint32_t j = 0; j < n; ++j) {
-      sameOut += outId[i] == outId[j];
-      sameIn += outId[i] == inId[j];
-      match[i] = outId[i] == inId[j] ? corner[j] : match[i];
-      successor[i] = outId[i] == inId[j] ? static_cast<std::uint8_t>(j) : successor[i];
-      targets |= outId[i] == inId[j] ? std::uint32_t(1) << j : 0;
+      sameOut += b.outId[i] == b.outId[j];
+      sameIn += b.outId[i] == b.inId[j];
+      b.match[i] = b.outId[i] == b.inId[j] ? b.corner[j] : b.match[i];
+      b.successor[i] = b.outId[i] == b.inId[j] ? static_cast<std::uint8_t>(j) : b.successor[i];
+      b.targets |= b.outId[i] == b.inId[j] ? std::uint32_t(1) << j : 0;
     }
     simple &= (sameOut == 1) & (sameIn <= 1);
   }
+  return simple;
 #endif
-  if (!simple) return false;
-  // Each corner has at most one successor and one predecessor here, so the links form
-  // paths and cycles. One chain through every corner: a cycle from corner 0, or the
-  // path from the one corner that no link reaches (one head: one path; a walk from it
-  // that sees every corner: no cycle beside it).
-  bool oneChain = false;
-  if (n == count) {
-    const std::uint32_t heads = ((std::uint32_t(1) << n) - 1) & ~targets;
-    if (heads == 0 || (heads & (heads - 1)) == 0) {
-      const std::uint32_t start = heads == 0 ? 0 : static_cast<std::uint32_t>(std::countr_zero(heads));
-      std::uint32_t k = start, seen = 0;
-      do {
-        k = successor[k];
-        ++seen;
-      } while (k != kSmall && k != start && seen < n);
-      oneChain = seen == n && (heads == 0 ? k == start : k == kSmall);
+}
+
+// Each corner has at most one successor and one predecessor here, so the links form paths
+// and cycles. One chain through every corner: a cycle from corner 0, or the path from the
+// one corner that no link reaches (one head: one path; a walk from it that sees every
+// corner: no cycle beside it).
+inline bool oneSmallChain(const SmallBucket& b) {
+  const std::uint32_t n = b.n;
+  const std::uint32_t heads = ((std::uint32_t(1) << n) - 1) & ~b.targets;
+  if (heads != 0 && (heads & (heads - 1)) != 0) return false;
+  const std::uint32_t start = heads == 0 ? 0 : static_cast<std::uint32_t>(std::countr_zero(heads));
+  std::uint32_t k = start, seen = 0;
+  do {
+    k = b.successor[k];
+    ++seen;
+  } while (k != kSmall && k != start && seen < n);
+  return seen == n && (heads == 0 ? k == start : k == kSmall);
+}
+
+}  // namespace
+
+// Most buckets: a few corners whose next identities are all different, each of which is
+// the previous identity of at most one corner. Then no triangle duplicates another here
+// (a duplicate has the same next identity) and no edge has more than one half-edge each
+// way: each outgoing edge pairs with the one incoming edge of its identity, if any (what
+// the sorted merge of pairSorted finds), with no sort. (Previous identities that no next one
+// matches may repeat: the merge links nothing there either.) False where the bucket is not
+// that case (then pairSorted pairs it).
+bool Kernel::pairSmallBucket(std::uint32_t bucket, const std::uint32_t* list, std::uint32_t count) {
+  const std::int8_t firstOrientation = ws_.orientation[list[0] / 3];
+  bool oneOrientation = true;
+  SmallBucket b;
+  std::uint32_t n = 0;
+  for (std::uint32_t i = 0; i < count; ++i) {
+    const std::uint32_t c = list[i];
+    ws_.cornerState[c] = 0;
+    if (!participates(c)) {
+      ws_.cornerLink[c] = kNone;
+      continue;
     }
+    oneOrientation &= ws_.orientation[c / 3] == firstOrientation;
+    b.corner[n] = c;
+    b.outId[n] = id(nextCorner(c));
+    b.inId[n] = id(previousCorner(c));
+    ++n;
   }
+  b.n = n;
+  if (!linkSmallBucket(b)) return false;
+  const bool oneChain = b.n == count && oneSmallChain(b);
   const std::uint8_t chain = !oneChain ? kNotOneChain : (oneOrientation && orientationsFinal_ ? kOneFan : kOneChain);
   ws_.bucketUniform[bucket] = chain;
   // One fan of one orientation is one group whatever its links (groupBucket), and where
   // orientations are final nothing after grouping reads the links of corners that are not
   // copies: those links are not written.
   if (chain != kOneFan) {
-    for (std::uint32_t i = 0; i < n; ++i) ws_.cornerLink[corner[i]] = match[i];
+    for (std::uint32_t i = 0; i < b.n; ++i) ws_.cornerLink[b.corner[i]] = b.match[i];
   }
   return true;
 }

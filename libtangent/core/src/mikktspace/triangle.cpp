@@ -46,24 +46,40 @@ void cornerTermsOne(const Arrays& a, std::size_t t, const float* frame, std::uin
   }
 }
 
-// Unit dP/du and dP/dv of triangle t (signed by the UV orientation), its orientation and
-// flags. The reference's float formulas (eq. 18, 19 of its source) from the triangle's first
-// corner in value order; where float under- or overflows on a triangle that double
-// arithmetic resolves (denormal or huge coordinates), the double result.
-void evaluateTriangle(const Arrays& a, std::size_t t, float* frame, std::int8_t& orientation, std::uint8_t& flags) {
+namespace {
+
+// Triangle t's positions and UVs from its first corner in value order, as floats.
+struct CornerValuesF {
+  F3 p[3];
+  float u[3], v[3];
+};
+
+inline CornerValuesF loadCorners(const Arrays& a, std::size_t t) {
   const int first = firstCorner(a, t);
   const std::uint32_t* triangle = a.indices + 3 * t;
   const std::uint32_t rotated[5] = {triangle[0], triangle[1], triangle[2], triangle[0], triangle[1]};
-  F3 pf[3];
-  float uf[3], vf[3];
+  CornerValuesF c;
   for (int k = 0; k < 3; ++k) {
     const std::uint32_t vertex = rotated[first + k];
-    pf[k] = {a.positions[3 * vertex], a.positions[3 * vertex + 1], a.positions[3 * vertex + 2]};
-    uf[k] = a.uvs[2 * vertex];
-    vf[k] = a.uvs[2 * vertex + 1];
+    c.p[k] = {a.positions[3 * vertex], a.positions[3 * vertex + 1], a.positions[3 * vertex + 2]};
+    c.u[k] = a.uvs[2 * vertex];
+    c.v[k] = a.uvs[2 * vertex + 1];
   }
-  std::fill(frame, frame + 6, 0.0f);
-  orientation = 0;
+  return c;
+}
+
+// The edges from the first corner to the other two, in double.
+inline void doubleEdges(const CornerValuesF& c, V3& e1, V3& e2) {
+  const V3 p[3] = {{c.p[0].x, c.p[0].y, c.p[0].z}, {c.p[1].x, c.p[1].y, c.p[1].z}, {c.p[2].x, c.p[2].y, c.p[2].z}};
+  e1 = p[1] - p[0], e2 = p[2] - p[0];
+}
+
+// The flags that need no frame: kNonFinite | kGroupWithAny where a value is not finite,
+// kFlat where the positions span no area, kCoincident where two are equal. False where the
+// triangle has no frame to find (not finite, or coincident).
+inline bool screenCorners(const CornerValuesF& c, std::uint8_t& flags) {
+  const F3* pf = c.p;
+  const float *uf = c.u, *vf = c.v;
 #if defined(__SSE2__)
   // Four lanes at a time: x - x is 0 where x is finite (NaN where not); equal positions
   // compare equal in all lanes (the fourth holds 0 in both).
@@ -86,19 +102,24 @@ void evaluateTriangle(const Arrays& a, std::size_t t, float* frame, std::int8_t&
 #endif
   if (!allFinite) {
     flags = kNonFinite | kGroupWithAny;
-    return;
+    return false;
   }
   flags = 0;
   const bool coincident = same(p0, p1) | same(p1, p2) | same(p0, p2);
-  const V3 p[3] = {{pf[0].x, pf[0].y, pf[0].z}, {pf[1].x, pf[1].y, pf[1].z}, {pf[2].x, pf[2].y, pf[2].z}};
-  const V3 e1 = p[1] - p[0], e2 = p[2] - p[0];
+  V3 e1, e2;
+  doubleEdges(c, e1, e2);
   if (!(dot(cross(e1, e2), cross(e1, e2)) > kAreaZero * kAreaZero * dot(e1, e1) * dot(e2, e2))) flags |= kFlat;
   if (coincident) {
     flags |= kCoincident;
-    return;
+    return false;
   }
+  return true;
+}
 
-  // The reference, in float.
+// The reference, in float: the frame and orientation where it finds one (true).
+inline bool floatFrame(const CornerValuesF& c, float* frame, std::int8_t& orientation) {
+  const F3* pf = c.p;
+  const float *uf = c.u, *vf = c.v;
   const float t21x = uf[1] - uf[0], t21y = vf[1] - vf[0], t31x = uf[2] - uf[0], t31y = vf[2] - vf[0];
   const F3 d1 = fsub(pf[1], pf[0]), d2 = fsub(pf[2], pf[0]);
   const float signedArea = t21x * t31y - t21y * t31x;
@@ -113,14 +134,19 @@ void evaluateTriangle(const Arrays& a, std::size_t t, float* frame, std::int8_t&
     if (notZero(lengthT)) vOt = fscale(sign / lengthT, vOt);
     usable = notZero(lengthS / absArea) && notZero(lengthT / absArea) && std::isfinite(lengthS) && std::isfinite(lengthT);
   }
-  if (usable) {
-    orientation = signedArea > 0 ? 1 : -1;
-    const float values[6] = {vOs.x, vOs.y, vOs.z, vOt.x, vOt.y, vOt.z};
-    std::copy(values, values + 6, frame);
-    return;
-  }
+  if (!usable) return false;
+  orientation = signedArea > 0 ? 1 : -1;
+  const float values[6] = {vOs.x, vOs.y, vOs.z, vOt.x, vOt.y, vOt.z};
+  std::copy(values, values + 6, frame);
+  return true;
+}
 
-  // Float found nothing: trust it unless its terms under- or overflowed.
+// Where float found nothing: the double frame and orientation (true) where float's terms
+// under- or overflowed on a triangle that double resolves; else float is trusted (false).
+inline bool doubleFrame(const CornerValuesF& c, float* frame, std::int8_t& orientation) {
+  const float *uf = c.u, *vf = c.v;
+  V3 e1, e2;
+  doubleEdges(c, e1, e2);
   const double du1 = double(uf[1]) - uf[0], dv1 = double(vf[1]) - vf[0], du2 = double(uf[2]) - uf[0], dv2 = double(vf[2]) - vf[0];
   const double det = du1 * dv2 - du2 * dv1;
   const double terms = std::abs(du1 * dv2) + std::abs(du2 * dv1);
@@ -134,15 +160,28 @@ void evaluateTriangle(const Arrays& a, std::size_t t, float* frame, std::int8_t&
   const bool doubleUsable = std::abs(det) > kUvZero * terms &&
                             uLength > kAreaZero * (length(e1) * std::abs(dv2) + length(e2) * std::abs(dv1)) &&
                             vLength > kAreaZero * (length(e2) * std::abs(du1) + length(e1) * std::abs(du2));
-  if (!floatRange && doubleUsable) {
-    const double sign = det > 0 ? 1.0 : -1.0;
-    orientation = det > 0 ? 1 : -1;
-    for (int i = 0; i < 3; ++i) {
-      frame[i] = static_cast<float>((&uDirection.x)[i] * (sign / uLength));
-      frame[3 + i] = static_cast<float>((&vDirection.x)[i] * (sign / vLength));
-    }
-    return;
+  if (floatRange || !doubleUsable) return false;
+  const double sign = det > 0 ? 1.0 : -1.0;
+  orientation = det > 0 ? 1 : -1;
+  for (int i = 0; i < 3; ++i) {
+    frame[i] = static_cast<float>((&uDirection.x)[i] * (sign / uLength));
+    frame[3 + i] = static_cast<float>((&vDirection.x)[i] * (sign / vLength));
   }
+  return true;
+}
+
+}  // namespace
+
+// Unit dP/du and dP/dv of triangle t (signed by the UV orientation), its orientation and
+// flags. The reference's float formulas (eq. 18, 19 of its source) from the triangle's first
+// corner in value order; where float under- or overflows on a triangle that double
+// arithmetic resolves (denormal or huge coordinates), the double result.
+void evaluateTriangle(const Arrays& a, std::size_t t, float* frame, std::int8_t& orientation, std::uint8_t& flags) {
+  const CornerValuesF c = loadCorners(a, t);
+  std::fill(frame, frame + 6, 0.0f);
+  orientation = 0;
+  if (!screenCorners(c, flags)) return;
+  if (floatFrame(c, frame, orientation) || doubleFrame(c, frame, orientation)) return;
   flags |= kGroupWithAny;
   if (!(flags & kFlat)) flags |= kZeroUv;
 }

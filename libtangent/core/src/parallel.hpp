@@ -1,0 +1,210 @@
+// SPDX-License-Identifier: MIT
+// The parallel helpers every method shares, on the workspace's threads (oneTBB; one thread,
+// in order, where built without threads: TANGENT_SERIAL). Each gives the same result for any
+// thread count.
+#pragma once
+
+#include <algorithm>
+#include <cstdint>
+#include <cstring>
+#include <vector>
+
+#include "workspace.hpp"
+
+namespace tangent::detail {
+
+// Runs body(begin, end) over [0, count) on the workspace's threads.
+template <typename Body>
+void forRange(const WorkspaceData& ws, std::size_t count, std::size_t grain, const Body& body);
+
+// Runs body() in an arena of ws.threads worker threads (inline for one).
+template <typename Body>
+void onThreads(const WorkspaceData& ws, const Body& body);
+
+// Sorts [begin, end) by less on the workspace's threads (a total order gives the same result
+// for any count).
+template <typename Iterator, typename Less>
+void sortInParallel(const WorkspaceData& ws, Iterator begin, Iterator end, const Less& less);
+
+// Runs first() and second() side by side on the workspace's threads (one after the other on
+// one); they must write no common data.
+template <typename First, typename Second>
+void invokeBoth(const WorkspaceData& ws, const First& first, const Second& second);
+
+// Where each of `blocks` blocks starts when they are laid out one after another: start[b] is
+// the sum of total(b') for b' < b, start[blocks] the sum of all; the totals are worked out in
+// parallel (the first half of a two-pass parallel scan; the caller fills each block from its
+// start).
+template <typename Count, typename Total>
+std::vector<Count> blockStarts(const WorkspaceData& ws, std::size_t blocks, const Total& total);
+
+// Replaces values[i] by the sum of values[0, i), block by block in parallel; returns the sum
+// of all (which the caller checks against its own limit: each value is stored as it comes).
+inline std::uint64_t exclusiveScan(const WorkspaceData& ws, std::uint32_t* values, std::size_t count);
+
+// The indices in [0, count) where keep(i) holds, in increasing order, gathered in parallel
+// (fixed chunks: counted, then filled at their offsets).
+template <typename Keep>
+std::vector<std::uint32_t> collectIf(const WorkspaceData& ws, std::size_t count, const Keep& keep);
+// The same where keep(i) can hold only if flags[i] has `flag`: runs of eight bytes without it
+// are skipped (these lists are rare corners of large arrays).
+template <typename Keep>
+std::vector<std::uint32_t> collectFlagged(const WorkspaceData& ws, const std::uint8_t* flags, std::uint8_t flag,
+                                          std::size_t count, const Keep& keep);
+
+
+}  // namespace tangent::detail
+
+#if !defined(TANGENT_SERIAL)
+#include <tbb/blocked_range.h>
+#include <tbb/global_control.h>
+#include <tbb/parallel_for.h>
+#include <tbb/parallel_invoke.h>
+#include <tbb/parallel_sort.h>
+#include <tbb/task_arena.h>
+#endif
+
+namespace tangent::detail {
+
+template <typename Body>
+void forRange(const WorkspaceData& ws, std::size_t count, std::size_t grain, const Body& body) {
+  if (ws.threads <= 1 || count <= grain) {
+    if (count > 0) body(std::size_t(0), count);
+    return;
+  }
+#if defined(TANGENT_SERIAL)
+  body(std::size_t(0), count);
+#else
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, count, grain),
+                    [&](const tbb::blocked_range<std::size_t>& range) { body(range.begin(), range.end()); });
+#endif
+}
+
+template <typename Iterator, typename Less>
+void sortInParallel(const WorkspaceData& ws, Iterator begin, Iterator end, const Less& less) {
+#if !defined(TANGENT_SERIAL)
+  if (ws.threads > 1) {
+    tbb::parallel_sort(begin, end, less);
+    return;
+  }
+#else
+  (void)ws;
+#endif
+  std::sort(begin, end, less);
+}
+
+template <typename First, typename Second>
+void invokeBoth(const WorkspaceData& ws, const First& first, const Second& second) {
+#if !defined(TANGENT_SERIAL)
+  if (ws.threads > 1) {
+    tbb::parallel_invoke(first, second);
+    return;
+  }
+#else
+  (void)ws;
+#endif
+  first();
+  second();
+}
+
+template <typename Count, typename Total>
+std::vector<Count> blockStarts(const WorkspaceData& ws, std::size_t blocks, const Total& total) {
+  std::vector<Count> start(blocks + 1, 0);
+  forRange(ws, blocks, 1, [&](std::size_t begin, std::size_t end) {
+    for (std::size_t b = begin; b < end; ++b) start[b + 1] = total(b);
+  });
+  for (std::size_t b = 0; b < blocks; ++b) start[b + 1] += start[b];
+  return start;
+}
+
+// Calls each(i) for the i in [begin, end) where keep(i) holds, in increasing order.
+template <typename Keep, typename Each>
+void scanKept(const std::uint8_t* flags, std::uint8_t flag, std::size_t begin, std::size_t end, const Keep& keep,
+              const Each& each) {
+  std::size_t i = begin;
+  if (flags != nullptr) {
+    const std::uint64_t any = 0x0101010101010101ull * flag;
+    for (; i + 8 <= end; i += 8) {
+      std::uint64_t eight;
+      std::memcpy(&eight, flags + i, sizeof eight);
+      if (!(eight & any)) continue;
+      for (std::size_t j = i; j < i + 8; ++j) {
+        if (keep(j)) each(j);
+      }
+    }
+  }
+  for (; i < end; ++i) {
+    if (keep(i)) each(i);
+  }
+}
+
+template <typename Keep>
+std::vector<std::uint32_t> collectFlagged(const WorkspaceData& ws, const std::uint8_t* flags, std::uint8_t flag,
+                                          std::size_t count, const Keep& keep) {
+  constexpr std::size_t kChunk = 1 << 16;
+  const std::size_t chunkCount = (count + kChunk - 1) / kChunk;
+  auto chunkEnd = [&](std::size_t k) { return std::min(count, (k + 1) * kChunk); };
+  const std::vector<std::size_t> offset = blockStarts<std::size_t>(ws, chunkCount, [&](std::size_t k) {
+    std::size_t n = 0;
+    scanKept(flags, flag, k * kChunk, chunkEnd(k), keep, [&](std::size_t) { ++n; });
+    return n;
+  });
+  std::vector<std::uint32_t> kept(offset[chunkCount]);
+  forRange(ws, chunkCount, 1, [&](std::size_t begin, std::size_t end) {
+    for (std::size_t k = begin; k < end; ++k) {
+      std::size_t at = offset[k];
+      scanKept(flags, flag, k * kChunk, chunkEnd(k), keep,
+               [&](std::size_t i) { kept[at++] = static_cast<std::uint32_t>(i); });
+    }
+  });
+  return kept;
+}
+
+template <typename Keep>
+std::vector<std::uint32_t> collectIf(const WorkspaceData& ws, std::size_t count, const Keep& keep) {
+  return collectFlagged(ws, nullptr, 0, count, keep);
+}
+
+inline std::uint64_t exclusiveScan(const WorkspaceData& ws, std::uint32_t* values, std::size_t count) {
+  constexpr std::size_t kBlock = 1 << 14;
+  const std::size_t blocks = (count + kBlock - 1) / kBlock;
+  auto blockEnd = [&](std::size_t k) { return std::min(count, (k + 1) * kBlock); };
+  const std::vector<std::uint64_t> start = blockStarts<std::uint64_t>(ws, blocks, [&](std::size_t k) {
+    std::uint64_t n = 0;
+    for (std::size_t i = k * kBlock; i < blockEnd(k); ++i) n += values[i];
+    return n;
+  });
+  forRange(ws, blocks, 1, [&](std::size_t begin, std::size_t end) {
+    for (std::size_t k = begin; k < end; ++k) {
+      std::uint64_t sum = start[k];
+      for (std::size_t i = k * kBlock; i < blockEnd(k); ++i) {
+        const std::uint32_t n = values[i];
+        values[i] = static_cast<std::uint32_t>(sum);
+        sum += n;
+      }
+    }
+  });
+  return start[blocks];
+}
+
+template <typename Body>
+void onThreads(const WorkspaceData& ws, const Body& body) {
+#if defined(TANGENT_SERIAL)
+  (void)ws;
+  body();
+#else
+  if (ws.threads <= 1) {
+    body();
+    return;
+  }
+  // No more slots than the process may run threads: the pool never grants the extra workers,
+  // only warns on standard error that it will not. ws.threads still picks the methods (the
+  // same bits for any count).
+  const std::size_t limit = tbb::global_control::active_value(tbb::global_control::max_allowed_parallelism);
+  const auto slots = static_cast<int>(std::min<std::size_t>(ws.threads, std::max<std::size_t>(limit, 1)));
+  tbb::task_arena arena(slots);
+  arena.execute(body);
+#endif
+}
+
+}  // namespace tangent::detail
