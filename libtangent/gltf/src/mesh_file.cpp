@@ -342,9 +342,10 @@ class MutedOpenMeshErrors {
 };
 
 void appendFloats(std::vector<std::uint8_t>& bin, const std::vector<float>& values) {
+  if (values.empty()) return;  // a file without normals: no bytes, and memcpy wants real pointers
   const std::size_t at = bin.size();
   bin.resize(at + values.size() * 4);
-  std::memcpy(&bin[at], values.data(), values.size() * 4);
+  std::memcpy(bin.data() + at, values.data(), values.size() * 4);
 }
 
 }  // namespace
