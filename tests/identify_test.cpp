@@ -28,20 +28,6 @@ using Json = nlohmann::ordered_json;
 using tangent::testing::GridMesh;
 using tangent::testing::TempDir;
 
-// A mirrored grid with leaning normals and jittered UVs, so that the weightings differ.
-GridMesh leaningGrid() {
-  GridMesh mesh = tangent::testing::makeGrid(6, 6, true);
-  for (std::size_t v = 0; v < mesh.normals.size() / 3; ++v) {
-    const double lean[3] = {mesh.normals[3 * v] + 0.5 * std::sin(1.3 * v), mesh.normals[3 * v + 1] + 0.5 * std::cos(0.7 * v),
-                            double(mesh.normals[3 * v + 2])};
-    const double length = std::sqrt(lean[0] * lean[0] + lean[1] * lean[1] + lean[2] * lean[2]);
-    for (int k = 0; k < 3; ++k) mesh.normals[3 * v + k] = static_cast<float>(lean[k] / length);
-    mesh.uvs[2 * v] += static_cast<float>(0.02 * std::sin(2.1 * v));
-    mesh.uvs[2 * v + 1] += static_cast<float>(0.02 * std::cos(1.1 * v));
-  }
-  return mesh;
-}
-
 // `mesh` with one xyzw per corner (`cornerTangents`, glTF's w) as a normal-mapped GLB: a vertex
 // per distinct (vertex, tangent), so that every corner keeps the tangent the peer gave it.
 fs::path writeWithCornerTangents(const GridMesh& mesh, const std::vector<float>& cornerTangents, const fs::path& dir,
@@ -84,7 +70,7 @@ TEST(IdentifyConfusion, EachGeneratorAndPeerIsNamed) {
   options.enabled.reset();  // only the identification
   std::string matrix;
   int mislabelled = 0;
-  for (const auto& [meshName, mesh] : {std::pair{std::string("leaning"), leaningGrid()},
+  for (const auto& [meshName, mesh] : {std::pair{std::string("leaning"), tangent::testing::leaningGrid()},
                                        std::pair{std::string("torus"), tangent::testing::makeTorus(24, 12)}}) {
     // Which file came from which source, and what it must be called (empty: anything but mikktspace).
     std::vector<std::tuple<std::string, fs::path, std::string>> files;

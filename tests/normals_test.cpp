@@ -59,27 +59,9 @@ std::vector<float> bakedTangents(const GridMesh& mesh, const fs::path& dir, cons
 
 double angleDegrees(const float* a, const float* b) { return detail::angleBetweenDegrees(a, b); }
 
-// A grid whose normals lean up to ~30 deg away from the surface and whose UVs are jittered, so
-// that the triangles around a vertex have dP/du with different components along its normal:
-// a raw projection onto a normal of length L keeps (1 - L^2) of each, which changes how the
-// triangles' directions combine (on smooth meshes whose normals follow the surface the
-// difference hides below 1e-5 deg).
-GridMesh leaningGrid() {
-  GridMesh mesh = tangent::testing::makeGrid(6, 6, true);
-  for (std::size_t v = 0; v < mesh.normals.size() / 3; ++v) {
-    const double lean[3] = {mesh.normals[3 * v] + 0.5 * std::sin(1.3 * v), mesh.normals[3 * v + 1] + 0.5 * std::cos(0.7 * v),
-                            double(mesh.normals[3 * v + 2])};
-    const double length = std::sqrt(lean[0] * lean[0] + lean[1] * lean[1] + lean[2] * lean[2]);
-    for (int k = 0; k < 3; ++k) mesh.normals[3 * v + k] = static_cast<float>(lean[k] / length);
-    mesh.uvs[2 * v] += static_cast<float>(0.02 * std::sin(2.1 * v));
-    mesh.uvs[2 * v + 1] += static_cast<float>(0.02 * std::cos(1.1 * v));
-  }
-  return mesh;
-}
-
 TEST(NormalLengths, AnyNonzeroLengthGivesTheTangentsOfUnitNormals) {
   TempDir dir;
-  const std::vector<std::pair<std::string, GridMesh>> meshes = {{"leaning", leaningGrid()},
+  const std::vector<std::pair<std::string, GridMesh>> meshes = {{"leaning", tangent::testing::leaningGrid()},
                                                                 {"torus", tangent::testing::makeTorus(16, 8)},
                                                                 {"sphere", tangent::testing::makeSphere(12, 6)}};
   for (const auto& [name, mesh] : meshes) {
@@ -355,7 +337,7 @@ namespace identify {
 TEST(Identify, NamesTheGeneratorEachBakeUsed) {
   TempDir dir;
   // Jittered UVs and leaning normals, so that the weightings give different frames.
-  const fs::path input = tangent::testing::writeAsset(tangent::testing::meshAsset("leaning", leaningGrid()), dir / "in", true);
+  const fs::path input = tangent::testing::writeAsset(tangent::testing::meshAsset("leaning", tangent::testing::leaningGrid()), dir / "in", true);
   const std::vector<std::pair<std::string, tangent::Options>> generators = {
       {"mikktspace", {tangent::Method::mikktspace, tangent::Weighting::angle}},
       {"lengyel/angle", {tangent::Method::lengyel, tangent::Weighting::angle}},
@@ -423,7 +405,7 @@ TEST(Identify, RandomlyTurnedTangentsAreNoneOfThese) {
 // generator and fails it against at least one other (the leaning grid makes them differ).
 TEST(Identify, ReferenceMeasuresAgainstTheChosenGenerator) {
   TempDir dir;
-  const fs::path input = tangent::testing::writeAsset(tangent::testing::meshAsset("leaning", leaningGrid()), dir / "in", true);
+  const fs::path input = tangent::testing::writeAsset(tangent::testing::meshAsset("leaning", tangent::testing::leaningGrid()), dir / "in", true);
   int index = 0;
   for (const tangent::gltf::Generator& baked : tangent::gltf::kGenerators) {
     tangent::gltf::BakeOptions bake;

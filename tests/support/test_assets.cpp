@@ -349,6 +349,19 @@ GridMesh makeGrid(int nx, int ny, bool mirrorColumns) {
   return mesh;
 }
 
+GridMesh leaningGrid() {
+  GridMesh mesh = makeGrid(6, 6, true);
+  for (std::size_t v = 0; v < mesh.normals.size() / 3; ++v) {
+    const double lean[3] = {mesh.normals[3 * v] + 0.5 * std::sin(1.3 * v), mesh.normals[3 * v + 1] + 0.5 * std::cos(0.7 * v),
+                            double(mesh.normals[3 * v + 2])};
+    const double length = std::sqrt(lean[0] * lean[0] + lean[1] * lean[1] + lean[2] * lean[2]);
+    for (int k = 0; k < 3; ++k) mesh.normals[3 * v + k] = static_cast<float>(lean[k] / length);
+    mesh.uvs[2 * v] += static_cast<float>(0.02 * std::sin(2.1 * v));
+    mesh.uvs[2 * v + 1] += static_cast<float>(0.02 * std::cos(1.1 * v));
+  }
+  return mesh;
+}
+
 GridMesh makeTorus(int rings, int sides) {
   GridMesh mesh;
   const double R = 1.0, r = 0.35;

@@ -31,6 +31,10 @@ struct GridMesh {
 // nx * ny quads on a gently curved sheet; mirrorColumns alternates the u direction per column
 // of quads, so every interior column of vertices needs two frames.
 GridMesh makeGrid(int nx, int ny, bool mirrorColumns);
+// A mirrored 6 x 6 grid whose normals lean up to ~30 deg away from the surface and whose UVs
+// are jittered, so that the triangles around a vertex have dP/du with different components
+// along its normal and the weightings (and a raw projection onto a non-unit normal) differ.
+GridMesh leaningGrid();
 // The mesh with its triangles in a random order and each triangle's corners rotated;
 // originalCorner[c] is the corner of `mesh` that corner c of the result came from.
 struct ShuffledMesh {
