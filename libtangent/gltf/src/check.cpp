@@ -141,19 +141,28 @@ struct VertexFindings {
   FindingBuilder finite, unit, w;
 };
 
+// Frames of `frames` (one per corner, glTF's w) by one generator, as bake computes them: what
+// `reference` and `--identify` compare the stored tangents with.
+void computeFrames(const PrimitiveGeometry& frames, Method method, Weighting weighting, TangentWorkspace& workspace,
+                   std::vector<float>& computed, std::vector<FrameSource>& sources) {
+  Options core;
+  core.method = method;
+  core.weighting = weighting;
+  core.uvOrigin = kGltfUvOrigin;
+  core.threads = threadsFor(frames.corners.size(), core.threads);
+  computed.assign(frames.corners.size() * 4, 0.0f);
+  sources.assign(frames.corners.size(), FrameSource{});
+  computeCornerTangents({frames.positions, frames.normals, frames.uvs, frames.corners}, CornerOutputs{computed, sources}, core, workspace);
+}
+
 // check --identify: the stored tangents against each generator the library has, on the same
 // geometry the reference uses (frames: the part, or its flat-normal split).
 void identifyGenerator(const PrimitiveGeometry& frames, const PrimitiveGeometry& part, const UsedVertices& used,
                        const std::vector<float>& tangents, TangentWorkspace& workspace, PrimitiveCheck& result) {
   for (const Generator& candidate : kGenerators) {
-    Options core;
-    core.method = candidate.method;
-    core.weighting = candidate.weighting;
-    core.uvOrigin = kGltfUvOrigin;
-    core.threads = threadsFor(frames.corners.size(), core.threads);
-    std::vector<float> computed(frames.corners.size() * 4);
-    std::vector<FrameSource> sources(frames.corners.size());
-    computeCornerTangents({frames.positions, frames.normals, frames.uvs, frames.corners}, CornerOutputs{computed, sources}, core, workspace);
+    std::vector<float> computed;
+    std::vector<FrameSource> sources;
+    computeFrames(frames, candidate.method, candidate.weighting, workspace, computed, sources);
     std::vector<double> angles;
     std::size_t wAgree = 0;
     for (std::size_t c = 0; c < frames.corners.size(); ++c) {
@@ -298,14 +307,9 @@ void checkDrawnPart(const PrimitiveGeometry& buffer, const UsedVertices& used, c
   // the vertices the primitive draws, as bake computes them.
   FindingBuilder reference(CheckId::reference, "corners", part.corners.size(), "degrees", stored.referenceLimit, options);
   if (options.runs(CheckId::reference)) {
-    Options core;
-    core.method = options.method;
-    core.weighting = options.weighting;
-    core.uvOrigin = kGltfUvOrigin;
-    core.threads = threadsFor(part.corners.size(), core.threads);
-    std::vector<float> computed(part.corners.size() * 4);
-    std::vector<FrameSource> sources(part.corners.size());
-    computeCornerTangents({frames.positions, frames.normals, frames.uvs, frames.corners}, CornerOutputs{computed, sources}, core, workspace);
+    std::vector<float> computed;
+    std::vector<FrameSource> sources;
+    computeFrames(frames, options.method, options.weighting, workspace, computed, sources);
     for (std::size_t c = 0; c < part.corners.size(); ++c) {
       if (sources[c] == FrameSource::neighbour || sources[c] == FrameSource::fixed) {
         ++result.referenceUndefined;
