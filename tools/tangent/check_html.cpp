@@ -26,6 +26,7 @@
 #include <tuple>
 
 #include "check_names.hpp"
+#include "tangent/framing.hpp"
 #include "tangent/scene.hpp"
 #include "tangent/text.hpp"
 
@@ -39,9 +40,6 @@ namespace fs = std::filesystem;
 constexpr int kThumbnailWidth = 320, kThumbnailHeight = 240;
 constexpr std::size_t kMaxThumbnails = 40;          // rendering one takes about a second
 constexpr const char* kThumbnailTimeLimit = "120";  // seconds (coreutils' timeout): a hung viewer must not hang CI
-// A framed box's half-diagonal is at least this share of its primitive's, so that a sliver
-// shows with its surroundings.
-constexpr float kMinFrameShare = 0.4f;
 
 // Text and attribute values: file-derived bytes through terminalSafe (valid UTF-8, control
 // characters as \xHH), then the five markup characters as references.
@@ -204,69 +202,6 @@ struct ScratchFolder {
 
 using Vec3 = std::array<float, 3>;
 
-// What a thumbnail's camera frames: the world-space box of the flagged corners' triangles on the
-// primitive's first instance, and the named side whose view direction best faces their mean normal.
-struct Framing {
-  Vec3 lo{}, hi{};
-  std::string camera = "iso";
-  std::size_t flaggedTriangles = 0;  // 0: nothing flagged, the whole primitive is framed
-};
-
-Vec3 transformPoint(const std::array<float, 16>& m, const float* p) {
-  return {m[0] * p[0] + m[4] * p[1] + m[8] * p[2] + m[12], m[1] * p[0] + m[5] * p[1] + m[9] * p[2] + m[13],
-          m[2] * p[0] + m[6] * p[1] + m[10] * p[2] + m[14]};
-}
-
-Vec3 transformDirection(const std::array<float, 16>& m, const float* d) {
-  return {m[0] * d[0] + m[4] * d[1] + m[8] * d[2], m[1] * d[0] + m[5] * d[1] + m[9] * d[2],
-          m[2] * d[0] + m[6] * d[1] + m[10] * d[2]};
-}
-
-std::optional<Framing> framingFor(const gltf::DrawItem& item, const std::array<float, 16>& world) {
-  const std::size_t triangles = item.positions.size() / 9;
-  Framing framing;
-  Vec3 lo{INFINITY, INFINITY, INFINITY}, hi{-INFINITY, -INFINITY, -INFINITY}, allLo = lo, allHi = hi,
-                                                                              normalSum{0, 0, 0};
-  for (std::size_t t = 0; t < triangles; ++t) {
-    bool flagged = false;
-    for (std::size_t k = 0; k < 3; ++k)
-      flagged = flagged || (3 * t + k < item.cornerProblems.size() && item.cornerProblems[3 * t + k] != 0);
-    framing.flaggedTriangles += flagged;
-    for (std::size_t k = 0; k < 3; ++k) {
-      const std::size_t c = 3 * t + k;
-      const Vec3 p = transformPoint(world, &item.positions[3 * c]);
-      if (!std::isfinite(p[0]) || !std::isfinite(p[1]) || !std::isfinite(p[2])) continue;
-      for (int a = 0; a < 3; ++a) {
-        allLo[a] = std::min(allLo[a], p[a]), allHi[a] = std::max(allHi[a], p[a]);
-        if (flagged) lo[a] = std::min(lo[a], p[a]), hi[a] = std::max(hi[a], p[a]);
-      }
-      if (flagged && 3 * c + 2 < item.normals.size()) {
-        const Vec3 n = transformDirection(world, &item.normals[3 * c]);
-        if (std::isfinite(n[0] + n[1] + n[2]))
-          normalSum = {normalSum[0] + n[0], normalSum[1] + n[1], normalSum[2] + n[2]};
-      }
-    }
-  }
-  if (!(allLo[0] <= allHi[0])) return std::nullopt;  // no finite position
-  if (!(lo[0] <= hi[0])) lo = allLo, hi = allHi, framing.flaggedTriangles = 0;
-  const float allRadius = std::hypot(allHi[0] - allLo[0], allHi[1] - allLo[1], allHi[2] - allLo[2]) / 2;
-  const float minHalf = kMinFrameShare * allRadius / std::sqrt(3.0f);
-  for (int a = 0; a < 3; ++a) {
-    const float centre = (lo[a] + hi[a]) / 2, half = std::max((hi[a] - lo[a]) / 2, minHalf);
-    framing.lo[a] = centre - half, framing.hi[a] = centre + half;
-  }
-  // The side to look from (viewer/camera.hpp): front sees +z, back -z, right +x, left -x, top +y, bottom -y.
-  const float length = std::hypot(normalSum[0], normalSum[1], normalSum[2]);
-  if (length > 0.1f * static_cast<float>(std::max<std::size_t>(framing.flaggedTriangles, 1))) {
-    const int axis = static_cast<int>(std::max_element(normalSum.begin(), normalSum.end(),
-                                                       [](float a, float b) { return std::abs(a) < std::abs(b); }) -
-                                      normalSum.begin());
-    static const char* sides[3][2] = {{"left", "right"}, {"bottom", "top"}, {"back", "front"}};
-    framing.camera = sides[axis][normalSum[axis] > 0];
-  }
-  return framing;
-}
-
 struct Thumbnail {
   std::string png;  // empty when there is none
   std::uint32_t width = 0, height = 0;
@@ -334,7 +269,9 @@ std::vector<Thumbnail> renderFile(const gltf::FileCheck& file, const gltf::Check
       thumbnail.missing = "no node of the scene shows this primitive";
       continue;
     }
-    const std::optional<Framing> framing = framingFor(scene->items[*item], instance->world);
+    const gltf::DrawItem& shown = scene->items[*item];
+    const std::optional<gltf::Framing> framing =
+        gltf::frameTriangles(shown, instance->world, gltf::flaggedTriangles(shown, std::nullopt));
     if (!framing) {
       thumbnail.missing = "the primitive has no finite position to frame";
       continue;
