@@ -1,12 +1,15 @@
 # SPDX-License-Identifier: MIT
-"""Headless Chromium for the browser tests, from the standard library only.
+"""Headless Chromium for the browser tests (tests/browser: the npm package and its example page;
+tests/web: the web viewer; scripts/web-image.sh), from the standard library only.
 
 serve(root) serves a folder on 127.0.0.1 (an ephemeral port) with the MIME types browsers insist
 on for modules and WebAssembly; Browser() starts Debian's chromium headless (WebGL2 through
 SwiftShader) and talks to it over the DevTools protocol on a pipe (--remote-debugging-pipe:
 JSON messages, each ended by a NUL byte, commands on fd 3, replies and events on fd 4).
-Pages report through the DOM (document.body.dataset); Page.wait_for polls an expression.
+Pages report through the DOM (document.body.dataset); Page.wait_for polls an expression,
+Page.wait_state waits for the web viewer's "ready" or "error: ...", Page.read_pixels reads its frame.
 """
+import base64
 import contextlib
 import functools
 import http.server
@@ -20,7 +23,7 @@ import threading
 import time
 
 CHROMIUM_FLAGS = ["--headless=new", "--no-sandbox", "--use-angle=swiftshader", "--enable-unsafe-swiftshader",
-                  "--no-first-run", "--no-default-browser-check", "--disable-extensions", "--mute-audio"]
+                  "--disable-gpu-sandbox", "--no-first-run", "--no-default-browser-check", "--disable-extensions", "--mute-audio"]
 
 
 def find_chromium():
@@ -62,8 +65,8 @@ class ProtocolError(RuntimeError):
 class Page:
     """One tab, attached in flat mode: its commands carry the session id."""
 
-    def __init__(self, browser, session):
-        self.browser, self.session = browser, session
+    def __init__(self, browser, session, target=None):
+        self.browser, self.session, self.target = browser, session, target
         self.console = []  # console messages and uncaught exceptions, for failure messages
 
     def call(self, method, **params):
@@ -77,7 +80,7 @@ class Page:
             raise ProtocolError(f"{expression}: {details.get('exception', {}).get('description') or details.get('text')}")
         return reply["result"].get("value")
 
-    def wait_for(self, expression, timeout):
+    def wait_for(self, expression, timeout, interval=0.1):
         """Polls until `expression` is truthy; returns its value, or raises with the page's console."""
         deadline = time.monotonic() + timeout
         while True:
@@ -86,7 +89,29 @@ class Page:
                 return value
             if time.monotonic() > deadline:
                 raise TimeoutError(f"after {timeout} s still falsy: {expression}\npage console:\n  " + "\n  ".join(self.console))
-            time.sleep(0.1)
+            time.sleep(interval)
+
+    def wait_state(self, timeout=120):
+        """The web viewer's page (viewer/web/index.html): waits until document.body.dataset.state is
+        "ready" or begins with "error"; returns it."""
+        return self.wait_for("(s => s === 'ready' || s.startsWith('error') ? s : null)"
+                             "(document.body ? document.body.dataset.state || '' : '')", timeout, interval=0.05)
+
+    def read_pixels(self):
+        """The web viewer's frame drawn now (tangent_web_read_pixels): width, height, RGBA rows top first."""
+        answer = self.evaluate("""(() => {
+            const p = Module._tangent_web_read_pixels(), w = Module.canvas.width, h = Module.canvas.height;
+            const bytes = Module.HEAPU8.subarray(p, p + w * h * 4);
+            let s = ""; for (let i = 0; i < bytes.length; i += 32768) s += String.fromCharCode.apply(null, bytes.subarray(i, i + 32768));
+            return {w, h, data: btoa(s)}; })()""")
+        width, height, raw = answer["w"], answer["h"], base64.b64decode(answer["data"])
+        row = width * 4
+        return width, height, b"".join(raw[(height - 1 - y) * row:(height - y) * row] for y in range(height))
+
+    def close(self):
+        """Closes the tab (a test that opens many pages frees each one's WebAssembly memory)."""
+        self.browser.call("Target.closeTarget", {"targetId": self.target})
+        self.browser._pages.pop(self.session, None)
 
     def set_input_files(self, selector, paths):
         """What choosing files in an <input type=file> does (DOM.setFileInputFiles fires change)."""
@@ -100,8 +125,9 @@ class Page:
 class Browser:
     """Headless chromium driven over --remote-debugging-pipe. Use as a context manager."""
 
-    def __init__(self, executable=None, timeout=60):
+    def __init__(self, executable=None, timeout=60, window=(1280, 800)):
         self.executable = executable or find_chromium()
+        self.window = window
         self.timeout = timeout
         self._next_id = 0
         self._replies = {}
@@ -119,7 +145,8 @@ class Browser:
             os.dup2(from_browser_write, 4)
 
         self._process = subprocess.Popen(
-            [self.executable, *CHROMIUM_FLAGS, "--remote-debugging-pipe", f"--user-data-dir={self._profile.name}", "about:blank"],
+            [self.executable, *CHROMIUM_FLAGS, "--remote-debugging-pipe", f"--user-data-dir={self._profile.name}",
+             f"--window-size={self.window[0]},{self.window[1]}", "about:blank"],
             stdin=subprocess.DEVNULL, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, preexec_fn=plumb, pass_fds=(3, 4))
         os.close(to_browser_read)
         os.close(from_browser_write)
@@ -204,7 +231,7 @@ class Browser:
         """A new tab on `url`, with its console collected, once loaded; returns a Page."""
         target = self.call("Target.createTarget", {"url": "about:blank"})["targetId"]
         session = self.call("Target.attachToTarget", {"targetId": target, "flatten": True})["sessionId"]
-        page = Page(self, session)
+        page = Page(self, session, target)
         self._pages[session] = page
         page.call("Runtime.enable")
         page.call("Log.enable")

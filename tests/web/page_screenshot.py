@@ -10,8 +10,8 @@ import sys
 import tempfile
 import urllib.parse
 
-sys.path.insert(0, str(pathlib.Path(__file__).resolve().parent))
-import browser  # noqa: E402
+sys.path.insert(0, str(pathlib.Path(__file__).resolve().parent.parent / "browser"))
+import chromium  # noqa: E402  (tests/browser/chromium.py)
 
 
 def main():
@@ -22,21 +22,18 @@ def main():
     site = pathlib.Path(tempfile.mkdtemp(prefix="tangent-web-shot-"))
     shutil.copytree(build_web, site / "web", ignore=shutil.ignore_patterns("cmake"))
     shutil.copytree(assets, site / "assets")
-    server, chrome = browser.Server(site), browser.Browser(width=720, height=640)
     try:
-        query = urllib.parse.urlencode({"url": f"../assets/{name}", "view": view, "size": "704x440", "msaa": "4"})
-        session = chrome.open(server.url + "web/index.html?" + query)
-        chrome.send("Emulation.setDeviceMetricsOverride", {"width": 720, "height": 640, "deviceScaleFactor": 1, "mobile": False},
-                    session=session)
-        state = chrome.wait_state(session)
-        if state != "ready":
-            sys.exit(f"{name}: page state {state!r}")
-        shot = chrome.send("Page.captureScreenshot", {"format": "png"}, session=session)
-        out.write_bytes(base64.b64decode(shot["data"]))
-        print(f"wrote {out}")
+        with chromium.serve(site) as base, chromium.Browser(window=(720, 640), timeout=120) as chrome:
+            query = urllib.parse.urlencode({"url": f"../assets/{name}", "view": view, "size": "704x440", "msaa": "4"})
+            page = chrome.open(base + "web/index.html?" + query)
+            page.call("Emulation.setDeviceMetricsOverride", width=720, height=640, deviceScaleFactor=1, mobile=False)
+            state = page.wait_state()
+            if state != "ready":
+                sys.exit(f"{name}: page state {state!r}")
+            shot = page.call("Page.captureScreenshot", format="png")
+            out.write_bytes(base64.b64decode(shot["data"]))
+            print(f"wrote {out}")
     finally:
-        chrome.close()
-        server.close()
         shutil.rmtree(site, ignore_errors=True)
 
 

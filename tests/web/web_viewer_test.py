@@ -34,39 +34,17 @@ import tempfile
 import time
 import urllib.parse
 
-sys.path.insert(0, str(pathlib.Path(__file__).resolve().parent))
-import browser  # noqa: E402
+HERE = pathlib.Path(__file__).resolve().parent
+sys.path[:0] = [str(HERE), str(HERE.parent / "browser")]
+import chromium  # noqa: E402  (tests/browser/chromium.py: the one Chromium driver of the browser tests)
+from frames import CHANNEL_TOLERANCE, MAX_DIFFERING, MAX_MEAN, SIZE, compare, desktop_screenshot, write_png  # noqa: E402
 
 # What is compared: tangent-view options, the same on both sides.
 VIEWS = {"lit": "--view lit", "tangent": "--view tangent", "handedness": "--view handedness", "error": "--view error",
          "split": "--view lit --compare fresh", "glyphs": "--view tangent --glyphs"}
-SIZE = (320, 240)
-CHANNEL_TOLERANCE = 12      # of 255: a pixel differs when any channel is off by more
-MAX_DIFFERING = 0.01        # fraction of pixels that may differ
-MAX_MEAN = 1.5              # mean absolute channel difference, of 255
 # Tangent-frame glyphs are one-pixel lines: which pixels a line covers is where the two
 # rasterisers differ most (measured: up to 0.92 % of the pixels, mean 1.09).
 LIMITS = {"glyphs": (0.03, 3.0)}
-
-
-def compare(a, b):
-    """(fraction of pixels differing by more than CHANNEL_TOLERANCE, mean channel difference)."""
-    differing, total = 0, 0
-    pixels = len(a) // 4
-    for p in range(pixels):
-        d = max(abs(a[4 * p + c] - b[4 * p + c]) for c in range(3))
-        total += abs(a[4 * p] - b[4 * p]) + abs(a[4 * p + 1] - b[4 * p + 1]) + abs(a[4 * p + 2] - b[4 * p + 2])
-        differing += d > CHANNEL_TOLERANCE
-    return differing / pixels, total / (3 * pixels)
-
-
-def desktop_screenshot(args, asset, options, out):
-    command = [args.xvfb_run, "-a", "-s", "-screen 0 1280x1024x24", args.tangent_view, str(asset), "--screenshot", str(out),
-               "--size", f"{SIZE[0]}x{SIZE[1]}", *options.split(), "--msaa", "0"]
-    result = subprocess.run(command, capture_output=True, text=True, timeout=300)
-    if result.returncode != 0:
-        raise RuntimeError(f"{' '.join(command)}: {result.stderr}")
-    return browser.read_png(out)
 
 
 def main():
@@ -109,20 +87,19 @@ def main():
         subprocess.run(["gltfpack", "-i", str(assets[0]), "-o", str(site / "meshopt.glb"), "-c"], check=True, capture_output=True)
         refusals.append(("meshopt.glb", ["meshopt.glb", "EXT_meshopt_compression"]))
 
-    server = browser.Server(site)
-    chrome = browser.Browser()
     failures, times = [], {}
-    try:
+    with chromium.serve(site) as base, chromium.Browser(timeout=300) as chrome:
         for file in files:
             query = urllib.parse.urlencode({"url": str(file.relative_to(site)), "size": f"{SIZE[0]}x{SIZE[1]}", "msaa": "0"})
             start = time.monotonic()
-            session = chrome.open(server.url + "index.html?" + query)
-            state = chrome.wait_state(session)
+            page = chrome.open(base + "index.html?" + query)
+            state = page.wait_state()
             load_ms = (time.monotonic() - start) * 1000
             if state != "ready":
                 failures.append(f"{file.name}: page state {state!r}, not ready")
+                page.close()
                 continue
-            frame_ms = chrome.evaluate(session, "Module._tangent_web_frame_ms(10)")
+            frame_ms = page.evaluate("Module._tangent_web_frame_ms(10)")
             times[file.name] = {"load_ms": round(load_ms), "frame_ms": round(frame_ms, 2)}
             print(f"{file.name}: ready after {load_ms:.0f} ms (navigation to first frame), median frame {frame_ms:.1f} ms")
             if not file.name.endswith(".baked.glb"):
@@ -130,11 +107,11 @@ def main():
                 reference = site / "cli-baked" / (file.stem + ".glb")
                 reference.parent.mkdir(exist_ok=True)
                 subprocess.run([args.tangent, "bake", str(file), str(reference)], check=True, capture_output=True)
-                baked = chrome.evaluate(session, """(() => { const b = bake(); if (!b) return null;
+                baked = page.evaluate("""(() => { const b = bake(); if (!b) return null;
                     let s = ""; for (let i = 0; i < b.length; i += 32768) s += String.fromCharCode.apply(null, b.subarray(i, i + 32768));
                     return btoa(s); })()""")
                 if baked is None:
-                    failures.append(f"{file.name}: baking in the page failed: " + chrome.evaluate(session, "document.getElementById('message').textContent"))
+                    failures.append(f"{file.name}: baking in the page failed: " + page.evaluate("document.getElementById('message').textContent"))
                 else:
                     same = base64.b64decode(baked) == reference.read_bytes()
                     print(f"  bake in the page: {len(base64.b64decode(baked))} bytes, {'identical to' if same else 'DIFFERENT from'} tangent bake's")
@@ -143,7 +120,7 @@ def main():
                         failures.append(f"{file.name}: the page's bake differs from tangent bake's (both in {out})")
                         shutil.copy(reference, out / f"{file.stem}.cli-baked.glb")
             # The page's list of `tangent check` findings: the report `tangent check --format json` gives.
-            page_check = chrome.evaluate(session, "check()")
+            page_check = page.evaluate("check()")
             cli = subprocess.run([args.tangent, "check", "--format", "json", str(file)], capture_output=True, text=True)
             cli_check = json.loads(cli.stdout)["files"][0]
             findings = sum(len(p["findings"]) for p in cli_check["primitives"])
@@ -154,14 +131,15 @@ def main():
                                 f"{json.dumps(cli_check)[:2000]}")
             names = list(VIEWS)
             for index, view in enumerate(names):
-                error = chrome.evaluate(session, f"Module.ccall('tangent_web_options', 'string', ['string'], ['{VIEWS[view]} --msaa 0'])")
+                error = page.evaluate(f"Module.ccall('tangent_web_options', 'string', ['string'], ['{VIEWS[view]} --msaa 0'])")
                 if error:
                     failures.append(f"{file.name}: {VIEWS[view]}: {error}")
                     continue
-                width, height, web = chrome.read_pixels(session)
-                browser.write_png(out / f"{file.stem}.{view}.web.png", width, height, web)
+                width, height, web = page.read_pixels()
+                write_png(out / f"{file.stem}.{view}.web.png", width, height, web)
                 reference = VIEWS[names[(index + 1) % len(names)]] if args.broken else VIEWS[view]
-                _, _, desk = desktop_screenshot(args, file, reference, out / f"{file.stem}.{view}.desktop.png")
+                _, _, desk = desktop_screenshot(args.tangent_view, args.xvfb_run, file, reference.split(),
+                                                out / f"{file.stem}.{view}.desktop.png")
                 differing, mean = compare(web, desk)
                 max_differing, max_mean = LIMITS.get(view, (MAX_DIFFERING, MAX_MEAN))
                 verdict = "ok" if differing <= max_differing and mean <= max_mean else "DIFFERS"
@@ -170,22 +148,21 @@ def main():
                     failures.append(f"{file.name} {VIEWS[view]}: {differing * 100:.2f} % of pixels differ (limit "
                                     f"{max_differing * 100} %), mean {mean:.2f} (limit {max_mean}); see {out}")
             if file == files[0]:
-                linked = chrome.evaluate(session, "Module._tangent_web_check_shaders()")
+                linked = page.evaluate("Module._tangent_web_check_shaders()")
                 print(f"--check-shaders under WebGL2: {linked} programs linked")
                 if linked <= 0:
-                    failures.append("shader variants do not link under WebGL2: " + "\n".join(chrome.console[-20:]))
+                    failures.append("shader variants do not link under WebGL2: " + "\n".join(page.console[-20:]))
+            page.close()
 
         for name, expected in refusals:
             url, _, extra = name.partition("&")
-            session = chrome.open(server.url + "index.html?" + urllib.parse.urlencode({"url": url, "size": "64x64"}) + (f"&{extra}" if extra else ""))
-            state = chrome.wait_state(session)
+            page = chrome.open(base + "index.html?" + urllib.parse.urlencode({"url": url, "size": "64x64"}) + (f"&{extra}" if extra else ""))
+            state = page.wait_state()
             print(f"{name}: {state}")
             if not state.startswith("error: ") or not all(word in state for word in expected):
                 failures.append(f"{name}: page state {state!r}, expected 'error: ...' naming {', '.join(expected)}")
-    finally:
-        chrome.close()
-        server.close()
-        shutil.rmtree(site, ignore_errors=True)
+            page.close()
+    shutil.rmtree(site, ignore_errors=True)
     (out / "times.json").write_text(json.dumps(times, indent=1) + "\n")
     for failure in failures:
         print("FAIL:", failure)
