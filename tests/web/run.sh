@@ -2,8 +2,9 @@
 # SPDX-License-Identifier: MIT
 # ctest web.viewer: builds the web viewer (scripts/web.sh; build-web/ is kept between runs, so
 # only what changed compiles) and compares it in headless Chromium with the desktop viewer
-# (tests/web/web_viewer_test.py). Skips (77) where Chromium or emscripten is missing or
-# ../shared/assets is absent; under CI=true those fail instead.
+# (tests/web/web_viewer_test.py), then uses the page's controls (tests/web/page_controls_test.py).
+# Skips (77) where Chromium or emscripten is missing or ../shared/assets is absent; under CI=true
+# those fail instead.
 # Usage: tests/web/run.sh BUILD_DIR XVFB_RUN
 set -euo pipefail
 here=$(cd "$(dirname "$0")" && pwd)
@@ -33,5 +34,12 @@ done
   || { echo "FAIL: scripts/web.sh --serve $port does not serve index.html"; cat "$log"; exit 1; }
 echo "scripts/web.sh --serve: $(grep -o 'http://127.0.0.1:[0-9]*/[^ ]*' "$log" | head -1) serves the page"
 kill "$server"; wait "$server" 2>/dev/null || true
+status=0
 /usr/bin/python3 "$here/web_viewer_test.py" --build-web "$root/build-web" --tangent-view "$build/bin/tangent-view" \
-  --tangent "$build/bin/tangent" --xvfb-run "$xvfb" --assets "$root/../shared/assets" --demo "$root/data/demo" --out "$build/tests/web"
+  --tangent "$build/bin/tangent" --xvfb-run "$xvfb" --assets "$root/../shared/assets" --demo "$root/data/demo" --out "$build/tests/web" \
+  || status=1
+# The page's controls (a finding clicked, the animation timeline, a second file to compare) on generated assets.
+/usr/bin/python3 "$here/page_controls_test.py" --build-web "$root/build-web" --tangent-view "$build/bin/tangent-view" \
+  --tangent "$build/bin/tangent" --make-data "$build/bin/tangent-make-data" --xvfb-run "$xvfb" --out "$build/tests/web-controls" \
+  || status=1
+exit $status
