@@ -6,13 +6,16 @@ Usage: example_test.py SOURCE_DIR WORK_DIR TARBALL ARRAYS_TOOL GLB...
 The example is copied into a new project whose libtangent-wasm is the packed tarball (the other
 dependencies as the example's package-lock.json pins them), built by its own `npm run build` (esbuild) and
 served on 127.0.0.1. The page bakes the demo quad (data/demo/quad.gltf with its .bin and images)
-loaded by ?url= and chosen as files, and each GLB chosen as a file; what its download link holds
+loaded by ?url= and chosen as files, each GLB chosen as a file, and copies of the quad and the first
+GLB compressed by gltfpack -c (EXT_meshopt_compression, which the page reads through the npm
+meshoptimizer decoder its package-lock pins, served with the page); what its download link holds
 goes to tests/node/baked_vs_library.mjs: every corner's tangent must have the C++ library's bits,
 the validator must find no error. A file that is not glTF must end in "error: FILE: ...".
 """
 import base64
 import json
 import pathlib
+import os
 import shutil
 import subprocess
 import sys
@@ -59,6 +62,20 @@ def main():
     assets.mkdir()
     for name in QUAD_FILES:
         shutil.copy(source / "data" / "demo" / name, assets / name)
+    # meshopt-compressed copies (gltfpack from Debian; without it they are left out, and CI=true fails).
+    if shutil.which("gltfpack"):
+        for original in [assets / "quad.gltf", *glbs[:1]]:
+            packed = work / f"{original.stem}.meshopt.glb"
+            subprocess.run(["gltfpack", "-i", str(original), "-o", str(packed), "-c", "-noq"], check=True, capture_output=True)
+            if b"EXT_meshopt_compression" not in packed.read_bytes()[:4096]:
+                print(f"FAIL gltfpack -c wrote {packed.name} without EXT_meshopt_compression")
+                return 1
+            glbs.append(packed)
+    elif os.environ.get("CI") == "true":
+        print("FAIL (CI=true): gltfpack is not installed: no meshopt-compressed file tried")
+        return 1
+    else:
+        print("SKIP meshopt-compressed files: gltfpack is not installed (scripts/install-deps.sh installs it)")
     not_gltf = work / "not-gltf.glb"
     not_gltf.write_bytes(b"glTF\x02\x00\x00\x00 this is not a binary glTF")
 

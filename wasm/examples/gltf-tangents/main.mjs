@@ -4,13 +4,16 @@
 // with libtangent-wasm through glTF-Transform's tangents(), lists the primitives and offers the
 // result as a .glb. document.body.dataset.state is "waiting" once the page takes files, "busy"
 // while it works on one, then "ready" (or "error: FILE: MESSAGE"), so that scripts and tests can
-// wait for it.
+// wait for it. Files compressed with EXT_meshopt_compression (gltfpack -c) are read through
+// meshoptimizer's decoder and written uncompressed.
 import { WebIO } from '@gltf-transform/core';
 import { ALL_EXTENSIONS } from '@gltf-transform/extensions';
 import { tangents, unweld, weld } from '@gltf-transform/functions';
 import { generateTangents } from 'libtangent-wasm';
+import { MeshoptDecoder } from 'meshoptimizer/decoder';
 
-const io = new WebIO().registerExtensions(ALL_EXTENSIONS);
+await MeshoptDecoder.ready;
+const io = new WebIO().registerExtensions(ALL_EXTENSIONS).registerDependencies({ 'meshopt.decoder': MeshoptDecoder });
 const status = document.getElementById('status');
 const download = document.getElementById('download');
 const table = document.getElementById('primitives');
@@ -78,6 +81,9 @@ async function bake(name, document) {
   const started = performance.now();
   // glTF-Transform's tangents() takes unwelded triangles; weld() shares vertices again after.
   await document.transform(unweld(), tangents({ generateTangents, overwrite: true }), weld());
+  // The page registers no meshopt encoder: the baked file is written without the compression.
+  for (const extension of document.getRoot().listExtensionsUsed())
+    if (extension.extensionName === 'EXT_meshopt_compression') extension.dispose();
   const glb = await io.writeBinary(document);
   const milliseconds = performance.now() - started;
   const baked = listPrimitives(document);
