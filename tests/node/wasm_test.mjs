@@ -177,7 +177,7 @@ try {
   generateTangentsIndexed(new Float32Array(9), new Float32Array(9), new Float32Array(6), [0, 1, 2], { method: 'smooth' });
   fail('an unknown method was accepted');
 } catch (e) {
-  if (!/method: 'smooth' is not mikktspace, lengyel or flat/.test(e.message)) fail(`unexpected error message: ${e.message}`);
+  if (!/method: 'smooth' is not mikktspace, lengyel, flat or meshopt/.test(e.message)) fail(`unexpected error message: ${e.message}`);
   else console.log(`ok   unknown method refused: ${e.message}`);
 }
 
