@@ -103,8 +103,9 @@ TEST(IdentifyConfusion, EachGeneratorAndPeerIsNamed) {
       ASSERT_EQ(check.primitives.size(), 1u) << file;
       const auto& p = check.primitives[0];
       char line[256];
-      std::snprintf(line, sizeof line, "%-8s %-18s -> %s (median %.3g deg)\n", meshName.c_str(), source.c_str(), p.generator.c_str(),
-                    p.generators.empty() ? -1.0 : p.generators[0].medianDegrees);
+      std::snprintf(line, sizeof line, "%-8s %-18s -> %s (median %.3g deg; next: %s, %.3g deg)\n", meshName.c_str(), source.c_str(),
+                    p.generator.c_str(), p.generators.empty() ? -1.0 : p.generators[0].medianDegrees,
+                    p.generators.size() < 2 ? "-" : p.generators[1].name.c_str(), p.generators.size() < 2 ? -1.0 : p.generators[1].medianDegrees);
       matrix += line;
       EXPECT_EQ(p.generator, expected) << source << " on " << meshName;
       mislabelled += p.generator != expected;
