@@ -157,7 +157,7 @@ for (const [segments, seed] of [[8, 1], [24, 2], [64, 3]]) {
 // vertex split, and a report naming the method.
 for (const [segments, seed] of [[24, 2], [64, 3]]) {
   const mesh = generated(segments, seed);
-  for (const [method, weighting] of [['mikktspace', 'angle'], ['lengyel', 'angle'], ['lengyel', 'area'], ['lengyel', 'uniform'], ['flat', 'angle']]) {
+  for (const [method, weighting] of [['mikktspace', 'angle'], ['lengyel', 'angle'], ['lengyel', 'area'], ['lengyel', 'uniform'], ['flat', 'angle'], ['meshopt', 'angle']]) {
     const label = `generated sphere ${segments}x${segments}, ${method} (${weighting})`;
     const ours = generateTangentsIndexed(mesh.position, mesh.normal, mesh.texcoord, mesh.indices, { method, weighting });
     const theirs = library(mesh.position, mesh.normal, mesh.texcoord, mesh.indices, 'top-left', method, weighting);
