@@ -32,7 +32,7 @@ py::object toPython(const nlohmann::ordered_json& json) { return py::module_::im
 
 tangent::Method method(const std::string& name) {
   const std::optional<tangent::Method> m = tangent::parseMethod(name);
-  if (!m) badArgument("method", "'" + name + "' is not mikktspace, lengyel or flat");
+  if (!m) badArgument("method", "'" + name + "' is not mikktspace, lengyel, flat or meshopt");
   return *m;
 }
 
@@ -174,7 +174,7 @@ positions, normals: float arrays of shape (n, 3) or (3n,); uvs: (n, 2) or (2n,);
 indices: integer array of shape (t, 3) or (3t,), each below n. float32 and uint32 C-contiguous
 arrays are used without copying; others are converted.
 
-method: mikktspace (default; what normal-map bakers use) | lengyel | flat
+method: mikktspace (default; what normal-map bakers use) | lengyel | flat | meshopt
 weighting: angle (default) | area | uniform   (lengyel only)
 threads: worker threads, 0 = all hardware threads; the result never depends on it
 uv_origin: top-left (glTF, default) | bottom-left (OpenGL, OBJ): decides the sign of w
@@ -211,7 +211,7 @@ Computes TANGENT for every triangle primitive whose material has a normalTexture
 UV set that texture uses, and writes OUTPUT (.glb, or .gltf + .bin). Inputs: .gltf, .glb,
 .obj, .ply, .off. The input is never written to; the output is written atomically.
 
-method: mikktspace (default) | lengyel | flat
+method: mikktspace (default) | lengyel | flat | meshopt
 weighting: angle (default) | area | uniform   (lengyel only)
 threads: worker threads (0 = all); the output never depends on it
 all: bake every triangle primitive, normal texture or not (TEXCOORD_0)
@@ -290,7 +290,7 @@ and the bake report when baked in this run.)");
         if (options.method == tangent::Method::flat) badArgument("method", "check compares with mikktspace or lengyel");
         if (reference) {
           const std::optional<tangent::gltf::Generator> generator = tangent::gltf::parseGenerator(*reference);
-          if (!generator) badArgument("reference", "'" + *reference + "' is not mikktspace, lengyel/angle, lengyel/area, lengyel/uniform or flat");
+          if (!generator) badArgument("reference", "'" + *reference + "' is not " + tangent::gltf::generatorNames());
           options.method = generator->method;
           options.weighting = generator->weighting;
         }
@@ -334,7 +334,7 @@ handedness, reference (within `tolerance` degrees of freshly computed `method` t
 
 method: mikktspace (default) | lengyel
 reference: the generator reference measures against, as `--reference` names it (mikktspace,
-  lengyel/angle, lengyel/area, lengyel/uniform, flat); overrides method
+  lengyel/angle, lengyel/area, lengyel/uniform, flat, meshopt); overrides method
 tolerance: degrees, for orthogonal and reference (default 1), on top of the rounding limits
 orthogonal_tolerance, reference_tolerance: the same for one check (default: tolerance)
 only: run only these checks (names as above); ignore: leave these out

@@ -4,8 +4,10 @@
 // ../shared/peers compiled beside the tests (the reference MikkTSpace C, meshoptimizer 1.2's
 // meshopt_generateTangents in its compatible and default modes, through tools/bench/peers.cpp),
 // each identified. The library's bakes must name themselves; the reference C and meshoptimizer's
-// compatible mode (which aims at MikkTSpace's results) must be named mikktspace; meshoptimizer's
-// default mode, whose weighting the library does not have, must not be taken for MikkTSpace.
+// compatible mode (which aims at MikkTSpace's results) must be named mikktspace, and its
+// default mode meshopt (the library's own writing of that weighting). Beside the matrix: npm
+// `mikktspace` through `gltf-transform tangents` is named mikktspace. (Tangents turned about
+// their normals are "none of these": Identify.RandomlyTurnedTangentsAreNoneOfThese.)
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -15,6 +17,7 @@
 #include <tuple>
 
 #include "peers.hpp"
+#include "support/run_command.hpp"
 #include "support/skip_or_fail.hpp"
 #include "support/temp_dir.hpp"
 #include "support/test_assets.hpp"
@@ -72,7 +75,7 @@ TEST(IdentifyConfusion, EachGeneratorAndPeerIsNamed) {
   int mislabelled = 0;
   for (const auto& [meshName, mesh] : {std::pair{std::string("leaning"), tangent::testing::leaningGrid()},
                                        std::pair{std::string("torus"), tangent::testing::makeTorus(24, 12)}}) {
-    // Which file came from which source, and what it must be called (empty: anything but mikktspace).
+    // Which file came from which source, and what it must be called.
     std::vector<std::tuple<std::string, fs::path, std::string>> files;
     const fs::path input = tangent::testing::writeAsset(tangent::testing::meshAsset(meshName, mesh), dir / "in", true);
     int index = 0;
@@ -92,7 +95,7 @@ TEST(IdentifyConfusion, EachGeneratorAndPeerIsNamed) {
       std::string safe = name;
       std::replace(safe.begin(), safe.end(), '/', '-');
       const fs::path file = writeWithCornerTangents(mesh, corners, dir / "peers", meshName + "-" + safe);
-      files.emplace_back(name, file, peer == tangent::bench::Peer::meshoptDefault ? "" : "mikktspace");
+      files.emplace_back(name, file, peer == tangent::bench::Peer::meshoptDefault ? "meshopt" : "mikktspace");
     }
     for (const auto& [source, file, expected] : files) {
       const tangent::gltf::FileCheck check = tangent::gltf::checkFile(file, options);
@@ -100,21 +103,46 @@ TEST(IdentifyConfusion, EachGeneratorAndPeerIsNamed) {
       ASSERT_EQ(check.primitives.size(), 1u) << file;
       const auto& p = check.primitives[0];
       char line[256];
-      std::snprintf(line, sizeof line, "%-8s %-18s -> %s (median %.3g deg)\n", meshName.c_str(), source.c_str(), p.generator.c_str(),
-                    p.generators.empty() ? -1.0 : p.generators[0].medianDegrees);
+      std::snprintf(line, sizeof line, "%-8s %-18s -> %s (median %.3g deg; next: %s, %.3g deg)\n", meshName.c_str(), source.c_str(),
+                    p.generator.c_str(), p.generators.empty() ? -1.0 : p.generators[0].medianDegrees,
+                    p.generators.size() < 2 ? "-" : p.generators[1].name.c_str(), p.generators.size() < 2 ? -1.0 : p.generators[1].medianDegrees);
       matrix += line;
-      if (expected.empty()) {
-        EXPECT_NE(p.generator, "mikktspace") << source << " on " << meshName;
-        mislabelled += p.generator == "mikktspace";
-      } else {
-        EXPECT_EQ(p.generator, expected) << source << " on " << meshName;
-        mislabelled += p.generator != expected;
-      }
+      EXPECT_EQ(p.generator, expected) << source << " on " << meshName;
+      mislabelled += p.generator != expected;
     }
   }
   std::printf("identification (source -> named):\n%s", matrix.c_str());
   EXPECT_EQ(mislabelled, 0);
   if (!havePeers) TANGENT_SKIP_OR_FAIL("../shared/peers is absent: " << tangent::bench::peersNote() << "; only the library's generators identified");
+}
+
+tangent::gltf::PrimitiveCheck identifyOne(const fs::path& file) {
+  tangent::gltf::CheckOptions options;
+  options.identify = true;
+  options.enabled.reset();
+  const tangent::gltf::FileCheck check = tangent::gltf::checkFile(file, options);
+  EXPECT_TRUE(check.error.empty()) << check.error;
+  EXPECT_EQ(check.primitives.size(), 1u) << file;
+  return check.primitives.empty() ? tangent::gltf::PrimitiveCheck{} : check.primitives[0];
+}
+
+// glTF-Transform's `tangents` command, which runs npm `mikktspace` (the reference C compiled to
+// WebAssembly; pinned in tests/node), on the generated meshes: named mikktspace.
+TEST(IdentifyConfusion, NpmMikktspaceThroughGltfTransformIsMikktspace) {
+  const fs::path cli = fs::path(TANGENT_SOURCE_DIR) / "tests/node/node_modules/.bin/gltf-transform";
+  if (!fs::exists(cli)) TANGENT_SKIP_OR_FAIL("tests/node/node_modules is absent (npm ci): gltf-transform tangents not run");
+  TempDir dir;
+  for (const auto& [meshName, mesh] : {std::pair{std::string("leaning"), tangent::testing::leaningGrid()},
+                                       std::pair{std::string("torus"), tangent::testing::makeTorus(24, 12)}}) {
+    const fs::path input = tangent::testing::writeAsset(tangent::testing::meshAsset(meshName, mesh), dir.path() / "in", true);
+    const fs::path output = dir.path() / (meshName + "-gltf-transform.glb");
+    const auto run = tangent::testing::runCommand("'" + cli.string() + "' tangents '" + input.string() + "' '" + output.string() + "'");
+    ASSERT_EQ(run.exitCode, 0) << run.output;
+    const tangent::gltf::PrimitiveCheck p = identifyOne(output);
+    EXPECT_EQ(p.generator, "mikktspace") << meshName;
+    std::printf("%-8s gltf-transform tangents -> %s (median %.3g deg)\n", meshName.c_str(), p.generator.c_str(),
+                p.generators.empty() ? -1.0 : p.generators.front().medianDegrees);
+  }
 }
 
 }  // namespace

@@ -26,7 +26,8 @@ TEST_P(Stress, EveryCaseKeepsTheInvariants) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Methods, Stress,
-                         ::testing::Values(tangent::Method::mikktspace, tangent::Method::lengyel, tangent::Method::flat),
+                         ::testing::Values(tangent::Method::mikktspace, tangent::Method::lengyel, tangent::Method::flat,
+                                           tangent::Method::meshopt),
                          [](const auto& param) { return std::string(tangent::toString(param.param)); });
 
 // Where a frame cannot be defined, the report says so instead of hiding it.

@@ -157,7 +157,7 @@ for (const [segments, seed] of [[8, 1], [24, 2], [64, 3]]) {
 // vertex split, and a report naming the method.
 for (const [segments, seed] of [[24, 2], [64, 3]]) {
   const mesh = generated(segments, seed);
-  for (const [method, weighting] of [['mikktspace', 'angle'], ['lengyel', 'angle'], ['lengyel', 'area'], ['lengyel', 'uniform'], ['flat', 'angle']]) {
+  for (const [method, weighting] of [['mikktspace', 'angle'], ['lengyel', 'angle'], ['lengyel', 'area'], ['lengyel', 'uniform'], ['flat', 'angle'], ['meshopt', 'angle']]) {
     const label = `generated sphere ${segments}x${segments}, ${method} (${weighting})`;
     const ours = generateTangentsIndexed(mesh.position, mesh.normal, mesh.texcoord, mesh.indices, { method, weighting });
     const theirs = library(mesh.position, mesh.normal, mesh.texcoord, mesh.indices, 'top-left', method, weighting);
@@ -177,7 +177,7 @@ try {
   generateTangentsIndexed(new Float32Array(9), new Float32Array(9), new Float32Array(6), [0, 1, 2], { method: 'smooth' });
   fail('an unknown method was accepted');
 } catch (e) {
-  if (!/method: 'smooth' is not mikktspace, lengyel or flat/.test(e.message)) fail(`unexpected error message: ${e.message}`);
+  if (!/method: 'smooth' is not mikktspace, lengyel, flat or meshopt/.test(e.message)) fail(`unexpected error message: ${e.message}`);
   else console.log(`ok   unknown method refused: ${e.message}`);
 }
 

@@ -66,7 +66,7 @@ def run_cpp(tmp_path, arrays, method, uv_origin, weighting="angle"):
             np.fromfile(tmp_path / "corner_vertex.u32", dtype=np.uint32))
 
 
-@pytest.mark.parametrize("method", ["mikktspace", "lengyel", "lengyel:area", "lengyel:uniform", "flat"])
+@pytest.mark.parametrize("method", ["mikktspace", "lengyel", "lengyel:area", "lengyel:uniform", "flat", "meshopt"])
 @pytest.mark.parametrize("uv_origin", ["top-left", "bottom-left"])
 @pytest.mark.parametrize("mesh", ["sphere", "soup1", "soup2"])
 def test_bit_identical_to_the_cpp_library(tmp_path, method, uv_origin, mesh):

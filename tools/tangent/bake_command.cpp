@@ -36,7 +36,7 @@ const char* kBakeUsage =
     "  -o, --output FILE      output file (.glb or .gltf + .bin); one input only. \"-\": a .glb on standard\n"
     "                         output (the asset may refer to no external image; messages go to stderr)\n"
     "  --out-dir DIR          write each output into DIR under the input's name\n"
-    "  --method NAME          mikktspace (default) | lengyel | flat\n"
+    "  --method NAME          mikktspace (default) | lengyel | flat | meshopt (meshoptimizer's default weighting)\n"
     "  --weighting NAME       angle (default) | area | uniform   (lengyel only)\n"
     "  --threads N            worker threads (default: all hardware threads); the output never depends on it\n"
     "  --all                  bake every triangle primitive, normal texture or not (TEXCOORD_0)\n"
@@ -247,7 +247,7 @@ int bakeCommand(const std::vector<std::string>& args) {
     } else if (arg == "--method") {
       const std::string* v = value("--method");
       const std::optional<Method> method = v ? parseMethod(*v) : std::nullopt;
-      if (!method) return usageError("--method must be mikktspace, lengyel or flat");
+      if (!method) return usageError("--method must be mikktspace, lengyel, flat or meshopt");
       options.tangents.method = *method;
     } else if (arg == "--weighting") {
       const std::string* v = value("--weighting");

@@ -2,17 +2,23 @@
 // `tangent bench`: error against run time. Analytic surfaces with exact tangents at several
 // resolutions, every method and setting, 1 and 2 threads, and the peers (reference MikkTSpace
 // in C, meshoptimizer in both modes) when built with them; real assets against mikktspace;
-// the stress suite with --stress. Table on the terminal, CSV and JSON files, and a log-log
-// plot of error against run time drawn by gnuplot (PNG and SVG).
+// the stress suite with --stress; with --peers, every method and peer against the reference C.
+// Table on the terminal, CSV and JSON files, and a log-log plot of error against run time drawn
+// by gnuplot (PNG and SVG). The library is timed through its plain-array entry point, the call
+// users make.
 #include <algorithm>
+#include <array>
+#include <bit>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <map>
 #include <nlohmann/json.hpp>
 #include <numeric>
+#include <optional>
 #include <sstream>
 #include <tuple>
 #include <thread>
@@ -22,7 +28,6 @@
 #include "peers.hpp"
 #include "stress_cases.hpp"
 #include "tangent/gltf.hpp"
-#include "tangent/openmesh.hpp"
 #include "tangent/scene.hpp"
 
 namespace tangent::cli {
@@ -46,7 +51,15 @@ const char* kBenchUsage =
     "  --out-dir DIR       where bench.csv, bench.json, plot.png and plot.svg go (default bench-results)\n"
     "  --assets PATH       a glTF file or folder of them (default ../shared/assets when present)\n"
     "  --no-plot           skip gnuplot\n"
-    "  --stress            run the stress suite instead and print its summary (exit 1 on failure)\n";
+    "  --stress            run the stress suite instead and print its summary (exit 1 on failure)\n"
+    "  --peers             instead: every --assets file and a generated sphere and torus, each method\n"
+    "                      and meshoptimizer's two modes against the reference MikkTSpace C (max and\n"
+    "                      p99 angle, w mismatches) with each one's time on one thread; a Markdown\n"
+    "                      table, and peers.csv in --out-dir. Needs a build with ../shared/peers\n"
+    "  --triangles N       --peers: triangles of the generated sphere and torus (default 100000)\n"
+    "\n"
+    "The library is timed through computeCornerTangents on plain arrays, each call with its own\n"
+    "workspace (as the peers allocate theirs): the median of --repeats calls.\n";
 
 struct Setting {
   std::string label;
@@ -70,6 +83,7 @@ std::vector<Setting> settings() {
     add("lengyel/area", Method::lengyel, Weighting::area);
     add("lengyel/uniform", Method::lengyel, Weighting::uniform);
     add("flat", Method::flat, Weighting::angle);
+    add("meshopt", Method::meshopt, Weighting::angle);
   }
   return out;
 }
@@ -81,11 +95,6 @@ double angleDegrees(const float* a, const float* b) {
   return std::atan2(sine, double(a[0]) * b[0] + double(a[1]) * b[1] + double(a[2]) * b[2]) * 180.0 / M_PI;
 }
 
-struct Timing {
-  double build = 0, compute = 0, output = 0;
-  double total() const { return build + compute + output; }
-};
-
 struct Errors {
   double mean = 0, p99 = 0, max = 0;
   std::size_t wErrors = 0;
@@ -96,42 +105,37 @@ double median(std::vector<double> values) {
   return values[values.size() / 2];
 }
 
-// Runs the library the way a caller does: build the half-edge mesh, compute, copy per corner.
-Timing timedRun(const MeshArrays& mesh, const Options& options, int repeats, std::vector<float>& cornerTangents) {
-  std::vector<double> build, compute, output;
+double millisecondsSince(Clock::time_point start) { return std::chrono::duration<double, std::milli>(Clock::now() - start).count(); }
+
+// Runs the library the way a caller does: computeCornerTangents on the plain arrays, a
+// workspace of its own per call. Milliseconds, the median of `repeats` calls; `sources` (when
+// given) receives where each corner's frame came from.
+double timedRun(const MeshArrays& mesh, const Options& options, int repeats, std::vector<float>& cornerTangents,
+                std::vector<FrameSource>* sources = nullptr) {
+  std::vector<double> times;
   cornerTangents.resize(mesh.indices.size() * 4);
+  if (sources) sources->resize(mesh.indices.size());
   for (int r = 0; r < repeats; ++r) {
-    const auto t0 = Clock::now();
-    CornerMesh cornerMesh = buildCornerMesh(mesh);
-    const auto t1 = Clock::now();
-    computeTangents(cornerMesh, options);
-    const auto t2 = Clock::now();
-    for (std::size_t c = 0; c < mesh.indices.size(); ++c) {
-      const TangentVec& t = cornerMesh.mesh.property(cornerMesh.tangent, cornerMesh.cornerHalfedge[c]);
-      for (int i = 0; i < 4; ++i) cornerTangents[4 * c + i] = static_cast<float>(t[i]);
-    }
-    const auto t3 = Clock::now();
-    build.push_back(std::chrono::duration<double, std::milli>(t1 - t0).count());
-    compute.push_back(std::chrono::duration<double, std::milli>(t2 - t1).count());
-    output.push_back(std::chrono::duration<double, std::milli>(t3 - t2).count());
+    const auto start = Clock::now();
+    computeCornerTangents(mesh, cornerTangents, options, sources ? std::span<FrameSource>(*sources) : std::span<FrameSource>());
+    times.push_back(millisecondsSince(start));
   }
-  return {median(build), median(compute), median(output)};
+  return median(times);
 }
 
-// A peer (reference MikkTSpace in C, meshoptimizer) on the same arrays: one call, no phases.
-// Its w is in the bottom-left convention; tangent::handedness turns it into uvOrigin's.
-Timing timedPeerRun(bench::Peer peer, const MeshArrays& mesh, UvOrigin uvOrigin, int repeats, std::vector<float>& cornerTangents) {
-  std::vector<double> total;
+// A peer (reference MikkTSpace in C, meshoptimizer) on the same arrays: milliseconds, the
+// median of `repeats` calls. Its w is in the bottom-left convention; tangent::handedness turns
+// it into uvOrigin's.
+double timedPeerRun(bench::Peer peer, const MeshArrays& mesh, UvOrigin uvOrigin, int repeats, std::vector<float>& cornerTangents) {
+  std::vector<double> times;
   cornerTangents.resize(mesh.indices.size() * 4);
   for (int r = 0; r < repeats; ++r) {
-    const auto t0 = Clock::now();
+    const auto start = Clock::now();
     bench::runPeer(peer, mesh, cornerTangents);
-    total.push_back(std::chrono::duration<double, std::milli>(Clock::now() - t0).count());
+    times.push_back(millisecondsSince(start));
   }
   for (std::size_t c = 0; c < mesh.indices.size(); ++c) cornerTangents[4 * c + 3] = handedness(cornerTangents[4 * c + 3], uvOrigin);
-  Timing timing;
-  timing.compute = median(total);
-  return timing;
+  return median(times);
 }
 
 Errors compare(const std::vector<float>& corners, const std::vector<std::uint32_t>& indices, const std::vector<float>& reference,
@@ -156,7 +160,7 @@ int stressSummary() {
   std::printf("%-40s %-11s %8s %9s %8s %8s %6s %8s %7s %9s %9s\n", "case", "method", "corners", "undefined", "nonfinite", "nonunit",
               "nonorth", "bad w", "reruns", "contained", "ms");
   for (const auto& stressCase : bench::stressCases()) {
-    for (Method method : {Method::mikktspace, Method::lengyel, Method::flat}) {
+    for (Method method : {Method::mikktspace, Method::lengyel, Method::flat, Method::meshopt}) {
       Options options;
       options.method = method;
       const auto o = bench::runStressCase(stressCase, options);
@@ -170,10 +174,179 @@ int stressSummary() {
   return failures ? kExitInputFailed : kExitOk;
 }
 
+// The files of --assets: each file given, and the .glb/.gltf files of each folder given, sorted.
+std::vector<fs::path> assetFiles(const std::vector<fs::path>& assets) {
+  std::vector<fs::path> files;
+  for (const auto& path : assets) {
+    if (fs::is_directory(path)) {
+      for (const auto& entry : fs::directory_iterator(path))
+        if (entry.path().extension() == ".glb" || entry.path().extension() == ".gltf") files.push_back(entry.path());
+    } else {
+      files.push_back(path);
+    }
+  }
+  std::sort(files.begin(), files.end());
+  return files;
+}
+
+// ---- --peers: every method and peer against the reference C ----
+
+// One input of the table, indexed as a vertex buffer is: corners with the same position,
+// normal and UV bits share a vertex.
+struct PeerInput {
+  std::string name;
+  std::vector<float> positions, normals, uvs;
+  std::vector<std::uint32_t> indices;
+  MeshArrays arrays() const { return {positions, normals, uvs, indices}; }
+};
+
+PeerInput indexByValue(std::string name, const std::vector<float>& positions, const std::vector<float>& normals,
+                       const std::vector<float>& uvs) {
+  PeerInput input{std::move(name), {}, {}, {}, {}};
+  using Key = std::array<std::uint32_t, 8>;
+  std::map<Key, std::uint32_t> vertexOf;
+  const std::size_t corners = positions.size() / 3;
+  input.indices.reserve(corners);
+  for (std::size_t c = 0; c < corners; ++c) {
+    Key key;
+    for (int i = 0; i < 3; ++i) key[i] = std::bit_cast<std::uint32_t>(positions[3 * c + i]);
+    for (int i = 0; i < 3; ++i) key[3 + i] = std::bit_cast<std::uint32_t>(normals[3 * c + i]);
+    for (int i = 0; i < 2; ++i) key[6 + i] = std::bit_cast<std::uint32_t>(uvs[2 * c + i]);
+    const auto [at, added] = vertexOf.try_emplace(key, static_cast<std::uint32_t>(input.positions.size() / 3));
+    if (added) {
+      input.positions.insert(input.positions.end(), &positions[3 * c], &positions[3 * c] + 3);
+      input.normals.insert(input.normals.end(), &normals[3 * c], &normals[3 * c] + 3);
+      input.uvs.insert(input.uvs.end(), &uvs[2 * c], &uvs[2 * c] + 2);
+    }
+    input.indices.push_back(at->second);
+  }
+  return input;
+}
+
+// The generated sphere and torus, then every normal-mapped primitive with UVs of the files.
+std::vector<PeerInput> peerInputs(const std::vector<fs::path>& files, std::size_t triangles) {
+  std::vector<PeerInput> inputs;
+  for (const std::string surface : {"sphere", "torus"}) {
+    bench::AnalyticMesh mesh = bench::makeSurface(surface, triangles);
+    inputs.push_back({surface + " (generated)", std::move(mesh.positions), std::move(mesh.normals), std::move(mesh.uvs), std::move(mesh.indices)});
+  }
+  for (const auto& file : files) {
+    gltf::Scene scene;
+    try {
+      scene = gltf::loadScene(file);
+    } catch (const std::exception& e) {
+      std::cerr << "warning: " << e.what() << "\n";
+      continue;
+    }
+    for (const auto& item : scene.items) {
+      if (!item.hasUvs || item.positions.empty()) continue;
+      std::string name = file.filename().string();
+      if (scene.items.size() > 1) name += " " + item.label;
+      inputs.push_back(indexByValue(std::move(name), item.positions, item.normals, item.uvNormal));
+    }
+  }
+  return inputs;
+}
+
+// Max and p99 angle and w mismatches of `corners` against the reference's, over the corners in
+// `compared`.
+struct PeerErrors {
+  double max = 0, p99 = 0;
+  std::size_t wMismatches = 0;
+};
+
+PeerErrors againstReference(const std::vector<float>& corners, const std::vector<float>& reference, const std::vector<std::uint8_t>& compared) {
+  PeerErrors e;
+  std::vector<double> angles;
+  for (std::size_t c = 0; c < compared.size(); ++c) {
+    if (!compared[c]) continue;
+    angles.push_back(angleDegrees(&corners[4 * c], &reference[4 * c]));
+    e.wMismatches += corners[4 * c + 3] != reference[4 * c + 3];
+  }
+  if (angles.empty()) return e;
+  std::sort(angles.begin(), angles.end());
+  e.p99 = angles[std::min(angles.size() - 1, angles.size() * 99 / 100)];
+  e.max = angles.back();
+  return e;
+}
+
+// tangent bench --peers: the error-against-run-time table with the peers as rows. Every run is
+// on one thread (the peers have no other), w in MikkTSpace's convention (as the reference C
+// writes it); the library's mikktspace at all threads is one more row, for its time.
+int peersTable(const std::vector<fs::path>& assets, std::size_t triangles, int repeats, const fs::path& outDir) {
+  if (bench::peers().empty()) {
+    std::cerr << "tangent bench --peers: the peers are absent, so there is no reference C to compare with: " << bench::peersNote()
+              << "\n";
+    return kExitInputFailed;
+  }
+  const std::vector<PeerInput> inputs = peerInputs(assetFiles(assets), triangles);
+  std::ostringstream csv;
+  csv << "input,triangles,generator,threads,compared_corners,corners,max_deg,p99_deg,w_mismatches,ms\n";
+  std::printf("Against the reference MikkTSpace C (mikktspace.c, genTangSpaceDefault), on the corners whose reference frame comes from\n"
+              "their own triangles; times are medians of %d calls, one thread unless said.\n\n",
+              repeats);
+  std::printf("| input | triangles | generator | max deg | p99 deg | w mismatches | ms |\n|---|---:|---|---:|---:|---:|---:|\n");
+  for (const PeerInput& input : inputs) {
+    const MeshArrays arrays = input.arrays();
+    const std::size_t corners = input.indices.size();
+    std::vector<float> reference;
+    const double referenceMs = timedPeerRun(bench::Peer::referenceMikktspace, arrays, UvOrigin::bottomLeft, repeats, reference);
+    // The corners MikkTSpace gives a frame of their own triangles (a fallback frame is arbitrary).
+    std::vector<float> scratch;
+    std::vector<FrameSource> sources;
+    Options probe;
+    probe.uvOrigin = UvOrigin::bottomLeft;
+    timedRun(arrays, probe, 1, scratch, &sources);
+    std::vector<std::uint8_t> compared(corners);
+    for (std::size_t c = 0; c < corners; ++c)
+      compared[c] = sources[c] == FrameSource::computed || sources[c] == FrameSource::inherited;
+    const std::size_t comparedCount = static_cast<std::size_t>(std::count(compared.begin(), compared.end(), 1));
+    auto row = [&](const std::string& generator, unsigned threads, const std::optional<PeerErrors>& e, double ms) {
+      const std::string label = generator + (threads == 1 ? "" : " (" + std::to_string(threads) + " threads)");
+      if (e) {
+        std::printf("| %s | %zu | %s | %.3g | %.3g | %zu | %.2f |\n", input.name.c_str(), corners / 3, label.c_str(), e->max, e->p99,
+                    e->wMismatches, ms);
+      } else {
+        std::printf("| %s | %zu | %s | - | - | - | %.2f |\n", input.name.c_str(), corners / 3, label.c_str(), ms);
+      }
+      csv << '"' << input.name << "\"," << corners / 3 << "," << generator << "," << threads << "," << comparedCount << "," << corners << ","
+          << (e ? e->max : 0.0) << "," << (e ? e->p99 : 0.0) << "," << (e ? e->wMismatches : 0) << "," << ms << "\n";
+    };
+    row("mikktspace.c (the reference)", 1, std::nullopt, referenceMs);
+    for (const Setting& setting : settings()) {
+      if (setting.options.threads != 1) continue;
+      Options options = setting.options;  // bottom-left: the reference's w
+      std::vector<float> ours;
+      const double ms = timedRun(arrays, options, repeats, ours);
+      row(setting.label, 1, againstReference(ours, reference, compared), ms);
+    }
+    for (bench::Peer peer : bench::peers()) {
+      if (peer == bench::Peer::referenceMikktspace) continue;
+      std::vector<float> theirs;
+      const double ms = timedPeerRun(peer, arrays, UvOrigin::bottomLeft, repeats, theirs);
+      row(std::string(toString(peer)) + " (peer)", 1, againstReference(theirs, reference, compared), ms);
+    }
+    Options allThreads;
+    allThreads.uvOrigin = UvOrigin::bottomLeft;
+    std::vector<float> ours;
+    const double ms = timedRun(arrays, allThreads, repeats, ours);
+    row("mikktspace", threadCount(allThreads), againstReference(ours, reference, compared), ms);
+    std::fflush(stdout);
+  }
+  std::error_code ec;
+  fs::create_directories(outDir, ec);
+  if (!writeTextOutput((outDir / "peers.csv").string(), csv.str(), "bench")) return kExitInputFailed;
+  std::printf("\nwrote %s/peers.csv\n", outDir.string().c_str());
+  return kExitOk;
+}
+
 void writePlot(const fs::path& dir, const std::vector<std::string>& surfaces) {
   // One panel per surface: mean error against total time, a series per method (1 thread).
   std::ofstream script(dir / "plot.gp");
-  std::vector<std::string> methods = {"mikktspace", "lengyel/angle", "lengyel/area", "lengyel/uniform", "flat"};
+  std::vector<std::string> methods;
+  for (const Setting& setting : settings())
+    if (std::find(methods.begin(), methods.end(), setting.label) == methods.end()) methods.push_back(setting.label);
+  const std::size_t libraryMethods = methods.size();
   for (bench::Peer peer : bench::peers()) methods.emplace_back(toString(peer));  // same axes, when built with the peers
   for (const char* terminal : {"pngcairo size 1500,900 font ',10'", "svg size 1500,900 font 'sans,10'"}) {
     const bool png = std::string(terminal).rfind("png", 0) == 0;
@@ -184,8 +357,8 @@ void writePlot(const fs::path& dir, const std::vector<std::string>& surfaces) {
       script << "set title '" << surface << "'\nset xlabel 'time per call, ms'\nset ylabel 'mean error, degrees'\nplot ";
       for (std::size_t m = 0; m < methods.size(); ++m) {
         script << (m ? ", " : "") << "'" << (dir / "plot.csv").string() << "' using (strcol(1) eq '" << surface << "' && strcol(3) eq '"
-               << methods[m] << "' && $4 == 1 ? $13 : 1/0):5 with linespoints title '" << methods[m]
-               << (m >= 5 ? " (peer)" : "") << "'";
+               << methods[m] << "' && $4 == 1 ? $10 : 1/0):5 with linespoints title '" << methods[m]
+               << (m >= libraryMethods ? " (peer)" : "") << "'";
       }
       script << "\n";
     }
@@ -203,7 +376,8 @@ int benchCommand(const std::vector<std::string>& args) {
   int repeats = 3;
   fs::path outDir = "bench-results";
   std::vector<fs::path> assets;
-  bool plot = true, stress = false;
+  bool plot = true, stress = false, peersOnly = false;
+  std::size_t peerTriangles = 100000;
   for (std::size_t i = 0; i < args.size(); ++i) {
     const std::string& arg = args[i];
     try {
@@ -216,6 +390,8 @@ int benchCommand(const std::vector<std::string>& args) {
       else if (arg == "--assets" && i + 1 < args.size()) assets.emplace_back(args[++i]);
       else if (arg == "--no-plot") plot = false;
       else if (arg == "--stress") stress = true;
+      else if (arg == "--peers") peersOnly = true;
+      else if (arg == "--triangles" && i + 1 < args.size()) peerTriangles = std::max<std::size_t>(std::stoul(args[++i]), 8);
       else throw std::invalid_argument(arg);
     } catch (const std::exception&) {
       std::cerr << "tangent bench: bad option '" << arg << "'\n\n" << kBenchUsage;
@@ -223,50 +399,50 @@ int benchCommand(const std::vector<std::string>& args) {
     }
   }
   if (stress) return stressSummary();
-  if (bench::peers().empty()) std::cerr << "tangent bench: " << bench::peersNote() << "\n";
   if (assets.empty() && fs::is_directory("../shared/assets")) assets.emplace_back("../shared/assets");
+  if (peersOnly) return peersTable(assets, peerTriangles, repeats, outDir);
+  if (bench::peers().empty()) std::cerr << "tangent bench: " << bench::peersNote() << "\n";
   std::error_code ec;
   fs::create_directories(outDir, ec);
 
   std::ostringstream csv;  // written with the others at the end, each file atomically
-  csv << "surface,triangles,method,threads,mean_deg,p99_deg,max_deg,w_errors,corners,build_ms,compute_ms,output_ms,total_ms\n";
+  csv << "surface,triangles,method,threads,mean_deg,p99_deg,max_deg,w_errors,corners,ms\n";
   Json results = Json::array();
   // The plot reads a copy sorted by series, so that each series' points are consecutive rows
   // and gnuplot joins them (a filtered-out row in between breaks the line).
   using SeriesKey = std::tuple<std::string, std::string, unsigned, std::size_t>;
   std::vector<std::pair<SeriesKey, std::string>> plotRows;
-  std::printf("%-12s %9s %-18s %3s %10s %10s %10s %8s %10s %10s %10s %10s\n", "surface", "triangles", "method", "thr", "mean deg",
-              "p99 deg", "max deg", "w errors", "build ms", "compute ms", "output ms", "total ms");
+  std::printf("%-12s %9s %-18s %3s %10s %10s %10s %8s %10s\n", "surface", "triangles", "method", "thr", "mean deg", "p99 deg",
+              "max deg", "w errors", "ms");
   std::vector<std::size_t> resolutions;
   for (std::size_t r = 100; r <= maxTriangles; r *= 10) resolutions.push_back(r);
   for (const auto& surface : bench::surfaceNames()) {
     for (std::size_t target : resolutions) {
       const bench::AnalyticMesh mesh = bench::makeSurface(surface, target);
       // One row per method: terminal, CSV, JSON, and the plot's rows (kept for sorting).
-      auto record = [&](const std::string& label, unsigned threads, const Timing& timing, const Errors& e) {
-        std::printf("%-12s %9zu %-18s %3u %10.5f %10.5f %10.5f %8zu %10.2f %10.2f %10.2f %10.2f\n", surface.c_str(), mesh.triangles(),
-                    label.c_str(), threads, e.mean, e.p99, e.max, e.wErrors, timing.build, timing.compute, timing.output, timing.total());
+      auto record = [&](const std::string& label, unsigned threads, double ms, const Errors& e) {
+        std::printf("%-12s %9zu %-18s %3u %10.5f %10.5f %10.5f %8zu %10.2f\n", surface.c_str(), mesh.triangles(), label.c_str(), threads,
+                    e.mean, e.p99, e.max, e.wErrors, ms);
         std::ostringstream row;
         row << surface << "," << mesh.triangles() << "," << label << "," << threads << "," << e.mean << "," << e.p99 << "," << e.max << ","
-            << e.wErrors << "," << mesh.indices.size() << "," << timing.build << "," << timing.compute << "," << timing.output << ","
-            << timing.total() << "\n";
+            << e.wErrors << "," << mesh.indices.size() << "," << ms << "\n";
         csv << row.str();
         plotRows.push_back({{surface, label, threads, mesh.triangles()}, row.str()});
         results.push_back({{"surface", surface}, {"triangles", mesh.triangles()}, {"method", label}, {"threads", threads},
                            {"meanDegrees", e.mean}, {"p99Degrees", e.p99}, {"maxDegrees", e.max}, {"wErrors", e.wErrors},
-                           {"buildMs", timing.build}, {"computeMs", timing.compute}, {"outputMs", timing.output}});
+                           {"ms", ms}});
       };
       const int runs = target >= 1000000 ? std::min(repeats, 3) : repeats;
       for (const Setting& setting : settings()) {
         std::vector<float> corners;
-        const Timing timing = timedRun(mesh.arrays(), setting.options, runs, corners);
-        record(setting.label, setting.options.threads, timing, compare(corners, mesh.indices, mesh.exactTangents, true));
+        const double ms = timedRun(mesh.arrays(), setting.options, runs, corners);
+        record(setting.label, setting.options.threads, ms, compare(corners, mesh.indices, mesh.exactTangents, true));
       }
       // The peers: one call, its time counted as compute.
       for (bench::Peer peer : bench::peers()) {
         std::vector<float> corners;
-        const Timing timing = timedPeerRun(peer, mesh.arrays(), UvOrigin::bottomLeft, runs, corners);
-        record(std::string(toString(peer)), 1, timing, compare(corners, mesh.indices, mesh.exactTangents, true));
+        const double ms = timedPeerRun(peer, mesh.arrays(), UvOrigin::bottomLeft, runs, corners);
+        record(std::string(toString(peer)), 1, ms, compare(corners, mesh.indices, mesh.exactTangents, true));
       }
       std::fflush(stdout);
     }
@@ -274,19 +450,10 @@ int benchCommand(const std::vector<std::string>& args) {
 
   // Real assets: every normal-mapped primitive, each method against mikktspace.
   Json assetResults = Json::array();
-  std::vector<fs::path> files;
-  for (const auto& path : assets) {
-    if (fs::is_directory(path)) {
-      for (const auto& entry : fs::directory_iterator(path))
-        if (entry.path().extension() == ".glb" || entry.path().extension() == ".gltf") files.push_back(entry.path());
-    } else {
-      files.push_back(path);
-    }
-  }
-  std::sort(files.begin(), files.end());
+  const std::vector<fs::path> files = assetFiles(assets);
   if (!files.empty())
     std::printf("\n%-28s %-10s %9s %-18s %3s %10s %10s %10s %8s %10s\n", "asset", "primitive", "triangles", "method", "thr", "median deg",
-                "p99 deg", "max deg", "w diff", "total ms");
+                "p99 deg", "max deg", "w diff", "ms");
   for (const auto& file : files) {
     gltf::Scene scene;
     try {
@@ -307,24 +474,23 @@ int benchCommand(const std::vector<std::string>& args) {
         std::string label;
         unsigned threads;
         std::vector<float> corners;
-        Timing timing;
+        double ms = 0;
       };
       std::vector<Run> runs;
       for (const Setting& setting : settings()) {
         Options options = setting.options;
         options.uvOrigin = UvOrigin::topLeft;
         Run run{setting.label, options.threads, {}, {}};
-        run.timing = timedRun(arrays, options, repeats, run.corners);
+        run.ms = timedRun(arrays, options, repeats, run.corners);
         runs.push_back(std::move(run));
       }
       for (bench::Peer peer : bench::peers()) {
         Run run{std::string(toString(peer)), 1, {}, {}};
-        run.timing = timedPeerRun(peer, arrays, UvOrigin::topLeft, repeats, run.corners);
+        run.ms = timedPeerRun(peer, arrays, UvOrigin::topLeft, repeats, run.corners);
         runs.push_back(std::move(run));
       }
       for (const Run& run : runs) {
         const std::vector<float>& corners = run.corners;
-        const Timing& timing = run.timing;
         const Errors e = compare(corners, identity, reference, false);
         std::vector<double> angles(identity.size());
         for (std::size_t c = 0; c < identity.size(); ++c) angles[c] = angleDegrees(&corners[4 * c], &reference[4 * c]);
@@ -332,10 +498,10 @@ int benchCommand(const std::vector<std::string>& args) {
         const double med = angles.empty() ? 0 : angles[angles.size() / 2];
         std::printf("%-28s %-10s %9zu %-18s %3u %10.5f %10.5f %10.5f %8zu %10.2f\n", file.filename().string().c_str(),
                     item.label.substr(item.label.rfind(' ') + 1).c_str(), identity.size() / 3, run.label.c_str(), run.threads, med,
-                    e.p99, e.max, e.wErrors, timing.total());
+                    e.p99, e.max, e.wErrors, run.ms);
         assetResults.push_back({{"asset", file.filename().string()}, {"primitive", item.label}, {"method", run.label},
                                 {"threads", run.threads}, {"medianDegrees", med}, {"p99Degrees", e.p99}, {"maxDegrees", e.max},
-                                {"wDifferences", e.wErrors}, {"totalMs", timing.total()}});
+                                {"wDifferences", e.wErrors}, {"ms", run.ms}});
       }
     }
   }

@@ -48,11 +48,12 @@ const char* kCheckUsage =
     "  --config FILE.json  settings from a file (only, ignore, tolerance, method, minCoverage, allowMissing, all);\n"
     "                      options on the command line override it\n"
     "  --reference NAME    what reference is measured against: mikktspace (default) | lengyel/angle |\n"
-    "                      lengyel/area | lengyel/uniform | flat (the names --identify reports)\n"
+    "                      lengyel/area | lengyel/uniform | flat | meshopt (the names --identify reports)\n"
     "  --method NAME       mikktspace | lengyel: --reference mikktspace or lengyel/angle\n"
     "  --all               check every triangle primitive (TEXCOORD_0 without a normal texture)\n"
     "  --identify          name the generator closest to the stored tangents (mikktspace, lengyel/angle,\n"
-    "                      lengyel/area, lengyel/uniform, flat) with its median and max angle, or none of these\n"
+    "                      lengyel/area, lengyel/uniform, flat, meshopt) with its median and max angle, or\n"
+    "                      none of these (with the nearest)\n"
     "  --asset-root DIR    folder buffer and image URIs may not leave (default: the input's folder)\n"
     "  -h, --help          this text\n"
     "checks: present format finite unit w w-uniform orthogonal handedness reference\n"
@@ -490,7 +491,7 @@ int checkCommand(const std::vector<std::string>& args) {
       options.weighting = Weighting::angle;
     } else if (arg == "--reference") {
       const std::optional<gltf::Generator> generator = hasValue ? gltf::parseGenerator(args[++i]) : std::nullopt;
-      if (!generator) return usageError("--reference must be mikktspace, lengyel/angle, lengyel/area, lengyel/uniform or flat");
+      if (!generator) return usageError("--reference must be " + gltf::generatorNames());
       options.method = generator->method;
       options.weighting = generator->weighting;
     } else if (arg == "--all") {

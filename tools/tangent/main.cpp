@@ -17,7 +17,7 @@ const char* kUsage =
     "  check IN... [--format text|json|junit|github|sarif|html]\n"
     "                                        validate stored tangents (for CI)\n"
     "  info IN... [--json]                   meshes, primitives, attributes, which need tangents\n"
-    "  bench [--stress]                      error against run time; the stress suite\n"
+    "  bench [--stress | --peers]            error against run time; the stress suite; against the reference C\n"
     "\n"
     "  -V, --version                         the version\n"
     "  -h, --help                            this text\n"

@@ -3,11 +3,11 @@
 export declare const ready: Promise<void>;
 
 /** The command line's names (`tangent bake --method`, `--weighting`). */
-export type Method = 'mikktspace' | 'lengyel' | 'flat';
+export type Method = 'mikktspace' | 'lengyel' | 'flat' | 'meshopt';
 export type Weighting = 'angle' | 'area' | 'uniform';
 
 export interface MethodOptions {
-  /** 'mikktspace' (default), 'lengyel' or 'flat'. */
+  /** 'mikktspace' (default), 'lengyel', 'flat' or 'meshopt' (meshoptimizer's default weighting). */
   method?: Method;
   /** Lengyel's weighting: 'angle' (default), 'area' or 'uniform'. */
   weighting?: Weighting;

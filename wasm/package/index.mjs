@@ -51,7 +51,7 @@ function names(options, uvOrigin) {
  * Tangents of a de-indexed triangle list (every 3 vertices one triangle), as the npm
  * `mikktspace` package computes them: xyzw per vertex, w in MikkTSpace's own convention, which
  * glTF-Transform's tangents() negates into glTF's. Pass it there as `generateTangents`.
- * options.method: 'mikktspace' (default) | 'lengyel' | 'flat'; options.weighting (lengyel):
+ * options.method: 'mikktspace' (default) | 'lengyel' | 'flat' | 'meshopt'; options.weighting (lengyel):
  * 'angle' (default) | 'area' | 'uniform'.
  */
 export function generateTangents(position, normal, texcoord, options = {}) {

@@ -43,7 +43,7 @@ extern "C" {
 
 // Tangents per corner for `cornerCount` corners (a triangle list) of `vertexCount` vertices;
 // indices may be null (corner i is vertex i). method, weighting, uvOrigin: names as the
-// command line takes them (mikktspace | lengyel | flat; angle | area | uniform; top-left, glTF's
+// command line takes them (mikktspace | lengyel | flat | meshopt; angle | area | uniform; top-left, glTF's
 // UV origin and w, | bottom-left, MikkTSpace's own fSign, as the npm mikktspace package returns).
 EMSCRIPTEN_KEEPALIVE int tangent_run(const float* positions, const float* normals, const float* uvs, const std::uint32_t* indices,
                                      std::uint32_t vertexCount, std::uint32_t cornerCount, const char* method,
@@ -53,7 +53,7 @@ EMSCRIPTEN_KEEPALIVE int tangent_run(const float* positions, const float* normal
   try {
     tangent::Options options;
     const auto parsedMethod = tangent::parseMethod(method);
-    if (!parsedMethod) throw std::invalid_argument(std::string("method: '") + method + "' is not mikktspace, lengyel or flat");
+    if (!parsedMethod) throw std::invalid_argument(std::string("method: '") + method + "' is not mikktspace, lengyel, flat or meshopt");
     const auto parsedWeighting = tangent::parseWeighting(weighting);
     if (!parsedWeighting) throw std::invalid_argument(std::string("weighting: '") + weighting + "' is not angle, area or uniform");
     const auto parsedOrigin = tangent::parseUvOrigin(uvOrigin);

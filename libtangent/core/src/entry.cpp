@@ -40,6 +40,7 @@ Report runMethod(detail::WorkspaceData& ws, const MeshArrays& mesh, const Corner
     case Method::mikktspace: return detail::mikktspaceOnArrays(ws, mesh, outputs, options);
     case Method::lengyel: return detail::lengyelOnArrays(ws, mesh, outputs, options, detail::Grouping::byValue);
     case Method::flat: return detail::lengyelOnArrays(ws, mesh, outputs, options, detail::Grouping::perFace);
+    case Method::meshopt: return detail::lengyelOnArrays(ws, mesh, outputs, options, detail::Grouping::byValue);
   }
   throw std::invalid_argument("options.method: not a Method");
 }

@@ -1,10 +1,11 @@
 // SPDX-License-Identifier: MIT
-// Methods `lengyel` and `flat` on packed arrays.
+// Methods `lengyel`, `flat` and `meshopt` on packed arrays.
 // Source: E. Lengyel, "Computing Tangent Space Basis Vectors for an Arbitrary Mesh", 2001:
 // accumulate per-triangle tangents over the corners that will share a vertex, then
 // Gram-Schmidt orthogonalize against the normal; handedness w = sign(dot(cross(N, T), B)).
 // Corners share a frame when they share position, normal, UV and UV orientation, so mirrored
-// islands never average together. `flat` is the same pipeline with one group per triangle.
+// islands never average together. `flat` is the same pipeline with one group per triangle;
+// `meshopt` the same groups with meshoptimizer's corner weight (projectedEdgeWeight).
 //
 // Determinism: per-triangle terms start at a canonical corner (triangle_tangent.cpp), groups
 // are runs of corners sorted by value, and the terms of a group are summed in an order given
@@ -14,6 +15,7 @@
 #include <algorithm>
 #include <array>
 #include <bit>
+#include <cmath>
 #include <cstring>
 #include <tuple>
 
@@ -52,10 +54,28 @@ Vec3 vec3At(std::span<const float> values, std::uint32_t vertex) {
   return {values[3 * vertex], values[3 * vertex + 1], values[3 * vertex + 2]};
 }
 
+// meshoptimizer's default corner weight (meshoptimizer 1.x, src/tangentspace.cpp:
+// meshopt_generateTangents without meshopt_TangentCompatible): the angle between corner k's
+// two edges projected onto the plane of its unit normal, times the product of the projected
+// edge lengths. meshoptimizer adds the triangle's tangent projected onto that plane and made
+// unit; this pipeline adds the unit tangent and projects the group's sum (its corners share one
+// normal), which is the same sum when the weight is divided by the projection's length.
+double projectedEdgeWeight(const std::array<Vec3, 3>& positions, int k, const Vec3& normal, const Vec3& tangent) {
+  auto inPlane = [&](const Vec3& v) { return v - normal * (normal | v); };
+  const Vec3 first = inPlane(positions[(k + 1) % 3] - positions[k]);
+  const Vec3 second = inPlane(positions[(k + 2) % 3] - positions[k]);
+  const double tangentInPlane = inPlane(tangent).norm();
+  const double edgeProduct = first.norm() * second.norm();
+  if (!(tangentInPlane > 0) || !(edgeProduct > 0)) return 0;
+  const double angle = std::atan2((first % second).norm(), first | second);
+  const double weight = angle * edgeProduct / tangentInPlane;
+  return std::isfinite(weight) ? weight : 0;
+}
+
 // Each triangle evaluated at its corners' positions (their representatives') and UVs, each
-// corner given its normal and its weighting's term; counts into the report.
+// corner given its normal and its weighting's term (meshopt: its own); counts into the report.
 TriangleData evaluateTriangles(const WorkspaceData& ws, const MeshArrays& mesh, const std::vector<std::uint32_t>& weldOf,
-                               Weighting weighting, Report& report) {
+                               const Options& options, Report& report) {
   const std::size_t triangleCount = ws.cornerCount / 3;
   TriangleData data;
   data.triangles.resize(triangleCount);
@@ -78,7 +98,11 @@ TriangleData evaluateTriangles(const WorkspaceData& ws, const MeshArrays& mesh, 
         data.cornerNormals[corner] = cornerNormal(vec3At(mesh.normals, mesh.indices[corner]), triangle, invalid);
         data.invalidNormal[corner] = invalid;
         if (triangle.kind != TriangleKind::usable) continue;
-        switch (weighting) {
+        if (options.method == Method::meshopt) {
+          data.cornerWeights[corner] = projectedEdgeWeight(positions, k, data.cornerNormals[corner], triangle.tangent);
+          continue;
+        }
+        switch (options.weighting) {
           case Weighting::angle: data.cornerWeights[corner] = cornerAngle(positions, k); break;
           case Weighting::area: data.cornerWeights[corner] = triangle.area; break;
           case Weighting::uniform: data.cornerWeights[corner] = 1.0; break;
@@ -156,7 +180,7 @@ Report lengyelOnArrays(WorkspaceData& ws, const MeshArrays& mesh, const CornerOu
   beginCall(ws, mesh);
   Report report;
   report.method = options.method;
-  if (grouping == Grouping::byValue) report.weighting = options.weighting;
+  if (options.method == Method::lengyel) report.weighting = options.weighting;
   report.triangles = ws.cornerCount / 3;
   report.corners = ws.cornerCount;
   std::vector<std::uint32_t> weldOf;
@@ -167,11 +191,11 @@ Report lengyelOnArrays(WorkspaceData& ws, const MeshArrays& mesh, const CornerOu
   const unsigned weldThreads = ws.threads < 4 ? 1 : ws.threads;
   invokeBoth(ws, [&] { weldAndBucket(ws, mesh, weldThreads); }, [&] {
     weldOf = positionWeld(ws, mesh);
-    data = evaluateTriangles(ws, mesh, weldOf, options.weighting, report);
+    data = evaluateTriangles(ws, mesh, weldOf, options, report);
     report.nonManifoldFaces = countNonManifoldFaces(ws, mesh, weldOf);
   });
   CornerGroups cornerGroups = groupCorners(ws, mesh, weldOf, data, grouping);
-  sumAndOrthonormalize(ws, data, cornerGroups, grouping == Grouping::perFace);
+  sumAndOrthonormalize(ws, data, cornerGroups, options.method);
   fillUndefinedGroups(mesh, weldOf, cornerGroups);
   writeCorners(ws, data, cornerGroups, outputs);
   finishOutputs(ws, mesh, outputs, options, report);

@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: MIT
-// Methods `lengyel` and `flat` on packed arrays: what their phases share (lengyel.cpp runs
-// them, lengyel_groups.cpp groups corners, sums and fills in fallbacks).
+// Methods `lengyel`, `flat` and `meshopt` on packed arrays: what their phases share
+// (lengyel.cpp runs them, lengyel_groups.cpp groups corners, sums and fills in fallbacks).
 #pragma once
 
 #include <array>
@@ -14,7 +14,7 @@ namespace tangent::detail {
 
 // Which corners share one frame.
 enum class Grouping : std::uint8_t {
-  byValue,  // lengyel: corners with the same position, normal, UV and UV orientation
+  byValue,  // lengyel, meshopt: corners with the same position, normal, UV and UV orientation
   perFace,  // flat: the same, within one triangle only (no smoothing)
 };
 
@@ -73,8 +73,9 @@ CornerGroups groupCorners(const WorkspaceData& ws, const MeshArrays& mesh, const
                           const TriangleData& data, Grouping grouping);
 
 // Each group's weighted terms summed in value order (so no order of the input moves a bit),
-// then made orthogonal to its normal; w from the bitangents' side.
-void sumAndOrthonormalize(const WorkspaceData& ws, const TriangleData& data, CornerGroups& cornerGroups, bool flat);
+// then made orthogonal to its normal; w from the bitangents' side (meshopt: from the UV
+// orientation, as meshoptimizer signs its frames). `flat` weights every term alike.
+void sumAndOrthonormalize(const WorkspaceData& ws, const TriangleData& data, CornerGroups& cornerGroups, Method method);
 
 // Gives every group without a frame one (see FrameSource): a group of its position with the
 // same attributes, any group of its position, a group of a neighbouring position, or a fixed

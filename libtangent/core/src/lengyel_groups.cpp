@@ -100,7 +100,8 @@ struct Contribution {
 
 }  // namespace
 
-void sumAndOrthonormalize(const WorkspaceData& ws, const TriangleData& data, CornerGroups& cornerGroups, bool flat) {
+void sumAndOrthonormalize(const WorkspaceData& ws, const TriangleData& data, CornerGroups& cornerGroups, Method method) {
+  const bool flat = method == Method::flat;
   std::vector<Group>& groups = cornerGroups.groups;
   forRange(ws, groups.size(), 1024, [&](std::size_t begin, std::size_t end) {
     std::vector<Contribution> terms;
@@ -122,7 +123,8 @@ void sumAndOrthonormalize(const WorkspaceData& ws, const TriangleData& data, Cor
       }
       if (!orthonormalize(group.tangentSum.data(), group.normal.data(), group.tangent.data())) continue;
       const double side = (group.normal % group.tangent) | group.bitangentSum;
-      group.w = side > 0 ? 1.0 : side < 0 ? -1.0 : (group.key.orientation < 0 ? -1.0 : 1.0);
+      const double uvSide = group.key.orientation < 0 ? -1.0 : 1.0;
+      group.w = method == Method::meshopt ? uvSide : side > 0 ? 1.0 : side < 0 ? -1.0 : uvSide;
       group.defined = true;
     }
   });

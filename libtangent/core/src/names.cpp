@@ -21,6 +21,7 @@ std::string_view toString(Method method) {
     case Method::mikktspace: return "mikktspace";
     case Method::lengyel: return "lengyel";
     case Method::flat: return "flat";
+    case Method::meshopt: return "meshopt";
   }
   return "unknown";
 }
@@ -35,7 +36,7 @@ std::string_view toString(Weighting weighting) {
 }
 
 std::optional<Method> parseMethod(std::string_view name) {
-  for (Method candidate : {Method::mikktspace, Method::lengyel, Method::flat}) {
+  for (Method candidate : {Method::mikktspace, Method::lengyel, Method::flat, Method::meshopt}) {
     if (toString(candidate) == name) return candidate;
   }
   return std::nullopt;

@@ -714,7 +714,7 @@ void applyCheckConfig(const std::filesystem::path& file, CheckOptions& options) 
     } else if (key == "reference") {
       const std::optional<Generator> generator = value.is_string() ? parseGenerator(value.get<std::string>()) : std::nullopt;
       if (!generator)
-        throw std::runtime_error(where + ": reference must be mikktspace, lengyel/angle, lengyel/area, lengyel/uniform or flat");
+        throw std::runtime_error(where + ": reference must be " + generatorNames());
       options.method = generator->method;
       options.weighting = generator->weighting;
     } else if (key == "minCoverage") {
@@ -742,6 +742,13 @@ std::optional<Generator> parseGenerator(std::string_view name) {
   for (const Generator& generator : kGenerators)
     if (toString(generator) == name) return generator;
   return std::nullopt;
+}
+
+std::string generatorNames() {
+  std::string names;
+  for (std::size_t i = 0; i < std::size(kGenerators); ++i)
+    names += (i == 0 ? "" : i + 1 == std::size(kGenerators) ? " or " : ", ") + toString(kGenerators[i]);
+  return names;
 }
 
 nlohmann::ordered_json toJson(const CheckOptions& options) {

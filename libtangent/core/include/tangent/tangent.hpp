@@ -34,6 +34,13 @@ enum class Method : std::uint8_t {
   // One frame per face (no smoothing): the triangle's tangent orthogonalized against each
   // corner's normal. Requires nothing beyond the triangle itself.
   flat,
+  // meshoptimizer's default weighting (meshopt_generateTangents without
+  // meshopt_TangentCompatible, meshoptimizer 1.x; what Godot's importer and gltfpack -gt use):
+  // lengyel's groups and sums, each corner's term weighted by the angle between its two edges
+  // projected onto the normal's plane times the product of those projected edge lengths (so
+  // slivers count less than by angle alone), w from the UV orientation. For matching an engine
+  // that computes tangents this way; a normal map baked with MikkTSpace wants `mikktspace`.
+  meshopt,
 };
 
 // How the triangles around a vertex are weighted when their tangents are accumulated.
@@ -64,7 +71,7 @@ constexpr T handedness(T uvOrientation, UvOrigin origin) {
 
 struct Options {
   Method method = Method::mikktspace;
-  Weighting weighting = Weighting::angle;  // lengyel only; mikktspace always weights by angle
+  Weighting weighting = Weighting::angle;  // lengyel only; mikktspace and meshopt have their own
   UvOrigin uvOrigin = UvOrigin::topLeft;
   unsigned threads = 0;                    // worker threads, 0: all hardware threads; the output
                                            // never depends on it
@@ -87,7 +94,7 @@ enum class FrameSource : std::uint8_t {
 // What a call did. Every count is of input triangles or corners; nothing is silent.
 struct Report {
   Method method = Method::mikktspace;  // method actually used
-  std::optional<Weighting> weighting;  // weighting actually used (none for flat)
+  std::optional<Weighting> weighting;  // weighting actually used (none for flat and meshopt)
   std::uint64_t triangles = 0;
   std::uint64_t corners = 0;
   std::uint64_t degenerateTriangles = 0;    // zero or non-finite 3D area
@@ -128,7 +135,7 @@ struct ReportCount {
   std::uint64_t value;
 };
 std::array<ReportCount, 13> reportCounts(const Report& report);
-// The report as one JSON object: "method", "weighting" ("" for flat), then reportCounts.
+// The report as one JSON object: "method", "weighting" ("" for flat and meshopt), then reportCounts.
 std::string reportJson(const Report& report);
 
 // Plain-array input. Corners are the entries of `indices`, three per triangle.

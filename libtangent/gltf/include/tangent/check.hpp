@@ -25,8 +25,8 @@ inline const char* toString(CheckId id) { return kCheckNames[static_cast<std::si
 std::optional<CheckId> parseCheck(std::string_view name);
 
 // A tangent generator the library has, named as `check --reference` takes it and `--identify`
-// reports it: "mikktspace", "lengyel/angle", "lengyel/area", "lengyel/uniform", "flat" (the
-// weighting only matters to lengyel; "lengyel" alone is lengyel/angle).
+// reports it: "mikktspace", "lengyel/angle", "lengyel/area", "lengyel/uniform", "flat",
+// "meshopt" (the weighting only matters to lengyel; "lengyel" alone is lengyel/angle).
 struct Generator {
   Method method = Method::mikktspace;
   Weighting weighting = Weighting::angle;
@@ -34,9 +34,11 @@ struct Generator {
 };
 inline constexpr Generator kGenerators[] = {{Method::mikktspace, Weighting::angle}, {Method::lengyel, Weighting::angle},
                                             {Method::lengyel, Weighting::area},      {Method::lengyel, Weighting::uniform},
-                                            {Method::flat, Weighting::angle}};
+                                            {Method::flat, Weighting::angle},        {Method::meshopt, Weighting::angle}};
 std::string toString(const Generator& generator);
 std::optional<Generator> parseGenerator(std::string_view name);
+// Every generator's name, for messages: "mikktspace, lengyel/angle, ... or meshopt".
+std::string generatorNames();
 
 inline constexpr double kDefaultMinCoverage = 0.5;
 
@@ -88,7 +90,7 @@ struct CheckFinding {
 // How close the stored tangents are to one generator's (check --identify), over the corners
 // that generator defines a frame for.
 struct GeneratorMatch {
-  std::string name;            // "mikktspace", "lengyel/angle", "lengyel/area", "lengyel/uniform", "flat"
+  std::string name;            // a generator's name (toString(Generator))
   double medianDegrees = 0;
   double maxDegrees = 0;
   double wAgreement = 0;       // share of corners whose w agrees
