@@ -62,7 +62,8 @@ const char* kUsage =
     "  --bitangent MODE         per-fragment (B = cross(N, T) * w from the interpolated N and T, default) |\n"
     "                           per-vertex (B interpolated from the vertices), to match the baker\n"
     "  --glyphs                 draw tangent frames (T red, B green, N blue)\n"
-    "  --no-shadows, --pcf N (0 off, 1 = 3x3, 2 = 5x5), --shadow-map-size N (1024..4096)\n"
+    "  --no-shadows, --pcf N (0 off, 1 = 3x3, 2 = 5x5; default 1, or 0 on a software rasteriser),\n"
+    "                           --shadow-map-size N (1024..4096)\n"
     "  --shading NAME           pbr (glTF metallic-roughness, default) | blinn-phong | phong (specular-map mode)\n"
     "  --tone-map NAME          khr-pbr-neutral (default) | aces | none (values above 1 clip); unlit\n"
     "                           materials and debug views are never tone mapped\n"
@@ -121,6 +122,7 @@ struct Options {
   bool checkShaders = false;
   bool stats = false;  // --stats
   int msaaSamples = -1;  // 0: off; -1: 4, or off on a software rasteriser (softwareRasteriser)
+  bool pcfGiven = false;  // --pcf; else 3x3, or off (one bilinear comparison) on a software rasteriser
   std::optional<std::string> animation;  // --animation N|NAME (with --time alone: animation 0)
   std::optional<float> time;             // --time SECONDS
   CompareSource compare = CompareSource::fresh;
@@ -163,7 +165,10 @@ int parseOptions(int argc, char** argv, Options& options) {
         if (!found) throw std::invalid_argument("unknown --view " + name);
       } else if (arg == "--glyphs") options.settings.glyphs = true;
       else if (arg == "--no-shadows") options.settings.shadows = false;
-      else if (arg == "--pcf") options.settings.pcfRadius = std::clamp(std::stoi(value()), 0, 2);
+      else if (arg == "--pcf") {
+        options.settings.pcfRadius = std::clamp(std::stoi(value()), 0, 2);
+        options.pcfGiven = true;
+      }
       else if (arg == "--shadow-map-size") options.settings.shadowMapSize = std::clamp(std::stoi(value()), 256, 8192);
       else if (arg == "--no-normal-map") options.settings.normalMapping = false;
       else if (arg == "--no-specular") options.settings.specular = false;
@@ -819,6 +824,9 @@ int main(int argc, char** argv) {
     options.msaaSamples = softwareRasteriser() ? 0 : 4;
     if (options.msaaSamples == 0) glDisable(GL_MULTISAMPLE);  // the window's samples, unused
   }
+  // PCF 3x3 is four bilinear comparisons per fragment, about a tenth of llvmpipe's lit frame; without
+  // it the one comparison is still filtered over 2x2 texels.
+  if (!options.pcfGiven && softwareRasteriser()) options.settings.pcfRadius = 0;
   int exit = 0;
   if (options.checkShaders) {
     ShaderLibrary shaders(options.shaderDir);

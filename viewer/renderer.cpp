@@ -119,7 +119,9 @@ std::vector<Light> lightsFrom(const gltf::Scene& scene, glm::vec3 center, float 
     std::rotate(lights.begin(), strongest, strongest + 1);
   }
   if (!lights.empty()) return lights;
-  // Default rig: a key light that casts the shadow, a fill, a back point light and a spot.
+  // Default rig: a key light that casts the shadow and a cool fill, both directional. The
+  // environment (image-based lighting in pbr, else the ambient sky) lights what they miss; a back
+  // and a spot light were two more loop trips per fragment, a third of llvmpipe's lit frame.
   Light key;
   key.direction = glm::normalize(glm::vec3(-0.35f, -1.0f, -0.45f));
   key.diffuse = glm::vec3(0.85f);
@@ -129,22 +131,7 @@ std::vector<Light> lightsFrom(const gltf::Scene& scene, glm::vec3 center, float 
   fill.diffuse = glm::vec3(0.22f, 0.24f, 0.3f);
   fill.specular = glm::vec3(0.1f);
   fill.ambient = glm::vec3(0);
-  Light back;
-  back.directional = false;
-  back.position = center + glm::vec3(0, 1.2f, -1.5f) * radius;
-  back.diffuse = glm::vec3(0.35f, 0.3f, 0.25f);
-  back.ambient = glm::vec3(0);
-  back.attenuation = glm::vec3(1.0f, 0.0f, 0.15f / (radius * radius));
-  Light spot;
-  spot.directional = false;
-  spot.position = center + glm::vec3(1.5f, 1.5f, 1.5f) * radius;
-  spot.direction = glm::normalize(center - spot.position);
-  spot.diffuse = glm::vec3(0.2f);
-  spot.ambient = glm::vec3(0);
-  spot.attenuation = glm::vec3(1.0f, 0.0f, 0.05f / (radius * radius));
-  spot.spotInner = 0.25f;
-  spot.spotOuter = 0.4f;
-  return {key, fill, back, spot};
+  return {key, fill};
 }
 
 // BLEND materials cast shadows cut out where their alpha is below this, as MASK materials do
