@@ -386,22 +386,83 @@ bool Renderer::physicalLights(const RenderSettings& settings) const {
   return settings.shading == Shading::pbr && !lights_.empty() && lights_[0].physical;
 }
 
+namespace {
+
+float maxChannel(const glm::vec3& c) { return std::max({c.r, c.g, c.b}); }
+
+// Light `light`'s direction from `point` and its attenuation there (distance and cone), as
+// lighting.glsl's lightAt has them in the light's units.
+float attenuationAt(const Light& light, const glm::vec3& point, bool physical, glm::vec3& toLight) {
+  if (light.directional) {
+    toLight = -glm::normalize(light.direction);
+    return 1;
+  }
+  const glm::vec3 offset = light.position - point;
+  const float d = std::max(glm::length(offset), 1e-6f);
+  toLight = offset / d;
+  const float c = glm::dot(-toLight, glm::normalize(light.direction));
+  float attenuation = 1;
+  if (physical) {
+    attenuation = 1 / std::max(d * d, 1e-8f);
+    if (light.range > 0) attenuation *= std::clamp(1 - std::pow(d / light.range, 4.0f), 0.0f, 1.0f);
+    if (light.spotOuter >= 0) {
+      const float cone = std::clamp((c - std::cos(light.spotOuter)) / std::max(std::cos(light.spotInner) - std::cos(light.spotOuter), 1e-3f), 0.0f, 1.0f);
+      attenuation *= cone * cone;
+    }
+  } else {
+    attenuation = 1 / std::max(light.attenuation.x + light.attenuation.y * d + light.attenuation.z * d * d, 1e-6f);
+    if (light.spotOuter >= 0) attenuation *= glm::smoothstep(std::cos(light.spotOuter), std::cos(light.spotInner), c);
+  }
+  return attenuation;
+}
+
+}  // namespace
+
 float Renderer::exposure(const RenderSettings& settings) const {
   if (settings.exposure > 0) return settings.exposure;
-  if (!physicalLights(settings)) return 1;
+  const float white = whiteRadiance(settings);
+  return white > 0 ? kAutoExposureWhite / white : 1.0f;
+}
+
+float Renderer::whiteRadiance(const RenderSettings& settings) const {
+  if (lights_.empty()) return 0;
+  const bool physical = physicalLights(settings);
+  // At the scene's centre; a light inside the scene at a tenth of the scene's radius from it.
   const glm::vec3 center = boundsCenter();
-  float brightest = 0;
+  struct Arrival {
+    glm::vec3 toLight;
+    float direct;   // radiance of a white Lambertian surface facing the light
+    float ambient;  // the light's ambient radiance there
+  };
+  std::vector<Arrival> arrivals;
   for (const Light& light : lights_) {
-    float illuminance = light.intensity * std::max({light.color.r, light.color.g, light.color.b});
-    if (!light.directional) {
-      // At the centre, or at a tenth of the scene's radius for a light inside the scene.
-      const float d = std::max(glm::length(light.position - center), 0.1f * boundsRadius());
-      illuminance /= d * d;
-      if (light.range > 0) illuminance *= std::clamp(1 - std::pow(d / light.range, 4.0f), 0.0f, 1.0f);
+    glm::vec3 point = center;
+    if (!light.directional && glm::length(light.position - center) < 0.1f * boundsRadius())
+      point = light.position - glm::normalize(light.position - center + glm::vec3(0, 1e-6f, 0)) * (0.1f * boundsRadius());
+    Arrival arrival{};
+    const float attenuation = attenuationAt(light, point, physical, arrival.toLight);
+    if (physical) {
+      // Illuminance over pi; ambient as bindMesh sets it.
+      arrival.direct = maxChannel(light.color) * light.intensity * attenuation / glm::pi<float>();
+      arrival.ambient = maxChannel(light.color) * light.intensity * kAmbientShare / glm::pi<float>() * attenuation;
+    } else {
+      arrival.direct = maxChannel(light.diffuse) * attenuation;
+      arrival.ambient = maxChannel(light.ambient) * attenuation;
     }
-    brightest = std::max(brightest, illuminance);
+    arrivals.push_back(arrival);
   }
-  return brightest > 0 ? glm::pi<float>() / brightest : 1.0f;
+  const Arrival& brightest = *std::max_element(arrivals.begin(), arrivals.end(), [](const Arrival& a, const Arrival& b) { return a.direct < b.direct; });
+  const glm::vec3 n = brightest.toLight;
+  float direct = 0, ambient = 0;
+  for (const Arrival& arrival : arrivals) {
+    direct += arrival.direct * std::max(glm::dot(n, arrival.toLight), 0.0f);
+    ambient += arrival.ambient;
+  }
+  // The ambient or environment term as mesh.frag shades it for a white diffuse surface.
+  if (settings.shading != Shading::pbr) return direct + ambient;
+  if (!settings.ibl) return direct + ambient * (0.2f + 0.8f * (n.y + 1));
+  const float environment = environment_ ? maxChannel(irradianceOverPi(environment_->irradianceSh, n)) : 1.0f;
+  return direct + ambient * settings.iblIntensity * (kEnvironmentShare / kAmbientShare) * environment;
 }
 
 FeatureSet Renderer::alphaTestFeatures(const GpuMesh& mesh, bool blendCasts) const {

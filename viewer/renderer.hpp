@@ -42,6 +42,10 @@ inline constexpr float kAmbientShare = 0.06f;
 // direct level instead, times RenderSettings::iblIntensity: bright enough that metals, which
 // show nothing but their surroundings, read as metals.
 inline constexpr float kEnvironmentShare = 0.2f;
+// Auto exposure puts a white Lambertian surface facing the brightest light here: where Khronos
+// PBR Neutral stops being linear, so that a light surface's bumps keep their contrast instead
+// of being compressed towards 1.
+inline constexpr float kAutoExposureWhite = 0.76f;
 
 // Where the normal-mapping frame's bitangent comes from (Substance's "compute tangent space per
 // fragment" choice): per fragment, B = cross(N, T) * w from the interpolated N and T (MikkTSpace's
@@ -143,10 +147,12 @@ class Renderer {
   // Shadow-map depth passes drawn since the scene was set: one per change of scene, light 0's
   // direction or map size, not one per frame.
   int shadowPasses() const { return shadowPasses_; }
-  // The lit colour's factor before tone mapping: settings.exposure when > 0; else, with lights
-  // in physical units, pi over the largest illuminance a light gives at the scene's centre (a
-  // white Lambertian surface facing the brightest light shows 1), and 1 otherwise.
+  // The lit colour's factor before tone mapping: settings.exposure when > 0; else (auto) the
+  // factor that shows a white Lambertian surface facing the brightest light, lit by every light
+  // and the ambient or environment term, at kAutoExposureWhite.
   float exposure(const RenderSettings& settings) const;
+  // That surface's radiance at the scene's centre before exposure (0 without lights).
+  float whiteRadiance(const RenderSettings& settings) const;
   // PBR mode with the file's KHR_lights_punctual lights: in the extension's units.
   bool physicalLights(const RenderSettings& settings) const;
   // Milliseconds the image-based lighting's maps took to prepare (CPU and upload), once, on the
