@@ -24,6 +24,7 @@
 #include <utility>
 
 #include "camera.hpp"
+#include "debug_colours.hpp"
 #include "renderer.hpp"
 #include "resources.hpp"
 #include "shader_check.hpp"
@@ -485,16 +486,21 @@ int screenshot(Viewer& viewer) {
 #ifndef __EMSCRIPTEN__
 // The heatmap of the error and compare-angle views: debug_views.glsl's heatmap() stops.
 void drawHeatmapLegend() {
-  struct Stop {
-    const char* label;
-    ImVec4 colour;
-  };
-  static const Stop stops[] = {{"0", {0.10f, 0.25f, 0.90f, 1}}, {"1 deg", {0.10f, 0.80f, 0.20f, 1}}, {"5 deg", {0.95f, 0.90f, 0.10f, 1}},
-                               {">= 20 deg", {0.90f, 0.10f, 0.10f, 1}}};
-  for (const Stop& stop : stops) {
-    ImGui::ColorButton(stop.label, stop.colour, ImGuiColorEditFlags_NoTooltip, ImVec2(14, 14));
+  for (const HeatmapStop& stop : kHeatmapStops) {
+    ImGui::ColorButton(stop.label, ImVec4(stop.colour[0], stop.colour[1], stop.colour[2], 1), ImGuiColorEditFlags_NoTooltip, ImVec2(14, 14));
     ImGui::SameLine();
     ImGui::TextUnformatted(stop.label);
+    ImGui::SameLine();
+  }
+  ImGui::NewLine();
+}
+
+// The handedness views' two colours, drawn from the same table as the shader's.
+void drawHandednessLegend() {
+  for (const auto& [colour, label] : {std::pair{kHandednessPositive, "+1"}, std::pair{kHandednessNegative, "-1"}}) {
+    ImGui::ColorButton(label, ImVec4(colour[0], colour[1], colour[2], 1), ImGuiColorEditFlags_NoTooltip, ImVec2(14, 14));
+    ImGui::SameLine();
+    ImGui::TextUnformatted(label);
     ImGui::SameLine();
   }
   ImGui::NewLine();
@@ -534,9 +540,14 @@ void drawPanel(Viewer& viewer, GLFWwindow* window, const FrameStats& stats, doub
       drawHeatmapLegend();
     }
     if (s.view == DebugView::faceOrientation) ImGui::TextWrapped("blue: front face, red: back face (culling off in this view)");
-    if (s.view == DebugView::handedness) ImGui::TextWrapped("the file's TANGENT w: teal +1, orange -1");
-    if (s.view == DebugView::handednessWorld)
-      ImGui::TextWrapped("w in world space, after the node's mirroring (a mirrored node swaps it): teal +1, orange -1");
+    if (s.view == DebugView::handedness) {
+      ImGui::TextWrapped("the file's TANGENT w:");
+      drawHandednessLegend();
+    }
+    if (s.view == DebugView::handednessWorld) {
+      ImGui::TextWrapped("w in world space, after the node's mirroring (a mirrored node swaps it):");
+      drawHandednessLegend();
+    }
     ImGui::Checkbox("tangent frames (g)", &s.glyphs);
     ImGui::SliderInt("glyph count", &s.maxGlyphs, 100, 50000);
     ImGui::Checkbox("orthographic", &viewer.camera.orthographic);
