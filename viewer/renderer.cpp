@@ -249,6 +249,12 @@ CornerFrames Renderer::framesOf(std::size_t instance) const {
   return itemFrames(scene_.items[item], compareTangentsOf(item));
 }
 
+bool Renderer::compareIsFresh(std::size_t item) const {
+  const gltf::DrawItem& drawItem = scene_.items[item];
+  const bool given = item < compareTangents_.size() && compareTangents_[item].size() == drawItem.tangents.size();
+  return !given && drawItem.computedTangents.size() == drawItem.tangents.size();
+}
+
 std::span<const float> Renderer::compareTangentsOf(std::size_t item) const {
   const gltf::DrawItem& drawItem = scene_.items[item];
   if (item < compareTangents_.size() && compareTangents_[item].size() == drawItem.tangents.size()) return compareTangents_[item];
@@ -298,9 +304,11 @@ bool Renderer::setPose(PoseTime time) {
     const gltf::DrawInstance& source = scene_.instances[deformed.instance];
     const gltf::DrawItem& item = scene_.items[source.item];
     const int skin = scene_.nodes[source.node].skin;
-    std::vector<glm::mat4> joints;
-    if (skin >= 0 && item.influencesPerCorner > 0) joints = jointMatrices(scene_.skins[skin], pose, source.node);
-    deformItem(item, pose.weights[source.node], joints, deformed.corners, compareTangentsOf(source.item));
+    deformed.joints.clear();
+    if (skin >= 0 && item.influencesPerCorner > 0) deformed.joints = jointMatrices(scene_.skins[skin], pose, source.node);
+    // A fresh compare set is recomputed on the morphed corners only when a view shows it (render).
+    deformItem(item, pose.weights[source.node], deformed.joints, deformed.corners, compareTangentsOf(source.item));
+    deformed.compareStale = compareIsFresh(source.item) && morphs(item, pose.weights[source.node]);
     if (deformed.weights != pose.weights[source.node]) {
       deformed.weights = pose.weights[source.node];
       deformed.tangentErrorDegrees.clear();  // the load's until the error view asks (render)
@@ -630,6 +638,18 @@ FrameStats Renderer::render(const CameraMatrices& camera, const RenderSettings& 
       if (deformed.errorsCurrent) continue;
       deformed.tangentErrorDegrees = morphedTangentErrors(scene_.items[scene_.instances[deformed.instance].item], deformed.weights);
       deformed.errorsCurrent = true;
+      uploadDeformed(deformed);
+    }
+  }
+  if (settings.split || settings.view == DebugView::compareAngle) {
+    // Morphing instances whose compare set is the fresh one: MikkTSpace on the morphed corners
+    // (then skinned), computed when a view first shows the pose.
+    for (DeformedInstance& deformed : deformed_) {
+      if (!deformed.compareStale) continue;
+      const gltf::DrawInstance& source = scene_.instances[deformed.instance];
+      deformItem(scene_.items[source.item], deformed.weights, deformed.joints, deformed.corners, compareTangentsOf(source.item),
+                 CompareMorph::recompute);
+      deformed.compareStale = false;
       uploadDeformed(deformed);
     }
   }

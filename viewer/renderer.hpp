@@ -210,6 +210,8 @@ class Renderer {
   CornerFrames framesOf(std::size_t instance) const;
   // Scene item i's compare set: compareTangents_[i] when it fits, else its fresh tangents.
   std::span<const float> compareTangentsOf(std::size_t item) const;
+  // Whether item i's compare set is its freshly computed tangents (no set given for it).
+  bool compareIsFresh(std::size_t item) const;
   void applyCulling(const GpuMesh& mesh, const RenderSettings& settings) const;
   void drawGlyphs(const CameraMatrices& camera, const RenderSettings& settings);
   glm::mat4 lightViewProjection() const;
@@ -233,6 +235,10 @@ class Renderer {
     // The error view's angles at this pose (morphedTangentErrors); empty: the item's, from load.
     std::vector<float> tangentErrorDegrees;
     bool errorsCurrent = false;  // tangentErrorDegrees belong to the pose drawn
+    std::vector<glm::mat4> joints;  // the skin's joint matrices at the pose (empty: unskinned)
+    // The compare set is the fresh one and this pose morphs: until the split or compare-angle
+    // view shows it, it holds the file's deltas added, not MikkTSpace on the morphed corners.
+    bool compareStale = false;
   };
   // Packs a deformed instance's corners into its vertex buffer.
   void uploadDeformed(const DeformedInstance& deformed);

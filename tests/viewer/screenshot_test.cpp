@@ -1640,6 +1640,28 @@ TEST(Viewer, CompareSetIsSkinnedAndMorphedAlong) {
   EXPECT_NEAR(seen, 45, 1.0);
 }
 
+// The fresh compare set of a morphing mesh is MikkTSpace on the morphed corners, not the rest
+// pose's fresh set plus the file's TANGENT deltas: a target turning the quad 45 degrees in its
+// plane (UVs unchanged) whose file has no TANGENT deltas shows, with the whole view on the
+// compare side (--split 0), the tangent turned 45 degrees at weight 1 (fresh tangents follow
+// increasing u, which the turn carries along) and 0 degrees at weight 0.
+TEST(Viewer, FreshCompareSetIsRecomputedOnTheMorphedMesh) {
+  TempDir dir;
+  const float c45 = static_cast<float>(std::sqrt(0.5));
+  std::vector<float> turn;  // R(45 deg) p - p for the quad's corners
+  for (const auto& [x, y] : {std::pair{-1.0f, -1.0f}, std::pair{1.0f, -1.0f}, std::pair{1.0f, 1.0f}, std::pair{-1.0f, 1.0f}})
+    turn.insert(turn.end(), {c45 * x - c45 * y - x, c45 * x + c45 * y - y, 0.0f});
+  for (const double weight : {0.0, 1.0}) {
+    const std::string name = "turned-" + std::to_string(static_cast<int>(weight));
+    const Image image = screenshot(dir, name, "'" + morphQuad(dir, name, turn, {0, 0, 0}, {weight}).string() +
+                                                  "' --view tangent --compare fresh --split 0 --camera front --ortho --size 200x200");
+    ASSERT_EQ(image.width, 200);
+    const double seen = tangentAngleDegrees(image.at(100, 100));
+    std::printf("fresh compare set at weight %.0f: tangent at %.2f degrees, expected %.0f\n", weight, seen, 45 * weight);
+    EXPECT_NEAR(seen, 45 * weight, 1.0) << name;
+  }
+}
+
 // ---- Default material, glTF samplers, grey images (issue 38, smaller defects) ----
 
 // A primitive without a material is drawn with glTF's default material (glTF 2.0 3.9.1, the
