@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
 # SPDX-License-Identifier: MIT
 # Frame time of tangent-view under Xvfb (Mesa llvmpipe on machines without a GPU): the median
-# of N frames at 1280x720 for each asset, with the defaults (PBR, shadows + PCF 3x3; MSAA 4x,
-# or off on a software rasteriser) and with each feature turned off or changed in turn.
+# of N frames at 1280x720 for each asset, with the defaults (PBR, image-based lighting, the
+# two-light default rig, shadows with PCF 3x3 and MSAA 4x, both off on a software rasteriser)
+# and with each feature turned off or changed in turn.
 # Usage: scripts/viewer-bench.sh [--frames N] [ASSET...]   (after scripts/build.sh)
 # Without assets: a generated ~100k-triangle textured sphere, plus ../shared/assets' glTF files
 # when that folder exists (said on stderr when it does not).
@@ -33,9 +34,10 @@ for asset in "${assets[@]}"; do
   [ -f "$asset" ] || { echo "viewer-bench: $asset does not exist" >&2; exit 2; }
 done
 configs=(
-  "defaults: PBR, shadows + PCF 3x3|"
+  "defaults: PBR, IBL, shadows|"
   "no shadows (no depth pass)|--no-shadows"
   "PCF off|--pcf 0"
+  "PCF 3x3|--pcf 1"
   "PCF 5x5|--pcf 2"
   "shadow map 4096|--shadow-map-size 4096"
   "MSAA off|--msaa 0"

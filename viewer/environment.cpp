@@ -181,6 +181,12 @@ std::array<glm::vec3, 9> irradianceSh(const CubeLevel& level) {
 
 }  // namespace
 
+glm::vec3 irradianceOverPi(const std::array<glm::vec3, 9>& sh, const glm::vec3& n) {
+  const glm::vec3 e = sh[0] + sh[1] * n.y + sh[2] * n.z + sh[3] * n.x + sh[4] * (n.x * n.y) + sh[5] * (n.y * n.z) +
+                      sh[6] * (3 * n.z * n.z - 1) + sh[7] * (n.x * n.z) + sh[8] * (n.x * n.x - n.y * n.y);
+  return glm::max(e, glm::vec3(0));
+}
+
 glm::vec3 proceduralSky(const glm::vec3& direction) {
   // Sky: a warm, bright horizon fading to a blue zenith; ground: a dim brown, meeting the sky in
   // a soft horizon line two degrees wide; a sun towards the default rig's key light.

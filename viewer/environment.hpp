@@ -59,6 +59,9 @@ EnvironmentMaps buildEnvironment(const EnvironmentOptions& options = {});
 // (also what the table holds).
 glm::vec2 integrateSplitSumBrdf(float nv, float roughness, int samples);
 
+// E(n) / pi from the nine coefficients, as ibl.glsl's environmentIrradiance evaluates it.
+glm::vec3 irradianceOverPi(const std::array<glm::vec3, 9>& sh, const glm::vec3& n);
+
 // The maps on the GPU.
 struct EnvironmentTextures {
   Texture specularCube;  // GL_TEXTURE_CUBE_MAP, RGB16F, mipmapped by roughness

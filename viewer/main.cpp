@@ -24,6 +24,7 @@
 #include <utility>
 
 #include "camera.hpp"
+#include "debug_colours.hpp"
 #include "renderer.hpp"
 #include "resources.hpp"
 #include "shader_check.hpp"
@@ -62,7 +63,8 @@ const char* kUsage =
     "  --bitangent MODE         per-fragment (B = cross(N, T) * w from the interpolated N and T, default) |\n"
     "                           per-vertex (B interpolated from the vertices), to match the baker\n"
     "  --glyphs                 draw tangent frames (T red, B green, N blue)\n"
-    "  --no-shadows, --pcf N (0 off, 1 = 3x3, 2 = 5x5), --shadow-map-size N (1024..4096)\n"
+    "  --no-shadows, --pcf N (0 off, 1 = 3x3, 2 = 5x5; default 1, or 0 on a software rasteriser),\n"
+    "                           --shadow-map-size N (1024..4096)\n"
     "  --shading NAME           pbr (glTF metallic-roughness, default) | blinn-phong | phong (specular-map mode)\n"
     "  --tone-map NAME          khr-pbr-neutral (default) | aces | none (values above 1 clip); unlit\n"
     "                           materials and debug views are never tone mapped\n"
@@ -121,6 +123,7 @@ struct Options {
   bool checkShaders = false;
   bool stats = false;  // --stats
   int msaaSamples = -1;  // 0: off; -1: 4, or off on a software rasteriser (softwareRasteriser)
+  bool pcfGiven = false;  // --pcf; else 3x3, or off (one bilinear comparison) on a software rasteriser
   std::optional<std::string> animation;  // --animation N|NAME (with --time alone: animation 0)
   std::optional<float> time;             // --time SECONDS
   CompareSource compare = CompareSource::fresh;
@@ -163,7 +166,10 @@ int parseOptions(int argc, char** argv, Options& options) {
         if (!found) throw std::invalid_argument("unknown --view " + name);
       } else if (arg == "--glyphs") options.settings.glyphs = true;
       else if (arg == "--no-shadows") options.settings.shadows = false;
-      else if (arg == "--pcf") options.settings.pcfRadius = std::clamp(std::stoi(value()), 0, 2);
+      else if (arg == "--pcf") {
+        options.settings.pcfRadius = std::clamp(std::stoi(value()), 0, 2);
+        options.pcfGiven = true;
+      }
       else if (arg == "--shadow-map-size") options.settings.shadowMapSize = std::clamp(std::stoi(value()), 256, 8192);
       else if (arg == "--no-normal-map") options.settings.normalMapping = false;
       else if (arg == "--no-specular") options.settings.specular = false;
@@ -480,16 +486,21 @@ int screenshot(Viewer& viewer) {
 #ifndef __EMSCRIPTEN__
 // The heatmap of the error and compare-angle views: debug_views.glsl's heatmap() stops.
 void drawHeatmapLegend() {
-  struct Stop {
-    const char* label;
-    ImVec4 colour;
-  };
-  static const Stop stops[] = {{"0", {0.10f, 0.25f, 0.90f, 1}}, {"1 deg", {0.10f, 0.80f, 0.20f, 1}}, {"5 deg", {0.95f, 0.90f, 0.10f, 1}},
-                               {">= 20 deg", {0.90f, 0.10f, 0.10f, 1}}};
-  for (const Stop& stop : stops) {
-    ImGui::ColorButton(stop.label, stop.colour, ImGuiColorEditFlags_NoTooltip, ImVec2(14, 14));
+  for (const HeatmapStop& stop : kHeatmapStops) {
+    ImGui::ColorButton(stop.label, ImVec4(stop.colour[0], stop.colour[1], stop.colour[2], 1), ImGuiColorEditFlags_NoTooltip, ImVec2(14, 14));
     ImGui::SameLine();
     ImGui::TextUnformatted(stop.label);
+    ImGui::SameLine();
+  }
+  ImGui::NewLine();
+}
+
+// The handedness views' two colours, drawn from the same table as the shader's.
+void drawHandednessLegend() {
+  for (const auto& [colour, label] : {std::pair{kHandednessPositive, "+1"}, std::pair{kHandednessNegative, "-1"}}) {
+    ImGui::ColorButton(label, ImVec4(colour[0], colour[1], colour[2], 1), ImGuiColorEditFlags_NoTooltip, ImVec2(14, 14));
+    ImGui::SameLine();
+    ImGui::TextUnformatted(label);
     ImGui::SameLine();
   }
   ImGui::NewLine();
@@ -529,9 +540,14 @@ void drawPanel(Viewer& viewer, GLFWwindow* window, const FrameStats& stats, doub
       drawHeatmapLegend();
     }
     if (s.view == DebugView::faceOrientation) ImGui::TextWrapped("blue: front face, red: back face (culling off in this view)");
-    if (s.view == DebugView::handedness) ImGui::TextWrapped("the file's TANGENT w: teal +1, orange -1");
-    if (s.view == DebugView::handednessWorld)
-      ImGui::TextWrapped("w in world space, after the node's mirroring (a mirrored node swaps it): teal +1, orange -1");
+    if (s.view == DebugView::handedness) {
+      ImGui::TextWrapped("the file's TANGENT w:");
+      drawHandednessLegend();
+    }
+    if (s.view == DebugView::handednessWorld) {
+      ImGui::TextWrapped("w in world space, after the node's mirroring (a mirrored node swaps it):");
+      drawHandednessLegend();
+    }
     ImGui::Checkbox("tangent frames (g)", &s.glyphs);
     ImGui::SliderInt("glyph count", &s.maxGlyphs, 100, 50000);
     ImGui::Checkbox("orthographic", &viewer.camera.orthographic);
@@ -819,6 +835,9 @@ int main(int argc, char** argv) {
     options.msaaSamples = softwareRasteriser() ? 0 : 4;
     if (options.msaaSamples == 0) glDisable(GL_MULTISAMPLE);  // the window's samples, unused
   }
+  // PCF 3x3 is four bilinear comparisons per fragment, about a tenth of llvmpipe's lit frame; without
+  // it the one comparison is still filtered over 2x2 texels.
+  if (!options.pcfGiven && softwareRasteriser()) options.settings.pcfRadius = 0;
   int exit = 0;
   if (options.checkShaders) {
     ShaderLibrary shaders(options.shaderDir);

@@ -169,8 +169,31 @@ std::vector<glm::mat4> jointMatrices(const gltf::Skin& skin, const ScenePose& po
   return joints;
 }
 
+namespace {
+
+// MikkTSpace tangents (4 per corner) for the corners' positions and normals and the item's
+// normal-map UVs, each corner its own vertex; `sources` says where each frame came from.
+void freshCornerTangents(const gltf::DrawItem& item, std::span<const float> positions, std::span<const float> normals, std::vector<float>& fresh,
+                         std::vector<FrameSource>& sources) {
+  const std::size_t corners = item.positions.size() / 3;
+  std::vector<std::uint32_t> identity(corners);
+  std::iota(identity.begin(), identity.end(), 0u);
+  fresh.assign(corners * 4, 0.0f);
+  sources.assign(corners, FrameSource{});
+  if (corners == 0) return;
+  computeCornerTangents({positions, normals, item.uvNormal, identity}, fresh, Options{}, sources);
+}
+
+}  // namespace
+
+bool morphs(const gltf::DrawItem& item, std::span<const float> weights) {
+  for (std::size_t t = 0; t < item.morphTargets.size() && t < weights.size(); ++t)
+    if (weights[t] != 0) return true;
+  return false;
+}
+
 void deformItem(const gltf::DrawItem& item, std::span<const float> weights, std::span<const glm::mat4> joints, DeformedCorners& out,
-                std::span<const float> compareTangents) {
+                std::span<const float> compareTangents, CompareMorph compareMorph) {
   const std::size_t corners = item.positions.size() / 3;
   out.positions = item.positions;
   out.normals = item.normals;
@@ -190,8 +213,12 @@ void deformItem(const gltf::DrawItem& item, std::span<const float> weights, std:
       for (std::size_t c = 0; c < corners; ++c)
         for (int i = 0; i < 3; ++i) {
           out.tangents[4 * c + i] += w * target.tangents[3 * c + i];
-          if (compare) out.compareTangents[4 * c + i] += w * target.tangents[3 * c + i];
+          if (compare && compareMorph == CompareMorph::addDeltas) out.compareTangents[4 * c + i] += w * target.tangents[3 * c + i];
         }
+  }
+  if (compare && compareMorph == CompareMorph::recompute && morphs(item, weights)) {
+    std::vector<FrameSource> sources;
+    freshCornerTangents(item, out.positions, out.normals, out.compareTangents, sources);
   }
   if (joints.empty() || item.influencesPerCorner == 0) return;
   // Skinning: the weighted sum of the joint matrices per corner; normals by its inverse
@@ -226,13 +253,11 @@ std::vector<float> morphedTangentErrors(const gltf::DrawItem& item, std::span<co
   DeformedCorners morphed;
   deformItem(item, weights, {}, morphed);
   const std::size_t corners = item.positions.size() / 3;
-  std::vector<std::uint32_t> identity(corners);
-  std::iota(identity.begin(), identity.end(), 0u);
-  std::vector<float> fresh(corners * 4);
-  std::vector<FrameSource> sources(corners);
+  std::vector<float> fresh;
+  std::vector<FrameSource> sources;
   std::vector<float> errors(corners, 0.0f);
   if (corners == 0) return errors;
-  computeCornerTangents({morphed.positions, morphed.normals, item.uvNormal, identity}, fresh, Options{}, sources);
+  freshCornerTangents(item, morphed.positions, morphed.normals, fresh, sources);
   for (std::size_t c = 0; c < corners; ++c) {
     if (sources[c] != FrameSource::computed && sources[c] != FrameSource::inherited) continue;
     const glm::vec3 stored = glm::make_vec3(&morphed.tangents[4 * c]), computed = glm::make_vec3(&fresh[4 * c]);

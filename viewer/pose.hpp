@@ -46,11 +46,19 @@ struct DeformedCorners {
   std::vector<float> compareTangents;  // 4: the compare set given to deformItem, deformed alike (empty without one)
 };
 
+// How a compare set follows the morph targets: the file's TANGENT deltas added, as the file's
+// tangents get them (a set from a file), or MikkTSpace computed afresh on the morphed corners
+// (the set computed at load: fresh tangents of the shape drawn).
+enum class CompareMorph : std::uint8_t { addDeltas, recompute };
+
 // The item's corners with morph `weights` (missing ones 0) added, then skinned by `joints`
 // (none: unskinned). Writes into `out`, reusing its memory. A `compareTangents` set (4 per
-// corner) gets the same TANGENT deltas and skinning as the item's tangents.
+// corner) gets the morph as `compareMorph` says, then the same skinning as the item's tangents.
 void deformItem(const gltf::DrawItem& item, std::span<const float> weights, std::span<const glm::mat4> joints, DeformedCorners& out,
-                std::span<const float> compareTangents = {});
+                std::span<const float> compareTangents = {}, CompareMorph compareMorph = CompareMorph::addDeltas);
+
+// Whether `weights` move any of the item's morph targets.
+bool morphs(const gltf::DrawItem& item, std::span<const float> weights);
 
 // For the error view on a morphing primitive: per corner, the angle in degrees between its
 // morphed tangent (the file's TANGENT plus its weighted deltas) and MikkTSpace tangents

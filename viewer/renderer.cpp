@@ -119,7 +119,9 @@ std::vector<Light> lightsFrom(const gltf::Scene& scene, glm::vec3 center, float 
     std::rotate(lights.begin(), strongest, strongest + 1);
   }
   if (!lights.empty()) return lights;
-  // Default rig: a key light that casts the shadow, a fill, a back point light and a spot.
+  // Default rig: a key light that casts the shadow and a cool fill, both directional. The
+  // environment (image-based lighting in pbr, else the ambient sky) lights what they miss; a back
+  // and a spot light were two more loop trips per fragment, a third of llvmpipe's lit frame.
   Light key;
   key.direction = glm::normalize(glm::vec3(-0.35f, -1.0f, -0.45f));
   key.diffuse = glm::vec3(0.85f);
@@ -129,22 +131,7 @@ std::vector<Light> lightsFrom(const gltf::Scene& scene, glm::vec3 center, float 
   fill.diffuse = glm::vec3(0.22f, 0.24f, 0.3f);
   fill.specular = glm::vec3(0.1f);
   fill.ambient = glm::vec3(0);
-  Light back;
-  back.directional = false;
-  back.position = center + glm::vec3(0, 1.2f, -1.5f) * radius;
-  back.diffuse = glm::vec3(0.35f, 0.3f, 0.25f);
-  back.ambient = glm::vec3(0);
-  back.attenuation = glm::vec3(1.0f, 0.0f, 0.15f / (radius * radius));
-  Light spot;
-  spot.directional = false;
-  spot.position = center + glm::vec3(1.5f, 1.5f, 1.5f) * radius;
-  spot.direction = glm::normalize(center - spot.position);
-  spot.diffuse = glm::vec3(0.2f);
-  spot.ambient = glm::vec3(0);
-  spot.attenuation = glm::vec3(1.0f, 0.0f, 0.05f / (radius * radius));
-  spot.spotInner = 0.25f;
-  spot.spotOuter = 0.4f;
-  return {key, fill, back, spot};
+  return {key, fill};
 }
 
 // BLEND materials cast shadows cut out where their alpha is below this, as MASK materials do
@@ -262,6 +249,12 @@ CornerFrames Renderer::framesOf(std::size_t instance) const {
   return itemFrames(scene_.items[item], compareTangentsOf(item));
 }
 
+bool Renderer::compareIsFresh(std::size_t item) const {
+  const gltf::DrawItem& drawItem = scene_.items[item];
+  const bool given = item < compareTangents_.size() && compareTangents_[item].size() == drawItem.tangents.size();
+  return !given && drawItem.computedTangents.size() == drawItem.tangents.size();
+}
+
 std::span<const float> Renderer::compareTangentsOf(std::size_t item) const {
   const gltf::DrawItem& drawItem = scene_.items[item];
   if (item < compareTangents_.size() && compareTangents_[item].size() == drawItem.tangents.size()) return compareTangents_[item];
@@ -311,9 +304,11 @@ bool Renderer::setPose(PoseTime time) {
     const gltf::DrawInstance& source = scene_.instances[deformed.instance];
     const gltf::DrawItem& item = scene_.items[source.item];
     const int skin = scene_.nodes[source.node].skin;
-    std::vector<glm::mat4> joints;
-    if (skin >= 0 && item.influencesPerCorner > 0) joints = jointMatrices(scene_.skins[skin], pose, source.node);
-    deformItem(item, pose.weights[source.node], joints, deformed.corners, compareTangentsOf(source.item));
+    deformed.joints.clear();
+    if (skin >= 0 && item.influencesPerCorner > 0) deformed.joints = jointMatrices(scene_.skins[skin], pose, source.node);
+    // A fresh compare set is recomputed on the morphed corners only when a view shows it (render).
+    deformItem(item, pose.weights[source.node], deformed.joints, deformed.corners, compareTangentsOf(source.item));
+    deformed.compareStale = compareIsFresh(source.item) && morphs(item, pose.weights[source.node]);
     if (deformed.weights != pose.weights[source.node]) {
       deformed.weights = pose.weights[source.node];
       deformed.tangentErrorDegrees.clear();  // the load's until the error view asks (render)
@@ -399,22 +394,83 @@ bool Renderer::physicalLights(const RenderSettings& settings) const {
   return settings.shading == Shading::pbr && !lights_.empty() && lights_[0].physical;
 }
 
+namespace {
+
+float maxChannel(const glm::vec3& c) { return std::max({c.r, c.g, c.b}); }
+
+// Light `light`'s direction from `point` and its attenuation there (distance and cone), as
+// lighting.glsl's lightAt has them in the light's units.
+float attenuationAt(const Light& light, const glm::vec3& point, bool physical, glm::vec3& toLight) {
+  if (light.directional) {
+    toLight = -glm::normalize(light.direction);
+    return 1;
+  }
+  const glm::vec3 offset = light.position - point;
+  const float d = std::max(glm::length(offset), 1e-6f);
+  toLight = offset / d;
+  const float c = glm::dot(-toLight, glm::normalize(light.direction));
+  float attenuation = 1;
+  if (physical) {
+    attenuation = 1 / std::max(d * d, 1e-8f);
+    if (light.range > 0) attenuation *= std::clamp(1 - std::pow(d / light.range, 4.0f), 0.0f, 1.0f);
+    if (light.spotOuter >= 0) {
+      const float cone = std::clamp((c - std::cos(light.spotOuter)) / std::max(std::cos(light.spotInner) - std::cos(light.spotOuter), 1e-3f), 0.0f, 1.0f);
+      attenuation *= cone * cone;
+    }
+  } else {
+    attenuation = 1 / std::max(light.attenuation.x + light.attenuation.y * d + light.attenuation.z * d * d, 1e-6f);
+    if (light.spotOuter >= 0) attenuation *= glm::smoothstep(std::cos(light.spotOuter), std::cos(light.spotInner), c);
+  }
+  return attenuation;
+}
+
+}  // namespace
+
 float Renderer::exposure(const RenderSettings& settings) const {
   if (settings.exposure > 0) return settings.exposure;
-  if (!physicalLights(settings)) return 1;
+  const float white = whiteRadiance(settings);
+  return white > 0 ? kAutoExposureWhite / white : 1.0f;
+}
+
+float Renderer::whiteRadiance(const RenderSettings& settings) const {
+  if (lights_.empty()) return 0;
+  const bool physical = physicalLights(settings);
+  // At the scene's centre; a light inside the scene at a tenth of the scene's radius from it.
   const glm::vec3 center = boundsCenter();
-  float brightest = 0;
+  struct Arrival {
+    glm::vec3 toLight;
+    float direct;   // radiance of a white Lambertian surface facing the light
+    float ambient;  // the light's ambient radiance there
+  };
+  std::vector<Arrival> arrivals;
   for (const Light& light : lights_) {
-    float illuminance = light.intensity * std::max({light.color.r, light.color.g, light.color.b});
-    if (!light.directional) {
-      // At the centre, or at a tenth of the scene's radius for a light inside the scene.
-      const float d = std::max(glm::length(light.position - center), 0.1f * boundsRadius());
-      illuminance /= d * d;
-      if (light.range > 0) illuminance *= std::clamp(1 - std::pow(d / light.range, 4.0f), 0.0f, 1.0f);
+    glm::vec3 point = center;
+    if (!light.directional && glm::length(light.position - center) < 0.1f * boundsRadius())
+      point = light.position - glm::normalize(light.position - center + glm::vec3(0, 1e-6f, 0)) * (0.1f * boundsRadius());
+    Arrival arrival{};
+    const float attenuation = attenuationAt(light, point, physical, arrival.toLight);
+    if (physical) {
+      // Illuminance over pi; ambient as bindMesh sets it.
+      arrival.direct = maxChannel(light.color) * light.intensity * attenuation / glm::pi<float>();
+      arrival.ambient = maxChannel(light.color) * light.intensity * kAmbientShare / glm::pi<float>() * attenuation;
+    } else {
+      arrival.direct = maxChannel(light.diffuse) * attenuation;
+      arrival.ambient = maxChannel(light.ambient) * attenuation;
     }
-    brightest = std::max(brightest, illuminance);
+    arrivals.push_back(arrival);
   }
-  return brightest > 0 ? glm::pi<float>() / brightest : 1.0f;
+  const Arrival& brightest = *std::max_element(arrivals.begin(), arrivals.end(), [](const Arrival& a, const Arrival& b) { return a.direct < b.direct; });
+  const glm::vec3 n = brightest.toLight;
+  float direct = 0, ambient = 0;
+  for (const Arrival& arrival : arrivals) {
+    direct += arrival.direct * std::max(glm::dot(n, arrival.toLight), 0.0f);
+    ambient += arrival.ambient;
+  }
+  // The ambient or environment term as mesh.frag shades it for a white diffuse surface.
+  if (settings.shading != Shading::pbr) return direct + ambient;
+  if (!settings.ibl) return direct + ambient * (0.2f + 0.8f * (n.y + 1));
+  const float environment = environment_ ? maxChannel(irradianceOverPi(environment_->irradianceSh, n)) : 1.0f;
+  return direct + ambient * settings.iblIntensity * (kEnvironmentShare / kAmbientShare) * environment;
 }
 
 FeatureSet Renderer::alphaTestFeatures(const GpuMesh& mesh, bool blendCasts) const {
@@ -582,6 +638,18 @@ FrameStats Renderer::render(const CameraMatrices& camera, const RenderSettings& 
       if (deformed.errorsCurrent) continue;
       deformed.tangentErrorDegrees = morphedTangentErrors(scene_.items[scene_.instances[deformed.instance].item], deformed.weights);
       deformed.errorsCurrent = true;
+      uploadDeformed(deformed);
+    }
+  }
+  if (settings.split || settings.view == DebugView::compareAngle) {
+    // Morphing instances whose compare set is the fresh one: MikkTSpace on the morphed corners
+    // (then skinned), computed when a view first shows the pose.
+    for (DeformedInstance& deformed : deformed_) {
+      if (!deformed.compareStale) continue;
+      const gltf::DrawInstance& source = scene_.instances[deformed.instance];
+      deformItem(scene_.items[source.item], deformed.weights, deformed.joints, deformed.corners, compareTangentsOf(source.item),
+                 CompareMorph::recompute);
+      deformed.compareStale = false;
       uploadDeformed(deformed);
     }
   }

@@ -42,6 +42,10 @@ inline constexpr float kAmbientShare = 0.06f;
 // direct level instead, times RenderSettings::iblIntensity: bright enough that metals, which
 // show nothing but their surroundings, read as metals.
 inline constexpr float kEnvironmentShare = 0.2f;
+// Auto exposure puts a white Lambertian surface facing the brightest light here: where Khronos
+// PBR Neutral stops being linear, so that a light surface's bumps keep their contrast instead
+// of being compressed towards 1.
+inline constexpr float kAutoExposureWhite = 0.76f;
 
 // Where the normal-mapping frame's bitangent comes from (Substance's "compute tangent space per
 // fragment" choice): per fragment, B = cross(N, T) * w from the interpolated N and T (MikkTSpace's
@@ -143,10 +147,12 @@ class Renderer {
   // Shadow-map depth passes drawn since the scene was set: one per change of scene, light 0's
   // direction or map size, not one per frame.
   int shadowPasses() const { return shadowPasses_; }
-  // The lit colour's factor before tone mapping: settings.exposure when > 0; else, with lights
-  // in physical units, pi over the largest illuminance a light gives at the scene's centre (a
-  // white Lambertian surface facing the brightest light shows 1), and 1 otherwise.
+  // The lit colour's factor before tone mapping: settings.exposure when > 0; else (auto) the
+  // factor that shows a white Lambertian surface facing the brightest light, lit by every light
+  // and the ambient or environment term, at kAutoExposureWhite.
   float exposure(const RenderSettings& settings) const;
+  // That surface's radiance at the scene's centre before exposure (0 without lights).
+  float whiteRadiance(const RenderSettings& settings) const;
   // PBR mode with the file's KHR_lights_punctual lights: in the extension's units.
   bool physicalLights(const RenderSettings& settings) const;
   // Milliseconds the image-based lighting's maps took to prepare (CPU and upload), once, on the
@@ -204,6 +210,8 @@ class Renderer {
   CornerFrames framesOf(std::size_t instance) const;
   // Scene item i's compare set: compareTangents_[i] when it fits, else its fresh tangents.
   std::span<const float> compareTangentsOf(std::size_t item) const;
+  // Whether item i's compare set is its freshly computed tangents (no set given for it).
+  bool compareIsFresh(std::size_t item) const;
   void applyCulling(const GpuMesh& mesh, const RenderSettings& settings) const;
   void drawGlyphs(const CameraMatrices& camera, const RenderSettings& settings);
   glm::mat4 lightViewProjection() const;
@@ -227,6 +235,10 @@ class Renderer {
     // The error view's angles at this pose (morphedTangentErrors); empty: the item's, from load.
     std::vector<float> tangentErrorDegrees;
     bool errorsCurrent = false;  // tangentErrorDegrees belong to the pose drawn
+    std::vector<glm::mat4> joints;  // the skin's joint matrices at the pose (empty: unskinned)
+    // The compare set is the fresh one and this pose morphs: until the split or compare-angle
+    // view shows it, it holds the file's deltas added, not MikkTSpace on the morphed corners.
+    bool compareStale = false;
   };
   // Packs a deformed instance's corners into its vertex buffer.
   void uploadDeformed(const DeformedInstance& deformed);

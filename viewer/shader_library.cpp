@@ -6,6 +6,7 @@
 #include <regex>
 #include <stdexcept>
 
+#include "debug_colours.hpp"
 #include "tangent/tangent.hpp"
 
 namespace tangent::viewer {
@@ -103,7 +104,8 @@ static const std::string kHandednessDefine =
     "#define TANGENT_W_CCW_UV " + std::to_string(static_cast<int>(tangent::handedness(1.0f, tangent::kGltfUvOrigin))) + "\n";
 
 GLuint ShaderLibrary::mesh(FeatureSet features, DebugView view, ToneMapping toneMapping) {
-  return program("mesh.vert", "mesh.frag", definesFor(features, view, toneMapping) + kHandednessDefine);
+  static const std::string kColourDefines = debugColourDefines();
+  return program("mesh.vert", "mesh.frag", definesFor(features, view, toneMapping) + kHandednessDefine + kColourDefines);
 }
 GLuint ShaderLibrary::depthOnly(FeatureSet features) {
   features &= static_cast<FeatureSet>(Feature::alphaMask) | static_cast<FeatureSet>(Feature::baseColorMap);

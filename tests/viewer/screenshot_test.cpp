@@ -1640,6 +1640,28 @@ TEST(Viewer, CompareSetIsSkinnedAndMorphedAlong) {
   EXPECT_NEAR(seen, 45, 1.0);
 }
 
+// The fresh compare set of a morphing mesh is MikkTSpace on the morphed corners, not the rest
+// pose's fresh set plus the file's TANGENT deltas: a target turning the quad 45 degrees in its
+// plane (UVs unchanged) whose file has no TANGENT deltas shows, with the whole view on the
+// compare side (--split 0), the tangent turned 45 degrees at weight 1 (fresh tangents follow
+// increasing u, which the turn carries along) and 0 degrees at weight 0.
+TEST(Viewer, FreshCompareSetIsRecomputedOnTheMorphedMesh) {
+  TempDir dir;
+  const float c45 = static_cast<float>(std::sqrt(0.5));
+  std::vector<float> turn;  // R(45 deg) p - p for the quad's corners
+  for (const auto& [x, y] : {std::pair{-1.0f, -1.0f}, std::pair{1.0f, -1.0f}, std::pair{1.0f, 1.0f}, std::pair{-1.0f, 1.0f}})
+    turn.insert(turn.end(), {c45 * x - c45 * y - x, c45 * x + c45 * y - y, 0.0f});
+  for (const double weight : {0.0, 1.0}) {
+    const std::string name = "turned-" + std::to_string(static_cast<int>(weight));
+    const Image image = screenshot(dir, name, "'" + morphQuad(dir, name, turn, {0, 0, 0}, {weight}).string() +
+                                                  "' --view tangent --compare fresh --split 0 --camera front --ortho --size 200x200");
+    ASSERT_EQ(image.width, 200);
+    const double seen = tangentAngleDegrees(image.at(100, 100));
+    std::printf("fresh compare set at weight %.0f: tangent at %.2f degrees, expected %.0f\n", weight, seen, 45 * weight);
+    EXPECT_NEAR(seen, 45 * weight, 1.0) << name;
+  }
+}
+
 // ---- Default material, glTF samplers, grey images (issue 38, smaller defects) ----
 
 // A primitive without a material is drawn with glTF's default material (glTF 2.0 3.9.1, the
@@ -1987,4 +2009,79 @@ TEST(Viewer, PointLightInsideTheSceneShadowsSideways) {
     EXPECT_NEAR(nearOn, nearOff, 0.03f);
     EXPECT_NEAR(farOn, farOff, 0.03f);
   }
+}
+
+// ---- Exposure keeps a light surface's bumps (issue 38, smaller defects) ----
+
+// A white, rough, ridged plane over [-1, 1]^2 (x, z) seen from the top: 8 flat facets across z,
+// tilted +20 and -20 degrees about x in turn (heights 0 and 0.25 tan 20), each with its own
+// NORMAL, so that the default rig's key light (from above, 24 degrees towards +z in the y-z
+// plane) meets one set at N.L 0.95 and the other at N.L 0.69 (its fill light too leans to +z).
+fs::path ridgedWhitePlane(const TempDir& dir) {
+  GltfWriter gltf;
+  std::vector<float> positions, normals;
+  std::vector<std::uint16_t> indices;
+  const float width = 0.25f, rise = width * std::tan(20.0f * 3.14159265f / 180);
+  for (int facet = 0; facet < 8; ++facet) {
+    const float z0 = -1 + width * facet, z1 = z0 + width;
+    const float y0 = facet % 2 ? rise : 0, y1 = facet % 2 ? 0 : rise;
+    const float length = std::hypot(y1 - y0, width);
+    const auto base = static_cast<std::uint16_t>(positions.size() / 3);
+    for (const auto& [x, y, z] : {std::array<float, 3>{-1, y0, z0}, {1, y0, z0}, {1, y1, z1}, {-1, y1, z1}}) {
+      positions.insert(positions.end(), {x, y, z});
+      normals.insert(normals.end(), {0, width / length, -(y1 - y0) / length});
+    }
+    // Counter-clockwise seen from above.
+    indices.insert(indices.end(), {base, static_cast<std::uint16_t>(base + 2), static_cast<std::uint16_t>(base + 1), base,
+                                   static_cast<std::uint16_t>(base + 3), static_cast<std::uint16_t>(base + 2)});
+  }
+  const nlohmann::json attributes = {{"POSITION", gltf.floats(positions, "VEC3", 3)}, {"NORMAL", gltf.floats(normals, "VEC3", 3)}};
+  nlohmann::json doc = {
+      {"scene", 0},
+      {"scenes", {{{"nodes", {0}}}}},
+      {"nodes", {{{"mesh", 0}}}},
+      {"meshes", {{{"primitives", {{{"attributes", attributes}, {"indices", gltf.shorts(indices, "SCALAR", 1, true)}, {"material", 0}}}}}}},
+      {"materials", {{{"pbrMetallicRoughness", {{"baseColorFactor", {1.0, 1.0, 1.0, 1.0}}, {"metallicFactor", 0.0}, {"roughnessFactor", 0.9}}}}}}};
+  return gltf.write(dir / "ridged.gltf", doc);
+}
+
+// The linear luminance of the lit plane's dim and bright facets: the means of the 10-40th and
+// 60-90th percentiles of the pixels in the middle third of the image (all plane; half of them
+// on each set of facets).
+std::pair<double, double> facetLuminances(const Image& image) {
+  std::vector<double> lumas;
+  for (int y = image.height / 3; y < 2 * image.height / 3; ++y)
+    for (int x = image.width / 3; x < 2 * image.width / 3; ++x) {
+      const auto c = image.at(x, y);
+      lumas.push_back(0.2126 * srgbToLinear(c[0]) + 0.7152 * srgbToLinear(c[1]) + 0.0722 * srgbToLinear(c[2]));
+    }
+  std::sort(lumas.begin(), lumas.end());
+  auto mean = [&](double from, double to) {
+    const auto a = static_cast<std::size_t>(from * static_cast<double>(lumas.size())), b = static_cast<std::size_t>(to * static_cast<double>(lumas.size()));
+    return std::accumulate(lumas.begin() + static_cast<std::ptrdiff_t>(a), lumas.begin() + static_cast<std::ptrdiff_t>(b), 0.0) / static_cast<double>(b - a);
+  };
+  return {mean(0.1, 0.4), mean(0.6, 0.9)};
+}
+
+// Under the default rig and auto exposure a white surface facing the key light must not sit in
+// the tone curve's shoulder, where its bumps flatten: the ridges' contrast (bright over dim
+// facets, linear) in the default lit view keeps at least 80% of their contrast in a linear render
+// (no tone mapping, exposure low enough that nothing clips), and the bright facets still read
+// light (above 0.6 sRGB-encoded, 0.32 linear).
+TEST(Viewer, AutoExposureKeepsTheBumpsOfALightSurface) {
+  TempDir dir;
+  const fs::path file = ridgedWhitePlane(dir);
+  const std::string common = "'" + file.string() + "' --camera top --ortho --size 240x240 --no-shadows";
+  const Image lit = screenshot(dir, "lit", common);
+  const Image linear = screenshot(dir, "linear", common + " --tone-map none --exposure 0.3");
+  ASSERT_EQ(lit.width, 240);
+  ASSERT_EQ(linear.width, 240);
+  const auto [litDim, litBright] = facetLuminances(lit);
+  const auto [linearDim, linearBright] = facetLuminances(linear);
+  std::printf("lit: dim %.4f bright %.4f (contrast %.3f); linear: dim %.4f bright %.4f (contrast %.3f)\n", litDim, litBright,
+              litBright / litDim, linearDim, linearBright, linearBright / linearDim);
+  ASSERT_GT(linearBright / linearDim, 1.1) << "the ridges should differ by their angle to the key light";
+  EXPECT_GE(litBright / litDim - 1, 0.8 * (linearBright / linearDim - 1));
+  EXPECT_GT(litBright, srgbToLinear(0.6));
+  EXPECT_LT(litBright, 0.9);
 }
