@@ -254,77 +254,214 @@ InputRounding inputRounding(const Asset& asset, const Json& primitive, int texCo
   return rounding;
 }
 
-// A triangle's tangent direction (MikkTSpace, Lengyel) is that of v = e1 * dv2 - e2 * dv1
-// (e: edges from corner 0, dv: their V deltas). Moving each UV component by up to eu and each
-// position component by up to ep changes v by at most
-//   2 eu (|e1| + |e2|) + 2 sqrt(3) ep (|dv1| + |dv2|) + 8 sqrt(3) ep eu,
-// which turns it by at most asin(change / |v|). The UV area (du1 dv2 - du2 dv1) moves by at
-// most 2 eu (|du1| + |du2| + |dv1| + |dv2|) + 8 eu^2: when that reaches the area itself, the
-// triangle's orientation (and w) is undecided, and it may join or leave a vertex's group.
-// A vertex's frame is the sum S of its triangles' unit tangents (projected onto the normal)
-// weighted by corner angle a_i; each moves by at most the chord 2 sin(turn_i / 2) (2 when
-// undecided), so S moves by at most E = sum a_i chord_i and turns by at most asin(E / |S|);
-// where E reaches |S| the vertex cannot be compared.
+namespace {
+
+// One triangle's share of its corners' frames, as MikkTSpace sums them (and Lengyel's angle
+// weighting): its tangent direction v = sign * (e1 * dv2 - e2 * dv1) (e: edges from corner 0,
+// dv: their V deltas, sign: that of the UV area, held fixed), projected onto each corner's
+// normal plane, unit length, times the corner's angle; zero where undefined.
+constexpr double kHalfPi = 1.57079632679489661923;
+
+void cornerShares(const double p[3][3], const double v[3], double sign, const float* const normals[3], double shares[3][3]) {
+  double e1[3], e2[3], direction[3];
+  for (int i = 0; i < 3; ++i) {
+    e1[i] = p[1][i] - p[0][i];
+    e2[i] = p[2][i] - p[0][i];
+  }
+  const double dv1 = v[1] - v[0], dv2 = v[2] - v[0];
+  for (int i = 0; i < 3; ++i) direction[i] = sign * (e1[i] * dv2 - e2[i] * dv1);
+  for (int k = 0; k < 3; ++k) {
+    for (int i = 0; i < 3; ++i) shares[k][i] = 0;
+    const float* n = normals[k];
+    const double nLength = std::sqrt(double(n[0]) * n[0] + double(n[1]) * n[1] + double(n[2]) * n[2]);
+    const bool hasNormal = nLength > 0 && std::isfinite(nLength);
+    auto project = [&](double x[3]) {
+      if (!hasNormal) return;
+      const double dot = (x[0] * n[0] + x[1] * n[1] + x[2] * n[2]) / (nLength * nLength);
+      for (int i = 0; i < 3; ++i) x[i] -= dot * n[i];
+    };
+    // The corner's angle between its edges projected onto the normal plane; 90 deg where one
+    // is zero (MikkTSpace's rule: the dot product of a zero vector).
+    const double* here = p[k];
+    const double* next = p[(k + 1) % 3];
+    const double* prev = p[(k + 2) % 3];
+    double a[3] = {next[0] - here[0], next[1] - here[1], next[2] - here[2]};
+    double b[3] = {prev[0] - here[0], prev[1] - here[1], prev[2] - here[2]};
+    project(a);
+    project(b);
+    const double cross[3] = {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
+    const bool zeroEdge = !(std::hypot(a[0], a[1], a[2]) > 0) || !(std::hypot(b[0], b[1], b[2]) > 0);
+    const double weight = zeroEdge ? kHalfPi : std::atan2(std::hypot(cross[0], cross[1], cross[2]), a[0] * b[0] + a[1] * b[1] + a[2] * b[2]);
+    double projected[3] = {direction[0], direction[1], direction[2]};
+    project(projected);
+    const double projectedLength = std::hypot(projected[0], projected[1], projected[2]);
+    if (!(projectedLength > 0) || !std::isfinite(projectedLength) || !std::isfinite(weight)) continue;
+    for (int i = 0; i < 3; ++i) shares[k][i] = weight * projected[i] / projectedLength;
+  }
+}
+
+// Vertices whose `width` floats from `values` are equal, numbered: rounding gives equal values
+// equal results, so such vertices (a UV seam's copies of a position, a hard edge's copies of
+// a UV) moved together.
+std::vector<std::uint32_t> equalValueGroups(const std::vector<float>& values, int width, std::size_t count, std::uint32_t& groups) {
+  // Compared as bit patterns: a strict order even with NaN in the data.
+  std::vector<std::uint32_t> bits(values.size()), order(count), group(count, 0);
+  if (!values.empty()) std::memcpy(bits.data(), values.data(), values.size() * sizeof(float));
+  for (std::size_t v = 0; v < count; ++v) order[v] = static_cast<std::uint32_t>(v);
+  auto less = [&](std::uint32_t a, std::uint32_t b) {
+    return std::lexicographical_compare(&bits[std::size_t(a) * width], &bits[std::size_t(a) * width] + width, &bits[std::size_t(b) * width],
+                                        &bits[std::size_t(b) * width] + width);
+  };
+  std::sort(order.begin(), order.end(), less);
+  groups = 0;
+  for (std::size_t i = 0; i < count; ++i) {
+    if (i > 0 && less(order[i - 1], order[i])) ++groups;
+    group[order[i]] = groups;
+  }
+  if (count) ++groups;
+  return group;
+}
+
+}  // namespace
+
+// A vertex's frame is the direction of S, the sum of its triangles' shares (cornerShares).
+// Rounding moved each position component by up to ep and each UV component by up to eu from
+// what the tangents were baked from. U enters a triangle's share only through the sign of its
+// UV area: where the rounding can change that sign (the area moves by at most
+// 2 eu (|du1| + |du2| + |dv1| + |dv2|) + 8 eu^2), the triangle's orientation is undecided, it
+// may join or leave the vertex's group, and its share counts as moving by twice its weight.
+// Every other input x_j (a V, a position component of a vertex of the vertex's triangles)
+// moves S by the vector dS_j when it alone moves by its half step: recomputed, on both sides,
+// the longer taken. To first order the joint movement is their sum, so |dS| <= E = sum |dS_j|
+// (the inputs' effects on the same triangle added as vectors first: they partly cancel, which
+// the triangle-by-triangle worst case this replaced did not see, 5-8x too loose on gltfpack
+// outputs). kSecondOrderMargin covers the products of moves the first order leaves out, and
+// S turns by at most asin(E / |S|); where E reaches |S| the vertex cannot be compared.
 ReferenceAllowance referenceAllowance(const PrimitiveGeometry& geometry, const InputRounding& rounding) {
+  constexpr double kSecondOrderMargin = 1.25;
   ReferenceAllowance allowance;
   if (!rounding.any()) return allowance;
-  const double eu = rounding.uv, ep = rounding.position, root3 = std::sqrt(3.0);
-  const std::size_t triangles = geometry.corners.size() / 3;
-  allowance.vertexDegrees.assign(geometry.vertexCount, 0.0f);
+  const double eu = rounding.uv, ep = rounding.position;
+  const std::size_t triangles = geometry.corners.size() / 3, vertexCount = geometry.vertexCount;
+  allowance.vertexDegrees.assign(vertexCount, 0.0f);
   allowance.orientationDecided.assign(triangles, 1);
-  std::vector<double> sum(3 * geometry.vertexCount, 0.0), movement(geometry.vertexCount, 0.0);
+  std::vector<double> sum(3 * vertexCount, 0.0), movement(vertexCount, 0.0);
+  std::vector<double> shares(9 * triangles, 0.0), signs(triangles, 1.0);
+  auto load = [&](std::size_t t, double p[3][3], double v[3], const float* normals[3]) {
+    for (int k = 0; k < 3; ++k) {
+      const std::uint32_t vertex = geometry.corners[3 * t + k];
+      for (int i = 0; i < 3; ++i) p[k][i] = geometry.positions[3 * vertex + i];
+      v[k] = geometry.uvs[2 * vertex + 1];
+      normals[k] = &geometry.normals[3 * vertex];
+    }
+  };
   for (std::size_t t = 0; t < triangles; ++t) {
     const std::uint32_t* c = &geometry.corners[3 * t];
-    const float* p[3] = {&geometry.positions[3 * c[0]], &geometry.positions[3 * c[1]], &geometry.positions[3 * c[2]]};
     const float* uv[3] = {&geometry.uvs[2 * c[0]], &geometry.uvs[2 * c[1]], &geometry.uvs[2 * c[2]]};
-    double e1[3], e2[3];
-    for (int i = 0; i < 3; ++i) {
-      e1[i] = double(p[1][i]) - p[0][i];
-      e2[i] = double(p[2][i]) - p[0][i];
-    }
     const double du1 = double(uv[1][0]) - uv[0][0], dv1 = double(uv[1][1]) - uv[0][1];
     const double du2 = double(uv[2][0]) - uv[0][0], dv2 = double(uv[2][1]) - uv[0][1];
     const double area = du1 * dv2 - du2 * dv1;
     const double areaChange = 2 * eu * (std::abs(du1) + std::abs(du2) + std::abs(dv1) + std::abs(dv2)) + 8 * eu * eu;
-    const double sign = area < 0 ? -1.0 : 1.0;
-    double v[3] = {sign * (e1[0] * dv2 - e2[0] * dv1), sign * (e1[1] * dv2 - e2[1] * dv1), sign * (e1[2] * dv2 - e2[2] * dv1)};
-    const double vLength = std::hypot(v[0], v[1], v[2]);
-    double chord = 2;
-    if (!(std::abs(area) > areaChange) || !std::isfinite(area)) {
-      allowance.orientationDecided[t] = 0;
-    } else {
-      const double e1Length = std::hypot(e1[0], e1[1], e1[2]), e2Length = std::hypot(e2[0], e2[1], e2[2]);
-      const double change = 2 * eu * (e1Length + e2Length) + 2 * root3 * ep * (std::abs(dv1) + std::abs(dv2)) + 8 * root3 * ep * eu;
-      if (change < vLength) chord = 2 * std::sin(std::asin(change / vLength) / 2);
-    }
+    signs[t] = area < 0 ? -1.0 : 1.0;
+    if (!(std::abs(area) > areaChange) || !std::isfinite(area)) allowance.orientationDecided[t] = 0;
+    double p[3][3], v[3];
+    const float* normals[3];
+    load(t, p, v, normals);
+    double share[3][3];
+    cornerShares(p, v, signs[t], normals, share);
     for (int k = 0; k < 3; ++k) {
-      const std::uint32_t vertex = c[k];
-      // Corner angle at this vertex: the weight MikkTSpace gives the triangle there.
-      const float* here = p[k];
-      const float* next = p[(k + 1) % 3];
-      const float* prev = p[(k + 2) % 3];
-      const float a[3] = {next[0] - here[0], next[1] - here[1], next[2] - here[2]};
-      const float b[3] = {prev[0] - here[0], prev[1] - here[1], prev[2] - here[2]};
-      const double weight = angleBetweenDegrees(a, b) / kDegreesPerRadian;
-      if (!std::isfinite(weight)) continue;
-      movement[vertex] += weight * chord;
-      // The triangle's tangent projected onto the vertex's normal plane, unit length.
-      const float* n = &geometry.normals[3 * vertex];
-      const double nLength = length3(n);
-      double projected[3] = {v[0], v[1], v[2]};
-      if (nLength > 0 && std::isfinite(nLength)) {
-        const double dot = (v[0] * n[0] + v[1] * n[1] + v[2] * n[2]) / (nLength * nLength);
-        for (int i = 0; i < 3; ++i) projected[i] -= dot * n[i];
+      for (int i = 0; i < 3; ++i) {
+        shares[9 * t + 3 * k + i] = share[k][i];
+        sum[3 * c[k] + i] += share[k][i];
       }
-      const double projectedLength = std::hypot(projected[0], projected[1], projected[2]);
-      if (!(projectedLength > 0) || !std::isfinite(projectedLength)) continue;
-      for (int i = 0; i < 3; ++i) sum[3 * vertex + i] += weight * projected[i] / projectedLength;
+      if (!allowance.orientationDecided[t]) movement[c[k]] += 2 * std::hypot(share[k][0], share[k][1], share[k][2]);
     }
   }
-  for (std::size_t v = 0; v < geometry.vertexCount; ++v) {
+
+  // The decided triangles at each vertex that have a share. A triangle without one (its
+  // direction exactly zero: a pole's coincident vertices on one UV row) is left out: exact
+  // zeros come from exact data, which rounding keeps (tools map a range's ends exactly).
+  std::vector<char> moves(triangles, 0);
+  for (std::size_t t = 0; t < triangles; ++t)
+    moves[t] = allowance.orientationDecided[t] && std::any_of(&shares[9 * t], &shares[9 * t] + 9, [](double x) { return x != 0; });
+  std::vector<std::uint32_t> firstTriangle(vertexCount + 1, 0), incident;
+  for (std::size_t t = 0; t < triangles; ++t)
+    if (moves[t])
+      for (int k = 0; k < 3; ++k) ++firstTriangle[geometry.corners[3 * t + k] + 1];
+  for (std::size_t v = 0; v < vertexCount; ++v) firstTriangle[v + 1] += firstTriangle[v];
+  incident.resize(firstTriangle[vertexCount]);
+  {
+    std::vector<std::uint32_t> next(firstTriangle.begin(), firstTriangle.end() - 1);
+    for (std::size_t t = 0; t < triangles; ++t)
+      if (moves[t])
+        for (int k = 0; k < 3; ++k) incident[next[geometry.corners[3 * t + k]]++] = static_cast<std::uint32_t>(t);
+  }
+
+  // dS_j per input: a group of equal values (equalValueGroups) moved by its half step, for the
+  // vertices of the group's triangles (one entry per vertex, reused).
+  std::vector<std::uint32_t> group, members, memberList;
+  std::uint32_t groupCount = 0;
+  std::vector<double> change(3 * vertexCount, 0.0), longest(vertexCount, 0.0);
+  std::vector<std::uint32_t> touched, affected, seen(triangles, 0);
+  std::uint32_t stamp = 0;
+  for (int input = 0; input < 4; ++input) {  // V, then x, y, z
+    const double step = input == 0 ? eu : ep;
+    if (!(step > 0)) continue;
+    if (input == 0 || input == 1) {
+      groupCount = 0;
+      group = input == 0 ? equalValueGroups(geometry.uvs, 2, vertexCount, groupCount) : equalValueGroups(geometry.positions, 3, vertexCount, groupCount);
+      members.assign(groupCount + 1, 0);
+      for (std::size_t v = 0; v < vertexCount; ++v) ++members[group[v] + 1];
+      for (std::uint32_t k = 0; k < groupCount; ++k) members[k + 1] += members[k];
+      memberList.resize(vertexCount);
+      std::vector<std::uint32_t> next(members.begin(), members.end() - 1);
+      for (std::size_t v = 0; v < vertexCount; ++v) memberList[next[group[v]]++] = static_cast<std::uint32_t>(v);
+    }
+    for (std::uint32_t k = 0; k < groupCount; ++k) {
+      affected.clear();
+      ++stamp;
+      for (std::uint32_t m = members[k]; m < members[k + 1]; ++m) {
+        const std::uint32_t w = memberList[m];
+        for (std::uint32_t i = firstTriangle[w]; i < firstTriangle[w + 1]; ++i)
+          if (seen[incident[i]] != stamp) seen[incident[i]] = stamp, affected.push_back(incident[i]);
+      }
+      if (affected.empty()) continue;
+      for (const double side : {step, -step}) {
+        for (const std::uint32_t t : affected) {
+          double p[3][3], v[3];
+          const float* normals[3];
+          load(t, p, v, normals);
+          for (int corner = 0; corner < 3; ++corner) {
+            if (group[geometry.corners[3 * t + corner]] != k) continue;
+            if (input == 0) v[corner] += side; else p[corner][input - 1] += side;
+          }
+          double share[3][3];
+          cornerShares(p, v, signs[t], normals, share);
+          for (int corner = 0; corner < 3; ++corner) {
+            const std::uint32_t vertex = geometry.corners[3 * t + corner];
+            if (change[3 * vertex] == 0 && change[3 * vertex + 1] == 0 && change[3 * vertex + 2] == 0) touched.push_back(vertex);
+            for (int j = 0; j < 3; ++j) change[3 * vertex + j] += share[corner][j] - shares[9 * t + 3 * corner + j];
+          }
+        }
+        for (const std::uint32_t vertex : touched) {
+          longest[vertex] = std::max(longest[vertex], std::hypot(change[3 * vertex], change[3 * vertex + 1], change[3 * vertex + 2]));
+          change[3 * vertex] = change[3 * vertex + 1] = change[3 * vertex + 2] = 0;
+        }
+        touched.clear();
+      }
+      // Both sides seen: add the longer to each vertex's movement.
+      for (const std::uint32_t t : affected)
+        for (int corner = 0; corner < 3; ++corner) {
+          const std::uint32_t vertex = geometry.corners[3 * t + corner];
+          movement[vertex] += longest[vertex];
+          longest[vertex] = 0;
+        }
+    }
+  }
+  for (std::size_t v = 0; v < vertexCount; ++v) {
     const double size = std::hypot(sum[3 * v], sum[3 * v + 1], sum[3 * v + 2]);
-    allowance.vertexDegrees[v] =
-        movement[v] < size ? static_cast<float>(std::asin(movement[v] / size) * kDegreesPerRadian) : kUncomparableDegrees;
+    const double moved = kSecondOrderMargin * movement[v];
+    allowance.vertexDegrees[v] = moved < size ? static_cast<float>(std::asin(moved / size) * kDegreesPerRadian) : kUncomparableDegrees;
   }
   return allowance;
 }
