@@ -16,6 +16,7 @@
 #include "accessors.hpp"
 #include "asset.hpp"
 #include "primitive.hpp"
+#include "support/build_paths.hpp"
 #include "support/run_command.hpp"
 #include "support/skip_or_fail.hpp"
 #include "support/temp_dir.hpp"
@@ -899,5 +900,75 @@ TEST(PipelineMatrix, CleanBakesCheckCleanAndTenDegreeTurnsAreCaught) {
 }
 
 }  // namespace pipeline
+
+// ---- one flipped w: `handedness` judges each corner's w against its triangle's orientation (as
+// the viewer marks corners), so a single vertex's flip fails it besides `w-uniform` ----
+
+TEST(CheckCorners, OneFlippedWFailsHandednessAtEachOfItsTriangles) {
+  TempDir dir;
+  const fs::path input = tangent::testing::writeAsset(tangent::testing::meshAsset("grid", tangent::testing::makeGrid(8, 8, false)), dir / "in", true);
+  const fs::path baked = dir / "grid-baked.glb";
+  tangent::gltf::bakeFile(input, baked, {});
+  ASSERT_TRUE(tangent::gltf::checkFile(baked, {}).clean());
+  const fs::path control = dir / "grid-flipped.glb";
+  fs::copy_file(baked, control);
+  std::uint32_t flipped = 0;
+  std::set<std::size_t> triangles;
+  patchTangents(control, [&](TangentEdit& edit) {
+    flipped = edit.corners[edit.corners.size() / 2];  // a vertex inside the grid
+    for (std::size_t c = 0; c < edit.corners.size(); ++c)
+      if (edit.corners[c] == flipped) triangles.insert(c / 3);
+    edit.tangents[4 * flipped + 3] = -edit.tangents[4 * flipped + 3];
+  });
+  ASSERT_GE(triangles.size(), 2u);
+  const FileCheck check = tangent::gltf::checkFile(control, {});
+  ASSERT_EQ(check.primitives.size(), 1u);
+  const auto& findings = check.primitives[0].findings;
+  const auto handedness = std::find_if(findings.begin(), findings.end(), [](const auto& f) { return f.check == "handedness"; });
+  ASSERT_NE(handedness, findings.end()) << describe(check);
+  EXPECT_EQ(handedness->failed, triangles.size()) << describe(check);
+  for (const auto& sample : handedness->worst) {
+    EXPECT_TRUE(triangles.count(sample.element)) << sample.detail;
+    EXPECT_NE(sample.detail.find(" " + std::to_string(flipped)), std::string::npos) << sample.detail;
+  }
+  const auto names = findingNames(check);
+  EXPECT_NE(std::find(names.begin(), names.end(), "w-uniform"), names.end());
+  EXPECT_NE(std::find(names.begin(), names.end(), "reference"), names.end());
+}
+
+// ---- an image with neither uri nor bufferView (gltfpack writes one when it cannot find the
+// image file): a warning naming images[N], not an unreadable file; bake keeps it as it is ----
+
+TEST(CheckImages, AnImageWithoutDataIsAWarningAndKept) {
+  TempDir dir;
+  const fs::path input = tangent::testing::writeAsset(tangent::testing::meshAsset("sphere", tangent::testing::makeSphere(16, 8)), dir / "in", true);
+  const fs::path baked = dir / "sphere-baked.glb";
+  tangent::gltf::bakeFile(input, baked, {});
+  Glb glb = readGlb(baked);
+  ASSERT_TRUE(glb.json.contains("images"));
+  glb.json["images"][0].erase("bufferView");
+  glb.json["images"][0].erase("uri");
+  const Json image = glb.json["images"][0];
+  const fs::path noData = dir / "sphere-no-image-data.glb";
+  writeGlb(glb, noData);
+
+  const FileCheck check = tangent::gltf::checkFile(noData, {});
+  EXPECT_TRUE(check.clean()) << describe(check);
+  ASSERT_EQ(check.primitives.size(), 1u);
+  const auto& warnings = check.primitives[0].warnings;
+  EXPECT_TRUE(std::any_of(warnings.begin(), warnings.end(), [](const std::string& w) { return w.find("images[0]") != std::string::npos; }))
+      << ::testing::PrintToString(warnings);
+  const auto cli = runCommand(std::string(TANGENT_CLI) + " check " + quoted(noData));
+  EXPECT_EQ(cli.exitCode, 0) << cli.output;
+  EXPECT_NE(cli.output.find("images[0]"), std::string::npos) << cli.output;
+
+  const fs::path rebaked = dir / "sphere-rebaked.glb";
+  const tangent::gltf::BakeResult result = tangent::gltf::bakeFile(noData, rebaked, {});
+  EXPECT_TRUE(std::any_of(result.warnings.begin(), result.warnings.end(),
+                          [](const std::string& w) { return w.find("images[0]") != std::string::npos; }))
+      << ::testing::PrintToString(result.warnings);
+  EXPECT_EQ(readGlb(rebaked).json["images"][0], image);
+}
+
 
 }  // namespace
