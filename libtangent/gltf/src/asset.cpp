@@ -296,6 +296,18 @@ Asset loadAssetBytes(std::vector<std::uint8_t> bytes, const std::filesystem::pat
   std::vector<std::vector<std::uint8_t>> dataUriBuffers;
   {
     nlohmann::ordered_json forLoader = loaderDocument(asset.json, label, dataUriBuffers);
+    // An image with neither uri nor bufferView (gltfpack writes one when it cannot find the
+    // image file): tinygltf refuses the whole file, though nothing here reads image data.
+    // Its copy gets an empty placeholder; the document keeps the image as it is.
+    if (forLoader.contains("images") && forLoader["images"].is_array()) {
+      for (std::size_t i = 0; i < forLoader["images"].size(); ++i) {
+        Json& image = forLoader["images"][i];
+        if (!image.is_object() || image.contains("uri") || image.contains("bufferView")) continue;
+        image["uri"] = "data:image/png;base64,AA==";
+        asset.warnings.push_back(label + ": images[" + std::to_string(i) +
+                                 "] has neither uri nor bufferView (no image data; a tool could not find the file?): left as it is");
+      }
+    }
     adaptForLoader(forLoader);
     jsonText = forLoader.dump();
     if (asset.binary) replaceGlbJson(bytes, jsonText, bin);

@@ -243,10 +243,8 @@ void checkDrawnPart(const PrimitiveGeometry& buffer, const UsedVertices& used, c
     const std::uint32_t* local = &part.corners[3 * t];
     const std::uint32_t c[3] = {used.vertices[local[0]], used.vertices[local[1]], used.vertices[local[2]]};
     const float w0 = tangents[4 * c[0] + 3], w1 = tangents[4 * c[1] + 3], w2 = tangents[4 * c[2] + 3];
-    if (!(w0 == w1 && w1 == w2)) {
-      uniform.fail(t, 1, format("triangle %zu (vertices %u %u %u) w = %.6g %.6g %.6g", t, c[0], c[1], c[2], w0, w1, w2));
-      continue;
-    }
+    const bool uniformW = w0 == w1 && w1 == w2;
+    if (!uniformW) uniform.fail(t, 1, format("triangle %zu (vertices %u %u %u) w = %.6g %.6g %.6g", t, c[0], c[1], c[2], w0, w1, w2));
     // Orientation in the normal texture's UV set, on triangles with UV and 3D area.
     const float* uv[3] = {&buffer.uvs[2 * c[0]], &buffer.uvs[2 * c[1]], &buffer.uvs[2 * c[2]]};
     const double det = uvAreaTimesTwo(uv[0], uv[1], uv[2]);
@@ -256,14 +254,20 @@ void checkDrawnPart(const PrimitiveGeometry& buffer, const UsedVertices& used, c
       ++handednessDegenerate;
       continue;
     }
-    if (!validW(w0)) continue;  // `w` reported it
+    // Each corner's w against the triangle's orientation (as the viewer marks corners): one
+    // flipped corner fails the triangle here too, besides `w-uniform`. Invalid w: `w` reported it.
+    const float w[3] = {w0, w1, w2};
+    if (!validW(w0) && !validW(w1) && !validW(w2)) continue;
     if (!allowance.decided(t)) {
       ++result.handednessUndecided;
       continue;
     }
-    if (w0 != expected)
-      handedness.fail(t, std::abs(det), format("triangle %zu (vertices %u %u %u) has w = %.0f, its UV orientation needs %.0f", t, c[0],
-                                                c[1], c[2], w0, expected));
+    if (std::any_of(w, w + 3, [&](float corner) { return validW(corner) && corner != expected; }))
+      handedness.fail(t, std::abs(det),
+                      uniformW ? format("triangle %zu (vertices %u %u %u) has w = %.0f, its UV orientation needs %.0f", t, c[0], c[1],
+                                        c[2], w0, expected)
+                               : format("triangle %zu (vertices %u %u %u) has w = %.6g %.6g %.6g, its UV orientation needs %.0f", t,
+                                        c[0], c[1], c[2], w0, w1, w2, expected));
   }
   uniform.finish(result, "w differs between the corners of a triangle (a vertex shared across a mirror seam?)");
   handedness.finish(result, "w disagrees with the triangle's orientation in the normal texture's UV set (w = -sign(UV area) in glTF)");
@@ -517,6 +521,19 @@ bool FileCheck::clean() const {
 
 namespace {
 
+// The images[] index of the primitive's material's normal texture, or -1.
+long normalTextureImage(const Json& doc, const Json& primitive) {
+  auto index = [&doc](const Json& object, const char* key, const char* array) -> long {
+    if (!object.is_object() || !object.contains(key) || !object[key].is_number_unsigned()) return -1;
+    const std::size_t i = object[key].get<std::size_t>();
+    return doc.contains(array) && doc[array].is_array() && i < doc[array].size() ? long(i) : -1;
+  };
+  const long material = index(primitive, "material", "materials");
+  if (material < 0 || !doc["materials"][material].contains("normalTexture")) return -1;
+  const long texture = index(doc["materials"][material]["normalTexture"], "index", "textures");
+  return texture < 0 ? -1 : index(doc["textures"][texture], "source", "images");
+}
+
 FileCheck checkAsset(const std::filesystem::path& input, const CheckOptions& options) {
   FileCheck result;
   result.file = input.string();
@@ -579,6 +596,11 @@ FileCheck checkAsset(const std::filesystem::path& input, const CheckOptions& opt
       verdict.meshName = std::move(named.meshName);
       verdict.texCoord = named.texCoord;
       named = std::move(verdict);
+      // A normal texture whose image holds no data (neither uri nor bufferView; the loader
+      // warned): the tangents are checked all the same.
+      const long image = normalTextureImage(doc, *pending[i].primitive);
+      if (image >= 0 && doc["images"][image].is_object() && !doc["images"][image].contains("uri") && !doc["images"][image].contains("bufferView"))
+        named.warnings.push_back(format("its normal texture's image, images[%ld], has neither uri nor bufferView (no image data)", image));
     }
   }
   result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();

@@ -20,9 +20,12 @@
 #include "tangent_rules.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstring>
 #include <limits>
+#include <thread>
+#include <utility>
 
 #include "accessors.hpp"
 #include "compression.hpp"
@@ -254,20 +257,91 @@ InputRounding inputRounding(const Asset& asset, const Json& primitive, int texCo
   return rounding;
 }
 
-// A triangle's tangent direction (MikkTSpace, Lengyel) is that of v = e1 * dv2 - e2 * dv1
-// (e: edges from corner 0, dv: their V deltas). Moving each UV component by up to eu and each
-// position component by up to ep changes v by at most
+namespace {
+
+// One triangle's share of its corners' frames, as MikkTSpace sums them (and Lengyel's angle
+// weighting): its tangent direction v = sign * (e1 * dv2 - e2 * dv1) (e: edges from corner 0,
+// dv: their V deltas, sign: that of the UV area, held fixed), projected onto each corner's
+// normal plane, unit length, times the corner's angle; zero where undefined.
+// `weights`: the corners' angles, computed into it where `keepWeights` is false, else taken
+// from it (a V moved: the positions, and so the angles, are the same).
+constexpr double kHalfPi = 1.57079632679489661923;
+
+inline double norm3(double x, double y, double z) { return std::sqrt(x * x + y * y + z * z); }
+
+void cornerShares(const double p[3][3], const double v[3], double sign, const float* const normals[3], double weights[3], bool keepWeights,
+                  double shares[3][3]) {
+  double e1[3], e2[3], direction[3];
+  for (int i = 0; i < 3; ++i) {
+    e1[i] = p[1][i] - p[0][i];
+    e2[i] = p[2][i] - p[0][i];
+  }
+  const double dv1 = v[1] - v[0], dv2 = v[2] - v[0];
+  for (int i = 0; i < 3; ++i) direction[i] = sign * (e1[i] * dv2 - e2[i] * dv1);
+  for (int k = 0; k < 3; ++k) {
+    for (int i = 0; i < 3; ++i) shares[k][i] = 0;
+    const float* n = normals[k];
+    const double nLength = std::sqrt(double(n[0]) * n[0] + double(n[1]) * n[1] + double(n[2]) * n[2]);
+    const bool hasNormal = nLength > 0 && std::isfinite(nLength);
+    auto project = [&](double x[3]) {
+      if (!hasNormal) return;
+      const double dot = (x[0] * n[0] + x[1] * n[1] + x[2] * n[2]) / (nLength * nLength);
+      for (int i = 0; i < 3; ++i) x[i] -= dot * n[i];
+    };
+    // The corner's angle between its edges projected onto the normal plane; 90 deg where one
+    // is zero (MikkTSpace's rule: the dot product of a zero vector).
+    if (!keepWeights) {
+      const double* here = p[k];
+      const double* next = p[(k + 1) % 3];
+      const double* prev = p[(k + 2) % 3];
+      double a[3] = {next[0] - here[0], next[1] - here[1], next[2] - here[2]};
+      double b[3] = {prev[0] - here[0], prev[1] - here[1], prev[2] - here[2]};
+      project(a);
+      project(b);
+      const double cross[3] = {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
+      const bool zeroEdge = !(norm3(a[0], a[1], a[2]) > 0) || !(norm3(b[0], b[1], b[2]) > 0);
+      weights[k] = zeroEdge ? kHalfPi : std::atan2(norm3(cross[0], cross[1], cross[2]), a[0] * b[0] + a[1] * b[1] + a[2] * b[2]);
+    }
+    const double weight = weights[k];
+    double projected[3] = {direction[0], direction[1], direction[2]};
+    project(projected);
+    const double projectedLength = norm3(projected[0], projected[1], projected[2]);
+    if (!(projectedLength > 0) || !std::isfinite(projectedLength) || !std::isfinite(weight)) continue;
+    for (int i = 0; i < 3; ++i) shares[k][i] = weight * projected[i] / projectedLength;
+  }
+}
+
+// Vertices whose `width` floats from `values` are equal, numbered: rounding gives equal values
+// equal results, so such vertices (a UV seam's copies of a position, a hard edge's copies of
+// a UV) moved together.
+std::vector<std::uint32_t> equalValueGroups(const std::vector<float>& values, int width, std::size_t count, std::uint32_t& groups) {
+  // Compared as bit patterns: a strict order even with NaN in the data.
+  std::vector<std::uint32_t> bits(values.size()), order(count), group(count, 0);
+  if (!values.empty()) std::memcpy(bits.data(), values.data(), values.size() * sizeof(float));
+  for (std::size_t v = 0; v < count; ++v) order[v] = static_cast<std::uint32_t>(v);
+  auto less = [&](std::uint32_t a, std::uint32_t b) {
+    return std::lexicographical_compare(&bits[std::size_t(a) * width], &bits[std::size_t(a) * width] + width, &bits[std::size_t(b) * width],
+                                        &bits[std::size_t(b) * width] + width);
+  };
+  std::sort(order.begin(), order.end(), less);
+  groups = 0;
+  for (std::size_t i = 0; i < count; ++i) {
+    if (i > 0 && less(order[i - 1], order[i])) ++groups;
+    group[order[i]] = groups;
+  }
+  if (count) ++groups;
+  return group;
+}
+
+// The bound this file used first, triangle by triangle (5-8x too loose on gltfpack outputs, but
+// cheap): a triangle's tangent direction v = e1 * dv2 - e2 * dv1 moves by at most
 //   2 eu (|e1| + |e2|) + 2 sqrt(3) ep (|dv1| + |dv2|) + 8 sqrt(3) ep eu,
-// which turns it by at most asin(change / |v|). The UV area (du1 dv2 - du2 dv1) moves by at
-// most 2 eu (|du1| + |du2| + |dv1| + |dv2|) + 8 eu^2: when that reaches the area itself, the
-// triangle's orientation (and w) is undecided, and it may join or leave a vertex's group.
-// A vertex's frame is the sum S of its triangles' unit tangents (projected onto the normal)
-// weighted by corner angle a_i; each moves by at most the chord 2 sin(turn_i / 2) (2 when
-// undecided), so S moves by at most E = sum a_i chord_i and turns by at most asin(E / |S|);
-// where E reaches |S| the vertex cannot be compared.
-ReferenceAllowance referenceAllowance(const PrimitiveGeometry& geometry, const InputRounding& rounding) {
+// and turns by at most asin(change / |v|); each triangle's unit tangent moves by at most the
+// chord 2 sin(turn / 2) (2 when its orientation is undecided), so a vertex's angle-weighted sum
+// S moves by at most E = sum a_i chord_i and turns by at most asin(E / |S|). Where it is below
+// kCoarseEnoughDegrees, referenceAllowance keeps it and skips the finer computation.
+std::vector<float> coarseVertexDegrees(const PrimitiveGeometry& geometry, const InputRounding& rounding) {
   ReferenceAllowance allowance;
-  if (!rounding.any()) return allowance;
   const double eu = rounding.uv, ep = rounding.position, root3 = std::sqrt(3.0);
   const std::size_t triangles = geometry.corners.size() / 3;
   allowance.vertexDegrees.assign(geometry.vertexCount, 0.0f);
@@ -325,6 +399,185 @@ ReferenceAllowance referenceAllowance(const PrimitiveGeometry& geometry, const I
     const double size = std::hypot(sum[3 * v], sum[3 * v + 1], sum[3 * v + 2]);
     allowance.vertexDegrees[v] =
         movement[v] < size ? static_cast<float>(std::asin(movement[v] / size) * kDegreesPerRadian) : kUncomparableDegrees;
+  }
+  return std::move(allowance.vertexDegrees);
+}
+
+}  // namespace
+
+// A vertex's frame is the direction of S, the sum of its triangles' shares (cornerShares).
+// Rounding moved each position component by up to ep and each UV component by up to eu from
+// what the tangents were baked from. U enters a triangle's share only through the sign of its
+// UV area: where the rounding can change that sign (the area moves by at most
+// 2 eu (|du1| + |du2| + |dv1| + |dv2|) + 8 eu^2), the triangle's orientation is undecided, it
+// may join or leave the vertex's group, and its share counts as moving by twice its weight.
+// Every other input x_j (a V, a position component; vertices with equal values move together,
+// as rounding moves them) moves S by the vector dS_j when it alone moves by its half step,
+// recomputed. To first order the joint movement is their sum, so |dS| <= E = sum |dS_j| (the
+// inputs' effects on the same triangle added as vectors first: they partly cancel, which the
+// triangle-by-triangle worst case (coarseVertexDegrees) does not see; it is 5-8x too loose on
+// gltfpack outputs). kSecondOrderMargin covers the products of moves the first order leaves
+// out, and S turns by at most asin(E / |S|); where E reaches |S| the vertex cannot be compared.
+// Where the coarse bound is already small, it is kept (the finer one is not computed there).
+ReferenceAllowance referenceAllowance(const PrimitiveGeometry& geometry, const InputRounding& rounding) {
+  constexpr double kSecondOrderMargin = 1.25;
+  constexpr float kCoarseEnoughDegrees = 4.0f;  // a 10 deg turn is caught under it anyway
+  ReferenceAllowance allowance;
+  if (!rounding.any()) return allowance;
+  const std::vector<float> coarse = coarseVertexDegrees(geometry, rounding);
+  const double eu = rounding.uv, ep = rounding.position;
+  const std::size_t triangles = geometry.corners.size() / 3, vertexCount = geometry.vertexCount;
+  allowance.vertexDegrees.assign(vertexCount, 0.0f);
+  allowance.orientationDecided.assign(triangles, 1);
+  std::vector<double> sum(3 * vertexCount, 0.0), movement(vertexCount, 0.0);
+  std::vector<double> shares(9 * triangles, 0.0), weights(3 * triangles, 0.0), signs(triangles, 1.0);
+  auto load = [&](std::size_t t, double p[3][3], double v[3], const float* normals[3]) {
+    for (int k = 0; k < 3; ++k) {
+      const std::uint32_t vertex = geometry.corners[3 * t + k];
+      for (int i = 0; i < 3; ++i) p[k][i] = geometry.positions[3 * vertex + i];
+      v[k] = geometry.uvs[2 * vertex + 1];
+      normals[k] = &geometry.normals[3 * vertex];
+    }
+  };
+  for (std::size_t t = 0; t < triangles; ++t) {
+    const std::uint32_t* c = &geometry.corners[3 * t];
+    const float* uv[3] = {&geometry.uvs[2 * c[0]], &geometry.uvs[2 * c[1]], &geometry.uvs[2 * c[2]]};
+    const double du1 = double(uv[1][0]) - uv[0][0], dv1 = double(uv[1][1]) - uv[0][1];
+    const double du2 = double(uv[2][0]) - uv[0][0], dv2 = double(uv[2][1]) - uv[0][1];
+    const double area = du1 * dv2 - du2 * dv1;
+    const double areaChange = 2 * eu * (std::abs(du1) + std::abs(du2) + std::abs(dv1) + std::abs(dv2)) + 8 * eu * eu;
+    signs[t] = area < 0 ? -1.0 : 1.0;
+    if (!(std::abs(area) > areaChange) || !std::isfinite(area)) allowance.orientationDecided[t] = 0;
+    double p[3][3], v[3];
+    const float* normals[3];
+    load(t, p, v, normals);
+    double share[3][3];
+    cornerShares(p, v, signs[t], normals, &weights[3 * t], false, share);
+    for (int k = 0; k < 3; ++k) {
+      for (int i = 0; i < 3; ++i) {
+        shares[9 * t + 3 * k + i] = share[k][i];
+        sum[3 * c[k] + i] += share[k][i];
+      }
+      if (!allowance.orientationDecided[t]) movement[c[k]] += 2 * norm3(share[k][0], share[k][1], share[k][2]);
+    }
+  }
+
+  // The decided triangles at each vertex that have a share. A triangle without one (its
+  // direction exactly zero: a pole's coincident vertices on one UV row) is left out: exact
+  // zeros come from exact data, which rounding keeps (tools map a range's ends exactly).
+  std::vector<char> moves(triangles, 0);
+  for (std::size_t t = 0; t < triangles; ++t)
+    moves[t] = allowance.orientationDecided[t] && std::any_of(&shares[9 * t], &shares[9 * t] + 9, [](double x) { return x != 0; });
+  std::vector<std::uint32_t> firstTriangle(vertexCount + 1, 0), incident;
+  for (std::size_t t = 0; t < triangles; ++t)
+    if (moves[t])
+      for (int k = 0; k < 3; ++k) ++firstTriangle[geometry.corners[3 * t + k] + 1];
+  for (std::size_t v = 0; v < vertexCount; ++v) firstTriangle[v + 1] += firstTriangle[v];
+  incident.resize(firstTriangle[vertexCount]);
+  {
+    std::vector<std::uint32_t> next(firstTriangle.begin(), firstTriangle.end() - 1);
+    for (std::size_t t = 0; t < triangles; ++t)
+      if (moves[t])
+        for (int k = 0; k < 3; ++k) incident[next[geometry.corners[3 * t + k]]++] = static_cast<std::uint32_t>(t);
+  }
+
+  // dS_j per input: a group of equal values (equalValueGroups) moved by its half step; |dS_j|
+  // for each vertex of the group's triangles, appended to `out` in vertex order.
+  std::vector<std::uint32_t> group, members, memberList;
+  std::uint32_t groupCount = 0;
+  struct Scratch {
+    std::vector<std::uint32_t> affected;
+    std::vector<std::pair<std::uint32_t, std::array<double, 3>>> changes;
+  };
+  auto moveGroup = [&](std::uint32_t k, int input, double step, Scratch& scratch, std::vector<std::pair<std::uint32_t, double>>& out) {
+    std::vector<std::uint32_t>& affected = scratch.affected;
+    affected.clear();
+    for (std::uint32_t m = members[k]; m < members[k + 1]; ++m) {
+      const std::uint32_t w = memberList[m];
+      affected.insert(affected.end(), incident.begin() + firstTriangle[w], incident.begin() + firstTriangle[w + 1]);
+    }
+    std::sort(affected.begin(), affected.end());
+    affected.erase(std::unique(affected.begin(), affected.end()), affected.end());
+    const bool needed = std::any_of(affected.begin(), affected.end(), [&](std::uint32_t t) {
+      return coarse[geometry.corners[3 * t]] > kCoarseEnoughDegrees || coarse[geometry.corners[3 * t + 1]] > kCoarseEnoughDegrees ||
+             coarse[geometry.corners[3 * t + 2]] > kCoarseEnoughDegrees;
+    });
+    if (!needed) return;
+    auto& changes = scratch.changes;
+    changes.clear();
+    for (const std::uint32_t t : affected) {
+      double p[3][3], v[3];
+      const float* normals[3];
+      load(t, p, v, normals);
+      for (int corner = 0; corner < 3; ++corner) {
+        if (group[geometry.corners[3 * t + corner]] != k) continue;
+        if (input == 0) v[corner] += step; else p[corner][input - 1] += step;
+      }
+      double share[3][3], moved[3] = {weights[3 * t], weights[3 * t + 1], weights[3 * t + 2]};
+      cornerShares(p, v, signs[t], normals, moved, input == 0, share);
+      for (int corner = 0; corner < 3; ++corner) {
+        const double* base = &shares[9 * t + 3 * corner];
+        changes.push_back({geometry.corners[3 * t + corner], {share[corner][0] - base[0], share[corner][1] - base[1], share[corner][2] - base[2]}});
+      }
+    }
+    std::stable_sort(changes.begin(), changes.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+    for (std::size_t i = 0; i < changes.size();) {
+      std::array<double, 3> total = {0, 0, 0};
+      std::size_t j = i;
+      for (; j < changes.size() && changes[j].first == changes[i].first; ++j)
+        for (int c = 0; c < 3; ++c) total[c] += changes[j].second[c];
+      out.push_back({changes[i].first, norm3(total[0], total[1], total[2])});
+      i = j;
+    }
+  };
+  // Groups in chunks, a batch of chunks at a time on several threads; the movements are added
+  // in group order, so the result does not depend on the thread count.
+  constexpr std::uint32_t kChunk = 4096;
+  const unsigned threads = std::clamp(std::thread::hardware_concurrency(), 1u, 16u);
+  std::vector<Scratch> scratch(threads);
+  for (int input = 0; input < 4; ++input) {  // V, then x, y, z
+    const double step = input == 0 ? eu : ep;
+    if (!(step > 0)) continue;
+    if (input == 0 || input == 1) {
+      groupCount = 0;
+      group = input == 0 ? equalValueGroups(geometry.uvs, 2, vertexCount, groupCount) : equalValueGroups(geometry.positions, 3, vertexCount, groupCount);
+      members.assign(groupCount + 1, 0);
+      for (std::size_t v = 0; v < vertexCount; ++v) ++members[group[v] + 1];
+      for (std::uint32_t k = 0; k < groupCount; ++k) members[k + 1] += members[k];
+      memberList.resize(vertexCount);
+      std::vector<std::uint32_t> next(members.begin(), members.end() - 1);
+      for (std::size_t v = 0; v < vertexCount; ++v) memberList[next[group[v]]++] = static_cast<std::uint32_t>(v);
+    }
+    const std::uint32_t chunks = (groupCount + kChunk - 1) / kChunk;
+    for (std::uint32_t firstChunk = 0; firstChunk < chunks; firstChunk += 4 * threads) {
+      const std::uint32_t batch = std::min(chunks - firstChunk, 4 * threads);
+      std::vector<std::vector<std::pair<std::uint32_t, double>>> results(batch);
+      auto work = [&](unsigned worker) {
+        for (std::uint32_t c = worker; c < batch; c += threads) {
+          const std::uint32_t first = (firstChunk + c) * kChunk, last = std::min(groupCount, first + kChunk);
+          for (std::uint32_t k = first; k < last; ++k) moveGroup(k, input, step, scratch[worker], results[c]);
+        }
+      };
+      if (threads == 1 || batch == 1) {
+        for (std::uint32_t c = 0; c < batch; ++c) {
+          const std::uint32_t first = (firstChunk + c) * kChunk, last = std::min(groupCount, first + kChunk);
+          for (std::uint32_t k = first; k < last; ++k) moveGroup(k, input, step, scratch[0], results[c]);
+        }
+      } else {
+        std::vector<std::thread> pool;
+        for (unsigned worker = 1; worker < threads; ++worker) pool.emplace_back(work, worker);
+        work(0);
+        for (std::thread& thread : pool) thread.join();
+      }
+      for (const auto& result : results)
+        for (const auto& [vertex, moved] : result) movement[vertex] += moved;
+    }
+  }
+  for (std::size_t v = 0; v < vertexCount; ++v) {
+    const double size = std::hypot(sum[3 * v], sum[3 * v + 1], sum[3 * v + 2]);
+    const double moved = kSecondOrderMargin * movement[v];
+    const float fine = moved < size ? static_cast<float>(std::asin(moved / size) * kDegreesPerRadian) : kUncomparableDegrees;
+    allowance.vertexDegrees[v] = coarse[v] <= kCoarseEnoughDegrees ? coarse[v] : std::min(coarse[v], fine);
   }
   return allowance;
 }
