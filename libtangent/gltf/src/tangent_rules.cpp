@@ -24,8 +24,13 @@
 #include <cmath>
 #include <cstring>
 #include <limits>
-#include <thread>
 #include <utility>
+
+#if !defined(TANGENT_SERIAL)
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
+#endif
 
 #include "accessors.hpp"
 #include "compression.hpp"
@@ -530,10 +535,15 @@ ReferenceAllowance referenceAllowance(const PrimitiveGeometry& geometry, const I
       i = j;
     }
   };
-  // Groups in chunks, a batch of chunks at a time on several threads; the movements are added
-  // in group order, so the result does not depend on the thread count.
+  // Groups in chunks, a batch of chunks at a time on the oneTBB pool the core uses (its
+  // arena and global limits apply; one thread in the web build); the movements are added in
+  // group order, so the result does not depend on the thread count.
   constexpr std::uint32_t kChunk = 4096;
-  const unsigned threads = std::clamp(std::thread::hardware_concurrency(), 1u, 16u);
+#if defined(TANGENT_SERIAL)
+  const unsigned threads = 1;
+#else
+  const unsigned threads = static_cast<unsigned>(std::max(1, tbb::this_task_arena::max_concurrency()));
+#endif
   std::vector<Scratch> scratch(threads);
   for (int input = 0; input < 4; ++input) {  // V, then x, y, z
     const double step = input == 0 ? eu : ep;
@@ -552,23 +562,24 @@ ReferenceAllowance referenceAllowance(const PrimitiveGeometry& geometry, const I
     for (std::uint32_t firstChunk = 0; firstChunk < chunks; firstChunk += 4 * threads) {
       const std::uint32_t batch = std::min(chunks - firstChunk, 4 * threads);
       std::vector<std::vector<std::pair<std::uint32_t, double>>> results(batch);
-      auto work = [&](unsigned worker) {
-        for (std::uint32_t c = worker; c < batch; c += threads) {
-          const std::uint32_t first = (firstChunk + c) * kChunk, last = std::min(groupCount, first + kChunk);
-          for (std::uint32_t k = first; k < last; ++k) moveGroup(k, input, step, scratch[worker], results[c]);
-        }
+      auto chunk = [&](std::uint32_t c, Scratch& mine) {
+        const std::uint32_t first = (firstChunk + c) * kChunk, last = std::min(groupCount, first + kChunk);
+        for (std::uint32_t k = first; k < last; ++k) moveGroup(k, input, step, mine, results[c]);
       };
+#if defined(TANGENT_SERIAL)
+      for (std::uint32_t c = 0; c < batch; ++c) chunk(c, scratch[0]);
+#else
       if (threads == 1 || batch == 1) {
-        for (std::uint32_t c = 0; c < batch; ++c) {
-          const std::uint32_t first = (firstChunk + c) * kChunk, last = std::min(groupCount, first + kChunk);
-          for (std::uint32_t k = first; k < last; ++k) moveGroup(k, input, step, scratch[0], results[c]);
-        }
+        for (std::uint32_t c = 0; c < batch; ++c) chunk(c, scratch[0]);
       } else {
-        std::vector<std::thread> pool;
-        for (unsigned worker = 1; worker < threads; ++worker) pool.emplace_back(work, worker);
-        work(0);
-        for (std::thread& thread : pool) thread.join();
+        tbb::parallel_for(tbb::blocked_range<std::uint32_t>(0, batch, 1), [&](const tbb::blocked_range<std::uint32_t>& range) {
+          // Each thread of the arena has its own scratch (its slot index is below max_concurrency).
+          const int slot = tbb::this_task_arena::current_thread_index();
+          Scratch& mine = scratch[slot >= 0 && static_cast<unsigned>(slot) < threads ? slot : 0];
+          for (std::uint32_t c = range.begin(); c < range.end(); ++c) chunk(c, mine);
+        });
       }
+#endif
       for (const auto& result : results)
         for (const auto& [vertex, moved] : result) movement[vertex] += moved;
     }
