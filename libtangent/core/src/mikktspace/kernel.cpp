@@ -58,7 +58,7 @@
 
 namespace tangent::detail::mikk {
 
-void Kernel::run(Report& report) {
+KernelOutcome Kernel::run(Report& report) {
   const std::size_t cornerCount = ws_.cornerCount, triangleCount = cornerCount / 3;
   ensureSize(ws_.orientation, triangleCount);
   ensureSize(ws_.triangleFlags, triangleCount);
@@ -111,10 +111,9 @@ void Kernel::run(Report& report) {
       mirrored.local() += local;
     });
   }
-  ws_.mirroredCorners = mirrored.combine(std::plus<>());
+  mirroredCorners_ = mirrored.combine(std::plus<>());
   fallbacks();
-  ws_.bucketUniformKnown = true;
-  ws_.wInOutputConvention = true;
+  return KernelOutcome{true, mirroredCorners_, anyCopy_.load(std::memory_order_relaxed), ws_.bucketUniform.data()};
 }
 
 }  // namespace tangent::detail::mikk
@@ -128,8 +127,8 @@ Report mikktspaceOnArrays(WorkspaceData& ws, const MeshArrays& mesh, const Corne
   report.weighting = Weighting::angle;
   report.triangles = ws.cornerCount / 3;
   report.corners = ws.cornerCount;
-  mikk::Kernel(ws, mesh, outputs, options.uvOrigin).run(report);
-  finishOutputs(ws, mesh, outputs, options, report);
+  const KernelOutcome done = mikk::Kernel(ws, mesh, outputs, options.uvOrigin).run(report);
+  finishOutputs(ws, mesh, outputs, options, report, done);
   return report;
 }
 
