@@ -43,8 +43,8 @@
 //   arrays.hpp         the input as read, value orders (first corner, triangle order)
 //   ../weld.cpp        1a. weld by value, bucket corners by welded vertex
 //   triangle_pass.cpp  1b. every triangle, beside the weld (widest ISA: isa.cpp)
-//   triangle.cpp       the triangle rules one at a time; lanes_sse2.cpp, lanes_avx2.cpp and
-//                      triangle_lanes.inc four and eight at a time, the same bits
+//   triangle.cpp       the triangle rules one at a time; lanes4.cpp, lanes8.cpp (lanes.inc,
+//                      triangle_lanes.inc) four and eight at a time, the same bits
 //   pairing.cpp        2. neighbours, duplicates, non-manifold edges
 //   orientation.cpp    3. zero-UV triangles' orientation (only where there are some)
 //   fan.cpp            4a. the one-fan shortcut from the parked terms

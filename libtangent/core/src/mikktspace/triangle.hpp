@@ -2,7 +2,7 @@
 // The triangle pass: each triangle's dP/du, dP/dv, UV orientation and flags (the reference's
 // float formulas, eq. 18 and 19 of its source), and each corner's angle-weighted term parked
 // in its output slot for the fan shortcut (fan.cpp). Scalar here (triangle.cpp); four and eight
-// lanes at a time in lanes_sse2.cpp, lanes_simd128.cpp and lanes_avx2.cpp, which share
+// lanes at a time in lanes4.cpp (SSE2 or SIMD128) and lanes8.cpp (AVX2), which share
 // lanes.inc and triangle_lanes.inc and give the same bits.
 #pragma once
 
@@ -64,11 +64,11 @@ void cornerTermsOne(const Arrays& a, std::size_t t, const float* frame, std::uin
 void evaluateAndParkOne(const Arrays& a, std::size_t t, std::int8_t& orientation, std::uint8_t& flags, float* tangents);
 
 #if defined(TANGENT_LANES4)
-// Triangles t .. t + 3 (lanes_sse2.cpp, lanes_simd128.cpp).
+// Triangles t .. t + 3 (lanes4.cpp).
 void evaluateLanes4(const Arrays& a, std::size_t t, std::int8_t* orientation, std::uint8_t* flags, float* tangents);
 #endif
 #if defined(TANGENT_LANES8)
-// Triangles t .. t + 7, where the processor has AVX2 (lanes_avx2.cpp).
+// Triangles t .. t + 7, where the processor has AVX2 (lanes8.cpp).
 void evaluateLanes8(const Arrays& a, std::size_t t, std::int8_t* orientation, std::uint8_t* flags, float* tangents);
 #endif
 
