@@ -11,6 +11,7 @@ std::string_view vectorIsa() {
   switch (detail::activeVectorIsa()) {
     case detail::VectorIsa::avx2: return "avx2";
     case detail::VectorIsa::sse2: return "sse2";
+    case detail::VectorIsa::simd128: return "simd128";
     case detail::VectorIsa::scalar: return "scalar";
   }
   return "scalar";

@@ -50,7 +50,8 @@ constexpr std::uint32_t kExtraFlag = 0x80000000u;  // a corner's new vertex, num
 
 // Duplicates copy their original; w in the output convention; the report's corner counts
 // and each corner's source.
-void copyAndCount(WorkspaceData& ws, const CornerOutputs& outputs, const Options& options, Report& report) {
+void copyAndCount(WorkspaceData& ws, const CornerOutputs& outputs, const Options& options, const KernelOutcome& kernel,
+                  Report& report) {
   const std::size_t cornerCount = ws.cornerCount;
   float* tangents = outputs.tangents.data();
   std::uint8_t* state = ws.cornerState.data();
@@ -61,9 +62,9 @@ void copyAndCount(WorkspaceData& ws, const CornerOutputs& outputs, const Options
   // the kernel counted the mirrored corners (all but the copies) and wrote w in the output
   // convention, the counts pass need not read the tangents, and without copies the copy pass
   // is skipped.
-  const bool kernelCounts = ws.wInOutputConvention;
+  const bool kernelCounts = kernel.wInOutputConvention;
   Combinable<std::uint64_t> mirroredCopies;
-  if (!kernelCounts || ws.anyCopy.load(std::memory_order_relaxed)) {
+  if (!kernelCounts || kernel.anyCopy) {
     forRange(ws, cornerCount, 1 << 14, [&](std::size_t begin, std::size_t end) {
       std::uint64_t local = 0;
       for (std::size_t c = begin; c < end; ++c) {
@@ -102,7 +103,7 @@ void copyAndCount(WorkspaceData& ws, const CornerOutputs& outputs, const Options
   });
   Counts total;
   counts.combine_each([&](const Counts& c) { total.add(c); });
-  report.mirroredCorners = kernelCounts ? ws.mirroredCorners + mirroredCopies.combine(std::plus<>()) : total.mirrored;
+  report.mirroredCorners = kernelCounts ? kernel.mirroredCorners + mirroredCopies.combine(std::plus<>()) : total.mirrored;
   report.inheritedCorners = total.inherited;
   report.fallbackFromNeighbours = total.neighbour;
   report.fallbackFixed = total.fixed;
@@ -112,7 +113,7 @@ void copyAndCount(WorkspaceData& ws, const CornerOutputs& outputs, const Options
 
 // The vertex split, bucket by bucket: cornerVertex holds the input vertex or kExtraFlag | the
 // bucket's own number of the new vertex; bucketExtra each bucket's count of new vertices.
-void splitBuckets(WorkspaceData& ws, const MeshArrays& mesh, const CornerOutputs& outputs) {
+void splitBuckets(WorkspaceData& ws, const MeshArrays& mesh, const CornerOutputs& outputs, const std::uint8_t* knownUniform) {
   const std::size_t vertexCount = ws.vertexCount;
   const float* tangents = outputs.tangents.data();
   // Vertex split, bucket by bucket: the tangent of a vertex's first corner keeps the vertex,
@@ -121,7 +122,6 @@ void splitBuckets(WorkspaceData& ws, const MeshArrays& mesh, const CornerOutputs
   const std::uint32_t* corners = ws.bucketCorners.data();
   const std::uint32_t* indices = mesh.indices.data();
   std::uint32_t* extra = ws.bucketExtra.data();
-  const std::uint8_t* knownUniform = ws.bucketUniformKnown ? ws.bucketUniform.data() : nullptr;
   const bool wantVertices = !outputs.cornerVertex.empty();
   std::uint32_t* cornerVertex = wantVertices ? outputs.cornerVertex.data() : nullptr;
   forRange(ws, vertexCount, 2048, [&](std::size_t begin, std::size_t end) {
@@ -234,9 +234,9 @@ void numberExtraVertices(WorkspaceData& ws, const MeshArrays& mesh, const Corner
 }  // namespace
 
 void finishOutputs(WorkspaceData& ws, const MeshArrays& mesh, const CornerOutputs& outputs, const Options& options,
-                   Report& report) {
-  copyAndCount(ws, outputs, options, report);
-  splitBuckets(ws, mesh, outputs);
+                   Report& report, const KernelOutcome& kernel) {
+  copyAndCount(ws, outputs, options, kernel, report);
+  splitBuckets(ws, mesh, outputs, kernel.bucketUniform);
   numberExtraVertices(ws, mesh, outputs, report);
 }
 

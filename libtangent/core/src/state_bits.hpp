@@ -60,8 +60,8 @@ enum BucketChain : std::uint8_t {
   kOneFan = 3,         // one chain whose triangles have one UV orientation, where orientations
                        // were final at pairing: one group, and its links were not written
 };
-// From `group` to `output`, where WorkspaceData::bucketUniformKnown (set at the end of the
-// kernel, reset by the weld): bits.
+// From `group` to `output` (the kernel hands the array to `output` in
+// KernelOutcome::bucketUniform; lengyel and flat do not): bits.
 enum BucketUniform : std::uint8_t {
   // All the bucket's corners got one frame and are one input vertex, and nothing after `group`
   // changes them: `output`'s vertex split need not compare them.

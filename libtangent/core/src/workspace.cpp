@@ -106,9 +106,6 @@ void checkIndices(const WorkspaceData& ws, const MeshArrays& mesh) {
 void beginCall(WorkspaceData& ws, const MeshArrays& mesh) {
   ws.vertexCount = mesh.positions.size() / 3;
   ws.cornerCount = mesh.indices.size();
-  ws.bucketUniformKnown = false;
-  ws.wInOutputConvention = false;
-  ws.anyCopy.store(false, std::memory_order_relaxed);
   checkIndices(ws, mesh);
 }
 

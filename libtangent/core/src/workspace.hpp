@@ -127,13 +127,6 @@ struct WorkspaceData {
   BulkVector<std::uint32_t> bucketExtra;    // per welded id: extra output vertices, then offsets
   BulkVector<std::uint8_t> bucketUniform;   // per welded id: BucketChain, then BucketUniform
                                              // bits (state_bits.hpp)
-  bool bucketUniformKnown = false;          // set by the mikktspace kernel, reset by the weld
-  bool wInOutputConvention = false;         // the kernel wrote w with the UV origin applied
-                                             // (set by the mikktspace kernel, reset by the weld)
-  std::uint64_t mirroredCorners = 0;        // where wInOutputConvention: corners with w < 0,
-                                             // copies of duplicate triangles aside
-  std::atomic<bool> anyCopy{false};         // a corner is kCopy (set by the kernel, reset by
-                                             // the weld)
   PerThread<BucketScratch> scratch;
   // Strided or 16-bit-indexed input, packed (entry.cpp).
   BulkVector<float> packedPositions, packedNormals, packedUvs;
@@ -232,16 +225,31 @@ void weldAndBucket(WorkspaceData& ws, const MeshArrays& mesh, unsigned threads);
 // triangle pass, groups, output pass (finishOutputs), on the calling thread's arena.
 Report mikktspaceOnArrays(WorkspaceData& ws, const MeshArrays& mesh, const CornerOutputs& outputs, const Options& options);
 
-// The vector width of mikktspace's triangle pass. Every width gives the same bits.
-enum class VectorIsa : std::uint8_t { scalar, sse2, avx2 };
+// The vector width of mikktspace's triangle pass: scalar, four lanes (SSE2 on x86,
+// SIMD128 in WebAssembly; never both in one build) or eight (AVX2). Every width gives the same
+// bits.
+enum class VectorIsa : std::uint8_t { scalar, sse2, simd128, avx2 };
 // The widest this build and this processor have, capped by the environment variable
-// TANGENT_MAX_CPU_ISA where it names one of them (scalar, sse2, avx2). Read at each call.
+// TANGENT_MAX_CPU_ISA where it names one of them (scalar, sse2, simd128, avx2). Read at each
+// call.
 VectorIsa activeVectorIsa();
 
-// Copies duplicate corners, applies the UV origin to w (unless ws.wInOutputConvention), counts
-// sources and mirrored corners, and works out the vertex split (outputs.cornerVertex when
-// asked for).
+// What mikktspace's kernel hands the output pass, so that it can skip work; lengyel and flat
+// hand nothing (the defaults).
+struct KernelOutcome {
+  // The kernel wrote w with the UV origin applied and counted the corners with w < 0 (copies
+  // of duplicate triangles aside): the output pass need not read every tangent.
+  bool wInOutputConvention = false;
+  std::uint64_t mirroredCorners = 0;
+  bool anyCopy = true;  // a corner may be kCopy: the copy pass must run
+  // Per welded id, BucketUniform bits (state_bits.hpp), or null where not known.
+  const std::uint8_t* bucketUniform = nullptr;
+};
+
+// Copies duplicate corners, applies the UV origin to w (unless kernel.wInOutputConvention),
+// counts sources and mirrored corners, and works out the vertex split (outputs.cornerVertex
+// when asked for).
 void finishOutputs(WorkspaceData& ws, const MeshArrays& mesh, const CornerOutputs& outputs, const Options& options,
-                   Report& report);
+                   Report& report, const KernelOutcome& kernel = {});
 
 }  // namespace tangent::detail

@@ -111,10 +111,10 @@ struct Report {
   std::uint64_t outputVertices = 0;         // input vertices + splitVertices (see CornerOutputs)
 };
 
-// The vector instructions mikktspace's triangle pass uses on this machine: "avx2", "sse2" or
-// "scalar". The widest the build and the processor have, capped by the environment variable
-// TANGENT_MAX_CPU_ISA where it names one of these (read at each call; other values are
-// ignored). Every choice gives the same bits: the variable is for testing and comparing them.
+// The vector instructions mikktspace's triangle pass uses on this machine: "avx2", "sse2",
+// "simd128" (WebAssembly) or "scalar". The widest the build and the processor have, capped by
+// the environment variable TANGENT_MAX_CPU_ISA where it names one of these ("sse2" and
+// "simd128" both name four lanes; read at each call; other values are ignored). Every choice gives the same bits: the variable is for testing and comparing them.
 std::string_view vectorIsa();
 
 std::string_view toString(Method method);

@@ -44,7 +44,7 @@ void Kernel::fallbacks() {
       const bool wasMirrored = tangents_[4 * c + 3] < 0;
       if (ws_.cornerState[c] & kUndefined) tangents_[4 * c + 3] = w * wSign_;
       else if (this->w(c) != w) inheritInBucket(id(c), static_cast<std::uint32_t>(c), w, false);
-      ws_.mirroredCorners += (tangents_[4 * c + 3] < 0) - static_cast<int>(wasMirrored);
+      mirroredCorners_ += (tangents_[4 * c + 3] < 0) - static_cast<int>(wasMirrored);
     }
   }
   if (!anyUndefined_.load(std::memory_order_relaxed)) return;

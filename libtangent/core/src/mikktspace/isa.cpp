@@ -7,6 +7,12 @@
 
 namespace tangent::detail {
 
+#if defined(__wasm_simd128__)
+constexpr VectorIsa kFourLanes = VectorIsa::simd128;
+#else
+constexpr VectorIsa kFourLanes = VectorIsa::sse2;
+#endif
+
 VectorIsa activeVectorIsa() {
 #if defined(TANGENT_LANES8)
   static const VectorIsa widest = [] {
@@ -15,6 +21,8 @@ VectorIsa activeVectorIsa() {
   }();
 #elif defined(__SSE2__)
   constexpr VectorIsa widest = VectorIsa::sse2;
+#elif defined(__wasm_simd128__)
+  constexpr VectorIsa widest = VectorIsa::simd128;
 #else
   constexpr VectorIsa widest = VectorIsa::scalar;
 #endif
@@ -22,7 +30,7 @@ VectorIsa activeVectorIsa() {
   if (const char* name = std::getenv("TANGENT_MAX_CPU_ISA")) {
     const std::string_view value(name);
     if (value == "scalar") cap = VectorIsa::scalar;
-    if (value == "sse2") cap = VectorIsa::sse2;
+    if (value == "sse2" || value == "simd128") cap = kFourLanes;  // either name: four lanes
   }
   return std::min(widest, cap);
 }

@@ -43,8 +43,8 @@
 //   arrays.hpp         the input as read, value orders (first corner, triangle order)
 //   ../weld.cpp        1a. weld by value, bucket corners by welded vertex
 //   triangle_pass.cpp  1b. every triangle, beside the weld (widest ISA: isa.cpp)
-//   triangle.cpp       the triangle rules one at a time; lanes_sse2.cpp, lanes_avx2.cpp and
-//                      triangle_lanes.inc four and eight at a time, the same bits
+//   triangle.cpp       the triangle rules one at a time; lanes4.cpp, lanes8.cpp (lanes.inc,
+//                      triangle_lanes.inc) four and eight at a time, the same bits
 //   pairing.cpp        2. neighbours, duplicates, non-manifold edges
 //   orientation.cpp    3. zero-UV triangles' orientation (only where there are some)
 //   fan.cpp            4a. the one-fan shortcut from the parked terms
@@ -58,7 +58,7 @@
 
 namespace tangent::detail::mikk {
 
-void Kernel::run(Report& report) {
+KernelOutcome Kernel::run(Report& report) {
   const std::size_t cornerCount = ws_.cornerCount, triangleCount = cornerCount / 3;
   ensureSize(ws_.orientation, triangleCount);
   ensureSize(ws_.triangleFlags, triangleCount);
@@ -111,10 +111,9 @@ void Kernel::run(Report& report) {
       mirrored.local() += local;
     });
   }
-  ws_.mirroredCorners = mirrored.combine(std::plus<>());
+  mirroredCorners_ = mirrored.combine(std::plus<>());
   fallbacks();
-  ws_.bucketUniformKnown = true;
-  ws_.wInOutputConvention = true;
+  return KernelOutcome{true, mirroredCorners_, anyCopy_.load(std::memory_order_relaxed), ws_.bucketUniform.data()};
 }
 
 }  // namespace tangent::detail::mikk
@@ -128,8 +127,8 @@ Report mikktspaceOnArrays(WorkspaceData& ws, const MeshArrays& mesh, const Corne
   report.weighting = Weighting::angle;
   report.triangles = ws.cornerCount / 3;
   report.corners = ws.cornerCount;
-  mikk::Kernel(ws, mesh, outputs, options.uvOrigin).run(report);
-  finishOutputs(ws, mesh, outputs, options, report);
+  const KernelOutcome done = mikk::Kernel(ws, mesh, outputs, options.uvOrigin).run(report);
+  finishOutputs(ws, mesh, outputs, options, report, done);
   return report;
 }
 

@@ -74,8 +74,9 @@ class Kernel {
 
   // Welds and buckets (weldAndBucket), then writes the tangents (w in the convention of the
   // call's UV origin, so that the output pass need not rewrite every tangent) and
-  // ws.cornerState, and fills the triangle counts of the report.
-  void run(Report& report);
+  // ws.cornerState, and fills the triangle counts of the report. Returns what the output pass
+  // may take as done.
+  KernelOutcome run(Report& report);
 
  private:
   std::uint32_t id(std::size_t corner) const { return identity_ ? a_.indices[corner] : vertexId_[a_.indices[corner]]; }
@@ -216,6 +217,8 @@ class Kernel {
   // Whether any corner was marked undefined, any edge is non-manifold: where not, the passes
   // that look for them are skipped.
   std::atomic<bool> anyUndefined_{false}, anyNonManifold_{false};
+  std::atomic<bool> anyCopy_{false};  // a corner is kCopy (pairing)
+  std::uint64_t mirroredCorners_ = 0;  // corners with w < 0, copies aside (group, fallback)
   const VectorIsa isa_ = activeVectorIsa();
   // Whether the UV orientations are final when the buckets are paired (no zero-UV triangle
   // waits for its neighbours'), so that pairing may vouch for one orientation.

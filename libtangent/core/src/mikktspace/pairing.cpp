@@ -235,7 +235,7 @@ void Kernel::markDuplicates(const std::uint64_t* outs, std::size_t n) {
         const auto cx = static_cast<std::uint32_t>(outs[x]);
         if (!(ws_.cornerState[cx] & kCopy) && id(previousCorner(cx)) == id(previousCorner(cy))) {
           ws_.cornerState[cy] |= kCopy;
-          ws_.anyCopy.store(true, std::memory_order_relaxed);
+          anyCopy_.store(true, std::memory_order_relaxed);
           ws_.cornerLink[cy] = cx;
           break;
         }

@@ -2,8 +2,8 @@
 // The triangle pass: each triangle's dP/du, dP/dv, UV orientation and flags (the reference's
 // float formulas, eq. 18 and 19 of its source), and each corner's angle-weighted term parked
 // in its output slot for the fan shortcut (fan.cpp). Scalar here (triangle.cpp); four and eight
-// lanes at a time in lanes_sse2.cpp and lanes_avx2.cpp, which share triangle_lanes.inc and give
-// the same bits.
+// lanes at a time in lanes4.cpp (SSE2 or SIMD128) and lanes8.cpp (AVX2), which share
+// lanes.inc and triangle_lanes.inc and give the same bits.
 #pragma once
 
 #include <cstddef>
@@ -12,7 +12,11 @@
 #include "angles.hpp"
 #include "arrays.hpp"
 
-// GCC on x86-64 also builds the triangle pass for AVX2, chosen at run time (isa.cpp).
+// Four lanes where the target has SSE2 or WebAssembly SIMD128; GCC on x86-64 also builds the
+// triangle pass for AVX2, chosen at run time (isa.cpp).
+#if defined(__SSE2__) || defined(__wasm_simd128__)
+#define TANGENT_LANES4 1
+#endif
 #if defined(__SSE2__) && defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
 #define TANGENT_LANES8 1
 #endif
@@ -22,7 +26,7 @@ namespace tangent::detail::mikk {
 // The group pass's common case, prepared in corner order by the triangle pass: each corner's
 // angle-weighted term, parked in its own output slot until the group pass replaces it with
 // the frame. Float arithmetic, eight triangles at a time where AVX2 is there, four where SSE2
-// is (triangle_lanes.inc); the scalar function does the same operations in the same order, so
+// or SIMD128 is (triangle_lanes.inc); the scalar function does the same operations in the same order, so
 // every width gives the same bits.
 //
 // Slot of corner c: {S.x * angle, S.y * angle, S.z * angle, angle}, S the reference's
@@ -59,12 +63,12 @@ void cornerTermsOne(const Arrays& a, std::size_t t, const float* frame, std::uin
 // One triangle the scalar way: its orientation, flags and its corners' parked terms.
 void evaluateAndParkOne(const Arrays& a, std::size_t t, std::int8_t& orientation, std::uint8_t& flags, float* tangents);
 
-#if defined(__SSE2__)
-// Triangles t .. t + 3 (lanes_sse2.cpp).
+#if defined(TANGENT_LANES4)
+// Triangles t .. t + 3 (lanes4.cpp).
 void evaluateLanes4(const Arrays& a, std::size_t t, std::int8_t* orientation, std::uint8_t* flags, float* tangents);
 #endif
 #if defined(TANGENT_LANES8)
-// Triangles t .. t + 7, where the processor has AVX2 (lanes_avx2.cpp).
+// Triangles t .. t + 7, where the processor has AVX2 (lanes8.cpp).
 void evaluateLanes8(const Arrays& a, std::size_t t, std::int8_t* orientation, std::uint8_t* flags, float* tangents);
 #endif
 

@@ -21,7 +21,7 @@ void Kernel::evaluateTriangles(Report& report) {
       }
     }
 #endif
-#if defined(__SSE2__)
+#if defined(TANGENT_LANES4)
     if (isa_ != VectorIsa::scalar) {
       for (; t + 4 <= end; t += 4) {
         evaluateLanes4(a_, t, &ws_.orientation[t], &ws_.triangleFlags[t], tangents_);
