@@ -178,6 +178,26 @@ void registerInput(const InputSource& source) {
           counters(state, in, actualThreads(threads));
         }));
   }
+  // The other methods on the same arrays, on one thread and on all of them: what they cost
+  // beside mikktspace, and that they use the threads they are given (wall against CPU time).
+  for (const tangent::Method method : {tangent::Method::lengyel, tangent::Method::meshopt, tangent::Method::flat}) {
+    for (const auto& [label, threads] : {std::pair<const char*, unsigned>{"t1", 1u}, {"tall", 0u}}) {
+      const std::string name = std::string(tangent::toString(method)) + "/" + label + "/" + source.name;
+      reportProcessCpuTime(benchmark::RegisterBenchmark(name.c_str(), [source, method, threads = threads](benchmark::State& state) {
+        const Input& in = input(source);
+        LibraryCall call(in);
+        tangent::Options o = options(threads);
+        o.method = method;
+        call(in, o);
+        for (auto _ : state) {
+          call(in, o);
+          benchmark::DoNotOptimize(call.data());
+          benchmark::ClobberMemory();
+        }
+        counters(state, in, actualThreads(threads));
+      }));
+    }
+  }
   // One call with a fresh workspace each time (its allocation and first touch included), as a
   // single bake pays it.
   reportProcessCpuTime(benchmark::RegisterBenchmark(("library-cold/t1/" + source.name).c_str(), [source](benchmark::State& state) {

@@ -175,6 +175,17 @@ lines += ["",
           "vertices, normals and UVs (2n² triangles, 2n of them degenerate at the poles); `asset:NAME` is the largest normal-mapped "
           "primitive of `../shared/assets/NAME.glb`.",
           "- Above 1 in \"library 1 thread ÷ meshopt compatible\": the library is that many times slower."]
+# The other methods: one thread against all, wall time, with the CPU time that shows the threads in use.
+lines += ["", f"The other methods on the same arrays (`Options::method`), milliseconds per call: 1 thread (CPU time) and all ({threads}) "
+          "threads (wall, CPU time in parentheses); the speed-up is wall time on 1 thread over wall time on all.", "",
+          "| input | method | 1 thread | all threads | speed-up (wall) | ÷ mikktspace, 1 thread |", "|---|---|---:|---:|---:|---:|"]
+for i in inputs:
+    for method in ("lengyel", "meshopt", "flat"):
+        one = ms(f"{method}/t1/{i}")
+        if one != one: continue
+        every, every_cpu = ms(f"{method}/tall/{i}", "real_time"), ms(f"{method}/tall/{i}")
+        lines.append(f"| {i} | {method} | {fmt(one)} | {fmt(every)} ({fmt(every_cpu)}) | "
+                     f"{ratio(ms(f'{method}/t1/{i}', 'real_time'), every)} | {ratio(one, ms(f'library/t1/{i}'))} |")
 # How time per triangle grows with size: the log-log slope from 1e5 to 4e6 (0: linear in triangles).
 slopes = []
 if "sphere-1e5" in inputs and "sphere-4e6" in inputs:
