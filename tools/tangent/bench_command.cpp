@@ -37,6 +37,16 @@ namespace fs = std::filesystem;
 using Clock = std::chrono::steady_clock;
 using Json = nlohmann::ordered_json;
 
+// A file's scene, or a warning naming it and nothing (the bench goes on with the others).
+std::optional<gltf::Scene> loadSceneOrWarn(const fs::path& file) {
+  try {
+    return gltf::loadScene(file);
+  } catch (const std::exception& e) {
+    std::cerr << "warning: " << e.what() << "\n";
+    return std::nullopt;
+  }
+}
+
 const char* kBenchUsage =
     "usage: tangent bench [options]\n"
     "\n"
@@ -231,13 +241,9 @@ std::vector<PeerInput> peerInputs(const std::vector<fs::path>& files, std::size_
     inputs.push_back({surface + " (generated)", std::move(mesh.positions), std::move(mesh.normals), std::move(mesh.uvs), std::move(mesh.indices)});
   }
   for (const auto& file : files) {
-    gltf::Scene scene;
-    try {
-      scene = gltf::loadScene(file);
-    } catch (const std::exception& e) {
-      std::cerr << "warning: " << e.what() << "\n";
-      continue;
-    }
+    const std::optional<gltf::Scene> loaded = loadSceneOrWarn(file);
+    if (!loaded) continue;
+    const gltf::Scene& scene = *loaded;
     for (const auto& item : scene.items) {
       if (!item.hasUvs || item.positions.empty()) continue;
       std::string name = file.filename().string();
@@ -455,13 +461,9 @@ int benchCommand(const std::vector<std::string>& args) {
     std::printf("\n%-28s %-10s %9s %-18s %3s %10s %10s %10s %8s %10s\n", "asset", "primitive", "triangles", "method", "thr", "median deg",
                 "p99 deg", "max deg", "w diff", "ms");
   for (const auto& file : files) {
-    gltf::Scene scene;
-    try {
-      scene = gltf::loadScene(file);
-    } catch (const std::exception& e) {
-      std::cerr << "warning: " << e.what() << "\n";
-      continue;
-    }
+    const std::optional<gltf::Scene> loaded = loadSceneOrWarn(file);
+    if (!loaded) continue;
+    const gltf::Scene& scene = *loaded;
     for (const auto& item : scene.items) {
       if (!item.hasUvs) continue;
       std::vector<std::uint32_t> identity(item.positions.size() / 3);
