@@ -148,13 +148,17 @@ double timedPeerRun(bench::Peer peer, const MeshArrays& mesh, UvOrigin uvOrigin,
   return median(times);
 }
 
+// Mean, p99 and max angle and w mismatches of `corners` against `reference` (per vertex through
+// `indices`, or per corner), over every corner or only those `compared` marks.
 Errors compare(const std::vector<float>& corners, const std::vector<std::uint32_t>& indices, const std::vector<float>& reference,
-               bool referencePerVertex) {
+               bool referencePerVertex, const std::vector<std::uint8_t>* compared = nullptr) {
   Errors e;
-  std::vector<double> angles(indices.size());
+  std::vector<double> angles;
+  angles.reserve(indices.size());
   for (std::size_t c = 0; c < indices.size(); ++c) {
+    if (compared && !(*compared)[c]) continue;
     const float* expected = &reference[4 * (referencePerVertex ? indices[c] : c)];
-    angles[c] = angleDegrees(&corners[4 * c], expected);
+    angles.push_back(angleDegrees(&corners[4 * c], expected));
     if (corners[4 * c + 3] != expected[3]) ++e.wErrors;
   }
   if (angles.empty()) return e;
@@ -254,28 +258,6 @@ std::vector<PeerInput> peerInputs(const std::vector<fs::path>& files, std::size_
   return inputs;
 }
 
-// Max and p99 angle and w mismatches of `corners` against the reference's, over the corners in
-// `compared`.
-struct PeerErrors {
-  double max = 0, p99 = 0;
-  std::size_t wMismatches = 0;
-};
-
-PeerErrors againstReference(const std::vector<float>& corners, const std::vector<float>& reference, const std::vector<std::uint8_t>& compared) {
-  PeerErrors e;
-  std::vector<double> angles;
-  for (std::size_t c = 0; c < compared.size(); ++c) {
-    if (!compared[c]) continue;
-    angles.push_back(angleDegrees(&corners[4 * c], &reference[4 * c]));
-    e.wMismatches += corners[4 * c + 3] != reference[4 * c + 3];
-  }
-  if (angles.empty()) return e;
-  std::sort(angles.begin(), angles.end());
-  e.p99 = angles[std::min(angles.size() - 1, angles.size() * 99 / 100)];
-  e.max = angles.back();
-  return e;
-}
-
 // tangent bench --peers: the error-against-run-time table with the peers as rows. Every run is
 // on one thread (the peers have no other), w in MikkTSpace's convention (as the reference C
 // writes it); the library's mikktspace at all threads is one more row, for its time.
@@ -307,16 +289,16 @@ int peersTable(const std::vector<fs::path>& assets, std::size_t triangles, int r
     for (std::size_t c = 0; c < corners; ++c)
       compared[c] = sources[c] == FrameSource::computed || sources[c] == FrameSource::inherited;
     const std::size_t comparedCount = static_cast<std::size_t>(std::count(compared.begin(), compared.end(), 1));
-    auto row = [&](const std::string& generator, unsigned threads, const std::optional<PeerErrors>& e, double ms) {
+    auto row = [&](const std::string& generator, unsigned threads, const std::optional<Errors>& e, double ms) {
       const std::string label = generator + (threads == 1 ? "" : " (" + std::to_string(threads) + " threads)");
       if (e) {
         std::printf("| %s | %zu | %s | %.3g | %.3g | %zu | %.2f |\n", input.name.c_str(), corners / 3, label.c_str(), e->max, e->p99,
-                    e->wMismatches, ms);
+                    e->wErrors, ms);
       } else {
         std::printf("| %s | %zu | %s | - | - | - | %.2f |\n", input.name.c_str(), corners / 3, label.c_str(), ms);
       }
       csv << '"' << input.name << "\"," << corners / 3 << "," << generator << "," << threads << "," << comparedCount << "," << corners << ","
-          << (e ? e->max : 0.0) << "," << (e ? e->p99 : 0.0) << "," << (e ? e->wMismatches : 0) << "," << ms << "\n";
+          << (e ? e->max : 0.0) << "," << (e ? e->p99 : 0.0) << "," << (e ? e->wErrors : 0) << "," << ms << "\n";
     };
     row("mikktspace.c (the reference)", 1, std::nullopt, referenceMs);
     for (const Setting& setting : settings()) {
@@ -324,19 +306,19 @@ int peersTable(const std::vector<fs::path>& assets, std::size_t triangles, int r
       Options options = setting.options;  // bottom-left: the reference's w
       std::vector<float> ours;
       const double ms = timedRun(arrays, options, repeats, ours);
-      row(setting.label, 1, againstReference(ours, reference, compared), ms);
+      row(setting.label, 1, compare(ours, input.indices, reference, false, &compared), ms);
     }
     for (bench::Peer peer : bench::peers()) {
       if (peer == bench::Peer::referenceMikktspace) continue;
       std::vector<float> theirs;
       const double ms = timedPeerRun(peer, arrays, UvOrigin::bottomLeft, repeats, theirs);
-      row(std::string(toString(peer)) + " (peer)", 1, againstReference(theirs, reference, compared), ms);
+      row(std::string(toString(peer)) + " (peer)", 1, compare(theirs, input.indices, reference, false, &compared), ms);
     }
     Options allThreads;
     allThreads.uvOrigin = UvOrigin::bottomLeft;
     std::vector<float> ours;
     const double ms = timedRun(arrays, allThreads, repeats, ours);
-    row("mikktspace", threadCount(allThreads), againstReference(ours, reference, compared), ms);
+    row("mikktspace", threadCount(allThreads), compare(ours, input.indices, reference, false, &compared), ms);
     std::fflush(stdout);
   }
   std::error_code ec;
