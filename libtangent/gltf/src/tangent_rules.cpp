@@ -274,6 +274,27 @@ constexpr double kHalfPi = 1.57079632679489661923;
 
 inline double norm3(double x, double y, double z) { return std::sqrt(x * x + y * y + z * z); }
 
+// A triangle's UV orientation (the sign of its UV area) and whether rounding UVs by up to eu
+// leaves it decided: the area moves by at most 2 eu (|du1| + |du2| + |dv1| + |dv2|) + 8 eu^2.
+struct UvOrientation {
+  double sign = 1;
+  bool decided = true;
+};
+UvOrientation uvOrientation(const PrimitiveGeometry& geometry, const std::uint32_t* c, double eu) {
+  const float* uv[3] = {&geometry.uvs[2 * c[0]], &geometry.uvs[2 * c[1]], &geometry.uvs[2 * c[2]]};
+  const double du1 = double(uv[1][0]) - uv[0][0], dv1 = double(uv[1][1]) - uv[0][1];
+  const double du2 = double(uv[2][0]) - uv[0][0], dv2 = double(uv[2][1]) - uv[0][1];
+  const double area = du1 * dv2 - du2 * dv1;
+  const double areaChange = 2 * eu * (std::abs(du1) + std::abs(du2) + std::abs(dv1) + std::abs(dv2)) + 8 * eu * eu;
+  return {area < 0 ? -1.0 : 1.0, std::abs(area) > areaChange && std::isfinite(area)};
+}
+
+// How far a sum of length `size` can turn when it moves by up to `moved`: asin(moved / size),
+// or uncomparable where the movement reaches its length.
+float turnDegrees(double moved, double size) {
+  return moved < size ? static_cast<float>(std::asin(moved / size) * kDegreesPerRadian) : kUncomparableDegrees;
+}
+
 void cornerShares(const double p[3][3], const double v[3], double sign, const float* const normals[3], double weights[3], bool keepWeights,
                   double shares[3][3]) {
   double e1[3], e2[3], direction[3];
@@ -346,11 +367,8 @@ std::vector<std::uint32_t> equalValueGroups(const std::vector<float>& values, in
 // S moves by at most E = sum a_i chord_i and turns by at most asin(E / |S|). Where it is below
 // kCoarseEnoughDegrees, referenceAllowance keeps it and skips the finer computation.
 std::vector<float> coarseVertexDegrees(const PrimitiveGeometry& geometry, const InputRounding& rounding) {
-  ReferenceAllowance allowance;
   const double eu = rounding.uv, ep = rounding.position, root3 = std::sqrt(3.0);
   const std::size_t triangles = geometry.corners.size() / 3;
-  allowance.vertexDegrees.assign(geometry.vertexCount, 0.0f);
-  allowance.orientationDecided.assign(triangles, 1);
   std::vector<double> sum(3 * geometry.vertexCount, 0.0), movement(geometry.vertexCount, 0.0);
   for (std::size_t t = 0; t < triangles; ++t) {
     const std::uint32_t* c = &geometry.corners[3 * t];
@@ -361,17 +379,13 @@ std::vector<float> coarseVertexDegrees(const PrimitiveGeometry& geometry, const 
       e1[i] = double(p[1][i]) - p[0][i];
       e2[i] = double(p[2][i]) - p[0][i];
     }
-    const double du1 = double(uv[1][0]) - uv[0][0], dv1 = double(uv[1][1]) - uv[0][1];
-    const double du2 = double(uv[2][0]) - uv[0][0], dv2 = double(uv[2][1]) - uv[0][1];
-    const double area = du1 * dv2 - du2 * dv1;
-    const double areaChange = 2 * eu * (std::abs(du1) + std::abs(du2) + std::abs(dv1) + std::abs(dv2)) + 8 * eu * eu;
-    const double sign = area < 0 ? -1.0 : 1.0;
+    const double dv1 = double(uv[1][1]) - uv[0][1], dv2 = double(uv[2][1]) - uv[0][1];
+    const UvOrientation orientation = uvOrientation(geometry, c, eu);
+    const double sign = orientation.sign;
     double v[3] = {sign * (e1[0] * dv2 - e2[0] * dv1), sign * (e1[1] * dv2 - e2[1] * dv1), sign * (e1[2] * dv2 - e2[2] * dv1)};
     const double vLength = std::hypot(v[0], v[1], v[2]);
     double chord = 2;
-    if (!(std::abs(area) > areaChange) || !std::isfinite(area)) {
-      allowance.orientationDecided[t] = 0;
-    } else {
+    if (orientation.decided) {
       const double e1Length = std::hypot(e1[0], e1[1], e1[2]), e2Length = std::hypot(e2[0], e2[1], e2[2]);
       const double change = 2 * eu * (e1Length + e2Length) + 2 * root3 * ep * (std::abs(dv1) + std::abs(dv2)) + 8 * root3 * ep * eu;
       if (change < vLength) chord = 2 * std::sin(std::asin(change / vLength) / 2);
@@ -400,12 +414,10 @@ std::vector<float> coarseVertexDegrees(const PrimitiveGeometry& geometry, const 
       for (int i = 0; i < 3; ++i) sum[3 * vertex + i] += weight * projected[i] / projectedLength;
     }
   }
-  for (std::size_t v = 0; v < geometry.vertexCount; ++v) {
-    const double size = std::hypot(sum[3 * v], sum[3 * v + 1], sum[3 * v + 2]);
-    allowance.vertexDegrees[v] =
-        movement[v] < size ? static_cast<float>(std::asin(movement[v] / size) * kDegreesPerRadian) : kUncomparableDegrees;
-  }
-  return std::move(allowance.vertexDegrees);
+  std::vector<float> degrees(geometry.vertexCount);
+  for (std::size_t v = 0; v < geometry.vertexCount; ++v)
+    degrees[v] = turnDegrees(movement[v], std::hypot(sum[3 * v], sum[3 * v + 1], sum[3 * v + 2]));
+  return degrees;
 }
 
 }  // namespace
@@ -446,13 +458,9 @@ ReferenceAllowance referenceAllowance(const PrimitiveGeometry& geometry, const I
   };
   for (std::size_t t = 0; t < triangles; ++t) {
     const std::uint32_t* c = &geometry.corners[3 * t];
-    const float* uv[3] = {&geometry.uvs[2 * c[0]], &geometry.uvs[2 * c[1]], &geometry.uvs[2 * c[2]]};
-    const double du1 = double(uv[1][0]) - uv[0][0], dv1 = double(uv[1][1]) - uv[0][1];
-    const double du2 = double(uv[2][0]) - uv[0][0], dv2 = double(uv[2][1]) - uv[0][1];
-    const double area = du1 * dv2 - du2 * dv1;
-    const double areaChange = 2 * eu * (std::abs(du1) + std::abs(du2) + std::abs(dv1) + std::abs(dv2)) + 8 * eu * eu;
-    signs[t] = area < 0 ? -1.0 : 1.0;
-    if (!(std::abs(area) > areaChange) || !std::isfinite(area)) allowance.orientationDecided[t] = 0;
+    const UvOrientation orientation = uvOrientation(geometry, c, eu);
+    signs[t] = orientation.sign;
+    if (!orientation.decided) allowance.orientationDecided[t] = 0;
     double p[3][3], v[3];
     const float* normals[3];
     load(t, p, v, normals);
@@ -587,7 +595,7 @@ ReferenceAllowance referenceAllowance(const PrimitiveGeometry& geometry, const I
   for (std::size_t v = 0; v < vertexCount; ++v) {
     const double size = std::hypot(sum[3 * v], sum[3 * v + 1], sum[3 * v + 2]);
     const double moved = kSecondOrderMargin * movement[v];
-    const float fine = moved < size ? static_cast<float>(std::asin(moved / size) * kDegreesPerRadian) : kUncomparableDegrees;
+    const float fine = turnDegrees(moved, size);
     allowance.vertexDegrees[v] = coarse[v] <= kCoarseEnoughDegrees ? coarse[v] : std::min(coarse[v], fine);
   }
   return allowance;
