@@ -427,7 +427,9 @@ TEST(Identify, ReferenceMeasuresAgainstTheChosenGenerator) {
       bool referenceFailed = false;
       for (const auto& f : check.primitives[0].findings) {
         referenceFailed = referenceFailed || f.check == "reference";
-        if (f.check == "reference") EXPECT_NE(f.message.find(tangent::gltf::toString(reference) + " tangents"), std::string::npos) << f.message;
+        if (f.check == "reference") {
+          EXPECT_NE(f.message.find(tangent::gltf::toString(reference) + " tangents"), std::string::npos) << f.message;
+        }
       }
       if (reference == baked) {
         EXPECT_FALSE(referenceFailed) << label;
