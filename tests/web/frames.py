@@ -83,11 +83,25 @@ def read_png(path):
     return width, height, bytes(out)
 
 
-def write_png(path, width, height, rgba):
-    """RGBA rows top first into a PNG (filter 0)."""
+def png_bytes(width, height, rgba):
+    """RGBA rows top first as a PNG file's bytes (filter 0)."""
     def chunk(kind, body):
         return struct.pack(">I", len(body)) + kind + body + struct.pack(">I", zlib.crc32(kind + body))
     rows = b"".join(b"\0" + rgba[y * width * 4:(y + 1) * width * 4] for y in range(height))
+    return (b"\x89PNG\r\n\x1a\n" + chunk(b"IHDR", struct.pack(">IIBBBBB", width, height, 8, 6, 0, 0, 0)) +
+            chunk(b"IDAT", zlib.compress(rows, 9)) + chunk(b"IEND", b""))
+
+
+def write_png(path, width, height, rgba):
+    """RGBA rows top first into a PNG file."""
     with open(path, "wb") as out:
-        out.write(b"\x89PNG\r\n\x1a\n" + chunk(b"IHDR", struct.pack(">IIBBBBB", width, height, 8, 6, 0, 0, 0)) +
-                  chunk(b"IDAT", zlib.compress(rows, 9)) + chunk(b"IEND", b""))
+        out.write(png_bytes(width, height, rgba))
+
+
+def report(failures, broken):
+    """Prints each failure; the exit code of a browser test (--break: failures are expected)."""
+    for failure in failures:
+        print("FAIL:", failure)
+    if broken:
+        print("(--break: failures expected)")
+    return 1 if failures else 0

@@ -37,25 +37,16 @@ import subprocess
 import sys
 import tempfile
 import urllib.parse
-import zlib
 
 HERE = pathlib.Path(__file__).resolve().parent
 sys.path[:0] = [str(HERE), str(HERE.parent / "browser")]
 import chromium  # noqa: E402
-from frames import SIZE, desktop_screenshot, matches, write_png  # noqa: E402
+from frames import SIZE, desktop_screenshot, matches, png_bytes, report, write_png  # noqa: E402
 
 GRID = 16
 TURNED_CELL = (12, 3)  # the turned triangle: the first of this cell (column, row), off the centre
 MIN_SHARE_GAIN = 3.0
 CENTRE_TOLERANCE = 0.10
-
-
-def png_bytes(width, height, rgb):
-    def chunk(kind, body):
-        return struct.pack(">I", len(body)) + kind + body + struct.pack(">I", zlib.crc32(kind + body))
-    rows = b"".join(b"\0" + bytes(rgb) * width for _ in range(height))
-    return (b"\x89PNG\r\n\x1a\n" + chunk(b"IHDR", struct.pack(">IIBBBBB", width, height, 8, 2, 0, 0, 0)) +
-            chunk(b"IDAT", zlib.compress(rows)) + chunk(b"IEND", b""))
 
 
 def grid_triangles(rows=GRID):
@@ -92,7 +83,7 @@ def write_grid(path, turned=(), rows=GRID):
                                                     "material": 0}]}],
         "materials": [{"normalTexture": {"index": 0}}],
         "textures": [{"source": 0}],
-        "images": [{"uri": "data:image/png;base64," + base64.b64encode(png_bytes(2, 2, (128, 128, 255))).decode()}],
+        "images": [{"uri": "data:image/png;base64," + base64.b64encode(png_bytes(2, 2, bytes((128, 128, 255, 255)) * 4)).decode()}],
         "buffers": [{"byteLength": len(data), "uri": "data:application/octet-stream;base64," + base64.b64encode(data).decode()}],
         "bufferViews": [{"buffer": 0, "byteOffset": o, "byteLength": l} for o, l in views],
         "accessors": [
@@ -266,11 +257,7 @@ def main():
         check("unknown option --no-such-option" in message, f"the options field goes to tangent-view's parser: {message!r}")
         page.close()
     shutil.rmtree(site, ignore_errors=True)
-    for failure in failures:
-        print("FAIL:", failure)
-    if args.broken:
-        print("(--break: failures expected)")
-    return 1 if failures else 0
+    return report(failures, args.broken)
 
 
 if __name__ == "__main__":

@@ -37,7 +37,7 @@ import urllib.parse
 HERE = pathlib.Path(__file__).resolve().parent
 sys.path[:0] = [str(HERE), str(HERE.parent / "browser")]
 import chromium  # noqa: E402  (tests/browser/chromium.py: the one Chromium driver of the browser tests)
-from frames import CHANNEL_TOLERANCE, MAX_DIFFERING, MAX_MEAN, SIZE, compare, desktop_screenshot, write_png  # noqa: E402
+from frames import CHANNEL_TOLERANCE, MAX_DIFFERING, MAX_MEAN, SIZE, compare, desktop_screenshot, report, write_png  # noqa: E402
 
 # What is compared: tangent-view options, the same on both sides.
 VIEWS = {"lit": "--view lit", "tangent": "--view tangent", "handedness": "--view handedness", "error": "--view error",
@@ -164,11 +164,7 @@ def main():
             page.close()
     shutil.rmtree(site, ignore_errors=True)
     (out / "times.json").write_text(json.dumps(times, indent=1) + "\n")
-    for failure in failures:
-        print("FAIL:", failure)
-    if args.broken:
-        print("(--break: failures expected)")
-    return 1 if failures else 0
+    return report(failures, args.broken)
 
 
 if __name__ == "__main__":
