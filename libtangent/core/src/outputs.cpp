@@ -113,7 +113,8 @@ void copyAndCount(WorkspaceData& ws, const CornerOutputs& outputs, const Options
 
 // The vertex split, bucket by bucket: cornerVertex holds the input vertex or kExtraFlag | the
 // bucket's own number of the new vertex; bucketExtra each bucket's count of new vertices.
-void splitBuckets(WorkspaceData& ws, const MeshArrays& mesh, const CornerOutputs& outputs, const std::uint8_t* knownUniform) {
+void splitBuckets(WorkspaceData& ws, const MeshArrays& mesh, const CornerOutputs& outputs, const std::uint8_t* knownUniform,
+                  bool uniformWritten) {
   const std::size_t vertexCount = ws.vertexCount;
   const float* tangents = outputs.tangents.data();
   // Vertex split, bucket by bucket: the tangent of a vertex's first corner keeps the vertex,
@@ -138,7 +139,7 @@ void splitBuckets(WorkspaceData& ws, const MeshArrays& mesh, const CornerOutputs
       const std::uint32_t c0 = corners[first];
       bool uniform = true;
       if (knownUniform && (knownUniform[b] & kUniformVertex)) {
-        if (wantVertices) {
+        if (wantVertices && !uniformWritten) {
           const std::uint32_t vertex = indices[c0];
           for (std::uint32_t i = first; i < last; ++i) cornerVertex[corners[i]] = vertex;
         }
@@ -236,7 +237,7 @@ void numberExtraVertices(WorkspaceData& ws, const MeshArrays& mesh, const Corner
 void finishOutputs(WorkspaceData& ws, const MeshArrays& mesh, const CornerOutputs& outputs, const Options& options,
                    Report& report, const KernelOutcome& kernel) {
   copyAndCount(ws, outputs, options, kernel, report);
-  splitBuckets(ws, mesh, outputs, kernel.bucketUniform);
+  splitBuckets(ws, mesh, outputs, kernel.bucketUniform, kernel.bucketUniform && kernel.uniformVerticesWritten);
   numberExtraVertices(ws, mesh, outputs, report);
 }
 

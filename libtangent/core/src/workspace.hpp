@@ -244,6 +244,9 @@ struct KernelOutcome {
   bool anyCopy = true;  // a corner may be kCopy: the copy pass must run
   // Per welded id, BucketUniform bits (state_bits.hpp), or null where not known.
   const std::uint8_t* bucketUniform = nullptr;
+  // The kernel wrote outputs.cornerVertex (the input vertex) for every corner of each bucket
+  // it marked kUniformVertex: the vertex split need not visit their corners again.
+  bool uniformVerticesWritten = false;
 };
 
 // Copies duplicate corners, applies the UV origin to w (unless kernel.wInOutputConvention),

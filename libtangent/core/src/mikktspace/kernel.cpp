@@ -113,7 +113,7 @@ KernelOutcome Kernel::run(Report& report) {
   }
   mirroredCorners_ = mirrored.combine(std::plus<>());
   fallbacks();
-  return KernelOutcome{true, mirroredCorners_, anyCopy_.load(std::memory_order_relaxed), ws_.bucketUniform.data()};
+  return KernelOutcome{true, mirroredCorners_, anyCopy_.load(std::memory_order_relaxed), ws_.bucketUniform.data(), true};
 }
 
 }  // namespace tangent::detail::mikk

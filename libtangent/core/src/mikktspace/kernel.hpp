@@ -70,7 +70,8 @@ class Kernel {
         ws_(ws),
         mesh_(mesh),
         a_{mesh.positions.data(), mesh.normals.data(), mesh.uvs.data(), mesh.indices.data()},
-        tangents_(outputs.tangents.data()) {}
+        tangents_(outputs.tangents.data()),
+        cornerVertex_(outputs.cornerVertex.empty() ? nullptr : outputs.cornerVertex.data()) {}
 
   // Welds and buckets (weldAndBucket), then writes the tangents (w in the convention of the
   // call's UV origin, so that the output pass need not rewrite every tangent) and
@@ -167,11 +168,22 @@ class Kernel {
     storeFrame(corner, frame, source, weight);
   }
   // A bucket whose corners all got one frame: whether they are one input vertex (bucketUniform,
-  // so that the vertex split need not compare them), and its mirrored corners counted.
+  // so that the vertex split need not compare them), and its mirrored corners counted. Where
+  // the call asks for the vertex split, each corner's input vertex goes into cornerVertex here
+  // (the split of a one-vertex bucket; the output pass rewrites the corners of any other), so
+  // that the split need not visit these corners again.
   void finishOneFrame(std::uint32_t bucket, const std::uint32_t* list, std::uint32_t count, std::uint64_t& mirrored) {
     const std::uint32_t vertex = a_.indices[list[0]];
     bool oneVertex = true;
-    for (std::uint32_t i = 1; i < count; ++i) oneVertex = oneVertex && a_.indices[list[i]] == vertex;
+    if (cornerVertex_) {
+      for (std::uint32_t i = 0; i < count; ++i) {
+        const std::uint32_t v = a_.indices[list[i]];
+        cornerVertex_[list[i]] = v;
+        oneVertex &= v == vertex;
+      }
+    } else {
+      for (std::uint32_t i = 1; i < count; ++i) oneVertex &= a_.indices[list[i]] == vertex;
+    }
     ws_.bucketUniform[bucket] = oneVertex ? kUniformVertex : 0;
     if (tangents_[4 * list[0] + 3] < 0) mirrored += count;
   }
@@ -207,6 +219,7 @@ class Kernel {
   const MeshArrays& mesh_;
   Arrays a_;
   float* tangents_;
+  std::uint32_t* cornerVertex_;  // null where the call does not ask for the vertex split
   // The weld's and the buckets' arrays, taken once they are filled.
   const std::uint32_t* vertexId_ = nullptr;
   bool identity_ = false;  // the weld merged nothing: id(corner) is the corner's index
