@@ -22,6 +22,7 @@ struct Arrays {
   const float* normals;
   const float* uvs;
   const std::uint32_t* indices;
+  std::size_t vertexCount = 0;  // of positions, normals and UVs (0: not known, the lanes take the scalar way)
   V3 position(std::uint32_t v) const { return {positions[3 * v], positions[3 * v + 1], positions[3 * v + 2]}; }
   V3 normal(std::uint32_t v) const { return {normals[3 * v], normals[3 * v + 1], normals[3 * v + 2]}; }
   std::array<std::uint32_t, 8> identityKey(std::uint32_t v) const {

@@ -69,7 +69,7 @@ class Kernel {
       : wSign_(handedness(1.0f, origin)),
         ws_(ws),
         mesh_(mesh),
-        a_{mesh.positions.data(), mesh.normals.data(), mesh.uvs.data(), mesh.indices.data()},
+        a_{mesh.positions.data(), mesh.normals.data(), mesh.uvs.data(), mesh.indices.data(), mesh.positions.size() / 3},
         tangents_(outputs.tangents.data()),
         cornerVertex_(outputs.cornerVertex.empty() ? nullptr : outputs.cornerVertex.data()) {}
 
