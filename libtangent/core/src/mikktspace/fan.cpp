@@ -62,8 +62,7 @@ bool Kernel::fastBucket(std::uint32_t bucket, const std::uint32_t* list, std::ui
   // storeFrame without its state write: a corner's source and undefined bits are still clear
   // here (pairing cleared them; only its bucket's group pass sets them), and computed is 0.
   static_assert(static_cast<int>(FrameSource::computed) == 0);
-  for (std::uint32_t i = 0; i < count; ++i) std::memcpy(&tangents_[4 * std::size_t(list[i])], frame, sizeof frame);
-  finishOneFrame(bucket, list, count, mirrored);
+  finishOneFrame(bucket, list, count, mirrored, frame);
   ws_.bucketExtra[bucket] = bitCast<std::uint32_t>(static_cast<float>(angleSum));
   ws_.bucketUniform[bucket] |= kBucketWeight;
   return true;

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <atomic>
 #include <cstring>
+#include <type_traits>
 
 #include "../state_bits.hpp"
 #include "../parallel.hpp"
@@ -172,17 +173,27 @@ class Kernel {
   // the call asks for the vertex split, each corner's input vertex goes into cornerVertex here
   // (the split of a one-vertex bucket; the output pass rewrites the corners of any other), so
   // that the split need not visit these corners again.
-  void finishOneFrame(std::uint32_t bucket, const std::uint32_t* list, std::uint32_t count, std::uint64_t& mirrored) {
+  // With a frame, it is first stored into every corner's slot (storeFrame without its state
+  // and weight writes), in the same walk over the corners.
+  void finishOneFrame(std::uint32_t bucket, const std::uint32_t* list, std::uint32_t count, std::uint64_t& mirrored,
+                      const float* frame = nullptr) {
     const std::uint32_t vertex = a_.indices[list[0]];
     bool oneVertex = true;
-    if (cornerVertex_) {
+    auto walk = [&](auto withFrame, auto withVertex) {
       for (std::uint32_t i = 0; i < count; ++i) {
-        const std::uint32_t v = a_.indices[list[i]];
-        cornerVertex_[list[i]] = v;
+        const std::uint32_t c = list[i];
+        if constexpr (decltype(withFrame)::value) std::memcpy(&tangents_[4 * std::size_t(c)], frame, 4 * sizeof(float));
+        const std::uint32_t v = a_.indices[c];
+        if constexpr (decltype(withVertex)::value) cornerVertex_[c] = v;
         oneVertex &= v == vertex;
       }
+    };
+    using Yes = std::true_type;
+    using No = std::false_type;
+    if (frame) {
+      cornerVertex_ ? walk(Yes{}, Yes{}) : walk(Yes{}, No{});
     } else {
-      for (std::uint32_t i = 1; i < count; ++i) oneVertex &= a_.indices[list[i]] == vertex;
+      cornerVertex_ ? walk(No{}, Yes{}) : walk(No{}, No{});
     }
     ws_.bucketUniform[bucket] = oneVertex ? kUniformVertex : 0;
     if (tangents_[4 * list[0] + 3] < 0) mirrored += count;
