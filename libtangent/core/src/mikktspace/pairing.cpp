@@ -71,24 +71,36 @@ inline bool linkSmallBucket(SmallBucket& b) {
       outs[v] = _mm_load_si128(reinterpret_cast<const __m128i*>(b.outId + 4 * v));
       ins[v] = _mm_load_si128(reinterpret_cast<const __m128i*>(b.inId + 4 * v));
     }
-    std::uint32_t bad = 0;
+    // Next identities all different: a matched one (some previous identity equal to it) and
+    // an unmatched one never are equal; two matched ones that were equal would match the same
+    // previous identity, and two different ones never do, so the matched ones are all
+    // different exactly when their targets are as many as they are. Only the unmatched (the
+    // ends of open fans) are compared with the other next identities.
+    std::uint32_t bad = 0, matched = 0;
     for (std::uint32_t i = 0; i < n; ++i) {
       const __m128i key = _mm_set1_epi32(static_cast<int>(b.outId[i]));
-      std::uint32_t sameOut = 0, sameIn = 0;
       auto laneMask = [&](__m128i lanesOf) {
         return static_cast<std::uint32_t>(_mm_movemask_ps(_mm_castsi128_ps(_mm_cmpeq_epi32(key, lanesOf))));
       };
-      for (int v = 0; v < kVectors; ++v) {
-        sameOut |= laneMask(outs[v]) << (4 * v);
-        sameIn |= laneMask(ins[v]) << (4 * v);
+      std::uint32_t sameIn = 0;
+      for (int v = 0; v < kVectors; ++v) sameIn |= laneMask(ins[v]) << (4 * v);
+      sameIn &= lanes;
+      if (sameIn == 0) {
+        std::uint32_t sameOut = 0;
+        for (int v = 0; v < kVectors; ++v) sameOut |= laneMask(outs[v]) << (4 * v);
+        bad |= (sameOut & lanes) ^ (std::uint32_t(1) << i);
+        b.match[i] = kNone;
+        b.successor[i] = kSmall;
+        continue;
       }
-      sameOut &= lanes, sameIn &= lanes;
-      bad |= (sameOut ^ (std::uint32_t(1) << i)) | (sameIn & (sameIn - 1));
-      b.match[i] = sameIn ? b.corner[std::countr_zero(sameIn)] : kNone;
-      b.successor[i] = static_cast<std::uint8_t>(sameIn ? std::countr_zero(sameIn) : kSmall);
+      ++matched;
+      bad |= sameIn & (sameIn - 1);
+      const auto j = static_cast<std::uint32_t>(std::countr_zero(sameIn));
+      b.match[i] = b.corner[j];
+      b.successor[i] = static_cast<std::uint8_t>(j);
       b.targets |= sameIn;
     }
-    return bad == 0;
+    return bad == 0 && static_cast<std::uint32_t>(std::popcount(b.targets)) == matched;
   };
   return width == 8 ? masks(std::integral_constant<int, 2>{}) : masks(std::integral_constant<int, 4>{});
 #else
