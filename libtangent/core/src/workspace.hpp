@@ -161,7 +161,11 @@ inline void prefetch(const void* address) {
 }
 
 // The bits of a float with -0 taken as +0: the order and hash of values that compare equal.
-inline std::uint32_t canonicalBits(float x) { return bitCast<std::uint32_t>(x == 0.0f ? 0.0f : x); }
+// (Integer only: x == 0 exactly where the bits without the sign are 0.)
+inline std::uint32_t canonicalBits(float x) {
+  const auto bits = bitCast<std::uint32_t>(x);
+  return (bits << 1) == 0 ? 0u : bits;
+}
 
 // A fixed unit vector perpendicular to the unit normal n, for a corner with no frame to
 // borrow: the axis least aligned with n, made orthogonal to it.
