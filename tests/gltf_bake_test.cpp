@@ -2,6 +2,7 @@
 // glTF adapter: round trip of every attribute of every corner, JSON kept outside the touched
 // accessors, accessor forms, splitting, UV-set choice, and the shared sample assets.
 #include <gtest/gtest.h>
+#include <sys/stat.h>
 
 #include <algorithm>
 #include <cmath>
@@ -473,6 +474,25 @@ TEST(Bake, ExternalImagesAreCopiedBesideTheOutput) {
   EXPECT_EQ(uri, "bumps_normal.png");
   // The image bytes are never decoded or rewritten: a byte-for-byte copy.
   EXPECT_EQ(fileBytes(output.parent_path() / uri), fileBytes(demo.parent_path() / "bumps_normal.png"));
+}
+
+// A copy an earlier bake left beside the output is not written again (each write is a flush to
+// disk); one that differs from the input's image is replaced.
+TEST(Bake, ImageCopiesAlreadyBesideTheOutputAreNotRewritten) {
+  TempDir dir;
+  const fs::path demo = fs::path(TANGENT_SOURCE_DIR) / "data" / "demo" / "demo.gltf";
+  const fs::path image = dir / "bumps_normal.png";
+  tangent::gltf::bakeFile(demo, dir / "a.glb", {});
+  ASSERT_EQ(fileBytes(image), fileBytes(demo.parent_path() / "bumps_normal.png"));
+  struct stat before {};
+  ASSERT_EQ(::stat(image.c_str(), &before), 0);
+  tangent::gltf::bakeFile(demo, dir / "b.glb", {});
+  struct stat after {};
+  ASSERT_EQ(::stat(image.c_str(), &after), 0);
+  EXPECT_EQ(before.st_ino, after.st_ino) << "rewritten (a new file renamed into place)";
+  std::ofstream(image, std::ios::binary) << "not the image";
+  tangent::gltf::bakeFile(demo, dir / "c.glb", {});
+  EXPECT_EQ(fileBytes(image), fileBytes(demo.parent_path() / "bumps_normal.png"));
 }
 
 TEST(Bake, ImagesOutsideTheInputFolderAreReferredToWhereTheyAre) {
