@@ -23,9 +23,11 @@
 #include "tangent/frame_rules.hpp"
 #include "tangent/gltf.hpp"
 
+#if !defined(TANGENT_SERIAL)  // the web viewer's build has no oneTBB: its passes run here, in order
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
+#endif
 
 namespace tangent::gltf {
 namespace {
@@ -60,19 +62,41 @@ std::array<float, 3> vertexNormal(const StridedMesh& mesh, std::size_t v) {
   return normal;
 }
 
+#if defined(TANGENT_SERIAL)
+struct Arena {};  // no threads
+#else
+using Arena = tbb::task_arena;
+#endif
+
 // Runs body(begin, end) over [0, n) in chunks of about `grain`, on `arena`'s threads where it
 // has more than one (null: here, in one call). The bodies write disjoint elements, so the
 // result does not depend on the threads.
 template <typename Body>
-void inChunks(tbb::task_arena* arena, std::size_t n, std::size_t grain, const Body& body) {
-  if (!arena || n <= grain) {
-    body(std::size_t(0), n);
+void inChunks(Arena* arena, std::size_t n, std::size_t grain, const Body& body) {
+#if !defined(TANGENT_SERIAL)
+  if (arena && n > grain) {
+    arena->execute([&] {
+      tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, grain),
+                        [&](const tbb::blocked_range<std::size_t>& range) { body(range.begin(), range.end()); });
+    });
     return;
   }
-  arena->execute([&] {
-    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, grain),
-                      [&](const tbb::blocked_range<std::size_t>& range) { body(range.begin(), range.end()); });
-  });
+#endif
+  (void)arena;
+  (void)grain;
+  body(std::size_t(0), n);
+}
+
+// slot = min(slot, value), where other threads may lower it at the same time.
+inline void lowerTo(std::uint32_t& slot, std::uint32_t value) {
+#if defined(TANGENT_SERIAL)
+  slot = std::min(slot, value);
+#else
+  std::atomic_ref<std::uint32_t> shared(slot);
+  std::uint32_t seen = shared.load(std::memory_order_relaxed);
+  while (value < seen && !shared.compare_exchange_weak(seen, value, std::memory_order_relaxed)) {
+  }
+#endif
 }
 
 // Two passes over the core's corner -> output vertex map (CornerOutputs::cornerVertex), each
@@ -80,20 +104,14 @@ void inChunks(tbb::task_arena* arena, std::size_t n, std::size_t grain, const Bo
 // whatever order the chunks run in), then each output vertex's source vertex and tangent from
 // it. A vertex no corner uses gets unusedVertexTangent of its normal.
 VertexSplit splitVertices(const StridedMesh& mesh, const BulkVector<float>& cornerTangents, BulkVector<std::uint32_t> cornerVertex,
-                          std::size_t outputVertices, tbb::task_arena* arena) {
+                          std::size_t outputVertices, Arena* arena) {
   VertexSplit split;
   const std::size_t cornerCount = mesh.indexCount;
   split.firstCorner.assign(outputVertices, kNoCorner);
   std::uint32_t* first = split.firstCorner.data();
   const std::uint32_t* vertexOf = cornerVertex.data();
   inChunks(arena, cornerCount, 1 << 16, [&](std::size_t begin, std::size_t end) {
-    for (std::size_t c = begin; c < end; ++c) {
-      std::atomic_ref<std::uint32_t> slot(first[vertexOf[c]]);
-      std::uint32_t seen = slot.load(std::memory_order_relaxed);
-      const auto corner = static_cast<std::uint32_t>(c);
-      while (corner < seen && !slot.compare_exchange_weak(seen, corner, std::memory_order_relaxed)) {
-      }
-    }
+    for (std::size_t c = begin; c < end; ++c) lowerTo(first[vertexOf[c]], static_cast<std::uint32_t>(c));
   });
   split.source.resize(outputVertices);
   split.tangents.resize(outputVertices * 4);
@@ -345,7 +363,7 @@ class PrimitiveBaker {
   std::optional<StridedMesh> inPlaceMesh(const PrimitivePlan& plan, int& indexComponentType);
   ComputedTangents computeSplit(PrimitivePlan& plan, const StridedMesh& mesh, int indexComponentType);
   Options coreOptions(std::size_t corners);
-  tbb::task_arena* arenaFor(const Options& options);
+  Arena* arenaFor(const Options& options);
   const AccessorData& carriedData(int index, const std::string& what);
   SharedBake emit(const PrimitivePlan& plan, ComputedTangents& computed);
   void refer(PrimitivePlan& plan, const SharedBake& shared);
@@ -359,8 +377,8 @@ class PrimitiveBaker {
   detail::OutputDocument& output_;
   const BakeOptions& options_;
   TangentWorkspace workspace_;                              // reused by every compute
-  std::optional<tbb::task_arena> arena_;                    // bake's own passes over a primitive's corners
-  unsigned arenaThreads_ = 0;                               // arena_'s
+  std::optional<Arena> arena_;                              // bake's own passes over a primitive's corners
+  [[maybe_unused]] unsigned arenaThreads_ = 0;              // arena_'s (none without threads)
   std::unordered_map<std::string, SharedBake> baked_;       // by detail::sameInputKey
   std::unordered_map<int, AccessorData> carried_;           // accessors rebuilt from, while one group is emitted
   std::unordered_map<std::size_t, SharedBake> groupBakes_;  // bakeVertexGroup's, by the plan of each input key
@@ -675,7 +693,11 @@ Options PrimitiveBaker::coreOptions(std::size_t corners) {
   options.threads = detail::threadsFor(corners, options.threads);
   return options;
 }
-tbb::task_arena* PrimitiveBaker::arenaFor(const Options& options) {
+Arena* PrimitiveBaker::arenaFor(const Options& options) {
+#if defined(TANGENT_SERIAL)
+  (void)options;
+  return nullptr;
+#else
   const unsigned threads = threadCount(options);
   if (threads <= 1) return nullptr;
   if (!arena_ || arenaThreads_ != threads) {
@@ -683,6 +705,7 @@ tbb::task_arena* PrimitiveBaker::arenaFor(const Options& options) {
     arenaThreads_ = threads;
   }
   return &*arena_;
+#endif
 }
 
 // The core on arrays it reads where they are (`mesh`: the primitive's own buffer, or arrays

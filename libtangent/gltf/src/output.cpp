@@ -159,8 +159,8 @@ void writeFileAtomic(const fs::path& path, const std::vector<std::span<const std
       if (written <= 0) fail("write failed", written < 0 ? errno : ENOSPC);
       at += written;
       left -= static_cast<std::size_t>(written);
-      total += static_cast<std::size_t>(written);
 #if defined(__linux__) && defined(SYNC_FILE_RANGE_WRITE)
+      total += static_cast<std::size_t>(written);
       if (total - handedOver >= kWritebackBytes) {
         ::sync_file_range(fd, static_cast<off_t>(handedOver), static_cast<off_t>(total - handedOver), SYNC_FILE_RANGE_WRITE);
         handedOver = total;  // advice only: where it fails, fsync does it all
@@ -168,6 +168,7 @@ void writeFileAtomic(const fs::path& path, const std::vector<std::span<const std
 #endif
     }
   }
+  (void)total;
   (void)handedOver;
   // Delayed allocation can report a full disk only here.
   if (::fsync(fd) != 0 && errno != EINVAL && errno != EROFS) fail("write failed", errno);
