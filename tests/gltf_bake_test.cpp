@@ -2,6 +2,7 @@
 // glTF adapter: round trip of every attribute of every corner, JSON kept outside the touched
 // accessors, accessor forms, splitting, UV-set choice, and the shared sample assets.
 #include <gtest/gtest.h>
+#include <sys/stat.h>
 
 #include <algorithm>
 #include <cmath>
@@ -9,6 +10,7 @@
 #include <fstream>
 #include <functional>
 #include <iterator>
+#include <set>
 
 #include "accessors.hpp"
 #include "asset.hpp"
@@ -375,6 +377,90 @@ TEST(Bake, GltfAndGlbConvertBothWays) {
   EXPECT_FALSE(b.binary);
 }
 
+// Bytes appended to a test asset's buffer as a new bufferView (4-byte aligned); its index.
+int appendView(tangent::testing::TestAsset& asset, const void* data, std::size_t size) {
+  while (asset.bin.size() % 4) asset.bin.push_back(0);
+  const std::size_t offset = asset.bin.size();
+  const auto* bytes = static_cast<const std::uint8_t*>(data);
+  asset.bin.insert(asset.bin.end(), bytes, bytes + size);
+  while (asset.bin.size() % 4) asset.bin.push_back(0);
+  asset.json["bufferViews"].push_back({{"buffer", 0}, {"byteOffset", offset}, {"byteLength", size}});
+  asset.json["buffers"][0]["byteLength"] = asset.bin.size();
+  return static_cast<int>(asset.json["bufferViews"].size()) - 1;
+}
+
+// The first primitive's indices rewritten as UNSIGNED_INT.
+tangent::testing::TestAsset withWideIndices(tangent::testing::TestAsset asset) {
+  Json& primitive = asset.json["meshes"][0]["primitives"][0];
+  Json& accessor = asset.json["accessors"][primitive["indices"].get<int>()];
+  const Json& view = asset.json["bufferViews"][accessor["bufferView"].get<int>()];
+  const std::size_t size = accessor["componentType"] == 5121 ? 1 : 2;
+  const std::size_t first = view.value("byteOffset", std::size_t(0)) + accessor.value("byteOffset", std::size_t(0));
+  std::vector<std::uint32_t> wide(accessor["count"].get<std::size_t>());
+  for (std::size_t i = 0; i < wide.size(); ++i) {
+    std::uint16_t value = 0;
+    std::memcpy(&value, &asset.bin[first + i * size], size);  // little-endian
+    wide[i] = value;
+  }
+  accessor = {{"bufferView", appendView(asset, wide.data(), wide.size() * 4)}, {"componentType", 5125}, {"count", wide.size()}, {"type", "SCALAR"}};
+  return asset;
+}
+
+// The same values, with POSITION of every primitive given one sparse substitution of vertex 0
+// by its own value: bake reads such an accessor by decoding it (readGeometry), never in place.
+tangent::testing::TestAsset decodedNotInPlace(tangent::testing::TestAsset asset) {
+  std::set<int> done;
+  for (Json& mesh : asset.json["meshes"]) {
+    for (Json& primitive : mesh["primitives"]) {
+      const int index = primitive["attributes"]["POSITION"].get<int>();
+      if (!done.insert(index).second) continue;
+      Json& accessor = asset.json["accessors"][index];
+      const Json& view = asset.json["bufferViews"][accessor["bufferView"].get<int>()];
+      const std::size_t first = view.value("byteOffset", std::size_t(0)) + accessor.value("byteOffset", std::size_t(0));
+      std::uint8_t vertex0[12];
+      std::memcpy(vertex0, &asset.bin[first], sizeof vertex0);
+      const std::uint8_t zero = 0;
+      const int indexView = appendView(asset, &zero, 1);
+      const int valueView = appendView(asset, vertex0, sizeof vertex0);
+      accessor["sparse"] = {{"count", 1}, {"indices", {{"bufferView", indexView}, {"componentType", 5121}}}, {"values", {{"bufferView", valueView}}}};
+    }
+  }
+  return asset;
+}
+
+// Every baked TANGENT, as bytes, and each primitive's vertex counts.
+std::vector<std::string> bakedTangents(const tangent::testing::TestAsset& asset, const fs::path& dir) {
+  const fs::path input = tangent::testing::writeAsset(asset, dir / "in", true);
+  const tangent::gltf::BakeResult result = tangent::gltf::bakeFile(input, dir / "out.glb", {});
+  const Asset out = loadAsset(dir / "out.glb");
+  std::vector<std::string> found;
+  for (const auto& p : result.primitives) {
+    if (p.action != tangent::gltf::PrimitiveAction::baked) continue;
+    const Json& primitive = out.json["meshes"][p.mesh]["primitives"][p.primitive];
+    const auto tangents = readAccessor(out.model, primitive["attributes"]["TANGENT"].get<int>(), "TANGENT");
+    found.push_back(std::to_string(p.verticesIn) + " -> " + std::to_string(p.verticesOut) + ": " + bytesKey(tangents.bytes));
+  }
+  return found;
+}
+
+// Bake reads float attributes and 16/32-bit indices where they lie in the loaded buffer
+// (packed or interleaved) and decodes every other form; both must give the same bits.
+TEST(Bake, AttributesReadInPlaceGiveTheBitsOfDecodedOnes) {
+  const auto all = tangent::testing::makeTestAssets();
+  using tangent::testing::meshAsset;
+  const tangent::testing::TestAsset sphere = meshAsset("sphere", tangent::testing::makeSphere(24, 12));  // uint16, packed
+  const tangent::testing::TestAsset mirrored = meshAsset("mirrored", tangent::testing::makeGrid(9, 7, true));
+  for (const tangent::testing::TestAsset& asset :
+       {sphere, withWideIndices(sphere), mirrored, withWideIndices(mirrored),
+        withWideIndices(assetNamed(all, "interleaved_ubyte"))}) {  // float attributes 32 bytes apart
+    SCOPED_TRACE(asset.name);
+    TempDir inPlace, decoded;
+    const std::vector<std::string> a = bakedTangents(asset, inPlace.path());
+    ASSERT_FALSE(a.empty());
+    EXPECT_EQ(a, bakedTangents(decodedNotInPlace(asset), decoded.path()));
+  }
+}
+
 std::vector<char> fileBytes(const fs::path& path);
 
 TEST(Bake, ExternalImagesAreCopiedBesideTheOutput) {
@@ -388,6 +474,25 @@ TEST(Bake, ExternalImagesAreCopiedBesideTheOutput) {
   EXPECT_EQ(uri, "bumps_normal.png");
   // The image bytes are never decoded or rewritten: a byte-for-byte copy.
   EXPECT_EQ(fileBytes(output.parent_path() / uri), fileBytes(demo.parent_path() / "bumps_normal.png"));
+}
+
+// A copy an earlier bake left beside the output is not written again (each write is a flush to
+// disk); one that differs from the input's image is replaced.
+TEST(Bake, ImageCopiesAlreadyBesideTheOutputAreNotRewritten) {
+  TempDir dir;
+  const fs::path demo = fs::path(TANGENT_SOURCE_DIR) / "data" / "demo" / "demo.gltf";
+  const fs::path image = dir / "bumps_normal.png";
+  tangent::gltf::bakeFile(demo, dir / "a.glb", {});
+  ASSERT_EQ(fileBytes(image), fileBytes(demo.parent_path() / "bumps_normal.png"));
+  struct stat before {};
+  ASSERT_EQ(::stat(image.c_str(), &before), 0);
+  tangent::gltf::bakeFile(demo, dir / "b.glb", {});
+  struct stat after {};
+  ASSERT_EQ(::stat(image.c_str(), &after), 0);
+  EXPECT_EQ(before.st_ino, after.st_ino) << "rewritten (a new file renamed into place)";
+  std::ofstream(image, std::ios::binary) << "not the image";
+  tangent::gltf::bakeFile(demo, dir / "c.glb", {});
+  EXPECT_EQ(fileBytes(image), fileBytes(demo.parent_path() / "bumps_normal.png"));
 }
 
 TEST(Bake, ImagesOutsideTheInputFolderAreReferredToWhereTheyAre) {

@@ -7,6 +7,7 @@
 #include <tiny_gltf.h>
 
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -48,6 +49,17 @@ AccessorData readAccessor(const tinygltf::Model& model, int accessorIndex, const
 std::size_t checkAccessor(const tinygltf::Model& model, int accessorIndex, const std::string& where);
 // The same for an index accessor, and every index < vertexCount.
 void checkIndexRange(const tinygltf::Model& model, int accessorIndex, std::size_t vertexCount, const std::string& where);
+
+// An accessor's elements where they lie in the loaded buffer, for reading in place: the first
+// element and the bytes from one to the next. Only for an accessor with a bufferView and no
+// sparse values (else std::nullopt); every range is checked as readAccessor checks it, with the
+// same errors. `header` gets the type and counts (its bytes stay empty).
+struct DenseElements {
+  AccessorData header;
+  const std::uint8_t* first = nullptr;
+  std::size_t stride = 0;
+};
+std::optional<DenseElements> denseElements(const tinygltf::Model& model, int accessorIndex, const std::string& where);
 
 // Element values as floats; normalized integers follow the spec's decoding (max(c / 127, -1)...).
 std::vector<float> toFloats(const AccessorData& data);

@@ -2,6 +2,8 @@
 // `bake`: TANGENT for the primitives that need it (glTF 2.0 spec 3.7.2.1), vertices split where
 // the corners of one glTF vertex got different frames, every other attribute carried along.
 #include <algorithm>
+#include <array>
+#include <atomic>
 #include <bit>
 #include <cmath>
 #include <cstring>
@@ -21,47 +23,113 @@
 #include "tangent/frame_rules.hpp"
 #include "tangent/gltf.hpp"
 
+#if !defined(TANGENT_SERIAL)  // the web viewer's build has no oneTBB: its passes run here, in order
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
+#endif
+
 namespace tangent::gltf {
 namespace {
 
 using detail::AccessorData;
 using Json = nlohmann::ordered_json;
 
-std::vector<std::uint8_t> floatBytes(const std::vector<float>& values) {
-  std::vector<std::uint8_t> bytes(values.size() * sizeof(float));
-  std::memcpy(bytes.data(), values.data(), bytes.size());
-  return bytes;
-}
-
 // Output vertices as the core split them: input vertex o stays o, copies follow.
 struct VertexSplit {
-  std::vector<std::uint32_t> source;      // original vertex of each output vertex
-  std::vector<std::int64_t> firstCorner;  // a corner of each output vertex, -1 if unused
+  std::vector<std::uint32_t> source;       // original vertex of each output vertex
+  std::vector<std::uint32_t> firstCorner;  // the first corner of each output vertex, kNoCorner if unused
   BulkVector<std::uint32_t> cornerVertex;
-  std::vector<float> tangents;            // 4 per output vertex
+  std::vector<float> tangents;             // 4 per output vertex
 };
+constexpr std::uint32_t kNoCorner = 0xffffffffu;
 
-// One pass over the core's corner -> output vertex map (CornerOutputs::cornerVertex).
-VertexSplit splitVertices(const std::vector<std::uint32_t>& corners, const BulkVector<float>& cornerTangents,
-                          BulkVector<std::uint32_t> cornerVertex, std::size_t outputVertices, std::size_t vertexCount,
-                          const std::vector<float>& normals) {
+// The input's index of corner c and normal of vertex v, as the core reads them from `mesh`.
+std::uint32_t cornerIndex(const StridedMesh& mesh, std::size_t c) {
+  const auto* bytes = static_cast<const std::uint8_t*>(mesh.indices);
+  if (mesh.indexType == IndexType::uint16) {
+    std::uint16_t index;
+    std::memcpy(&index, bytes + 2 * c, sizeof index);
+    return index;
+  }
+  std::uint32_t index;
+  std::memcpy(&index, bytes + 4 * c, sizeof index);
+  return index;
+}
+std::array<float, 3> vertexNormal(const StridedMesh& mesh, std::size_t v) {
+  std::array<float, 3> normal;
+  std::memcpy(normal.data(), static_cast<const std::uint8_t*>(mesh.normals) + v * mesh.normalStride, sizeof normal);
+  return normal;
+}
+
+#if defined(TANGENT_SERIAL)
+struct Arena {};  // no threads
+#else
+using Arena = tbb::task_arena;
+#endif
+
+// Runs body(begin, end) over [0, n) in chunks of about `grain`, on `arena`'s threads where it
+// has more than one (null: here, in one call). The bodies write disjoint elements, so the
+// result does not depend on the threads.
+template <typename Body>
+void inChunks(Arena* arena, std::size_t n, std::size_t grain, const Body& body) {
+#if !defined(TANGENT_SERIAL)
+  if (arena && n > grain) {
+    arena->execute([&] {
+      tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, grain),
+                        [&](const tbb::blocked_range<std::size_t>& range) { body(range.begin(), range.end()); });
+    });
+    return;
+  }
+#endif
+  (void)arena;
+  (void)grain;
+  body(std::size_t(0), n);
+}
+
+// slot = min(slot, value), where other threads may lower it at the same time.
+inline void lowerTo(std::uint32_t& slot, std::uint32_t value) {
+#if defined(TANGENT_SERIAL)
+  slot = std::min(slot, value);
+#else
+  std::atomic_ref<std::uint32_t> shared(slot);
+  std::uint32_t seen = shared.load(std::memory_order_relaxed);
+  while (value < seen && !shared.compare_exchange_weak(seen, value, std::memory_order_relaxed)) {
+  }
+#endif
+}
+
+// Two passes over the core's corner -> output vertex map (CornerOutputs::cornerVertex), each
+// in parallel: the first corner of each output vertex (the smallest, kept by an atomic minimum,
+// whatever order the chunks run in), then each output vertex's source vertex and tangent from
+// it. A vertex no corner uses gets unusedVertexTangent of its normal.
+VertexSplit splitVertices(const StridedMesh& mesh, const BulkVector<float>& cornerTangents, BulkVector<std::uint32_t> cornerVertex,
+                          std::size_t outputVertices, Arena* arena) {
   VertexSplit split;
+  const std::size_t cornerCount = mesh.indexCount;
+  split.firstCorner.assign(outputVertices, kNoCorner);
+  std::uint32_t* first = split.firstCorner.data();
+  const std::uint32_t* vertexOf = cornerVertex.data();
+  inChunks(arena, cornerCount, 1 << 16, [&](std::size_t begin, std::size_t end) {
+    for (std::size_t c = begin; c < end; ++c) lowerTo(first[vertexOf[c]], static_cast<std::uint32_t>(c));
+  });
   split.source.resize(outputVertices);
-  std::iota(split.source.begin(), split.source.begin() + static_cast<std::ptrdiff_t>(vertexCount), 0u);
-  split.firstCorner.assign(outputVertices, -1);
-  split.tangents.assign(outputVertices * 4, 0.0f);
-  for (std::size_t c = 0; c < corners.size(); ++c) {
-    const std::uint32_t o = cornerVertex[c];
-    if (split.firstCorner[o] >= 0) continue;
-    split.firstCorner[o] = static_cast<std::int64_t>(c);
-    split.source[o] = corners[c];
-    std::copy(&cornerTangents[4 * c], &cornerTangents[4 * c + 4], &split.tangents[4 * o]);
-  }
+  split.tangents.resize(outputVertices * 4);
+  inChunks(arena, outputVertices, 1 << 15, [&](std::size_t begin, std::size_t end) {
+    for (std::size_t o = begin; o < end; ++o) {
+      const std::uint32_t c = first[o];
+      float* tangent = &split.tangents[4 * o];
+      if (c == kNoCorner) {  // only an input vertex no triangle uses: every copy has a corner
+        split.source[o] = static_cast<std::uint32_t>(o);
+        const std::array<float, 3> normal = vertexNormal(mesh, o);
+        unusedVertexTangent(std::span<const float, 3>(normal), std::span<float, 4>(tangent, 4));
+        continue;
+      }
+      split.source[o] = cornerIndex(mesh, c);
+      std::memcpy(tangent, &cornerTangents[4 * std::size_t(c)], 4 * sizeof(float));
+    }
+  });
   split.cornerVertex = std::move(cornerVertex);
-  for (std::size_t v = 0; v < vertexCount; ++v) {
-    if (split.firstCorner[v] < 0)
-      unusedVertexTangent(std::span<const float, 3>(&normals[3 * v], 3), std::span<float, 4>(&split.tangents[4 * v], 4));
-  }
   return split;
 }
 
@@ -86,7 +154,7 @@ Json carriedAccessor(const Json& original, std::size_t count) {
 // c = round(f * 32767) or round(f * 127)), which the stored-tangent rules accept.
 struct EncodedTangents {
   Json accessor;
-  std::vector<std::uint8_t> bytes;
+  detail::ViewBytes bytes;
   std::size_t stride = 16;
 };
 
@@ -100,7 +168,7 @@ std::vector<std::uint8_t> normalizedBytes(const std::vector<float>& values, doub
   return bytes;
 }
 
-EncodedTangents encodeTangents(const std::vector<float>& tangents, TangentFormat format) {
+EncodedTangents encodeTangents(std::vector<float> tangents, TangentFormat format) {
   const std::size_t count = tangents.size() / 4;
   switch (format) {
     case TangentFormat::normalizedShort:
@@ -111,7 +179,7 @@ EncodedTangents encodeTangents(const std::vector<float>& tangents, TangentFormat
               normalizedBytes<std::int8_t>(tangents, 127.0), 4};
     case TangentFormat::float32: break;
   }
-  return {Json{{"componentType", TINYGLTF_COMPONENT_TYPE_FLOAT}, {"count", count}, {"type", "VEC4"}}, floatBytes(tangents), 16};
+  return {Json{{"componentType", TINYGLTF_COMPONENT_TYPE_FLOAT}, {"count", count}, {"type", "VEC4"}}, std::move(tangents), 16};
 }
 
 // Adds `name` to extensionsUsed and extensionsRequired unless there already.
@@ -292,19 +360,25 @@ class PrimitiveBaker {
   std::vector<TargetDeltas> readTargetDeltas(const PrimitivePlan& plan, std::size_t vertexCount);
   std::optional<ComputedTangents> computeFrames(PrimitivePlan& plan, const detail::PrimitiveGeometry& geometry,
                                                 const std::vector<TargetDeltas>& targets);
+  std::optional<StridedMesh> inPlaceMesh(const PrimitivePlan& plan, int& indexComponentType);
+  ComputedTangents computeSplit(PrimitivePlan& plan, const StridedMesh& mesh, int indexComponentType);
+  Options coreOptions(std::size_t corners);
+  Arena* arenaFor(const Options& options);
   const AccessorData& carriedData(int index, const std::string& what);
-  SharedBake emit(const PrimitivePlan& plan, const ComputedTangents& computed);
+  SharedBake emit(const PrimitivePlan& plan, ComputedTangents& computed);
   void refer(PrimitivePlan& plan, const SharedBake& shared);
   void rebuildAttributes(const PrimitivePlan& plan, const ComputedTangents& computed, EmittedAccessors& emitted);
   int addGathered(int index, const AccessorData& data, const ComputedTangents& computed);
   void rebuildTargets(const PrimitivePlan& plan, const ComputedTangents& computed, EmittedAccessors& emitted);
   void writeIndices(const ComputedTangents& computed, EmittedAccessors& emitted);
-  void writeTangents(const ComputedTangents& computed, EmittedAccessors& emitted);
+  void writeTangents(ComputedTangents& computed, EmittedAccessors& emitted);
 
   detail::Asset& asset_;
   detail::OutputDocument& output_;
   const BakeOptions& options_;
   TangentWorkspace workspace_;                              // reused by every compute
+  std::optional<Arena> arena_;                              // bake's own passes over a primitive's corners
+  [[maybe_unused]] unsigned arenaThreads_ = 0;              // arena_'s (none without threads)
   std::unordered_map<std::string, SharedBake> baked_;       // by detail::sameInputKey
   std::unordered_map<int, AccessorData> carried_;           // accessors rebuilt from, while one group is emitted
   std::unordered_map<std::size_t, SharedBake> groupBakes_;  // bakeVertexGroup's, by the plan of each input key
@@ -523,7 +597,7 @@ void PrimitiveBaker::bakeVertexGroup(const VertexGroup& group, std::vector<Primi
       "TANGENT", output_.addAccessor(encoded.accessor, std::move(encoded.bytes), encoded.stride, detail::kArrayBuffer));
   emitted.targets.resize(targets.size());
   for (std::size_t t = 0; t < targets.size(); ++t) {
-    const int deltas = output_.addAccessor(floatAccessor(buffer.vertexCount, "VEC3"), floatBytes(frames.targetDeltas()[t]), 12,
+    const int deltas = output_.addAccessor(floatAccessor(buffer.vertexCount, "VEC3"), std::move(frames.targetDeltas()[t]), 12,
                                            detail::kArrayBuffer);
     emitted.targets[t].emplace_back("TANGENT", deltas);
   }
@@ -541,6 +615,13 @@ void PrimitiveBaker::bakeVertexGroup(const VertexGroup& group, std::vector<Primi
 // targets (tangents of the morphed shape minus the base ones). Reads the document only.
 std::optional<ComputedTangents> PrimitiveBaker::compute(PrimitivePlan& plan) {
   const Json& primitive = primitiveJson(plan);
+  int indexComponentType = 0;
+  if (const std::optional<StridedMesh> mesh = inPlaceMesh(plan, indexComponentType)) {
+    ComputedTangents computed = computeSplit(plan, *mesh, indexComponentType);
+    computed.compression = detail::primitiveCompression(asset_, primitive);
+    computed.rebuild = computed.split.source.size() != mesh->vertexCount || computed.compression.any();
+    return computed;
+  }
   const detail::PrimitiveGeometry geometry = detail::readGeometry(asset_, primitive, plan.needs, plan.where, plan.generatesNormals);
   if (geometry.corners.empty()) {
     plan.result.reason = "primitive has no triangles; left as it is";
@@ -604,6 +685,46 @@ std::vector<TargetDeltas> PrimitiveBaker::readTargetDeltas(const PrimitivePlan& 
   return deltas;
 }
 
+// The core's options for `corners` corners, and the arena bake's own passes over them run in
+// (null: one thread).
+Options PrimitiveBaker::coreOptions(std::size_t corners) {
+  Options options = options_.tangents;
+  options.uvOrigin = kGltfUvOrigin;
+  options.threads = detail::threadsFor(corners, options.threads);
+  return options;
+}
+Arena* PrimitiveBaker::arenaFor(const Options& options) {
+#if defined(TANGENT_SERIAL)
+  (void)options;
+  return nullptr;
+#else
+  const unsigned threads = threadCount(options);
+  if (threads <= 1) return nullptr;
+  if (!arena_ || arenaThreads_ != threads) {
+    arena_.emplace(static_cast<int>(threads));
+    arenaThreads_ = threads;
+  }
+  return &*arena_;
+#endif
+}
+
+// The core on arrays it reads where they are (`mesh`: the primitive's own buffer, or arrays
+// read for it), and the vertex split.
+ComputedTangents PrimitiveBaker::computeSplit(PrimitivePlan& plan, const StridedMesh& mesh, int indexComponentType) {
+  PrimitiveResult& result = plan.result;
+  ComputedTangents computed;
+  computed.vertexCount = mesh.vertexCount;
+  computed.indexComponentType = indexComponentType;
+  BulkVector<float> cornerTangents(mesh.indexCount * 4);
+  BulkVector<std::uint32_t> cornerVertex(mesh.indexCount);
+  const Options options = coreOptions(mesh.indexCount);
+  result.tangents = computeCornerTangents(mesh, CornerOutputs{cornerTangents, {}, cornerVertex}, options, workspace_);
+  computed.split = splitVertices(mesh, cornerTangents, std::move(cornerVertex), result.tangents.outputVertices, arenaFor(options));
+  result.verticesIn = mesh.vertexCount;
+  result.verticesOut = computed.split.source.size();
+  return computed;
+}
+
 // The core on one geometry (a whole primitive, or its part of a shared buffer): corner frames,
 // the vertex split and, per morph target, the TANGENT deltas of the split vertices.
 std::optional<ComputedTangents> PrimitiveBaker::computeFrames(PrimitivePlan& plan, const detail::PrimitiveGeometry& geometry,
@@ -614,25 +735,16 @@ std::optional<ComputedTangents> PrimitiveBaker::computeFrames(PrimitivePlan& pla
     result.reason = "primitive has no triangles; left as it is";
     return std::nullopt;
   }
-  ComputedTangents computed;
-  computed.vertexCount = geometry.vertexCount;
-  computed.indexComponentType = geometry.indexComponentType;
-
-  BulkVector<float> cornerTangents(corners.size() * 4);
-  BulkVector<std::uint32_t> cornerVertex(corners.size());
-  Options coreOptions = options_.tangents;
-  coreOptions.uvOrigin = kGltfUvOrigin;
-  coreOptions.threads = detail::threadsFor(corners.size(), coreOptions.threads);
-  TangentWorkspace& workspace = workspace_;
-  result.tangents = computeCornerTangents({geometry.positions, geometry.normals, geometry.uvs, corners},
-                                          CornerOutputs{cornerTangents, {}, cornerVertex}, coreOptions, workspace);
-  computed.split = splitVertices(corners, cornerTangents, std::move(cornerVertex), result.tangents.outputVertices,
-                                 geometry.vertexCount, geometry.normals);
-  BulkVector<float>().swap(cornerTangents);  // per output vertex from here on: free the per-corner copy
+  StridedMesh mesh;  // the arrays, packed: read in place
+  mesh.vertexCount = geometry.vertexCount;
+  mesh.positions = geometry.positions.data();
+  mesh.normals = geometry.normals.data();
+  mesh.uvs = geometry.uvs.data();
+  mesh.indices = corners.data();
+  mesh.indexCount = corners.size();
+  ComputedTangents computed = computeSplit(plan, mesh, geometry.indexComponentType);
   const VertexSplit& split = computed.split;
-  result.verticesIn = geometry.vertexCount;
-  result.verticesOut = split.source.size();
-
+  const Options options = coreOptions(corners.size());
   for (const TargetDeltas& target : targets) {
     std::vector<float> morphedPositions = geometry.positions, morphedNormals = geometry.normals;
     for (std::size_t i = 0; i < target.positions.size(); ++i) morphedPositions[i] += target.positions[i];
@@ -641,16 +753,82 @@ std::optional<ComputedTangents> PrimitiveBaker::computeFrames(PrimitivePlan& pla
     if (!target.normals.empty()) detail::unitNormals(morphedNormals);
     BulkVector<float> morphedTangents(corners.size() * 4);
     computeCornerTangents({morphedPositions, morphedNormals, geometry.uvs, corners}, CornerOutputs{morphedTangents},
-                          coreOptions, workspace);
+                          options, workspace_);
     std::vector<float> deltas(split.source.size() * 3, 0.0f);
     for (std::size_t v = 0; v < split.source.size(); ++v) {
-      if (split.firstCorner[v] < 0) continue;
-      const float* morphed = &morphedTangents[4 * split.firstCorner[v]];
+      if (split.firstCorner[v] == kNoCorner) continue;
+      const float* morphed = &morphedTangents[4 * std::size_t(split.firstCorner[v])];
       for (int i = 0; i < 3; ++i) deltas[3 * v + i] = morphed[i] - split.tangents[4 * v + i];
     }
     computed.targetTangentDeltas.push_back(std::move(deltas));
   }
   return computed;
+}
+
+// The primitive's own bytes as the core reads them, without a copy: where POSITION, NORMAL and
+// the UV set are FLOAT accessors with a bufferView and no sparse values, the indices
+// UNSIGNED_SHORT or UNSIGNED_INT packed in theirs, the mode a triangle list, no
+// KHR_texture_transform turns the UVs, no morph target needs the arrays and no normal is one
+// unitNormals would change. Anything else is read by readGeometry (std::nullopt here); so are
+// the errors of a malformed accessor, which this gives as readGeometry would.
+std::optional<StridedMesh> PrimitiveBaker::inPlaceMesh(const PrimitivePlan& plan, int& indexComponentType) {
+  const Json& primitive = primitiveJson(plan);
+  if (plan.generatesNormals || primitive.value("mode", 4) != 4) return std::nullopt;
+  if (primitive.contains("targets") && !primitive["targets"].empty()) return std::nullopt;
+  if (plan.needs.hasNormalTexture) {
+    const Json& normalTexture = output_.json()["materials"][primitive["material"].get<int>()]["normalTexture"];
+    if (normalTexture.contains("extensions") && normalTexture["extensions"].contains("KHR_texture_transform")) return std::nullopt;
+  }
+  const Json& attributes = primitive["attributes"];
+  const std::string uvName = "TEXCOORD_" + std::to_string(plan.needs.texCoord);
+  const int positionIndex = detail::accessorOf(attributes, "POSITION"), normalIndex = detail::accessorOf(attributes, "NORMAL");
+  const int uvIndex = detail::accessorOf(attributes, uvName), indicesIndex = detail::accessorOf(primitive, "indices");
+  if (positionIndex < 0 || normalIndex < 0 || uvIndex < 0 || indicesIndex < 0) return std::nullopt;
+  const tinygltf::Model& model = asset_.model;
+  auto floats = [&](int index, int type, const std::string& name) -> std::optional<detail::DenseElements> {
+    std::optional<detail::DenseElements> dense = detail::denseElements(model, index, plan.where + ": " + name);
+    if (!dense || dense->header.componentType != TINYGLTF_COMPONENT_TYPE_FLOAT || dense->header.type != type) return std::nullopt;
+    return dense;
+  };
+  const auto positions = floats(positionIndex, TINYGLTF_TYPE_VEC3, "POSITION");
+  const auto normals = floats(normalIndex, TINYGLTF_TYPE_VEC3, "NORMAL");
+  const auto uvs = floats(uvIndex, TINYGLTF_TYPE_VEC2, uvName);
+  const auto indices = detail::denseElements(model, indicesIndex, plan.where + ": indices");
+  if (!positions || !normals || !uvs || !indices) return std::nullopt;
+  const std::size_t vertexCount = positions->header.count;
+  if (normals->header.count != vertexCount || uvs->header.count != vertexCount) return std::nullopt;
+  const int indexType = indices->header.componentType;
+  if (indices->header.type != TINYGLTF_TYPE_SCALAR ||
+      (indexType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT && indexType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT) ||
+      indices->stride != indices->header.componentSize)
+    return std::nullopt;
+  const std::size_t cornerCount = indices->header.count - indices->header.count % 3;  // triangleList's rule
+  if (cornerCount == 0) return std::nullopt;
+  // unitNormals' rule, read only. Lengths squared well inside its band need no square root.
+  constexpr double kInside = detail::kNormalLengthKept * 0.8;
+  constexpr double kLow = (1 - kInside) * (1 - kInside), kHigh = (1 + kInside) * (1 + kInside);
+  for (std::size_t v = 0; v < vertexCount; ++v) {
+    float n[3];
+    std::memcpy(n, normals->first + v * normals->stride, sizeof n);
+    const double squared = double(n[0]) * n[0] + double(n[1]) * n[1] + double(n[2]) * n[2];
+    if (squared > kLow && squared < kHigh) continue;
+    const double length = std::sqrt(squared);
+    if (!(length > 0) || !std::isfinite(length)) continue;  // left for the core's fallback, as unitNormals leaves it
+    if (detail::normalNeedsNormalizing(length)) return std::nullopt;
+  }
+  StridedMesh mesh;
+  mesh.vertexCount = vertexCount;
+  mesh.positions = positions->first;
+  mesh.positionStride = positions->stride;
+  mesh.normals = normals->first;
+  mesh.normalStride = normals->stride;
+  mesh.uvs = uvs->first;
+  mesh.uvStride = uvs->stride;
+  mesh.indices = indices->first;
+  mesh.indexCount = cornerCount;
+  mesh.indexType = indexType == TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT ? IndexType::uint16 : IndexType::uint32;
+  indexComponentType = indexType;
+  return mesh;
 }
 
 // An accessor rebuilt attributes are gathered from, decoded once while one primitive or group is
@@ -663,7 +841,7 @@ const AccessorData& PrimitiveBaker::carriedData(int index, const std::string& wh
 
 // New accessors in a fixed order (carried attributes, carried target attributes, indices,
 // TANGENT, target TANGENT deltas), so that the output's bytes depend on the input only.
-SharedBake PrimitiveBaker::emit(const PrimitivePlan& plan, const ComputedTangents& computed) {
+SharedBake PrimitiveBaker::emit(const PrimitivePlan& plan, ComputedTangents& computed) {
   SharedBake shared;
   shared.baked = true;
   EmittedAccessors& emitted = shared.emitted;
@@ -672,7 +850,7 @@ SharedBake PrimitiveBaker::emit(const PrimitivePlan& plan, const ComputedTangent
     rebuildAttributes(plan, computed, emitted);
     if (!computed.generatedNormals.empty())
       emitted.attributes.emplace_back("NORMAL", output_.addAccessor(floatAccessor(computed.split.source.size(), "VEC3"),
-                                                                    floatBytes(computed.generatedNormals), 12, detail::kArrayBuffer));
+                                                                    std::move(computed.generatedNormals), 12, detail::kArrayBuffer));
     rebuildTargets(plan, computed, emitted);
     writeIndices(computed, emitted);
     emitted.dropDraco = computed.compression.draco;
@@ -804,13 +982,13 @@ void PrimitiveBaker::writeIndices(const ComputedTangents& computed, EmittedAcces
   emitted.indices = output_.addAccessor(indexAccessor, std::move(indexBytes), indexSize, detail::kElementArrayBuffer);
 }
 
-void PrimitiveBaker::writeTangents(const ComputedTangents& computed, EmittedAccessors& emitted) {
-  EncodedTangents encoded = encodeTangents(computed.split.tangents, options_.tangentFormat);
+void PrimitiveBaker::writeTangents(ComputedTangents& computed, EmittedAccessors& emitted) {
+  EncodedTangents encoded = encodeTangents(std::move(computed.split.tangents), options_.tangentFormat);
   emitted.attributes.emplace_back(
       "TANGENT", output_.addAccessor(encoded.accessor, std::move(encoded.bytes), encoded.stride, detail::kArrayBuffer));
   const std::size_t outCount = computed.split.source.size();
   for (std::size_t t = 0; t < computed.targetTangentDeltas.size(); ++t) {
-    const int deltas = output_.addAccessor(floatAccessor(outCount, "VEC3"), floatBytes(computed.targetTangentDeltas[t]), 12,
+    const int deltas = output_.addAccessor(floatAccessor(outCount, "VEC3"), std::move(computed.targetTangentDeltas[t]), 12,
                                            detail::kArrayBuffer);
     emitted.targets[t].emplace_back("TANGENT", deltas);
   }

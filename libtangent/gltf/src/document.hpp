@@ -18,6 +18,22 @@ namespace tangent::gltf::detail {
 constexpr int kArrayBuffer = 34962;
 constexpr int kElementArrayBuffer = 34963;
 
+// The data of a new bufferView: bytes, or floats kept as they are (a tangent array is not
+// copied into bytes to be written).
+class ViewBytes {
+ public:
+  ViewBytes(std::vector<std::uint8_t> bytes) : bytes_(std::move(bytes)) {}  // NOLINT: implicit on purpose
+  ViewBytes(std::vector<float> floats) : floats_(std::move(floats)) {}      // NOLINT
+  std::span<const std::uint8_t> bytes() const {
+    if (!floats_.empty()) return {reinterpret_cast<const std::uint8_t*>(floats_.data()), floats_.size() * sizeof(float)};
+    return {bytes_.data(), bytes_.size()};
+  }
+
+ private:
+  std::vector<std::uint8_t> bytes_;
+  std::vector<float> floats_;
+};
+
 class OutputDocument {
  public:
   explicit OutputDocument(Asset& asset);
@@ -27,7 +43,7 @@ class OutputDocument {
   // Appends an accessor (its JSON without bufferView/byteOffset) stored in a new bufferView.
   // Vertex data (kArrayBuffer) whose element size is not a multiple of 4 is padded to a
   // 4-byte byteStride, as the spec requires of vertex attributes.
-  int addAccessor(nlohmann::ordered_json accessor, std::vector<std::uint8_t> bytes, std::size_t elementSize, int target);
+  int addAccessor(nlohmann::ordered_json accessor, ViewBytes bytes, std::size_t elementSize, int target);
 
   // Writes `output` (.glb, or .gltf plus a .bin beside it) atomically; returns bytes written.
   std::uint64_t write(const std::filesystem::path& output);
@@ -50,7 +66,7 @@ class OutputDocument {
   Asset& asset_;
   std::set<int> accessorsBefore_;
   std::set<int> bufferViewsBefore_;
-  std::vector<std::vector<std::uint8_t>> newViewBytes_;  // data of bufferViews added by us
+  std::vector<ViewBytes> newViewBytes_;  // data of bufferViews added by us
   std::size_t firstNewView_ = 0;
   std::vector<int> loadedViewOf_;  // after dropOrphans: the loaded (model) index of each old view
   std::vector<std::string> extensionsRemoved_;

@@ -24,9 +24,11 @@ constexpr int kSlots = 256;
 constexpr std::size_t kSlotBytes = 4096;
 struct Slot {
   std::atomic<int> state{0};  // 0 free, 1 being filled, 2 guarded
-  char path[kSlotBytes];
+  char path[kSlotBytes] = {};
 };
-Slot slots[kSlots];
+// Zeros in .bss, touched only when used: initialized at start, the 1 MiB took 256 page faults
+// in every run.
+constinit Slot slots[kSlots];
 
 const char* signalMessage = "";
 const char* gracefulNotice = "";
@@ -143,17 +145,31 @@ void writeFileAtomic(const fs::path& path, const std::vector<std::span<const std
     ::unlink(temp.c_str());
     throw std::runtime_error(path.string() + ": " + step + ": " + reason(error));
   };
+  // Each 8 MiB written is handed to the disk at once (sync_file_range starts the writeback and
+  // does not wait), so that the fsync below waits for the last part only instead of the whole
+  // file: the disk writes while the rest is copied. fsync still makes the whole file durable.
+  constexpr std::size_t kWritebackBytes = std::size_t(8) << 20;
+  std::size_t total = 0, handedOver = 0;
   for (const auto& piece : pieces) {
     const std::uint8_t* at = piece.data();
     std::size_t left = piece.size();
     while (left > 0) {
-      const ssize_t written = ::write(fd, at, std::min<std::size_t>(left, std::size_t(1) << 30));
+      const ssize_t written = ::write(fd, at, std::min<std::size_t>(left, kWritebackBytes));
       if (written < 0 && errno == EINTR) continue;
       if (written <= 0) fail("write failed", written < 0 ? errno : ENOSPC);
       at += written;
       left -= static_cast<std::size_t>(written);
+#if defined(__linux__) && defined(SYNC_FILE_RANGE_WRITE)
+      total += static_cast<std::size_t>(written);
+      if (total - handedOver >= kWritebackBytes) {
+        ::sync_file_range(fd, static_cast<off_t>(handedOver), static_cast<off_t>(total - handedOver), SYNC_FILE_RANGE_WRITE);
+        handedOver = total;  // advice only: where it fails, fsync does it all
+      }
+#endif
     }
   }
+  (void)total;
+  (void)handedOver;
   // Delayed allocation can report a full disk only here.
   if (::fsync(fd) != 0 && errno != EINVAL && errno != EROFS) fail("write failed", errno);
   if (::close(fd) != 0) {

@@ -108,6 +108,17 @@ std::vector<std::filesystem::path> binsOfPreviousOutput(const std::filesystem::p
   return bins;
 }
 
+// Whether `path` is a regular file (not a link) holding exactly `bytes` (false where it cannot
+// be read).
+bool holdsBytes(const std::filesystem::path& path, const std::vector<std::uint8_t>& bytes) {
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(std::filesystem::symlink_status(path, ec)) || std::filesystem::file_size(path, ec) != bytes.size() ||
+      ec)
+    return false;
+  std::vector<std::uint8_t> present;
+  return readFileInto(path, present) && present == bytes;
+}
+
 // STEM.bin, or STEM.1.bin, STEM.2.bin... : the first that the previous .gltf does not use.
 std::filesystem::path freeBinName(const std::filesystem::path& output, const std::vector<std::filesystem::path>& previousBins) {
   std::filesystem::path candidate = output;
@@ -179,21 +190,22 @@ OutputDocument::OutputDocument(Asset& asset) : asset_(asset) {
   firstNewView_ = asset_.json.contains("bufferViews") ? asset_.json["bufferViews"].size() : 0;
 }
 
-int OutputDocument::addAccessor(Json accessor, std::vector<std::uint8_t> bytes, std::size_t elementSize, int target) {
+int OutputDocument::addAccessor(Json accessor, ViewBytes bytes, std::size_t elementSize, int target) {
   Json& doc = asset_.json;
   std::size_t stride = 0;
   if (target == kArrayBuffer && elementSize % 4 != 0) {
     stride = (elementSize + 3) & ~std::size_t(3);
-    const std::size_t count = bytes.size() / elementSize;
+    const std::span<const std::uint8_t> packed = bytes.bytes();
+    const std::size_t count = packed.size() / elementSize;
     std::vector<std::uint8_t> padded(count * stride, 0);
-    for (std::size_t i = 0; i < count; ++i) std::memcpy(&padded[i * stride], &bytes[i * elementSize], elementSize);
+    for (std::size_t i = 0; i < count; ++i) std::memcpy(&padded[i * stride], &packed[i * elementSize], elementSize);
     bytes = std::move(padded);
   }
   if (!doc.contains("bufferViews")) doc["bufferViews"] = Json::array();
   if (!doc.contains("accessors")) doc["accessors"] = Json::array();
   Json view = Json::object();
   view["buffer"] = 0;
-  view["byteLength"] = bytes.size();
+  view["byteLength"] = bytes.bytes().size();
   if (stride != 0) view["byteStride"] = stride;
   if (target != 0) view["target"] = target;
   const int viewIndex = static_cast<int>(doc["bufferViews"].size());
@@ -281,7 +293,7 @@ std::vector<std::span<const std::uint8_t>> OutputDocument::packBuffers() {
       source = buffers[decoded.buffer].data.data() + decoded.byteOffset;
       length = viewLength;
     } else if (i >= firstNewView_) {
-      const auto& bytes = newViewBytes_[i - firstNewView_];
+      const std::span<const std::uint8_t> bytes = newViewBytes_[i - firstNewView_].bytes();
       source = bytes.data();
       length = bytes.size();
     } else {
@@ -359,7 +371,9 @@ void OutputDocument::placeImages(const std::filesystem::path& outputDir) {
       fs::create_directories(target.parent_path(), ec);
       std::vector<std::uint8_t> bytes;
       if (!readFileInto(source, bytes)) throw std::runtime_error(source.string() + ": cannot be read to copy beside the output");
-      writeFileAtomic(target, bytes);
+      // A copy an earlier bake left there is not written again: each write is a flush to disk,
+      // and in a folder baked over and over they took longer than reading the buffers.
+      if (!holdsBytes(target, bytes)) writeFileAtomic(target, bytes);
       image["uri"] = text::uriPath(relative.generic_string());
     } else {
       // Outside the input's folder (allowed by --asset-root): referred to where it is.
