@@ -3,7 +3,10 @@
 // WebAssembly package (wasm/package, when built by wasm/build.sh) on the same de-indexed arrays
 // in one process, runs alternating: the UV sphere the library is measured on
 // (tools/bench/analytic_surfaces.cpp, "sphere"), or the largest normal-mapped primitive of a
-// .glb. Prints the medians in milliseconds as JSON.
+// .glb. Prints the medians in milliseconds as JSON, and libtangent-wasm's first call in the
+// process apart (it also pays the first touch of its memory: a page fault per 4 KiB).
+// libtangent-wasm runs at least 3 times, whatever RUNS is (RUNS = 1 spares the npm package's
+// minutes at 4e6 triangles), so that its median is one of the same kind at every size.
 // Usage: node mikktspace_kernel.mjs TRIANGLES|FILE.glb [RUNS]
 import fs from 'node:fs';
 import { generateTangents } from 'mikktspace';
@@ -19,17 +22,19 @@ if (String(process.argv[2]).endsWith('.glb')) {
   ({ position, normal, texcoord } = sphere(Number(process.argv[2] ?? 1000000)));
 }
 const times = { mikktspace: [], libtangentWasm: [] };
-for (let r = 0; r < runs; ++r) {
+const runsOf = { mikktspace: runs, libtangentWasm: Math.max(3, runs) };
+for (let r = 0; r < Math.max(...Object.values(runsOf)); ++r) {
   for (const [name, generate] of [['mikktspace', generateTangents], ['libtangentWasm', ours]]) {
-    if (!generate) continue;
+    if (!generate || r >= runsOf[name]) continue;
     const start = process.hrtime.bigint();
     generate(position, normal, texcoord);
     times[name].push(Number(process.hrtime.bigint() - start) / 1e6);
   }
 }
-const median = (values) => (values.length ? values.sort((x, y) => x - y)[Math.floor(values.length / 2)] : null);
+const median = (values) => (values.length ? [...values].sort((x, y) => x - y)[Math.floor(values.length / 2)] : null);
 console.log(JSON.stringify({ triangles: position.length / 9, medianMs: median(times.mikktspace),
-  libtangentWasmMs: median(times.libtangentWasm), runs }));
+  libtangentWasmMs: median(times.libtangentWasm), libtangentWasmFirstMs: times.libtangentWasm[0] ?? null, runs,
+  libtangentWasmRuns: times.libtangentWasm.length }));
 
 // The largest normal-mapped triangle-list primitive of a GLB, de-indexed.
 async function fromAsset(file) {

@@ -17,7 +17,8 @@ function requireFloat32(name, array, width) {
 
 // Copies the inputs into the module's memory, runs the core, frees the inputs; returns the
 // core's report. Throws an Error with the core's message when it refuses the arrays or a name.
-function run(position, normal, texcoord, indices, vertexCount, cornerCount, names) {
+// vertexSplit: also make the per-vertex outputs (generateTangentsIndexed's).
+function run(position, normal, texcoord, indices, vertexCount, cornerCount, names, vertexSplit) {
   const arrays = [position, normal, texcoord, indices].filter((a) => a !== null);
   const strings = [names.method, names.weighting, names.uvOrigin].map(String);
   const sizes = [...arrays.map((a) => Math.max(4, a.byteLength)), ...strings.map((s) => wasm.lengthBytesUTF8(s) + 1)];
@@ -34,7 +35,7 @@ function run(position, normal, texcoord, indices, vertexCount, cornerCount, name
     const text = pointers.slice(arrays.length);
     strings.forEach((s, i) => wasm.stringToUTF8(s, text[i], sizes[arrays.length + i]));
     const status = wasm._tangent_run(pointers[0], pointers[1], pointers[2], indices ? pointers[3] : 0,
-      vertexCount, cornerCount, text[0], text[1], text[2]);
+      vertexCount, cornerCount, text[0], text[1], text[2], vertexSplit ? 1 : 0);
     if (status !== 0) throw new Error(`libtangent: ${wasm.UTF8ToString(wasm._tangent_error())}`);
   } finally {
     pointers.forEach((p) => wasm._free(p));
@@ -62,7 +63,7 @@ export function generateTangents(position, normal, texcoord, options = {}) {
   if (normal.length !== n * 3) throw new RangeError(`normal: expected ${n * 3} floats, got ${normal.length}`);
   if (texcoord.length !== n * 2) throw new RangeError(`texcoord: expected ${n * 2} floats, got ${texcoord.length}`);
   if (n % 3 !== 0) throw new RangeError(`position: ${n} vertices are not whole triangles`);
-  run(position, normal, texcoord, null, n, n, names(options, 'bottom-left'));
+  run(position, normal, texcoord, null, n, n, names(options, 'bottom-left'), false);
   return new Float32Array(wasm.HEAPF32.buffer, wasm._tangent_corner_tangents(), n * 4).slice();
 }
 
@@ -79,7 +80,7 @@ export function generateTangentsIndexed(position, normal, texcoord, indices, opt
   requireFloat32('texcoord', texcoord, 2);
   const index = indices instanceof Uint32Array ? indices : Uint32Array.from(indices);
   const vertexCount = position.length / 3;
-  const report = run(position, normal, texcoord, index, vertexCount, index.length, names(options, options.uvOrigin ?? 'top-left'));
+  const report = run(position, normal, texcoord, index, vertexCount, index.length, names(options, options.uvOrigin ?? 'top-left'), true);
   const outputVertices = report.outputVertices;
   return {
     vertexCount: outputVertices,
@@ -88,4 +89,42 @@ export function generateTangentsIndexed(position, normal, texcoord, indices, opt
     indices: new Uint32Array(wasm.HEAPU32.buffer, wasm._tangent_corner_vertices(), index.length).slice(),
     report,
   };
+}
+
+// V8 (Node, Chrome, Edge) runs a WebAssembly function as baseline code until it has done some
+// work, then compiles an optimized version that its next call uses: a loop that is entered once
+// per call, as the core's passes over every corner are, runs as baseline code to its end. So
+// the first call on a large mesh took 1.3-1.7 times as long as the next one (1e6 triangles,
+// Node 20, its memory already touched). Twenty calls on a small UV sphere at load, de-indexed
+// and indexed, get the default method's hot functions optimized before the caller's first
+// call (they cost about 35 ms of CPU at import on two busy cores).
+warmUp();
+function warmUp() {
+  const segments = 8, calls = 20;  // 128 triangles: a seam, and degenerate ones at the poles
+  const rows = segments + 1, vertices = rows * rows;
+  const position = new Float32Array(3 * vertices), texcoord = new Float32Array(2 * vertices);
+  for (let j = 0; j < rows; ++j) {
+    for (let i = 0; i < rows; ++i) {
+      const v = j * rows + i, phi = (2 * Math.PI * i) / segments, theta = (Math.PI * j) / segments;
+      position.set([Math.sin(theta) * Math.cos(phi), Math.cos(theta), -Math.sin(theta) * Math.sin(phi)], 3 * v);
+      texcoord.set([i / segments, j / segments], 2 * v);
+    }
+  }
+  const indices = new Uint32Array(6 * segments * segments);
+  for (let j = 0, k = 0; j < segments; ++j) {
+    for (let i = 0; i < segments; ++i, k += 6) {
+      const a = j * rows + i, c = a + rows;
+      indices.set([a, c + 1, a + 1, a, c, c + 1], k);
+    }
+  }
+  const corners = (array, width) => {
+    const out = new Float32Array(width * indices.length);
+    indices.forEach((v, c) => out.set(array.subarray(width * v, width * v + width), width * c));
+    return out;
+  };
+  const flat = [corners(position, 3), corners(position, 3), corners(texcoord, 2)];
+  for (let call = 0; call < calls; ++call) {
+    if (call % 2) generateTangentsIndexed(position, position, texcoord, indices);
+    else generateTangents(...flat);
+  }
 }
