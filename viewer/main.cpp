@@ -512,6 +512,19 @@ void drawHandednessLegend() {
   ImGui::NewLine();
 }
 
+// The views that show the tangent frame, and so the "no tangent" colour where a corner has none
+// (mesh.frag).
+bool showsTangentFrame(DebugView view) {
+  return view == DebugView::tangent || view == DebugView::bitangent || view == DebugView::handedness ||
+         view == DebugView::handednessWorld || view == DebugView::tangentError || view == DebugView::compareAngle;
+}
+
+void drawNoTangentLegend() {
+  ImGui::ColorButton("no tangent", ImVec4(kNoTangent[0], kNoTangent[1], kNoTangent[2], 1), ImGuiColorEditFlags_NoTooltip, ImVec2(14, 14));
+  ImGui::SameLine();
+  ImGui::TextWrapped("no tangent: no TANGENT and no UVs that define one (e.g. no TEXCOORD)");
+}
+
 void drawPanel(Viewer& viewer, GLFWwindow* window, const FrameStats& stats, double frameMs, char (&openPath)[1024], bool& focusOpen) {
   RenderSettings& s = viewer.options.settings;
   ImGui::SetNextWindowPos(ImVec2(10, 10), ImGuiCond_FirstUseEver);
@@ -554,6 +567,9 @@ void drawPanel(Viewer& viewer, GLFWwindow* window, const FrameStats& stats, doub
       ImGui::TextWrapped("w in world space, after the node's mirroring (a mirrored node swaps it):");
       drawHandednessLegend();
     }
+    if (s.view == DebugView::tangent || s.view == DebugView::bitangent)
+      ImGui::TextWrapped("the direction in world space as colour: (x, y, z) * 0.5 + 0.5");
+    if (showsTangentFrame(s.view)) drawNoTangentLegend();
     ImGui::Checkbox("tangent frames (g)", &s.glyphs);
     ImGui::SliderInt("glyph count", &s.maxGlyphs, 100, 50000);
     ImGui::Checkbox("orthographic", &viewer.camera.orthographic);
