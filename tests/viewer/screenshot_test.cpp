@@ -1431,6 +1431,68 @@ TEST(Viewer, PrimitiveWithoutUvsShowsNoTangentInTheFrameViews) {
   }
 }
 
+// Every animated asset the tests generate (tangent-make-data --animated's skinned and morphing
+// assets, raw and baked; the skinned cylinder and the morphing quad with STEP, LINEAR and
+// CUBICSPLINE weights above) and assimp's simple_skin and AnimatedMorphCube, raw and baked, open
+// and render at several times of every animation they have: at the start, within it, and long
+// after its last key (held there). Each frame shows the asset, and the times do not all give the
+// same frame (the animation poses it).
+TEST(Viewer, OpensEveryAnimatedAssetAtSeveralTimes) {
+  const fs::path simpleSkin = kAssimpGltf / "simple_skin" / "simple_skin.gltf";
+  const fs::path morphCube = kAssimpGltf / "glTF-Sample-Models" / "AnimatedMorphCube-glTF" / "AnimatedMorphCube.gltf";
+  if (!fs::exists(simpleSkin) || !fs::exists(morphCube)) TANGENT_SKIP_OR_FAIL("Debian's assimp-testmodels are absent");
+  TempDir dir;
+  const fs::path makeData = fs::path(TANGENT_VIEW).parent_path() / "tangent-make-data";
+  const auto made = tangent::testing::runCommand("'" + makeData.string() + "' --animated '" + (dir / "made").string() + "'");
+  ASSERT_EQ(made.exitCode, 0) << made.output;
+  const float c45 = static_cast<float>(std::sqrt(0.5));
+  const fs::path morphing = morphQuad(dir, "morph_quad_animated", {}, {c45 - 1, c45, 0}, nullptr, [](GltfWriter& gltf, nlohmann::json& doc) {
+    const int times = gltf.floats({0, 1}, "SCALAR", 1);
+    const int values = gltf.floats({0, 1}, "SCALAR", 1);
+    const int cubicValues = gltf.floats({0, 0, 0, 0, 1, 0}, "SCALAR", 1);
+    for (const auto& [name, output] : {std::pair{"STEP", values}, std::pair{"LINEAR", values}, std::pair{"CUBICSPLINE", cubicValues}}) {
+      const nlohmann::json sampler = {{"input", times}, {"output", output}, {"interpolation", name}};
+      const nlohmann::json channel = {{"sampler", 0}, {"target", {{"node", 0}, {"path", "weights"}}}};
+      doc["animations"].push_back({{"name", name}, {"samplers", nlohmann::json::array({sampler})}, {"channels", nlohmann::json::array({channel})}});
+    }
+  });
+  // Each file, the .gltf its animations are counted in, and whether it is baked too.
+  const std::vector<std::pair<fs::path, bool>> sources = {
+      {dir / "made" / "skinned.gltf", true}, {dir / "made" / "morphing.gltf", true}, {bentCylinder(dir, "bent_animated", 30, true), false},
+      {morphing, false},                     {simpleSkin, true},                      {morphCube, true}};
+  int files = 0;
+  for (const auto& [source, bakeToo] : sources) {
+    ASSERT_TRUE(fs::exists(source)) << source;
+    const std::size_t animations = nlohmann::json::parse(std::ifstream(source)).value("animations", nlohmann::json::array()).size();
+    ASSERT_GE(animations, 1u) << source;
+    std::vector<fs::path> inputs{source};
+    if (bakeToo) {
+      const fs::path baked = dir / (source.stem().string() + ".baked.glb");
+      const auto bake = tangent::testing::runCommand(std::string(TANGENT_CLI) + " bake '" + source.string() + "' -o '" + baked.string() + "' --all -q");
+      ASSERT_EQ(bake.exitCode, 0) << source << "\n" << bake.output;
+      inputs.push_back(baked);
+    }
+    for (const fs::path& input : inputs) {
+      ++files;
+      for (std::size_t animation = 0; animation < animations; ++animation) {
+        std::vector<Image> frames;
+        for (const char* time : {"0", "0.5", "100"}) {
+          const std::string name = input.filename().string() + "-" + std::to_string(animation) + "-" + time;
+          frames.push_back(screenshot(dir, name, "'" + input.string() + "' --view tangent --size 160x120 --no-shadows --animation " +
+                                                     std::to_string(animation) + " --time " + time));
+          ASSERT_EQ(frames.back().width, 160) << name;
+          EXPECT_LT(backgroundShare(frames.back()), 0.995f) << name << " shows nothing";
+        }
+        const bool posed = frames[0].rgb != frames[1].rgb || frames[0].rgb != frames[2].rgb;
+        std::printf("%s, animation %zu: drawn at 0, 0.5 and 100 s, %s\n", input.filename().string().c_str(), animation,
+                    posed ? "posed differently" : "THE SAME FRAME");
+        EXPECT_TRUE(posed) << input << " animation " << animation << ": the same frame at 0, 0.5 and 100 s";
+      }
+    }
+  }
+  EXPECT_EQ(files, 10);
+}
+
 // ---- Back faces of double-sided materials (issue 42, last class) ----
 
 // glTF 2.0 3.9.6: a double-sided material's back face "MUST have its normals reversed before
