@@ -21,6 +21,7 @@
 #include <iostream>
 #include <optional>
 #include <stdexcept>
+#include <string_view>
 #include <utility>
 
 #include "camera.hpp"
@@ -393,11 +394,21 @@ struct Viewer {
   }
 };
 
-// Mesa's llvmpipe and softpipe shade on the CPU, where multisampling costs 3-4 times the frame.
-bool softwareRasteriser() {
-  const auto* renderer = reinterpret_cast<const char*>(glGetString(GL_RENDERER));
-  const std::string name = renderer ? renderer : "";
-  return name.find("llvmpipe") != std::string::npos || name.find("softpipe") != std::string::npos;
+// Whether the GL implementation of this name shades on the CPU: Mesa's llvmpipe and softpipe (as
+// under Xvfb without a GPU), or SwiftShader (Chromium's WebGL without one, through ANGLE).
+bool softwareRasteriser(std::string_view renderer) {
+  for (const std::string_view name : {"llvmpipe", "softpipe", "SwiftShader"})
+    if (renderer.find(name) != std::string_view::npos) return true;
+  return false;
+}
+
+// The defaults that depend on the rasteriser, for the desktop and the web viewer alike: on the
+// CPU, MSAA 4x costs 3-4 times the frame and PCF 3x3 (four bilinear comparisons per fragment)
+// about a tenth of the lit frame, so both are off there unless --msaa or --pcf ask (without PCF
+// the one comparison is still filtered over 2x2 texels).
+void applyRasteriserDefaults(Options& options, bool software) {
+  if (options.msaaSamples < 0) options.msaaSamples = software ? 0 : 4;
+  if (!options.pcfGiven && software) options.settings.pcfRadius = 0;
 }
 
 std::string glErrors() {
@@ -886,13 +897,10 @@ int main(int argc, char** argv) {
       if (severity != GL_DEBUG_SEVERITY_NOTIFICATION) std::cerr << "GL debug (type 0x" << std::hex << type << std::dec << "): " << message << "\n";
     }, nullptr);
   }
-  if (options.msaaSamples < 0) {
-    options.msaaSamples = softwareRasteriser() ? 0 : 4;
-    if (options.msaaSamples == 0) glDisable(GL_MULTISAMPLE);  // the window's samples, unused
-  }
-  // PCF 3x3 is four bilinear comparisons per fragment, about a tenth of llvmpipe's lit frame; without
-  // it the one comparison is still filtered over 2x2 texels.
-  if (!options.pcfGiven && softwareRasteriser()) options.settings.pcfRadius = 0;
+  const auto* renderer = reinterpret_cast<const char*>(glGetString(GL_RENDERER));
+  const bool msaaGiven = options.msaaSamples >= 0;
+  applyRasteriserDefaults(options, softwareRasteriser(renderer ? renderer : ""));
+  if (!msaaGiven && options.msaaSamples == 0) glDisable(GL_MULTISAMPLE);  // the window's samples, unused
   int exit = 0;
   if (options.checkShaders) {
     ShaderLibrary shaders(options.shaderDir);
