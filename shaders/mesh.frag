@@ -99,6 +99,9 @@ void main() {
   fragColor = gl_FrontFacing ? vec4(0.15, 0.35, 0.95, 1.0) : vec4(0.90, 0.15, 0.10, 1.0);
   return;
 #endif
+#if defined(DEBUG_TANGENT) || defined(DEBUG_BITANGENT) || defined(DEBUG_HANDEDNESS) || defined(DEBUG_HANDEDNESS_WORLD) || defined(DEBUG_TANGENT_ERROR) || defined(DEBUG_COMPARE_ANGLE)
+  if (v_tangentWorld.w == 0.0) { fragColor = vec4(NO_TANGENT, 1.0); return; }  // no frame here: w = gltf::kUndefinedTangentW
+#endif
   vec3 normal = normalize(v_normalWorld);
   vec4 tangent = v_tangentWorld;
   // Only double-sided materials show back faces (the others are culled): lit as seen, with

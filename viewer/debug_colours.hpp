@@ -29,8 +29,14 @@ inline constexpr std::array<HeatmapStop, 4> kHeatmapStops{{
 inline constexpr Rgb kHandednessPositive{0.10f, 0.70f, 0.75f};  // teal
 inline constexpr Rgb kHandednessNegative{0.95f, 0.55f, 0.10f};  // orange
 
-// "#define HEATMAP_COLOUR_i vec3(...)", "#define HEATMAP_DEGREES_i ..." and
-// "#define HANDEDNESS_POSITIVE/NEGATIVE vec3(...)" lines.
+// Every view of the tangent frame (tangent, bitangent, handedness, error, compare-angle) where
+// the corner has none (gltf::kUndefinedTangentW): mid grey, which no direction shows as
+// (x, y, z) * 0.5 + 0.5 (a unit vector has a component of at least 1/sqrt 3) and no heatmap or
+// handedness colour is.
+inline constexpr Rgb kNoTangent{0.5f, 0.5f, 0.5f};
+
+// "#define HEATMAP_COLOUR_i vec3(...)", "#define HEATMAP_DEGREES_i ...",
+// "#define HANDEDNESS_POSITIVE/NEGATIVE vec3(...)" and "#define NO_TANGENT vec3(...)" lines.
 inline std::string debugColourDefines() {
   auto vec3 = [](const Rgb& c) {
     char text[64];
@@ -46,6 +52,7 @@ inline std::string debugColourDefines() {
   }
   defines += "#define HANDEDNESS_POSITIVE " + vec3(kHandednessPositive) + "\n";
   defines += "#define HANDEDNESS_NEGATIVE " + vec3(kHandednessNegative) + "\n";
+  defines += "#define NO_TANGENT " + vec3(kNoTangent) + "\n";
   return defines;
 }
 

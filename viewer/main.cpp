@@ -21,10 +21,12 @@
 #include <iostream>
 #include <optional>
 #include <stdexcept>
+#include <string_view>
 #include <utility>
 
 #include "camera.hpp"
 #include "debug_colours.hpp"
+#include "pointer.hpp"
 #include "renderer.hpp"
 #include "resources.hpp"
 #include "shader_check.hpp"
@@ -90,6 +92,9 @@ const char* kUsage =
     "                           and exit without a window (1 when it cannot be loaded)\n"
     "  --asset-root DIR         folder buffer and image URIs may not leave (default: the file's folder)\n"
     "  --shader-dir DIR         where the shaders are (default: the source tree's shaders/)\n"
+    "  --print-state            in the window: print the settings the keys and the mouse change (view,\n"
+    "                           toggles, divider, camera) as a JSON line after each key press, each mouse\n"
+    "                           button release and when it closes, for tests\n"
     "  --check-shaders          link the programs in a spread of variants, compare their vertex inputs\n"
     "                           with the layout tables (viewer/vertex_layout.hpp) and exit (1 on a mismatch)\n"
     "keys: m normal map, s specular, h shadows, p PCF, f green flip, 1-9 and 0 views, g glyphs,\n"
@@ -128,6 +133,7 @@ struct Options {
   std::optional<float> time;             // --time SECONDS
   CompareSource compare = CompareSource::fresh;
   fs::path compareFile;                  // --compare FILE
+  bool printState = false;               // --print-state
 };
 
 int parseOptions(int argc, char** argv, Options& options) {
@@ -192,6 +198,7 @@ int parseOptions(int argc, char** argv, Options& options) {
       else if (arg == "--asset-root") options.assetRoot = value();
       else if (arg == "--check-shaders") options.checkShaders = true;
       else if (arg == "--stats") options.stats = true;
+      else if (arg == "--print-state") options.printState = true;
       else if (arg == "--depth-prepass") options.settings.depthPrePass = true;
       else if (arg == "--no-ibl") options.settings.ibl = false;
       else if (arg == "--ibl-intensity") {
@@ -387,11 +394,21 @@ struct Viewer {
   }
 };
 
-// Mesa's llvmpipe and softpipe shade on the CPU, where multisampling costs 3-4 times the frame.
-bool softwareRasteriser() {
-  const auto* renderer = reinterpret_cast<const char*>(glGetString(GL_RENDERER));
-  const std::string name = renderer ? renderer : "";
-  return name.find("llvmpipe") != std::string::npos || name.find("softpipe") != std::string::npos;
+// Whether the GL implementation of this name shades on the CPU: Mesa's llvmpipe and softpipe (as
+// under Xvfb without a GPU), or SwiftShader (Chromium's WebGL without one, through ANGLE).
+bool softwareRasteriser(std::string_view renderer) {
+  for (const std::string_view name : {"llvmpipe", "softpipe", "SwiftShader"})
+    if (renderer.find(name) != std::string_view::npos) return true;
+  return false;
+}
+
+// The defaults that depend on the rasteriser, for the desktop and the web viewer alike: on the
+// CPU, MSAA 4x costs 3-4 times the frame and PCF 3x3 (four bilinear comparisons per fragment)
+// about a tenth of the lit frame, so both are off there unless --msaa or --pcf ask (without PCF
+// the one comparison is still filtered over 2x2 texels).
+void applyRasteriserDefaults(Options& options, bool software) {
+  if (options.msaaSamples < 0) options.msaaSamples = software ? 0 : 4;
+  if (!options.pcfGiven && software) options.settings.pcfRadius = 0;
 }
 
 std::string glErrors() {
@@ -506,6 +523,19 @@ void drawHandednessLegend() {
   ImGui::NewLine();
 }
 
+// The views that show the tangent frame, and so the "no tangent" colour where a corner has none
+// (mesh.frag).
+bool showsTangentFrame(DebugView view) {
+  return view == DebugView::tangent || view == DebugView::bitangent || view == DebugView::handedness ||
+         view == DebugView::handednessWorld || view == DebugView::tangentError || view == DebugView::compareAngle;
+}
+
+void drawNoTangentLegend() {
+  ImGui::ColorButton("no tangent", ImVec4(kNoTangent[0], kNoTangent[1], kNoTangent[2], 1), ImGuiColorEditFlags_NoTooltip, ImVec2(14, 14));
+  ImGui::SameLine();
+  ImGui::TextWrapped("no tangent: no TANGENT and no UVs that define one (e.g. no TEXCOORD)");
+}
+
 void drawPanel(Viewer& viewer, GLFWwindow* window, const FrameStats& stats, double frameMs, char (&openPath)[1024], bool& focusOpen) {
   RenderSettings& s = viewer.options.settings;
   ImGui::SetNextWindowPos(ImVec2(10, 10), ImGuiCond_FirstUseEver);
@@ -548,6 +578,9 @@ void drawPanel(Viewer& viewer, GLFWwindow* window, const FrameStats& stats, doub
       ImGui::TextWrapped("w in world space, after the node's mirroring (a mirrored node swaps it):");
       drawHandednessLegend();
     }
+    if (s.view == DebugView::tangent || s.view == DebugView::bitangent)
+      ImGui::TextWrapped("the direction in world space as colour: (x, y, z) * 0.5 + 0.5");
+    if (showsTangentFrame(s.view)) drawNoTangentLegend();
     ImGui::Checkbox("tangent frames (g)", &s.glyphs);
     ImGui::SliderInt("glyph count", &s.maxGlyphs, 100, 50000);
     ImGui::Checkbox("orthographic", &viewer.camera.orthographic);
@@ -671,11 +704,42 @@ void drawPanel(Viewer& viewer, GLFWwindow* window, const FrameStats& stats, doub
 
 struct Input {
   Viewer* viewer = nullptr;
-  double lastX = 0, lastY = 0;
   bool focusOpen = false;
-  bool leftWasDown = false;
-  bool draggingDivider = false;  // a left drag that began on the split view's divider moves it
+  PointerDrags drags;
+  GLFWcursorposfun previousCursorPos = nullptr;  // the panel's, where its backend has one
 };
+
+Input& inputOf(GLFWwindow* window) { return *static_cast<Input*>(glfwGetWindowUserPointer(window)); }
+
+int windowWidth(GLFWwindow* window) {
+  int width = 0, height = 0;
+  glfwGetWindowSize(window, &width, &height);
+  return width;
+}
+
+// --print-state: what the keys and the mouse change, as one JSON line after each key press and
+// mouse button release and when the window closes.
+void printState(const Viewer& viewer, GLFWwindow* window) {
+  const RenderSettings& s = viewer.options.settings;
+  const OrbitCamera& c = viewer.camera;
+  const nlohmann::json state = {
+      {"view", kDebugViews[static_cast<int>(s.view)].name},
+      {"normalMapping", s.normalMapping},
+      {"specular", s.specular},
+      {"shadows", s.shadows},
+      {"pcfRadius", s.pcfRadius},
+      {"flipGreen", s.flipGreen},
+      {"glyphs", s.glyphs},
+      {"split", s.split},
+      {"splitPosition", s.splitPosition},
+      {"bitangent", kBitangentModes[static_cast<int>(s.bitangent)].name},
+      {"camera", {{"yaw", c.yaw}, {"pitch", c.pitch}, {"distance", c.distance}, {"target", {c.target.x, c.target.y, c.target.z}}}},
+      {"windowWidth", windowWidth(window)},
+      {"messages", viewer.messages},
+  };
+  std::printf("state %s\n", state.dump().c_str());
+  std::fflush(stdout);
+}
 
 int interactive(Viewer& viewer, GLFWwindow* window) {
   IMGUI_CHECKVERSION();
@@ -688,7 +752,7 @@ int interactive(Viewer& viewer, GLFWwindow* window) {
   glfwSetKeyCallback(window, [](GLFWwindow* w, int key, int scancode, int action, int mods) {
     ImGui_ImplGlfw_KeyCallback(w, key, scancode, action, mods);
     if (action != GLFW_PRESS || ImGui::GetIO().WantCaptureKeyboard) return;
-    auto& in = *static_cast<Input*>(glfwGetWindowUserPointer(w));
+    auto& in = inputOf(w);
     RenderSettings& s = in.viewer->options.settings;
     switch (key) {
       case GLFW_KEY_M: s.normalMapping = !s.normalMapping; break;
@@ -713,15 +777,36 @@ int interactive(Viewer& viewer, GLFWwindow* window) {
           s.view = static_cast<DebugView>(key - GLFW_KEY_1);
         else if (key == GLFW_KEY_0 && std::size(kDebugViews) > 9) s.view = static_cast<DebugView>(9);
     }
+    if (in.viewer->options.printState) printState(*in.viewer, w);
+  });
+  // The mouse by its events, in order (viewer/pointer.hpp says why).
+  glfwSetMouseButtonCallback(window, [](GLFWwindow* w, int button, int action, int mods) {
+    ImGui_ImplGlfw_MouseButtonCallback(w, button, action, mods);
+    const auto which = button == GLFW_MOUSE_BUTTON_LEFT    ? PointerDrags::Button::left
+                       : button == GLFW_MOUSE_BUTTON_RIGHT ? PointerDrags::Button::right
+                       : button == GLFW_MOUSE_BUTTON_MIDDLE ? PointerDrags::Button::middle
+                                                            : std::optional<PointerDrags::Button>{};
+    if (!which) return;
+    auto& in = inputOf(w);
+    in.drags.button(*which, action == GLFW_PRESS, ImGui::GetIO().WantCaptureMouse, in.viewer->options.settings, windowWidth(w));
+    if (action == GLFW_RELEASE && in.viewer->options.printState) printState(*in.viewer, w);
+  });
+  input.previousCursorPos = glfwSetCursorPosCallback(window, [](GLFWwindow* w, double x, double y) {
+    auto& in = inputOf(w);
+    if (in.previousCursorPos) in.previousCursorPos(w, x, y);
+    in.drags.move(x, y, in.viewer->camera, in.viewer->options.settings, windowWidth(w));
   });
   glfwSetScrollCallback(window, [](GLFWwindow* w, double x, double y) {
     ImGui_ImplGlfw_ScrollCallback(w, x, y);
     if (ImGui::GetIO().WantCaptureMouse) return;
-    static_cast<Input*>(glfwGetWindowUserPointer(w))->viewer->camera.zoom(static_cast<float>(y));
+    inputOf(w).viewer->camera.zoom(static_cast<float>(y));
   });
   glfwSetDropCallback(window, [](GLFWwindow* w, int count, const char** paths) {
-    if (count > 0) static_cast<Input*>(glfwGetWindowUserPointer(w))->viewer->load(paths[0]);
+    if (count > 0) inputOf(w).viewer->load(paths[0]);
   });
+  double startX = 0, startY = 0;  // where the pointer is before it first moves
+  glfwGetCursorPos(window, &startX, &startY);
+  input.drags.move(startX, startY, viewer.camera, viewer.options.settings, windowWidth(window));
 
   char openPath[1024] = {};
   FrameStats stats;
@@ -729,26 +814,6 @@ int interactive(Viewer& viewer, GLFWwindow* window) {
   while (!glfwWindowShouldClose(window)) {
     const auto start = std::chrono::steady_clock::now();
     glfwPollEvents();
-    double x, y;
-    glfwGetCursorPos(window, &x, &y);
-    const bool leftDown = glfwGetMouseButton(window, GLFW_MOUSE_BUTTON_LEFT) == GLFW_PRESS;
-    if (!leftDown) input.draggingDivider = false;
-    if (!ImGui::GetIO().WantCaptureMouse) {
-      const float dx = static_cast<float>(x - input.lastX), dy = static_cast<float>(y - input.lastY);
-      const CameraMatrices m = viewer.camera.matrices(1.0f);
-      RenderSettings& s = viewer.options.settings;
-      int windowWidth, windowHeight;
-      glfwGetWindowSize(window, &windowWidth, &windowHeight);
-      if (leftDown && !input.leftWasDown && s.split && s.view != DebugView::compareAngle && windowWidth > 0)
-        input.draggingDivider = std::abs(x - s.splitPosition * windowWidth) <= 6;
-      if (input.draggingDivider) s.splitPosition = std::clamp(static_cast<float>(x / std::max(windowWidth, 1)), 0.0f, 1.0f);
-      else if (leftDown) viewer.camera.orbit(dx, dy);
-      if (glfwGetMouseButton(window, GLFW_MOUSE_BUTTON_RIGHT) == GLFW_PRESS || glfwGetMouseButton(window, GLFW_MOUSE_BUTTON_MIDDLE) == GLFW_PRESS)
-        viewer.camera.pan(dx, dy, m.view);
-    }
-    input.lastX = x;
-    input.lastY = y;
-    input.leftWasDown = leftDown;
     if (viewer.playing && viewer.pose.animation >= 0) {
       const float duration = viewer.renderer.scene().animations[viewer.pose.animation].duration;
       viewer.pose.seconds = duration > 0 ? std::fmod(viewer.pose.seconds + static_cast<float>(frameMs) / 1000.0f, duration) : 0.0f;
@@ -775,6 +840,7 @@ int interactive(Viewer& viewer, GLFWwindow* window) {
     glfwSwapBuffers(window);
     frameMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
   }
+  if (viewer.options.printState) printState(viewer, window);
   ImGui_ImplOpenGL3_Shutdown();
   ImGui_ImplGlfw_Shutdown();
   ImGui::DestroyContext();
@@ -831,13 +897,10 @@ int main(int argc, char** argv) {
       if (severity != GL_DEBUG_SEVERITY_NOTIFICATION) std::cerr << "GL debug (type 0x" << std::hex << type << std::dec << "): " << message << "\n";
     }, nullptr);
   }
-  if (options.msaaSamples < 0) {
-    options.msaaSamples = softwareRasteriser() ? 0 : 4;
-    if (options.msaaSamples == 0) glDisable(GL_MULTISAMPLE);  // the window's samples, unused
-  }
-  // PCF 3x3 is four bilinear comparisons per fragment, about a tenth of llvmpipe's lit frame; without
-  // it the one comparison is still filtered over 2x2 texels.
-  if (!options.pcfGiven && softwareRasteriser()) options.settings.pcfRadius = 0;
+  const auto* renderer = reinterpret_cast<const char*>(glGetString(GL_RENDERER));
+  const bool msaaGiven = options.msaaSamples >= 0;
+  applyRasteriserDefaults(options, softwareRasteriser(renderer ? renderer : ""));
+  if (!msaaGiven && options.msaaSamples == 0) glDisable(GL_MULTISAMPLE);  // the window's samples, unused
   int exit = 0;
   if (options.checkShaders) {
     ShaderLibrary shaders(options.shaderDir);

@@ -1066,6 +1066,21 @@ TEST(Viewer, GeometryNormalViewShowsTheInterpolatedNormal) {
   EXPECT_LT(worst, 0.02);
 }
 
+std::string base64(const std::string& bytes) {
+  std::string text;
+  static const char* kAlphabet = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+  for (std::size_t i = 0; i < bytes.size(); i += 3) {
+    const std::uint32_t n = (std::uint32_t(std::uint8_t(bytes[i])) << 16) |
+                            (i + 1 < bytes.size() ? std::uint32_t(std::uint8_t(bytes[i + 1])) << 8 : 0) |
+                            (i + 2 < bytes.size() ? std::uint32_t(std::uint8_t(bytes[i + 2])) : 0);
+    text += kAlphabet[(n >> 18) & 63];
+    text += kAlphabet[(n >> 12) & 63];
+    text += i + 1 < bytes.size() ? kAlphabet[(n >> 6) & 63] : '=';
+    text += i + 2 < bytes.size() ? kAlphabet[n & 63] : '=';
+  }
+  return text;
+}
+
 // Writes a .gltf with one embedded buffer: accessors added one by one (floats or 16-bit
 // integers), the document completed by the caller.
 struct GltfWriter {
@@ -1094,18 +1109,8 @@ struct GltfWriter {
     return add(values.data(), values.size() * 2, 5123, values.size() / components, type, indices);
   }
   fs::path write(const fs::path& file, nlohmann::json doc) {
-    std::string base64;
-    static const char* kAlphabet = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
-    for (std::size_t i = 0; i < bin.size(); i += 3) {
-      const std::uint32_t n = (std::uint32_t(std::uint8_t(bin[i])) << 16) | (i + 1 < bin.size() ? std::uint32_t(std::uint8_t(bin[i + 1])) << 8 : 0) |
-                              (i + 2 < bin.size() ? std::uint32_t(std::uint8_t(bin[i + 2])) : 0);
-      base64 += kAlphabet[(n >> 18) & 63];
-      base64 += kAlphabet[(n >> 12) & 63];
-      base64 += i + 1 < bin.size() ? kAlphabet[(n >> 6) & 63] : '=';
-      base64 += i + 2 < bin.size() ? kAlphabet[n & 63] : '=';
-    }
     doc["asset"] = {{"version", "2.0"}};
-    doc["buffers"] = {{{"byteLength", bin.size()}, {"uri", "data:application/octet-stream;base64," + base64}}};
+    doc["buffers"] = {{{"byteLength", bin.size()}, {"uri", "data:application/octet-stream;base64," + base64(bin)}}};
     doc["bufferViews"] = bufferViews;
     doc["accessors"] = accessors;
     std::ofstream(file) << doc.dump(1);
@@ -1358,6 +1363,134 @@ TEST(Viewer, AnimationSamplersInterpolateAsTheSpecSays) {
     std::printf("%s at 0.25 s: tangent at %.2f degrees, expected %.2f (weight %.5f)\n", name, seen, expected, weight);
     EXPECT_NEAR(seen, expected, 0.8) << name;
   }
+}
+
+// Debian's assimp-testmodels, which the viewer tests open as a user would.
+const fs::path kAssimpGltf = "/usr/share/assimp/models/glTF2";
+
+// The share of the image's non-background pixels that are the views' "no tangent" grey (0.5,
+// viewer/debug_colours.hpp), and how much of the image is not background.
+std::pair<double, double> noTangentShare(const Image& image) {
+  int covered = 0, grey = 0;
+  for (int y = 0; y < image.height; ++y) {
+    for (int x = 0; x < image.width; ++x) {
+      const auto c = image.at(x, y);
+      if (std::abs(c[0] - 0.16f) < 0.02f && std::abs(c[1] - 0.17f) < 0.02f && std::abs(c[2] - 0.19f) < 0.02f) continue;
+      ++covered;
+      grey += std::abs(c[0] - 0.5f) < 0.01f && std::abs(c[1] - 0.5f) < 0.01f && std::abs(c[2] - 0.5f) < 0.01f;
+    }
+  }
+  return {covered ? static_cast<double>(grey) / covered : 0.0, static_cast<double>(covered) / (image.width * image.height)};
+}
+
+// assimp's simple_skin (simple_skin/simple_skin.gltf: a strip of 8 triangles over x 0..1, y 0..2
+// at z = 0, skinned to two joints, the upper one turned by its animation) has no NORMAL and no
+// TEXCOORD_0: nothing defines a tangent frame on it, and the loader says "tangents undefined".
+// The views of the frame must then show the legend's "no tangent" grey over the whole strip, at
+// rest and bent. They used to show the core's fallback for such corners (FrameSource::fixed: the
+// axis least aligned with the normal, +x), skinned along with the strip: uniform red at rest
+// and a red-to-green gradient once bent, which reads as a real, skinned frame. The same strip
+// given TEXCOORD_0 = (x, y / 2) has a frame: no grey there, in the same views.
+TEST(Viewer, PrimitiveWithoutUvsShowsNoTangentInTheFrameViews) {
+  const fs::path asset = kAssimpGltf / "simple_skin" / "simple_skin.gltf";
+  if (!fs::exists(asset)) TANGENT_SKIP_OR_FAIL(asset.string() + " is absent (Debian's assimp-testmodels)");
+  TempDir dir;
+  // The copy with UVs: a buffer of its own, embedded, for TEXCOORD_0.
+  nlohmann::json doc = nlohmann::json::parse(std::ifstream(asset));
+  const nlohmann::json& positions = doc["accessors"][doc["meshes"][0]["primitives"][0]["attributes"]["POSITION"].get<int>()];
+  const std::size_t vertices = positions["count"].get<std::size_t>();
+  ASSERT_EQ(vertices, 10u);
+  std::vector<float> uvs;
+  for (std::size_t v = 0; v < vertices; ++v) uvs.insert(uvs.end(), {static_cast<float>(v % 2), static_cast<float>(v / 2) * 0.25f});  // (x, y / 2)
+  const std::string uvBytes(reinterpret_cast<const char*>(uvs.data()), uvs.size() * sizeof(float));
+  doc["buffers"].push_back({{"byteLength", uvBytes.size()}, {"uri", "data:application/octet-stream;base64," + base64(uvBytes)}});
+  doc["bufferViews"].push_back({{"buffer", doc["buffers"].size() - 1}, {"byteLength", uvBytes.size()}});
+  doc["accessors"].push_back({{"bufferView", doc["bufferViews"].size() - 1}, {"componentType", 5126}, {"count", vertices}, {"type", "VEC2"}});
+  doc["meshes"][0]["primitives"][0]["attributes"]["TEXCOORD_0"] = doc["accessors"].size() - 1;
+  const fs::path withUvs = dir / "simple_skin_uv.gltf";
+  std::ofstream(withUvs) << doc.dump(1);
+
+  const std::string common = " --camera front --size 200x200 --no-shadows";
+  // Bent (the upper joint turned about 50 degrees at 1 s) in every view of the frame, and at rest.
+  const std::pair<const char*, const char*> cases[] = {{"tangent", "0"},    {"tangent", "1"},          {"bitangent", "1"},
+                                                       {"handedness", "1"}, {"handedness-world", "1"}, {"error", "1"},
+                                                       {"compare-angle", "1"}};
+  for (const auto& [view, time] : cases) {
+    {
+      const std::string name = std::string(view) + "-" + time;
+      const std::string options = std::string(" --view ") + view + " --time " + time + common;
+      const auto [grey, covered] = noTangentShare(screenshot(dir, name, "'" + asset.string() + "'" + options));
+      const auto [greyWithUvs, coveredWithUvs] = noTangentShare(screenshot(dir, name + "-uv", "'" + withUvs.string() + "'" + options));
+      std::printf("%-16s at %s s: %.1f %% of the strip grey (%.0f %% of the image), with UVs %.1f %%\n", view, time, 100 * grey,
+                  100 * covered, 100 * greyWithUvs);
+      EXPECT_GT(covered, 0.05) << name;
+      EXPECT_GT(grey, 0.99) << name << ": the undefined frame shows as something else than 'no tangent'";
+      EXPECT_GT(coveredWithUvs, 0.05) << name;
+      EXPECT_LT(greyWithUvs, 0.01) << name << ": a defined frame shows as 'no tangent'";
+    }
+  }
+}
+
+// Every animated asset the tests generate (tangent-make-data --animated's skinned and morphing
+// assets, raw and baked; the skinned cylinder and the morphing quad with STEP, LINEAR and
+// CUBICSPLINE weights above) and assimp's simple_skin and AnimatedMorphCube, raw and baked, open
+// and render at several times of every animation they have: at the start, within it, and long
+// after its last key (held there). Each frame shows the asset, and the times do not all give the
+// same frame (the animation poses it).
+TEST(Viewer, OpensEveryAnimatedAssetAtSeveralTimes) {
+  const fs::path simpleSkin = kAssimpGltf / "simple_skin" / "simple_skin.gltf";
+  const fs::path morphCube = kAssimpGltf / "glTF-Sample-Models" / "AnimatedMorphCube-glTF" / "AnimatedMorphCube.gltf";
+  if (!fs::exists(simpleSkin) || !fs::exists(morphCube)) TANGENT_SKIP_OR_FAIL("Debian's assimp-testmodels are absent");
+  TempDir dir;
+  const fs::path makeData = fs::path(TANGENT_VIEW).parent_path() / "tangent-make-data";
+  const auto made = tangent::testing::runCommand("'" + makeData.string() + "' --animated '" + (dir / "made").string() + "'");
+  ASSERT_EQ(made.exitCode, 0) << made.output;
+  const float c45 = static_cast<float>(std::sqrt(0.5));
+  const fs::path morphing = morphQuad(dir, "morph_quad_animated", {}, {c45 - 1, c45, 0}, nullptr, [](GltfWriter& gltf, nlohmann::json& doc) {
+    const int times = gltf.floats({0, 1}, "SCALAR", 1);
+    const int values = gltf.floats({0, 1}, "SCALAR", 1);
+    const int cubicValues = gltf.floats({0, 0, 0, 0, 1, 0}, "SCALAR", 1);
+    for (const auto& [name, output] : {std::pair{"STEP", values}, std::pair{"LINEAR", values}, std::pair{"CUBICSPLINE", cubicValues}}) {
+      const nlohmann::json sampler = {{"input", times}, {"output", output}, {"interpolation", name}};
+      const nlohmann::json channel = {{"sampler", 0}, {"target", {{"node", 0}, {"path", "weights"}}}};
+      doc["animations"].push_back({{"name", name}, {"samplers", nlohmann::json::array({sampler})}, {"channels", nlohmann::json::array({channel})}});
+    }
+  });
+  // Each file, the .gltf its animations are counted in, and whether it is baked too.
+  const std::vector<std::pair<fs::path, bool>> sources = {
+      {dir / "made" / "skinned.gltf", true}, {dir / "made" / "morphing.gltf", true}, {bentCylinder(dir, "bent_animated", 30, true), false},
+      {morphing, false},                     {simpleSkin, true},                      {morphCube, true}};
+  int files = 0;
+  for (const auto& [source, bakeToo] : sources) {
+    ASSERT_TRUE(fs::exists(source)) << source;
+    const std::size_t animations = nlohmann::json::parse(std::ifstream(source)).value("animations", nlohmann::json::array()).size();
+    ASSERT_GE(animations, 1u) << source;
+    std::vector<fs::path> inputs{source};
+    if (bakeToo) {
+      const fs::path baked = dir / (source.stem().string() + ".baked.glb");
+      const auto bake = tangent::testing::runCommand(std::string(TANGENT_CLI) + " bake '" + source.string() + "' -o '" + baked.string() + "' --all -q");
+      ASSERT_EQ(bake.exitCode, 0) << source << "\n" << bake.output;
+      inputs.push_back(baked);
+    }
+    for (const fs::path& input : inputs) {
+      ++files;
+      for (std::size_t animation = 0; animation < animations; ++animation) {
+        std::vector<Image> frames;
+        for (const char* time : {"0", "0.5", "100"}) {
+          const std::string name = input.filename().string() + "-" + std::to_string(animation) + "-" + time;
+          frames.push_back(screenshot(dir, name, "'" + input.string() + "' --view tangent --size 160x120 --no-shadows --animation " +
+                                                     std::to_string(animation) + " --time " + time));
+          ASSERT_EQ(frames.back().width, 160) << name;
+          EXPECT_LT(backgroundShare(frames.back()), 0.995f) << name << " shows nothing";
+        }
+        const bool posed = frames[0].rgb != frames[1].rgb || frames[0].rgb != frames[2].rgb;
+        std::printf("%s, animation %zu: drawn at 0, 0.5 and 100 s, %s\n", input.filename().string().c_str(), animation,
+                    posed ? "posed differently" : "THE SAME FRAME");
+        EXPECT_TRUE(posed) << input << " animation " << animation << ": the same frame at 0, 0.5 and 100 s";
+      }
+    }
+  }
+  EXPECT_EQ(files, 10);
 }
 
 // ---- Back faces of double-sided materials (issue 42, last class) ----

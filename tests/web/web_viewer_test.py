@@ -8,7 +8,9 @@ error views, the split compare view and the tangent-frame glyphs match tangent-v
 Xvfb) within the tolerance below. A truncated .glb, a missing URL and a meshopt-compressed file
 reach "error: ..." naming the file, an unknown view "error: ..." naming it; every shader variant of --check-shaders links under WebGL2; the page's "bake tangents"
 gives the bytes `tangent bake` writes for the same file, and its list of checks the report
-`tangent check --format json` gives. Load and frame times are
+`tangent check --format json` gives. Opened with no options, the page takes tangent-view's
+defaults for its rasteriser (check_defaults: on SwiftShader no MSAA and no PCF; the same default
+frame and auto exposure as tangent-view's default screenshot). Load and frame times are
 printed (and written to OUT/times.json).
 
 Tolerance. The two renderers are different software rasterisers (SwiftShader through ANGLE,
@@ -37,7 +39,7 @@ import urllib.parse
 HERE = pathlib.Path(__file__).resolve().parent
 sys.path[:0] = [str(HERE), str(HERE.parent / "browser")]
 import chromium  # noqa: E402  (tests/browser/chromium.py: the one Chromium driver of the browser tests)
-from frames import CHANNEL_TOLERANCE, MAX_DIFFERING, MAX_MEAN, SIZE, compare, desktop_screenshot, report, write_png  # noqa: E402
+from frames import CHANNEL_TOLERANCE, MAX_DIFFERING, MAX_MEAN, SIZE, compare, desktop_screenshot, read_png, report, write_png  # noqa: E402
 
 # What is compared: tangent-view options, the same on both sides.
 VIEWS = {"lit": "--view lit", "tangent": "--view tangent", "handedness": "--view handedness", "error": "--view error",
@@ -45,6 +47,52 @@ VIEWS = {"lit": "--view lit", "tangent": "--view tangent", "handedness": "--view
 # Tangent-frame glyphs are one-pixel lines: which pixels a line covers is where the two
 # rasterisers differ most (measured: up to 0.92 % of the pixels, mean 1.09).
 LIMITS = {"glyphs": (0.03, 3.0)}
+
+
+SOFTWARE_RASTERISERS = ("llvmpipe", "softpipe", "SwiftShader")  # viewer/main.cpp's softwareRasteriser
+
+
+def check_defaults(chrome, base, file, site, args, out):
+    """The page opened with nothing but the file and the size takes the desktop viewer's defaults for
+    its rasteriser: on SwiftShader (a software rasteriser, as llvmpipe is for tangent-view under
+    Xvfb) no MSAA (the canvas's WebGL context made without antialiasing) and no PCF, and its default
+    frame (the lit view, auto exposure) matches tangent-view's default screenshot, with the same
+    exposure (the factor that puts a white surface facing the key light at 0.76). Returns failures."""
+    failures = []
+    page = chrome.open(base + "index.html?" + urllib.parse.urlencode({"url": str(file.relative_to(site)), "size": f"{SIZE[0]}x{SIZE[1]}"}))
+    state = page.wait_state()
+    if state != "ready":
+        page.close()
+        return [f"defaults: {file.name}: page state {state!r}, not ready"]
+    status = page.evaluate("call.status()")
+    antialias = page.evaluate("Module.ctx.getContextAttributes().antialias")
+    width, height, web = page.read_pixels()
+    page.close()
+    software = any(name in status["renderer"] for name in SOFTWARE_RASTERISERS)
+    print(f"defaults: the page's WebGL is {status['renderer']!r} ({'software' if software else 'hardware'}): "
+          f"MSAA {status['msaaSamples']} (canvas antialias {antialias}), PCF radius {status['pcfRadius']}, exposure {status['exposure']:.4g}")
+    expected = (0, False, 0) if software else (4, True, 1)
+    if (status["msaaSamples"], antialias, status["pcfRadius"]) != expected:
+        failures.append(f"defaults: MSAA {status['msaaSamples']}, antialias {antialias}, PCF {status['pcfRadius']} on "
+                        f"{status['renderer']!r}; the desktop viewer's defaults there are MSAA {expected[0]}, PCF {expected[2]}")
+    # tangent-view's own defaults: no --msaa, no --pcf, no --exposure.
+    desktop_png = out / f"{file.stem}.defaults.desktop.png"
+    command = [args.xvfb_run, "-a", "-s", "-screen 0 1280x1024x24", args.tangent_view, str(file), "--screenshot", str(desktop_png),
+               "--size", f"{SIZE[0]}x{SIZE[1]}"]
+    result = subprocess.run(command, capture_output=True, text=True, timeout=300)
+    if result.returncode != 0:
+        return failures + [f"defaults: {' '.join(command)}: {result.stderr}"]
+    desktop_exposure = float(result.stdout.split("exposure ")[1].split(",")[0])
+    _, _, desk = read_png(desktop_png)
+    write_png(out / f"{file.stem}.defaults.web.png", width, height, web)
+    differing, mean = compare(web, desk)
+    print(f"defaults: frame {differing * 100:.2f} % of pixels differ by > {CHANNEL_TOLERANCE}, mean {mean:.2f}; "
+          f"exposure {status['exposure']:.4g} in the page, {desktop_exposure:.4g} in tangent-view")
+    if differing > MAX_DIFFERING or mean > MAX_MEAN:
+        failures.append(f"defaults: the page's default frame differs from tangent-view's: {differing * 100:.2f} % of pixels, mean {mean:.2f}")
+    if abs(status["exposure"] - desktop_exposure) > 1e-3 * desktop_exposure:
+        failures.append(f"defaults: auto exposure {status['exposure']} in the page, {desktop_exposure} in tangent-view")
+    return failures
 
 
 def main():
@@ -162,6 +210,7 @@ def main():
             if not state.startswith("error: ") or not all(word in state for word in expected):
                 failures.append(f"{name}: page state {state!r}, expected 'error: ...' naming {', '.join(expected)}")
             page.close()
+        failures += check_defaults(chrome, base, files[-1], site, args, out)
     shutil.rmtree(site, ignore_errors=True)
     (out / "times.json").write_text(json.dumps(times, indent=1) + "\n")
     return report(failures, args.broken)

@@ -408,6 +408,15 @@ DrawItem makeDrawItem(const detail::Asset& asset, const Json& primitive, const s
       item.cornerProblems[c] = problems;
     }
   }
+  // Frames nothing defines (DrawItem::tangents): the fixed fallback, marked; after the checks
+  // above, which compare the computed frames with themselves there.
+  if (!item.tangentsFromFile) {
+    for (std::size_t c = 0; c < cornerCount; ++c) {
+      if (sources[c] != FrameSource::fixed) continue;
+      item.tangents[4 * c + 3] = kUndefinedTangentW;
+      item.computedTangents[4 * c + 3] = kUndefinedTangentW;
+    }
+  }
   readDeformation(asset, primitive, geometry.vertexCount, corners, where, item, messages);
   return item;
 }
