@@ -4,8 +4,6 @@
 // without a feature compiles none of its code. Two shading modes: SHADING_PBR, glTF's
 // metallic-roughness model (pbr.glsl), or else the tutorials' specular-map mode (Blinn-Phong
 // or Phong, lighting.glsl). Lighting is linear; the output is sRGB-encoded (colour.glsl).
-// With GBUFFER_PASS it shades nothing: it writes the surface (gbuffer.glsl) for deferred.frag,
-// which lights each pixel once.
 
 in vec3 v_positionWorld;
 in vec3 v_normalWorld;
@@ -20,14 +18,10 @@ in vec4 v_shadowCoord;
 in float v_tangentError;
 in float v_cornerProblems;
 
-#ifdef GBUFFER_PASS
-layout(location = 0) out vec4 fragColor;  // G-buffer target 0 (the debug views' colour in a variant that has both)
-layout(location = 1) out uvec4 gSurface;  // G-buffer target 1
-#else
 out vec4 fragColor;
-#endif
 
 uniform vec3 u_eyeWorld;
+uniform mat4 u_view;
 uniform vec4 u_baseColorFactor;
 uniform vec3 u_specularColorFactor;
 uniform float u_specularStrength;
@@ -48,10 +42,8 @@ uniform float u_mirror;        // sign of det(u_model), as mesh.vert has it
 #include "lighting.glsl"
 #include "pbr.glsl"
 #include "shadows.glsl"
-#include "reflection.glsl"
 #include "normal_mapping.glsl"
 #include "debug_views.glsl"
-#include "gbuffer.glsl"
 
 #ifdef HAS_BASE_COLOR_MAP
 uniform sampler2D u_baseColorMap;
@@ -86,6 +78,10 @@ uniform float u_occlusionStrength;
 #endif
 #ifdef ALPHA_MASK
 uniform float u_alphaCutoff;
+#endif
+#ifdef USE_REFLECTION
+uniform sampler2D u_sphereMap;
+uniform float u_reflectivity;
 #endif
 
 void main() {
@@ -173,11 +169,7 @@ void main() {
   specularStrength *= texture(u_specularMap, textureUv(u_specularUvSet, u_specularUvTransform)).a;
 #endif
 #ifdef HAS_SPECULAR_COLOR_MAP
-  vec4 specularColorTexel = texture(u_specularColorMap, textureUv(u_specularColorUvSet, u_specularColorUvTransform));
-  specularColor *= specularColorTexel.rgb;
-#ifdef SPECULAR_IN_COLOR_MAP
-  specularStrength *= specularColorTexel.a;  // specularTexture is this texture: one fetch
-#endif
+  specularColor *= texture(u_specularColorMap, textureUv(u_specularColorUvSet, u_specularColorUvTransform)).rgb;
 #endif
   if (!u_useSpecular) specularStrength = 0.0;
   float occlusion = 1.0;
@@ -185,33 +177,11 @@ void main() {
   occlusion = 1.0 + u_occlusionStrength * (texture(u_occlusionMap, textureUv(u_occlusionUvSet, u_occlusionUvTransform)).r - 1.0);
 #endif
 
-  vec3 emissive = u_emissiveFactor;
-#ifdef HAS_EMISSIVE_MAP
-  emissive *= texture(u_emissiveMap, textureUv(u_emissiveUvSet, u_emissiveUvTransform)).rgb;
-#endif
-  // Light 0's shadow slope, for its bias: on the geometry normal, not the normal-mapped one.
-  float shadowSlope0 = 0.0;
-#ifdef USE_SHADOWS
-  vec3 toLight0 = u_lightPosition[0].w == 0.0 ? normalize(-u_lightPosition[0].xyz) : normalize(u_lightPosition[0].xyz - v_positionWorld);
-  shadowSlope0 = shadowSlope(normal, toLight0);
-#endif
-#ifdef GBUFFER_PASS
-  // The surface for the lighting pass (deferred.frag, the same shading as below).
-  writeGBuffer(GSurface(baseColor.rgb, metallic, shadingNormal, occlusion, emissive, roughness,
-                        min(vec3(0.04) * specularColor, vec3(1.0)), specularStrength, shadowSlope0),
-               fragColor, gSurface);
-  return;
-#endif
-
   vec3 toEye = normalize(u_eyeWorld - v_positionWorld);
-  // Light 0's shadow, looked up once outside the light loop.
-  float shadow0 = 1.0;
-#ifdef USE_SHADOWS
-  shadow0 = shadowFactor(v_shadowCoord, v_positionWorld, shadowSlope0);
-#endif
+  vec3 ambient = vec3(0.0);
 #ifdef SHADING_PBR
   PbrSurface surface = PbrSurface(baseColor.rgb, metallic, roughness, min(vec3(0.04) * specularColor, vec3(1.0)), specularStrength);
-  vec3 color = pbrLitColor(surface, v_positionWorld, shadingNormal, toEye, occlusion, shadow0);
+  vec3 color = vec3(0.0);
 #else
   // Without KHR_materials_specular, highlights follow roughness and metallic: shininess from
   // the GGX width, metals tint their highlight and lose their diffuse part.
@@ -225,15 +195,41 @@ void main() {
     diffuseColor *= 1.0 - metallic;
   }
   SurfaceLight light = SurfaceLight(vec3(0.0), vec3(0.0), vec3(0.0));
+#endif
+  // Light 0's shadow, looked up once outside the loop (which then has no texture fetch).
+  float shadow0 = 1.0;
+#ifdef USE_SHADOWS
+  {
+    vec3 toLight = u_lightPosition[0].w == 0.0 ? normalize(-u_lightPosition[0].xyz) : normalize(u_lightPosition[0].xyz - v_positionWorld);
+    shadow0 = shadowFactor(v_shadowCoord, normal, toLight);
+  }
+#endif
   // A constant trip count the compiler can unroll, cut short at u_lightCount.
   for (int i = 0; i < kMaxLights; ++i) {
     if (i >= u_lightCount) break;
-    addLight(i, v_positionWorld, shadingNormal, toEye, shininess, i == 0 ? shadow0 : 1.0, light);
+    float shadow = i == 0 ? shadow0 : 1.0;
+#ifdef SHADING_PBR
+    vec3 toLight;
+    float attenuation = lightAt(i, v_positionWorld, toLight);
+    ambient += u_lightAmbient[i] * attenuation;
+    color += pbrDirect(surface, shadingNormal, toEye, toLight) * u_lightDiffuse[i] * (kLightToIlluminance * attenuation * shadow);
+#else
+    addLight(i, v_positionWorld, shadingNormal, toEye, shininess, shadow, light);
+#endif
   }
+#ifdef SHADING_PBR
+  color += pbrEnvironment(surface, shadingNormal, toEye, ambient) * occlusion;
+#else
   vec3 color = diffuseColor * (light.ambient * occlusion + light.diffuse) + specularColor * specularStrength * light.specular;
 #endif
 #ifdef USE_REFLECTION
-  color = withReflection(color, shadingNormal, toEye);
+  vec3 r = mat3(u_view) * reflect(-toEye, shadingNormal);
+  float m = 2.0 * sqrt(r.x * r.x + r.y * r.y + (r.z + 1.0) * (r.z + 1.0));
+  color = mix(color, texture(u_sphereMap, r.xy / m + 0.5).rgb, u_reflectivity);
+#endif
+  vec3 emissive = u_emissiveFactor;
+#ifdef HAS_EMISSIVE_MAP
+  emissive *= texture(u_emissiveMap, textureUv(u_emissiveUvSet, u_emissiveUvTransform)).rgb;
 #endif
   fragColor = vec4(linearToSrgb(toneMap((color + emissive) * u_exposure)), alpha);
 #endif

@@ -90,23 +90,3 @@ vec3 pbrEnvironment(PbrSurface s, vec3 n, vec3 toEye, vec3 ambient) {
 #endif
 }
 #endif
-
-#ifdef SHADING_PBR
-// A surface point's colour under every light and the environment, before exposure and tone
-// mapping: what the forward pass (mesh.frag) and the deferred lighting pass (deferred.frag)
-// both shade with. Light 0's visibility `shadow0` is looked up once by the caller, so that the
-// loop has no texture fetch; its trip count is constant so that the compiler can unroll it.
-vec3 pbrLitColor(PbrSurface surface, vec3 position, vec3 shadingNormal, vec3 toEye, float occlusion, float shadow0) {
-  vec3 color = vec3(0.0);
-  vec3 ambient = vec3(0.0);
-  for (int i = 0; i < kMaxLights; ++i) {
-    if (i >= u_lightCount) break;
-    float shadow = i == 0 ? shadow0 : 1.0;
-    vec3 toLight;
-    float attenuation = lightAt(i, position, toLight);
-    ambient += u_lightAmbient[i] * attenuation;
-    color += pbrDirect(surface, shadingNormal, toEye, toLight) * u_lightDiffuse[i] * (kLightToIlluminance * attenuation * shadow);
-  }
-  return color + pbrEnvironment(surface, shadingNormal, toEye, ambient) * occlusion;
-}
-#endif

@@ -17,22 +17,19 @@ uniform int u_pcfRadius;
 uniform float u_shadowBiasConstant;
 uniform float u_shadowBiasSlope;
 
-// The tangent of the light's incidence on the geometry normal, at most 10 (the G-buffer keeps
-// it, gbuffer.glsl), and the depth bias from it, in units of the shadow map's depth range:
-// constant plus slope-scaled.
-float shadowSlope(vec3 normal, vec3 toLight) {
+// The depth bias, in units of the shadow map's depth range: constant plus slope-scaled.
+float shadowBias(vec3 normal, vec3 toLight) {
   float cosine = clamp(dot(normal, toLight), 0.0, 1.0);
-  return min(sqrt(1.0 - cosine * cosine) / max(cosine, 0.05), 10.0);
+  float slope = sqrt(1.0 - cosine * cosine) / max(cosine, 0.05);  // tan of the incidence angle
+  return u_shadowBiasConstant + u_shadowBiasSlope * min(slope, 10.0);
 }
-float shadowBias(float slope) { return u_shadowBiasConstant + u_shadowBiasSlope * slope; }
 
 #ifdef POINT_SHADOWS
-// Light 0's visibility at `position` (world space; its shadow-map coordinates `shadowCoord`).
-float shadowFactor(vec4 shadowCoord, vec3 position, float slope) {
-  vec3 fromLight = position - u_lightPosition[0].xyz;
+float shadowFactor(vec4 shadowCoord, vec3 normal, vec3 toLight) {
+  vec3 fromLight = v_positionWorld - u_lightPosition[0].xyz;
   float n = u_shadowCubeDepth.x, f = u_shadowCubeDepth.y;
   // The face's eye-space depth, moved towards the light by the bias, as window depth.
-  float z = max(abs(fromLight.x), max(abs(fromLight.y), abs(fromLight.z))) - shadowBias(slope) * u_shadowCubeDepth.z;
+  float z = max(abs(fromLight.x), max(abs(fromLight.y), abs(fromLight.z))) - shadowBias(normal, toLight) * u_shadowCubeDepth.z;
   float depth = 0.5 * ((f + n) / (f - n) - 2.0 * f * n / ((f - n) * max(z, n))) + 0.5;
   if (u_pcfRadius == 0) return texture(u_shadowCube, vec4(fromLight, depth));
   // As the 2D map's PCF: (2r)^2 bilinear taps half a texel off the grid, one texel apart, in
@@ -53,11 +50,11 @@ float shadowFactor(vec4 shadowCoord, vec3 position, float slope) {
   return lit / float(taps);
 }
 #else
-float shadowFactor(vec4 shadowCoord, vec3 position, float slope) {
+float shadowFactor(vec4 shadowCoord, vec3 normal, vec3 toLight) {
   if (shadowCoord.w <= 0.0) return 1.0;  // behind a spot light's view
   vec3 coord = shadowCoord.xyz / shadowCoord.w * 0.5 + 0.5;
   if (coord.z > 1.0 || any(lessThan(coord.xy, vec2(0.0))) || any(greaterThan(coord.xy, vec2(1.0)))) return 1.0;
-  float bias = shadowBias(slope);
+  float bias = shadowBias(normal, toLight);
   vec2 texel = 1.0 / vec2(textureSize(u_shadowMap, 0));
   if (u_pcfRadius == 0) return texture(u_shadowMap, vec3(coord.xy, coord.z - bias));
   // Each tap is a bilinear blend of four hardware comparisons, so taps half a texel off the

@@ -363,7 +363,13 @@ GLuint Renderer::textureOf(const gltf::TextureRef& ref) const {
 }
 
 FeatureSet Renderer::featuresFor(const GpuMesh& mesh, const RenderSettings& settings) const {
-  FeatureSet features = sceneFeatures(settings);
+  FeatureSet features = 0;
+  if (settings.shadows && !lights_.empty()) features |= static_cast<FeatureSet>(Feature::shadows);
+  if (settings.shadows && pointShadow()) features |= static_cast<FeatureSet>(Feature::pointShadows);
+  if (settings.reflectivity > 0 && sphereMap_) features |= static_cast<FeatureSet>(Feature::reflection);
+  if (settings.shading == Shading::pbr) features |= static_cast<FeatureSet>(Feature::pbr);
+  if (physicalLights(settings)) features |= static_cast<FeatureSet>(Feature::physicalLights);
+  if (settings.ibl && settings.shading == Shading::pbr) features |= static_cast<FeatureSet>(Feature::ibl);
   if (mesh.material < 0 || mesh.material >= static_cast<int>(scene_.materials.size())) return features;
   const auto& material = scene_.materials[mesh.material];
   if (material.unlit) {
@@ -379,23 +385,8 @@ FeatureSet Renderer::featuresFor(const GpuMesh& mesh, const RenderSettings& sett
   if (textureOf(material.normalTexture)) features |= static_cast<FeatureSet>(Feature::normalMap);
   if (textureOf(material.specularTexture)) features |= static_cast<FeatureSet>(Feature::specularMap);
   if (textureOf(material.specularColorTexture)) features |= static_cast<FeatureSet>(Feature::specularColorMap);
-  const gltf::TextureRef &strength = material.specularTexture, &colour = material.specularColorTexture;
-  if (has(features, Feature::specularMap) && has(features, Feature::specularColorMap) && strength.image == colour.image &&
-      strength.sampler == colour.sampler && strength.texCoord == colour.texCoord && strength.uvTransform == colour.uvTransform)
-    features = (features & ~static_cast<FeatureSet>(Feature::specularMap)) | static_cast<FeatureSet>(Feature::specularInColorMap);
   if (textureOf(material.metallicRoughnessTexture)) features |= static_cast<FeatureSet>(Feature::metallicRoughnessMap);
   if (textureOf(material.emissiveTexture)) features |= static_cast<FeatureSet>(Feature::emissiveMap);
-  return features;
-}
-
-FeatureSet Renderer::sceneFeatures(const RenderSettings& settings) const {
-  FeatureSet features = 0;
-  if (settings.shadows && !lights_.empty()) features |= static_cast<FeatureSet>(Feature::shadows);
-  if (settings.shadows && pointShadow()) features |= static_cast<FeatureSet>(Feature::pointShadows);
-  if (settings.reflectivity > 0 && sphereMap_) features |= static_cast<FeatureSet>(Feature::reflection);
-  if (settings.shading == Shading::pbr) features |= static_cast<FeatureSet>(Feature::pbr);
-  if (physicalLights(settings)) features |= static_cast<FeatureSet>(Feature::physicalLights);
-  if (settings.ibl && settings.shading == Shading::pbr) features |= static_cast<FeatureSet>(Feature::ibl);
   return features;
 }
 
@@ -720,58 +711,24 @@ FrameStats Renderer::render(const CameraMatrices& camera, const RenderSettings& 
   for (const Ordered& entry : opaqueOrder) opaque.push_back(entry.instance);
   for (const Ordered& entry : transparentOrder) transparent.push_back(entry.instance);
   stats.exposure = exposure(settings);
-  // Deferred: the lit pbr view into a target of one sample per pixel (with MSAA each sample
-  // would need its own surface; a multisampled target is drawn forward). llvmpipe shades a 4x4
-  // block for every triangle that touches it, so on a mesh of small triangles the forward pass
-  // runs the lit shader several times per pixel; the G-buffer pass runs a cheaper one that often,
-  // and the lighting pass once per pixel. Materials the G-buffer does not carry (unlit ones) and
-  // blended ones are drawn forward after it, against its depth.
-  GLint target = 0;
-  glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &target);
-  GLint samples = 0;
-  glGetIntegerv(GL_SAMPLES, &samples);
-  const bool multisampled = samples > 1 && (!kDesktopGl || glIsEnabled(GL_MULTISAMPLE));
-  std::vector<const GpuInstance*> gBufferOpaque, forwardOpaque;
-  const bool deferred = settings.view == DebugView::lit && settings.shading == Shading::pbr && !multisampled && prepareGBuffer(width, height);
-  for (const GpuInstance* instance : opaque) (deferred && deferrable(meshes_[instance->mesh]) ? gBufferOpaque : forwardOpaque).push_back(instance);
-  stats.deferred = deferred;
   const bool prePass = settings.depthPrePass && settings.view == DebugView::lit && !opaque.empty();
-  // Depth of the opaque and masked meshes first, so that the shading pass below runs the
-  // fragment shader once per pixel; same culling, same invariant positions, GL_LEQUAL.
-  auto depthPrePass = [&](std::span<const GpuInstance* const> instances) {
-    glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
-    drawDepth(instances, camera.projection * camera.view, settings, false, true);
-    stats.drawCalls += static_cast<int>(instances.size());
-    glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
-    glDepthFunc(GL_LEQUAL);
-    glDepthMask(GL_FALSE);
-  };
   // The whole scene with one tangent set, into the framebuffer's scissor box (when enabled).
   auto drawScene = [&](TangentSet tangents) {
     glDepthMask(GL_TRUE);
+    glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
     glEnable(GL_DEPTH_TEST);
     glDisable(GL_CULL_FACE);
-    if (deferred) {
-      glBindFramebuffer(GL_FRAMEBUFFER, gBuffer_.framebuffer.get());
-      glClear(GL_DEPTH_BUFFER_BIT);
-      if (prePass && !gBufferOpaque.empty()) depthPrePass(gBufferOpaque);
-      drawInstances(gBufferOpaque, camera, settings, anyShadows, tangents, stats, true);
-      glDepthFunc(GL_LESS);
-      glDepthMask(GL_TRUE);
-      glFrontFace(GL_CCW);
-      glDisable(GL_CULL_FACE);
-      glBindFramebuffer(GL_FRAMEBUFFER, static_cast<GLuint>(target));
-      glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
-      if (!gBufferOpaque.empty()) {
-        glDepthFunc(GL_ALWAYS);  // the lighting pass writes the G-buffer's depth as it is
-        drawLighting(camera, settings, anyShadows, width, height);  // not in drawCalls, which counts the meshes' draws
-        glDepthFunc(GL_LESS);
-      }
-    } else {
-      glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
-      if (prePass) depthPrePass(opaque);
+    if (prePass) {
+      // Depth of the opaque and masked meshes first, so that the shading pass below runs the
+      // fragment shader once per pixel; same culling, same invariant positions, GL_LEQUAL.
+      glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
+      drawDepth(opaque, camera.projection * camera.view, settings, false, true);
+      stats.drawCalls += static_cast<int>(opaque.size());
+      glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+      glDepthFunc(GL_LEQUAL);
+      glDepthMask(GL_FALSE);
     }
-    drawInstances(deferred ? forwardOpaque : opaque, camera, settings, anyShadows, tangents, stats);
+    drawInstances(opaque, camera, settings, anyShadows, tangents, stats);
     if (prePass) {
       glDepthFunc(GL_LESS);
       glDepthMask(GL_TRUE);
@@ -810,105 +767,13 @@ FrameStats Renderer::render(const CameraMatrices& camera, const RenderSettings& 
   return stats;
 }
 
-bool Renderer::deferrable(const GpuMesh& mesh) const {
-  const gltf::MaterialDesc* material = materialOf(scene_, mesh.material);
-  return !material || (!material->unlit && material->alphaMode != gltf::MaterialDesc::AlphaMode::blend);
-}
-
-bool Renderer::prepareGBuffer(int width, int height) {
-  if (gBuffer_.framebuffer && gBuffer_.width == width && gBuffer_.height == height) return gBuffer_.complete;
-  GLint previous = 0;  // the caller's framebuffer, bound again at the end
-  glGetIntegerv(GL_FRAMEBUFFER_BINDING, &previous);
-  auto texture = [&](GLenum internalFormat, GLenum format, GLenum type) {
-    Texture t = makeTexture();
-    glBindTexture(GL_TEXTURE_2D, t.get());
-    glTexImage2D(GL_TEXTURE_2D, 0, static_cast<GLint>(internalFormat), width, height, 0, format, type, nullptr);
-    // Read with texelFetch, one texel per pixel; integer and depth textures filter NEAREST only.
-    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
-    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
-    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
-    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
-    return t;
-  };
-  gBuffer_ = GBuffer{};
-  gBuffer_.width = width;
-  gBuffer_.height = height;
-  gBuffer_.depth = texture(GL_DEPTH_COMPONENT24, GL_DEPTH_COMPONENT, GL_UNSIGNED_INT);
-  gBuffer_.baseColor = texture(GL_RGBA8, GL_RGBA, GL_UNSIGNED_BYTE);
-  gBuffer_.surface = texture(GL_RGBA32UI, GL_RGBA_INTEGER, GL_UNSIGNED_INT);
-  gBuffer_.framebuffer = makeFramebuffer();
-  glBindFramebuffer(GL_FRAMEBUFFER, gBuffer_.framebuffer.get());
-  glFramebufferTexture2D(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_TEXTURE_2D, gBuffer_.depth.get(), 0);
-  glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, gBuffer_.baseColor.get(), 0);
-  glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT1, GL_TEXTURE_2D, gBuffer_.surface.get(), 0);
-  const GLenum targets[2] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1};
-  glDrawBuffers(2, targets);
-  gBuffer_.complete = glCheckFramebufferStatus(GL_FRAMEBUFFER) == GL_FRAMEBUFFER_COMPLETE;
-  glBindFramebuffer(GL_FRAMEBUFFER, static_cast<GLuint>(previous));
-  return gBuffer_.complete;
-}
-
-void Renderer::drawLighting(const CameraMatrices& camera, const RenderSettings& settings, bool shadows, int width, int height) {
-  FeatureSet features = sceneFeatures(settings);
-  if (!shadows) features &= ~(static_cast<FeatureSet>(Feature::shadows) | static_cast<FeatureSet>(Feature::pointShadows));
-  const GLuint program = shaders_.deferredLighting(features, settings.toneMapping);
-  glUseProgram(program);
-  int unit = 0;
-  for (const auto& [name, texture] : {std::pair{"u_gDepth", gBuffer_.depth.get()}, std::pair{"u_gBaseColor", gBuffer_.baseColor.get()},
-                                      std::pair{"u_gSurface", gBuffer_.surface.get()}}) {
-    glActiveTexture(GL_TEXTURE0 + unit);
-    glBindTexture(GL_TEXTURE_2D, texture);
-    glBindSampler(static_cast<GLuint>(unit), 0);  // the textures' own NEAREST, whatever a material left here
-    setUniform(program, name, unit++);
-  }
-  setUniform(program, "u_inverseViewProjection", glm::inverse(camera.projection * camera.view));
-  glUniform2f(glGetUniformLocation(program, "u_viewportSize"), static_cast<float>(width), static_cast<float>(height));
-  bindLighting(program, features, camera, settings, unit);
-  if (!emptyArray_) emptyArray_ = makeVertexArray();
-  glBindVertexArray(emptyArray_.get());
-  // Only where the scene can be: the scene's bounds on screen, within the split view's side.
-  // llvmpipe runs a fragment shader on every pixel the triangle covers, a pixel without a
-  // surface as much as one with it (discard does not end it early).
-  GLint box[4] = {0, 0, width, height};
-  const bool scissored = glIsEnabled(GL_SCISSOR_TEST);
-  if (scissored) glGetIntegerv(GL_SCISSOR_BOX, box);
-  const glm::mat4 viewProjection = camera.projection * camera.view;
-  glm::vec2 lo(std::numeric_limits<float>::max()), hi(-std::numeric_limits<float>::max());
-  bool behind = false;
-  for (int corner = 0; corner < 8; ++corner) {
-    const glm::vec4 clip = viewProjection * glm::vec4(corner & 1 ? boundsMax_.x : boundsMin_.x, corner & 2 ? boundsMax_.y : boundsMin_.y,
-                                                      corner & 4 ? boundsMax_.z : boundsMin_.z, 1);
-    if (!(clip.w > 1e-6f)) {
-      behind = true;  // a corner at or behind the eye: the bounds' projection is unbounded
-      break;
-    }
-    const glm::vec2 pixel = (glm::vec2(clip) / clip.w * 0.5f + 0.5f) * glm::vec2(width, height);
-    lo = glm::min(lo, pixel);
-    hi = glm::max(hi, pixel);
-  }
-  if (!behind) {
-    const int x0 = std::max(box[0], static_cast<int>(std::floor(std::max(lo.x, -1.0f))) - 1);
-    const int y0 = std::max(box[1], static_cast<int>(std::floor(std::max(lo.y, -1.0f))) - 1);
-    const int x1 = std::min(box[0] + box[2], static_cast<int>(std::ceil(std::min(hi.x, width + 1.0f))) + 1);
-    const int y1 = std::min(box[1] + box[3], static_cast<int>(std::ceil(std::min(hi.y, height + 1.0f))) + 1);
-    if (x1 <= x0 || y1 <= y0) return;
-    glEnable(GL_SCISSOR_TEST);
-    glScissor(x0, y0, x1 - x0, y1 - y0);
-  }
-  glDrawArrays(GL_TRIANGLES, 0, 3);
-  if (!behind) {
-    glScissor(box[0], box[1], box[2], box[3]);
-    if (!scissored) glDisable(GL_SCISSOR_TEST);
-  }
-}
-
 void Renderer::drawInstances(std::span<const GpuInstance* const> instances, const CameraMatrices& camera, const RenderSettings& settings,
-                             bool shadows, TangentSet tangents, FrameStats& stats, bool gBuffer) {
+                             bool shadows, TangentSet tangents, FrameStats& stats) {
   BoundMesh bound;
   for (const GpuInstance* instance : instances) {
     const GpuMesh& mesh = meshes_[instance->mesh];
     if (bound.mesh != instance->mesh) {
-      const GLuint program = bindMesh(mesh, camera, settings, shadows, tangents, gBuffer);
+      const GLuint program = bindMesh(mesh, camera, settings, shadows, tangents);
       applyCulling(mesh, settings);
       bound = BoundMesh{instance->mesh, glGetUniformLocation(program, "u_model"), glGetUniformLocation(program, "u_normalMatrix"),
                         glGetUniformLocation(program, "u_mirror"), -1};
@@ -932,20 +797,17 @@ void Renderer::drawInstance(const GpuInstance& instance, BoundMesh& bound) {
 }
 
 GLuint Renderer::bindMesh(const GpuMesh& mesh, const CameraMatrices& camera, const RenderSettings& settings, bool shadows,
-                          TangentSet tangents, bool gBuffer) {
+                          TangentSet tangents) {
   gltf::MaterialDesc material;  // without one, glTF's default material (metallic 1, roughness 1, white; glTF 2.0 3.9.1)
   if (const gltf::MaterialDesc* own = materialOf(scene_, mesh.material)) material = *own;
   FeatureSet features = featuresFor(mesh, settings);
   if (!shadows) features &= ~(static_cast<FeatureSet>(Feature::shadows) | static_cast<FeatureSet>(Feature::pointShadows));
-  // The G-buffer variant reads the material and light 0's direction (for the shadow bias's
-  // slope), not the environment, the reflection or the lights' units.
-  if (gBuffer)
-    features = (features & ~(static_cast<FeatureSet>(Feature::ibl) | static_cast<FeatureSet>(Feature::reflection) |
-                             static_cast<FeatureSet>(Feature::physicalLights))) |
-               static_cast<FeatureSet>(Feature::gBuffer);
-  const GLuint program = shaders_.mesh(features, settings.view, gBuffer ? ToneMapping::none : settings.toneMapping);
+  const GLuint program = shaders_.mesh(features, settings.view, settings.toneMapping);
   glUseProgram(program);
   setUniform(program, "u_viewProjection", camera.projection * camera.view);
+  setUniform(program, "u_view", camera.view);
+  setUniform(program, "u_lightViewProjection", shadows ? lightViewProjection() : glm::mat4(1));
+  setUniform(program, "u_eyeWorld", camera.eye);
   setUniform(program, "u_uvScale", settings.uvScale);
   setUniform(program, "u_useNormalMap", settings.normalMapping ? 1 : 0);
   setUniform(program, "u_useSpecular", settings.specular ? 1 : 0);
@@ -955,6 +817,7 @@ GLuint Renderer::bindMesh(const GpuMesh& mesh, const CameraMatrices& camera, con
   setUniform(program, "u_specularModel", settings.shading == Shading::phong ? 1 : 0);
   setUniform(program, "u_blend", material.alphaMode == gltf::MaterialDesc::AlphaMode::blend ? 1 : 0);
   setUniform(program, "u_alphaCutoff", material.alphaCutoff);
+  setUniform(program, "u_exposure", exposure(settings));
 
   setUniform(program, "u_baseColorFactor", glm::make_vec4(material.baseColor.data()));
   setUniform(program, "u_emissiveFactor", glm::make_vec3(material.emissive.data()));
@@ -965,40 +828,8 @@ GLuint Renderer::bindMesh(const GpuMesh& mesh, const CameraMatrices& camera, con
   setUniform(program, "u_specularColorFactor", material.hasSpecular ? glm::make_vec3(material.specularColor.data()) : glm::vec3(1));
   setUniform(program, "u_specularStrength", material.hasSpecular ? material.specularFactor : 1.0f);
   setUniform(program, "u_shininess", material.hasSpecular ? settings.shininess : 0.0f);  // 0: derive from roughness
-
-  int unit = 0;
-  // `sampler` 0: the texture's own parameters (the viewer's maps); a file's textures sample
-  // through their glTF sampler.
-  auto bind = [&](const char* name, GLuint texture, GLuint sampler = 0) {
-    glActiveTexture(GL_TEXTURE0 + unit);
-    glBindTexture(GL_TEXTURE_2D, texture);
-    glBindSampler(static_cast<GLuint>(unit), sampler);
-    setUniform(program, name, unit);
-    ++unit;
-  };
-  auto bindMap = [&](const char* prefix, const gltf::TextureRef& ref) {
-    bind((std::string("u_") + prefix + "Map").c_str(), textureOf(ref), samplers_.get(ref.sampler));
-    setUvUniforms(program, std::string("u_") + prefix, ref);
-  };
-  if (has(features, Feature::baseColorMap)) bindMap("baseColor", material.baseColorTexture);
-  if (has(features, Feature::normalMap)) bind("u_normalMap", textureOf(material.normalTexture), samplers_.get(material.normalTexture.sampler));
-  if (has(features, Feature::specularMap)) bindMap("specular", material.specularTexture);
-  if (has(features, Feature::specularColorMap)) bindMap("specularColor", material.specularColorTexture);
-  if (has(features, Feature::metallicRoughnessMap)) bindMap("metallicRoughness", material.metallicRoughnessTexture);
-  if (has(features, Feature::emissiveMap)) bindMap("emissive", material.emissiveTexture);
-  if (has(features, Feature::occlusionMap)) bindMap("occlusion", material.occlusionTexture);
-  bindLighting(program, features, camera, settings, unit);
-  glBindVertexArray(mesh.vertexArray.get());
-  return program;
-}
-
-void Renderer::bindLighting(GLuint program, FeatureSet features, const CameraMatrices& camera, const RenderSettings& settings, int& unit) {
-  const bool shadows = has(features, Feature::shadows);
-  setUniform(program, "u_view", camera.view);
-  setUniform(program, "u_lightViewProjection", shadows ? lightViewProjection() : glm::mat4(1));
-  setUniform(program, "u_eyeWorld", camera.eye);
-  setUniform(program, "u_exposure", exposure(settings));
   setUniform(program, "u_reflectivity", settings.reflectivity);
+
   const int lightCount = static_cast<int>(std::min<std::size_t>(lights_.size(), 4));
   setUniform(program, "u_lightCount", lightCount);
   for (int i = 0; i < lightCount; ++i) {
@@ -1022,13 +853,27 @@ void Renderer::bindLighting(GLuint program, FeatureSet features, const CameraMat
                 light.spotInner >= 0 ? std::cos(light.spotInner) : 0.0f, light.spotOuter >= 0 ? std::cos(light.spotOuter) : -2.0f);
   }
 
-  auto bind = [&](const char* name, GLuint texture) {
+  int unit = 0;
+  // `sampler` 0: the texture's own parameters (the viewer's maps); a file's textures sample
+  // through their glTF sampler.
+  auto bind = [&](const char* name, GLuint texture, GLuint sampler = 0) {
     glActiveTexture(GL_TEXTURE0 + unit);
     glBindTexture(GL_TEXTURE_2D, texture);
-    glBindSampler(static_cast<GLuint>(unit), 0);
+    glBindSampler(static_cast<GLuint>(unit), sampler);
     setUniform(program, name, unit);
     ++unit;
   };
+  auto bindMap = [&](const char* prefix, const gltf::TextureRef& ref) {
+    bind((std::string("u_") + prefix + "Map").c_str(), textureOf(ref), samplers_.get(ref.sampler));
+    setUvUniforms(program, std::string("u_") + prefix, ref);
+  };
+  if (has(features, Feature::baseColorMap)) bindMap("baseColor", material.baseColorTexture);
+  if (has(features, Feature::normalMap)) bind("u_normalMap", textureOf(material.normalTexture), samplers_.get(material.normalTexture.sampler));
+  if (has(features, Feature::specularMap)) bindMap("specular", material.specularTexture);
+  if (has(features, Feature::specularColorMap)) bindMap("specularColor", material.specularColorTexture);
+  if (has(features, Feature::metallicRoughnessMap)) bindMap("metallicRoughness", material.metallicRoughnessTexture);
+  if (has(features, Feature::emissiveMap)) bindMap("emissive", material.emissiveTexture);
+  if (has(features, Feature::occlusionMap)) bindMap("occlusion", material.occlusionTexture);
   if (has(features, Feature::reflection)) bind("u_sphereMap", sphereMap_.get());
   if (has(features, Feature::ibl) && environment_) {
     glActiveTexture(GL_TEXTURE0 + unit);
@@ -1055,6 +900,8 @@ void Renderer::bindLighting(GLuint program, FeatureSet features, const CameraMat
     setUniform(program, "u_shadowBiasConstant", settings.shadowBiasConstant);
     setUniform(program, "u_shadowBiasSlope", settings.shadowBiasSlope);
   }
+  glBindVertexArray(mesh.vertexArray.get());
+  return program;
 }
 
 void Renderer::drawGlyphs(const CameraMatrices& camera, const RenderSettings& settings) {

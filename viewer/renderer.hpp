@@ -1,8 +1,6 @@
 // SPDX-License-Identifier: MIT
 // Draws a gltf::Scene: optional depth pass from light 0 into a shadow map, then the meshes
-// with the shader variant each material needs, then tangent-frame glyphs. The lit pbr view
-// into a single-sampled target is deferred: the opaque meshes' surfaces into a G-buffer, then
-// one lighting pass per pixel, then the rest (blended, unlit) forward over it.
+// with the shader variant each material needs, then tangent-frame glyphs.
 #pragma once
 
 #include <glm/glm.hpp>
@@ -114,7 +112,6 @@ struct CameraMatrices {
 
 struct FrameStats {
   int drawCalls = 0;
-  bool deferred = false;   // the lit view went through the G-buffer and one lighting pass (a draw call drawCalls leaves out)
   std::size_t triangles = 0;
   bool depthPass = false;  // the shadow map was redrawn this frame
   float exposure = 1;      // the exposure used
@@ -193,23 +190,11 @@ class Renderer {
     float uvScale = 1;  // alpha-tested materials' cut-outs move with it
     bool operator==(const ShadowKey&) const = default;
   };
-  // Each instance with the shader variant its material needs, in the order given; with
-  // `gBuffer`, the variant that writes the G-buffer (a deferred frame's first pass).
+  // Each instance with the shader variant its material needs, in the order given.
   void drawInstances(std::span<const GpuInstance* const> instances, const CameraMatrices& camera, const RenderSettings& settings,
-                     bool shadows, TangentSet tangents, FrameStats& stats, bool gBuffer = false);
+                     bool shadows, TangentSet tangents, FrameStats& stats);
   // Binds a mesh's program, material, lights and vertices for drawInstance; returns the program.
-  GLuint bindMesh(const GpuMesh& mesh, const CameraMatrices& camera, const RenderSettings& settings, bool shadows, TangentSet tangents,
-                  bool gBuffer);
-  // The lights, shadow map, environment and reflection uniforms of a lit program (features as
-  // its variant has them), textures from unit `unit` on.
-  void bindLighting(GLuint program, FeatureSet features, const CameraMatrices& camera, const RenderSettings& settings, int& unit);
-  // Whether a mesh's material goes through the G-buffer: opaque or masked, and lit.
-  bool deferrable(const GpuMesh& mesh) const;
-  // The G-buffer at this size (reallocated when the size changes); false when GL cannot draw
-  // into it, and the frame is drawn forward.
-  bool prepareGBuffer(int width, int height);
-  // The lighting pass: the G-buffer lit once per pixel into the bound framebuffer.
-  void drawLighting(const CameraMatrices& camera, const RenderSettings& settings, bool shadows, int width, int height);
+  GLuint bindMesh(const GpuMesh& mesh, const CameraMatrices& camera, const RenderSettings& settings, bool shadows, TangentSet tangents);
   // Sets the instance's transform (and front face) and draws it.
   void drawInstance(const GpuInstance& instance, BoundMesh& bound);
   void drawShadowMap(const RenderSettings& settings);
@@ -236,8 +221,6 @@ class Renderer {
   // them in the face it falls in.
   glm::vec2 shadowCubeDepthRange() const;
   FeatureSet featuresFor(const GpuMesh& mesh, const RenderSettings& settings) const;
-  // The scene-wide features (shadows, lights, shading, image-based lighting, reflection).
-  FeatureSet sceneFeatures(const RenderSettings& settings) const;
   GLuint textureOf(const gltf::TextureRef& ref) const;
 
   ShaderLibrary& shaders_;
@@ -279,15 +262,6 @@ class Renderer {
   ShadowKey shadowKey_;
   int sceneVersion_ = 0;
   int shadowPasses_ = 0;
-  // The deferred lit view's G-buffer (gbuffer.glsl): depth, target 0, target 1.
-  struct GBuffer {
-    Framebuffer framebuffer;
-    Texture depth, baseColor, surface;
-    int width = 0, height = 0;
-    bool complete = false;
-  };
-  GBuffer gBuffer_;
-  VertexArray emptyArray_;  // the lighting pass's triangle has no vertex buffer
   VertexArray glyphArray_;
   Buffer glyphBuffer_;
   GLsizei glyphVertices_ = 0;

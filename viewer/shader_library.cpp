@@ -49,7 +49,7 @@ std::string forTarget(std::string text, const std::string& defines) {
     return text.insert(std::string("#version 300 es").size() + 1,
                        "precision highp float;\nprecision highp int;\nprecision highp sampler2D;\nprecision highp samplerCube;\n"
                        "precision highp sampler2DShadow;\nprecision highp samplerCubeShadow;\nprecision highp sampler3D;\n"
-                       "precision highp sampler2DArray;\nprecision highp usampler2D;\n" + defines);
+                       "precision highp sampler2DArray;\n" + defines);
   }
   return text.insert(lineEnd + 1, defines);
 }
@@ -113,12 +113,5 @@ GLuint ShaderLibrary::depthOnly(FeatureSet features) {
   return program("shadow_depth.vert", "shadow_depth.frag", definesFor(features, DebugView::lit));
 }
 GLuint ShaderLibrary::lines() { return program("lines.vert", "lines.frag", ""); }
-GLuint ShaderLibrary::deferredLighting(FeatureSet features, ToneMapping toneMapping) {
-  features &= static_cast<FeatureSet>(Feature::shadows) | static_cast<FeatureSet>(Feature::pointShadows) |
-              static_cast<FeatureSet>(Feature::reflection) | static_cast<FeatureSet>(Feature::pbr) |
-              static_cast<FeatureSet>(Feature::physicalLights) | static_cast<FeatureSet>(Feature::ibl);
-  features |= static_cast<FeatureSet>(Feature::pbr);  // the metallic-roughness model is the one it shades with
-  return program("deferred.vert", "deferred.frag", definesFor(features, DebugView::lit, toneMapping));
-}
 
 }  // namespace tangent::viewer

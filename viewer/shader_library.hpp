@@ -29,9 +29,6 @@ class ShaderLibrary {
   // baseColorMap make a difference.
   GLuint depthOnly(FeatureSet features = 0);
   GLuint lines();
-  // The deferred lit view's lighting pass (deferred.frag over the G-buffer); of the features,
-  // the scene-wide ones (shadows, lights, image-based lighting, reflection) make a difference.
-  GLuint deferredLighting(FeatureSet features, ToneMapping toneMapping);
   // Forgets every compiled program; the next request reads the files again ('r').
   void reload() { programs_.clear(); }
   std::size_t variantsCompiled() const { return programs_.size(); }
