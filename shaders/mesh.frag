@@ -172,7 +172,11 @@ void main() {
   specularStrength *= texture(u_specularMap, textureUv(u_specularUvSet, u_specularUvTransform)).a;
 #endif
 #ifdef HAS_SPECULAR_COLOR_MAP
-  specularColor *= texture(u_specularColorMap, textureUv(u_specularColorUvSet, u_specularColorUvTransform)).rgb;
+  vec4 specularColorTexel = texture(u_specularColorMap, textureUv(u_specularColorUvSet, u_specularColorUvTransform));
+  specularColor *= specularColorTexel.rgb;
+#ifdef SPECULAR_IN_COLOR_MAP
+  specularStrength *= specularColorTexel.a;  // specularTexture is this texture: one fetch
+#endif
 #endif
   if (!u_useSpecular) specularStrength = 0.0;
   float occlusion = 1.0;

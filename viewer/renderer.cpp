@@ -385,6 +385,11 @@ FeatureSet Renderer::featuresFor(const GpuMesh& mesh, const RenderSettings& sett
   if (textureOf(material.normalTexture)) features |= static_cast<FeatureSet>(Feature::normalMap);
   if (textureOf(material.specularTexture)) features |= static_cast<FeatureSet>(Feature::specularMap);
   if (textureOf(material.specularColorTexture)) features |= static_cast<FeatureSet>(Feature::specularColorMap);
+  // One fetch where both name the same texture the same way (the extension's intended packing).
+  const gltf::TextureRef &strength = material.specularTexture, &colour = material.specularColorTexture;
+  if (has(features, Feature::specularMap) && has(features, Feature::specularColorMap) && strength.image == colour.image &&
+      strength.sampler == colour.sampler && strength.texCoord == colour.texCoord && strength.uvTransform == colour.uvTransform)
+    features = (features & ~static_cast<FeatureSet>(Feature::specularMap)) | static_cast<FeatureSet>(Feature::specularInColorMap);
   if (textureOf(material.metallicRoughnessTexture)) features |= static_cast<FeatureSet>(Feature::metallicRoughnessMap);
   if (textureOf(material.emissiveTexture)) features |= static_cast<FeatureSet>(Feature::emissiveMap);
   return features;

@@ -25,6 +25,9 @@ enum class Feature : std::uint32_t {
   physicalLights = 1u << 16,   // KHR_lights_punctual in its units (lux, candela), range window
   ibl = 1u << 17,              // image-based lighting from the built-in environment (pbr only)
   pointShadows = 1u << 18,     // with shadows: light 0 is a point light, its shadow a depth cube map
+  // With specularColorMap: specularTexture is the same texture (KHR_materials_specular's packing,
+  // strength in A, colour in RGB), read once from the colour map (an sRGB texture's A is linear).
+  specularInColorMap = 1u << 19,
 };
 
 enum class DebugView : std::uint8_t {
@@ -62,6 +65,7 @@ inline constexpr FeatureDefine kFeatureDefines[] = {
     {Feature::pbr, "SHADING_PBR"},
     {Feature::ibl, "USE_IBL"},
     {Feature::pointShadows, "POINT_SHADOWS"},
+    {Feature::specularInColorMap, "SPECULAR_IN_COLOR_MAP"},
 };
 
 // The lit view's shading: glTF's metallic-roughness model, or the tutorials' specular-map

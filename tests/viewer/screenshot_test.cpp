@@ -245,6 +245,40 @@ float backgroundShare(const Image& image) {
   return static_cast<float>(background) / static_cast<float>(image.width * image.height);
 }
 
+// The demo sphere's specularTexture and specularColorTexture are one texture, which the viewer
+// reads once (strength from A, colour from RGB); a copy whose colour texture names a second image
+// of the same file takes the two-fetch path. Both render alike, and the specular map shows.
+TEST(Viewer, OneFetchForTheSharedSpecularTextureRendersAsTwo) {
+  TempDir dir;
+  const fs::path shared = demoCopy(dir, "sphere", {}, false);
+  const fs::path folder = dir / "separate";
+  fs::create_directories(folder);
+  for (const auto& entry : fs::directory_iterator(shared.parent_path())) fs::copy_file(entry.path(), folder / entry.path().filename());
+  nlohmann::json doc = nlohmann::json::parse(std::ifstream(shared));
+  auto& extension = doc["materials"][0]["extensions"]["KHR_materials_specular"];
+  ASSERT_EQ(extension["specularTexture"]["index"], extension["specularColorTexture"]["index"]);
+  const int texture = extension["specularTexture"]["index"];
+  nlohmann::json image = doc["images"][doc["textures"][texture]["source"].get<int>()];
+  doc["images"].push_back(image);
+  doc["textures"].push_back({{"source", doc["images"].size() - 1}, {"sampler", doc["textures"][texture]["sampler"]}});
+  extension["specularColorTexture"]["index"] = doc["textures"].size() - 1;
+  std::ofstream(folder / "sphere.gltf") << doc.dump();
+  const std::string common = " --camera front --size 300x300";
+  const Image one = screenshot(dir, "one-fetch", "'" + shared.string() + "'" + common),
+              two = screenshot(dir, "two-fetches", "'" + (folder / "sphere.gltf").string() + "'" + common),
+              none = screenshot(dir, "no-specular", "'" + shared.string() + "'" + common + " --no-specular");
+  ASSERT_EQ(one.rgb.size(), two.rgb.size());
+  ASSERT_EQ(one.rgb.size(), none.rgb.size());
+  float largest = 0, specular = 0;
+  for (std::size_t i = 0; i < one.rgb.size(); ++i) {
+    largest = std::max(largest, std::abs(one.rgb[i] - two.rgb[i]));
+    specular = std::max(specular, std::abs(two.rgb[i] - none.rgb[i]));
+  }
+  std::printf("largest difference one fetch against two: %.4f; specular's largest contribution: %.4f\n", largest, specular);
+  EXPECT_LE(largest, 2.5f / 255);
+  EXPECT_GT(specular, 0.1f);
+}
+
 // Every demo primitive, and the same under a mirroring node, is wound counter-clockwise seen
 // from outside: the face-orientation view shows no back face (red) anywhere.
 TEST(Viewer, DemoPrimitivesShowOnlyFrontFaces) {
