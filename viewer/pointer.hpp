@@ -19,10 +19,6 @@ namespace tangent::viewer {
 // How far from the divider (in window pixels, either side) a left press grabs it.
 inline constexpr double kDividerGrabPixels = 6;
 
-// Whether the split view's divider is on screen: the renderer draws it in the split view, which
-// the compare-angle view (both sets at once) replaces.
-inline bool dividerShown(const RenderSettings& settings) { return settings.split && settings.view != DebugView::compareAngle; }
-
 // Whether a press at window x grabs the divider.
 inline bool onDivider(double x, const RenderSettings& settings, int windowWidth) {
   return dividerShown(settings) && windowWidth > 0 && std::abs(x - settings.splitPosition * windowWidth) <= kDividerGrabPixels;

@@ -748,7 +748,7 @@ FrameStats Renderer::render(const CameraMatrices& camera, const RenderSettings& 
     glDisable(GL_CULL_FACE);
   };
   // Split view: the same scene twice, each into its side of the divider, then the divider.
-  const bool split = settings.split && settings.view != DebugView::compareAngle;
+  const bool split = dividerShown(settings);
   const int divider = std::clamp(static_cast<int>(std::lround(settings.splitPosition * static_cast<float>(width))), 0, width);
   if (split) {
     glEnable(GL_SCISSOR_TEST);

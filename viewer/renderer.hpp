@@ -90,6 +90,10 @@ struct RenderSettings {
   float iblIntensity = 1;    // factor on the environment's radiance
 };
 
+// Whether the split view's divider is on screen: the split view, which the compare-angle view
+// (both sets at once) replaces.
+inline bool dividerShown(const RenderSettings& settings) { return settings.split && settings.view != DebugView::compareAngle; }
+
 // Which tangents a draw shades with: the file's TANGENT (or those computed at load when it has
 // none), or the compare set.
 enum class TangentSet : std::uint8_t { file, compare };
