@@ -148,6 +148,7 @@ TEST(MikkTSpaceReference, GeneratedMeshes) {
   std::vector<tangent::testing::CornerArrays> deindexed;
   for (const auto& named : meshes) deindexed.push_back(tangent::testing::deindex(named.name, arraysOf(named.mesh)));
   const auto reference = tangent::testing::referenceTangents(deindexed);
+  ASSERT_EQ(reference.size(), meshes.size());
   for (std::size_t i = 0; i < meshes.size(); ++i) {
     const NamedMesh& named = meshes[i];
     SCOPED_TRACE(named.name);
@@ -281,6 +282,7 @@ TEST(MikkTSpaceReference, SharedAssets) {
   std::vector<tangent::testing::CornerArrays> deindexed;
   for (const auto& p : primitives) deindexed.push_back(tangent::testing::deindex(p.name, p.arrays()));
   const auto reference = tangent::testing::referenceTangents(deindexed);
+  ASSERT_EQ(reference.size(), primitives.size());
   for (std::size_t i = 0; i < primitives.size(); ++i) {
     SCOPED_TRACE(primitives[i].name);
     const Ours ours = computeOurs(primitives[i].arrays(), {});
@@ -334,6 +336,7 @@ TEST(MikkTSpaceReference, ObjInputThroughBake) {
   auto primitives = normalMappedPrimitives(dir / "torus.glb", true);
   ASSERT_EQ(primitives.size(), 1u);
   const auto reference = tangent::testing::referenceTangents({tangent::testing::deindex("torus.obj", primitives[0].arrays())});
+  ASSERT_EQ(reference.size(), 1u);
   const auto baked = perCorner(primitives[0], primitives[0].tangents);
   const auto agreement = tangent::testing::compareWithReference(baked, reference[0], {}, true);
   std::printf("torus.obj baked vs reference: %s\n", agreement.describe().c_str());
@@ -348,7 +351,9 @@ TEST(MikkTSpaceReference, ObjInputThroughBake) {
 // keeps the direction and lands nearer the analytic tangent (-sin phi, cos phi, 0).
 TEST(MikkTSpaceReference, NearCoincidentPoleIsWhereFloatBreaks) {
   const GridMesh m = tangent::testing::makeSphere(32, 16, /*exactPoles=*/false);
-  const auto reference = tangent::testing::referenceTangents({tangent::testing::deindex("pole", arraysOf(m))})[0];
+  const auto references = tangent::testing::referenceTangents({tangent::testing::deindex("pole", arraysOf(m))});
+  ASSERT_EQ(references.size(), 1u);
+  const auto& reference = references[0];
   tangent::Options options;
   options.uvOrigin = tangent::UvOrigin::bottomLeft;
   const Ours ours = computeOurs(arraysOf(m), options);

@@ -21,7 +21,8 @@ struct CornerArrays {
 CornerArrays deindex(const std::string& name, const MeshArrays& mesh);
 
 // Tangents per corner (xyzw) as the reference returns them: bottom-left UV convention.
-// Fails the calling test (and returns empty vectors) when node or the package is missing.
+// Fails the calling test and returns no vectors at all (callers assert the count before
+// indexing) when node or the package is missing or the reference answers short.
 std::vector<std::vector<float>> referenceTangents(const std::vector<CornerArrays>& meshes);
 
 struct Agreement {
