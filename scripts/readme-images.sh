@@ -3,7 +3,7 @@
 # Renders the viewer images of the README into docs/, headless (xvfb-run), with the build in
 # build/ (or $1): the skinned and the morphing assets of `tangent-make-data --animated`, baked,
 # in the tangent view during their "bend" animation, and the split compare view of the baked
-# demo sphere.
+# demo sphere, and the demo scene lit (the README's first picture).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bin=${1:-build}/bin
@@ -20,3 +20,6 @@ view "$out/morphing.glb" --view tangent --animation bend --time 0.7 --size 360x2
 # Left of the divider the file's TANGENT with w negated (as a baker of the other handedness
 # convention would write it: the bumps read as dents), right of it MikkTSpace computed at load.
 view "$out/sphere.glb" --negate-w --compare fresh --camera front --size 480x270 --screenshot docs/compare-split.png
+# The demo scene as scripts/demo.sh bakes and shows it, with a GPU's defaults (MSAA 4x).
+"$bin/tangent" bake data/demo/scene.gltf -o "$out/scene-baked.glb" -q
+view "$out/scene-baked.glb" --size 1280x720 --screenshot docs/demo-scene.png
