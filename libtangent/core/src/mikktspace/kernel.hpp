@@ -177,13 +177,14 @@ class Kernel {
   // and weight writes), in the same walk over the corners.
   void finishOneFrame(std::uint32_t bucket, const std::uint32_t* list, std::uint32_t count, std::uint64_t& mirrored,
                       const float* frame = nullptr) {
-    const std::uint32_t vertex = a_.indices[list[0]];
+    // Where the weld merged nothing, every corner of the bucket is its input vertex.
+    const std::uint32_t vertex = identity_ ? bucket : a_.indices[list[0]];
     bool oneVertex = true;
     auto walk = [&](auto withFrame, auto withVertex) {
       for (std::uint32_t i = 0; i < count; ++i) {
         const std::uint32_t c = list[i];
         if constexpr (decltype(withFrame)::value) std::memcpy(&tangents_[4 * std::size_t(c)], frame, 4 * sizeof(float));
-        const std::uint32_t v = a_.indices[c];
+        const std::uint32_t v = identity_ ? vertex : a_.indices[c];
         if constexpr (decltype(withVertex)::value) cornerVertex_[c] = v;
         oneVertex &= v == vertex;
       }
@@ -236,6 +237,8 @@ class Kernel {
   bool identity_ = false;  // the weld merged nothing: id(corner) is the corner's index
   const std::uint32_t* start_ = nullptr;
   const std::uint32_t* corners_ = nullptr;
+  const std::uint32_t* nextIds_ = nullptr;      // beside corners_: each corner's next and
+  const std::uint32_t* previousIds_ = nullptr;  // previous identities
   std::uint64_t groupWithAny_ = 0;  // triangles that group with any (not coincident)
   std::uint64_t coincident_ = 0;    // coincident triangles
   // Whether any corner was marked undefined, any edge is non-manifold: where not, the passes

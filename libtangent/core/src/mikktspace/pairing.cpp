@@ -43,11 +43,15 @@ void Kernel::resetLinks(const std::uint32_t* list, std::uint32_t count) {
 
 namespace {
 
-// The participating corners of one small bucket (pairSmallBucket) and their links.
+// The participating corners of one small bucket (pairSmallBucket) and their links. Where
+// every corner takes part, outId, inId and corner point into the buckets' arrays (which
+// may be read kBucketIdPadding past a bucket); otherwise into the gathered copies here.
 struct SmallBucket {
-  alignas(16) std::uint32_t outId[kSmall], inId[kSmall];  // next and previous identities
-  std::uint32_t corner[kSmall];
+  const std::uint32_t* outId;  // next and previous identities
+  const std::uint32_t* inId;
+  const std::uint32_t* corner;
   std::uint32_t n = 0;
+  alignas(16) std::uint32_t gatheredOut[kSmall], gatheredIn[kSmall], gatheredCorner[kSmall];
   std::uint32_t match[kSmall];          // the corner linked from corner[i], kNone where none
   std::uint8_t successor[kSmall] = {};  // local index of match[i], kSmall where none (zeroed: GCC
                                         // cannot see that only the first n are read)
@@ -60,23 +64,22 @@ inline bool linkSmallBucket(SmallBucket& b) {
   const std::uint32_t n = b.n;
 #if defined(__SSE2__)
   // Lane masks of equal identities, four lanes a compare (8 or 16 lanes, those past n
-  // zeroed and masked off).
+  // masked off).
   const std::uint32_t width = n <= 8 ? 8 : 16;
-  for (std::uint32_t j = n; j < width; ++j) b.outId[j] = b.inId[j] = 0;
   const std::uint32_t lanes = (std::uint32_t(1) << n) - 1;
   auto masks = [&](auto vectorCount) {
     constexpr int kVectors = decltype(vectorCount)::value;
     __m128i outs[kVectors], ins[kVectors];
     for (int v = 0; v < kVectors; ++v) {
-      outs[v] = _mm_load_si128(reinterpret_cast<const __m128i*>(b.outId + 4 * v));
-      ins[v] = _mm_load_si128(reinterpret_cast<const __m128i*>(b.inId + 4 * v));
+      outs[v] = _mm_loadu_si128(reinterpret_cast<const __m128i*>(b.outId + 4 * v));
+      ins[v] = _mm_loadu_si128(reinterpret_cast<const __m128i*>(b.inId + 4 * v));
     }
     // Next identities all different: a matched one (some previous identity equal to it) and
     // an unmatched one never are equal; two matched ones that were equal would match the same
     // previous identity, and two different ones never do, so the matched ones are all
-    // different exactly when their targets are as many as they are. Only the unmatched (the
+    // different exactly when no two of them reach the same target. Only the unmatched (the
     // ends of open fans) are compared with the other next identities.
-    std::uint32_t bad = 0, matched = 0;
+    std::uint32_t bad = 0;
     for (std::uint32_t i = 0; i < n; ++i) {
       const __m128i key = _mm_set1_epi32(static_cast<int>(b.outId[i]));
       auto laneMask = [&](__m128i lanesOf) {
@@ -93,14 +96,13 @@ inline bool linkSmallBucket(SmallBucket& b) {
         b.successor[i] = kSmall;
         continue;
       }
-      ++matched;
-      bad |= sameIn & (sameIn - 1);
+      bad |= (sameIn & (sameIn - 1)) | (b.targets & sameIn);
       const auto j = static_cast<std::uint32_t>(std::countr_zero(sameIn));
       b.match[i] = b.corner[j];
       b.successor[i] = static_cast<std::uint8_t>(j);
       b.targets |= sameIn;
     }
-    return bad == 0 && static_cast<std::uint32_t>(std::popcount(b.targets)) == matched;
+    return bad == 0;
   };
   return width == 8 ? masks(std::integral_constant<int, 2>{}) : masks(std::integral_constant<int, 4>{});
 #else
@@ -150,23 +152,34 @@ inline bool oneSmallChain(const SmallBucket& b) {
 // that case (then pairSorted pairs it).
 bool Kernel::pairSmallBucket(std::uint32_t bucket, const std::uint32_t* list, std::uint32_t count) {
   const std::int8_t firstOrientation = ws_.orientation[list[0] / 3];
-  bool oneOrientation = true;
-  SmallBucket b;
-  std::uint32_t n = 0;
+  bool oneOrientation = true, all = true;
   for (std::uint32_t i = 0; i < count; ++i) {
     const std::uint32_t c = list[i];
     ws_.cornerState[c] = 0;
-    if (!participates(c)) {
-      ws_.cornerLink[c] = kNone;
-      continue;
-    }
+    all &= participates(c);
     oneOrientation &= ws_.orientation[c / 3] == firstOrientation;
-    b.corner[n] = c;
-    b.outId[n] = id(nextCorner(c));
-    b.inId[n] = id(previousCorner(c));
-    ++n;
   }
-  b.n = n;
+  SmallBucket b;
+  if (all) {  // the identities bucketing put beside the corners
+    const std::size_t first = static_cast<std::size_t>(list - corners_);
+    b.outId = nextIds_ + first, b.inId = previousIds_ + first, b.corner = list;
+    b.n = count;
+  } else {
+    std::uint32_t n = 0;
+    for (std::uint32_t i = 0; i < count; ++i) {
+      const std::uint32_t c = list[i];
+      if (!participates(c)) {
+        ws_.cornerLink[c] = kNone;
+        continue;
+      }
+      b.gatheredCorner[n] = c;
+      b.gatheredOut[n] = id(nextCorner(c));
+      b.gatheredIn[n] = id(previousCorner(c));
+      ++n;
+    }
+    b.outId = b.gatheredOut, b.inId = b.gatheredIn, b.corner = b.gatheredCorner;
+    b.n = n;
+  }
   if (!linkSmallBucket(b)) return false;
   const bool oneChain = b.n == count && oneSmallChain(b);
   const std::uint8_t chain = !oneChain ? kNotOneChain : (oneOrientation && orientationsFinal_ ? kOneFan : kOneChain);
