@@ -178,14 +178,19 @@ class Kernel {
   void finishOneFrame(std::uint32_t bucket, const std::uint32_t* list, std::uint32_t count, std::uint64_t& mirrored,
                       const float* frame = nullptr) {
     // Where the weld merged nothing, every corner of the bucket is its input vertex.
-    const std::uint32_t vertex = identity_ ? bucket : a_.indices[list[0]];
+    // Members in locals: the stores below may alias them.
+    const bool identity = identity_;
+    float* tangents = tangents_;
+    std::uint32_t* cornerVertex = cornerVertex_;
+    const std::uint32_t* indices = a_.indices;
+    const std::uint32_t vertex = identity ? bucket : indices[list[0]];
     bool oneVertex = true;
     auto walk = [&](auto withFrame, auto withVertex) {
       for (std::uint32_t i = 0; i < count; ++i) {
         const std::uint32_t c = list[i];
-        if constexpr (decltype(withFrame)::value) std::memcpy(&tangents_[4 * std::size_t(c)], frame, 4 * sizeof(float));
-        const std::uint32_t v = identity_ ? vertex : a_.indices[c];
-        if constexpr (decltype(withVertex)::value) cornerVertex_[c] = v;
+        if constexpr (decltype(withFrame)::value) std::memcpy(&tangents[4 * std::size_t(c)], frame, 4 * sizeof(float));
+        const std::uint32_t v = identity ? vertex : indices[c];
+        if constexpr (decltype(withVertex)::value) cornerVertex[c] = v;
         oneVertex &= v == vertex;
       }
     };

@@ -79,7 +79,7 @@ inline bool linkSmallBucket(SmallBucket& b) {
     // previous identity, and two different ones never do, so the matched ones are all
     // different exactly when no two of them reach the same target. Only the unmatched (the
     // ends of open fans) are compared with the other next identities.
-    std::uint32_t bad = 0;
+    std::uint32_t bad = 0, targets = 0;  // targets in a register, not b's (the stores to b may alias it)
     for (std::uint32_t i = 0; i < n; ++i) {
       const __m128i key = _mm_set1_epi32(static_cast<int>(b.outId[i]));
       auto laneMask = [&](__m128i lanesOf) {
@@ -96,12 +96,13 @@ inline bool linkSmallBucket(SmallBucket& b) {
         b.successor[i] = kSmall;
         continue;
       }
-      bad |= (sameIn & (sameIn - 1)) | (b.targets & sameIn);
+      bad |= (sameIn & (sameIn - 1)) | (targets & sameIn);
       const auto j = static_cast<std::uint32_t>(std::countr_zero(sameIn));
       b.match[i] = b.corner[j];
       b.successor[i] = static_cast<std::uint8_t>(j);
-      b.targets |= sameIn;
+      targets |= sameIn;
     }
+    b.targets = targets;
     return bad == 0;
   };
   return width == 8 ? masks(std::integral_constant<int, 2>{}) : masks(std::integral_constant<int, 4>{});
@@ -151,13 +152,17 @@ inline bool oneSmallChain(const SmallBucket& b) {
 // matches may repeat: the merge links nothing there either.) False where the bucket is not
 // that case (then pairSorted pairs it).
 bool Kernel::pairSmallBucket(std::uint32_t bucket, const std::uint32_t* list, std::uint32_t count) {
-  const std::int8_t firstOrientation = ws_.orientation[list[0] / 3];
+  // The arrays in locals: the byte stores below may alias the workspace's members.
+  std::uint8_t* state = ws_.cornerState.data();
+  const std::uint8_t* triangleFlags = ws_.triangleFlags.data();
+  const std::int8_t* orientation = ws_.orientation.data();
+  const std::int8_t firstOrientation = orientation[list[0] / 3];
   bool oneOrientation = true, all = true;
   for (std::uint32_t i = 0; i < count; ++i) {
     const std::uint32_t c = list[i];
-    ws_.cornerState[c] = 0;
-    all &= participates(c);
-    oneOrientation &= ws_.orientation[c / 3] == firstOrientation;
+    state[c] = 0;
+    all &= !(triangleFlags[c / 3] & kCoincident);  // participates(c)
+    oneOrientation &= orientation[c / 3] == firstOrientation;
   }
   SmallBucket b;
   if (all) {  // the identities bucketing put beside the corners
