@@ -89,6 +89,9 @@ KernelOutcome Kernel::run(Report& report) {
     BucketScratch& scratch = ws_.scratch.local();
     std::uint64_t local = 0;
     for (std::size_t b = begin; b < end; ++b) {
+      // Most buckets: one fan, paired and summed in one go (pairOneFan); the others, and any
+      // the shortcut does not take, the phases one after the other.
+      if (fused && pairOneFan(static_cast<std::uint32_t>(b), local)) continue;
       pairBucket(static_cast<std::uint32_t>(b), scratch);
       if (fused) groupBucket(static_cast<std::uint32_t>(b), scratch, local);
     }

@@ -52,13 +52,15 @@ struct SmallBucket {
   const std::uint32_t* corner;
   std::uint32_t n = 0;
   alignas(16) std::uint32_t gatheredOut[kSmall], gatheredIn[kSmall], gatheredCorner[kSmall];
-  std::uint32_t match[kSmall];          // the corner linked from corner[i], kNone where none
-  std::uint8_t successor[kSmall] = {};  // local index of match[i], kSmall where none (zeroed: GCC
-                                        // cannot see that only the first n are read)
+  std::uint8_t successor[kSmall] = {};  // local index of the corner linked from corner[i],
+                                        // kSmall where none (zeroed: GCC cannot see that only
+                                        // the first n are read)
   std::uint32_t targets = 0;            // local indices some link reaches
+  // The corner linked from corner[i], kNone where none.
+  std::uint32_t match(std::uint32_t i) const { return successor[i] == kSmall ? kNone : corner[successor[i]]; }
 };
 
-// Fills match, successor and targets from the identities; false where the bucket is not the
+// Fills successor and targets from the identities; false where the bucket is not the
 // simple case (a next identity repeats, or is the previous identity of two corners).
 inline bool linkSmallBucket(SmallBucket& b) {
   const std::uint32_t n = b.n;
@@ -69,9 +71,13 @@ inline bool linkSmallBucket(SmallBucket& b) {
   const std::uint32_t lanes = (std::uint32_t(1) << n) - 1;
   auto masks = [&](auto vectorCount) {
     constexpr int kVectors = decltype(vectorCount)::value;
+    // In locals: the byte stores to successor may alias what the lambda captures.
+    const std::uint32_t count = n, valid = lanes;
+    const std::uint32_t* outId = b.outId;
+    std::uint8_t* successor = b.successor;
     __m128i outs[kVectors], ins[kVectors];
     for (int v = 0; v < kVectors; ++v) {
-      outs[v] = _mm_loadu_si128(reinterpret_cast<const __m128i*>(b.outId + 4 * v));
+      outs[v] = _mm_loadu_si128(reinterpret_cast<const __m128i*>(outId + 4 * v));
       ins[v] = _mm_loadu_si128(reinterpret_cast<const __m128i*>(b.inId + 4 * v));
     }
     // Next identities all different: a matched one (some previous identity equal to it) and
@@ -79,27 +85,24 @@ inline bool linkSmallBucket(SmallBucket& b) {
     // previous identity, and two different ones never do, so the matched ones are all
     // different exactly when no two of them reach the same target. Only the unmatched (the
     // ends of open fans) are compared with the other next identities.
-    std::uint32_t bad = 0, targets = 0;  // targets in a register, not b's (the stores to b may alias it)
-    for (std::uint32_t i = 0; i < n; ++i) {
-      const __m128i key = _mm_set1_epi32(static_cast<int>(b.outId[i]));
+    std::uint32_t bad = 0, targets = 0;
+    for (std::uint32_t i = 0; i < count; ++i) {
+      const __m128i key = _mm_set1_epi32(static_cast<int>(outId[i]));
       auto laneMask = [&](__m128i lanesOf) {
         return static_cast<std::uint32_t>(_mm_movemask_ps(_mm_castsi128_ps(_mm_cmpeq_epi32(key, lanesOf))));
       };
       std::uint32_t sameIn = 0;
       for (int v = 0; v < kVectors; ++v) sameIn |= laneMask(ins[v]) << (4 * v);
-      sameIn &= lanes;
+      sameIn &= valid;
       if (sameIn == 0) {
         std::uint32_t sameOut = 0;
         for (int v = 0; v < kVectors; ++v) sameOut |= laneMask(outs[v]) << (4 * v);
-        bad |= (sameOut & lanes) ^ (std::uint32_t(1) << i);
-        b.match[i] = kNone;
-        b.successor[i] = kSmall;
+        bad |= (sameOut & valid) ^ (std::uint32_t(1) << i);
+        successor[i] = kSmall;
         continue;
       }
       bad |= (sameIn & (sameIn - 1)) | (targets & sameIn);
-      const auto j = static_cast<std::uint32_t>(std::countr_zero(sameIn));
-      b.match[i] = b.corner[j];
-      b.successor[i] = static_cast<std::uint8_t>(j);
+      successor[i] = static_cast<std::uint8_t>(std::countr_zero(sameIn));
       targets |= sameIn;
     }
     b.targets = targets;
@@ -110,12 +113,10 @@ inline bool linkSmallBucket(SmallBucket& b) {
   bool simple = true;
   for (std::uint32_t i = 0; i < n; ++i) {
     std::uint32_t sameOut = 0, sameIn = 0;
-    b.match[i] = kNone;
     b.successor[i] = kSmall;
     for (std::uint32_t j = 0; j < n; ++j) {
       sameOut += b.outId[i] == b.outId[j];
       sameIn += b.outId[i] == b.inId[j];
-      b.match[i] = b.outId[i] == b.inId[j] ? b.corner[j] : b.match[i];
       b.successor[i] = b.outId[i] == b.inId[j] ? static_cast<std::uint8_t>(j) : b.successor[i];
       b.targets |= b.outId[i] == b.inId[j] ? std::uint32_t(1) << j : 0;
     }
@@ -193,9 +194,41 @@ bool Kernel::pairSmallBucket(std::uint32_t bucket, const std::uint32_t* list, st
   // orientations are final nothing after grouping reads the links of corners that are not
   // copies: those links are not written.
   if (chain != kOneFan) {
-    for (std::uint32_t i = 0; i < b.n; ++i) ws_.cornerLink[b.corner[i]] = b.match[i];
+    for (std::uint32_t i = 0; i < b.n; ++i) ws_.cornerLink[b.corner[i]] = b.match(i);
   }
   return true;
+}
+
+// Phases 2 and 4 of the common bucket at once, where orientations are final when buckets are
+// paired: a small bucket whose corners all take part, whose links are the simple case
+// (linkSmallBucket) and one chain through every corner (pairSmallBucket's kOneFan), of one
+// orientation, and whose parked terms give the fan's frame (fastBucket). Then the same frame,
+// states and bucketUniform as pairBucket and groupBucket would write, with one walk over the
+// corners' slots and no gathers of identities; false (nothing written but the corners'
+// cleared states, which pairBucket clears too) where the bucket is not that case.
+bool Kernel::pairOneFan(std::uint32_t bucket, std::uint64_t& mirrored) {
+  const std::uint32_t first = start_[bucket], count = start_[bucket + 1] - first;
+  if (count < 2 || count > kSmall || !ws_.fastBuckets) return false;
+  const std::uint32_t* list = corners_ + first;
+  SmallBucket b;
+  b.outId = nextIds_ + first, b.inId = previousIds_ + first, b.corner = list;
+  b.n = count;
+  if (!linkSmallBucket(b) || !oneSmallChain(b)) return false;
+  std::uint8_t* state = ws_.cornerState.data();
+  const std::uint8_t* triangleFlags = ws_.triangleFlags.data();
+  const std::int8_t* orientation = ws_.orientation.data();
+  const float* tangents = tangents_;
+  const std::int8_t firstOrientation = orientation[list[0] / 3];
+  bool usable = true;
+  FanAccumulator sum;
+  for (std::uint32_t i = 0; i < count; ++i) {
+    const std::uint32_t c = list[i];
+    state[c] = 0;
+    usable &= !(triangleFlags[c / 3] & kCoincident) & (orientation[c / 3] == firstOrientation);
+    sum.add(&tangents[4 * std::size_t(c)]);
+  }
+  if (!usable) return false;
+  return fanFrame(bucket, list, count, sum.result(), mirrored);
 }
 
 // The general case: outgoing and incoming half-edges sorted by the identity at their other
