@@ -9,6 +9,7 @@
 #include <tbb/task_arena.h>
 
 #include <algorithm>
+#include <array>
 #include <atomic>
 #include <bit>
 #include <cstring>
@@ -494,3 +495,86 @@ TEST(Workspace, ZeroThreadsIsEveryHardwareThreadForEveryMethod) {
 }
 
 }  // namespace
+
+namespace {
+
+// The weld's ids and the buckets, recomputed the slow way: a vertex's id is the smallest
+// vertex with equal values (+0 == -0, NaN never equal), each bucket holds its corners in
+// corner order, and beside each bucketed corner lie its next and previous identities.
+void expectWeldAndBuckets(const tangent::MeshArrays& mesh, unsigned threads, const std::string& name) {
+  SCOPED_TRACE(name + ", " + std::to_string(threads) + " threads");
+  tangent::detail::WorkspaceData ws;
+  ws.threads = threads;
+  tangent::detail::onThreads(ws, [&] {
+    tangent::detail::beginCall(ws, mesh);
+    tangent::detail::weldAndBucket(ws, mesh, threads, true);
+  });
+  const std::size_t vertices = mesh.positions.size() / 3, corners = mesh.indices.size();
+  auto same = [&](std::size_t a, std::size_t b) {
+    for (int i = 0; i < 3; ++i) {
+      if (mesh.positions[3 * a + i] != mesh.positions[3 * b + i] || mesh.normals[3 * a + i] != mesh.normals[3 * b + i])
+        return false;
+    }
+    return mesh.uvs[2 * a] == mesh.uvs[2 * b] && mesh.uvs[2 * a + 1] == mesh.uvs[2 * b + 1];
+  };
+  std::vector<std::uint32_t> id(vertices);
+  std::map<std::array<std::uint32_t, 8>, std::uint32_t> first;  // by canonical bits; NaN apart below
+  for (std::size_t v = 0; v < vertices; ++v) {
+    std::array<std::uint32_t, 8> key;
+    const float values[8] = {mesh.positions[3 * v], mesh.positions[3 * v + 1], mesh.positions[3 * v + 2],
+                             mesh.normals[3 * v],   mesh.normals[3 * v + 1],   mesh.normals[3 * v + 2],
+                             mesh.uvs[2 * v],       mesh.uvs[2 * v + 1]};
+    for (int i = 0; i < 8; ++i) key[i] = values[i] == 0 ? 0u : std::bit_cast<std::uint32_t>(values[i]);
+    const auto [at, inserted] = first.emplace(key, static_cast<std::uint32_t>(v));
+    id[v] = !inserted && same(at->second, v) ? at->second : static_cast<std::uint32_t>(v);
+  }
+  for (std::size_t v = 0; v < vertices; ++v) ASSERT_EQ(ws.vertexId[v], id[v]) << "vertex " << v;
+  auto idOf = [&](std::size_t c) { return id[mesh.indices[c]]; };
+  for (std::size_t bucket = 0; bucket < vertices; ++bucket) {
+    for (std::uint32_t slot = ws.bucketStart[bucket]; slot < ws.bucketStart[bucket + 1]; ++slot) {
+      const std::uint32_t c = ws.bucketCorners[slot];
+      ASSERT_EQ(idOf(c), bucket) << "slot " << slot;
+      if (slot > ws.bucketStart[bucket]) ASSERT_LT(ws.bucketCorners[slot - 1], c) << "slot " << slot;
+      const std::size_t next = c % 3 == 2 ? c - 2 : c + 1, previous = c % 3 == 0 ? c + 2 : c - 1;
+      ASSERT_EQ(ws.bucketNextId[slot], idOf(next)) << "slot " << slot;
+      ASSERT_EQ(ws.bucketPreviousId[slot], idOf(previous)) << "slot " << slot;
+    }
+  }
+  ASSERT_EQ(ws.bucketStart[vertices], corners);
+}
+
+}  // namespace
+
+// Both ways of bucketing (one counting sort below four threads, by ranges of ids from four)
+// on a mesh that welds copies and on one that welds nothing, and vertices whose values differ
+// in sign only (which share the weld's hash): never welded, while +0 and -0 are.
+TEST(Workspace, WeldIdsAndBucketsWithEachCornersNeighbourIdentities) {
+  const GridMesh hard = hardMesh(20000);
+  const GridMesh sphere = tangent::testing::makeSphere(160, 80);
+  GridMesh signs;
+  // Vertex 0 and its copies: 1 with every value negated, 2 with -0 for +0, 3 with one sign
+  // flipped; two triangles over them and two more vertices.
+  const float base[8] = {0.5f, 0.0f, -2.0f, 0.0f, 0.0f, 1.0f, 0.25f, 0.75f};
+  auto add = [&](const float (&values)[8]) {
+    signs.positions.insert(signs.positions.end(), values, values + 3);
+    signs.normals.insert(signs.normals.end(), values + 3, values + 6);
+    signs.uvs.insert(signs.uvs.end(), values + 6, values + 8);
+  };
+  float negated[8], zeros[8], oneFlipped[8];
+  for (int i = 0; i < 8; ++i) negated[i] = -base[i], zeros[i] = base[i] == 0 ? -0.0f : base[i], oneFlipped[i] = base[i];
+  oneFlipped[6] = -base[6];
+  add(base), add(negated), add(zeros), add(oneFlipped);
+  add({1.0f, 0.0f, 0.0f, 0.0f, 0.0f, 1.0f, 1.0f, 0.0f});
+  add({0.0f, 1.0f, 0.0f, 0.0f, 0.0f, 1.0f, 0.0f, 1.0f});
+  signs.indices = {0, 4, 5, 1, 4, 5, 2, 5, 4, 3, 4, 5};
+  for (unsigned threads : {1u, 2u, 4u, 8u}) {
+    expectWeldAndBuckets(arraysOf(hard), threads, "hard mesh");
+    expectWeldAndBuckets(arraysOf(sphere), threads, "sphere");
+    expectWeldAndBuckets(arraysOf(signs), threads, "signs");
+  }
+  tangent::detail::WorkspaceData ws;
+  tangent::detail::beginCall(ws, arraysOf(signs));
+  tangent::detail::weldAndBucket(ws, arraysOf(signs), 1, true);
+  EXPECT_EQ((std::vector<std::uint32_t>(ws.vertexId.begin(), ws.vertexId.begin() + 6)),
+            (std::vector<std::uint32_t>{0, 1, 0, 3, 4, 5}));
+}

@@ -19,17 +19,25 @@
 namespace tangent::detail {
 namespace {
 
-// The hash of a vertex's values, -0 taken as +0 (equal values, equal hashes). The eight
-// values go in as four pairs, each multiplied on its own, then one finishing mix: a chain of
-// three dependent multiplies per vertex. Mixing the values one after another made a chain of
-// eight, and its latency was most of the weld's time per vertex.
+// The hash of a vertex's values without their sign bits (equal values, +0 and -0 among them,
+// equal hashes; values that differ in sign only collide, which costs a comparison). The eight
+// values go in as four 64-bit pairs, three of them one load each (neighbours in their
+// array), each pair multiplied on its own, then one finishing mix: a chain of three dependent
+// multiplies per vertex. Mixing the values one after another made a chain of eight, and its
+// latency was most of the weld's time per vertex.
 std::uint64_t vertexHash(const MeshArrays& mesh, std::size_t v) {
-  auto pair = [](float a, float b) { return std::uint64_t(canonicalBits(a)) | std::uint64_t(canonicalBits(b)) << 32; };
+  constexpr std::uint64_t kNoSigns = 0x7FFFFFFF7FFFFFFFull;
+  auto two = [](const float* x) {
+    std::uint64_t bits;
+    std::memcpy(&bits, x, sizeof bits);
+    return bits & kNoSigns;
+  };
   const float* p = &mesh.positions[3 * v];
   const float* n = &mesh.normals[3 * v];
   const float* t = &mesh.uvs[2 * v];
-  std::uint64_t h = pair(p[0], p[1]) * 0x9E3779B97F4A7C15ull ^ pair(p[2], n[0]) * 0xC2B2AE3D27D4EB4Full ^
-                    pair(n[1], n[2]) * 0x165667B19E3779F9ull ^ pair(t[0], t[1]) * 0xD6E8FEB86659FD93ull;
+  const std::uint64_t zx = (std::uint64_t(bitCast<std::uint32_t>(p[2])) | std::uint64_t(bitCast<std::uint32_t>(n[0])) << 32) & kNoSigns;
+  std::uint64_t h = two(p) * 0x9E3779B97F4A7C15ull ^ zx * 0xC2B2AE3D27D4EB4Full ^ two(n + 1) * 0x165667B19E3779F9ull ^
+                    two(t) * 0xD6E8FEB86659FD93ull;
   h ^= h >> 32;
   h *= 0xFF51AFD7ED558CCDull;
   h ^= h >> 29;
@@ -52,10 +60,12 @@ bool sameVertex(const MeshArrays& mesh, std::size_t a, std::size_t b) {
 // counted and scattered by one task with its own counters (counters: chunks * keys), so that
 // out holds the items grouped by key, each group in item order; groupStart (keys + 1) gets
 // the groups' starts.
-template <typename Key>
+// fill(begin, end, next) places the items [begin, end) of one chunk, next[key] being where
+// the next item of that key goes; `align`: chunks start at multiples of it.
+template <typename Key, typename Fill>
 void stableCountingSort(const WorkspaceData& ws, std::size_t count, std::size_t keys, std::size_t chunks, const Key& key,
-                        std::uint32_t* counters, std::uint32_t* groupStart, std::uint32_t* out) {
-  const std::size_t length = chunks == 0 ? 0 : (count + chunks - 1) / chunks;
+                        std::uint32_t* counters, std::uint32_t* groupStart, const Fill& fill, std::size_t align = 1) {
+  const std::size_t length = chunks == 0 ? 0 : (count / align + chunks - 1) / chunks * align;
   forRange(ws, chunks, 1, [&](std::size_t begin, std::size_t end) {
     for (std::size_t k = begin; k < end; ++k) {
       std::uint32_t* counter = counters + k * keys;
@@ -93,10 +103,17 @@ void stableCountingSort(const WorkspaceData& ws, std::size_t count, std::size_t 
   groupStart[keys] = blockStart[blocks];
   forRange(ws, chunks, 1, [&](std::size_t begin, std::size_t end) {
     for (std::size_t k = begin; k < end; ++k) {
-      std::uint32_t* next = counters + k * keys;
-      for (std::size_t i = k * length; i < std::min(count, (k + 1) * length); ++i) out[next[key(i)]++] = static_cast<std::uint32_t>(i);
+      fill(std::min(count, k * length), std::min(count, (k + 1) * length), counters + k * keys);
     }
   });
+}
+template <typename Key>
+void stableCountingSort(const WorkspaceData& ws, std::size_t count, std::size_t keys, std::size_t chunks, const Key& key,
+                        std::uint32_t* counters, std::uint32_t* groupStart, std::uint32_t* out) {
+  stableCountingSort(ws, count, keys, chunks, key, counters, groupStart,
+                     [&](std::size_t begin, std::size_t end, std::uint32_t* next) {
+                       for (std::size_t i = begin; i < end; ++i) out[next[key(i)]++] = static_cast<std::uint32_t>(i);
+                     });
 }
 
 
@@ -198,8 +215,9 @@ void weldInPartitions(WorkspaceData& ws, const MeshArrays& mesh, const Insert& i
   });
 }
 
-// Buckets: a counting sort of the corners by welded id.
-void bucketCorners(WorkspaceData& ws, const MeshArrays& mesh, unsigned threads) {
+// Buckets: a counting sort of the corners by welded id; with `edges`, each bucketed corner's
+// next and previous identities beside it (bucketNextId, bucketPreviousId).
+void bucketCorners(WorkspaceData& ws, const MeshArrays& mesh, unsigned threads, bool edges) {
   const std::size_t vertexCount = ws.vertexCount, cornerCount = ws.cornerCount;
   const std::uint32_t* vertexId = ws.vertexId.data();
   // Buckets: a counting sort of the corners by welded id.
@@ -209,6 +227,12 @@ void bucketCorners(WorkspaceData& ws, const MeshArrays& mesh, unsigned threads) 
   std::uint32_t* start = ws.bucketStart.data();
   std::uint32_t* cursor = ws.bucketExtra.data();
   std::uint32_t* corners = ws.bucketCorners.data();
+  if (edges) {
+    ensureSize(ws.bucketNextId, cornerCount + kBucketIdPadding);
+    ensureSize(ws.bucketPreviousId, cornerCount + kBucketIdPadding);
+  }
+  std::uint32_t* nextIds = ws.bucketNextId.data();
+  std::uint32_t* previousIds = ws.bucketPreviousId.data();
   const std::uint32_t* indices = mesh.indices.data();
   // Every bucket in corner order, whatever the thread count. Below four threads, each thread
   // counts and fills its own slice of the corners with its own counters (in the weld table,
@@ -223,10 +247,33 @@ void bucketCorners(WorkspaceData& ws, const MeshArrays& mesh, unsigned threads) 
   if (threads < 4) {
     const std::size_t slices = threads;
     ensureSize(ws.table, slices * vertexCount);
+    // With edges, each slice places its corners triangle by triangle: a corner's next and
+    // previous identities are its triangle's other two, read once for all three corners.
+    auto sort = [&](const auto& id) {
+      if (!edges) {
+        stableCountingSort(ws, cornerCount, vertexCount, slices, id, ws.table.data(), start, corners);
+        return;
+      }
+      auto fill = [&](std::size_t begin, std::size_t end, std::uint32_t* next) {
+        auto place = [&](std::size_t c, std::uint32_t v, std::uint32_t nextId, std::uint32_t previousId) {
+          const std::uint32_t slot = next[v]++;
+          corners[slot] = static_cast<std::uint32_t>(c);
+          nextIds[slot] = nextId;
+          previousIds[slot] = previousId;
+        };
+        for (std::size_t c = begin; c < end; c += 3) {
+          const std::uint32_t v0 = id(c), v1 = id(c + 1), v2 = id(c + 2);
+          place(c, v0, v1, v2);
+          place(c + 1, v1, v2, v0);
+          place(c + 2, v2, v0, v1);
+        }
+      };
+      stableCountingSort(ws, cornerCount, vertexCount, slices, id, ws.table.data(), start, fill, 3);
+    };
     if (identity)
-      stableCountingSort(ws, cornerCount, vertexCount, slices, [&](std::size_t c) { return indices[c]; }, ws.table.data(), start, corners);
+      sort([&](std::size_t c) { return indices[c]; });
     else
-      stableCountingSort(ws, cornerCount, vertexCount, slices, [&](std::size_t c) { return vertexId[indices[c]]; }, ws.table.data(), start, corners);
+      sort([&](std::size_t c) { return vertexId[indices[c]]; });
   } else {
     constexpr std::size_t kVertexRange = 1 << 12, kCornerChunk = 1 << 16;
     const std::size_t ranges = (vertexCount + kVertexRange - 1) / kVertexRange;
@@ -253,7 +300,12 @@ void bucketCorners(WorkspaceData& ws, const MeshArrays& mesh, unsigned threads) 
         }
         for (std::uint32_t i = rangeStart[r]; i < rangeStart[r + 1]; ++i) {
           const std::uint32_t c = byRange[i];
-          corners[cursor[bucketOf(c)]++] = c;
+          const std::uint32_t slot = cursor[bucketOf(c)]++;
+          corners[slot] = c;
+          if (edges) {
+            nextIds[slot] = bucketOf(c % 3 == 2 ? c - 2 : c + 1);
+            previousIds[slot] = bucketOf(c % 3 == 0 ? c + 2 : c - 1);
+          }
         }
       }
     });
@@ -265,7 +317,7 @@ void bucketCorners(WorkspaceData& ws, const MeshArrays& mesh, unsigned threads) 
 
 // Weld: open-addressing tables of vertex + 1; the smallest vertex of equal values wins. Then
 // the buckets.
-void weldAndBucket(WorkspaceData& ws, const MeshArrays& mesh, unsigned threads) {
+void weldAndBucket(WorkspaceData& ws, const MeshArrays& mesh, unsigned threads, bool edges) {
   const std::size_t vertexCount = ws.vertexCount;
 
   // Weld: open-addressing tables of vertex + 1; the smallest vertex of equal values wins.
@@ -298,7 +350,7 @@ void weldAndBucket(WorkspaceData& ws, const MeshArrays& mesh, unsigned threads) 
     weldInPartitions(ws, mesh, insert);
   }
   ws.weldMergedNone = !merged.load(std::memory_order_relaxed);
-  bucketCorners(ws, mesh, threads);
+  bucketCorners(ws, mesh, threads, edges);
 }
 
 }  // namespace tangent::detail

@@ -20,7 +20,7 @@ namespace detail {
 
 std::size_t WorkspaceData::bytes() const {
   auto size = [](const auto& v) { return v.capacity() * sizeof(v[0]); };
-  return size(table) + size(weldCounts) + size(vertexId) + size(bucketStart) + size(bucketCorners) +
+  return size(table) + size(weldCounts) + size(vertexId) + size(bucketStart) + size(bucketCorners) + size(bucketNextId) + size(bucketPreviousId) +
          size(orientation) + size(triangleFlags) + size(cornerLink) + size(cornerState) + size(meshPositions) + size(meshNormals) + size(meshUvs) + size(meshTangents) + size(meshIndices) +
          size(meshRepresentative) + size(meshRepresentativeValues) + size(packedPositions) + size(packedNormals) +
          size(packedUvs) + size(packedIndices) +

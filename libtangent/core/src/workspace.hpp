@@ -25,6 +25,7 @@
 namespace tangent::detail {
 
 constexpr std::uint32_t kNone = ~std::uint32_t(0);
+constexpr std::size_t kBucketIdPadding = 16;
 
 #if defined(TANGENT_SERIAL)
 // Built without threads (TANGENT_SERIAL: the WebAssembly package): one of each, in the
@@ -119,6 +120,11 @@ struct WorkspaceData {
                                              // (vertexId[v] == v), so a corner's id is its index
   BulkVector<std::uint32_t> bucketStart;    // vertexCount + 1: corners of welded id v are
   BulkVector<std::uint32_t> bucketCorners;  // bucketCorners[bucketStart[v] .. bucketStart[v+1])
+  // With the buckets where the kernel asks for them (weldAndBucket's `edges`): each bucketed
+  // corner's next and previous identities (welded ids), at its bucketCorners slot; then
+  // kBucketIdPadding slots that may be read (never used), so that a vector load of a bucket's
+  // ids need not stop at the end.
+  BulkVector<std::uint32_t> bucketNextId, bucketPreviousId;
   BulkVector<std::int8_t> orientation;      // per triangle: sign of the UV area (resolved)
   BulkVector<std::uint8_t> triangleFlags;   // per triangle: TriangleFlag bits
   BulkVector<std::uint32_t> cornerLink;     // per corner: neighbour, then group weight bits
@@ -222,8 +228,9 @@ void beginCall(WorkspaceData& ws, const MeshArrays& mesh);
 // of counters for one thread, the least work; at most ws.threads, fewer where other work
 // runs beside it. Writes only the weld's and the buckets' arrays (table, weldCounts,
 // vertexId, bucketStart, bucketCorners, bucketExtra; cornerLink from four threads, which the
-// caller sizes first), so that passes on other arrays may run beside it.
-void weldAndBucket(WorkspaceData& ws, const MeshArrays& mesh, unsigned threads);
+// caller sizes first; bucketNextId and bucketPreviousId with `edges`), so that passes on other
+// arrays may run beside it.
+void weldAndBucket(WorkspaceData& ws, const MeshArrays& mesh, unsigned threads, bool edges = false);
 
 // The method `mikktspace` on checked arrays: beginCall, then the weld and buckets beside the
 // triangle pass, groups, output pass (finishOutputs), on the calling thread's arena.

@@ -3,9 +3,6 @@
 // triangle pass parked, in a fixed-point grid, so that no order moves a bit.
 #include "kernel.hpp"
 
-#if defined(__SSE2__)
-#include <emmintrin.h>
-#endif
 
 namespace tangent::detail::mikk {
 
@@ -16,36 +13,17 @@ namespace tangent::detail::mikk {
 // Then every corner gets the one shared frame, as the full path would give it. False
 // (nothing written) where the bucket is not that case.
 bool Kernel::fastBucket(std::uint32_t bucket, const std::uint32_t* list, std::uint32_t count, std::uint64_t& mirrored) {
-  std::uint32_t cone = kConeBits;
-  double x, y, z, angleSum;
-#if defined(__SSE2__)
-  // The same exact sums two components at a time.
-  const __m128d quantizer = _mm_set1_pd(kQuantizer);
-  __m128d xy = _mm_setzero_pd(), za = _mm_setzero_pd();
-  const __m128i keep = _mm_setr_epi32(-1, -1, -1, static_cast<int>(~kConeBits));
-  __m128i bits = _mm_set1_epi32(-1);
-  for (std::uint32_t i = 0; i < count; ++i) {
-    const __m128i slot = _mm_loadu_si128(reinterpret_cast<const __m128i*>(&tangents_[4 * std::size_t(list[i])]));
-    bits = _mm_and_si128(bits, slot);
-    const __m128 terms = _mm_castsi128_ps(_mm_and_si128(slot, keep));
-    xy = _mm_add_pd(xy, _mm_sub_pd(_mm_add_pd(_mm_cvtps_pd(terms), quantizer), quantizer));
-    za = _mm_add_pd(za, _mm_sub_pd(_mm_add_pd(_mm_cvtps_pd(_mm_movehl_ps(terms, terms)), quantizer), quantizer));
-  }
-  cone &= static_cast<std::uint32_t>(_mm_cvtsi128_si32(_mm_shuffle_epi32(bits, 3)));
-  double lanes[4];
-  _mm_storeu_pd(lanes, xy);
-  _mm_storeu_pd(lanes + 2, za);
-  x = lanes[0], y = lanes[1], z = lanes[2], angleSum = lanes[3];
-#else
-  x = y = z = angleSum = 0;
-  for (std::uint32_t i = 0; i < count; ++i) {
-    const float* slot = &tangents_[4 * std::size_t(list[i])];
-    const std::uint32_t bits = bitCast<std::uint32_t>(slot[3]);
-    cone &= bits;
-    x += quantized(slot[0]), y += quantized(slot[1]), z += quantized(slot[2]);
-    angleSum += quantized(bitCast<float>(bits & ~kConeBits));
-  }
-#endif
+  FanAccumulator sum;
+  for (std::uint32_t i = 0; i < count; ++i) sum.add(&tangents_[4 * std::size_t(list[i])]);
+  return fanFrame(bucket, list, count, sum.result(), mirrored);
+}
+
+// The one frame of a fan from its summed terms (fastBucket, pairOneFan); false (nothing
+// written) where the sum does not give it.
+bool Kernel::fanFrame(std::uint32_t bucket, const std::uint32_t* list, std::uint32_t count, const FanSum& fan,
+                      std::uint64_t& mirrored) {
+  const std::uint32_t cone = fan.cone;
+  const double x = fan.x, y = fan.y, z = fan.z, angleSum = fan.angleSum;
   if (!(cone & 0x3F) || !(cone & (0x3F << 6))) return false;
   // The sum made orthogonal to the raw normal N (as to the unit normal) and normalized: one
   // square root and one division for the bucket.

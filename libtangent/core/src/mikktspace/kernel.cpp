@@ -70,11 +70,13 @@ KernelOutcome Kernel::run(Report& report) {
   // thread welds and buckets, the others evaluate triangles, then all finish them. From four,
   // the weld alone would take longer than the triangle pass on the other threads.
   const unsigned weldThreads = ws_.threads < 4 ? 1 : ws_.threads;
-  invokeBoth(ws_, [&] { weldAndBucket(ws_, mesh_, weldThreads); }, [&] { evaluateTriangles(report); });
+  invokeBoth(ws_, [&] { weldAndBucket(ws_, mesh_, weldThreads, true); }, [&] { evaluateTriangles(report); });
   vertexId_ = ws_.vertexId.data();
   identity_ = ws_.weldMergedNone;
   start_ = ws_.bucketStart.data();
   corners_ = ws_.bucketCorners.data();
+  nextIds_ = ws_.bucketNextId.data();
+  previousIds_ = ws_.bucketPreviousId.data();
 
   const std::size_t bucketCount = ws_.vertexCount;
   // Pairing and grouping touch only the bucket's own corners, except where a zero-UV
@@ -87,6 +89,9 @@ KernelOutcome Kernel::run(Report& report) {
     BucketScratch& scratch = ws_.scratch.local();
     std::uint64_t local = 0;
     for (std::size_t b = begin; b < end; ++b) {
+      // Most buckets: one fan, paired and summed in one go (pairOneFan); the others, and any
+      // the shortcut does not take, the phases one after the other.
+      if (fused && pairOneFan(static_cast<std::uint32_t>(b), local)) continue;
       pairBucket(static_cast<std::uint32_t>(b), scratch);
       if (fused) groupBucket(static_cast<std::uint32_t>(b), scratch, local);
     }

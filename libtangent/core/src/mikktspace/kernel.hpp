@@ -8,6 +8,10 @@
 #include <cstring>
 #include <type_traits>
 
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
+
 #include "../state_bits.hpp"
 #include "../parallel.hpp"
 #include "angles.hpp"
@@ -15,6 +19,60 @@
 #include "triangle.hpp"
 
 namespace tangent::detail::mikk {
+
+// Rounds x to a multiple of 2^-40 (|x| < 2^11): sums of up to 2^13 / pi such values are exact
+// in double, so they come out the same in any order, with no sort.
+constexpr double kQuantizer = 0x1.8p12;
+inline double quantized(float x) {
+  return (static_cast<double>(x) + kQuantizer) - kQuantizer;
+}
+constexpr std::uint32_t kMostQuantizedTerms = 2048;
+
+// A fan's parked terms (fan.cpp) summed on the 2^-40 grid (exact in double, so in any order
+// the same), with the AND of their cone bits.
+struct FanSum {
+  double x, y, z, angleSum;
+  std::uint32_t cone;
+};
+class FanAccumulator {
+ public:
+  void add(const float* slot) {
+#if defined(__SSE2__)
+    // Two components at a time.
+    const __m128d quantizer = _mm_set1_pd(kQuantizer);
+    const __m128i keep = _mm_setr_epi32(-1, -1, -1, static_cast<int>(~kConeBits));
+    const __m128i bits = _mm_loadu_si128(reinterpret_cast<const __m128i*>(slot));
+    bits_ = _mm_and_si128(bits_, bits);
+    const __m128 terms = _mm_castsi128_ps(_mm_and_si128(bits, keep));
+    xy_ = _mm_add_pd(xy_, _mm_sub_pd(_mm_add_pd(_mm_cvtps_pd(terms), quantizer), quantizer));
+    za_ = _mm_add_pd(za_, _mm_sub_pd(_mm_add_pd(_mm_cvtps_pd(_mm_movehl_ps(terms, terms)), quantizer), quantizer));
+#else
+    const std::uint32_t bits = bitCast<std::uint32_t>(slot[3]);
+    sum_.cone &= bits;
+    sum_.x += quantized(slot[0]), sum_.y += quantized(slot[1]), sum_.z += quantized(slot[2]);
+    sum_.angleSum += quantized(bitCast<float>(bits & ~kConeBits));
+#endif
+  }
+  FanSum result() const {
+#if defined(__SSE2__)
+    double lanes[4];
+    _mm_storeu_pd(lanes, xy_);
+    _mm_storeu_pd(lanes + 2, za_);
+    return {lanes[0], lanes[1], lanes[2], lanes[3],
+            kConeBits & static_cast<std::uint32_t>(_mm_cvtsi128_si32(_mm_shuffle_epi32(bits_, 3)))};
+#else
+    return sum_;
+#endif
+  }
+
+ private:
+#if defined(__SSE2__)
+  __m128d xy_ = _mm_setzero_pd(), za_ = _mm_setzero_pd();
+  __m128i bits_ = _mm_set1_epi32(-1);
+#else
+  FanSum sum_{0, 0, 0, 0, kConeBits};
+#endif
+};
 
 // Union-find over the corners of one bucket (local indices), the smaller root winning.
 class BucketUnionFind {
@@ -113,6 +171,9 @@ class Kernel {
   V3 subgroupSum(const FullBucket& b, const GroupRows& rows, std::size_t self, double& weights) const;
   bool groupFrames(FullBucket& b, std::size_t g, std::size_t gEnd);
   bool fastBucket(std::uint32_t bucket, const std::uint32_t* list, std::uint32_t count, std::uint64_t& mirrored);
+  bool fanFrame(std::uint32_t bucket, const std::uint32_t* list, std::uint32_t count, const FanSum& fan,
+                std::uint64_t& mirrored);
+  bool pairOneFan(std::uint32_t bucket, std::uint64_t& mirrored);
   // Whether the triangles of a bucket's corners share one UV orientation (with a chain of
   // links through all of them from pairBucket: one group of every corner).
   bool oneOrientation(const std::uint32_t* list, std::uint32_t count) const {
@@ -177,14 +238,20 @@ class Kernel {
   // and weight writes), in the same walk over the corners.
   void finishOneFrame(std::uint32_t bucket, const std::uint32_t* list, std::uint32_t count, std::uint64_t& mirrored,
                       const float* frame = nullptr) {
-    const std::uint32_t vertex = a_.indices[list[0]];
+    // Where the weld merged nothing, every corner of the bucket is its input vertex.
+    // Members in locals: the stores below may alias them.
+    const bool identity = identity_;
+    float* tangents = tangents_;
+    std::uint32_t* cornerVertex = cornerVertex_;
+    const std::uint32_t* indices = a_.indices;
+    const std::uint32_t vertex = identity ? bucket : indices[list[0]];
     bool oneVertex = true;
     auto walk = [&](auto withFrame, auto withVertex) {
       for (std::uint32_t i = 0; i < count; ++i) {
         const std::uint32_t c = list[i];
-        if constexpr (decltype(withFrame)::value) std::memcpy(&tangents_[4 * std::size_t(c)], frame, 4 * sizeof(float));
-        const std::uint32_t v = a_.indices[c];
-        if constexpr (decltype(withVertex)::value) cornerVertex_[c] = v;
+        if constexpr (decltype(withFrame)::value) std::memcpy(&tangents[4 * std::size_t(c)], frame, 4 * sizeof(float));
+        const std::uint32_t v = identity ? vertex : indices[c];
+        if constexpr (decltype(withVertex)::value) cornerVertex[c] = v;
         oneVertex &= v == vertex;
       }
     };
@@ -236,6 +303,8 @@ class Kernel {
   bool identity_ = false;  // the weld merged nothing: id(corner) is the corner's index
   const std::uint32_t* start_ = nullptr;
   const std::uint32_t* corners_ = nullptr;
+  const std::uint32_t* nextIds_ = nullptr;      // beside corners_: each corner's next and
+  const std::uint32_t* previousIds_ = nullptr;  // previous identities
   std::uint64_t groupWithAny_ = 0;  // triangles that group with any (not coincident)
   std::uint64_t coincident_ = 0;    // coincident triangles
   // Whether any corner was marked undefined, any edge is non-manifold: where not, the passes
@@ -249,12 +318,5 @@ class Kernel {
   bool orientationsFinal_ = false;
 };
 
-// Rounds x to a multiple of 2^-40 (|x| < 2^11): sums of up to 2^13 / pi such values are exact
-// in double, so they come out the same in any order, with no sort.
-constexpr double kQuantizer = 0x1.8p12;
-inline double quantized(float x) {
-  return (static_cast<double>(x) + kQuantizer) - kQuantizer;
-}
-constexpr std::uint32_t kMostQuantizedTerms = 2048;
 
 }  // namespace tangent::detail::mikk

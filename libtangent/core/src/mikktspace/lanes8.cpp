@@ -26,7 +26,13 @@ namespace tangent::detail::mikk {
 namespace {  // file-local: compiled for AVX2 only, and inlined as in one function
 namespace lanes8 {
 constexpr int kWidth = 8;
+#define TANGENT_LANES_OWN_SELECT 1
 #include "lanes.inc"
+#undef TANGENT_LANES_OWN_SELECT
+// vblendvps takes each lane from x where the mask's sign bit is set: the masks here are all
+// ones or all zeros per lane. vmaxps gives y where x > y is false (NaN in either, or equal).
+inline F select(F mask, F x, F y) { return _mm256_blendv_ps(y, x, mask); }
+inline F maxF(F x, F y) { return _mm256_max_ps(x, y); }
 inline F root(F x) { return _mm256_sqrt_ps(x); }
 inline int movemask(F x) { return _mm256_movemask_ps(x); }
 inline D lowHalf(F x) { return _mm256_cvtps_pd(_mm256_castps256_ps128(x)); }

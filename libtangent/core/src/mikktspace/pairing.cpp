@@ -43,76 +43,80 @@ void Kernel::resetLinks(const std::uint32_t* list, std::uint32_t count) {
 
 namespace {
 
-// The participating corners of one small bucket (pairSmallBucket) and their links.
+// The participating corners of one small bucket (pairSmallBucket) and their links. Where
+// every corner takes part, outId, inId and corner point into the buckets' arrays (which
+// may be read kBucketIdPadding past a bucket); otherwise into the gathered copies here.
 struct SmallBucket {
-  alignas(16) std::uint32_t outId[kSmall], inId[kSmall];  // next and previous identities
-  std::uint32_t corner[kSmall];
+  const std::uint32_t* outId;  // next and previous identities
+  const std::uint32_t* inId;
+  const std::uint32_t* corner;
   std::uint32_t n = 0;
-  std::uint32_t match[kSmall];          // the corner linked from corner[i], kNone where none
-  std::uint8_t successor[kSmall] = {};  // local index of match[i], kSmall where none (zeroed: GCC
-                                        // cannot see that only the first n are read)
+  alignas(16) std::uint32_t gatheredOut[kSmall], gatheredIn[kSmall], gatheredCorner[kSmall];
+  std::uint8_t successor[kSmall] = {};  // local index of the corner linked from corner[i],
+                                        // kSmall where none (zeroed: GCC cannot see that only
+                                        // the first n are read)
   std::uint32_t targets = 0;            // local indices some link reaches
+  // The corner linked from corner[i], kNone where none.
+  std::uint32_t match(std::uint32_t i) const { return successor[i] == kSmall ? kNone : corner[successor[i]]; }
 };
 
-// Fills match, successor and targets from the identities; false where the bucket is not the
+// Fills successor and targets from the identities; false where the bucket is not the
 // simple case (a next identity repeats, or is the previous identity of two corners).
 inline bool linkSmallBucket(SmallBucket& b) {
   const std::uint32_t n = b.n;
 #if defined(__SSE2__)
   // Lane masks of equal identities, four lanes a compare (8 or 16 lanes, those past n
-  // zeroed and masked off).
+  // masked off).
   const std::uint32_t width = n <= 8 ? 8 : 16;
-  for (std::uint32_t j = n; j < width; ++j) b.outId[j] = b.inId[j] = 0;
   const std::uint32_t lanes = (std::uint32_t(1) << n) - 1;
   auto masks = [&](auto vectorCount) {
     constexpr int kVectors = decltype(vectorCount)::value;
+    // In locals: the byte stores to successor may alias what the lambda captures.
+    const std::uint32_t count = n, valid = lanes;
+    const std::uint32_t* outId = b.outId;
+    std::uint8_t* successor = b.successor;
     __m128i outs[kVectors], ins[kVectors];
     for (int v = 0; v < kVectors; ++v) {
-      outs[v] = _mm_load_si128(reinterpret_cast<const __m128i*>(b.outId + 4 * v));
-      ins[v] = _mm_load_si128(reinterpret_cast<const __m128i*>(b.inId + 4 * v));
+      outs[v] = _mm_loadu_si128(reinterpret_cast<const __m128i*>(outId + 4 * v));
+      ins[v] = _mm_loadu_si128(reinterpret_cast<const __m128i*>(b.inId + 4 * v));
     }
     // Next identities all different: a matched one (some previous identity equal to it) and
     // an unmatched one never are equal; two matched ones that were equal would match the same
     // previous identity, and two different ones never do, so the matched ones are all
-    // different exactly when their targets are as many as they are. Only the unmatched (the
+    // different exactly when no two of them reach the same target. Only the unmatched (the
     // ends of open fans) are compared with the other next identities.
-    std::uint32_t bad = 0, matched = 0;
-    for (std::uint32_t i = 0; i < n; ++i) {
-      const __m128i key = _mm_set1_epi32(static_cast<int>(b.outId[i]));
+    std::uint32_t bad = 0, targets = 0;
+    for (std::uint32_t i = 0; i < count; ++i) {
+      const __m128i key = _mm_set1_epi32(static_cast<int>(outId[i]));
       auto laneMask = [&](__m128i lanesOf) {
         return static_cast<std::uint32_t>(_mm_movemask_ps(_mm_castsi128_ps(_mm_cmpeq_epi32(key, lanesOf))));
       };
       std::uint32_t sameIn = 0;
       for (int v = 0; v < kVectors; ++v) sameIn |= laneMask(ins[v]) << (4 * v);
-      sameIn &= lanes;
+      sameIn &= valid;
       if (sameIn == 0) {
         std::uint32_t sameOut = 0;
         for (int v = 0; v < kVectors; ++v) sameOut |= laneMask(outs[v]) << (4 * v);
-        bad |= (sameOut & lanes) ^ (std::uint32_t(1) << i);
-        b.match[i] = kNone;
-        b.successor[i] = kSmall;
+        bad |= (sameOut & valid) ^ (std::uint32_t(1) << i);
+        successor[i] = kSmall;
         continue;
       }
-      ++matched;
-      bad |= sameIn & (sameIn - 1);
-      const auto j = static_cast<std::uint32_t>(std::countr_zero(sameIn));
-      b.match[i] = b.corner[j];
-      b.successor[i] = static_cast<std::uint8_t>(j);
-      b.targets |= sameIn;
+      bad |= (sameIn & (sameIn - 1)) | (targets & sameIn);
+      successor[i] = static_cast<std::uint8_t>(std::countr_zero(sameIn));
+      targets |= sameIn;
     }
-    return bad == 0 && static_cast<std::uint32_t>(std::popcount(b.targets)) == matched;
+    b.targets = targets;
+    return bad == 0;
   };
   return width == 8 ? masks(std::integral_constant<int, 2>{}) : masks(std::integral_constant<int, 4>{});
 #else
   bool simple = true;
   for (std::uint32_t i = 0; i < n; ++i) {
     std::uint32_t sameOut = 0, sameIn = 0;
-    b.match[i] = kNone;
     b.successor[i] = kSmall;
     for (std::uint32_t j = 0; j < n; ++j) {
       sameOut += b.outId[i] == b.outId[j];
       sameIn += b.outId[i] == b.inId[j];
-      b.match[i] = b.outId[i] == b.inId[j] ? b.corner[j] : b.match[i];
       b.successor[i] = b.outId[i] == b.inId[j] ? static_cast<std::uint8_t>(j) : b.successor[i];
       b.targets |= b.outId[i] == b.inId[j] ? std::uint32_t(1) << j : 0;
     }
@@ -149,24 +153,39 @@ inline bool oneSmallChain(const SmallBucket& b) {
 // matches may repeat: the merge links nothing there either.) False where the bucket is not
 // that case (then pairSorted pairs it).
 bool Kernel::pairSmallBucket(std::uint32_t bucket, const std::uint32_t* list, std::uint32_t count) {
-  const std::int8_t firstOrientation = ws_.orientation[list[0] / 3];
-  bool oneOrientation = true;
-  SmallBucket b;
-  std::uint32_t n = 0;
+  // The arrays in locals: the byte stores below may alias the workspace's members.
+  std::uint8_t* state = ws_.cornerState.data();
+  const std::uint8_t* triangleFlags = ws_.triangleFlags.data();
+  const std::int8_t* orientation = ws_.orientation.data();
+  const std::int8_t firstOrientation = orientation[list[0] / 3];
+  bool oneOrientation = true, all = true;
   for (std::uint32_t i = 0; i < count; ++i) {
     const std::uint32_t c = list[i];
-    ws_.cornerState[c] = 0;
-    if (!participates(c)) {
-      ws_.cornerLink[c] = kNone;
-      continue;
-    }
-    oneOrientation &= ws_.orientation[c / 3] == firstOrientation;
-    b.corner[n] = c;
-    b.outId[n] = id(nextCorner(c));
-    b.inId[n] = id(previousCorner(c));
-    ++n;
+    state[c] = 0;
+    all &= !(triangleFlags[c / 3] & kCoincident);  // participates(c)
+    oneOrientation &= orientation[c / 3] == firstOrientation;
   }
-  b.n = n;
+  SmallBucket b;
+  if (all) {  // the identities bucketing put beside the corners
+    const std::size_t first = static_cast<std::size_t>(list - corners_);
+    b.outId = nextIds_ + first, b.inId = previousIds_ + first, b.corner = list;
+    b.n = count;
+  } else {
+    std::uint32_t n = 0;
+    for (std::uint32_t i = 0; i < count; ++i) {
+      const std::uint32_t c = list[i];
+      if (!participates(c)) {
+        ws_.cornerLink[c] = kNone;
+        continue;
+      }
+      b.gatheredCorner[n] = c;
+      b.gatheredOut[n] = id(nextCorner(c));
+      b.gatheredIn[n] = id(previousCorner(c));
+      ++n;
+    }
+    b.outId = b.gatheredOut, b.inId = b.gatheredIn, b.corner = b.gatheredCorner;
+    b.n = n;
+  }
   if (!linkSmallBucket(b)) return false;
   const bool oneChain = b.n == count && oneSmallChain(b);
   const std::uint8_t chain = !oneChain ? kNotOneChain : (oneOrientation && orientationsFinal_ ? kOneFan : kOneChain);
@@ -175,9 +194,41 @@ bool Kernel::pairSmallBucket(std::uint32_t bucket, const std::uint32_t* list, st
   // orientations are final nothing after grouping reads the links of corners that are not
   // copies: those links are not written.
   if (chain != kOneFan) {
-    for (std::uint32_t i = 0; i < b.n; ++i) ws_.cornerLink[b.corner[i]] = b.match[i];
+    for (std::uint32_t i = 0; i < b.n; ++i) ws_.cornerLink[b.corner[i]] = b.match(i);
   }
   return true;
+}
+
+// Phases 2 and 4 of the common bucket at once, where orientations are final when buckets are
+// paired: a small bucket whose corners all take part, whose links are the simple case
+// (linkSmallBucket) and one chain through every corner (pairSmallBucket's kOneFan), of one
+// orientation, and whose parked terms give the fan's frame (fastBucket). Then the same frame,
+// states and bucketUniform as pairBucket and groupBucket would write, with one walk over the
+// corners' slots and no gathers of identities; false (nothing written but the corners'
+// cleared states, which pairBucket clears too) where the bucket is not that case.
+bool Kernel::pairOneFan(std::uint32_t bucket, std::uint64_t& mirrored) {
+  const std::uint32_t first = start_[bucket], count = start_[bucket + 1] - first;
+  if (count < 2 || count > kSmall || !ws_.fastBuckets) return false;
+  const std::uint32_t* list = corners_ + first;
+  SmallBucket b;
+  b.outId = nextIds_ + first, b.inId = previousIds_ + first, b.corner = list;
+  b.n = count;
+  if (!linkSmallBucket(b) || !oneSmallChain(b)) return false;
+  std::uint8_t* state = ws_.cornerState.data();
+  const std::uint8_t* triangleFlags = ws_.triangleFlags.data();
+  const std::int8_t* orientation = ws_.orientation.data();
+  const float* tangents = tangents_;
+  const std::int8_t firstOrientation = orientation[list[0] / 3];
+  bool usable = true;
+  FanAccumulator sum;
+  for (std::uint32_t i = 0; i < count; ++i) {
+    const std::uint32_t c = list[i];
+    state[c] = 0;
+    usable &= !(triangleFlags[c / 3] & kCoincident) & (orientation[c / 3] == firstOrientation);
+    sum.add(&tangents[4 * std::size_t(c)]);
+  }
+  if (!usable) return false;
+  return fanFrame(bucket, list, count, sum.result(), mirrored);
 }
 
 // The general case: outgoing and incoming half-edges sorted by the identity at their other
