@@ -9,29 +9,36 @@
 #include <set>
 #include <span>
 #include <string>
+#include <type_traits>
+#include <variant>
 #include <vector>
 
 #include "asset.hpp"
+#include "tangent/bulk_buffer.hpp"
 
 namespace tangent::gltf::detail {
 
 constexpr int kArrayBuffer = 34962;
 constexpr int kElementArrayBuffer = 34963;
 
-// The data of a new bufferView: bytes, or floats kept as they are (a tangent array is not
-// copied into bytes to be written).
+// The data of a new bufferView: bytes, or an array kept as it is (tangents, and 32-bit indices
+// as the core wrote them, are not copied into bytes to be written).
 class ViewBytes {
  public:
-  ViewBytes(std::vector<std::uint8_t> bytes) : bytes_(std::move(bytes)) {}  // NOLINT: implicit on purpose
-  ViewBytes(std::vector<float> floats) : floats_(std::move(floats)) {}      // NOLINT
+  template <typename Array>
+    requires(!std::is_same_v<Array, ViewBytes>)
+  ViewBytes(Array array) : data_(std::move(array)) {}  // NOLINT: implicit on purpose
   std::span<const std::uint8_t> bytes() const {
-    if (!floats_.empty()) return {reinterpret_cast<const std::uint8_t*>(floats_.data()), floats_.size() * sizeof(float)};
-    return {bytes_.data(), bytes_.size()};
+    return std::visit(
+        [](const auto& array) {
+          return std::span<const std::uint8_t>(reinterpret_cast<const std::uint8_t*>(array.data()),
+                                               array.size() * sizeof(array[0]));
+        },
+        data_);
   }
 
  private:
-  std::vector<std::uint8_t> bytes_;
-  std::vector<float> floats_;
+  std::variant<std::vector<std::uint8_t>, std::vector<float>, BulkVector<std::uint32_t>> data_;
 };
 
 class OutputDocument {
