@@ -5,6 +5,7 @@
 #pragma once
 
 #include <filesystem>
+#include <memory>
 #include <nlohmann/json.hpp>
 #include <set>
 #include <span>
@@ -15,6 +16,7 @@
 
 #include "asset.hpp"
 #include "tangent/bulk_buffer.hpp"
+#include "tangent/output.hpp"
 
 namespace tangent::gltf::detail {
 
@@ -39,6 +41,26 @@ class ViewBytes {
 
  private:
   std::variant<std::vector<std::uint8_t>, std::vector<float>, BulkVector<std::uint32_t>> data_;
+};
+
+// Files and folders a write creates besides its output (image copies and the folders they
+// go into), each guarded against signals as a temporary is: removed again, newest first, when
+// the object goes out of scope before keep() (the output was not written), so that a failed
+// bake leaves nothing new behind. A folder is removed only where empty.
+class CreatedFiles {
+ public:
+  CreatedFiles() = default;
+  CreatedFiles(const CreatedFiles&) = delete;
+  CreatedFiles& operator=(const CreatedFiles&) = delete;
+  ~CreatedFiles();
+  void add(const std::filesystem::path& path);
+  // The folders of `folder` that do not exist yet, created and added.
+  void createFolders(const std::filesystem::path& folder);
+  void keep();  // the output is in place: everything added stays
+
+ private:
+  std::vector<std::filesystem::path> paths_;
+  std::vector<std::unique_ptr<output::TemporaryGuard>> guards_;
 };
 
 class OutputDocument {
@@ -68,7 +90,7 @@ class OutputDocument {
   std::vector<std::span<const std::uint8_t>> packBuffers();
   // External images inside the input's folder are copied beside the output (same relative
   // path); others (a wider --asset-root) are referred to relative to the output.
-  void placeImages(const std::filesystem::path& outputDir);
+  void placeImages(const std::filesystem::path& outputDir, CreatedFiles& created);
 
   Asset& asset_;
   std::set<int> accessorsBefore_;
