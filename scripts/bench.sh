@@ -65,7 +65,7 @@ cat "$out/kernel.err"
 
 measure() {  # measure LABEL COMMAND...: prints "median_seconds max_rss_kb"
   # Wall time from a monotonic clock in ns around the child alone (GNU time's %e has 10 ms
-  # steps, the bake's whole run is ~100 ms), peak RSS and CPU time of that child from wait4.
+  # steps, the bake's whole run is ~100 ms), and that child's peak RSS from wait4.
   # At least $runs runs; short commands are repeated until 2 s were spent or 15 runs, so that
   # their median is stable.
   shift  # the label only documents the call
