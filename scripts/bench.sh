@@ -10,7 +10,8 @@
 #   - the reference MikkTSpace kernel (npm mikktspace, WebAssembly) on the same spheres
 #   - whole-process runs on generated single-primitive UV spheres of ~1e5, 1e6 and 4e6
 #     triangles: tangent bake, gltf-transform tangents (npm @gltf-transform/cli) and assimp
-#     export -cts (Debian assimp-utils), median wall time and peak memory (GNU time)
+#     export -cts (Debian assimp-utils), median wall time (monotonic clock, ms resolution; runs of
+#     a few hundred ms repeated until 2 s were spent) and peak memory (wait4)
 # Writes docs/benchmarks.md, docs/bench-plot.png and .svg, docs/bench.csv, and the tables
 # between the bench markers of README.md.
 # Usage: scripts/bench.sh [--quick]   (--quick: 1e5 only, one run each, report in build/bench/
@@ -62,16 +63,27 @@ repeated=$([ $kernel_reps -gt 1 ] && echo true || echo false)
   > "$out/kernel.json" 2> "$out/kernel.err" || { cat "$out/kernel.err" >&2; exit 1; }
 cat "$out/kernel.err"
 
-median() { sort -g | awk '{a[NR]=$1} END {print a[int((NR+1)/2)]}'; }
 measure() {  # measure LABEL COMMAND...: prints "median_seconds max_rss_kb"
+  # Wall time from a monotonic clock in ns around the child alone (GNU time's %e has 10 ms
+  # steps, the bake's whole run is ~100 ms), and that child's peak RSS from wait4.
+  # At least $runs runs; short commands are repeated until 2 s were spent or 15 runs, so that
+  # their median is stable.
   shift  # the label only documents the call
-  local times=() rss=()
-  for _ in $(seq $runs); do
-    /usr/bin/time -f "%e %M" -o "$out/time.txt" "$@" >/dev/null 2>&1 || { echo "failed: $*" >&2; echo "nan nan"; return; }
-    read -r t m < "$out/time.txt"
-    times+=("$t"); rss+=("$m")
-  done
-  echo "$(printf '%s\n' "${times[@]}" | median) $(printf '%s\n' "${rss[@]}" | sort -g | tail -1)"
+  python3 - "$runs" "$@" <<'PY' || echo "nan nan"
+import os, statistics, subprocess, sys, time
+runs, command = int(sys.argv[1]), sys.argv[2:]
+walls, rss, spent = [], [], 0.0
+while len(walls) < runs or (spent < 2.0 and len(walls) < 15):
+    start = time.monotonic_ns()
+    child = subprocess.Popen(command, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+    _, status, usage = os.wait4(child.pid, 0)
+    wall = (time.monotonic_ns() - start) / 1e9
+    if os.waitstatus_to_exitcode(status) != 0:
+        print("failed: " + " ".join(command), file=sys.stderr)
+        sys.exit(1)
+    walls.append(wall); rss.append(usage.ru_maxrss); spent += wall
+print(f"{statistics.median(walls):.4f} {max(rss)}")
+PY
 }
 
 rows=()
@@ -139,7 +151,7 @@ npm = {r[7]: float(r[8]) if r[8] else float("nan") for r in rows}
 threads = context.get("hardware_threads", "?")
 peers_built = any(b["name"].startswith("mikktspace.c/") for b in kernel["benchmarks"])
 runs_note = ("one run each, --quick" if quick else
-             f"medians of 3 repetitions; the kernel benchmark's: {os.environ.get('KERNEL_REPS', '3')}, in random order")
+             f"medians of 3 repetitions (at least; short whole-process runs up to 15); the kernel benchmark's: {os.environ.get('KERNEL_REPS', '3')}, in random order")
 
 lines = ["# Benchmarks", "",
          f"Machine: {cpu}, {os.cpu_count()} hardware threads, {platform.system()} {platform.release()}; "

@@ -372,6 +372,72 @@ def test_a_full_disk_leaves_the_previous_glb_and_no_temporary(tmp_path):
     assert ".tmp-" not in output, output
 
 
+def with_external_image(doc, uri="tex/n.png"):
+    """The document with its image in a file beside it (`uri`) instead of a data: URI."""
+    doc = json.loads(json.dumps(doc))
+    doc["images"] = [{"uri": uri}]
+    return doc
+
+
+@pytest.mark.parametrize("suffix", [".glb", ".gltf"])
+def test_a_full_disk_leaves_no_image_copy_or_folder_behind(tmp_path, suffix):
+    # The image copy (one page) fits, the output after it does not: the failed bake takes the
+    # copy and the folder it made for it away again.
+    doc, blob = grid(24)
+    asset = write(tmp_path / "in" / "in.gltf", gltf_bytes(with_external_image(doc), blob))
+    write(tmp_path / "in" / "tex" / "n.png", PNG)
+    script = f"""
+      mkdir "$DISK/out" && echo kept > "$DISK/out/earlier.txt"
+      {FILL_BUT_ONE_PAGE}
+      "$T" bake '{asset}' -o "$DISK/out/o{suffix}"; echo "exit=$?"
+      rm -f "$DISK/filler"
+      cd "$DISK" && find . | sort
+    """
+    status, output = on_small_disk(tmp_path, script)
+    assert status == 0, output
+    assert "exit=1" in output, output
+    assert "No space left on device" in output and ("o.glb" if suffix == ".glb" else "o.bin") in output, output
+    listing = [line for line in output.splitlines() if line.startswith(".")]
+    assert listing == [".", "./out", "./out/earlier.txt"], output
+
+
+def test_a_batch_on_a_full_disk_names_the_file_and_keeps_earlier_outputs(tmp_path):
+    # small.glb's output fits in the pages left, large.glb's does not: the batch goes on past
+    # the failure, names it, and the outputs of an earlier run stay as they were.
+    tree = tmp_path / "tree"
+    small_doc, small_blob = grid(3)
+    large_doc, large_blob = grid(40)
+    write(tree / "large.gltf", gltf_bytes(with_external_image(large_doc), large_blob))
+    write(tree / "tex" / "n.png", PNG)
+    write(tree / "small.glb", glb_bytes(small_doc, small_blob))
+    before = snapshot(tree)
+    script = f"""
+      "$T" bake '{tree}' --recursive --out-dir "$DISK/out" --quiet || exit 10
+      cp -r "$DISK/out" '{tmp_path}/earlier'
+      (dd if=/dev/zero of="$DISK/filler" bs=4096 2>/dev/null || true) && truncate -s -16384 "$DISK/filler"
+      "$T" bake '{tree}' --recursive --out-dir "$DISK/out" --method flat; echo "exit=$?"
+      rm -f "$DISK/filler"
+      cp -r "$DISK/out" '{tmp_path}/after'
+    """
+    status, output = on_small_disk(tmp_path, script)
+    assert status == 0, output
+    assert "exit=1" in output, output
+    failed = [line for line in output.splitlines() if line.startswith("error: ")]
+    assert len(failed) == 1 and "No space left on device" in failed[0], output
+    assert failed[0].startswith(f"error: {tree / 'large.gltf'}: "), output
+    earlier, after = snapshot(tmp_path / "earlier"), snapshot(tmp_path / "after")
+    assert temporaries(tmp_path / "after") == [], output
+    # The failed file's earlier output (its .gltf, .bin and image copy) is untouched...
+    assert {"large.gltf", "large.bin", "tex/n.png"} <= set(earlier), earlier
+    for name in ("large.gltf", "large.bin", "tex/n.png"):
+        assert after.get(name) == earlier[name], (name, output)
+    assert not set(after) - set(earlier) - {"tangent-manifest.journal"}, (sorted(after), output)
+    # ...and the file that fitted was baked again, with the other method.
+    assert_valid_glb(tmp_path / "after" / "small.glb")
+    assert after["small.glb"] != earlier["small.glb"], output
+    assert snapshot(tree) == before
+
+
 # --- interrupted batches ------------------------------------------------------------------
 
 def finished_files(out):

@@ -99,6 +99,13 @@ class StdoutTarget {
   std::unique_ptr<output::TemporaryGuard> dirGuard_, fileGuard_;  // removed on SIGINT/SIGTERM
 };
 
+// A batch's failure message, led by the input file where it does not start with it (a write
+// that failed names the output file, a full disk for one): each failed line says which file.
+std::string namingInput(const std::filesystem::path& input, const std::string& message) {
+  const std::string name = input.string();
+  return message.compare(0, name.size(), name) == 0 ? message : name + ": " + message;
+}
+
 int usageError(const std::string& message) {
   std::cerr << "tangent bake: " << message << "\n\n" << kBakeUsage;
   return kExitUsage;
@@ -187,8 +194,10 @@ int bakeTrees(const std::vector<std::filesystem::path>& folders, const std::file
         ++counts[entry.outcome];
         progress.clear();
         // A file that failed last time and has not changed still fails.
+        // Named by its input where the message names only an output (a write that failed).
         if (entry.outcome == gltf::FileOutcome::failed)
-          std::cerr << "error: " << shown(entry.error) << (entry.skipped ? " (unchanged since the last run)" : "") << "\n";
+          std::cerr << "error: " << shown(namingInput(entry.input, entry.error)) << (entry.skipped ? " (unchanged since the last run)" : "")
+                    << "\n";
         else if (!quiet)
           log << shown(entry.input.string()) << " -> " << shown(entry.output.string()) << ": " << gltf::toString(entry.outcome)
               << "\n" << std::flush;

@@ -133,10 +133,11 @@ VertexSplit splitVertices(const StridedMesh& mesh, const BulkVector<float>& corn
   return split;
 }
 
-std::vector<std::uint8_t> gather(const AccessorData& data, const std::vector<std::uint32_t>& source) {
-  const std::size_t size = data.elementSize();
+// Elements `source` (in that order) of elements of `size` bytes, `stride` apart from `first`.
+std::vector<std::uint8_t> gather(const std::uint8_t* first, std::size_t size, std::size_t stride,
+                                const std::vector<std::uint32_t>& source) {
   std::vector<std::uint8_t> out(source.size() * size);
-  for (std::size_t i = 0; i < source.size(); ++i) std::memcpy(&out[i * size], &data.bytes[source[i] * size], size);
+  for (std::size_t i = 0; i < source.size(); ++i) std::memcpy(&out[i * size], first + source[i] * stride, size);
   return out;
 }
 
@@ -252,6 +253,15 @@ struct ComputedTangents {
   bool partOfBuffer = false;
 };
 
+// An accessor's elements as rebuilt attributes gather them: where they lie in the loaded
+// buffer (denseElements), else decoded (sparse values, no bufferView; Draco's, whose bounds
+// are recomputed from them). `data` has the header, and the bytes where decoded.
+struct CarriedElements {
+  AccessorData data;
+  const std::uint8_t* first = nullptr;
+  std::size_t stride = 0;
+};
+
 // A morph target's deltas as the tangents are computed from them: empty where absent.
 struct TargetDeltas {
   std::vector<float> positions, normals;
@@ -364,13 +374,13 @@ class PrimitiveBaker {
   ComputedTangents computeSplit(PrimitivePlan& plan, const StridedMesh& mesh, int indexComponentType);
   Options coreOptions(std::size_t corners);
   Arena* arenaFor(const Options& options);
-  const AccessorData& carriedData(int index, const std::string& what);
+  const CarriedElements& carriedData(int index, const std::string& what, bool decoded);
   SharedBake emit(const PrimitivePlan& plan, ComputedTangents& computed);
   void refer(PrimitivePlan& plan, const SharedBake& shared);
   void rebuildAttributes(const PrimitivePlan& plan, const ComputedTangents& computed, EmittedAccessors& emitted);
-  int addGathered(int index, const AccessorData& data, const ComputedTangents& computed);
+  int addGathered(int index, const CarriedElements& carried, const ComputedTangents& computed);
   void rebuildTargets(const PrimitivePlan& plan, const ComputedTangents& computed, EmittedAccessors& emitted);
-  void writeIndices(const ComputedTangents& computed, EmittedAccessors& emitted);
+  void writeIndices(ComputedTangents& computed, EmittedAccessors& emitted);
   void writeTangents(ComputedTangents& computed, EmittedAccessors& emitted);
 
   detail::Asset& asset_;
@@ -380,7 +390,7 @@ class PrimitiveBaker {
   std::optional<Arena> arena_;                              // bake's own passes over a primitive's corners
   [[maybe_unused]] unsigned arenaThreads_ = 0;              // arena_'s (none without threads)
   std::unordered_map<std::string, SharedBake> baked_;       // by detail::sameInputKey
-  std::unordered_map<int, AccessorData> carried_;           // accessors rebuilt from, while one group is emitted
+  std::unordered_map<int, CarriedElements> carried_;        // by accessor (and decoded: + 1 << 30), while one group is emitted
   std::unordered_map<std::size_t, SharedBake> groupBakes_;  // bakeVertexGroup's, by the plan of each input key
 };
 
@@ -831,12 +841,27 @@ std::optional<StridedMesh> PrimitiveBaker::inPlaceMesh(const PrimitivePlan& plan
   return mesh;
 }
 
-// An accessor rebuilt attributes are gathered from, decoded once while one primitive or group is
-// emitted (the parts of a shared buffer would otherwise each decode the whole of it).
-const AccessorData& PrimitiveBaker::carriedData(int index, const std::string& what) {
-  auto found = carried_.find(index);
-  if (found == carried_.end()) found = carried_.emplace(index, detail::readAccessor(asset_.model, index, what)).first;
-  return found->second;
+// An accessor rebuilt attributes are gathered from: read where it lies in the loaded buffer
+// (no copy of the whole accessor), else decoded once while one primitive or group is emitted
+// (the parts of a shared buffer would otherwise each decode the whole of it).
+const CarriedElements& PrimitiveBaker::carriedData(int index, const std::string& what, bool decoded) {
+  const int key = decoded ? index + (1 << 30) : index;
+  auto found = carried_.find(key);
+  if (found != carried_.end()) return found->second;
+  CarriedElements carried;
+  std::optional<detail::DenseElements> dense;
+  if (!decoded) dense = detail::denseElements(asset_.model, index, what);
+  if (dense) {
+    carried.data = std::move(dense->header);
+    carried.first = dense->first;
+    carried.stride = dense->stride;
+  } else {
+    carried.data = detail::readAccessor(asset_.model, index, what);
+    carried.stride = carried.data.elementSize();
+  }
+  CarriedElements& stored = carried_.emplace(key, std::move(carried)).first->second;
+  if (!dense) stored.first = stored.data.bytes.data();
+  return stored;
 }
 
 // New accessors in a fixed order (carried attributes, carried target attributes, indices,
@@ -906,21 +931,22 @@ void PrimitiveBaker::rebuildAttributes(const PrimitivePlan& plan, const Computed
     if (name != "TANGENT") carried.emplace_back(name, accessorRef.get<int>());
   }
   for (const auto& [name, index] : carried) {
-    const AccessorData& data = carriedData(index, plan.where + ": " + name);
-    if (data.count != computed.vertexCount)
-      throw InputError(plan.where + ": " + name + " (accessor " + std::to_string(index) + ") has " + std::to_string(data.count) +
+    const CarriedElements& elements = carriedData(index, plan.where + ": " + name, computed.compression.draco);
+    if (elements.data.count != computed.vertexCount)
+      throw InputError(plan.where + ": " + name + " (accessor " + std::to_string(index) + ") has " + std::to_string(elements.data.count) +
                        " elements, POSITION has " + std::to_string(computed.vertexCount));
-    emitted.attributes.emplace_back(name, addGathered(index, data, computed));
+    emitted.attributes.emplace_back(name, addGathered(index, elements, computed));
   }
 }
 
 // Accessor `index` (decoded as `data`) gathered into the split vertices, as a new accessor. Its
 // min/max are those of the data written where they may not hold: Draco's quantization moves
 // values, and a part of a shared buffer spans less than the whole.
-int PrimitiveBaker::addGathered(int index, const AccessorData& data, const ComputedTangents& computed) {
+int PrimitiveBaker::addGathered(int index, const CarriedElements& carried, const ComputedTangents& computed) {
+  const AccessorData& data = carried.data;
   const std::size_t outCount = computed.split.source.size();
   Json accessor = carriedAccessor(output_.json()["accessors"][index], outCount);
-  std::vector<std::uint8_t> bytes = gather(data, computed.split.source);
+  std::vector<std::uint8_t> bytes = gather(carried.first, data.elementSize(), carried.stride, computed.split.source);
   if (computed.partOfBuffer) {
     AccessorData written;  // data's header, the gathered bytes (a copy of data would copy the whole buffer)
     written.componentType = data.componentType;
@@ -929,9 +955,8 @@ int PrimitiveBaker::addGathered(int index, const AccessorData& data, const Compu
     written.components = data.components;
     written.componentSize = data.componentSize;
     written.count = outCount;
-    written.bytes = std::move(bytes);
+    written.bytes.assign(bytes.begin(), bytes.end());
     recomputeBounds(accessor, written);
-    bytes = std::move(written.bytes);
   } else if (computed.compression.draco) {
     recomputeBounds(accessor, data);
   }
@@ -950,17 +975,18 @@ void PrimitiveBaker::rebuildTargets(const PrimitivePlan& plan, const ComputedTan
     }
     for (const auto& [name, index] : carried) {
       const std::string what = plan.where + ": target " + std::to_string(t) + " " + name;
-      const AccessorData& data = carriedData(index, what);
-      if (data.count != computed.vertexCount)
-        throw InputError(what + " has " + std::to_string(data.count) + " elements, POSITION has " + std::to_string(computed.vertexCount));
-      emitted.targets[t].emplace_back(name, addGathered(index, data, computed));
+      const CarriedElements& elements = carriedData(index, what, computed.compression.draco);
+      if (elements.data.count != computed.vertexCount)
+        throw InputError(what + " has " + std::to_string(elements.data.count) + " elements, POSITION has " +
+                         std::to_string(computed.vertexCount));
+      emitted.targets[t].emplace_back(name, addGathered(index, elements, computed));
     }
   }
 }
 
 // Indices of the split vertices as a triangle list: the original component type, widened when
 // the split outgrows it (the largest value of each type is primitive restart and not allowed).
-void PrimitiveBaker::writeIndices(const ComputedTangents& computed, EmittedAccessors& emitted) {
+void PrimitiveBaker::writeIndices(ComputedTangents& computed, EmittedAccessors& emitted) {
   const std::size_t outCount = computed.split.source.size();
   const BulkVector<std::uint32_t>& cornerVertex = computed.split.cornerVertex;
   int indexComponentType = computed.indexComponentType;
@@ -969,16 +995,20 @@ void PrimitiveBaker::writeIndices(const ComputedTangents& computed, EmittedAcces
   if (outCount - 1 >= 65535 && indexComponentType == TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT)
     indexComponentType = TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT;
   const std::size_t indexSize = detail::componentBytes(indexComponentType);
+  const Json indexAccessor = {{"componentType", indexComponentType}, {"count", cornerVertex.size()}, {"type", "SCALAR"}};
+  if (indexSize == 4) {  // the core's array is the index data (little-endian, as glTF's)
+    emitted.indices = output_.addAccessor(indexAccessor, std::move(computed.split.cornerVertex), 4, detail::kElementArrayBuffer);
+    return;
+  }
   std::vector<std::uint8_t> indexBytes(cornerVertex.size() * indexSize);
   for (std::size_t c = 0; c < cornerVertex.size(); ++c) {
     const std::uint32_t value = cornerVertex[c];
     if (indexSize == 1) indexBytes[c] = static_cast<std::uint8_t>(value);
-    else if (indexSize == 2) {
+    else {
       const auto v16 = static_cast<std::uint16_t>(value);
       std::memcpy(&indexBytes[2 * c], &v16, 2);
-    } else std::memcpy(&indexBytes[4 * c], &value, 4);
+    }
   }
-  const Json indexAccessor = {{"componentType", indexComponentType}, {"count", cornerVertex.size()}, {"type", "SCALAR"}};
   emitted.indices = output_.addAccessor(indexAccessor, std::move(indexBytes), indexSize, detail::kElementArrayBuffer);
 }
 

@@ -5,33 +5,62 @@
 #pragma once
 
 #include <filesystem>
+#include <memory>
 #include <nlohmann/json.hpp>
 #include <set>
 #include <span>
 #include <string>
+#include <type_traits>
+#include <variant>
 #include <vector>
 
 #include "asset.hpp"
+#include "tangent/bulk_buffer.hpp"
+#include "tangent/output.hpp"
 
 namespace tangent::gltf::detail {
 
 constexpr int kArrayBuffer = 34962;
 constexpr int kElementArrayBuffer = 34963;
 
-// The data of a new bufferView: bytes, or floats kept as they are (a tangent array is not
-// copied into bytes to be written).
+// The data of a new bufferView: bytes, or an array kept as it is (tangents, and 32-bit indices
+// as the core wrote them, are not copied into bytes to be written).
 class ViewBytes {
  public:
-  ViewBytes(std::vector<std::uint8_t> bytes) : bytes_(std::move(bytes)) {}  // NOLINT: implicit on purpose
-  ViewBytes(std::vector<float> floats) : floats_(std::move(floats)) {}      // NOLINT
+  template <typename Array>
+    requires(!std::is_same_v<Array, ViewBytes>)
+  ViewBytes(Array array) : data_(std::move(array)) {}  // NOLINT: implicit on purpose
   std::span<const std::uint8_t> bytes() const {
-    if (!floats_.empty()) return {reinterpret_cast<const std::uint8_t*>(floats_.data()), floats_.size() * sizeof(float)};
-    return {bytes_.data(), bytes_.size()};
+    return std::visit(
+        [](const auto& array) {
+          return std::span<const std::uint8_t>(reinterpret_cast<const std::uint8_t*>(array.data()),
+                                               array.size() * sizeof(array[0]));
+        },
+        data_);
   }
 
  private:
-  std::vector<std::uint8_t> bytes_;
-  std::vector<float> floats_;
+  std::variant<std::vector<std::uint8_t>, std::vector<float>, BulkVector<std::uint32_t>> data_;
+};
+
+// Files and folders a write creates besides its output (image copies and the folders they
+// go into), each guarded against signals as a temporary is: removed again, newest first, when
+// the object goes out of scope before keep() (the output was not written), so that a failed
+// bake leaves nothing new behind. A folder is removed only where empty.
+class CreatedFiles {
+ public:
+  CreatedFiles() = default;
+  CreatedFiles(const CreatedFiles&) = delete;
+  CreatedFiles& operator=(const CreatedFiles&) = delete;
+  ~CreatedFiles();
+  void add(const std::filesystem::path& path);
+  // The folders of `folder` that do not exist yet, created and added.
+  void createFolders(const std::filesystem::path& folder);
+  void keep();  // the output is in place: everything added stays
+
+ private:
+  std::vector<std::filesystem::path> paths_;
+  std::vector<std::unique_ptr<output::TemporaryGuard>> guards_;
 };
 
 class OutputDocument {
@@ -61,7 +90,7 @@ class OutputDocument {
   std::vector<std::span<const std::uint8_t>> packBuffers();
   // External images inside the input's folder are copied beside the output (same relative
   // path); others (a wider --asset-root) are referred to relative to the output.
-  void placeImages(const std::filesystem::path& outputDir);
+  void placeImages(const std::filesystem::path& outputDir, CreatedFiles& created);
 
   Asset& asset_;
   std::set<int> accessorsBefore_;

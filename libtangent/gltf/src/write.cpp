@@ -348,7 +348,37 @@ std::vector<std::span<const std::uint8_t>> OutputDocument::packBuffers() {
   return packed;
 }
 
-void OutputDocument::placeImages(const std::filesystem::path& outputDir) {
+CreatedFiles::~CreatedFiles() {
+  for (auto it = paths_.rbegin(); it != paths_.rend(); ++it) {
+    std::error_code ignored;
+    std::filesystem::remove(*it, ignored);  // a folder only where empty
+  }
+}
+
+void CreatedFiles::add(const std::filesystem::path& path) {
+  paths_.push_back(path);
+  guards_.push_back(std::make_unique<output::TemporaryGuard>(path));
+}
+
+void CreatedFiles::createFolders(const std::filesystem::path& folder) {
+  namespace fs = std::filesystem;
+  std::vector<fs::path> missing;  // deepest first
+  std::error_code ec;
+  for (fs::path at = folder; !at.empty() && !fs::exists(at, ec); at = at.parent_path()) {
+    missing.push_back(at);
+    if (at == at.parent_path()) break;
+  }
+  for (auto it = missing.rbegin(); it != missing.rend(); ++it) {
+    if (fs::create_directory(*it, ec)) add(*it);
+  }
+}
+
+void CreatedFiles::keep() {
+  paths_.clear();
+  guards_.clear();
+}
+
+void OutputDocument::placeImages(const std::filesystem::path& outputDir, CreatedFiles& created) {
   namespace fs = std::filesystem;
   const fs::path inputDir = assetRootFor(asset_.path, {});
   std::error_code ec;
@@ -368,12 +398,16 @@ void OutputDocument::placeImages(const std::filesystem::path& outputDir) {
       const fs::path relative = source.lexically_relative(inputDir);
       const fs::path target = targetDir / relative;
       if (fs::exists(target, ec) && fs::equivalent(target, source, ec)) continue;
-      fs::create_directories(target.parent_path(), ec);
+      created.createFolders(target.parent_path());
       std::vector<std::uint8_t> bytes;
       if (!readFileInto(source, bytes)) throw std::runtime_error(source.string() + ": cannot be read to copy beside the output");
       // A copy an earlier bake left there is not written again: each write is a flush to disk,
       // and in a folder baked over and over they took longer than reading the buffers.
-      if (!holdsBytes(target, bytes)) writeFileAtomic(target, bytes);
+      if (!holdsBytes(target, bytes)) {
+        const bool existed = fs::exists(fs::symlink_status(target, ec));
+        writeFileAtomic(target, bytes);
+        if (!existed) created.add(target);
+      }
       image["uri"] = text::uriPath(relative.generic_string());
     } else {
       // Outside the input's folder (allowed by --asset-root): referred to where it is.
@@ -392,24 +426,28 @@ std::uint64_t OutputDocument::write(const std::filesystem::path& output) {
   Json& doc = asset_.json;
   std::uint64_t binBytes = 0;
   for (const auto& piece : bin) binBytes += piece.size();
+  // Image copies this bake adds are removed again unless the output is written.
+  CreatedFiles created;
   if (glb) {
     // Refused before anything is written, images included.
     output::checkGlbFits(output, 0, binBytes);
-    placeImages(outputDir);
+    placeImages(outputDir, created);
     const std::string json = text::dumpJson(doc);
     output::checkGlbFits(output, json.size(), binBytes);
     // Written from the pieces' own memory: no whole copy of the file.
     std::vector<std::uint8_t> frame;
     const auto pieces = glbPieces(json, bin, frame);
     writeFileAtomic(output, pieces);
+    created.keep();
     std::uint64_t total = 0;
     for (const auto& piece : pieces) total += piece.size();
     return total;
   }
-  placeImages(outputDir);
+  placeImages(outputDir, created);
   if (bin.empty()) {
     const std::string text = text::dumpJson(doc, 2) + "\n";
     writeFileAtomic(output, std::span(reinterpret_cast<const std::uint8_t*>(text.data()), text.size()));
+    created.keep();
     return text.size();
   }
   // A .gltf and its .bin are one file in two: the new .bin goes under a name the previous
@@ -434,6 +472,7 @@ std::uint64_t OutputDocument::write(const std::filesystem::path& output) {
     }
     throw;
   }
+  created.keep();
   // The previous .bin, now used by nothing we wrote.
   for (const fs::path& previous : previousBins) {
     std::error_code ec;
