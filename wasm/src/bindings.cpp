@@ -19,6 +19,7 @@
 #include <string>
 #include <vector>
 
+#include "shared_vertices.hpp"
 #include "tangent/frame_rules.hpp"
 #include "tangent/tangent.hpp"
 
@@ -26,7 +27,8 @@ namespace {
 
 struct State {
   tangent::TangentWorkspace workspace;
-  std::vector<std::uint32_t> sequence;  // 0, 1, 2, ... for de-indexed input
+  std::vector<std::uint32_t> sequence;  // 0, 1, 2, ... for de-indexed input with the vertex split
+  tangent::wasm::SharedVertices shared;  // de-indexed input, indexed (shared_vertices.hpp)
   std::vector<float> cornerTangents;    // 4 per corner
   std::vector<std::uint32_t> cornerVertex;
   std::vector<float> vertexTangents;    // 4 per output vertex
@@ -68,12 +70,22 @@ EMSCRIPTEN_KEEPALIVE int tangent_run(const float* positions, const float* normal
     options.weighting = *parsedWeighting;
     options.uvOrigin = *parsedOrigin;
     options.threads = 1;
-    if (!indices) {
+    if (!indices && vertexSplit) {
       if (s.sequence.size() < cornerCount) {
         s.sequence.resize(cornerCount);
         std::iota(s.sequence.begin(), s.sequence.end(), 0u);
       }
       indices = s.sequence.data();
+    } else if (!indices) {
+      // Per-corner tangents only: the corners with the same bits share a vertex first (the
+      // same output bits, a sixth of the vertices to weld and bucket on a typical mesh).
+      if (vertexCount != cornerCount) throw std::invalid_argument("indices: null, but the vertex count is not the corner count");
+      tangent::wasm::shareVertices(positions, normals, uvs, cornerCount, s.shared);
+      positions = s.shared.positions.data();
+      normals = s.shared.normals.data();
+      uvs = s.shared.uvs.data();
+      indices = s.shared.indices.data();
+      vertexCount = static_cast<std::uint32_t>(s.shared.vertexCount);
     }
     s.cornerTangents.resize(std::size_t(cornerCount) * 4);
     s.cornerVertex.resize(vertexSplit ? cornerCount : 0);
