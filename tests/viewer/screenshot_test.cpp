@@ -629,6 +629,35 @@ TEST(Viewer, DirectionalOnlyLightingRendersAsTheGeneralPath) {
   EXPECT_GT(front, fromSide + 0.05f);
 }
 
+// The sRGB encoding of the output (colour.glsl's linearToSrgb, a sum of square roots standing in
+// for pow, within 0.25/255 of IEC 61966-2-1 over [0, 1]) undoes the texture's sRGB decoding: an
+// unlit quad whose base colour texture holds each of the 256 byte values, sampled nearest, shows
+// each value as stored, to within one level where the decoding rounds.
+TEST(Viewer, OutputEncodingReturnsEveryTextureByte) {
+  TempDir dir;
+  writeRgbaPng(dir / "ramp.png", 16, 16, [](int x, int y) {
+    const auto value = static_cast<unsigned char>(16 * y + x);
+    return std::array<unsigned char, 4>{value, static_cast<unsigned char>(255 - value), value, 255};
+  });
+  const nlohmann::json material = {{"pbrMetallicRoughness", {{"baseColorTexture", {{"index", 0}}}}}, {"extensions", {{"KHR_materials_unlit", nlohmann::json::object()}}}};
+  const nlohmann::json patch = {{"samplers", {{{"magFilter", 9728}, {"minFilter", 9728}}}}, {"textures", {{{"source", 0}, {"sampler", 0}}}}};
+  const Image image = screenshot(dir, "ramp", "'" + quadAsset(dir, "ramp", material, "ramp.png", patch).string() + "' --camera front --ortho --size 400x400 --no-shadows");
+  int largest = 0, differing = 0;
+  for (int value = 0; value < 256; ++value) {
+    const double u = (value % 16 + 0.5) / 16, v = (value / 16 + 0.5) / 16;
+    const auto c = quadPixel(image, 2 * u - 1, 1 - 2 * v);
+    const int expected[3] = {value, 255 - value, value};
+    for (int channel = 0; channel < 3; ++channel) {
+      const int difference = std::abs(static_cast<int>(std::lround(c[channel] * 255)) - expected[channel]);
+      largest = std::max(largest, difference);
+      differing += difference > 0;
+    }
+  }
+  std::printf("output bytes against the texture's: largest difference %d levels, %d of 768 differ\n", largest, differing);
+  EXPECT_LE(largest, 1);
+  EXPECT_LE(differing, 768 / 20);
+}
+
 // Copy of data/demo/sphere.gltf with one untextured metallic-roughness material.
 fs::path plainSphere(const TempDir& dir, const std::string& name, double metallic, double roughness) {
   const fs::path demo = fs::path(TANGENT_SOURCE_DIR) / "data" / "demo";
