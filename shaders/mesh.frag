@@ -184,7 +184,7 @@ void main() {
   float occlusion = 1.0;
 #ifdef HAS_OCCLUSION_MAP
   occlusion = 1.0 + u_occlusionStrength * (texture(u_occlusionMap, textureUv(u_occlusionUvSet, u_occlusionUvTransform)).r - 1.0);
-#elif defined(OCCLUSION_IN_METALLIC_ROUGHNESS_MAP)
+#elif defined(OCCLUSION_IN_METALLIC_ROUGHNESS_MAP) && defined(HAS_METALLIC_ROUGHNESS_MAP)
   occlusion = 1.0 + u_occlusionStrength * (mr.r - 1.0);  // occlusionTexture is this texture: one fetch
 #endif
 
