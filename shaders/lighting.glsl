@@ -30,7 +30,13 @@ const float kLightToIlluminance = 3.14159265;
 #endif
 
 // Direction to light i from a surface point and the light's attenuation there (distance, cone).
+// With LIGHTS_DIRECTIONAL every light is directional (u_lightPosition[i].xyz unit length) and
+// the positional code is left out: a software rasteriser runs both sides of a branch.
 float lightAt(int i, vec3 position, out vec3 toLight) {
+#ifdef LIGHTS_DIRECTIONAL
+  toLight = -u_lightPosition[i].xyz;
+  return 1.0;
+#else
   if (u_lightPosition[i].w == 0.0) {
     toLight = normalize(-u_lightPosition[i].xyz);
     return 1.0;
@@ -56,6 +62,7 @@ float lightAt(int i, vec3 position, out vec3 toLight) {
   if (u_lightSpotCos[i].y > -1.5) attenuation *= smoothstep(u_lightSpotCos[i].y, u_lightSpotCos[i].x, c);
 #endif
   return attenuation;
+#endif
 }
 
 #ifndef SHADING_PBR

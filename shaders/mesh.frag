@@ -74,6 +74,8 @@ uniform mat3 u_emissiveUvTransform;
 uniform sampler2D u_occlusionMap;
 uniform int u_occlusionUvSet;
 uniform mat3 u_occlusionUvTransform;
+#endif
+#if defined(HAS_OCCLUSION_MAP) || defined(OCCLUSION_IN_METALLIC_ROUGHNESS_MAP)
 uniform float u_occlusionStrength;
 #endif
 #ifdef ALPHA_MASK
@@ -182,6 +184,8 @@ void main() {
   float occlusion = 1.0;
 #ifdef HAS_OCCLUSION_MAP
   occlusion = 1.0 + u_occlusionStrength * (texture(u_occlusionMap, textureUv(u_occlusionUvSet, u_occlusionUvTransform)).r - 1.0);
+#elif defined(OCCLUSION_IN_METALLIC_ROUGHNESS_MAP) && defined(HAS_METALLIC_ROUGHNESS_MAP)
+  occlusion = 1.0 + u_occlusionStrength * (mr.r - 1.0);  // occlusionTexture is this texture: one fetch
 #endif
 
   vec3 toEye = normalize(u_eyeWorld - v_positionWorld);
@@ -207,7 +211,8 @@ void main() {
   float shadow0 = 1.0;
 #ifdef USE_SHADOWS
   {
-    vec3 toLight = u_lightPosition[0].w == 0.0 ? normalize(-u_lightPosition[0].xyz) : normalize(u_lightPosition[0].xyz - v_positionWorld);
+    vec3 toLight;
+    lightAt(0, v_positionWorld, toLight);
     shadow0 = shadowFactor(v_shadowCoord, normal, toLight);
   }
 #endif

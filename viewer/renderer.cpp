@@ -362,6 +362,17 @@ GLuint Renderer::textureOf(const gltf::TextureRef& ref) const {
   return textures[ref.image].get();
 }
 
+namespace {
+
+// Whether two texture references read the same texels at every fragment: the same image,
+// sampler, UV set and transform. Their colour spaces may differ where the channel one of them
+// reads is linear in both (an sRGB texture's alpha).
+bool sameTexels(const gltf::TextureRef& a, const gltf::TextureRef& b) {
+  return a.image == b.image && a.sampler == b.sampler && a.texCoord == b.texCoord && a.uvTransform == b.uvTransform;
+}
+
+}  // namespace
+
 FeatureSet Renderer::featuresFor(const GpuMesh& mesh, const RenderSettings& settings) const {
   FeatureSet features = 0;
   if (settings.shadows && !lights_.empty()) features |= static_cast<FeatureSet>(Feature::shadows);
@@ -369,6 +380,8 @@ FeatureSet Renderer::featuresFor(const GpuMesh& mesh, const RenderSettings& sett
   if (settings.reflectivity > 0 && sphereMap_) features |= static_cast<FeatureSet>(Feature::reflection);
   if (settings.shading == Shading::pbr) features |= static_cast<FeatureSet>(Feature::pbr);
   if (physicalLights(settings)) features |= static_cast<FeatureSet>(Feature::physicalLights);
+  if (std::all_of(lights_.begin(), lights_.end(), [](const Light& light) { return light.directional; }))
+    features |= static_cast<FeatureSet>(Feature::directionalLights);
   if (settings.ibl && settings.shading == Shading::pbr) features |= static_cast<FeatureSet>(Feature::ibl);
   if (mesh.material < 0 || mesh.material >= static_cast<int>(scene_.materials.size())) return features;
   const auto& material = scene_.materials[mesh.material];
@@ -385,12 +398,15 @@ FeatureSet Renderer::featuresFor(const GpuMesh& mesh, const RenderSettings& sett
   if (textureOf(material.normalTexture)) features |= static_cast<FeatureSet>(Feature::normalMap);
   if (textureOf(material.specularTexture)) features |= static_cast<FeatureSet>(Feature::specularMap);
   if (textureOf(material.specularColorTexture)) features |= static_cast<FeatureSet>(Feature::specularColorMap);
-  // One fetch where both name the same texture the same way (the extension's intended packing).
-  const gltf::TextureRef &strength = material.specularTexture, &colour = material.specularColorTexture;
-  if (has(features, Feature::specularMap) && has(features, Feature::specularColorMap) && strength.image == colour.image &&
-      strength.sampler == colour.sampler && strength.texCoord == colour.texCoord && strength.uvTransform == colour.uvTransform)
-    features = (features & ~static_cast<FeatureSet>(Feature::specularMap)) | static_cast<FeatureSet>(Feature::specularInColorMap);
   if (textureOf(material.metallicRoughnessTexture)) features |= static_cast<FeatureSet>(Feature::metallicRoughnessMap);
+  // One fetch where two maps read the same texels: the specular extension's strength-in-alpha
+  // packing, and glTF's occlusion-roughness-metallic packing (occlusion in R).
+  if (has(features, Feature::specularMap) && has(features, Feature::specularColorMap) &&
+      sameTexels(material.specularTexture, material.specularColorTexture))
+    features = (features & ~static_cast<FeatureSet>(Feature::specularMap)) | static_cast<FeatureSet>(Feature::specularInColorMap);
+  if (has(features, Feature::occlusionMap) && has(features, Feature::metallicRoughnessMap) &&
+      sameTexels(material.occlusionTexture, material.metallicRoughnessTexture))
+    features = (features & ~static_cast<FeatureSet>(Feature::occlusionMap)) | static_cast<FeatureSet>(Feature::occlusionInMetallicRoughnessMap);
   if (textureOf(material.emissiveTexture)) features |= static_cast<FeatureSet>(Feature::emissiveMap);
   return features;
 }

@@ -28,6 +28,11 @@ enum class Feature : std::uint32_t {
   // With specularColorMap: specularTexture is the same texture (KHR_materials_specular's packing,
   // strength in A, colour in RGB), read once from the colour map (an sRGB texture's A is linear).
   specularInColorMap = 1u << 19,
+  // Every light is directional (the default rig): lighting.glsl leaves the positional code out.
+  directionalLights = 1u << 20,
+  // With metallicRoughnessMap: occlusionTexture is the same texture (glTF's ORM packing,
+  // occlusion in R), read once from the metallic-roughness map.
+  occlusionInMetallicRoughnessMap = 1u << 21,
 };
 
 enum class DebugView : std::uint8_t {
@@ -66,6 +71,8 @@ inline constexpr FeatureDefine kFeatureDefines[] = {
     {Feature::ibl, "USE_IBL"},
     {Feature::pointShadows, "POINT_SHADOWS"},
     {Feature::specularInColorMap, "SPECULAR_IN_COLOR_MAP"},
+    {Feature::directionalLights, "LIGHTS_DIRECTIONAL"},
+    {Feature::occlusionInMetallicRoughnessMap, "OCCLUSION_IN_METALLIC_ROUGHNESS_MAP"},
 };
 
 // The lit view's shading: glTF's metallic-roughness model, or the tutorials' specular-map

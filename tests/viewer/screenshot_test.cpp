@@ -563,6 +563,101 @@ TEST(Viewer, OcclusionMapDarkensTheAmbientTerm) {
   EXPECT_GT(noneLeft, occludedHalf + 0.03f);   // strength 0 turns it off
 }
 
+// glTF's occlusion-roughness-metallic packing: occlusionTexture and metallicRoughnessTexture
+// are one texture, which the viewer reads once (occlusion from R); a copy whose occlusionTexture
+// names a second image of the same file takes the two-fetch path. Both render alike, and the
+// occlusion (R: dark on the left) and the metallic (B: metal at the bottom) both show.
+TEST(Viewer, OneFetchForThePackedOcclusionTextureRendersAsTwo) {
+  TempDir dir;
+  writeRgbaPng(dir / "orm.png", 64, 64, [](int x, int y) {
+    return std::array<unsigned char, 4>{static_cast<unsigned char>(x < 32 ? 30 : 255), 150, static_cast<unsigned char>(y < 32 ? 0 : 255), 255};
+  });
+  auto render = [&](const std::string& name, int occlusionTexture, double strength) {
+    const nlohmann::json material = {
+        {"pbrMetallicRoughness", {{"baseColorFactor", {0.8, 0.7, 0.6, 1.0}}, {"metallicRoughnessTexture", {{"index", 0}}}}},
+        {"occlusionTexture", {{"index", occlusionTexture}, {"strength", strength}}}};
+    const nlohmann::json patch = {{"textures", {{{"source", 0}}, {{"source", 1}}}}, {"images", {{{"uri", "orm.png"}}, {{"uri", "orm.png"}}}}};
+    return screenshot(dir, name, "'" + quadAsset(dir, name, material, "orm.png", patch).string() + "'" + kQuadView + " --shading pbr");
+  };
+  const Image one = render("one-fetch", 0, 1.0), two = render("two-fetches", 1, 1.0), off = render("strength0", 0, 0.0);
+  ASSERT_EQ(one.rgb.size(), two.rgb.size());
+  float largest = 0;
+  for (std::size_t i = 0; i < one.rgb.size(); ++i) largest = std::max(largest, std::abs(one.rgb[i] - two.rgb[i]));
+  auto luma = [](std::array<float, 3> c) { return 0.2126f * c[0] + 0.7152f * c[1] + 0.0722f * c[2]; };
+  const float occluded = luma(quadPixel(one, -0.5, 0.5)), open = luma(quadPixel(one, 0.5, 0.5));
+  const float dielectric = luma(quadPixel(off, 0.5, 0.5)), metal = luma(quadPixel(off, 0.5, -0.5));
+  std::printf("largest difference one fetch against two: %.4f; occluded %.3f, open %.3f; strength 0: dielectric %.3f, metal %.3f\n",
+              largest, occluded, open, dielectric, metal);
+  EXPECT_LE(largest, 1.0f / 255);
+  EXPECT_LT(occluded, open - 0.03f);
+  EXPECT_NEAR(open, dielectric, 0.01f);  // occlusion 1 (R = 255) changes nothing
+  EXPECT_GT(std::abs(metal - dielectric), 0.03f);
+}
+
+// With every light directional (the default rig), lighting.glsl is compiled without its
+// positional code; the same directional light beside a point light too faint to show takes the
+// general code. Both render alike, and the directional light's angle shows (a light from the
+// side shades the quad darker than one from the front).
+TEST(Viewer, DirectionalOnlyLightingRendersAsTheGeneralPath) {
+  TempDir dir;
+  writeRgbaPng(dir / "white.png", 4, 4, [](int, int) { return std::array<unsigned char, 4>{255, 255, 255, 255}; });
+  auto render = [&](const std::string& name, bool withPoint, double tilt) {
+    nlohmann::json lights = {{{"type", "directional"}, {"intensity", 3.0}, {"color", {1.0, 0.9, 0.8}}}};
+    nlohmann::json nodes = {{{"mesh", 0}},
+                            {{"rotation", {std::sin(tilt / 2), 0.0, 0.0, std::cos(tilt / 2)}}, {"extensions", {{"KHR_lights_punctual", {{"light", 0}}}}}}};
+    nlohmann::json sceneNodes = {0, 1};
+    if (withPoint) {
+      lights.push_back({{"type", "point"}, {"intensity", 1e-6}});
+      nodes.push_back({{"translation", {0.0, 0.0, 2.0}}, {"extensions", {{"KHR_lights_punctual", {{"light", 1}}}}}});
+      sceneNodes.push_back(2);
+    }
+    const nlohmann::json patch = {{"nodes", nodes},
+                                  {"scenes", {{{"nodes", sceneNodes}}}},
+                                  {"extensions", {{"KHR_lights_punctual", {{"lights", lights}}}}},
+                                  {"extensionsUsed", {"KHR_lights_punctual"}}};
+    const nlohmann::json material = {{"pbrMetallicRoughness", {{"baseColorFactor", {0.8, 0.8, 0.8, 1.0}}, {"metallicFactor", 0.0}, {"roughnessFactor", 0.4}}}};
+    return screenshot(dir, name, "'" + quadAsset(dir, name, material, "white.png", patch).string() + "'" + kQuadView + " --exposure 1");
+  };
+  const Image directional = render("directional", false, 0.5), general = render("general", true, 0.5), side = render("side", false, 1.2);
+  ASSERT_EQ(directional.rgb.size(), general.rgb.size());
+  float largest = 0;
+  for (std::size_t i = 0; i < directional.rgb.size(); ++i) largest = std::max(largest, std::abs(directional.rgb[i] - general.rgb[i]));
+  auto luma = [](std::array<float, 3> c) { return 0.2126f * c[0] + 0.7152f * c[1] + 0.0722f * c[2]; };
+  const float front = luma(quadPixel(directional, 0, 0)), fromSide = luma(quadPixel(side, 0, 0));
+  std::printf("largest difference directional-only against general: %.4f; centre lit from 29 deg %.3f, from 69 deg %.3f\n", largest, front, fromSide);
+  EXPECT_LE(largest, 1.0f / 255);
+  EXPECT_GT(front, fromSide + 0.05f);
+}
+
+// The sRGB encoding of the output (colour.glsl's linearToSrgb, a sum of square roots standing in
+// for pow, within 0.25/255 of IEC 61966-2-1 over [0, 1]) undoes the texture's sRGB decoding: an
+// unlit quad whose base colour texture holds each of the 256 byte values, sampled nearest, shows
+// each value as stored, to within one level where the decoding rounds.
+TEST(Viewer, OutputEncodingReturnsEveryTextureByte) {
+  TempDir dir;
+  writeRgbaPng(dir / "ramp.png", 16, 16, [](int x, int y) {
+    const auto value = static_cast<unsigned char>(16 * y + x);
+    return std::array<unsigned char, 4>{value, static_cast<unsigned char>(255 - value), value, 255};
+  });
+  const nlohmann::json material = {{"pbrMetallicRoughness", {{"baseColorTexture", {{"index", 0}}}}}, {"extensions", {{"KHR_materials_unlit", nlohmann::json::object()}}}};
+  const nlohmann::json patch = {{"samplers", {{{"magFilter", 9728}, {"minFilter", 9728}}}}, {"textures", {{{"source", 0}, {"sampler", 0}}}}};
+  const Image image = screenshot(dir, "ramp", "'" + quadAsset(dir, "ramp", material, "ramp.png", patch).string() + "' --camera front --ortho --size 400x400 --no-shadows");
+  int largest = 0, differing = 0;
+  for (int value = 0; value < 256; ++value) {
+    const double u = (value % 16 + 0.5) / 16, v = (value / 16 + 0.5) / 16;
+    const auto c = quadPixel(image, 2 * u - 1, 1 - 2 * v);
+    const int expected[3] = {value, 255 - value, value};
+    for (int channel = 0; channel < 3; ++channel) {
+      const int difference = std::abs(static_cast<int>(std::lround(c[channel] * 255)) - expected[channel]);
+      largest = std::max(largest, difference);
+      differing += difference > 0;
+    }
+  }
+  std::printf("output bytes against the texture's: largest difference %d levels, %d of 768 differ\n", largest, differing);
+  EXPECT_LE(largest, 1);
+  EXPECT_LE(differing, 768 / 20);
+}
+
 // Copy of data/demo/sphere.gltf with one untextured metallic-roughness material.
 fs::path plainSphere(const TempDir& dir, const std::string& name, double metallic, double roughness) {
   const fs::path demo = fs::path(TANGENT_SOURCE_DIR) / "data" / "demo";
