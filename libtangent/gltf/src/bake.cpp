@@ -955,8 +955,9 @@ int PrimitiveBaker::addGathered(int index, const CarriedElements& carried, const
     written.components = data.components;
     written.componentSize = data.componentSize;
     written.count = outCount;
-    written.bytes.assign(bytes.begin(), bytes.end());
+    written.bytes = std::move(bytes);  // lent for the bounds, then taken back: no copy
     recomputeBounds(accessor, written);
+    bytes = std::move(written.bytes);
   } else if (computed.compression.draco) {
     recomputeBounds(accessor, data);
   }
