@@ -54,8 +54,6 @@ bool sameVertex(const MeshArrays& mesh, std::size_t a, std::size_t b) {
   return mesh.uvs[2 * a] == mesh.uvs[2 * b] && mesh.uvs[2 * a + 1] == mesh.uvs[2 * b + 1];
 }
 
-
-
 // A stable counting sort in parallel: the items [0, count), cut into `chunks` equal runs, each
 // counted and scattered by one task with its own counters (counters: chunks * keys), so that
 // out holds the items grouped by key, each group in item order; groupStart (keys + 1) gets
@@ -115,7 +113,6 @@ void stableCountingSort(const WorkspaceData& ws, std::size_t count, std::size_t 
                        for (std::size_t i = begin; i < end; ++i) out[next[key(i)]++] = static_cast<std::uint32_t>(i);
                      });
 }
-
 
 // One table, vertices in order; the tag is the hash's top 32 bits.
 template <typename Insert>

@@ -3,7 +3,6 @@
 // triangle pass parked, in a fixed-point grid, so that no order moves a bit.
 #include "kernel.hpp"
 
-
 namespace tangent::detail::mikk {
 
 // The common bucket from the terms the triangle pass parked in its corners' slots: one fan

@@ -95,7 +95,6 @@ class BucketUnionFind {
   ScratchVector<std::uint32_t>& parent_;
 };
 
-
 // One bucket on the full path (grouping.cpp): what its steps share.
 struct FullBucket {
   std::uint32_t bucket;
@@ -317,6 +316,5 @@ class Kernel {
   // waits for its neighbours'), so that pairing may vouch for one orientation.
   bool orientationsFinal_ = false;
 };
-
 
 }  // namespace tangent::detail::mikk
