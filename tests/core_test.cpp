@@ -151,6 +151,39 @@ GridMesh cube24() {
   return m;
 }
 
+// Two closed fans around one vertex (the apexes of two cones, one above and one below) are
+// two groups, with a frame each, though the vertex's corners all pair up one to one: a
+// shortcut that took every such bucket for one fan would give both the frame of their sum
+// (the two frames are 30 degrees apart, close enough for the fan shortcut's other tests).
+TEST(Core, TwoClosedFansAtOneVertexAreTwoGroups) {
+  const float turn = std::numbers::pi_v<float> / 6;  // the lower cone's u runs at 30 degrees
+  GridMesh m;
+  m.positions = {0, 0, 0};
+  m.normals = {0, 0, 1};
+  m.uvs = {0.5f, 0.5f};
+  for (int cone = 0; cone < 2; ++cone) {
+    const float a = cone == 0 ? 0 : turn;
+    for (int i = 0; i < 3; ++i) {
+      const float c = std::cos(2 * std::numbers::pi_v<float> * i / 3), s = std::sin(2 * std::numbers::pi_v<float> * i / 3);
+      m.positions.insert(m.positions.end(), {c, s, cone == 0 ? 1.0f : -1.0f});
+      m.normals.insert(m.normals.end(), {0, 0, 1});
+      // UVs: the ring turned by -a (same UV orientation), so that u grows along (cos a, sin a).
+      m.uvs.insert(m.uvs.end(), {0.5f + 0.4f * (c * std::cos(a) + s * std::sin(a)),
+                                 0.5f + 0.4f * (s * std::cos(a) - c * std::sin(a))});
+    }
+  }
+  m.indices = {0, 1, 2, 0, 2, 3, 0, 3, 1, 0, 4, 5, 0, 5, 6, 0, 6, 4};
+  Options options;
+  options.uvOrigin = tangent::UvOrigin::bottomLeft;
+  for (unsigned threads : {1u, 2u}) {
+    options.threads = threads;
+    const Result r = run(m, options);
+    for (std::size_t corner : {0, 3, 6}) expectTangent(r, corner, 1, 0, 0, 1);
+    for (std::size_t corner : {9, 12, 15}) expectTangent(r, corner, std::cos(turn), std::sin(turn), 0, 1);
+    EXPECT_EQ(r.report.splitVertices, 1u);
+  }
+}
+
 TEST(Core, Cube24ExactFrames) {
   Options options;
   options.uvOrigin = tangent::UvOrigin::bottomLeft;

@@ -6,6 +6,9 @@
 #if defined(__SSE2__)
 #include <emmintrin.h>
 #endif
+#if defined(TANGENT_LANES8)
+#include <immintrin.h>
+#endif
 #include <bit>
 #include <type_traits>
 #include <vector>
@@ -126,6 +129,60 @@ inline bool linkSmallBucket(SmallBucket& b) {
 #endif
 }
 
+#if defined(TANGENT_LANES8)
+// Lane i of kRotations[n][k]: (i + k) % n, for n up to 8 lanes (lanes from n: i).
+struct Rotations {
+  alignas(32) std::int32_t lanes[9][8][8];
+};
+constexpr Rotations makeRotations() {
+  Rotations r{};
+  for (int n = 1; n <= 8; ++n)
+    for (int k = 0; k < n; ++k)
+      for (int i = 0; i < 8; ++i) r.lanes[n][k][i] = i < n ? (i + k) % n : i;
+  return r;
+}
+constexpr Rotations kRotations = makeRotations();
+
+// The common closed fan, eight identities a compare where the processor has AVX2: whether
+// the next identities of a bucket's n (2..8) corners are its previous identities one to one
+// (each corner's next identity the previous identity of exactly one corner, and each
+// previous identity the next of exactly one), and the links that makes (each corner to the
+// corner whose previous identity is its next) one cycle through all n. There
+// linkSmallBucket and oneSmallChain accept the bucket too (they find the same one
+// successor per corner, no heads, the same cycle), and where they accept a bucket that is
+// not one to one it is an open fan, for which this says false. Comparing next identities
+// with the previous identities rotated by k lanes, k = 0 .. n - 1, compares every pair once.
+// Reads 8 identities from each pointer (kBucketIdPadding).
+__attribute__((target("avx2"))) bool closedFanEight(const std::uint32_t* outId, const std::uint32_t* inId,
+                                                     std::uint32_t n) {
+  const __m256i outs = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(outId));
+  const __m256i ins = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(inId));
+  __m256i outMatches = _mm256_setzero_si256(), inMatches = _mm256_setzero_si256(), successor = _mm256_setzero_si256();
+  for (std::uint32_t k = 0; k < n; ++k) {
+    const __m256i rotation = _mm256_load_si256(reinterpret_cast<const __m256i*>(kRotations.lanes[n][k]));
+    // Lane i: corner i's next identity against corner (i + k) % n's previous, and the other way.
+    const __m256i outSame = _mm256_cmpeq_epi32(outs, _mm256_permutevar8x32_epi32(ins, rotation));
+    const __m256i inSame = _mm256_cmpeq_epi32(ins, _mm256_permutevar8x32_epi32(outs, rotation));
+    outMatches = _mm256_sub_epi32(outMatches, outSame);
+    inMatches = _mm256_sub_epi32(inMatches, inSame);
+    successor = _mm256_or_si256(successor, _mm256_and_si256(outSame, rotation));
+  }
+  const __m256i one = _mm256_set1_epi32(1);
+  const __m256i once = _mm256_and_si256(_mm256_cmpeq_epi32(outMatches, one), _mm256_cmpeq_epi32(inMatches, one));
+  const int lanes = (1 << n) - 1;
+  if ((_mm256_movemask_ps(_mm256_castsi256_ps(once)) & lanes) != lanes) return false;
+  // One to one: the links are cycles; the one through corner 0 must hold all n.
+  alignas(32) std::int32_t next[8];
+  _mm256_store_si256(reinterpret_cast<__m256i*>(next), successor);
+  std::uint32_t k = 0, steps = 0;
+  do {
+    k = static_cast<std::uint32_t>(next[k]);
+    ++steps;
+  } while (k != 0);
+  return steps == n;
+}
+#endif
+
 // Each corner has at most one successor and one predecessor here, so the links form paths
 // and cycles. One chain through every corner: a cycle from corner 0, or the path from the
 // one corner that no link reaches (one head: one path; a walk from it that sees every
@@ -210,10 +267,16 @@ bool Kernel::pairOneFan(std::uint32_t bucket, std::uint64_t& mirrored) {
   const std::uint32_t first = start_[bucket], count = start_[bucket + 1] - first;
   if (count < 2 || count > kSmall || !ws_.fastBuckets) return false;
   const std::uint32_t* list = corners_ + first;
-  SmallBucket b;
-  b.outId = nextIds_ + first, b.inId = previousIds_ + first, b.corner = list;
-  b.n = count;
-  if (!linkSmallBucket(b) || !oneSmallChain(b)) return false;
+  bool oneFan = false;
+#if defined(TANGENT_LANES8)
+  if (count <= 8 && isa_ == VectorIsa::avx2) oneFan = closedFanEight(nextIds_ + first, previousIds_ + first, count);
+#endif
+  if (!oneFan) {
+    SmallBucket b;
+    b.outId = nextIds_ + first, b.inId = previousIds_ + first, b.corner = list;
+    b.n = count;
+    if (!linkSmallBucket(b) || !oneSmallChain(b)) return false;
+  }
   std::uint8_t* state = ws_.cornerState.data();
   const std::uint8_t* triangleFlags = ws_.triangleFlags.data();
   const std::int8_t* orientation = ws_.orientation.data();
