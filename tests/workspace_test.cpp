@@ -54,6 +54,19 @@ Output compute(const tangent::MeshArrays& mesh, unsigned threads) {
   return compute(mesh, threads, workspace);
 }
 
+// A closed fan of four triangles around vertex 0 whose UVs fold: two triangles of each UV
+// orientation, with every dP/du and every dP/dv (signed by the orientation) inside one half
+// plane, so that only the orientation keeps the fan shortcut from taking the four as one
+// group (the full grouping makes two, with opposite w).
+GridMesh foldedFan() {
+  GridMesh m;
+  m.positions = {0, 0, 0, 1, 0, 0, 0, 1, 0, -1, 0, 0, 0, -1, 0};
+  m.normals = {0, 0, 1, 0, 0, 1, 0, 0, 1, 0, 0, 1, 0, 0, 1};
+  m.uvs = {0.5f, 0.5f, 0.85f, 1.43f, 0.0f, 0.41f, 0.69f, 0.14f, 0.23f, 0.13f};
+  m.indices = {0, 1, 2, 0, 2, 3, 0, 3, 4, 0, 4, 1};
+  return m;
+}
+
 // A mesh with every hard case (non-manifold edges and vertices, duplicates, zero-UV and
 // degenerate triangles, mirrored islands) from the differential test's generator, made large
 // enough that several threads really split every phase.
@@ -180,7 +193,7 @@ TEST(Workspace, SameBitsForEveryVectorWidth) {
 // them as they are, so the two may differ in the last bits of a frame, never more: w the same,
 // xyz within a few float steps, the same vertex split and counts.
 TEST(Workspace, FanShortcutAgreesWithTheFullGrouping) {
-  const GridMesh meshes[] = {hardMesh(), tangent::testing::makeTorus(256, 128)};
+  const GridMesh meshes[] = {hardMesh(), tangent::testing::makeTorus(256, 128), foldedFan()};
   for (const GridMesh& m : meshes) {
     tangent::TangentWorkspace shortcut, full;
     full.data().fastBuckets = false;

@@ -29,10 +29,12 @@ inline double quantized(float x) {
 constexpr std::uint32_t kMostQuantizedTerms = 2048;
 
 // A fan's parked terms (fan.cpp) summed on the 2^-40 grid (exact in double, so in any order
-// the same), with the AND of their cone bits.
+// the same), with the AND of their cone bits, and whether their triangles have one
+// orientation (kNotPositiveBit all set or all clear).
 struct FanSum {
   double x, y, z, angleSum;
   std::uint32_t cone;
+  bool oneOrientation;
 };
 class FanAccumulator {
  public:
@@ -40,17 +42,19 @@ class FanAccumulator {
 #if defined(__SSE2__)
     // Two components at a time.
     const __m128d quantizer = _mm_set1_pd(kQuantizer);
-    const __m128i keep = _mm_setr_epi32(-1, -1, -1, static_cast<int>(~kConeBits));
+    const __m128i keep = _mm_setr_epi32(-1, -1, -1, static_cast<int>(~(kConeBits | kNotPositiveBit)));
     const __m128i bits = _mm_loadu_si128(reinterpret_cast<const __m128i*>(slot));
     bits_ = _mm_and_si128(bits_, bits);
+    anyBits_ = _mm_or_si128(anyBits_, bits);
     const __m128 terms = _mm_castsi128_ps(_mm_and_si128(bits, keep));
     xy_ = _mm_add_pd(xy_, _mm_sub_pd(_mm_add_pd(_mm_cvtps_pd(terms), quantizer), quantizer));
     za_ = _mm_add_pd(za_, _mm_sub_pd(_mm_add_pd(_mm_cvtps_pd(_mm_movehl_ps(terms, terms)), quantizer), quantizer));
 #else
     const std::uint32_t bits = bitCast<std::uint32_t>(slot[3]);
-    sum_.cone &= bits;
+    all_ &= bits;
+    any_ |= bits;
     sum_.x += quantized(slot[0]), sum_.y += quantized(slot[1]), sum_.z += quantized(slot[2]);
-    sum_.angleSum += quantized(bitCast<float>(bits & ~kConeBits));
+    sum_.angleSum += quantized(bitCast<float>(bits & ~(kConeBits | kNotPositiveBit)));
 #endif
   }
   FanSum result() const {
@@ -58,19 +62,24 @@ class FanAccumulator {
     double lanes[4];
     _mm_storeu_pd(lanes, xy_);
     _mm_storeu_pd(lanes + 2, za_);
-    return {lanes[0], lanes[1], lanes[2], lanes[3],
-            kConeBits & static_cast<std::uint32_t>(_mm_cvtsi128_si32(_mm_shuffle_epi32(bits_, 3)))};
+    const auto all = static_cast<std::uint32_t>(_mm_cvtsi128_si32(_mm_shuffle_epi32(bits_, 3)));
+    const auto any = static_cast<std::uint32_t>(_mm_cvtsi128_si32(_mm_shuffle_epi32(anyBits_, 3)));
+    return {lanes[0], lanes[1], lanes[2], lanes[3], kConeBits & all, ((all ^ any) & kNotPositiveBit) == 0};
 #else
-    return sum_;
+    FanSum sum = sum_;
+    sum.cone = kConeBits & all_;
+    sum.oneOrientation = ((all_ ^ any_) & kNotPositiveBit) == 0;
+    return sum;
 #endif
   }
 
  private:
 #if defined(__SSE2__)
   __m128d xy_ = _mm_setzero_pd(), za_ = _mm_setzero_pd();
-  __m128i bits_ = _mm_set1_epi32(-1);
+  __m128i bits_ = _mm_set1_epi32(-1), anyBits_ = _mm_setzero_si128();
 #else
-  FanSum sum_{0, 0, 0, 0, kConeBits};
+  FanSum sum_{0, 0, 0, 0, 0, true};
+  std::uint32_t all_ = ~std::uint32_t(0), any_ = 0;
 #endif
 };
 

@@ -277,21 +277,20 @@ bool Kernel::pairOneFan(std::uint32_t bucket, std::uint64_t& mirrored) {
     b.n = count;
     if (!linkSmallBucket(b) || !oneSmallChain(b)) return false;
   }
+  // Every corner takes part and its triangle has one orientation: a coincident triangle's
+  // corners park no cone bits (fanFrame asks for some in all), and the orientations are the
+  // parked terms' kNotPositiveBit.
   std::uint8_t* state = ws_.cornerState.data();
-  const std::uint8_t* triangleFlags = ws_.triangleFlags.data();
-  const std::int8_t* orientation = ws_.orientation.data();
   const float* tangents = tangents_;
-  const std::int8_t firstOrientation = orientation[list[0] / 3];
-  bool usable = true;
   FanAccumulator sum;
   for (std::uint32_t i = 0; i < count; ++i) {
     const std::uint32_t c = list[i];
     state[c] = 0;
-    usable &= !(triangleFlags[c / 3] & kCoincident) & (orientation[c / 3] == firstOrientation);
     sum.add(&tangents[4 * std::size_t(c)]);
   }
-  if (!usable) return false;
-  return fanFrame(bucket, list, count, sum.result(), mirrored);
+  const FanSum fan = sum.result();
+  if (!fan.oneOrientation) return false;
+  return fanFrame(bucket, list, count, fan, mirrored);
 }
 
 // The general case: outgoing and incoming half-edges sorted by the identity at their other

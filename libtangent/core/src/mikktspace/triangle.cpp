@@ -14,7 +14,9 @@
 namespace tangent::detail::mikk {
 
 // The parked terms of triangle t's three corners (frame: its dP/du, dP/dv; flags: its bits).
-void cornerTermsOne(const Arrays& a, std::size_t t, const float* frame, std::uint8_t flags, float* tangents) {
+void cornerTermsOne(const Arrays& a, std::size_t t, const float* frame, std::int8_t orientation, std::uint8_t flags,
+                    float* tangents) {
+  const std::uint32_t notPositive = orientation > 0 ? 0 : kNotPositiveBit;
   const std::uint32_t* triangle = a.indices + 3 * t;
   const F3 p[3] = {floatsAt(a.positions, triangle[0]), floatsAt(a.positions, triangle[1]),
                    floatsAt(a.positions, triangle[2])};
@@ -42,7 +44,7 @@ void cornerTermsOne(const Arrays& a, std::size_t t, const float* frame, std::uin
     const std::uint32_t cone = usable ? coneBits(s) | coneBits(projectedT) << 6 : 0;
     float* slot = tangents + 4 * (3 * t + k);
     slot[0] = s.x * angle, slot[1] = s.y * angle, slot[2] = s.z * angle;
-    slot[3] = bitCast<float>((bitCast<std::uint32_t>(angle) & ~kConeBits) | cone);
+    slot[3] = bitCast<float>((bitCast<std::uint32_t>(angle) & ~kConeBits) | cone | notPositive);
   }
 }
 
@@ -191,7 +193,7 @@ void evaluateTriangle(const Arrays& a, std::size_t t, float* frame, std::int8_t&
 void evaluateAndParkOne(const Arrays& a, std::size_t t, std::int8_t& orientation, std::uint8_t& flags, float* tangents) {
   float frame[6];
   evaluateTriangle(a, t, frame, orientation, flags);
-  cornerTermsOne(a, t, frame, flags, tangents);
+  cornerTermsOne(a, t, frame, orientation, flags, tangents);
 }
 
 }  // namespace tangent::detail::mikk

@@ -35,8 +35,11 @@ namespace tangent::detail::mikk {
 // (N.e1)(N.e2)), A = e1 x e2 (from the corner's own edges, so that a rotation of the
 // triangle's corners moves no bit). The low kConeBits of the angle's bits say on which side
 // of +-kConeMargin each component of S and of the projected dP/dv (as a direction) lies; 0
-// where the corner is not the common case (then its bucket takes the full path).
+// where the corner is not the common case (then its bucket takes the full path). Its sign bit
+// (the angle is never negative) is set where the triangle's orientation is not positive, so
+// that the fan shortcut sees one orientation in the terms it sums, without the triangles.
 constexpr std::uint32_t kConeBits = 0xFFF;
+constexpr std::uint32_t kNotPositiveBit = 0x80000000u;
 constexpr float kConeMargin = 1.0f / 64, kConeMargin2 = kConeMargin * kConeMargin;
 constexpr float kSmallestAngle = 0.1f;      // below (or within this of pi) the full path's rules apply
 constexpr float kSmallestProduct = 1e-30f;  // below, float products lose digits
@@ -58,8 +61,10 @@ inline F3 floatsAt(const float* p, std::uint32_t v) {
 // Unit dP/du and dP/dv of triangle t (signed by the UV orientation), its orientation and
 // flags (triangle.cpp).
 void evaluateTriangle(const Arrays& a, std::size_t t, float* frame, std::int8_t& orientation, std::uint8_t& flags);
-// The parked terms of triangle t's three corners (frame: its dP/du, dP/dv; flags: its bits).
-void cornerTermsOne(const Arrays& a, std::size_t t, const float* frame, std::uint8_t flags, float* tangents);
+// The parked terms of triangle t's three corners (frame: its dP/du, dP/dv; orientation and
+// flags: what evaluateTriangle gave).
+void cornerTermsOne(const Arrays& a, std::size_t t, const float* frame, std::int8_t orientation, std::uint8_t flags,
+                    float* tangents);
 // One triangle the scalar way: its orientation, flags and its corners' parked terms.
 void evaluateAndParkOne(const Arrays& a, std::size_t t, std::int8_t& orientation, std::uint8_t& flags, float* tangents);
 
