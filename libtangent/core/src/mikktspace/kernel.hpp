@@ -254,21 +254,24 @@ class Kernel {
     const std::uint32_t* indices = a_.indices;
     const std::uint32_t vertex = identity ? bucket : indices[list[0]];
     bool oneVertex = true;
-    auto walk = [&](auto withFrame, auto withVertex) {
+    auto walk = [&](auto withFrame, auto withVertex, auto sameVertex) {
       for (std::uint32_t i = 0; i < count; ++i) {
         const std::uint32_t c = list[i];
         if constexpr (decltype(withFrame)::value) std::memcpy(&tangents[4 * std::size_t(c)], frame, 4 * sizeof(float));
-        const std::uint32_t v = identity ? vertex : indices[c];
+        const std::uint32_t v = decltype(sameVertex)::value ? vertex : indices[c];
         if constexpr (decltype(withVertex)::value) cornerVertex[c] = v;
-        oneVertex &= v == vertex;
+        if constexpr (!decltype(sameVertex)::value) oneVertex &= v == vertex;
       }
     };
     using Yes = std::true_type;
     using No = std::false_type;
+    auto walkWith = [&](auto withFrame, auto withVertex) {
+      identity ? walk(withFrame, withVertex, Yes{}) : walk(withFrame, withVertex, No{});
+    };
     if (frame) {
-      cornerVertex_ ? walk(Yes{}, Yes{}) : walk(Yes{}, No{});
+      cornerVertex_ ? walkWith(Yes{}, Yes{}) : walkWith(Yes{}, No{});
     } else {
-      cornerVertex_ ? walk(No{}, Yes{}) : walk(No{}, No{});
+      cornerVertex_ ? walkWith(No{}, Yes{}) : walkWith(No{}, No{});
     }
     ws_.bucketUniform[bucket] = oneVertex ? kUniformVertex : 0;
     if (tangents_[4 * list[0] + 3] < 0) mirrored += count;

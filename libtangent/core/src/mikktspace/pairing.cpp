@@ -144,42 +144,38 @@ constexpr Rotations makeRotations() {
 constexpr Rotations kRotations = makeRotations();
 
 // The common closed fan, eight identities a compare where the processor has AVX2: whether
-// the next identities of a bucket's n (2..8) corners are its previous identities one to one
-// (each corner's next identity the previous identity of exactly one corner, and each
-// previous identity the next of exactly one), and the links that makes (each corner to the
-// corner whose previous identity is its next) one cycle through all n. There
-// linkSmallBucket and oneSmallChain accept the bucket too (they find the same one
-// successor per corner, no heads, the same cycle), and where they accept a bucket that is
-// not one to one it is an open fan, for which this says false. Comparing next identities
-// with the previous identities rotated by k lanes, k = 0 .. n - 1, compares every pair once.
-// Reads 8 identities from each pointer (kBucketIdPadding).
+// each next identity of a bucket's n (2..8) corners is the previous identity of exactly one
+// corner, and the links that makes (each corner to that corner) one cycle through all n
+// (then they are one to one). There linkSmallBucket and oneSmallChain accept the bucket too
+// (they find the same one successor per corner, no heads, the same cycle), and where they
+// accept a bucket that is not one to one it is an open fan, for which this says false.
+// Comparing next identities with the previous identities rotated by k lanes,
+// k = 0 .. n - 1, compares every pair once. Reads 8 identities from each pointer
+// (kBucketIdPadding).
 __attribute__((target("avx2"))) bool closedFanEight(const std::uint32_t* outId, const std::uint32_t* inId,
                                                      std::uint32_t n) {
   const __m256i outs = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(outId));
   const __m256i ins = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(inId));
-  __m256i outMatches = _mm256_setzero_si256(), inMatches = _mm256_setzero_si256(), successor = _mm256_setzero_si256();
+  __m256i matches = _mm256_setzero_si256(), successor = _mm256_setzero_si256();
   for (std::uint32_t k = 0; k < n; ++k) {
     const __m256i rotation = _mm256_load_si256(reinterpret_cast<const __m256i*>(kRotations.lanes[n][k]));
-    // Lane i: corner i's next identity against corner (i + k) % n's previous, and the other way.
-    const __m256i outSame = _mm256_cmpeq_epi32(outs, _mm256_permutevar8x32_epi32(ins, rotation));
-    const __m256i inSame = _mm256_cmpeq_epi32(ins, _mm256_permutevar8x32_epi32(outs, rotation));
-    outMatches = _mm256_sub_epi32(outMatches, outSame);
-    inMatches = _mm256_sub_epi32(inMatches, inSame);
-    successor = _mm256_or_si256(successor, _mm256_and_si256(outSame, rotation));
+    // Lane i: corner i's next identity against corner (i + k) % n's previous.
+    const __m256i same = _mm256_cmpeq_epi32(outs, _mm256_permutevar8x32_epi32(ins, rotation));
+    matches = _mm256_sub_epi32(matches, same);
+    successor = _mm256_or_si256(successor, _mm256_and_si256(same, rotation));
   }
-  const __m256i one = _mm256_set1_epi32(1);
-  const __m256i once = _mm256_and_si256(_mm256_cmpeq_epi32(outMatches, one), _mm256_cmpeq_epi32(inMatches, one));
+  const __m256i once = _mm256_cmpeq_epi32(matches, _mm256_set1_epi32(1));
   const int lanes = (1 << n) - 1;
   if ((_mm256_movemask_ps(_mm256_castsi256_ps(once)) & lanes) != lanes) return false;
-  // One to one: the links are cycles; the one through corner 0 must hold all n.
+  // The walk from corner 0 back to it: a cycle of n steps holds n corners, all of them.
   alignas(32) std::int32_t next[8];
   _mm256_store_si256(reinterpret_cast<__m256i*>(next), successor);
   std::uint32_t k = 0, steps = 0;
   do {
     k = static_cast<std::uint32_t>(next[k]);
     ++steps;
-  } while (k != 0);
-  return steps == n;
+  } while (k != 0 && steps < n);
+  return k == 0 && steps == n;
 }
 #endif
 
