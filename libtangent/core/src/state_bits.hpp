@@ -14,8 +14,8 @@
 
 namespace tangent::detail {
 
-// WorkspaceData::cornerState, one byte per corner. Cleared by `pair` for every corner of its
-// bucket (lengyel and flat write only kSourceMask, before `output`).
+// WorkspaceData::cornerState, one byte per corner. Cleared by `triangle` for every corner
+// (lengyel and flat write only kSourceMask, before `output`).
 enum CornerState : std::uint8_t {
   // FrameSource of the corner's frame: set by `group` and `fallback`, read by `fallback`
   // (candidates) and `output` (report counts, CornerOutputs::sources).

@@ -36,12 +36,9 @@ void Kernel::pairBucket(std::uint32_t bucket, BucketScratch& scratch) {
   pairSorted(list, count, scratch);
 }
 
-// Clears the state and the links of a bucket's corners.
+// Clears the links of a bucket's corners (their states are clear: the triangle pass).
 void Kernel::resetLinks(const std::uint32_t* list, std::uint32_t count) {
-  for (std::uint32_t i = 0; i < count; ++i) {
-    ws_.cornerState[list[i]] = 0;
-    ws_.cornerLink[list[i]] = kNone;
-  }
+  for (std::uint32_t i = 0; i < count; ++i) ws_.cornerLink[list[i]] = kNone;
 }
 
 namespace {
@@ -206,15 +203,12 @@ inline bool oneSmallChain(const SmallBucket& b) {
 // matches may repeat: the merge links nothing there either.) False where the bucket is not
 // that case (then pairSorted pairs it).
 bool Kernel::pairSmallBucket(std::uint32_t bucket, const std::uint32_t* list, std::uint32_t count) {
-  // The arrays in locals: the byte stores below may alias the workspace's members.
-  std::uint8_t* state = ws_.cornerState.data();
   const std::uint8_t* triangleFlags = ws_.triangleFlags.data();
   const std::int8_t* orientation = ws_.orientation.data();
   const std::int8_t firstOrientation = orientation[list[0] / 3];
   bool oneOrientation = true, all = true;
   for (std::uint32_t i = 0; i < count; ++i) {
     const std::uint32_t c = list[i];
-    state[c] = 0;
     all &= !(triangleFlags[c / 3] & kCoincident);  // participates(c)
     oneOrientation &= orientation[c / 3] == firstOrientation;
   }
@@ -276,14 +270,9 @@ bool Kernel::pairOneFan(std::uint32_t bucket, std::uint64_t& mirrored) {
   // Every corner takes part and its triangle has one orientation: a coincident triangle's
   // corners park no cone bits (fanFrame asks for some in all), and the orientations are the
   // parked terms' kNotPositiveBit.
-  std::uint8_t* state = ws_.cornerState.data();
   const float* tangents = tangents_;
   FanAccumulator sum;
-  for (std::uint32_t i = 0; i < count; ++i) {
-    const std::uint32_t c = list[i];
-    state[c] = 0;
-    sum.add(&tangents[4 * std::size_t(c)]);
-  }
+  for (std::uint32_t i = 0; i < count; ++i) sum.add(&tangents[4 * std::size_t(list[i])]);
   const FanSum fan = sum.result();
   if (!fan.oneOrientation) return false;
   return fanFrame(bucket, list, count, fan, mirrored);

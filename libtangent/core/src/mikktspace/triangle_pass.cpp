@@ -29,21 +29,28 @@ void Kernel::evaluateTriangles(Report& report) {
     }
 #endif
     for (; t < end; ++t) evaluateAndParkOne(a_, t, ws_.orientation[t], ws_.triangleFlags[t], tangents_);
-    for (t = begin; t < end; ++t) {
-      if (t + 8 <= end) {  // most triangles have no flags: eight at a time where all are 0
-        std::uint64_t eight;
-        std::memcpy(&eight, &ws_.triangleFlags[t], sizeof eight);
-        if (eight == 0) {
-          t += 7;
-          continue;
-        }
-      }
-      const std::uint8_t flags = ws_.triangleFlags[t];
+    // The report's counts, and every corner's state cleared (the phases after this one only
+    // set bits).
+    auto countFlags = [&](std::uint8_t flags) {
       local.flat += (flags & (kFlat | kNonFinite)) == kFlat;
       local.zeroUv += (flags & kZeroUv) != 0;
       local.nonFinite += (flags & kNonFinite) != 0;
       local.groupWithAny += (flags & (kGroupWithAny | kCoincident)) == kGroupWithAny;
       local.coincident += (flags & kCoincident) != 0;
+    };
+    std::uint8_t* state = ws_.cornerState.data();
+    for (t = begin; t + 8 <= end; t += 8) {  // eight at a time: most triangles have no flags
+      const std::uint64_t zero = 0;
+      for (int i = 0; i < 3; ++i) std::memcpy(state + 3 * t + 8 * i, &zero, sizeof zero);
+      std::uint64_t eight;
+      std::memcpy(&eight, &ws_.triangleFlags[t], sizeof eight);
+      if (eight != 0) {
+        for (std::size_t k = t; k < t + 8; ++k) countFlags(ws_.triangleFlags[k]);
+      }
+    }
+    for (; t < end; ++t) {
+      state[3 * t] = state[3 * t + 1] = state[3 * t + 2] = 0;
+      countFlags(ws_.triangleFlags[t]);
     }
     Counts& total = counts.local();
     total.flat += local.flat;
