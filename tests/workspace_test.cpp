@@ -547,7 +547,9 @@ void expectWeldAndBuckets(const tangent::MeshArrays& mesh, unsigned threads, con
     for (std::uint32_t slot = ws.bucketStart[bucket]; slot < ws.bucketStart[bucket + 1]; ++slot) {
       const std::uint32_t c = ws.bucketCorners[slot];
       ASSERT_EQ(idOf(c), bucket) << "slot " << slot;
-      if (slot > ws.bucketStart[bucket]) ASSERT_LT(ws.bucketCorners[slot - 1], c) << "slot " << slot;
+      if (slot > ws.bucketStart[bucket]) {
+        ASSERT_LT(ws.bucketCorners[slot - 1], c) << "slot " << slot;
+      }
       const std::size_t next = c % 3 == 2 ? c - 2 : c + 1, previous = c % 3 == 0 ? c + 2 : c - 1;
       ASSERT_EQ(ws.bucketNextId[slot], idOf(next)) << "slot " << slot;
       ASSERT_EQ(ws.bucketPreviousId[slot], idOf(previous)) << "slot " << slot;
