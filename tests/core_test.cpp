@@ -391,6 +391,27 @@ TEST(Core, NonManifoldFacesAreKeptAndCounted) {
   for (std::size_t c = 0; c < m.indices.size(); ++c) ASSERT_TRUE(std::isfinite(r.tangents[4 * c]));
 }
 
+// A fin on a closed fan: triangle (0, 1, 4) shares the edge from vertex 0 to vertex 1 with
+// the fan's (0, 1, 2), and both run it the same way. At vertex 0 every corner's next vertex
+// is the previous vertex of exactly one corner, but two corners lead to the same one, so the
+// links from the fin's corner run into the fan's cycle without coming back: not one fan, and
+// the three faces on the edge are non-manifold.
+TEST(Core, FinOnAClosedFanIsNonManifold) {
+  GridMesh m;
+  m.positions = {0, 0, 0, 1, 0, 0, -0.5f, 0.87f, 0, -0.5f, -0.87f, 0, 0.5f, 0.3f, 0.8f};
+  for (int v = 0; v < 5; ++v) m.normals.insert(m.normals.end(), {0, 0, 1});
+  for (int v = 0; v < 5; ++v) m.uvs.insert(m.uvs.end(), {0.5f + 0.4f * m.positions[3 * v], 0.5f + 0.4f * m.positions[3 * v + 1]});
+  // The fin first: its corner at vertex 0 starts the walk over the links.
+  m.indices = {0, 1, 4, 0, 1, 2, 0, 2, 3, 0, 3, 1};
+  for (unsigned threads : {1u, 2u}) {
+    Options options;
+    options.threads = threads;
+    const Result r = run(m, options);
+    EXPECT_EQ(r.report.nonManifoldFaces, 3u);  // the fin and the two fan faces on its edge
+    expectValidFrames(m, r);
+  }
+}
+
 TEST(Core, ZeroNormalGetsAFrameAndIsCounted) {
   GridMesh m = quad();
   m.normals[0] = m.normals[1] = m.normals[2] = 0;

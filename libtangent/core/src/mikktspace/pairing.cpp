@@ -149,11 +149,10 @@ constexpr Rotations kRotations = makeRotations();
 // Comparing next identities with the previous identities rotated by k lanes,
 // k = 0 .. n - 1, compares every pair once. Reads 8 identities from each pointer
 // (kBucketIdPadding).
-__attribute__((target("avx2"))) bool closedFanEight(const std::uint32_t* outId, const std::uint32_t* inId,
-                                                     std::uint32_t n) {
-  const __m256i outs = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(outId));
-  const __m256i ins = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(inId));
+template <std::uint32_t n>
+__attribute__((target("avx2"))) inline bool closedFanOf(__m256i outs, __m256i ins) {
   __m256i matches = _mm256_setzero_si256(), successor = _mm256_setzero_si256();
+#pragma GCC unroll 8
   for (std::uint32_t k = 0; k < n; ++k) {
     const __m256i rotation = _mm256_load_si256(reinterpret_cast<const __m256i*>(kRotations.lanes[n][k]));
     // Lane i: corner i's next identity against corner (i + k) % n's previous.
@@ -162,17 +161,33 @@ __attribute__((target("avx2"))) bool closedFanEight(const std::uint32_t* outId, 
     successor = _mm256_or_si256(successor, _mm256_and_si256(same, rotation));
   }
   const __m256i once = _mm256_cmpeq_epi32(matches, _mm256_set1_epi32(1));
-  const int lanes = (1 << n) - 1;
-  if ((_mm256_movemask_ps(_mm256_castsi256_ps(once)) & lanes) != lanes) return false;
+  constexpr int kLanes = (1 << n) - 1;
+  if ((_mm256_movemask_ps(_mm256_castsi256_ps(once)) & kLanes) != kLanes) return false;
   // The walk from corner 0 back to it: a cycle of n steps holds n corners, all of them.
   alignas(32) std::int32_t next[8];
   _mm256_store_si256(reinterpret_cast<__m256i*>(next), successor);
-  std::uint32_t k = 0, steps = 0;
-  do {
+  std::uint32_t k = 0;
+#pragma GCC unroll 8
+  for (std::uint32_t step = 1; step < n; ++step) {
     k = static_cast<std::uint32_t>(next[k]);
-    ++steps;
-  } while (k != 0 && steps < n);
-  return k == 0 && steps == n;
+    if (k == 0) return false;
+  }
+  return next[k] == 0;
+}
+__attribute__((target("avx2"))) bool closedFanEight(const std::uint32_t* outId, const std::uint32_t* inId,
+                                                     std::uint32_t n) {
+  const __m256i outs = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(outId));
+  const __m256i ins = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(inId));
+  switch (n) {  // the loops unrolled for each size
+    case 2: return closedFanOf<2>(outs, ins);
+    case 3: return closedFanOf<3>(outs, ins);
+    case 4: return closedFanOf<4>(outs, ins);
+    case 5: return closedFanOf<5>(outs, ins);
+    case 6: return closedFanOf<6>(outs, ins);
+    case 7: return closedFanOf<7>(outs, ins);
+    case 8: return closedFanOf<8>(outs, ins);
+    default: return false;
+  }
 }
 #endif
 
