@@ -137,27 +137,30 @@ inline bool VertexSharer::add(const float* positions, const float* normals, cons
       auto same = [&](std::uint32_t v) {
         return detail::sameBits(P + 3 * v, p, 3) && detail::sameBits(N + 3 * v, n, 3) && detail::sameBits(T + 2 * v, t, 2);
       };
+      // A corner with a NaN is looked up like any other but never stored in either table, so
+      // that no vertex there has a NaN and no lookup can match one: its test waits for a miss.
       std::uint32_t vertex = static_cast<std::uint32_t>(count_);
-      if (!detail::hasNaN(p, n, t)) {
-        const std::uint32_t hash = hashes[c - first];
-        std::uint32_t* near = recentEntry(hash);
-        if (near[1] == hash && near[0] != 0 && same(near[0] - 1)) {
-          vertex = near[0] - 1;
-        } else {
-          for (std::size_t slot = hash & mask;; slot = (slot + 1) & mask) {
-            std::uint32_t* entry = table + 2 * slot;
-            if (entry[0] == 0) {
-              entry[0] = vertex + 1;
-              entry[1] = hash;
-              break;
-            }
-            if (entry[1] == hash && same(entry[0] - 1)) {
-              vertex = entry[0] - 1;
-              break;
-            }
+      const std::uint32_t hash = hashes[c - first];
+      std::uint32_t* near = recentEntry(hash);
+      if (near[1] == hash && near[0] != 0 && same(near[0] - 1)) {
+        vertex = near[0] - 1;
+      } else {
+        for (std::size_t slot = hash & mask;; slot = (slot + 1) & mask) {
+          std::uint32_t* entry = table + 2 * slot;
+          if (entry[0] == 0) {
+            if (detail::hasNaN(p, n, t)) break;
+            entry[0] = vertex + 1;
+            entry[1] = hash;
+            near[0] = vertex + 1;
+            near[1] = hash;
+            break;
           }
-          near[0] = vertex + 1;
-          near[1] = hash;
+          if (entry[1] == hash && same(entry[0] - 1)) {
+            vertex = entry[0] - 1;
+            near[0] = vertex + 1;
+            near[1] = hash;
+            break;
+          }
         }
       }
       indices[c] = vertex;
