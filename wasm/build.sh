@@ -23,13 +23,13 @@ rm -rf "$out" && mkdir -p "$objects"
 export NODE_PATH=/usr/share/nodejs${NODE_PATH:+:$NODE_PATH}
 sources=(libtangent/core/src/*.cpp libtangent/core/src/mikktspace/*.cpp wasm/src/bindings.cpp)
 for source in "${sources[@]}"; do
-  em++ -std=c++20 -O3 -msimd128 -fexceptions -DTANGENT_SERIAL -DNDEBUG -I libtangent/core/include \
+  em++ -std=c++20 -O3 -msimd128 -fexceptions -DTANGENT_SERIAL -DNDEBUG -I libtangent/core/include -I libtangent/core/src \
     -c "$source" -o "$objects/$(tr / _ <<<"$source").o"
 done
 link=(em++ -O3 -fexceptions "$objects"/*.o
   -sMODULARIZE=1 -sEXPORT_NAME=createTangentModule -sSINGLE_FILE=1 -sALLOW_MEMORY_GROWTH=1 -sMAXIMUM_MEMORY=4GB
   -sFILESYSTEM=0
-  -sEXPORTED_FUNCTIONS=_malloc,_free,_tangent_run,_tangent_error,_tangent_corner_tangents,_tangent_corner_vertices,_tangent_vertex_tangents,_tangent_vertex_sources,_tangent_report
+  -sEXPORTED_FUNCTIONS=_malloc,_free,_tangent_run,_tangent_share_begin,_tangent_stage_corners,_tangent_share_add,_tangent_error,_tangent_corner_tangents,_tangent_corner_vertices,_tangent_vertex_tangents,_tangent_vertex_sources,_tangent_report
   -sEXPORTED_RUNTIME_METHODS=UTF8ToString,stringToUTF8,lengthBytesUTF8)
 "${link[@]}" -sENVIRONMENT=node -o "$out/tangent_wasm.cjs"
 "${link[@]}" -sENVIRONMENT=web,worker -sEXPORT_ES6=1 -o "$out/tangent_wasm.browser.mjs"

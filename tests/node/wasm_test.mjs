@@ -154,6 +154,35 @@ for (const [segments, seed] of [[8, 1], [24, 2], [64, 3]]) {
   compare(`${label}, de-indexed`, mesh.indices.length, (c) => plain.subarray(4 * c, 4 * c + 4), plainTheirs.tangents, true);
 }
 
+// How many of `n` corners' tangents differ in their bits (a byte comparison: -0 === 0 in
+// JavaScript).
+function cornersWithOtherBits(ours, theirs, n) {
+  const oursBits = new Uint32Array(ours.buffer, ours.byteOffset, ours.length), theirBits = new Uint32Array(theirs.buffer, theirs.byteOffset, theirs.length);
+  let differ = 0;
+  for (let c = 0; c < n; ++c) {
+    for (let k = 0; k < 4; ++k) {
+      if (oursBits[4 * c + k] !== theirBits[4 * c + k]) {
+        differ++;
+        break;
+      }
+    }
+  }
+  return differ;
+}
+
+// 1d. generateTangents passes the corners through a staging buffer of 16,384 corners
+// (index.mjs shareCorners): a de-indexed sphere of 60,000 corners, three whole runs and part
+// of a fourth, whose vertices are shared across the runs' boundaries, has the library's bits.
+{
+  const mesh = generated(100, 4), flat = deindex(mesh), n = mesh.indices.length;
+  const ours = generateTangents(flat.position, flat.normal, flat.texcoord);
+  const theirs = library(flat.position, flat.normal, flat.texcoord, Uint32Array.from({ length: n }, (_, i) => i), 'bottom-left').tangents;
+  const differ = cornersWithOtherBits(ours, theirs, n);
+  const label = `de-indexed sphere of ${n} corners through the staging buffer`;
+  if (differ) fail(`${label}: ${differ} corners differ in their bits from the library's`);
+  else console.log(`ok   ${label}: every corner bit-identical`);
+}
+
 // 1c. De-indexed corners whose values are equal but whose bits are not (+0 and -0), and
 // corners with the same NaN bits: generateTangents shares a vertex between corners of the
 // same bits only (wasm/src/shared_vertices.hpp) and leaves the weld by value to the core, so
@@ -181,16 +210,7 @@ for (const [segments, seed] of [[8, 1], [24, 2], [64, 3]]) {
   });
   const ours = generateTangents(position, normal, texcoord);
   const theirs = library(position, normal, texcoord, Uint32Array.from({ length: n }, (_, i) => i), 'bottom-left').tangents;
-  const oursBits = new Uint32Array(ours.buffer, ours.byteOffset, ours.length), theirBits = new Uint32Array(theirs.buffer, theirs.byteOffset, theirs.length);
-  let differ = 0;
-  for (let c = 0; c < n; ++c) {
-    for (let k = 0; k < 4; ++k) {
-      if (oursBits[4 * c + k] !== theirBits[4 * c + k]) {
-        differ++;
-        break;
-      }
-    }
-  }
+  const differ = cornersWithOtherBits(ours, theirs, n);
   const label = `de-indexed plane with +0/-0, UV seams and a NaN vertex, ${n} corners`;
   if (differ) fail(`${label}: ${differ} corners differ in their bits from the library's`);
   else console.log(`ok   ${label}: every corner bit-identical (sign of zero included)`);

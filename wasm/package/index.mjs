@@ -15,32 +15,53 @@ function requireFloat32(name, array, width) {
   if (array.length % width !== 0) throw new RangeError(`${name}: length ${array.length} is not a multiple of ${width}`);
 }
 
-// Copies the inputs into the module's memory, runs the core, frees the inputs; returns the
-// core's report. Throws an Error with the core's message when it refuses the arrays or a name.
-// vertexSplit: also make the per-vertex outputs (generateTangentsIndexed's).
+// Copies the inputs that are not null into the module's memory, runs the core (null position,
+// normal and texcoord: on the corners shared already, see generateTangents), frees the inputs;
+// returns the core's report. Throws an Error with the core's message when it refuses the
+// arrays or a name. vertexSplit: also make the per-vertex outputs (generateTangentsIndexed's).
 function run(position, normal, texcoord, indices, vertexCount, cornerCount, names, vertexSplit) {
-  const arrays = [position, normal, texcoord, indices].filter((a) => a !== null);
+  const arrays = [position, normal, texcoord, indices];
   const strings = [names.method, names.weighting, names.uvOrigin].map(String);
-  const sizes = [...arrays.map((a) => Math.max(4, a.byteLength)), ...strings.map((s) => wasm.lengthBytesUTF8(s) + 1)];
+  const sizes = [...arrays.map((a) => (a === null ? 0 : Math.max(4, a.byteLength))), ...strings.map((s) => wasm.lengthBytesUTF8(s) + 1)];
   const pointers = [];
   try {
     for (const size of sizes) {
+      if (size === 0) {
+        pointers.push(0);
+        continue;
+      }
       const p = wasm._malloc(size);
       if (p === 0) throw new RangeError('libtangent: out of WebAssembly memory');
       pointers.push(p);
     }
     // Views are taken after every allocation: growing memory replaces the buffer.
-    arrays.forEach((a, i) => new Uint8Array(wasm.HEAPU8.buffer, pointers[i], a.byteLength)
+    arrays.forEach((a, i) => a !== null && new Uint8Array(wasm.HEAPU8.buffer, pointers[i] >>> 0, a.byteLength)
       .set(new Uint8Array(a.buffer, a.byteOffset, a.byteLength)));
     const text = pointers.slice(arrays.length);
     strings.forEach((s, i) => wasm.stringToUTF8(s, text[i], sizes[arrays.length + i]));
-    const status = wasm._tangent_run(pointers[0], pointers[1], pointers[2], indices ? pointers[3] : 0,
+    const status = wasm._tangent_run(pointers[0], pointers[1], pointers[2], pointers[3],
       vertexCount, cornerCount, text[0], text[1], text[2], vertexSplit ? 1 : 0);
     if (status !== 0) throw new Error(`libtangent: ${wasm.UTF8ToString(wasm._tangent_error())}`);
   } finally {
-    pointers.forEach((p) => wasm._free(p));
+    pointers.forEach((p) => p !== 0 && wasm._free(p));
   }
   return JSON.parse(wasm.UTF8ToString(wasm._tangent_report()));
+}
+
+// Shares the vertices of `corners` de-indexed corners a staging buffer at a time (the input is
+// never copied into the module's memory whole: each run is shared while it is in cache).
+function shareCorners(position, normal, texcoord, corners) {
+  const fail = () => new Error(`libtangent: ${wasm.UTF8ToString(wasm._tangent_error())}`);
+  const stage = wasm._tangent_share_begin(corners) >>> 0;
+  if (stage === 0) throw fail();
+  const runLength = wasm._tangent_stage_corners(), at = stage / 4;
+  for (let first = 0; first < corners; first += runLength) {
+    const last = Math.min(corners, first + runLength), heap = wasm.HEAPF32;  // replaced when memory grows
+    heap.set(position.subarray(3 * first, 3 * last), at);
+    heap.set(normal.subarray(3 * first, 3 * last), at + 3 * runLength);
+    heap.set(texcoord.subarray(2 * first, 2 * last), at + 6 * runLength);
+    if (wasm._tangent_share_add(last - first) !== 0) throw fail();
+  }
 }
 
 // The options every call takes, with the command line's defaults.
@@ -63,8 +84,9 @@ export function generateTangents(position, normal, texcoord, options = {}) {
   if (normal.length !== n * 3) throw new RangeError(`normal: expected ${n * 3} floats, got ${normal.length}`);
   if (texcoord.length !== n * 2) throw new RangeError(`texcoord: expected ${n * 2} floats, got ${texcoord.length}`);
   if (n % 3 !== 0) throw new RangeError(`position: ${n} vertices are not whole triangles`);
-  run(position, normal, texcoord, null, n, n, names(options, 'bottom-left'), false);
-  return new Float32Array(wasm.HEAPF32.buffer, wasm._tangent_corner_tangents(), n * 4).slice();
+  shareCorners(position, normal, texcoord, n);
+  run(null, null, null, null, n, n, names(options, 'bottom-left'), false);
+  return new Float32Array(wasm.HEAPF32.buffer, wasm._tangent_corner_tangents() >>> 0, n * 4).slice();
 }
 
 /**

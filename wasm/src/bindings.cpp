@@ -29,6 +29,8 @@ struct State {
   tangent::TangentWorkspace workspace;
   std::vector<std::uint32_t> sequence;  // 0, 1, 2, ... for de-indexed input with the vertex split
   tangent::wasm::SharedVertices shared;  // de-indexed input, indexed (shared_vertices.hpp)
+  tangent::wasm::VertexSharer sharer;     // fills `shared` from the staging buffer
+  std::vector<float> staging;             // kStageCorners corners: positions, normals, uvs
   std::vector<float> cornerTangents;    // 4 per corner
   std::vector<std::uint32_t> cornerVertex;
   std::vector<float> vertexTangents;    // 4 per output vertex
@@ -41,6 +43,11 @@ State& state() {
   static State s;
   return s;
 }
+
+// Corners per staging run: 8 floats each, 512 KiB in all, so that a run is shared while it is
+// still in cache (the de-indexed input is never in the module's memory whole: 32 bytes a
+// corner, 384 MB at 4e6 triangles, that were written and read back once).
+constexpr std::uint32_t kStageCorners = 1 << 14;
 
 
 }  // namespace
@@ -78,9 +85,15 @@ EMSCRIPTEN_KEEPALIVE int tangent_run(const float* positions, const float* normal
       indices = s.sequence.data();
     } else if (!indices) {
       // Per-corner tangents only: the corners with the same bits share a vertex first (the
-      // same output bits, a sixth of the vertices to weld and bucket on a typical mesh).
+      // same output bits, a sixth of the vertices to weld and bucket on a typical mesh), from
+      // the arrays or, where positions is null, as tangent_share_add has done already.
       if (vertexCount != cornerCount) throw std::invalid_argument("indices: null, but the vertex count is not the corner count");
-      tangent::wasm::shareVertices(positions, normals, uvs, cornerCount, s.shared);
+      if (positions) {
+        tangent::wasm::shareVertices(positions, normals, uvs, cornerCount, s.shared);
+      } else if (s.sharer.added() != cornerCount) {
+        throw std::invalid_argument("positions: null, but tangent_share_add gave " + std::to_string(s.sharer.added()) + " of " +
+                                    std::to_string(cornerCount) + " corners");
+      }
       positions = s.shared.positions.data();
       normals = s.shared.normals.data();
       uvs = s.shared.uvs.data();
@@ -119,6 +132,31 @@ EMSCRIPTEN_KEEPALIVE int tangent_run(const float* positions, const float* normal
   } catch (...) {
     s.error = "unknown error";
   }
+  return 1;
+}
+
+// De-indexed input through the staging buffer: tangent_share_begin(cornerCount) returns it
+// (null on failure, tangent_error() says why), tangent_stage_corners() corners of positions,
+// then as many normals, then UVs; tangent_share_add(count) shares the first `count` corners
+// staged; tangent_run with null arrays then runs the core on the shared vertices.
+EMSCRIPTEN_KEEPALIVE float* tangent_share_begin(std::uint32_t cornerCount) {
+  State& s = state();
+  s.error.clear();
+  try {
+    s.staging.resize(std::size_t(kStageCorners) * 8);
+    s.sharer.begin(cornerCount, s.shared);
+    return s.staging.data();
+  } catch (const std::exception& e) {
+    s.error = e.what();
+  }
+  return nullptr;
+}
+EMSCRIPTEN_KEEPALIVE std::uint32_t tangent_stage_corners() { return kStageCorners; }
+EMSCRIPTEN_KEEPALIVE int tangent_share_add(std::uint32_t count) {
+  State& s = state();
+  const float* staged = s.staging.data();
+  if (count <= kStageCorners && s.sharer.add(staged, staged + 3 * kStageCorners, staged + 6 * kStageCorners, count)) return 0;
+  s.error = "tangent_share_add: " + std::to_string(count) + " corners past the staging buffer or the call's count";
   return 1;
 }
 

@@ -10,11 +10,13 @@
 // Header-only and free of emscripten so that a native build can time it against the core.
 #pragma once
 
+#include <algorithm>
 #include <cstdint>
 #include <cstring>
 #include <vector>
 
 #include "tangent/bulk_buffer.hpp"
+#include "vertex_hash.hpp"
 
 namespace tangent::wasm {
 
@@ -23,38 +25,28 @@ namespace tangent::wasm {
 struct SharedVertices {
   BulkVector<float> positions, normals, uvs;  // 3, 3, 2 per shared vertex
   BulkVector<std::uint32_t> indices;          // per corner: its shared vertex
-  std::vector<std::uint32_t> table;           // open addressing: (hash, vertex + 1) per slot
+  // Open addressing, (vertex + 1, hash) per slot; the slot is the hash's low bits.
+  std::vector<std::uint32_t> table;
+  // The vertex a hash last found or made, at the hash's top kRecentBits bits: (vertex + 1, hash).
+  std::vector<std::uint32_t> recent;
   std::size_t vertexCount = 0;
+  std::uint32_t probeSink = 0;  // the sum of shareVertices' early loads (kept, so not dropped)
 };
 
 namespace detail {
+
+// A corner's vertex shared again within a few rows of a mesh is found here without a probe of
+// the large table (on the benchmark's sphere 78% of corners): 4096 entries, 32 KiB.
+constexpr int kRecentBits = 12;
+// Corners hashed and their slots loaded ahead of the probes: WebAssembly has no prefetch, and
+// a probe's branch on a slot that misses the cache waits for memory corner after corner; the
+// loads of a batch wait together instead.
+constexpr std::size_t kBatch = 64;
 
 inline std::uint32_t floatBits(float x) {
   std::uint32_t bits;
   std::memcpy(&bits, &x, sizeof bits);
   return bits;
-}
-
-// A vertex's 32-byte key: its eight floats' bits.
-struct VertexKey {
-  std::uint32_t bits[8];
-};
-
-inline VertexKey keyOf(const float* p, const float* n, const float* t) {
-  const float values[8] = {p[0], p[1], p[2], n[0], n[1], n[2], t[0], t[1]};
-  VertexKey key;
-  for (int i = 0; i < 8; ++i) key.bits[i] = floatBits(values[i]);
-  return key;
-}
-
-// Four independent 64-bit multiplies, then one finishing mix; the top 32 bits are used.
-inline std::uint32_t hashOf(const VertexKey& key) {
-  auto pair = [&](int i) { return std::uint64_t(key.bits[i]) | std::uint64_t(key.bits[i + 1]) << 32; };
-  std::uint64_t h = pair(0) * 0x9E3779B97F4A7C15ull ^ pair(2) * 0xC2B2AE3D27D4EB4Full ^ pair(4) * 0x165667B19E3779F9ull ^
-                    pair(6) * 0xD6E8FEB86659FD93ull;
-  h ^= h >> 29;
-  h *= 0xFF51AFD7ED558CCDull;
-  return static_cast<std::uint32_t>(h >> 32);
 }
 
 // Whether `count` floats have the same bits (no call to memcmp: WebAssembly has no inline one).
@@ -64,75 +56,155 @@ inline bool sameBits(const float* a, const float* b, int count) {
   return differ == 0;
 }
 
+inline bool hasNaN(const float* p, const float* n, const float* t) {
+  return p[0] != p[0] || p[1] != p[1] || p[2] != p[2] || n[0] != n[0] || n[1] != n[1] || n[2] != n[2] || t[0] != t[0] ||
+         t[1] != t[1];
+}
+
+// The core's vertex hash (vertex_hash.hpp), folded to 32 bits: equal bits, equal hashes.
+inline std::uint32_t cornerHash(const float* p, const float* n, const float* t) {
+  return static_cast<std::uint32_t>(tangent::detail::vertexHash(p, n, t));
+}
+
 }  // namespace detail
 
-// Fills `out` from `cornerCount` de-indexed corners (positions 3, normals 3, uvs 2 per corner).
-// The shared vertices are numbered in order of their first corner.
-inline void shareVertices(const float* positions, const float* normals, const float* uvs, std::size_t cornerCount,
-                          SharedVertices& out) {
-  // Sized for about a sixth as many vertices as corners, at most half full; grown (rehashed
-  // from the stored hashes) where a mesh shares less.
-  std::size_t capacity = 64;
-  while (capacity < cornerCount / 3) capacity *= 2;
-  out.table.assign(2 * capacity, 0u);
-  if (out.positions.size() < 3 * cornerCount) {
-    out.positions.resize(3 * cornerCount);
-    out.normals.resize(3 * cornerCount);
-    out.uvs.resize(2 * cornerCount);
+// Shares the corners of one call as they come, a run of corners at a time (the package passes
+// the input through a small staging buffer instead of copying all of it into the module's
+// memory first). The shared vertices are numbered in order of their first corner.
+class VertexSharer {
+ public:
+  // Starts a call of `cornerCount` corners; `out` is filled by add() and must outlive the call.
+  void begin(std::size_t cornerCount, SharedVertices& out) {
+    out_ = &out;
+    cornerCount_ = cornerCount;
+    added_ = 0;
+    count_ = 0;
+    // Sized for about a sixth as many vertices as corners, at most half full; grown (rehashed
+    // from the stored hashes) where a mesh shares less.
+    capacity_ = 64;
+    while (capacity_ < cornerCount / 3) capacity_ *= 2;
+    out.table.assign(2 * capacity_, 0u);
+    out.recent.assign(std::size_t(2) << detail::kRecentBits, 0u);
+    if (out.positions.size() < 3 * cornerCount) {
+      out.positions.resize(3 * cornerCount);
+      out.normals.resize(3 * cornerCount);
+      out.uvs.resize(2 * cornerCount);
+    }
+    out.indices.resize(cornerCount);
+    out.vertexCount = 0;
   }
-  out.indices.resize(cornerCount);
+
+  // The next `count` corners (positions 3, normals 3, uvs 2 per corner); false when they would
+  // run past begin()'s count.
+  bool add(const float* positions, const float* normals, const float* uvs, std::size_t count);
+
+  std::size_t added() const { return added_; }
+
+ private:
+  void grow();
+
+  SharedVertices* out_ = nullptr;
+  std::size_t cornerCount_ = 0, added_ = 0, count_ = 0, capacity_ = 0;
+};
+
+inline bool VertexSharer::add(const float* positions, const float* normals, const float* uvs, std::size_t count) {
+  using detail::kBatch;
+  if (count > cornerCount_ - added_) return false;
+  SharedVertices& out = *out_;
   float* P = out.positions.data();
   float* N = out.normals.data();
   float* T = out.uvs.data();
-  std::uint32_t* table = out.table.data();
-  std::size_t mask = capacity - 1, count = 0;
-  for (std::size_t c = 0; c < cornerCount; ++c) {
-    const float* p = positions + 3 * c;
-    const float* n = normals + 3 * c;
-    const float* t = uvs + 2 * c;
-    const bool hasNaN = p[0] != p[0] || p[1] != p[1] || p[2] != p[2] || n[0] != n[0] || n[1] != n[1] || n[2] != n[2] ||
-                        t[0] != t[0] || t[1] != t[1];
-    auto same = [&](std::uint32_t v) {
-      return detail::sameBits(P + 3 * v, p, 3) && detail::sameBits(N + 3 * v, n, 3) && detail::sameBits(T + 2 * v, t, 2);
-    };
-    std::uint32_t vertex = static_cast<std::uint32_t>(count);
-    if (!hasNaN) {
-      const std::uint32_t hash = detail::hashOf(detail::keyOf(p, n, t));
-      for (std::size_t slot = hash & mask;; slot = (slot + 1) & mask) {
-        std::uint32_t* entry = table + 2 * slot;
-        if (entry[1] == 0) {
-          entry[0] = hash;
-          entry[1] = vertex + 1;
-          break;
-        }
-        if (entry[0] == hash && same(entry[1] - 1)) {
-          vertex = entry[1] - 1;
-          break;
+  std::uint32_t* indices = out.indices.data() + added_;
+  std::uint32_t* recent = out.recent.data();
+  std::uint32_t sink = 0;
+  auto recentEntry = [&](std::uint32_t hash) { return recent + 2 * (hash >> (32 - detail::kRecentBits)); };
+  std::uint32_t hashes[kBatch];
+  for (std::size_t first = 0; first < count; first += kBatch) {
+    const std::size_t last = std::min(count, first + kBatch);
+    std::uint32_t* table = out.table.data();
+    std::size_t mask = capacity_ - 1;
+    // The batch's hashes, then a load of each large-table slot that the recent table will not
+    // answer, in a loop of their own so that they are all in flight at once (their values
+    // only summed: the probes below find the slots in cache).
+    for (std::size_t c = first; c < last; ++c) hashes[c - first] = detail::cornerHash(positions + 3 * c, normals + 3 * c, uvs + 2 * c);
+    for (std::size_t i = 0; i < last - first; ++i) {
+      if (recentEntry(hashes[i])[1] != hashes[i]) sink += table[2 * (hashes[i] & mask)];
+    }
+    for (std::size_t c = first; c < last; ++c) {
+      const float* p = positions + 3 * c;
+      const float* n = normals + 3 * c;
+      const float* t = uvs + 2 * c;
+      auto same = [&](std::uint32_t v) {
+        return detail::sameBits(P + 3 * v, p, 3) && detail::sameBits(N + 3 * v, n, 3) && detail::sameBits(T + 2 * v, t, 2);
+      };
+      // A corner with a NaN is looked up like any other but never stored in either table, so
+      // that no vertex there has a NaN and no lookup can match one: its test waits for a miss.
+      std::uint32_t vertex = static_cast<std::uint32_t>(count_);
+      const std::uint32_t hash = hashes[c - first];
+      std::uint32_t* near = recentEntry(hash);
+      if (near[1] == hash && near[0] != 0 && same(near[0] - 1)) {
+        vertex = near[0] - 1;
+      } else {
+        for (std::size_t slot = hash & mask;; slot = (slot + 1) & mask) {
+          std::uint32_t* entry = table + 2 * slot;
+          if (entry[0] == 0) {
+            if (detail::hasNaN(p, n, t)) break;
+            entry[0] = vertex + 1;
+            entry[1] = hash;
+            near[0] = vertex + 1;
+            near[1] = hash;
+            break;
+          }
+          if (entry[1] == hash && same(entry[0] - 1)) {
+            vertex = entry[0] - 1;
+            near[0] = vertex + 1;
+            near[1] = hash;
+            break;
+          }
         }
       }
-    }
-    out.indices[c] = vertex;
-    if (vertex != count) continue;
-    std::memcpy(P + 3 * count, p, 12);
-    std::memcpy(N + 3 * count, n, 12);
-    std::memcpy(T + 2 * count, t, 8);
-    ++count;
-    if (2 * count > capacity) {  // more than half full: twice the slots
-      std::vector<std::uint32_t> old(std::move(out.table));
-      capacity *= 2;
-      mask = capacity - 1;
-      out.table.assign(2 * capacity, 0u);
-      table = out.table.data();
-      for (std::size_t s = 0; s < old.size(); s += 2) {
-        if (old[s + 1] == 0) continue;
-        std::size_t slot = old[s] & mask;
-        while (table[2 * slot + 1] != 0) slot = (slot + 1) & mask;
-        table[2 * slot] = old[s];
-        table[2 * slot + 1] = old[s + 1];
+      indices[c] = vertex;
+      if (vertex != count_) continue;
+      std::memcpy(P + 3 * count_, p, 12);
+      std::memcpy(N + 3 * count_, n, 12);
+      std::memcpy(T + 2 * count_, t, 8);
+      ++count_;
+      if (2 * count_ > capacity_) {
+        grow();
+        table = out.table.data();
+        mask = capacity_ - 1;
       }
     }
   }
-  out.vertexCount = count;
+  added_ += count;
+  out.vertexCount = count_;
+  out.probeSink += sink;
+  return true;
+}
+
+// More than half full: twice the slots, each entry moved to its slot by its stored hash.
+inline void VertexSharer::grow() {
+  SharedVertices& out = *out_;
+  std::vector<std::uint32_t> old(std::move(out.table));
+  capacity_ *= 2;
+  const std::size_t mask = capacity_ - 1;
+  out.table.assign(2 * capacity_, 0u);
+  std::uint32_t* table = out.table.data();
+  for (std::size_t s = 0; s < old.size(); s += 2) {
+    if (old[s] == 0) continue;
+    std::size_t slot = old[s + 1] & mask;
+    while (table[2 * slot] != 0) slot = (slot + 1) & mask;
+    table[2 * slot] = old[s];
+    table[2 * slot + 1] = old[s + 1];
+  }
+}
+
+// All of `cornerCount` corners at once.
+inline void shareVertices(const float* positions, const float* normals, const float* uvs, std::size_t cornerCount,
+                          SharedVertices& out) {
+  VertexSharer sharer;
+  sharer.begin(cornerCount, out);
+  sharer.add(positions, normals, uvs, cornerCount);
 }
 
 }  // namespace tangent::wasm

@@ -2,6 +2,7 @@
 // Welding vertices by exact value, as the reference identifies corners, and bucketing the
 // corners by welded vertex (a parallel counting sort). Shared by every method.
 #include "parallel.hpp"
+#include "vertex_hash.hpp"
 
 #include <algorithm>
 #include <array>
@@ -19,30 +20,9 @@
 namespace tangent::detail {
 namespace {
 
-// The hash of a vertex's values without their sign bits (equal values, +0 and -0 among them,
-// equal hashes; values that differ in sign only collide, which costs a comparison). The eight
-// values go in as four 64-bit pairs, three of them one load each (neighbours in their
-// array), each pair multiplied on its own, then one finishing mix: a chain of three dependent
-// multiplies per vertex. Mixing the values one after another made a chain of eight, and its
-// latency was most of the weld's time per vertex.
+// The weld's hash of vertex v (vertex_hash.hpp).
 std::uint64_t vertexHash(const MeshArrays& mesh, std::size_t v) {
-  constexpr std::uint64_t kNoSigns = 0x7FFFFFFF7FFFFFFFull;
-  auto two = [](const float* x) {
-    std::uint64_t bits;
-    std::memcpy(&bits, x, sizeof bits);
-    return bits & kNoSigns;
-  };
-  const float* p = &mesh.positions[3 * v];
-  const float* n = &mesh.normals[3 * v];
-  const float* t = &mesh.uvs[2 * v];
-  const std::uint64_t zx = (std::uint64_t(bitCast<std::uint32_t>(p[2])) | std::uint64_t(bitCast<std::uint32_t>(n[0])) << 32) & kNoSigns;
-  std::uint64_t h = two(p) * 0x9E3779B97F4A7C15ull ^ zx * 0xC2B2AE3D27D4EB4Full ^ two(n + 1) * 0x165667B19E3779F9ull ^
-                    two(t) * 0xD6E8FEB86659FD93ull;
-  h ^= h >> 32;
-  h *= 0xFF51AFD7ED558CCDull;
-  h ^= h >> 29;
-  h *= 0xC4CEB9FE1A85EC53ull;
-  return h ^ (h >> 32);
+  return detail::vertexHash(&mesh.positions[3 * v], &mesh.normals[3 * v], &mesh.uvs[2 * v]);
 }
 
 // The reference's identity of a corner: every value equal as floats (+0 == -0, NaN != NaN).
