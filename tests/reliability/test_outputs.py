@@ -401,6 +401,40 @@ def test_a_full_disk_leaves_no_image_copy_or_folder_behind(tmp_path, suffix):
     assert listing == [".", "./out", "./out/earlier.txt"], output
 
 
+@pytest.mark.parametrize("suffix", [".glb", ".gltf"])
+def test_a_full_disk_leaves_an_earlier_image_copy_as_it_was(tmp_path, suffix):
+    # An earlier bake left its copy of the image beside the output, and the image has changed
+    # since: the new copy (one page) fits, the output after it does not. The failed bake leaves
+    # the earlier copy and output byte for byte: the copy is replaced only once the output is
+    # written.
+    doc, blob = grid(24)
+    asset = write(tmp_path / "in" / "in.gltf", gltf_bytes(with_external_image(doc), blob))
+    write(tmp_path / "in" / "tex" / "n.png", PNG)
+    changed = write(tmp_path / "changed.png", PNG + b"\0" * 16)
+    script = f"""
+      "$T" bake '{asset}' -o "$DISK/out/o{suffix}" --quiet || exit 10
+      cp '{changed}' '{asset.parent}/tex/n.png' && cp -r "$DISK/out" "$DISK/before" || exit 11
+      {FILL_BUT_ONE_PAGE}
+      "$T" bake '{asset}' -o "$DISK/out/o{suffix}" --method flat; echo "exit=$?"
+      rm -f "$DISK/filler"
+      cp -r "$DISK/out" '{tmp_path}/after' && cp -r "$DISK/before" '{tmp_path}/before'
+    """
+    status, output = on_small_disk(tmp_path, script)
+    assert status == 0, output
+    assert "exit=1" in output, output
+    assert "No space left on device" in output, output
+    before, after = snapshot(tmp_path / "before"), snapshot(tmp_path / "after")
+    assert before.get("tex/n.png") == hashlib.sha256(PNG).hexdigest(), before
+    assert after == before, output
+    assert temporaries(tmp_path / "after") == [], output
+
+    # With room, the same bake over the same folder replaces the copy.
+    done = tangent("bake", asset, "-o", tmp_path / "after" / f"o{suffix}", "--quiet")
+    assert done.returncode == 0, done.stderr
+    assert (tmp_path / "after" / "tex" / "n.png").read_bytes() == changed.read_bytes()
+    assert temporaries(tmp_path / "after") == []
+
+
 def test_a_batch_on_a_full_disk_names_the_file_and_keeps_earlier_outputs(tmp_path):
     # small.glb's output fits in the pages left, large.glb's does not: the batch goes on past
     # the failure, names it, and the outputs of an earlier run stay as they were.
