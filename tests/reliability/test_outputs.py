@@ -472,6 +472,59 @@ def test_a_batch_on_a_full_disk_names_the_file_and_keeps_earlier_outputs(tmp_pat
     assert snapshot(tree) == before
 
 
+# --- images: carried through, never read to load --------------------------------------------
+
+def peak_memory_kb(*args):
+    """(exit status, peak resident memory in KiB) of one `tangent` run."""
+    child = subprocess.Popen([CLI, *map(os.fsdecode, args)], stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+    _, status, usage = os.wait4(child.pid, 0)
+    return os.waitstatus_to_exitcode(status), usage.ru_maxrss
+
+
+def test_a_huge_texture_is_not_read_by_info_check_or_a_bake_beside_it(tmp_path):
+    # A 1 GiB image file (sparse: no disk used): loading never reads image files, so info,
+    # check and a bake into the same folder (no copy to make) stay far below its size. The
+    # loader used to read each image whole and drop it.
+    doc, blob = grid(8)
+    asset = write(tmp_path / "in.gltf", gltf_bytes(with_external_image(doc), blob))
+    image = tmp_path / "tex" / "n.png"
+    image.parent.mkdir()
+    with open(image, "wb") as f:
+        f.truncate(1 << 30)
+    assert tangent("bake", asset, "-o", tmp_path / "baked.gltf", "--quiet").returncode == 0
+    limit_kb = 256 << 10
+    for args in (["info", asset], ["check", tmp_path / "baked.gltf"], ["bake", asset, "-o", tmp_path / "o.glb", "--quiet"]):
+        status, peak = peak_memory_kb(*args)
+        assert status == 0, args
+        assert peak < limit_kb, (args, peak)
+
+
+def test_embedded_images_survive_byte_for_byte_and_broken_ones_are_warnings(tmp_path):
+    doc, blob = grid(6)  # its image: a data: URI
+    uri = doc["images"][0]["uri"]
+    # The same image in the GLB's buffer (a bufferView), a missing file and a data: URI
+    # that is not base64: warnings (one per image, naming it), the URIs kept as they are.
+    doc["images"] += [{"bufferView": 4, "mimeType": "image/png"}, {"uri": "missing.png"}, {"uri": "data:image/png,not-base64"}]
+    doc["textures"] += [{"source": 1}, {"source": 2}, {"source": 3}]
+    doc["bufferViews"].append({"buffer": 0, "byteOffset": len(blob), "byteLength": len(PNG)})
+    blob += PNG
+    doc["buffers"][0]["byteLength"] = len(blob)
+    asset = write(tmp_path / "in.glb", glb_bytes(doc, blob))
+    done = tangent("bake", asset, "-o", tmp_path / "out" / "o.glb")
+    assert done.returncode == 0, done.stderr
+    warnings = [line for line in done.stderr.decode().splitlines() if line.startswith("warning: ")]
+    assert len(warnings) == 2, done.stderr
+    assert "/images/2 uri 'missing.png' names a file that does not exist" in warnings[0], warnings
+    assert "/images/3 uri: data: URI is not base64" in warnings[1], warnings
+    out = assert_valid_glb(tmp_path / "out" / "o.glb")
+    data = (tmp_path / "out" / "o.glb").read_bytes()
+    json_length = struct.unpack_from("<I", data, 12)[0]
+    bin_chunk = data[28 + json_length:]
+    view = out["bufferViews"][out["images"][1]["bufferView"]]
+    assert bin_chunk[view.get("byteOffset", 0):view.get("byteOffset", 0) + view["byteLength"]] == PNG
+    assert [image.get("uri") for image in out["images"]] == [uri, None, "missing.png", "data:image/png,not-base64"]
+
+
 # --- interrupted batches ------------------------------------------------------------------
 
 def finished_files(out):
