@@ -138,7 +138,8 @@ TEST(Check, UndrawnVerticesOfTheBufferAreLeftOutAndTheRestIsClean) {
   Json low = Json::array(), high = Json::array();
   for (int axis = 0; axis < 3; ++axis) {
     float lo = positions[axis], hi = positions[axis];
-    for (std::size_t v = 0; v < vertexCount; ++v) lo = std::min(lo, positions[3 * v + axis]), hi = std::max(hi, positions[3 * v + axis]);
+    for (std::size_t v = 0; v < vertexCount; ++v)
+      lo = std::min(lo, positions[3 * v + axis]), hi = std::max(hi, positions[3 * v + axis]);
     low.push_back(lo), high.push_back(hi);
   }
   std::vector<std::uint8_t> bin;
@@ -155,20 +156,28 @@ TEST(Check, UndrawnVerticesOfTheBufferAreLeftOutAndTheRestIsClean) {
                                    {{"buffer", 0}, {"byteOffset", nOffset}, {"byteLength", uOffset - nOffset}},
                                    {{"buffer", 0}, {"byteOffset", uOffset}, {"byteLength", iOffset - uOffset}},
                                    {{"buffer", 0}, {"byteOffset", iOffset}, {"byteLength", 4 * indices.size()}}})},
-      {"accessors", Json::array({{{"bufferView", 0}, {"componentType", 5126}, {"count", vertexCount}, {"type", "VEC3"},
-                                  {"min", low}, {"max", high}},
-                                 {{"bufferView", 1}, {"componentType", 5126}, {"count", vertexCount}, {"type", "VEC3"}},
-                                 {{"bufferView", 2}, {"componentType", 5126}, {"count", vertexCount}, {"type", "VEC2"}},
-                                 {{"bufferView", 3}, {"componentType", 5125}, {"count", indices.size()}, {"type", "SCALAR"}}})},
+      {"accessors",
+       Json::array({{{"bufferView", 0},
+                     {"componentType", 5126},
+                     {"count", vertexCount},
+                     {"type", "VEC3"},
+                     {"min", low},
+                     {"max", high}},
+                    {{"bufferView", 1}, {"componentType", 5126}, {"count", vertexCount}, {"type", "VEC3"}},
+                    {{"bufferView", 2}, {"componentType", 5126}, {"count", vertexCount}, {"type", "VEC2"}},
+                    {{"bufferView", 3}, {"componentType", 5125}, {"count", indices.size()}, {"type", "SCALAR"}}})},
       {"materials", Json::array({{{"normalTexture", {{"index", 0}}}}})},
       {"textures", Json::array({{{"source", 0}}})},
       {"images", Json::array({{{"uri", "normal.png"}}})},
-      {"meshes", Json::array({{{"primitives", Json::array({{{"attributes", {{"POSITION", 0}, {"NORMAL", 1}, {"TEXCOORD_0", 2}}},
-                                                            {"indices", 3}, {"material", 0}}})}}})},
+      {"meshes",
+       Json::array({{{"primitives", Json::array({{{"attributes", {{"POSITION", 0}, {"NORMAL", 1}, {"TEXCOORD_0", 2}}},
+                                                  {"indices", 3},
+                                                  {"material", 0}}})}}})},
       {"nodes", Json::array({{{"mesh", 0}}})},
       {"scenes", Json::array({{{"nodes", {0}}}})},
       {"scene", 0}};
-  std::ofstream(dir / "grid.bin", std::ios::binary).write(reinterpret_cast<const char*>(bin.data()), static_cast<std::streamsize>(bin.size()));
+  std::ofstream(dir / "grid.bin", std::ios::binary)
+      .write(reinterpret_cast<const char*>(bin.data()), static_cast<std::streamsize>(bin.size()));
   std::ofstream(dir / "grid.gltf") << doc.dump();
   std::ofstream(dir / "normal.png") << "never read";
   tangent::gltf::bakeFile(dir / "grid.gltf", dir / "baked.glb", {});

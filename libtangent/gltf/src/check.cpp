@@ -211,8 +211,9 @@ void coverageWarning(const CheckOptions& options, const char* check, const char*
 // vertices it draws, reference), after the per-vertex ones. `used` is the part of its vertex
 // buffer it draws and `part` that part's geometry (gatherGeometry or keepUsedVertices);
 // elements in messages are the buffer's vertices and the primitive's triangles and corners.
-void checkDrawnPart(const UsedVertices& used, const PrimitiveGeometry& part, const StoredTangents& stored, const VertexFindings& undrawn, const InputRounding& rounding,
-                    const CheckOptions& options, TangentWorkspace& workspace, PrimitiveCheck& result) {
+void checkDrawnPart(const UsedVertices& used, const PrimitiveGeometry& part, const StoredTangents& stored,
+                    const VertexFindings& undrawn, const InputRounding& rounding, const CheckOptions& options,
+                    TangentWorkspace& workspace, PrimitiveCheck& result) {
   const std::vector<float>& tangents = stored.values;
   VertexFindings vertexFindings(result.vertices, stored, options);
   for (const std::uint32_t v : used.vertices) vertexFindings.check(v, stored);
@@ -248,7 +249,8 @@ void checkDrawnPart(const UsedVertices& used, const PrimitiveGeometry& part, con
     const float* uv[3] = {&part.uvs[2 * local[0]], &part.uvs[2 * local[1]], &part.uvs[2 * local[2]]};
     const double det = uvAreaTimesTwo(uv[0], uv[1], uv[2]);
     const float expected = expectedW(det);
-    const double area = areaTimesTwo(&part.positions[3 * local[0]], &part.positions[3 * local[1]], &part.positions[3 * local[2]]);
+    const double area =
+        areaTimesTwo(&part.positions[3 * local[0]], &part.positions[3 * local[1]], &part.positions[3 * local[2]]);
     if (expected == 0 || !std::isfinite(det) || !(area > 0)) {
       ++handednessDegenerate;
       continue;
@@ -475,7 +477,8 @@ void checkVertexGroup(const Asset& asset, const std::vector<PrimitiveToCheck>& p
     return;
   }
   for (std::size_t k = 0; k < members.size(); ++k)
-    checkDrawnPart(parts[k], gatherGeometry(buffer, parts[k]), stored, undrawn, rounding, options, workspace, results[members[k]]);
+    checkDrawnPart(parts[k], gatherGeometry(buffer, parts[k]), stored, undrawn, rounding, options, workspace,
+                   results[members[k]]);
 }
 
 }  // namespace
