@@ -435,6 +435,20 @@ def test_a_full_disk_leaves_an_earlier_image_copy_as_it_was(tmp_path, suffix):
     assert temporaries(tmp_path / "after") == []
 
 
+def test_an_image_copy_that_would_replace_a_folder_is_refused_before_anything_is_written(tmp_path):
+    doc, blob = grid(4)
+    asset = write(tmp_path / "in" / "in.gltf", gltf_bytes(with_external_image(doc), blob))
+    write(tmp_path / "in" / "tex" / "n.png", PNG)
+    write(tmp_path / "out" / "tex" / "n.png" / "kept.txt", b"a folder where the copy would go")
+    for suffix in (".glb", ".gltf"):
+        done = tangent("bake", asset, "-o", tmp_path / "out" / f"o{suffix}")
+        assert done.returncode == 1, done.stderr
+        kept = hashlib.sha256(b"a folder where the copy would go").hexdigest()
+        assert snapshot(tmp_path / "out") == {"tex/n.png/kept.txt": kept}, done.stderr
+        assert temporaries(tmp_path / "out") == []
+        assert b"n.png: is a directory" in done.stderr, done.stderr
+
+
 def test_a_batch_on_a_full_disk_names_the_file_and_keeps_earlier_outputs(tmp_path):
     # small.glb's output fits in the pages left, large.glb's does not: the batch goes on past
     # the failure, names it, and the outputs of an earlier run stay as they were.

@@ -414,6 +414,10 @@ void OutputDocument::placeImages(const std::filesystem::path& outputDir, Created
       const fs::path relative = source.lexically_relative(inputDir);
       const fs::path target = targetDir / relative;
       if (fs::exists(target, ec) && fs::equivalent(target, source, ec)) continue;
+      // The copy is renamed over `target` only after the output is written: what would make
+      // that fail is refused before anything is written.
+      if (fs::is_directory(fs::symlink_status(target, ec)))
+        throw std::runtime_error(target.string() + ": is a directory, where bake would copy the image " + uri);
       created.createFolders(target.parent_path());
       std::vector<std::uint8_t> bytes;
       if (!readFileInto(source, bytes)) throw std::runtime_error(source.string() + ": cannot be read to copy beside the output");
