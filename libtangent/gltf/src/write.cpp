@@ -417,7 +417,7 @@ void OutputDocument::placeImages(const std::filesystem::path& outputDir, Created
       // The copy is renamed over `target` only after the output is written: what would make
       // that fail is refused before anything is written.
       if (fs::is_directory(fs::symlink_status(target, ec)))
-        throw std::runtime_error(target.string() + ": is a directory, where bake would copy the image " + uri);
+        throw std::runtime_error(target.string() + ": is a directory, where bake would copy an image the input uses");
       created.createFolders(target.parent_path());
       std::vector<std::uint8_t> bytes;
       if (!readFileInto(source, bytes)) throw std::runtime_error(source.string() + ": cannot be read to copy beside the output");
