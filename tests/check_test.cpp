@@ -3,8 +3,10 @@
 // check; the JUnit output parses as XML with the right failure counts; exit codes.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdio>
 #include <cstring>
 #include <fstream>
 #include <functional>
@@ -98,6 +100,108 @@ TEST(Check, BakedOutputsAreClean) {
       // tangent on a curved sheet included): every output is clean.
       EXPECT_TRUE(names.empty()) << asset.name << " primitive " << p.primitive << ": " << testing::PrintToString(names);
     }
+  }
+}
+
+// A primitive that leaves vertices of its buffer undrawn (the poles of a UV sphere, a vertex an
+// editor left behind): check compares on the vertices it draws, renumbered, and names the
+// buffer's vertices. Bake keeps the buffer (one TANGENT over it), so its output is clean; a
+// wrong renumbering of the drawn vertices' positions or UVs (check keeps them in place for a
+// single primitive) would show as reference findings.
+TEST(Check, UndrawnVerticesOfTheBufferAreLeftOutAndTheRestIsClean) {
+  TempDir dir;
+  using Json = nlohmann::ordered_json;
+  constexpr int n = 7;  // n x n drawn grid; buffer vertices 0 and 9 are never drawn
+  const std::vector<std::uint32_t> undrawn = {0, 9};
+  std::vector<float> positions, normals, uvs;
+  std::vector<std::uint32_t> bufferIndex;  // of grid vertex g
+  auto addVertex = [&](float x, float y, float z, float u, float v) {
+    const float nx = -0.4f * x, ny = 0.3f * y, length = std::sqrt(nx * nx + ny * ny + 1);
+    positions.insert(positions.end(), {x, y, z});
+    normals.insert(normals.end(), {nx / length, ny / length, 1 / length});
+    uvs.insert(uvs.end(), {u, v});
+  };
+  for (int g = 0; g < n * n; ++g) {
+    while (std::find(undrawn.begin(), undrawn.end(), positions.size() / 3) != undrawn.end())
+      addVertex(5.0f + float(positions.size()), -3, 2, 0.9f, 0.05f);  // far off, UVs unlike any drawn
+    const float x = float(g % n) / (n - 1), y = float(g / n) / (n - 1);
+    bufferIndex.push_back(static_cast<std::uint32_t>(positions.size() / 3));
+    addVertex(x, y, 0.2f * x * x - 0.15f * y * y, 0.8f * x + 0.3f * y * y, 1 - y + 0.1f * x);
+  }
+  std::vector<std::uint32_t> indices;
+  for (int j = 0; j + 1 < n; ++j)
+    for (int i = 0; i + 1 < n; ++i) {
+      const int a = j * n + i;
+      for (int g : {a, a + 1, a + n + 1, a, a + n + 1, a + n}) indices.push_back(bufferIndex[g]);
+    }
+  const std::size_t vertexCount = positions.size() / 3;
+  Json low = Json::array(), high = Json::array();
+  for (int axis = 0; axis < 3; ++axis) {
+    float lo = positions[axis], hi = positions[axis];
+    for (std::size_t v = 0; v < vertexCount; ++v)
+      lo = std::min(lo, positions[3 * v + axis]), hi = std::max(hi, positions[3 * v + axis]);
+    low.push_back(lo), high.push_back(hi);
+  }
+  std::vector<std::uint8_t> bin;
+  auto append = [&](const auto& values) {
+    const auto* bytes = reinterpret_cast<const std::uint8_t*>(values.data());
+    bin.insert(bin.end(), bytes, bytes + values.size() * sizeof(values[0]));
+  };
+  append(positions), append(normals), append(uvs), append(indices);
+  const std::size_t p = 0, nOffset = 12 * vertexCount, uOffset = 24 * vertexCount, iOffset = 32 * vertexCount;
+  const Json doc = {
+      {"asset", {{"version", "2.0"}}},
+      {"buffers", Json::array({{{"uri", "grid.bin"}, {"byteLength", bin.size()}}})},
+      {"bufferViews", Json::array({{{"buffer", 0}, {"byteOffset", p}, {"byteLength", nOffset}},
+                                   {{"buffer", 0}, {"byteOffset", nOffset}, {"byteLength", uOffset - nOffset}},
+                                   {{"buffer", 0}, {"byteOffset", uOffset}, {"byteLength", iOffset - uOffset}},
+                                   {{"buffer", 0}, {"byteOffset", iOffset}, {"byteLength", 4 * indices.size()}}})},
+      {"accessors",
+       Json::array({{{"bufferView", 0},
+                     {"componentType", 5126},
+                     {"count", vertexCount},
+                     {"type", "VEC3"},
+                     {"min", low},
+                     {"max", high}},
+                    {{"bufferView", 1}, {"componentType", 5126}, {"count", vertexCount}, {"type", "VEC3"}},
+                    {{"bufferView", 2}, {"componentType", 5126}, {"count", vertexCount}, {"type", "VEC2"}},
+                    {{"bufferView", 3}, {"componentType", 5125}, {"count", indices.size()}, {"type", "SCALAR"}}})},
+      {"materials", Json::array({{{"normalTexture", {{"index", 0}}}}})},
+      {"textures", Json::array({{{"source", 0}}})},
+      {"images", Json::array({{{"uri", "normal.png"}}})},
+      {"meshes",
+       Json::array({{{"primitives", Json::array({{{"attributes", {{"POSITION", 0}, {"NORMAL", 1}, {"TEXCOORD_0", 2}}},
+                                                  {"indices", 3},
+                                                  {"material", 0}}})}}})},
+      {"nodes", Json::array({{{"mesh", 0}}})},
+      {"scenes", Json::array({{{"nodes", {0}}}})},
+      {"scene", 0}};
+  std::ofstream(dir / "grid.bin", std::ios::binary)
+      .write(reinterpret_cast<const char*>(bin.data()), static_cast<std::streamsize>(bin.size()));
+  std::ofstream(dir / "grid.gltf") << doc.dump();
+  std::ofstream(dir / "normal.png") << "never read";
+  tangent::gltf::bakeFile(dir / "grid.gltf", dir / "baked.glb", {});
+
+  const FileCheck check = tangent::gltf::checkFile(dir / "baked.glb", {});
+  ASSERT_TRUE(check.error.empty()) << check.error;
+  ASSERT_EQ(check.primitives.size(), 1u);
+  EXPECT_EQ(check.primitives[0].vertices, vertexCount);  // the undrawn count too (finite, unit, w)
+  EXPECT_EQ(check.primitives[0].triangles, indices.size() / 3);
+  EXPECT_TRUE(check.clean()) << testing::PrintToString(findingNames(check));
+  EXPECT_EQ(check.primitives[0].referenceUndefined, 0u);
+
+  // One drawn vertex's w flipped: handedness names it by its number in the buffer.
+  const std::uint32_t flipped = bufferIndex[2 * n + 3];
+  patchTangents(dir / "baked.glb", 0, [&](TangentView& view) { view.tangents[4 * flipped + 3] *= -1; });
+  const FileCheck broken = tangent::gltf::checkFile(dir / "baked.glb", {});
+  const CheckFinding* handedness = findingOf(broken, 0, "handedness");
+  ASSERT_NE(handedness, nullptr) << testing::PrintToString(findingNames(broken));
+  EXPECT_EQ(handedness->total, indices.size() / 3);
+  ASSERT_FALSE(handedness->worst.empty());
+  for (const auto& sample : handedness->worst) {
+    unsigned a = 0, b = 0, c = 0;
+    ASSERT_EQ(std::sscanf(sample.detail.c_str(), "triangle %*u (vertices %u %u %u)", &a, &b, &c), 3) << sample.detail;
+    EXPECT_TRUE(a == flipped || b == flipped || c == flipped) << sample.detail << ", flipped " << flipped;
   }
 }
 

@@ -401,6 +401,54 @@ def test_a_full_disk_leaves_no_image_copy_or_folder_behind(tmp_path, suffix):
     assert listing == [".", "./out", "./out/earlier.txt"], output
 
 
+@pytest.mark.parametrize("suffix", [".glb", ".gltf"])
+def test_a_full_disk_leaves_an_earlier_image_copy_as_it_was(tmp_path, suffix):
+    # An earlier bake left its copy of the image beside the output, and the image has changed
+    # since: the new copy (one page) fits, the output after it does not. The failed bake leaves
+    # the earlier copy and output byte for byte: the copy is replaced only once the output is
+    # written.
+    doc, blob = grid(24)
+    asset = write(tmp_path / "in" / "in.gltf", gltf_bytes(with_external_image(doc), blob))
+    write(tmp_path / "in" / "tex" / "n.png", PNG)
+    changed = write(tmp_path / "changed.png", PNG + b"\0" * 16)
+    script = f"""
+      "$T" bake '{asset}' -o "$DISK/out/o{suffix}" --quiet || exit 10
+      cp '{changed}' '{asset.parent}/tex/n.png' && cp -r "$DISK/out" "$DISK/before" || exit 11
+      {FILL_BUT_ONE_PAGE}
+      "$T" bake '{asset}' -o "$DISK/out/o{suffix}" --method flat; echo "exit=$?"
+      rm -f "$DISK/filler"
+      cp -r "$DISK/out" '{tmp_path}/after' && cp -r "$DISK/before" '{tmp_path}/before'
+    """
+    status, output = on_small_disk(tmp_path, script)
+    assert status == 0, output
+    assert "exit=1" in output, output
+    assert "No space left on device" in output, output
+    before, after = snapshot(tmp_path / "before"), snapshot(tmp_path / "after")
+    assert before.get("tex/n.png") == hashlib.sha256(PNG).hexdigest(), before
+    assert after == before, output
+    assert temporaries(tmp_path / "after") == [], output
+
+    # With room, the same bake over the same folder replaces the copy.
+    done = tangent("bake", asset, "-o", tmp_path / "after" / f"o{suffix}", "--quiet")
+    assert done.returncode == 0, done.stderr
+    assert (tmp_path / "after" / "tex" / "n.png").read_bytes() == changed.read_bytes()
+    assert temporaries(tmp_path / "after") == []
+
+
+def test_an_image_copy_that_would_replace_a_folder_is_refused_before_anything_is_written(tmp_path):
+    doc, blob = grid(4)
+    asset = write(tmp_path / "in" / "in.gltf", gltf_bytes(with_external_image(doc), blob))
+    write(tmp_path / "in" / "tex" / "n.png", PNG)
+    write(tmp_path / "out" / "tex" / "n.png" / "kept.txt", b"a folder where the copy would go")
+    for suffix in (".glb", ".gltf"):
+        done = tangent("bake", asset, "-o", tmp_path / "out" / f"o{suffix}")
+        assert done.returncode == 1, done.stderr
+        kept = hashlib.sha256(b"a folder where the copy would go").hexdigest()
+        assert snapshot(tmp_path / "out") == {"tex/n.png/kept.txt": kept}, done.stderr
+        assert temporaries(tmp_path / "out") == []
+        assert b"n.png: is a directory" in done.stderr, done.stderr
+
+
 def test_a_batch_on_a_full_disk_names_the_file_and_keeps_earlier_outputs(tmp_path):
     # small.glb's output fits in the pages left, large.glb's does not: the batch goes on past
     # the failure, names it, and the outputs of an earlier run stay as they were.
@@ -436,6 +484,59 @@ def test_a_batch_on_a_full_disk_names_the_file_and_keeps_earlier_outputs(tmp_pat
     assert_valid_glb(tmp_path / "after" / "small.glb")
     assert after["small.glb"] != earlier["small.glb"], output
     assert snapshot(tree) == before
+
+
+# --- images: carried through, never read to load --------------------------------------------
+
+def peak_memory_kb(*args):
+    """(exit status, peak resident memory in KiB) of one `tangent` run."""
+    child = subprocess.Popen([CLI, *map(os.fsdecode, args)], stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+    _, status, usage = os.wait4(child.pid, 0)
+    return os.waitstatus_to_exitcode(status), usage.ru_maxrss
+
+
+def test_a_huge_texture_is_not_read_by_info_check_or_a_bake_beside_it(tmp_path):
+    # A 1 GiB image file (sparse: no disk used): loading never reads image files, so info,
+    # check and a bake into the same folder (no copy to make) stay far below its size. The
+    # loader used to read each image whole and drop it.
+    doc, blob = grid(8)
+    asset = write(tmp_path / "in.gltf", gltf_bytes(with_external_image(doc), blob))
+    image = tmp_path / "tex" / "n.png"
+    image.parent.mkdir()
+    with open(image, "wb") as f:
+        f.truncate(1 << 30)
+    assert tangent("bake", asset, "-o", tmp_path / "baked.gltf", "--quiet").returncode == 0
+    limit_kb = 256 << 10
+    for args in (["info", asset], ["check", tmp_path / "baked.gltf"], ["bake", asset, "-o", tmp_path / "o.glb", "--quiet"]):
+        status, peak = peak_memory_kb(*args)
+        assert status == 0, args
+        assert peak < limit_kb, (args, peak)
+
+
+def test_embedded_images_survive_byte_for_byte_and_broken_ones_are_warnings(tmp_path):
+    doc, blob = grid(6)  # its image: a data: URI
+    uri = doc["images"][0]["uri"]
+    # The same image in the GLB's buffer (a bufferView), a missing file and a data: URI
+    # that is not base64: warnings (one per image, naming it), the URIs kept as they are.
+    doc["images"] += [{"bufferView": 4, "mimeType": "image/png"}, {"uri": "missing.png"}, {"uri": "data:image/png,not-base64"}]
+    doc["textures"] += [{"source": 1}, {"source": 2}, {"source": 3}]
+    doc["bufferViews"].append({"buffer": 0, "byteOffset": len(blob), "byteLength": len(PNG)})
+    blob += PNG
+    doc["buffers"][0]["byteLength"] = len(blob)
+    asset = write(tmp_path / "in.glb", glb_bytes(doc, blob))
+    done = tangent("bake", asset, "-o", tmp_path / "out" / "o.glb")
+    assert done.returncode == 0, done.stderr
+    warnings = [line for line in done.stderr.decode().splitlines() if line.startswith("warning: ")]
+    assert len(warnings) == 2, done.stderr
+    assert "/images/2 uri 'missing.png' names a file that does not exist" in warnings[0], warnings
+    assert "/images/3 uri: data: URI is not base64" in warnings[1], warnings
+    out = assert_valid_glb(tmp_path / "out" / "o.glb")
+    data = (tmp_path / "out" / "o.glb").read_bytes()
+    json_length = struct.unpack_from("<I", data, 12)[0]
+    bin_chunk = data[28 + json_length:]
+    view = out["bufferViews"][out["images"][1]["bufferView"]]
+    assert bin_chunk[view.get("byteOffset", 0):view.get("byteOffset", 0) + view["byteLength"]] == PNG
+    assert [image.get("uri") for image in out["images"]] == [uri, None, "missing.png", "data:image/png,not-base64"]
 
 
 # --- interrupted batches ------------------------------------------------------------------

@@ -62,10 +62,6 @@ std::vector<std::uint8_t> readFileBytes(const std::filesystem::path& path) {
   return bytes;
 }
 
-bool noImageDecoding(tinygltf::Image*, const int, std::string*, std::string*, int, int, const unsigned char*, int, void*) {
-  return true;  // bake carries image bytes through untouched
-}
-
 using Json = nlohmann::ordered_json;
 
 // tinygltf reads buffers and images through these: every path is checked against the asset
@@ -105,18 +101,38 @@ bool writeWholeFile(std::string* err, const std::string& path, const std::vector
   return false;
 }
 
-// Buffer and image URIs against the containment rule, before tinygltf opens anything. A
-// missing image inside the root is left to tinygltf's warning: bake carries images through.
-void checkUris(const Json& doc, const std::filesystem::path& baseDir, const std::filesystem::path& root, const std::string& label) {
+// Buffer and image URIs against the containment rule, before tinygltf opens anything. Images
+// are carried through and never given to tinygltf: their URIs are checked here alone. A
+// missing image file (inside the root), a data: URI that is not base64 (checked without
+// decoding it) or an image with no data at all (gltfpack writes one when it cannot find the
+// image file) is a warning in `warnings`.
+void checkUris(const Json& doc, const std::filesystem::path& baseDir, const std::filesystem::path& root, const std::string& label,
+               std::vector<std::string>& warnings) {
   for (const char* kind : {"buffers", "images"}) {
     if (!doc.contains(kind)) continue;
     const bool buffers = std::string(kind) == "buffers";
     for (std::size_t i = 0; i < doc[kind].size(); ++i) {
       const Json& item = doc[kind][i];
-      if (!item.contains("uri")) continue;
-      const std::string uri = item["uri"].get<std::string>();
       const std::string what = "/" + std::string(kind) + "/" + std::to_string(i);
-      if (isDataUri(uri)) continue;
+      if (!item.contains("uri")) {
+        if (!buffers && !item.contains("bufferView"))
+          warnings.push_back(label + ": images[" + std::to_string(i) +
+                             "] has neither uri nor bufferView (no image data; a tool could not find the file?): left as it is");
+        continue;
+      }
+      const std::string& uri = item["uri"].get_ref<const std::string&>();
+      if (isDataUri(uri)) {
+        // Buffers: decoded in loaderDocument. An image that is not base64 is carried through as
+        // before (nothing here reads it), with a warning, as viewers will not decode it.
+        if (!buffers) {
+          try {
+            checkDataUri(uri, label + ": " + what + " uri");
+          } catch (const InputError& e) {
+            warnings.push_back(std::string(e.what()) + ": the image is left as it is");
+          }
+        }
+        continue;
+      }
       try {
         const std::filesystem::path file = resolveFileUri(uri, baseDir, root, label, what);
         std::error_code ec;
@@ -125,8 +141,9 @@ void checkUris(const Json& doc, const std::filesystem::path& baseDir, const std:
         if (buffers && !ec && size < static_cast<std::uintmax_t>(declared))
           throw InputError(label + ": " + what + ": byteLength is " + std::to_string(declared) + " but '" + text::quoted(uri) + "' has " +
                            std::to_string(size) + " bytes");
-      } catch (const MissingFileError&) {
+      } catch (const MissingFileError& e) {
         if (buffers) throw;
+        warnings.push_back(std::string(e.what()) + ": the image is left as it is");
       }
     }
   }
@@ -137,7 +154,7 @@ void checkUris(const Json& doc, const std::filesystem::path& baseDir, const std:
 // one-byte placeholder. validateDocument checked the buffers' types and byteLength.
 Json loaderDocument(const Json& doc, const std::string& label, std::vector<std::vector<std::uint8_t>>& decoded) {
   Json subset = Json::object();
-  for (const char* key : {"asset", "extensionsUsed", "extensionsRequired", "bufferViews", "accessors", "images"}) {
+  for (const char* key : {"asset", "extensionsUsed", "extensionsRequired", "bufferViews", "accessors"}) {
     if (doc.contains(key)) subset[key] = doc[key];
   }
   if (!doc.contains("buffers")) return subset;
@@ -286,35 +303,23 @@ Asset loadAssetBytes(std::vector<std::uint8_t> bytes, const std::filesystem::pat
   const std::filesystem::path baseDir = std::filesystem::absolute(path).parent_path();
   if (!isInside(assetRootFor(path, {}), asset.root))
     throw InputError(label + ": the asset root " + asset.root.string() + " does not contain the file's folder");
-  checkUris(asset.json, baseDir, asset.root, label);
-  // tinygltf is given only what is decoded through it (buffers, views, accessors; images, whose
-  // missing files it warns of): the scene is read from asset.json. With the whole document it
-  // parsed and copied 1e5 meshes and nodes a second time (38% of `check` on 64k primitives).
+  checkUris(asset.json, baseDir, asset.root, label, asset.warnings);
+  // tinygltf is given only what is decoded through it (buffers, views, accessors): the scene is
+  // read from asset.json. With the whole document it parsed and copied 1e5 meshes and nodes a
+  // second time (38% of `check` on 64k primitives). Images are not given either: it read every
+  // image file and decoded every data: URI image only for a callback that dropped the bytes.
   // Compressed data: a document it accepts (see adaptForLoader); the data is decoded below.
   // Buffers in data: URIs are decoded here, not by tinygltf, which kept several copies of the
   // text (a 100 MB URI took 1.4 GB) and answered a URI that is not base64 with "File not found".
   std::vector<std::vector<std::uint8_t>> dataUriBuffers;
   {
     nlohmann::ordered_json forLoader = loaderDocument(asset.json, label, dataUriBuffers);
-    // An image with neither uri nor bufferView (gltfpack writes one when it cannot find the
-    // image file): tinygltf refuses the whole file, though nothing here reads image data.
-    // Its copy gets an empty placeholder; the document keeps the image as it is.
-    if (forLoader.contains("images") && forLoader["images"].is_array()) {
-      for (std::size_t i = 0; i < forLoader["images"].size(); ++i) {
-        Json& image = forLoader["images"][i];
-        if (!image.is_object() || image.contains("uri") || image.contains("bufferView")) continue;
-        image["uri"] = "data:image/png;base64,AA==";
-        asset.warnings.push_back(label + ": images[" + std::to_string(i) +
-                                 "] has neither uri nor bufferView (no image data; a tool could not find the file?): left as it is");
-      }
-    }
     adaptForLoader(forLoader);
     jsonText = forLoader.dump();
     if (asset.binary) replaceGlbJson(bytes, jsonText, bin);
   }
 
   tinygltf::TinyGLTF loader;
-  loader.SetImageLoader(noImageDecoding, nullptr);
   FileAccess access{asset.root};
   loader.SetFsCallbacks({fileExists, expandFilePath, readWholeFile, writeWholeFile, &access});
   std::string err, warn;

@@ -192,9 +192,6 @@ void identifyGenerator(const PrimitiveGeometry& frames, const PrimitiveGeometry&
                          : "none of these (nearest: " + best.name + ")";
 }
 
-// The checks of one primitive that need its triangles (w-uniform, handedness, orthogonal on the
-// vertices it draws, reference), after the per-vertex ones. `used` is the part of `buffer` it
-// draws; elements in messages are the buffer's vertices and the primitive's triangles and corners.
 // A check that compared fewer than options.minCoverage of its elements: a warning (not a
 // finding: a file with 8-bit UVs cannot do better) with the counts and why the rest was left.
 void coverageWarning(const CheckOptions& options, const char* check, const char* unit, std::uint64_t total, std::uint64_t undecided,
@@ -210,7 +207,11 @@ void coverageWarning(const CheckOptions& options, const char* check, const char*
                                    100.0 * double(compared) / double(total), options.minCoverage, why.c_str()));
 }
 
-void checkDrawnPart(const PrimitiveGeometry& buffer, const UsedVertices& used, const StoredTangents& stored,
+// The checks of one primitive that need its triangles (w-uniform, handedness, orthogonal on the
+// vertices it draws, reference), after the per-vertex ones. `used` is the part of its vertex
+// buffer it draws and `part` that part's geometry (gatherGeometry or keepUsedVertices);
+// elements in messages are the buffer's vertices and the primitive's triangles and corners.
+void checkDrawnPart(const UsedVertices& used, const PrimitiveGeometry& part, const StoredTangents& stored,
                     const VertexFindings& undrawn, const InputRounding& rounding, const CheckOptions& options,
                     TangentWorkspace& workspace, PrimitiveCheck& result) {
   const std::vector<float>& tangents = stored.values;
@@ -221,7 +222,6 @@ void checkDrawnPart(const PrimitiveGeometry& buffer, const UsedVertices& used, c
 
   // Rounded positions and UVs (KHR_mesh_quantization) move the recomputed frame: per vertex
   // allowance, and triangles whose UV orientation the rounding leaves open.
-  const PrimitiveGeometry part = gatherGeometry(buffer, used);
   // A primitive without NORMAL is judged against the spec's flat normals (glTF 2.0 3.7.2.1),
   // as bake generates them: `flat` splits the part's vertices per face; `frames` is what the
   // reference is computed from, its corners in the part's order.
@@ -246,10 +246,11 @@ void checkDrawnPart(const PrimitiveGeometry& buffer, const UsedVertices& used, c
     const bool uniformW = w0 == w1 && w1 == w2;
     if (!uniformW) uniform.fail(t, 1, format("triangle %zu (vertices %u %u %u) w = %.6g %.6g %.6g", t, c[0], c[1], c[2], w0, w1, w2));
     // Orientation in the normal texture's UV set, on triangles with UV and 3D area.
-    const float* uv[3] = {&buffer.uvs[2 * c[0]], &buffer.uvs[2 * c[1]], &buffer.uvs[2 * c[2]]};
+    const float* uv[3] = {&part.uvs[2 * local[0]], &part.uvs[2 * local[1]], &part.uvs[2 * local[2]]};
     const double det = uvAreaTimesTwo(uv[0], uv[1], uv[2]);
     const float expected = expectedW(det);
-    const double area = areaTimesTwo(&buffer.positions[3 * c[0]], &buffer.positions[3 * c[1]], &buffer.positions[3 * c[2]]);
+    const double area =
+        areaTimesTwo(&part.positions[3 * local[0]], &part.positions[3 * local[1]], &part.positions[3 * local[2]]);
     if (expected == 0 || !std::isfinite(det) || !(area > 0)) {
       ++handednessDegenerate;
       continue;
@@ -378,7 +379,7 @@ void checkDrawnPart(const PrimitiveGeometry& buffer, const UsedVertices& used, c
 void checkVertexGroup(const Asset& asset, const std::vector<PrimitiveToCheck>& primitives, const std::vector<std::size_t>& members,
                       const CheckOptions& options, TangentWorkspace& workspace, std::vector<PrimitiveCheck>& results) {
   const PrimitiveToCheck& first = primitives[members.front()];
-  const PrimitiveGeometry buffer = readVertices(asset, *first.primitive, first.needs, first.where, /*normalOptional=*/true);
+  PrimitiveGeometry buffer = readVertices(asset, *first.primitive, first.needs, first.where, /*normalOptional=*/true);
 
   // The vertices each member draws, and those none draws.
   std::vector<UsedVertices> parts;
@@ -468,8 +469,16 @@ void checkVertexGroup(const Asset& asset, const std::vector<PrimitiveToCheck>& p
   VertexFindings undrawn(0, stored, options);
   for (const std::uint32_t v : undrawnVertices) undrawn.check(v, stored);
   const InputRounding rounding = inputRounding(asset, *first.primitive, first.needs.texCoord, first.needs.hasNormalTexture);
+  if (members.size() == 1) {
+    // The usual single primitive: the buffer, kept to the vertices it draws in place, is its
+    // part (no gathered copy of every attribute).
+    keepUsedVertices(buffer, parts[0]);
+    checkDrawnPart(parts[0], buffer, stored, undrawn, rounding, options, workspace, results[members[0]]);
+    return;
+  }
   for (std::size_t k = 0; k < members.size(); ++k)
-    checkDrawnPart(buffer, parts[k], stored, undrawn, rounding, options, workspace, results[members[k]]);
+    checkDrawnPart(parts[k], gatherGeometry(buffer, parts[k]), stored, undrawn, rounding, options, workspace,
+                   results[members[k]]);
 }
 
 }  // namespace

@@ -43,24 +43,32 @@ class ViewBytes {
   std::variant<std::vector<std::uint8_t>, std::vector<float>, BulkVector<std::uint32_t>> data_;
 };
 
-// Files and folders a write creates besides its output (image copies and the folders they
-// go into), each guarded against signals as a temporary is: removed again, newest first, when
-// the object goes out of scope before keep() (the output was not written), so that a failed
-// bake leaves nothing new behind. A folder is removed only where empty.
+// What a write puts on disk besides its output: the folders image copies go into, created at
+// once, and the copies themselves, staged as temporaries beside their destinations (a copy
+// may replace an earlier one there). keep(), called once the output is in place, renames the
+// copies over their destinations; destroyed before keep() (the output was not written: a full
+// disk, an error), the temporaries and the new folders are removed again, newest first, so
+// that a failed bake leaves the disk as it found it. Each path is guarded against signals as
+// a temporary is. A folder is removed only where empty.
 class CreatedFiles {
  public:
   CreatedFiles() = default;
   CreatedFiles(const CreatedFiles&) = delete;
   CreatedFiles& operator=(const CreatedFiles&) = delete;
   ~CreatedFiles();
-  void add(const std::filesystem::path& path);
   // The folders of `folder` that do not exist yet, created and added.
   void createFolders(const std::filesystem::path& folder);
-  void keep();  // the output is in place: everything added stays
+  // `bytes` written to a temporary beside `path`, renamed over it by keep().
+  void stage(const std::filesystem::path& path, std::span<const std::uint8_t> bytes);
+  bool staged(const std::filesystem::path& path) const;
+  // The output is in place: the staged copies are renamed into place and everything stays.
+  // Throws std::runtime_error naming a copy that could not be renamed (the others are).
+  void keep();
 
  private:
-  std::vector<std::filesystem::path> paths_;
+  std::vector<std::filesystem::path> folders_;
   std::vector<std::unique_ptr<output::TemporaryGuard>> guards_;
+  std::vector<std::unique_ptr<output::StagedFile>> staged_;
 };
 
 class OutputDocument {

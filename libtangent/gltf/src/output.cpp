@@ -132,12 +132,16 @@ void writeFileAtomic(const fs::path& path, std::string_view text) {
 }
 
 void writeFileAtomic(const fs::path& path, const std::vector<std::span<const std::uint8_t>>& pieces) {
+  StagedFile(path, pieces).commit();
+}
+
+StagedFile::StagedFile(const fs::path& path, const std::vector<std::span<const std::uint8_t>>& pieces) : path_(path) {
   static std::atomic<unsigned> counter{0};
   const fs::path folder = path.parent_path().empty() ? fs::path(".") : path.parent_path();
   removeStaleTemporaries(folder);
   const fs::path temp =
       folder / ("." + path.filename().string() + ".tmp-" + std::to_string(::getpid()) + "-" + std::to_string(counter++));
-  TemporaryGuard guard(temp);
+  auto guard = std::make_unique<TemporaryGuard>(temp);
   const int fd = ::open(temp.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0666);
   if (fd < 0) throw std::runtime_error(path.string() + ": cannot create a temporary file beside it: " + reason(errno));
   auto fail = [&](const char* step, int error) {
@@ -177,11 +181,23 @@ void writeFileAtomic(const fs::path& path, const std::vector<std::span<const std
     ::unlink(temp.c_str());
     throw std::runtime_error(path.string() + ": write failed: " + reason(error));
   }
-  if (::rename(temp.c_str(), path.c_str()) != 0) {
+  temporary_ = temp;
+  guard_ = std::move(guard);
+}
+
+StagedFile::~StagedFile() {
+  if (!committed_) ::unlink(temporary_.c_str());
+}
+
+void StagedFile::commit() {
+  if (committed_) return;
+  committed_ = true;
+  if (::rename(temporary_.c_str(), path_.c_str()) != 0) {
     const int error = errno;
-    ::unlink(temp.c_str());
-    throw std::runtime_error(path.string() + ": cannot rename the temporary file into place: " + reason(error));
+    ::unlink(temporary_.c_str());
+    throw std::runtime_error(path_.string() + ": cannot rename the temporary file into place: " + reason(error));
   }
+  guard_.reset();
 }
 
 void checkGlbFits(const fs::path& path, std::uint64_t jsonBytes, std::uint64_t binBytes) {

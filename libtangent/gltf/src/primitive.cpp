@@ -287,6 +287,24 @@ PrimitiveGeometry gatherGeometry(const PrimitiveGeometry& buffer, const UsedVert
   return part;
 }
 
+void keepUsedVertices(PrimitiveGeometry& buffer, UsedVertices& used) {
+  const std::size_t n = used.vertices.size();
+  const bool hasNormals = !buffer.normals.empty();
+  // used.vertices ascends, so vertex i moves from used.vertices[i] >= i: never over one not yet moved.
+  for (std::size_t i = 0; i < n; ++i) {
+    const std::size_t v = used.vertices[i];
+    if (v == i) continue;
+    std::copy_n(&buffer.positions[3 * v], 3, &buffer.positions[3 * i]);
+    if (hasNormals) std::copy_n(&buffer.normals[3 * v], 3, &buffer.normals[3 * i]);
+    std::copy_n(&buffer.uvs[2 * v], 2, &buffer.uvs[2 * i]);
+  }
+  buffer.vertexCount = n;
+  buffer.positions.resize(3 * n);
+  if (hasNormals) buffer.normals.resize(3 * n);
+  buffer.uvs.resize(2 * n);
+  buffer.corners = std::move(used.corners);
+}
+
 void verifyMeshData(const Asset& asset) {
   const Json& doc = asset.json;
   const std::string file = asset.path.string();

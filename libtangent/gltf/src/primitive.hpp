@@ -121,6 +121,10 @@ UsedVertices usedVertices(const std::vector<std::uint32_t>& corners, std::vector
 // own, whose vertex v is the buffer's vertex used.vertices[v] (mode and index type left to the
 // caller).
 PrimitiveGeometry gatherGeometry(const PrimitiveGeometry& buffer, const UsedVertices& used);
+// The same in place, for the last part read from a buffer: `buffer` keeps only the used
+// vertices (moved down in order, the arrays shortened) and takes the renumbered corners from
+// `used`; equal, value for value, to what gatherGeometry gives, without a second copy.
+void keepUsedVertices(PrimitiveGeometry& buffer, UsedVertices& used);
 
 // Every mesh primitive's accessors against the bytes loaded (ranges, sparse targets, equal
 // attribute counts, indices < vertex count), copying nothing: loadAsset runs it (after

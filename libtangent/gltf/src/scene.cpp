@@ -26,7 +26,7 @@ namespace {
 
 using Json = nlohmann::ordered_json;
 
-std::vector<ImageSource> readImages(const detail::Asset& asset, std::vector<std::string>& messages) {
+std::vector<ImageSource> readImages(const detail::Asset& asset) {
   std::vector<ImageSource> images;
   if (!asset.json.contains("images")) return images;
   const auto dir = std::filesystem::absolute(asset.path).parent_path();
@@ -42,12 +42,12 @@ std::vector<ImageSource> readImages(const detail::Asset& asset, std::vector<std:
         source.bytes = detail::decodeDataUri(uri, asset.path.string() + ": /images/" + std::to_string(i));
         source.mimeType = uri.substr(5, uri.find(';') - 5);
       } else {
-        // loadAsset refused URIs that leave the asset root; a missing file leaves the image empty.
+        // loadAsset refused URIs that leave the asset root; a missing file leaves the image empty
+        // (loadAsset's warning, among the messages, says so).
         try {
           source.file = detail::resolveFileUri(uri, dir, asset.root, asset.path.string(), "/images/" + std::to_string(i));
           source.label += " '" + uri + "'";
-        } catch (const detail::MissingFileError& e) {
-          messages.push_back(e.what());
+        } catch (const detail::MissingFileError&) {
         }
       }
     } else if (image.contains("bufferView") && image["bufferView"].is_number_integer()) {
@@ -650,7 +650,7 @@ Scene flattenScene(const std::filesystem::path& input, const SceneOptions& optio
   const Json& doc = asset.json;
   Scene scene;
   scene.messages = asset.warnings;
-  scene.images = readImages(asset, scene.messages);
+  scene.images = readImages(asset);
   scene.materials = readMaterials(doc);
 
   std::vector<Json> lightDefinitions;

@@ -50,27 +50,43 @@ std::string percentDecode(const std::string& uri) {
 
 bool isDataUri(const std::string& uri) { return uri.rfind("data:", 0) == 0; }
 
-std::vector<std::uint8_t> decodeDataUri(const std::string& uri, const std::string& what) {
+namespace {
+
+// Where a data: URI's base64 payload starts; throws InputError (naming `what`) for any other.
+std::size_t base64Payload(const std::string& uri, const std::string& what) {
   const std::size_t comma = uri.find(',');
   if (comma == std::string::npos || uri.rfind(";base64", comma) == std::string::npos)
     throw InputError(what + ": data: URI is not base64 (only ';base64,' payloads are allowed)");
-  auto value = [](char c) -> int {
-    if (c >= 'A' && c <= 'Z') return c - 'A';
-    if (c >= 'a' && c <= 'z') return c - 'a' + 26;
-    if (c >= '0' && c <= '9') return c - '0' + 52;
-    if (c == '+' || c == '-') return 62;
-    if (c == '/' || c == '_') return 63;
-    return -1;
-  };
+  return comma + 1;
+}
+
+// The 6 bits a base64 character stands for (standard and URL-safe alphabets), -1 for others.
+int base64Value(char c) {
+  if (c >= 'A' && c <= 'Z') return c - 'A';
+  if (c >= 'a' && c <= 'z') return c - 'a' + 26;
+  if (c >= '0' && c <= '9') return c - '0' + 52;
+  if (c == '+' || c == '-') return 62;
+  if (c == '/' || c == '_') return 63;
+  return -1;
+}
+
+[[noreturn]] void notBase64(const std::string& what, std::size_t offset) {
+  throw InputError(what + ": data: URI has a character that is not base64 at offset " + std::to_string(offset));
+}
+
+}  // namespace
+
+std::vector<std::uint8_t> decodeDataUri(const std::string& uri, const std::string& what) {
+  const std::size_t start = base64Payload(uri, what);
   std::vector<std::uint8_t> out;
-  out.reserve((uri.size() - comma) / 4 * 3);
+  out.reserve((uri.size() - start) / 4 * 3);
   unsigned buffer = 0;
   int bits = 0;
-  for (std::size_t i = comma + 1; i < uri.size(); ++i) {
+  for (std::size_t i = start; i < uri.size(); ++i) {
     const char c = uri[i];
     if (c == '=') break;
-    const int v = value(c);
-    if (v < 0) throw InputError(what + ": data: URI has a character that is not base64 at offset " + std::to_string(i));
+    const int v = base64Value(c);
+    if (v < 0) notBase64(what, i);
     buffer = (buffer << 6) | static_cast<unsigned>(v);
     bits += 6;
     if (bits >= 8) {
@@ -79,6 +95,12 @@ std::vector<std::uint8_t> decodeDataUri(const std::string& uri, const std::strin
     }
   }
   return out;
+}
+
+void checkDataUri(const std::string& uri, const std::string& what) {
+  for (std::size_t i = base64Payload(uri, what); i < uri.size() && uri[i] != '='; ++i) {
+    if (base64Value(uri[i]) < 0) notBase64(what, i);
+  }
 }
 
 fs::path assetRootFor(const fs::path& input, const fs::path& root) {

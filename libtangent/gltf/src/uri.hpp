@@ -19,6 +19,8 @@ std::string percentDecode(const std::string& uri);
 bool isDataUri(const std::string& uri);
 // Base64 payload of a data: URI; throws InputError (naming `what`) when it is not base64.
 std::vector<std::uint8_t> decodeDataUri(const std::string& uri, const std::string& what);
+// The same checks without decoding (images, which are carried through as they are).
+void checkDataUri(const std::string& uri, const std::string& what);
 
 // The folder an asset's files must stay inside: `root` when given, else the input's folder;
 // made absolute and canonical (symbolic links resolved).

@@ -349,15 +349,11 @@ std::vector<std::span<const std::uint8_t>> OutputDocument::packBuffers() {
 }
 
 CreatedFiles::~CreatedFiles() {
-  for (auto it = paths_.rbegin(); it != paths_.rend(); ++it) {
+  staged_.clear();  // the temporaries first: they may lie in the new folders
+  for (auto it = folders_.rbegin(); it != folders_.rend(); ++it) {
     std::error_code ignored;
-    std::filesystem::remove(*it, ignored);  // a folder only where empty
+    std::filesystem::remove(*it, ignored);  // only where empty
   }
-}
-
-void CreatedFiles::add(const std::filesystem::path& path) {
-  paths_.push_back(path);
-  guards_.push_back(std::make_unique<output::TemporaryGuard>(path));
 }
 
 void CreatedFiles::createFolders(const std::filesystem::path& folder) {
@@ -369,13 +365,33 @@ void CreatedFiles::createFolders(const std::filesystem::path& folder) {
     if (at == at.parent_path()) break;
   }
   for (auto it = missing.rbegin(); it != missing.rend(); ++it) {
-    if (fs::create_directory(*it, ec)) add(*it);
+    if (!fs::create_directory(*it, ec)) continue;
+    folders_.push_back(*it);
+    guards_.push_back(std::make_unique<output::TemporaryGuard>(*it));
   }
 }
 
+void CreatedFiles::stage(const std::filesystem::path& path, std::span<const std::uint8_t> bytes) {
+  staged_.push_back(std::make_unique<output::StagedFile>(path, std::vector{bytes}));
+}
+
+bool CreatedFiles::staged(const std::filesystem::path& path) const {
+  return std::any_of(staged_.begin(), staged_.end(), [&](const auto& file) { return file->path() == path; });
+}
+
 void CreatedFiles::keep() {
-  paths_.clear();
+  std::string failed;
+  for (const auto& file : staged_) {
+    try {
+      file->commit();
+    } catch (const std::exception& e) {
+      if (failed.empty()) failed = e.what();
+    }
+  }
+  staged_.clear();
+  folders_.clear();
   guards_.clear();
+  if (!failed.empty()) throw std::runtime_error(failed);
 }
 
 void OutputDocument::placeImages(const std::filesystem::path& outputDir, CreatedFiles& created) {
@@ -398,16 +414,17 @@ void OutputDocument::placeImages(const std::filesystem::path& outputDir, Created
       const fs::path relative = source.lexically_relative(inputDir);
       const fs::path target = targetDir / relative;
       if (fs::exists(target, ec) && fs::equivalent(target, source, ec)) continue;
+      // The copy is renamed over `target` only after the output is written: what would make
+      // that fail is refused before anything is written.
+      if (fs::is_directory(fs::symlink_status(target, ec)))
+        throw std::runtime_error(target.string() + ": is a directory, where bake would copy an image the input uses");
       created.createFolders(target.parent_path());
       std::vector<std::uint8_t> bytes;
       if (!readFileInto(source, bytes)) throw std::runtime_error(source.string() + ": cannot be read to copy beside the output");
       // A copy an earlier bake left there is not written again: each write is a flush to disk,
-      // and in a folder baked over and over they took longer than reading the buffers.
-      if (!holdsBytes(target, bytes)) {
-        const bool existed = fs::exists(fs::symlink_status(target, ec));
-        writeFileAtomic(target, bytes);
-        if (!existed) created.add(target);
-      }
+      // and in a folder baked over and over they took longer than reading the buffers. One
+      // that differs is replaced only once the output is written (CreatedFiles::keep).
+      if (!created.staged(target) && !holdsBytes(target, bytes)) created.stage(target, bytes);
       image["uri"] = text::uriPath(relative.generic_string());
     } else {
       // Outside the input's folder (allowed by --asset-root): referred to where it is.
@@ -426,7 +443,7 @@ std::uint64_t OutputDocument::write(const std::filesystem::path& output) {
   Json& doc = asset_.json;
   std::uint64_t binBytes = 0;
   for (const auto& piece : bin) binBytes += piece.size();
-  // Image copies this bake adds are removed again unless the output is written.
+  // Image copies are staged and replace what is beside the output only once it is written.
   CreatedFiles created;
   if (glb) {
     // Refused before anything is written, images included.
@@ -472,12 +489,12 @@ std::uint64_t OutputDocument::write(const std::filesystem::path& output) {
     }
     throw;
   }
-  created.keep();
   // The previous .bin, now used by nothing we wrote.
   for (const fs::path& previous : previousBins) {
     std::error_code ec;
     if (previous != binPath) fs::remove(previous, ec);
   }
+  created.keep();
   return binBytes + text.size();
 }
 

@@ -8,6 +8,7 @@
 
 #include <cstdint>
 #include <filesystem>
+#include <memory>
 #include <span>
 #include <string_view>
 #include <vector>
@@ -34,6 +35,28 @@ class TemporaryGuard {
 
  private:
   int slot_ = -1;
+};
+
+// A file written as writeFileAtomic writes it (temporary beside `path`, written, synced,
+// closed), but left as that temporary until commit() renames it over `path`: for files that
+// may replace what is there only once another file is written (the image copies of a bake,
+// after its output). Destroyed before commit() (the other write failed), the temporary is
+// removed and `path` was never touched. The constructor throws as writeFileAtomic does.
+class StagedFile {
+ public:
+  StagedFile(const std::filesystem::path& path, const std::vector<std::span<const std::uint8_t>>& pieces);
+  ~StagedFile();
+  StagedFile(const StagedFile&) = delete;
+  StagedFile& operator=(const StagedFile&) = delete;
+  const std::filesystem::path& path() const { return path_; }
+  // Renames the temporary over `path`; throws std::runtime_error naming it (the temporary is
+  // then removed).
+  void commit();
+
+ private:
+  std::filesystem::path path_, temporary_;
+  std::unique_ptr<TemporaryGuard> guard_;
+  bool committed_ = false;
 };
 
 // For programs (the CLI, the viewer), not libraries: installs handlers for SIGINT, SIGTERM and
