@@ -171,6 +171,38 @@ TEST(Viewer, DemoSceneShadowFallsWhereTheSphereOccludesTheSun) {
   EXPECT_GT(shadowOff, 0.85f * besideOff);
 }
 
+// PCF widens the shadow's edge: on a coarse shadow map (256 texels over the scene, about 2.3
+// pixels a texel here), PCF 5x5 shades many more pixels around the sphere's shadow between the
+// shadowed and the lit level than a single bilinear comparison does. PCF is a shader variant
+// (SHADOW_PCF), so a variant that left its taps out would show the hard edge at every radius.
+TEST(Viewer, PcfSoftensTheShadowEdge) {
+  TempDir dir;
+  const std::string common = "--camera top --ortho --size 600x600 --no-ibl --shadow-map-size 256";
+  const Image hard = screenshot(dir, "pcf0", common + " --pcf 0");
+  const Image soft = screenshot(dir, "pcf2", common + " --pcf 2");
+  const Image plain = screenshot(dir, "no-shadows", common + " --no-shadows");
+  ASSERT_EQ(hard.width, 600);
+  // Pixels within 130 of the image centre (the middle sphere's shadow falls there, as in
+  // DemoSceneShadowFallsWhereTheSphereOccludesTheSun) that the shadow darkens by 20-80% of its
+  // full depth (the darkest pixel's).
+  auto partlyShadowed = [&](const Image& shadowed) {
+    float deepest = 0;
+    for (int y = 170; y < 430; ++y)
+      for (int x = 170; x < 430; ++x) deepest = std::max(deepest, plain.luma(x, y) - shadowed.luma(x, y));
+    int count = 0;
+    for (int y = 170; y < 430; ++y)
+      for (int x = 170; x < 430; ++x) {
+        const float darkening = plain.luma(x, y) - shadowed.luma(x, y);
+        if (darkening > 0.2f * deepest && darkening < 0.8f * deepest) ++count;
+      }
+    return count;
+  };
+  const int hardEdge = partlyShadowed(hard), softEdge = partlyShadowed(soft);
+  std::printf("partly shadowed pixels: %d with PCF off, %d with PCF 5x5\n", hardEdge, softEdge);
+  EXPECT_GT(hardEdge, 0);
+  EXPECT_GT(softEdge, 2 * hardEdge);
+}
+
 // The demo material's specular map has green, white and black bands (RGB colour, A strength):
 // in the specular-map mode, the highlight the specular term adds must come in white and in green.
 TEST(Viewer, SpecularMapColoursTheHighlights) {
@@ -592,6 +624,39 @@ TEST(Viewer, OneFetchForThePackedOcclusionTextureRendersAsTwo) {
   EXPECT_LT(occluded, open - 0.03f);
   EXPECT_NEAR(open, dielectric, 0.01f);  // occlusion 1 (R = 255) changes nothing
   EXPECT_GT(std::abs(metal - dielectric), 0.03f);
+}
+
+// Each mesh program is compiled for the number of lights it shades with (LIGHT_COUNT): one to
+// four equal directional lights from the same direction light the quad more with each one added
+// (no tone mapping, no environment), so a program that ran fewer trips than the file has lights
+// would show it.
+TEST(Viewer, EveryLightOfTheFileLightsTheMesh) {
+  TempDir dir;
+  writeRgbaPng(dir / "white.png", 4, 4, [](int, int) { return std::array<unsigned char, 4>{255, 255, 255, 255}; });
+  auto render = [&](int count) {
+    nlohmann::json lights = nlohmann::json::array(), nodes = {{{"mesh", 0}}}, sceneNodes = {0};
+    for (int i = 0; i < count; ++i) {
+      lights.push_back({{"type", "directional"}, {"intensity", 0.4}});
+      nodes.push_back({{"rotation", {std::sin(0.25), 0.0, 0.0, std::cos(0.25)}}, {"extensions", {{"KHR_lights_punctual", {{"light", i}}}}}});
+      sceneNodes.push_back(i + 1);
+    }
+    const nlohmann::json patch = {{"nodes", nodes},
+                                  {"scenes", {{{"nodes", sceneNodes}}}},
+                                  {"extensions", {{"KHR_lights_punctual", {{"lights", lights}}}}},
+                                  {"extensionsUsed", {"KHR_lights_punctual"}}};
+    const nlohmann::json material = {{"pbrMetallicRoughness", {{"baseColorFactor", {0.8, 0.8, 0.8, 1.0}}, {"metallicFactor", 0.0}, {"roughnessFactor", 0.6}}}};
+    const std::string name = "lights-" + std::to_string(count);
+    return screenshot(dir, name, "'" + quadAsset(dir, name, material, "white.png", patch).string() + "'" + kQuadView +
+                                     " --exposure 1 --tone-map none --no-ibl --no-shadows");
+  };
+  auto luma = [](std::array<float, 3> c) { return 0.2126f * c[0] + 0.7152f * c[1] + 0.0722f * c[2]; };
+  float previous = 0;
+  for (int count = 1; count <= 4; ++count) {
+    const float now = luma(quadPixel(render(count), 0, 0));
+    std::printf("%d light(s): luma %.3f\n", count, now);
+    EXPECT_GT(now, previous + 0.03f) << count << " lights";
+    previous = now;
+  }
 }
 
 // With every light directional (the default rig), lighting.glsl is compiled without its
