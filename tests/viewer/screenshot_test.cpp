@@ -1989,6 +1989,32 @@ TEST(Viewer, FreshCompareSetIsRecomputedOnTheMorphedMesh) {
   }
 }
 
+// Without UVs (and without TANGENT) nothing defines a tangent frame: the fresh compare set has
+// none there (shown as "no tangent", as the load marks it), also when a morph target moves the
+// mesh and the set is computed again on the morphed corners, where MikkTSpace's fixed fallback
+// axis must not stand in for it.
+TEST(Viewer, FreshCompareSetWithoutUvsStaysUndefinedWhenMorphed) {
+  TempDir dir;
+  // Neither UVs nor TANGENT: the drawn frames are the fresh ones, undefined everywhere.
+  const auto dropUvs = [](GltfWriter&, nlohmann::json& doc) {
+    nlohmann::json& primitive = doc["meshes"][0]["primitives"][0];
+    primitive["attributes"].erase("TEXCOORD_0");
+    primitive["attributes"].erase("TANGENT");
+    primitive["targets"][0].erase("TANGENT");
+  };
+  std::vector<float> lift(12, 0.0f);
+  lift[2] = lift[5] = 0.2f;  // the bottom edge moves towards the viewer
+  for (const double weight : {0.0, 1.0}) {
+    const std::string name = "no-uvs-" + std::to_string(static_cast<int>(weight));
+    const Image image = screenshot(dir, name, "'" + morphQuad(dir, name, lift, {0, 0, 0}, {weight}, dropUvs).string() +
+                                                  "' --view tangent --compare fresh --split 0 --camera front --ortho --size 200x200");
+    ASSERT_EQ(image.width, 200);
+    const auto colour = image.at(100, 100);
+    std::printf("compare set without UVs at weight %.0f: %.3f %.3f %.3f\n", weight, colour[0], colour[1], colour[2]);
+    for (int i = 0; i < 3; ++i) EXPECT_NEAR(colour[i], 0.5f, 0.01f) << name;  // "no tangent" grey (viewer/debug_colours.hpp)
+  }
+}
+
 // ---- Default material, glTF samplers, grey images (issue 38, smaller defects) ----
 
 // A primitive without a material is drawn with glTF's default material (glTF 2.0 3.9.1, the
