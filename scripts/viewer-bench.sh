@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # SPDX-License-Identifier: MIT
 # Frame time of tangent-view under Xvfb (Mesa llvmpipe on machines without a GPU): the median
-# of N frames at 1280x720 for each asset, with the defaults (PBR, image-based lighting, the
+# of N frames at 1280x720 for each asset (wall clock, and the CPU time of all the viewer's
+# threads, which a loaded machine disturbs less), with the defaults (PBR, image-based lighting, the
 # two-light default rig, shadows with PCF 3x3 and MSAA 4x, both off on a software rasteriser)
 # and with each feature turned off or changed in turn.
 # Usage: scripts/viewer-bench.sh [--frames N] [ASSET...]   (after scripts/build.sh)
@@ -52,7 +53,7 @@ configs=(
   "no tone mapping|--tone-map none"
   "no image-based lighting|--no-ibl"
 )
-printf "%-34s %-40s %10s\n" "asset" "configuration" "median ms"
+printf "%-34s %-40s %10s %10s\n" "asset" "configuration" "median ms" "CPU ms"
 for asset in "${assets[@]}"; do
   for config in "${configs[@]}"; do
     name=${config%%|*}
@@ -61,6 +62,7 @@ for asset in "${assets[@]}"; do
     line=$(xvfb-run -a -s "-screen 0 1280x1024x24" "$viewer" "$asset" --size 1280x720 --camera front \
            --screenshot "$work/frame.png" --frames "$frames" $flags 2>/dev/null) || line="failed"
     ms=$(sed -n 's/.*median frame \([0-9.]*\) ms.*/\1/p' <<<"$line")
-    printf "%-34s %-40s %10s\n" "$(basename "$asset")" "$name" "${ms:-failed}"
+    cpu=$(sed -n 's/.*median frame [0-9.]* ms (CPU \([0-9.]*\) ms).*/\1/p' <<<"$line")
+    printf "%-34s %-40s %10s %10s\n" "$(basename "$asset")" "$name" "${ms:-failed}" "${cpu:--}"
   done
 done

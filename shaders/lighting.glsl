@@ -8,7 +8,10 @@
 // surface facing them shows, as in the specular-map mode.
 
 const int kMaxLights = 4;
-uniform int u_lightCount;
+// The number of lights, 0 to kMaxLights, defined per variant (ShaderLibrary::mesh): the light loop
+// runs exactly that many times. With a uniform count, a software rasteriser would run the trip
+// that breaks out too, or every trip up to kMaxLights.
+const int kLightCount = LIGHT_COUNT;
 uniform vec4 u_lightPosition[kMaxLights];
 uniform vec3 u_lightAmbient[kMaxLights];
 uniform vec3 u_lightDiffuse[kMaxLights];

@@ -216,9 +216,8 @@ void main() {
     shadow0 = shadowFactor(v_shadowCoord, normal, toLight);
   }
 #endif
-  // A constant trip count the compiler can unroll, cut short at u_lightCount.
-  for (int i = 0; i < kMaxLights; ++i) {
-    if (i >= u_lightCount) break;
+  // The variant's light count: a constant trip count the compiler can unroll.
+  for (int i = 0; i < kLightCount; ++i) {
     float shadow = i == 0 ? shadow0 : 1.0;
 #ifdef SHADING_PBR
     vec3 toLight;

@@ -5,13 +5,17 @@
 // The frame's bitangent (Substance's "compute tangent space per fragment" choice): per fragment,
 // B = cross(N, T) * sign(w) from the interpolated N and T, T made orthogonal to N first
 // (MikkTSpace's recommendation, the default); or the per-vertex B = cross(N, T) * w, interpolated,
-// as bakers that interpolate it expect (`vertexBitangent`, reversed on back faces by the caller).
-uniform bool u_bitangentPerFragment;
+// as bakers that interpolate it expect (BITANGENT_PER_VERTEX; `vertexBitangent`, reversed on
+// back faces by the caller). A define, not a uniform: a software rasteriser runs both sides of a
+// branch, and the per-fragment variant then interpolates no bitangent.
 vec3 frameBitangent(vec3 normal, vec4 tangent, vec3 vertexBitangent) {
-  if (!u_bitangentPerFragment) return normalize(vertexBitangent);
+#ifdef BITANGENT_PER_VERTEX
+  return normalize(vertexBitangent);
+#else
   vec3 n = normalize(normal);
   vec3 t = normalize(tangent.xyz - n * dot(n, tangent.xyz));
   return cross(n, t) * (tangent.w < 0.0 ? -1.0 : 1.0);
+#endif
 }
 
 #ifdef HAS_NORMAL_MAP

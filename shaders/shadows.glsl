@@ -3,7 +3,8 @@
 // light, viewer/renderer.cpp's lightViewProjection; a cube map for a point light): depth compare
 // in a sampler2DShadow or samplerCubeShadow (hardware comparison with bilinear filtering), with
 // a constant plus slope bias and PCF over (2r+1)x(2r+1) texels (r = 0 off, 1 = 3x3, 2 = 5x5) in
-// (2r)^2 taps.
+// (2r)^2 taps. Without SHADOW_PCF (radius 0) the tap loops are left out, not skipped at run
+// time: a software rasteriser runs a loop's body at least once.
 #ifdef USE_SHADOWS
 #ifdef POINT_SHADOWS
 // A point light's depth cube map (viewer/shadow_cube.hpp): each face a 90-degree perspective
@@ -13,7 +14,9 @@ uniform vec3 u_shadowCubeDepth;  // the faces' near and far planes; the world le
 #else
 uniform sampler2DShadow u_shadowMap;
 #endif
-uniform int u_pcfRadius;
+#ifdef SHADOW_PCF
+uniform int u_pcfRadius;  // 1 = 3x3, 2 = 5x5
+#endif
 uniform float u_shadowBiasConstant;
 uniform float u_shadowBiasSlope;
 
@@ -31,7 +34,9 @@ float shadowFactor(vec4 shadowCoord, vec3 normal, vec3 toLight) {
   // The face's eye-space depth, moved towards the light by the bias, as window depth.
   float z = max(abs(fromLight.x), max(abs(fromLight.y), abs(fromLight.z))) - shadowBias(normal, toLight) * u_shadowCubeDepth.z;
   float depth = 0.5 * ((f + n) / (f - n) - 2.0 * f * n / ((f - n) * max(z, n))) + 0.5;
-  if (u_pcfRadius == 0) return texture(u_shadowCube, vec4(fromLight, depth));
+#ifndef SHADOW_PCF
+  return texture(u_shadowCube, vec4(fromLight, depth));
+#else
   // As the 2D map's PCF: (2r)^2 bilinear taps half a texel off the grid, one texel apart, in
   // the plane across the light's direction (a face texel is 2 z / size wide at depth z).
   vec3 axis = normalize(fromLight);
@@ -48,6 +53,7 @@ float shadowFactor(vec4 shadowCoord, vec3 normal, vec3 toLight) {
     }
   }
   return lit / float(taps);
+#endif
 }
 #else
 float shadowFactor(vec4 shadowCoord, vec3 normal, vec3 toLight) {
@@ -55,8 +61,10 @@ float shadowFactor(vec4 shadowCoord, vec3 normal, vec3 toLight) {
   vec3 coord = shadowCoord.xyz / shadowCoord.w * 0.5 + 0.5;
   if (coord.z > 1.0 || any(lessThan(coord.xy, vec2(0.0))) || any(greaterThan(coord.xy, vec2(1.0)))) return 1.0;
   float bias = shadowBias(normal, toLight);
+#ifndef SHADOW_PCF
+  return texture(u_shadowMap, vec3(coord.xy, coord.z - bias));
+#else
   vec2 texel = 1.0 / vec2(textureSize(u_shadowMap, 0));
-  if (u_pcfRadius == 0) return texture(u_shadowMap, vec3(coord.xy, coord.z - bias));
   // Each tap is a bilinear blend of four hardware comparisons, so taps half a texel off the
   // texel grid, one texel apart, cover the (2r+1)^2 texels with (2r)^2 taps (4 for 3x3).
   float lit = 0.0;
@@ -69,6 +77,7 @@ float shadowFactor(vec4 shadowCoord, vec3 normal, vec3 toLight) {
     }
   }
   return lit / float(taps);
+#endif
 }
 #endif
 #endif

@@ -16,6 +16,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <ctime>
 #include <cstdlib>
 #include <cstdio>
 #include <iostream>
@@ -85,8 +86,9 @@ const char* kUsage =
     "                           software rasteriser such as llvmpipe, where 4x costs 3-4 times the frame)\n"
     "  --no-normal-map, --no-specular, --phong (= --shading phong), --flip-green, --negate-w\n"
     "  --reflectivity F, --sphere-map FILE, --uv-scale F\n"
-    "  --frames N               with --screenshot: render N frames and print the median frame time and\n"
-    "                           how many shadow-map passes they drew\n"
+    "  --frames N               with --screenshot: render N frames and print the median frame time (wall\n"
+    "                           clock, and the CPU time of all the process's threads, a software\n"
+    "                           rasteriser's included) and how many shadow-map passes they drew\n"
     "  --stats                  print what the file's scene holds (primitives, the instances that draw\n"
     "                           them, triangles, images, lights); without --screenshot, load the file, print\n"
     "                           and exit without a window (1 when it cannot be loaded)\n"
@@ -457,11 +459,12 @@ int screenshot(Viewer& viewer) {
   }
   glBindFramebuffer(GL_FRAMEBUFFER, drawTarget.framebuffer.get());
   const CameraMatrices matrices = viewer.camera.matrices(float(o.width) / float(o.height));
-  std::vector<double> milliseconds;
+  std::vector<double> milliseconds, cpuMilliseconds;  // cpu: every thread of the process (std::clock)
   FrameStats stats;
   try {
     for (int frame = 0; frame < o.frames; ++frame) {
       const auto start = std::chrono::steady_clock::now();
+      const std::clock_t cpuStart = std::clock();
       glBindFramebuffer(GL_FRAMEBUFFER, drawTarget.framebuffer.get());
       stats = viewer.renderer.render(matrices, o.settings, o.width, o.height);
       if (samples > 0) {
@@ -471,6 +474,7 @@ int screenshot(Viewer& viewer) {
       }
       glFinish();
       milliseconds.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
+      cpuMilliseconds.push_back(1000.0 * static_cast<double>(std::clock() - cpuStart) / CLOCKS_PER_SEC);
     }
   } catch (const std::exception& e) {
     std::cerr << "error: " << e.what() << "\n";
@@ -491,10 +495,12 @@ int screenshot(Viewer& viewer) {
     return 1;
   }
   std::sort(milliseconds.begin(), milliseconds.end());
+  std::sort(cpuMilliseconds.begin(), cpuMilliseconds.end());
   std::printf("wrote %s (%dx%d, %d samples): %zu triangles, %d draw calls, %zu shader variants, %d shadow pass(es), "
-              "exposure %.4g, median frame %.2f ms over %d frame(s)\n",
+              "exposure %.4g, median frame %.2f ms (CPU %.2f ms) over %d frame(s)\n",
               o.screenshot->string().c_str(), o.width, o.height, std::max(samples, 1), stats.triangles, stats.drawCalls,
-              viewer.shaders.variantsCompiled(), viewer.renderer.shadowPasses(), stats.exposure, milliseconds[milliseconds.size() / 2], o.frames);
+              viewer.shaders.variantsCompiled(), viewer.renderer.shadowPasses(), stats.exposure, milliseconds[milliseconds.size() / 2],
+              cpuMilliseconds[cpuMilliseconds.size() / 2], o.frames);
   if (viewer.renderer.environmentMilliseconds() > 0)
     std::printf("image-based lighting prepared in %.1f ms\n", viewer.renderer.environmentMilliseconds());
   return 0;

@@ -371,6 +371,20 @@ bool sameTexels(const gltf::TextureRef& a, const gltf::TextureRef& b) {
   return a.image == b.image && a.sampler == b.sampler && a.texCoord == b.texCoord && a.uvTransform == b.uvTransform;
 }
 
+// The maps mesh.frag reads through textureUv(), each with the feature that has it read.
+struct UvMappedMap {
+  Feature feature;
+  gltf::TextureRef gltf::MaterialDesc::*texture;
+};
+constexpr std::array<UvMappedMap, 6> kUvMappedMaps{{
+    {Feature::baseColorMap, &gltf::MaterialDesc::baseColorTexture},
+    {Feature::specularMap, &gltf::MaterialDesc::specularTexture},
+    {Feature::specularColorMap, &gltf::MaterialDesc::specularColorTexture},
+    {Feature::metallicRoughnessMap, &gltf::MaterialDesc::metallicRoughnessTexture},
+    {Feature::emissiveMap, &gltf::MaterialDesc::emissiveTexture},
+    {Feature::occlusionMap, &gltf::MaterialDesc::occlusionTexture},
+}};
+
 }  // namespace
 
 FeatureSet Renderer::featuresFor(const GpuMesh& mesh, const RenderSettings& settings) const {
@@ -383,12 +397,14 @@ FeatureSet Renderer::featuresFor(const GpuMesh& mesh, const RenderSettings& sett
   if (std::all_of(lights_.begin(), lights_.end(), [](const Light& light) { return light.directional; }))
     features |= static_cast<FeatureSet>(Feature::directionalLights);
   if (settings.ibl && settings.shading == Shading::pbr) features |= static_cast<FeatureSet>(Feature::ibl);
+  if (has(features, Feature::shadows) && settings.pcfRadius > 0) features |= static_cast<FeatureSet>(Feature::pcf);
+  if (settings.bitangent == BitangentMode::perVertex) features |= static_cast<FeatureSet>(Feature::bitangentPerVertex);
   if (mesh.material < 0 || mesh.material >= static_cast<int>(scene_.materials.size())) return features;
   const auto& material = scene_.materials[mesh.material];
   if (material.unlit) {
     // Unlit: base colour and alpha only.
     features &= ~(static_cast<FeatureSet>(Feature::shadows) | static_cast<FeatureSet>(Feature::pointShadows) |
-                  static_cast<FeatureSet>(Feature::reflection) | static_cast<FeatureSet>(Feature::physicalLights) |
+                  static_cast<FeatureSet>(Feature::pcf) | static_cast<FeatureSet>(Feature::reflection) | static_cast<FeatureSet>(Feature::physicalLights) |
                   static_cast<FeatureSet>(Feature::ibl));
     features |= static_cast<FeatureSet>(Feature::unlit);
   }
@@ -408,6 +424,12 @@ FeatureSet Renderer::featuresFor(const GpuMesh& mesh, const RenderSettings& sett
       sameTexels(material.occlusionTexture, material.metallicRoughnessTexture))
     features = (features & ~static_cast<FeatureSet>(Feature::occlusionMap)) | static_cast<FeatureSet>(Feature::occlusionInMetallicRoughnessMap);
   if (textureOf(material.emissiveTexture)) features |= static_cast<FeatureSet>(Feature::emissiveMap);
+  // The textures mesh.frag samples through textureUv() (the normal map's UVs come ready).
+  const bool anyUvTransform = std::any_of(kUvMappedMaps.begin(), kUvMappedMaps.end(), [&](const UvMappedMap& map) {
+    const gltf::TextureRef& ref = material.*map.texture;
+    return has(features, map.feature) && (ref.texCoord != 0 || ref.uvTransform != gltf::TextureRef{}.uvTransform);
+  });
+  if (anyUvTransform) features |= static_cast<FeatureSet>(Feature::uvTransforms);
   return features;
 }
 
@@ -822,8 +844,10 @@ GLuint Renderer::bindMesh(const GpuMesh& mesh, const CameraMatrices& camera, con
   gltf::MaterialDesc material;  // without one, glTF's default material (metallic 1, roughness 1, white; glTF 2.0 3.9.1)
   if (const gltf::MaterialDesc* own = materialOf(scene_, mesh.material)) material = *own;
   FeatureSet features = featuresFor(mesh, settings);
-  if (!shadows) features &= ~(static_cast<FeatureSet>(Feature::shadows) | static_cast<FeatureSet>(Feature::pointShadows));
-  const GLuint program = shaders_.mesh(features, settings.view, settings.toneMapping);
+  if (!shadows)
+    features &= ~(static_cast<FeatureSet>(Feature::shadows) | static_cast<FeatureSet>(Feature::pointShadows) | static_cast<FeatureSet>(Feature::pcf));
+  const int lightCount = static_cast<int>(std::min<std::size_t>(lights_.size(), kMaxLights));
+  const GLuint program = shaders_.mesh(features, settings.view, settings.toneMapping, lightCount);
   glUseProgram(program);
   setUniform(program, "u_viewProjection", camera.projection * camera.view);
   setUniform(program, "u_view", camera.view);
@@ -834,7 +858,6 @@ GLuint Renderer::bindMesh(const GpuMesh& mesh, const CameraMatrices& camera, con
   setUniform(program, "u_useSpecular", settings.specular ? 1 : 0);
   setUniform(program, "u_flipGreen", settings.flipGreen ? 1 : 0);
   setUniform(program, "u_compareSide", tangents == TangentSet::compare ? 1 : 0);
-  setUniform(program, "u_bitangentPerFragment", settings.bitangent == BitangentMode::perFragment ? 1 : 0);
   setUniform(program, "u_specularModel", settings.shading == Shading::phong ? 1 : 0);
   setUniform(program, "u_blend", material.alphaMode == gltf::MaterialDesc::AlphaMode::blend ? 1 : 0);
   setUniform(program, "u_alphaCutoff", material.alphaCutoff);
@@ -851,8 +874,6 @@ GLuint Renderer::bindMesh(const GpuMesh& mesh, const CameraMatrices& camera, con
   setUniform(program, "u_shininess", material.hasSpecular ? settings.shininess : 0.0f);  // 0: derive from roughness
   setUniform(program, "u_reflectivity", settings.reflectivity);
 
-  const int lightCount = static_cast<int>(std::min<std::size_t>(lights_.size(), 4));
-  setUniform(program, "u_lightCount", lightCount);
   for (int i = 0; i < lightCount; ++i) {
     const Light& light = lights_[i];
     const std::string index = "[" + std::to_string(i) + "]";

@@ -33,6 +33,13 @@ enum class Feature : std::uint32_t {
   // With metallicRoughnessMap: occlusionTexture is the same texture (glTF's ORM packing,
   // occlusion in R), read once from the metallic-roughness map.
   occlusionInMetallicRoughnessMap = 1u << 21,
+  // With shadows: PCF over more than one bilinear comparison (RenderSettings::pcfRadius > 0).
+  pcf = 1u << 22,
+  // The normal-mapping frame's bitangent per vertex, interpolated (else per fragment).
+  bitangentPerVertex = 1u << 23,
+  // Some texture of the material (the normal map apart, whose UVs the vertices carry ready)
+  // reads TEXCOORD_1 or has a KHR_texture_transform; else they all read TEXCOORD_0 as stored.
+  uvTransforms = 1u << 24,
 };
 
 enum class DebugView : std::uint8_t {
@@ -73,6 +80,9 @@ inline constexpr FeatureDefine kFeatureDefines[] = {
     {Feature::specularInColorMap, "SPECULAR_IN_COLOR_MAP"},
     {Feature::directionalLights, "LIGHTS_DIRECTIONAL"},
     {Feature::occlusionInMetallicRoughnessMap, "OCCLUSION_IN_METALLIC_ROUGHNESS_MAP"},
+    {Feature::pcf, "SHADOW_PCF"},
+    {Feature::bitangentPerVertex, "BITANGENT_PER_VERTEX"},
+    {Feature::uvTransforms, "HAS_UV_TRANSFORMS"},
 };
 
 // The lit view's shading: glTF's metallic-roughness model, or the tutorials' specular-map
@@ -127,6 +137,10 @@ inline constexpr ToneMappingInfo kToneMappings[] = {
 };
 
 using FeatureSet = std::uint32_t;
+
+// The most lights a mesh program reads (lighting.glsl's kMaxLights); each program is compiled
+// for the number it lights with, its LIGHT_COUNT (ShaderLibrary::mesh).
+inline constexpr int kMaxLights = 4;
 
 inline bool has(FeatureSet set, Feature feature) { return (set & static_cast<std::uint32_t>(feature)) != 0; }
 

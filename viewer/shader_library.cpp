@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 #include "shader_library.hpp"
 
+#include <algorithm>
 #include <fstream>
 #include <iterator>
 #include <regex>
@@ -103,13 +104,16 @@ GLuint ShaderLibrary::program(const std::string& vertexFile, const std::string& 
 static const std::string kHandednessDefine =
     "#define TANGENT_W_CCW_UV " + std::to_string(static_cast<int>(tangent::handedness(1.0f, tangent::kGltfUvOrigin))) + "\n";
 
-GLuint ShaderLibrary::mesh(FeatureSet features, DebugView view, ToneMapping toneMapping) {
+GLuint ShaderLibrary::mesh(FeatureSet features, DebugView view, ToneMapping toneMapping, int lightCount) {
   static const std::string kColourDefines = debugColourDefines();
-  return program("mesh.vert", "mesh.frag", definesFor(features, view, toneMapping) + kHandednessDefine + kColourDefines);
+  const std::string lights = "#define LIGHT_COUNT " + std::to_string(std::clamp(lightCount, 0, kMaxLights)) + "\n";
+  return program("mesh.vert", "mesh.frag", definesFor(features, view, toneMapping) + lights + kHandednessDefine + kColourDefines);
 }
 GLuint ShaderLibrary::depthOnly(FeatureSet features) {
   features &= static_cast<FeatureSet>(Feature::alphaMask) | static_cast<FeatureSet>(Feature::baseColorMap);
   if (!has(features, Feature::alphaMask)) features = 0;  // the texture matters only to the alpha test
+  // Drawn once per light change, not per frame: one program for every UV set and transform.
+  if (has(features, Feature::baseColorMap)) features |= static_cast<FeatureSet>(Feature::uvTransforms);
   return program("shadow_depth.vert", "shadow_depth.frag", definesFor(features, DebugView::lit));
 }
 GLuint ShaderLibrary::lines() { return program("lines.vert", "lines.frag", ""); }

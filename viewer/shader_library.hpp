@@ -22,11 +22,11 @@ class ShaderLibrary {
  public:
   explicit ShaderLibrary(std::filesystem::path directory) : directory_(std::move(directory)) {}
 
-  // The mesh program for a feature set and debug view; throws std::runtime_error with the
-  // compiler's log on failure.
-  GLuint mesh(FeatureSet features, DebugView view, ToneMapping toneMapping = ToneMapping::none);
+  // The mesh program for a feature set, debug view and number of lights (0 to kMaxLights, the
+  // light loop's trip count); throws std::runtime_error with the compiler's log on failure.
+  GLuint mesh(FeatureSet features, DebugView view, ToneMapping toneMapping = ToneMapping::none, int lightCount = kMaxLights);
   // Depth only (the shadow map, the depth pre-pass); of the features, only alphaMask and
-  // baseColorMap make a difference.
+  // baseColorMap make a difference (an alpha test reads any UV set and transform).
   GLuint depthOnly(FeatureSet features = 0);
   GLuint lines();
   // Forgets every compiled program; the next request reads the files again ('r').

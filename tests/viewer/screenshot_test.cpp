@@ -171,6 +171,38 @@ TEST(Viewer, DemoSceneShadowFallsWhereTheSphereOccludesTheSun) {
   EXPECT_GT(shadowOff, 0.85f * besideOff);
 }
 
+// PCF widens the shadow's edge: on a coarse shadow map (256 texels over the scene, about 2.3
+// pixels a texel here), PCF 5x5 shades many more pixels around the sphere's shadow between the
+// shadowed and the lit level than a single bilinear comparison does. PCF is a shader variant
+// (SHADOW_PCF), so a variant that left its taps out would show the hard edge at every radius.
+TEST(Viewer, PcfSoftensTheShadowEdge) {
+  TempDir dir;
+  const std::string common = "--camera top --ortho --size 600x600 --no-ibl --shadow-map-size 256";
+  const Image hard = screenshot(dir, "pcf0", common + " --pcf 0");
+  const Image soft = screenshot(dir, "pcf2", common + " --pcf 2");
+  const Image plain = screenshot(dir, "no-shadows", common + " --no-shadows");
+  ASSERT_EQ(hard.width, 600);
+  // Pixels within 130 of the image centre (the middle sphere's shadow falls there, as in
+  // DemoSceneShadowFallsWhereTheSphereOccludesTheSun) that the shadow darkens by 20-80% of its
+  // full depth (the darkest pixel's).
+  auto partlyShadowed = [&](const Image& shadowed) {
+    float deepest = 0;
+    for (int y = 170; y < 430; ++y)
+      for (int x = 170; x < 430; ++x) deepest = std::max(deepest, plain.luma(x, y) - shadowed.luma(x, y));
+    int count = 0;
+    for (int y = 170; y < 430; ++y)
+      for (int x = 170; x < 430; ++x) {
+        const float darkening = plain.luma(x, y) - shadowed.luma(x, y);
+        if (darkening > 0.2f * deepest && darkening < 0.8f * deepest) ++count;
+      }
+    return count;
+  };
+  const int hardEdge = partlyShadowed(hard), softEdge = partlyShadowed(soft);
+  std::printf("partly shadowed pixels: %d with PCF off, %d with PCF 5x5\n", hardEdge, softEdge);
+  EXPECT_GT(hardEdge, 0);
+  EXPECT_GT(softEdge, 2 * hardEdge);
+}
+
 // The demo material's specular map has green, white and black bands (RGB colour, A strength):
 // in the specular-map mode, the highlight the specular term adds must come in white and in green.
 TEST(Viewer, SpecularMapColoursTheHighlights) {
@@ -592,6 +624,39 @@ TEST(Viewer, OneFetchForThePackedOcclusionTextureRendersAsTwo) {
   EXPECT_LT(occluded, open - 0.03f);
   EXPECT_NEAR(open, dielectric, 0.01f);  // occlusion 1 (R = 255) changes nothing
   EXPECT_GT(std::abs(metal - dielectric), 0.03f);
+}
+
+// Each mesh program is compiled for the number of lights it shades with (LIGHT_COUNT): one to
+// four equal directional lights from the same direction light the quad more with each one added
+// (no tone mapping, no environment), so a program that ran fewer trips than the file has lights
+// would show it.
+TEST(Viewer, EveryLightOfTheFileLightsTheMesh) {
+  TempDir dir;
+  writeRgbaPng(dir / "white.png", 4, 4, [](int, int) { return std::array<unsigned char, 4>{255, 255, 255, 255}; });
+  auto render = [&](int count) {
+    nlohmann::json lights = nlohmann::json::array(), nodes = {{{"mesh", 0}}}, sceneNodes = {0};
+    for (int i = 0; i < count; ++i) {
+      lights.push_back({{"type", "directional"}, {"intensity", 0.4}});
+      nodes.push_back({{"rotation", {std::sin(0.25), 0.0, 0.0, std::cos(0.25)}}, {"extensions", {{"KHR_lights_punctual", {{"light", i}}}}}});
+      sceneNodes.push_back(i + 1);
+    }
+    const nlohmann::json patch = {{"nodes", nodes},
+                                  {"scenes", {{{"nodes", sceneNodes}}}},
+                                  {"extensions", {{"KHR_lights_punctual", {{"lights", lights}}}}},
+                                  {"extensionsUsed", {"KHR_lights_punctual"}}};
+    const nlohmann::json material = {{"pbrMetallicRoughness", {{"baseColorFactor", {0.8, 0.8, 0.8, 1.0}}, {"metallicFactor", 0.0}, {"roughnessFactor", 0.6}}}};
+    const std::string name = "lights-" + std::to_string(count);
+    return screenshot(dir, name, "'" + quadAsset(dir, name, material, "white.png", patch).string() + "'" + kQuadView +
+                                     " --exposure 1 --tone-map none --no-ibl --no-shadows");
+  };
+  auto luma = [](std::array<float, 3> c) { return 0.2126f * c[0] + 0.7152f * c[1] + 0.0722f * c[2]; };
+  float previous = 0;
+  for (int count = 1; count <= 4; ++count) {
+    const float now = luma(quadPixel(render(count), 0, 0));
+    std::printf("%d light(s): luma %.3f\n", count, now);
+    EXPECT_GT(now, previous + 0.03f) << count << " lights";
+    previous = now;
+  }
 }
 
 // With every light directional (the default rig), lighting.glsl is compiled without its
@@ -1921,6 +1986,32 @@ TEST(Viewer, FreshCompareSetIsRecomputedOnTheMorphedMesh) {
     const double seen = tangentAngleDegrees(image.at(100, 100));
     std::printf("fresh compare set at weight %.0f: tangent at %.2f degrees, expected %.0f\n", weight, seen, 45 * weight);
     EXPECT_NEAR(seen, 45 * weight, 1.0) << name;
+  }
+}
+
+// Without UVs (and without TANGENT) nothing defines a tangent frame: the fresh compare set has
+// none there (shown as "no tangent", as the load marks it), also when a morph target moves the
+// mesh and the set is computed again on the morphed corners, where MikkTSpace's fixed fallback
+// axis must not stand in for it.
+TEST(Viewer, FreshCompareSetWithoutUvsStaysUndefinedWhenMorphed) {
+  TempDir dir;
+  // Neither UVs nor TANGENT: the drawn frames are the fresh ones, undefined everywhere.
+  const auto dropUvs = [](GltfWriter&, nlohmann::json& doc) {
+    nlohmann::json& primitive = doc["meshes"][0]["primitives"][0];
+    primitive["attributes"].erase("TEXCOORD_0");
+    primitive["attributes"].erase("TANGENT");
+    primitive["targets"][0].erase("TANGENT");
+  };
+  std::vector<float> lift(12, 0.0f);
+  lift[2] = lift[5] = 0.2f;  // the bottom edge moves towards the viewer
+  for (const double weight : {0.0, 1.0}) {
+    const std::string name = "no-uvs-" + std::to_string(static_cast<int>(weight));
+    const Image image = screenshot(dir, name, "'" + morphQuad(dir, name, lift, {0, 0, 0}, {weight}, dropUvs).string() +
+                                                  "' --view tangent --compare fresh --split 0 --camera front --ortho --size 200x200");
+    ASSERT_EQ(image.width, 200);
+    const auto colour = image.at(100, 100);
+    std::printf("compare set without UVs at weight %.0f: %.3f %.3f %.3f\n", weight, colour[0], colour[1], colour[2]);
+    for (int i = 0; i < 3; ++i) EXPECT_NEAR(colour[i], 0.5f, 0.01f) << name;  // "no tangent" grey (viewer/debug_colours.hpp)
   }
 }
 
