@@ -220,11 +220,10 @@ void deformItem(const gltf::DrawItem& item, std::span<const float> weights, std:
     std::vector<FrameSource> sources;
     freshCornerTangents(item, out.positions, out.normals, out.compareTangents, sources);
     // Where nothing defines a frame, the fixed fallback axis is marked undefined as the load
-    // marks the item's computed set (gltf::DrawItem::tangents), so a morph does not turn it into
-    // a frame the views would show.
-    if (!item.tangentsFromFile)
-      for (std::size_t c = 0; c < corners; ++c)
-        if (sources[c] == FrameSource::fixed) out.compareTangents[4 * c + 3] = gltf::kUndefinedTangentW;
+    // marks the item's computed set (gltf::DrawItem::computedTangents), so a morph does not turn
+    // it into a frame the views would show.
+    for (std::size_t c = 0; c < corners; ++c)
+      if (sources[c] == FrameSource::fixed) out.compareTangents[4 * c + 3] = gltf::kUndefinedTangentW;
   }
   if (joints.empty() || item.influencesPerCorner == 0) return;
   // Skinning: the weighted sum of the joint matrices per corner; normals by its inverse

@@ -2015,6 +2015,30 @@ TEST(Viewer, FreshCompareSetWithoutUvsStaysUndefinedWhenMorphed) {
   }
 }
 
+// The file keeps its TANGENT but has no UVs: the file's frames are drawn as written, and the
+// fresh set beside them is undefined ("no tangent" grey) at every weight, as it is without
+// TANGENT; MikkTSpace's fixed fallback axis is not a frame to compare with.
+TEST(Viewer, FreshCompareSetWithoutUvsStaysUndefinedBesideTheFilesTangents) {
+  TempDir dir;
+  const auto dropUvs = [](GltfWriter&, nlohmann::json& doc) { doc["meshes"][0]["primitives"][0]["attributes"].erase("TEXCOORD_0"); };
+  std::vector<float> lift(12, 0.0f);
+  lift[2] = lift[5] = 0.2f;
+  for (const double weight : {0.0, 1.0}) {
+    const std::string name = "file-tangent-no-uvs-" + std::to_string(static_cast<int>(weight));
+    const fs::path file = morphQuad(dir, name, lift, {0, 0, 0}, {weight}, dropUvs);
+    const Image fresh = screenshot(dir, name + "-fresh", "'" + file.string() + "' --view tangent --compare fresh --split 0 --camera front --ortho --size 200x200");
+    const Image own = screenshot(dir, name + "-file", "'" + file.string() + "' --view tangent --camera front --ortho --size 200x200");
+    ASSERT_EQ(fresh.width, 200);
+    ASSERT_EQ(own.width, 200);
+    const auto colour = fresh.at(100, 100), fileColour = own.at(100, 100);
+    std::printf("beside the file's TANGENT, without UVs, at weight %.0f: fresh %.3f %.3f %.3f, file %.3f %.3f %.3f\n", weight, colour[0],
+                colour[1], colour[2], fileColour[0], fileColour[1], fileColour[2]);
+    for (int i = 0; i < 3; ++i) EXPECT_NEAR(colour[i], 0.5f, 0.01f) << name;  // "no tangent" grey
+    // The file's frame (+x, the quad's tangent) is still drawn: not grey.
+    EXPECT_GT(std::abs(fileColour[0] - 0.5f) + std::abs(fileColour[1] - 0.5f) + std::abs(fileColour[2] - 0.5f), 0.2f) << name;
+  }
+}
+
 // ---- Default material, glTF samplers, grey images (issue 38, smaller defects) ----
 
 // A primitive without a material is drawn with glTF's default material (glTF 2.0 3.9.1, the

@@ -106,11 +106,12 @@ struct DrawItem {
   std::array<std::vector<float>, 2> uvSets;  // 2 each, TEXCOORD_0 and _1 as stored (zeros when absent)
   std::vector<float> tangents;       // 4, the file's TANGENT, or computed when it has none
   std::vector<float> computedTangents;  // 4, freshly computed (options.method)
-  // In `tangents` and `computedTangents`, w = kUndefinedTangentW at a corner whose frame nothing
-  // defines: the file has no TANGENT and no triangle with usable UVs meets the corner's vertex
-  // or its neighbours (a primitive without TEXCOORD, a UV island of zero area), so the core gave
-  // it a fixed axis perpendicular to the normal (FrameSource::fixed). Shading treats it as +1;
-  // the views of the frame show their "no tangent" colour.
+  // In `computedTangents` (and in `tangents` where the file has no TANGENT), w =
+  // kUndefinedTangentW at a corner whose frame nothing defines: no triangle with usable UVs
+  // meets the corner's vertex or its neighbours (a primitive without TEXCOORD, a UV island of
+  // zero area), so the core gave it a fixed axis perpendicular to the normal
+  // (FrameSource::fixed). Shading treats it as +1; the views of the frame show their
+  // "no tangent" colour. The file's TANGENT is kept as written.
   std::vector<float> tangentErrorDegrees;  // angle between the two, per corner
   std::vector<std::uint8_t> cornerProblems;  // CornerProblem bits
   bool tangentsFromFile = false;
