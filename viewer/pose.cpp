@@ -172,7 +172,9 @@ std::vector<glm::mat4> jointMatrices(const gltf::Skin& skin, const ScenePose& po
 namespace {
 
 // MikkTSpace tangents (4 per corner) for the corners' positions and normals and the item's
-// normal-map UVs, each corner its own vertex; `sources` says where each frame came from.
+// normal-map UVs, each corner its own vertex; `sources` says where each frame came from. The
+// frames nothing defines are marked undefined as the load marks the item's computed set
+// (gltf::markUndefinedFrames), so a morph does not turn them into a frame the views would show.
 void freshCornerTangents(const gltf::DrawItem& item, std::span<const float> positions, std::span<const float> normals, std::vector<float>& fresh,
                          std::vector<FrameSource>& sources) {
   const std::size_t corners = item.positions.size() / 3;
@@ -182,6 +184,7 @@ void freshCornerTangents(const gltf::DrawItem& item, std::span<const float> posi
   sources.assign(corners, FrameSource{});
   if (corners == 0) return;
   computeCornerTangents({positions, normals, item.uvNormal, identity}, fresh, Options{}, sources);
+  gltf::markUndefinedFrames(sources, fresh);
 }
 
 }  // namespace
@@ -219,11 +222,6 @@ void deformItem(const gltf::DrawItem& item, std::span<const float> weights, std:
   if (compare && compareMorph == CompareMorph::recompute && morphs(item, weights)) {
     std::vector<FrameSource> sources;
     freshCornerTangents(item, out.positions, out.normals, out.compareTangents, sources);
-    // Where nothing defines a frame, the fixed fallback axis is marked undefined as the load
-    // marks the item's computed set (gltf::DrawItem::computedTangents), so a morph does not turn
-    // it into a frame the views would show.
-    for (std::size_t c = 0; c < corners; ++c)
-      if (sources[c] == FrameSource::fixed) out.compareTangents[4 * c + 3] = gltf::kUndefinedTangentW;
   }
   if (joints.empty() || item.influencesPerCorner == 0) return;
   // Skinning: the weighted sum of the joint matrices per corner; normals by its inverse

@@ -49,7 +49,6 @@ State& state() {
 // corner, 384 MB at 4e6 triangles, that were written and read back once).
 constexpr std::uint32_t kStageCorners = 1 << 14;
 
-
 }  // namespace
 
 extern "C" {

@@ -412,11 +412,8 @@ DrawItem makeDrawItem(const detail::Asset& asset, const Json& primitive, const s
   // above, which compare the computed frames with themselves there. The computed set is marked
   // even where the file has TANGENT (it is what the compare view shows beside the file's); the
   // file's own frames are kept as written.
-  for (std::size_t c = 0; c < cornerCount; ++c) {
-    if (sources[c] != FrameSource::fixed) continue;
-    if (!item.tangentsFromFile) item.tangents[4 * c + 3] = kUndefinedTangentW;
-    item.computedTangents[4 * c + 3] = kUndefinedTangentW;
-  }
+  markUndefinedFrames(sources, item.computedTangents);
+  if (!item.tangentsFromFile) markUndefinedFrames(sources, item.tangents);
   readDeformation(asset, primitive, geometry.vertexCount, corners, where, item, messages);
   return item;
 }

@@ -10,6 +10,7 @@
 #include <array>
 #include <cstdint>
 #include <filesystem>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -74,6 +75,14 @@ struct LightDesc {
 
 // DrawItem::tangents' w where the corner has no tangent frame (glTF's w is +1 or -1).
 inline constexpr float kUndefinedTangentW = 0.0f;
+
+// Computed tangents (4 per corner): w = kUndefinedTangentW where the core gave the fixed axis
+// (FrameSource::fixed), the frames nothing defines. The load marks DrawItem's sets with it,
+// and the viewer the sets it computes afresh on deformed corners.
+inline void markUndefinedFrames(std::span<const FrameSource> sources, std::span<float> tangents) {
+  for (std::size_t c = 0; c < sources.size(); ++c)
+    if (sources[c] == FrameSource::fixed) tangents[4 * c + 3] = kUndefinedTangentW;
+}
 
 // Bits of DrawItem::cornerProblems: the checks of `tangent check` that fail at a corner.
 enum CornerProblem : std::uint8_t {
