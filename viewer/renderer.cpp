@@ -15,6 +15,7 @@
 #include "shadow_cube.hpp"
 #include "textures.hpp"
 #include "vertex_layout.hpp"
+#include "vertex_weld.hpp"
 
 namespace tangent::viewer {
 namespace {
@@ -194,11 +195,11 @@ void Renderer::setScene(gltf::Scene scene, std::vector<std::string>& messages) {
     const std::vector<float> data = packMeshVertices(item, itemFrames(item, compareTangentsOf(static_cast<std::size_t>(&item - scene_.items.data()))));
     mesh.vertexArray = makeVertexArray();
     mesh.vertices = makeBuffer();
+    if (usage == GL_STATIC_DRAW) mesh.indices = makeBuffer();
     glBindVertexArray(mesh.vertexArray.get());
     glBindBuffer(GL_ARRAY_BUFFER, mesh.vertices.get());
-    glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(data.size() * sizeof(float)), data.data(), usage);
     setVertexLayout(kMeshVertexLayout);
-    mesh.count = static_cast<GLsizei>(item.positions.size() / 3);
+    fillMeshBuffers(mesh, data);
     meshes_.push_back(std::move(mesh));
   };
   for (const auto& item : scene_.items) upload(item, GL_STATIC_DRAW);
@@ -267,9 +268,7 @@ void Renderer::setCompareTangents(std::vector<std::vector<float>> perItem) {
   // Every mesh's vertices again (each deforming instance's own buffer starts from its item's),
   // then the pose again, which deforms the new set along.
   auto upload = [&](std::size_t item, std::size_t mesh) {
-    const std::vector<float> data = packMeshVertices(scene_.items[item], itemFrames(scene_.items[item], compareTangentsOf(item)));
-    glBindBuffer(GL_ARRAY_BUFFER, meshes_[mesh].vertices.get());
-    glBufferSubData(GL_ARRAY_BUFFER, 0, static_cast<GLsizeiptr>(data.size() * sizeof(float)), data.data());
+    fillMeshBuffers(meshes_[mesh], packMeshVertices(scene_.items[item], itemFrames(scene_.items[item], compareTangentsOf(item))));
   };
   for (std::size_t item = 0; item < scene_.items.size(); ++item) upload(item, item);  // setScene uploads items first
   for (const DeformedInstance& deformed : deformed_) upload(scene_.instances[deformed.instance].item, instances_[deformed.instance].mesh);
@@ -280,9 +279,30 @@ void Renderer::setCompareTangents(std::vector<std::vector<float>> perItem) {
 }
 
 void Renderer::uploadDeformed(const DeformedInstance& deformed) {
-  const std::vector<float> data = packMeshVertices(scene_.items[scene_.instances[deformed.instance].item], framesOf(deformed.instance));
-  glBindBuffer(GL_ARRAY_BUFFER, meshes_[instances_[deformed.instance].mesh].vertices.get());
-  glBufferSubData(GL_ARRAY_BUFFER, 0, static_cast<GLsizeiptr>(data.size() * sizeof(float)), data.data());
+  fillMeshBuffers(meshes_[instances_[deformed.instance].mesh],
+                  packMeshVertices(scene_.items[scene_.instances[deformed.instance].item], framesOf(deformed.instance)));
+}
+
+void Renderer::fillMeshBuffers(GpuMesh& mesh, std::span<const float> corners) {
+  mesh.count = static_cast<GLsizei>(corners.size() / kMeshFloatsPerVertex);
+  glBindVertexArray(mesh.vertexArray.get());  // the element buffer binding is the vertex array's
+  glBindBuffer(GL_ARRAY_BUFFER, mesh.vertices.get());
+  if (!mesh.indices) {
+    // Rewritten at every pose: as many floats each time (GL_DYNAMIC_DRAW).
+    glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(corners.size() * sizeof(float)), corners.data(), GL_DYNAMIC_DRAW);
+  } else {
+    const WeldedVertices welded = weldVertices(corners, kMeshFloatsPerVertex);
+    glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(welded.vertices.size() * sizeof(float)), welded.vertices.data(), GL_STATIC_DRAW);
+    glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, mesh.indices.get());
+    glBufferData(GL_ELEMENT_ARRAY_BUFFER, static_cast<GLsizeiptr>(welded.indices.size() * sizeof(std::uint32_t)), welded.indices.data(),
+                 GL_STATIC_DRAW);
+  }
+  glBindVertexArray(0);
+}
+
+void Renderer::drawMesh(const GpuMesh& mesh) {
+  if (mesh.indices) glDrawElements(GL_TRIANGLES, mesh.count, GL_UNSIGNED_INT, nullptr);
+  else glDrawArrays(GL_TRIANGLES, 0, mesh.count);
 }
 
 bool Renderer::setPose(PoseTime time) {
@@ -568,7 +588,7 @@ void Renderer::drawDepth(std::span<const GpuInstance* const> instances, const gl
       bound.mirrored = instance->mirrored;
     }
     glUniformMatrix4fv(bound.model, 1, GL_FALSE, glm::value_ptr(instance->model));
-    glDrawArrays(GL_TRIANGLES, 0, mesh.count);
+    drawMesh(mesh);
   }
 }
 
@@ -836,7 +856,7 @@ void Renderer::drawInstance(const GpuInstance& instance, BoundMesh& bound) {
   glUniformMatrix4fv(bound.model, 1, GL_FALSE, glm::value_ptr(instance.model));
   const glm::mat3 normalMatrix = glm::transpose(glm::inverse(glm::mat3(instance.model)));
   glUniformMatrix3fv(bound.normalMatrix, 1, GL_FALSE, glm::value_ptr(normalMatrix));
-  glDrawArrays(GL_TRIANGLES, 0, meshes_[instance.mesh].count);
+  drawMesh(meshes_[instance.mesh]);
 }
 
 GLuint Renderer::bindMesh(const GpuMesh& mesh, const CameraMatrices& camera, const RenderSettings& settings, bool shadows,

@@ -168,7 +168,8 @@ class Renderer {
   struct GpuMesh {
     VertexArray vertexArray;
     Buffer vertices;
-    GLsizei count = 0;
+    Buffer indices;       // welded (vertex_weld.hpp) where the mesh is static; none where a pose rewrites its corners
+    GLsizei count = 0;    // corners drawn
     int material = -1;
   };
   // One per scene instance: a mesh where a node puts it.
@@ -246,6 +247,10 @@ class Renderer {
   };
   // Packs a deformed instance's corners into its vertex buffer.
   void uploadDeformed(const DeformedInstance& deformed);
+  // A mesh's packed corners (kMeshVertexLayout) into its buffers, welded where it has indices.
+  static void fillMeshBuffers(GpuMesh& mesh, std::span<const float> corners);
+  // Its triangles, with the vertex array bound.
+  static void drawMesh(const GpuMesh& mesh);
   std::vector<DeformedInstance> deformed_;
   std::optional<PoseTime> pose_;  // the pose drawn; none: the rest pose as loaded
   std::vector<std::vector<float>> compareTangents_;  // per scene item (setCompareTangents)

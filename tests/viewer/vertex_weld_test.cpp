@@ -1,0 +1,50 @@
+// SPDX-License-Identifier: MIT
+// weldVertices (viewer/vertex_weld.hpp): corners equal bit for bit share one vertex, in order of
+// first use, and the indices give back every corner exactly.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstring>
+#include <vector>
+
+#include "vertex_weld.hpp"
+
+namespace {
+
+using tangent::viewer::weldVertices;
+
+// Two triangles of a quad, as corners of 3 floats: the diagonal's two corners appear twice.
+TEST(VertexWeld, SharedCornersBecomeOneVertexInOrderOfFirstUse) {
+  const std::vector<float> corners = {0, 0, 0, 1, 0, 0, 1, 1, 0,   // a b c
+                                      0, 0, 0, 1, 1, 0, 0, 1, 0};  // a c d
+  const auto welded = weldVertices(corners, 3);
+  EXPECT_EQ(welded.indices, (std::vector<std::uint32_t>{0, 1, 2, 0, 2, 3}));
+  EXPECT_EQ(welded.vertices, (std::vector<float>{0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 1, 0}));
+}
+
+// Equal as numbers is not enough: -0 and 0 stay apart, a NaN is welded to the same NaN bits.
+TEST(VertexWeld, EqualityIsBitwise) {
+  const float nan = std::nanf("");
+  const std::vector<float> corners = {0.0f, 1, -0.0f, 1, nan, 2, nan, 2, 0.0f, 1};
+  const auto welded = weldVertices(corners, 2);
+  EXPECT_EQ(welded.indices, (std::vector<std::uint32_t>{0, 1, 2, 2, 0}));
+  ASSERT_EQ(welded.vertices.size(), 6u);
+  EXPECT_TRUE(std::signbit(welded.vertices[2]));
+}
+
+// Many corners, each vertex used by several: every corner comes back from its index exactly.
+TEST(VertexWeld, IndicesGiveBackEveryCorner) {
+  constexpr int kStride = 5;
+  std::vector<float> corners;
+  for (int c = 0; c < 30000; ++c) {
+    const int vertex = (c * 7919) % 4999;  // 4999 distinct vertices, each used 6 times
+    for (int k = 0; k < kStride; ++k) corners.push_back(static_cast<float>(vertex) * 0.5f + static_cast<float>(k));
+  }
+  const auto welded = weldVertices(corners, kStride);
+  EXPECT_EQ(welded.vertices.size(), 4999u * kStride);
+  ASSERT_EQ(welded.indices.size(), 30000u);
+  for (std::size_t c = 0; c < welded.indices.size(); ++c)
+    ASSERT_EQ(std::memcmp(&welded.vertices[welded.indices[c] * kStride], &corners[c * kStride], kStride * sizeof(float)), 0) << c;
+}
+
+}  // namespace
