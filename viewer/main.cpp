@@ -461,12 +461,14 @@ int screenshot(Viewer& viewer) {
   const CameraMatrices matrices = viewer.camera.matrices(float(o.width) / float(o.height));
   std::vector<double> milliseconds, cpuMilliseconds;  // cpu: every thread of the process (std::clock)
   FrameStats stats;
+  int shadowDrawCalls = 0;
   try {
     for (int frame = 0; frame < o.frames; ++frame) {
       const auto start = std::chrono::steady_clock::now();
       const std::clock_t cpuStart = std::clock();
       glBindFramebuffer(GL_FRAMEBUFFER, drawTarget.framebuffer.get());
       stats = viewer.renderer.render(matrices, o.settings, o.width, o.height);
+      shadowDrawCalls += stats.shadowDrawCalls;
       if (samples > 0) {
         glBindFramebuffer(GL_READ_FRAMEBUFFER, drawTarget.framebuffer.get());
         glBindFramebuffer(GL_DRAW_FRAMEBUFFER, readTarget.framebuffer.get());
@@ -496,10 +498,12 @@ int screenshot(Viewer& viewer) {
   }
   std::sort(milliseconds.begin(), milliseconds.end());
   std::sort(cpuMilliseconds.begin(), cpuMilliseconds.end());
-  std::printf("wrote %s (%dx%d, %d samples): %zu triangles, %d draw calls, %zu shader variants, %d shadow pass(es), "
-              "exposure %.4g, median frame %.2f ms (CPU %.2f ms) over %d frame(s)\n",
+  // Draw calls and triangles of the last frame's view; the shadow map's draws, made in the first
+  // frame (and again only when something moves), are counted apart.
+  std::printf("wrote %s (%dx%d, %d samples): %zu triangles, %d draw calls, %zu shader variants, %d shadow pass(es) of %d draw "
+              "call(s), exposure %.4g, median frame %.2f ms (CPU %.2f ms) over %d frame(s)\n",
               o.screenshot->string().c_str(), o.width, o.height, std::max(samples, 1), stats.triangles, stats.drawCalls,
-              viewer.shaders.variantsCompiled(), viewer.renderer.shadowPasses(), stats.exposure, milliseconds[milliseconds.size() / 2],
+              viewer.shaders.variantsCompiled(), viewer.renderer.shadowPasses(), shadowDrawCalls, stats.exposure, milliseconds[milliseconds.size() / 2],
               cpuMilliseconds[cpuMilliseconds.size() / 2], o.frames);
   if (viewer.renderer.environmentMilliseconds() > 0)
     std::printf("image-based lighting prepared in %.1f ms\n", viewer.renderer.environmentMilliseconds());

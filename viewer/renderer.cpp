@@ -731,7 +731,7 @@ FrameStats Renderer::render(const CameraMatrices& camera, const RenderSettings& 
       drawShadowMap(settings);
       shadowKey_ = key;
       stats.depthPass = true;
-      stats.drawCalls += static_cast<int>(instances_.size());
+      stats.shadowDrawCalls += static_cast<int>(instances_.size()) * (pointShadow() ? 6 : 1);
     }
   }
   glViewport(0, 0, width, height);

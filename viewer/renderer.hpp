@@ -115,7 +115,8 @@ struct CameraMatrices {
 };
 
 struct FrameStats {
-  int drawCalls = 0;
+  int drawCalls = 0;        // the camera's passes: depth pre-pass, shading, glyphs
+  int shadowDrawCalls = 0;  // into the shadow map, in the frames that redraw it (depthPass)
   std::size_t triangles = 0;
   bool depthPass = false;  // the shadow map was redrawn this frame
   float exposure = 1;      // the exposure used

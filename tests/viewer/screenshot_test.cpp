@@ -814,6 +814,22 @@ TEST(Viewer, ShadowMapDrawnOnceForAStaticScene) {
   EXPECT_NE(output.find("0 shadow pass(es)"), std::string::npos) << output;
 }
 
+// One primitive is one draw call of the view, in the frame that also draws the shadow map and in
+// the frames after it; the shadow map's draw is counted apart (it was added to the first frame's).
+TEST(Viewer, DrawCallsOfTheViewAndOfTheShadowMapAreCountedApart) {
+  TempDir dir;
+  const std::string sphere = "'" + (fs::path(TANGENT_SOURCE_DIR) / "data" / "demo" / "sphere.gltf").string() + "'";
+  std::string output;
+  for (const char* frames : {"1", "3"}) {
+    ASSERT_EQ(run(sphere + " --size 160x90 --frames " + frames + " --screenshot '" + (dir / "a.png").string() + "'", output), 0) << output;
+    EXPECT_NE(output.find(" 1 draw calls, "), std::string::npos) << output;
+    EXPECT_NE(output.find("1 shadow pass(es) of 1 draw call(s)"), std::string::npos) << output;
+  }
+  ASSERT_EQ(run(sphere + " --size 160x90 --no-shadows --screenshot '" + (dir / "b.png").string() + "'", output), 0) << output;
+  EXPECT_NE(output.find(" 1 draw calls, "), std::string::npos) << output;
+  EXPECT_NE(output.find("0 shadow pass(es) of 0 draw call(s)"), std::string::npos) << output;
+}
+
 // The perspective camera frames the bounding box to the view: the demo sphere seen from the
 // front spans about 72% of the frame's height (the bounding box's front face fills it; framing the
 // box's bounding sphere gave 52%).
