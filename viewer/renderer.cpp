@@ -82,7 +82,7 @@ std::array<const gltf::TextureRef*, 7> textureRefs(const gltf::MaterialDesc& m) 
 std::vector<Light> lightsFrom(const gltf::Scene& scene, glm::vec3 center, float radius) {
   std::vector<Light> lights;
   for (const auto& source : scene.lights) {
-    if (lights.size() == 4) break;
+    if (lights.size() == static_cast<std::size_t>(kMaxLights)) break;  // the one place the count is capped
     Light light;
     const glm::vec3 color(source.color[0], source.color[1], source.color[2]);
     light.directional = source.type == gltf::LightDesc::Type::directional;
@@ -409,8 +409,8 @@ constexpr std::array<UvMappedMap, 6> kUvMappedMaps{{
 
 FeatureSet Renderer::featuresFor(const GpuMesh& mesh, const RenderSettings& settings) const {
   FeatureSet features = 0;
-  if (settings.shadows && !lights_.empty()) features |= static_cast<FeatureSet>(Feature::shadows);
-  if (settings.shadows && pointShadow()) features |= static_cast<FeatureSet>(Feature::pointShadows);
+  if (shadowsDrawn(settings)) features |= static_cast<FeatureSet>(Feature::shadows);
+  if (shadowsDrawn(settings) && pointShadow()) features |= static_cast<FeatureSet>(Feature::pointShadows);
   if (settings.reflectivity > 0 && sphereMap_) features |= static_cast<FeatureSet>(Feature::reflection);
   if (settings.shading == Shading::pbr) features |= static_cast<FeatureSet>(Feature::pbr);
   if (physicalLights(settings)) features |= static_cast<FeatureSet>(Feature::physicalLights);
@@ -423,8 +423,7 @@ FeatureSet Renderer::featuresFor(const GpuMesh& mesh, const RenderSettings& sett
   const auto& material = scene_.materials[mesh.material];
   if (material.unlit) {
     // Unlit: base colour and alpha only.
-    features &= ~(static_cast<FeatureSet>(Feature::shadows) | static_cast<FeatureSet>(Feature::pointShadows) |
-                  static_cast<FeatureSet>(Feature::pcf) | static_cast<FeatureSet>(Feature::reflection) | static_cast<FeatureSet>(Feature::physicalLights) |
+    features &= ~(kShadowFeatures | static_cast<FeatureSet>(Feature::reflection) | static_cast<FeatureSet>(Feature::physicalLights) |
                   static_cast<FeatureSet>(Feature::ibl));
     features |= static_cast<FeatureSet>(Feature::unlit);
   }
@@ -451,6 +450,10 @@ FeatureSet Renderer::featuresFor(const GpuMesh& mesh, const RenderSettings& sett
   });
   if (anyUvTransform) features |= static_cast<FeatureSet>(Feature::uvTransforms);
   return features;
+}
+
+bool Renderer::shadowsDrawn(const RenderSettings& settings) const {
+  return settings.shadows && !instances_.empty() && !lights_.empty() && settings.view == DebugView::lit;
 }
 
 bool Renderer::physicalLights(const RenderSettings& settings) const {
@@ -721,8 +724,7 @@ FrameStats Renderer::render(const CameraMatrices& camera, const RenderSettings& 
     environment_ = uploadEnvironment(buildEnvironment());
     environmentMilliseconds_ = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
   }
-  const bool anyShadows = settings.shadows && !instances_.empty() && !lights_.empty() && settings.view == DebugView::lit;
-  if (anyShadows) {
+  if (shadowsDrawn(settings)) {
     // The map depends on the scene, light 0's direction and the map size only: a camera that
     // moves reuses it.
     const ShadowKey key{glm::normalize(lights_[0].direction), lights_[0].directional ? glm::vec3(0) : lights_[0].position, pointShadow(),
@@ -791,7 +793,7 @@ FrameStats Renderer::render(const CameraMatrices& camera, const RenderSettings& 
       glDepthFunc(GL_LEQUAL);
       glDepthMask(GL_FALSE);
     }
-    drawInstances(opaque, camera, settings, anyShadows, tangents, stats);
+    drawInstances(opaque, camera, settings, tangents, stats);
     if (prePass) {
       glDepthFunc(GL_LESS);
       glDepthMask(GL_TRUE);
@@ -799,7 +801,7 @@ FrameStats Renderer::render(const CameraMatrices& camera, const RenderSettings& 
     if (!transparent.empty()) {
       glEnable(GL_BLEND);
       glBlendFuncSeparate(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA, GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
-      drawInstances(transparent, camera, settings, anyShadows, tangents, stats);
+      drawInstances(transparent, camera, settings, tangents, stats);
       glDisable(GL_BLEND);
     }
     glFrontFace(GL_CCW);
@@ -831,12 +833,12 @@ FrameStats Renderer::render(const CameraMatrices& camera, const RenderSettings& 
 }
 
 void Renderer::drawInstances(std::span<const GpuInstance* const> instances, const CameraMatrices& camera, const RenderSettings& settings,
-                             bool shadows, TangentSet tangents, FrameStats& stats) {
+                             TangentSet tangents, FrameStats& stats) {
   BoundMesh bound;
   for (const GpuInstance* instance : instances) {
     const GpuMesh& mesh = meshes_[instance->mesh];
     if (bound.mesh != instance->mesh) {
-      const GLuint program = bindMesh(mesh, camera, settings, shadows, tangents);
+      const GLuint program = bindMesh(mesh, camera, settings, tangents);
       applyCulling(mesh, settings);
       bound = BoundMesh{instance->mesh, glGetUniformLocation(program, "u_model"), glGetUniformLocation(program, "u_normalMatrix"),
                         glGetUniformLocation(program, "u_mirror"), -1};
@@ -859,19 +861,16 @@ void Renderer::drawInstance(const GpuInstance& instance, BoundMesh& bound) {
   drawMesh(meshes_[instance.mesh]);
 }
 
-GLuint Renderer::bindMesh(const GpuMesh& mesh, const CameraMatrices& camera, const RenderSettings& settings, bool shadows,
-                          TangentSet tangents) {
+GLuint Renderer::bindMesh(const GpuMesh& mesh, const CameraMatrices& camera, const RenderSettings& settings, TangentSet tangents) {
   gltf::MaterialDesc material;  // without one, glTF's default material (metallic 1, roughness 1, white; glTF 2.0 3.9.1)
   if (const gltf::MaterialDesc* own = materialOf(scene_, mesh.material)) material = *own;
-  FeatureSet features = featuresFor(mesh, settings);
-  if (!shadows)
-    features &= ~(static_cast<FeatureSet>(Feature::shadows) | static_cast<FeatureSet>(Feature::pointShadows) | static_cast<FeatureSet>(Feature::pcf));
-  const int lightCount = static_cast<int>(std::min<std::size_t>(lights_.size(), kMaxLights));
+  const FeatureSet features = featuresFor(mesh, settings);
+  const int lightCount = static_cast<int>(lights_.size());  // at most kMaxLights (lightsFrom)
   const GLuint program = shaders_.mesh(features, settings.view, settings.toneMapping, lightCount);
   glUseProgram(program);
   setUniform(program, "u_viewProjection", camera.projection * camera.view);
   setUniform(program, "u_view", camera.view);
-  setUniform(program, "u_lightViewProjection", shadows ? lightViewProjection() : glm::mat4(1));
+  setUniform(program, "u_lightViewProjection", has(features, Feature::shadows) ? lightViewProjection() : glm::mat4(1));
   setUniform(program, "u_eyeWorld", camera.eye);
   setUniform(program, "u_uvScale", settings.uvScale);
   setUniform(program, "u_useNormalMap", settings.normalMapping ? 1 : 0);

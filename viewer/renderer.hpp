@@ -160,6 +160,9 @@ class Renderer {
   float whiteRadiance(const RenderSettings& settings) const;
   // PBR mode with the file's KHR_lights_punctual lights: in the extension's units.
   bool physicalLights(const RenderSettings& settings) const;
+  // Whether light 0's shadow is drawn: asked for, something to shadow and a light, in the lit
+  // view. The shadow map's pass and the variants' shadow features (kShadowFeatures) follow it.
+  bool shadowsDrawn(const RenderSettings& settings) const;
   // Milliseconds the image-based lighting's maps took to prepare (CPU and upload), once, on the
   // first frame that needs them; 0 before.
   double environmentMilliseconds() const { return environmentMilliseconds_; }
@@ -198,9 +201,9 @@ class Renderer {
   };
   // Each instance with the shader variant its material needs, in the order given.
   void drawInstances(std::span<const GpuInstance* const> instances, const CameraMatrices& camera, const RenderSettings& settings,
-                     bool shadows, TangentSet tangents, FrameStats& stats);
+                     TangentSet tangents, FrameStats& stats);
   // Binds a mesh's program, material, lights and vertices for drawInstance; returns the program.
-  GLuint bindMesh(const GpuMesh& mesh, const CameraMatrices& camera, const RenderSettings& settings, bool shadows, TangentSet tangents);
+  GLuint bindMesh(const GpuMesh& mesh, const CameraMatrices& camera, const RenderSettings& settings, TangentSet tangents);
   // Sets the instance's transform (and front face) and draws it.
   void drawInstance(const GpuInstance& instance, BoundMesh& bound);
   void drawShadowMap(const RenderSettings& settings);

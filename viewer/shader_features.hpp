@@ -144,6 +144,10 @@ inline constexpr int kMaxLights = 4;
 
 inline bool has(FeatureSet set, Feature feature) { return (set & static_cast<std::uint32_t>(feature)) != 0; }
 
+// Light 0's shadow: the features a variant drawn without it leaves out.
+inline constexpr FeatureSet kShadowFeatures =
+    static_cast<FeatureSet>(Feature::shadows) | static_cast<FeatureSet>(Feature::pointShadows) | static_cast<FeatureSet>(Feature::pcf);
+
 // "#define X\n" lines for a variant.
 inline std::string definesFor(FeatureSet features, DebugView view, ToneMapping toneMapping = ToneMapping::none) {
   std::string text;
