@@ -379,19 +379,19 @@ bool CreatedFiles::staged(const std::filesystem::path& path) const {
   return std::any_of(staged_.begin(), staged_.end(), [&](const auto& file) { return file->path() == path; });
 }
 
-void CreatedFiles::keep() {
-  std::string failed;
-  for (const auto& file : staged_) {
-    try {
-      file->commit();
-    } catch (const std::exception& e) {
-      if (failed.empty()) failed = e.what();
-    }
+void CreatedFiles::keep(output::StagedFile& output) {
+  std::vector<output::StagedFile*> files;
+  for (const auto& file : staged_) files.push_back(file.get());
+  files.push_back(&output);
+  try {
+    output::commitAll(files);
+  } catch (const std::exception& e) {
+    throw std::runtime_error(std::string(e.what()) + "; " + output.path().string() + " was not written" +
+                             (staged_.empty() ? "" : ", and the image copies beside it are as they were"));
   }
   staged_.clear();
   folders_.clear();
   guards_.clear();
-  if (!failed.empty()) throw std::runtime_error(failed);
 }
 
 void OutputDocument::placeImages(const std::filesystem::path& outputDir, CreatedFiles& created) {
@@ -423,7 +423,7 @@ void OutputDocument::placeImages(const std::filesystem::path& outputDir, Created
       if (!readFileInto(source, bytes)) throw std::runtime_error(source.string() + ": cannot be read to copy beside the output");
       // A copy an earlier bake left there is not written again: each write is a flush to disk,
       // and in a folder baked over and over they took longer than reading the buffers. One
-      // that differs is replaced only once the output is written (CreatedFiles::keep).
+      // that differs is replaced with the output, once that is written (CreatedFiles::keep).
       if (!created.staged(target) && !holdsBytes(target, bytes)) created.stage(target, bytes);
       image["uri"] = text::uriPath(relative.generic_string());
     } else {
@@ -443,7 +443,7 @@ std::uint64_t OutputDocument::write(const std::filesystem::path& output) {
   Json& doc = asset_.json;
   std::uint64_t binBytes = 0;
   for (const auto& piece : bin) binBytes += piece.size();
-  // Image copies are staged and replace what is beside the output only once it is written.
+  // Image copies are staged and go into place with the output, as one, once it is written.
   CreatedFiles created;
   if (glb) {
     // Refused before anything is written, images included.
@@ -454,8 +454,8 @@ std::uint64_t OutputDocument::write(const std::filesystem::path& output) {
     // Written from the pieces' own memory: no whole copy of the file.
     std::vector<std::uint8_t> frame;
     const auto pieces = glbPieces(json, bin, frame);
-    writeFileAtomic(output, pieces);
-    created.keep();
+    output::StagedFile written(output, pieces);
+    created.keep(written);
     std::uint64_t total = 0;
     for (const auto& piece : pieces) total += piece.size();
     return total;
@@ -463,8 +463,8 @@ std::uint64_t OutputDocument::write(const std::filesystem::path& output) {
   placeImages(outputDir, created);
   if (bin.empty()) {
     const std::string text = text::dumpJson(doc, 2) + "\n";
-    writeFileAtomic(output, std::span(reinterpret_cast<const std::uint8_t*>(text.data()), text.size()));
-    created.keep();
+    output::StagedFile written(output, {std::span(reinterpret_cast<const std::uint8_t*>(text.data()), text.size())});
+    created.keep(written);
     return text.size();
   }
   // A .gltf and its .bin are one file in two: the new .bin goes under a name the previous
@@ -481,7 +481,8 @@ std::uint64_t OutputDocument::write(const std::filesystem::path& output) {
   const std::string text = text::dumpJson(doc, 2) + "\n";
   writeFileAtomic(binPath, bin);
   try {
-    writeFileAtomic(output, std::span(reinterpret_cast<const std::uint8_t*>(text.data()), text.size()));
+    output::StagedFile written(output, {std::span(reinterpret_cast<const std::uint8_t*>(text.data()), text.size())});
+    created.keep(written);
   } catch (...) {
     if (std::find(previousBins.begin(), previousBins.end(), binPath) == previousBins.end()) {
       std::error_code ignored;
@@ -494,7 +495,6 @@ std::uint64_t OutputDocument::write(const std::filesystem::path& output) {
     std::error_code ec;
     if (previous != binPath) fs::remove(previous, ec);
   }
-  created.keep();
   return binBytes + text.size();
 }
 
