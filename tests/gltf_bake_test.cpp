@@ -739,4 +739,31 @@ TEST(CreatedFiles, ARenameThatFailsLeavesTheCopiesAndTheOutputAsTheyWere) {
   EXPECT_EQ(left, (std::vector<std::string>{"old", "old/a.png", "old/b.png", "old/b.png/inside", "out.glb"}));
 }
 
+// Many image copies (a scene with hundreds of textures): each staged path is known as staged,
+// no other is, and keep() puts every copy in place with the output.
+TEST(CreatedFiles, ManyCopiesAreEachStagedOnceAndKept) {
+  TempDir dir;
+  const std::string copy = "copy", output = "output";
+  const auto bytes = std::span(reinterpret_cast<const std::uint8_t*>(copy.data()), copy.size());
+  constexpr int kCopies = 300;
+  {
+    tangent::gltf::detail::CreatedFiles created;
+    created.createFolders(dir / "tex");
+    for (int i = 0; i < kCopies; i += 2) created.stage(dir / "tex" / (std::to_string(i) + ".png"), bytes);
+    for (int i = 0; i < kCopies; ++i)
+      EXPECT_EQ(created.staged(dir / "tex" / (std::to_string(i) + ".png")), i % 2 == 0) << i;
+    EXPECT_FALSE(created.staged(dir / "0.png"));
+    tangent::output::StagedFile written(dir / "out.glb", {std::span(reinterpret_cast<const std::uint8_t*>(output.data()), output.size())});
+    created.keep(written);
+    EXPECT_FALSE(created.staged(dir / "tex" / "0.png"));  // kept: nothing is staged any more
+  }
+  std::size_t files = 0;
+  for (const auto& entry : fs::directory_iterator(dir / "tex")) {
+    ++files;
+    std::ifstream in(entry.path(), std::ios::binary);
+    EXPECT_EQ(std::string((std::istreambuf_iterator<char>(in)), {}), copy) << entry.path();
+  }
+  EXPECT_EQ(files, std::size_t(kCopies / 2));
+}
+
 }  // namespace

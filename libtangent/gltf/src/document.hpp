@@ -71,6 +71,7 @@ class CreatedFiles {
   std::vector<std::filesystem::path> folders_;
   std::vector<std::unique_ptr<output::TemporaryGuard>> guards_;
   std::vector<std::unique_ptr<output::StagedFile>> staged_;
+  std::set<std::filesystem::path> stagedPaths_;  // the paths of staged_: staged() in log time
 };
 
 class OutputDocument {

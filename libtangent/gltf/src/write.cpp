@@ -373,11 +373,10 @@ void CreatedFiles::createFolders(const std::filesystem::path& folder) {
 
 void CreatedFiles::stage(const std::filesystem::path& path, std::span<const std::uint8_t> bytes) {
   staged_.push_back(std::make_unique<output::StagedFile>(path, std::vector{bytes}));
+  stagedPaths_.insert(path);
 }
 
-bool CreatedFiles::staged(const std::filesystem::path& path) const {
-  return std::any_of(staged_.begin(), staged_.end(), [&](const auto& file) { return file->path() == path; });
-}
+bool CreatedFiles::staged(const std::filesystem::path& path) const { return stagedPaths_.contains(path); }
 
 void CreatedFiles::keep(output::StagedFile& output) {
   std::vector<output::StagedFile*> files;
@@ -390,6 +389,7 @@ void CreatedFiles::keep(output::StagedFile& output) {
                              (staged_.empty() ? "" : ", and the image copies beside it are as they were"));
   }
   staged_.clear();
+  stagedPaths_.clear();
   folders_.clear();
   guards_.clear();
 }
