@@ -100,8 +100,10 @@ class OutputDocument {
   // decoded bytes stay in the first buffer as the fallback data.
   std::vector<std::span<const std::uint8_t>> packBuffers();
   // External images inside the input's folder are copied beside the output (same relative
-  // path); others (a wider --asset-root) are referred to relative to the output.
-  void placeImages(const std::filesystem::path& outputDir, CreatedFiles& created);
+  // path); others (a wider --asset-root) are referred to relative to the output. A copy that
+  // would go where the output writes one of `outputFiles` (itself, its .bin) is refused.
+  void placeImages(const std::filesystem::path& outputDir, const std::vector<std::filesystem::path>& outputFiles,
+                   CreatedFiles& created);
 
   Asset& asset_;
   std::set<int> accessorsBefore_;

@@ -394,12 +394,15 @@ void CreatedFiles::keep(output::StagedFile& output) {
   guards_.clear();
 }
 
-void OutputDocument::placeImages(const std::filesystem::path& outputDir, CreatedFiles& created) {
+void OutputDocument::placeImages(const std::filesystem::path& outputDir, const std::vector<std::filesystem::path>& outputFiles,
+                                 CreatedFiles& created) {
   namespace fs = std::filesystem;
   const fs::path inputDir = assetRootFor(asset_.path, {});
   std::error_code ec;
   const fs::path targetDir = fs::weakly_canonical(outputDir, ec);
   if (fs::equivalent(inputDir, targetDir, ec)) return;
+  std::vector<fs::path> written;  // outputFiles as the targets below are spelled
+  for (const fs::path& file : outputFiles) written.push_back(targetDir / file.filename());
   Json& doc = asset_.json;
   if (!doc.contains("images")) return;
   for (auto& image : doc["images"]) {
@@ -418,6 +421,9 @@ void OutputDocument::placeImages(const std::filesystem::path& outputDir, Created
       // that fail is refused before anything is written.
       if (fs::is_directory(fs::symlink_status(target, ec)))
         throw std::runtime_error(target.string() + ": is a directory, where bake would copy an image the input uses");
+      if (std::find(written.begin(), written.end(), target.lexically_normal()) != written.end())
+        throw std::runtime_error(target.string() + ": the output is written there, where bake would also copy an image the input "
+                                 "uses; choose another output name");
       created.createFolders(target.parent_path());
       std::vector<std::uint8_t> bytes;
       if (!readFileInto(source, bytes)) throw std::runtime_error(source.string() + ": cannot be read to copy beside the output");
@@ -448,7 +454,7 @@ std::uint64_t OutputDocument::write(const std::filesystem::path& output) {
   if (glb) {
     // Refused before anything is written, images included.
     output::checkGlbFits(output, 0, binBytes);
-    placeImages(outputDir, created);
+    placeImages(outputDir, {output}, created);
     const std::string json = text::dumpJson(doc);
     output::checkGlbFits(output, json.size(), binBytes);
     // Written from the pieces' own memory: no whole copy of the file.
@@ -460,7 +466,10 @@ std::uint64_t OutputDocument::write(const std::filesystem::path& output) {
     for (const auto& piece : pieces) total += piece.size();
     return total;
   }
-  placeImages(outputDir, created);
+  // The .bin's name first: no image copy may go there.
+  const std::vector<fs::path> previousBins = bin.empty() ? std::vector<fs::path>{} : binsOfPreviousOutput(output);
+  const fs::path binPath = bin.empty() ? fs::path() : freeBinName(output, previousBins);
+  placeImages(outputDir, bin.empty() ? std::vector<fs::path>{output} : std::vector<fs::path>{output, binPath}, created);
   if (bin.empty()) {
     const std::string text = text::dumpJson(doc, 2) + "\n";
     output::StagedFile written(output, {std::span(reinterpret_cast<const std::uint8_t*>(text.data()), text.size())});
@@ -470,8 +479,6 @@ std::uint64_t OutputDocument::write(const std::filesystem::path& output) {
   // A .gltf and its .bin are one file in two: the new .bin goes under a name the previous
   // .gltf does not use, so that until the .gltf is renamed into place the previous pair is
   // whole, and after it the new one is.
-  const std::vector<fs::path> previousBins = binsOfPreviousOutput(output);
-  const fs::path binPath = freeBinName(output, previousBins);
   for (const fs::path& used : referencedFiles(asset_)) {
     std::error_code ec;
     if (fs::exists(used, ec) && fs::exists(binPath, ec) && fs::equivalent(used, binPath, ec))
