@@ -11,6 +11,8 @@
 #include <functional>
 #include <iterator>
 #include <set>
+#include <span>
+#include <string>
 
 #include "accessors.hpp"
 #include "asset.hpp"
@@ -697,6 +699,71 @@ TEST(SharedAssets, BothAssetsBakeWithTangentsOnEveryNormalMappedPrimitive) {
       }
     }
   }
+}
+
+// Image copies go into place with the output, as one: where a copy's rename fails after the
+// checks up front (a folder appeared there), the copies already renamed are put back, the
+// folders made for them removed, and the output is not written; the error names the copy.
+TEST(CreatedFiles, ARenameThatFailsLeavesTheCopiesAndTheOutputAsTheyWere) {
+  TempDir dir;
+  auto text = [](const fs::path& path) {
+    std::ifstream in(path, std::ios::binary);
+    return std::string((std::istreambuf_iterator<char>(in)), {});
+  };
+  auto bytes = [](const std::string& s) { return std::span(reinterpret_cast<const std::uint8_t*>(s.data()), s.size()); };
+  std::ofstream(dir / "out.glb") << "earlier output";
+  fs::create_directory(dir / "old");
+  std::ofstream(dir / "old" / "a.png") << "earlier copy";
+  const std::string copy = "new copy", output = "new output";
+  try {
+    tangent::gltf::detail::CreatedFiles created;
+    created.createFolders(dir / "tex" / "deep");
+    created.stage(dir / "tex" / "deep" / "n.png", bytes(copy));
+    created.stage(dir / "old" / "a.png", bytes(copy));
+    created.stage(dir / "old" / "b.png", bytes(copy));
+    fs::create_directories(dir / "old" / "b.png" / "inside");
+    tangent::output::StagedFile written(dir / "out.glb", {bytes(output)});
+    created.keep(written);
+    FAIL() << "an image copy went over a folder";
+  } catch (const std::runtime_error& e) {
+    const std::string message = e.what();
+    EXPECT_NE(message.find((dir / "old" / "b.png").string()), std::string::npos) << message;
+    EXPECT_NE(message.find((dir / "out.glb").string() + " was not written"), std::string::npos) << message;
+  }
+  EXPECT_EQ(text(dir / "out.glb"), "earlier output");
+  EXPECT_EQ(text(dir / "old" / "a.png"), "earlier copy");
+  std::vector<std::string> left;
+  for (const auto& entry : fs::recursive_directory_iterator(dir.path()))
+    left.push_back(entry.path().lexically_relative(dir.path()).generic_string());
+  std::sort(left.begin(), left.end());
+  EXPECT_EQ(left, (std::vector<std::string>{"old", "old/a.png", "old/b.png", "old/b.png/inside", "out.glb"}));
+}
+
+// Many image copies (a scene with hundreds of textures): each staged path is known as staged,
+// no other is, and keep() puts every copy in place with the output.
+TEST(CreatedFiles, ManyCopiesAreEachStagedOnceAndKept) {
+  TempDir dir;
+  const std::string copy = "copy", output = "output";
+  const auto bytes = std::span(reinterpret_cast<const std::uint8_t*>(copy.data()), copy.size());
+  constexpr int kCopies = 300;
+  {
+    tangent::gltf::detail::CreatedFiles created;
+    created.createFolders(dir / "tex");
+    for (int i = 0; i < kCopies; i += 2) created.stage(dir / "tex" / (std::to_string(i) + ".png"), bytes);
+    for (int i = 0; i < kCopies; ++i)
+      EXPECT_EQ(created.staged(dir / "tex" / (std::to_string(i) + ".png")), i % 2 == 0) << i;
+    EXPECT_FALSE(created.staged(dir / "0.png"));
+    tangent::output::StagedFile written(dir / "out.glb", {std::span(reinterpret_cast<const std::uint8_t*>(output.data()), output.size())});
+    created.keep(written);
+    EXPECT_FALSE(created.staged(dir / "tex" / "0.png"));  // kept: nothing is staged any more
+  }
+  std::size_t files = 0;
+  for (const auto& entry : fs::directory_iterator(dir / "tex")) {
+    ++files;
+    std::ifstream in(entry.path(), std::ios::binary);
+    EXPECT_EQ(std::string((std::istreambuf_iterator<char>(in)), {}), copy) << entry.path();
+  }
+  EXPECT_EQ(files, std::size_t(kCopies / 2));
 }
 
 }  // namespace

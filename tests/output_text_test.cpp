@@ -4,9 +4,12 @@
 #include <gtest/gtest.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
+#include <span>
 #include <string>
+#include <vector>
 
 #include "support/temp_dir.hpp"
 #include "tangent/output.hpp"
@@ -92,6 +95,68 @@ TEST(Output, AtomicWriteReplacesWholeAndFailsWithoutATrace) {
   EXPECT_THROW(tangent::output::writeFileAtomic(dir.path() / "taken", "x"), std::runtime_error);
   for (const auto& entry : std::filesystem::directory_iterator(dir.path()))
     EXPECT_EQ(entry.path().filename().string().find(".tmp-"), std::string::npos) << entry.path();
+}
+
+std::string contentOf(const std::filesystem::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  return std::string((std::istreambuf_iterator<char>(in)), {});
+}
+
+std::vector<std::string> namesIn(const std::filesystem::path& folder) {
+  std::vector<std::string> names;
+  for (const auto& entry : std::filesystem::directory_iterator(folder)) names.push_back(entry.path().filename().string());
+  std::sort(names.begin(), names.end());
+  return names;
+}
+
+std::span<const std::uint8_t> bytesOf(const std::string& text) {
+  return {reinterpret_cast<const std::uint8_t*>(text.data()), text.size()};
+}
+
+// A folder that appears where a staged file goes (after the checks up front; root or not, a
+// rename cannot replace it): the files renamed before it are put back, the earlier one's bytes
+// and the new one's absence alike, and the last file (an output) is never touched.
+TEST(Output, CommitAllPutsEveryFileBackWhereOneRenameFails) {
+  namespace out = tangent::output;
+  tangent::testing::TempDir dir;
+  std::ofstream(dir / "earlier.png") << "earlier bytes";
+  std::ofstream(dir / "out.glb") << "earlier output";
+  const std::string copy = "new copy", fresh = "fresh copy", blocked = "blocked copy", output = "new output";
+  {
+    out::StagedFile a(dir / "earlier.png", {bytesOf(copy)});
+    out::StagedFile b(dir / "fresh.png", {bytesOf(fresh)});
+    out::StagedFile c(dir / "blocked.png", {bytesOf(blocked)});
+    out::StagedFile d(dir / "out.glb", {bytesOf(output)});
+    std::filesystem::create_directory(dir / "blocked.png");
+    std::ofstream(dir / "blocked.png" / "inside") << "x";
+    out::StagedFile* files[] = {&a, &b, &c, &d};
+    try {
+      out::commitAll(files);
+      FAIL() << "renamed a file over a folder";
+    } catch (const std::runtime_error& e) {
+      const std::string message = e.what();
+      EXPECT_NE(message.find((dir / "blocked.png").string() + ": cannot rename"), std::string::npos) << message;
+      EXPECT_EQ(message.find("could not be put back"), std::string::npos) << message;
+    }
+  }
+  EXPECT_EQ(contentOf(dir / "earlier.png"), "earlier bytes");
+  EXPECT_EQ(contentOf(dir / "out.glb"), "earlier output");
+  EXPECT_EQ(namesIn(dir.path()), (std::vector<std::string>{"blocked.png", "earlier.png", "out.glb"}));
+  EXPECT_EQ(namesIn(dir / "blocked.png"), std::vector<std::string>{"inside"});
+
+  // Without the folder in the way, every file is replaced and nothing else is left.
+  std::filesystem::remove_all(dir / "blocked.png");
+  {
+    out::StagedFile a(dir / "earlier.png", {bytesOf(copy)});
+    out::StagedFile b(dir / "fresh.png", {bytesOf(fresh)});
+    out::StagedFile d(dir / "out.glb", {bytesOf(output)});
+    out::StagedFile* files[] = {&a, &b, &d};
+    out::commitAll(files);
+  }
+  EXPECT_EQ(contentOf(dir / "earlier.png"), copy);
+  EXPECT_EQ(contentOf(dir / "fresh.png"), fresh);
+  EXPECT_EQ(contentOf(dir / "out.glb"), output);
+  EXPECT_EQ(namesIn(dir.path()), (std::vector<std::string>{"earlier.png", "fresh.png", "out.glb"}));
 }
 
 }  // namespace

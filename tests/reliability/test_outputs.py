@@ -449,6 +449,21 @@ def test_an_image_copy_that_would_replace_a_folder_is_refused_before_anything_is
         assert b"n.png: is a directory" in done.stderr, done.stderr
 
 
+@pytest.mark.parametrize("suffix, taken", [(".glb", "o.glb"), (".gltf", "o.gltf"), (".gltf", "o.bin")])
+def test_an_image_copy_that_would_go_where_the_output_is_written_is_refused(tmp_path, suffix, taken):
+    # An image named as the output or its .bin: its copy would replace (or be replaced by) what
+    # the bake writes. Before, o.bin held the PNG and the bake exited 0 with an unloadable output.
+    doc, blob = grid(4)
+    asset = write(tmp_path / "in" / "in.gltf", gltf_bytes(with_external_image(doc, uri=taken), blob))
+    write(tmp_path / "in" / taken, PNG)
+    (tmp_path / "out").mkdir()
+    done = tangent("bake", asset, "-o", tmp_path / "out" / f"o{suffix}")
+    assert done.returncode == 1, done.stderr
+    assert f"{taken}: the output is written there".encode() in done.stderr, done.stderr
+    assert snapshot(tmp_path / "out") == {}, done.stderr
+    assert temporaries(tmp_path / "out") == []
+
+
 def test_a_batch_on_a_full_disk_names_the_file_and_keeps_earlier_outputs(tmp_path):
     # small.glb's output fits in the pages left, large.glb's does not: the batch goes on past
     # the failure, names it, and the outputs of an earlier run stay as they were.

@@ -70,7 +70,9 @@ using Arena = tbb::task_arena;
 
 // Runs body(begin, end) over [0, n) in chunks of about `grain`, on `arena`'s threads where it
 // has more than one (null: here, in one call). The bodies write disjoint elements, so the
-// result does not depend on the threads.
+// result does not depend on the threads. The core's forRange (core/src/parallel.hpp) does the
+// same on a core workspace's threads; it is private to the core (it takes detail::WorkspaceData)
+// and this layer runs on an arena of its own, so the glTF layer keeps this one.
 template <typename Body>
 void inChunks(Arena* arena, std::size_t n, std::size_t grain, const Body& body) {
 #if !defined(TANGENT_SERIAL)

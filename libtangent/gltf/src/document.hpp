@@ -45,11 +45,12 @@ class ViewBytes {
 
 // What a write puts on disk besides its output: the folders image copies go into, created at
 // once, and the copies themselves, staged as temporaries beside their destinations (a copy
-// may replace an earlier one there). keep(), called once the output is in place, renames the
-// copies over their destinations; destroyed before keep() (the output was not written: a full
-// disk, an error), the temporaries and the new folders are removed again, newest first, so
-// that a failed bake leaves the disk as it found it. Each path is guarded against signals as
-// a temporary is. A folder is removed only where empty.
+// may replace an earlier one there). keep(), given the output staged the same way, renames the
+// copies and then the output into place as one (output::commitAll); destroyed before keep()
+// succeeds (the output could not be written: a full disk, an error; or a rename failed), the
+// temporaries and the new folders are removed again, newest first, so that a failed bake
+// leaves the disk as it found it. Each path is guarded against signals as a temporary is. A
+// folder is removed only where empty.
 class CreatedFiles {
  public:
   CreatedFiles() = default;
@@ -61,14 +62,16 @@ class CreatedFiles {
   // `bytes` written to a temporary beside `path`, renamed over it by keep().
   void stage(const std::filesystem::path& path, std::span<const std::uint8_t> bytes);
   bool staged(const std::filesystem::path& path) const;
-  // The output is in place: the staged copies are renamed into place and everything stays.
-  // Throws std::runtime_error naming a copy that could not be renamed (the others are).
-  void keep();
+  // The staged copies, then `output`, renamed into place; everything stays. Where a rename
+  // fails, throws std::runtime_error naming that file, with every copy and the output put
+  // back as they were (the error says so).
+  void keep(output::StagedFile& output);
 
  private:
   std::vector<std::filesystem::path> folders_;
   std::vector<std::unique_ptr<output::TemporaryGuard>> guards_;
   std::vector<std::unique_ptr<output::StagedFile>> staged_;
+  std::set<std::filesystem::path> stagedPaths_;  // the paths of staged_: staged() in log time
 };
 
 class OutputDocument {
@@ -97,8 +100,10 @@ class OutputDocument {
   // decoded bytes stay in the first buffer as the fallback data.
   std::vector<std::span<const std::uint8_t>> packBuffers();
   // External images inside the input's folder are copied beside the output (same relative
-  // path); others (a wider --asset-root) are referred to relative to the output.
-  void placeImages(const std::filesystem::path& outputDir, CreatedFiles& created);
+  // path); others (a wider --asset-root) are referred to relative to the output. A copy that
+  // would go where the output writes one of `outputFiles` (itself, its .bin) is refused.
+  void placeImages(const std::filesystem::path& outputDir, const std::vector<std::filesystem::path>& outputFiles,
+                   CreatedFiles& created);
 
   Asset& asset_;
   std::set<int> accessorsBefore_;

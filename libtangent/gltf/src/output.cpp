@@ -135,12 +135,20 @@ void writeFileAtomic(const fs::path& path, const std::vector<std::span<const std
   StagedFile(path, pieces).commit();
 }
 
-StagedFile::StagedFile(const fs::path& path, const std::vector<std::span<const std::uint8_t>>& pieces) : path_(path) {
+namespace {
+
+// ".NAME.tmp-PID-N" beside `path`, N new on every call.
+fs::path temporaryBeside(const fs::path& path) {
   static std::atomic<unsigned> counter{0};
   const fs::path folder = path.parent_path().empty() ? fs::path(".") : path.parent_path();
-  removeStaleTemporaries(folder);
-  const fs::path temp =
-      folder / ("." + path.filename().string() + ".tmp-" + std::to_string(::getpid()) + "-" + std::to_string(counter++));
+  return folder / ("." + path.filename().string() + ".tmp-" + std::to_string(::getpid()) + "-" + std::to_string(counter++));
+}
+
+}  // namespace
+
+StagedFile::StagedFile(const fs::path& path, const std::vector<std::span<const std::uint8_t>>& pieces) : path_(path) {
+  removeStaleTemporaries(path.parent_path().empty() ? fs::path(".") : path.parent_path());
+  const fs::path temp = temporaryBeside(path);
   auto guard = std::make_unique<TemporaryGuard>(temp);
   const int fd = ::open(temp.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0666);
   if (fd < 0) throw std::runtime_error(path.string() + ": cannot create a temporary file beside it: " + reason(errno));
@@ -187,6 +195,7 @@ StagedFile::StagedFile(const fs::path& path, const std::vector<std::span<const s
 
 StagedFile::~StagedFile() {
   if (!committed_) ::unlink(temporary_.c_str());
+  if (!previous_.empty()) ::unlink(previous_.c_str());
 }
 
 void StagedFile::commit() {
@@ -198,6 +207,73 @@ void StagedFile::commit() {
     throw std::runtime_error(path_.string() + ": cannot rename the temporary file into place: " + reason(error));
   }
   guard_.reset();
+}
+
+void StagedFile::commitKeepingPrevious() {
+  if (committed_) return;
+  // What `path` holds stays reachable under a second name; a folder is kept out of this (the
+  // rename below fails on it), and where the file system has no hard links it is moved aside.
+  struct stat status {};
+  fs::path previous;
+  bool movedAside = false;
+  if (::lstat(path_.c_str(), &status) == 0 && !S_ISDIR(status.st_mode)) {
+    previous = temporaryBeside(path_);
+    if (::link(path_.c_str(), previous.c_str()) != 0) {
+      if (::rename(path_.c_str(), previous.c_str()) != 0) {
+        const int error = errno;
+        committed_ = true;
+        ::unlink(temporary_.c_str());
+        throw std::runtime_error(path_.string() + ": cannot keep the file there aside while replacing it: " + reason(error));
+      }
+      movedAside = true;
+    }
+  }
+  committed_ = true;
+  if (::rename(temporary_.c_str(), path_.c_str()) != 0) {
+    const int error = errno;
+    ::unlink(temporary_.c_str());
+    if (movedAside) ::rename(previous.c_str(), path_.c_str());
+    else if (!previous.empty()) ::unlink(previous.c_str());
+    throw std::runtime_error(path_.string() + ": cannot rename the temporary file into place: " + reason(error));
+  }
+  guard_.reset();
+  previous_ = previous;
+}
+
+std::string StagedFile::undo() {
+  if (!committed_) return "";
+  if (previous_.empty()) {
+    if (::unlink(path_.c_str()) != 0 && errno != ENOENT)
+      return path_.string() + " could not be removed again: " + reason(errno);
+    return "";
+  }
+  if (::rename(previous_.c_str(), path_.c_str()) != 0) {
+    const std::string problem =
+        path_.string() + " could not be put back (" + reason(errno) + "); its earlier bytes are in " + previous_.string();
+    previous_.clear();  // left for the user
+    return problem;
+  }
+  previous_.clear();
+  return "";
+}
+
+void StagedFile::dropPrevious() {
+  if (!previous_.empty()) ::unlink(previous_.c_str());
+  previous_.clear();
+}
+
+void commitAll(std::span<StagedFile* const> files) {
+  std::size_t done = 0;
+  try {
+    for (; done < files.size(); ++done) files[done]->commitKeepingPrevious();
+  } catch (const std::exception& e) {
+    std::string message = e.what();
+    for (std::size_t i = done; i-- > 0;) {
+      if (const std::string problem = files[i]->undo(); !problem.empty()) message += "; " + problem;
+    }
+    throw std::runtime_error(message);
+  }
+  for (StagedFile* file : files) file->dropPrevious();
 }
 
 void checkGlbFits(const fs::path& path, std::uint64_t jsonBytes, std::uint64_t binBytes) {

@@ -373,33 +373,36 @@ void CreatedFiles::createFolders(const std::filesystem::path& folder) {
 
 void CreatedFiles::stage(const std::filesystem::path& path, std::span<const std::uint8_t> bytes) {
   staged_.push_back(std::make_unique<output::StagedFile>(path, std::vector{bytes}));
+  stagedPaths_.insert(path);
 }
 
-bool CreatedFiles::staged(const std::filesystem::path& path) const {
-  return std::any_of(staged_.begin(), staged_.end(), [&](const auto& file) { return file->path() == path; });
-}
+bool CreatedFiles::staged(const std::filesystem::path& path) const { return stagedPaths_.contains(path); }
 
-void CreatedFiles::keep() {
-  std::string failed;
-  for (const auto& file : staged_) {
-    try {
-      file->commit();
-    } catch (const std::exception& e) {
-      if (failed.empty()) failed = e.what();
-    }
+void CreatedFiles::keep(output::StagedFile& output) {
+  std::vector<output::StagedFile*> files;
+  for (const auto& file : staged_) files.push_back(file.get());
+  files.push_back(&output);
+  try {
+    output::commitAll(files);
+  } catch (const std::exception& e) {
+    throw std::runtime_error(std::string(e.what()) + "; " + output.path().string() + " was not written" +
+                             (staged_.empty() ? "" : ", and the image copies beside it are as they were"));
   }
   staged_.clear();
+  stagedPaths_.clear();
   folders_.clear();
   guards_.clear();
-  if (!failed.empty()) throw std::runtime_error(failed);
 }
 
-void OutputDocument::placeImages(const std::filesystem::path& outputDir, CreatedFiles& created) {
+void OutputDocument::placeImages(const std::filesystem::path& outputDir, const std::vector<std::filesystem::path>& outputFiles,
+                                 CreatedFiles& created) {
   namespace fs = std::filesystem;
   const fs::path inputDir = assetRootFor(asset_.path, {});
   std::error_code ec;
   const fs::path targetDir = fs::weakly_canonical(outputDir, ec);
   if (fs::equivalent(inputDir, targetDir, ec)) return;
+  std::vector<fs::path> written;  // outputFiles as the targets below are spelled
+  for (const fs::path& file : outputFiles) written.push_back(targetDir / file.filename());
   Json& doc = asset_.json;
   if (!doc.contains("images")) return;
   for (auto& image : doc["images"]) {
@@ -418,12 +421,15 @@ void OutputDocument::placeImages(const std::filesystem::path& outputDir, Created
       // that fail is refused before anything is written.
       if (fs::is_directory(fs::symlink_status(target, ec)))
         throw std::runtime_error(target.string() + ": is a directory, where bake would copy an image the input uses");
+      if (std::find(written.begin(), written.end(), target.lexically_normal()) != written.end())
+        throw std::runtime_error(target.string() + ": the output is written there, where bake would also copy an image the input "
+                                 "uses; choose another output name");
       created.createFolders(target.parent_path());
       std::vector<std::uint8_t> bytes;
       if (!readFileInto(source, bytes)) throw std::runtime_error(source.string() + ": cannot be read to copy beside the output");
       // A copy an earlier bake left there is not written again: each write is a flush to disk,
       // and in a folder baked over and over they took longer than reading the buffers. One
-      // that differs is replaced only once the output is written (CreatedFiles::keep).
+      // that differs is replaced with the output, once that is written (CreatedFiles::keep).
       if (!created.staged(target) && !holdsBytes(target, bytes)) created.stage(target, bytes);
       image["uri"] = text::uriPath(relative.generic_string());
     } else {
@@ -443,35 +449,36 @@ std::uint64_t OutputDocument::write(const std::filesystem::path& output) {
   Json& doc = asset_.json;
   std::uint64_t binBytes = 0;
   for (const auto& piece : bin) binBytes += piece.size();
-  // Image copies are staged and replace what is beside the output only once it is written.
+  // Image copies are staged and go into place with the output, as one, once it is written.
   CreatedFiles created;
   if (glb) {
     // Refused before anything is written, images included.
     output::checkGlbFits(output, 0, binBytes);
-    placeImages(outputDir, created);
+    placeImages(outputDir, {output}, created);
     const std::string json = text::dumpJson(doc);
     output::checkGlbFits(output, json.size(), binBytes);
     // Written from the pieces' own memory: no whole copy of the file.
     std::vector<std::uint8_t> frame;
     const auto pieces = glbPieces(json, bin, frame);
-    writeFileAtomic(output, pieces);
-    created.keep();
+    output::StagedFile written(output, pieces);
+    created.keep(written);
     std::uint64_t total = 0;
     for (const auto& piece : pieces) total += piece.size();
     return total;
   }
-  placeImages(outputDir, created);
+  // The .bin's name first: no image copy may go there.
+  const std::vector<fs::path> previousBins = bin.empty() ? std::vector<fs::path>{} : binsOfPreviousOutput(output);
+  const fs::path binPath = bin.empty() ? fs::path() : freeBinName(output, previousBins);
+  placeImages(outputDir, bin.empty() ? std::vector<fs::path>{output} : std::vector<fs::path>{output, binPath}, created);
   if (bin.empty()) {
     const std::string text = text::dumpJson(doc, 2) + "\n";
-    writeFileAtomic(output, std::span(reinterpret_cast<const std::uint8_t*>(text.data()), text.size()));
-    created.keep();
+    output::StagedFile written(output, {std::span(reinterpret_cast<const std::uint8_t*>(text.data()), text.size())});
+    created.keep(written);
     return text.size();
   }
   // A .gltf and its .bin are one file in two: the new .bin goes under a name the previous
   // .gltf does not use, so that until the .gltf is renamed into place the previous pair is
   // whole, and after it the new one is.
-  const std::vector<fs::path> previousBins = binsOfPreviousOutput(output);
-  const fs::path binPath = freeBinName(output, previousBins);
   for (const fs::path& used : referencedFiles(asset_)) {
     std::error_code ec;
     if (fs::exists(used, ec) && fs::exists(binPath, ec) && fs::equivalent(used, binPath, ec))
@@ -481,7 +488,8 @@ std::uint64_t OutputDocument::write(const std::filesystem::path& output) {
   const std::string text = text::dumpJson(doc, 2) + "\n";
   writeFileAtomic(binPath, bin);
   try {
-    writeFileAtomic(output, std::span(reinterpret_cast<const std::uint8_t*>(text.data()), text.size()));
+    output::StagedFile written(output, {std::span(reinterpret_cast<const std::uint8_t*>(text.data()), text.size())});
+    created.keep(written);
   } catch (...) {
     if (std::find(previousBins.begin(), previousBins.end(), binPath) == previousBins.end()) {
       std::error_code ignored;
@@ -494,7 +502,6 @@ std::uint64_t OutputDocument::write(const std::filesystem::path& output) {
     std::error_code ec;
     if (previous != binPath) fs::remove(previous, ec);
   }
-  created.keep();
   return binBytes + text.size();
 }
 

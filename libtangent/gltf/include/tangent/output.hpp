@@ -10,6 +10,7 @@
 #include <filesystem>
 #include <memory>
 #include <span>
+#include <string>
 #include <string_view>
 #include <vector>
 
@@ -54,10 +55,24 @@ class StagedFile {
   void commit();
 
  private:
-  std::filesystem::path path_, temporary_;
+  friend void commitAll(std::span<StagedFile* const> files);
+  // commit(), keeping what `path` held (a hard link beside it, named as a temporary) for undo().
+  void commitKeepingPrevious();
+  // Puts back what `path` held before commitKeepingPrevious() (removes `path` where nothing
+  // was there); "" when done, else what could not be put back and where its bytes are.
+  std::string undo();
+  void dropPrevious();
+
+  std::filesystem::path path_, temporary_, previous_;
   std::unique_ptr<TemporaryGuard> guard_;
   bool committed_ = false;
 };
+
+// Staged files renamed into place as one, in order: each keeps what its path held until all
+// are in place. Where a rename fails (a folder appeared where a file goes), those renamed
+// before it are put back as they were, the rest are removed, and std::runtime_error names the
+// file that failed and the reason (and any file that could not be put back).
+void commitAll(std::span<StagedFile* const> files);
 
 // For programs (the CLI, the viewer), not libraries: installs handlers for SIGINT, SIGTERM and
 // SIGHUP that remove the guarded temporaries, print `message` (when not empty) on stderr, and
