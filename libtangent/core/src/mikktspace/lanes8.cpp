@@ -58,6 +58,9 @@ inline bool vertexRows(const std::uint32_t* triangles, std::size_t vertexCount, 
   for (int i = 0; i < 3; ++i) {
     _mm256_store_si256(reinterpret_cast<__m256i*>(three + 8 * i), _mm256_add_epi32(_mm256_add_epi32(v[i], v[i]), v[i]));
   }
+  // Read back from memory where used (one load an address), not extracted from the vectors
+  // and kept in registers, which spills them.
+  asm("" : "+m"(three));
   return std::size_t(largest) + 1 < vertexCount && largest < kRowsLimit;
 }
 inline void loadRows3(const float* base, const std::uint32_t* three, F (&out)[3]) {
