@@ -190,11 +190,12 @@ TEST(Workspace, SameBitsForEveryVectorWidth) {
 
 // The triangle pass's zero-area test (kFlat) takes a float test first and double only where
 // float is not sure: slivers from sine 0.3 down to 1e-20 (double's bound is 1e-14, float's
-// about 0.0155), at scales from 2^-40 to 2^70 (float's squared lengths out of range there)
+// about 0.0155), at scales from 2^-40 to 2^126 (float's squared lengths out of range there;
+// at 2^126 the sum of a triangle's values overflows, which sends it the scalar way)
 // and far from the origin, give the scalar code's flags and bits on every vector width.
 TEST(Workspace, SameFlatTrianglesForEveryVectorWidth) {
   GridMesh slivers;
-  const float scales[] = {0x1p-40f, 0x1p-20f, 1.0f, 0x1p20f, 0x1p40f, 0x1p70f};
+  const float scales[] = {0x1p-40f, 0x1p-20f, 1.0f, 0x1p20f, 0x1p40f, 0x1p70f, 0x1p126f};
   const float offsets[] = {0.0f, 1000.0f};
   for (float scale : scales) {
     for (float offset : offsets) {
