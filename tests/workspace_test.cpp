@@ -202,9 +202,9 @@ TEST(Workspace, SameFlatTrianglesForEveryVectorWidth) {
       for (int e = 2; e <= 80; ++e) {  // sine 10^(-e / 4)
         const double sine = std::pow(10.0, -e / 4.0), cosine = std::sqrt(1.0 - sine * sine);
         const auto first = static_cast<std::uint32_t>(slivers.positions.size() / 3);
-        const float corner[3][3] = {{offset, offset, offset},
-                                    {offset + scale, offset, offset},
-                                    {offset + static_cast<float>(cosine * scale), offset + static_cast<float>(sine * scale), offset}};
+        const float x = static_cast<float>(cosine * scale), y = static_cast<float>(sine * scale);
+        const float corner[3][3] = {
+            {offset, offset, offset}, {offset + scale, offset, offset}, {offset + x, offset + y, offset}};
         const float uv[3][2] = {{0, 0}, {1, 0}, {0, 1}};
         for (int k = 0; k < 3; ++k) {
           slivers.positions.insert(slivers.positions.end(), corner[k], corner[k] + 3);
@@ -233,7 +233,8 @@ TEST(Workspace, SameFlatTrianglesForEveryVectorWidth) {
     if (tangent::vectorIsa() != isa) continue;
     const Output wide = compute(arraysOf(slivers), 1);
     EXPECT_EQ(scalar.report.degenerateTriangles, wide.report.degenerateTriangles) << isa;
-    EXPECT_EQ(0, std::memcmp(scalar.tangents.data(), wide.tangents.data(), scalar.tangents.size() * sizeof(float))) << isa;
+    const std::size_t bytes = scalar.tangents.size() * sizeof(float);
+    EXPECT_EQ(0, std::memcmp(scalar.tangents.data(), wide.tangents.data(), bytes)) << isa;
   }
 }
 

@@ -188,7 +188,7 @@ void splitBuckets(WorkspaceData& ws, const MeshArrays& mesh, const CornerOutputs
   const std::uint32_t* start = ws.bucketStart.data();
   std::uint32_t* extra = ws.bucketExtra.data();
   const bool writeUniform = arrays.cornerVertex && !uniformWritten;
-  forRange(ws, ws.vertexCount, 2048, [&arrays, start, extra, knownUniform, writeUniform](std::size_t begin, std::size_t end) {
+  auto split = [&arrays, start, extra, knownUniform, writeUniform](std::size_t begin, std::size_t end) {
     // Everything in locals: through the closure, every bucket loaded them again (the stores
     // below may alias them, as far as the compiler knows).
     const std::uint32_t* corners = arrays.corners;
@@ -211,7 +211,8 @@ void splitBuckets(WorkspaceData& ws, const MeshArrays& mesh, const CornerOutputs
         extras[b] = last == first ? 0 : splitBucket(arrays, first, last, entries);
       }
     }
-  });
+  };
+  forRange(ws, ws.vertexCount, 2048, split);
 }
 
 // The new vertices numbered from the vertex count up, in order of their first corner.

@@ -67,7 +67,8 @@ inline void loadRows3(const float* base, const std::uint32_t* three, F (&out)[3]
   __m256 r[4];
 #pragma GCC unroll 4
   for (int j = 0; j < 4; ++j) {
-    r[j] = _mm256_insertf128_ps(_mm256_castps128_ps256(_mm_loadu_ps(base + three[3 * j])), _mm_loadu_ps(base + three[3 * (j + 4)]), 1);
+    const __m128 low = _mm_loadu_ps(base + three[3 * j]), high = _mm_loadu_ps(base + three[3 * (j + 4)]);
+    r[j] = _mm256_insertf128_ps(_mm256_castps128_ps256(low), high, 1);
   }
   const __m256 l01 = _mm256_unpacklo_ps(r[0], r[1]), h01 = _mm256_unpackhi_ps(r[0], r[1]);  // x0 x1 y0 y1, z0 z1 . .
   const __m256 l23 = _mm256_unpacklo_ps(r[2], r[3]), h23 = _mm256_unpackhi_ps(r[2], r[3]);
@@ -78,8 +79,10 @@ inline void loadRows3(const float* base, const std::uint32_t* three, F (&out)[3]
 inline void loadRows2(const float* base, const std::uint32_t* vertex, F& u, F& v) {
   // u, v of lanes j and j + 1 in one 128-bit register.
   auto pair = [&](int j) {
-    const __m128 low = _mm_castpd_ps(_mm_load_sd(reinterpret_cast<const double*>(base + 2 * std::size_t(vertex[3 * j]))));
-    return _mm_loadh_pi(low, reinterpret_cast<const __m64*>(base + 2 * std::size_t(vertex[3 * (j + 1)])));
+    const float* first = base + 2 * std::size_t(vertex[3 * j]);
+    const float* second = base + 2 * std::size_t(vertex[3 * (j + 1)]);
+    const __m128 low = _mm_castpd_ps(_mm_load_sd(reinterpret_cast<const double*>(first)));
+    return _mm_loadh_pi(low, reinterpret_cast<const __m64*>(second));
   };
   const __m256 a = _mm256_insertf128_ps(_mm256_castps128_ps256(pair(0)), pair(4), 1);  // lanes 0 1 | 4 5
   const __m256 b = _mm256_insertf128_ps(_mm256_castps128_ps256(pair(2)), pair(6), 1);  // lanes 2 3 | 6 7
