@@ -12,6 +12,7 @@
 #include <array>
 #include <atomic>
 #include <bit>
+#include <cmath>
 #include <cstring>
 #include <limits>
 #include <cstdlib>
@@ -185,6 +186,56 @@ TEST(Workspace, SameBitsForEveryVectorWidth) {
   EXPECT_GT(hard.report.zeroUvAreaTriangles, 0u);
   EXPECT_GT(hard.report.degenerateTriangles, 0u);
   EXPECT_GT(odd.report.nonFiniteTriangles, 0u);
+}
+
+// The triangle pass's zero-area test (kFlat) takes a float test first and double only where
+// float is not sure: slivers from sine 0.3 down to 1e-20 (double's bound is 1e-14, float's
+// about 0.0155), at scales from 2^-40 to 2^126 (float's squared lengths out of range there;
+// at 2^126 the sum of a triangle's values overflows, which sends it the scalar way)
+// and far from the origin, give the scalar code's flags and bits on every vector width.
+TEST(Workspace, SameFlatTrianglesForEveryVectorWidth) {
+  GridMesh slivers;
+  const float scales[] = {0x1p-40f, 0x1p-20f, 1.0f, 0x1p20f, 0x1p40f, 0x1p70f, 0x1p126f};
+  const float offsets[] = {0.0f, 1000.0f};
+  for (float scale : scales) {
+    for (float offset : offsets) {
+      for (int e = 2; e <= 80; ++e) {  // sine 10^(-e / 4)
+        const double sine = std::pow(10.0, -e / 4.0), cosine = std::sqrt(1.0 - sine * sine);
+        const auto first = static_cast<std::uint32_t>(slivers.positions.size() / 3);
+        const float x = static_cast<float>(cosine * scale), y = static_cast<float>(sine * scale);
+        const float corner[3][3] = {
+            {offset, offset, offset}, {offset + scale, offset, offset}, {offset + x, offset + y, offset}};
+        const float uv[3][2] = {{0, 0}, {1, 0}, {0, 1}};
+        for (int k = 0; k < 3; ++k) {
+          slivers.positions.insert(slivers.positions.end(), corner[k], corner[k] + 3);
+          slivers.normals.insert(slivers.normals.end(), {0.0f, 0.0f, 1.0f});
+          slivers.uvs.insert(slivers.uvs.end(), uv[k], uv[k] + 2);
+          slivers.indices.push_back(first + k);
+        }
+      }
+    }
+  }
+  // One vertex more, so that no triangle has the last vertex (the rows' loads leave those to
+  // the scalar code).
+  slivers.positions.insert(slivers.positions.end(), {0.0f, 0.0f, 0.0f});
+  slivers.normals.insert(slivers.normals.end(), {0.0f, 0.0f, 1.0f});
+  slivers.uvs.insert(slivers.uvs.end(), {0.0f, 0.0f});
+  Output scalar;
+  {
+    const ScopedVectorIsa cap("scalar");
+    scalar = compute(arraysOf(slivers), 1);
+  }
+  const std::size_t triangles = slivers.indices.size() / 3;
+  EXPECT_GT(scalar.report.degenerateTriangles, triangles / 10);
+  EXPECT_LT(scalar.report.degenerateTriangles, triangles / 2);
+  for (const char* isa : {"sse2", "avx2"}) {
+    const ScopedVectorIsa cap(isa);
+    if (tangent::vectorIsa() != isa) continue;
+    const Output wide = compute(arraysOf(slivers), 1);
+    EXPECT_EQ(scalar.report.degenerateTriangles, wide.report.degenerateTriangles) << isa;
+    const std::size_t bytes = scalar.tangents.size() * sizeof(float);
+    EXPECT_EQ(0, std::memcmp(scalar.tangents.data(), wide.tangents.data(), bytes)) << isa;
+  }
 }
 
 // The kernel's shortcut for a plain fan of one orientation (one frame for the whole bucket, its

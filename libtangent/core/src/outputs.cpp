@@ -111,85 +111,108 @@ void copyAndCount(WorkspaceData& ws, const CornerOutputs& outputs, const Options
 
 }
 
+// What the vertex split reads and writes.
+struct SplitArrays {
+  const std::uint32_t* corners;
+  const std::uint32_t* indices;
+  const float* tangents;
+  std::uint32_t* cornerVertex;  // null where not asked for
+};
+
+// One bucket's split (corners[first .. last - 1]): its count of new vertices, and cornerVertex
+// for its corners. Out of line, so that the loop over the buckets that need none keeps its
+// values in registers.
+[[gnu::noinline]] std::uint32_t splitBucket(const SplitArrays& arrays, std::uint32_t first, std::uint32_t last,
+                                            std::vector<SplitEntry>& entries) {
+  const std::uint32_t* corners = arrays.corners;
+  const std::uint32_t* indices = arrays.indices;
+  const float* tangents = arrays.tangents;
+  std::uint32_t* cornerVertex = arrays.cornerVertex;
+  const bool wantVertices = cornerVertex != nullptr;
+  // Most buckets: one input vertex, one tangent.
+  const std::uint32_t c0 = corners[first];
+  bool uniform = true;
+  for (std::uint32_t i = first + 1; i < last && uniform; ++i) {
+    const std::uint32_t c = corners[i];
+    uniform = indices[c] == indices[c0] && std::memcmp(&tangents[4 * c], &tangents[4 * c0], 4 * sizeof(float)) == 0;
+  }
+  if (uniform) {
+    if (wantVertices) {
+      for (std::uint32_t i = first; i < last; ++i) cornerVertex[corners[i]] = indices[c0];
+    }
+    return 0;
+  }
+  entries.clear();
+  for (std::uint32_t i = first; i < last; ++i) {
+    const std::uint32_t c = corners[i];
+    SplitEntry e;
+    e.vertex = indices[c];
+    for (int k = 0; k < 4; ++k) e.bits[k] = canonicalBits(tangents[4 * c + k]);  // -0 and +0 alike
+    e.corner = c;
+    entries.push_back(e);
+  }
+  std::sort(entries.begin(), entries.end());
+  std::uint32_t extras = 0;
+  for (std::size_t i = 0; i < entries.size();) {
+    // One input vertex: find the tangent of its first corner.
+    std::size_t j = i;
+    std::uint32_t firstCorner = entries[i].corner;
+    std::size_t firstAt = i;
+    while (j < entries.size() && entries[j].vertex == entries[i].vertex) {
+      if (entries[j].corner < firstCorner) firstCorner = entries[j].corner, firstAt = j;
+      ++j;
+    }
+    for (std::size_t k = i; k < j;) {
+      std::size_t l = k;
+      while (l < j && entries[l].sameTangent(entries[k])) ++l;
+      const bool keepsVertex = entries[k].sameTangent(entries[firstAt]);
+      const std::uint32_t id = keepsVertex ? entries[k].vertex : (kExtraFlag | extras++);
+      if (wantVertices) {
+        for (std::size_t m = k; m < l; ++m) cornerVertex[entries[m].corner] = id;
+      }
+      k = l;
+    }
+    i = j;
+  }
+  return extras;
+}
+
 // The vertex split, bucket by bucket: cornerVertex holds the input vertex or kExtraFlag | the
 // bucket's own number of the new vertex; bucketExtra each bucket's count of new vertices.
 void splitBuckets(WorkspaceData& ws, const MeshArrays& mesh, const CornerOutputs& outputs, const std::uint8_t* knownUniform,
                   bool uniformWritten) {
-  const std::size_t vertexCount = ws.vertexCount;
-  const float* tangents = outputs.tangents.data();
   // Vertex split, bucket by bucket: the tangent of a vertex's first corner keeps the vertex,
   // each other distinct tangent is one extra vertex.
+  const SplitArrays arrays{ws.bucketCorners.data(), mesh.indices.data(), outputs.tangents.data(),
+                           outputs.cornerVertex.empty() ? nullptr : outputs.cornerVertex.data()};
   const std::uint32_t* start = ws.bucketStart.data();
-  const std::uint32_t* corners = ws.bucketCorners.data();
-  const std::uint32_t* indices = mesh.indices.data();
   std::uint32_t* extra = ws.bucketExtra.data();
-  const bool wantVertices = !outputs.cornerVertex.empty();
-  std::uint32_t* cornerVertex = wantVertices ? outputs.cornerVertex.data() : nullptr;
-  forRange(ws, vertexCount, 2048, [&](std::size_t begin, std::size_t end) {
+  const bool writeUniform = arrays.cornerVertex && !uniformWritten;
+  auto split = [&arrays, start, extra, knownUniform, writeUniform](std::size_t begin, std::size_t end) {
+    // Everything in locals: through the closure, every bucket loaded them again (the stores
+    // below may alias them, as far as the compiler knows).
+    const std::uint32_t* corners = arrays.corners;
+    const std::uint32_t* indices = arrays.indices;
+    std::uint32_t* cornerVertex = arrays.cornerVertex;
+    const std::uint32_t* starts = start;
+    std::uint32_t* extras = extra;
+    const std::uint8_t* uniformBuckets = knownUniform;
     std::vector<SplitEntry> entries;
     for (std::size_t b = begin; b < end; ++b) {
-      const std::uint32_t first = start[b], last = start[b + 1];
-      extra[b] = 0;
-      if (last - first == 0) continue;
-      if (last - first == 1) {
-        if (wantVertices) cornerVertex[corners[first]] = indices[corners[first]];
-        continue;
-      }
-      // Most buckets: one input vertex, one tangent (known from the kernel for most of those).
-      const std::uint32_t c0 = corners[first];
-      bool uniform = true;
-      if (knownUniform && (knownUniform[b] & kUniformVertex)) {
-        if (wantVertices && !uniformWritten) {
-          const std::uint32_t vertex = indices[c0];
+      const std::uint32_t first = starts[b], last = starts[b + 1];
+      // Most buckets: one input vertex, one tangent, known from the kernel.
+      if (last - first > 1 && uniformBuckets && (uniformBuckets[b] & kUniformVertex)) {
+        if (writeUniform) {
+          const std::uint32_t vertex = indices[corners[first]];
           for (std::uint32_t i = first; i < last; ++i) cornerVertex[corners[i]] = vertex;
         }
-        continue;
+        extras[b] = 0;
+      } else {
+        extras[b] = last == first ? 0 : splitBucket(arrays, first, last, entries);
       }
-      for (std::uint32_t i = first + 1; i < last && uniform; ++i) {
-        const std::uint32_t c = corners[i];
-        uniform = indices[c] == indices[c0] && std::memcmp(&tangents[4 * c], &tangents[4 * c0], 4 * sizeof(float)) == 0;
-      }
-      if (uniform) {
-        if (wantVertices) {
-          for (std::uint32_t i = first; i < last; ++i) cornerVertex[corners[i]] = indices[c0];
-        }
-        continue;
-      }
-      entries.clear();
-      for (std::uint32_t i = first; i < last; ++i) {
-        const std::uint32_t c = corners[i];
-        SplitEntry e;
-        e.vertex = indices[c];
-        for (int k = 0; k < 4; ++k) e.bits[k] = canonicalBits(tangents[4 * c + k]);  // -0 and +0 alike
-        e.corner = c;
-        entries.push_back(e);
-      }
-      std::sort(entries.begin(), entries.end());
-      std::uint32_t extras = 0;
-      for (std::size_t i = 0; i < entries.size();) {
-        // One input vertex: find the tangent of its first corner.
-        std::size_t j = i;
-        std::uint32_t firstCorner = entries[i].corner;
-        std::size_t firstAt = i;
-        while (j < entries.size() && entries[j].vertex == entries[i].vertex) {
-          if (entries[j].corner < firstCorner) firstCorner = entries[j].corner, firstAt = j;
-          ++j;
-        }
-        for (std::size_t k = i; k < j;) {
-          std::size_t l = k;
-          while (l < j && entries[l].sameTangent(entries[k])) ++l;
-          const bool keepsVertex = entries[k].sameTangent(entries[firstAt]);
-          const std::uint32_t id = keepsVertex ? entries[k].vertex : (kExtraFlag | extras++);
-          if (wantVertices) {
-            for (std::size_t m = k; m < l; ++m) cornerVertex[entries[m].corner] = id;
-          }
-          k = l;
-        }
-        i = j;
-      }
-      extra[b] = extras;
     }
-  });
+  };
+  forRange(ws, ws.vertexCount, 2048, split);
 }
 
 // The new vertices numbered from the vertex count up, in order of their first corner.

@@ -174,18 +174,50 @@ __attribute__((target("avx2"))) inline bool closedFanOf(__m256i outs, __m256i in
   }
   return next[k] == 0;
 }
+// FanAccumulator's sum of the n corners' parked terms (the same operations in the same
+// order, so the same bits), four components a step.
+template <std::uint32_t n>
+__attribute__((target("avx2"))) inline FanSum fanSumOf(const std::uint32_t* list, const float* tangents) {
+  const __m256d quantizer = _mm256_set1_pd(kQuantizer);
+  const __m128i keep = _mm_setr_epi32(-1, -1, -1, static_cast<int>(~(kConeBits | kNotPositiveBit)));
+  __m128i all = _mm_set1_epi32(-1), any = _mm_setzero_si128();
+  __m256d sum = _mm256_setzero_pd();
+#pragma GCC unroll 8
+  for (std::uint32_t i = 0; i < n; ++i) {
+    const __m128i bits = _mm_loadu_si128(reinterpret_cast<const __m128i*>(tangents + 4 * std::size_t(list[i])));
+    all = _mm_and_si128(all, bits);
+    any = _mm_or_si128(any, bits);
+    const __m256d terms = _mm256_cvtps_pd(_mm_castsi128_ps(_mm_and_si128(bits, keep)));
+    sum = _mm256_add_pd(sum, _mm256_sub_pd(_mm256_add_pd(terms, quantizer), quantizer));
+  }
+  alignas(32) double lanes[4];
+  _mm256_store_pd(lanes, sum);
+  const auto allBits = static_cast<std::uint32_t>(_mm_extract_epi32(all, 3));
+  const auto anyBits = static_cast<std::uint32_t>(_mm_extract_epi32(any, 3));
+  return {lanes[0], lanes[1], lanes[2], lanes[3], kConeBits & allBits, ((allBits ^ anyBits) & kNotPositiveBit) == 0};
+}
+template <std::uint32_t n>
+__attribute__((target("avx2"))) inline bool closedFanSumOf(__m256i outs, __m256i ins, const std::uint32_t* list,
+                                                          const float* tangents, FanSum& fan) {
+  if (!closedFanOf<n>(outs, ins)) return false;
+  fan = fanSumOf<n>(list, tangents);
+  return true;
+}
+// closedFanOf for n (2..8) corners, and where it holds, their parked terms' sum in fan (one
+// call, the loops unrolled for each size).
 __attribute__((target("avx2"))) bool closedFanEight(const std::uint32_t* outId, const std::uint32_t* inId,
-                                                     std::uint32_t n) {
+                                                     std::uint32_t n, const std::uint32_t* list, const float* tangents,
+                                                     FanSum& fan) {
   const __m256i outs = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(outId));
   const __m256i ins = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(inId));
-  switch (n) {  // the loops unrolled for each size
-    case 2: return closedFanOf<2>(outs, ins);
-    case 3: return closedFanOf<3>(outs, ins);
-    case 4: return closedFanOf<4>(outs, ins);
-    case 5: return closedFanOf<5>(outs, ins);
-    case 6: return closedFanOf<6>(outs, ins);
-    case 7: return closedFanOf<7>(outs, ins);
-    case 8: return closedFanOf<8>(outs, ins);
+  switch (n) {
+    case 2: return closedFanSumOf<2>(outs, ins, list, tangents, fan);
+    case 3: return closedFanSumOf<3>(outs, ins, list, tangents, fan);
+    case 4: return closedFanSumOf<4>(outs, ins, list, tangents, fan);
+    case 5: return closedFanSumOf<5>(outs, ins, list, tangents, fan);
+    case 6: return closedFanSumOf<6>(outs, ins, list, tangents, fan);
+    case 7: return closedFanSumOf<7>(outs, ins, list, tangents, fan);
+    case 8: return closedFanSumOf<8>(outs, ins, list, tangents, fan);
     default: return false;
   }
 }
@@ -272,9 +304,12 @@ bool Kernel::pairOneFan(std::uint32_t bucket, std::uint64_t& mirrored) {
   const std::uint32_t first = start_[bucket], count = start_[bucket + 1] - first;
   if (count < 2 || count > kSmall || !ws_.fastBuckets) return false;
   const std::uint32_t* list = corners_ + first;
-  bool oneFan = false;
+  bool oneFan = false, summed = false;
+  FanSum fan;
 #if defined(TANGENT_LANES8)
-  if (count <= 8 && isa_ == VectorIsa::avx2) oneFan = closedFanEight(nextIds_ + first, previousIds_ + first, count);
+  if (count <= 8 && isa_ == VectorIsa::avx2) {
+    oneFan = summed = closedFanEight(nextIds_ + first, previousIds_ + first, count, list, tangents_, fan);
+  }
 #endif
   if (!oneFan) {
     SmallBucket b;
@@ -285,10 +320,12 @@ bool Kernel::pairOneFan(std::uint32_t bucket, std::uint64_t& mirrored) {
   // Every corner takes part and its triangle has one orientation: a coincident triangle's
   // corners park no cone bits (fanFrame asks for some in all), and the orientations are the
   // parked terms' kNotPositiveBit.
-  const float* tangents = tangents_;
-  FanAccumulator sum;
-  for (std::uint32_t i = 0; i < count; ++i) sum.add(&tangents[4 * std::size_t(list[i])]);
-  const FanSum fan = sum.result();
+  if (!summed) {
+    const float* tangents = tangents_;
+    FanAccumulator sum;
+    for (std::uint32_t i = 0; i < count; ++i) sum.add(&tangents[4 * std::size_t(list[i])]);
+    fan = sum.result();
+  }
   if (!fan.oneOrientation) return false;
   return fanFrame(bucket, list, count, fan, mirrored);
 }
