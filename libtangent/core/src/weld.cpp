@@ -94,6 +94,13 @@ void stableCountingSort(const WorkspaceData& ws, std::size_t count, std::size_t 
                      });
 }
 
+// A piece of `count` items for the workspace's threads: about four pieces a thread, at least
+// `least` and at most `most` items (so that 16 threads have work at 1e5 triangles, and the
+// counters, pieces * keys, stay few at 4e6). The bits do not depend on it.
+std::size_t pieceLength(const WorkspaceData& ws, std::size_t count, std::size_t least, std::size_t most) {
+  return std::clamp(count / (4 * std::size_t(std::max(ws.threads, 1u))), least, most);
+}
+
 // One table, vertices in order; the tag is the hash's top 32 bits.
 template <typename Insert>
 void weldInOneTable(WorkspaceData& ws, const MeshArrays& mesh, const Insert& insert) {
@@ -136,7 +143,7 @@ void weldInPartitions(WorkspaceData& ws, const MeshArrays& mesh, const Insert& i
   // which are filled only after the weld.
   constexpr int kPartitionBits = 8;
   constexpr std::size_t kPartitions = std::size_t(1) << kPartitionBits;
-  const std::size_t chunk = 1 << 15;
+  const std::size_t chunk = pieceLength(ws, vertexCount, 1 << 12, 1 << 15);
   const std::size_t chunkCount = (vertexCount + chunk - 1) / chunk;
   ensureSize(ws.bucketExtra, vertexCount + 1);
   ensureSize(ws.bucketStart, vertexCount + 1);
@@ -205,10 +212,11 @@ void weldInPartitions(WorkspaceData& ws, const MeshArrays& mesh, const Insert& i
 template <bool kEdges, typename Id>
 void bucketByRanges(WorkspaceData& ws, const Id& id) {
   const std::size_t vertexCount = ws.vertexCount, cornerCount = ws.cornerCount;
-  const int rangeBits = 12;
+  int rangeBits = 8;  // ranges of 2^8 to 2^12 welded ids, about four a thread
+  while (rangeBits < 12 && std::size_t(2) << rangeBits <= pieceLength(ws, vertexCount, 1, vertexCount + 1)) ++rangeBits;
   const std::size_t vertexRange = std::size_t(1) << rangeBits;
   const std::size_t ranges = (vertexCount + vertexRange - 1) / vertexRange;
-  const std::size_t cornerChunk = 3 << 15;
+  const std::size_t cornerChunk = pieceLength(ws, cornerCount, 3 << 10, 3 << 15);
   const std::size_t chunks = (cornerCount + cornerChunk - 1) / cornerChunk;
   ensureSize(ws.weldCounts, chunks * ranges + ranges + 1);
   // The first pass's output lies where the second writes its own (the bucket arrays, range
