@@ -565,13 +565,13 @@ namespace {
 // The weld's ids and the buckets, recomputed the slow way: a vertex's id is the smallest
 // vertex with equal values (+0 == -0, NaN never equal), each bucket holds its corners in
 // corner order, and beside each bucketed corner lie its next and previous identities.
-void expectWeldAndBuckets(const tangent::MeshArrays& mesh, unsigned threads, const std::string& name) {
-  SCOPED_TRACE(name + ", " + std::to_string(threads) + " threads");
+void expectWeldAndBuckets(const tangent::MeshArrays& mesh, unsigned threads, const std::string& name, bool edges = true) {
+  SCOPED_TRACE(name + ", " + std::to_string(threads) + " threads" + (edges ? "" : ", no identities"));
   tangent::detail::WorkspaceData ws;
   ws.threads = threads;
   tangent::detail::onThreads(ws, [&] {
     tangent::detail::beginCall(ws, mesh);
-    tangent::detail::weldAndBucket(ws, mesh, threads, true);
+    tangent::detail::weldAndBucket(ws, mesh, threads, edges);
   });
   const std::size_t vertices = mesh.positions.size() / 3, corners = mesh.indices.size();
   auto same = [&](std::size_t a, std::size_t b) {
@@ -601,6 +601,7 @@ void expectWeldAndBuckets(const tangent::MeshArrays& mesh, unsigned threads, con
       if (slot > ws.bucketStart[bucket]) {
         ASSERT_LT(ws.bucketCorners[slot - 1], c) << "slot " << slot;
       }
+      if (!edges) continue;
       const std::size_t next = c % 3 == 2 ? c - 2 : c + 1, previous = c % 3 == 0 ? c + 2 : c - 1;
       ASSERT_EQ(ws.bucketNextId[slot], idOf(next)) << "slot " << slot;
       ASSERT_EQ(ws.bucketPreviousId[slot], idOf(previous)) << "slot " << slot;
@@ -611,9 +612,10 @@ void expectWeldAndBuckets(const tangent::MeshArrays& mesh, unsigned threads, con
 
 }  // namespace
 
-// Both ways of bucketing (one counting sort below four threads, by ranges of ids from four)
-// on a mesh that welds copies and on one that welds nothing, and vertices whose values differ
-// in sign only (which share the weld's hash): never welded, while +0 and -0 are.
+// Both ways of bucketing (one counting sort below four threads, by ranges of ids from four,
+// whose ranges and chunks shrink with more threads) on a mesh that welds copies and on one
+// that welds nothing, with and without the identities beside the corners, and vertices whose
+// values differ in sign only (which share the weld's hash): never welded, while +0 and -0 are.
 TEST(Workspace, WeldIdsAndBucketsWithEachCornersNeighbourIdentities) {
   const GridMesh hard = hardMesh(20000);
   const GridMesh sphere = tangent::testing::makeSphere(160, 80);
@@ -633,10 +635,12 @@ TEST(Workspace, WeldIdsAndBucketsWithEachCornersNeighbourIdentities) {
   add({1.0f, 0.0f, 0.0f, 0.0f, 0.0f, 1.0f, 1.0f, 0.0f});
   add({0.0f, 1.0f, 0.0f, 0.0f, 0.0f, 1.0f, 0.0f, 1.0f});
   signs.indices = {0, 4, 5, 1, 4, 5, 2, 5, 4, 3, 4, 5};
-  for (unsigned threads : {1u, 2u, 4u, 8u}) {
-    expectWeldAndBuckets(arraysOf(hard), threads, "hard mesh");
-    expectWeldAndBuckets(arraysOf(sphere), threads, "sphere");
-    expectWeldAndBuckets(arraysOf(signs), threads, "signs");
+  for (unsigned threads : {1u, 2u, 4u, 8u, 16u}) {
+    for (bool edges : {true, false}) {
+      expectWeldAndBuckets(arraysOf(hard), threads, "hard mesh", edges);
+      expectWeldAndBuckets(arraysOf(sphere), threads, "sphere", edges);
+      expectWeldAndBuckets(arraysOf(signs), threads, "signs", edges);
+    }
   }
   tangent::detail::WorkspaceData ws;
   tangent::detail::beginCall(ws, arraysOf(signs));

@@ -94,6 +94,13 @@ void stableCountingSort(const WorkspaceData& ws, std::size_t count, std::size_t 
                      });
 }
 
+// A piece of `count` items for the workspace's threads: about four pieces a thread, at least
+// `least` and at most `most` items (so that 16 threads have work at 1e5 triangles, and the
+// counters, pieces * keys, stay few at 4e6). The bits do not depend on it.
+std::size_t pieceLength(const WorkspaceData& ws, std::size_t count, std::size_t least, std::size_t most) {
+  return std::clamp(count / (4 * std::size_t(std::max(ws.threads, 1u))), least, most);
+}
+
 // One table, vertices in order; the tag is the hash's top 32 bits.
 template <typename Insert>
 void weldInOneTable(WorkspaceData& ws, const MeshArrays& mesh, const Insert& insert) {
@@ -135,8 +142,9 @@ void weldInPartitions(WorkspaceData& ws, const MeshArrays& mesh, const Insert& i
   // the tags (32 bits of the hash from bit 24) and the order live in the bucket arrays,
   // which are filled only after the weld.
   constexpr int kPartitionBits = 8;
-  constexpr std::size_t kPartitions = std::size_t(1) << kPartitionBits, kChunk = 1 << 15;
-  const std::size_t chunkCount = (vertexCount + kChunk - 1) / kChunk;
+  constexpr std::size_t kPartitions = std::size_t(1) << kPartitionBits;
+  const std::size_t chunk = pieceLength(ws, vertexCount, 1 << 12, 1 << 15);
+  const std::size_t chunkCount = (vertexCount + chunk - 1) / chunk;
   ensureSize(ws.bucketExtra, vertexCount + 1);
   ensureSize(ws.bucketStart, vertexCount + 1);
   ensureSize(ws.bucketCorners, std::max(cornerCount, vertexCount));
@@ -147,7 +155,7 @@ void weldInPartitions(WorkspaceData& ws, const MeshArrays& mesh, const Insert& i
   std::uint32_t* counts = ws.weldCounts.data();  // [chunk][partition], then partition starts
   std::uint32_t* partitionStart = counts + chunkCount * kPartitions;
   auto partitionOf = [](std::uint32_t hash) { return static_cast<std::size_t>(hash >> (32 - kPartitionBits)); };
-  forRange(ws, vertexCount, kChunk, [&](std::size_t begin, std::size_t end) {
+  forRange(ws, vertexCount, chunk, [&](std::size_t begin, std::size_t end) {
     for (std::size_t v = begin; v < end; ++v) {
       const std::uint64_t hash = vertexHash(mesh, v);
       hashes[v] = static_cast<std::uint32_t>(hash >> 32 & 0xFF000000u) | static_cast<std::uint32_t>(hash & 0xFFFFFFu);
@@ -192,6 +200,94 @@ void weldInPartitions(WorkspaceData& ws, const MeshArrays& mesh, const Insert& i
   });
 }
 
+// The buckets from four threads on, where slices * vertices counters grow too large: two
+// stable passes. First the corners by range of 2^rangeBits welded ids (per-chunk counters,
+// small), triangle by triangle, each with its welded id and (with edges) its next and previous
+// identities beside it; then each range on its own, its counters in cache, moving what the
+// first pass wrote. No atomics: on 16 CPUs, counting and filling through atomic counters then
+// sorting each bucket ran 2x faster than one thread at best, a quarter of the call's wall time
+// at 1e6 and 4e6 triangles. Nor does the second pass read through the indices again: reading
+// each corner's ids there (a gather per corner, the corners of a range lie all over the mesh)
+// made this way cost four times the instructions of the one below four threads.
+template <bool kEdges, typename Id>
+void bucketByRanges(WorkspaceData& ws, const Id& id) {
+  const std::size_t vertexCount = ws.vertexCount, cornerCount = ws.cornerCount;
+  int rangeBits = 8;  // ranges of 2^8 to 2^12 welded ids, about four a thread
+  while (rangeBits < 12 && std::size_t(2) << rangeBits <= pieceLength(ws, vertexCount, 1, vertexCount + 1)) ++rangeBits;
+  const std::size_t vertexRange = std::size_t(1) << rangeBits;
+  const std::size_t ranges = (vertexCount + vertexRange - 1) / vertexRange;
+  const std::size_t cornerChunk = pieceLength(ws, cornerCount, 3 << 10, 3 << 15);
+  const std::size_t chunks = (cornerCount + cornerChunk - 1) / cornerChunk;
+  ensureSize(ws.weldCounts, chunks * ranges + ranges + 1);
+  // The first pass's output lies where the second writes its own (the bucket arrays, range
+  // by range), but for the corners: those go in the kernel's per-corner links (the same
+  // size, written only later), so that no array grows for them.
+  ensureSize(ws.cornerLink, cornerCount);
+  std::uint32_t* rangeStart = ws.weldCounts.data() + chunks * ranges;
+  std::uint32_t* byCorner = ws.cornerLink.data();
+  std::uint32_t* start = ws.bucketStart.data();
+  std::uint32_t* cursor = ws.bucketExtra.data();
+  std::uint32_t* corners = ws.bucketCorners.data();
+  std::uint32_t* nextIds = ws.bucketNextId.data();
+  std::uint32_t* previousIds = ws.bucketPreviousId.data();
+  std::uint32_t* byId = corners;
+  auto fill = [&](std::size_t begin, std::size_t end, std::uint32_t* next) {
+    auto place = [&](std::size_t c, std::uint32_t v, std::uint32_t nextId, std::uint32_t previousId) {
+      const std::uint32_t slot = next[v >> rangeBits]++;
+      byCorner[slot] = static_cast<std::uint32_t>(c);
+      byId[slot] = v;
+      if constexpr (kEdges) {
+        nextIds[slot] = nextId;
+        previousIds[slot] = previousId;
+      }
+    };
+    for (std::size_t c = begin; c < end; c += 3) {
+      const std::uint32_t v0 = id(c), v1 = id(c + 1), v2 = id(c + 2);
+      place(c, v0, v1, v2);
+      place(c + 1, v1, v2, v0);
+      place(c + 2, v2, v0, v1);
+    }
+  };
+  stableCountingSort(ws, cornerCount, ranges, chunks, [&](std::size_t c) { return id(c) >> rangeBits; },
+                     ws.weldCounts.data(), rangeStart, fill, 3);
+  forRange(ws, ranges, 1, [&](std::size_t begin, std::size_t end) {
+    // A range's ids (and identities) copied aside: the moves below overwrite them.
+    ScratchVector<std::uint32_t>& aside = ws.scratch.local().rangeIds;
+    for (std::size_t r = begin; r < end; ++r) {
+      const std::size_t first = r * vertexRange, last = std::min(vertexCount, first + vertexRange);
+      const std::uint32_t from = rangeStart[r], n = rangeStart[r + 1] - from;
+      std::uint32_t* count = cursor + first;  // this range's counters, then its cursors
+      std::fill(count, count + (last - first), 0u);
+      for (std::uint32_t i = from; i < from + n; ++i) ++cursor[byId[i]];
+      std::uint32_t total = from;
+      for (std::size_t v = first; v < last; ++v) {
+        const std::uint32_t k = cursor[v];
+        start[v] = cursor[v] = total;
+        total += k;
+      }
+      if (n == 0) continue;
+      ensureSize(aside, std::size_t(n) * (kEdges ? 3 : 1));  // grown only: no zeroing per range
+      std::uint32_t* ids = aside.data();
+      std::memcpy(ids, byId + from, n * sizeof(std::uint32_t));
+      if constexpr (kEdges) {
+        std::uint32_t* nexts = ids + n;
+        std::uint32_t* previouses = ids + 2 * std::size_t(n);
+        std::memcpy(nexts, nextIds + from, n * sizeof(std::uint32_t));
+        std::memcpy(previouses, previousIds + from, n * sizeof(std::uint32_t));
+        for (std::uint32_t i = 0; i < n; ++i) {
+          const std::uint32_t slot = cursor[ids[i]]++;
+          corners[slot] = byCorner[from + i];
+          nextIds[slot] = nexts[i];
+          previousIds[slot] = previouses[i];
+        }
+      } else {
+        for (std::uint32_t i = 0; i < n; ++i) corners[cursor[ids[i]]++] = byCorner[from + i];
+      }
+    }
+  });
+  start[vertexCount] = static_cast<std::uint32_t>(cornerCount);
+}
+
 // Buckets: a counting sort of the corners by welded id; with `edges`, each bucketed corner's
 // next and previous identities beside it (bucketNextId, bucketPreviousId).
 void bucketCorners(WorkspaceData& ws, const MeshArrays& mesh, unsigned threads, bool edges) {
@@ -202,7 +298,6 @@ void bucketCorners(WorkspaceData& ws, const MeshArrays& mesh, unsigned threads, 
   ensureSize(ws.bucketCorners, cornerCount);
   ensureSize(ws.bucketExtra, vertexCount + 1);
   std::uint32_t* start = ws.bucketStart.data();
-  std::uint32_t* cursor = ws.bucketExtra.data();
   std::uint32_t* corners = ws.bucketCorners.data();
   if (edges) {
     ensureSize(ws.bucketNextId, cornerCount + kBucketIdPadding);
@@ -213,14 +308,9 @@ void bucketCorners(WorkspaceData& ws, const MeshArrays& mesh, unsigned threads, 
   const std::uint32_t* indices = mesh.indices.data();
   // Every bucket in corner order, whatever the thread count. Below four threads, each thread
   // counts and fills its own slice of the corners with its own counters (in the weld table,
-  // free by now). From four, slices * vertices counters grow too large, so two stable passes:
-  // the corners by range of kVertexRange welded ids (per-chunk counters, small), then each
-  // range on its own, its counters in cache. No atomics: on 16 CPUs, counting and filling
-  // through atomic counters then sorting each bucket ran 2x faster than one thread at best,
-  // a quarter of the call's wall time at 1e6 and 4e6 triangles.
+  // free by now); from four, two stable passes by ranges of welded ids (bucketByRanges).
   // Where the weld merged no vertex, a corner's bucket is its index: one load fewer per corner.
   const bool identity = ws.weldMergedNone;
-  auto bucketOf = [&](std::size_t c) { return identity ? indices[c] : vertexId[indices[c]]; };
   if (threads < 4) {
     const std::size_t slices = threads;
     ensureSize(ws.table, slices * vertexCount);
@@ -252,41 +342,13 @@ void bucketCorners(WorkspaceData& ws, const MeshArrays& mesh, unsigned threads, 
     else
       sort([&](std::size_t c) { return vertexId[indices[c]]; });
   } else {
-    constexpr std::size_t kVertexRange = 1 << 12, kCornerChunk = 1 << 16;
-    const std::size_t ranges = (vertexCount + kVertexRange - 1) / kVertexRange;
-    const std::size_t chunks = (cornerCount + kCornerChunk - 1) / kCornerChunk;
-    ensureSize(ws.weldCounts, chunks * ranges + ranges + 1);
-    // The corners by range go in the kernel's per-corner links (the same size, written only
-    // later), so that no array grows for them.
-    ensureSize(ws.cornerLink, cornerCount);
-    std::uint32_t* rangeStart = ws.weldCounts.data() + chunks * ranges;
-    std::uint32_t* byRange = ws.cornerLink.data();
-    stableCountingSort(ws, cornerCount, ranges, chunks, [&](std::size_t c) { return bucketOf(c) / kVertexRange; },
-                       ws.weldCounts.data(), rangeStart, byRange);
-    forRange(ws, ranges, 1, [&](std::size_t begin, std::size_t end) {
-      for (std::size_t r = begin; r < end; ++r) {
-        const std::size_t first = r * kVertexRange, last = std::min(vertexCount, first + kVertexRange);
-        std::uint32_t* next = cursor + first;  // this range's counters, then its cursors
-        std::fill(next, next + (last - first), 0u);
-        for (std::uint32_t i = rangeStart[r]; i < rangeStart[r + 1]; ++i) ++next[bucketOf(byRange[i]) - first];
-        std::uint32_t total = rangeStart[r];
-        for (std::size_t v = first; v < last; ++v) {
-          const std::uint32_t n = cursor[v];
-          start[v] = cursor[v] = total;
-          total += n;
-        }
-        for (std::uint32_t i = rangeStart[r]; i < rangeStart[r + 1]; ++i) {
-          const std::uint32_t c = byRange[i];
-          const std::uint32_t slot = cursor[bucketOf(c)]++;
-          corners[slot] = c;
-          if (edges) {
-            nextIds[slot] = bucketOf(c % 3 == 2 ? c - 2 : c + 1);
-            previousIds[slot] = bucketOf(c % 3 == 0 ? c + 2 : c - 1);
-          }
-        }
-      }
-    });
-    start[vertexCount] = static_cast<std::uint32_t>(cornerCount);
+    auto byRanges = [&](const auto& id) {
+      edges ? bucketByRanges<true>(ws, id) : bucketByRanges<false>(ws, id);
+    };
+    if (identity)
+      byRanges([&](std::size_t c) { return indices[c]; });
+    else
+      byRanges([&](std::size_t c) { return vertexId[indices[c]]; });
   }
 }
 

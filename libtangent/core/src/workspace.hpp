@@ -92,6 +92,8 @@ struct BucketScratch {
   ScratchVector<std::uint32_t> items;
   ScratchVector<std::uint32_t> parent;
   ScratchVector<double> values;
+  // The bucketing from four threads (weld.cpp, bucketByRanges): one range's ids set aside.
+  ScratchVector<std::uint32_t> rangeIds;
 };
 
 // A corner's position, normal and UV as the OpenMesh call compares them (float bits).
