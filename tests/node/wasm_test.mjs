@@ -245,6 +245,29 @@ try {
   else console.log(`ok   unknown method refused: ${e.message}`);
 }
 
+// 1e. generateTangents's `output` option: the tangents written into the caller's array, which is
+// returned, with the same bits as without it; one of the wrong length or type refused.
+{
+  const mesh = generated(24, 5), flat = deindex(mesh), n = mesh.indices.length;
+  const plain = generateTangents(flat.position, flat.normal, flat.texcoord);
+  const output = new Float32Array(4 * n).fill(NaN);  // untouched floats would stay NaN
+  const returned = generateTangents(flat.position, flat.normal, flat.texcoord, { output });
+  const differ = cornersWithOtherBits(output, plain, n);
+  if (returned !== output) fail('output: generateTangents returned another array than the one given');
+  else if (differ) fail(`output: ${differ} corners differ in their bits from the call without it`);
+  else console.log(`ok   output: the ${n} corners' tangents written into the given array, the same bits`);
+  for (const [label, bad, expected] of [['too short', new Float32Array(4 * n - 4), /output: expected \d+ floats, got \d+/],
+    ['not a Float32Array', new Float64Array(4 * n), /output: expected a Float32Array/]]) {
+    try {
+      generateTangents(flat.position, flat.normal, flat.texcoord, { output: bad });
+      fail(`output ${label}: accepted`);
+    } catch (e) {
+      if (!expected.test(e.message)) fail(`output ${label}: unexpected error message: ${e.message}`);
+      else console.log(`ok   output ${label} refused: ${e.message}`);
+    }
+  }
+}
+
 // 1f. The module's tangent_run refuses null arrays (0 from JavaScript) other than the shared
 // corners' (all three null, no indices, no vertex split) with a message, instead of reading
 // the module's memory from address 0 as the mesh. On a module of its own, through its exports.
