@@ -7,7 +7,10 @@
 // left out of the medians. Prints one JSON line per size: per package the median wall and CPU
 // (user + system of this process) milliseconds, wall microseconds per triangle, the first
 // call, and whether its output has the same bits as the first package's.
-// Usage: node compare_packages.mjs DIR [DIR...] [--sizes 1e5,1e6,4e6] [--runs 5]
+// --output: every call passes { output } with one array per package and size, reused from call
+// to call (packages without the option ignore it and return a new array: `wroteOutput` says
+// which wrote into it).
+// Usage: node compare_packages.mjs DIR [DIR...] [--sizes 1e5,1e6,4e6] [--runs 5] [--output]
 import path from 'node:path';
 import { pathToFileURL } from 'node:url';
 import { sphere } from './sphere.mjs';
@@ -19,8 +22,10 @@ const option = (name, fallback) => {
 };
 const sizes = option('--sizes', '1e5,1e6,4e6').split(',').map(Number);
 const runs = Number(option('--runs', '5'));
+const outputIndex = args.indexOf('--output'), reuseOutput = outputIndex >= 0;
+if (reuseOutput) args.splice(outputIndex, 1);
 if (args.length === 0) {
-  console.error('usage: node compare_packages.mjs DIR [DIR...] [--sizes 1e5,1e6,4e6] [--runs 5]');
+  console.error('usage: node compare_packages.mjs DIR [DIR...] [--sizes 1e5,1e6,4e6] [--runs 5] [--output]');
   process.exit(2);
 }
 const packages = [];
@@ -36,9 +41,9 @@ for (const { generate } of packages) {
 }
 
 const median = (values) => [...values].sort((x, y) => x - y)[Math.floor(values.length / 2)];
-function timed(generate, mesh) {
+function timed(generate, mesh, output) {
   const cpu = process.cpuUsage(), start = process.hrtime.bigint();
-  const tangents = generate(mesh.position, mesh.normal, mesh.texcoord);
+  const tangents = output ? generate(mesh.position, mesh.normal, mesh.texcoord, { output }) : generate(mesh.position, mesh.normal, mesh.texcoord);
   const wallMs = Number(process.hrtime.bigint() - start) / 1e6;
   const used = process.cpuUsage(cpu);
   return { wallMs, cpuMs: (used.user + used.system) / 1e3, tangents };
@@ -49,20 +54,22 @@ const sameBits = (a, b) => a.length === b.length && Buffer.compare(
 for (const size of sizes) {
   const mesh = sphere(size);
   const triangles = mesh.position.length / 9;
-  const results = packages.map(() => ({ wall: [], cpu: [], firstMs: null, sameBits: true }));
+  const results = packages.map(() => ({ wall: [], cpu: [], firstMs: null, sameBits: true, wroteOutput: false }));
+  const outputs = packages.map(() => (reuseOutput ? new Float32Array(mesh.position.length / 3 * 4) : null));
   let reference = null;
   for (let round = 0; round <= runs; ++round) {
     for (let k = 0; k < packages.length; ++k) {
       const p = (k + round) % packages.length;
-      const { wallMs, cpuMs, tangents } = timed(packages[p].generate, mesh);
+      const { wallMs, cpuMs, tangents } = timed(packages[p].generate, mesh, outputs[p]);
+      results[p].wroteOutput = outputs[p] !== null && tangents === outputs[p];
       if (round === 0) {
         results[p].firstMs = wallMs;
-        if (p === 0) reference = tangents;
+        if (p === 0) reference = tangents.slice();
       } else {
         results[p].wall.push(wallMs);
         results[p].cpu.push(cpuMs);
       }
-      if (round === 0 && p !== 0) results[p].pending = tangents;
+      if (round === 0 && p !== 0) results[p].pending = tangents.slice();
     }
     if (round === 0) {
       for (const r of results) {
@@ -81,6 +88,7 @@ for (const size of sizes) {
       cpuUsPerTriangle: +(1e3 * median(results[p].cpu) / triangles).toFixed(3),
       firstMs: +results[p].firstMs.toFixed(1),
       sameBits: results[p].sameBits,
+      ...(reuseOutput ? { wroteOutput: results[p].wroteOutput } : {}),
     })),
   }));
 }

@@ -13,6 +13,7 @@ import { ALL_EXTENSIONS } from '@gltf-transform/extensions';
 import { tangents, unweld } from '@gltf-transform/functions';
 import validator from 'gltf-validator';
 import { generateTangents, generateTangentsIndexed } from '../../wasm/package/index.mjs';
+import createTangentModule from '../../wasm/package/dist/tangent_wasm.cjs';
 
 const [tool, workDir, ...assets] = process.argv.slice(2);
 if (!tool || !workDir) {
@@ -242,6 +243,56 @@ try {
 } catch (e) {
   if (!/method: 'smooth' is not mikktspace, lengyel, flat or meshopt/.test(e.message)) fail(`unexpected error message: ${e.message}`);
   else console.log(`ok   unknown method refused: ${e.message}`);
+}
+
+// 1e. generateTangents's `output` option: the tangents written into the caller's array, which is
+// returned, with the same bits as without it; one of the wrong length or type refused.
+{
+  const mesh = generated(24, 5), flat = deindex(mesh), n = mesh.indices.length;
+  const plain = generateTangents(flat.position, flat.normal, flat.texcoord);
+  const output = new Float32Array(4 * n).fill(NaN);  // untouched floats would stay NaN
+  const returned = generateTangents(flat.position, flat.normal, flat.texcoord, { output });
+  const differ = cornersWithOtherBits(output, plain, n);
+  if (returned !== output) fail('output: generateTangents returned another array than the one given');
+  else if (differ) fail(`output: ${differ} corners differ in their bits from the call without it`);
+  else console.log(`ok   output: the ${n} corners' tangents written into the given array, the same bits`);
+  for (const [label, bad, expected] of [['too short', new Float32Array(4 * n - 4), /output: expected \d+ floats, got \d+/],
+    ['not a Float32Array', new Float64Array(4 * n), /output: expected a Float32Array/]]) {
+    try {
+      generateTangents(flat.position, flat.normal, flat.texcoord, { output: bad });
+      fail(`output ${label}: accepted`);
+    } catch (e) {
+      if (!expected.test(e.message)) fail(`output ${label}: unexpected error message: ${e.message}`);
+      else console.log(`ok   output ${label} refused: ${e.message}`);
+    }
+  }
+}
+
+// 1f. The module's tangent_run refuses null arrays (0 from JavaScript) other than the shared
+// corners' (all three null, no indices, no vertex split) with a message, instead of reading
+// the module's memory from address 0 as the mesh. On a module of its own, through its exports.
+{
+  const module = await createTangentModule();
+  const text = (s) => {
+    const p = module._malloc(module.lengthBytesUTF8(s) + 1);
+    module.stringToUTF8(s, p, module.lengthBytesUTF8(s) + 1);
+    return p;
+  };
+  const [method, weighting, origin] = ['mikktspace', 'angle', 'top-left'].map(text);
+  const floats = module._malloc(4 * 9), index = module._malloc(4 * 3);
+  module.HEAPU32.set([0, 1, 2], index >>> 2);
+  const cases = [
+    ['positions null', [0, floats, floats, index, 0], /positions: null; positions, normals and uvs are given together/],
+    ['normals and uvs null', [floats, 0, 0, index, 0], /normals, uvs: null; positions, normals and uvs are given together/],
+    ['all null with indices', [0, 0, 0, index, 0], /positions, normals, uvs: null, which only the shared corners/],
+    ['all null with the vertex split', [0, 0, 0, 0, 1], /positions, normals, uvs: null, which only the shared corners/],
+  ];
+  for (const [label, [p, nrm, t, i, split], expected] of cases) {
+    const status = module._tangent_run(p, nrm, t, i, 3, 3, method, weighting, origin, split);
+    const message = module.UTF8ToString(module._tangent_error());
+    if (status === 0 || !expected.test(message)) fail(`tangent_run, ${label}: status ${status}, '${message}'`);
+    else console.log(`ok   tangent_run, ${label}: refused: ${message}`);
+  }
 }
 
 // 2. Errors surface as exceptions with the core's message.

@@ -13,12 +13,20 @@ export interface MethodOptions {
   weighting?: Weighting;
 }
 
+export interface DeindexedOptions extends MethodOptions {
+  /**
+   * Receives the tangents (4 floats per vertex) and is returned, instead of a new array: an
+   * array reused from call to call saves the new array's first touch of its memory.
+   */
+  output?: Float32Array;
+}
+
 /**
  * Tangents of a de-indexed triangle list, xyzw per vertex, w in MikkTSpace's own convention
  * (as the npm `mikktspace` package returns it; glTF-Transform's tangents() negates it).
  */
 export declare function generateTangents(position: Float32Array, normal: Float32Array, texcoord: Float32Array,
-  options?: MethodOptions): Float32Array;
+  options?: DeindexedOptions): Float32Array;
 
 /** The core's Report, as `tangent bake --report` writes it (the `tangents` object). */
 export interface TangentReport {

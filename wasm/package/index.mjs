@@ -74,7 +74,9 @@ function names(options, uvOrigin) {
  * `mikktspace` package computes them: xyzw per vertex, w in MikkTSpace's own convention, which
  * glTF-Transform's tangents() negates into glTF's. Pass it there as `generateTangents`.
  * options.method: 'mikktspace' (default) | 'lengyel' | 'flat' | 'meshopt'; options.weighting (lengyel):
- * 'angle' (default) | 'area' | 'uniform'.
+ * 'angle' (default) | 'area' | 'uniform'. options.output: a Float32Array of 4 floats per vertex
+ * that receives the tangents and is returned, instead of a new array (reused from call to call,
+ * it saves the new array's first touch).
  */
 export function generateTangents(position, normal, texcoord, options = {}) {
   requireFloat32('position', position, 3);
@@ -84,9 +86,19 @@ export function generateTangents(position, normal, texcoord, options = {}) {
   if (normal.length !== n * 3) throw new RangeError(`normal: expected ${n * 3} floats, got ${normal.length}`);
   if (texcoord.length !== n * 2) throw new RangeError(`texcoord: expected ${n * 2} floats, got ${texcoord.length}`);
   if (n % 3 !== 0) throw new RangeError(`position: ${n} vertices are not whole triangles`);
+  const output = options.output;
+  if (output !== undefined) {
+    requireFloat32('output', output, 4);
+    if (output.length !== n * 4) throw new RangeError(`output: expected ${n * 4} floats, got ${output.length}`);
+  }
   shareCorners(position, normal, texcoord, n);
   run(null, null, null, null, n, n, names(options, 'bottom-left'), false);
-  return new Float32Array(wasm.HEAPF32.buffer, wasm._tangent_corner_tangents() >>> 0, n * 4).slice();
+  const result = new Float32Array(wasm.HEAPF32.buffer, wasm._tangent_corner_tangents() >>> 0, n * 4);
+  // A new array is memory the process has not touched yet (a page fault per 4 KiB as the copy
+  // writes it, on every call); the caller's own array, reused from call to call, is not.
+  if (output === undefined) return result.slice();
+  output.set(result);
+  return output;
 }
 
 /**

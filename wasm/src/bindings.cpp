@@ -49,6 +49,29 @@ State& state() {
 // corner, 384 MB at 4e6 triangles, that were written and read back once).
 constexpr std::uint32_t kStageCorners = 1 << 14;
 
+// The arrays tangent_run may be given: positions, normals and uvs all, or none of them for
+// the corners tangent_share_add has shared (no indices then, and no vertex split). A null
+// array is refused here: the core would read the module's memory from address 0 as the mesh.
+void requireArrays(const float* positions, const float* normals, const float* uvs, const std::uint32_t* indices,
+                   int vertexSplit) {
+  const int given = (positions != nullptr) + (normals != nullptr) + (uvs != nullptr);
+  if (given == 3) return;
+  if (given == 0 && !indices && !vertexSplit) return;
+  if (given == 0) {
+    throw std::invalid_argument(
+        "positions, normals, uvs: null, which only the shared corners of tangent_share_add may be (no indices, no "
+        "vertex split)");
+  }
+  std::string missing;
+  auto note = [&](const char* name, const float* array) {
+    if (!array) missing += (missing.empty() ? "" : ", ") + std::string(name);
+  };
+  note("positions", positions);
+  note("normals", normals);
+  note("uvs", uvs);
+  throw std::invalid_argument(missing + ": null; positions, normals and uvs are given together or not at all");
+}
+
 }  // namespace
 
 extern "C" {
@@ -59,6 +82,7 @@ extern "C" {
 // UV origin and w, | bottom-left, MikkTSpace's own fSign, as the npm mikktspace package returns).
 // vertexSplit: nonzero to make the per-vertex outputs too (tangent_corner_vertices,
 // tangent_vertex_tangents, tangent_vertex_sources); zero for the per-corner tangents only.
+// positions, normals and uvs are null only after tangent_share_add (requireArrays).
 EMSCRIPTEN_KEEPALIVE int tangent_run(const float* positions, const float* normals, const float* uvs, const std::uint32_t* indices,
                                      std::uint32_t vertexCount, std::uint32_t cornerCount, const char* method,
                                      const char* weighting, const char* uvOrigin, int vertexSplit) {
@@ -76,6 +100,7 @@ EMSCRIPTEN_KEEPALIVE int tangent_run(const float* positions, const float* normal
     options.weighting = *parsedWeighting;
     options.uvOrigin = *parsedOrigin;
     options.threads = 1;
+    requireArrays(positions, normals, uvs, indices, vertexSplit);
     if (!indices && vertexSplit) {
       if (s.sequence.size() < cornerCount) {
         s.sequence.resize(cornerCount);

@@ -17,6 +17,7 @@
 
 #include "tangent/bulk_buffer.hpp"
 #include "vertex_hash.hpp"
+#include "workspace.hpp"  // bitCast
 
 namespace tangent::wasm {
 
@@ -43,16 +44,11 @@ constexpr int kRecentBits = 12;
 // loads of a batch wait together instead.
 constexpr std::size_t kBatch = 64;
 
-inline std::uint32_t floatBits(float x) {
-  std::uint32_t bits;
-  std::memcpy(&bits, &x, sizeof bits);
-  return bits;
-}
-
 // Whether `count` floats have the same bits (no call to memcmp: WebAssembly has no inline one).
 inline bool sameBits(const float* a, const float* b, int count) {
+  using tangent::detail::bitCast;
   std::uint32_t differ = 0;
-  for (int i = 0; i < count; ++i) differ |= floatBits(a[i]) ^ floatBits(b[i]);
+  for (int i = 0; i < count; ++i) differ |= bitCast<std::uint32_t>(a[i]) ^ bitCast<std::uint32_t>(b[i]);
   return differ == 0;
 }
 

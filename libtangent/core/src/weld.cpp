@@ -101,6 +101,25 @@ std::size_t pieceLength(const WorkspaceData& ws, std::size_t count, std::size_t 
   return std::clamp(count / (4 * std::size_t(std::max(ws.threads, 1u))), least, most);
 }
 
+// Brings a table slot into cache ahead of its probe: a prefetch where the target has one.
+// WebAssembly has none (the builtin compiles to nothing), so there the slot is loaded and its
+// value summed into `sink`, which keepSink stores where the compiler cannot drop it: loads
+// issued back to back wait for memory together, where a probe's branch on a missing slot
+// would wait for each miss in turn.
+inline void touchSlot(const std::uint32_t* slot, [[maybe_unused]] std::uint32_t& sink) {
+#if defined(__wasm__)
+  sink += *slot;
+#else
+  prefetch(slot);
+#endif
+}
+inline void keepSink([[maybe_unused]] std::uint32_t sink) {
+#if defined(__wasm__)
+  volatile std::uint32_t kept = sink;
+  (void)kept;
+#endif
+}
+
 // One table, vertices in order; the tag is the hash's top 32 bits.
 template <typename Insert>
 void weldInOneTable(WorkspaceData& ws, const MeshArrays& mesh, const Insert& insert) {
@@ -111,23 +130,23 @@ void weldInOneTable(WorkspaceData& ws, const MeshArrays& mesh, const Insert& ins
   std::uint32_t* table = ws.table.data();
   std::fill(table, table + 2 * tableSize, 0u);
   const std::size_t mask = tableSize - 1;
-  // The table (megabytes) is probed at random: each vertex's hash is worked out kAhead
-  // vertices early and its slot prefetched, so that the probe finds it in cache.
-  constexpr std::size_t kAhead = 16;
-  std::uint64_t ahead[kAhead];
-  for (std::size_t v = 0; v < std::min(kAhead, vertexCount); ++v) {
-    ahead[v] = vertexHash(mesh, v);
-    prefetch(table + 2 * (ahead[v] & mask));
-  }
-  for (std::size_t v = 0; v < vertexCount; ++v) {
-    const std::uint64_t hash = ahead[v % kAhead];
-    if (v + kAhead < vertexCount) {
-      const std::uint64_t later = vertexHash(mesh, v + kAhead);
-      ahead[v % kAhead] = later;
-      prefetch(table + 2 * (later & mask));
+  // The table (megabytes) is probed at random: a batch of vertices is hashed and each one's
+  // slot asked for (touchSlot) before the batch's probes, so that the probes find their
+  // slots in cache and their misses overlap instead of waiting one after another.
+  constexpr std::size_t kBatch = 64;
+  std::uint64_t hashes[kBatch];
+  std::uint32_t sink = 0;
+  for (std::size_t first = 0; first < vertexCount; first += kBatch) {
+    const std::size_t count = std::min(kBatch, vertexCount - first);
+    for (std::size_t i = 0; i < count; ++i) {
+      hashes[i] = vertexHash(mesh, first + i);
+      touchSlot(table + 2 * (hashes[i] & mask), sink);
     }
-    insert(table, mask, v, hash, static_cast<std::uint32_t>(hash >> 32));
+    for (std::size_t i = 0; i < count; ++i) {
+      insert(table, mask, first + i, hashes[i], static_cast<std::uint32_t>(hashes[i] >> 32));
+    }
   }
+  keepSink(sink);
 }
 
 // The vertices split into partitions by their hash, one small table per partition, in parallel.
