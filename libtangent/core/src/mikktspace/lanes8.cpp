@@ -110,7 +110,7 @@ inline void storeBytes(F positive, F flat, std::int8_t* orientation, std::uint8_
   const __m128i f16 = _mm_packs_epi32(_mm256_castsi256_si128(f), _mm256_extracti128_si256(f, 1));
   const __m128i bytes = _mm_packs_epi16(o16, f16);
   _mm_storel_epi64(reinterpret_cast<__m128i*>(orientation), bytes);
-  _mm_storeh_pd(reinterpret_cast<double*>(flags), _mm_castsi128_pd(bytes));
+  _mm_storel_epi64(reinterpret_cast<__m128i*>(flags), _mm_unpackhi_epi64(bytes, bytes));  // unaligned
 }
 #include "triangle_lanes.inc"
 }  // namespace lanes8
