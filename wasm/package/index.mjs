@@ -64,6 +64,15 @@ function shareCorners(position, normal, texcoord, corners) {
   }
 }
 
+// A copy of `length` elements of type `Type` at `pointer` in the module's memory, in an array
+// of the caller's own. The module returns addresses as signed 32-bit numbers: from 2 GiB up
+// they come back negative, hence `>>> 0` (memory may grow to 4 GiB).
+function copyOut(Type, pointer, length) {
+  const copy = new Type(length);
+  copy.set(new Type(wasm.HEAPU8.buffer, pointer >>> 0, length));
+  return copy;
+}
+
 // The options every call takes, with the command line's defaults.
 function names(options, uvOrigin) {
   return { method: options.method ?? 'mikktspace', weighting: options.weighting ?? 'angle', uvOrigin };
@@ -93,11 +102,10 @@ export function generateTangents(position, normal, texcoord, options = {}) {
   }
   shareCorners(position, normal, texcoord, n);
   run(null, null, null, null, n, n, names(options, 'bottom-left'), false);
-  const result = new Float32Array(wasm.HEAPF32.buffer, wasm._tangent_corner_tangents() >>> 0, n * 4);
   // A new array is memory the process has not touched yet (a page fault per 4 KiB as the copy
   // writes it, on every call); the caller's own array, reused from call to call, is not.
-  if (output === undefined) return result.slice();
-  output.set(result);
+  if (output === undefined) return copyOut(Float32Array, wasm._tangent_corner_tangents(), n * 4);
+  output.set(new Float32Array(wasm.HEAPF32.buffer, wasm._tangent_corner_tangents() >>> 0, n * 4));
   return output;
 }
 
@@ -118,9 +126,9 @@ export function generateTangentsIndexed(position, normal, texcoord, indices, opt
   const outputVertices = report.outputVertices;
   return {
     vertexCount: outputVertices,
-    tangents: new Float32Array(wasm.HEAPF32.buffer, wasm._tangent_vertex_tangents(), outputVertices * 4).slice(),
-    source: new Uint32Array(wasm.HEAPU32.buffer, wasm._tangent_vertex_sources(), outputVertices).slice(),
-    indices: new Uint32Array(wasm.HEAPU32.buffer, wasm._tangent_corner_vertices(), index.length).slice(),
+    tangents: copyOut(Float32Array, wasm._tangent_vertex_tangents(), outputVertices * 4),
+    source: copyOut(Uint32Array, wasm._tangent_vertex_sources(), outputVertices),
+    indices: copyOut(Uint32Array, wasm._tangent_corner_vertices(), index.length),
     report,
   };
 }
