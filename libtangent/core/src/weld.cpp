@@ -219,6 +219,19 @@ void weldInPartitions(WorkspaceData& ws, const MeshArrays& mesh, const Insert& i
   });
 }
 
+// Corners [begin, end) triangle by triangle, each placed with its welded id and its triangle's
+// next and previous ids (the edge identities the pairing reads): `place(corner, id, nextId,
+// previousId)`. The one order both bucket fills place corners in.
+template <typename Id, typename Place>
+inline void placeByTriangle(std::size_t begin, std::size_t end, const Id& id, const Place& place) {
+  for (std::size_t c = begin; c < end; c += 3) {
+    const std::uint32_t v0 = id(c), v1 = id(c + 1), v2 = id(c + 2);
+    place(c, v0, v1, v2);
+    place(c + 1, v1, v2, v0);
+    place(c + 2, v2, v0, v1);
+  }
+}
+
 // The buckets from four threads on, where slices * vertices counters grow too large: two
 // stable passes. First the corners by range of 2^rangeBits welded ids (per-chunk counters,
 // small), triangle by triangle, each with its welded id and (with edges) its next and previous
@@ -260,12 +273,7 @@ void bucketByRanges(WorkspaceData& ws, const Id& id) {
         previousIds[slot] = previousId;
       }
     };
-    for (std::size_t c = begin; c < end; c += 3) {
-      const std::uint32_t v0 = id(c), v1 = id(c + 1), v2 = id(c + 2);
-      place(c, v0, v1, v2);
-      place(c + 1, v1, v2, v0);
-      place(c + 2, v2, v0, v1);
-    }
+    placeByTriangle(begin, end, id, place);
   };
   stableCountingSort(ws, cornerCount, ranges, chunks, [&](std::size_t c) { return id(c) >> rangeBits; },
                      ws.weldCounts.data(), rangeStart, fill, 3);
@@ -347,12 +355,7 @@ void bucketCorners(WorkspaceData& ws, const MeshArrays& mesh, unsigned threads, 
           nextIds[slot] = nextId;
           previousIds[slot] = previousId;
         };
-        for (std::size_t c = begin; c < end; c += 3) {
-          const std::uint32_t v0 = id(c), v1 = id(c + 1), v2 = id(c + 2);
-          place(c, v0, v1, v2);
-          place(c + 1, v1, v2, v0);
-          place(c + 2, v2, v0, v1);
-        }
+        placeByTriangle(begin, end, id, place);
       };
       stableCountingSort(ws, cornerCount, vertexCount, slices, id, ws.table.data(), start, fill, 3);
     };
