@@ -104,8 +104,8 @@ inline void storeSlots(float* tangents, std::size_t t, int s, F c0, F c1, F c2, 
 // Orientations and flags: 32-bit lanes packed to bytes with signed saturation (the values
 // are -1, 1 and small flags).
 inline void storeBytes(F positive, F flat, std::int8_t* orientation, std::uint8_t* flags) {
-  const auto o = reinterpret_cast<__m256i>(orI(xorI(asI(positive), set1I(-1)), set1I(1)));
-  const auto f = reinterpret_cast<__m256i>(andI(asI(flat), set1I(kFlat)));
+  const auto o = reinterpret_cast<__m256i>(orientationLanes(positive));
+  const auto f = reinterpret_cast<__m256i>(flagLanes(flat));
   const __m128i o16 = _mm_packs_epi32(_mm256_castsi256_si128(o), _mm256_extracti128_si256(o, 1));
   const __m128i f16 = _mm_packs_epi32(_mm256_castsi256_si128(f), _mm256_extracti128_si256(f, 1));
   const __m128i bytes = _mm_packs_epi16(o16, f16);
