@@ -10,6 +10,7 @@
 #include <chrono>
 #include <cmath>
 #include <limits>
+#include <numeric>
 #include <span>
 
 #include "shadow_cube.hpp"
@@ -79,10 +80,11 @@ std::array<const gltf::TextureRef*, 7> textureRefs(const gltf::MaterialDesc& m) 
           &m.occlusionTexture, &m.specularTexture, &m.specularColorTexture};
 }
 
-std::vector<Light> lightsFrom(const gltf::Scene& scene, glm::vec3 center, float radius) {
+// The file's lights (at most kMaxLights: the one place the count is capped; what is left out
+// goes to `messages`), the one that casts the shadow first; the default rig where it has none.
+std::vector<Light> lightsFrom(const gltf::Scene& scene, glm::vec3 center, float radius, std::vector<std::string>& messages) {
   std::vector<Light> lights;
   for (const auto& source : scene.lights) {
-    if (lights.size() == static_cast<std::size_t>(kMaxLights)) break;  // the one place the count is capped
     Light light;
     const glm::vec3 color(source.color[0], source.color[1], source.color[2]);
     light.directional = source.type == gltf::LightDesc::Type::directional;
@@ -103,17 +105,42 @@ std::vector<Light> lightsFrom(const gltf::Scene& scene, glm::vec3 center, float 
     }
     lights.push_back(light);
   }
+  // Illuminance at the scene's centre (lux): a directional light's own; a point or spot light's
+  // by its distance (at least a tenth of the scene's radius), range and cone.
+  auto illuminanceAtCenter = [&](const Light& light) {
+    const float strength = light.intensity * std::max({light.color.r, light.color.g, light.color.b});
+    if (light.directional) return strength;
+    const float d = std::max(glm::length(light.position - center), 0.1f * radius);
+    float e = strength / (d * d);
+    if (light.range > 0) e *= std::clamp(1 - std::pow(d / light.range, 4.0f), 0.0f, 1.0f);
+    if (light.spotOuter >= 0 && glm::dot(glm::normalize(center - light.position), light.direction) < std::cos(light.spotOuter)) e = 0;
+    return e;
+  };
+  // More lights than a program shades with: the kMaxLights brightest at the centre are kept, in
+  // the file's order, and the panel says which were left out.
+  if (lights.size() > static_cast<std::size_t>(kMaxLights)) {
+    std::vector<std::size_t> order(lights.size());
+    std::iota(order.begin(), order.end(), std::size_t(0));
+    std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
+      return illuminanceAtCenter(lights[a]) > illuminanceAtCenter(lights[b]);
+    });
+    std::string left;
+    for (std::size_t i = kMaxLights; i < order.size(); ++i) {
+      const auto& name = scene.lights[order[i]].name;
+      left += (left.empty() ? "" : ", ") + std::to_string(order[i]) + (name.empty() ? "" : " (" + name + ")");
+    }
+    order.resize(kMaxLights);
+    std::sort(order.begin(), order.end());
+    std::vector<Light> kept;
+    for (std::size_t i : order) kept.push_back(lights[i]);
+    messages.push_back(std::to_string(lights.size()) + " punctual lights: the viewer shades with the " + std::to_string(kMaxLights) +
+                       " brightest at the scene's centre; left out: light " + left);
+    lights = std::move(kept);
+  }
   // Light 0 casts the shadow: the first directional light, when there is one; else the point
   // or spot light that gives the scene's centre the most illuminance.
   std::stable_partition(lights.begin(), lights.end(), [](const Light& light) { return light.directional; });
   if (!lights.empty() && !lights[0].directional) {
-    auto illuminanceAtCenter = [&](const Light& light) {
-      const float d = std::max(glm::length(light.position - center), 0.1f * radius);
-      float e = light.intensity * std::max({light.color.r, light.color.g, light.color.b}) / (d * d);
-      if (light.range > 0) e *= std::clamp(1 - std::pow(d / light.range, 4.0f), 0.0f, 1.0f);
-      if (light.spotOuter >= 0 && glm::dot(glm::normalize(center - light.position), light.direction) < std::cos(light.spotOuter)) e = 0;
-      return e;
-    };
     const auto strongest = std::max_element(lights.begin(), lights.end(), [&](const Light& a, const Light& b) {
       return illuminanceAtCenter(a) < illuminanceAtCenter(b);
     });
@@ -221,7 +248,7 @@ void Renderer::setScene(gltf::Scene scene, std::vector<std::string>& messages) {
   glBindVertexArray(0);
   boundsMin_ = glm::make_vec3(scene_.boundsMin.data());
   boundsMax_ = glm::make_vec3(scene_.boundsMax.data());
-  lights_ = lightsFrom(scene_, boundsCenter(), boundsRadius());
+  lights_ = lightsFrom(scene_, boundsCenter(), boundsRadius(), messages);
   pose_.reset();
 }
 

@@ -659,6 +659,52 @@ TEST(Viewer, EveryLightOfTheFileLightsTheMesh) {
   }
 }
 
+// A file with more lights than a program shades with (four): the four brightest at the scene's
+// centre are kept whatever their place in the file, and the viewer says which were left out.
+// Four faint point lights listed first and two directional lights after them render as the two
+// directional lights alone (the old cap kept the first four and lit the quad with almost
+// nothing).
+TEST(Viewer, MoreLightsThanFourKeepTheBrightestAndSaySo) {
+  TempDir dir;
+  writeRgbaPng(dir / "white.png", 4, 4, [](int, int) { return std::array<unsigned char, 4>{255, 255, 255, 255}; });
+  auto render = [&](const std::string& name, int faint, std::string& output) {
+    nlohmann::json lights = nlohmann::json::array(), nodes = {{{"mesh", 0}}}, sceneNodes = {0};
+    auto add = [&](const nlohmann::json& light, const nlohmann::json& node) {
+      nlohmann::json withLight = node;
+      withLight["extensions"] = {{"KHR_lights_punctual", {{"light", lights.size()}}}};
+      lights.push_back(light);
+      nodes.push_back(withLight);
+      sceneNodes.push_back(nodes.size() - 1);
+    };
+    for (int i = 0; i < faint; ++i)
+      add({{"type", "point"}, {"intensity", 1e-6}, {"name", "faint" + std::to_string(i)}}, {{"translation", {0.0, 0.0, 2.0}}});
+    for (int i = 0; i < 2; ++i)
+      add({{"type", "directional"}, {"intensity", 0.4}}, {{"rotation", {std::sin(0.25), 0.0, 0.0, std::cos(0.25)}}});
+    const nlohmann::json patch = {{"nodes", nodes},
+                                  {"scenes", {{{"nodes", sceneNodes}}}},
+                                  {"extensions", {{"KHR_lights_punctual", {{"lights", lights}}}}},
+                                  {"extensionsUsed", {"KHR_lights_punctual"}}};
+    const nlohmann::json material = {{"pbrMetallicRoughness", {{"baseColorFactor", {0.8, 0.8, 0.8, 1.0}}, {"metallicFactor", 0.0}, {"roughnessFactor", 0.6}}}};
+    const fs::path out = dir / (name + ".png");
+    const int exit = run("'" + quadAsset(dir, name, material, "white.png", patch).string() + "'" + kQuadView +
+                             " --exposure 1 --tone-map none --no-ibl --screenshot '" + out.string() + "'",
+                         output);
+    EXPECT_EQ(exit, 0) << output;
+    return exit == 0 ? readPng(out) : Image{};
+  };
+  auto luma = [](std::array<float, 3> c) { return 0.2126f * c[0] + 0.7152f * c[1] + 0.0722f * c[2]; };
+  std::string sixOutput, twoOutput;
+  const Image six = render("six", 4, sixOutput), two = render("two", 0, twoOutput);
+  ASSERT_EQ(six.rgb.size(), two.rgb.size());
+  const float withSix = luma(quadPixel(six, 0, 0)), withTwo = luma(quadPixel(two, 0, 0));
+  std::printf("six lights (four faint first): luma %.3f; the two directional alone: %.3f\n", withSix, withTwo);
+  EXPECT_NEAR(withSix, withTwo, 1.5f / 255);
+  EXPECT_GT(withTwo, 0.1f);
+  EXPECT_NE(sixOutput.find("6 punctual lights"), std::string::npos) << sixOutput;
+  EXPECT_NE(sixOutput.find("left out: light 2 (faint2), 3 (faint3)"), std::string::npos) << sixOutput;
+  EXPECT_EQ(twoOutput.find("punctual lights"), std::string::npos) << twoOutput;
+}
+
 // With every light directional (the default rig), lighting.glsl is compiled without its
 // positional code; the same directional light beside a point light too faint to show takes the
 // general code. Both render alike, and the directional light's angle shows (a light from the
