@@ -80,6 +80,49 @@ std::array<const gltf::TextureRef*, 7> textureRefs(const gltf::MaterialDesc& m) 
           &m.occlusionTexture, &m.specularTexture, &m.specularColorTexture};
 }
 
+float maxChannel(const glm::vec3& c) { return std::max({c.r, c.g, c.b}); }
+
+// Light `light`'s direction from `point` and its attenuation there (distance and cone), as
+// lighting.glsl's lightAt has them in the light's units.
+float attenuationAt(const Light& light, const glm::vec3& point, bool physical, glm::vec3& toLight) {
+  if (light.directional) {
+    toLight = -glm::normalize(light.direction);
+    return 1;
+  }
+  const glm::vec3 offset = light.position - point;
+  const float d = std::max(glm::length(offset), 1e-6f);
+  toLight = offset / d;
+  const float c = glm::dot(-toLight, glm::normalize(light.direction));
+  float attenuation = 1;
+  if (physical) {
+    attenuation = 1 / std::max(d * d, 1e-8f);
+    if (light.range > 0) attenuation *= std::clamp(1 - std::pow(d / light.range, 4.0f), 0.0f, 1.0f);
+    if (light.spotOuter >= 0) {
+      const float cone = std::clamp((c - std::cos(light.spotOuter)) / std::max(std::cos(light.spotInner) - std::cos(light.spotOuter), 1e-3f), 0.0f, 1.0f);
+      attenuation *= cone * cone;
+    }
+  } else {
+    attenuation = 1 / std::max(light.attenuation.x + light.attenuation.y * d + light.attenuation.z * d * d, 1e-6f);
+    if (light.spotOuter >= 0) attenuation *= glm::smoothstep(std::cos(light.spotOuter), std::cos(light.spotInner), c);
+  }
+  return attenuation;
+}
+
+// Where a light is judged from: the scene's centre, or, for a point or spot light inside the
+// scene, a tenth of the scene's radius from the light towards the centre.
+glm::vec3 pointLitFrom(const Light& light, glm::vec3 center, float radius) {
+  if (light.directional || glm::length(light.position - center) >= 0.1f * radius) return center;
+  return light.position - glm::normalize(light.position - center + glm::vec3(0, 1e-6f, 0)) * (0.1f * radius);
+}
+
+// The illuminance (lux) a light of the file gives at the scene's centre, judged from where
+// pointLitFrom says; 0 where that is not a positive number (inf intensity times black is NaN).
+float illuminanceAtCenter(const Light& light, glm::vec3 center, float radius) {
+  glm::vec3 toLight;
+  const float e = maxChannel(light.color) * light.intensity * attenuationAt(light, pointLitFrom(light, center, radius), true, toLight);
+  return e > 0 ? e : 0;
+}
+
 // The file's lights (at most kMaxLights: the one place the count is capped; what is left out
 // goes to `messages`), the one that casts the shadow first; the default rig where it has none.
 std::vector<Light> lightsFrom(const gltf::Scene& scene, glm::vec3 center, float radius, std::vector<std::string>& messages) {
@@ -105,36 +148,30 @@ std::vector<Light> lightsFrom(const gltf::Scene& scene, glm::vec3 center, float 
     }
     lights.push_back(light);
   }
-  // Illuminance at the scene's centre (lux): a directional light's own; a point or spot light's
-  // by its distance (at least a tenth of the scene's radius), range and cone.
-  auto illuminanceAtCenter = [&](const Light& light) {
-    const float strength = light.intensity * std::max({light.color.r, light.color.g, light.color.b});
-    if (light.directional) return strength;
-    const float d = std::max(glm::length(light.position - center), 0.1f * radius);
-    float e = strength / (d * d);
-    if (light.range > 0) e *= std::clamp(1 - std::pow(d / light.range, 4.0f), 0.0f, 1.0f);
-    if (light.spotOuter >= 0 && glm::dot(glm::normalize(center - light.position), light.direction) < std::cos(light.spotOuter)) e = 0;
-    return e;
-  };
   // More lights than a program shades with: the kMaxLights brightest at the centre are kept, in
-  // the file's order, and the panel says which were left out.
+  // the file's order, and the panel says which were left out (by their index in the file).
   if (lights.size() > static_cast<std::size_t>(kMaxLights)) {
+    std::vector<float> illuminance;
+    for (const Light& light : lights) illuminance.push_back(illuminanceAtCenter(light, center, radius));
     std::vector<std::size_t> order(lights.size());
     std::iota(order.begin(), order.end(), std::size_t(0));
-    std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
-      return illuminanceAtCenter(lights[a]) > illuminanceAtCenter(lights[b]);
-    });
-    std::string left;
-    for (std::size_t i = kMaxLights; i < order.size(); ++i) {
-      const auto& name = scene.lights[order[i]].name;
-      left += (left.empty() ? "" : ", ") + std::to_string(order[i]) + (name.empty() ? "" : " (" + name + ")");
-    }
+    std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return illuminance[a] > illuminance[b]; });
+    std::vector<std::size_t> left(order.begin() + kMaxLights, order.end());
     order.resize(kMaxLights);
     std::sort(order.begin(), order.end());
+    std::sort(left.begin(), left.end(), [&](std::size_t a, std::size_t b) {
+      return std::pair(scene.lights[a].definition, scene.lights[a].node) < std::pair(scene.lights[b].definition, scene.lights[b].node);
+    });
+    std::string named;
+    for (std::size_t i : left) {
+      const gltf::LightDesc& source = scene.lights[i];
+      named += (named.empty() ? "" : ", ") + std::to_string(source.definition) + (source.name.empty() ? "" : " '" + source.name + "'") +
+               " (node " + std::to_string(source.node) + ")";
+    }
     std::vector<Light> kept;
     for (std::size_t i : order) kept.push_back(lights[i]);
-    messages.push_back(std::to_string(lights.size()) + " punctual lights: the viewer shades with the " + std::to_string(kMaxLights) +
-                       " brightest at the scene's centre; left out: light " + left);
+    messages.push_back(std::to_string(lights.size()) + " punctual lights in the scene: the viewer shades with the " + std::to_string(kMaxLights) +
+                       " brightest at its centre; left out: light " + named);
     lights = std::move(kept);
   }
   // Light 0 casts the shadow: the first directional light, when there is one; else the point
@@ -142,7 +179,7 @@ std::vector<Light> lightsFrom(const gltf::Scene& scene, glm::vec3 center, float 
   std::stable_partition(lights.begin(), lights.end(), [](const Light& light) { return light.directional; });
   if (!lights.empty() && !lights[0].directional) {
     const auto strongest = std::max_element(lights.begin(), lights.end(), [&](const Light& a, const Light& b) {
-      return illuminanceAtCenter(a) < illuminanceAtCenter(b);
+      return illuminanceAtCenter(a, center, radius) < illuminanceAtCenter(b, center, radius);
     });
     std::rotate(lights.begin(), strongest, strongest + 1);
   }
@@ -487,38 +524,6 @@ bool Renderer::physicalLights(const RenderSettings& settings) const {
   return settings.shading == Shading::pbr && !lights_.empty() && lights_[0].physical;
 }
 
-namespace {
-
-float maxChannel(const glm::vec3& c) { return std::max({c.r, c.g, c.b}); }
-
-// Light `light`'s direction from `point` and its attenuation there (distance and cone), as
-// lighting.glsl's lightAt has them in the light's units.
-float attenuationAt(const Light& light, const glm::vec3& point, bool physical, glm::vec3& toLight) {
-  if (light.directional) {
-    toLight = -glm::normalize(light.direction);
-    return 1;
-  }
-  const glm::vec3 offset = light.position - point;
-  const float d = std::max(glm::length(offset), 1e-6f);
-  toLight = offset / d;
-  const float c = glm::dot(-toLight, glm::normalize(light.direction));
-  float attenuation = 1;
-  if (physical) {
-    attenuation = 1 / std::max(d * d, 1e-8f);
-    if (light.range > 0) attenuation *= std::clamp(1 - std::pow(d / light.range, 4.0f), 0.0f, 1.0f);
-    if (light.spotOuter >= 0) {
-      const float cone = std::clamp((c - std::cos(light.spotOuter)) / std::max(std::cos(light.spotInner) - std::cos(light.spotOuter), 1e-3f), 0.0f, 1.0f);
-      attenuation *= cone * cone;
-    }
-  } else {
-    attenuation = 1 / std::max(light.attenuation.x + light.attenuation.y * d + light.attenuation.z * d * d, 1e-6f);
-    if (light.spotOuter >= 0) attenuation *= glm::smoothstep(std::cos(light.spotOuter), std::cos(light.spotInner), c);
-  }
-  return attenuation;
-}
-
-}  // namespace
-
 float Renderer::exposure(const RenderSettings& settings) const {
   if (settings.exposure > 0) return settings.exposure;
   const float white = whiteRadiance(settings);
@@ -537,9 +542,7 @@ float Renderer::whiteRadiance(const RenderSettings& settings) const {
   };
   std::vector<Arrival> arrivals;
   for (const Light& light : lights_) {
-    glm::vec3 point = center;
-    if (!light.directional && glm::length(light.position - center) < 0.1f * boundsRadius())
-      point = light.position - glm::normalize(light.position - center + glm::vec3(0, 1e-6f, 0)) * (0.1f * boundsRadius());
+    const glm::vec3 point = pointLitFrom(light, center, boundsRadius());
     Arrival arrival{};
     const float attenuation = attenuationAt(light, point, physical, arrival.toLight);
     if (physical) {

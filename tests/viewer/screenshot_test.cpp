@@ -660,26 +660,35 @@ TEST(Viewer, EveryLightOfTheFileLightsTheMesh) {
 }
 
 // A file with more lights than a program shades with (four): the four brightest at the scene's
-// centre are kept whatever their place in the file, and the viewer says which were left out.
-// Four faint point lights listed first and two directional lights after them render as the two
-// directional lights alone (the old cap kept the first four and lit the quad with almost
-// nothing).
+// centre are kept whatever their place in the file or their intensity alone, and the viewer
+// names the others by their index in the file's light array (here the reverse of the node
+// order). Two faint point lights near the quad, three point lights of the largest intensity
+// but far away (each gives the quad 1e-5 lux), then two directional lights, render as the two
+// directional lights alone. The old cap kept the first four nodes' lights (luma 0); a ranking
+// by intensity alone would keep one directional light.
 TEST(Viewer, MoreLightsThanFourKeepTheBrightestAndSaySo) {
   TempDir dir;
   writeRgbaPng(dir / "white.png", 4, 4, [](int, int) { return std::array<unsigned char, 4>{255, 255, 255, 255}; });
-  auto render = [&](const std::string& name, int faint, std::string& output) {
-    nlohmann::json lights = nlohmann::json::array(), nodes = {{{"mesh", 0}}}, sceneNodes = {0};
-    auto add = [&](const nlohmann::json& light, const nlohmann::json& node) {
-      nlohmann::json withLight = node;
-      withLight["extensions"] = {{"KHR_lights_punctual", {{"light", lights.size()}}}};
-      lights.push_back(light);
-      nodes.push_back(withLight);
-      sceneNodes.push_back(nodes.size() - 1);
-    };
-    for (int i = 0; i < faint; ++i)
-      add({{"type", "point"}, {"intensity", 1e-6}, {"name", "faint" + std::to_string(i)}}, {{"translation", {0.0, 0.0, 2.0}}});
+  auto render = [&](const std::string& name, bool withPoints, std::string& output) {
+    std::vector<std::pair<nlohmann::json, nlohmann::json>> placed;  // light, its node
+    if (withPoints) {
+      for (int i = 0; i < 2; ++i)
+        placed.push_back({{{"type", "point"}, {"intensity", 1e-6}, {"name", "faint" + std::to_string(i)}}, {{"translation", {0.0, 0.0, 2.0}}}});
+      for (int i = 0; i < 3; ++i)
+        placed.push_back({{{"type", "point"}, {"intensity", 1e3}, {"name", "far" + std::to_string(i)}}, {{"translation", {0.0, 0.0, 1e4}}}});
+    }
     for (int i = 0; i < 2; ++i)
-      add({{"type", "directional"}, {"intensity", 0.4}}, {{"rotation", {std::sin(0.25), 0.0, 0.0, std::cos(0.25)}}});
+      placed.push_back({{{"type", "directional"}, {"intensity", 0.4}}, {{"rotation", {std::sin(0.25), 0.0, 0.0, std::cos(0.25)}}}});
+    // Light k of the file is placed by node 1 + (n - 1 - k): the nodes list them in reverse.
+    const int n = static_cast<int>(placed.size());
+    nlohmann::json lights = nlohmann::json::array(), nodes = {{{"mesh", 0}}}, sceneNodes = {0};
+    for (int k = 0; k < n; ++k) lights.push_back(placed[n - 1 - k].first);
+    for (int j = 0; j < n; ++j) {
+      nlohmann::json node = placed[j].second;
+      node["extensions"] = {{"KHR_lights_punctual", {{"light", n - 1 - j}}}};
+      nodes.push_back(node);
+      sceneNodes.push_back(j + 1);
+    }
     const nlohmann::json patch = {{"nodes", nodes},
                                   {"scenes", {{{"nodes", sceneNodes}}}},
                                   {"extensions", {{"KHR_lights_punctual", {{"lights", lights}}}}},
@@ -693,15 +702,19 @@ TEST(Viewer, MoreLightsThanFourKeepTheBrightestAndSaySo) {
     return exit == 0 ? readPng(out) : Image{};
   };
   auto luma = [](std::array<float, 3> c) { return 0.2126f * c[0] + 0.7152f * c[1] + 0.0722f * c[2]; };
-  std::string sixOutput, twoOutput;
-  const Image six = render("six", 4, sixOutput), two = render("two", 0, twoOutput);
-  ASSERT_EQ(six.rgb.size(), two.rgb.size());
-  const float withSix = luma(quadPixel(six, 0, 0)), withTwo = luma(quadPixel(two, 0, 0));
-  std::printf("six lights (four faint first): luma %.3f; the two directional alone: %.3f\n", withSix, withTwo);
-  EXPECT_NEAR(withSix, withTwo, 1.5f / 255);
+  std::string sevenOutput, twoOutput;
+  const Image seven = render("seven", true, sevenOutput), two = render("two", false, twoOutput);
+  ASSERT_FALSE(seven.rgb.empty());
+  ASSERT_EQ(seven.rgb.size(), two.rgb.size());
+  const float withSeven = luma(quadPixel(seven, 0, 0)), withTwo = luma(quadPixel(two, 0, 0));
+  std::printf("seven lights: luma %.3f; the two directional alone: %.3f\n%s", withSeven, withTwo, sevenOutput.c_str());
+  EXPECT_NEAR(withSeven, withTwo, 1.5f / 255);
   EXPECT_GT(withTwo, 0.1f);
-  EXPECT_NE(sixOutput.find("6 punctual lights"), std::string::npos) << sixOutput;
-  EXPECT_NE(sixOutput.find("left out: light 2 (faint2), 3 (faint3)"), std::string::npos) << sixOutput;
+  // Nodes 1-2 place the faint lights (file lights 6, 5), nodes 3-5 the far ones (4, 3, 2): kept
+  // are two far ones (1e-5 lux beats 2.5e-7), in node order the first two, so far2 (node 5) and
+  // both faint lights are left out.
+  EXPECT_NE(sevenOutput.find("7 punctual lights in the scene"), std::string::npos) << sevenOutput;
+  EXPECT_NE(sevenOutput.find("left out: light 2 'far2' (node 5), 5 'faint1' (node 2), 6 'faint0' (node 1)"), std::string::npos) << sevenOutput;
   EXPECT_EQ(twoOutput.find("punctual lights"), std::string::npos) << twoOutput;
 }
 

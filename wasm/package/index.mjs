@@ -35,7 +35,7 @@ function run(position, normal, texcoord, indices, vertexCount, cornerCount, name
       pointers.push(p);
     }
     // Views are taken after every allocation: growing memory replaces the buffer.
-    arrays.forEach((a, i) => a !== null && new Uint8Array(wasm.HEAPU8.buffer, pointers[i] >>> 0, a.byteLength)
+    arrays.forEach((a, i) => a !== null && view(Uint8Array, pointers[i], a.byteLength)
       .set(new Uint8Array(a.buffer, a.byteOffset, a.byteLength)));
     const text = pointers.slice(arrays.length);
     strings.forEach((s, i) => wasm.stringToUTF8(s, text[i], sizes[arrays.length + i]));
@@ -64,12 +64,17 @@ function shareCorners(position, normal, texcoord, corners) {
   }
 }
 
-// A copy of `length` elements of type `Type` at `pointer` in the module's memory, in an array
-// of the caller's own. The module returns addresses as signed 32-bit numbers: from 2 GiB up
-// they come back negative, hence `>>> 0` (memory may grow to 4 GiB).
+// A view of `length` elements of type `Type` at `pointer` in the module's memory (valid until
+// the next call). The module returns addresses as signed 32-bit numbers: from 2 GiB up they
+// come back negative, hence `>>> 0` (memory may grow to 4 GiB).
+function view(Type, pointer, length) {
+  return new Type(wasm.HEAPU8.buffer, pointer >>> 0, length);
+}
+
+// The same elements in an array of the caller's own.
 function copyOut(Type, pointer, length) {
   const copy = new Type(length);
-  copy.set(new Type(wasm.HEAPU8.buffer, pointer >>> 0, length));
+  copy.set(view(Type, pointer, length));
   return copy;
 }
 
@@ -105,7 +110,7 @@ export function generateTangents(position, normal, texcoord, options = {}) {
   // A new array is memory the process has not touched yet (a page fault per 4 KiB as the copy
   // writes it, on every call); the caller's own array, reused from call to call, is not.
   if (output === undefined) return copyOut(Float32Array, wasm._tangent_corner_tangents(), n * 4);
-  output.set(new Float32Array(wasm.HEAPF32.buffer, wasm._tangent_corner_tangents() >>> 0, n * 4));
+  output.set(view(Float32Array, wasm._tangent_corner_tangents(), n * 4));
   return output;
 }
 

@@ -685,8 +685,11 @@ Scene flattenScene(const std::filesystem::path& input, const SceneOptions& optio
     }
     if (node.contains("extensions") && node["extensions"].contains("KHR_lights_punctual")) {
       const int lightIndex = node["extensions"]["KHR_lights_punctual"].value("light", -1);
-      if (lightIndex >= 0 && lightIndex < static_cast<int>(lightDefinitions.size()))
+      if (lightIndex >= 0 && lightIndex < static_cast<int>(lightDefinitions.size())) {
         scene.lights.push_back(lightAt(lightDefinitions[lightIndex], world));
+        scene.lights.back().definition = lightIndex;
+        scene.lights.back().node = nodeIndex;
+      }
     }
     if (!node.contains("mesh")) continue;
     const int meshIndex = node["mesh"].get<int>();

@@ -65,6 +65,8 @@ struct MaterialDesc {
 struct LightDesc {
   enum class Type { directional, point, spot } type = Type::directional;
   std::string name;
+  int definition = -1;  // index in the file's KHR_lights_punctual lights (one node or more use it)
+  int node = -1;        // the node that places this one
   std::array<float, 3> color{1, 1, 1};
   float intensity = 1;
   float range = 0;  // 0: infinite
