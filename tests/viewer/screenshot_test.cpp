@@ -626,6 +626,34 @@ TEST(Viewer, OneFetchForThePackedOcclusionTextureRendersAsTwo) {
   EXPECT_GT(std::abs(metal - dielectric), 0.03f);
 }
 
+// A node of quadAsset's scene that places light `light` (its index in the file's
+// KHR_lights_punctual array) with `transform` (JSON: translation, rotation, matrix).
+struct LightNode {
+  nlohmann::json transform;
+  int light;
+};
+
+// quadAsset's patch adding the KHR_lights_punctual `lights` (a JSON array) to the file and
+// `lightNodes`, in their order, to the scene after the quad's node.
+nlohmann::json lightsPatch(const nlohmann::json& lights, const std::vector<LightNode>& lightNodes) {
+  nlohmann::json nodes = {{{"mesh", 0}}}, sceneNodes = {0};
+  for (const LightNode& lightNode : lightNodes) {
+    nlohmann::json node = lightNode.transform;
+    node["extensions"] = {{"KHR_lights_punctual", {{"light", lightNode.light}}}};
+    sceneNodes.push_back(static_cast<int>(nodes.size()));
+    nodes.push_back(node);
+  }
+  return {{"extensionsUsed", {"KHR_lights_punctual"}},
+          {"extensions", {{"KHR_lights_punctual", {{"lights", lights}}}}},
+          {"nodes", nodes},
+          {"scenes", {{{"nodes", sceneNodes}}}}};
+}
+
+// lightsPatch with the one light `light` (JSON) on a node with `transform`.
+nlohmann::json lightPatch(const nlohmann::json& light, const nlohmann::json& transform) {
+  return lightsPatch(nlohmann::json::array({light}), {{transform, 0}});
+}
+
 // Each mesh program is compiled for the number of lights it shades with (LIGHT_COUNT): one to
 // four equal directional lights from the same direction light the quad more with each one added
 // (no tone mapping, no environment), so a program that ran fewer trips than the file has lights
@@ -634,16 +662,13 @@ TEST(Viewer, EveryLightOfTheFileLightsTheMesh) {
   TempDir dir;
   writeRgbaPng(dir / "white.png", 4, 4, [](int, int) { return std::array<unsigned char, 4>{255, 255, 255, 255}; });
   auto render = [&](int count) {
-    nlohmann::json lights = nlohmann::json::array(), nodes = {{{"mesh", 0}}}, sceneNodes = {0};
+    nlohmann::json lights = nlohmann::json::array();
+    std::vector<LightNode> lightNodes;
     for (int i = 0; i < count; ++i) {
       lights.push_back({{"type", "directional"}, {"intensity", 0.4}});
-      nodes.push_back({{"rotation", {std::sin(0.25), 0.0, 0.0, std::cos(0.25)}}, {"extensions", {{"KHR_lights_punctual", {{"light", i}}}}}});
-      sceneNodes.push_back(i + 1);
+      lightNodes.push_back({{{"rotation", {std::sin(0.25), 0.0, 0.0, std::cos(0.25)}}}, i});
     }
-    const nlohmann::json patch = {{"nodes", nodes},
-                                  {"scenes", {{{"nodes", sceneNodes}}}},
-                                  {"extensions", {{"KHR_lights_punctual", {{"lights", lights}}}}},
-                                  {"extensionsUsed", {"KHR_lights_punctual"}}};
+    const nlohmann::json patch = lightsPatch(lights, lightNodes);
     const nlohmann::json material = {{"pbrMetallicRoughness", {{"baseColorFactor", {0.8, 0.8, 0.8, 1.0}}, {"metallicFactor", 0.0}, {"roughnessFactor", 0.6}}}};
     const std::string name = "lights-" + std::to_string(count);
     return screenshot(dir, name, "'" + quadAsset(dir, name, material, "white.png", patch).string() + "'" + kQuadView +
@@ -681,18 +706,11 @@ TEST(Viewer, MoreLightsThanFourKeepTheBrightestAndSaySo) {
       placed.push_back({{{"type", "directional"}, {"intensity", 0.4}}, {{"rotation", {std::sin(0.25), 0.0, 0.0, std::cos(0.25)}}}});
     // Light k of the file is placed by node 1 + (n - 1 - k): the nodes list them in reverse.
     const int n = static_cast<int>(placed.size());
-    nlohmann::json lights = nlohmann::json::array(), nodes = {{{"mesh", 0}}}, sceneNodes = {0};
+    nlohmann::json lights = nlohmann::json::array();
+    std::vector<LightNode> lightNodes;
     for (int k = 0; k < n; ++k) lights.push_back(placed[n - 1 - k].first);
-    for (int j = 0; j < n; ++j) {
-      nlohmann::json node = placed[j].second;
-      node["extensions"] = {{"KHR_lights_punctual", {{"light", n - 1 - j}}}};
-      nodes.push_back(node);
-      sceneNodes.push_back(j + 1);
-    }
-    const nlohmann::json patch = {{"nodes", nodes},
-                                  {"scenes", {{{"nodes", sceneNodes}}}},
-                                  {"extensions", {{"KHR_lights_punctual", {{"lights", lights}}}}},
-                                  {"extensionsUsed", {"KHR_lights_punctual"}}};
+    for (int j = 0; j < n; ++j) lightNodes.push_back({placed[j].second, n - 1 - j});
+    const nlohmann::json patch = lightsPatch(lights, lightNodes);
     const nlohmann::json material = {{"pbrMetallicRoughness", {{"baseColorFactor", {0.8, 0.8, 0.8, 1.0}}, {"metallicFactor", 0.0}, {"roughnessFactor", 0.6}}}};
     const fs::path out = dir / (name + ".png");
     const int exit = run("'" + quadAsset(dir, name, material, "white.png", patch).string() + "'" + kQuadView +
@@ -727,18 +745,13 @@ TEST(Viewer, DirectionalOnlyLightingRendersAsTheGeneralPath) {
   writeRgbaPng(dir / "white.png", 4, 4, [](int, int) { return std::array<unsigned char, 4>{255, 255, 255, 255}; });
   auto render = [&](const std::string& name, bool withPoint, double tilt) {
     nlohmann::json lights = {{{"type", "directional"}, {"intensity", 3.0}, {"color", {1.0, 0.9, 0.8}}}};
-    nlohmann::json nodes = {{{"mesh", 0}},
-                            {{"rotation", {std::sin(tilt / 2), 0.0, 0.0, std::cos(tilt / 2)}}, {"extensions", {{"KHR_lights_punctual", {{"light", 0}}}}}}};
-    nlohmann::json sceneNodes = {0, 1};
+    const nlohmann::json tilted = {{"rotation", {std::sin(tilt / 2), 0.0, 0.0, std::cos(tilt / 2)}}};
+    std::vector<LightNode> lightNodes = {{tilted, 0}};
     if (withPoint) {
       lights.push_back({{"type", "point"}, {"intensity", 1e-6}});
-      nodes.push_back({{"translation", {0.0, 0.0, 2.0}}, {"extensions", {{"KHR_lights_punctual", {{"light", 1}}}}}});
-      sceneNodes.push_back(2);
+      lightNodes.push_back({{{"translation", {0.0, 0.0, 2.0}}}, 1});
     }
-    const nlohmann::json patch = {{"nodes", nodes},
-                                  {"scenes", {{{"nodes", sceneNodes}}}},
-                                  {"extensions", {{"KHR_lights_punctual", {{"lights", lights}}}}},
-                                  {"extensionsUsed", {"KHR_lights_punctual"}}};
+    const nlohmann::json patch = lightsPatch(lights, lightNodes);
     const nlohmann::json material = {{"pbrMetallicRoughness", {{"baseColorFactor", {0.8, 0.8, 0.8, 1.0}}, {"metallicFactor", 0.0}, {"roughnessFactor", 0.4}}}};
     return screenshot(dir, name, "'" + quadAsset(dir, name, material, "white.png", patch).string() + "'" + kQuadView + " --exposure 1");
   };
@@ -908,17 +921,6 @@ TEST(Viewer, PerspectiveFramingFillsTheView) {
 }
 
 // ---- Tone mapping, lights in physical units, alpha-tested shadows ----
-
-// quadAsset's patch adding a KHR_lights_punctual light (JSON) on a node with `node` (JSON:
-// translation, matrix) to the scene.
-nlohmann::json lightPatch(const nlohmann::json& light, const nlohmann::json& node) {
-  nlohmann::json lightNode = node;
-  lightNode["extensions"] = {{"KHR_lights_punctual", {{"light", 0}}}};
-  return {{"extensionsUsed", {"KHR_lights_punctual"}},
-          {"extensions", {{"KHR_lights_punctual", {{"lights", {light}}}}}},
-          {"nodes", {{{"mesh", 0}}, lightNode}},
-          {"scenes", {{{"nodes", {0, 1}}}}}};
-}
 
 const nlohmann::json kWhiteRough = {{"pbrMetallicRoughness", {{"baseColorFactor", {1.0, 1.0, 1.0, 1.0}}, {"metallicFactor", 0.0}, {"roughnessFactor", 1.0}}}};
 
