@@ -88,12 +88,10 @@ KernelOutcome Kernel::run(Report& report) {
   forRange(ws_, bucketCount, 1024, [&](std::size_t begin, std::size_t end) {
     BucketScratch& scratch = ws_.scratch.local();
     std::uint64_t local = 0;
-    for (std::size_t b = begin; b < end; ++b) {
-      // Most buckets: one fan, paired and summed in one go (pairOneFan); the others, and any
-      // the shortcut does not take, the phases one after the other.
-      if (fused && pairOneFan(static_cast<std::uint32_t>(b), local)) continue;
-      pairBucket(static_cast<std::uint32_t>(b), scratch);
-      if (fused) groupBucket(static_cast<std::uint32_t>(b), scratch, local);
+    if (fused) {
+      pairAndGroup(begin, end, scratch, local);
+    } else {
+      for (std::size_t b = begin; b < end; ++b) pairBucket(static_cast<std::uint32_t>(b), scratch);
     }
     mirrored.local() += local;
   });

@@ -179,9 +179,37 @@ class Kernel {
   V3 subgroupSum(const FullBucket& b, const GroupRows& rows, std::size_t self, double& weights) const;
   bool groupFrames(FullBucket& b, std::size_t g, std::size_t gEnd);
   bool fastBucket(std::uint32_t bucket, const std::uint32_t* list, std::uint32_t count, std::uint64_t& mirrored);
-  bool fanFrame(std::uint32_t bucket, const std::uint32_t* list, std::uint32_t count, const FanSum& fan,
-                std::uint64_t& mirrored);
-  bool pairOneFan(std::uint32_t bucket, std::uint64_t& mirrored);
+  // The one frame of a fan from its summed terms (fastBucket, pairOneFan); false (nothing
+  // written) where the sum does not give it. In the header: pairOneFan inlines it.
+  [[gnu::always_inline]] bool fanFrame(std::uint32_t bucket, const std::uint32_t* list, std::uint32_t count,
+                                       const FanSum& fan, std::uint64_t& mirrored) {
+    const std::uint32_t cone = fan.cone;
+    const double x = fan.x, y = fan.y, z = fan.z, angleSum = fan.angleSum;
+    if (!(cone & 0x3F) || !(cone & (0x3F << 6))) return false;
+    // The sum made orthogonal to the raw normal N (as to the unit normal) and normalized: one
+    // square root and one division for the bucket.
+    const V3 sum{x, y, z}, normal = a_.normal(bucket);
+    const double sum2 = dot(sum, sum), normal2 = dot(normal, normal);
+    if (!(sum2 >= 0.0025 * angleSum * angleSum) || !(normal2 > 0) || !std::isfinite(normal2)) return false;
+    const V3 t = sum - normal * (dot(normal, sum) / normal2);
+    const double t2 = dot(t, t);
+    if (!(t2 > 1e-24 * sum2)) return false;
+    const V3 unit = t * (1.0 / std::sqrt(t2));
+    const float w = ws_.orientation[list[0] / 3] > 0 ? 1.0f : -1.0f;
+    const float frame[4] = {static_cast<float>(unit.x), static_cast<float>(unit.y), static_cast<float>(unit.z),
+                            w * wSign_};
+    // storeFrame without its state write: a corner's source and undefined bits are still clear
+    // here (pairing cleared them; only its bucket's group pass sets them), and computed is 0.
+    static_assert(static_cast<int>(FrameSource::computed) == 0);
+    finishOneFrame(bucket, list, count, mirrored, frame);
+    ws_.bucketExtra[bucket] = bitCast<std::uint32_t>(static_cast<float>(angleSum));
+    ws_.bucketUniform[bucket] |= kBucketWeight;
+    return true;
+  }
+  // Defined in pairing.cpp, inlined into pairAndGroup there (its only caller).
+  [[gnu::always_inline]] inline bool pairOneFan(std::uint32_t bucket, std::uint64_t& mirrored);
+  void pairAndGroup(std::size_t begin, std::size_t end, BucketScratch& scratch, std::uint64_t& mirrored);
+  void pairAndGroupEight(std::size_t begin, std::size_t end, BucketScratch& scratch, std::uint64_t& mirrored);  // AVX2
   // Whether the triangles of a bucket's corners share one UV orientation (with a chain of
   // links through all of them from pairBucket: one group of every corner).
   bool oneOrientation(const std::uint32_t* list, std::uint32_t count) const {
@@ -274,7 +302,7 @@ class Kernel {
       cornerVertex_ ? walkWith(No{}, Yes{}) : walkWith(No{}, No{});
     }
     ws_.bucketUniform[bucket] = oneVertex ? kUniformVertex : 0;
-    if (tangents_[4 * list[0] + 3] < 0) mirrored += count;
+    if ((frame ? frame[3] : tangents_[4 * list[0] + 3]) < 0) mirrored += count;
   }
   void markUndefined(std::size_t corner, float w) {
     if (!anyUndefined_.load(std::memory_order_relaxed)) anyUndefined_.store(true, std::memory_order_relaxed);

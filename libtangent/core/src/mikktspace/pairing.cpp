@@ -203,11 +203,12 @@ __attribute__((target("avx2"))) inline bool closedFanSumOf(__m256i outs, __m256i
   fan = fanSumOf<n>(list, tangents);
   return true;
 }
-// closedFanOf for n (2..8) corners, and where it holds, their parked terms' sum in fan (one
-// call, the loops unrolled for each size).
-__attribute__((target("avx2"))) bool closedFanEight(const std::uint32_t* outId, const std::uint32_t* inId,
-                                                     std::uint32_t n, const std::uint32_t* list, const float* tangents,
-                                                     FanSum& fan) {
+// closedFanOf for n (2..8) corners, and where it holds, their parked terms' sum in fan (the
+// loops unrolled for each size; inlined into pairAndGroupEight).
+__attribute__((target("avx2"), always_inline)) inline bool closedFanEight(const std::uint32_t* outId,
+                                                                          const std::uint32_t* inId, std::uint32_t n,
+                                                                          const std::uint32_t* list,
+                                                                          const float* tangents, FanSum& fan) {
   const __m256i outs = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(outId));
   const __m256i ins = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(inId));
   switch (n) {
@@ -302,33 +303,65 @@ bool Kernel::pairSmallBucket(std::uint32_t bucket, const std::uint32_t* list, st
 // cleared states, which pairBucket clears too) where the bucket is not that case.
 bool Kernel::pairOneFan(std::uint32_t bucket, std::uint64_t& mirrored) {
   const std::uint32_t first = start_[bucket], count = start_[bucket + 1] - first;
-  if (count < 2 || count > kSmall || !ws_.fastBuckets) return false;
+  if (count < 2 || count > kSmall) return false;
   const std::uint32_t* list = corners_ + first;
-  bool oneFan = false, summed = false;
-  FanSum fan;
-#if defined(TANGENT_LANES8)
-  if (count <= 8 && isa_ == VectorIsa::avx2) {
-    oneFan = summed = closedFanEight(nextIds_ + first, previousIds_ + first, count, list, tangents_, fan);
-  }
-#endif
-  if (!oneFan) {
-    SmallBucket b;
-    b.outId = nextIds_ + first, b.inId = previousIds_ + first, b.corner = list;
-    b.n = count;
-    if (!linkSmallBucket(b) || !oneSmallChain(b)) return false;
-  }
+  SmallBucket b;
+  b.outId = nextIds_ + first, b.inId = previousIds_ + first, b.corner = list;
+  b.n = count;
+  if (!linkSmallBucket(b) || !oneSmallChain(b)) return false;
   // Every corner takes part and its triangle has one orientation: a coincident triangle's
   // corners park no cone bits (fanFrame asks for some in all), and the orientations are the
   // parked terms' kNotPositiveBit.
-  if (!summed) {
-    const float* tangents = tangents_;
-    FanAccumulator sum;
-    for (std::uint32_t i = 0; i < count; ++i) sum.add(&tangents[4 * std::size_t(list[i])]);
-    fan = sum.result();
-  }
+  const float* tangents = tangents_;
+  FanAccumulator sum;
+  for (std::uint32_t i = 0; i < count; ++i) sum.add(&tangents[4 * std::size_t(list[i])]);
+  const FanSum fan = sum.result();
   if (!fan.oneOrientation) return false;
   return fanFrame(bucket, list, count, fan, mirrored);
 }
+
+// Pairing and grouping at once, bucket by bucket (Kernel::run, where orientations are final
+// when buckets are paired): most buckets by pairOneFan, inlined here; the others, and any it
+// does not take, the phases one after the other.
+void Kernel::pairAndGroup(std::size_t begin, std::size_t end, BucketScratch& scratch, std::uint64_t& mirrored) {
+#if defined(TANGENT_LANES8)
+  if (isa_ == VectorIsa::avx2) return pairAndGroupEight(begin, end, scratch, mirrored);
+#endif
+  const bool fast = ws_.fastBuckets;
+  for (std::size_t b = begin; b < end; ++b) {
+    const auto bucket = static_cast<std::uint32_t>(b);
+    if (fast && pairOneFan(bucket, mirrored)) continue;
+    pairBucket(bucket, scratch);
+    groupBucket(bucket, scratch, mirrored);
+  }
+}
+
+#if defined(TANGENT_LANES8)
+// pairAndGroup where the processor has AVX2: a bucket of 2 to 8 corners is first tested for
+// the common closed fan, eight identities a compare, which sums its terms as well
+// (closedFanEight); where it is not one, pairOneFan tests for an open fan. Everything but
+// pairBucket and groupBucket is inlined here.
+__attribute__((target("avx2"))) void Kernel::pairAndGroupEight(std::size_t begin, std::size_t end,
+                                                               BucketScratch& scratch, std::uint64_t& mirrored) {
+  const bool fast = ws_.fastBuckets;
+  for (std::size_t b = begin; b < end; ++b) {
+    const auto bucket = static_cast<std::uint32_t>(b);
+    if (fast) {
+      const std::uint32_t first = start_[bucket], count = start_[bucket + 1] - first;
+      const std::uint32_t* list = corners_ + first;
+      FanSum fan;
+      if (count >= 2 && count <= 8 &&
+          closedFanEight(nextIds_ + first, previousIds_ + first, count, list, tangents_, fan)) {
+        if (fan.oneOrientation && fanFrame(bucket, list, count, fan, mirrored)) continue;
+      } else if (pairOneFan(bucket, mirrored)) {
+        continue;
+      }
+    }
+    pairBucket(bucket, scratch);
+    groupBucket(bucket, scratch, mirrored);
+  }
+}
+#endif
 
 // The general case: outgoing and incoming half-edges sorted by the identity at their other
 // end and merged; duplicates marked first; edges with more than one half-edge each way
