@@ -272,8 +272,8 @@ class Kernel {
   // that the split need not visit these corners again.
   // With a frame, it is first stored into every corner's slot (storeFrame without its state
   // and weight writes), in the same walk over the corners.
-  void finishOneFrame(std::uint32_t bucket, const std::uint32_t* list, std::uint32_t count, std::uint64_t& mirrored,
-                      const float* frame = nullptr) {
+  [[gnu::always_inline]] void finishOneFrame(std::uint32_t bucket, const std::uint32_t* list, std::uint32_t count,
+                                             std::uint64_t& mirrored, const float* frame = nullptr) {
     // Where the weld merged nothing, every corner of the bucket is its input vertex.
     // Members in locals: the stores below may alias them.
     const bool identity = identity_;
