@@ -180,7 +180,8 @@ class Kernel {
   bool groupFrames(FullBucket& b, std::size_t g, std::size_t gEnd);
   bool fastBucket(std::uint32_t bucket, const std::uint32_t* list, std::uint32_t count, std::uint64_t& mirrored);
   // The one frame of a fan from its summed terms (fastBucket, pairOneFan); false (nothing
-  // written) where the sum does not give it. In the header: pairOneFan inlines it.
+  // written) where the sum does not give it. In the header, so that pairing.cpp's bucket loops
+  // inline it.
   [[gnu::always_inline]] bool fanFrame(std::uint32_t bucket, const std::uint32_t* list, std::uint32_t count,
                                        const FanSum& fan, std::uint64_t& mirrored) {
     const std::uint32_t cone = fan.cone;
@@ -206,7 +207,7 @@ class Kernel {
     ws_.bucketUniform[bucket] |= kBucketWeight;
     return true;
   }
-  // Defined in pairing.cpp, inlined into pairAndGroup there (its only caller).
+  // Defined in pairing.cpp and inlined into its callers there (pairAndGroup, pairAndGroupEight).
   [[gnu::always_inline]] inline bool pairOneFan(std::uint32_t bucket, std::uint64_t& mirrored);
   void pairAndGroup(std::size_t begin, std::size_t end, BucketScratch& scratch, std::uint64_t& mirrored);
   void pairAndGroupEight(std::size_t begin, std::size_t end, BucketScratch& scratch, std::uint64_t& mirrored);  // AVX2
