@@ -210,7 +210,9 @@ class Kernel {
   // Defined in pairing.cpp and inlined into its callers there (pairAndGroup, pairAndGroupEight).
   [[gnu::always_inline]] inline bool pairOneFan(std::uint32_t bucket, std::uint64_t& mirrored);
   void pairAndGroup(std::size_t begin, std::size_t end, BucketScratch& scratch, std::uint64_t& mirrored);
+#if defined(TANGENT_LANES8)
   void pairAndGroupEight(std::size_t begin, std::size_t end, BucketScratch& scratch, std::uint64_t& mirrored);  // AVX2
+#endif
   // Whether the triangles of a bucket's corners share one UV orientation (with a chain of
   // links through all of them from pairBucket: one group of every corner).
   bool oneOrientation(const std::uint32_t* list, std::uint32_t count) const {
