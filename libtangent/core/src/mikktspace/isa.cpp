@@ -19,10 +19,10 @@ VectorIsa activeVectorIsa() {
     __builtin_cpu_init();
     return __builtin_cpu_supports("avx2") ? VectorIsa::avx2 : VectorIsa::sse2;
   }();
+#elif defined(__wasm_simd128__)  // first: the WebAssembly build also has SSE2's intrinsics (-msse2)
+  constexpr VectorIsa widest = VectorIsa::simd128;
 #elif defined(__SSE2__)
   constexpr VectorIsa widest = VectorIsa::sse2;
-#elif defined(__wasm_simd128__)
-  constexpr VectorIsa widest = VectorIsa::simd128;
 #else
   constexpr VectorIsa widest = VectorIsa::scalar;
 #endif
