@@ -13,9 +13,12 @@
 #include <limits>
 #include <map>
 #include <random>
+#include <span>
+#include <stdexcept>
 #include <vector>
 
 #include "shared_vertices.hpp"
+#include "tangent/tangent.hpp"
 
 namespace {
 
@@ -100,6 +103,17 @@ void expectSharing(const Corners& corners, std::size_t runLength) {
   }
   EXPECT_EQ(wrongIndices, 0u) << "run length " << runLength;
   EXPECT_EQ(wrongValues, 0u) << "run length " << runLength;
+  // The vertices that may still weld in the core: those with a value of +0 or -0, in order.
+  std::vector<std::uint32_t> withZero;
+  for (std::size_t v = 0; v < shared.vertexCount; ++v) {
+    bool zero = false;
+    for (const float x : {shared.positions[3 * v], shared.positions[3 * v + 1], shared.positions[3 * v + 2],
+                          shared.normals[3 * v], shared.normals[3 * v + 1], shared.normals[3 * v + 2], shared.uvs[2 * v],
+                          shared.uvs[2 * v + 1]})
+      zero = zero || x == 0.0f;
+    if (zero) withZero.push_back(static_cast<std::uint32_t>(v));
+  }
+  EXPECT_EQ(shared.zeroVertices, withZero) << "run length " << runLength;
 }
 
 TEST(SharedVertices, RepeatedCornersInRandomOrderAndInRuns) {
@@ -126,6 +140,71 @@ TEST(SharedVertices, ManyVerticesGrowTheTableAndAreFoundAfter) {
   }
   expectSharing(corners, 0);
   expectSharing(corners, 4096);
+}
+
+// The core on the shared vertices, welding only those with a zero (weldOnly, as the package
+// calls it), gives the bits it gives on the de-indexed corners themselves and on the shared
+// vertices welded in full: corners that differ only in the sign of a zero are separate vertices
+// after sharing and must still weld. Random triangles over a pool of vertices (non-manifold
+// edges, degenerate and duplicate triangles among them), every method that welds.
+TEST(SharedVertices, TheCoreWeldingOnlyVerticesWithAZeroGivesTheSameBits) {
+  const Corners corners = randomCorners(3 * 20000, 3000, 4);
+  const std::size_t n = corners.count();
+  tangent::wasm::SharedVertices shared;
+  tangent::wasm::shareVertices(corners.positions.data(), corners.normals.data(), corners.uvs.data(), n, shared);
+  ASSERT_GT(shared.zeroVertices.size(), 0u);
+  ASSERT_LT(shared.zeroVertices.size(), shared.vertexCount);
+  std::vector<std::uint32_t> sequence(n);
+  for (std::size_t c = 0; c < n; ++c) sequence[c] = static_cast<std::uint32_t>(c);
+  const tangent::MeshArrays deindexed{corners.positions, corners.normals, corners.uvs, sequence};
+  const std::size_t vertices = shared.vertexCount;
+  const tangent::MeshArrays sharedMesh{{shared.positions.data(), 3 * vertices},
+                                       {shared.normals.data(), 3 * vertices},
+                                       {shared.uvs.data(), 2 * vertices},
+                                       {shared.indices.data(), n}};
+  for (const tangent::Method method : {tangent::Method::mikktspace, tangent::Method::lengyel}) {
+    tangent::Options options;
+    options.method = method;
+    options.threads = 1;
+    std::vector<float> reference(4 * n), full(4 * n), only(4 * n);
+    tangent::TangentWorkspace workspace;
+    const tangent::Report expected = tangent::computeCornerTangents(deindexed, tangent::CornerOutputs{std::span<float>(reference)}, options, workspace);
+    tangent::computeCornerTangents(sharedMesh, tangent::CornerOutputs{std::span<float>(full)}, options, workspace);
+    workspace.data().weldOnly = std::span<const std::uint32_t>(shared.zeroVertices);
+    const tangent::Report report = tangent::computeCornerTangents(sharedMesh, tangent::CornerOutputs{std::span<float>(only)}, options, workspace);
+    if (method == tangent::Method::mikktspace) {
+      // The control: welding none of them gives other bits (the pairs that differ in a zero's
+      // sign are not merged), so the list above did its work. (Lengyel's sums here come out
+      // the same either way.)
+      std::vector<float> none(4 * n);
+      workspace.data().weldOnly = std::span<const std::uint32_t>();
+      tangent::computeCornerTangents(sharedMesh, tangent::CornerOutputs{std::span<float>(none)}, options, workspace);
+      workspace.data().weldOnly.reset();
+      EXPECT_NE(std::memcmp(none.data(), reference.data(), 4 * n * sizeof(float)), 0);
+    }
+    EXPECT_EQ(std::memcmp(full.data(), reference.data(), 4 * n * sizeof(float)), 0) << tangent::toString(method);
+    EXPECT_EQ(std::memcmp(only.data(), reference.data(), 4 * n * sizeof(float)), 0) << tangent::toString(method);
+    EXPECT_EQ(report.mirroredCorners, expected.mirroredCorners);
+    EXPECT_EQ(report.degenerateTriangles, expected.degenerateTriangles);
+  }
+}
+
+TEST(SharedVertices, AWeldListOutOfRangeOrOrderIsRefused) {
+  const Corners corners = randomCorners(30, 10, 5);
+  tangent::wasm::SharedVertices shared;
+  tangent::wasm::shareVertices(corners.positions.data(), corners.normals.data(), corners.uvs.data(), 30, shared);
+  const std::size_t vertices = shared.vertexCount;
+  const tangent::MeshArrays mesh{{shared.positions.data(), 3 * vertices},
+                                 {shared.normals.data(), 3 * vertices},
+                                 {shared.uvs.data(), 2 * vertices},
+                                 {shared.indices.data(), 30}};
+  std::vector<float> tangents(4 * 30);
+  tangent::TangentWorkspace workspace;
+  for (const std::vector<std::uint32_t>& list :
+       {std::vector<std::uint32_t>{0, static_cast<std::uint32_t>(vertices)}, std::vector<std::uint32_t>{1, 0}}) {
+    workspace.data().weldOnly = std::span<const std::uint32_t>(list);
+    EXPECT_THROW(tangent::computeCornerTangents(mesh, tangent::CornerOutputs{std::span<float>(tangents)}, tangent::Options{}, workspace), std::invalid_argument);
+  }
 }
 
 TEST(SharedVertices, AddPastTheCountIsRefused) {

@@ -15,6 +15,7 @@
 #include <cstdint>
 #include <exception>
 #include <numeric>
+#include <span>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -88,6 +89,8 @@ EMSCRIPTEN_KEEPALIVE int tangent_run(const float* positions, const float* normal
                                      const char* weighting, const char* uvOrigin, int vertexSplit) {
   State& s = state();
   s.error.clear();
+  // Set below for the shared corners only (their vertices are distinct by bits).
+  s.workspace.data().weldOnly.reset();
   try {
     tangent::Options options;
     const auto parsedMethod = tangent::parseMethod(method);
@@ -123,6 +126,9 @@ EMSCRIPTEN_KEEPALIVE int tangent_run(const float* positions, const float* normal
       uvs = s.shared.uvs.data();
       indices = s.shared.indices.data();
       vertexCount = static_cast<std::uint32_t>(s.shared.vertexCount);
+      // No two shared vertices have the same bits: the core need weld only those with a zero
+      // (the others, nearly all on most meshes, were hashed and probed for no merge).
+      s.workspace.data().weldOnly = std::span<const std::uint32_t>(s.shared.zeroVertices);
     }
     s.cornerTangents.resize(std::size_t(cornerCount) * 4);
     s.cornerVertex.resize(vertexSplit ? cornerCount : 0);

@@ -31,6 +31,9 @@ struct SharedVertices {
   // The vertex a hash last found or made, at the hash's top kRecentBits bits: (vertex + 1, hash).
   std::vector<std::uint32_t> recent;
   std::size_t vertexCount = 0;
+  // The shared vertices with a value of +0 or -0, in increasing order: the only ones the core
+  // can still weld with another (its WorkspaceData::weldOnly), since they are distinct by bits.
+  std::vector<std::uint32_t> zeroVertices;
   std::uint32_t probeSink = 0;  // the sum of shareVertices' early loads (kept, so not dropped)
 };
 
@@ -55,6 +58,13 @@ inline bool sameBits(const float* a, const float* b, int count) {
 inline bool hasNaN(const float* p, const float* n, const float* t) {
   return p[0] != p[0] || p[1] != p[1] || p[2] != p[2] || n[0] != n[0] || n[1] != n[1] || n[2] != n[2] || t[0] != t[0] ||
          t[1] != t[1];
+}
+
+// Whether any of a corner's eight values is +0 or -0.
+inline bool hasZero(const float* p, const float* n, const float* t) {
+  using tangent::detail::bitCast;
+  auto zero = [](float x) { return (bitCast<std::uint32_t>(x) << 1) == 0; };
+  return zero(p[0]) | zero(p[1]) | zero(p[2]) | zero(n[0]) | zero(n[1]) | zero(n[2]) | zero(t[0]) | zero(t[1]);
 }
 
 // The core's vertex hash (vertex_hash.hpp), folded to 32 bits: equal bits, equal hashes.
@@ -88,6 +98,7 @@ class VertexSharer {
     }
     out.indices.resize(cornerCount);
     out.vertexCount = 0;
+    out.zeroVertices.clear();
   }
 
   // The next `count` corners (positions 3, normals 3, uvs 2 per corner); false when they would
@@ -164,6 +175,7 @@ inline bool VertexSharer::add(const float* positions, const float* normals, cons
       std::memcpy(P + 3 * count_, p, 12);
       std::memcpy(N + 3 * count_, n, 12);
       std::memcpy(T + 2 * count_, t, 8);
+      if (detail::hasZero(p, n, t)) out.zeroVertices.push_back(static_cast<std::uint32_t>(count_));
       ++count_;
       if (2 * count_ > capacity_) {
         grow();

@@ -120,12 +120,13 @@ inline void keepSink([[maybe_unused]] std::uint32_t sink) {
 #endif
 }
 
-// One table, vertices in order; the tag is the hash's top 32 bits.
-template <typename Insert>
-void weldInOneTable(WorkspaceData& ws, const MeshArrays& mesh, const Insert& insert) {
-  const std::size_t vertexCount = ws.vertexCount;
+// One table, `count` vertices in order (the i-th is vertexAt(i)); the tag is the hash's top
+// 32 bits.
+template <typename VertexAt, typename Insert>
+void weldInOneTable(WorkspaceData& ws, const MeshArrays& mesh, std::size_t count, const VertexAt& vertexAt,
+                    const Insert& insert) {
   std::size_t tableSize = 16;
-  while (tableSize < 2 * vertexCount) tableSize *= 2;
+  while (tableSize < 2 * count) tableSize *= 2;
   ensureSize(ws.table, 2 * tableSize);
   std::uint32_t* table = ws.table.data();
   std::fill(table, table + 2 * tableSize, 0u);
@@ -136,14 +137,14 @@ void weldInOneTable(WorkspaceData& ws, const MeshArrays& mesh, const Insert& ins
   constexpr std::size_t kBatch = 64;
   std::uint64_t hashes[kBatch];
   std::uint32_t sink = 0;
-  for (std::size_t first = 0; first < vertexCount; first += kBatch) {
-    const std::size_t count = std::min(kBatch, vertexCount - first);
-    for (std::size_t i = 0; i < count; ++i) {
-      hashes[i] = vertexHash(mesh, first + i);
+  for (std::size_t first = 0; first < count; first += kBatch) {
+    const std::size_t batch = std::min(kBatch, count - first);
+    for (std::size_t i = 0; i < batch; ++i) {
+      hashes[i] = vertexHash(mesh, vertexAt(first + i));
       touchSlot(table + 2 * (hashes[i] & mask), sink);
     }
-    for (std::size_t i = 0; i < count; ++i) {
-      insert(table, mask, first + i, hashes[i], static_cast<std::uint32_t>(hashes[i] >> 32));
+    for (std::size_t i = 0; i < batch; ++i) {
+      insert(table, mask, vertexAt(first + i), hashes[i], static_cast<std::uint32_t>(hashes[i] >> 32));
     }
   }
   keepSink(sink);
@@ -405,8 +406,19 @@ void weldAndBucket(WorkspaceData& ws, const MeshArrays& mesh, unsigned threads, 
       }
     }
   };
-  if (threads < 2) {
-    weldInOneTable(ws, mesh, insert);
+  if (ws.weldOnly) {
+    // Only the listed vertices can weld (WorkspaceData::weldOnly): every other is its own.
+    const std::span<const std::uint32_t> only = *ws.weldOnly;
+    for (std::size_t i = 0; i < only.size(); ++i) {
+      if (only[i] >= vertexCount || (i > 0 && only[i] <= only[i - 1])) {
+        throw std::invalid_argument("weldOnly: entry " + std::to_string(i) + " (" + std::to_string(only[i]) +
+                                    ") is out of range or out of order");
+      }
+    }
+    for (std::size_t v = 0; v < vertexCount; ++v) vertexId[v] = static_cast<std::uint32_t>(v);
+    weldInOneTable(ws, mesh, only.size(), [&](std::size_t i) { return std::size_t(only[i]); }, insert);
+  } else if (threads < 2) {
+    weldInOneTable(ws, mesh, vertexCount, [](std::size_t i) { return i; }, insert);
   } else {
     weldInPartitions(ws, mesh, insert);
   }
