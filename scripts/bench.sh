@@ -239,7 +239,7 @@ wasm_rows += [(a.split()[0], int(float(a.split()[1])), float(a.split()[2]), floa
 for name, t, theirs, mine, first in wasm_rows:
     lines.append(f"| {name} | {t:,} | {fmt(theirs)} | {fmt(mine)} | {ratio(theirs, mine)} | {fmt(first)} |")
 lines += ["", "The spheres here are `sphere-1eN` de-indexed (its 2n degenerate pole triangles included); npm mikktspace "
-          "runs once at 4e6, libtangent-wasm at least 3 times at every size."]
+          "runs once at 4e6, libtangent-wasm at least 3 times at every size after its first call, which its median leaves out."]
 lines += ["",
           "", "## Error against run time", "", "![error against run time](bench-plot.png)", "",
           "Mean angular error against the exact tangent on analytic surfaces, per method, one point per resolution, "
