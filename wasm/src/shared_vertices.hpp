@@ -40,10 +40,8 @@ struct SharedVertices {
 namespace detail {
 
 // A corner's vertex shared again within a few rows of a mesh is found here without a probe of
-// the large table: 16384 entries, 128 KiB. (4096 entries found 78% of the benchmark sphere's
-// corners; four times as many made the whole call 2% faster at 1e6 triangles, 5% at 4e6,
-// whose rows are longer; 65536 entries no faster.)
-constexpr int kRecentBits = 14;
+// the large table (on the benchmark's sphere 78% of corners): 4096 entries, 32 KiB.
+constexpr int kRecentBits = 12;
 // Corners hashed and their slots loaded ahead of the probes: WebAssembly has no prefetch, and
 // a probe's branch on a slot that misses the cache waits for memory corner after corner; the
 // loads of a batch wait together instead.
