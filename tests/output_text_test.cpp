@@ -4,6 +4,9 @@
 #include <gtest/gtest.h>
 #include <unistd.h>
 
+#include <csignal>
+#include <cstdlib>
+
 #include <algorithm>
 #include <filesystem>
 #include <fstream>
@@ -157,6 +160,59 @@ TEST(Output, CommitAllPutsEveryFileBackWhereOneRenameFails) {
   EXPECT_EQ(contentOf(dir / "fresh.png"), fresh);
   EXPECT_EQ(contentOf(dir / "out.glb"), output);
   EXPECT_EQ(namesIn(dir.path()), (std::vector<std::string>{"earlier.png", "fresh.png", "out.glb"}));
+}
+
+// A signal while a SignalDeferral lives (here raised inside two nested ones) waits for the
+// last to end, then ends the process as the handler does, removing the guarded temporaries.
+TEST(Output, ASignalWaitsForTheLastDeferralThenRemovesTheTemporaries) {
+  namespace out = tangent::output;
+  tangent::testing::TempDir dir;
+  std::ofstream(dir / "kept.png") << "earlier bytes";
+  const std::string fresh = "new bytes";
+  auto child = [&] {
+    out::removeTemporariesOnSignal();
+    out::StagedFile staged(dir / "kept.png", {bytesOf(fresh)});  // a temporary beside it, never committed
+    {
+      const out::SignalDeferral outer;
+      {
+        const out::SignalDeferral inner;
+        ::raise(SIGTERM);
+      }
+      std::ofstream(dir / "after-raise") << "still running";
+    }
+    std::ofstream(dir / "after-deferrals") << "not reached";
+    std::exit(0);
+  };
+  EXPECT_EXIT(child(), ::testing::KilledBySignal(SIGTERM), "");
+  EXPECT_TRUE(std::filesystem::exists(dir / "after-raise"));
+  EXPECT_EQ(contentOf(dir / "kept.png"), "earlier bytes");
+  EXPECT_EQ(namesIn(dir.path()), (std::vector<std::string>{"after-raise", "kept.png"}));
+}
+
+// With a signal pending, commitAll still puts every file in place and drops the earlier bytes
+// it kept under temporary names before the process ends: nothing half-replaced, no temporary.
+TEST(Output, CommitAllFinishesBeforeAPendingSignalEndsTheProcess) {
+  namespace out = tangent::output;
+  tangent::testing::TempDir dir;
+  std::ofstream(dir / "earlier.png") << "earlier bytes";
+  std::ofstream(dir / "out.glb") << "earlier output";
+  const std::string copy = "new copy", output = "new output";
+  auto child = [&] {
+    out::removeTemporariesOnSignal();
+    out::StagedFile a(dir / "earlier.png", {bytesOf(copy)});
+    out::StagedFile d(dir / "out.glb", {bytesOf(output)});
+    out::StagedFile* files[] = {&a, &d};
+    {
+      const out::SignalDeferral pending;
+      ::raise(SIGINT);
+      out::commitAll(files);
+    }
+    std::exit(0);
+  };
+  EXPECT_EXIT(child(), ::testing::KilledBySignal(SIGINT), "");
+  EXPECT_EQ(contentOf(dir / "earlier.png"), copy);
+  EXPECT_EQ(contentOf(dir / "out.glb"), output);
+  EXPECT_EQ(namesIn(dir.path()), (std::vector<std::string>{"earlier.png", "out.glb"}));
 }
 
 }  // namespace

@@ -34,12 +34,22 @@ const char* signalMessage = "";
 const char* gracefulNotice = "";
 std::atomic<bool> graceful{false}, stopAsked{false};
 static_assert(std::atomic<bool>::is_always_lock_free, "read from a signal handler");
+// Live SignalDeferrals, and the signal that came while there were some (0: none).
+std::atomic<int> deferrals{0}, deferredSignal{0};
+static_assert(std::atomic<int>::is_always_lock_free, "read from a signal handler");
 
 void onSignal(int signal) {
   if (graceful.load() && (signal == SIGINT || signal == SIGTERM) && !stopAsked.exchange(true)) {
     const ssize_t ignored = ::write(STDERR_FILENO, gracefulNotice, std::strlen(gracefulNotice));
     (void)ignored;
     return;
+  }
+  if (deferrals.load() > 0) {
+    deferredSignal.store(signal);
+    if (deferrals.load() > 0) return;  // the last SignalDeferral to end raises it
+    // The last one ended meanwhile, maybe before it could see the signal: whoever takes it
+    // back from deferredSignal handles it.
+    if (deferredSignal.exchange(0) == 0) return;
   }
   // Newest first: a folder guarded before the files inside it goes after them.
   for (int i = kSlots - 1; i >= 0; --i) {
@@ -108,6 +118,13 @@ void stopGracefullyOnSignal(const char* notice) {
 }
 
 bool stopRequested() { return stopAsked.load(); }
+
+SignalDeferral::SignalDeferral() { deferrals.fetch_add(1); }
+
+SignalDeferral::~SignalDeferral() {
+  if (deferrals.fetch_sub(1) != 1) return;
+  if (const int signal = deferredSignal.exchange(0); signal != 0) ::raise(signal);
+}
 
 void removeStaleTemporaries(const fs::path& folder) {
   static std::mutex mutex;
@@ -263,6 +280,9 @@ void StagedFile::dropPrevious() {
 }
 
 void commitAll(std::span<StagedFile* const> files) {
+  // A signal meanwhile ends the process only once every file is in place and the earlier
+  // bytes dropped, or every file is put back.
+  const SignalDeferral deferral;
   std::size_t done = 0;
   try {
     for (; done < files.size(); ++done) files[done]->commitKeepingPrevious();

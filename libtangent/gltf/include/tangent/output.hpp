@@ -79,6 +79,21 @@ void commitAll(std::span<StagedFile* const> files);
 // then let the signal end the process as it would have (exit status 128 + signal).
 void removeTemporariesOnSignal(const char* message = "");
 
+// For programs that installed removeTemporariesOnSignal(): while one of these lives (in any
+// thread), SIGINT, SIGTERM and SIGHUP do not end the process at once; the last one to go
+// raises the signal that came meanwhile, and the handler then runs as ever. For short steps
+// that must not stop half-way: commitAll, whose renames keep each replaced file's earlier bytes
+// under a temporary name until every file is in place (stopped between two renames, some files
+// would be new, some old, and the old bytes of the new ones only in temporaries that the next
+// run deletes).
+class SignalDeferral {
+ public:
+  SignalDeferral();
+  ~SignalDeferral();
+  SignalDeferral(const SignalDeferral&) = delete;
+  SignalDeferral& operator=(const SignalDeferral&) = delete;
+};
+
 // For a batch (several files, each written whole): while on, the first SIGINT or SIGTERM only
 // asks to stop (stopRequested() turns true; `notice` is printed), so that the current file is
 // finished and recorded; a second one ends the process as the handler above does. Needs
