@@ -189,9 +189,10 @@ TEST(Output, ASignalWaitsForTheLastDeferralThenRemovesTheTemporaries) {
   EXPECT_EQ(namesIn(dir.path()), (std::vector<std::string>{"after-raise", "kept.png"}));
 }
 
-// With a signal pending, commitAll still puts every file in place and drops the earlier bytes
-// it kept under temporary names before the process ends: nothing half-replaced, no temporary.
-TEST(Output, CommitAllFinishesBeforeAPendingSignalEndsTheProcess) {
+// A signal between two of commitAll's renames ends the process only once every file is in
+// place and the earlier bytes it kept under temporary names are dropped: nothing
+// half-replaced, no temporary left.
+TEST(Output, CommitAllFinishesBeforeASignalBetweenItsRenamesEndsTheProcess) {
   namespace out = tangent::output;
   tangent::testing::TempDir dir;
   std::ofstream(dir / "earlier.png") << "earlier bytes";
@@ -202,11 +203,10 @@ TEST(Output, CommitAllFinishesBeforeAPendingSignalEndsTheProcess) {
     out::StagedFile a(dir / "earlier.png", {bytesOf(copy)});
     out::StagedFile d(dir / "out.glb", {bytesOf(output)});
     out::StagedFile* files[] = {&a, &d};
-    {
-      const out::SignalDeferral pending;
-      ::raise(SIGINT);
-      out::commitAll(files);
-    }
+    out::commitAllAfterRename = [](std::size_t renamed) {
+      if (renamed == 1) ::raise(SIGINT);
+    };
+    out::commitAll(files);
     std::exit(0);
   };
   EXPECT_EXIT(child(), ::testing::KilledBySignal(SIGINT), "");

@@ -162,10 +162,12 @@ TEST(SharedVertices, TheCoreWeldingOnlyVerticesWithAZeroGivesTheSameBits) {
                                        {shared.normals.data(), 3 * vertices},
                                        {shared.uvs.data(), 2 * vertices},
                                        {shared.indices.data(), n}};
-  for (const tangent::Method method : {tangent::Method::mikktspace, tangent::Method::lengyel}) {
+  // One thread (the package's) and four (the bucketing by ranges of ids).
+  for (const auto& [method, threads] : {std::pair{tangent::Method::mikktspace, 1u}, std::pair{tangent::Method::lengyel, 1u},
+                                        std::pair{tangent::Method::mikktspace, 4u}}) {
     tangent::Options options;
     options.method = method;
-    options.threads = 1;
+    options.threads = threads;
     std::vector<float> reference(4 * n), full(4 * n), only(4 * n);
     tangent::TangentWorkspace workspace;
     const tangent::Report expected = tangent::computeCornerTangents(deindexed, tangent::CornerOutputs{std::span<float>(reference)}, options, workspace);
@@ -182,8 +184,8 @@ TEST(SharedVertices, TheCoreWeldingOnlyVerticesWithAZeroGivesTheSameBits) {
       workspace.data().weldOnly.reset();
       EXPECT_NE(std::memcmp(none.data(), reference.data(), 4 * n * sizeof(float)), 0);
     }
-    EXPECT_EQ(std::memcmp(full.data(), reference.data(), 4 * n * sizeof(float)), 0) << tangent::toString(method);
-    EXPECT_EQ(std::memcmp(only.data(), reference.data(), 4 * n * sizeof(float)), 0) << tangent::toString(method);
+    EXPECT_EQ(std::memcmp(full.data(), reference.data(), 4 * n * sizeof(float)), 0) << tangent::toString(method) << ", " << threads << " threads";
+    EXPECT_EQ(std::memcmp(only.data(), reference.data(), 4 * n * sizeof(float)), 0) << tangent::toString(method) << ", " << threads << " threads";
     EXPECT_EQ(report.mirroredCorners, expected.mirroredCorners);
     EXPECT_EQ(report.degenerateTriangles, expected.degenerateTriangles);
   }

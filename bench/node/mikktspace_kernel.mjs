@@ -36,7 +36,7 @@ for (let r = 0; r < Math.max(...Object.values(runsOf)); ++r) {
 const median = (values) => (values.length ? [...values].sort((x, y) => x - y)[Math.floor(values.length / 2)] : null);
 console.log(JSON.stringify({ triangles: position.length / 9, medianMs: median(times.mikktspace),
   libtangentWasmMs: median(times.libtangentWasm.slice(1)), libtangentWasmFirstMs: times.libtangentWasm[0] ?? null, runs,
-  libtangentWasmRuns: times.libtangentWasm.length - 1 }));
+  libtangentWasmRuns: Math.max(0, times.libtangentWasm.length - 1) }));
 
 // The largest normal-mapped triangle-list primitive of a GLB, de-indexed.
 async function fromAsset(file) {

@@ -34,7 +34,9 @@ const char* signalMessage = "";
 const char* gracefulNotice = "";
 std::atomic<bool> graceful{false}, stopAsked{false};
 static_assert(std::atomic<bool>::is_always_lock_free, "read from a signal handler");
-// Live SignalDeferrals, and the signal that came while there were some (0: none).
+// Live SignalDeferrals (kDying once a signal handler has set out to end the process), and the
+// first signal that came while there were some (0: none).
+constexpr int kDying = -(1 << 30);
 std::atomic<int> deferrals{0}, deferredSignal{0};
 static_assert(std::atomic<int>::is_always_lock_free, "read from a signal handler");
 
@@ -44,12 +46,21 @@ void onSignal(int signal) {
     (void)ignored;
     return;
   }
-  if (deferrals.load() > 0) {
-    deferredSignal.store(signal);
+  // No SignalDeferral may begin once the process is set to end here (their constructors wait),
+  // and while any lives the signal waits for the last.
+  for (int live = deferrals.load();;) {
+    if (live < 0) break;  // another signal's handler is ending the process already
+    if (live == 0) {
+      if (deferrals.compare_exchange_weak(live, kDying)) break;
+      continue;
+    }
+    int none = 0;
+    deferredSignal.compare_exchange_strong(none, signal);  // the first one is kept
     if (deferrals.load() > 0) return;  // the last SignalDeferral to end raises it
     // The last one ended meanwhile, maybe before it could see the signal: whoever takes it
     // back from deferredSignal handles it.
     if (deferredSignal.exchange(0) == 0) return;
+    live = deferrals.load();
   }
   // Newest first: a folder guarded before the files inside it goes after them.
   for (int i = kSlots - 1; i >= 0; --i) {
@@ -119,7 +130,15 @@ void stopGracefullyOnSignal(const char* notice) {
 
 bool stopRequested() { return stopAsked.load(); }
 
-SignalDeferral::SignalDeferral() { deferrals.fetch_add(1); }
+SignalDeferral::SignalDeferral() {
+  for (int live = deferrals.load();;) {
+    // A signal handler is ending the process: nothing more may begin.
+    if (live < 0) {
+      for (;;) ::pause();
+    }
+    if (deferrals.compare_exchange_weak(live, live + 1)) return;
+  }
+}
 
 SignalDeferral::~SignalDeferral() {
   if (deferrals.fetch_sub(1) != 1) return;
@@ -279,13 +298,18 @@ void StagedFile::dropPrevious() {
   previous_.clear();
 }
 
+void (*commitAllAfterRename)(std::size_t renamed) = nullptr;
+
 void commitAll(std::span<StagedFile* const> files) {
   // A signal meanwhile ends the process only once every file is in place and the earlier
   // bytes dropped, or every file is put back.
   const SignalDeferral deferral;
   std::size_t done = 0;
   try {
-    for (; done < files.size(); ++done) files[done]->commitKeepingPrevious();
+    for (; done < files.size(); ++done) {
+      files[done]->commitKeepingPrevious();
+      if (commitAllAfterRename) commitAllAfterRename(done + 1);
+    }
   } catch (const std::exception& e) {
     std::string message = e.what();
     for (std::size_t i = done; i-- > 0;) {

@@ -73,6 +73,9 @@ class StagedFile {
 // before it are put back as they were, the rest are removed, and std::runtime_error names the
 // file that failed and the reason (and any file that could not be put back).
 void commitAll(std::span<StagedFile* const> files);
+// For tests only: called by commitAll after each file is in place, with how many are (null:
+// not called), so that a test can send a signal between two renames.
+extern void (*commitAllAfterRename)(std::size_t renamed);
 
 // For programs (the CLI, the viewer), not libraries: installs handlers for SIGINT, SIGTERM and
 // SIGHUP that remove the guarded temporaries, print `message` (when not empty) on stderr, and
@@ -81,7 +84,8 @@ void removeTemporariesOnSignal(const char* message = "");
 
 // For programs that installed removeTemporariesOnSignal(): while one of these lives (in any
 // thread), SIGINT, SIGTERM and SIGHUP do not end the process at once; the last one to go
-// raises the signal that came meanwhile, and the handler then runs as ever. For short steps
+// raises the first signal that came meanwhile, and the handler then runs as ever. Once a
+// handler has set out to end the process, a new one never finishes constructing. For short steps
 // that must not stop half-way: commitAll, whose renames keep each replaced file's earlier bytes
 // under a temporary name until every file is in place (stopped between two renames, some files
 // would be new, some old, and the old bytes of the new ones only in temporaries that the next
