@@ -142,6 +142,15 @@ TEST(SharedVertices, ManyVerticesGrowTheTableAndAreFoundAfter) {
   expectSharing(corners, 4096);
 }
 
+// The shared vertices of `corners` corners as the core's input.
+tangent::MeshArrays meshOf(const tangent::wasm::SharedVertices& shared, std::size_t corners) {
+  const std::size_t vertices = shared.vertexCount;
+  return {{shared.positions.data(), 3 * vertices},
+          {shared.normals.data(), 3 * vertices},
+          {shared.uvs.data(), 2 * vertices},
+          {shared.indices.data(), corners}};
+}
+
 // The core on the shared vertices, welding only those with a zero (weldOnly, as the package
 // calls it), gives the bits it gives on the de-indexed corners themselves and on the shared
 // vertices welded in full: corners that differ only in the sign of a zero are separate vertices
@@ -157,11 +166,7 @@ TEST(SharedVertices, TheCoreWeldingOnlyVerticesWithAZeroGivesTheSameBits) {
   std::vector<std::uint32_t> sequence(n);
   for (std::size_t c = 0; c < n; ++c) sequence[c] = static_cast<std::uint32_t>(c);
   const tangent::MeshArrays deindexed{corners.positions, corners.normals, corners.uvs, sequence};
-  const std::size_t vertices = shared.vertexCount;
-  const tangent::MeshArrays sharedMesh{{shared.positions.data(), 3 * vertices},
-                                       {shared.normals.data(), 3 * vertices},
-                                       {shared.uvs.data(), 2 * vertices},
-                                       {shared.indices.data(), n}};
+  const tangent::MeshArrays sharedMesh = meshOf(shared, n);
   // One thread (the package's) and four (the bucketing by ranges of ids).
   for (const auto& [method, threads] : {std::pair{tangent::Method::mikktspace, 1u}, std::pair{tangent::Method::lengyel, 1u},
                                         std::pair{tangent::Method::mikktspace, 4u}}) {
@@ -196,10 +201,7 @@ TEST(SharedVertices, AWeldListOutOfRangeOrOrderIsRefused) {
   tangent::wasm::SharedVertices shared;
   tangent::wasm::shareVertices(corners.positions.data(), corners.normals.data(), corners.uvs.data(), 30, shared);
   const std::size_t vertices = shared.vertexCount;
-  const tangent::MeshArrays mesh{{shared.positions.data(), 3 * vertices},
-                                 {shared.normals.data(), 3 * vertices},
-                                 {shared.uvs.data(), 2 * vertices},
-                                 {shared.indices.data(), 30}};
+  const tangent::MeshArrays mesh = meshOf(shared, 30);
   std::vector<float> tangents(4 * 30);
   tangent::TangentWorkspace workspace;
   for (const std::vector<std::uint32_t>& list :

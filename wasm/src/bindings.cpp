@@ -90,12 +90,12 @@ EMSCRIPTEN_KEEPALIVE int tangent_run(const float* positions, const float* normal
   State& s = state();
   s.error.clear();
   // Set below for the shared corners only (their vertices are distinct by bits), and reset
-  // when the call ends whichever way: the list lives in `shared`, which the next call refills.
+  // when the call ends whichever way (so unset when the next one starts): the list lives in
+  // `shared`, which the next call refills.
   struct ResetWeldOnly {
     tangent::detail::WorkspaceData& data;
     ~ResetWeldOnly() { data.weldOnly.reset(); }
   } resetWeldOnly{s.workspace.data()};
-  s.workspace.data().weldOnly.reset();
   try {
     tangent::Options options;
     const auto parsedMethod = tangent::parseMethod(method);
