@@ -543,6 +543,103 @@ TEST(BakeErrors, RefusesToWriteOverTheInput) {
   EXPECT_TRUE(fs::exists(dir / "other.bin"));
 }
 
+// The demo asset (demo.gltf, demo.bin, bumps_normal.png) copied into `folder`, its JSON changed
+// by `edit`, written as `name`; returns its path.
+fs::path demoCopy(const fs::path& folder, const std::string& name,
+                  const std::function<void(nlohmann::ordered_json&)>& edit = [](nlohmann::ordered_json&) {}) {
+  const fs::path demo = fs::path(TANGENT_SOURCE_DIR) / "data" / "demo";
+  fs::create_directories(folder);
+  auto doc = nlohmann::ordered_json::parse(std::ifstream(demo / "demo.gltf"));
+  for (const char* file : {"demo.bin", "bumps_normal.png"})
+    if (!fs::exists(folder / file)) fs::copy_file(demo / file, folder / file);
+  edit(doc);
+  std::ofstream(folder / name) << doc.dump();
+  return folder / name;
+}
+
+// A .gltf output's buffer goes under STEM.N.bin where STEM.bin is the previous output's; never
+// under a name the input itself uses (the input here reads out.1.bin).
+TEST(BakeErrors, ANumberedBufferNameIsNeverAnInputsFile) {
+  TempDir dir;
+  const fs::path input = demoCopy(dir.path(), "in.gltf", [](auto& doc) { doc["buffers"][0]["uri"] = "out.1.bin"; });
+  fs::rename(dir / "demo.bin", dir / "out.1.bin");
+  const auto before = fileBytes(dir / "out.1.bin");
+  tangent::gltf::bakeFile(input, dir / "out.gltf", {});
+  EXPECT_EQ(loadAsset(dir / "out.gltf").json["buffers"][0]["uri"], "out.bin");
+  tangent::gltf::bakeFile(input, dir / "out.gltf", {});  // out.bin is the previous output's
+  EXPECT_EQ(loadAsset(dir / "out.gltf").json["buffers"][0]["uri"], "out.2.bin");
+  EXPECT_EQ(before, fileBytes(dir / "out.1.bin"));
+  EXPECT_FALSE(fs::exists(dir / "out.bin")) << "the previous output's buffer, used by nothing now";
+  EXPECT_NO_THROW(loadAsset(input));
+}
+
+// An image copied beside the output under its relative path would land on another image the
+// input uses (n.png copied into sub/, where the input's sub/n.png is): refused, nothing written.
+TEST(BakeErrors, AnImageCopyNeverReplacesAnotherImageTheInputUses) {
+  TempDir dir;
+  const fs::path input = demoCopy(dir.path(), "model.gltf", [](auto& doc) {
+    doc["images"].push_back({{"uri", "sub/bumps_normal.png"}});
+    doc["textures"].push_back({{"source", 1}});
+    doc["materials"][1]["pbrMetallicRoughness"]["baseColorTexture"] = {{"index", 1}};
+  });
+  fs::create_directories(dir / "sub");
+  std::ofstream(dir / "sub" / "bumps_normal.png") << "a different image";
+  const auto before = fileBytes(dir / "sub" / "bumps_normal.png");
+  try {
+    tangent::gltf::bakeFile(input, dir / "sub" / "baked.gltf", {});
+    FAIL() << "no error";
+  } catch (const tangent::gltf::InputError& e) {
+    EXPECT_NE(std::string(e.what()).find((dir / "sub" / "bumps_normal.png").string()), std::string::npos) << e.what();
+  }
+  EXPECT_EQ(before, fileBytes(dir / "sub" / "bumps_normal.png"));
+  EXPECT_FALSE(fs::exists(dir / "sub" / "baked.gltf"));
+  EXPECT_FALSE(fs::exists(dir / "sub" / "baked.bin"));
+}
+
+// A run of several bakes (the command line's several inputs, a tree): no bake writes over a
+// file another input uses, even one baked later, nor over a different image an earlier bake of
+// the run copied to the same place; the same image copied twice is fine.
+TEST(BakeErrors, ARunNeverWritesOverAnotherInputsFilesOrItsOwnEarlierCopies) {
+  TempDir dir;
+  // a/first.gltf reads its buffer from out/second.bin, which second.gltf's output would write.
+  const fs::path first = demoCopy(dir / "a", "first.gltf", [](auto& doc) { doc["buffers"][0]["uri"] = "../out/second.bin"; });
+  fs::create_directories(dir / "out");
+  fs::rename(dir / "a" / "demo.bin", dir / "out" / "second.bin");
+  const fs::path second = demoCopy(dir / "b", "second.gltf");
+  std::ofstream(dir / "b" / "bumps_normal.png", std::ios::binary | std::ios::app) << "x";  // b's image differs from a's
+  const fs::path third = demoCopy(dir / "c", "third.gltf");  // c's image is a's
+  const auto firstBin = fileBytes(dir / "out" / "second.bin");
+
+  tangent::gltf::ProtectedFiles run;
+  for (const fs::path& input : {first, second, third}) run.addInput(input);
+  tangent::gltf::BakeOptions options;
+  options.assetRoot = dir.path();
+  options.protectedFiles = &run;
+  auto bake = [&](const fs::path& input) {
+    const auto result = tangent::gltf::bakeFile(input, dir / "out" / input.filename(), options);
+    for (const fs::path& file : result.filesWritten) run.add(file);
+    return result;
+  };
+  const auto baked = bake(first);
+  EXPECT_TRUE(std::find(baked.filesWritten.begin(), baked.filesWritten.end(), dir / "out" / "bumps_normal.png") != baked.filesWritten.end());
+  EXPECT_THROW(bake(second), tangent::gltf::InputError);  // its image differs from first's copy
+  EXPECT_EQ(fileBytes(dir / "out" / "bumps_normal.png"), fileBytes(dir / "a" / "bumps_normal.png"));
+  EXPECT_FALSE(fs::exists(dir / "out" / "second.gltf"));
+  EXPECT_NO_THROW(bake(third));  // the same image: nothing to write
+  EXPECT_EQ(firstBin, fileBytes(dir / "out" / "second.bin"));
+  EXPECT_NO_THROW(loadAsset(first, dir.path()));
+
+  // second.gltf with its own image, into another folder: its buffer is not out2/second.bin if
+  // an input uses that name.
+  fs::create_directories(dir / "out2");
+  fs::copy_file(dir / "out" / "second.bin", dir / "out2" / "second.bin");
+  run.add(dir / "out2" / "second.bin");
+  const auto result = tangent::gltf::bakeFile(second, dir / "out2" / "second.gltf", options);
+  EXPECT_EQ(loadAsset(dir / "out2" / "second.gltf").json["buffers"][0]["uri"], "second.1.bin");
+  EXPECT_EQ(firstBin, fileBytes(dir / "out2" / "second.bin"));
+  EXPECT_EQ(result.filesWritten.size(), 3u);  // second.gltf, second.1.bin, bumps_normal.png
+}
+
 TEST(BakeErrors, AttributeCountMismatchNamesTheAccessor) {
   TempDir dir;
   auto all = tangent::testing::makeTestAssets();

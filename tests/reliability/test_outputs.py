@@ -156,6 +156,61 @@ def test_two_inputs_of_one_name_into_one_folder_are_refused_before_anything_is_w
     assert list((tmp_path / "out").iterdir()) == []
 
 
+def test_several_inputs_never_write_over_another_inputs_buffer_even_one_baked_later(tmp_path):
+    # y/a.gltf's output x/a.gltf would put its buffer in x/a.bin, the buffer of x/b.gltf, an
+    # input baked after it. Before, x/a.bin was replaced (exit 1 only for x/b.gltf, its data gone).
+    doc, blob = grid(4)
+    write(tmp_path / "y" / "a.gltf", gltf_bytes(doc, blob))
+    other = json.loads(json.dumps(doc))
+    other["buffers"][0]["uri"] = "a.bin"
+    write(tmp_path / "x" / "b.gltf", json.dumps(other).encode())
+    write(tmp_path / "x" / "a.bin", blob)
+    before = snapshot(tmp_path / "x")
+    done = tangent("bake", tmp_path / "y" / "a.gltf", tmp_path / "x" / "b.gltf", "--out-dir", tmp_path / "x")
+    assert done.returncode == 1, done.stderr  # x/b.gltf's own output would be itself
+    after = snapshot(tmp_path / "x")
+    assert {name: after[name] for name in before} == before, done.stderr
+    written = assert_gltf_pair_loads(tmp_path / "x" / "a.gltf")
+    assert written["buffers"][0]["uri"] == "a.1.bin"
+    assert tangent("info", tmp_path / "x" / "b.gltf").returncode == 0
+
+
+def test_two_inputs_with_different_images_of_one_name_never_share_one_copy(tmp_path):
+    # a/m.gltf and b/k.gltf each use their own n.png; both baked into one folder, k's copy would
+    # replace m's (m then showed k's texture, exit 0). The second is refused and m's copy stays;
+    # an input whose n.png has the same bytes bakes.
+    doc, blob = grid(4)
+    document = gltf_bytes(with_external_image(doc, uri="n.png"), blob)
+    inputs = []
+    for folder, name, image in (("a", "m", PNG), ("b", "k", PNG + b"another image"), ("c", "s", PNG)):
+        inputs.append(write(tmp_path / "in" / folder / f"{name}.gltf", document))
+        write(tmp_path / "in" / folder / "n.png", image)
+    done = tangent("bake", *inputs, "--out-dir", tmp_path / "out")
+    assert done.returncode == 1, done.stderr
+    assert b"out/n.png: bake would copy" in done.stderr and b"in/b/n.png" in done.stderr, done.stderr
+    assert (tmp_path / "out" / "n.png").read_bytes() == PNG
+    assert not (tmp_path / "out" / "k.gltf").exists()
+    assert (tmp_path / "out" / "m.gltf").exists() and (tmp_path / "out" / "s.gltf").exists()
+    assert temporaries(tmp_path / "out") == []
+
+
+def test_a_tree_never_writes_over_a_file_another_input_uses(tmp_path):
+    # in/b.gltf (allowed by --asset-root) reads out/a.bin, where in/a.gltf's output would put
+    # its buffer: that one gets another name and out/a.bin stays as it was.
+    doc, blob = grid(4)
+    write(tmp_path / "in" / "a.gltf", gltf_bytes(doc, blob))
+    other = json.loads(json.dumps(doc))
+    other["buffers"][0]["uri"] = "../out/a.bin"
+    write(tmp_path / "in" / "b.gltf", json.dumps(other).encode())
+    write(tmp_path / "out" / "a.bin", blob)
+    done = tangent("bake", tmp_path / "in", "--recursive", "--out-dir", tmp_path / "out", "--asset-root", tmp_path)
+    assert done.returncode == 0, done.stderr
+    assert (tmp_path / "out" / "a.bin").read_bytes() == blob
+    assert assert_gltf_pair_loads(tmp_path / "out" / "a.gltf")["buffers"][0]["uri"] == "a.1.bin"
+    assert_gltf_pair_loads(tmp_path / "out" / "b.gltf")
+    assert tangent("info", tmp_path / "in" / "b.gltf", "--asset-root", tmp_path).returncode == 0
+
+
 def test_recursive_inputs_that_become_one_glb_are_refused_with_no_manifest(tmp_path):
     doc, blob = grid(4)
     write(tmp_path / "in" / "m.glb", glb_bytes(doc, blob))

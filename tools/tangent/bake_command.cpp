@@ -356,6 +356,14 @@ int bakeCommand(const std::vector<std::string>& args) {
     }
   }
 
+  // Several inputs: no bake writes over a file another input uses (even one baked later), or
+  // over what an earlier bake of this run wrote (two inputs' same-named images).
+  gltf::ProtectedFiles runFiles;
+  if (inputs.size() > 1) {
+    for (const fs::path& input : inputs) runFiles.addInput(input);
+    options.protectedFiles = &runFiles;
+  }
+
   ProgressLine progress(!quiet && inputs.size() > 1 && ::isatty(STDERR_FILENO));
   std::ostream& log = reportPath == "-" || toStdout ? std::cerr : std::cout;
   int failed = 0;
@@ -381,6 +389,7 @@ int bakeCommand(const std::vector<std::string>& args) {
     nlohmann::ordered_json entry = {{"input", input.string()}, {"output", targetName}};
     try {
       const gltf::BakeResult result = gltf::bakeFile(input, target, options);
+      for (const fs::path& file : result.filesWritten) runFiles.add(file);
       if (stream) stream->send(input);
       entry["status"] = "ok";
       if (!reportPath.empty()) entry.update(gltf::toJson(result));  // the per-primitive report: only when asked for

@@ -297,6 +297,13 @@ std::vector<BatchEntry> bakeTree(const fs::path& inputFolder, const fs::path& ou
   for (const auto& [key, record] : interrupted.items()) previousFiles[key] = record;
   journal.start(interrupted);
 
+  // No bake of the tree writes over a file another input uses, or over what an earlier one
+  // wrote (two inputs' same-named images in one output folder).
+  ProtectedFiles runFiles;
+  for (const fs::path& input : inputs) runFiles.addInput(input);
+  BakeOptions bakeOptions = options.bake;
+  bakeOptions.protectedFiles = &runFiles;
+
   Json files = Json::object();
   std::vector<BatchEntry> entries;
   bool stopped = false;
@@ -323,7 +330,8 @@ std::vector<BatchEntry> bakeTree(const fs::path& inputFolder, const fs::path& ou
       entry.outcome = entry.ok ? FileOutcome::unchanged : FileOutcome::failed;
     } else {
       try {
-        const BakeResult result = bakeFile(input, entry.output, options.bake);
+        const BakeResult result = bakeFile(input, entry.output, bakeOptions);
+        for (const fs::path& file : result.filesWritten) runFiles.add(file);
         entry.report = toJson(result);
         entry.ok = true;
         const bool anyBaked = std::any_of(result.primitives.begin(), result.primitives.end(),

@@ -16,6 +16,7 @@
 
 #include "asset.hpp"
 #include "tangent/bulk_buffer.hpp"
+#include "tangent/gltf.hpp"
 #include "tangent/output.hpp"
 
 namespace tangent::gltf::detail {
@@ -86,7 +87,12 @@ class OutputDocument {
   int addAccessor(nlohmann::ordered_json accessor, ViewBytes bytes, std::size_t elementSize, int target);
 
   // Writes `output` (.glb, or .gltf plus a .bin beside it) atomically; returns bytes written.
-  std::uint64_t write(const std::filesystem::path& output);
+  // Nothing is written over the input, the files it uses or `runFiles` (a run's other files;
+  // may be null): InputError before anything is written, or another name for the .bin.
+  std::uint64_t write(const std::filesystem::path& output, const ProtectedFiles* runFiles = nullptr);
+
+  // What write() put in place: the output, its .bin, the image copies it staged.
+  const std::vector<std::filesystem::path>& filesWritten() const { return filesWritten_; }
 
   // Compression extensions write() took out of extensionsUsed/Required (nothing used them).
   const std::vector<std::string>& extensionsRemoved() const { return extensionsRemoved_; }
@@ -104,6 +110,8 @@ class OutputDocument {
   // would go where the output writes one of `outputFiles` (itself, its .bin) is refused.
   void placeImages(const std::filesystem::path& outputDir, const std::vector<std::filesystem::path>& outputFiles,
                    CreatedFiles& created);
+  // Whether `path` is the input, a file it uses (as loaded) or one of runFiles_.
+  bool isProtected(const std::filesystem::path& path) const;
 
   Asset& asset_;
   std::set<int> accessorsBefore_;
@@ -112,6 +120,9 @@ class OutputDocument {
   std::size_t firstNewView_ = 0;
   std::vector<int> loadedViewOf_;  // after dropOrphans: the loaded (model) index of each old view
   std::vector<std::string> extensionsRemoved_;
+  ProtectedFiles inputFiles_;                     // the input and what it uses, as loaded
+  const ProtectedFiles* runFiles_ = nullptr;      // write()'s
+  std::vector<std::filesystem::path> filesWritten_;
 };
 
 // Visits every place the document references an accessor / a bufferView by index.

@@ -1,13 +1,16 @@
 // SPDX-License-Identifier: MIT
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <algorithm>
 #include <atomic>
+#include <cctype>
 #include <cstdio>
 #include <cstring>
 #include <fstream>
 #include <functional>
 #include <map>
+#include <optional>
 
 #include "compression.hpp"
 #include "document.hpp"
@@ -119,11 +122,13 @@ bool holdsBytes(const std::filesystem::path& path, const std::vector<std::uint8_
   return readFileInto(path, present) && present == bytes;
 }
 
-// STEM.bin, or STEM.1.bin, STEM.2.bin... : the first that the previous .gltf does not use.
-std::filesystem::path freeBinName(const std::filesystem::path& output, const std::vector<std::filesystem::path>& previousBins) {
+// STEM.bin, or STEM.1.bin, STEM.2.bin... : the first that the previous .gltf does not use and
+// that is not `taken` (an input's file).
+std::filesystem::path freeBinName(const std::filesystem::path& output, const std::vector<std::filesystem::path>& previousBins,
+                                  const std::function<bool(const std::filesystem::path&)>& taken) {
   std::filesystem::path candidate = output;
   candidate.replace_extension(".bin");
-  for (int n = 1; std::find(previousBins.begin(), previousBins.end(), candidate) != previousBins.end(); ++n) {
+  for (int n = 1; std::find(previousBins.begin(), previousBins.end(), candidate) != previousBins.end() || taken(candidate); ++n) {
     candidate = output;
     candidate.replace_extension("." + std::to_string(n) + ".bin");
   }
@@ -188,6 +193,12 @@ OutputDocument::OutputDocument(Asset& asset) : asset_(asset) {
   accessorsBefore_ = collect(asset_.json, forEachAccessorRef);
   bufferViewsBefore_ = collect(asset_.json, forEachBufferViewRef);
   firstNewView_ = asset_.json.contains("bufferViews") ? asset_.json["bufferViews"].size() : 0;
+  inputFiles_.add(asset_.path);
+  for (const auto& file : referencedFiles(asset_)) inputFiles_.add(file);
+}
+
+bool OutputDocument::isProtected(const std::filesystem::path& path) const {
+  return inputFiles_.contains(path) || (runFiles_ && runFiles_->contains(path));
 }
 
 int OutputDocument::addAccessor(Json accessor, ViewBytes bytes, std::size_t elementSize, int target) {
@@ -430,7 +441,14 @@ void OutputDocument::placeImages(const std::filesystem::path& outputDir, const s
       // A copy an earlier bake left there is not written again: each write is a flush to disk,
       // and in a folder baked over and over they took longer than reading the buffers. One
       // that differs is replaced with the output, once that is written (CreatedFiles::keep).
-      if (!created.staged(target) && !holdsBytes(target, bytes)) created.stage(target, bytes);
+      if (!created.staged(target) && !holdsBytes(target, bytes)) {
+        if (isProtected(target))
+          throw InputError(target.string() + ": bake would copy the input's image " + source.string() +
+                           " there, over a different file that an input of this run uses or that the run has written "
+                           "(nothing was written; bake into another folder)");
+        created.stage(target, bytes);
+        filesWritten_.push_back(target);
+      }
       image["uri"] = text::uriPath(relative.generic_string());
     } else {
       // Outside the input's folder (allowed by --asset-root): referred to where it is.
@@ -439,8 +457,13 @@ void OutputDocument::placeImages(const std::filesystem::path& outputDir, const s
   }
 }
 
-std::uint64_t OutputDocument::write(const std::filesystem::path& output) {
+std::uint64_t OutputDocument::write(const std::filesystem::path& output, const ProtectedFiles* runFiles) {
   namespace fs = std::filesystem;
+  runFiles_ = runFiles;
+  filesWritten_.clear();
+  if (isProtected(output))
+    throw InputError(output.string() + ": is a file that an input of this run uses or that the run has written; bake never " +
+                     "writes over one (choose another output name or folder)");
   dropOrphans();
   extensionsRemoved_ = dropUnusedCompressionExtensions(asset_.json);
   const std::vector<std::span<const std::uint8_t>> bin = packBuffers();
@@ -462,18 +485,21 @@ std::uint64_t OutputDocument::write(const std::filesystem::path& output) {
     const auto pieces = glbPieces(json, bin, frame);
     output::StagedFile written(output, pieces);
     created.keep(written);
+    filesWritten_.push_back(output);
     std::uint64_t total = 0;
     for (const auto& piece : pieces) total += piece.size();
     return total;
   }
   // The .bin's name first: no image copy may go there.
   const std::vector<fs::path> previousBins = bin.empty() ? std::vector<fs::path>{} : binsOfPreviousOutput(output);
-  const fs::path binPath = bin.empty() ? fs::path() : freeBinName(output, previousBins);
+  const fs::path binPath =
+      bin.empty() ? fs::path() : freeBinName(output, previousBins, [&](const fs::path& path) { return isProtected(path); });
   placeImages(outputDir, bin.empty() ? std::vector<fs::path>{output} : std::vector<fs::path>{output, binPath}, created);
   if (bin.empty()) {
     const std::string text = text::dumpJson(doc, 2) + "\n";
     output::StagedFile written(output, {std::span(reinterpret_cast<const std::uint8_t*>(text.data()), text.size())});
     created.keep(written);
+    filesWritten_.push_back(output);
     return text.size();
   }
   // A .gltf and its .bin are one file in two: the new .bin goes under a name the previous
@@ -497,6 +523,8 @@ std::uint64_t OutputDocument::write(const std::filesystem::path& output) {
     }
     throw;
   }
+  filesWritten_.push_back(output);
+  filesWritten_.push_back(binPath);
   // The previous .bin, now used by nothing we wrote.
   for (const fs::path& previous : previousBins) {
     std::error_code ec;
@@ -526,14 +554,16 @@ void writeFileAtomic(const std::filesystem::path& path, const std::vector<std::s
   output::writeFileAtomic(path, pieces);
 }
 
-std::vector<std::filesystem::path> referencedFiles(const Asset& asset) {
-  namespace fs = std::filesystem;
-  std::vector<fs::path> files;
-  const fs::path dir = fs::absolute(asset.path).parent_path();
+namespace {
+
+// The files that the buffers and images of `doc` (a glTF in `dir`) name by relative URI.
+std::vector<std::filesystem::path> filesNamedBy(const Json& doc, const std::filesystem::path& dir) {
+  std::vector<std::filesystem::path> files;
+  if (!doc.is_object()) return files;
   for (const char* kind : {"buffers", "images"}) {
-    if (!asset.json.contains(kind)) continue;
-    for (const auto& item : asset.json[kind]) {
-      if (!item.contains("uri") || !item["uri"].is_string()) continue;
+    if (!doc.contains(kind) || !doc[kind].is_array()) continue;
+    for (const auto& item : doc[kind]) {
+      if (!item.is_object() || !item.contains("uri") || !item["uri"].is_string()) continue;
       const std::string uri = item["uri"].get<std::string>();
       if (isRelativeFileUri(uri)) files.push_back((dir / percentDecode(uri)).lexically_normal());
     }
@@ -541,4 +571,73 @@ std::vector<std::filesystem::path> referencedFiles(const Asset& asset) {
   return files;
 }
 
+// The JSON of a .gltf, or of a .glb's first chunk (read alone: the binary chunk is not), as
+// text; empty where the file cannot be read or is neither.
+std::string gltfJsonText(const std::filesystem::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) return {};
+  char header[20] = {};
+  in.read(header, sizeof header);
+  const auto u32 = [&](int at) {
+    std::uint32_t value = 0;
+    std::memcpy(&value, header + at, 4);
+    return value;
+  };
+  if (in.gcount() == sizeof header && std::memcmp(header, "glTF", 4) == 0) {
+    if (std::memcmp(header + 16, "JSON", 4) != 0 || u32(12) > (std::uint32_t(1) << 30)) return {};
+    std::string text(u32(12), '\0');
+    in.read(text.data(), static_cast<std::streamsize>(text.size()));
+    if (in.gcount() != static_cast<std::streamsize>(text.size())) return {};
+    return text;
+  }
+  std::vector<std::uint8_t> bytes;
+  if (!readFileInto(path, bytes)) return {};
+  return std::string(bytes.begin(), bytes.end());
+}
+
+}  // namespace
+
+std::vector<std::filesystem::path> referencedFiles(const Asset& asset) {
+  return filesNamedBy(asset.json, std::filesystem::absolute(asset.path).parent_path());
+}
+
 }  // namespace tangent::gltf::detail
+
+namespace tangent::gltf {
+
+namespace {
+
+std::optional<std::pair<std::uint64_t, std::uint64_t>> fileIdentity(const std::filesystem::path& path) {
+  struct stat status {};
+  if (::stat(path.c_str(), &status) != 0) return std::nullopt;
+  return std::pair<std::uint64_t, std::uint64_t>(status.st_dev, status.st_ino);
+}
+
+}  // namespace
+
+void ProtectedFiles::add(const std::filesystem::path& path) {
+  if (const auto id = fileIdentity(path)) files_.insert(*id);
+}
+
+void ProtectedFiles::addInput(const std::filesystem::path& input) {
+  add(input);
+  std::string extension = input.extension().string();
+  std::transform(extension.begin(), extension.end(), extension.begin(), [](unsigned char c) { return std::tolower(c); });
+  if (extension != ".gltf" && extension != ".glb") return;  // OBJ, PLY, OFF: one file
+  const std::string text = detail::gltfJsonText(input);
+  if (text.empty()) return;
+  try {
+    detail::checkJsonDepth(text, input.string());
+    const nlohmann::ordered_json doc = nlohmann::ordered_json::parse(text);
+    for (const auto& file : detail::filesNamedBy(doc, std::filesystem::absolute(input).parent_path())) add(file);
+  } catch (const std::exception&) {
+    // Not glTF JSON (an OBJ, PLY or OFF input, or a broken file): the input alone.
+  }
+}
+
+bool ProtectedFiles::contains(const std::filesystem::path& path) const {
+  const auto id = fileIdentity(path);
+  return id && files_.contains(*id);
+}
+
+}  // namespace tangent::gltf

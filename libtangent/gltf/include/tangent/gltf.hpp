@@ -6,9 +6,11 @@
 #include <cstdint>
 #include <filesystem>
 #include <optional>
+#include <set>
 #include <stdexcept>
 #include <string>
 #include <string_view>
+#include <utility>
 #include <vector>
 
 #include <nlohmann/json.hpp>
@@ -44,6 +46,26 @@ enum class NormalsMode { flat, smooth, keep };
 std::optional<NormalsMode> parseNormalsMode(std::string_view name);  // "flat", "smooth", "keep"
 const char* toString(NormalsMode mode);
 
+// Files a run of several bakes must leave as they are: its inputs, the files they use (buffers
+// and images with relative URIs) and what the run has written so far. Known by device and
+// inode, so that another spelling of a path, a symbolic link to it or a hard link of it is the
+// same file. A bake given one (BakeOptions::protectedFiles) refuses, before writing anything,
+// an output or image copy that would change one of them, and gives a .gltf's buffer a name
+// that is not one of them; an image copy with the bytes already there is not written at all.
+class ProtectedFiles {
+ public:
+  // `path` (left out where it does not exist).
+  void add(const std::filesystem::path& path);
+  // `input` and the files its buffers and images name; only `input` where its JSON cannot be
+  // read (its bake then says why).
+  void addInput(const std::filesystem::path& input);
+  // Whether `path` exists and is one of the files added.
+  bool contains(const std::filesystem::path& path) const;
+
+ private:
+  std::set<std::pair<std::uint64_t, std::uint64_t>> files_;  // (device, inode)
+};
+
 struct BakeOptions {
   Options tangents;         // method, weighting (uvOrigin is always kGltfUvOrigin)
   bool all = false;         // every triangle primitive, not only those with a normalTexture
@@ -54,6 +76,8 @@ struct BakeOptions {
   std::filesystem::path assetRoot;
   NormalsMode normals = NormalsMode::flat;  // for primitives without NORMAL
   double creaseAngleDegrees = 60;           // NormalsMode::smooth: larger angles between triangles stay sharp
+  // The other files of a run (not owned; null: only this bake's own input and its files).
+  const ProtectedFiles* protectedFiles = nullptr;
 };
 
 // What bake did with a primitive; toString gives the report's "action" names.
@@ -83,6 +107,9 @@ struct BakeResult {
   // extensionsUsed/extensionsRequired because no baked-over data uses them any more.
   std::vector<std::string> extensionsRemoved;
   std::uint64_t bytesWritten = 0;
+  // The output, its .bin and the image copies bake placed beside it (a run protects them from
+  // its later bakes).
+  std::vector<std::filesystem::path> filesWritten;
 };
 
 // Reads `input`, bakes, writes `output` (.glb or .gltf + .bin beside it). The input is never
