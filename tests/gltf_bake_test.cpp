@@ -640,6 +640,31 @@ TEST(BakeErrors, ARunNeverWritesOverAnotherInputsFilesOrItsOwnEarlierCopies) {
   EXPECT_EQ(result.filesWritten.size(), 3u);  // second.gltf, second.1.bin, bumps_normal.png
 }
 
+// A required extension the tools do not know may change what the vertex data means (a vendor's
+// mesh compression whose plain accessors hold nothing): refused, naming it. Before, the bake
+// wrote tangents made from zeros and kept the requirement. Required extensions that concern
+// only images, materials or lights load.
+TEST(BakeErrors, AnUnknownRequiredExtensionIsRefusedByName) {
+  TempDir dir;
+  const fs::path input = demoCopy(dir.path(), "in.gltf", [](auto& doc) {
+    doc["extensionsUsed"] = {"KHR_materials_emissive_strength", "VENDOR_mesh_compression"};
+    doc["extensionsRequired"] = {"KHR_materials_emissive_strength", "VENDOR_mesh_compression"};
+  });
+  try {
+    tangent::gltf::bakeFile(input, dir / "out.glb", {});
+    FAIL() << "no error";
+  } catch (const tangent::gltf::InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("/extensionsRequired/1: VENDOR_mesh_compression"), std::string::npos) << e.what();
+  }
+  EXPECT_FALSE(fs::exists(dir / "out.glb"));
+  const fs::path known = demoCopy(dir.path(), "known.gltf", [](auto& doc) {
+    doc["extensionsUsed"] = {"KHR_materials_emissive_strength", "KHR_texture_basisu"};
+    doc["extensionsRequired"] = {"KHR_materials_emissive_strength", "KHR_texture_basisu"};
+  });
+  tangent::gltf::bakeFile(known, dir / "known.glb", {});
+  EXPECT_EQ(loadAsset(dir / "known.glb").json["extensionsRequired"].size(), 2u);
+}
+
 TEST(BakeErrors, AttributeCountMismatchNamesTheAccessor) {
   TempDir dir;
   auto all = tangent::testing::makeTestAssets();

@@ -106,6 +106,33 @@ bool writeWholeFile(std::string* err, const std::string& path, const std::vector
 // missing image file (inside the root), a data: URI that is not base64 (checked without
 // decoding it) or an image with no data at all (gltfpack writes one when it cannot find the
 // image file) is a warning in `warnings`.
+// Extensions an asset may require that the tools read correctly: the geometry ones they decode,
+// and those that only concern images, materials, lights or the scene's metadata (what bake,
+// check and info read from a mesh is the same with or without them). A required extension not
+// here may change what the vertex data means (a vendor's mesh compression: its plain accessors
+// hold nothing), so loading stops there, as glTF 2.0 3.12 asks of a loader that lacks one.
+bool readsCorrectlyWith(const std::string& name) {
+  static const char* const kKnown[] = {
+      "KHR_draco_mesh_compression", "EXT_meshopt_compression", "KHR_meshopt_compression", "KHR_mesh_quantization",
+      "KHR_texture_transform", "EXT_mesh_gpu_instancing", "KHR_texture_basisu", "EXT_texture_webp", "EXT_texture_avif",
+      "MSFT_texture_dds", "KHR_lights_punctual", "EXT_lights_image_based", "KHR_xmp_json_ld", "KHR_animation_pointer",
+      "KHR_node_visibility", "KHR_node_selectability", "KHR_node_hoverability", "MSFT_lod"};
+  if (name.rfind("KHR_materials_", 0) == 0) return true;  // shading only
+  return std::find(std::begin(kKnown), std::end(kKnown), name) != std::end(kKnown);
+}
+
+void checkRequiredExtensions(const Json& doc, const std::string& label) {
+  auto it = doc.find("extensionsRequired");
+  if (it == doc.end()) return;  // validateDocument checked that it is an array of strings
+  for (std::size_t i = 0; i < it->size(); ++i) {
+    const std::string name = (*it)[i].get<std::string>();
+    if (!readsCorrectlyWith(name))
+      throw InputError(label + ": /extensionsRequired/" + std::to_string(i) + ": " + text::quoted(name) +
+                       " is required to load this asset, and libtangent does not support it (what it changes in the "
+                       "meshes is unknown, so nothing is read)");
+  }
+}
+
 void checkUris(const Json& doc, const std::filesystem::path& baseDir, const std::filesystem::path& root, const std::string& label,
                std::vector<std::string>& warnings) {
   for (const char* kind : {"buffers", "images"}) {
@@ -300,6 +327,7 @@ Asset loadAssetBytes(std::vector<std::uint8_t> bytes, const std::filesystem::pat
   else std::vector<std::uint8_t>().swap(bytes);
   if (!asset.json.is_object()) throw InputError(label + ": glTF JSON must be an object");
   validateDocument(asset.json, label);
+  checkRequiredExtensions(asset.json, label);
   const std::filesystem::path baseDir = std::filesystem::absolute(path).parent_path();
   if (!isInside(assetRootFor(path, {}), asset.root))
     throw InputError(label + ": the asset root " + asset.root.string() + " does not contain the file's folder");
