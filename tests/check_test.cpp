@@ -332,6 +332,27 @@ TEST(CheckNegative, TangentsMissing) {
   EXPECT_EQ(check.primitives[0].notRun.size(), std::size(tangent::gltf::kCheckNames) - 1);
 }
 
+// A triangle strip of two indices draws nothing: bake leaves it without TANGENT, and check
+// (the same rule) passes it instead of failing "present" on a file bake just wrote.
+TEST(Check, APrimitiveThatDrawsNoTriangleNeedsNoTangent) {
+  TempDir dir;
+  const fs::path demo = fs::path(TANGENT_SOURCE_DIR) / "data" / "demo";
+  auto doc = nlohmann::ordered_json::parse(std::ifstream(demo / "demo.gltf"));
+  doc["meshes"][1]["primitives"][0]["mode"] = 5;  // MirroredQuads: a strip of its first two indices
+  doc["accessors"][7]["count"] = 2;
+  std::ofstream(dir / "in.gltf") << doc.dump();
+  for (const char* file : {"demo.bin", "bumps_normal.png"}) fs::copy_file(demo / file, dir / file);
+  const auto baked = tangent::gltf::bakeFile(dir / "in.gltf", dir / "out.glb", {});
+  ASSERT_EQ(baked.primitives.size(), 3u);
+  EXPECT_EQ(baked.primitives[1].action, tangent::gltf::PrimitiveAction::skipped);
+  const FileCheck check = tangent::gltf::checkFile(dir / "out.glb", {});
+  EXPECT_TRUE(findingNames(check).empty()) << ::testing::PrintToString(findingNames(check));
+  ASSERT_EQ(check.primitives.size(), 2u);  // the sphere and the strip (the ground has no normal texture)
+  EXPECT_EQ(check.primitives[1].triangles, 0u);
+  EXPECT_NE(std::find(check.primitives[1].passed.begin(), check.primitives[1].passed.end(), "present"),
+            check.primitives[1].passed.end());
+}
+
 TEST(CheckNegative, UnreadableFileIsAnErrorNotAFinding) {
   TempDir dir;
   std::ofstream(dir / "broken.gltf") << "{";

@@ -427,7 +427,15 @@ void checkVertexGroup(const Asset& asset, const std::vector<PrimitiveToCheck>& p
   const Json& attributes = (*first.primitive)["attributes"];
   const int tangentAccessor = accessorOf(attributes, "TANGENT");
   if (tangentAccessor < 0) {
-    for (const std::size_t member : members) {
+    for (std::size_t k = 0; k < members.size(); ++k) {
+      const std::size_t member = members[k];
+      if (parts[k].corners.empty()) {
+        // No triangle is drawn (a strip of two indices): nothing is shaded with the normal
+        // texture, and bake leaves such a primitive as it is.
+        (options.runs(CheckId::present) ? results[member].passed : results[member].ignored).push_back("present");
+        skipFrom(CheckId::format, options, results[member]);
+        continue;
+      }
       FindingBuilder present(CheckId::present, "primitive", 1, "none", 0, options);
       present.fail(0, 1, "no TANGENT attribute");
       present.finish(results[member], "TANGENT is missing: the material's normal texture needs it (run tangent bake, or pass "
