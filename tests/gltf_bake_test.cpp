@@ -557,6 +557,26 @@ fs::path demoCopy(const fs::path& folder, const std::string& name,
   return folder / name;
 }
 
+// A split rewrites the indices; the accessor written keeps the name, extras and extensions of
+// the one it replaces, as carried attributes keep theirs.
+TEST(Bake, RewrittenIndicesKeepTheirNameExtrasAndExtensions) {
+  TempDir dir;
+  const fs::path input = demoCopy(dir.path(), "in.gltf", [](auto& doc) {
+    auto& indices = doc["accessors"][doc["meshes"][1]["primitives"][0]["indices"].template get<std::size_t>()];
+    indices["name"] = "quad indices";
+    indices["extras"] = {{"lod", 0}};
+    indices["extensions"] = {{"VENDOR_x", {{"a", 1}}}};
+    doc["extensionsUsed"] = {"VENDOR_x"};
+  });
+  const auto result = tangent::gltf::bakeFile(input, dir / "out.gltf", {});
+  ASSERT_GT(result.primitives[1].verticesOut, result.primitives[1].verticesIn) << "no split: the test needs one";
+  const Asset out = loadAsset(dir / "out.gltf");
+  const auto& indices = out.json["accessors"][out.json["meshes"][1]["primitives"][0]["indices"].get<std::size_t>()];
+  EXPECT_EQ(indices.value("name", ""), "quad indices");
+  EXPECT_EQ(indices["extras"], Json({{"lod", 0}}));
+  EXPECT_EQ(indices["extensions"], Json({{"VENDOR_x", {{"a", 1}}}}));
+}
+
 // A .gltf output's buffer goes under STEM.N.bin where STEM.bin is the previous output's; never
 // under a name the input itself uses (the input here reads out.1.bin).
 TEST(BakeErrors, ANumberedBufferNameIsNeverAnInputsFile) {

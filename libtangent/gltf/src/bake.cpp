@@ -382,7 +382,7 @@ class PrimitiveBaker {
   void rebuildAttributes(const PrimitivePlan& plan, const ComputedTangents& computed, EmittedAccessors& emitted);
   int addGathered(int index, const CarriedElements& carried, const ComputedTangents& computed);
   void rebuildTargets(const PrimitivePlan& plan, const ComputedTangents& computed, EmittedAccessors& emitted);
-  void writeIndices(ComputedTangents& computed, EmittedAccessors& emitted);
+  void writeIndices(const PrimitivePlan& plan, ComputedTangents& computed, EmittedAccessors& emitted);
   void writeTangents(ComputedTangents& computed, EmittedAccessors& emitted);
 
   detail::Asset& asset_;
@@ -879,7 +879,7 @@ SharedBake PrimitiveBaker::emit(const PrimitivePlan& plan, ComputedTangents& com
       emitted.attributes.emplace_back("NORMAL", output_.addAccessor(floatAccessor(computed.split.source.size(), "VEC3"),
                                                                     std::move(computed.generatedNormals), 12, detail::kArrayBuffer));
     rebuildTargets(plan, computed, emitted);
-    writeIndices(computed, emitted);
+    writeIndices(plan, computed, emitted);
     emitted.dropDraco = computed.compression.draco;
   }
   writeTangents(computed, emitted);
@@ -989,7 +989,9 @@ void PrimitiveBaker::rebuildTargets(const PrimitivePlan& plan, const ComputedTan
 
 // Indices of the split vertices as a triangle list: the original component type, widened when
 // the split outgrows it (the largest value of each type is primitive restart and not allowed).
-void PrimitiveBaker::writeIndices(ComputedTangents& computed, EmittedAccessors& emitted) {
+// The split's indices (widened where the vertex count needs it), with the name, extras and
+// extensions of the indices accessor they replace.
+void PrimitiveBaker::writeIndices(const PrimitivePlan& plan, ComputedTangents& computed, EmittedAccessors& emitted) {
   const std::size_t outCount = computed.split.source.size();
   const BulkVector<std::uint32_t>& cornerVertex = computed.split.cornerVertex;
   int indexComponentType = computed.indexComponentType;
@@ -998,7 +1000,13 @@ void PrimitiveBaker::writeIndices(ComputedTangents& computed, EmittedAccessors& 
   if (outCount - 1 >= 65535 && indexComponentType == TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT)
     indexComponentType = TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT;
   const std::size_t indexSize = detail::componentBytes(indexComponentType);
-  const Json indexAccessor = {{"componentType", indexComponentType}, {"count", cornerVertex.size()}, {"type", "SCALAR"}};
+  Json indexAccessor = {{"componentType", indexComponentType}, {"count", cornerVertex.size()}, {"type", "SCALAR"}};
+  const Json& primitive = primitiveJson(plan);
+  if (const int original = detail::accessorOf(primitive, "indices"); original >= 0) {
+    const Json& accessor = asset_.json["accessors"][static_cast<std::size_t>(original)];
+    for (const char* key : {"name", "extras", "extensions"})
+      if (accessor.contains(key)) indexAccessor[key] = accessor[key];
+  }
   if (indexSize == 4) {  // the core's array is the index data (little-endian, as glTF's)
     emitted.indices = output_.addAccessor(indexAccessor, std::move(computed.split.cornerVertex), 4, detail::kElementArrayBuffer);
     return;
