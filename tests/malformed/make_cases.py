@@ -119,7 +119,7 @@ gltf_case("json_deep_extras", setter(["asset", "extras"], "DEEP"), "nests deeper
 cases[-1]["files"]["in.gltf"] = cases[-1]["files"]["in.gltf"].replace(b'"DEEP"', deep.encode())
 add("json_not_json", {"in.gltf": b"{\"asset\": {\"version\": \"2.0\"", "base.bin": BIN}, "not valid glTF JSON")
 add("json_array_root", {"in.gltf": b"[1, 2, 3]"}, "must be an object")
-add("json_empty_file", {"in.gltf": b""}, "not valid glTF JSON")
+add("json_empty_file", {"in.gltf": b""}, "is empty (0 bytes)")
 gltf_case("asset_missing", setter(["asset"], DELETE), "/asset")
 gltf_case("asset_version_1", setter(["asset", "version"], "1.0"), "/asset/version")
 gltf_case("accessors_not_array", setter(["accessors"], {"0": {}}), "/accessors: must be an array")
@@ -327,8 +327,9 @@ for tag, uri, phrase in [
 # --- GLB container: truncated at every header field, lengths that lie
 valid_glb = glb({**base_document(), "buffers": [{"byteLength": len(BIN)}]})
 for cut in (0, 4, 8, 12, 16, 19):
-    add(f"glb_truncated_{cut}", {"in.glb": valid_glb[:cut]}, "GLB is truncated" if cut >= 4 else "not valid glTF JSON",
+    add(f"glb_truncated_{cut}", {"in.glb": valid_glb[:cut]}, "GLB is truncated" if cut >= 4 else "is empty (0 bytes)",
         input_name="in.glb")
+add("glb_not_glb", {"in.glb": json.dumps(base_document()).encode()}, "not a GLB file", input_name="in.glb")
 add("glb_truncated_in_json", {"in.glb": valid_glb[:40]}, "GLB header says", input_name="in.glb")
 add("glb_truncated_in_bin", {"in.glb": valid_glb[:-20]}, "GLB header says", input_name="in.glb")
 

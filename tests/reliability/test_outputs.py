@@ -211,6 +211,18 @@ def test_a_tree_never_writes_over_a_file_another_input_uses(tmp_path):
     assert tangent("info", tmp_path / "in" / "b.gltf", "--asset-root", tmp_path).returncode == 0
 
 
+def test_an_output_folder_that_cannot_be_made_is_named(tmp_path):
+    # A file stands where the output's folder would be made: the message names that folder
+    # and why, not the temporary file that could not be opened after it.
+    doc, blob = grid(4)
+    asset = write(tmp_path / "in.glb", glb_bytes(doc, blob))
+    write(tmp_path / "out" / "taken", b"a file")
+    done = tangent("bake", asset, "-o", tmp_path / "out" / "taken" / "sub" / "x.glb")
+    assert done.returncode != 0
+    assert f"{tmp_path / 'out' / 'taken' / 'sub'}: cannot create the output's folder".encode() in done.stderr, done.stderr
+    assert snapshot(tmp_path / "out") == {"taken": hashlib.sha256(b"a file").hexdigest()}
+
+
 def test_recursive_inputs_that_become_one_glb_are_refused_with_no_manifest(tmp_path):
     doc, blob = grid(4)
     write(tmp_path / "in" / "m.glb", glb_bytes(doc, blob))

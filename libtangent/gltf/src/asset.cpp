@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 #include "asset.hpp"
 
+#include <cctype>
 #include <climits>
 #include <algorithm>
 #include <cstring>
@@ -310,6 +311,11 @@ Asset loadAssetBytes(std::vector<std::uint8_t> bytes, const std::filesystem::pat
   const std::string label = path.string();
   if (bytes.size() >= kMaxInputBytes) throw InputError(label + ": inputs are limited to 4 GiB");
   asset.binary = bytes.size() >= 4 && readU32(bytes.data()) == kGlbMagic;
+  if (bytes.empty()) throw InputError(label + ": is empty (0 bytes), not glTF");
+  std::string extension = path.extension().string();
+  std::transform(extension.begin(), extension.end(), extension.begin(), [](unsigned char c) { return std::tolower(c); });
+  if (!asset.binary && extension == ".glb")
+    throw InputError(label + ": not a GLB file (it does not begin with the bytes 'glTF')");
 
   // A .gltf is parsed from the bytes read and they are freed after: no copy of the text.
   std::string jsonText;

@@ -1106,7 +1106,13 @@ BakeResult bakeChecked(const std::filesystem::path& input, const std::filesystem
     throw InputError(output.string() + ": is the input file; bake never writes to its input");
 
   detail::Asset asset = detail::loadAsset(input, options.assetRoot);
-  if (!output.parent_path().empty()) fs::create_directories(output.parent_path(), ec);
+  if (!output.parent_path().empty() && !fs::is_directory(output.parent_path(), ec)) {
+    std::error_code made;
+    fs::create_directories(output.parent_path(), made);
+    if (!fs::is_directory(output.parent_path(), ec))
+      throw std::runtime_error(output.parent_path().string() + ": cannot create the output's folder: " +
+                               (made ? made.message() : std::string("not a folder")));
+  }
   fs::path binPath = output;
   binPath.replace_extension(".bin");
   for (const fs::path& used : detail::referencedFiles(asset)) {
