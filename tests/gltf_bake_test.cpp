@@ -577,6 +577,26 @@ TEST(Bake, RewrittenIndicesKeepTheirNameExtrasAndExtensions) {
   EXPECT_EQ(indices["extensions"], Json({{"VENDOR_x", {{"a", 1}}}}));
 }
 
+// A TANGENT that bake replaces (here recomputed with --overwrite) passes its name and extras on.
+TEST(Bake, AReplacedTangentKeepsItsNameAndExtras) {
+  TempDir dir;
+  const fs::path input = demoCopy(dir.path(), "in.gltf");
+  tangent::gltf::bakeFile(input, dir / "once.gltf", {});
+  auto doc = nlohmann::ordered_json::parse(std::ifstream(dir / "once.gltf"));
+  const std::size_t tangent = doc["meshes"][0]["primitives"][0]["attributes"]["TANGENT"].get<std::size_t>();
+  doc["accessors"][tangent]["name"] = "sphere tangents";
+  doc["accessors"][tangent]["extras"] = {{"baker", "someone"}};
+  std::ofstream(dir / "named.gltf") << doc.dump();
+  tangent::gltf::BakeOptions options;
+  options.overwrite = true;
+  const auto result = tangent::gltf::bakeFile(dir / "named.gltf", dir / "twice.glb", options);
+  ASSERT_EQ(result.primitives[0].action, tangent::gltf::PrimitiveAction::baked);
+  const Asset out = loadAsset(dir / "twice.glb");
+  const auto& accessor = out.json["accessors"][out.json["meshes"][0]["primitives"][0]["attributes"]["TANGENT"].get<std::size_t>()];
+  EXPECT_EQ(accessor.value("name", ""), "sphere tangents");
+  EXPECT_EQ(accessor["extras"], Json({{"baker", "someone"}}));
+}
+
 // A .gltf output's buffer goes under STEM.N.bin where STEM.bin is the previous output's; never
 // under a name the input itself uses (the input here reads out.1.bin).
 TEST(BakeErrors, ANumberedBufferNameIsNeverAnInputsFile) {

@@ -383,7 +383,7 @@ class PrimitiveBaker {
   int addGathered(int index, const CarriedElements& carried, const ComputedTangents& computed);
   void rebuildTargets(const PrimitivePlan& plan, const ComputedTangents& computed, EmittedAccessors& emitted);
   void writeIndices(const PrimitivePlan& plan, ComputedTangents& computed, EmittedAccessors& emitted);
-  void writeTangents(ComputedTangents& computed, EmittedAccessors& emitted);
+  void writeTangents(const PrimitivePlan& plan, ComputedTangents& computed, EmittedAccessors& emitted);
 
   detail::Asset& asset_;
   detail::OutputDocument& output_;
@@ -882,7 +882,7 @@ SharedBake PrimitiveBaker::emit(const PrimitivePlan& plan, ComputedTangents& com
     writeIndices(plan, computed, emitted);
     emitted.dropDraco = computed.compression.draco;
   }
-  writeTangents(computed, emitted);
+  writeTangents(plan, computed, emitted);
   shared.tangents = plan.result.tangents;
   shared.verticesIn = plan.result.verticesIn;
   shared.verticesOut = plan.result.verticesOut;
@@ -1023,8 +1023,17 @@ void PrimitiveBaker::writeIndices(const PrimitivePlan& plan, ComputedTangents& c
   emitted.indices = output_.addAccessor(indexAccessor, std::move(indexBytes), indexSize, detail::kElementArrayBuffer);
 }
 
-void PrimitiveBaker::writeTangents(ComputedTangents& computed, EmittedAccessors& emitted) {
+// TANGENT (with the name and extras of a TANGENT accessor it replaces), then the targets' deltas.
+void PrimitiveBaker::writeTangents(const PrimitivePlan& plan, ComputedTangents& computed, EmittedAccessors& emitted) {
   EncodedTangents encoded = encodeTangents(std::move(computed.split.tangents), options_.tangentFormat);
+  const Json& primitive = primitiveJson(plan);
+  if (primitive.contains("attributes")) {
+    if (const int replaced = detail::accessorOf(primitive["attributes"], "TANGENT"); replaced >= 0) {
+      const Json& accessor = asset_.json["accessors"][static_cast<std::size_t>(replaced)];
+      for (const char* key : {"name", "extras"})
+        if (accessor.contains(key)) encoded.accessor[key] = accessor[key];
+    }
+  }
   emitted.attributes.emplace_back(
       "TANGENT", output_.addAccessor(encoded.accessor, std::move(encoded.bytes), encoded.stride, detail::kArrayBuffer));
   const std::size_t outCount = computed.split.source.size();
