@@ -334,7 +334,7 @@ TEST(CheckNegative, TangentsMissing) {
 
 // A triangle strip of two indices draws nothing: bake leaves it without TANGENT, and check
 // (the same rule) passes it instead of failing "present" on a file bake just wrote.
-TEST(Check, APrimitiveThatDrawsNoTriangleNeedsNoTangent) {
+TEST(Check, APrimitiveThatDrawsNoTriangleNeedsNoTangentForCheckOrInfo) {
   TempDir dir;
   const fs::path demo = fs::path(TANGENT_SOURCE_DIR) / "data" / "demo";
   auto doc = nlohmann::ordered_json::parse(std::ifstream(demo / "demo.gltf"));
@@ -351,6 +351,10 @@ TEST(Check, APrimitiveThatDrawsNoTriangleNeedsNoTangent) {
   EXPECT_EQ(check.primitives[1].triangles, 0u);
   EXPECT_NE(std::find(check.primitives[1].passed.begin(), check.primitives[1].passed.end(), "present"),
             check.primitives[1].passed.end());
+  // info agrees: the strip needs no tangents, the sphere does.
+  const auto info = tangent::gltf::describeFile(dir / "out.glb", {});
+  EXPECT_EQ(info["meshes"][1]["primitives"][0]["needsTangents"], false) << info["meshes"][1].dump();
+  EXPECT_EQ(info["meshes"][0]["primitives"][0]["needsTangents"], true);
 }
 
 TEST(CheckNegative, UnreadableFileIsAnErrorNotAFinding) {

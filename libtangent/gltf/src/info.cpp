@@ -58,10 +58,20 @@ nlohmann::ordered_json describe(const std::filesystem::path& input, const std::f
       // The extensions the primitive's data was decoded from: [] when stored plainly.
       primitiveOut["compression"] = detail::compressionNames(detail::primitiveCompression(asset, primitive));
       const bool hasTangent = primitive.contains("attributes") && primitive["attributes"].contains("TANGENT");
-      primitiveOut["needsTangents"] = needs.triangles && needs.hasNormalTexture;
+      // A strip or fan of fewer than three vertices, or a list of fewer than three, draws no
+      // triangle: bake leaves it and check passes it (from the counts alone; nothing is read).
+      std::size_t vertices = 0;
+      const int counted = primitive.contains("indices") && primitive["indices"].is_number_integer()
+                              ? primitive["indices"].get<int>()
+                              : (primitive.contains("attributes") ? detail::accessorOf(primitive["attributes"], "POSITION") : -1);
+      if (counted >= 0 && counted < static_cast<int>(asset.model.accessors.size())) vertices = asset.model.accessors[counted].count;
+      const bool drawsTriangles = vertices >= 3;
+      primitiveOut["needsTangents"] = needs.triangles && needs.hasNormalTexture && drawsTriangles;
       primitiveOut["hasTangents"] = hasTangent;
       if (needs.texCoord >= 0 && needs.hasNormalTexture) primitiveOut["normalTexCoord"] = needs.texCoord;
-      primitiveOut["why"] = needs.why;
+      primitiveOut["why"] = needs.triangles && !drawsTriangles
+                                ? "draws no triangle (" + std::to_string(vertices) + " vertices); left as it is"
+                                : needs.why;
       primitives.push_back(primitiveOut);
     }
     meshOut["primitives"] = primitives;
