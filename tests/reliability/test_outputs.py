@@ -223,6 +223,29 @@ def test_an_output_folder_that_cannot_be_made_is_named(tmp_path):
     assert snapshot(tmp_path / "out") == {"taken": hashlib.sha256(b"a file").hexdigest()}
 
 
+@pytest.mark.parametrize("command", ["check", "bake"])
+def test_a_report_is_never_written_over_an_input_a_file_it_uses_or_an_output(tmp_path, command):
+    # `check x.glb -o x.glb` and `bake ... --report cube.bin` replaced the input (or its buffer,
+    # or its texture, or the bake's own output) with the report, exit 0.
+    doc, blob = grid(4)
+    document = json.loads(json.dumps(with_external_image(doc, uri="n.png")))
+    document["buffers"][0]["uri"] = "in.bin"
+    write(tmp_path / "in.gltf", json.dumps(document).encode())
+    write(tmp_path / "in.bin", blob)
+    write(tmp_path / "n.png", PNG)
+    before = snapshot(tmp_path)
+    targets = ["in.gltf", "in.bin", "n.png"] + (["out.glb"] if command == "bake" else [])
+    for target in targets:
+        if command == "check":
+            done = tangent("check", tmp_path / "in.gltf", "--format", "json", "-o", tmp_path / target)
+        else:
+            done = tangent("bake", tmp_path / "in.gltf", "-o", tmp_path / "out.glb", "--report", tmp_path / target)
+        assert done.returncode == 2, (target, done.stderr)
+        assert b"never written over" in done.stderr and target.encode() in done.stderr, done.stderr
+        assert snapshot(tmp_path) == before, target
+    assert temporaries(tmp_path) == []
+
+
 def test_recursive_inputs_that_become_one_glb_are_refused_with_no_manifest(tmp_path):
     doc, blob = grid(4)
     write(tmp_path / "in" / "m.glb", glb_bytes(doc, blob))

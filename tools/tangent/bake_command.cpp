@@ -112,9 +112,27 @@ int usageError(const std::string& message) {
 }
 
 // --report FILE ("-": standard output, the human-readable lines then go to stderr).
-int writeReport(const std::filesystem::path& reportPath, const nlohmann::ordered_json& report) {
+// `keep`: the run's inputs, the files they use and its outputs, never written over.
+int writeReport(const std::filesystem::path& reportPath, const nlohmann::ordered_json& report, const gltf::ProtectedFiles* keep) {
   if (reportPath.empty()) return kExitOk;
-  return writeTextOutput(reportPath.string(), text::dumpJson(report, 2) + "\n", "bake") ? kExitOk : kExitInputFailed;
+  return writeTextOutput(reportPath.string(), text::dumpJson(report, 2) + "\n", "bake", keep) ? kExitOk : kExitInputFailed;
+}
+
+// Whether --report names an input, a file one uses or one of `outputs` (a .gltf's .bin too):
+// checked before anything is baked.
+bool reportWouldReplace(const std::filesystem::path& reportPath, const gltf::ProtectedFiles& inputs,
+                        const std::vector<std::filesystem::path>& outputs) {
+  namespace fs = std::filesystem;
+  if (reportPath.empty() || reportPath == "-") return false;
+  if (inputs.contains(reportPath)) return true;
+  std::error_code ec;
+  const fs::path report = fs::absolute(reportPath, ec).lexically_normal();
+  for (fs::path output : outputs) {
+    if (output.empty()) continue;  // standard output
+    for (int twice = 0; twice < 2; ++twice, output.replace_extension(".bin"))
+      if (fs::absolute(output, ec).lexically_normal() == report) return true;
+  }
+  return false;
 }
 
 // One line on a terminal (stderr) while a batch runs: files done of all, the current file,
@@ -175,6 +193,15 @@ int bakeTrees(const std::vector<std::filesystem::path>& folders, const std::file
     std::cerr << "error: " << shown(gltf::describeCollisions(collisions)) << "\n";
     return kExitInputFailed;
   }
+  gltf::ProtectedFiles reportKeeps;
+  if (!reportPath.empty() && reportPath != "-") {
+    for (const auto& input : allInputs) reportKeeps.addInput(input);
+    if (reportWouldReplace(reportPath, reportKeeps, allOutputs)) {
+      std::cerr << "tangent bake: --report " << shown(reportPath.string())
+                << " is an input, a file an input uses or an output of this run; the report is never written over one\n";
+      return kExitUsage;
+    }
+  }
   nlohmann::ordered_json report = nlohmann::ordered_json::array();
   std::map<gltf::FileOutcome, std::size_t> counts;
   std::ostream& log = reportPath == "-" ? std::cerr : std::cout;
@@ -214,7 +241,7 @@ int bakeTrees(const std::vector<std::filesystem::path>& folders, const std::file
   if (!quiet)
     log << counts[gltf::FileOutcome::baked] << " baked, " << counts[gltf::FileOutcome::kept] << " kept, "
         << counts[gltf::FileOutcome::unchanged] << " unchanged, " << failed << " failed\n";
-  const int written = writeReport(reportPath, report);
+  const int written = writeReport(reportPath, report, &reportKeeps);
   if (output::stopRequested()) {
     std::cerr << "tangent bake: stopped after " << done << " of " << allInputs.size()
               << " files; the manifest records them, so the same command continues where this one stopped\n";
@@ -358,10 +385,17 @@ int bakeCommand(const std::vector<std::string>& args) {
 
   // Several inputs: no bake writes over a file another input uses (even one baked later), or
   // over what an earlier bake of this run wrote (two inputs' same-named images).
+  // --report is never written over an input, a file one uses or an output (before any bake).
   gltf::ProtectedFiles runFiles;
-  if (inputs.size() > 1) {
+  if (inputs.size() > 1 || (!reportPath.empty() && reportPath != "-")) {
     for (const fs::path& input : inputs) runFiles.addInput(input);
-    options.protectedFiles = &runFiles;
+    if (inputs.size() > 1) options.protectedFiles = &runFiles;
+    std::vector<fs::path> outputs;
+    for (const fs::path& input : inputs)
+      outputs.push_back(toStdout ? fs::path() : output.empty() ? gltf::outputPathFor(input, outDir) : output);
+    if (reportWouldReplace(reportPath, runFiles, outputs))
+      return usageError("--report " + shown(reportPath.string()) +
+                        " is an input, a file an input uses or an output of this run; the report is never written over one");
   }
 
   ProgressLine progress(!quiet && inputs.size() > 1 && ::isatty(STDERR_FILENO));
@@ -440,7 +474,7 @@ int bakeCommand(const std::vector<std::string>& args) {
     if (!reportPath.empty()) report.push_back(std::move(entry));
   }
   progress.clear();
-  if (const int written = writeReport(reportPath, report); written != kExitOk) return written;
+  if (const int written = writeReport(reportPath, report, &runFiles); written != kExitOk) return written;
   if (output::stopRequested()) {
     std::cerr << "tangent bake: stopped after " << done << " of " << inputs.size() << " inputs\n";
     return kExitInterrupted;

@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "tangent/gltf.hpp"
 #include "tangent/output.hpp"
 #include "tangent/text.hpp"
 
@@ -24,7 +25,15 @@ constexpr int kExitInterrupted = 130;  // 128 + SIGINT, as shells report a proce
 // Writes `text` to `path`, or to standard output when `path` is "-" (every report and output
 // file a command writes takes "-"). Returns false, after a message on stderr, when it cannot.
 // Files are written atomically (tangent/output.hpp): a failure leaves the previous file.
-inline bool writeTextOutput(const std::string& path, const std::string& text, const char* command) {
+// `keep` (may be null): files never written over (a command's inputs and the files they use,
+// what it wrote): refused with a message naming the file.
+inline bool writeTextOutput(const std::string& path, const std::string& text, const char* command,
+                            const gltf::ProtectedFiles* keep = nullptr) {
+  if (path != "-" && keep && keep->contains(path)) {
+    std::cerr << "tangent " << command << ": " << shown(path)
+              << ": is an input, a file an input uses or an output of this run; a report is never written over one\n";
+    return false;
+  }
   if (path == "-") {
     std::cout << text << std::flush;
     if (!std::cout) std::cerr << "tangent " << command << ": cannot write to standard output\n";
