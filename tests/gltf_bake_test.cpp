@@ -790,6 +790,45 @@ TEST(MeshFiles, ObjFacesWithoutTexcoordsAreRefused) {
   }
 }
 
+// An OBJ's numbers that do not parse (nan, 1e39) were skipped by OpenMesh and every later index
+// named another vertex (exit 0, wrong triangles): refused naming the line. And "vn" lines that
+// no face uses ("f v/vt") left NORMAL as memory OpenMesh never set (invalid, different bytes each
+// run): without a normal on every vertex the primitive has none and bake generates them.
+TEST(MeshFiles, ObjNumbersThatDoNotParseAndUnusedNormals) {
+  TempDir dir;
+  const std::string uvs = "vt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\n";
+  for (const char* bad : {"nan 0 0", "1e39 0 0", "1 0"}) {
+    SCOPED_TRACE(bad);
+    std::ofstream(dir / "bad.obj") << "v 0 0 0\nv " << bad << "\nv 1 1 0\nv 0 1 0\n" << uvs << "f 1/1 3/3 4/4\n";
+    try {
+      tangent::gltf::bakeFile(dir / "bad.obj", dir / "bad.glb", {});
+      ADD_FAILURE() << "baked";
+    } catch (const tangent::gltf::InputError& e) {
+      EXPECT_NE(std::string(e.what()).find("bad.obj: OBJ line 2: vertex"), std::string::npos) << e.what();
+    }
+    EXPECT_FALSE(fs::exists(dir / "bad.glb"));
+  }
+  std::ofstream(dir / "unused.obj") << "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\n" << uvs << "vn 0 0 1\nf 1/1 2/2 3/3 4/4\n";
+  std::vector<std::vector<char>> runs;
+  for (int run = 0; run < 2; ++run) {
+    const auto result = tangent::gltf::bakeFile(dir / "unused.obj", dir / "unused.glb", {});
+    ASSERT_TRUE(result.primitives[0].normalsGenerated.has_value());
+    runs.push_back(fileBytes(dir / "unused.glb"));
+  }
+  EXPECT_EQ(runs[0], runs[1]);
+  const Asset out = loadAsset(dir / "unused.glb");
+  const auto& primitive = out.json["meshes"][0]["primitives"][0];
+  const auto normals = tangent::gltf::detail::readAccessor(out.model, primitive["attributes"]["NORMAL"].get<int>(), "NORMAL");
+  ASSERT_EQ(normals.count, 4u);
+  for (std::size_t v = 0; v < normals.count; ++v) {
+    float n[3];
+    std::memcpy(n, normals.bytes.data() + v * 12, 12);
+    EXPECT_EQ(n[0], 0.0f);
+    EXPECT_EQ(n[1], 0.0f);
+    EXPECT_EQ(std::abs(n[2]), 1.0f);
+  }
+}
+
 // PLY and OFF go through the same OpenMesh readers: the same quad gives the same frame.
 TEST(MeshFiles, PlyAndOffBakeToGlb) {
   TempDir dir;

@@ -10,6 +10,8 @@
 #include <OpenMesh/Core/Mesh/PolyMesh_ArrayKernelT.hh>
 
 #include <algorithm>
+#include <cstdlib>
+#include <cmath>
 #include <bit>
 #include <cctype>
 #include <fstream>
@@ -47,14 +49,17 @@ class CheckedImporter : public OpenMesh::IO::ImporterT<ImportMesh> {
   // uvSet: which vertices' and halfedges' UVs the file gave (by index). OpenMesh reports
   // texture coordinates when the file has any "vt" line, also where no face refers to them,
   // and leaves the UVs it never set uninitialized.
+  // normalSet: likewise the vertices the file gave a normal (an OBJ with "vn" lines whose faces
+  // are "f v/vt" sets none, and OpenMesh still reports normals).
   CheckedImporter(ImportMesh& mesh, std::string label, std::uintmax_t fileBytes, std::vector<char>& vertexUvSet,
-                  std::vector<char>& halfedgeUvSet)
+                  std::vector<char>& halfedgeUvSet, std::vector<char>& normalSet)
       : Base(mesh),
         mesh_(mesh),
         label_(std::move(label)),
         limit_(fileBytes / 3 + 16),
         vertexUvSet_(vertexUvSet),
-        halfedgeUvSet_(halfedgeUvSet) {}
+        halfedgeUvSet_(halfedgeUvSet),
+        normalSet_(normalSet) {}
 
   OpenMesh::VertexHandle add_vertex(const OpenMesh::Vec3f& point) override {
     countVertex();
@@ -85,8 +90,14 @@ class CheckedImporter : public OpenMesh::IO::ImporterT<ImportMesh> {
     Base::add_face_texcoords(face, vertex, uvs);
   }
   void set_point(OpenMesh::VertexHandle v, const OpenMesh::Vec3f& p) override { vertex(v, "position"), Base::set_point(v, p); }
-  void set_normal(OpenMesh::VertexHandle v, const OpenMesh::Vec3f& n) override { vertex(v, "normal"), Base::set_normal(v, n); }
-  void set_normal(OpenMesh::VertexHandle v, const OpenMesh::Vec3d& n) override { vertex(v, "normal"), Base::set_normal(v, n); }
+  void set_normal(OpenMesh::VertexHandle v, const OpenMesh::Vec3f& n) override {
+    vertex(v, "normal"), Base::set_normal(v, n);
+    mark(normalSet_, static_cast<std::size_t>(v.idx()));
+  }
+  void set_normal(OpenMesh::VertexHandle v, const OpenMesh::Vec3d& n) override {
+    vertex(v, "normal"), Base::set_normal(v, n);
+    mark(normalSet_, static_cast<std::size_t>(v.idx()));
+  }
   void set_texcoord(OpenMesh::VertexHandle v, const OpenMesh::Vec2f& t) override {
     vertex(v, "UV"), Base::set_texcoord(v, t);
     mark(vertexUvSet_, static_cast<std::size_t>(v.idx()));
@@ -140,6 +151,7 @@ class CheckedImporter : public OpenMesh::IO::ImporterT<ImportMesh> {
   std::uintmax_t vertices_ = 0, faces_ = 0;
   std::vector<char>& vertexUvSet_;
   std::vector<char>& halfedgeUvSet_;
+  std::vector<char>& normalSet_;
 };
 
 std::vector<std::string> words(const std::string& line) {
@@ -300,13 +312,26 @@ void checkObj(std::istream& in, const std::string& label) {
     ++lineNumber;
     const std::vector<std::string> w = words(line);
     if (w.empty()) continue;
-    if (w[0] == "v") ++counts[0];
-    else if (w[0] == "vt") ++counts[1];
-    else if (w[0] == "vn") ++counts[2];
-    if (w[0] != "f") continue;
     auto fail = [&](const std::string& what) {
       throw InputError(label + ": OBJ line " + std::to_string(lineNumber) + ": " + what);
     };
+    const int kind = w[0] == "v" ? 0 : w[0] == "vt" ? 1 : w[0] == "vn" ? 2 : -1;
+    if (kind >= 0) {
+      // OpenMesh skips a line whose numbers do not parse (nan, 1e39) and numbers the rest
+      // on, so every later reference would name another element: refused here instead.
+      const std::size_t needed = kind == 1 ? 1 : 3;
+      for (std::size_t k = 1; k <= needed; ++k) {
+        const std::string value = k < w.size() ? w[k] : std::string();
+        char* end = nullptr;
+        const float x = value.empty() ? 0.0f : std::strtof(value.c_str(), &end);
+        if (value.empty() || end != value.c_str() + value.size() || !std::isfinite(x))
+          fail(std::string(kinds[kind]) + " '" + line.substr(0, 60) + "' needs " + std::to_string(needed) +
+               " finite numbers" + (value.empty() ? "" : "; '" + value.substr(0, 20) + "' is not one"));
+      }
+      ++counts[kind];
+      continue;
+    }
+    if (w[0] != "f") continue;
     if (w.size() < 4) fail("a face needs at least three vertices");
     for (std::size_t k = 1; k < w.size(); ++k) {
       std::size_t start = 0;
@@ -365,17 +390,23 @@ std::vector<std::uint8_t> meshFileToGlb(const std::filesystem::path& path) {
     if (extension == ".off") checkOffHeader(header, fileBytes, path.string());
     if (extension == ".obj") checkObj(header, path.string());
   }
-  std::vector<char> vertexUvSet, halfedgeUvSet;
+  std::vector<char> vertexUvSet, halfedgeUvSet, normalSet;
   {
     MutedOpenMeshErrors muted;
-    CheckedImporter importer(mesh, path.string(), fileBytes, vertexUvSet, halfedgeUvSet);
+    CheckedImporter importer(mesh, path.string(), fileBytes, vertexUvSet, halfedgeUvSet, normalSet);
     if (!OpenMesh::IO::IOManager().read(path.string(), importer, options))
       throw InputError(path.string() + ": OpenMesh cannot read this file (malformed, or not " +
                        path.extension().string() + " at all)");
   }
   if (mesh.n_faces() == 0) throw InputError(path.string() + ": has no faces");
-  const bool haveNormals = options.check(OpenMesh::IO::Options::VertexNormal);
   auto isSet = [](const std::vector<char>& set, int i) { return static_cast<std::size_t>(i) < set.size() && set[i]; };
+  // NORMAL where the file gave every vertex a face uses one; else none (bake generates them as
+  // for a glTF without NORMAL), never the values OpenMesh left unset.
+  bool haveNormals = options.check(OpenMesh::IO::Options::VertexNormal);
+  for (auto face : mesh.faces()) {
+    for (auto vertex : mesh.fv_range(face)) haveNormals = haveNormals && isSet(normalSet, vertex.idx());
+    if (!haveNormals) break;
+  }
   const bool cornerUvs = options.check(OpenMesh::IO::Options::FaceTexCoord) && !halfedgeUvSet.empty();
   const bool vertexUvs = options.check(OpenMesh::IO::Options::VertexTexCoord) && !vertexUvSet.empty();
   if (!cornerUvs && !vertexUvs) throw InputError(path.string() + ": has no texture coordinates; tangents need UVs");
