@@ -10,6 +10,7 @@
 #include <fstream>
 #include <functional>
 #include <iterator>
+#include <limits>
 #include <set>
 #include <span>
 #include <string>
@@ -852,6 +853,29 @@ TEST(MeshFiles, PlyAndOffBakeToGlb) {
     EXPECT_NEAR(tangents[0], 1.0f, 1e-6);
     EXPECT_EQ(tangents[3], 1.0f);
   }
+}
+
+// A binary PLY with a NaN coordinate gave a GLB with "min": [null, ...] and NaN data (validator
+// errors, exit 0): refused naming the vertex.
+TEST(MeshFiles, NonFiniteValuesInAPlyAreRefusedNamingTheVertex) {
+  TempDir dir;
+  std::string ply = "ply\nformat binary_little_endian 1.0\nelement vertex 4\nproperty float x\nproperty float y\n"
+                    "property float z\nproperty float u\nproperty float v\nelement face 1\n"
+                    "property list uchar int vertex_indices\nend_header\n";
+  const float nan = std::numeric_limits<float>::quiet_NaN();
+  const float vertices[4][5] = {{0, 0, 0, 0, 0}, {1, 0, 0, 1, 0}, {1, nan, 0, 1, 1}, {0, 1, 0, 0, 1}};
+  ply.append(reinterpret_cast<const char*>(vertices), sizeof vertices);
+  const std::int32_t face[4] = {0, 1, 2, 3};
+  ply.push_back(4);
+  ply.append(reinterpret_cast<const char*>(face), sizeof face);
+  std::ofstream(dir / "nan.ply", std::ios::binary) << ply;
+  try {
+    tangent::gltf::bakeFile(dir / "nan.ply", dir / "nan.glb", {});
+    FAIL() << "baked";
+  } catch (const tangent::gltf::InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("nan.ply: vertex 3 (1-based)"), std::string::npos) << e.what();
+  }
+  EXPECT_FALSE(fs::exists(dir / "nan.glb"));
 }
 
 // NormalTangentMirrorTest carries Blender's MikkTSpace tangents in glTF's convention.

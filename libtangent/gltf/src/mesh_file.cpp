@@ -432,11 +432,16 @@ std::vector<std::uint8_t> meshFileToGlb(const std::filesystem::path& path) {
       auto [it, inserted] = vertexOf.try_emplace(key, static_cast<std::uint32_t>(positions.size() / 3));
       if (inserted) {
         const auto p = mesh.point(vertex);
-        positions.insert(positions.end(), {p[0], p[1], p[2]});
-        if (haveNormals) {
-          const auto n = mesh.normal(vertex);
-          normals.insert(normals.end(), {n[0], n[1], n[2]});
+        const auto n = haveNormals ? mesh.normal(vertex) : OpenMesh::Vec3f(0.0f, 0.0f, 1.0f);
+        // A NaN or infinity would make the GLB invalid (its min/max null, the data refused by
+        // the validator): named here instead.
+        for (const float x : {p[0], p[1], p[2], n[0], n[1], n[2], u, v}) {
+          if (!std::isfinite(x))
+            throw InputError(path.string() + ": vertex " + std::to_string(vertex.idx() + 1) +
+                             " (1-based) has a coordinate, normal or UV that is not a finite number");
         }
+        positions.insert(positions.end(), {p[0], p[1], p[2]});
+        if (haveNormals) normals.insert(normals.end(), {n[0], n[1], n[2]});
         uvs.insert(uvs.end(), {u, v});
       }
       polygon.push_back(it->second);
