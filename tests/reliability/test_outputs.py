@@ -805,3 +805,21 @@ def test_unchanged_size_and_time_skip_hashing_and_verify_hashes(tmp_path):
     assert done.stdout.decode().splitlines()[0].endswith(": unchanged"), done.stdout
     new_stamps = json.loads((out / "tangent-manifest.json").read_text())["files"]["a.glb"]["stamps"]
     assert new_stamps[0]["mtimeNs"] == times[1] + 10**9
+
+
+@pytest.mark.parametrize("change", [["--tangent-format", "short"], ["--normals", "smooth"],
+                                    ["--normals", "smooth", "--crease-angle", "10"], ["--method", "lengyel"]])
+def test_a_tree_is_baked_again_when_an_option_that_changes_the_output_changes(tmp_path, change):
+    # --tangent-format, --normals and --crease-angle were not in the manifest's options: a re-run
+    # with any of them said "unchanged" and kept outputs made with the old ones.
+    tree, out = tmp_path / "tree", tmp_path / "out"
+    doc, blob = grid(6)
+    del doc["meshes"][0]["primitives"][0]["attributes"]["NORMAL"]  # --normals decides them
+    write(tree / "a.glb", glb_bytes(doc, blob))
+    base = ["--normals", "smooth"] if change[-1] == "10" else []
+    assert tangent("bake", tree, "--recursive", "--out-dir", out, *base).returncode == 0
+    again = tangent("bake", tree, "--recursive", "--out-dir", out, *base)
+    assert again.stdout.decode().splitlines()[0].endswith(": unchanged"), again.stdout
+    done = tangent("bake", tree, "--recursive", "--out-dir", out, *change)
+    assert done.returncode == 0, done.stderr
+    assert done.stdout.decode().splitlines()[0].endswith(": baked"), done.stdout

@@ -36,11 +36,15 @@ bool isInput(const fs::path& path) {
 
 // What changes the output besides the input: the options (threads never do).
 Json optionsJson(const BakeOptions& options) {
-  return Json{{"method", std::string(toString(options.tangents.method))},
-              {"weighting", std::string(toString(options.tangents.weighting))},
-              {"all", options.all},
-              {"overwrite", options.overwrite},
-              {"assetRoot", options.assetRoot.string()}};
+  Json json{{"method", std::string(toString(options.tangents.method))},
+            {"weighting", std::string(toString(options.tangents.weighting))},
+            {"all", options.all},
+            {"overwrite", options.overwrite},
+            {"assetRoot", options.assetRoot.string()},
+            {"tangentFormat", std::string(toString(options.tangentFormat))},
+            {"normals", std::string(toString(options.normals))}};
+  if (options.normals == NormalsMode::smooth) json["creaseAngleDegrees"] = options.creaseAngleDegrees;
+  return json;
 }
 
 Json readManifest(const fs::path& path) {
