@@ -823,3 +823,24 @@ def test_a_tree_is_baked_again_when_an_option_that_changes_the_output_changes(tm
     done = tangent("bake", tree, "--recursive", "--out-dir", out, *change)
     assert done.returncode == 0, done.stderr
     assert done.stdout.decode().splitlines()[0].endswith(": baked"), done.stdout
+
+
+def test_an_out_dir_inside_the_tree_keeps_the_assets_already_there(tmp_path):
+    # `bake in --recursive --out-dir in/a` left in/a out of the inputs and then wrote in/x.glb's
+    # output over the user's in/a/x.glb, exit 0. Now that asset is kept like an input (the
+    # input whose output would replace it fails, naming it); the run's own outputs are rewritten
+    # on later runs as usual.
+    doc, blob = grid(5)
+    write(tmp_path / "in" / "x.glb", glb_bytes(doc, blob))
+    write(tmp_path / "in" / "y.glb", glb_bytes(doc, blob))
+    users = write(tmp_path / "in" / "a" / "x.glb", glb_bytes(grid(4)[0], grid(4)[1])).read_bytes()
+    done = tangent("bake", tmp_path / "in", "--recursive", "--out-dir", tmp_path / "in" / "a")
+    assert done.returncode == 1, done.stderr
+    assert b"a/x.glb: is a file that an input of this run uses" in done.stderr, done.stderr
+    assert (tmp_path / "in" / "a" / "x.glb").read_bytes() == users
+    assert_valid_glb(tmp_path / "in" / "a" / "y.glb")
+    # y's output is the run's own: baked again when y changes.
+    write(tmp_path / "in" / "y.glb", glb_bytes(grid(6)[0], grid(6)[1]))
+    done = tangent("bake", tmp_path / "in", "--recursive", "--out-dir", tmp_path / "in" / "a")
+    assert b"y.glb -> " in done.stdout and b": baked" in done.stdout, done.stdout
+    assert (tmp_path / "in" / "a" / "x.glb").read_bytes() == users

@@ -6,6 +6,7 @@
 #include <fstream>
 #include <iterator>
 #include <map>
+#include <set>
 
 #include "asset.hpp"
 #include "document.hpp"
@@ -305,6 +306,22 @@ std::vector<BatchEntry> bakeTree(const fs::path& inputFolder, const fs::path& ou
   // wrote (two inputs' same-named images in one output folder).
   ProtectedFiles runFiles;
   for (const fs::path& input : inputs) runFiles.addInput(input);
+  // An --out-dir inside the input folder is left out of the inputs; the assets already in it
+  // that no earlier run of this manifest wrote are the user's, and kept like inputs.
+  if (const fs::path in = fs::weakly_canonical(inputFolder, ec), out = fs::weakly_canonical(outputFolder, ec);
+      !in.empty() && out != in && detail::isInside(out, in)) {
+    std::set<fs::path> ours;
+    for (const auto& [key, record] : previousFiles.items()) {
+      if (record.is_object() && record.contains("output") && record["output"].is_string())
+        ours.insert((outputFolder / fs::u8path(record["output"].get<std::string>())).lexically_normal());
+    }
+    for (auto it = fs::recursive_directory_iterator(outputFolder, fs::directory_options::skip_permission_denied, ec);
+         it != fs::recursive_directory_iterator(); it.increment(ec)) {
+      if (ec) break;
+      if (it->is_regular_file(ec) && isInput(it->path()) && !ours.contains(it->path().lexically_normal()))
+        runFiles.addInput(it->path());
+    }
+  }
   BakeOptions bakeOptions = options.bake;
   bakeOptions.protectedFiles = &runFiles;
 
