@@ -844,3 +844,26 @@ def test_an_out_dir_inside_the_tree_keeps_the_assets_already_there(tmp_path):
     done = tangent("bake", tmp_path / "in", "--recursive", "--out-dir", tmp_path / "in" / "a")
     assert b"y.glb -> " in done.stdout and b": baked" in done.stdout, done.stdout
     assert (tmp_path / "in" / "a" / "x.glb").read_bytes() == users
+
+
+@pytest.mark.parametrize("bad", [5, None, [1]])
+def test_a_manifest_record_of_the_wrong_shape_is_forgotten_not_fatal(tmp_path, bad):
+    # A record whose digest was 5 stopped the run after the files before it (later inputs neither
+    # baked nor listed); null failed that input on every re-run with a bare json type_error.
+    tree, out = tmp_path / "tree", tmp_path / "out"
+    doc, blob = grid(4)
+    for name in ("a", "b", "c"):
+        write(tree / f"{name}.glb", glb_bytes(doc, blob))
+    assert tangent("bake", tree, "--recursive", "--out-dir", out).returncode == 0
+    manifest = json.loads((out / "tangent-manifest.json").read_text())
+    if isinstance(bad, list):
+        manifest["files"]["b.glb"] = bad
+    else:
+        manifest["files"]["b.glb"]["digest"] = bad
+    (out / "tangent-manifest.json").write_text(json.dumps(manifest))
+    done = tangent("bake", tree, "--recursive", "--out-dir", out)
+    assert done.returncode == 0, done.stderr
+    lines = done.stdout.decode().splitlines()
+    assert [line.rsplit(": ", 1)[1] for line in lines[:3]] == ["unchanged", "baked", "unchanged"], lines
+    again = tangent("bake", tree, "--recursive", "--out-dir", out)
+    assert [line.rsplit(": ", 1)[1] for line in again.stdout.decode().splitlines()[:3]] == ["unchanged"] * 3

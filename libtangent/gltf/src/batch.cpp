@@ -300,6 +300,15 @@ std::vector<BatchEntry> bakeTree(const fs::path& inputFolder, const fs::path& ou
   Journal journal(outputFolder / kJournalName, optionsNow);
   const Json interrupted = journal.read();
   for (const auto& [key, record] : interrupted.items()) previousFiles[key] = record;
+  // A record of the wrong shape (a hand edit, another tool) is forgotten: that file is baked
+  // again, as when the whole manifest is unreadable.
+  for (auto it = previousFiles.begin(); it != previousFiles.end();) {
+    const Json& r = *it;
+    const bool wellFormed = r.is_object() && r.contains("digest") && r["digest"].is_string() && r.contains("ok") &&
+                            r["ok"].is_boolean() && (!r.contains("error") || r["error"].is_string()) &&
+                            (!r.contains("output") || r["output"].is_string()) && (!r.contains("stamps") || r["stamps"].is_array());
+    it = wellFormed ? std::next(it) : previousFiles.erase(it);
+  }
   journal.start(interrupted);
 
   // No bake of the tree writes over a file another input uses, or over what an earlier one
