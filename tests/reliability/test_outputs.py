@@ -272,6 +272,18 @@ def test_two_folders_of_one_name_are_refused(tmp_path):
     assert not list((tmp_path / "out").rglob("*.glb")) if (tmp_path / "out").exists() else True
 
 
+def test_two_folders_of_one_name_are_refused_even_when_their_files_differ(tmp_path):
+    # p/set/a.glb and q/set/b.glb do not collide, but both trees went to out/set with one
+    # manifest, each run replacing the other's records (no re-run ever resumed).
+    doc, blob = grid(4)
+    write(tmp_path / "p" / "set" / "a.glb", glb_bytes(doc, blob))
+    write(tmp_path / "q" / "set" / "b.glb", glb_bytes(doc, blob))
+    done = tangent("bake", tmp_path / "p" / "set", tmp_path / "q" / "set", "--recursive", "--out-dir", tmp_path / "out")
+    assert done.returncode == 1, done.stderr
+    assert b"would both be written" in done.stderr and b"one manifest" in done.stderr, done.stderr
+    assert not (tmp_path / "out" / "set").exists()
+
+
 # --- standard output and TMPDIR -------------------------------------------------------------
 
 def test_output_to_a_full_device_fails(tmp_path):

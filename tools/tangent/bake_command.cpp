@@ -177,6 +177,18 @@ int bakeTrees(const std::vector<std::filesystem::path>& folders, const std::file
   // Every output of the run known before anything is written: two folders of one name, or two
   // files of one folder that become the same .glb, are refused as a whole.
   std::vector<std::filesystem::path> allInputs, allOutputs;
+  // Two folders of one name would share OUT/NAME and its manifest (each run replacing the
+  // other's records): refused whatever files they hold.
+  std::map<std::string, std::filesystem::path> byName;
+  for (const auto& folder : folders) {
+    if (folders.size() < 2) break;
+    const auto [at, inserted] = byName.emplace(folder.filename().string(), folder);
+    if (!inserted) {
+      std::cerr << "error: " << shown(at->second.string()) << " and " << shown(folder.string()) << " would both be written to "
+                << shown((outDir / folder.filename()).string()) << ", with one manifest (nothing was written; rename one)\n";
+      return kExitInputFailed;
+    }
+  }
   for (const auto& folder : folders) {
     const std::filesystem::path target = folders.size() == 1 ? outDir : outDir / folder.filename();
     try {
