@@ -879,3 +879,15 @@ def test_a_manifest_record_of_the_wrong_shape_is_forgotten_not_fatal(tmp_path, b
     assert [line.rsplit(": ", 1)[1] for line in lines[:3]] == ["unchanged", "baked", "unchanged"], lines
     again = tangent("bake", tree, "--recursive", "--out-dir", out)
     assert [line.rsplit(": ", 1)[1] for line in again.stdout.decode().splitlines()[:3]] == ["unchanged"] * 3
+
+
+def test_check_config_that_is_not_a_regular_file_is_refused(tmp_path):
+    # --config /dev/zero read without end (std::bad_alloc); a FIFO waited forever.
+    doc, blob = grid(4)
+    asset = write(tmp_path / "a.glb", glb_bytes(doc, blob))
+    fifo = tmp_path / "config.fifo"
+    os.mkfifo(fifo)
+    for config in ("/dev/zero", fifo):
+        done = tangent("check", asset, "--config", config, timeout=30)
+        assert done.returncode == 2, done.stderr
+        assert b"the check configuration is not a regular file" in done.stderr, done.stderr

@@ -728,6 +728,10 @@ void applyCheckConfig(const std::filesystem::path& file, CheckOptions& options) 
   // The limits of a glTF's JSON (size, then nesting before the parser recurses): a config
   // nested a million deep overflowed the stack.
   std::error_code ec;
+  // A regular file only: /dev/zero was read without end, a FIFO waited forever.
+  const auto status = std::filesystem::status(file, ec);
+  if (std::filesystem::exists(status) && !std::filesystem::is_regular_file(status))
+    throw std::runtime_error(file.string() + ": the check configuration is not a regular file");
   const std::uintmax_t size = std::filesystem::file_size(file, ec);
   if (!ec && size > kMaxJsonBytes)
     throw std::runtime_error(file.string() + ": the check configuration is " + std::to_string(size) + " bytes; the limit is " +
