@@ -12,6 +12,8 @@
 #include <algorithm>
 #include <cstdlib>
 #include <cmath>
+#include <new>
+#include <stdexcept>
 #include <bit>
 #include <cctype>
 #include <fstream>
@@ -394,7 +396,16 @@ std::vector<std::uint8_t> meshFileToGlb(const std::filesystem::path& path) {
   {
     MutedOpenMeshErrors muted;
     CheckedImporter importer(mesh, path.string(), fileBytes, vertexUvSet, halfedgeUvSet, normalSet);
-    if (!OpenMesh::IO::IOManager().read(path.string(), importer, options))
+    bool read = false;
+    try {
+      read = OpenMesh::IO::IOManager().read(path.string(), importer, options);
+    } catch (const std::bad_alloc&) {
+      // A face's corner count is read and allocated before any corner reaches the importer.
+      throw InputError(path.string() + ": a count in the file (a face's corners) is larger than memory allows; the file is malformed");
+    } catch (const std::length_error&) {
+      throw InputError(path.string() + ": a count in the file (a face's corners) is out of range; the file is malformed");
+    }
+    if (!read)
       throw InputError(path.string() + ": OpenMesh cannot read this file (malformed, or not " +
                        path.extension().string() + " at all)");
   }
