@@ -891,3 +891,25 @@ def test_check_config_that_is_not_a_regular_file_is_refused(tmp_path):
         done = tangent("check", asset, "--config", config, timeout=30)
         assert done.returncode == 2, done.stderr
         assert b"the check configuration is not a regular file" in done.stderr, done.stderr
+
+
+@pytest.mark.parametrize("deleted", ["a.bin", "tex/n.png"])
+def test_a_tree_bakes_again_when_a_file_its_last_bake_wrote_is_gone(tmp_path, deleted):
+    # Only the output .gltf itself was looked for: with its .bin or an image copy deleted the
+    # re-run said "unchanged" (even with --verify) and left an output that no longer loads.
+    tree, out = tmp_path / "tree", tmp_path / "out"
+    doc, blob = grid(4)
+    document = json.loads(json.dumps(with_external_image(doc)))
+    document["buffers"][0]["uri"] = "a_in.bin"
+    write(tree / "a.gltf", json.dumps(document).encode())
+    write(tree / "a_in.bin", blob)
+    write(tree / "tex" / "n.png", PNG)
+    assert tangent("bake", tree, "--recursive", "--out-dir", out).returncode == 0
+    (out / deleted).unlink()
+    done = tangent("bake", tree, "--recursive", "--out-dir", out)
+    assert done.returncode == 0, done.stderr
+    assert done.stdout.decode().splitlines()[0].endswith(": baked"), done.stdout
+    assert_gltf_pair_loads(out / "a.gltf")
+    assert (out / "tex" / "n.png").read_bytes() == PNG
+    again = tangent("bake", tree, "--recursive", "--out-dir", out)
+    assert again.stdout.decode().splitlines()[0].endswith(": unchanged"), again.stdout

@@ -352,8 +352,20 @@ std::vector<BatchEntry> bakeTree(const fs::path& inputFolder, const fs::path& ou
     const bool known = before != previousFiles.end() && before->is_object();
     InputDigest digest = digestForManifest(input, options.bake.assetRoot, known ? *before : Json(), options.verify);
     entry.digest = digest.digest;
+    // Every file the last bake wrote is still there (its .bin and image copies too: a .gltf
+    // whose buffer was deleted no longer loads); records before "written" know the output only.
+    auto allWrittenThere = [&] {
+      if (!fs::exists(entry.output, ec)) return false;
+      if (!before->contains("written") || !(*before)["written"].is_array()) return true;
+      for (const Json& file : (*before)["written"]) {
+        if (!file.is_string() || !fs::exists(outputFolder / fs::u8path(file.get<std::string>()), ec)) return false;
+      }
+      return true;
+    };
+    Json written = Json::array();
     if (!options.force && known && before->value("digest", "") == entry.digest &&
-        (!before->value("ok", false) || fs::exists(entry.output, ec))) {
+        (!before->value("ok", false) || allWrittenThere())) {
+      if (before->contains("written")) written = (*before)["written"];
       entry.skipped = true;
       entry.ok = before->value("ok", false);
       entry.error = before->value("error", "");
@@ -361,7 +373,12 @@ std::vector<BatchEntry> bakeTree(const fs::path& inputFolder, const fs::path& ou
     } else {
       try {
         const BakeResult result = bakeFile(input, entry.output, bakeOptions);
-        for (const fs::path& file : result.filesWritten) runFiles.add(file);
+        for (const fs::path& file : result.filesWritten) {
+          runFiles.add(file);
+          // Names that are not UTF-8 cannot be written back from JSON: those are not recorded.
+          const std::string relative = file.lexically_relative(outputFolder).generic_string();
+          if (text::utf8Safe(relative) == relative) written.push_back(relative);
+        }
         entry.report = toJson(result);
         entry.ok = true;
         const bool anyBaked = std::any_of(result.primitives.begin(), result.primitives.end(),
@@ -375,6 +392,7 @@ std::vector<BatchEntry> bakeTree(const fs::path& inputFolder, const fs::path& ou
     Json record = {{"digest", entry.digest},
                    {"output", text::utf8Safe(entry.output.lexically_relative(outputFolder).generic_string())},
                    {"ok", entry.ok}, {"stamps", std::move(digest.stamps)}};
+    if (entry.ok && !written.empty()) record["written"] = std::move(written);
     if (!entry.ok) record["error"] = entry.error;
     if (!entry.skipped || !known || (*before) != record) journal.append(key, record);
     files[key] = std::move(record);
