@@ -913,3 +913,14 @@ def test_a_tree_bakes_again_when_a_file_its_last_bake_wrote_is_gone(tmp_path, de
     assert (out / "tex" / "n.png").read_bytes() == PNG
     again = tangent("bake", tree, "--recursive", "--out-dir", out)
     assert again.stdout.decode().splitlines()[0].endswith(": unchanged"), again.stdout
+
+
+def test_an_obj_material_library_is_never_opened(tmp_path):
+    # OpenMesh opened whatever `mtllib` named (outside the asset's folder too) and a FIFO there
+    # hung the bake; OBJ materials are not used. Opening this FIFO for reading would block.
+    os.mkfifo(tmp_path / "m.mtl")
+    write(tmp_path / "t.obj", b"mtllib m.mtl\nmtllib ../outside.mtl\nv 0 0 0\nv 1 0 0\nv 1 1 0\n"
+                              b"vt 0 0\nvt 1 0\nvt 1 1\nusemtl x\nf 1/1 2/2 3/3\n")
+    done = tangent("bake", tmp_path / "t.obj", "-o", tmp_path / "t.glb", timeout=60)
+    assert done.returncode == 0, done.stderr
+    assert_valid_glb(tmp_path / "t.glb")

@@ -12,7 +12,9 @@
 #include <algorithm>
 #include <cstdlib>
 #include <cmath>
+#include <iterator>
 #include <new>
+#include <sstream>
 #include <stdexcept>
 #include <bit>
 #include <cctype>
@@ -398,7 +400,27 @@ std::vector<std::uint8_t> meshFileToGlb(const std::filesystem::path& path) {
     CheckedImporter importer(mesh, path.string(), fileBytes, vertexUvSet, halfedgeUvSet, normalSet);
     bool read = false;
     try {
-      read = OpenMesh::IO::IOManager().read(path.string(), importer, options);
+      std::string lower = path.extension().string();
+      std::transform(lower.begin(), lower.end(), lower.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+      if (lower == ".obj") {
+        // From memory, its mtllib lines blanked: OpenMesh opened the material library wherever
+        // it named (outside the asset's folder, or a FIFO that never ends) and materials are
+        // not used. Line numbers stay as in the file.
+        std::ifstream file(path, std::ios::binary);
+        std::string text((std::istreambuf_iterator<char>(file)), std::istreambuf_iterator<char>());
+        for (std::size_t at = 0; at < text.size();) {
+          const std::size_t end = std::min(text.find('\n', at), text.size());
+          std::size_t first = at;
+          while (first < end && (text[first] == ' ' || text[first] == '\t')) ++first;
+          if (text.compare(first, 6, "mtllib") == 0 && (first + 6 == end || std::isspace(static_cast<unsigned char>(text[first + 6]))))
+            std::fill(text.begin() + static_cast<std::ptrdiff_t>(at), text.begin() + static_cast<std::ptrdiff_t>(end), ' ');
+          at = end + 1;
+        }
+        std::istringstream stream(std::move(text));
+        read = OpenMesh::IO::IOManager().read(stream, ".obj", importer, options);
+      } else {
+        read = OpenMesh::IO::IOManager().read(path.string(), importer, options);
+      }
     } catch (const std::bad_alloc&) {
       // A face's corner count is read and allocated before any corner reaches the importer.
       throw InputError(path.string() + ": a count in the file (a face's corners) is larger than memory allows; the file is malformed");
