@@ -36,12 +36,15 @@ def output_path(input_folder, output_folder, input_path):
     return pathlib.Path(output_folder) / relative
 
 
-def bake_one(input_path, output, options, previous, force):
+def bake_one(input_path, output, options, previous, force, output_folder):
     """One task: skip when the manifest's record matches, else bake. Runs on a worker."""
     digest, stamps = libtangent.manifest_digest(input_path, asset_root=options.get("asset_root"), previous=previous)
     entry = {"input": str(input_path), "output": str(output), "digest": digest, "stamps": stamps}
+    # Skipped while every file the last bake wrote is still there (the .bin, image copies too).
+    written = [pathlib.Path(output_folder) / name for name in previous.get("written", [])] if previous else []
     if (not force and previous and previous.get("digest") == digest
-            and (not previous.get("ok") or os.path.exists(output))):
+            and (not previous.get("ok") or (os.path.exists(output) and all(p.exists() for p in written)))):
+        entry["written"] = previous.get("written", [])
         entry.update(status="ok" if previous.get("ok") else "failed", unchanged=True)
         if not previous.get("ok"):
             entry["error"] = previous.get("error", "")
@@ -75,7 +78,8 @@ def main(argv=None):
     output_folder.mkdir(parents=True, exist_ok=True)
     options = {"method": args.method, "all": args.all}
     # The manifest's options record: what changes outputs (threads never do).
-    manifest_options = {"method": args.method, "weighting": "angle", "all": args.all, "overwrite": False, "assetRoot": ""}
+    manifest_options = {"method": args.method, "weighting": "angle", "all": args.all, "overwrite": False, "assetRoot": "",
+                        "tangentFormat": "float", "normals": "flat"}
     manifest_path = output_folder / MANIFEST
     previous = {}
     if manifest_path.exists():
@@ -96,7 +100,7 @@ def main(argv=None):
             key = pathlib.Path(path).relative_to(input_folder).as_posix()
             output = output_path(input_folder, output_folder, path)
             futures.append(client.submit(bake_one, path, str(output), options, previous.get(key), args.force,
-                                         pure=False))
+                                         str(output_folder), pure=False))
         entries = client.gather(futures)
     if cluster is not None:
         cluster.close()
@@ -106,6 +110,12 @@ def main(argv=None):
         key = pathlib.Path(entry["input"]).relative_to(input_folder).as_posix()
         record = {"digest": entry["digest"], "output": pathlib.Path(entry["output"]).relative_to(output_folder).as_posix(),
                   "ok": entry["status"] == "ok", "stamps": entry.pop("stamps")}
+        # The files the bake wrote (or found in place), as the CLI's manifest lists them.
+        written = entry.get("written")
+        if written is None:
+            written = [pathlib.Path(f).relative_to(output_folder).as_posix() for f in entry.get("filesWritten", [])]
+        if entry["status"] == "ok" and written:
+            record["written"] = written
         if entry["status"] != "ok":
             record["error"] = entry.get("error", "")
         files[key] = record

@@ -1189,6 +1189,9 @@ nlohmann::ordered_json toJson(const BakeResult& result) {
   out["extensionsRemoved"] = result.extensionsRemoved;
   out["warnings"] = std::move(warnings);
   out["bytesWritten"] = result.bytesWritten;
+  Json written = Json::array();
+  for (const auto& file : result.filesWritten) written.push_back(file.generic_string());
+  out["filesWritten"] = std::move(written);
   return out;
 }
 

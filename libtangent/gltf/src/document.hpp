@@ -91,7 +91,8 @@ class OutputDocument {
   // may be null): InputError before anything is written, or another name for the .bin.
   std::uint64_t write(const std::filesystem::path& output, const ProtectedFiles* runFiles = nullptr);
 
-  // What write() put in place: the output, its .bin, the image copies it staged.
+  // What write() put in place: the output, its .bin, and the image copies beside it (staged, or
+  // already there with the same bytes).
   const std::vector<std::filesystem::path>& filesWritten() const { return filesWritten_; }
 
   // Compression extensions write() took out of extensionsUsed/Required (nothing used them).
@@ -123,6 +124,7 @@ class OutputDocument {
   ProtectedFiles inputFiles_;                     // the input and what it uses, as loaded
   const ProtectedFiles* runFiles_ = nullptr;      // write()'s
   std::vector<std::filesystem::path> filesWritten_;
+  std::filesystem::path outputPath_;               // write()'s output, as the caller spelled it
 };
 
 // Visits every place the document references an accessor / a bufferView by index.

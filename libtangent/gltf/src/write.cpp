@@ -441,13 +441,17 @@ void OutputDocument::placeImages(const std::filesystem::path& outputDir, const s
       // A copy an earlier bake left there is not written again: each write is a flush to disk,
       // and in a folder baked over and over they took longer than reading the buffers. One
       // that differs is replaced with the output, once that is written (CreatedFiles::keep).
-      if (!created.staged(target) && !holdsBytes(target, bytes)) {
-        if (isProtected(target))
-          throw InputError(target.string() + ": bake would copy the input's image " + source.string() +
-                           " there, over a different file that an input of this run uses or that the run has written "
-                           "(nothing was written; bake into another folder)");
-        created.stage(target, bytes);
-        filesWritten_.push_back(target);
+      if (!created.staged(target)) {
+        if (!holdsBytes(target, bytes)) {
+          if (isProtected(target))
+            throw InputError(target.string() + ": bake would copy the input's image " + source.string() +
+                             " there, over a different file that an input of this run uses or that the run has written "
+                             "(nothing was written; bake into another folder)");
+          created.stage(target, bytes);
+        }
+        // Staged or already there with these bytes: a file the output needs beside it, spelled
+        // as the output is.
+        filesWritten_.push_back(outputPath_.parent_path() / relative);
       }
       image["uri"] = text::uriPath(relative.generic_string());
     } else {
@@ -460,6 +464,7 @@ void OutputDocument::placeImages(const std::filesystem::path& outputDir, const s
 std::uint64_t OutputDocument::write(const std::filesystem::path& output, const ProtectedFiles* runFiles) {
   namespace fs = std::filesystem;
   runFiles_ = runFiles;
+  outputPath_ = output;
   filesWritten_.clear();
   if (isProtected(output))
     throw InputError(output.string() + ": is a file that an input of this run uses or that the run has written; bake never " +

@@ -107,8 +107,8 @@ struct BakeResult {
   // extensionsUsed/extensionsRequired because no baked-over data uses them any more.
   std::vector<std::string> extensionsRemoved;
   std::uint64_t bytesWritten = 0;
-  // The output, its .bin and the image copies bake placed beside it (a run protects them from
-  // its later bakes).
+  // The output, its .bin and the image copies beside it, placed now or already there with the
+  // same bytes (a run protects them from its later bakes; the report's "filesWritten").
   std::vector<std::filesystem::path> filesWritten;
 };
 
