@@ -511,8 +511,8 @@ int checkCommand(const std::vector<std::string>& args) {
   if (inputs.empty()) return usageError("no input files");
   if (options.enabled.none()) return usageError("--only/--ignore leave no check to run");
   // The report never goes over an input or a file one uses (refused before anything is read).
-  gltf::ProtectedFiles inputFiles;
   if (output != "-") {
+    gltf::ProtectedFiles inputFiles;
     for (const auto& input : inputs) inputFiles.addInput(input);
     if (inputFiles.contains(output))
       return usageError("-o " + shown(output) + " is an input or a file an input uses; the report is never written over one");
@@ -544,7 +544,7 @@ int checkCommand(const std::vector<std::string>& args) {
   else if (formatName == "sarif") writeSarif(report, checks, options);
   else if (formatName == "html") report << htmlReport(checks, options, output);
   else writeText(report, checks);
-  if (!writeTextOutput(output, report.str(), "check", &inputFiles)) return kExitUsage;
+  if (!writeTextOutput(output, report.str(), "check")) return kExitUsage;
   for (const auto& check : checks) {
     if (!check.error.empty()) std::cerr << "error: " << shown(check.error) << "\n";
   }

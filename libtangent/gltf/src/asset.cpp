@@ -230,9 +230,14 @@ void replaceGlbJson(std::vector<std::uint8_t>& bytes, const std::string& json, s
 
 }  // namespace
 
-bool isMeshFile(const std::filesystem::path& path) {
+std::string lowerExtension(const std::filesystem::path& path) {
   std::string ext = path.extension().string();
   std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  return ext;
+}
+
+bool isMeshFile(const std::filesystem::path& path) {
+  const std::string ext = lowerExtension(path);
   return ext == ".obj" || ext == ".ply" || ext == ".off";
 }
 
@@ -314,9 +319,7 @@ Asset loadAssetBytes(std::vector<std::uint8_t> bytes, const std::filesystem::pat
   if (bytes.size() >= kMaxInputBytes) throw InputError(label + ": inputs are limited to 4 GiB");
   asset.binary = bytes.size() >= 4 && readU32(bytes.data()) == kGlbMagic;
   if (bytes.empty()) throw InputError(label + ": is empty (0 bytes), not glTF");
-  std::string extension = path.extension().string();
-  std::transform(extension.begin(), extension.end(), extension.begin(), [](unsigned char c) { return std::tolower(c); });
-  if (!asset.binary && extension == ".glb")
+  if (!asset.binary && lowerExtension(path) == ".glb")
     throw InputError(label + ": not a GLB file (it does not begin with the bytes 'glTF')");
 
   // A .gltf is parsed from the bytes read and they are freed after: no copy of the text.

@@ -23,6 +23,7 @@ struct Asset {
   std::vector<std::string> warnings;
 };
 
+std::string lowerExtension(const std::filesystem::path& path);  // ".GLB" -> ".glb"
 bool isMeshFile(const std::filesystem::path& path);  // .obj, .ply, .off
 
 // Throws InputError naming the file on anything unreadable or malformed. `assetRoot`: the

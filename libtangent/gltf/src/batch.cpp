@@ -30,8 +30,7 @@ std::vector<std::uint8_t> fileBytes(const fs::path& path) {
 }
 
 bool isInput(const fs::path& path) {
-  std::string ext = path.extension().string();
-  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  const std::string ext = detail::lowerExtension(path);
   return ext == ".gltf" || ext == ".glb" || detail::isMeshFile(path);
 }
 

@@ -386,13 +386,18 @@ std::vector<std::uint8_t> meshFileToGlb(const std::filesystem::path& path) {
   std::error_code ec;
   const std::uintmax_t fileBytes = std::filesystem::file_size(path, ec);
   if (ec) throw InputError(path.string() + ": cannot be read: " + ec.message());
+  const std::string extension = lowerExtension(path);
+  // An OBJ is read once, into memory: checked, then given to OpenMesh from there (below).
+  std::string objText;
   {
     std::ifstream header(path, std::ios::binary);
-    std::string extension = path.extension().string();
-    std::transform(extension.begin(), extension.end(), extension.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
     if (extension == ".ply") checkPlyHeader(header, fileBytes, path.string());
     if (extension == ".off") checkOffHeader(header, fileBytes, path.string());
-    if (extension == ".obj") checkObj(header, path.string());
+    if (extension == ".obj") {
+      objText.assign(std::istreambuf_iterator<char>(header), std::istreambuf_iterator<char>());
+      std::istringstream lines(objText);
+      checkObj(lines, path.string());
+    }
   }
   std::vector<char> vertexUvSet, halfedgeUvSet, normalSet;
   {
@@ -400,14 +405,11 @@ std::vector<std::uint8_t> meshFileToGlb(const std::filesystem::path& path) {
     CheckedImporter importer(mesh, path.string(), fileBytes, vertexUvSet, halfedgeUvSet, normalSet);
     bool read = false;
     try {
-      std::string lower = path.extension().string();
-      std::transform(lower.begin(), lower.end(), lower.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-      if (lower == ".obj") {
+      if (extension == ".obj") {
         // From memory, its mtllib lines blanked: OpenMesh opened the material library wherever
         // it named (outside the asset's folder, or a FIFO that never ends) and materials are
         // not used. Line numbers stay as in the file.
-        std::ifstream file(path, std::ios::binary);
-        std::string text((std::istreambuf_iterator<char>(file)), std::istreambuf_iterator<char>());
+        std::string text = std::move(objText);
         for (std::size_t at = 0; at < text.size();) {
           const std::size_t end = std::min(text.find('\n', at), text.size());
           std::size_t first = at;

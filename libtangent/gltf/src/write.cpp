@@ -508,13 +508,8 @@ std::uint64_t OutputDocument::write(const std::filesystem::path& output, const P
     return text.size();
   }
   // A .gltf and its .bin are one file in two: the new .bin goes under a name the previous
-  // .gltf does not use, so that until the .gltf is renamed into place the previous pair is
-  // whole, and after it the new one is.
-  for (const fs::path& used : referencedFiles(asset_)) {
-    std::error_code ec;
-    if (fs::exists(used, ec) && fs::exists(binPath, ec) && fs::equivalent(used, binPath, ec))
-      throw InputError(output.string() + ": would overwrite " + used.string() + ", which the input uses");
-  }
+  // .gltf does not use (nor any protected file, freeBinName), so that until the .gltf is
+  // renamed into place the previous pair is whole, and after it the new one is.
   doc["buffers"][0]["uri"] = text::uriPath(binPath.filename().string());
   const std::string text = text::dumpJson(doc, 2) + "\n";
   writeFileAtomic(binPath, bin);
@@ -626,9 +621,8 @@ void ProtectedFiles::add(const std::filesystem::path& path) {
 
 void ProtectedFiles::addInput(const std::filesystem::path& input) {
   add(input);
-  std::string extension = input.extension().string();
-  std::transform(extension.begin(), extension.end(), extension.begin(), [](unsigned char c) { return std::tolower(c); });
-  if (extension != ".gltf" && extension != ".glb") return;  // OBJ, PLY, OFF: one file
+  if (const std::string extension = detail::lowerExtension(input); extension != ".gltf" && extension != ".glb")
+    return;  // OBJ, PLY, OFF: one file
   const std::string text = detail::gltfJsonText(input);
   if (text.empty()) return;
   try {
