@@ -358,13 +358,31 @@ add("off_huge_face_count", {"in.off": b"OFF\n3 999999999 0\n0 0 0\n1 0 0\n0 1 0\
     "OFF header declares 3 vertices and 999999999 faces", input_name="in.off")
 add("off_huge_vertex_count", {"in.off": b"OFF\n999999999 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n"},
     "OFF header declares 999999999 vertices", input_name="in.off")
-add("off_bad_keyword", {"in.off": b"OFX\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n"}, "OFF header line 1", input_name="in.off")
-add("off_counts_not_numbers", {"in.off": b"OFF\nthree 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n"}, "OFF header line 2",
+add("off_bad_keyword", {"in.off": b"OFX\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n"}, "OFF line 1", input_name="in.off")
+add("off_counts_not_numbers", {"in.off": b"OFF\nthree 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n"}, "OFF line 2",
     input_name="in.off")
 add("off_face_index_out_of_range", {"in.off": b"STOFF\n3 1 0\n0 0 0 0 0\n1 0 0 1 0\n0 1 0 0 1\n3 0 1 7\n"},
     "face 1 corner 3 '7' is not a vertex index below 3", input_name="in.off")
 add("off_face_corner_count_huge", {"in.off": b"STOFF\n3 1 0\n0 0 0 0 0\n1 0 0 1 0\n0 1 0 0 1\n37777777777 0 1 2\n"},
     "face 1 declares", input_name="in.off")
+# OpenMesh read OFF numbers as one stream across lines: a short vertex line shifted every later
+# number, and a face count that overflowed became 4 billion corners (fuzz_mesh_file).
+add("off_short_vertex_line", {"in.off": b"STOFF\n3 1 0\n0\n0 11 0 0 1 0\n0 1 0 0 1\n3 0 1 2\n"},
+    "OFF line 3: vertex 1 lists 1 value(s); STOFF needs 5 (x y z s t)", input_name="in.off")
+add("off_number_with_garbage", {"in.off": b"STOFF\n3 1 0\n0 0 0 0 0\n1 0 -0=== 1 0\n0 1 0 0 1\n3 0 1 2\n"},
+    "OFF line 4: vertex 2 value '-0===' is not a finite number", input_name="in.off")
+add("off_infinite_coordinate", {"in.off": b"STOFF\n3 1 0\n0 0 0 0 0\n1e39 0 0 1 0\n0 1 0 0 1\n3 0 1 2\n"},
+    "vertex 2 value '1e39' is not a finite number", input_name="in.off")
+add("off_face_count_overflows", {"in.off": b"STOFF\n3 1 0\n0 0 0 0 0\n1 0 0 1 0\n0 1 0 0 1\n" + b"6" * 60 + b"\n"},
+    "face 1 declares '66666666666666666666' corners", input_name="in.off")
+add("off_homogeneous", {"in.off": b"4OFF\n3 1 0\n0 0 0 1\n1 0 0 1\n0 1 0 1\n3 0 1 2\n"}, "4OFF (homogeneous coordinates) is not read",
+    input_name="in.off")
+add("off_binary_face_corners_huge",
+    {"in.off": b"STOFF BINARY\n" + struct.pack("<3I", 3, 1, 0) + struct.pack("<15f", 0, 0, 0, 0, 0, 1, 0, 0, 1, 0, 0, 1, 0, 0, 1)
+     + struct.pack("<I", 4000000000)}, "binary OFF face 1 declares 4000000000 corners", input_name="in.off")
+add("off_binary_truncated",
+    {"in.off": b"OFF BINARY\n" + struct.pack("<3I", 3, 0, 0) + struct.pack("<6f", 0, 0, 0, 1, 0, 0)},
+    "binary OFF ends inside a vertex", input_name="in.off")
 add("off_truncated_faces", {"in.off": b"OFF\n3 2 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n"}, "the file ends after 1 of 2 faces",
     input_name="in.off")
 ply_header = (b"ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\n"
