@@ -5,6 +5,7 @@
 #include <sys/stat.h>
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <cstring>
 #include <fstream>
@@ -852,6 +853,85 @@ TEST(MeshFiles, PlyAndOffBakeToGlb) {
     const auto tangents = tangent::gltf::detail::toFloats(readAccessor(out.model, primitive["attributes"]["TANGENT"].get<int>(), "TANGENT"));
     EXPECT_NEAR(tangents[0], 1.0f, 1e-6);
     EXPECT_EQ(tangents[3], 1.0f);
+  }
+}
+
+// PLY as its writers spell it: UV properties named texture_u/texture_v, a per-corner texcoord
+// list (MeshLab's wedge UVs, a seam through a shared vertex), either binary byte order. Each
+// bakes like the plain ASCII u/v quad of PlyAndOffBakeToGlb.
+TEST(MeshFiles, PlyUvNamesCornerUvsAndByteOrdersAreRead) {
+  TempDir dir;
+  const float vertices[4][8] = {{0, 0, 0, 0, 0, 1, 0, 0}, {1, 0, 0, 0, 0, 1, 1, 0}, {1, 1, 0, 0, 0, 1, 1, 1}, {0, 1, 0, 0, 0, 1, 0, 1}};
+  auto header = [](const char* format, const char* u, const char* v, const char* count) {
+    return std::string("ply\nformat ") + format + " 1.0\ncomment made by a test\nelement vertex 4\nproperty float x\nproperty float y\n" +
+           "property float z\nproperty float nx\nproperty float ny\nproperty float nz\nproperty float " + u + "\nproperty float " + v +
+           "\nelement face 2\nproperty list " + count + " int vertex_indices\nend_header\n";
+  };
+  std::string ascii = header("ascii", "texture_u", "texture_v", "uchar");
+  for (const auto& row : vertices) {
+    for (float x : row) ascii += std::to_string(x) + " ";
+    ascii += "\n";
+  }
+  ascii += "3 0 1 2\n3 0 2 3\n";
+  std::ofstream(dir / "names.ply", std::ios::binary) << ascii;
+  for (const bool big : {false, true}) {
+    std::string binary = header(big ? "binary_big_endian" : "binary_little_endian", "s", "t", "ushort");
+    auto put = [&](const void* data, std::size_t bytes) {
+      std::string chunk(static_cast<const char*>(data), bytes);
+      if (big == (std::endian::native == std::endian::little)) std::reverse(chunk.begin(), chunk.end());
+      binary += chunk;
+    };
+    for (const auto& row : vertices) {
+      for (const float& x : row) put(&x, 4);
+    }
+    const std::int32_t faces[2][3] = {{0, 1, 2}, {0, 2, 3}};
+    for (const auto& face : faces) {
+      const std::uint16_t three = 3;
+      put(&three, 2);
+      for (const std::int32_t& index : face) put(&index, 4);
+    }
+    std::ofstream(dir / (big ? "big.ply" : "little.ply"), std::ios::binary) << binary;
+  }
+  std::vector<float> first;
+  for (const char* name : {"names.ply", "little.ply", "big.ply"}) {
+    SCOPED_TRACE(name);
+    const fs::path output = tangent::gltf::outputPathFor(dir / name, dir / "out");
+    tangent::gltf::bakeFile(dir / name, output, {});
+    const Asset out = loadAsset(output);
+    const Json& attributes = out.json["meshes"][0]["primitives"][0]["attributes"];
+    EXPECT_EQ(out.model.accessors[attributes["POSITION"].get<int>()].count, 4u);
+    const auto uvs = tangent::gltf::detail::toFloats(readAccessor(out.model, attributes["TEXCOORD_0"].get<int>(), "TEXCOORD_0"));
+    EXPECT_EQ(uvs, (std::vector<float>{0, 1, 1, 1, 1, 0, 0, 0}));  // v flipped for glTF
+    const auto tangents = tangent::gltf::detail::toFloats(readAccessor(out.model, attributes["TANGENT"].get<int>(), "TANGENT"));
+    if (first.empty()) first = tangents;
+    EXPECT_EQ(tangents, first);
+    EXPECT_NEAR(tangents[0], 1.0f, 1e-6);
+  }
+
+  // Corner UVs: vertex 0 has UV (0,0) in the first face and (0.5,0) in the second, so it splits.
+  std::ofstream(dir / "wedge.ply", std::ios::binary)
+      << "ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\nproperty float y\nproperty float z\nelement face 2\n"
+         "property list uchar int vertex_indices\nproperty list uchar float texcoord\nend_header\n"
+         "0 0 0\n1 0 0\n1 1 0\n0 1 0\n3 0 1 2 6 0 0 1 0 1 1\n3 0 2 3 6 0.5 0 1 1 0 1\n";
+  const fs::path output = tangent::gltf::outputPathFor(dir / "wedge.ply", dir / "out");
+  tangent::gltf::bakeFile(dir / "wedge.ply", output, {});
+  const Asset out = loadAsset(output);
+  const Json& primitive = out.json["meshes"][0]["primitives"][0];
+  const auto& attributes = primitive["attributes"];
+  ASSERT_EQ(out.model.accessors[attributes["POSITION"].get<int>()].count, 5u);
+  const auto uvs = tangent::gltf::detail::toFloats(readAccessor(out.model, attributes["TEXCOORD_0"].get<int>(), "TEXCOORD_0"));
+  const auto positions = tangent::gltf::detail::toFloats(readAccessor(out.model, attributes["POSITION"].get<int>(), "POSITION"));
+  tangent::gltf::detail::AccessorData indexHeader;
+  const auto indices = tangent::gltf::detail::readIndices(out.model, primitive["indices"].get<int>(), 5, "indices", indexHeader);
+  ASSERT_EQ(indices.size(), 6u);
+  const float expected[6][4] = {{0, 0, 0, 1}, {1, 0, 1, 1}, {1, 1, 1, 0}, {0, 0, 0.5f, 1}, {1, 1, 1, 0}, {0, 1, 0, 0}};
+  for (std::size_t k = 0; k < 6; ++k) {
+    SCOPED_TRACE(k);
+    const std::uint32_t i = indices[k];
+    EXPECT_EQ(positions[3 * i], expected[k][0]);
+    EXPECT_EQ(positions[3 * i + 1], expected[k][1]);
+    EXPECT_EQ(uvs[2 * i], expected[k][2]);
+    EXPECT_EQ(uvs[2 * i + 1], expected[k][3]);
   }
 }
 

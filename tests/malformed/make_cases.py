@@ -397,6 +397,24 @@ add("ply_free_text_line", {"in.ply": ply_header.replace(b"element vertex 3", b"e
 add("ply_no_end_header", {"in.ply": b"ply\nformat ascii 1.0\nelement vertex 3\n"}, "no end_header", input_name="in.ply")
 add("ply_bad_property", {"in.ply": ply_header.replace(b"property float x", b"property quaternion x") % 1 + ply_body},
     "PLY header line 4", input_name="in.ply")
+# OpenMesh allocated a face list's declared length before reading it (2 billion corners: GBs).
+add("ply_list_count_huge_ascii", {"in.ply": (ply_header % 1) + ply_body + b"200 0 1 2\n"},
+    "PLY face 1 (1-based) property vertex_indices: a list of 200 items, more than the rest of the file holds", input_name="in.ply")
+add("ply_list_count_huge_binary",
+    {"in.ply": b"ply\nformat binary_big_endian 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\n"
+               b"property float s\nproperty float t\nelement face 1\nproperty list uint int vertex_indices\nend_header\n"
+               + struct.pack(">15f", 0, 0, 0, 0, 0, 1, 0, 0, 1, 0, 0, 1, 0, 0, 1) + struct.pack(">4I", 2000000000, 0, 1, 2)},
+    "a list of 2000000000 items, more than the rest of the file holds", input_name="in.ply")
+add("ply_value_not_a_number", {"in.ply": (ply_header % 1) + ply_body.replace(b"1 0 0 1 0", b"1 0 x 1 0") + b"3 0 1 2\n"},
+    "PLY vertex 2 (1-based) property z: 'x' is not a number", input_name="in.ply")
+add("ply_body_truncated", {"in.ply": (ply_header % 2) + ply_body + b"3 0 1 2\n3 0 1"},
+    "PLY face 2 (1-based) property vertex_indices: the file ends here", input_name="in.ply")
+add("ply_face_of_two_corners", {"in.ply": (ply_header % 1) + ply_body + b"2 0 1\n"},
+    "a face of 2 corners (a face needs at least 3)", input_name="in.ply")
+add("ply_corner_uvs_miscounted",
+    {"in.ply": (ply_header % 1).replace(b"vertex_indices\n", b"vertex_indices\nproperty list uchar float texcoord\n")
+               + ply_body + b"3 0 1 2 4 0 0 1 0\n"},
+    "property texcoord: lists 4 values for a face of 3 corners", input_name="in.ply")
 add("ply_face_index_out_of_range", {"in.ply": (ply_header % 1) + ply_body + b"3 0 1 5\n"}, "refers to vertex 6",
     input_name="in.ply")
 

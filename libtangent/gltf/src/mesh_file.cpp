@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
-// OBJ, PLY and OFF through OpenMesh's readers, converted to an in-memory GLB so that the rest
-// of bake treats them like any glTF input. These formats carry no materials: every mesh
+// OBJ through OpenMesh's reader, PLY and OFF through ours (ply_reader.cpp, off_reader.cpp), all
+// into an OpenMesh mesh, converted to an in-memory GLB so that the rest of bake treats them
+// like any glTF input. These formats carry no materials: every mesh
 // gets tangents. Their UV origin is bottom-left, so v becomes 1 - v for glTF. A file without
 // normals gives a primitive without NORMAL, which bake then generates (--normals).
 #include <OpenMesh/Core/IO/IOManager.hh>
@@ -25,372 +26,12 @@
 #include <unordered_map>
 
 #include "asset.hpp"
+#include "mesh_import.hpp"
 #include "tangent/gltf.hpp"
 #include "tangent/text.hpp"
 
 namespace tangent::gltf::detail {
 namespace {
-
-struct ImportTraits : OpenMesh::DefaultTraits {
-  VertexAttributes(OpenMesh::Attributes::Normal | OpenMesh::Attributes::TexCoord2D);
-  HalfedgeAttributes(OpenMesh::Attributes::PrevHalfedge | OpenMesh::Attributes::TexCoord2D);
-  FaceAttributes(OpenMesh::Attributes::Normal);
-};
-// A polygon mesh: OpenMesh's readers leave the UVs of the diagonals unset when they
-// triangulate into a TriMesh, so polygons are fanned here from their own corners.
-using ImportMesh = OpenMesh::PolyMesh_ArrayKernelT<ImportTraits>;
-
-// OpenMesh's readers trust the file: a face naming a vertex that does not exist reaches
-// add_face and then per-halfedge writes through an invalid handle, and a header count is
-// looped over (and reserved) whatever the file holds. Every call that takes a handle or a
-// count from the file is checked here first; a refusal throws InputError naming the file
-// and the element. Counts are bounded by the file's size (a vertex or face takes at least
-// 3 bytes in every format).
-class CheckedImporter : public OpenMesh::IO::ImporterT<ImportMesh> {
-  using Base = OpenMesh::IO::ImporterT<ImportMesh>;
-
- public:
-  // uvSet: which vertices' and halfedges' UVs the file gave (by index). OpenMesh reports
-  // texture coordinates when the file has any "vt" line, also where no face refers to them,
-  // and leaves the UVs it never set uninitialized.
-  // normalSet: likewise the vertices the file gave a normal (an OBJ with "vn" lines whose faces
-  // are "f v/vt" sets none, and OpenMesh still reports normals).
-  CheckedImporter(ImportMesh& mesh, std::string label, std::uintmax_t fileBytes, std::vector<char>& vertexUvSet,
-                  std::vector<char>& halfedgeUvSet, std::vector<char>& normalSet)
-      : Base(mesh),
-        mesh_(mesh),
-        label_(std::move(label)),
-        limit_(fileBytes / 3 + 16),
-        vertexUvSet_(vertexUvSet),
-        halfedgeUvSet_(halfedgeUvSet),
-        normalSet_(normalSet) {}
-
-  OpenMesh::VertexHandle add_vertex(const OpenMesh::Vec3f& point) override {
-    countVertex();
-    return Base::add_vertex(point);
-  }
-  OpenMesh::VertexHandle add_vertex() override {
-    countVertex();
-    return Base::add_vertex();
-  }
-  OpenMesh::FaceHandle add_face(const OpenMesh::IO::BaseImporter::VHandles& vertices) override {
-    if (++faces_ > limit_) throw InputError(label_ + ": more faces than the file's size allows; the file is malformed");
-    for (std::size_t k = 0; k < vertices.size(); ++k) {
-      if (!validVertex(vertices[k]))
-        throw InputError(label_ + ": face " + std::to_string(faces_) + " corner " + std::to_string(k + 1) + " refers to vertex " +
-                         std::to_string(vertices[k].idx() + 1) + " (1-based), but the file has " +
-                         std::to_string(mesh_.n_vertices()) + " vertices there");
-    }
-    return Base::add_face(vertices);
-  }
-  void add_face_texcoords(OpenMesh::FaceHandle face, OpenMesh::VertexHandle vertex,
-                          const std::vector<OpenMesh::Vec2f>& uvs) override {
-    if (!validFace(face) || !validVertex(vertex)) return;  // a face add_face refused (repeated vertex)
-    Base::add_face_texcoords(face, vertex, uvs);
-  }
-  void add_face_texcoords(OpenMesh::FaceHandle face, OpenMesh::VertexHandle vertex,
-                          const std::vector<OpenMesh::Vec3f>& uvs) override {
-    if (!validFace(face) || !validVertex(vertex)) return;
-    Base::add_face_texcoords(face, vertex, uvs);
-  }
-  void set_point(OpenMesh::VertexHandle v, const OpenMesh::Vec3f& p) override { vertex(v, "position"), Base::set_point(v, p); }
-  void set_normal(OpenMesh::VertexHandle v, const OpenMesh::Vec3f& n) override {
-    vertex(v, "normal"), Base::set_normal(v, n);
-    mark(normalSet_, static_cast<std::size_t>(v.idx()));
-  }
-  void set_normal(OpenMesh::VertexHandle v, const OpenMesh::Vec3d& n) override {
-    vertex(v, "normal"), Base::set_normal(v, n);
-    mark(normalSet_, static_cast<std::size_t>(v.idx()));
-  }
-  void set_texcoord(OpenMesh::VertexHandle v, const OpenMesh::Vec2f& t) override {
-    vertex(v, "UV"), Base::set_texcoord(v, t);
-    mark(vertexUvSet_, static_cast<std::size_t>(v.idx()));
-  }
-  void set_texcoord(OpenMesh::VertexHandle v, const OpenMesh::Vec3f& t) override { vertex(v, "UV"), Base::set_texcoord(v, t); }
-  void set_texcoord(OpenMesh::HalfedgeHandle h, const OpenMesh::Vec2f& t) override {
-    if (!h.is_valid() || static_cast<std::size_t>(h.idx()) >= mesh_.n_halfedges()) return;
-    Base::set_texcoord(h, t);
-    mark(halfedgeUvSet_, static_cast<std::size_t>(h.idx()));
-  }
-  void set_texcoord(OpenMesh::HalfedgeHandle h, const OpenMesh::Vec3f& t) override {
-    if (h.is_valid() && static_cast<std::size_t>(h.idx()) < mesh_.n_halfedges()) Base::set_texcoord(h, t);
-  }
-  void set_color(OpenMesh::VertexHandle v, const OpenMesh::Vec3uc& c) override { vertex(v, "colour"), Base::set_color(v, c); }
-  void set_color(OpenMesh::VertexHandle v, const OpenMesh::Vec4uc& c) override { vertex(v, "colour"), Base::set_color(v, c); }
-  void set_color(OpenMesh::VertexHandle v, const OpenMesh::Vec3f& c) override { vertex(v, "colour"), Base::set_color(v, c); }
-  void set_color(OpenMesh::VertexHandle v, const OpenMesh::Vec4f& c) override { vertex(v, "colour"), Base::set_color(v, c); }
-  void set_normal(OpenMesh::FaceHandle f, const OpenMesh::Vec3f& n) override { if (validFace(f)) Base::set_normal(f, n); }
-  void set_normal(OpenMesh::FaceHandle f, const OpenMesh::Vec3d& n) override { if (validFace(f)) Base::set_normal(f, n); }
-  void set_color(OpenMesh::FaceHandle f, const OpenMesh::Vec3uc& c) override { if (validFace(f)) Base::set_color(f, c); }
-  void set_color(OpenMesh::FaceHandle f, const OpenMesh::Vec4uc& c) override { if (validFace(f)) Base::set_color(f, c); }
-  void set_color(OpenMesh::FaceHandle f, const OpenMesh::Vec3f& c) override { if (validFace(f)) Base::set_color(f, c); }
-  void set_color(OpenMesh::FaceHandle f, const OpenMesh::Vec4f& c) override { if (validFace(f)) Base::set_color(f, c); }
-  void set_face_texindex(OpenMesh::FaceHandle f, int id) override { if (validFace(f)) Base::set_face_texindex(f, id); }
-  void reserve(unsigned int vertices, unsigned int edges, unsigned int faces) override {
-    if (vertices > limit_ || faces > limit_)
-      throw InputError(label_ + ": header declares " + std::to_string(vertices) + " vertices and " + std::to_string(faces) +
-                       " faces, more than a file of this size can hold");
-    Base::reserve(vertices, std::min<unsigned>(edges, static_cast<unsigned>(limit_ * 2)), faces);
-  }
-
- private:
-  bool validVertex(OpenMesh::VertexHandle v) const { return v.is_valid() && static_cast<std::size_t>(v.idx()) < mesh_.n_vertices(); }
-  bool validFace(OpenMesh::FaceHandle f) const { return f.is_valid() && static_cast<std::size_t>(f.idx()) < mesh_.n_faces(); }
-  void vertex(OpenMesh::VertexHandle v, const char* what) const {
-    if (!validVertex(v))
-      throw InputError(label_ + ": " + what + " given for vertex " + std::to_string(v.idx() + 1) + " (1-based), but the file has " +
-                       std::to_string(mesh_.n_vertices()) + " vertices there");
-  }
-  static void mark(std::vector<char>& set, std::size_t i) {
-    if (set.size() <= i) set.resize(i + 1, 0);
-    set[i] = 1;
-  }
-  void countVertex() {
-    if (++vertices_ > limit_) throw InputError(label_ + ": more vertices than the file's size allows; the file is malformed");
-  }
-
-  ImportMesh& mesh_;
-  std::string label_;
-  std::uintmax_t limit_;
-  std::uintmax_t vertices_ = 0, faces_ = 0;
-  std::vector<char>& vertexUvSet_;
-  std::vector<char>& halfedgeUvSet_;
-  std::vector<char>& normalSet_;
-};
-
-std::vector<std::string> words(const std::string& line) {
-  std::vector<std::string> out;
-  std::size_t i = 0;
-  while (i < line.size()) {
-    while (i < line.size() && std::isspace(static_cast<unsigned char>(line[i]))) ++i;
-    const std::size_t start = i;
-    while (i < line.size() && !std::isspace(static_cast<unsigned char>(line[i]))) ++i;
-    if (i > start) out.push_back(line.substr(start, i - start));
-  }
-  return out;
-}
-
-bool isCount(const std::string& word) {
-  return !word.empty() && word.size() <= 10 && std::all_of(word.begin(), word.end(), [](unsigned char c) { return std::isdigit(c); });
-}
-
-// Bytes of one PLY scalar type; 0 when the name is not one.
-int plyTypeBytes(const std::string& type) {
-  static const std::pair<const char*, int> types[] = {
-      {"char", 1},  {"uchar", 1},  {"int8", 1},  {"uint8", 1},  {"short", 2},   {"ushort", 2},  {"int16", 2},
-      {"uint16", 2}, {"int", 4},   {"uint", 4},  {"int32", 4},  {"uint32", 4},  {"float", 4},   {"float32", 4},
-      {"double", 8}, {"float64", 8}};
-  for (const auto& [name, bytes] : types) {
-    if (type == name) return bytes;
-  }
-  return 0;
-}
-
-// OpenMesh's PLY and OFF header parsers loop forever on some malformed headers (found by
-// fuzz_mesh_file): the header is checked here first, line by line, and every element count
-// against the bytes that follow it.
-void checkPlyHeader(std::istream& in, std::uintmax_t fileBytes, const std::string& label) {
-  std::string line;
-  std::size_t lineNumber = 0, headerBytes = 0;
-  auto next = [&]() -> bool {
-    if (!std::getline(in, line)) return false;
-    ++lineNumber;
-    headerBytes += line.size() + 1;
-    if (!line.empty() && line.back() == '\r') line.pop_back();
-    return true;
-  };
-  auto fail = [&](const std::string& what) -> void {
-    throw InputError(label + ": PLY header line " + std::to_string(lineNumber) + ": " + what);
-  };
-  if (!next() || line != "ply") fail("the file must start with a line 'ply'");
-  if (!next()) fail("missing format line");
-  const std::vector<std::string> format = words(line);
-  if (format.size() != 3 || format[0] != "format" || format[2] != "1.0" ||
-      (format[1] != "ascii" && format[1] != "binary_little_endian" && format[1] != "binary_big_endian"))
-    fail("expected 'format ascii|binary_little_endian|binary_big_endian 1.0'");
-  const bool ascii = format[1] == "ascii";
-  struct Element {
-    std::string name;
-    std::uint64_t count = 0, minBytes = 0;
-  };
-  std::vector<Element> elements;
-  for (;;) {
-    if (!next()) fail("the header has no end_header line");
-    if (headerBytes > (1u << 20)) fail("the header is longer than 1 MiB");
-    const std::vector<std::string> w = words(line);
-    if (w.empty() || w[0] == "comment" || w[0] == "obj_info") continue;
-    if (w[0] == "end_header") break;
-    if (w[0] == "element") {
-      if (w.size() != 3 || !isCount(w[2])) fail("expected 'element NAME COUNT'");
-      elements.push_back({w[1], std::stoull(w[2]), 0});
-    } else if (w[0] == "property") {
-      if (elements.empty()) fail("a property before any element");
-      if (w.size() == 3 && plyTypeBytes(w[1])) {
-        elements.back().minBytes += ascii ? 2 : plyTypeBytes(w[1]);
-      } else if (w.size() == 5 && w[1] == "list" && plyTypeBytes(w[2]) && plyTypeBytes(w[3])) {
-        elements.back().minBytes += ascii ? 2 : plyTypeBytes(w[2]);
-      } else {
-        fail("expected 'property TYPE NAME' or 'property list TYPE TYPE NAME'");
-      }
-    } else {
-      // Free text in a header (an old Blender wrote one line of it) is not PLY; OpenMesh's
-      // parser misreads it into crashes (fuzz_mesh_file), so it is refused.
-      fail("unknown keyword '" + w[0].substr(0, 40) + "' (a PLY header line is comment, obj_info, element, property or end_header)");
-    }
-  }
-  const std::uintmax_t body = fileBytes > headerBytes ? fileBytes - headerBytes : 0;
-  for (const Element& e : elements) {
-    if (e.count > 0 && e.count * std::max<std::uint64_t>(e.minBytes, 1) > body + 1)
-      throw InputError(label + ": PLY header declares " + std::to_string(e.count) + " " + e.name +
-                       " elements, more than the " + std::to_string(body) + " bytes after the header can hold");
-  }
-}
-
-// OFF is read here, not by OpenMesh: its reader takes the counts after the keyword line
-// whatever that line holds, reads numbers as one token stream across lines (a bad number
-// leaves the stream failed and every later count at its maximum: a face of 4 billion corners,
-// found by fuzz_mesh_file), and ignores comments. Here the file is read one vertex or face per
-// line, every number is checked, and the mesh reaches the same checked importer. ASCII and
-// binary (OpenMesh's layout: little-endian 32-bit counts, indices and floats); colours, which
-// no glTF attribute here takes, are skipped in ASCII and refused in binary.
-void readOff(const std::string& text, CheckedImporter& importer, OpenMesh::IO::Options& options, const std::string& label) {
-  std::size_t at = 0, lineNumber = 0;
-  std::string line;
-  auto next = [&]() -> bool {  // the next line with something on it, comments removed
-    while (at < text.size()) {
-      const std::size_t end = std::min(text.find('\n', at), text.size());
-      line.assign(text, at, end - at);
-      at = end + 1;
-      ++lineNumber;
-      const std::size_t hash = line.find('#');
-      if (hash != std::string::npos) line.erase(hash);
-      if (!words(line).empty()) return true;
-    }
-    return false;
-  };
-  auto fail = [&](const std::string& what) -> void {
-    throw InputError(label + ": OFF line " + std::to_string(lineNumber) + ": " + what);
-  };
-  if (!next()) throw InputError(label + ": has no OFF keyword line (the file is empty or only comments)");
-  std::vector<std::string> w = words(line);
-  const std::string keyword = w[0];
-  // [ST][C][N][4][n]OFF
-  std::size_t k = 0;
-  auto prefix = [&](const char* p) {
-    const bool has = keyword.compare(k, std::strlen(p), p) == 0;
-    if (has) k += std::strlen(p);
-    return has;
-  };
-  const bool texcoords = prefix("ST"), colours = prefix("C"), hasNormals = prefix("N");
-  const bool homogeneous = prefix("4"), dimension = prefix("n");
-  if (keyword.substr(k) != "OFF") fail("expected an OFF keyword ([ST][C][N][4][n]OFF), found '" + keyword.substr(0, 40) + "'");
-  if (homogeneous) fail("4OFF (homogeneous coordinates) is not read");
-  if (dimension) fail("nOFF (a dimension other than 3) is not read");
-  const std::size_t perVertex = hasNormals ? 6 : 3;
-  const std::uintmax_t fileBytes = text.size();
-  auto bound = [&](std::uint64_t vertices, std::uint64_t faces, std::uint64_t vertexBytes, std::uint64_t faceBytes) {
-    if (vertices * vertexBytes + faces * faceBytes > fileBytes + 8)
-      throw InputError(label + ": OFF header declares " + std::to_string(vertices) + " vertices and " + std::to_string(faces) +
-                       " faces, more than a file of " + std::to_string(fileBytes) + " bytes can hold");
-  };
-  std::vector<OpenMesh::VertexHandle> handles;
-  OpenMesh::IO::BaseImporter::VHandles corners;
-
-  if (w.size() > 1 && w[1] == "BINARY") {
-    if (colours) fail("binary OFF with colours (" + keyword.substr(0, 40) + ") is not read");
-    // The binary part starts after the keyword line's newline.
-    auto u32 = [&](const char* what) -> std::uint32_t {
-      if (at + 4 > text.size()) throw InputError(label + ": binary OFF ends inside " + std::string(what));
-      const auto* b = reinterpret_cast<const unsigned char*>(text.data() + at);
-      at += 4;
-      return std::uint32_t{b[0]} | std::uint32_t{b[1]} << 8 | std::uint32_t{b[2]} << 16 | std::uint32_t{b[3]} << 24;
-    };
-    auto f32 = [&](const char* what) { return std::bit_cast<float>(u32(what)); };
-    const std::uint32_t vertices = u32("the counts"), faces = u32("the counts");
-    u32("the counts");  // edges, unused
-    bound(vertices, faces, 4 * (perVertex + (texcoords ? 2 : 0)), 16);
-    for (std::uint32_t v = 0; v < vertices; ++v) {
-      float x[8];
-      for (std::size_t c = 0; c < perVertex + (texcoords ? 2 : 0); ++c) x[c] = f32("a vertex");
-      const auto vh = importer.add_vertex(OpenMesh::Vec3f(x[0], x[1], x[2]));
-      if (hasNormals) importer.set_normal(vh, OpenMesh::Vec3f(x[3], x[4], x[5]));
-      if (texcoords) importer.set_texcoord(vh, OpenMesh::Vec2f(x[perVertex], x[perVertex + 1]));
-      handles.push_back(vh);
-    }
-    for (std::uint32_t f = 0; f < faces; ++f) {
-      const std::uint32_t n = u32("a face");
-      if (n < 3 || n > (text.size() - at) / 4)
-        throw InputError(label + ": binary OFF face " + std::to_string(f + 1) + " declares " + std::to_string(n) +
-                         " corners (at least 3, and no more than the rest of the file holds)");
-      corners.clear();
-      for (std::uint32_t c = 0; c < n; ++c) {
-        const std::uint32_t index = u32("a face");
-        if (index >= vertices)
-          throw InputError(label + ": binary OFF face " + std::to_string(f + 1) + " corner " + std::to_string(c + 1) +
-                           " is vertex " + std::to_string(index) + ", not one below " + std::to_string(vertices));
-        corners.push_back(handles[index]);
-      }
-      importer.add_face(corners);
-    }
-  } else {
-    // The counts: on the keyword line after the keyword, or on the next line.
-    w.erase(w.begin());
-    if (w.empty()) {
-      if (!next()) fail("missing the vertex, face and edge counts");
-      w = words(line);
-    }
-    if (w.size() < 2 || !isCount(w[0]) || !isCount(w[1]) || (w.size() > 2 && !isCount(w[2])))
-      fail("expected 'VERTICES FACES [EDGES]' as non-negative integers");
-    const std::uint64_t vertices = std::stoull(w[0]), faces = std::stoull(w[1]);
-    // An ASCII vertex takes at least 6 bytes ("0 0 0\n"), a face at least 8 ("3 0 1 2\n").
-    bound(vertices, faces, 6, 8);
-    auto number = [&](const std::string& word, const std::string& what) {
-      char* end = nullptr;
-      const float x = std::strtof(word.c_str(), &end);
-      if (end != word.c_str() + word.size() || !std::isfinite(x))
-        fail(what + " '" + word.substr(0, 20) + "' is not a finite number");
-      return x;
-    };
-    for (std::uint64_t v = 0; v < vertices; ++v) {
-      if (!next()) fail("the file ends after " + std::to_string(v) + " of " + std::to_string(vertices) + " vertices");
-      w = words(line);
-      // x y z [nx ny nz] [colour] [s t]: the texture coordinates are the line's last two.
-      const std::size_t needed = perVertex + (texcoords ? 2 : 0);
-      if (w.size() < needed)
-        fail("vertex " + std::to_string(v + 1) + " lists " + std::to_string(w.size()) + " value(s); " + keyword.substr(0, 40) +
-             " needs " + std::to_string(needed) + " (x y z" + (hasNormals ? " nx ny nz" : "") + (texcoords ? " s t" : "") + ")");
-      float x[8];
-      for (std::size_t c = 0; c < perVertex; ++c) x[c] = number(w[c], "vertex " + std::to_string(v + 1) + " value");
-      const auto vh = importer.add_vertex(OpenMesh::Vec3f(x[0], x[1], x[2]));
-      if (hasNormals) importer.set_normal(vh, OpenMesh::Vec3f(x[3], x[4], x[5]));
-      if (texcoords) {
-        const std::string what = "vertex " + std::to_string(v + 1) + " texture coordinate";
-        importer.set_texcoord(vh, OpenMesh::Vec2f(number(w[w.size() - 2], what), number(w.back(), what)));
-      }
-      handles.push_back(vh);
-    }
-    for (std::uint64_t f = 0; f < faces; ++f) {
-      if (!next()) fail("the file ends after " + std::to_string(f) + " of " + std::to_string(faces) + " faces");
-      w = words(line);
-      // n i1 .. in [colour]
-      if (!isCount(w[0]) || std::stoull(w[0]) < 3 || std::stoull(w[0]) > w.size() - 1)
-        fail("face " + std::to_string(f + 1) + " declares '" + w[0].substr(0, 20) + "' corners but lists " +
-             std::to_string(w.size() - 1) + " numbers");
-      const std::size_t n = std::stoull(w[0]);
-      corners.clear();
-      for (std::size_t c = 1; c <= n; ++c) {
-        if (!isCount(w[c]) || std::stoull(w[c]) >= vertices)
-          fail("face " + std::to_string(f + 1) + " corner " + std::to_string(c) + " '" + w[c].substr(0, 20) +
-               "' is not a vertex index below " + std::to_string(vertices));
-        corners.push_back(handles[std::stoull(w[c])]);
-      }
-      importer.add_face(corners);
-    }
-  }
-  options.clear();
-  if (hasNormals) options += OpenMesh::IO::Options::VertexNormal;
-  if (texcoords) options += OpenMesh::IO::Options::VertexTexCoord;
-}
 
 // OpenMesh's OBJ reader asserts (aborts) on a face line without a vertex and trusts every
 // reference: each `f` line is checked here against the v, vt and vn lines before it.
@@ -474,13 +115,12 @@ std::vector<std::uint8_t> meshFileToGlb(const std::filesystem::path& path) {
   const std::uintmax_t fileBytes = std::filesystem::file_size(path, ec);
   if (ec) throw InputError(path.string() + ": cannot be read: " + ec.message());
   const std::string extension = lowerExtension(path);
-  // An OBJ or OFF is read once, into memory: an OBJ is checked, then given to OpenMesh from
-  // there (below); an OFF is read here.
+  // An OBJ, PLY or OFF is read once, into memory: an OBJ is checked, then given to OpenMesh
+  // from there (below); a PLY or OFF is read here.
   std::string text;
   {
     std::ifstream header(path, std::ios::binary);
-    if (extension == ".ply") checkPlyHeader(header, fileBytes, path.string());
-    if (extension == ".obj" || extension == ".off") {
+    if (extension == ".obj" || extension == ".off" || extension == ".ply") {
       text.assign(std::istreambuf_iterator<char>(header), std::istreambuf_iterator<char>());
     }
     if (extension == ".obj") {
@@ -494,8 +134,11 @@ std::vector<std::uint8_t> meshFileToGlb(const std::filesystem::path& path) {
     CheckedImporter importer(mesh, path.string(), fileBytes, vertexUvSet, halfedgeUvSet, normalSet);
     bool read = false;
     try {
-      if (extension == ".off") {
-        readOff(text, importer, options, path.string());
+      if (extension == ".off" || extension == ".ply") {
+        if (extension == ".off")
+          readOff(text, importer, options, path.string());
+        else
+          readPly(text, mesh, importer, options, path.string());
         read = true;
       } else if (extension == ".obj") {
         // From memory, its mtllib lines blanked: OpenMesh opened the material library wherever

@@ -1,0 +1,175 @@
+// SPDX-License-Identifier: MIT
+// The OpenMesh mesh that OBJ, PLY and OFF files are read into, and the importer every reader
+// hands it through, which checks each handle and count the file gives (mesh_file.cpp turns the
+// mesh into a GLB). PLY and OFF have their own readers here (ply_reader.cpp, off_reader.cpp):
+// OpenMesh's trusted every count in the file.
+#pragma once
+
+#include <OpenMesh/Core/IO/importer/ImporterT.hh>
+#include <OpenMesh/Core/IO/Options.hh>
+#include <OpenMesh/Core/Mesh/PolyMesh_ArrayKernelT.hh>
+
+#include <algorithm>
+#include <cctype>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "tangent/gltf.hpp"
+
+namespace tangent::gltf::detail {
+
+struct ImportTraits : OpenMesh::DefaultTraits {
+  VertexAttributes(OpenMesh::Attributes::Normal | OpenMesh::Attributes::TexCoord2D);
+  HalfedgeAttributes(OpenMesh::Attributes::PrevHalfedge | OpenMesh::Attributes::TexCoord2D);
+  FaceAttributes(OpenMesh::Attributes::Normal);
+};
+// A polygon mesh: OpenMesh's readers leave the UVs of the diagonals unset when they
+// triangulate into a TriMesh, so polygons are fanned here from their own corners.
+using ImportMesh = OpenMesh::PolyMesh_ArrayKernelT<ImportTraits>;
+
+// OpenMesh's readers trust the file: a face naming a vertex that does not exist reaches
+// add_face and then per-halfedge writes through an invalid handle, and a header count is
+// looped over (and reserved) whatever the file holds. Every call that takes a handle or a
+// count from the file is checked here first; a refusal throws InputError naming the file
+// and the element. Counts are bounded by the file's size (a vertex or face takes at least
+// 3 bytes in every format).
+class CheckedImporter : public OpenMesh::IO::ImporterT<ImportMesh> {
+  using Base = OpenMesh::IO::ImporterT<ImportMesh>;
+
+ public:
+  // uvSet: which vertices' and halfedges' UVs the file gave (by index). OpenMesh reports
+  // texture coordinates when the file has any "vt" line, also where no face refers to them,
+  // and leaves the UVs it never set uninitialized.
+  // normalSet: likewise the vertices the file gave a normal (an OBJ with "vn" lines whose faces
+  // are "f v/vt" sets none, and OpenMesh still reports normals).
+  CheckedImporter(ImportMesh& mesh, std::string label, std::uintmax_t fileBytes, std::vector<char>& vertexUvSet,
+                  std::vector<char>& halfedgeUvSet, std::vector<char>& normalSet)
+      : Base(mesh),
+        mesh_(mesh),
+        label_(std::move(label)),
+        limit_(fileBytes / 3 + 16),
+        vertexUvSet_(vertexUvSet),
+        halfedgeUvSet_(halfedgeUvSet),
+        normalSet_(normalSet) {}
+
+  OpenMesh::VertexHandle add_vertex(const OpenMesh::Vec3f& point) override {
+    countVertex();
+    return Base::add_vertex(point);
+  }
+  OpenMesh::VertexHandle add_vertex() override {
+    countVertex();
+    return Base::add_vertex();
+  }
+  OpenMesh::FaceHandle add_face(const OpenMesh::IO::BaseImporter::VHandles& vertices) override {
+    if (++faces_ > limit_) throw InputError(label_ + ": more faces than the file's size allows; the file is malformed");
+    for (std::size_t k = 0; k < vertices.size(); ++k) {
+      if (!validVertex(vertices[k]))
+        throw InputError(label_ + ": face " + std::to_string(faces_) + " corner " + std::to_string(k + 1) + " refers to vertex " +
+                         std::to_string(vertices[k].idx() + 1) + " (1-based), but the file has " +
+                         std::to_string(mesh_.n_vertices()) + " vertices there");
+    }
+    return Base::add_face(vertices);
+  }
+  void add_face_texcoords(OpenMesh::FaceHandle face, OpenMesh::VertexHandle vertex,
+                          const std::vector<OpenMesh::Vec2f>& uvs) override {
+    if (!validFace(face) || !validVertex(vertex)) return;  // a face add_face refused (repeated vertex)
+    Base::add_face_texcoords(face, vertex, uvs);
+  }
+  void add_face_texcoords(OpenMesh::FaceHandle face, OpenMesh::VertexHandle vertex,
+                          const std::vector<OpenMesh::Vec3f>& uvs) override {
+    if (!validFace(face) || !validVertex(vertex)) return;
+    Base::add_face_texcoords(face, vertex, uvs);
+  }
+  void set_point(OpenMesh::VertexHandle v, const OpenMesh::Vec3f& p) override { vertex(v, "position"), Base::set_point(v, p); }
+  void set_normal(OpenMesh::VertexHandle v, const OpenMesh::Vec3f& n) override {
+    vertex(v, "normal"), Base::set_normal(v, n);
+    mark(normalSet_, static_cast<std::size_t>(v.idx()));
+  }
+  void set_normal(OpenMesh::VertexHandle v, const OpenMesh::Vec3d& n) override {
+    vertex(v, "normal"), Base::set_normal(v, n);
+    mark(normalSet_, static_cast<std::size_t>(v.idx()));
+  }
+  void set_texcoord(OpenMesh::VertexHandle v, const OpenMesh::Vec2f& t) override {
+    vertex(v, "UV"), Base::set_texcoord(v, t);
+    mark(vertexUvSet_, static_cast<std::size_t>(v.idx()));
+  }
+  void set_texcoord(OpenMesh::VertexHandle v, const OpenMesh::Vec3f& t) override { vertex(v, "UV"), Base::set_texcoord(v, t); }
+  void set_texcoord(OpenMesh::HalfedgeHandle h, const OpenMesh::Vec2f& t) override {
+    if (!h.is_valid() || static_cast<std::size_t>(h.idx()) >= mesh_.n_halfedges()) return;
+    Base::set_texcoord(h, t);
+    mark(halfedgeUvSet_, static_cast<std::size_t>(h.idx()));
+  }
+  void set_texcoord(OpenMesh::HalfedgeHandle h, const OpenMesh::Vec3f& t) override {
+    if (h.is_valid() && static_cast<std::size_t>(h.idx()) < mesh_.n_halfedges()) Base::set_texcoord(h, t);
+  }
+  void set_color(OpenMesh::VertexHandle v, const OpenMesh::Vec3uc& c) override { vertex(v, "colour"), Base::set_color(v, c); }
+  void set_color(OpenMesh::VertexHandle v, const OpenMesh::Vec4uc& c) override { vertex(v, "colour"), Base::set_color(v, c); }
+  void set_color(OpenMesh::VertexHandle v, const OpenMesh::Vec3f& c) override { vertex(v, "colour"), Base::set_color(v, c); }
+  void set_color(OpenMesh::VertexHandle v, const OpenMesh::Vec4f& c) override { vertex(v, "colour"), Base::set_color(v, c); }
+  void set_normal(OpenMesh::FaceHandle f, const OpenMesh::Vec3f& n) override { if (validFace(f)) Base::set_normal(f, n); }
+  void set_normal(OpenMesh::FaceHandle f, const OpenMesh::Vec3d& n) override { if (validFace(f)) Base::set_normal(f, n); }
+  void set_color(OpenMesh::FaceHandle f, const OpenMesh::Vec3uc& c) override { if (validFace(f)) Base::set_color(f, c); }
+  void set_color(OpenMesh::FaceHandle f, const OpenMesh::Vec4uc& c) override { if (validFace(f)) Base::set_color(f, c); }
+  void set_color(OpenMesh::FaceHandle f, const OpenMesh::Vec3f& c) override { if (validFace(f)) Base::set_color(f, c); }
+  void set_color(OpenMesh::FaceHandle f, const OpenMesh::Vec4f& c) override { if (validFace(f)) Base::set_color(f, c); }
+  void set_face_texindex(OpenMesh::FaceHandle f, int id) override { if (validFace(f)) Base::set_face_texindex(f, id); }
+  void reserve(unsigned int vertices, unsigned int edges, unsigned int faces) override {
+    if (vertices > limit_ || faces > limit_)
+      throw InputError(label_ + ": header declares " + std::to_string(vertices) + " vertices and " + std::to_string(faces) +
+                       " faces, more than a file of this size can hold");
+    Base::reserve(vertices, std::min<unsigned>(edges, static_cast<unsigned>(limit_ * 2)), faces);
+  }
+
+ private:
+  bool validVertex(OpenMesh::VertexHandle v) const { return v.is_valid() && static_cast<std::size_t>(v.idx()) < mesh_.n_vertices(); }
+  bool validFace(OpenMesh::FaceHandle f) const { return f.is_valid() && static_cast<std::size_t>(f.idx()) < mesh_.n_faces(); }
+  void vertex(OpenMesh::VertexHandle v, const char* what) const {
+    if (!validVertex(v))
+      throw InputError(label_ + ": " + what + " given for vertex " + std::to_string(v.idx() + 1) + " (1-based), but the file has " +
+                       std::to_string(mesh_.n_vertices()) + " vertices there");
+  }
+  static void mark(std::vector<char>& set, std::size_t i) {
+    if (set.size() <= i) set.resize(i + 1, 0);
+    set[i] = 1;
+  }
+  void countVertex() {
+    if (++vertices_ > limit_) throw InputError(label_ + ": more vertices than the file's size allows; the file is malformed");
+  }
+
+  ImportMesh& mesh_;
+  std::string label_;
+  std::uintmax_t limit_;
+  std::uintmax_t vertices_ = 0, faces_ = 0;
+  std::vector<char>& vertexUvSet_;
+  std::vector<char>& halfedgeUvSet_;
+  std::vector<char>& normalSet_;
+};
+
+// The whitespace-separated words of a line.
+inline std::vector<std::string> words(const std::string& line) {
+  std::vector<std::string> out;
+  std::size_t i = 0;
+  while (i < line.size()) {
+    while (i < line.size() && std::isspace(static_cast<unsigned char>(line[i]))) ++i;
+    const std::size_t start = i;
+    while (i < line.size() && !std::isspace(static_cast<unsigned char>(line[i]))) ++i;
+    if (i > start) out.push_back(line.substr(start, i - start));
+  }
+  return out;
+}
+
+// A non-negative integer of at most 10 digits.
+inline bool isCount(const std::string& word) {
+  return !word.empty() && word.size() <= 10 && std::all_of(word.begin(), word.end(), [](unsigned char c) { return std::isdigit(c); });
+}
+
+
+// Each reads a whole file's bytes into `importer` (and `mesh`, the importer's) and sets
+// `options` to what the file gave (VertexNormal, VertexTexCoord, FaceTexCoord); a malformed
+// file throws InputError naming `label` and the element.
+void readPly(const std::string& text, ImportMesh& mesh, CheckedImporter& importer, OpenMesh::IO::Options& options,
+             const std::string& label);
+void readOff(const std::string& text, CheckedImporter& importer, OpenMesh::IO::Options& options, const std::string& label);
+
+}  // namespace tangent::gltf::detail
