@@ -11,6 +11,7 @@ import base64
 import copy
 import json
 import os
+import struct
 import random
 import sys
 
@@ -51,6 +52,19 @@ write(mesh, "tri.obj", b"\0" + b"v 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nvt 1 0\nvt 0
 write(mesh, "quad.obj", b"\0" + b"v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nvt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\nf 1/1 2/2 3/3 4/4\n")
 write(mesh, "tri.ply", b"\1" + (m.__dict__.get("ply_header") % 1) + m.__dict__.get("ply_body") + b"3 0 1 2\n")
 write(mesh, "tri.off", b"\2" + b"STOFF\n3 1 0\n0 0 0 0 0\n1 0 0 1 0\n0 1 0 0 1\n3 0 1 2\n")
+write(mesh, "wedge.ply", b"\1" + b"ply\nformat ascii 1.0\ncomment corner UVs\nelement vertex 3\nproperty float x\nproperty float y\n"
+      b"property float z\nproperty float nx\nproperty float ny\nproperty float nz\nelement face 1\n"
+      b"property list uchar int vertex_indices\nproperty list uchar float texcoord\nend_header\n"
+      b"0 0 0 0 0 1\n1 0 0 0 0 1\n0 1 0 0 0 1\n3 0 1 2 6 0 0 1 0 0 1\n")
+for order, fmt in (("<", b"binary_little_endian"), (">", b"binary_big_endian")):
+    write(mesh, f"tri_{fmt.decode()}.ply", b"\1" + b"ply\nformat " + fmt + b" 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+          b"property float z\nproperty float texture_u\nproperty float texture_v\nelement face 1\n"
+          b"property list uchar uint vertex_indices\nend_header\n"
+          + struct.pack(order + "15f", 0, 0, 0, 0, 0, 1, 0, 0, 1, 0, 0, 1, 0, 0, 1) + struct.pack(order + "B3I", 3, 0, 1, 2))
+write(mesh, "tri_binary.off", b"\2" + b"STNOFF BINARY\n" + struct.pack("<3I", 3, 1, 0)
+      + struct.pack("<24f", 0, 0, 0, 0, 0, 1, 0, 0, 1, 0, 0, 0, 0, 1, 1, 0, 0, 1, 0, 0, 0, 1, 0, 1) + struct.pack("<4I", 3, 0, 1, 2))
+write(mesh, "quad_comments.off", b"\2" + b"# a comment\nSTCNOFF 4 1 0\n0 0 0 0 0 1 1 0 0 0 0\n1 0 0 0 0 1 0 1 0 1 0 # ends here\n"
+      b"1 1 0 0 0 1 0 0 1 1 1\n0 1 0 0 0 1 1 1 1 0 1\n4 0 1 2 3 255 0 0\n")
 
 core = os.path.join(here, "corpus", "core")
 rng = random.Random(20261122)
