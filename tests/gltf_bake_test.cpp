@@ -615,6 +615,27 @@ TEST(BakeErrors, ANumberedBufferNameIsNeverAnInputsFile) {
   EXPECT_NO_THROW(loadAsset(input));
 }
 
+// A .gltf of the user's beside the output that shares the previous output's .bin keeps it: the
+// rebake neither removes it nor writes its new buffer there.
+TEST(BakeErrors, APreviousBufferAnotherGltfUsesIsKept) {
+  TempDir dir;
+  const fs::path input = demoCopy(dir.path(), "in.gltf");
+  fs::create_directories(dir / "o");
+  tangent::gltf::bakeFile(input, dir / "o" / "out.gltf", {});
+  ASSERT_EQ(loadAsset(dir / "o" / "out.gltf").json["buffers"][0]["uri"], "out.bin");
+  fs::copy_file(dir / "o" / "out.gltf", dir / "o" / "user.gltf");
+  const auto shared = fileBytes(dir / "o" / "out.bin");
+  tangent::gltf::bakeFile(input, dir / "o" / "out.gltf", {});
+  EXPECT_EQ(loadAsset(dir / "o" / "out.gltf").json["buffers"][0]["uri"], "out.1.bin");
+  ASSERT_TRUE(fs::exists(dir / "o" / "out.bin")) << "user.gltf's buffer was removed";
+  EXPECT_EQ(shared, fileBytes(dir / "o" / "out.bin"));
+  tangent::gltf::bakeFile(input, dir / "o" / "out.gltf", {});  // out.bin is user.gltf's, out.1.bin the previous output's
+  EXPECT_EQ(loadAsset(dir / "o" / "out.gltf").json["buffers"][0]["uri"], "out.2.bin");
+  EXPECT_EQ(shared, fileBytes(dir / "o" / "out.bin"));
+  EXPECT_FALSE(fs::exists(dir / "o" / "out.1.bin")) << "the previous output's buffer, used by nothing now";
+  EXPECT_NO_THROW(loadAsset(dir / "o" / "user.gltf"));
+}
+
 // An image copied beside the output under its relative path would land on another image the
 // input uses (n.png copied into sub/, where the input's sub/n.png is): refused, nothing written.
 TEST(BakeErrors, AnImageCopyNeverReplacesAnotherImageTheInputUses) {

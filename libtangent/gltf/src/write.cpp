@@ -111,6 +111,42 @@ std::vector<std::filesystem::path> binsOfPreviousOutput(const std::filesystem::p
   return bins;
 }
 
+// Whether a .gltf beside `output`, other than it, refers to `bin` (a buffer's or an image's
+// uri): a file of the user's that shares the previous output's .bin keeps it. Where the folder
+// or such a file cannot be read, or a file names the .bin but does not parse, the answer is yes.
+bool usedByAnotherGltf(const std::filesystem::path& output, const std::filesystem::path& bin) {
+  namespace fs = std::filesystem;
+  const fs::path folder = output.parent_path().empty() ? fs::path(".") : output.parent_path();
+  const std::string name = bin.filename().string(), encoded = text::uriPath(name);
+  const fs::path target = bin.lexically_normal();
+  std::error_code ec;
+  for (fs::directory_iterator it(folder, ec), end; it != end; it.increment(ec)) {
+    if (ec) return true;
+    const fs::path& path = it->path();
+    if (lowerExtension(path) != ".gltf" || path.filename() == output.filename()) continue;
+    std::error_code fileError;
+    if (!it->is_regular_file(fileError) || it->file_size(fileError) > (std::uintmax_t(64) << 20)) continue;
+    std::vector<std::uint8_t> bytes;
+    if (!readFileInto(path, bytes)) return true;
+    const std::string text(bytes.begin(), bytes.end());
+    if (text.find(name) == std::string::npos && text.find(encoded) == std::string::npos) continue;
+    try {
+      checkJsonDepth(text, path.string());
+      const Json other = Json::parse(text);
+      for (const char* array : {"buffers", "images"}) {
+        if (!other.is_object() || !other.contains(array) || !other[array].is_array()) continue;
+        for (const Json& entry : other[array]) {
+          if (!entry.is_object() || !entry.contains("uri") || !entry["uri"].is_string()) continue;
+          if ((folder / percentDecode(entry["uri"].get<std::string>())).lexically_normal() == target) return true;
+        }
+      }
+    } catch (const std::exception&) {
+      return true;
+    }
+  }
+  return ec.operator bool();
+}
+
 // Whether `path` is a regular file (not a link) holding exactly `bytes` (false where it cannot
 // be read).
 bool holdsBytes(const std::filesystem::path& path, const std::vector<std::uint8_t>& bytes) {
@@ -123,7 +159,7 @@ bool holdsBytes(const std::filesystem::path& path, const std::vector<std::uint8_
 }
 
 // STEM.bin, or STEM.1.bin, STEM.2.bin... : the first that the previous .gltf does not use and
-// that is not `taken` (an input's file).
+// that is not `taken` (a file of this run's, or one another .gltf beside the output uses).
 std::filesystem::path freeBinName(const std::filesystem::path& output, const std::vector<std::filesystem::path>& previousBins,
                                   const std::function<bool(const std::filesystem::path&)>& taken) {
   std::filesystem::path candidate = output;
@@ -498,7 +534,9 @@ std::uint64_t OutputDocument::write(const std::filesystem::path& output, const P
   // The .bin's name first: no image copy may go there.
   const std::vector<fs::path> previousBins = bin.empty() ? std::vector<fs::path>{} : binsOfPreviousOutput(output);
   const fs::path binPath =
-      bin.empty() ? fs::path() : freeBinName(output, previousBins, [&](const fs::path& path) { return isProtected(path); });
+      bin.empty() ? fs::path()
+                  : freeBinName(output, previousBins,
+                                [&](const fs::path& path) { return isProtected(path) || usedByAnotherGltf(output, path); });
   placeImages(outputDir, bin.empty() ? std::vector<fs::path>{output} : std::vector<fs::path>{output, binPath}, created);
   if (bin.empty()) {
     const std::string text = text::dumpJson(doc, 2) + "\n";
@@ -525,10 +563,11 @@ std::uint64_t OutputDocument::write(const std::filesystem::path& output, const P
   }
   filesWritten_.push_back(output);
   filesWritten_.push_back(binPath);
-  // The previous .bin, now used by nothing we wrote.
+  // The previous .bin, now used by nothing we wrote: removed unless a file of this run or
+  // another .gltf beside the output uses it.
   for (const fs::path& previous : previousBins) {
     std::error_code ec;
-    if (previous != binPath) fs::remove(previous, ec);
+    if (previous != binPath && !isProtected(previous) && !usedByAnotherGltf(output, previous)) fs::remove(previous, ec);
   }
   return binBytes + text.size();
 }
