@@ -12,6 +12,7 @@
 #include <functional>
 #include <iterator>
 #include <limits>
+#include <random>
 #include <set>
 #include <span>
 #include <string>
@@ -954,6 +955,92 @@ TEST(MeshFiles, PlyUvNamesCornerUvsAndByteOrdersAreRead) {
     EXPECT_EQ(uvs[2 * i], expected[k][2]);
     EXPECT_EQ(uvs[2 * i + 1], expected[k][3]);
   }
+}
+
+// A concave n-gon (a U of area 7) is cut into ears: every triangle faces the polygon's way and
+// together they cover its area once. A fan from its first corner folded two triangles over the
+// gap of the U. A convex one stays a fan from its first corner.
+TEST(MeshFiles, ConcavePolygonsAreCutIntoEarsConvexOnesFanned) {
+  TempDir dir;
+  std::ofstream(dir / "u.obj") << "v 0 0 0\nv 3 0 0\nv 3 3 0\nv 2 3 0\nv 2 1 0\nv 1 1 0\nv 1 3 0\nv 0 3 0\n"
+                                  "vt 0 0\nvt 1 0\nvt 1 1\nvt 0.6 1\nvt 0.6 0.3\nvt 0.3 0.3\nvt 0.3 1\nvt 0 1\nvn 0 0 1\n"
+                                  "f 1/1/1 2/2/1 3/3/1 4/4/1 5/5/1 6/6/1 7/7/1 8/8/1\n"
+                                  "v 5 0 0\nv 7 0 0\nv 8 1 0\nv 7 2 0\nv 5 2 0\nvt 0 0\nvt 1 0\nvt 1 0.5\nvt 1 1\nvt 0 1\n"
+                                  "f 9/9/1 10/10/1 11/11/1 12/12/1 13/13/1\n";
+  const fs::path output = dir / "u.glb";
+  tangent::gltf::bakeFile(dir / "u.obj", output, {});
+  const Asset out = loadAsset(output);
+  const Json& primitive = out.json["meshes"][0]["primitives"][0];
+  const auto positions = tangent::gltf::detail::toFloats(readAccessor(out.model, primitive["attributes"]["POSITION"].get<int>(), "POSITION"));
+  tangent::gltf::detail::AccessorData indexHeader;
+  const auto indices = tangent::gltf::detail::readIndices(out.model, primitive["indices"].get<int>(), positions.size() / 3, "indices", indexHeader);
+  ASSERT_EQ(indices.size(), 3u * (6 + 3));
+  double area[2] = {0, 0};
+  for (std::size_t t = 0; t < indices.size() / 3; ++t) {
+    const float* a = &positions[3 * indices[3 * t]];
+    const float* b = &positions[3 * indices[3 * t + 1]];
+    const float* c = &positions[3 * indices[3 * t + 2]];
+    const double twice = (b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0]);
+    EXPECT_GT(twice, 0.0) << "triangle " << t << " is folded over";
+    area[a[0] >= 5 ? 1 : 0] += twice / 2;
+  }
+  EXPECT_DOUBLE_EQ(area[0], 7.0);
+  EXPECT_DOUBLE_EQ(area[1], 5.0);
+  // The pentagon, convex: fanned from its first corner, (5,0).
+  for (std::size_t t = 6; t < 9; ++t) EXPECT_EQ(positions[3 * indices[3 * t]], 5.0f);
+}
+
+// Random star-shaped polygons (simple, mostly concave, 5 to 60 corners, tilted out of every
+// axis plane): each one's triangles face its way and cover its area once.
+TEST(MeshFiles, RandomConcavePolygonsAreCoveredOnce) {
+  TempDir dir;
+  std::mt19937 random(7);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  std::ofstream obj(dir / "stars.obj");
+  obj << "vt 0 0\nvt 1 0\nvt 0 1\n";
+  std::vector<double> expectedArea;
+  std::size_t vertices = 0;
+  for (int polygon = 0; polygon < 40; ++polygon) {
+    const int n = 5 + static_cast<int>(unit(random) * 56);
+    std::vector<double> angles(static_cast<std::size_t>(n));
+    for (double& a : angles) a = unit(random) * 6.283185307179586;
+    std::sort(angles.begin(), angles.end());
+    double area = 0, previous[2] = {0, 0}, first[2] = {0, 0};
+    for (int k = 0; k < n; ++k) {
+      const double r = 0.3 + 0.7 * unit(random);
+      const double x = r * std::cos(angles[static_cast<std::size_t>(k)]), y = r * std::sin(angles[static_cast<std::size_t>(k)]);
+      // In the plane spanned by (1, 0, 0.5) and (0, 1, 0.25), shifted along z per polygon.
+      obj << "v " << x << " " << y << " " << 0.5 * x + 0.25 * y + polygon << "\n";
+      if (k > 0) area += previous[0] * y - previous[1] * x;
+      else first[0] = x, first[1] = y;
+      previous[0] = x, previous[1] = y;
+    }
+    area += previous[0] * first[1] - previous[1] * first[0];
+    expectedArea.push_back(area / 2);  // in the (x, y) projection
+    obj << "f";
+    for (int k = 0; k < n; ++k) obj << " " << vertices + static_cast<std::size_t>(k) + 1 << "/" << (k % 3) + 1;
+    obj << "\n";
+    vertices += static_cast<std::size_t>(n);
+  }
+  obj.close();
+  tangent::gltf::bakeFile(dir / "stars.obj", dir / "stars.glb", {});
+  const Asset out = loadAsset(dir / "stars.glb");
+  const Json& primitive = out.json["meshes"][0]["primitives"][0];
+  const auto positions = tangent::gltf::detail::toFloats(readAccessor(out.model, primitive["attributes"]["POSITION"].get<int>(), "POSITION"));
+  tangent::gltf::detail::AccessorData indexHeader;
+  const auto indices = tangent::gltf::detail::readIndices(out.model, primitive["indices"].get<int>(), positions.size() / 3, "indices", indexHeader);
+  ASSERT_EQ(indices.size(), 3 * (vertices - 2 * expectedArea.size()));
+  std::vector<double> area(expectedArea.size(), 0.0);
+  for (std::size_t t = 0; t < indices.size() / 3; ++t) {
+    const float* a = &positions[3 * indices[3 * t]];
+    const float* b = &positions[3 * indices[3 * t + 1]];
+    const float* c = &positions[3 * indices[3 * t + 2]];
+    const double twice = (double(b[0]) - a[0]) * (double(c[1]) - a[1]) - (double(b[1]) - a[1]) * (double(c[0]) - a[0]);
+    const auto polygon = static_cast<std::size_t>(std::lround(a[2] - 0.5 * a[0] - 0.25 * a[1]));
+    EXPECT_GE(twice, -1e-9) << "polygon " << polygon << " triangle " << t << " is folded over";
+    area[polygon] += twice / 2;
+  }
+  for (std::size_t p = 0; p < area.size(); ++p) EXPECT_NEAR(area[p], expectedArea[p], 1e-4) << "polygon " << p;
 }
 
 // A binary PLY with a NaN coordinate gave a GLB with "min": [null, ...] and NaN data (validator

@@ -105,6 +105,93 @@ void appendFloats(std::vector<std::uint8_t>& bin, const std::vector<float>& valu
   std::memcpy(bin.data() + at, values.data(), values.size() * 4);
 }
 
+// Polygons to triangles, appended to `indices` in the polygon's winding. A convex polygon
+// (every quad a file is likely to hold) is fanned from its first corner, as before; a concave
+// one is cut into ears (Meisters, "Polygons have ears", 1975) in the plane of its Newell
+// normal, so that no triangle covers ground outside it (a fan there folds triangles over,
+// with flipped normals and tangents). Polygons of more than kMaxEarClippedCorners corners, and
+// those it cannot finish (self-intersecting), are fanned.
+constexpr std::size_t kMaxEarClippedCorners = 256;
+
+void triangulatePolygon(const std::vector<float>& positions, const std::vector<std::uint32_t>& polygon,
+                        std::vector<std::uint32_t>& indices) {
+  const std::size_t n = polygon.size();
+  auto fan = [&](const std::vector<std::uint32_t>& ring) {
+    for (std::size_t i = 1; i + 1 < ring.size(); ++i) indices.insert(indices.end(), {ring[0], ring[i], ring[i + 1]});
+  };
+  if (n <= 3 || n > kMaxEarClippedCorners) return fan(polygon);
+  auto at = [&](std::size_t corner, int axis) { return static_cast<double>(positions[3 * polygon[corner] + axis]); };
+  // Newell's normal; the plane drops its largest axis, keeping the other two in cyclic order,
+  // so that the polygon's signed area there has the sign of that component.
+  double normal[3] = {0, 0, 0};
+  for (std::size_t i = 0; i < n; ++i) {
+    const std::size_t j = (i + 1) % n;
+    for (int a = 0; a < 3; ++a) {
+      const int b = (a + 1) % 3, c = (a + 2) % 3;
+      normal[a] += (at(i, b) - at(j, b)) * (at(i, c) + at(j, c));
+    }
+  }
+  int drop = 0;
+  for (int a = 1; a < 3; ++a) {
+    if (std::fabs(normal[a]) > std::fabs(normal[drop])) drop = a;
+  }
+  if (normal[drop] == 0.0 || !std::isfinite(normal[drop])) return fan(polygon);
+  const int ua = (drop + 1) % 3, va = (drop + 2) % 3;
+  const double orientation = normal[drop] > 0 ? 1.0 : -1.0;
+  // Twice the signed area of (p, q, r) in the plane, positive where the turn follows the polygon.
+  auto turn = [&](std::size_t p, std::size_t q, std::size_t r) {
+    return orientation * ((at(q, ua) - at(p, ua)) * (at(r, va) - at(p, va)) - (at(q, va) - at(p, va)) * (at(r, ua) - at(p, ua)));
+  };
+  bool convex = true;
+  for (std::size_t i = 0; i < n && convex; ++i) convex = turn((i + n - 1) % n, i, (i + 1) % n) >= 0;
+  if (convex) return fan(polygon);
+
+  std::vector<std::size_t> previous(n), next(n);
+  for (std::size_t i = 0; i < n; ++i) previous[i] = (i + n - 1) % n, next[i] = (i + 1) % n;
+  auto isEar = [&](std::size_t i) {
+    const std::size_t p = previous[i], q = next[i];
+    if (turn(p, i, q) <= 0) return false;
+    for (std::size_t r = next[q]; r != p; r = next[r]) {
+      // A corner on or inside the triangle (other than a copy of one of its corners) blocks it.
+      const auto same = [&](std::size_t a) { return at(r, ua) == at(a, ua) && at(r, va) == at(a, va); };
+      if (same(p) || same(i) || same(q)) continue;
+      if (turn(p, i, r) >= 0 && turn(i, q, r) >= 0 && turn(q, p, r) >= 0) return false;
+    }
+    return true;
+  };
+  // Each corner's ear status is kept and recomputed only for the two neighbours of a clipped
+  // ear (quadratic in all); a corner that only the clipped one blocked is found when a search
+  // comes up empty and every status is recomputed once.
+  std::vector<char> ear(n);
+  for (std::size_t k = 0; k < n; ++k) ear[k] = isEar(k);
+  std::size_t remaining = n, i = 0;
+  bool fresh = true;
+  while (remaining > 3) {
+    std::size_t searched = 0;
+    while (!ear[i] && searched < remaining) i = next[i], ++searched;
+    if (!ear[i]) {
+      if (!fresh) {
+        for (std::size_t k = 0, r = i; k < remaining; ++k, r = next[r]) ear[r] = isEar(r);
+        fresh = true;
+        continue;
+      }
+      std::vector<std::uint32_t> ring;
+      for (std::size_t k = 0, r = i; k < remaining; ++k, r = next[r]) ring.push_back(polygon[r]);
+      return fan(ring);
+    }
+    const std::size_t p = previous[i], q = next[i];
+    indices.insert(indices.end(), {polygon[p], polygon[i], polygon[q]});
+    next[p] = q;
+    previous[q] = p;
+    --remaining;
+    ear[p] = isEar(p);
+    ear[q] = isEar(q);
+    fresh = false;
+    i = q;
+  }
+  indices.insert(indices.end(), {polygon[previous[i]], polygon[i], polygon[next[i]]});
+}
+
 }  // namespace
 
 std::vector<std::uint8_t> meshFileToGlb(const std::filesystem::path& path) {
@@ -215,7 +302,7 @@ std::vector<std::uint8_t> meshFileToGlb(const std::filesystem::path& path) {
       }
       polygon.push_back(it->second);
     }
-    for (std::size_t i = 1; i + 1 < polygon.size(); ++i) indices.insert(indices.end(), {polygon[0], polygon[i], polygon[i + 1]});
+    triangulatePolygon(positions, polygon, indices);
   }
   const std::size_t vertexCount = positions.size() / 3;
   float lo[3] = {positions[0], positions[1], positions[2]}, hi[3] = {lo[0], lo[1], lo[2]};
