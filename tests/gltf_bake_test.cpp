@@ -957,6 +957,22 @@ TEST(MeshFiles, PlyUvNamesCornerUvsAndByteOrdersAreRead) {
   }
 }
 
+// info says of a mesh file what bake does with it: every mesh with UVs needs tangents (it said
+// "no tangents needed - no normalTexture", and then bake baked it).
+TEST(MeshFiles, InfoSaysWhatBakeDoes) {
+  TempDir dir;
+  std::ofstream(dir / "tri.obj") << "v 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nvt 1 0\nvt 0 1\nf 1/1 2/2 3/3\n";
+  const auto info = tangent::gltf::describeFile(dir / "tri.obj", {});
+  const auto baked = tangent::gltf::bakeFile(dir / "tri.obj", dir / "tri.glb", {});
+  ASSERT_EQ(baked.primitives.size(), 1u);
+  EXPECT_EQ(baked.primitives[0].action, tangent::gltf::PrimitiveAction::baked);
+  const auto& primitive = info["meshes"][0]["primitives"][0];
+  EXPECT_EQ(primitive["needsTangents"], true) << primitive.dump();
+  const std::string why = primitive["why"].get<std::string>();
+  EXPECT_EQ(baked.primitives[0].reason.rfind(why, 0), 0u) << why << " | " << baked.primitives[0].reason;  // bake adds the normals it made
+  EXPECT_NE(why.find("OBJ/PLY/OFF"), std::string::npos) << why;
+}
+
 // A concave n-gon (a U of area 7) is cut into ears: every triangle faces the polygon's way and
 // together they cover its area once. A fan from its first corner folded two triangles over the
 // gap of the U. A convex one stays a fan from its first corner.

@@ -412,11 +412,9 @@ PrimitivePlan PrimitiveBaker::planPrimitive(int meshIndex, int primitiveIndex) {
   result.action = PrimitiveAction::skipped;
 
   const detail::PrimitiveNeeds& needs = plan.needs = detail::primitiveNeeds(doc, primitive, options_.all || asset_.fromMeshFile);
-  plan.why = asset_.fromMeshFile && !needs.hasNormalTexture && needs.texCoord >= 0
-                 ? "OBJ/PLY/OFF carry no materials: every mesh is baked, from its texture coordinates"
-                 : needs.why;
+  plan.why = detail::bakeReason(needs, asset_.fromMeshFile);
   result.reason = plan.why;
-  if (!needs.triangles || needs.texCoord < 0) return plan;
+  if (!detail::bakesTangents(needs)) return plan;
   result.texCoord = needs.texCoord;
   if (!primitive.contains("attributes") || !primitive["attributes"].is_object())
     throw InputError(plan.where + ": has no attributes object");

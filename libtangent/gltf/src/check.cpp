@@ -603,9 +603,9 @@ FileCheck checkAsset(const std::filesystem::path& input, const CheckOptions& opt
           continue;
         }
         // A primitive without NORMAL is checked against the spec's flat normals (checkDrawnPart).
-        if (!needs.triangles || needs.texCoord < 0 || !hasUv) {
+        if (!detail::bakesTangents(needs) || !hasUv) {
           std::string why = needs.why;
-          if (needs.triangles && needs.texCoord >= 0) why = "no TEXCOORD_" + std::to_string(needs.texCoord) + " attribute";
+          if (detail::bakesTangents(needs)) why = "no TEXCOORD_" + std::to_string(needs.texCoord) + " attribute";
           result.skipped.push_back(label + ": " + why);
           continue;
         }

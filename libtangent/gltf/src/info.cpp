@@ -66,12 +66,12 @@ nlohmann::ordered_json describe(const std::filesystem::path& input, const std::f
                               : (primitive.contains("attributes") ? detail::accessorOf(primitive["attributes"], "POSITION") : -1);
       if (counted >= 0 && counted < static_cast<int>(asset.model.accessors.size())) vertices = asset.model.accessors[counted].count;
       const bool drawsTriangles = vertices >= 3;
-      primitiveOut["needsTangents"] = needs.triangles && needs.hasNormalTexture && drawsTriangles;
+      primitiveOut["needsTangents"] = detail::bakesTangents(needs) && drawsTriangles;
       primitiveOut["hasTangents"] = hasTangent;
       if (needs.texCoord >= 0 && needs.hasNormalTexture) primitiveOut["normalTexCoord"] = needs.texCoord;
       primitiveOut["why"] = needs.triangles && !drawsTriangles
                                 ? "draws no triangle (" + std::to_string(vertices) + " vertices); left as it is"
-                                : needs.why;
+                                : detail::bakeReason(needs, asset.fromMeshFile);
       primitives.push_back(primitiveOut);
     }
     meshOut["primitives"] = primitives;

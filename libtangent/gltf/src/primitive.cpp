@@ -59,6 +59,12 @@ PrimitiveNeeds primitiveNeeds(const Json& doc, const Json& primitive, bool all) 
   return needs;
 }
 
+std::string bakeReason(const PrimitiveNeeds& needs, bool fromMeshFile) {
+  return fromMeshFile && !needs.hasNormalTexture && bakesTangents(needs)
+             ? "OBJ/PLY/OFF carry no materials: every mesh is baked, from its texture coordinates"
+             : needs.why;
+}
+
 std::string missingUvSet(const Json& primitive, const PrimitiveNeeds& needs) {
   if (!needs.triangles || !needs.hasNormalTexture) return {};
   const std::string uvName = "TEXCOORD_" + std::to_string(needs.texCoord);

@@ -25,6 +25,14 @@ struct PrimitiveNeeds {
 
 PrimitiveNeeds primitiveNeeds(const nlohmann::ordered_json& doc, const nlohmann::ordered_json& primitive, bool all);
 
+// The one rule for whether tangents are computed for a primitive: triangles and a UV set to
+// bake from. bake computes them, check judges them, info says "needs tangents".
+inline bool bakesTangents(const PrimitiveNeeds& needs) { return needs.triangles && needs.texCoord >= 0; }
+
+// Why, as bake and info say it: needs.why, or for a mesh file (OBJ/PLY/OFF, `all` given to
+// primitiveNeeds) that every mesh is baked.
+std::string bakeReason(const PrimitiveNeeds& needs, bool fromMeshFile);
+
 // The one rule for a normal texture on a UV set the primitive does not have (a broken file:
 // bake and info refuse it, check reports a finding): what is wrong, or "" when nothing is.
 std::string missingUvSet(const nlohmann::ordered_json& primitive, const PrimitiveNeeds& needs);
