@@ -192,9 +192,12 @@ void identifyGenerator(const PrimitiveGeometry& frames, const PrimitiveGeometry&
     if (angles.empty()) {
       match.medianDegrees = match.maxDegrees = 180;
     } else {
-      std::sort(angles.begin(), angles.end());
-      match.medianDegrees = angles[angles.size() / 2];
-      match.maxDegrees = angles.back();
+      // The median by selection, not a sort: a sort of 6 million angles per generator took 8%
+      // of identify's time at 10^6 triangles.
+      const auto middle = angles.begin() + static_cast<std::ptrdiff_t>(angles.size() / 2);
+      std::nth_element(angles.begin(), middle, angles.end());
+      match.medianDegrees = *middle;
+      match.maxDegrees = *std::max_element(middle, angles.end());
       match.wAgreement = double(wAgree) / double(angles.size());
     }
     result.generators.push_back(std::move(match));
