@@ -637,6 +637,41 @@ TEST(BakeErrors, APreviousBufferAnotherGltfUsesIsKept) {
   EXPECT_NO_THROW(loadAsset(dir / "o" / "user.gltf"));
 }
 
+// The same with the neighbour naming the .bin in other spellings: a .glb's JSON chunk, a JSON
+// escape, a percent-encoded dot (each decoded before comparing).
+TEST(BakeErrors, APreviousBufferIsKeptWhateverTheNeighbourSpellsIt) {
+  auto glb = [](const std::string& json) {
+    std::string padded = json;
+    while (padded.size() % 4) padded += ' ';
+    std::string out = "glTF";
+    auto u32 = [&](std::uint32_t v) { out.append(reinterpret_cast<const char*>(&v), 4); };
+    u32(2);
+    u32(static_cast<std::uint32_t>(12 + 8 + padded.size()));
+    u32(static_cast<std::uint32_t>(padded.size()));
+    out += "JSON" + padded;
+    return out;
+  };
+  const std::string buffer = R"("byteLength": 4, "uri": )";
+  const std::pair<const char*, std::string> neighbours[] = {
+      {"user.glb", glb(R"({"asset": {"version": "2.0"}, "buffers": [{)" + buffer + R"("out.bin"}]})")},
+      {"user.gltf", R"({"asset": {"version": "2.0"}, "buffers": [{)" + buffer + R"("\u006fut.bin"}]})"},
+      {"user.gltf", R"({"asset": {"version": "2.0"}, "buffers": [{)" + buffer + R"("out%2ebin"}]})"}};
+  for (const auto& [name, bytes] : neighbours) {
+    SCOPED_TRACE(bytes);
+    TempDir dir;
+    const fs::path input = demoCopy(dir.path(), "in.gltf");
+    fs::create_directories(dir / "o");
+    tangent::gltf::bakeFile(input, dir / "o" / "out.gltf", {});
+    std::ofstream(dir / "o" / name, std::ios::binary) << bytes;
+    const auto shared = fileBytes(dir / "o" / "out.bin");
+    tangent::gltf::bakeFile(input, dir / "o" / "out.gltf", {});
+    tangent::gltf::bakeFile(input, dir / "o" / "out.gltf", {});
+    ASSERT_TRUE(fs::exists(dir / "o" / "out.bin")) << name << "'s buffer was removed";
+    EXPECT_EQ(shared, fileBytes(dir / "o" / "out.bin"));
+    EXPECT_NE(loadAsset(dir / "o" / "out.gltf").json["buffers"][0]["uri"], "out.bin");
+  }
+}
+
 // An image copied beside the output under its relative path would land on another image the
 // input uses (n.png copied into sub/, where the input's sub/n.png is): refused, nothing written.
 TEST(BakeErrors, AnImageCopyNeverReplacesAnotherImageTheInputUses) {
@@ -971,6 +1006,39 @@ TEST(MeshFiles, InfoSaysWhatBakeDoes) {
   const std::string why = primitive["why"].get<std::string>();
   EXPECT_EQ(baked.primitives[0].reason.rfind(why, 0), 0u) << why << " | " << baked.primitives[0].reason;  // bake adds the normals it made
   EXPECT_NE(why.find("OBJ/PLY/OFF"), std::string::npos) << why;
+}
+
+// A face that would make the mesh non-manifold (a third face on one edge) goes onto copies of
+// its vertices; the copies keep the normals and UVs the file gave (they had neither, so the
+// file was refused for a vertex without UVs, and NORMAL was dropped for the whole mesh).
+TEST(MeshFiles, NonManifoldFacesKeepTheirVerticesNormalsAndUvs) {
+  TempDir dir;
+  std::ofstream(dir / "fin.ply") << "ply\nformat ascii 1.0\nelement vertex 5\nproperty float x\nproperty float y\nproperty float z\n"
+                                    "property float nx\nproperty float ny\nproperty float nz\nproperty float s\nproperty float t\n"
+                                    "element face 3\nproperty list uchar int vertex_indices\nend_header\n"
+                                    "0 0 0 0 0 1 0 0\n1 0 0 0 0 1 1 0\n0 1 0 0 0 1 0 1\n0 -1 0 0 0 1 0 0.5\n0.5 0 1 0 1 0 0.5 0.5\n"
+                                    "3 0 1 2\n3 1 0 3\n3 0 1 4\n";
+  tangent::gltf::bakeFile(dir / "fin.ply", dir / "fin.glb", {});
+  const Asset out = loadAsset(dir / "fin.glb");
+  const Json& attributes = out.json["meshes"][0]["primitives"][0]["attributes"];
+  ASSERT_TRUE(attributes.contains("NORMAL")) << attributes.dump();
+  const auto positions = tangent::gltf::detail::toFloats(readAccessor(out.model, attributes["POSITION"].get<int>(), "POSITION"));
+  const auto normals = tangent::gltf::detail::toFloats(readAccessor(out.model, attributes["NORMAL"].get<int>(), "NORMAL"));
+  const auto uvs = tangent::gltf::detail::toFloats(readAccessor(out.model, attributes["TEXCOORD_0"].get<int>(), "TEXCOORD_0"));
+  const float file[5][8] = {{0, 0, 0, 0, 0, 1, 0, 0}, {1, 0, 0, 0, 0, 1, 1, 0}, {0, 1, 0, 0, 0, 1, 0, 1}, {0, -1, 0, 0, 0, 1, 0, 0.5f},
+                            {0.5f, 0, 1, 0, 1, 0, 0.5f, 0.5f}};
+  std::size_t matched = 0;
+  for (std::size_t v = 0; v < positions.size() / 3; ++v) {
+    for (const auto& f : file) {
+      if (positions[3 * v] != f[0] || positions[3 * v + 1] != f[1] || positions[3 * v + 2] != f[2]) continue;
+      ++matched;
+      EXPECT_EQ(normals[3 * v + 1], f[4]) << "vertex " << v;
+      EXPECT_EQ(normals[3 * v + 2], f[5]) << "vertex " << v;
+      EXPECT_EQ(uvs[2 * v], f[6]) << "vertex " << v;
+      EXPECT_EQ(uvs[2 * v + 1], 1.0f - f[7]) << "vertex " << v;
+    }
+  }
+  EXPECT_EQ(matched, positions.size() / 3);
 }
 
 // A concave n-gon (a U of area 7) is cut into ears: every triangle faces the polygon's way and

@@ -375,6 +375,8 @@ add("off_infinite_coordinate", {"in.off": b"STOFF\n3 1 0\n0 0 0 0 0\n1e39 0 0 1 
     "vertex 2 value '1e39' is not a finite number", input_name="in.off")
 add("off_face_count_overflows", {"in.off": b"STOFF\n3 1 0\n0 0 0 0 0\n1 0 0 1 0\n0 1 0 0 1\n" + b"6" * 60 + b"\n"},
     "face 1 declares '66666666666666666666' corners", input_name="in.off")
+add("off_st_extra_values", {"in.off": b"STOFF\n3 1 0\n0 0 0 0 0 9 9\n1 0 0 1 0\n0 1 0 0 1\n3 0 1 2\n"},
+    "OFF line 3: vertex 1 lists 7 values; STOFF has no colours, so exactly 5 (x y z s t)", input_name="in.off")
 add("off_homogeneous", {"in.off": b"4OFF\n3 1 0\n0 0 0 1\n1 0 0 1\n0 1 0 1\n3 0 1 2\n"}, "4OFF (homogeneous coordinates) is not read",
     input_name="in.off")
 add("off_binary_face_corners_huge",

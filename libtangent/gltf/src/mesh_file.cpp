@@ -225,7 +225,7 @@ std::vector<std::uint8_t> meshFileToGlb(const std::filesystem::path& path) {
         if (extension == ".off")
           readOff(text, importer, options, path.string());
         else
-          readPly(text, mesh, importer, options, path.string());
+          readPly(text, importer, options, path.string());
         read = true;
       } else if (extension == ".obj") {
         // From memory, its mtllib lines blanked: OpenMesh opened the material library wherever

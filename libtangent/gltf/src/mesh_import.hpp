@@ -69,17 +69,40 @@ class CheckedImporter : public OpenMesh::IO::ImporterT<ImportMesh> {
                          std::to_string(vertices[k].idx() + 1) + " (1-based), but the file has " +
                          std::to_string(mesh_.n_vertices()) + " vertices there");
     }
-    return Base::add_face(vertices);
+    const std::size_t before = mesh_.n_vertices();
+    const OpenMesh::FaceHandle face = Base::add_face(vertices);
+    // A face that would make the mesh non-manifold OpenMesh adds on copies of its vertices, made
+    // in corner order, with the position only: the copies get the normal and UV the file gave
+    // the originals, and the face's corner UVs (add_face_texcoords) find the copy.
+    copiedFace_ = OpenMesh::FaceHandle();
+    if (face.is_valid() && mesh_.n_vertices() == before + vertices.size()) {
+      copiedFace_ = face;
+      copiedFrom_ = vertices;
+      copiedBase_ = before;
+      for (std::size_t k = 0; k < vertices.size(); ++k) {
+        const OpenMesh::VertexHandle copy(static_cast<int>(before + k));
+        const auto original = static_cast<std::size_t>(vertices[k].idx());
+        if (original < normalSet_.size() && normalSet_[original]) {
+          Base::set_normal(copy, mesh_.normal(vertices[k]));
+          mark(normalSet_, before + k);
+        }
+        if (original < vertexUvSet_.size() && vertexUvSet_[original]) {
+          Base::set_texcoord(copy, mesh_.texcoord2D(vertices[k]));
+          mark(vertexUvSet_, before + k);
+        }
+      }
+    }
+    return face;
   }
   void add_face_texcoords(OpenMesh::FaceHandle face, OpenMesh::VertexHandle vertex,
                           const std::vector<OpenMesh::Vec2f>& uvs) override {
     if (!validFace(face) || !validVertex(vertex)) return;  // a face add_face refused (repeated vertex)
-    Base::add_face_texcoords(face, vertex, uvs);
+    Base::add_face_texcoords(face, cornerVertex(face, vertex), uvs);
   }
   void add_face_texcoords(OpenMesh::FaceHandle face, OpenMesh::VertexHandle vertex,
                           const std::vector<OpenMesh::Vec3f>& uvs) override {
     if (!validFace(face) || !validVertex(vertex)) return;
-    Base::add_face_texcoords(face, vertex, uvs);
+    Base::add_face_texcoords(face, cornerVertex(face, vertex), uvs);
   }
   void set_point(OpenMesh::VertexHandle v, const OpenMesh::Vec3f& p) override { vertex(v, "position"), Base::set_point(v, p); }
   void set_normal(OpenMesh::VertexHandle v, const OpenMesh::Vec3f& n) override {
@@ -133,6 +156,13 @@ class CheckedImporter : public OpenMesh::IO::ImporterT<ImportMesh> {
     if (set.size() <= i) set.resize(i + 1, 0);
     set[i] = 1;
   }
+  // The vertex of `face` that stands for the file's `vertex`: its copy where add_face copied.
+  OpenMesh::VertexHandle cornerVertex(OpenMesh::FaceHandle face, OpenMesh::VertexHandle vertex) const {
+    if (face != copiedFace_) return vertex;
+    const auto at = std::find(copiedFrom_.begin(), copiedFrom_.end(), vertex);
+    if (at == copiedFrom_.end()) return vertex;
+    return OpenMesh::VertexHandle(static_cast<int>(copiedBase_ + static_cast<std::size_t>(at - copiedFrom_.begin())));
+  }
   void countVertex() {
     if (++vertices_ > limit_) throw InputError(label_ + ": more vertices than the file's size allows; the file is malformed");
   }
@@ -144,6 +174,9 @@ class CheckedImporter : public OpenMesh::IO::ImporterT<ImportMesh> {
   std::vector<char>& vertexUvSet_;
   std::vector<char>& halfedgeUvSet_;
   std::vector<char>& normalSet_;
+  OpenMesh::FaceHandle copiedFace_;  // the last face added on copies of its vertices
+  OpenMesh::IO::BaseImporter::VHandles copiedFrom_;
+  std::size_t copiedBase_ = 0;  // the copy of copiedFrom_[k] is vertex copiedBase_ + k
 };
 
 // The whitespace-separated words of a line.
@@ -165,11 +198,10 @@ inline bool isCount(const std::string& word) {
 }
 
 
-// Each reads a whole file's bytes into `importer` (and `mesh`, the importer's) and sets
+// Each reads a whole file's bytes into `importer` and sets
 // `options` to what the file gave (VertexNormal, VertexTexCoord, FaceTexCoord); a malformed
 // file throws InputError naming `label` and the element.
-void readPly(const std::string& text, ImportMesh& mesh, CheckedImporter& importer, OpenMesh::IO::Options& options,
-             const std::string& label);
+void readPly(const std::string& text, CheckedImporter& importer, OpenMesh::IO::Options& options, const std::string& label);
 void readOff(const std::string& text, CheckedImporter& importer, OpenMesh::IO::Options& options, const std::string& label);
 
 }  // namespace tangent::gltf::detail

@@ -123,7 +123,8 @@ void readOff(const std::string& text, CheckedImporter& importer, OpenMesh::IO::O
     for (std::uint64_t v = 0; v < vertices; ++v) {
       if (!next()) fail("the file ends after " + std::to_string(v) + " of " + std::to_string(vertices) + " vertices");
       w = words(line);
-      // x y z [nx ny nz] [colour] [s t]: the texture coordinates are the line's last two.
+      // x y z [nx ny nz] [colour] [s t]: the texture coordinates follow the coordinates, or with
+      // colours (of 1 to 4 values) are the line's last two; without colours nothing may follow.
       const std::size_t needed = perVertex + (texcoords ? 2 : 0);
       if (w.size() < needed)
         fail("vertex " + std::to_string(v + 1) + " lists " + std::to_string(w.size()) + " value(s); " + keyword.substr(0, 40) +
@@ -133,8 +134,12 @@ void readOff(const std::string& text, CheckedImporter& importer, OpenMesh::IO::O
       const auto vh = importer.add_vertex(OpenMesh::Vec3f(x[0], x[1], x[2]));
       if (hasNormals) importer.set_normal(vh, OpenMesh::Vec3f(x[3], x[4], x[5]));
       if (texcoords) {
+        if (!colours && w.size() != needed)
+          fail("vertex " + std::to_string(v + 1) + " lists " + std::to_string(w.size()) + " values; " + keyword.substr(0, 40) +
+               " has no colours, so exactly " + std::to_string(needed) + " (x y z" + (hasNormals ? " nx ny nz" : "") + " s t)");
         const std::string what = "vertex " + std::to_string(v + 1) + " texture coordinate";
-        importer.set_texcoord(vh, OpenMesh::Vec2f(number(w[w.size() - 2], what), number(w.back(), what)));
+        const std::size_t s = colours ? w.size() - 2 : perVertex;
+        importer.set_texcoord(vh, OpenMesh::Vec2f(number(w[s], what), number(w[s + 1], what)));
       }
       handles.push_back(vh);
     }

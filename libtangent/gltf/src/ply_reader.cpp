@@ -128,8 +128,7 @@ PlyHeader readPlyHeader(const std::string& text, const std::string& label) {
 
 }  // namespace
 
-void readPly(const std::string& text, ImportMesh& mesh, CheckedImporter& importer, OpenMesh::IO::Options& options,
-             const std::string& label) {
+void readPly(const std::string& text, CheckedImporter& importer, OpenMesh::IO::Options& options, const std::string& label) {
   const PlyHeader header = readPlyHeader(text, label);
   const bool ascii = header.format == PlyHeader::Format::ascii;
   const bool swap = (header.format == PlyHeader::Format::big) != (std::endian::native == std::endian::big);
@@ -267,17 +266,7 @@ void readPly(const std::string& text, ImportMesh& mesh, CheckedImporter& importe
           if (!fh.is_valid()) continue;  // refused by the importer (a repeated vertex)
           cornerUv.clear();
           for (std::size_t k = 0; k < corners.size(); ++k) cornerUv.emplace_back(uvValues[2 * k], uvValues[2 * k + 1]);
-          // The UVs start at the first corner. A face OpenMesh could not add where it is
-          // (non-manifold) got copies of its vertices, made in corner order: the first corner is
-          // then the copy with the lowest index.
-          OpenMesh::VertexHandle first = corners[0];
-          bool present = false;
-          OpenMesh::VertexHandle lowest;
-          for (const auto vh : mesh.fv_range(fh)) {
-            present = present || vh == first;
-            if (!lowest.is_valid() || vh.idx() < lowest.idx()) lowest = vh;
-          }
-          importer.add_face_texcoords(fh, present ? first : lowest, cornerUv);
+          importer.add_face_texcoords(fh, corners[0], cornerUv);  // from the first corner on (its copy, the importer knows)
         }
       }
     }

@@ -111,34 +111,30 @@ std::vector<std::filesystem::path> binsOfPreviousOutput(const std::filesystem::p
   return bins;
 }
 
-// Whether a .gltf beside `output`, other than it, refers to `bin` (a buffer's or an image's
-// uri): a file of the user's that shares the previous output's .bin keeps it. Where the folder
-// or such a file cannot be read, or a file names the .bin but does not parse, the answer is yes.
+std::string gltfJsonText(const std::filesystem::path& path);
+std::vector<std::filesystem::path> filesNamedBy(const Json& doc, const std::filesystem::path& dir);
+
+// Whether a .gltf or .glb beside `output`, other than it, names `bin` (a buffer's or an image's
+// uri, decoded): a file of the user's that shares the previous output's .bin keeps it. Where
+// the folder or such a file cannot be read or parsed, the answer is yes.
 bool usedByAnotherGltf(const std::filesystem::path& output, const std::filesystem::path& bin) {
   namespace fs = std::filesystem;
   const fs::path folder = output.parent_path().empty() ? fs::path(".") : output.parent_path();
-  const std::string name = bin.filename().string(), encoded = text::uriPath(name);
-  const fs::path target = bin.lexically_normal();
+  const fs::path target = (folder / bin.filename()).lexically_normal();
   std::error_code ec;
   for (fs::directory_iterator it(folder, ec), end; it != end; it.increment(ec)) {
     if (ec) return true;
     const fs::path& path = it->path();
-    if (lowerExtension(path) != ".gltf" || path.filename() == output.filename()) continue;
+    const std::string extension = lowerExtension(path);
+    if ((extension != ".gltf" && extension != ".glb") || path.filename() == output.filename()) continue;
     std::error_code fileError;
-    if (!it->is_regular_file(fileError) || it->file_size(fileError) > (std::uintmax_t(64) << 20)) continue;
-    std::vector<std::uint8_t> bytes;
-    if (!readFileInto(path, bytes)) return true;
-    const std::string text(bytes.begin(), bytes.end());
-    if (text.find(name) == std::string::npos && text.find(encoded) == std::string::npos) continue;
+    if (!it->is_regular_file(fileError)) continue;
+    const std::string text = gltfJsonText(path);
+    if (text.empty()) return true;
     try {
       checkJsonDepth(text, path.string());
-      const Json other = Json::parse(text);
-      for (const char* array : {"buffers", "images"}) {
-        if (!other.is_object() || !other.contains(array) || !other[array].is_array()) continue;
-        for (const Json& entry : other[array]) {
-          if (!entry.is_object() || !entry.contains("uri") || !entry["uri"].is_string()) continue;
-          if ((folder / percentDecode(entry["uri"].get<std::string>())).lexically_normal() == target) return true;
-        }
+      for (const fs::path& named : filesNamedBy(Json::parse(text), folder)) {
+        if (named == target) return true;
       }
     } catch (const std::exception&) {
       return true;
