@@ -1074,6 +1074,31 @@ TEST(MeshFiles, ConcavePolygonsAreCutIntoEarsConvexOnesFanned) {
   for (std::size_t t = 6; t < 9; ++t) EXPECT_EQ(positions[3 * indices[3 * t]], 5.0f);
 }
 
+// A zero-width spike into a notch turns by zero, as a straight corner does: it is not convex,
+// so not fanned (the fan folded a triangle over the notch).
+TEST(MeshFiles, ASpikeIsNotTakenForConvex) {
+  TempDir dir;
+  std::ofstream(dir / "spike.obj") << "v 0 0 0\nv 4 0 0\nv 4 4 0\nv 2 2 0\nv 2 0.5 0\nv 2 2 0\nv 0 4 0\n"
+                                      "vt 0 0\nvt 1 0\nvt 1 1\nvt 0.5 0.5\nvt 0.5 0.1\nvt 0.5 0.5\nvt 0 1\nvn 0 0 1\n"
+                                      "f 1/1/1 2/2/1 3/3/1 4/4/1 5/5/1 6/6/1 7/7/1\n";
+  tangent::gltf::bakeFile(dir / "spike.obj", dir / "spike.glb", {});
+  const Asset out = loadAsset(dir / "spike.glb");
+  const Json& primitive = out.json["meshes"][0]["primitives"][0];
+  const auto positions = tangent::gltf::detail::toFloats(readAccessor(out.model, primitive["attributes"]["POSITION"].get<int>(), "POSITION"));
+  tangent::gltf::detail::AccessorData indexHeader;
+  const auto indices = tangent::gltf::detail::readIndices(out.model, primitive["indices"].get<int>(), positions.size() / 3, "indices", indexHeader);
+  double covered = 0;
+  for (std::size_t t = 0; t < indices.size() / 3; ++t) {
+    const float* a = &positions[3 * indices[3 * t]];
+    const float* b = &positions[3 * indices[3 * t + 1]];
+    const float* c = &positions[3 * indices[3 * t + 2]];
+    const double twice = (b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0]);
+    EXPECT_GE(twice, 0.0) << "triangle " << t << " is folded over";
+    covered += std::fabs(twice) / 2;
+  }
+  EXPECT_DOUBLE_EQ(covered, 12.0);  // the square less the notch's triangle
+}
+
 // Random star-shaped polygons (simple, mostly concave, 5 to 60 corners, tilted out of every
 // axis plane): each one's triangles face its way and cover its area once.
 TEST(MeshFiles, RandomConcavePolygonsAreCoveredOnce) {

@@ -142,8 +142,17 @@ void triangulatePolygon(const std::vector<float>& positions, const std::vector<s
   auto turn = [&](std::size_t p, std::size_t q, std::size_t r) {
     return orientation * ((at(q, ua) - at(p, ua)) * (at(r, va) - at(p, va)) - (at(q, va) - at(p, va)) * (at(r, ua) - at(p, ua)));
   };
+  // Convex: no corner turns the other way, and none turns back on its edge (a zero-width
+  // spike turns by zero too).
+  auto reverses = [&](std::size_t p, std::size_t q, std::size_t r) {
+    return (at(q, ua) - at(p, ua)) * (at(r, ua) - at(q, ua)) + (at(q, va) - at(p, va)) * (at(r, va) - at(q, va)) < 0;
+  };
   bool convex = true;
-  for (std::size_t i = 0; i < n && convex; ++i) convex = turn((i + n - 1) % n, i, (i + 1) % n) >= 0;
+  for (std::size_t i = 0; i < n && convex; ++i) {
+    const std::size_t p = (i + n - 1) % n, q = (i + 1) % n;
+    const double t = turn(p, i, q);
+    convex = t > 0 || (t == 0 && !reverses(p, i, q));
+  }
   if (convex) return fan(polygon);
 
   std::vector<std::size_t> previous(n), next(n);
