@@ -407,6 +407,16 @@ add("ply_list_count_huge_binary",
                b"property float s\nproperty float t\nelement face 1\nproperty list uint int vertex_indices\nend_header\n"
                + struct.pack(">15f", 0, 0, 0, 0, 0, 1, 0, 0, 1, 0, 0, 1, 0, 0, 1) + struct.pack(">4I", 2000000000, 0, 1, 2)},
     "a list of 2000000000 items, more than the rest of the file holds", input_name="in.ply")
+add("ply_negative_index",
+    {"in.ply": b"ply\nformat binary_little_endian 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\n"
+               b"property float s\nproperty float t\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n"
+               + struct.pack("<15f", 0, 0, 0, 0, 0, 1, 0, 0, 1, 0, 0, 1, 0, 0, 1) + struct.pack("<B3i", 3, 0, 1, -1)},
+    "PLY face 1 (1-based) property vertex_indices: corner 3 is vertex -1, not a vertex index", input_name="in.ply")
+add("ply_negative_list_count",
+    {"in.ply": b"ply\nformat binary_little_endian 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\n"
+               b"property float s\nproperty float t\nelement face 1\nproperty list char int vertex_indices\nend_header\n"
+               + struct.pack("<15f", 0, 0, 0, 0, 0, 1, 0, 0, 1, 0, 0, 1, 0, 0, 1) + struct.pack("<b3i", -1, 0, 1, 2)},
+    "property vertex_indices: a list count of -1 (negative)", input_name="in.ply")
 add("ply_value_not_a_number", {"in.ply": (ply_header % 1) + ply_body.replace(b"1 0 0 1 0", b"1 0 x 1 0") + b"3 0 1 2\n"},
     "PLY vertex 2 (1-based) property z: 'x' is not a number", input_name="in.ply")
 add("ply_body_truncated", {"in.ply": (ply_header % 2) + ply_body + b"3 0 1 2\n3 0 1"},

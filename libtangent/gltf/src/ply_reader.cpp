@@ -180,7 +180,8 @@ void readPly(const std::string& text, CheckedImporter& importer, OpenMesh::IO::O
     const double n = value(property->countType);
     // An item takes at least its size in binary, two bytes in ASCII.
     const double room = static_cast<double>(text.size() - at) / (ascii ? 2.0 : static_cast<double>(plyBytes(property->type))) + 1.0;
-    if (n < 0 || n > room)
+    if (n < 0) fail("a list count of " + std::to_string(static_cast<long long>(n)) + " (negative)");
+    if (n > room)
       fail("a list of " + std::to_string(static_cast<long long>(n)) + " items, more than the rest of the file holds");
     return static_cast<std::size_t>(n);
   };
@@ -242,8 +243,11 @@ void readPly(const std::string& text, CheckedImporter& importer, OpenMesh::IO::O
           if (n < 3) fail("a face of " + std::to_string(n) + " corners (a face needs at least 3)");
           for (std::size_t k = 0; k < n; ++k) {
             const double corner = value(property->type);
-            // Out-of-range values become an invalid handle, which the importer names.
-            corners.push_back(OpenMesh::VertexHandle(corner >= 0 && corner < 2147483647.0 ? static_cast<int>(corner) : -1));
+            // One past the vertices read so far the importer names; a negative or huge one here.
+            if (corner < 0 || corner >= 2147483647.0)
+              fail("corner " + std::to_string(k + 1) + " is vertex " + std::to_string(static_cast<long long>(corner)) +
+                   ", not a vertex index");
+            corners.push_back(OpenMesh::VertexHandle(static_cast<int>(corner)));
           }
         } else if (index == uvList) {
           for (std::size_t k = 0; k < n; ++k) uvValues.push_back(static_cast<float>(value(property->type)));
