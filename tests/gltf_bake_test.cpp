@@ -1041,6 +1041,29 @@ TEST(MeshFiles, NonManifoldFacesKeepTheirVerticesNormalsAndUvs) {
   EXPECT_EQ(matched, positions.size() / 3);
 }
 
+// The triangles a bake of `file` wrote to `glb` (one primitive): positions, and each
+// triangle's first corner and signed area in the (x, y) plane.
+struct BakedTriangles {
+  std::vector<float> positions;
+  std::vector<std::uint32_t> indices;
+  std::size_t count() const { return indices.size() / 3; }
+  const float* corner(std::size_t t, int k) const { return &positions[3 * indices[3 * t + static_cast<std::size_t>(k)]]; }
+  double area(std::size_t t) const {
+    const float *a = corner(t, 0), *b = corner(t, 1), *c = corner(t, 2);
+    return ((double(b[0]) - a[0]) * (double(c[1]) - a[1]) - (double(b[1]) - a[1]) * (double(c[0]) - a[0])) / 2;
+  }
+};
+BakedTriangles bakeTriangles(const fs::path& file, const fs::path& glb) {
+  tangent::gltf::bakeFile(file, glb, {});
+  const Asset out = loadAsset(glb);
+  const Json& primitive = out.json["meshes"][0]["primitives"][0];
+  BakedTriangles baked;
+  baked.positions = tangent::gltf::detail::toFloats(readAccessor(out.model, primitive["attributes"]["POSITION"].get<int>(), "POSITION"));
+  tangent::gltf::detail::AccessorData header;
+  baked.indices = tangent::gltf::detail::readIndices(out.model, primitive["indices"].get<int>(), baked.positions.size() / 3, "indices", header);
+  return baked;
+}
+
 // A concave n-gon (a U of area 7) is cut into ears: every triangle faces the polygon's way and
 // together they cover its area once. A fan from its first corner folded two triangles over the
 // gap of the U. A convex one stays a fan from its first corner.
@@ -1051,27 +1074,17 @@ TEST(MeshFiles, ConcavePolygonsAreCutIntoEarsConvexOnesFanned) {
                                   "f 1/1/1 2/2/1 3/3/1 4/4/1 5/5/1 6/6/1 7/7/1 8/8/1\n"
                                   "v 5 0 0\nv 7 0 0\nv 8 1 0\nv 7 2 0\nv 5 2 0\nvt 0 0\nvt 1 0\nvt 1 0.5\nvt 1 1\nvt 0 1\n"
                                   "f 9/9/1 10/10/1 11/11/1 12/12/1 13/13/1\n";
-  const fs::path output = dir / "u.glb";
-  tangent::gltf::bakeFile(dir / "u.obj", output, {});
-  const Asset out = loadAsset(output);
-  const Json& primitive = out.json["meshes"][0]["primitives"][0];
-  const auto positions = tangent::gltf::detail::toFloats(readAccessor(out.model, primitive["attributes"]["POSITION"].get<int>(), "POSITION"));
-  tangent::gltf::detail::AccessorData indexHeader;
-  const auto indices = tangent::gltf::detail::readIndices(out.model, primitive["indices"].get<int>(), positions.size() / 3, "indices", indexHeader);
-  ASSERT_EQ(indices.size(), 3u * (6 + 3));
+  const BakedTriangles baked = bakeTriangles(dir / "u.obj", dir / "u.glb");
+  ASSERT_EQ(baked.count(), 6u + 3u);
   double area[2] = {0, 0};
-  for (std::size_t t = 0; t < indices.size() / 3; ++t) {
-    const float* a = &positions[3 * indices[3 * t]];
-    const float* b = &positions[3 * indices[3 * t + 1]];
-    const float* c = &positions[3 * indices[3 * t + 2]];
-    const double twice = (b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0]);
-    EXPECT_GT(twice, 0.0) << "triangle " << t << " is folded over";
-    area[a[0] >= 5 ? 1 : 0] += twice / 2;
+  for (std::size_t t = 0; t < baked.count(); ++t) {
+    EXPECT_GT(baked.area(t), 0.0) << "triangle " << t << " is folded over";
+    area[baked.corner(t, 0)[0] >= 5 ? 1 : 0] += baked.area(t);
   }
   EXPECT_DOUBLE_EQ(area[0], 7.0);
   EXPECT_DOUBLE_EQ(area[1], 5.0);
   // The pentagon, convex: fanned from its first corner, (5,0).
-  for (std::size_t t = 6; t < 9; ++t) EXPECT_EQ(positions[3 * indices[3 * t]], 5.0f);
+  for (std::size_t t = 6; t < 9; ++t) EXPECT_EQ(baked.corner(t, 0)[0], 5.0f);
 }
 
 // A zero-width spike into a notch turns by zero, as a straight corner does: it is not convex,
@@ -1081,20 +1094,11 @@ TEST(MeshFiles, ASpikeIsNotTakenForConvex) {
   std::ofstream(dir / "spike.obj") << "v 0 0 0\nv 4 0 0\nv 4 4 0\nv 2 2 0\nv 2 0.5 0\nv 2 2 0\nv 0 4 0\n"
                                       "vt 0 0\nvt 1 0\nvt 1 1\nvt 0.5 0.5\nvt 0.5 0.1\nvt 0.5 0.5\nvt 0 1\nvn 0 0 1\n"
                                       "f 1/1/1 2/2/1 3/3/1 4/4/1 5/5/1 6/6/1 7/7/1\n";
-  tangent::gltf::bakeFile(dir / "spike.obj", dir / "spike.glb", {});
-  const Asset out = loadAsset(dir / "spike.glb");
-  const Json& primitive = out.json["meshes"][0]["primitives"][0];
-  const auto positions = tangent::gltf::detail::toFloats(readAccessor(out.model, primitive["attributes"]["POSITION"].get<int>(), "POSITION"));
-  tangent::gltf::detail::AccessorData indexHeader;
-  const auto indices = tangent::gltf::detail::readIndices(out.model, primitive["indices"].get<int>(), positions.size() / 3, "indices", indexHeader);
+  const BakedTriangles baked = bakeTriangles(dir / "spike.obj", dir / "spike.glb");
   double covered = 0;
-  for (std::size_t t = 0; t < indices.size() / 3; ++t) {
-    const float* a = &positions[3 * indices[3 * t]];
-    const float* b = &positions[3 * indices[3 * t + 1]];
-    const float* c = &positions[3 * indices[3 * t + 2]];
-    const double twice = (b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0]);
-    EXPECT_GE(twice, 0.0) << "triangle " << t << " is folded over";
-    covered += std::fabs(twice) / 2;
+  for (std::size_t t = 0; t < baked.count(); ++t) {
+    EXPECT_GE(baked.area(t), 0.0) << "triangle " << t << " is folded over";
+    covered += std::fabs(baked.area(t));
   }
   EXPECT_DOUBLE_EQ(covered, 12.0);  // the square less the notch's triangle
 }
@@ -1132,22 +1136,14 @@ TEST(MeshFiles, RandomConcavePolygonsAreCoveredOnce) {
     vertices += static_cast<std::size_t>(n);
   }
   obj.close();
-  tangent::gltf::bakeFile(dir / "stars.obj", dir / "stars.glb", {});
-  const Asset out = loadAsset(dir / "stars.glb");
-  const Json& primitive = out.json["meshes"][0]["primitives"][0];
-  const auto positions = tangent::gltf::detail::toFloats(readAccessor(out.model, primitive["attributes"]["POSITION"].get<int>(), "POSITION"));
-  tangent::gltf::detail::AccessorData indexHeader;
-  const auto indices = tangent::gltf::detail::readIndices(out.model, primitive["indices"].get<int>(), positions.size() / 3, "indices", indexHeader);
-  ASSERT_EQ(indices.size(), 3 * (vertices - 2 * expectedArea.size()));
+  const BakedTriangles baked = bakeTriangles(dir / "stars.obj", dir / "stars.glb");
+  ASSERT_EQ(baked.indices.size(), 3 * (vertices - 2 * expectedArea.size()));
   std::vector<double> area(expectedArea.size(), 0.0);
-  for (std::size_t t = 0; t < indices.size() / 3; ++t) {
-    const float* a = &positions[3 * indices[3 * t]];
-    const float* b = &positions[3 * indices[3 * t + 1]];
-    const float* c = &positions[3 * indices[3 * t + 2]];
-    const double twice = (double(b[0]) - a[0]) * (double(c[1]) - a[1]) - (double(b[1]) - a[1]) * (double(c[0]) - a[0]);
+  for (std::size_t t = 0; t < baked.count(); ++t) {
+    const float* a = baked.corner(t, 0);
     const auto polygon = static_cast<std::size_t>(std::lround(a[2] - 0.5 * a[0] - 0.25 * a[1]));
-    EXPECT_GE(twice, -1e-9) << "polygon " << polygon << " triangle " << t << " is folded over";
-    area[polygon] += twice / 2;
+    EXPECT_GE(baked.area(t), -5e-10) << "polygon " << polygon << " triangle " << t << " is folded over";
+    area[polygon] += baked.area(t);
   }
   for (std::size_t p = 0; p < area.size(); ++p) EXPECT_NEAR(area[p], expectedArea[p], 1e-4) << "polygon " << p;
 }
