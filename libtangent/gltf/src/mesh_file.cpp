@@ -54,9 +54,7 @@ void checkObj(std::istream& in, const std::string& label) {
       const std::size_t needed = kind == 1 ? 1 : 3;
       for (std::size_t k = 1; k <= needed; ++k) {
         const std::string value = k < w.size() ? w[k] : std::string();
-        char* end = nullptr;
-        const float x = value.empty() ? 0.0f : std::strtof(value.c_str(), &end);
-        if (value.empty() || end != value.c_str() + value.size() || !std::isfinite(x))
+        if (!finiteFloat(value))
           fail(std::string(kinds[kind]) + " '" + line.substr(0, 60) + "' needs " + std::to_string(needed) +
                " finite numbers" + (value.empty() ? "" : "; '" + value.substr(0, 20) + "' is not one"));
       }

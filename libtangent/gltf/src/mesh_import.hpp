@@ -11,6 +11,9 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cmath>
+#include <cstdlib>
+#include <optional>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -197,6 +200,14 @@ inline bool isCount(const std::string& word) {
   return !word.empty() && word.size() <= 10 && std::all_of(word.begin(), word.end(), [](unsigned char c) { return std::isdigit(c); });
 }
 
+
+// A word that is one finite number as a whole ("1e39", "nan", "1x" are not), as float.
+inline std::optional<float> finiteFloat(const std::string& word) {
+  char* end = nullptr;
+  const float x = std::strtof(word.c_str(), &end);
+  if (word.empty() || end != word.c_str() + word.size() || !std::isfinite(x)) return std::nullopt;
+  return x;
+}
 
 // Each reads a whole file's bytes into `importer` and sets
 // `options` to what the file gave (VertexNormal, VertexTexCoord, FaceTexCoord); a malformed

@@ -25,7 +25,8 @@ namespace tangent::gltf::detail {
 void readOff(const std::string& text, CheckedImporter& importer, OpenMesh::IO::Options& options, const std::string& label) {
   std::size_t at = 0, lineNumber = 0;
   std::string line;
-  auto next = [&]() -> bool {  // the next line with something on it, comments removed
+  std::vector<std::string> w;  // the words of the current line
+  auto next = [&]() -> bool {  // the next line with something on it, comments removed, into w
     while (at < text.size()) {
       const std::size_t end = std::min(text.find('\n', at), text.size());
       line.assign(text, at, end - at);
@@ -33,7 +34,8 @@ void readOff(const std::string& text, CheckedImporter& importer, OpenMesh::IO::O
       ++lineNumber;
       const std::size_t hash = line.find('#');
       if (hash != std::string::npos) line.erase(hash);
-      if (!words(line).empty()) return true;
+      w = words(line);
+      if (!w.empty()) return true;
     }
     return false;
   };
@@ -41,7 +43,6 @@ void readOff(const std::string& text, CheckedImporter& importer, OpenMesh::IO::O
     throw InputError(label + ": OFF line " + std::to_string(lineNumber) + ": " + what);
   };
   if (!next()) throw InputError(label + ": has no OFF keyword line (the file is empty or only comments)");
-  std::vector<std::string> w = words(line);
   const std::string keyword = w[0];
   // [ST][C][N][4][n]OFF
   std::size_t k = 0;
@@ -106,7 +107,6 @@ void readOff(const std::string& text, CheckedImporter& importer, OpenMesh::IO::O
     w.erase(w.begin());
     if (w.empty()) {
       if (!next()) fail("missing the vertex, face and edge counts");
-      w = words(line);
     }
     if (w.size() < 2 || !isCount(w[0]) || !isCount(w[1]) || (w.size() > 2 && !isCount(w[2])))
       fail("expected 'VERTICES FACES [EDGES]' as non-negative integers");
@@ -114,15 +114,12 @@ void readOff(const std::string& text, CheckedImporter& importer, OpenMesh::IO::O
     // An ASCII vertex takes at least 6 bytes ("0 0 0\n"), a face at least 8 ("3 0 1 2\n").
     bound(vertices, faces, 6, 8);
     auto number = [&](const std::string& word, const std::string& what) {
-      char* end = nullptr;
-      const float x = std::strtof(word.c_str(), &end);
-      if (end != word.c_str() + word.size() || !std::isfinite(x))
-        fail(what + " '" + word.substr(0, 20) + "' is not a finite number");
-      return x;
+      const std::optional<float> x = finiteFloat(word);
+      if (!x) fail(what + " '" + word.substr(0, 20) + "' is not a finite number");
+      return *x;
     };
     for (std::uint64_t v = 0; v < vertices; ++v) {
       if (!next()) fail("the file ends after " + std::to_string(v) + " of " + std::to_string(vertices) + " vertices");
-      w = words(line);
       // x y z [nx ny nz] [colour] [s t]: the texture coordinates follow the coordinates, or with
       // colours (of 1 to 4 values) are the line's last two; without colours nothing may follow.
       const std::size_t needed = perVertex + (texcoords ? 2 : 0);
@@ -145,7 +142,6 @@ void readOff(const std::string& text, CheckedImporter& importer, OpenMesh::IO::O
     }
     for (std::uint64_t f = 0; f < faces; ++f) {
       if (!next()) fail("the file ends after " + std::to_string(f) + " of " + std::to_string(faces) + " faces");
-      w = words(line);
       // n i1 .. in [colour]
       if (!isCount(w[0]) || std::stoull(w[0]) < 3 || std::stoull(w[0]) > w.size() - 1)
         fail("face " + std::to_string(f + 1) + " declares '" + w[0].substr(0, 20) + "' corners but lists " +
