@@ -11,6 +11,7 @@
 #include <functional>
 #include <map>
 #include <optional>
+#include <set>
 
 #include "compression.hpp"
 #include "document.hpp"
@@ -114,33 +115,33 @@ std::vector<std::filesystem::path> binsOfPreviousOutput(const std::filesystem::p
 std::string gltfJsonText(const std::filesystem::path& path);
 std::vector<std::filesystem::path> filesNamedBy(const Json& doc, const std::filesystem::path& dir);
 
-// Whether a .gltf or .glb beside `output`, other than it, names `bin` (a buffer's or an image's
-// uri, decoded): a file of the user's that shares the previous output's .bin keeps it. Where
-// the folder or such a file cannot be read or parsed, the answer is yes.
-bool usedByAnotherGltf(const std::filesystem::path& output, const std::filesystem::path& bin) {
+// The files that the .gltf and .glb files beside `output`, other than it, name (buffer and
+// image uris, decoded, as `output`'s folder / name): a file of the user's that shares the
+// previous output's .bin keeps it. nullopt where the folder or such a file cannot be read or
+// parsed: then every file counts as named.
+std::optional<std::set<std::filesystem::path>> filesNamedBeside(const std::filesystem::path& output) {
   namespace fs = std::filesystem;
   const fs::path folder = output.parent_path().empty() ? fs::path(".") : output.parent_path();
-  const fs::path target = (folder / bin.filename()).lexically_normal();
+  std::set<fs::path> named;
   std::error_code ec;
   for (fs::directory_iterator it(folder, ec), end; it != end; it.increment(ec)) {
-    if (ec) return true;
+    if (ec) return std::nullopt;
     const fs::path& path = it->path();
     const std::string extension = lowerExtension(path);
     if ((extension != ".gltf" && extension != ".glb") || path.filename() == output.filename()) continue;
     std::error_code fileError;
     if (!it->is_regular_file(fileError)) continue;
     const std::string text = gltfJsonText(path);
-    if (text.empty()) return true;
+    if (text.empty()) return std::nullopt;
     try {
       checkJsonDepth(text, path.string());
-      for (const fs::path& named : filesNamedBy(Json::parse(text), folder)) {
-        if (named == target) return true;
-      }
+      for (const fs::path& file : filesNamedBy(Json::parse(text), folder)) named.insert(file);
     } catch (const std::exception&) {
-      return true;
+      return std::nullopt;
     }
   }
-  return ec.operator bool();
+  if (ec) return std::nullopt;
+  return named;
 }
 
 // Whether `path` is a regular file (not a link) holding exactly `bytes` (false where it cannot
@@ -529,10 +530,15 @@ std::uint64_t OutputDocument::write(const std::filesystem::path& output, const P
   }
   // The .bin's name first: no image copy may go there.
   const std::vector<fs::path> previousBins = bin.empty() ? std::vector<fs::path>{} : binsOfPreviousOutput(output);
+  // Read once, before anything is written: what the other glTF files beside the output name.
+  const auto namedBeside = bin.empty() ? std::optional<std::set<fs::path>>(std::set<fs::path>{}) : filesNamedBeside(output);
+  auto usedBeside = [&](const fs::path& path) {
+    const fs::path folder = output.parent_path().empty() ? fs::path(".") : output.parent_path();
+    return !namedBeside || namedBeside->count((folder / path.filename()).lexically_normal()) > 0;
+  };
   const fs::path binPath =
       bin.empty() ? fs::path()
-                  : freeBinName(output, previousBins,
-                                [&](const fs::path& path) { return isProtected(path) || usedByAnotherGltf(output, path); });
+                  : freeBinName(output, previousBins, [&](const fs::path& path) { return isProtected(path) || usedBeside(path); });
   placeImages(outputDir, bin.empty() ? std::vector<fs::path>{output} : std::vector<fs::path>{output, binPath}, created);
   if (bin.empty()) {
     const std::string text = text::dumpJson(doc, 2) + "\n";
@@ -560,10 +566,10 @@ std::uint64_t OutputDocument::write(const std::filesystem::path& output, const P
   filesWritten_.push_back(output);
   filesWritten_.push_back(binPath);
   // The previous .bin, now used by nothing we wrote: removed unless a file of this run or
-  // another .gltf beside the output uses it.
+  // another .gltf or .glb beside the output names it.
   for (const fs::path& previous : previousBins) {
     std::error_code ec;
-    if (previous != binPath && !isProtected(previous) && !usedByAnotherGltf(output, previous)) fs::remove(previous, ec);
+    if (previous != binPath && !isProtected(previous) && !usedBeside(previous)) fs::remove(previous, ec);
   }
   return binBytes + text.size();
 }
