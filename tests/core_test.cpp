@@ -546,4 +546,68 @@ TEST(Core, UnusedVertexTangentIsTheKernelsFixedFrame) {
   EXPECT_EQ(0, std::memcmp(fromZero, fromUp, sizeof fromZero));
 }
 
+// A disc of `triangles` triangles around one vertex, facing +z. The first `zeroUv` of every
+// `period` triangles have zero UV area: their corners are copies of their vertices with the
+// centre's UV, so the centre's corners share one vertex and the rim's do not.
+GridMesh discAroundOneVertex(std::uint32_t triangles, std::uint32_t period, std::uint32_t zeroUv) {
+  GridMesh m;
+  auto add = [&](float x, float y, float u, float v) {
+    m.positions.insert(m.positions.end(), {x, y, 0});
+    m.normals.insert(m.normals.end(), {0, 0, 1});
+    m.uvs.insert(m.uvs.end(), {u, v});
+  };
+  add(0, 0, 0.5f, 0.5f);
+  for (std::uint32_t copy = 0; copy < 2; ++copy) {
+    for (std::uint32_t i = 0; i < triangles; ++i) {
+      const double angle = 2 * std::numbers::pi * i / triangles;
+      const float x = static_cast<float>(std::cos(angle)), y = static_cast<float>(std::sin(angle));
+      if (copy == 0) add(x, y, 0.5f + 0.5f * x, 0.5f + 0.5f * y);
+      else add(x, y, 0.5f, 0.5f);
+    }
+  }
+  for (std::uint32_t i = 0; i < triangles; ++i) {
+    const std::uint32_t rim = i % period < zeroUv ? 1 + triangles : 1;
+    m.indices.insert(m.indices.end(), {0, rim + i, rim + (i + 1) % triangles});
+  }
+  return m;
+}
+
+// Work at a vertex is linear in its valence: the corners without a frame of their own and
+// the orientation of zero-UV triangles each read the vertex once, not once per corner, and
+// the rim's corners without a frame read the centre once. With 400,000 triangles, quadratic
+// work took minutes per call (far past the test's time limit); linear work takes a second.
+TEST(Core, AVertexOfValence400000WithoutUvAreaGetsFrames) {
+  constexpr std::uint32_t kTriangles = 400'000;
+  // All without UV area; every other one; two of every four (rim vertices with none).
+  for (const auto [period, zeroUv] : {std::pair{1u, 1u}, {2u, 1u}, {4u, 2u}}) {
+    const GridMesh m = discAroundOneVertex(kTriangles, period, zeroUv);
+    for (tangent::Method method : {tangent::Method::mikktspace, tangent::Method::flat, tangent::Method::lengyel}) {
+      SCOPED_TRACE(std::string(tangent::toString(method)) + ", " + std::to_string(zeroUv) + " of " + std::to_string(period) + " without UV area");
+      Options options;
+      options.method = method;
+      const Result r = run(m, options);
+      expectValidFrames(m, r);
+      EXPECT_EQ(r.report.zeroUvAreaTriangles, kTriangles / period * zeroUv);
+      EXPECT_EQ(r.report.degenerateTriangles, 0u);
+    }
+  }
+}
+
+// The same disc with every other triangle collapsed onto an edge (its last corner a copy of
+// its second, with the centre's UV): half the centre's corners are coincident (the
+// reference's degenerate triangles) and copy a frame of their vertex, found once.
+TEST(Core, AVertexOfValence400000WithHalfItsTrianglesCollapsedGetsFrames) {
+  constexpr std::uint32_t kTriangles = 400'000;
+  GridMesh m = discAroundOneVertex(kTriangles, 1, 0);
+  for (std::uint32_t i = 0; i < kTriangles; i += 2) m.indices[3 * i + 2] = 1 + kTriangles + i;
+  for (tangent::Method method : {tangent::Method::mikktspace, tangent::Method::flat, tangent::Method::lengyel}) {
+    SCOPED_TRACE(tangent::toString(method));
+    Options options;
+    options.method = method;
+    const Result r = run(m, options);
+    expectValidFrames(m, r);
+    EXPECT_EQ(r.report.degenerateTriangles, kTriangles / 2);
+  }
+}
+
 }  // namespace

@@ -2,9 +2,11 @@
 // Groups of corners that get one frame (lengyel, flat): sorted by value, summed in value
 // order, and the fallbacks for groups no usable triangle reaches.
 #include <algorithm>
+#include <array>
 #include <bit>
 #include <cmath>
 #include <cstring>
+#include <unordered_map>
 #include <tuple>
 
 #include "gram_schmidt.hpp"
@@ -174,32 +176,98 @@ std::vector<std::vector<std::uint32_t>> neighbourWelds(const MeshArrays& mesh, c
 void fillUndefinedGroups(const MeshArrays& mesh, const std::vector<std::uint32_t>& weldOf, CornerGroups& cornerGroups) {
   std::vector<Group>& groups = cornerGroups.groups;
   if (std::all_of(groups.begin(), groups.end(), [](const Group& g) { return g.defined; })) return;
-  // The groups of one position are adjacent (the key starts with it): its defined ones.
+  // The groups of one position are adjacent (the key starts with it): its defined ones, listed
+  // once (a position with n groups, none defined, is then not read n times).
   const std::size_t vertexCount = weldOf.size();
-  std::vector<std::uint32_t> firstGroup(vertexCount, kNone), lastGroup(vertexCount, 0);
+  std::vector<std::uint32_t> definedStart(vertexCount + 1, 0), definedGroups;
   for (std::uint32_t g = 0; g < groups.size(); ++g) {
-    const std::uint32_t weld = groups[g].key.weld;
-    if (firstGroup[weld] == kNone) firstGroup[weld] = g;
-    lastGroup[weld] = g + 1;
+    if (groups[g].defined) ++definedStart[groups[g].key.weld + 1];
+  }
+  for (std::size_t v = 0; v < vertexCount; ++v) definedStart[v + 1] += definedStart[v];
+  definedGroups.resize(definedStart[vertexCount]);
+  {
+    std::vector<std::uint32_t> next(definedStart.begin(), definedStart.end() - 1);
+    for (std::uint32_t g = 0; g < groups.size(); ++g) {
+      if (groups[g].defined) definedGroups[next[groups[g].key.weld]++] = g;
+    }
+  }
+  // Where a position's defined groups all have one normal and one UV (a smooth vertex), every
+  // question ranks them alike but for the normal's term, which is then the same for all: only
+  // the first of the best (what frameFromCandidates would pick among them) need be read.
+  std::vector<std::uint32_t> definedEnd(definedStart.begin() + 1, definedStart.end());
+  for (std::size_t v = 0; v < vertexCount; ++v) {
+    const std::uint32_t first = definedStart[v];
+    if (definedEnd[v] - first < 2) continue;
+    const Group& head = groups[definedGroups[first]];
+    auto alike = [&](std::uint32_t g) {
+      return std::memcmp(groups[g].normal.data(), head.normal.data(), 3 * sizeof(double)) == 0 && groups[g].key.sameAttributes(head.key);
+    };
+    if (!std::all_of(&definedGroups[first], &definedGroups[0] + definedEnd[v], alike)) continue;
+    auto rank = [&](std::uint32_t g) {
+      const Group& x = groups[g];
+      return std::make_tuple(x.tangentSum.sqrnorm(), x.tangent[0], x.tangent[1], x.tangent[2], x.w);
+    };
+    std::uint32_t best = definedGroups[first];
+    for (std::uint32_t i = first + 1; i < definedEnd[v]; ++i) {
+      if (rank(best) < rank(definedGroups[i])) best = definedGroups[i];
+    }
+    definedGroups[first] = best;
+    definedEnd[v] = first + 1;
   }
   auto definedAt = [&](std::uint32_t weld, auto&& each) {
-    if (firstGroup[weld] == kNone) return;
-    for (std::uint32_t g = firstGroup[weld]; g < lastGroup[weld]; ++g) {
-      if (groups[g].defined) each(groups[g]);
+    for (std::uint32_t i = definedStart[weld]; i < definedEnd[weld]; ++i) each(groups[definedGroups[i]]);
+  };
+  // A group's answer depends only on its position, its normal (and for the first pass its UV)
+  // and the defined groups, which this function does not change. Where a question reads many
+  // groups it is answered once (the n groups of a vertex of valence n would otherwise each
+  // read the others: quadratic); where it reads few, reading them again is cheaper.
+  struct Answer {
+    bool found;
+    Vec3 tangent;
+    double w;
+  };
+  struct QuestionHash {
+    std::size_t operator()(const std::array<std::uint64_t, 7>& q) const {
+      std::uint64_t h = 0;
+      for (std::uint64_t part : q) h = (h ^ part) * 0x9E3779B97F4A7C15ull;
+      return static_cast<std::size_t>(h ^ (h >> 29));
     }
   };
+  constexpr std::size_t kReadAgainAtMost = 32;
+  std::unordered_map<std::array<std::uint64_t, 7>, Answer, QuestionHash> answered;
   std::vector<const Group*> candidates;
+  auto ask = [&](std::uint64_t kind, std::size_t reads, Group& group, auto&& gather) {
+    candidates.clear();
+    if (reads <= kReadAgainAtMost) {
+      gather();
+      return frameFromCandidates(candidates, group);
+    }
+    const CornerKey& k = group.key;  // the normal as it is, -0 apart from +0 (the key does not tell them)
+    const std::array<std::uint64_t, 7> question{kind, k.weld, bitCast<std::uint64_t>(group.normal[0]),
+                                               bitCast<std::uint64_t>(group.normal[1]), bitCast<std::uint64_t>(group.normal[2]),
+                                               kind == 0 ? k.uv[0] : 0, kind == 0 ? k.uv[1] : 0};
+    const auto [at, inserted] = answered.try_emplace(question);
+    if (!inserted) {
+      if (at->second.found) group.tangent = at->second.tangent, group.w = at->second.w;
+      return at->second.found;
+    }
+    gather();
+    const bool found = frameFromCandidates(candidates, group);
+    at->second = Answer{found, group.tangent, group.w};
+    return found;
+  };
   std::vector<std::uint8_t> wantsRing(vertexCount, 0);
   for (Group& group : groups) {
     if (group.defined) continue;
     bool found = false;
     // Same normal and UV first (a degenerate corner of a smooth vertex), then any.
+    const std::uint32_t weld = group.key.weld;
     for (int pass = 0; pass < 2 && !found; ++pass) {
-      candidates.clear();
-      definedAt(group.key.weld, [&](const Group& other) {
-        if (pass == 1 || other.key.sameAttributes(group.key)) candidates.push_back(&other);
+      found = ask(pass, definedEnd[weld] - definedStart[weld], group, [&] {
+        definedAt(weld, [&](const Group& other) {
+          if (pass == 1 || other.key.sameAttributes(group.key)) candidates.push_back(&other);
+        });
       });
-      found = frameFromCandidates(candidates, group);
       if (found) group.source = pass == 0 && group.mayInherit ? FrameSource::inherited : FrameSource::neighbour;
     }
     if (!found) {
@@ -210,9 +278,11 @@ void fillUndefinedGroups(const MeshArrays& mesh, const std::vector<std::uint32_t
   const std::vector<std::vector<std::uint32_t>> ring = neighbourWelds(mesh, weldOf, wantsRing);
   for (Group& group : groups) {
     if (group.defined || group.source != FrameSource::fixed) continue;
-    candidates.clear();
-    for (std::uint32_t neighbour : ring[group.key.weld]) definedAt(neighbour, [&](const Group& other) { candidates.push_back(&other); });
-    if (frameFromCandidates(candidates, group)) {
+    const std::vector<std::uint32_t>& neighbours = ring[group.key.weld];
+    const bool found = ask(2, neighbours.size(), group, [&] {
+      for (std::uint32_t neighbour : neighbours) definedAt(neighbour, [&](const Group& other) { candidates.push_back(&other); });
+    });
+    if (found) {
       group.source = FrameSource::neighbour;
       continue;
     }

@@ -1,12 +1,12 @@
 // SPDX-License-Identifier: MIT
 // Phase 5: corners without a frame of their own, after every group is done.
 #include "kernel.hpp"
+#include <unordered_map>
 #include <vector>
 
 namespace tangent::detail::mikk {
 
-// Gives `corner` the best computed frame of its bucket (with w, unless anyW); else undefined.
-void Kernel::inheritInBucket(std::uint32_t bucket, std::uint32_t corner, float w, bool anyW) {
+std::uint32_t Kernel::bestComputedInBucket(std::uint32_t bucket, float w, bool anyW) const {
   std::uint32_t best = kNone;
   for (std::uint32_t i = start_[bucket]; i < start_[bucket + 1]; ++i) {
     const std::uint32_t c = corners_[i];
@@ -15,6 +15,10 @@ void Kernel::inheritInBucket(std::uint32_t bucket, std::uint32_t corner, float w
     if (!anyW && this->w(c) != w) continue;
     if (best == kNone || betterCandidate(c, best)) best = c;
   }
+  return best;
+}
+
+void Kernel::inheritFrom(std::uint32_t best, std::uint32_t corner, float w, bool anyW) {
   if (best == kNone) {
     markUndefined(corner, anyW ? -1.0f : w);
     return;
@@ -31,6 +35,13 @@ void Kernel::fallbacks() {
       coincident_ == 0 ? std::vector<std::uint32_t>{}
                        : collectFlagged(ws_, ws_.triangleFlags.data(), kCoincident, triangleCount,
                                         [&](std::size_t t) { return (ws_.triangleFlags[t] & kCoincident) != 0; });
+  // The corners written here are coincident, never candidates: one answer per bucket and w.
+  std::unordered_map<std::uint64_t, std::uint32_t> bestOfBucket;
+  auto bestIn = [&](std::uint32_t bucket, float w) {
+    const auto [at, inserted] = bestOfBucket.try_emplace((std::uint64_t{bucket} << 32) | bitCast<std::uint32_t>(w), kNone);
+    if (inserted) at->second = bestComputedInBucket(bucket, w, false);
+    return at->second;
+  };
   for (std::uint32_t t : coincident) {
     int plus = 0, minus = 0;
     for (int k = 0; k < 3; ++k) {
@@ -43,7 +54,7 @@ void Kernel::fallbacks() {
       const std::size_t c = 3 * t + k;  // never a copy: coincident triangles pair with nothing
       const bool wasMirrored = tangents_[4 * c + 3] < 0;
       if (ws_.cornerState[c] & kUndefined) tangents_[4 * c + 3] = w * wSign_;
-      else if (this->w(c) != w) inheritInBucket(id(c), static_cast<std::uint32_t>(c), w, false);
+      else if (this->w(c) != w) inheritFrom(bestIn(id(c), w), static_cast<std::uint32_t>(c), w, false);
       mirroredCorners_ += (tangents_[4 * c + 3] < 0) - static_cast<int>(wasMirrored);
     }
   }
@@ -60,18 +71,29 @@ void Kernel::fallbacks() {
   };
   std::vector<Decision> decisions;
   decisions.reserve(undefined.size());
+  // The best defined corner of a bucket with a given w, read once per bucket and w (a vertex of
+  // valence n with n corners undefined would otherwise be read n times: quadratic). Nothing is
+  // written before every corner has decided, so the answer does not change during the loop.
+  std::unordered_map<std::uint64_t, std::uint32_t> bestDefined;
+  auto bestDefinedIn = [&](std::uint32_t bucket, float w) {
+    const std::uint64_t key = (std::uint64_t{bucket} << 32) | bitCast<std::uint32_t>(w);
+    const auto [at, inserted] = bestDefined.try_emplace(key, kNone);
+    if (!inserted) return at->second;
+    std::uint32_t best = kNone;
+    for (std::uint32_t i = start_[bucket]; i < start_[bucket + 1]; ++i) {
+      const std::uint32_t d = corners_[i];
+      if (defined(d) && !(ws_.cornerState[d] & kCopy) && this->w(d) == w && (best == kNone || betterCandidate(d, best))) best = d;
+    }
+    return at->second = best;
+  };
   for (std::uint32_t c : undefined) {
     const float w = this->w(c);
     const std::uint32_t bucket = id(c);
     bool invalid;
     const V3 n = bucketNormal(bucket, invalid);
     const bool isCoincident = (ws_.triangleFlags[c / 3] & kCoincident) != 0;
-    // 1. Same identity, same w.
-    std::uint32_t best = kNone;
-    for (std::uint32_t i = start_[bucket]; i < start_[bucket + 1]; ++i) {
-      const std::uint32_t d = corners_[i];
-      if (d != c && defined(d) && !(ws_.cornerState[d] & kCopy) && this->w(d) == w && (best == kNone || betterCandidate(d, best))) best = d;
-    }
+    // 1. Same identity, same w (c itself is undefined, so never its own candidate).
+    std::uint32_t best = bestDefinedIn(bucket, w);
     if (best != kNone) {
       const float* from = &tangents_[4 * best];
       decisions.push_back({c, {from[0], from[1], from[2]}, isCoincident ? FrameSource::inherited : FrameSource::neighbour});
@@ -86,11 +108,9 @@ void Kernel::fallbacks() {
             best = static_cast<std::uint32_t>(other);
           continue;
         }
-        const std::uint32_t otherBucket = id(other);
-        for (std::uint32_t i = start_[otherBucket]; i < start_[otherBucket + 1]; ++i) {
-          const std::uint32_t d = corners_[i];
-          if (defined(d) && !(ws_.cornerState[d] & kCopy) && this->w(d) == w && (best == kNone || betterCandidate(d, best))) best = d;
-        }
+        // The first best of the two buckets in scan order, as one scan over both would give.
+        const std::uint32_t d = bestDefinedIn(id(other), w);
+        if (d != kNone && (best == kNone || betterCandidate(d, best))) best = d;
       }
     }
     V3 tangent;

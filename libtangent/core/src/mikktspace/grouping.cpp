@@ -43,9 +43,13 @@ void Kernel::groupBucket(std::uint32_t bucket, BucketScratch& scratch, std::uint
     return;  // no coincident corners here
   }
   // 5. Coincident corners copy the best frame of their identity (the reference: the first).
+  std::uint32_t best = kNone;
+  bool bestFound = false;  // looked for once, at the first coincident corner
   for (std::uint32_t i = 0; i < count; ++i) {
     const std::uint32_t c = list[i];
-    if (!participates(c)) inheritInBucket(bucket, c, 0, true);
+    if (participates(c)) continue;
+    if (!bestFound) best = bestComputedInBucket(bucket, 0, true), bestFound = true;
+    inheritFrom(best, c, 0, true);
   }
   for (std::uint32_t i = 0; i < count; ++i) {
     const std::uint32_t c = list[i];

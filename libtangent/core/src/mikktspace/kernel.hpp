@@ -238,7 +238,11 @@ class Kernel {
     }
     return false;
   }
-  void inheritInBucket(std::uint32_t bucket, std::uint32_t corner, float w, bool anyW);
+  // The best computed frame of a bucket (with w, unless anyW) that a coincident corner copies,
+  // kNone where none; inheritFrom writes it, or marks the corner undefined. Coincident corners
+  // are never candidates, so one answer serves all of a bucket's.
+  std::uint32_t bestComputedInBucket(std::uint32_t bucket, float w, bool anyW) const;
+  void inheritFrom(std::uint32_t best, std::uint32_t corner, float w, bool anyW);
   void fallbacks();
   // The reference's corner angle (EvalTspace): float projections on the raw normal, float
   // cosine clamped to [-1, 1], acos.

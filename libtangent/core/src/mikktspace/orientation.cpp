@@ -2,6 +2,7 @@
 // Phase 3, only where some triangle has zero UV area: the orientation such a triangle takes
 // from the groups that reach it (the reference), else from its neighbours layer by layer.
 #include "kernel.hpp"
+#include <algorithm>
 #include <vector>
 
 namespace tangent::detail::mikk {
@@ -138,21 +139,39 @@ std::vector<std::uint32_t> Kernel::decideByVotes(std::vector<std::uint32_t>& can
   std::sort(candidates.begin(), candidates.end());
   candidates.erase(std::unique(candidates.begin(), candidates.end()), candidates.end());
   decided.assign(candidates.size(), 0);
+  // By vertex, each bucket's votes are counted once (a vertex of valence n would otherwise be
+  // read n times: quadratic).
+  std::vector<std::uint32_t> buckets;
+  std::vector<std::int64_t> bucketVotes, bucketVoters;
+  if (byVertex) {
+    for (std::uint32_t t : candidates) {
+      if (!openForAny(t)) continue;
+      for (int k = 0; k < 3; ++k) buckets.push_back(id(3 * t + k));
+    }
+    std::sort(buckets.begin(), buckets.end());
+    buckets.erase(std::unique(buckets.begin(), buckets.end()), buckets.end());
+    bucketVotes.assign(buckets.size(), 0);
+    bucketVoters.assign(buckets.size(), 0);
+    for (std::size_t b = 0; b < buckets.size(); ++b) {
+      for (std::uint32_t j = start_[buckets[b]]; j < start_[buckets[b] + 1]; ++j) {
+        const std::int8_t o = ws_.orientation[corners_[j] / 3];
+        if (o != 0) bucketVotes[b] += o, ++bucketVoters[b];
+      }
+    }
+  }
   for (std::size_t i = 0; i < candidates.size(); ++i) {
     const std::uint32_t t = candidates[i];
     if (!openForAny(t)) continue;
-    int votes = 0, voters = 0;
+    std::int64_t votes = 0, voters = 0;
     for (int k = 0; k < 3; ++k) {
       if (!byVertex) {
         const std::size_t other = neighbourTriangle(t, k);
         if (other != kNone && ws_.orientation[other] != 0) votes += ws_.orientation[other], ++voters;
         continue;
       }
-      const std::uint32_t bucket = id(3 * t + k);
-      for (std::uint32_t j = start_[bucket]; j < start_[bucket + 1]; ++j) {
-        const std::int8_t o = ws_.orientation[corners_[j] / 3];
-        if (o != 0) votes += o, ++voters;
-      }
+      const std::size_t b = std::lower_bound(buckets.begin(), buckets.end(), id(3 * t + k)) - buckets.begin();
+      votes += bucketVotes[b];
+      voters += bucketVoters[b];
     }
     if (voters > 0) decided[i] = votes < 0 ? -1 : 1;
   }
