@@ -1148,6 +1148,64 @@ TEST(MeshFiles, RandomConcavePolygonsAreCoveredOnce) {
   for (std::size_t p = 0; p < area.size(); ++p) EXPECT_NEAR(area[p], expectedArea[p], 1e-4) << "polygon " << p;
 }
 
+// A face that visits a vertex twice: a triangle written as a quad with its last corner
+// repeated ("1 2 3 3"), and a hexagon pinched at one vertex ("4 5 6 4 7 8", two triangles).
+// OpenMesh refused such faces (PLY, OFF: dropped silently) or, in an OBJ, dropped the repeat
+// but not its UV, so the face's UVs landed on the wrong corners. Each is now the simple
+// polygons it is made of, every corner with the UV the file gave it, in OBJ, PLY and OFF.
+TEST(MeshFiles, FacesThatVisitAVertexTwiceKeepEveryCornersUv) {
+  TempDir dir;
+  const float vertices[8][4] = {{0, 0, 0, 0},   {1, 0, 1, 0},      {1, 1, 1, 1},      {3, 0, 0.2f, 0.2f},
+                                {4, 0, 0.4f, 0.2f}, {4, 1, 0.4f, 0.4f}, {2, 1, 0.1f, 0.4f}, {2, 0, 0.1f, 0.2f}};
+  const std::vector<std::vector<int>> faces = {{0, 1, 2, 2}, {3, 4, 5, 3, 6, 7}};
+  std::string obj, plyVertices, plyFaces, off = "STOFF\n8 2 0\n";
+  for (const auto& v : vertices) {
+    const std::string xyz = std::to_string(v[0]) + " " + std::to_string(v[1]) + " 0";
+    const std::string uv = std::to_string(v[2]) + " " + std::to_string(v[3]);
+    obj += "v " + xyz + "\nvt " + uv + "\n";
+    plyVertices += xyz + "\n";
+    off += xyz + " " + uv + "\n";
+  }
+  obj += "vn 0 0 1\n";
+  for (const auto& face : faces) {
+    obj += "f";
+    plyFaces += std::to_string(face.size());
+    off += std::to_string(face.size());
+    for (int k : face) obj += " " + std::to_string(k + 1) + "/" + std::to_string(k + 1) + "/1", plyFaces += " " + std::to_string(k), off += " " + std::to_string(k);
+    plyFaces += " " + std::to_string(2 * face.size());  // MeshLab's per-corner UVs
+    for (int k : face) plyFaces += " " + std::to_string(vertices[k][2]) + " " + std::to_string(vertices[k][3]);
+    obj += "\n", plyFaces += "\n", off += "\n";
+  }
+  std::ofstream(dir / "twice.obj") << obj;
+  std::ofstream(dir / "twice.off") << off;
+  std::ofstream(dir / "twice.ply") << "ply\nformat ascii 1.0\nelement vertex 8\nproperty float x\nproperty float y\nproperty float z\n"
+                                      "element face 2\nproperty list uchar int vertex_indices\nproperty list uchar float texcoord\nend_header\n" +
+                                          plyVertices + plyFaces;
+  for (const char* name : {"twice.obj", "twice.ply", "twice.off"}) {
+    SCOPED_TRACE(name);
+    const fs::path glb = dir / (std::string(name) + ".glb");
+    const BakedTriangles baked = bakeTriangles(dir / name, glb);
+    ASSERT_EQ(baked.count(), 3u);
+    double area = 0;
+    for (std::size_t t = 0; t < baked.count(); ++t) {
+      EXPECT_GT(baked.area(t), 0.0) << "triangle " << t;
+      area += baked.area(t);
+    }
+    EXPECT_DOUBLE_EQ(area, 1.5);
+    const Asset out = loadAsset(glb);
+    const Json& attributes = out.json["meshes"][0]["primitives"][0]["attributes"];
+    const auto uvs = tangent::gltf::detail::toFloats(readAccessor(out.model, attributes["TEXCOORD_0"].get<int>(), "TEXCOORD_0"));
+    for (std::size_t v = 0; v < baked.positions.size() / 3; ++v) {
+      const auto* file = std::find_if(std::begin(vertices), std::end(vertices), [&](const float* f) {
+        return f[0] == baked.positions[3 * v] && f[1] == baked.positions[3 * v + 1];
+      });
+      ASSERT_NE(file, std::end(vertices)) << "vertex " << v;
+      EXPECT_FLOAT_EQ(uvs[2 * v], (*file)[2]) << "vertex " << v;
+      EXPECT_FLOAT_EQ(uvs[2 * v + 1], 1.0f - (*file)[3]) << "vertex " << v;
+    }
+  }
+}
+
 // A binary PLY with a NaN coordinate gave a GLB with "min": [null, ...] and NaN data (validator
 // errors, exit 0): refused naming the vertex.
 TEST(MeshFiles, NonFiniteValuesInAPlyAreRefusedNamingTheVertex) {

@@ -34,8 +34,11 @@ namespace tangent::gltf::detail {
 namespace {
 
 // OpenMesh's OBJ reader asserts (aborts) on a face line without a vertex and trusts every
-// reference: each `f` line is checked here against the v, vt and vn lines before it.
-void checkObj(std::istream& in, const std::string& label) {
+// reference: each `f` line is checked here against the v, vt and vn lines before it. Returns
+// the file's text with each face that visits a vertex twice written as its simplePolygons,
+// one `f` line each (what OpenMesh reads; the messages here number the file's own lines).
+std::string checkObj(std::istream& in, const std::string& label) {
+  std::string out;
   std::string line;
   std::size_t lineNumber = 0;
   std::int64_t counts[3] = {0, 0, 0};  // v, vt, vn
@@ -43,6 +46,7 @@ void checkObj(std::istream& in, const std::string& label) {
   while (std::getline(in, line)) {
     ++lineNumber;
     const std::vector<std::string> w = words(line);
+    if (w.empty() || w[0] != "f") out.append(line).push_back('\n');
     if (w.empty()) continue;
     auto fail = [&](const std::string& what) {
       throw InputError(label + ": OBJ line " + std::to_string(lineNumber) + ": " + what);
@@ -63,6 +67,7 @@ void checkObj(std::istream& in, const std::string& label) {
     }
     if (w[0] != "f") continue;
     if (w.size() < 4) fail("a face needs at least three vertices");
+    std::vector<std::int64_t> vertices;  // each corner's, resolved
     for (std::size_t k = 1; k < w.size(); ++k) {
       std::size_t start = 0;
       for (int part = 0; part < 3 && start <= w[k].size(); ++part) {
@@ -81,10 +86,24 @@ void checkObj(std::istream& in, const std::string& label) {
         if (index == 0 || resolved < 1 || resolved > counts[part])
           fail("face corner '" + w[k].substr(0, 40) + "' refers to " + kinds[part] + " " + number + ", but " +
                std::to_string(counts[part]) + " are defined before this line");
+        if (part == 0) vertices.push_back(resolved);
         if (slash == w[k].size()) break;
       }
     }
+    // A face of one piece as it was; none (no area) as an empty line.
+    const std::vector<std::vector<std::size_t>> pieces = simplePolygons(vertices);
+    if (pieces.size() == 1 && pieces[0].size() == vertices.size()) {
+      out.append(line).push_back('\n');
+      continue;
+    }
+    for (const std::vector<std::size_t>& piece : pieces) {
+      out += "f";
+      for (std::size_t k : piece) out.append(" ").append(w[k + 1]);
+      out.push_back('\n');
+    }
+    if (pieces.empty()) out.push_back('\n');
   }
+  return out;
 }
 
 // OpenMesh reports every non-manifold face on its error stream: muted while reading.
@@ -219,7 +238,7 @@ std::vector<std::uint8_t> meshFileToGlb(const std::filesystem::path& path) {
     }
     if (extension == ".obj") {
       std::istringstream lines(text);
-      checkObj(lines, path.string());
+      text = checkObj(lines, path.string());
     }
   }
   std::vector<char> vertexUvSet, halfedgeUvSet, normalSet;
@@ -235,9 +254,9 @@ std::vector<std::uint8_t> meshFileToGlb(const std::filesystem::path& path) {
           readPly(text, importer, options, path.string());
         read = true;
       } else if (extension == ".obj") {
-        // From memory, its mtllib lines blanked: OpenMesh opened the material library wherever
-        // it named (outside the asset's folder, or a FIFO that never ends) and materials are
-        // not used. Line numbers stay as in the file.
+        // From memory, as checkObj wrote it, its mtllib lines blanked: OpenMesh opened the
+        // material library wherever it named (outside the asset's folder, or a FIFO that never
+        // ends) and materials are not used.
         for (std::size_t at = 0; at < text.size();) {
           const std::size_t end = std::min(text.find('\n', at), text.size());
           std::size_t first = at;

@@ -16,6 +16,7 @@
 #include <optional>
 #include <cstdint>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "tangent/gltf.hpp"
@@ -207,6 +208,60 @@ inline std::optional<float> finiteFloat(const std::string& word) {
   const float x = std::strtof(word.c_str(), &end);
   if (word.empty() || end != word.c_str() + word.size() || !std::isfinite(x)) return std::nullopt;
   return x;
+}
+
+// A polygon that visits a vertex more than once, as the simple polygons a half-edge mesh can
+// hold (OpenMesh refuses a face with a repeated vertex, and its OBJ reader then put the face's
+// UVs on the wrong corners): a corner that repeats the one before it (a zero-length edge,
+// "f 1 2 3 3") is dropped, and where a vertex is visited twice ("f 1 2 3 1 4 5") the polygon
+// is cut there into the loop between the visits and the rest, each in the polygon's winding.
+// Pieces of fewer than three corners have no area and are dropped. Each piece lists positions
+// in `vertices`.
+template <class Vertex>
+std::vector<std::vector<std::size_t>> simplePolygons(const std::vector<Vertex>& vertices) {
+  std::vector<std::vector<std::size_t>> pieces, open(1);
+  for (std::size_t k = 0; k < vertices.size(); ++k) open[0].push_back(k);
+  std::vector<std::pair<Vertex, std::size_t>> seen;
+  while (!open.empty()) {
+    std::vector<std::size_t> ring = std::move(open.back());
+    open.pop_back();
+    std::vector<std::size_t> kept;
+    for (std::size_t k : ring) {
+      if (kept.empty() || !(vertices[k] == vertices[kept.back()])) kept.push_back(k);
+    }
+    while (kept.size() > 1 && vertices[kept.back()] == vertices[kept.front()]) kept.pop_back();
+    if (kept.size() < 3) continue;
+    // The first vertex visited twice, by sorting (vertex, position) pairs.
+    seen.clear();
+    for (std::size_t i = 0; i < kept.size(); ++i) seen.emplace_back(vertices[kept[i]], i);
+    std::sort(seen.begin(), seen.end(), [](const auto& a, const auto& b) {
+      return a.first < b.first || (a.first == b.first && a.second < b.second);
+    });
+    std::size_t first = kept.size(), second = 0;
+    for (std::size_t i = 1; i < seen.size(); ++i) {
+      if (seen[i].first == seen[i - 1].first && seen[i - 1].second < first) first = seen[i - 1].second, second = seen[i].second;
+    }
+    if (first == kept.size()) {
+      pieces.push_back(std::move(kept));
+      continue;
+    }
+    std::vector<std::size_t> loop(kept.begin() + static_cast<std::ptrdiff_t>(first), kept.begin() + static_cast<std::ptrdiff_t>(second));
+    std::vector<std::size_t> rest(kept.begin(), kept.begin() + static_cast<std::ptrdiff_t>(first + 1));
+    rest.insert(rest.end(), kept.begin() + static_cast<std::ptrdiff_t>(second + 1), kept.end());
+    open.push_back(std::move(rest));  // taken after the loop: pieces in the order they start
+    open.push_back(std::move(loop));
+  }
+  return pieces;
+}
+
+// Adds a polygon of the file as its simplePolygons.
+inline void addSimplePolygons(CheckedImporter& importer, const OpenMesh::IO::BaseImporter::VHandles& corners) {
+  OpenMesh::IO::BaseImporter::VHandles piece;
+  for (const std::vector<std::size_t>& positions : simplePolygons(corners)) {
+    piece.clear();
+    for (std::size_t k : positions) piece.push_back(corners[k]);
+    importer.add_face(piece);
+  }
 }
 
 // Each reads a whole file's bytes into `importer` and sets

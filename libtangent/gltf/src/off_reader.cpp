@@ -100,7 +100,7 @@ void readOff(const std::string& text, CheckedImporter& importer, OpenMesh::IO::O
                            " is vertex " + std::to_string(index) + ", not one below " + std::to_string(vertices));
         corners.push_back(handles[index]);
       }
-      importer.add_face(corners);
+      addSimplePolygons(importer, corners);
     }
   } else {
     // The counts: on the keyword line after the keyword, or on the next line.
@@ -154,7 +154,7 @@ void readOff(const std::string& text, CheckedImporter& importer, OpenMesh::IO::O
                "' is not a vertex index below " + std::to_string(vertices));
         corners.push_back(handles[std::stoull(w[c])]);
       }
-      importer.add_face(corners);
+      addSimplePolygons(importer, corners);
     }
   }
   options.clear();

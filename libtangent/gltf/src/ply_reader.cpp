@@ -188,7 +188,7 @@ void readPly(const std::string& text, CheckedImporter& importer, OpenMesh::IO::O
 
   bool vertexNormals = false, vertexUvs = false, cornerUvs = false;
   std::vector<double> values;
-  OpenMesh::IO::BaseImporter::VHandles corners;
+  OpenMesh::IO::BaseImporter::VHandles corners, pieceCorners;
   std::vector<float> uvValues;
   std::vector<OpenMesh::Vec2f> cornerUv;
   for (const PlyElement& e : header.elements) {
@@ -261,16 +261,20 @@ void readPly(const std::string& text, CheckedImporter& importer, OpenMesh::IO::O
         if (vertexNormals) importer.set_normal(vh, OpenMesh::Vec3f(f(nx), f(ny), f(nz)));
         if (vertexUvs) importer.set_texcoord(vh, OpenMesh::Vec2f(f(u), f(v)));
       } else if (isFace) {
-        const auto fh = importer.add_face(corners);
         if (uvList >= 0) {
           property = &e.properties[static_cast<std::size_t>(uvList)];
           if (uvValues.size() != 2 * corners.size())
             fail("lists " + std::to_string(uvValues.size()) + " values for a face of " + std::to_string(corners.size()) +
                  " corners (u v per corner)");
-          if (!fh.is_valid()) continue;  // refused by the importer (a repeated vertex)
+        }
+        for (const std::vector<std::size_t>& piece : simplePolygons(corners)) {
+          pieceCorners.clear();
+          for (std::size_t k : piece) pieceCorners.push_back(corners[k]);
+          const auto fh = importer.add_face(pieceCorners);
+          if (uvList < 0 || !fh.is_valid()) continue;
           cornerUv.clear();
-          for (std::size_t k = 0; k < corners.size(); ++k) cornerUv.emplace_back(uvValues[2 * k], uvValues[2 * k + 1]);
-          importer.add_face_texcoords(fh, corners[0], cornerUv);  // from the first corner on (its copy, the importer knows)
+          for (std::size_t k : piece) cornerUv.emplace_back(uvValues[2 * k], uvValues[2 * k + 1]);
+          importer.add_face_texcoords(fh, pieceCorners[0], cornerUv);  // from the first corner on (its copy, the importer knows)
         }
       }
     }
