@@ -36,7 +36,9 @@ TEST(Text, Utf8SafeKeepsValidUtf8AndEscapesEveryOtherByte) {
 
 TEST(Text, TerminalSafeEscapesControlCharactersAndCuts) {
   EXPECT_EQ(tangent::text::terminalSafe("a\x1B[31mb\rc\0d\x7F"s), "a\\x1B[31mb\\x0Dc\\x00d\\x7F");
-  EXPECT_EQ(tangent::text::terminalSafe("tab\tnew\nline"), "tab\tnew\nline");
+  // A newline in file-derived text (a file name) would start a line of its own in a log.
+  EXPECT_EQ(tangent::text::terminalSafe("tab\tnew\nline"), "tab\tnew\\x0Aline");
+  EXPECT_EQ(tangent::text::terminalSafeLines("tab\tnew\nline\r\x1B"), "tab\tnew\nline\\x0D\\x1B");
   EXPECT_EQ(tangent::text::terminalSafe("c1 \xC2\x9B" "2J"), "c1 \\u009B2J");  // U+009B is CSI on some terminals
   EXPECT_EQ(tangent::text::terminalSafe("\xFF"), "\\xFF");
   EXPECT_EQ(tangent::text::terminalSafe("abcdefgh", 3), "abc... (8 bytes)");

@@ -362,6 +362,23 @@ def test_control_characters_from_names_never_reach_the_terminal(tmp_path):
         assert b"vil" in done.stdout + done.stderr
 
 
+def test_a_newline_in_a_name_never_starts_a_line_of_its_own(tmp_path):
+    # A file or mesh name with a newline would forge a line of the log ("FAKE ...") a reader
+    # or a CI job takes for the tool's own.
+    doc, blob = grid(4, mesh_name="m\nFAKE mesh ok")
+    tree = tmp_path / "tree"
+    tree.mkdir()
+    asset = write(tree / "a\nFAKE ok.glb", glb_bytes(doc, blob))
+    write(tree / "b\nFAKE error.glb", b"not a glb")
+    runs = [("bake", asset, "-o", tmp_path / "o.glb"), ("info", asset), ("check", asset),
+            ("check", asset, "--format", "github"), ("bake", tree, "--recursive", "--out-dir", tmp_path / "out")]
+    for args in runs:
+        done = tangent(*args)
+        lines = (done.stdout + done.stderr).split(b"\n")
+        assert not [line for line in lines if line.startswith(b"FAKE")], (args, lines)
+        assert b"FAKE ok" in done.stdout + done.stderr, (args, lines)
+
+
 def test_recursive_manifest_with_names_that_are_not_utf8_resumes(tmp_path):
     doc, blob = grid(4)
     folder = os.fsencode(tmp_path / "in")

@@ -254,7 +254,7 @@ void writeJunit(std::ostream& out, const std::vector<gltf::FileCheck>& checks, c
 // Control characters (ESC: the runner's log is a terminal) and bytes that are not UTF-8 as \xHH.
 std::string githubData(const std::string& raw) {
   std::string out;
-  for (char c : shown(raw)) {
+  for (char c : text::terminalSafeLines(raw, 4096)) {
     if (c == '%') out += "%25";
     else if (c == '\r') out += "%0D";
     else if (c == '\n') out += "%0A";

@@ -91,14 +91,15 @@ std::string utf8Safe(std::string_view bytes) {
   return out;
 }
 
-std::string terminalSafe(std::string_view text, std::size_t maxBytes) {
+namespace {
+std::string terminalSafeText(std::string_view text, std::size_t maxBytes, bool keepNewlines) {
   std::string out;
   std::size_t i = 0;
   for (; i < text.size(); ) {
     if (out.size() >= maxBytes) break;
     const std::size_t length = sequenceLength(text, i);
     const auto byte = static_cast<unsigned char>(text[i]);
-    if (length == 0 || (length == 1 && ((byte < 0x20 && byte != '\t' && byte != '\n') || byte == 0x7F))) {
+    if (length == 0 || (length == 1 && ((byte < 0x20 && byte != '\t' && !(keepNewlines && byte == '\n')) || byte == 0x7F))) {
       appendEscaped(out, byte);
       ++i;
     } else if (length == 2 && byte == 0xC2 && static_cast<unsigned char>(text[i + 1]) < 0xA0) {
@@ -115,6 +116,11 @@ std::string terminalSafe(std::string_view text, std::size_t maxBytes) {
   if (i < text.size()) out += "... (" + std::to_string(text.size()) + " bytes)";
   return out;
 }
+}  // namespace
+
+std::string terminalSafe(std::string_view text, std::size_t maxBytes) { return terminalSafeText(text, maxBytes, false); }
+
+std::string terminalSafeLines(std::string_view text, std::size_t maxBytes) { return terminalSafeText(text, maxBytes, true); }
 
 std::string quoted(std::string_view text) { return terminalSafe(text, kMaxMessageText); }
 

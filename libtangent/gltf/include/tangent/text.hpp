@@ -20,10 +20,15 @@ inline constexpr std::size_t kMaxMessageText = 160;
 // The result is valid UTF-8, and different byte strings stay different in practice.
 std::string utf8Safe(std::string_view bytes);
 
-// For a terminal or a one-line log: utf8Safe, then control characters (C0 but tab and newline,
-// DEL, C1) as "\xHH", so that no escape sequence reaches the terminal. Longer than maxBytes:
-// cut on a character boundary and ended with "... (N bytes)".
+// For a terminal or a one-line log: utf8Safe, then control characters (C0 but tab, DEL, C1)
+// as "\xHH", so that no escape sequence reaches the terminal and no file-derived text (a file
+// name with a newline in it) starts a line of its own that a reader or a CI log takes for
+// another message. Longer than maxBytes: cut on a character boundary and ended with
+// "... (N bytes)".
 std::string terminalSafe(std::string_view text, std::size_t maxBytes = static_cast<std::size_t>(-1));
+// terminalSafe with newlines kept: for text whose line breaks are the program's own and that
+// is encoded further before it is written (a GitHub annotation's message, newlines as %0A).
+std::string terminalSafeLines(std::string_view text, std::size_t maxBytes = static_cast<std::size_t>(-1));
 
 // A piece of file-derived text inside a message: terminalSafe, cut to kMaxMessageText.
 std::string quoted(std::string_view text);
