@@ -913,6 +913,40 @@ TEST(MeshFiles, PlyAndOffBakeToGlb) {
   }
 }
 
+// OFF's keyword is optional (Geomview), and ModelNet's files glue the vertex count to it
+// ("OFF490 518 0"): both were refused ("expected an OFF keyword"). Each now reads as the file
+// with its keyword line: the same GLB, or the same refusal of a file without UVs.
+TEST(MeshFiles, OffWithoutItsKeywordOrWithTheCountGluedReadsAsWithIt) {
+  TempDir dir;
+  const std::string body = "0 0 0 0 0\n1 0 0 1 0\n1 1 0 1 1\n0 1 0 0 1\n3 0 1 2\n3 0 2 3\n";
+  fs::create_directories(dir / "keyword");  // one name in two folders: the name is written into the GLB
+  fs::create_directories(dir / "glued");
+  std::ofstream(dir / "keyword" / "q.off") << "STOFF\n4 2 0\n" << body;
+  std::ofstream(dir / "glued" / "q.off") << "STOFF4 2 0\n" << body;
+  tangent::gltf::bakeFile(dir / "keyword" / "q.off", dir / "keyword.glb", {});
+  tangent::gltf::bakeFile(dir / "glued" / "q.off", dir / "glued.glb", {});
+  auto bytes = [](const fs::path& file) {
+    std::ifstream in(file, std::ios::binary);
+    return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+  };
+  EXPECT_EQ(bytes(dir / "glued.glb"), bytes(dir / "keyword.glb"));
+  const std::string plain = "0 0 0\n1 0 0\n1 1 0\n0 1 0\n3 0 1 2\n3 0 2 3\n";
+  std::ofstream(dir / "a.off") << "OFF\n4 2 0\n" << plain;
+  std::ofstream(dir / "b.off") << "4 2 0\n" << plain;
+  std::ofstream(dir / "c.off") << "OFF4 2\n" << plain;
+  auto refusal = [&](const char* name) {
+    try {
+      tangent::gltf::bakeFile(dir / name, dir / (std::string(name) + ".glb"), {});
+    } catch (const tangent::gltf::InputError& e) {
+      return std::string(e.what()).substr((dir / name).string().size());
+    }
+    return std::string("no error");
+  };
+  EXPECT_NE(refusal("a.off").find("no texture coordinates"), std::string::npos) << refusal("a.off");
+  EXPECT_EQ(refusal("b.off"), refusal("a.off"));
+  EXPECT_EQ(refusal("c.off"), refusal("a.off"));
+}
+
 // PLY as its writers spell it: UV properties named texture_u/texture_v, a per-corner texcoord
 // list (MeshLab's wedge UVs, a seam through a shared vertex), either binary byte order. Each
 // bakes like the plain ASCII u/v quad of PlyAndOffBakeToGlb.

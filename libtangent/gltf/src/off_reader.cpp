@@ -6,7 +6,8 @@
 // line, every number is checked, and the mesh reaches the same checked importer. ASCII and
 // binary (OpenMesh's layout: little-endian 32-bit counts, indices and floats); colours, which
 // no glTF attribute here takes, are skipped in ASCII and refused in binary.
-// Format: Geomview's OFF (geomview.org/docs/html/OFF.html), with OpenMesh's binary layout.
+// Format: Geomview's OFF (geomview.org/docs/html/OFF.html), with OpenMesh's binary layout; the
+// keyword may be left out, or (as in ModelNet) have the vertex count glued to it.
 #include <algorithm>
 #include <bit>
 #include <cctype>
@@ -43,6 +44,14 @@ void readOff(const std::string& text, CheckedImporter& importer, OpenMesh::IO::O
     throw InputError(label + ": OFF line " + std::to_string(lineNumber) + ": " + what);
   };
   if (!next()) throw InputError(label + ": has no OFF keyword line (the file is empty or only comments)");
+  // The keyword is optional (Geomview): a first line of counts is plain OFF. ModelNet's files
+  // glue the vertex count to it ("OFF490 518 0"): the digits after "OFF" are the first count.
+  if (isCount(w[0])) {
+    w.insert(w.begin(), "OFF");
+  } else if (const std::size_t off = w[0].find("OFF"); off != std::string::npos && off + 3 < w[0].size() && isCount(w[0].substr(off + 3))) {
+    w.insert(w.begin() + 1, w[0].substr(off + 3));
+    w[0].erase(off + 3);
+  }
   const std::string keyword = w[0];
   // [ST][C][N][4][n]OFF
   std::size_t k = 0;
