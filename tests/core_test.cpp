@@ -588,7 +588,7 @@ GridMesh discAroundOneVertex(std::uint32_t triangles, std::uint32_t period, std:
 TEST(Core, AVertexOfHighValenceWithoutUvAreaGetsFrames) {
   constexpr std::uint32_t kTriangles = kDiscTriangles;
   // All without UV area; every other one; two of every four (rim vertices with none).
-  for (const auto [period, zeroUv] : {std::pair{1u, 1u}, {2u, 1u}, {4u, 2u}}) {
+  for (const auto& [period, zeroUv] : {std::pair{1u, 1u}, {2u, 1u}, {4u, 2u}}) {
     const GridMesh m = discAroundOneVertex(kTriangles, period, zeroUv);
     for (tangent::Method method : {tangent::Method::mikktspace, tangent::Method::flat, tangent::Method::lengyel}) {
       SCOPED_TRACE(std::string(tangent::toString(method)) + ", " + std::to_string(zeroUv) + " of " + std::to_string(period) + " without UV area");
