@@ -1183,15 +1183,17 @@ TEST(MeshFiles, RandomConcavePolygonsAreCoveredOnce) {
 }
 
 // A face that visits a vertex twice: a triangle written as a quad with its last corner
-// repeated ("1 2 3 3"), and a hexagon pinched at one vertex ("4 5 6 4 7 8", two triangles).
-// OpenMesh refused such faces (PLY, OFF: dropped silently) or, in an OBJ, dropped the repeat
-// but not its UV, so the face's UVs landed on the wrong corners. Each is now the simple
-// polygons it is made of, every corner with the UV the file gave it, in OBJ, PLY and OFF.
+// repeated ("1 2 3 3"), and a hexagon pinched at one vertex ("4 5 6 4 7 8", two triangles),
+// whose two visits have different UVs (OBJ, PLY). OpenMesh refused such faces (PLY, OFF:
+// dropped silently) or, in an OBJ, dropped the repeat but not its UV, so the face's UVs landed
+// on the wrong corners. Each is now the simple polygons it is made of, every corner with the
+// UV the file gave it (the pinch's first triangle its first visit's, the second its second's).
 TEST(MeshFiles, FacesThatVisitAVertexTwiceKeepEveryCornersUv) {
   TempDir dir;
   const float vertices[8][4] = {{0, 0, 0, 0},   {1, 0, 1, 0},      {1, 1, 1, 1},      {3, 0, 0.2f, 0.2f},
                                 {4, 0, 0.4f, 0.2f}, {4, 1, 0.4f, 0.4f}, {2, 1, 0.1f, 0.4f}, {2, 0, 0.1f, 0.2f}};
   const std::vector<std::vector<int>> faces = {{0, 1, 2, 2}, {3, 4, 5, 3, 6, 7}};
+  const float secondVisit[2] = {0.3f, 0.1f};  // vertex 3's UV at its second visit (OBJ vt 9, a PLY corner UV)
   std::string obj, plyVertices, plyFaces, off = "STOFF\n8 2 0\n";
   for (const auto& v : vertices) {
     const std::string xyz = std::to_string(v[0]) + " " + std::to_string(v[1]) + " 0";
@@ -1200,14 +1202,23 @@ TEST(MeshFiles, FacesThatVisitAVertexTwiceKeepEveryCornersUv) {
     plyVertices += xyz + "\n";
     off += xyz + " " + uv + "\n";
   }
-  obj += "vn 0 0 1\n";
+  obj += "vt " + std::to_string(secondVisit[0]) + " " + std::to_string(secondVisit[1]) + "\nvn 0 0 1\n";
   for (const auto& face : faces) {
     obj += "f";
     plyFaces += std::to_string(face.size());
     off += std::to_string(face.size());
-    for (int k : face) obj += " " + std::to_string(k + 1) + "/" + std::to_string(k + 1) + "/1", plyFaces += " " + std::to_string(k), off += " " + std::to_string(k);
+    for (std::size_t c = 0; c < face.size(); ++c) {
+      const int k = face[c];
+      const bool second = face.size() == 6 && c == 3;
+      obj += " " + std::to_string(k + 1) + "/" + std::to_string(second ? 9 : k + 1) + "/1";
+      plyFaces += " " + std::to_string(k), off += " " + std::to_string(k);
+    }
     plyFaces += " " + std::to_string(2 * face.size());  // MeshLab's per-corner UVs
-    for (int k : face) plyFaces += " " + std::to_string(vertices[k][2]) + " " + std::to_string(vertices[k][3]);
+    for (std::size_t c = 0; c < face.size(); ++c) {
+      const int k = face[c];
+      const bool second = face.size() == 6 && c == 3;
+      plyFaces += " " + std::to_string(second ? secondVisit[0] : vertices[k][2]) + " " + std::to_string(second ? secondVisit[1] : vertices[k][3]);
+    }
     obj += "\n", plyFaces += "\n", off += "\n";
   }
   std::ofstream(dir / "twice.obj") << obj;
@@ -1229,13 +1240,19 @@ TEST(MeshFiles, FacesThatVisitAVertexTwiceKeepEveryCornersUv) {
     const Asset out = loadAsset(glb);
     const Json& attributes = out.json["meshes"][0]["primitives"][0]["attributes"];
     const auto uvs = tangent::gltf::detail::toFloats(readAccessor(out.model, attributes["TEXCOORD_0"].get<int>(), "TEXCOORD_0"));
-    for (std::size_t v = 0; v < baked.positions.size() / 3; ++v) {
-      const auto* file = std::find_if(std::begin(vertices), std::end(vertices), [&](const float* f) {
-        return f[0] == baked.positions[3 * v] && f[1] == baked.positions[3 * v + 1];
-      });
-      ASSERT_NE(file, std::end(vertices)) << "vertex " << v;
-      EXPECT_FLOAT_EQ(uvs[2 * v], (*file)[2]) << "vertex " << v;
-      EXPECT_FLOAT_EQ(uvs[2 * v + 1], 1.0f - (*file)[3]) << "vertex " << v;
+    const bool twoUvs = std::string(name) != "twice.off";  // OFF's UVs are per vertex
+    for (std::size_t t = 0; t < baked.count(); ++t) {
+      const bool secondPiece = baked.corner(t, 0)[0] == 2 || baked.corner(t, 1)[0] == 2 || baked.corner(t, 2)[0] == 2;
+      for (int k = 0; k < 3; ++k) {
+        const std::uint32_t v = baked.indices[3 * t + static_cast<std::size_t>(k)];
+        const auto* file = std::find_if(std::begin(vertices), std::end(vertices), [&](const float* f) {
+          return f[0] == baked.positions[3 * v] && f[1] == baked.positions[3 * v + 1];
+        });
+        ASSERT_NE(file, std::end(vertices)) << "vertex " << v;
+        const bool second = twoUvs && secondPiece && (*file)[0] == 3;
+        EXPECT_FLOAT_EQ(uvs[2 * v], second ? secondVisit[0] : (*file)[2]) << "triangle " << t << " vertex " << v;
+        EXPECT_FLOAT_EQ(uvs[2 * v + 1], 1.0f - (second ? secondVisit[1] : (*file)[3])) << "triangle " << t << " vertex " << v;
+      }
     }
   }
 }

@@ -90,12 +90,12 @@ std::string checkObj(std::istream& in, const std::string& label) {
         if (slash == w[k].size()) break;
       }
     }
-    // A face of one piece as it was; none (no area) as an empty line.
-    const std::vector<std::vector<std::size_t>> pieces = simplePolygons(vertices);
-    if (pieces.size() == 1 && pieces[0].size() == vertices.size()) {
+    // A simple face as it was; one of no area (no piece) as an empty line.
+    if (!visitsAVertexTwice(vertices)) {
       out.append(line).push_back('\n');
       continue;
     }
+    const std::vector<std::vector<std::size_t>> pieces = simplePolygons(vertices);
     for (const std::vector<std::size_t>& piece : pieces) {
       out += "f";
       for (std::size_t k : piece) out.append(" ").append(w[k + 1]);

@@ -16,6 +16,8 @@
 #include <optional>
 #include <cstdint>
 #include <string>
+#include <type_traits>
+#include <unordered_map>
 #include <utility>
 #include <vector>
 
@@ -210,52 +212,66 @@ inline std::optional<float> finiteFloat(const std::string& word) {
   return x;
 }
 
+// Hash of a polygon's vertex: an index, or an OpenMesh handle (by its index).
+struct VertexKeyHash {
+  template <class Vertex>
+  std::size_t operator()(const Vertex& v) const {
+    if constexpr (std::is_integral_v<Vertex>) return std::hash<Vertex>()(v);
+    else return std::hash<int>()(v.idx());
+  }
+};
+
+// Whether a polygon visits a vertex more than once (no allocation for the usual small one).
+template <class Vertex>
+bool visitsAVertexTwice(const std::vector<Vertex>& vertices) {
+  const std::size_t n = vertices.size();
+  if (n <= 32) {
+    for (std::size_t i = 0; i < n; ++i) {
+      for (std::size_t j = i + 1; j < n; ++j) {
+        if (vertices[i] == vertices[j]) return true;
+      }
+    }
+    return false;
+  }
+  std::vector<Vertex> sorted(vertices);
+  std::sort(sorted.begin(), sorted.end());
+  return std::adjacent_find(sorted.begin(), sorted.end()) != sorted.end();
+}
+
 // A polygon that visits a vertex more than once, as the simple polygons a half-edge mesh can
 // hold (OpenMesh refuses a face with a repeated vertex, and its OBJ reader then put the face's
-// UVs on the wrong corners): a corner that repeats the one before it (a zero-length edge,
-// "f 1 2 3 3") is dropped, and where a vertex is visited twice ("f 1 2 3 1 4 5") the polygon
-// is cut there into the loop between the visits and the rest, each in the polygon's winding.
-// Pieces of fewer than three corners have no area and are dropped. Each piece lists positions
-// in `vertices`.
+// UVs on the wrong corners). Walking the corners, a vertex met again closes a loop: the corners
+// from its first visit up to the second are one piece, and the second visit stands for the
+// vertex from then on, so each visit's corner (its UV) is in exactly one piece:
+// "f 1 2 3 1 4 5" is (1 2 3) with the first visit's corner and (1 4 5) with the second's. A
+// corner repeating the one before it ("f 1 2 3 3") closes a loop of one corner. Pieces of fewer
+// than three corners have no area and are dropped. Pieces come as their loops close, the rest
+// last, each in the polygon's winding, as positions in `vertices`. Linear in the corners.
 template <class Vertex>
 std::vector<std::vector<std::size_t>> simplePolygons(const std::vector<Vertex>& vertices) {
-  std::vector<std::vector<std::size_t>> pieces, open(1);
-  for (std::size_t k = 0; k < vertices.size(); ++k) open[0].push_back(k);
-  std::vector<std::pair<Vertex, std::size_t>> seen;
-  while (!open.empty()) {
-    std::vector<std::size_t> ring = std::move(open.back());
-    open.pop_back();
-    std::vector<std::size_t> kept;
-    for (std::size_t k : ring) {
-      if (kept.empty() || !(vertices[k] == vertices[kept.back()])) kept.push_back(k);
+  std::vector<std::vector<std::size_t>> pieces;
+  std::vector<std::size_t> path;                // positions in `vertices`, no vertex twice
+  std::unordered_map<Vertex, std::size_t, VertexKeyHash> onPath;  // vertex -> its index in path
+  for (std::size_t k = 0; k < vertices.size(); ++k) {
+    const auto [at, added] = onPath.try_emplace(vertices[k], path.size());
+    if (!added) {
+      const std::size_t from = at->second;
+      if (path.size() - from >= 3) pieces.emplace_back(path.begin() + static_cast<std::ptrdiff_t>(from), path.end());
+      for (std::size_t i = from + 1; i < path.size(); ++i) onPath.erase(vertices[path[i]]);
+      path.resize(from);
     }
-    while (kept.size() > 1 && vertices[kept.back()] == vertices[kept.front()]) kept.pop_back();
-    if (kept.size() < 3) continue;
-    // The first vertex visited twice, by sorting (vertex, position) pairs.
-    seen.clear();
-    for (std::size_t i = 0; i < kept.size(); ++i) seen.emplace_back(vertices[kept[i]], i);
-    std::sort(seen.begin(), seen.end(), [](const auto& a, const auto& b) {
-      return a.first < b.first || (a.first == b.first && a.second < b.second);
-    });
-    std::size_t first = kept.size(), second = 0;
-    for (std::size_t i = 1; i < seen.size(); ++i) {
-      if (seen[i].first == seen[i - 1].first && seen[i - 1].second < first) first = seen[i - 1].second, second = seen[i].second;
-    }
-    if (first == kept.size()) {
-      pieces.push_back(std::move(kept));
-      continue;
-    }
-    std::vector<std::size_t> loop(kept.begin() + static_cast<std::ptrdiff_t>(first), kept.begin() + static_cast<std::ptrdiff_t>(second));
-    std::vector<std::size_t> rest(kept.begin(), kept.begin() + static_cast<std::ptrdiff_t>(first + 1));
-    rest.insert(rest.end(), kept.begin() + static_cast<std::ptrdiff_t>(second + 1), kept.end());
-    open.push_back(std::move(rest));  // taken after the loop: pieces in the order they start
-    open.push_back(std::move(loop));
+    path.push_back(k);
   }
+  if (path.size() >= 3) pieces.push_back(std::move(path));
   return pieces;
 }
 
 // Adds a polygon of the file as its simplePolygons.
 inline void addSimplePolygons(CheckedImporter& importer, const OpenMesh::IO::BaseImporter::VHandles& corners) {
+  if (!visitsAVertexTwice(corners)) {
+    importer.add_face(corners);
+    return;
+  }
   OpenMesh::IO::BaseImporter::VHandles piece;
   for (const std::vector<std::size_t>& positions : simplePolygons(corners)) {
     piece.clear();

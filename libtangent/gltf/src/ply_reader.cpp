@@ -15,6 +15,7 @@
 #include <cstdint>
 #include <cstdlib>
 #include <cstring>
+#include <numeric>
 #include <string>
 #include <vector>
 
@@ -189,6 +190,7 @@ void readPly(const std::string& text, CheckedImporter& importer, OpenMesh::IO::O
   bool vertexNormals = false, vertexUvs = false, cornerUvs = false;
   std::vector<double> values;
   OpenMesh::IO::BaseImporter::VHandles corners, pieceCorners;
+  std::vector<std::size_t> wholeFace;
   std::vector<float> uvValues;
   std::vector<OpenMesh::Vec2f> cornerUv;
   for (const PlyElement& e : header.elements) {
@@ -267,14 +269,22 @@ void readPly(const std::string& text, CheckedImporter& importer, OpenMesh::IO::O
             fail("lists " + std::to_string(uvValues.size()) + " values for a face of " + std::to_string(corners.size()) +
                  " corners (u v per corner)");
         }
-        for (const std::vector<std::size_t>& piece : simplePolygons(corners)) {
+        // The face, or where it visits a vertex twice its simple polygons, each with its corners' UVs.
+        auto addPiece = [&](const std::vector<std::size_t>& piece) {
           pieceCorners.clear();
           for (std::size_t k : piece) pieceCorners.push_back(corners[k]);
           const auto fh = importer.add_face(pieceCorners);
-          if (uvList < 0 || !fh.is_valid()) continue;
+          if (uvList < 0 || !fh.is_valid()) return;
           cornerUv.clear();
           for (std::size_t k : piece) cornerUv.emplace_back(uvValues[2 * k], uvValues[2 * k + 1]);
           importer.add_face_texcoords(fh, pieceCorners[0], cornerUv);  // from the first corner on (its copy, the importer knows)
+        };
+        if (!visitsAVertexTwice(corners)) {
+          wholeFace.resize(corners.size());
+          std::iota(wholeFace.begin(), wholeFace.end(), std::size_t{0});
+          addPiece(wholeFace);
+        } else {
+          for (const std::vector<std::size_t>& piece : simplePolygons(corners)) addPiece(piece);
         }
       }
     }
