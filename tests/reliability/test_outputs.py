@@ -370,8 +370,12 @@ def test_a_newline_in_a_name_never_starts_a_line_of_its_own(tmp_path):
     tree.mkdir()
     asset = write(tree / "a\nFAKE ok.glb", glb_bytes(doc, blob))
     write(tree / "b\nFAKE error.glb", b"not a glb")
+    # An OBJ's mesh takes the file's name: a check of its bake skips that mesh (no material), by name.
+    obj = write(tmp_path / "c\nFAKE ok.obj", b"v 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nvt 1 0\nvt 0 1\nf 1/1 2/2 3/3\n")
+    assert tangent("bake", obj, "-o", tmp_path / "obj.glb").returncode == 0
     runs = [("bake", asset, "-o", tmp_path / "o.glb"), ("info", asset), ("check", asset),
-            ("check", asset, "--format", "github"), ("bake", tree, "--recursive", "--out-dir", tmp_path / "out")]
+            ("check", asset, "--format", "github"), ("bake", tree, "--recursive", "--out-dir", tmp_path / "out"),
+            ("check", tmp_path / "obj.glb")]
     for args in runs:
         done = tangent(*args)
         lines = (done.stdout + done.stderr).split(b"\n")

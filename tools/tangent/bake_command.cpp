@@ -454,7 +454,7 @@ int bakeCommand(const std::vector<std::string>& args) {
                   << skipped << " skipped; " << split << " vertices added by splits\n";
         for (const auto& p : result.primitives) {
           log << "  mesh " << p.mesh << (p.meshName.empty() ? "" : " '" + text::quoted(p.meshName) + "'") << " primitive "
-                    << p.primitive << ": " << gltf::toString(p.action) << " - " << p.reason;
+                    << p.primitive << ": " << gltf::toString(p.action) << " - " << shown(p.reason);
           if (p.action == gltf::PrimitiveAction::baked) {
             const Report& r = p.tangents;
             log << " [" << toString(r.method) << (r.weighting ? "/" + std::string(toString(*r.weighting)) : "") << ", " << p.verticesIn << " -> "

@@ -93,8 +93,8 @@ void writeText(std::ostream& out, const std::vector<gltf::FileCheck>& checks) {
           << " triangles): " << (p.findings.empty() ? "ok" : std::to_string(p.findings.size()) + " finding(s)") << "\n";
       for (const auto& f : p.findings) {
         ++findings;
-        out << "    FAIL " << f.check << ": " << findingSummary(f) << "\n";
-        for (const auto& s : f.worst) out << "         " << s.detail << "\n";
+        out << "    FAIL " << f.check << ": " << shown(findingSummary(f)) << "\n";
+        for (const auto& s : f.worst) out << "         " << shown(s.detail) << "\n";
       }
       if (!p.passed.empty()) {
         out << "    ok  ";
@@ -111,9 +111,9 @@ void writeText(std::ostream& out, const std::vector<gltf::FileCheck>& checks) {
         for (const auto& name : p.ignored) out << " " << name;
         out << "\n";
       }
-      for (const auto& warning : p.warnings) out << "    WARN " << warning << "\n";
+      for (const auto& warning : p.warnings) out << "    WARN " << shown(warning) << "\n";
       if (!p.generator.empty()) {
-        out << "    generator: " << p.generator;
+        out << "    generator: " << shown(p.generator);
         for (const auto& g : p.generators) {
           char line[160];
           std::snprintf(line, sizeof line, "%s %s median %.3g max %.3g deg, w %.1f%%", &g == &p.generators.front() ? " (" : ";",
@@ -129,7 +129,7 @@ void writeText(std::ostream& out, const std::vector<gltf::FileCheck>& checks) {
             << "skips them, reference compares the angle but not w at the " << p.referenceWUndecided << " of their corners where w agrees)\n";
       if (p.referenceUndefined) out << "    (" << p.referenceUndefined << " corners have no defined reference frame; not compared)\n";
     }
-    for (const auto& s : file.skipped) out << "  skipped " << s << "\n";
+    for (const auto& s : file.skipped) out << "  skipped " << shown(s) << "\n";
   }
   out << checks.size() << " file(s), " << primitives << " primitive(s) checked, " << findings << " finding(s)"
       << (errors ? ", " + std::to_string(errors) + " unreadable" : "") << "\n";
