@@ -34,19 +34,23 @@ namespace tangent::gltf::detail {
 namespace {
 
 // OpenMesh's OBJ reader asserts (aborts) on a face line without a vertex and trusts every
-// reference: each `f` line is checked here against the v, vt and vn lines before it. Returns
-// the file's text with each face that visits a vertex twice written as its simplePolygons,
-// one `f` line each (what OpenMesh reads; the messages here number the file's own lines).
-std::string checkObj(std::istream& in, const std::string& label) {
-  std::string out;
+// reference: each `f` line is checked here against the v, vt and vn lines before it. Where a
+// face visits a vertex twice, `text` is rewritten with it as its simplePolygons, one `f` line
+// each (what OpenMesh reads; the messages here number the file's own lines). Without such a
+// face the text is left as it is, not copied.
+void checkObj(std::string& text, const std::string& label) {
+  std::istringstream in(text);
+  std::string out;         // the rewritten text, from the first face rewritten on
+  bool rewriting = false;
+  std::size_t lineStart = 0;  // of the current line in `text`
   std::string line;
   std::size_t lineNumber = 0;
   std::int64_t counts[3] = {0, 0, 0};  // v, vt, vn
   const char* const kinds[3] = {"vertex", "texture coordinate", "normal"};
-  while (std::getline(in, line)) {
+  for (; std::getline(in, line); lineStart += line.size() + 1) {
     ++lineNumber;
     const std::vector<std::string> w = words(line);
-    if (w.empty() || w[0] != "f") out.append(line).push_back('\n');
+    if (rewriting && (w.empty() || w[0] != "f")) out.append(line).push_back('\n');
     if (w.empty()) continue;
     auto fail = [&](const std::string& what) {
       throw InputError(label + ": OBJ line " + std::to_string(lineNumber) + ": " + what);
@@ -92,9 +96,10 @@ std::string checkObj(std::istream& in, const std::string& label) {
     }
     // A simple face as it was; one of no area (no piece) as an empty line.
     if (!visitsAVertexTwice(vertices)) {
-      out.append(line).push_back('\n');
+      if (rewriting) out.append(line).push_back('\n');
       continue;
     }
+    if (!rewriting) out.assign(text, 0, lineStart), rewriting = true;
     const std::vector<std::vector<std::size_t>> pieces = simplePolygons(vertices);
     for (const std::vector<std::size_t>& piece : pieces) {
       out += "f";
@@ -103,7 +108,7 @@ std::string checkObj(std::istream& in, const std::string& label) {
     }
     if (pieces.empty()) out.push_back('\n');
   }
-  return out;
+  if (rewriting) text = std::move(out);
 }
 
 // OpenMesh reports every non-manifold face on its error stream: muted while reading.
@@ -237,8 +242,7 @@ std::vector<std::uint8_t> meshFileToGlb(const std::filesystem::path& path) {
       text.assign(std::istreambuf_iterator<char>(header), std::istreambuf_iterator<char>());
     }
     if (extension == ".obj") {
-      std::istringstream lines(text);
-      text = checkObj(lines, path.string());
+      checkObj(text, path.string());
     }
   }
   std::vector<char> vertexUvSet, halfedgeUvSet, normalSet;
