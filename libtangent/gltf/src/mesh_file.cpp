@@ -1,16 +1,12 @@
 // SPDX-License-Identifier: MIT
-// OBJ through OpenMesh's reader, PLY and OFF through ours (ply_reader.cpp, off_reader.cpp), all
-// into an OpenMesh mesh, converted to an in-memory GLB so that the rest of bake treats them
+// OBJ, PLY and OFF through our readers (obj_reader.cpp, ply_reader.cpp, off_reader.cpp), into
+// plain arrays (ImportedPolygons), converted to an in-memory GLB so that the rest of bake treats them
 // like any glTF input. These formats carry no materials: every mesh
 // gets tangents. Their UV origin is bottom-left, so v becomes 1 - v for glTF. A file without
 // normals gives a primitive without NORMAL, which bake then generates (--normals).
-#include <OpenMesh/Core/IO/IOManager.hh>
-#include <OpenMesh/Core/IO/MeshIO.hh>
-#include <OpenMesh/Core/IO/importer/ImporterT.hh>
-#include <OpenMesh/Core/System/omstream.hh>
-#include <OpenMesh/Core/Mesh/PolyMesh_ArrayKernelT.hh>
 
 #include <algorithm>
+#include <array>
 #include <cstdlib>
 #include <cmath>
 #include <iterator>
@@ -32,93 +28,6 @@
 
 namespace tangent::gltf::detail {
 namespace {
-
-// OpenMesh's OBJ reader asserts (aborts) on a face line without a vertex and trusts every
-// reference: each `f` line is checked here against the v, vt and vn lines before it. Where a
-// face visits a vertex twice, `text` is rewritten with it as its simplePolygons, one `f` line
-// each (what OpenMesh reads; the messages here number the file's own lines). Without such a
-// face the text is left as it is, not copied.
-void checkObj(std::string& text, const std::string& label) {
-  std::istringstream in(text);
-  std::string out;         // the rewritten text, from the first face rewritten on
-  bool rewriting = false;
-  std::size_t lineStart = 0;  // of the current line in `text`
-  std::string line;
-  std::size_t lineNumber = 0;
-  std::int64_t counts[3] = {0, 0, 0};  // v, vt, vn
-  const char* const kinds[3] = {"vertex", "texture coordinate", "normal"};
-  for (; std::getline(in, line); lineStart += line.size() + 1) {
-    ++lineNumber;
-    const std::vector<std::string> w = words(line);
-    if (rewriting && (w.empty() || w[0] != "f")) out.append(line).push_back('\n');
-    if (w.empty()) continue;
-    auto fail = [&](const std::string& what) {
-      throw InputError(label + ": OBJ line " + std::to_string(lineNumber) + ": " + what);
-    };
-    const int kind = w[0] == "v" ? 0 : w[0] == "vt" ? 1 : w[0] == "vn" ? 2 : -1;
-    if (kind >= 0) {
-      // OpenMesh skips a line whose numbers do not parse (nan, 1e39) and numbers the rest
-      // on, so every later reference would name another element: refused here instead.
-      const std::size_t needed = kind == 1 ? 1 : 3;
-      for (std::size_t k = 1; k <= needed; ++k) {
-        const std::string value = k < w.size() ? w[k] : std::string();
-        if (!finiteFloat(value))
-          fail(std::string(kinds[kind]) + " '" + line.substr(0, 60) + "' needs " + std::to_string(needed) +
-               " finite numbers" + (value.empty() ? "" : "; '" + value.substr(0, 20) + "' is not one"));
-      }
-      ++counts[kind];
-      continue;
-    }
-    if (w[0] != "f") continue;
-    if (w.size() < 4) fail("a face needs at least three vertices");
-    std::vector<std::int64_t> vertices;  // each corner's, resolved
-    for (std::size_t k = 1; k < w.size(); ++k) {
-      std::size_t start = 0;
-      for (int part = 0; part < 3 && start <= w[k].size(); ++part) {
-        const std::size_t slash = std::min(w[k].find('/', start), w[k].size());
-        const std::string number = w[k].substr(start, slash - start);
-        start = slash + 1;
-        if (number.empty()) {
-          if (part == 0) fail("face corner '" + w[k].substr(0, 40) + "' has no vertex index");
-          continue;
-        }
-        const bool negative = number[0] == '-';
-        const std::string digits = negative || number[0] == '+' ? number.substr(1) : number;
-        if (!isCount(digits)) fail("face corner '" + w[k].substr(0, 40) + "' is not an index");
-        const std::int64_t index = std::stoll(digits);
-        const std::int64_t resolved = negative ? counts[part] - index + 1 : index;
-        if (index == 0 || resolved < 1 || resolved > counts[part])
-          fail("face corner '" + w[k].substr(0, 40) + "' refers to " + kinds[part] + " " + number + ", but " +
-               std::to_string(counts[part]) + " are defined before this line");
-        if (part == 0) vertices.push_back(resolved);
-        if (slash == w[k].size()) break;
-      }
-    }
-    // A simple face as it was; one of no area (no piece) as an empty line.
-    if (!visitsAVertexTwice(vertices)) {
-      if (rewriting) out.append(line).push_back('\n');
-      continue;
-    }
-    if (!rewriting) out.assign(text, 0, lineStart), rewriting = true;
-    const std::vector<std::vector<std::size_t>> pieces = simplePolygons(vertices);
-    for (const std::vector<std::size_t>& piece : pieces) {
-      out += "f";
-      for (std::size_t k : piece) out.append(" ").append(w[k + 1]);
-      out.push_back('\n');
-    }
-    if (pieces.empty()) out.push_back('\n');
-  }
-  if (rewriting) text = std::move(out);
-}
-
-// OpenMesh reports every non-manifold face on its error stream: muted while reading.
-class MutedOpenMeshErrors {
- public:
-  MutedOpenMeshErrors() { omerr().disable(); }
-  ~MutedOpenMeshErrors() { omerr().enable(); }
-  MutedOpenMeshErrors(const MutedOpenMeshErrors&) = delete;
-  MutedOpenMeshErrors& operator=(const MutedOpenMeshErrors&) = delete;
-};
 
 void appendFloats(std::vector<std::uint8_t>& bin, const std::vector<float>& values) {
   if (values.empty()) return;  // a file without normals: no bytes, and memcpy wants real pointers
@@ -226,104 +135,77 @@ void triangulatePolygon(const std::vector<float>& positions, const std::vector<s
 }  // namespace
 
 std::vector<std::uint8_t> meshFileToGlb(const std::filesystem::path& path) {
-  ImportMesh mesh;
+  ImportedPolygons mesh;
   OpenMesh::IO::Options options = OpenMesh::IO::Options::VertexNormal | OpenMesh::IO::Options::VertexTexCoord |
                                   OpenMesh::IO::Options::FaceTexCoord;
   std::error_code ec;
   const std::uintmax_t fileBytes = std::filesystem::file_size(path, ec);
   if (ec) throw InputError(path.string() + ": cannot be read: " + ec.message());
   const std::string extension = lowerExtension(path);
-  // An OBJ, PLY or OFF is read once, into memory: an OBJ is checked, then given to OpenMesh
-  // from there (below); a PLY or OFF is read here.
+  // An OBJ, PLY or OFF is read once, into memory, and parsed from there by our readers.
   std::string text;
   {
-    std::ifstream header(path, std::ios::binary);
-    if (extension == ".obj" || extension == ".off" || extension == ".ply") {
-      text.assign(std::istreambuf_iterator<char>(header), std::istreambuf_iterator<char>());
-    }
-    if (extension == ".obj") {
-      checkObj(text, path.string());
-    }
+    std::ifstream file(path, std::ios::binary);
+    text.assign(std::istreambuf_iterator<char>(file), std::istreambuf_iterator<char>());
   }
-  std::vector<char> vertexUvSet, halfedgeUvSet, normalSet;
   {
-    MutedOpenMeshErrors muted;
-    CheckedImporter importer(mesh, path.string(), fileBytes, vertexUvSet, halfedgeUvSet, normalSet);
-    bool read = false;
+    CheckedImporter importer(mesh, path.string(), fileBytes);
     try {
-      if (extension == ".off" || extension == ".ply") {
-        if (extension == ".off")
-          readOff(text, importer, options, path.string());
-        else
-          readPly(text, importer, options, path.string());
-        read = true;
-      } else if (extension == ".obj") {
-        // From memory, as checkObj wrote it, its mtllib lines blanked: OpenMesh opened the
-        // material library wherever it named (outside the asset's folder, or a FIFO that never
-        // ends) and materials are not used.
-        for (std::size_t at = 0; at < text.size();) {
-          const std::size_t end = std::min(text.find('\n', at), text.size());
-          std::size_t first = at;
-          while (first < end && (text[first] == ' ' || text[first] == '\t')) ++first;
-          if (text.compare(first, 6, "mtllib") == 0 && (first + 6 == end || std::isspace(static_cast<unsigned char>(text[first + 6]))))
-            std::fill(text.begin() + static_cast<std::ptrdiff_t>(at), text.begin() + static_cast<std::ptrdiff_t>(end), ' ');
-          at = end + 1;
-        }
-        std::istringstream stream(std::move(text));
-        read = OpenMesh::IO::IOManager().read(stream, ".obj", importer, options);
-      } else {
-        read = OpenMesh::IO::IOManager().read(path.string(), importer, options);
-      }
+      if (extension == ".obj")
+        readObj(text, importer, options, path.string());
+      else if (extension == ".off")
+        readOff(text, importer, options, path.string());
+      else if (extension == ".ply")
+        readPly(text, importer, options, path.string());
+      else
+        throw InputError(path.string() + ": not an OBJ, PLY or OFF file");
     } catch (const std::bad_alloc&) {
-      // A face's corner count is read and allocated before any corner reaches the importer.
-      throw InputError(path.string() + ": a count in the file (a face's corners) is larger than memory allows; the file is malformed");
+      throw InputError(path.string() + ": a count in the file is larger than memory allows; the file is malformed");
     } catch (const std::length_error&) {
-      throw InputError(path.string() + ": a count in the file (a face's corners) is out of range; the file is malformed");
+      throw InputError(path.string() + ": a count in the file is out of range; the file is malformed");
     }
-    if (!read)
-      throw InputError(path.string() + ": OpenMesh cannot read this file (malformed, or not " +
-                       path.extension().string() + " at all)");
   }
-  if (mesh.n_faces() == 0) throw InputError(path.string() + ": has no faces");
-  auto isSet = [](const std::vector<char>& set, int i) { return static_cast<std::size_t>(i) < set.size() && set[i]; };
-  // NORMAL where the file gave every vertex a face uses one; else none (bake generates them as
-  // for a glTF without NORMAL), never the values OpenMesh left unset.
+  std::string().swap(text);  // parsed: its memory is not held while the GLB is built
+  if (mesh.faceCount() == 0) throw InputError(path.string() + ": has no faces");
+  // NORMAL where the file gave every corner one (its own, or its vertex's); else none (bake
+  // generates them as for a glTF without NORMAL), never the values left unset.
+  auto hasNormal = [&](std::size_t corner) { return mesh.hasCornerNormal(corner) || mesh.normalSet[mesh.corners[corner]]; };
   bool haveNormals = options.check(OpenMesh::IO::Options::VertexNormal);
-  for (auto face : mesh.faces()) {
-    for (auto vertex : mesh.fv_range(face)) haveNormals = haveNormals && isSet(normalSet, vertex.idx());
-    if (!haveNormals) break;
-  }
-  const bool cornerUvs = options.check(OpenMesh::IO::Options::FaceTexCoord) && !halfedgeUvSet.empty();
-  const bool vertexUvs = options.check(OpenMesh::IO::Options::VertexTexCoord) && !vertexUvSet.empty();
+  for (std::size_t corner = 0; haveNormals && corner < mesh.corners.size(); ++corner) haveNormals = hasNormal(corner);
+  const bool cornerUvs = options.check(OpenMesh::IO::Options::FaceTexCoord) && mesh.anyCornerUv();
+  const bool vertexUvs = options.check(OpenMesh::IO::Options::VertexTexCoord) && mesh.anyUv;
   if (!cornerUvs && !vertexUvs) throw InputError(path.string() + ": has no texture coordinates; tangents need UVs");
 
-  // One glTF vertex per distinct (vertex, UV).
-  std::map<std::tuple<int, std::uint32_t, std::uint32_t>, std::uint32_t> vertexOf;
+  // One glTF vertex per distinct (vertex, UV, normal).
+  std::map<std::array<std::uint32_t, 6>, std::uint32_t> vertexOf;
   std::vector<float> positions, normals, uvs;
   std::vector<std::uint32_t> indices;
   std::vector<std::uint32_t> polygon;
-  for (auto face : mesh.faces()) {
+  for (std::size_t face = 0; face < mesh.faceCount(); ++face) {
     polygon.clear();
-    for (auto halfedge : mesh.fh_range(face)) {
-      const auto vertex = mesh.to_vertex_handle(halfedge);
+    for (std::size_t corner = mesh.faceStart[face]; corner < mesh.faceStart[face + 1]; ++corner) {
+      const std::uint32_t vertex = mesh.corners[corner];
       // A corner's own UV where the file gave one, else its vertex's.
-      const bool own = cornerUvs && isSet(halfedgeUvSet, halfedge.idx());
-      if (!own && !(vertexUvs && isSet(vertexUvSet, vertex.idx())))
-        throw InputError(path.string() + ": face " + std::to_string(face.idx() + 1) +
-                         " (1-based) has no texture coordinate at its vertex " + std::to_string(vertex.idx() + 1) +
-                         "; tangents need UVs on every face");
-      const auto uv = own ? mesh.texcoord2D(halfedge) : mesh.texcoord2D(vertex);
+      const bool own = cornerUvs && mesh.hasCornerUv(corner);
+      if (!own && !(vertexUvs && mesh.uvSet[vertex]))
+        throw InputError(path.string() + ": face " + std::to_string(face + 1) + " (1-based) has no texture coordinate at its vertex " +
+                         std::to_string(std::uint64_t{vertex} + 1) + "; tangents need UVs on every face");
+      const OpenMesh::Vec2f uv = own ? mesh.cornerUvs[corner] : mesh.uvs[vertex];
       const float u = uv[0], v = 1.0f - uv[1];
-      auto key = std::make_tuple(vertex.idx(), std::bit_cast<std::uint32_t>(u), std::bit_cast<std::uint32_t>(v));
+      const OpenMesh::Vec3f n = !haveNormals                      ? OpenMesh::Vec3f(0.0f, 0.0f, 1.0f)
+                                : mesh.hasCornerNormal(corner) ? mesh.cornerNormals[corner]
+                                                               : mesh.normals[vertex];
+      const std::array<std::uint32_t, 6> key = {vertex, std::bit_cast<std::uint32_t>(u), std::bit_cast<std::uint32_t>(v),
+                                                std::bit_cast<std::uint32_t>(n[0]), std::bit_cast<std::uint32_t>(n[1]),
+                                                std::bit_cast<std::uint32_t>(n[2])};
       auto [it, inserted] = vertexOf.try_emplace(key, static_cast<std::uint32_t>(positions.size() / 3));
       if (inserted) {
-        const auto p = mesh.point(vertex);
-        const auto n = haveNormals ? mesh.normal(vertex) : OpenMesh::Vec3f(0.0f, 0.0f, 1.0f);
+        const OpenMesh::Vec3f p = mesh.points[vertex];
         // A NaN or infinity would make the GLB invalid (its min/max null, the data refused by
         // the validator): named here instead.
         for (const float x : {p[0], p[1], p[2], n[0], n[1], n[2], u, v}) {
           if (!std::isfinite(x))
-            throw InputError(path.string() + ": vertex " + std::to_string(vertex.idx() + 1) +
+            throw InputError(path.string() + ": vertex " + std::to_string(std::uint64_t{vertex} + 1) +
                              " (1-based) has a coordinate, normal or UV that is not a finite number");
         }
         positions.insert(positions.end(), {p[0], p[1], p[2]});

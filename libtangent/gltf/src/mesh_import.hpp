@@ -1,13 +1,14 @@
 // SPDX-License-Identifier: MIT
-// The OpenMesh mesh that OBJ, PLY and OFF files are read into, and the importer every reader
-// hands it through, which checks each handle and count the file gives (mesh_file.cpp turns the
-// mesh into a GLB). PLY and OFF have their own readers here (ply_reader.cpp, off_reader.cpp):
-// OpenMesh's trusted every count in the file.
+// What OBJ, PLY and OFF files are read into (plain arrays: each face's corners as the file
+// lists them), and the importer every reader hands it through, which checks each handle and
+// count the file gives (mesh_file.cpp turns the polygons into a GLB). Each format has its own
+// reader (obj_reader.cpp, ply_reader.cpp, off_reader.cpp): OpenMesh's looped, crashed or
+// allocated gigabytes on malformed files, and its half-edge mesh changed what the file said.
 #pragma once
 
-#include <OpenMesh/Core/IO/importer/ImporterT.hh>
+#include <OpenMesh/Core/Geometry/VectorT.hh>
 #include <OpenMesh/Core/IO/Options.hh>
-#include <OpenMesh/Core/Mesh/PolyMesh_ArrayKernelT.hh>
+#include <OpenMesh/Core/Mesh/Handles.hh>
 
 #include <algorithm>
 #include <cctype>
@@ -25,164 +26,158 @@
 
 namespace tangent::gltf::detail {
 
-struct ImportTraits : OpenMesh::DefaultTraits {
-  VertexAttributes(OpenMesh::Attributes::Normal | OpenMesh::Attributes::TexCoord2D);
-  HalfedgeAttributes(OpenMesh::Attributes::PrevHalfedge | OpenMesh::Attributes::TexCoord2D);
-  FaceAttributes(OpenMesh::Attributes::Normal);
+// Hash of a polygon's vertex: an index, or an OpenMesh handle (by its index).
+struct VertexKeyHash {
+  template <class Vertex>
+  std::size_t operator()(const Vertex& v) const {
+    if constexpr (std::is_integral_v<Vertex>) return std::hash<Vertex>()(v);
+    else return std::hash<int>()(v.idx());
+  }
 };
-// A polygon mesh: OpenMesh's readers leave the UVs of the diagonals unset when they
-// triangulate into a TriMesh, so polygons are fanned here from their own corners.
-using ImportMesh = OpenMesh::PolyMesh_ArrayKernelT<ImportTraits>;
 
-// OpenMesh's readers trust the file: a face naming a vertex that does not exist reaches
-// add_face and then per-halfedge writes through an invalid handle, and a header count is
-// looped over (and reserved) whatever the file holds. Every call that takes a handle or a
-// count from the file is checked here first; a refusal throws InputError naming the file
-// and the element. Counts are bounded by the file's size (a vertex or face takes at least
-// 3 bytes in every format).
-class CheckedImporter : public OpenMesh::IO::ImporterT<ImportMesh> {
-  using Base = OpenMesh::IO::ImporterT<ImportMesh>;
-
- public:
-  // uvSet: which vertices' and halfedges' UVs the file gave (by index). OpenMesh reports
-  // texture coordinates when the file has any "vt" line, also where no face refers to them,
-  // and leaves the UVs it never set uninitialized.
-  // normalSet: likewise the vertices the file gave a normal (an OBJ with "vn" lines whose faces
-  // are "f v/vt" sets none, and OpenMesh still reports normals).
-  CheckedImporter(ImportMesh& mesh, std::string label, std::uintmax_t fileBytes, std::vector<char>& vertexUvSet,
-                  std::vector<char>& halfedgeUvSet, std::vector<char>& normalSet)
-      : Base(mesh),
-        mesh_(mesh),
-        label_(std::move(label)),
-        limit_(fileBytes / 3 + 16),
-        vertexUvSet_(vertexUvSet),
-        halfedgeUvSet_(halfedgeUvSet),
-        normalSet_(normalSet) {}
-
-  OpenMesh::VertexHandle add_vertex(const OpenMesh::Vec3f& point) override {
-    countVertex();
-    return Base::add_vertex(point);
-  }
-  OpenMesh::VertexHandle add_vertex() override {
-    countVertex();
-    return Base::add_vertex();
-  }
-  OpenMesh::FaceHandle add_face(const OpenMesh::IO::BaseImporter::VHandles& vertices) override {
-    if (++faces_ > limit_) throw InputError(label_ + ": more faces than the file's size allows; the file is malformed");
-    for (std::size_t k = 0; k < vertices.size(); ++k) {
-      if (!validVertex(vertices[k]))
-        throw InputError(label_ + ": face " + std::to_string(faces_) + " corner " + std::to_string(k + 1) + " refers to vertex " +
-                         std::to_string(vertices[k].idx() + 1) + " (1-based), but the file has " +
-                         std::to_string(mesh_.n_vertices()) + " vertices there");
-    }
-    const std::size_t before = mesh_.n_vertices();
-    const OpenMesh::FaceHandle face = Base::add_face(vertices);
-    // A face that would make the mesh non-manifold OpenMesh adds on copies of its vertices, made
-    // in corner order, with the position only: the copies get the normal and UV the file gave
-    // the originals, and the face's corner UVs (add_face_texcoords) find the copy.
-    copiedFace_ = OpenMesh::FaceHandle();
-    if (face.is_valid() && mesh_.n_vertices() == before + vertices.size()) {
-      copiedFace_ = face;
-      copiedFrom_ = vertices;
-      copiedBase_ = before;
-      for (std::size_t k = 0; k < vertices.size(); ++k) {
-        const OpenMesh::VertexHandle copy(static_cast<int>(before + k));
-        const auto original = static_cast<std::size_t>(vertices[k].idx());
-        if (original < normalSet_.size() && normalSet_[original]) {
-          Base::set_normal(copy, mesh_.normal(vertices[k]));
-          mark(normalSet_, before + k);
-        }
-        if (original < vertexUvSet_.size() && vertexUvSet_[original]) {
-          Base::set_texcoord(copy, mesh_.texcoord2D(vertices[k]));
-          mark(vertexUvSet_, before + k);
-        }
+// Whether a polygon visits a vertex more than once (no allocation for the usual small one).
+template <class Vertex>
+bool visitsAVertexTwice(const std::vector<Vertex>& vertices) {
+  const std::size_t n = vertices.size();
+  if (n <= 32) {
+    for (std::size_t i = 0; i < n; ++i) {
+      for (std::size_t j = i + 1; j < n; ++j) {
+        if (vertices[i] == vertices[j]) return true;
       }
     }
-    return face;
+    return false;
   }
-  void add_face_texcoords(OpenMesh::FaceHandle face, OpenMesh::VertexHandle vertex,
-                          const std::vector<OpenMesh::Vec2f>& uvs) override {
-    if (!validFace(face) || !validVertex(vertex)) return;  // a face add_face refused (repeated vertex)
-    Base::add_face_texcoords(face, cornerVertex(face, vertex), uvs);
+  std::vector<Vertex> sorted(vertices);
+  std::sort(sorted.begin(), sorted.end());
+  return std::adjacent_find(sorted.begin(), sorted.end()) != sorted.end();
+}
+
+// A polygon mesh as a file gives it: every face is its corners, in the file's order, each with
+// the UV and normal the file gave that corner or else its vertex. Not a half-edge mesh, which a
+// GLB does not need: OpenMesh's add_face looked for each new edge among the outgoing half-edges
+// of its vertex, so faces meeting at one vertex without sharing edges (petals, a triangle soup
+// around a point) took time quadratic in their number, a face that would make the mesh
+// non-manifold went onto copies of its vertices, and a vertex had one normal for all its faces.
+struct ImportedPolygons {
+  std::vector<OpenMesh::Vec3f> points, normals;
+  std::vector<OpenMesh::Vec2f> uvs;          // per vertex
+  std::vector<char> normalSet, uvSet;        // which vertices the file gave a normal, a UV
+  std::vector<std::size_t> faceStart{0};     // face f's corners: [faceStart[f], faceStart[f + 1])
+  std::vector<std::uint32_t> corners;        // each corner's vertex
+  // Each corner's own UV and normal, where the Set arrays say so; both left empty until a file
+  // gives a corner one (PLY and OFF never give a corner a normal).
+  std::vector<OpenMesh::Vec2f> cornerUvs;
+  std::vector<char> cornerUvSet;
+  std::vector<OpenMesh::Vec3f> cornerNormals;
+  std::vector<char> cornerNormalSet;
+  bool anyUv = false;  // whether any vertex has one
+  std::size_t faceCount() const { return faceStart.size() - 1; }
+  bool anyCornerUv() const { return !cornerUvSet.empty(); }
+  bool hasCornerUv(std::size_t corner) const { return corner < cornerUvSet.size() && cornerUvSet[corner]; }
+  bool hasCornerNormal(std::size_t corner) const { return corner < cornerNormalSet.size() && cornerNormalSet[corner]; }
+};
+
+// A polygon's corners, as vertex handles.
+using VHandles = std::vector<OpenMesh::VertexHandle>;
+
+// What the readers (obj_reader.cpp, ply_reader.cpp, off_reader.cpp) hand the polygons through.
+// They check the file's syntax; this checks each handle and count the file gives: a refusal
+// throws InputError naming the file and the element. Counts are bounded by the file's size (a
+// vertex or face takes at least 3 bytes in every format).
+class CheckedImporter {
+ public:
+  using VertexHandle = OpenMesh::VertexHandle;
+  using FaceHandle = OpenMesh::FaceHandle;
+  using Vec2f = OpenMesh::Vec2f;
+  using Vec3f = OpenMesh::Vec3f;
+
+  CheckedImporter(ImportedPolygons& mesh, std::string label, std::uintmax_t fileBytes)
+      : mesh_(mesh), label_(std::move(label)), limit_(fileBytes / 3 + 16) {}
+
+  VertexHandle add_vertex(const Vec3f& point) {
+    if (mesh_.points.size() >= limit_) throw InputError(label_ + ": more vertices than the file's size allows; the file is malformed");
+    mesh_.points.push_back(point);
+    mesh_.normals.emplace_back(0.0f, 0.0f, 0.0f);
+    mesh_.uvs.emplace_back(0.0f, 0.0f);
+    mesh_.normalSet.push_back(0);
+    mesh_.uvSet.push_back(0);
+    return VertexHandle(static_cast<int>(mesh_.points.size() - 1));
   }
-  void add_face_texcoords(OpenMesh::FaceHandle face, OpenMesh::VertexHandle vertex,
-                          const std::vector<OpenMesh::Vec3f>& uvs) override {
-    if (!validFace(face) || !validVertex(vertex)) return;
-    Base::add_face_texcoords(face, cornerVertex(face, vertex), uvs);
+  // A face of at least three corners, none repeated (the readers cut a polygon that visits a
+  // vertex twice into simplePolygons first); otherwise an invalid handle.
+  FaceHandle add_face(const VHandles& vertices) {
+    if (mesh_.faceCount() >= limit_) throw InputError(label_ + ": more faces than the file's size allows; the file is malformed");
+    for (std::size_t k = 0; k < vertices.size(); ++k) {
+      if (!validVertex(vertices[k]))
+        throw InputError(label_ + ": face " + std::to_string(mesh_.faceCount() + 1) + " corner " + std::to_string(k + 1) +
+                         " refers to vertex " + std::to_string(vertices[k].idx() + 1) + " (1-based), but the file has " +
+                         std::to_string(mesh_.points.size()) + " vertices there");
+    }
+    if (vertices.size() < 3 || visitsAVertexTwice(vertices)) return FaceHandle();
+    for (const VertexHandle v : vertices) mesh_.corners.push_back(static_cast<std::uint32_t>(v.idx()));
+    mesh_.faceStart.push_back(mesh_.corners.size());
+    return FaceHandle(static_cast<int>(mesh_.faceCount() - 1));
   }
-  void set_point(OpenMesh::VertexHandle v, const OpenMesh::Vec3f& p) override { vertex(v, "position"), Base::set_point(v, p); }
-  void set_normal(OpenMesh::VertexHandle v, const OpenMesh::Vec3f& n) override {
-    vertex(v, "normal"), Base::set_normal(v, n);
-    mark(normalSet_, static_cast<std::size_t>(v.idx()));
+  // Corner `k` of `face` (in the order add_face took them) gets its own UV or normal.
+  void set_corner_uv(FaceHandle face, std::size_t k, const Vec2f& uv) { setCorner(mesh_.cornerUvs, mesh_.cornerUvSet, corner(face, k), uv); }
+  void set_corner_normal(FaceHandle face, std::size_t k, const Vec3f& normal) {
+    setCorner(mesh_.cornerNormals, mesh_.cornerNormalSet, corner(face, k), normal);
   }
-  void set_normal(OpenMesh::VertexHandle v, const OpenMesh::Vec3d& n) override {
-    vertex(v, "normal"), Base::set_normal(v, n);
-    mark(normalSet_, static_cast<std::size_t>(v.idx()));
+  // The face's corners from the one at `vertex` on get `uvs` in turn, around the face.
+  void add_face_texcoords(FaceHandle face, VertexHandle vertex, const std::vector<Vec2f>& uvs) {
+    if (!validFace(face) || !validVertex(vertex) || uvs.empty()) return;
+    const std::size_t first = mesh_.faceStart[static_cast<std::size_t>(face.idx())];
+    const std::size_t n = mesh_.faceStart[static_cast<std::size_t>(face.idx()) + 1] - first;
+    std::size_t at = 0;
+    while (at + 1 < n && mesh_.corners[first + at] != static_cast<std::uint32_t>(vertex.idx())) ++at;
+    for (const Vec2f& uv : uvs) {
+      set_corner_uv(face, at, uv);
+      at = (at + 1) % n;
+    }
   }
-  void set_texcoord(OpenMesh::VertexHandle v, const OpenMesh::Vec2f& t) override {
-    vertex(v, "UV"), Base::set_texcoord(v, t);
-    mark(vertexUvSet_, static_cast<std::size_t>(v.idx()));
+  // A vertex's normal and UV: where a corner has none of its own.
+  void set_normal(VertexHandle v, const Vec3f& n) {
+    vertex(v, "normal");
+    mesh_.normals[index(v)] = n;
+    mesh_.normalSet[index(v)] = 1;
   }
-  void set_texcoord(OpenMesh::VertexHandle v, const OpenMesh::Vec3f& t) override { vertex(v, "UV"), Base::set_texcoord(v, t); }
-  void set_texcoord(OpenMesh::HalfedgeHandle h, const OpenMesh::Vec2f& t) override {
-    if (!h.is_valid() || static_cast<std::size_t>(h.idx()) >= mesh_.n_halfedges()) return;
-    Base::set_texcoord(h, t);
-    mark(halfedgeUvSet_, static_cast<std::size_t>(h.idx()));
+  void set_texcoord(VertexHandle v, const Vec2f& t) {
+    vertex(v, "UV");
+    mesh_.uvs[index(v)] = t;
+    mesh_.uvSet[index(v)] = 1;
+    mesh_.anyUv = true;
   }
-  void set_texcoord(OpenMesh::HalfedgeHandle h, const OpenMesh::Vec3f& t) override {
-    if (h.is_valid() && static_cast<std::size_t>(h.idx()) < mesh_.n_halfedges()) Base::set_texcoord(h, t);
-  }
-  void set_color(OpenMesh::VertexHandle v, const OpenMesh::Vec3uc& c) override { vertex(v, "colour"), Base::set_color(v, c); }
-  void set_color(OpenMesh::VertexHandle v, const OpenMesh::Vec4uc& c) override { vertex(v, "colour"), Base::set_color(v, c); }
-  void set_color(OpenMesh::VertexHandle v, const OpenMesh::Vec3f& c) override { vertex(v, "colour"), Base::set_color(v, c); }
-  void set_color(OpenMesh::VertexHandle v, const OpenMesh::Vec4f& c) override { vertex(v, "colour"), Base::set_color(v, c); }
-  void set_normal(OpenMesh::FaceHandle f, const OpenMesh::Vec3f& n) override { if (validFace(f)) Base::set_normal(f, n); }
-  void set_normal(OpenMesh::FaceHandle f, const OpenMesh::Vec3d& n) override { if (validFace(f)) Base::set_normal(f, n); }
-  void set_color(OpenMesh::FaceHandle f, const OpenMesh::Vec3uc& c) override { if (validFace(f)) Base::set_color(f, c); }
-  void set_color(OpenMesh::FaceHandle f, const OpenMesh::Vec4uc& c) override { if (validFace(f)) Base::set_color(f, c); }
-  void set_color(OpenMesh::FaceHandle f, const OpenMesh::Vec3f& c) override { if (validFace(f)) Base::set_color(f, c); }
-  void set_color(OpenMesh::FaceHandle f, const OpenMesh::Vec4f& c) override { if (validFace(f)) Base::set_color(f, c); }
-  void set_face_texindex(OpenMesh::FaceHandle f, int id) override { if (validFace(f)) Base::set_face_texindex(f, id); }
-  void reserve(unsigned int vertices, unsigned int edges, unsigned int faces) override {
+  void reserve(unsigned int vertices, unsigned int faces) {
     if (vertices > limit_ || faces > limit_)
       throw InputError(label_ + ": header declares " + std::to_string(vertices) + " vertices and " + std::to_string(faces) +
                        " faces, more than a file of this size can hold");
-    Base::reserve(vertices, std::min<unsigned>(edges, static_cast<unsigned>(limit_ * 2)), faces);
+    mesh_.points.reserve(vertices);
+    mesh_.faceStart.reserve(std::size_t{faces} + 1);
   }
+  std::size_t n_vertices() const { return mesh_.points.size(); }
+  std::size_t n_faces() const { return mesh_.faceCount(); }
 
  private:
-  bool validVertex(OpenMesh::VertexHandle v) const { return v.is_valid() && static_cast<std::size_t>(v.idx()) < mesh_.n_vertices(); }
-  bool validFace(OpenMesh::FaceHandle f) const { return f.is_valid() && static_cast<std::size_t>(f.idx()) < mesh_.n_faces(); }
-  void vertex(OpenMesh::VertexHandle v, const char* what) const {
+  static std::size_t index(VertexHandle v) { return static_cast<std::size_t>(v.idx()); }
+  bool validVertex(VertexHandle v) const { return v.is_valid() && index(v) < mesh_.points.size(); }
+  bool validFace(FaceHandle f) const { return f.is_valid() && static_cast<std::size_t>(f.idx()) < mesh_.faceCount(); }
+  std::size_t corner(FaceHandle face, std::size_t k) const { return mesh_.faceStart[static_cast<std::size_t>(face.idx())] + k; }
+  // Grown up to the corner on its first value (vector growth: amortized constant time).
+  template <class Value>
+  static void setCorner(std::vector<Value>& values, std::vector<char>& set, std::size_t c, const Value& value) {
+    if (set.size() <= c) set.resize(c + 1, 0), values.resize(c + 1);
+    values[c] = value;
+    set[c] = 1;
+  }
+  void vertex(VertexHandle v, const char* what) const {
     if (!validVertex(v))
       throw InputError(label_ + ": " + what + " given for vertex " + std::to_string(v.idx() + 1) + " (1-based), but the file has " +
-                       std::to_string(mesh_.n_vertices()) + " vertices there");
-  }
-  static void mark(std::vector<char>& set, std::size_t i) {
-    if (set.size() <= i) set.resize(i + 1, 0);
-    set[i] = 1;
-  }
-  // The vertex of `face` that stands for the file's `vertex`: its copy where add_face copied.
-  OpenMesh::VertexHandle cornerVertex(OpenMesh::FaceHandle face, OpenMesh::VertexHandle vertex) const {
-    if (face != copiedFace_) return vertex;
-    const auto at = std::find(copiedFrom_.begin(), copiedFrom_.end(), vertex);
-    if (at == copiedFrom_.end()) return vertex;
-    return OpenMesh::VertexHandle(static_cast<int>(copiedBase_ + static_cast<std::size_t>(at - copiedFrom_.begin())));
-  }
-  void countVertex() {
-    if (++vertices_ > limit_) throw InputError(label_ + ": more vertices than the file's size allows; the file is malformed");
+                       std::to_string(mesh_.points.size()) + " vertices there");
   }
 
-  ImportMesh& mesh_;
+  ImportedPolygons& mesh_;
   std::string label_;
   std::uintmax_t limit_;
-  std::uintmax_t vertices_ = 0, faces_ = 0;
-  std::vector<char>& vertexUvSet_;
-  std::vector<char>& halfedgeUvSet_;
-  std::vector<char>& normalSet_;
-  OpenMesh::FaceHandle copiedFace_;  // the last face added on copies of its vertices
-  OpenMesh::IO::BaseImporter::VHandles copiedFrom_;
-  std::size_t copiedBase_ = 0;  // the copy of copiedFrom_[k] is vertex copiedBase_ + k
 };
 
 // The whitespace-separated words of a line.
@@ -210,32 +205,6 @@ inline std::optional<float> finiteFloat(const std::string& word) {
   const float x = std::strtof(word.c_str(), &end);
   if (word.empty() || end != word.c_str() + word.size() || !std::isfinite(x)) return std::nullopt;
   return x;
-}
-
-// Hash of a polygon's vertex: an index, or an OpenMesh handle (by its index).
-struct VertexKeyHash {
-  template <class Vertex>
-  std::size_t operator()(const Vertex& v) const {
-    if constexpr (std::is_integral_v<Vertex>) return std::hash<Vertex>()(v);
-    else return std::hash<int>()(v.idx());
-  }
-};
-
-// Whether a polygon visits a vertex more than once (no allocation for the usual small one).
-template <class Vertex>
-bool visitsAVertexTwice(const std::vector<Vertex>& vertices) {
-  const std::size_t n = vertices.size();
-  if (n <= 32) {
-    for (std::size_t i = 0; i < n; ++i) {
-      for (std::size_t j = i + 1; j < n; ++j) {
-        if (vertices[i] == vertices[j]) return true;
-      }
-    }
-    return false;
-  }
-  std::vector<Vertex> sorted(vertices);
-  std::sort(sorted.begin(), sorted.end());
-  return std::adjacent_find(sorted.begin(), sorted.end()) != sorted.end();
 }
 
 // A polygon that visits a vertex more than once, as the simple polygons a half-edge mesh can
@@ -267,12 +236,12 @@ std::vector<std::vector<std::size_t>> simplePolygons(const std::vector<Vertex>& 
 }
 
 // Adds a polygon of the file as its simplePolygons.
-inline void addSimplePolygons(CheckedImporter& importer, const OpenMesh::IO::BaseImporter::VHandles& corners) {
+inline void addSimplePolygons(CheckedImporter& importer, const VHandles& corners) {
   if (!visitsAVertexTwice(corners)) {
     importer.add_face(corners);
     return;
   }
-  OpenMesh::IO::BaseImporter::VHandles piece;
+  VHandles piece;
   for (const std::vector<std::size_t>& positions : simplePolygons(corners)) {
     piece.clear();
     for (std::size_t k : positions) piece.push_back(corners[k]);
@@ -283,6 +252,7 @@ inline void addSimplePolygons(CheckedImporter& importer, const OpenMesh::IO::Bas
 // Each reads a whole file's bytes into `importer` and sets
 // `options` to what the file gave (VertexNormal, VertexTexCoord, FaceTexCoord); a malformed
 // file throws InputError naming `label` and the element.
+void readObj(const std::string& text, CheckedImporter& importer, OpenMesh::IO::Options& options, const std::string& label);
 void readPly(const std::string& text, CheckedImporter& importer, OpenMesh::IO::Options& options, const std::string& label);
 void readOff(const std::string& text, CheckedImporter& importer, OpenMesh::IO::Options& options, const std::string& label);
 

@@ -73,7 +73,7 @@ void readOff(const std::string& text, CheckedImporter& importer, OpenMesh::IO::O
                        " faces, more than a file of " + std::to_string(fileBytes) + " bytes can hold");
   };
   std::vector<OpenMesh::VertexHandle> handles;
-  OpenMesh::IO::BaseImporter::VHandles corners;
+  VHandles corners;
 
   if (w.size() > 1 && w[1] == "BINARY") {
     if (colours) fail("binary OFF with colours (" + keyword.substr(0, 40) + ") is not read");

@@ -189,7 +189,7 @@ void readPly(const std::string& text, CheckedImporter& importer, OpenMesh::IO::O
 
   bool vertexNormals = false, vertexUvs = false, cornerUvs = false;
   std::vector<double> values;
-  OpenMesh::IO::BaseImporter::VHandles corners, pieceCorners;
+  VHandles corners, pieceCorners;
   std::vector<std::size_t> wholeFace;
   std::vector<float> uvValues;
   std::vector<OpenMesh::Vec2f> cornerUv;
