@@ -122,36 +122,50 @@ TriangleData evaluateTriangles(const WorkspaceData& ws, const MeshArrays& mesh, 
 }
 
 // Faces on an edge (two distinct positions) that more than two faces share; triangles with two
-// corners at one position are left out, as the OpenMesh call's weld leaves them out.
+// corners at one position are left out, as the OpenMesh call's weld leaves them out. Each edge
+// is counted out to its smaller end (a counting sort), and each end's few edges are sorted by
+// their other end: linear time but for those runs.
 std::uint64_t countNonManifoldFaces(const WorkspaceData& ws, const MeshArrays& mesh, const std::vector<std::uint32_t>& weldOf) {
-  struct Edge {
-    std::uint64_t ends;
-    std::uint32_t triangle;
-    bool operator<(const Edge& o) const { return ends != o.ends ? ends < o.ends : triangle < o.triangle; }
+  const std::size_t triangleCount = ws.cornerCount / 3;
+  auto ends = [&](std::size_t t, int k) {
+    const std::uint32_t a = weldOf[mesh.indices[3 * t + k]], b = weldOf[mesh.indices[3 * t + (k + 1) % 3]];
+    return std::pair(std::min(a, b), std::max(a, b));
   };
-  const std::size_t cornerCount = ws.cornerCount;
-  std::vector<Edge> edges(cornerCount);
-  forRange(ws, cornerCount, 1 << 14, [&](std::size_t begin, std::size_t end) {
-    for (std::size_t c = begin; c < end; ++c) {
-      const std::size_t first = c - c % 3;
-      const std::uint32_t w0 = weldOf[mesh.indices[first]], w1 = weldOf[mesh.indices[first + 1]], w2 = weldOf[mesh.indices[first + 2]];
-      const std::uint32_t a = weldOf[mesh.indices[c]], b = weldOf[mesh.indices[c % 3 == 2 ? c - 2 : c + 1]];
-      // A collapsed triangle (two corners at one position) is no face of the surface: its
-      // edges get a key of their own, which counts nothing.
-      const bool collapsed = w0 == w1 || w1 == w2 || w0 == w2;
-      edges[c].ends = collapsed ? ~std::uint64_t(0) : std::uint64_t(std::min(a, b)) << 32 | std::max(a, b);
-      edges[c].triangle = static_cast<std::uint32_t>(c / 3);
+  auto collapsed = [&](std::size_t t) {
+    const std::uint32_t w0 = weldOf[mesh.indices[3 * t]], w1 = weldOf[mesh.indices[3 * t + 1]], w2 = weldOf[mesh.indices[3 * t + 2]];
+    return w0 == w1 || w1 == w2 || w0 == w2;
+  };
+  std::vector<std::uint32_t> start(ws.vertexCount + 1, 0);
+  for (std::size_t t = 0; t < triangleCount; ++t) {
+    if (collapsed(t)) continue;
+    for (int k = 0; k < 3; ++k) ++start[ends(t, k).first + 1];
+  }
+  for (std::size_t v = 0; v < ws.vertexCount; ++v) start[v + 1] += start[v];
+  // Each edge as its larger end (high half) and its triangle (low half).
+  std::vector<std::uint64_t> edges(start[ws.vertexCount]);
+  {
+    std::vector<std::uint32_t> next(start.begin(), start.end() - 1);
+    for (std::size_t t = 0; t < triangleCount; ++t) {
+      if (collapsed(t)) continue;
+      for (int k = 0; k < 3; ++k) {
+        const auto [low, high] = ends(t, k);
+        edges[next[low]++] = std::uint64_t(high) << 32 | t;
+      }
     }
-  });
-  sortInParallel(ws, edges.begin(), edges.end(), [](const Edge& a, const Edge& b) { return a < b; });
-  std::vector<std::uint8_t> onShared(cornerCount / 3, 0);
-  for (std::size_t i = 0; i < edges.size();) {
-    std::size_t j = i;
-    while (j < edges.size() && edges[j].ends == edges[i].ends) ++j;
-    if (j - i > 2 && edges[i].ends != ~std::uint64_t(0)) {
-      for (std::size_t k = i; k < j; ++k) onShared[edges[k].triangle] = 1;
+  }
+  std::vector<std::uint8_t> onShared(triangleCount, 0);
+  for (std::size_t v = 0; v < ws.vertexCount; ++v) {
+    const auto first = edges.begin() + start[v], last = edges.begin() + start[v + 1];
+    if (last - first < 3) continue;
+    std::sort(first, last);
+    for (auto i = first; i != last;) {
+      auto j = i;
+      while (j != last && *j >> 32 == *i >> 32) ++j;
+      if (j - i > 2) {
+        for (auto k = i; k != j; ++k) onShared[*k & 0xffffffffu] = 1;
+      }
+      i = j;
     }
-    i = j;
   }
   return static_cast<std::uint64_t>(std::count(onShared.begin(), onShared.end(), 1));
 }

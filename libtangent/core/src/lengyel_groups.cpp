@@ -39,12 +39,23 @@ Vec3 cornerNormal(const Vec3& stored, const TriangleTangent& triangle, bool& inv
 CornerGroups groupCorners(const WorkspaceData& ws, const MeshArrays& mesh, const std::vector<std::uint32_t>& weldOf,
                           const TriangleData& data, Grouping grouping) {
   const std::size_t cornerCount = mesh.indices.size();
+  // The keys in CornerKey order without one sort of them all: each corner's slot is counted
+  // out by its weld (the key's first field), corners of one weld in corner order, and then
+  // each weld's run (the few corners at one position) is sorted by the whole key. The same
+  // order as sorting every key, in linear time but for the runs.
+  std::vector<std::uint32_t> slot(cornerCount), runStart(ws.vertexCount + 1, 0);
+  for (std::size_t c = 0; c < cornerCount; ++c) ++runStart[weldOf[mesh.indices[c]] + 1];
+  for (std::size_t v = 0; v < ws.vertexCount; ++v) runStart[v + 1] += runStart[v];
+  {
+    std::vector<std::uint32_t> next(runStart.begin(), runStart.end() - 1);
+    for (std::size_t c = 0; c < cornerCount; ++c) slot[c] = next[weldOf[mesh.indices[c]]]++;
+  }
   std::vector<CornerKey> keys(cornerCount);
   forRange(ws, cornerCount, 1 << 14, [&](std::size_t begin, std::size_t end) {
     for (std::size_t c = begin; c < end; ++c) {
       const TriangleTangent& triangle = data.triangles[c / 3];
       const std::uint32_t vertex = mesh.indices[c];
-      CornerKey& key = keys[c];
+      CornerKey& key = keys[slot[c]];
       key.weld = weldOf[vertex];
       key.orientation = triangle.kind == TriangleKind::usable ? triangle.orientation : 0;
       key.tag = grouping == Grouping::perFace ? c / 3 + 1 : 0;
@@ -54,7 +65,11 @@ CornerGroups groupCorners(const WorkspaceData& ws, const MeshArrays& mesh, const
       key.corner = static_cast<std::uint32_t>(c);
     }
   });
-  sortInParallel(ws, keys.begin(), keys.end(), [](const CornerKey& a, const CornerKey& b) { return a < b; });
+  forRange(ws, ws.vertexCount, 1 << 12, [&](std::size_t begin, std::size_t end) {
+    for (std::size_t v = begin; v < end; ++v) {
+      if (runStart[v + 1] - runStart[v] > 1) std::sort(keys.begin() + runStart[v], keys.begin() + runStart[v + 1]);
+    }
+  });
   // Runs of equal keys are groups: where each starts, numbered by a scan, then filled in
   // parallel. The first corner of a group is its smallest: it gives the group's normal and
   // whether it may inherit, as the corner met first in corner order did before.
