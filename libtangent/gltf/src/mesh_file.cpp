@@ -145,8 +145,13 @@ std::vector<std::uint8_t> meshFileToGlb(const std::filesystem::path& path) {
   // An OBJ, PLY or OFF is read once, into memory, and parsed from there by our readers.
   std::string text;
   {
+    // In one read of the size the file has (a character at a time through istreambuf_iterator
+    // took 5% of a 56 MB OBJ's bake); a file that shrank since is taken as it now is.
     std::ifstream file(path, std::ios::binary);
-    text.assign(std::istreambuf_iterator<char>(file), std::istreambuf_iterator<char>());
+    if (!file) throw InputError(path.string() + ": cannot be opened");
+    text.resize(static_cast<std::size_t>(fileBytes));
+    file.read(text.data(), static_cast<std::streamsize>(text.size()));
+    text.resize(static_cast<std::size_t>(file.gcount()));
   }
   {
     CheckedImporter importer(mesh, path.string(), fileBytes);
