@@ -123,18 +123,6 @@ class CheckedImporter {
   void set_corner_normal(FaceHandle face, std::size_t k, const Vec3f& normal) {
     setCorner(mesh_.cornerNormals, mesh_.cornerNormalSet, corner(face, k), normal);
   }
-  // The face's corners from the one at `vertex` on get `uvs` in turn, around the face.
-  void add_face_texcoords(FaceHandle face, VertexHandle vertex, const std::vector<Vec2f>& uvs) {
-    if (!validFace(face) || !validVertex(vertex) || uvs.empty()) return;
-    const std::size_t first = mesh_.faceStart[static_cast<std::size_t>(face.idx())];
-    const std::size_t n = mesh_.faceStart[static_cast<std::size_t>(face.idx()) + 1] - first;
-    std::size_t at = 0;
-    while (at + 1 < n && mesh_.corners[first + at] != static_cast<std::uint32_t>(vertex.idx())) ++at;
-    for (const Vec2f& uv : uvs) {
-      set_corner_uv(face, at, uv);
-      at = (at + 1) % n;
-    }
-  }
   // A vertex's normal and UV: where a corner has none of its own.
   void set_normal(VertexHandle v, const Vec3f& n) {
     vertex(v, "normal");
@@ -235,18 +223,26 @@ std::vector<std::vector<std::size_t>> simplePolygons(const std::vector<Vertex>& 
   return pieces;
 }
 
-// Adds a polygon of the file as its simplePolygons.
-inline void addSimplePolygons(CheckedImporter& importer, const VHandles& corners) {
+// Adds a polygon of the file (`corners`) as its simplePolygons, and calls onFace(face, n, position)
+// for each face added: n corners, position(j) the position in `corners` of the face's corner j (what
+// a reader needs to give the face's corners their own UVs and normals).
+template <class OnFace>
+void addSimplePolygons(CheckedImporter& importer, const VHandles& corners, OnFace&& onFace) {
   if (!visitsAVertexTwice(corners)) {
-    importer.add_face(corners);
+    const CheckedImporter::FaceHandle face = importer.add_face(corners);
+    if (face.is_valid()) onFace(face, corners.size(), [](std::size_t j) { return j; });
     return;
   }
   VHandles piece;
   for (const std::vector<std::size_t>& positions : simplePolygons(corners)) {
     piece.clear();
     for (std::size_t k : positions) piece.push_back(corners[k]);
-    importer.add_face(piece);
+    const CheckedImporter::FaceHandle face = importer.add_face(piece);
+    if (face.is_valid()) onFace(face, positions.size(), [&positions](std::size_t j) { return positions[j]; });
   }
+}
+inline void addSimplePolygons(CheckedImporter& importer, const VHandles& corners) {
+  addSimplePolygons(importer, corners, [](CheckedImporter::FaceHandle, std::size_t, const auto&) {});
 }
 
 // Each reads a whole file's bytes into `importer` and sets

@@ -27,7 +27,7 @@ void readObj(const std::string& text, CheckedImporter& importer, OpenMesh::IO::O
     std::int64_t vertex, uv, normal;
   };
   std::vector<Corner> corners;
-  VHandles vertices, piece;
+  VHandles vertices;
   for (std::size_t at = 0; at < text.size();) {
     const std::size_t end = std::min(text.find('\n', at), text.size());
     const std::string line = text.substr(at, end - at);
@@ -96,23 +96,13 @@ void readObj(const std::string& text, CheckedImporter& importer, OpenMesh::IO::O
       if (c.uv >= 0) importer.set_texcoord(v, texcoords[static_cast<std::size_t>(c.uv)]);
       if (c.normal >= 0) importer.set_normal(v, normals[static_cast<std::size_t>(c.normal)]);
     }
-    auto addPiece = [&](const std::vector<std::size_t>* positions) {
-      piece.clear();
-      const std::size_t n = positions ? positions->size() : corners.size();
-      for (std::size_t j = 0; j < n; ++j) piece.push_back(vertices[positions ? (*positions)[j] : j]);
-      const OpenMesh::FaceHandle face = importer.add_face(piece);
-      if (!face.is_valid()) return;
+    addSimplePolygons(importer, vertices, [&](OpenMesh::FaceHandle face, std::size_t n, const auto& position) {
       for (std::size_t j = 0; j < n; ++j) {
-        const Corner& c = corners[positions ? (*positions)[j] : j];
+        const Corner& c = corners[position(j)];
         if (c.uv >= 0) importer.set_corner_uv(face, j, texcoords[static_cast<std::size_t>(c.uv)]);
         if (c.normal >= 0) importer.set_corner_normal(face, j, normals[static_cast<std::size_t>(c.normal)]);
       }
-    };
-    if (!visitsAVertexTwice(vertices)) {
-      addPiece(nullptr);
-    } else {
-      for (const std::vector<std::size_t>& positions : simplePolygons(vertices)) addPiece(&positions);
-    }
+    });
   }
   options.clear();
   if (!normals.empty()) options += OpenMesh::IO::Options::VertexNormal;

@@ -15,7 +15,6 @@
 #include <cstdint>
 #include <cstdlib>
 #include <cstring>
-#include <numeric>
 #include <string>
 #include <vector>
 
@@ -189,10 +188,8 @@ void readPly(const std::string& text, CheckedImporter& importer, OpenMesh::IO::O
 
   bool vertexNormals = false, vertexUvs = false, cornerUvs = false;
   std::vector<double> values;
-  VHandles corners, pieceCorners;
-  std::vector<std::size_t> wholeFace;
+  VHandles corners;
   std::vector<float> uvValues;
-  std::vector<OpenMesh::Vec2f> cornerUv;
   for (const PlyElement& e : header.elements) {
     element = &e;
     // Which property fills what, by index; -1 when absent.
@@ -270,22 +267,11 @@ void readPly(const std::string& text, CheckedImporter& importer, OpenMesh::IO::O
                  " corners (u v per corner)");
         }
         // The face, or where it visits a vertex twice its simple polygons, each with its corners' UVs.
-        auto addPiece = [&](const std::vector<std::size_t>& piece) {
-          pieceCorners.clear();
-          for (std::size_t k : piece) pieceCorners.push_back(corners[k]);
-          const auto fh = importer.add_face(pieceCorners);
-          if (uvList < 0 || !fh.is_valid()) return;
-          cornerUv.clear();
-          for (std::size_t k : piece) cornerUv.emplace_back(uvValues[2 * k], uvValues[2 * k + 1]);
-          importer.add_face_texcoords(fh, pieceCorners[0], cornerUv);  // from the first corner on (its copy, the importer knows)
-        };
-        if (!visitsAVertexTwice(corners)) {
-          wholeFace.resize(corners.size());
-          std::iota(wholeFace.begin(), wholeFace.end(), std::size_t{0});
-          addPiece(wholeFace);
-        } else {
-          for (const std::vector<std::size_t>& piece : simplePolygons(corners)) addPiece(piece);
-        }
+        addSimplePolygons(importer, corners, [&](OpenMesh::FaceHandle face, std::size_t n, const auto& position) {
+          if (uvList < 0) return;
+          for (std::size_t j = 0; j < n; ++j)
+            importer.set_corner_uv(face, j, OpenMesh::Vec2f(uvValues[2 * position(j)], uvValues[2 * position(j) + 1]));
+        });
       }
     }
   }
