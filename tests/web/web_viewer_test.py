@@ -1,7 +1,8 @@
 # SPDX-License-Identifier: MIT
 """The web viewer (build-web/, scripts/web.sh) in headless Chromium against the desktop viewer.
 
-For each shared asset (../shared/assets/*.glb), raw and baked by `tangent bake`, and the demo
+For each shared asset (../shared/assets/*.glb), raw and baked by `tangent bake`, an OBJ (the
+demo torus written as one: the page reads OBJ, PLY and OFF as tangent bake does) and the demo
 scene (a .gltf whose .bin and textures the page fetches beside it): the page
 (index.html?url=...) reaches state "ready", and its frames of the lit, tangent, handedness and
 error views, the split compare view and the tangent-frame glyphs match tangent-view --screenshot of the same file, camera and size (llvmpipe under
@@ -30,6 +31,7 @@ import base64
 import json
 import pathlib
 import shutil
+import struct
 import subprocess
 import sys
 import tempfile
@@ -95,6 +97,31 @@ def check_defaults(chrome, base, file, site, args, out):
     return failures
 
 
+def write_obj(gltf, obj):
+    """The first primitive of `gltf` (float POSITION, NORMAL, TEXCOORD_0 and indices, packed) as
+    an OBJ with v, vt (bottom-left origin: v flipped) and vn per vertex and one v/vt/vn face per
+    triangle."""
+    doc = json.loads(gltf.read_text())
+    data = (gltf.parent / doc["buffers"][0]["uri"]).read_bytes()
+    primitive = doc["meshes"][0]["primitives"][0]
+
+    def read(index, width):
+        accessor = doc["accessors"][index]
+        view = doc["bufferViews"][accessor["bufferView"]]
+        start = view.get("byteOffset", 0) + accessor.get("byteOffset", 0)
+        code = {5126: "f", 5123: "H", 5125: "I"}[accessor["componentType"]]
+        values = struct.unpack_from(f"<{accessor['count'] * width}{code}", data, start)
+        return [values[i:i + width] for i in range(0, len(values), width)]
+
+    attributes = primitive["attributes"]
+    lines = [f"v {x!r} {y!r} {z!r}" for x, y, z in read(attributes["POSITION"], 3)]
+    lines += [f"vt {u!r} {1.0 - v!r}" for u, v in read(attributes["TEXCOORD_0"], 2)]
+    lines += [f"vn {x!r} {y!r} {z!r}" for x, y, z in read(attributes["NORMAL"], 3)]
+    corners = [i + 1 for (i,) in read(primitive["indices"], 1)]
+    lines += ["f " + " ".join(f"{c}/{c}/{c}" for c in corners[t:t + 3]) for t in range(0, len(corners), 3)]
+    obj.write_text("\n".join(lines) + "\n")
+
+
 def main():
     parser = argparse.ArgumentParser()
     parser.add_argument("--build-web", required=True, help="scripts/web.sh's output folder")
@@ -126,8 +153,10 @@ def main():
         subprocess.run([args.tangent, "bake", str(asset), str(baked)], check=True, capture_output=True)
         files += [site / asset.name, baked]
     if args.demo:
+        write_obj(pathlib.Path(args.demo) / "torus.gltf", site / "torus.obj")
+        files.append(site / "torus.obj")
         shutil.copytree(args.demo, site / "demo")
-        files.append(site / "demo" / "scene.gltf")
+        files.append(site / "demo" / "scene.gltf")  # last: check_defaults opens it
     (site / "broken.glb").write_bytes((site / assets[0].name).read_bytes()[:200])
     refusals = [("broken.glb", ["broken.glb"]), ("missing.glb", ["missing.glb"]),
                 (assets[0].name + "&view=no-such-view", ["unknown --view no-such-view"])]

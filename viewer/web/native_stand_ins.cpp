@@ -1,8 +1,7 @@
 // SPDX-License-Identifier: MIT
-// The web build's stand-ins for the glTF layer's three readers that need native libraries
-// (Debian ships OpenMesh, Draco and meshoptimizer as native code only): OBJ/PLY/OFF input
-// (libtangent/gltf/src/mesh_file.cpp), Draco and EXT_meshopt_compression decoding
-// (draco_decode.cpp, meshopt_decode.cpp). viewer/CMakeLists.txt swaps them in for those files;
+// The web build's stand-ins for the glTF layer's two decoders that need native libraries
+// (Debian ships Draco and meshoptimizer as native code only): Draco and EXT_meshopt_compression
+// decoding (draco_decode.cpp, meshopt_decode.cpp). viewer/CMakeLists.txt swaps them in for those files;
 // each refuses what it is given with a message naming the file and element, as the library's
 // readers do, and README.md lists them as left out of the web viewer.
 #include "asset.hpp"
@@ -10,10 +9,6 @@
 #include "tangent/gltf.hpp"
 
 namespace tangent::gltf::detail {
-
-std::vector<std::uint8_t> meshFileToGlb(const std::filesystem::path& path) {
-  throw InputError(path.string() + ": OBJ, PLY and OFF files are not read by the web viewer (they need OpenMesh); open a .glb or .gltf");
-}
 
 void decodeMeshoptViews(Asset& asset) {
   const auto& doc = asset.json;

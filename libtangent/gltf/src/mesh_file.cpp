@@ -136,8 +136,6 @@ void triangulatePolygon(const std::vector<float>& positions, const std::vector<s
 
 std::vector<std::uint8_t> meshFileToGlb(const std::filesystem::path& path) {
   ImportedPolygons mesh;
-  OpenMesh::IO::Options options = OpenMesh::IO::Options::VertexNormal | OpenMesh::IO::Options::VertexTexCoord |
-                                  OpenMesh::IO::Options::FaceTexCoord;
   std::error_code ec;
   const std::uintmax_t fileBytes = std::filesystem::file_size(path, ec);
   if (ec) throw InputError(path.string() + ": cannot be read: " + ec.message());
@@ -157,11 +155,11 @@ std::vector<std::uint8_t> meshFileToGlb(const std::filesystem::path& path) {
     CheckedImporter importer(mesh, path.string(), fileBytes);
     try {
       if (extension == ".obj")
-        readObj(text, importer, options, path.string());
+        readObj(text, importer, path.string());
       else if (extension == ".off")
-        readOff(text, importer, options, path.string());
+        readOff(text, importer, path.string());
       else if (extension == ".ply")
-        readPly(text, importer, options, path.string());
+        readPly(text, importer, path.string());
       else
         throw InputError(path.string() + ": not an OBJ, PLY or OFF file");
     } catch (const std::bad_alloc&) {
@@ -175,10 +173,9 @@ std::vector<std::uint8_t> meshFileToGlb(const std::filesystem::path& path) {
   // NORMAL where the file gave every corner one (its own, or its vertex's); else none (bake
   // generates them as for a glTF without NORMAL), never the values left unset.
   auto hasNormal = [&](std::size_t corner) { return mesh.hasCornerNormal(corner) || mesh.normalSet[mesh.corners[corner]]; };
-  bool haveNormals = options.check(OpenMesh::IO::Options::VertexNormal);
+  bool haveNormals = true;
   for (std::size_t corner = 0; haveNormals && corner < mesh.corners.size(); ++corner) haveNormals = hasNormal(corner);
-  const bool cornerUvs = options.check(OpenMesh::IO::Options::FaceTexCoord) && mesh.anyCornerUv();
-  const bool vertexUvs = options.check(OpenMesh::IO::Options::VertexTexCoord) && mesh.anyUv;
+  const bool cornerUvs = mesh.anyCornerUv(), vertexUvs = mesh.anyUv;
   if (!cornerUvs && !vertexUvs) throw InputError(path.string() + ": has no texture coordinates; tangents need UVs");
 
   // One glTF vertex per distinct (vertex, UV, normal).
@@ -195,26 +192,26 @@ std::vector<std::uint8_t> meshFileToGlb(const std::filesystem::path& path) {
       if (!own && !(vertexUvs && mesh.uvSet[vertex]))
         throw InputError(path.string() + ": face " + std::to_string(face + 1) + " (1-based) has no texture coordinate at its vertex " +
                          std::to_string(std::uint64_t{vertex} + 1) + "; tangents need UVs on every face");
-      const OpenMesh::Vec2f uv = own ? mesh.cornerUvs[corner] : mesh.uvs[vertex];
-      const float u = uv[0], v = 1.0f - uv[1];
-      const OpenMesh::Vec3f n = !haveNormals                      ? OpenMesh::Vec3f(0.0f, 0.0f, 1.0f)
-                                : mesh.hasCornerNormal(corner) ? mesh.cornerNormals[corner]
-                                                               : mesh.normals[vertex];
+      const Vec2f uv = own ? mesh.cornerUvs[corner] : mesh.uvs[vertex];
+      const float u = uv.x, v = 1.0f - uv.y;
+      const Vec3f n = !haveNormals                    ? Vec3f{0.0f, 0.0f, 1.0f}
+                      : mesh.hasCornerNormal(corner) ? mesh.cornerNormals[corner]
+                                                     : mesh.normals[vertex];
       const std::array<std::uint32_t, 6> key = {vertex, std::bit_cast<std::uint32_t>(u), std::bit_cast<std::uint32_t>(v),
-                                                std::bit_cast<std::uint32_t>(n[0]), std::bit_cast<std::uint32_t>(n[1]),
-                                                std::bit_cast<std::uint32_t>(n[2])};
+                                                std::bit_cast<std::uint32_t>(n.x), std::bit_cast<std::uint32_t>(n.y),
+                                                std::bit_cast<std::uint32_t>(n.z)};
       auto [it, inserted] = vertexOf.try_emplace(key, static_cast<std::uint32_t>(positions.size() / 3));
       if (inserted) {
-        const OpenMesh::Vec3f p = mesh.points[vertex];
+        const Vec3f p = mesh.points[vertex];
         // A NaN or infinity would make the GLB invalid (its min/max null, the data refused by
         // the validator): named here instead.
-        for (const float x : {p[0], p[1], p[2], n[0], n[1], n[2], u, v}) {
+        for (const float x : {p.x, p.y, p.z, n.x, n.y, n.z, u, v}) {
           if (!std::isfinite(x))
             throw InputError(path.string() + ": vertex " + std::to_string(std::uint64_t{vertex} + 1) +
                              " (1-based) has a coordinate, normal or UV that is not a finite number");
         }
-        positions.insert(positions.end(), {p[0], p[1], p[2]});
-        if (haveNormals) normals.insert(normals.end(), {n[0], n[1], n[2]});
+        positions.insert(positions.end(), {p.x, p.y, p.z});
+        if (haveNormals) normals.insert(normals.end(), {n.x, n.y, n.z});
         uvs.insert(uvs.end(), {u, v});
       }
       polygon.push_back(it->second);

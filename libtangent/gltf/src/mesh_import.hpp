@@ -6,10 +6,6 @@
 // allocated gigabytes on malformed files, and its half-edge mesh changed what the file said.
 #pragma once
 
-#include <OpenMesh/Core/Geometry/VectorT.hh>
-#include <OpenMesh/Core/IO/Options.hh>
-#include <OpenMesh/Core/Mesh/Handles.hh>
-
 #include <algorithm>
 #include <cctype>
 #include <cmath>
@@ -17,7 +13,6 @@
 #include <optional>
 #include <cstdint>
 #include <string>
-#include <type_traits>
 #include <unordered_map>
 #include <utility>
 #include <vector>
@@ -26,14 +21,16 @@
 
 namespace tangent::gltf::detail {
 
-// Hash of a polygon's vertex: an index, or an OpenMesh handle (by its index).
-struct VertexKeyHash {
-  template <class Vertex>
-  std::size_t operator()(const Vertex& v) const {
-    if constexpr (std::is_integral_v<Vertex>) return std::hash<Vertex>()(v);
-    else return std::hash<int>()(v.idx());
-  }
+// A vertex of the file by its 0-based index, and the values the readers give it or its corners.
+using VertexIndex = std::uint32_t;
+struct Vec2f {
+  float x = 0.0f, y = 0.0f;
 };
+struct Vec3f {
+  float x = 0.0f, y = 0.0f, z = 0.0f;
+};
+// A polygon's corners, as vertex indices.
+using Polygon = std::vector<VertexIndex>;
 
 // Whether a polygon visits a vertex more than once (no allocation for the usual small one).
 template <class Vertex>
@@ -59,16 +56,16 @@ bool visitsAVertexTwice(const std::vector<Vertex>& vertices) {
 // around a point) took time quadratic in their number, a face that would make the mesh
 // non-manifold went onto copies of its vertices, and a vertex had one normal for all its faces.
 struct ImportedPolygons {
-  std::vector<OpenMesh::Vec3f> points, normals;
-  std::vector<OpenMesh::Vec2f> uvs;          // per vertex
+  std::vector<Vec3f> points, normals;
+  std::vector<Vec2f> uvs;          // per vertex
   std::vector<char> normalSet, uvSet;        // which vertices the file gave a normal, a UV
   std::vector<std::size_t> faceStart{0};     // face f's corners: [faceStart[f], faceStart[f + 1])
   std::vector<std::uint32_t> corners;        // each corner's vertex
   // Each corner's own UV and normal, where the Set arrays say so; both left empty until a file
   // gives a corner one (PLY and OFF never give a corner a normal).
-  std::vector<OpenMesh::Vec2f> cornerUvs;
+  std::vector<Vec2f> cornerUvs;
   std::vector<char> cornerUvSet;
-  std::vector<OpenMesh::Vec3f> cornerNormals;
+  std::vector<Vec3f> cornerNormals;
   std::vector<char> cornerNormalSet;
   bool anyUv = false;  // whether any vertex has one
   std::size_t faceCount() const { return faceStart.size() - 1; }
@@ -77,62 +74,55 @@ struct ImportedPolygons {
   bool hasCornerNormal(std::size_t corner) const { return corner < cornerNormalSet.size() && cornerNormalSet[corner]; }
 };
 
-// A polygon's corners, as vertex handles.
-using VHandles = std::vector<OpenMesh::VertexHandle>;
-
 // What the readers (obj_reader.cpp, ply_reader.cpp, off_reader.cpp) hand the polygons through.
 // They check the file's syntax; this checks each handle and count the file gives: a refusal
 // throws InputError naming the file and the element. Counts are bounded by the file's size (a
 // vertex or face takes at least 3 bytes in every format).
 class CheckedImporter {
  public:
-  using VertexHandle = OpenMesh::VertexHandle;
-  using FaceHandle = OpenMesh::FaceHandle;
-  using Vec2f = OpenMesh::Vec2f;
-  using Vec3f = OpenMesh::Vec3f;
-
   CheckedImporter(ImportedPolygons& mesh, std::string label, std::uintmax_t fileBytes)
       : mesh_(mesh), label_(std::move(label)), limit_(fileBytes / 3 + 16) {}
 
-  VertexHandle add_vertex(const Vec3f& point) {
+  VertexIndex addVertex(const Vec3f& point) {
     if (mesh_.points.size() >= limit_) throw InputError(label_ + ": more vertices than the file's size allows; the file is malformed");
+    if (mesh_.points.size() >= kMaxVertices) throw InputError(label_ + ": more than 2^32 - 1 vertices, which glTF indices cannot address");
     mesh_.points.push_back(point);
-    mesh_.normals.emplace_back(0.0f, 0.0f, 0.0f);
-    mesh_.uvs.emplace_back(0.0f, 0.0f);
+    mesh_.normals.emplace_back();
+    mesh_.uvs.emplace_back();
     mesh_.normalSet.push_back(0);
     mesh_.uvSet.push_back(0);
-    return VertexHandle(static_cast<int>(mesh_.points.size() - 1));
+    return static_cast<VertexIndex>(mesh_.points.size() - 1);
   }
   // A face of at least three corners, none repeated (the readers cut a polygon that visits a
-  // vertex twice into simplePolygons first); otherwise an invalid handle.
-  FaceHandle add_face(const VHandles& vertices) {
+  // vertex twice into simplePolygons first): its index, or none.
+  std::optional<std::size_t> addFace(const Polygon& vertices) {
     if (mesh_.faceCount() >= limit_) throw InputError(label_ + ": more faces than the file's size allows; the file is malformed");
     for (std::size_t k = 0; k < vertices.size(); ++k) {
       if (!validVertex(vertices[k]))
         throw InputError(label_ + ": face " + std::to_string(mesh_.faceCount() + 1) + " corner " + std::to_string(k + 1) +
-                         " refers to vertex " + std::to_string(vertices[k].idx() + 1) + " (1-based), but the file has " +
+                         " refers to vertex " + std::to_string(std::uint64_t{vertices[k]} + 1) + " (1-based), but the file has " +
                          std::to_string(mesh_.points.size()) + " vertices there");
     }
-    if (vertices.size() < 3 || visitsAVertexTwice(vertices)) return FaceHandle();
-    for (const VertexHandle v : vertices) mesh_.corners.push_back(static_cast<std::uint32_t>(v.idx()));
+    if (vertices.size() < 3 || visitsAVertexTwice(vertices)) return std::nullopt;
+    mesh_.corners.insert(mesh_.corners.end(), vertices.begin(), vertices.end());
     mesh_.faceStart.push_back(mesh_.corners.size());
-    return FaceHandle(static_cast<int>(mesh_.faceCount() - 1));
+    return mesh_.faceCount() - 1;
   }
-  // Corner `k` of `face` (in the order add_face took them) gets its own UV or normal.
-  void set_corner_uv(FaceHandle face, std::size_t k, const Vec2f& uv) { setCorner(mesh_.cornerUvs, mesh_.cornerUvSet, corner(face, k), uv); }
-  void set_corner_normal(FaceHandle face, std::size_t k, const Vec3f& normal) {
+  // Corner `k` of `face` (in the order addFace took them) gets its own UV or normal.
+  void setCornerUv(std::size_t face, std::size_t k, const Vec2f& uv) { setCorner(mesh_.cornerUvs, mesh_.cornerUvSet, corner(face, k), uv); }
+  void setCornerNormal(std::size_t face, std::size_t k, const Vec3f& normal) {
     setCorner(mesh_.cornerNormals, mesh_.cornerNormalSet, corner(face, k), normal);
   }
   // A vertex's normal and UV: where a corner has none of its own.
-  void set_normal(VertexHandle v, const Vec3f& n) {
+  void setNormal(VertexIndex v, const Vec3f& n) {
     vertex(v, "normal");
-    mesh_.normals[index(v)] = n;
-    mesh_.normalSet[index(v)] = 1;
+    mesh_.normals[v] = n;
+    mesh_.normalSet[v] = 1;
   }
-  void set_texcoord(VertexHandle v, const Vec2f& t) {
+  void setUv(VertexIndex v, const Vec2f& uv) {
     vertex(v, "UV");
-    mesh_.uvs[index(v)] = t;
-    mesh_.uvSet[index(v)] = 1;
+    mesh_.uvs[v] = uv;
+    mesh_.uvSet[v] = 1;
     mesh_.anyUv = true;
   }
   void reserve(unsigned int vertices, unsigned int faces) {
@@ -142,14 +132,13 @@ class CheckedImporter {
     mesh_.points.reserve(vertices);
     mesh_.faceStart.reserve(std::size_t{faces} + 1);
   }
-  std::size_t n_vertices() const { return mesh_.points.size(); }
-  std::size_t n_faces() const { return mesh_.faceCount(); }
+  std::size_t vertexCount() const { return mesh_.points.size(); }
+  std::size_t faceCount() const { return mesh_.faceCount(); }
 
  private:
-  static std::size_t index(VertexHandle v) { return static_cast<std::size_t>(v.idx()); }
-  bool validVertex(VertexHandle v) const { return v.is_valid() && index(v) < mesh_.points.size(); }
-  bool validFace(FaceHandle f) const { return f.is_valid() && static_cast<std::size_t>(f.idx()) < mesh_.faceCount(); }
-  std::size_t corner(FaceHandle face, std::size_t k) const { return mesh_.faceStart[static_cast<std::size_t>(face.idx())] + k; }
+  static constexpr std::size_t kMaxVertices = 0xffffffffu;
+  bool validVertex(VertexIndex v) const { return v < mesh_.points.size(); }
+  std::size_t corner(std::size_t face, std::size_t k) const { return mesh_.faceStart[face] + k; }
   // Grown up to the corner on its first value (vector growth: amortized constant time).
   template <class Value>
   static void setCorner(std::vector<Value>& values, std::vector<char>& set, std::size_t c, const Value& value) {
@@ -157,9 +146,9 @@ class CheckedImporter {
     values[c] = value;
     set[c] = 1;
   }
-  void vertex(VertexHandle v, const char* what) const {
+  void vertex(VertexIndex v, const char* what) const {
     if (!validVertex(v))
-      throw InputError(label_ + ": " + what + " given for vertex " + std::to_string(v.idx() + 1) + " (1-based), but the file has " +
+      throw InputError(label_ + ": " + what + " given for vertex " + std::to_string(std::uint64_t{v} + 1) + " (1-based), but the file has " +
                        std::to_string(mesh_.points.size()) + " vertices there");
   }
 
@@ -208,7 +197,7 @@ template <class Vertex>
 std::vector<std::vector<std::size_t>> simplePolygons(const std::vector<Vertex>& vertices) {
   std::vector<std::vector<std::size_t>> pieces;
   std::vector<std::size_t> path;                // positions in `vertices`, no vertex twice
-  std::unordered_map<Vertex, std::size_t, VertexKeyHash> onPath;  // vertex -> its index in path
+  std::unordered_map<Vertex, std::size_t> onPath;  // vertex -> its index in path
   for (std::size_t k = 0; k < vertices.size(); ++k) {
     const auto [at, added] = onPath.try_emplace(vertices[k], path.size());
     if (!added) {
@@ -227,29 +216,27 @@ std::vector<std::vector<std::size_t>> simplePolygons(const std::vector<Vertex>& 
 // for each face added: n corners, position(j) the position in `corners` of the face's corner j (what
 // a reader needs to give the face's corners their own UVs and normals).
 template <class OnFace>
-void addSimplePolygons(CheckedImporter& importer, const VHandles& corners, OnFace&& onFace) {
+void addSimplePolygons(CheckedImporter& importer, const Polygon& corners, OnFace&& onFace) {
   if (!visitsAVertexTwice(corners)) {
-    const CheckedImporter::FaceHandle face = importer.add_face(corners);
-    if (face.is_valid()) onFace(face, corners.size(), [](std::size_t j) { return j; });
+    if (const std::optional<std::size_t> face = importer.addFace(corners)) onFace(*face, corners.size(), [](std::size_t j) { return j; });
     return;
   }
-  VHandles piece;
+  Polygon piece;
   for (const std::vector<std::size_t>& positions : simplePolygons(corners)) {
     piece.clear();
     for (std::size_t k : positions) piece.push_back(corners[k]);
-    const CheckedImporter::FaceHandle face = importer.add_face(piece);
-    if (face.is_valid()) onFace(face, positions.size(), [&positions](std::size_t j) { return positions[j]; });
+    if (const std::optional<std::size_t> face = importer.addFace(piece))
+      onFace(*face, positions.size(), [&positions](std::size_t j) { return positions[j]; });
   }
 }
-inline void addSimplePolygons(CheckedImporter& importer, const VHandles& corners) {
-  addSimplePolygons(importer, corners, [](CheckedImporter::FaceHandle, std::size_t, const auto&) {});
+inline void addSimplePolygons(CheckedImporter& importer, const Polygon& corners) {
+  addSimplePolygons(importer, corners, [](std::size_t, std::size_t, const auto&) {});
 }
 
-// Each reads a whole file's bytes into `importer` and sets
-// `options` to what the file gave (VertexNormal, VertexTexCoord, FaceTexCoord); a malformed
-// file throws InputError naming `label` and the element.
-void readObj(const std::string& text, CheckedImporter& importer, OpenMesh::IO::Options& options, const std::string& label);
-void readPly(const std::string& text, CheckedImporter& importer, OpenMesh::IO::Options& options, const std::string& label);
-void readOff(const std::string& text, CheckedImporter& importer, OpenMesh::IO::Options& options, const std::string& label);
+// Each reads a whole file's bytes into `importer`; a malformed file throws InputError naming
+// `label` and the element.
+void readObj(const std::string& text, CheckedImporter& importer, const std::string& label);
+void readPly(const std::string& text, CheckedImporter& importer, const std::string& label);
+void readOff(const std::string& text, CheckedImporter& importer, const std::string& label);
 
 }  // namespace tangent::gltf::detail

@@ -17,9 +17,9 @@
 
 namespace tangent::gltf::detail {
 
-void readObj(const std::string& text, CheckedImporter& importer, OpenMesh::IO::Options& options, const std::string& label) {
-  std::vector<OpenMesh::Vec2f> texcoords;
-  std::vector<OpenMesh::Vec3f> normals;
+void readObj(const std::string& text, CheckedImporter& importer, const std::string& label) {
+  std::vector<Vec2f> texcoords;
+  std::vector<Vec3f> normals;
   std::size_t lineNumber = 0;
   const char* const kinds[3] = {"vertex", "texture coordinate", "normal"};
   // One corner of a face line: indices (0-based) of its vertex, UV (-1: none) and normal (-1: none).
@@ -27,7 +27,7 @@ void readObj(const std::string& text, CheckedImporter& importer, OpenMesh::IO::O
     std::int64_t vertex, uv, normal;
   };
   std::vector<Corner> corners;
-  VHandles vertices;
+  Polygon vertices;
   for (std::size_t at = 0; at < text.size();) {
     const std::size_t end = std::min(text.find('\n', at), text.size());
     const std::string line = text.substr(at, end - at);
@@ -54,14 +54,14 @@ void readObj(const std::string& text, CheckedImporter& importer, OpenMesh::IO::O
                " finite numbers" + (value.empty() ? "" : "; '" + value.substr(0, 20) + "' is not one"));
         x[k - 1] = *number;
       }
-      if (kind == 0) importer.add_vertex(OpenMesh::Vec3f(x[0], x[1], x[2]));
-      if (kind == 1) texcoords.emplace_back(x[0], x[1]);
-      if (kind == 2) normals.emplace_back(x[0], x[1], x[2]);
+      if (kind == 0) importer.addVertex({x[0], x[1], x[2]});
+      if (kind == 1) texcoords.push_back({x[0], x[1]});
+      if (kind == 2) normals.push_back({x[0], x[1], x[2]});
       continue;
     }
     if (w[0] != "f") continue;
     if (w.size() < 4) fail("a face needs at least three vertices");
-    const std::int64_t counts[3] = {static_cast<std::int64_t>(importer.n_vertices()), static_cast<std::int64_t>(texcoords.size()),
+    const std::int64_t counts[3] = {static_cast<std::int64_t>(importer.vertexCount()), static_cast<std::int64_t>(texcoords.size()),
                                     static_cast<std::int64_t>(normals.size())};
     corners.clear();
     vertices.clear();
@@ -88,25 +88,22 @@ void readObj(const std::string& text, CheckedImporter& importer, OpenMesh::IO::O
         if (slash == w[k].size()) break;
       }
       corners.push_back({resolved[0], resolved[1], resolved[2]});
-      vertices.emplace_back(static_cast<int>(resolved[0]));
+      vertices.push_back(static_cast<VertexIndex>(resolved[0]));
     }
     // The vertices' own UV and normal, for corners that give none: the last given, in file order.
     for (const Corner& c : corners) {
-      const OpenMesh::VertexHandle v(static_cast<int>(c.vertex));
-      if (c.uv >= 0) importer.set_texcoord(v, texcoords[static_cast<std::size_t>(c.uv)]);
-      if (c.normal >= 0) importer.set_normal(v, normals[static_cast<std::size_t>(c.normal)]);
+      const auto v = static_cast<VertexIndex>(c.vertex);
+      if (c.uv >= 0) importer.setUv(v, texcoords[static_cast<std::size_t>(c.uv)]);
+      if (c.normal >= 0) importer.setNormal(v, normals[static_cast<std::size_t>(c.normal)]);
     }
-    addSimplePolygons(importer, vertices, [&](OpenMesh::FaceHandle face, std::size_t n, const auto& position) {
+    addSimplePolygons(importer, vertices, [&](std::size_t face, std::size_t n, const auto& position) {
       for (std::size_t j = 0; j < n; ++j) {
         const Corner& c = corners[position(j)];
-        if (c.uv >= 0) importer.set_corner_uv(face, j, texcoords[static_cast<std::size_t>(c.uv)]);
-        if (c.normal >= 0) importer.set_corner_normal(face, j, normals[static_cast<std::size_t>(c.normal)]);
+        if (c.uv >= 0) importer.setCornerUv(face, j, texcoords[static_cast<std::size_t>(c.uv)]);
+        if (c.normal >= 0) importer.setCornerNormal(face, j, normals[static_cast<std::size_t>(c.normal)]);
       }
     });
   }
-  options.clear();
-  if (!normals.empty()) options += OpenMesh::IO::Options::VertexNormal;
-  if (!texcoords.empty()) options += OpenMesh::IO::Options::VertexTexCoord, options += OpenMesh::IO::Options::FaceTexCoord;
 }
 
 }  // namespace tangent::gltf::detail

@@ -23,7 +23,7 @@
 
 namespace tangent::gltf::detail {
 
-void readOff(const std::string& text, CheckedImporter& importer, OpenMesh::IO::Options& options, const std::string& label) {
+void readOff(const std::string& text, CheckedImporter& importer, const std::string& label) {
   std::size_t at = 0, lineNumber = 0;
   std::string line;
   std::vector<std::string> w;  // the words of the current line
@@ -72,8 +72,7 @@ void readOff(const std::string& text, CheckedImporter& importer, OpenMesh::IO::O
       throw InputError(label + ": OFF header declares " + std::to_string(vertices) + " vertices and " + std::to_string(faces) +
                        " faces, more than a file of " + std::to_string(fileBytes) + " bytes can hold");
   };
-  std::vector<OpenMesh::VertexHandle> handles;
-  VHandles corners;
+  Polygon corners;
 
   if (w.size() > 1 && w[1] == "BINARY") {
     if (colours) fail("binary OFF with colours (" + keyword.substr(0, 40) + ") is not read");
@@ -91,10 +90,9 @@ void readOff(const std::string& text, CheckedImporter& importer, OpenMesh::IO::O
     for (std::uint32_t v = 0; v < vertices; ++v) {
       float x[8];
       for (std::size_t c = 0; c < perVertex + (texcoords ? 2 : 0); ++c) x[c] = f32("a vertex");
-      const auto vh = importer.add_vertex(OpenMesh::Vec3f(x[0], x[1], x[2]));
-      if (hasNormals) importer.set_normal(vh, OpenMesh::Vec3f(x[3], x[4], x[5]));
-      if (texcoords) importer.set_texcoord(vh, OpenMesh::Vec2f(x[perVertex], x[perVertex + 1]));
-      handles.push_back(vh);
+      const VertexIndex vertex = importer.addVertex({x[0], x[1], x[2]});
+      if (hasNormals) importer.setNormal(vertex, {x[3], x[4], x[5]});
+      if (texcoords) importer.setUv(vertex, {x[perVertex], x[perVertex + 1]});
     }
     for (std::uint32_t f = 0; f < faces; ++f) {
       const std::uint32_t n = u32("a face");
@@ -107,7 +105,7 @@ void readOff(const std::string& text, CheckedImporter& importer, OpenMesh::IO::O
         if (index >= vertices)
           throw InputError(label + ": binary OFF face " + std::to_string(f + 1) + " corner " + std::to_string(c + 1) +
                            " is vertex " + std::to_string(index) + ", not one below " + std::to_string(vertices));
-        corners.push_back(handles[index]);
+        corners.push_back(index);
       }
       addSimplePolygons(importer, corners);
     }
@@ -137,17 +135,17 @@ void readOff(const std::string& text, CheckedImporter& importer, OpenMesh::IO::O
              " needs " + std::to_string(needed) + " (x y z" + (hasNormals ? " nx ny nz" : "") + (texcoords ? " s t" : "") + ")");
       float x[8];
       for (std::size_t c = 0; c < perVertex; ++c) x[c] = number(w[c], "vertex " + std::to_string(v + 1) + " value");
-      const auto vh = importer.add_vertex(OpenMesh::Vec3f(x[0], x[1], x[2]));
-      if (hasNormals) importer.set_normal(vh, OpenMesh::Vec3f(x[3], x[4], x[5]));
+      const VertexIndex vertex = importer.addVertex({x[0], x[1], x[2]});
+      if (hasNormals) importer.setNormal(vertex, {x[3], x[4], x[5]});
       if (texcoords) {
         if (!colours && w.size() != needed)
           fail("vertex " + std::to_string(v + 1) + " lists " + std::to_string(w.size()) + " values; " + keyword.substr(0, 40) +
                " has no colours, so exactly " + std::to_string(needed) + " (x y z" + (hasNormals ? " nx ny nz" : "") + " s t)");
         const std::string what = "vertex " + std::to_string(v + 1) + " texture coordinate";
         const std::size_t s = colours ? w.size() - 2 : perVertex;
-        importer.set_texcoord(vh, OpenMesh::Vec2f(number(w[s], what), number(w[s + 1], what)));
+        importer.setUv(vertex, {number(w[s], what), number(w[s + 1], what)});
       }
-      handles.push_back(vh);
+
     }
     for (std::uint64_t f = 0; f < faces; ++f) {
       if (!next()) fail("the file ends after " + std::to_string(f) + " of " + std::to_string(faces) + " faces");
@@ -161,14 +159,11 @@ void readOff(const std::string& text, CheckedImporter& importer, OpenMesh::IO::O
         if (!isCount(w[c]) || std::stoull(w[c]) >= vertices)
           fail("face " + std::to_string(f + 1) + " corner " + std::to_string(c) + " '" + w[c].substr(0, 20) +
                "' is not a vertex index below " + std::to_string(vertices));
-        corners.push_back(handles[std::stoull(w[c])]);
+        corners.push_back(static_cast<VertexIndex>(std::stoull(w[c])));
       }
       addSimplePolygons(importer, corners);
     }
   }
-  options.clear();
-  if (hasNormals) options += OpenMesh::IO::Options::VertexNormal;
-  if (texcoords) options += OpenMesh::IO::Options::VertexTexCoord;
 }
 
 }  // namespace tangent::gltf::detail

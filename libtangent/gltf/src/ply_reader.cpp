@@ -128,7 +128,7 @@ PlyHeader readPlyHeader(const std::string& text, const std::string& label) {
 
 }  // namespace
 
-void readPly(const std::string& text, CheckedImporter& importer, OpenMesh::IO::Options& options, const std::string& label) {
+void readPly(const std::string& text, CheckedImporter& importer, const std::string& label) {
   const PlyHeader header = readPlyHeader(text, label);
   const bool ascii = header.format == PlyHeader::Format::ascii;
   const bool swap = (header.format == PlyHeader::Format::big) != (std::endian::native == std::endian::big);
@@ -186,9 +186,9 @@ void readPly(const std::string& text, CheckedImporter& importer, OpenMesh::IO::O
     return static_cast<std::size_t>(n);
   };
 
-  bool vertexNormals = false, vertexUvs = false, cornerUvs = false;
+  bool vertexNormals = false, vertexUvs = false;
   std::vector<double> values;
-  VHandles corners;
+  Polygon corners;
   std::vector<float> uvValues;
   for (const PlyElement& e : header.elements) {
     element = &e;
@@ -224,7 +224,6 @@ void readPly(const std::string& text, CheckedImporter& importer, OpenMesh::IO::O
       uvList = findList({"texcoord"});
       if (indexList < 0 && e.count > 0)
         throw InputError(label + ": PLY element face has no 'vertex_indices' list property");
-      cornerUvs = uvList >= 0;
     }
     values.assign(e.properties.size(), 0.0);
     for (item = 0; item < e.count; ++item) {
@@ -246,7 +245,7 @@ void readPly(const std::string& text, CheckedImporter& importer, OpenMesh::IO::O
             if (corner < 0 || corner >= 2147483647.0)
               fail("corner " + std::to_string(k + 1) + " is vertex " + std::to_string(static_cast<long long>(corner)) +
                    ", not a vertex index");
-            corners.push_back(OpenMesh::VertexHandle(static_cast<int>(corner)));
+            corners.push_back(static_cast<VertexIndex>(corner));
           }
         } else if (index == uvList) {
           for (std::size_t k = 0; k < n; ++k) uvValues.push_back(static_cast<float>(value(property->type)));
@@ -256,9 +255,9 @@ void readPly(const std::string& text, CheckedImporter& importer, OpenMesh::IO::O
       }
       if (isVertex) {
         const auto f = [&](int i) { return static_cast<float>(values[i]); };
-        const auto vh = importer.add_vertex(OpenMesh::Vec3f(f(x), f(y), f(z)));
-        if (vertexNormals) importer.set_normal(vh, OpenMesh::Vec3f(f(nx), f(ny), f(nz)));
-        if (vertexUvs) importer.set_texcoord(vh, OpenMesh::Vec2f(f(u), f(v)));
+        const VertexIndex vertex = importer.addVertex({f(x), f(y), f(z)});
+        if (vertexNormals) importer.setNormal(vertex, {f(nx), f(ny), f(nz)});
+        if (vertexUvs) importer.setUv(vertex, {f(u), f(v)});
       } else if (isFace) {
         if (uvList >= 0) {
           property = &e.properties[static_cast<std::size_t>(uvList)];
@@ -267,18 +266,14 @@ void readPly(const std::string& text, CheckedImporter& importer, OpenMesh::IO::O
                  " corners (u v per corner)");
         }
         // The face, or where it visits a vertex twice its simple polygons, each with its corners' UVs.
-        addSimplePolygons(importer, corners, [&](OpenMesh::FaceHandle face, std::size_t n, const auto& position) {
+        addSimplePolygons(importer, corners, [&](std::size_t face, std::size_t n, const auto& position) {
           if (uvList < 0) return;
           for (std::size_t j = 0; j < n; ++j)
-            importer.set_corner_uv(face, j, OpenMesh::Vec2f(uvValues[2 * position(j)], uvValues[2 * position(j) + 1]));
+            importer.setCornerUv(face, j, {uvValues[2 * position(j)], uvValues[2 * position(j) + 1]});
         });
       }
     }
   }
-  options.clear();
-  if (vertexNormals) options += OpenMesh::IO::Options::VertexNormal;
-  if (vertexUvs) options += OpenMesh::IO::Options::VertexTexCoord;
-  if (cornerUvs) options += OpenMesh::IO::Options::FaceTexCoord;
 }
 
 }  // namespace tangent::gltf::detail

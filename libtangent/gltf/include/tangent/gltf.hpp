@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// glTF adapter: reads .gltf/.glb (and OBJ/PLY/OFF through OpenMesh's readers), bakes TANGENT
+// glTF adapter: reads .gltf/.glb (and OBJ/PLY/OFF through its own readers), bakes TANGENT
 // into the primitives that need it, writes glTF atomically. Layer above the core.
 #pragma once
 
