@@ -113,6 +113,12 @@ for glb in ../shared/assets/*.glb; do
   wasm_assets+=("asset:$(basename "$glb" .glb) $(sed -n 's/.*"triangles":\([0-9.]*\).*"medianMs":\([0-9.]*\).*"libtangentWasmMs":\([0-9.]*\).*"libtangentWasmFirstMs":\([0-9.]*\).*/\1 \2 \3 \4/p' <<<"$wasm_json")")
 done
 export TANGENT_WASM_ASSETS="$(printf '%s\n' "${wasm_assets[@]}")"
+# How the package's time per triangle grows with size: the three spheres interleaved in one
+# process (each size above ran in a process of its own, minutes apart, so the host's phases
+# fell on one size and not another). Not in --quick, which runs 1e5 only.
+TANGENT_WASM_SCALING=""
+[ $quick = 1 ] || TANGENT_WASM_SCALING=$(cd bench/node && node wasm_scaling.mjs 7) || TANGENT_WASM_SCALING=""
+export TANGENT_WASM_SCALING
 
 # The report.
 KERNEL_REPS=$kernel_reps python3 - "$out" $quick "${rows[@]}" <<'PY'
@@ -240,6 +246,12 @@ for name, t, theirs, mine, first in wasm_rows:
     lines.append(f"| {name} | {t:,} | {fmt(theirs)} | {fmt(mine)} | {ratio(theirs, mine)} | {fmt(first)} |")
 lines += ["", "The spheres here are `sphere-1eN` de-indexed (its 2n degenerate pole triangles included); npm mikktspace "
           "runs once at 4e6, libtangent-wasm at least 3 times at every size after its first call, which its median leaves out."]
+if os.environ.get("TANGENT_WASM_SCALING"):
+    scaling = json.loads(os.environ["TANGENT_WASM_SCALING"])
+    sizes = ", ".join(f"{s['triangles']:,} triangles {s['medianUsPerTriangle']:.3f} ({s['fastestUsPerTriangle']:.3f})" for s in scaling["sizes"])
+    lines += ["", f"Time per triangle by size, in µs, the sizes interleaved in one process, {scaling['rounds']} rounds "
+              f"(`bench/node/wasm_scaling.mjs`; medians, fastest in brackets; a smaller sphere called several times per "
+              f"sample): {sizes}. Slowest median over fastest: **{scaling['spread']:.2f}x**."]
 lines += ["",
           "", "## Error against run time", "", "![error against run time](bench-plot.png)", "",
           "Mean angular error against the exact tangent on analytic surfaces, per method, one point per resolution, "
