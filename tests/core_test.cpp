@@ -391,6 +391,28 @@ TEST(Core, NonManifoldFacesAreKeptAndCounted) {
   for (std::size_t c = 0; c < m.indices.size(); ++c) ASSERT_TRUE(std::isfinite(r.tangents[4 * c]));
 }
 
+// Report::nonManifoldFaces as each method sees an edge (tangent.hpp). A fin of three triangles
+// on one edge (one running it one way, two the other) counts for every method. Triangles
+// (0,2,1), (0,2,4), (2,1,0), (2,4,1): the third is the first again (a copy for mikktspace),
+// and what is left runs edge (0,2) and edge (2,4) twice the same way and never back, which the
+// reference's pairing never meets, while by positions (0,2) and (1,2) have three triangles each.
+TEST(Core, NonManifoldFacesAreCountedAsEachMethodSeesAnEdge) {
+  GridMesh fin;
+  fin.positions = {0, 0, 0, 1, 0, 0, 0.5f, 1, 0, 0.5f, -1, 0, 0.5f, 0, 1};
+  fin.normals = {0, 0, 1, 0, 0, 1, 0, 0, 1, 0, 0, 1, 0, 0, 1};
+  fin.uvs = {0, 0, 1, 0, 0.5f, 1, 0.5f, -1, 0.5f, 0.5f};
+  fin.indices = {0, 1, 2, 1, 0, 3, 1, 0, 4};
+  GridMesh soup = fin;
+  soup.indices = {0, 2, 1, 0, 2, 4, 2, 1, 0, 2, 4, 1};
+  for (const tangent::Method method : {tangent::Method::mikktspace, tangent::Method::lengyel, tangent::Method::flat, tangent::Method::meshopt}) {
+    Options options;
+    options.method = method;
+    SCOPED_TRACE(static_cast<int>(method));
+    EXPECT_EQ(run(fin, options).report.nonManifoldFaces, 3u);
+    EXPECT_EQ(run(soup, options).report.nonManifoldFaces, method == tangent::Method::mikktspace ? 0u : 4u);
+  }
+}
+
 // A fin on a closed fan: triangle (0, 1, 4) shares the edge from vertex 0 to vertex 1 with
 // the fan's (0, 1, 2), and both run it the same way. At vertex 0 every corner's next vertex
 // is the previous vertex of exactly one corner, but two corners lead to the same one, so the

@@ -103,7 +103,14 @@ struct Report {
   std::uint64_t mirroredCorners = 0;        // corners whose output w is -1
   std::uint64_t splitVertices = 0;          // extra vertices needed: corners of one input
                                             // vertex that got different frames
-  std::uint64_t nonManifoldFaces = 0;       // faces on an edge that more than two faces share
+  // Faces on an edge that more than two faces share, with "edge" as each method sees one.
+  // mikktspace, as the reference pairs edges: ends welded by position, normal and UV; an edge
+  // counts where it runs more than once one way and at least once the other, an exact duplicate
+  // triangle being a copy that does not count (so two same-wound faces on an edge with none
+  // opposite are not counted). lengyel, flat and meshopt: ends welded by position alone; an
+  // edge of three or more triangles whose corners are at three distinct positions. The two can
+  // differ on one mesh: triangles (0,2,1), (0,2,4), (2,1,0), (2,4,1) give 0 and 4.
+  std::uint64_t nonManifoldFaces = 0;
   std::uint64_t invalidNormals = 0;         // corners with zero/non-finite normal (replaced)
   std::uint64_t inheritedCorners = 0;       // FrameSource::inherited
   std::uint64_t fallbackFromNeighbours = 0; // FrameSource::neighbour
