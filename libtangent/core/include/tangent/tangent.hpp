@@ -181,7 +181,9 @@ struct WorkspaceData;
 }
 
 // Scratch memory reused across calls: a caller that computes many meshes keeps one per thread
-// and repeated calls of the same or smaller size allocate nothing. Not for concurrent calls.
+// and repeated mikktspace calls of the same or smaller size allocate nothing (lengyel, flat and
+// meshopt allocate their per-call arrays apart from it and free them on return). Not for
+// concurrent calls.
 class TangentWorkspace {
  public:
   TangentWorkspace();
