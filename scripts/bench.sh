@@ -138,33 +138,34 @@ kernel = json.load(open(os.path.join(out, "kernel.json")))
 context = kernel.get("context", {})
 cpu = next((l.split(":", 1)[1].strip() for l in open("/proc/cpuinfo") if l.startswith("model name")), platform.processor())
 
-def entry(run):
-    """The median aggregate of a benchmark's repetitions, else its single run; None when absent."""
-    found = [b for b in kernel["benchmarks"] if b.get("run_name", b["name"]) == run + "/process_time"]
+def entry(run, benchmarks=None):
+    """The median aggregate of a benchmark's repetitions, else its single run; None when absent.
+    From the main run, or from `benchmarks` (another run's list)."""
+    found = [b for b in (kernel["benchmarks"] if benchmarks is None else benchmarks) if b.get("run_name", b["name"]) == run + "/process_time"]
     return next((b for b in found if b.get("aggregate_name") == "median"), found[0] if found else None)
-def ms(run, field="cpu_time"):
-    b = entry(run)
+def ms(run, field="cpu_time", benchmarks=None):
+    b = entry(run, benchmarks)
     return b[field] if b else float("nan")
 def fastest(run, field="cpu_time"):
     """The fastest single repetition: what the call takes when the host is in a quiet phase."""
     found = [b[field] for b in kernel["benchmarks"]
              if b.get("run_name", b["name"]) == run + "/process_time" and b.get("run_type", "iteration") == "iteration"]
     return min(found) if found else float("nan")
-# The speed-up column's source: the 1-and-2-thread run alone when there is one (not --quick).
-scaling = json.load(open(os.path.join(out, "scaling.json")))["benchmarks"] if os.path.exists(os.path.join(out, "scaling.json")) else None
-def scaling_wall(run):
-    found = [b for b in scaling if b.get("run_name", b["name"]) == run + "/process_time" and b.get("aggregate_name") == "median"]
-    return found[0]["real_time"] if found else float("nan")
-def speedup(i):
-    """Wall time on 1 thread over wall time on 2, and the runs it came from."""
-    if scaling is not None and scaling_wall(f"library/t1/{i}") == scaling_wall(f"library/t1/{i}"):
-        return scaling_wall(f"library/t1/{i}"), scaling_wall(f"library/t2/{i}")
-    return ms(f"library/t1/{i}", "real_time"), ms(f"library/t2/{i}", "real_time")
+# The 1-and-2-thread run alone (spheres only; absent in --quick).
+scaling_path = os.path.join(out, "scaling.json")
+scaling = json.load(open(scaling_path))["benchmarks"] if os.path.exists(scaling_path) else None
 def fmt(v):
     if v != v: return "–"
     return f"{v:.0f}" if v >= 100 else f"{v:.1f}" if v >= 10 else f"{v:.2f}"
 def ratio(a, b):
     return "–" if a != a or b != b or b == 0 else f"{a / b:.2f}x"
+def speedup(i, benchmarks=None):
+    """Wall time on 1 thread over wall time on 2, from the main run or from `benchmarks`."""
+    return ratio(ms(f"library/t1/{i}", "real_time", benchmarks), ms(f"library/t2/{i}", "real_time", benchmarks))
+def column_speedup(i):
+    """The speed-up column: from the run of the two alone where it has this input."""
+    alone = speedup(i, scaling) if scaling is not None else "–"
+    return alone if alone != "–" else speedup(i)
 
 inputs = []
 for b in kernel["benchmarks"]:
@@ -200,7 +201,7 @@ for i in inputs:
     compatible = ms(f"meshopt-compatible/{i}")
     lines.append(f"| {i} | {triangles[i]:,} | {fmt(one)} | {fmt(two)} ({fmt(two_cpu)}) | {fmt(every)} ({fmt(every_cpu)}) | "
                  f"{fmt(ms(f'openmesh/t1/{i}'))} | {fmt(ms(f'mikktspace.c/{i}'))} | {fmt(compatible)} | {fmt(ms(f'meshopt-default/{i}'))} | "
-                 f"{fmt(npm.get(i, float('nan')))} | {ratio(one, compatible)} | {ratio(*speedup(i))} |")
+                 f"{fmt(npm.get(i, float('nan')))} | {ratio(one, compatible)} | {column_speedup(i)} |")
 lines += ["",
           f"- library: `{context.get('library_call', '?')}` on plain arrays (welds, groups and writes one tangent and one output vertex per corner; no OpenMesh mesh).",
           "- OpenMesh input: `computeTangents(CornerMesh&, options, TangentWorkspace&)` (workspace reused) on a mesh built by `buildCornerMesh` before timing.",
@@ -217,7 +218,7 @@ lines += ["",
           ("- 2-thread speed-up: wall time on 1 thread over wall time on 2, medians of a run of those two alone "
            "(`--benchmark_filter='^library/t[12]/sphere-'`, 15 repetitions in random order) for the spheres; "
            "from this table's medians for the assets and where that run is missing. This table's own medians give: "
-           + ", ".join(f"{i} {ratio(ms(f'library/t1/{i}', 'real_time'), ms(f'library/t2/{i}', 'real_time'))}" for i in inputs if i.startswith("sphere-"))
+           + ", ".join(f"{i} {speedup(i)}" for i in inputs if i.startswith("sphere-"))
            + "." if scaling is not None else
            "- 2-thread speed-up: wall time on 1 thread over wall time on 2, this table's medians.")]
 # The other methods: one thread against all, wall time, with the CPU time that shows the threads in use.
