@@ -11,6 +11,10 @@
 // time (all threads) and wall time per call; scripts/bench.sh takes the medians of repetitions.
 #include <benchmark/benchmark.h>
 #include <malloc.h>
+#if __has_include(<valgrind/callgrind.h>)
+#include <valgrind/callgrind.h>
+#define TANGENT_HAVE_CALLGRIND 1
+#endif
 
 #include <algorithm>
 #include <filesystem>
@@ -229,6 +233,39 @@ void registerInput(const InputSource& source) {
   }
 }
 
+// --count-instructions, under `valgrind --tool=callgrind --instr-atstart=no`: one warm call of
+// the library on one thread and of each peer on the 10^5 sphere (issue 41's input), each
+// between callgrind's start and a dump named after it (library/t1, mikktspace.c, ...), so that
+// every dump holds that one call's instructions and nothing else (the input, the warm-up call
+// and the other calls run with instrumentation off). Prints the triangle count.
+int countInstructions() {
+#if defined(TANGENT_HAVE_CALLGRIND)
+  if (!RUNNING_ON_VALGRIND) {
+    std::cerr << "kernel bench: --count-instructions runs under valgrind --tool=callgrind --instr-atstart=no\n";
+    return 2;
+  }
+  const Input& in = input(sphere("sphere-1e5", 100000));
+  auto count = [](const std::string& name, const std::function<void()>& call) {
+    call();  // warm: a pipeline's workspace is allocated and touched, as in the timed benchmarks
+    CALLGRIND_ZERO_STATS;
+    CALLGRIND_START_INSTRUMENTATION;
+    call();
+    CALLGRIND_STOP_INSTRUMENTATION;
+    CALLGRIND_DUMP_STATS_AT(name.c_str());
+  };
+  LibraryCall library(in);
+  count("library/t1", [&] { library(in, options(1)); });
+  std::vector<float> tangents(in.indices.size() * 4);
+  for (tangent::bench::Peer peer : tangent::bench::peers())
+    count(std::string(toString(peer)), [&] { tangent::bench::runPeer(peer, in.arrays(), tangents); });
+  std::cout << "triangles " << in.triangles() << "\n";
+  return 0;
+#else
+  std::cerr << "kernel bench: built without valgrind/callgrind.h (Debian package valgrind): --count-instructions is not available\n";
+  return 2;
+#endif
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -238,6 +275,7 @@ int main(int argc, char** argv) {
   // at their best; the library's workspace needs none of this.
   mallopt(M_MMAP_THRESHOLD, 1 << 30);
   mallopt(M_TRIM_THRESHOLD, 1 << 30);
+  if (argc == 2 && std::string_view(argv[1]) == "--count-instructions") return countInstructions();
   benchmark::Initialize(&argc, argv);
   if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
   if (tangent::bench::peers().empty()) std::cerr << "kernel bench: " << tangent::bench::peersNote() << "\n";

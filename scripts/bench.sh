@@ -51,7 +51,15 @@ echo "== error against run time"
 "$bin/tangent" bench --max-triangles $max --repeats $runs --out-dir "$out/error" > "$out/error.txt"
 tail -n 3 "$out/error.txt"
 
+# The host's share of this machine's CPU time (steal, /proc/stat) over a step: on a shared
+# virtual machine the two-thread runs slow down most when it is high. Prints a percentage.
+cpu_ticks() { awk '/^cpu /{total=0; for (i = 2; i <= NF; ++i) total += $i; print total, $9}' /proc/stat; }
+steal_since() {  # steal_since "TOTAL STEAL" (from cpu_ticks before the step)
+  python3 -c 'import sys; t0, s0, t1, s1 = map(int, sys.argv[1:]); print(f"{100 * (s1 - s0) / max(1, t1 - t0):.1f}")' $1 $(cpu_ticks)
+}
+
 echo "== kernel (Google Benchmark; the library and the peers in one process)"
+ticks=$(cpu_ticks)
 # Repetitions in random order across all benchmarks: this host's speed drifts over minutes,
 # and consecutive repetitions would put the library and a peer in different phases of it.
 # Every repetition stays in the JSON beside the medians: the report also gives the slope of
@@ -62,16 +70,48 @@ repeated=$([ $kernel_reps -gt 1 ] && echo true || echo false)
   --benchmark_format=json \
   > "$out/kernel.json" 2> "$out/kernel.err" || { cat "$out/kernel.err" >&2; exit 1; }
 cat "$out/kernel.err"
+steal_kernel=$(steal_since "$ticks")
 # The two-thread speed-up on its own: only the library on 1 and 2 threads, 15 repetitions in
 # random order. Among every benchmark's 5 repetitions, one slow phase of the host on a few of
 # them moved a median by 15% (2026-11-29: the same two threads 33.6 ms as "t2" and 28.7 as
 # "all" at 1e6, 1.49x against 1.95x alone afterwards). Not in --quick (one repetition).
 rm -f "$out/scaling.json"
+steal_scaling=""
 if [ $quick = 0 ]; then
+  ticks=$(cpu_ticks)
   "$bin/tangent-kernel-bench" --benchmark_filter='^library/t[12]/sphere-' --benchmark_repetitions=15 \
     --benchmark_enable_random_interleaving=true --benchmark_format=json \
     > "$out/scaling.json" 2> "$out/scaling.err" || { cat "$out/scaling.err" >&2; exit 1; }
+  steal_scaling=$(steal_since "$ticks")
 fi
+export TANGENT_STEAL="$steal_kernel $steal_scaling"
+
+echo "== instructions per triangle (callgrind, one warm call each on the 1e5 sphere)"
+# Counts do not drift with the host: one warm call of the library on one thread and of each
+# peer, each in a callgrind dump of its own (tangent-kernel-bench --count-instructions).
+rm -f "$out"/callgrind.out*
+TANGENT_INSTRUCTIONS=""
+if command -v valgrind >/dev/null; then
+  triangles=$(valgrind --tool=callgrind --instr-atstart=no --callgrind-out-file="$out/callgrind.out" \
+    "$bin/tangent-kernel-bench" --count-instructions 2> "$out/callgrind.err" | awk '/^triangles/{print $2}') ||
+    { cat "$out/callgrind.err" >&2; exit 1; }
+  TANGENT_INSTRUCTIONS=$(python3 - "$out" "$triangles" <<'PY'
+import glob, json, sys
+out, triangles = sys.argv[1], int(sys.argv[2])
+counts = {}
+for path in sorted(glob.glob(f"{out}/callgrind.out.*")):
+    fields = dict(line.rstrip("\n").split(": ", 1) for line in open(path) if line.startswith(("desc: Trigger", "totals")))
+    name = fields.get("desc", "").removeprefix("Trigger: Client Request: ")
+    if name and name != fields.get("desc") and "totals" in fields:
+        counts[name] = int(fields["totals"]) / triangles
+print(json.dumps({"triangles": triangles, "perTriangle": counts}))
+PY
+)
+  echo "$TANGENT_INSTRUCTIONS"
+else
+  echo "NOTE: valgrind not found: instructions per triangle not counted (scripts/install-deps.sh installs it)"
+fi
+export TANGENT_INSTRUCTIONS
 
 measure() {  # measure LABEL COMMAND...: prints "median_seconds max_rss_kb"
   # Wall time from a monotonic clock in ns around the child alone (GNU time's %e has 10 ms
@@ -221,6 +261,19 @@ lines += ["",
            + ", ".join(f"{i} {speedup(i)}" for i in inputs if i.startswith("sphere-"))
            + "." if scaling is not None else
            "- 2-thread speed-up: wall time on 1 thread over wall time on 2, this table's medians.")]
+steal = os.environ.get("TANGENT_STEAL", "").split()
+if steal:
+    lines.append(f"- The host's share of this machine's CPU time while it ran (steal, `/proc/stat`): {steal[0]}% during this table"
+                 + (f", {steal[1]}% during the run of 1 and 2 threads alone" if len(steal) > 1 else "")
+                 + ". Time stolen from one of the two CPUs slows a two-thread call and not a one-thread one.")
+if os.environ.get("TANGENT_INSTRUCTIONS"):
+    counted = json.loads(os.environ["TANGENT_INSTRUCTIONS"])
+    per = counted["perTriangle"]
+    mine = per.get("library/t1")
+    others = ", ".join(f"{name} {value:,.0f}" + (f" ({mine / value:.2f}x)" if mine else "") for name, value in per.items() if name != "library/t1")
+    lines += ["", f"Instructions per triangle, one warm call on the {counted['triangles']:,}-triangle sphere (callgrind, "
+              "`valgrind --tool=callgrind --instr-atstart=no tangent-kernel-bench --count-instructions`; the library on one thread): "
+              f"**library {mine:,.0f}**" + (f"; {others} (library ÷ peer in brackets)" if others else "") + "."]
 # The other methods: one thread against all, wall time, with the CPU time that shows the threads in use.
 lines += ["", f"The other methods on the same arrays (`Options::method`), milliseconds per call: 1 thread (CPU time) and all ({threads}) "
           "threads (wall, CPU time in parentheses); the speed-up is wall time on 1 thread over wall time on all.", "",

@@ -6,7 +6,7 @@ set -euo pipefail
 packages=(
   build-essential cmake ninja-build pkg-config git ccache
   libopenmesh-dev libglm-dev libtinygltf-dev nlohmann-json3-dev libopenimageio-dev
-  libgtest-dev libgmock-dev libbenchmark-dev libtbb-dev linux-perf
+  libgtest-dev libgmock-dev libbenchmark-dev libtbb-dev linux-perf valgrind
   libdraco-dev libmeshoptimizer-dev gltfpack libxml2-utils dpkg-dev file
   assimp-testmodels python3 gnuplot-nox clang bc emscripten chromium
   pybind11-dev python3-dev python3-numpy python3-pytest python3-distributed python3-dask
