@@ -14,28 +14,6 @@
 
 namespace tangent::detail {
 
-std::uint64_t bitsOf(double value) { return bitCast<std::uint64_t>(value == 0.0 ? 0.0 : value); }
-
-bool CornerKey::sameAttributes(const CornerKey& o) const {
-  return std::equal(std::begin(normal), std::end(normal), std::begin(o.normal)) && std::equal(std::begin(uv), std::end(uv), std::begin(o.uv));
-}
-
-bool CornerKey::sameGroup(const CornerKey& o) const {
-  return weld == o.weld && orientation == o.orientation && tag == o.tag && sameAttributes(o);
-}
-
-bool CornerKey::operator<(const CornerKey& o) const {
-  return std::tie(weld, orientation, tag, normal[0], normal[1], normal[2], uv[0], uv[1], corner) <
-         std::tie(o.weld, o.orientation, o.tag, o.normal[0], o.normal[1], o.normal[2], o.uv[0], o.uv[1], o.corner);
-}
-
-Vec3 cornerNormal(const Vec3& stored, const TriangleTangent& triangle, bool& invalid) {
-  const double length = stored.norm();
-  invalid = !(length > 0 && std::isfinite(length));
-  if (!invalid) return stored / length;
-  return triangle.faceNormal.norm() > 0 ? triangle.faceNormal : Vec3(0, 0, 1);
-}
-
 CornerGroups groupCorners(const WorkspaceData& ws, const MeshArrays& mesh, const std::vector<std::uint32_t>& weldOf,
                           const TriangleData& data, Grouping grouping) {
   const std::size_t cornerCount = mesh.indices.size();
