@@ -58,11 +58,12 @@ struct CornerKey {
   }
 };
 
+// One per group: at 3 per triangle for `flat`, so kept small (the key is not copied, the
+// bitangents' sum lives only while the group is summed).
 struct Group {
-  CornerKey key;          // of its first corner (the smallest index)
+  const CornerKey* key = nullptr;  // of its first corner (the smallest index), in CornerGroups::keys
   Vec3 normal{0, 0, 1};   // unit: its first corner's
   Vec3 tangentSum{0, 0, 0};
-  Vec3 bitangentSum{0, 0, 0};
   Vec3 tangent{0, 0, 0};
   double w = 1;           // handedness on the stored UVs (bottom-left convention)
   FrameSource source = FrameSource::computed;
@@ -74,6 +75,7 @@ struct Group {
 // The grouped corners: groups in key order; the corners of group g are
 // sortedCorners[groupStart[g] .. groupStart[g + 1]).
 struct CornerGroups {
+  std::vector<CornerKey> keys;  // every corner's, sorted
   std::vector<Group> groups;
   std::vector<std::uint32_t> groupStart;
   std::vector<std::uint32_t> sortedCorners;

@@ -28,7 +28,9 @@ CornerGroups groupCorners(const WorkspaceData& ws, const MeshArrays& mesh, const
     std::vector<std::uint32_t> next(runStart.begin(), runStart.end() - 1);
     for (std::size_t c = 0; c < cornerCount; ++c) slot[c] = next[weldOf[mesh.indices[c]]]++;
   }
-  std::vector<CornerKey> keys(cornerCount);
+  CornerGroups result;
+  std::vector<CornerKey>& keys = result.keys;
+  keys.resize(cornerCount);
   forRange(ws, cornerCount, 1 << 14, [&](std::size_t begin, std::size_t end) {
     for (std::size_t c = begin; c < end; ++c) {
       const TriangleTangent& triangle = data.triangles[c / 3];
@@ -57,7 +59,6 @@ CornerGroups groupCorners(const WorkspaceData& ws, const MeshArrays& mesh, const
     for (std::size_t i = begin; i < end; ++i) groupOf[i] = startsGroup(i);
   });
   const std::size_t groupCount = exclusiveScan(ws, groupOf.data(), cornerCount);  // groups before i
-  CornerGroups result;
   result.groups.resize(groupCount);
   result.groupStart.resize(groupCount + 1);
   result.sortedCorners.resize(cornerCount);
@@ -69,7 +70,7 @@ CornerGroups groupCorners(const WorkspaceData& ws, const MeshArrays& mesh, const
       const std::uint32_t g = first ? groupOf[i] : groupOf[i] - 1;
       if (first) {
         Group& group = result.groups[g];
-        group.key = key;
+        group.key = &key;
         group.normal = data.cornerNormals[key.corner];
         group.mayInherit = data.triangles[key.corner / 3].kind != TriangleKind::usable;
         result.groupStart[g] = static_cast<std::uint32_t>(i);
@@ -112,13 +113,14 @@ void sumAndOrthonormalize(const WorkspaceData& ws, const TriangleData& data, Cor
         terms.push_back({triangle.tangent * weight, triangle.bitangent * weight});
       }
       if (terms.size() > 1) std::sort(terms.begin(), terms.end());
+      Vec3 bitangentSum(0, 0, 0);
       for (const Contribution& term : terms) {
         group.tangentSum += term.tangent;
-        group.bitangentSum += term.bitangent;
+        bitangentSum += term.bitangent;
       }
       if (!orthonormalize(group.tangentSum.data(), group.normal.data(), group.tangent.data())) continue;
-      const double side = (group.normal % group.tangent) | group.bitangentSum;
-      const double uvSide = group.key.orientation < 0 ? -1.0 : 1.0;
+      const double side = (group.normal % group.tangent) | bitangentSum;
+      const double uvSide = group.key->orientation < 0 ? -1.0 : 1.0;
       group.w = method == Method::meshopt ? uvSide : side > 0 ? 1.0 : side < 0 ? -1.0 : uvSide;
       group.defined = true;
     }
@@ -139,7 +141,7 @@ bool frameFromCandidates(const std::vector<const Group*>& candidates, Group& gro
     if (!best || rank(best) < rank(candidate)) best = candidate;
   }
   if (!best) return false;
-  if (std::equal(std::begin(best->key.normal), std::end(best->key.normal), std::begin(group.key.normal))) {
+  if (std::equal(std::begin(best->key->normal), std::end(best->key->normal), std::begin(group.key->normal))) {
     group.tangent = best->tangent;
   } else if (!orthonormalize(best->tangent.data(), group.normal.data(), group.tangent.data())) {
     return false;
@@ -174,14 +176,14 @@ void fillUndefinedGroups(const MeshArrays& mesh, const std::vector<std::uint32_t
   const std::size_t vertexCount = weldOf.size();
   std::vector<std::uint32_t> definedStart(vertexCount + 1, 0), definedGroups;
   for (std::uint32_t g = 0; g < groups.size(); ++g) {
-    if (groups[g].defined) ++definedStart[groups[g].key.weld + 1];
+    if (groups[g].defined) ++definedStart[groups[g].key->weld + 1];
   }
   for (std::size_t v = 0; v < vertexCount; ++v) definedStart[v + 1] += definedStart[v];
   definedGroups.resize(definedStart[vertexCount]);
   {
     std::vector<std::uint32_t> next(definedStart.begin(), definedStart.end() - 1);
     for (std::uint32_t g = 0; g < groups.size(); ++g) {
-      if (groups[g].defined) definedGroups[next[groups[g].key.weld]++] = g;
+      if (groups[g].defined) definedGroups[next[groups[g].key->weld]++] = g;
     }
   }
   // Where a position's defined groups all have one normal and one UV (a smooth vertex), every
@@ -193,7 +195,7 @@ void fillUndefinedGroups(const MeshArrays& mesh, const std::vector<std::uint32_t
     if (definedEnd[v] - first < 2) continue;
     const Group& head = groups[definedGroups[first]];
     auto alike = [&](std::uint32_t g) {
-      return std::memcmp(groups[g].normal.data(), head.normal.data(), 3 * sizeof(double)) == 0 && groups[g].key.sameAttributes(head.key);
+      return std::memcmp(groups[g].normal.data(), head.normal.data(), 3 * sizeof(double)) == 0 && groups[g].key->sameAttributes(*head.key);
     };
     if (!std::all_of(&definedGroups[first], &definedGroups[0] + definedEnd[v], alike)) continue;
     auto rank = [&](std::uint32_t g) {
@@ -235,7 +237,7 @@ void fillUndefinedGroups(const MeshArrays& mesh, const std::vector<std::uint32_t
       gather();
       return frameFromCandidates(candidates, group);
     }
-    const CornerKey& k = group.key;  // the normal as it is, -0 apart from +0 (the key does not tell them)
+    const CornerKey& k = *group.key;  // the normal as it is, -0 apart from +0 (the key does not tell them)
     const std::array<std::uint64_t, 7> question{kind, k.weld, bitCast<std::uint64_t>(group.normal[0]),
                                                bitCast<std::uint64_t>(group.normal[1]), bitCast<std::uint64_t>(group.normal[2]),
                                                kind == 0 ? k.uv[0] : 0, kind == 0 ? k.uv[1] : 0};
@@ -254,24 +256,24 @@ void fillUndefinedGroups(const MeshArrays& mesh, const std::vector<std::uint32_t
     if (group.defined) continue;
     bool found = false;
     // Same normal and UV first (a degenerate corner of a smooth vertex), then any.
-    const std::uint32_t weld = group.key.weld;
+    const std::uint32_t weld = group.key->weld;
     for (int pass = 0; pass < 2 && !found; ++pass) {
       found = ask(pass, definedEnd[weld] - definedStart[weld], group, [&] {
         definedAt(weld, [&](const Group& other) {
-          if (pass == 1 || other.key.sameAttributes(group.key)) candidates.push_back(&other);
+          if (pass == 1 || other.key->sameAttributes(*group.key)) candidates.push_back(&other);
         });
       });
       if (found) group.source = pass == 0 && group.mayInherit ? FrameSource::inherited : FrameSource::neighbour;
     }
     if (!found) {
       group.source = FrameSource::fixed;  // for now: the 1-ring below may still give one
-      wantsRing[group.key.weld] = 1;
+      wantsRing[group.key->weld] = 1;
     }
   }
   const std::vector<std::vector<std::uint32_t>> ring = neighbourWelds(mesh, weldOf, wantsRing);
   for (Group& group : groups) {
     if (group.defined || group.source != FrameSource::fixed) continue;
-    const std::vector<std::uint32_t>& neighbours = ring[group.key.weld];
+    const std::vector<std::uint32_t>& neighbours = ring[group.key->weld];
     const bool found = ask(2, neighbours.size(), group, [&] {
       for (std::uint32_t neighbour : neighbours) definedAt(neighbour, [&](const Group& other) { candidates.push_back(&other); });
     });
@@ -280,7 +282,7 @@ void fillUndefinedGroups(const MeshArrays& mesh, const std::vector<std::uint32_t
       continue;
     }
     group.tangent = fixedPerpendicular(group.normal);
-    group.w = group.key.orientation < 0 ? -1.0 : 1.0;
+    group.w = group.key->orientation < 0 ? -1.0 : 1.0;
   }
 }
 
