@@ -170,7 +170,13 @@ std::vector<std::vector<std::uint32_t>> neighbourWelds(const MeshArrays& mesh, c
 
 void fillUndefinedGroups(const MeshArrays& mesh, const std::vector<std::uint32_t>& weldOf, CornerGroups& cornerGroups) {
   std::vector<Group>& groups = cornerGroups.groups;
-  if (std::all_of(groups.begin(), groups.end(), [](const Group& g) { return g.defined; })) return;
+  // The groups without a frame, in order (few; `flat` has three groups a triangle, and the
+  // passes below then read only these instead of every group again).
+  std::vector<std::uint32_t> undefined;
+  for (std::uint32_t g = 0; g < groups.size(); ++g) {
+    if (!groups[g].defined) undefined.push_back(g);
+  }
+  if (undefined.empty()) return;
   // The groups of one position are adjacent (the key starts with it): its defined ones, listed
   // once (a position with n groups, none defined, is then not read n times).
   const std::size_t vertexCount = weldOf.size();
@@ -252,8 +258,8 @@ void fillUndefinedGroups(const MeshArrays& mesh, const std::vector<std::uint32_t
     return found;
   };
   std::vector<std::uint8_t> wantsRing(vertexCount, 0);
-  for (Group& group : groups) {
-    if (group.defined) continue;
+  for (const std::uint32_t g : undefined) {
+    Group& group = groups[g];
     bool found = false;
     // Same normal and UV first (a degenerate corner of a smooth vertex), then any.
     const std::uint32_t weld = group.key->weld;
@@ -271,8 +277,9 @@ void fillUndefinedGroups(const MeshArrays& mesh, const std::vector<std::uint32_t
     }
   }
   const std::vector<std::vector<std::uint32_t>> ring = neighbourWelds(mesh, weldOf, wantsRing);
-  for (Group& group : groups) {
-    if (group.defined || group.source != FrameSource::fixed) continue;
+  for (const std::uint32_t g : undefined) {
+    Group& group = groups[g];
+    if (group.source != FrameSource::fixed) continue;
     const std::vector<std::uint32_t>& neighbours = ring[group.key->weld];
     const bool found = ask(2, neighbours.size(), group, [&] {
       for (std::uint32_t neighbour : neighbours) definedAt(neighbour, [&](const Group& other) { candidates.push_back(&other); });
