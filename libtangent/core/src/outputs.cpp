@@ -11,6 +11,7 @@
 #include <limits>
 #include <stdexcept>
 #include <string>
+#include <tuple>
 
 #if defined(__SSE2__)
 #include <emmintrin.h>
@@ -31,18 +32,21 @@ struct Counts {
   }
 };
 
-// Sort key of a corner in the split: input vertex, then tangent bits, then corner.
+// Sort key of a corner in the split: input vertex, then tangent bits, then corner. The bits
+// are kept byte-swapped, so that comparing them as numbers orders them as a byte-wise memcmp
+// of the little-endian floats did (the order the new vertices are numbered in), without a
+// memcmp call per comparison (4% of a `flat` call at 1e6, whose every vertex splits).
 struct SplitEntry {
   std::uint32_t vertex;
   std::uint32_t bits[4];
   std::uint32_t corner;
   bool operator<(const SplitEntry& o) const {
-    if (vertex != o.vertex) return vertex < o.vertex;
-    const int c = std::memcmp(bits, o.bits, sizeof bits);
-    if (c != 0) return c < 0;
-    return corner < o.corner;
+    return std::tie(vertex, bits[0], bits[1], bits[2], bits[3], corner) <
+           std::tie(o.vertex, o.bits[0], o.bits[1], o.bits[2], o.bits[3], o.corner);
   }
-  bool sameTangent(const SplitEntry& o) const { return vertex == o.vertex && std::memcmp(bits, o.bits, sizeof bits) == 0; }
+  bool sameTangent(const SplitEntry& o) const {
+    return vertex == o.vertex && bits[0] == o.bits[0] && bits[1] == o.bits[1] && bits[2] == o.bits[2] && bits[3] == o.bits[3];
+  }
 };
 
 
@@ -147,7 +151,7 @@ struct SplitArrays {
     const std::uint32_t c = corners[i];
     SplitEntry e;
     e.vertex = indices[c];
-    for (int k = 0; k < 4; ++k) e.bits[k] = canonicalBits(tangents[4 * c + k]);  // -0 and +0 alike
+    for (int k = 0; k < 4; ++k) e.bits[k] = __builtin_bswap32(canonicalBits(tangents[4 * c + k]));  // -0 and +0 alike
     e.corner = c;
     entries.push_back(e);
   }
