@@ -74,7 +74,13 @@ struct Group {
 
 // The grouped corners: groups in key order; the corners of group g are
 // sortedCorners[groupStart[g] .. groupStart[g + 1]).
+// Moved, never copied: each Group's key points into `keys`.
 struct CornerGroups {
+  CornerGroups() = default;
+  CornerGroups(CornerGroups&&) = default;
+  CornerGroups& operator=(CornerGroups&&) = default;
+  CornerGroups(const CornerGroups&) = delete;
+  CornerGroups& operator=(const CornerGroups&) = delete;
   std::vector<CornerKey> keys;  // every corner's, sorted
   std::vector<Group> groups;
   std::vector<std::uint32_t> groupStart;
