@@ -6,9 +6,12 @@
 #include <OpenImageIO/imagebuf.h>
 #include <OpenImageIO/imagebufalgo.h>
 #include <OpenImageIO/imageio.h>
+
+#include "tangent/output.hpp"
 #endif
 
 #include <algorithm>
+#include <span>
 #include <cmath>
 #include <cstdio>
 #include <vector>
@@ -155,12 +158,18 @@ Texture loadTexture(const gltf::ImageSource& source, bool srgb, std::vector<std:
 
 #ifndef __EMSCRIPTEN__
 bool writePng(const std::string& path, int width, int height, const std::vector<unsigned char>& rgbaBottomUp, std::string& error) {
-  auto out = OIIO::ImageOutput::create(path);
-  if (!out) {
-    error = path + ": " + OIIO::geterror();
+  // Encoded in memory, then written as every output of this project is (output.hpp): atomically
+  // where `path` is a regular file, in place where it is a device or FIFO, refused otherwise.
+  auto out = OIIO::ImageOutput::create("png");
+  if (!out || !out->supports("ioproxy")) {
+    error = path + ": no PNG encoder that writes to memory: " + OIIO::geterror();
     return false;
   }
+  std::vector<unsigned char> encoded;
+  OIIO::Filesystem::IOVecOutput memory(encoded);
   OIIO::ImageSpec spec(width, height, 4, OIIO::TypeDesc::UINT8);
+  OIIO::Filesystem::IOProxy* proxy = &memory;
+  spec.attribute("oiio:ioproxy", OIIO::TypeDesc::PTR, &proxy);
   if (!out->open(path, spec)) {
     error = path + ": " + out->geterror();
     return false;
@@ -170,6 +179,12 @@ bool writePng(const std::string& path, int width, int height, const std::vector<
   const bool ok = out->write_image(OIIO::TypeDesc::UINT8, rgbaBottomUp.data() + row * (height - 1), 4, -row);
   if (!out->close() || !ok) {
     error = path + ": " + out->geterror();
+    return false;
+  }
+  try {
+    output::writeFileAtomic(path, {std::span<const std::uint8_t>(encoded.data(), encoded.size())});
+  } catch (const std::exception& e) {
+    error = e.what();
     return false;
   }
   return true;

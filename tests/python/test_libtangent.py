@@ -379,3 +379,29 @@ def test_shared_assets_check_warns_on_low_coverage(tmp_path):
     assert not any(" compared only " in w for w in libtangent.check(baked)["primitives"][0]["warnings"])
     with pytest.raises(ValueError):
         libtangent.check(packed, min_coverage=1.5)
+
+
+def test_bake_beside_an_empty_glb_ends_and_implied_work_is_refused_by_name(tmp_path):
+    # An empty .glb beside a .gltf output (what a failed `bake -o - > out.glb` leaves) once made
+    # the search for the .bin's name run forever; run in a thread so a hang fails the test.
+    out = tmp_path / "out"
+    out.mkdir()
+    (out / "empty.glb").write_bytes(b"")
+    result = {}
+    worker = threading.Thread(target=lambda: result.update(report=libtangent.bake(DEMO / "cube.gltf", out / "o.gltf")),
+                              daemon=True)
+    worker.start()
+    worker.join(60)
+    assert not worker.is_alive(), "bake beside an empty .glb did not return"
+    assert result["report"] and (out / "o.gltf").exists()
+    # Indices without a bufferView implying 10^8 triangles: refused naming the accessor.
+    doc = json.loads((DEMO / "cube.gltf").read_text())
+    index = doc["meshes"][0]["primitives"][0]["indices"]
+    doc["accessors"][index].pop("bufferView")
+    doc["accessors"][index].pop("byteOffset", None)
+    doc["accessors"][index]["count"] = 3 * 10**8
+    shutil.copy(DEMO / "cube.bin", tmp_path / "cube.bin")
+    zeros = tmp_path / "zeros.gltf"
+    zeros.write_text(json.dumps(doc))
+    with pytest.raises(libtangent.InputError, match=rf"zeros\.gltf: /accessors/{index}: has no bufferView"):
+        libtangent.bake(zeros, tmp_path / "zeros-out.glb")

@@ -365,6 +365,12 @@ int bakeCommand(const std::vector<std::string>& args) {
     return bakeTrees(inputs, outDir, options, force, verify, quiet, reportPath);
   }
   if (force || verify) return usageError(std::string(force ? "--force" : "--verify") + " goes with --recursive");
+  // A folder with no -o or --out-dir: the folder form was meant, not `bake IN OUT`. (With an
+  // output given, loading refuses the folder as an input, exit 1, as any unreadable input.)
+  for (const fs::path& input : inputs) {
+    if (output.empty() && outDir.empty() && fs::is_directory(input))
+      return usageError(shown(input.string()) + " is a folder: bake a folder with --recursive --out-dir DIR");
+  }
   // glTF-Transform's form: `tangent bake in.glb out.glb`, the same as -o.
   if (inputs.size() == 2 && output.empty() && outDir.empty()) {
     const std::string ext = inputs[1].extension().string();
@@ -374,7 +380,16 @@ int bakeCommand(const std::vector<std::string>& args) {
     output = inputs[1];
     inputs.pop_back();
   }
-  if (output.empty() == outDir.empty()) return usageError("give exactly one of -o FILE and --out-dir DIR");
+  if (!output.empty() && !outDir.empty()) return usageError("give -o FILE or --out-dir DIR, not both");
+  if (output.empty() && outDir.empty()) {
+    // After "--" every argument is an input, "-o" too: say so where one looks like an option.
+    for (const fs::path& input : inputs) {
+      const std::string name = input.string();
+      if (operandsOnly && (name == "-o" || name == "--output" || name == "--out-dir"))
+        return usageError("no output: '" + name + "' comes after '--', where every argument is an input; put -o FILE or --out-dir DIR before '--'");
+    }
+    return usageError("no output: give -o FILE or --out-dir DIR (or two files: IN OUT)");
+  }
   if (!output.empty() && inputs.size() > 1) return usageError("-o takes one input; use --out-dir for several");
   const bool toStdout = output == "-";
   if (toStdout && ::isatty(STDOUT_FILENO))

@@ -330,7 +330,7 @@ int peersTable(const std::vector<fs::path>& assets, std::size_t triangles, int r
 
 void writePlot(const fs::path& dir, const std::vector<std::string>& surfaces) {
   // One panel per surface: mean error against total time, a series per method (1 thread).
-  std::ofstream script(dir / "plot.gp");
+  std::ostringstream script;
   std::vector<std::string> methods;
   for (const Setting& setting : settings())
     if (std::find(methods.begin(), methods.end(), setting.label) == methods.end()) methods.push_back(setting.label);
@@ -352,7 +352,12 @@ void writePlot(const fs::path& dir, const std::vector<std::string>& surfaces) {
     }
     script << "unset multiplot\n";
   }
-  script.close();
+  try {
+    output::writeFileAtomic(dir / "plot.gp", script.str());
+  } catch (const std::exception& e) {
+    std::cerr << "warning: " << shown(e.what()) << "; no plot\n";
+    return;
+  }
   const std::string command = "gnuplot '" + (dir / "plot.gp").string() + "' 2>&1";
   if (std::system(command.c_str()) != 0) std::cerr << "warning: gnuplot failed; plot.gp is in " << dir << "\n";
 }

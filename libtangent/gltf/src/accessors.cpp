@@ -225,10 +225,10 @@ AccessorLayout locate(const tinygltf::Model& model, int accessorIndex, const std
 
 }  // namespace
 
-std::uint64_t unstoredBytes(const tinygltf::Model& model, int accessorIndex) {
+std::uint64_t impliedValues(const tinygltf::Model& model, int accessorIndex) {
   const tinygltf::Accessor& accessor = model.accessors[accessorIndex];
   if (accessor.bufferView >= 0) return 0;
-  return static_cast<std::uint64_t>(accessor.count) * static_cast<std::uint64_t>(componentCount(accessor.type)) * 4;
+  return static_cast<std::uint64_t>(accessor.count) * static_cast<std::uint64_t>(componentCount(accessor.type));
 }
 
 AccessorData readAccessor(const tinygltf::Model& model, int accessorIndex, const std::string& where) {

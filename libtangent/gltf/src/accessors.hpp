@@ -30,16 +30,21 @@ std::size_t componentBytes(int componentType);  // 0 when unknown
 const char* typeName(int type);
 const char* componentTypeName(int componentType);
 
-// Memory for data a file declares but does not store: an accessor without a bufferView is
-// count zeros, which a 4 KB file can declare by the gigabyte. Decoded (as floats or 32-bit
-// indices), the accessors of a file's meshes without a bufferView may take this much in all;
-// loading refuses more, naming the accessor. Everything else bake, check and info allocate is
-// bounded by the bytes the file stores (each range is checked against them), times a constant.
-inline constexpr std::uint64_t kMaxUnstoredBytes = std::uint64_t(2) << 30;
+// Work for data a file declares but does not store: an accessor without a bufferView is
+// count zeros, which a 4 KB file can declare by the billion, and each of them is a value
+// decoded, a vertex welded or an index of a triangle baked. The values the accessors of a
+// file's meshes imply without storing them (count times components, each accessor once) may
+// number kImpliedValuesFree plus kImpliedValuesPerStoredByte for each byte the file's buffers
+// hold (a morph target's sparse accessor is as long as the stored POSITION it moves), and never
+// more than kMaxImpliedValues (2 GiB decoded); loading refuses more, naming the accessor.
+// Everything else bake, check and info allocate is bounded by the bytes the file stores.
+inline constexpr std::uint64_t kImpliedValuesFree = std::uint64_t(1) << 20;
+inline constexpr std::uint64_t kImpliedValuesPerStoredByte = 4;
+inline constexpr std::uint64_t kMaxImpliedValues = std::uint64_t(1) << 29;
 
-// What decoding accessor `accessorIndex` takes beyond the bytes the file stores for it: its
-// decoded size (4 bytes per component) when it has no bufferView, else 0. The index must exist.
-std::uint64_t unstoredBytes(const tinygltf::Model& model, int accessorIndex);
+// The values accessor `accessorIndex` implies beyond those the file stores for it: count
+// times components when it has no bufferView, else 0. The index must exist.
+std::uint64_t impliedValues(const tinygltf::Model& model, int accessorIndex);
 
 // `where` prefixes every error message ("file.glb: mesh 0 primitive 0: NORMAL").
 AccessorData readAccessor(const tinygltf::Model& model, int accessorIndex, const std::string& where);

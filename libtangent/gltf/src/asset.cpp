@@ -58,6 +58,13 @@ std::vector<std::uint8_t> readFileBytes(const std::filesystem::path& path) {
   const std::uintmax_t size = std::filesystem::file_size(path, ec);
   if (ec || size >= kMaxInputBytes)
     throw InputError(path.string() + ": is " + std::to_string(size) + " bytes; inputs are limited to 4 GiB");
+  // A GLB's header is checked before the file is read: a chunk it cannot hold is refused
+  // without reading gigabytes first.
+  if (std::ifstream head(path, std::ios::binary); head) {
+    std::uint8_t header[20] = {};
+    head.read(reinterpret_cast<char*>(header), sizeof header);
+    if (head.gcount() == sizeof header && readU32(header) == kGlbMagic) checkGlbHeader(header, size, path.string());
+  }
   std::vector<std::uint8_t> bytes;
   if (!readFileInto(path, bytes)) throw InputError(path.string() + ": cannot be opened for reading");
   return bytes;
@@ -241,17 +248,26 @@ bool isMeshFile(const std::filesystem::path& path) {
   return ext == ".obj" || ext == ".ply" || ext == ".off";
 }
 
+std::uint64_t checkGlbHeader(std::span<const std::uint8_t> header, std::uint64_t fileBytes, const std::string& label) {
+  if (readU32(header.data()) != kGlbMagic) throw InputError(label + ": not a GLB file (bad magic)");
+  if (readU32(header.data() + 4) != 2) throw InputError(label + ": GLB version " + std::to_string(readU32(header.data() + 4)) + " is not 2");
+  const std::uint64_t length = readU32(header.data() + 8);
+  if (length > fileBytes || length < 20)
+    throw InputError(label + ": GLB header says " + std::to_string(length) + " bytes, file has " + std::to_string(fileBytes));
+  const std::uint64_t jsonLength = readU32(header.data() + 12);
+  if (readU32(header.data() + 16) != kChunkJson || jsonLength > length - 20)
+    throw InputError(label + ": GLB first chunk is not a valid JSON chunk");
+  if (jsonLength > kMaxJsonBytes)
+    throw InputError(label + ": GLB JSON chunk is " + std::to_string(jsonLength) + " bytes; JSON is limited to " +
+                     std::to_string(kMaxJsonBytes));
+  return jsonLength;
+}
+
 void splitGlb(std::span<const std::uint8_t> bytes, const std::string& label, std::string& json,
               std::span<const std::uint8_t>& bin) {
   if (bytes.size() < 20) throw InputError(label + ": GLB is truncated (" + std::to_string(bytes.size()) + " bytes)");
-  if (readU32(bytes.data()) != kGlbMagic) throw InputError(label + ": not a GLB file (bad magic)");
-  if (readU32(bytes.data() + 4) != 2) throw InputError(label + ": GLB version " + std::to_string(readU32(bytes.data() + 4)) + " is not 2");
+  const std::uint64_t jsonLength = checkGlbHeader(bytes.first(20), bytes.size(), label);
   const std::uint64_t length = readU32(bytes.data() + 8);
-  if (length > bytes.size() || length < 20)
-    throw InputError(label + ": GLB header says " + std::to_string(length) + " bytes, file has " + std::to_string(bytes.size()));
-  const std::uint64_t jsonLength = readU32(bytes.data() + 12);
-  if (readU32(bytes.data() + 16) != kChunkJson || jsonLength > length - 20)
-    throw InputError(label + ": GLB first chunk is not a valid JSON chunk");
   json.assign(reinterpret_cast<const char*>(bytes.data() + 20), jsonLength);
   bin = {};
   const std::size_t next = 20 + static_cast<std::size_t>(jsonLength);

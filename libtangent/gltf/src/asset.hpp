@@ -37,6 +37,10 @@ Asset loadAssetBytes(std::vector<std::uint8_t> bytes, const std::filesystem::pat
 // OBJ/PLY/OFF read through OpenMesh, returned as an in-memory GLB (mesh_file.cpp).
 std::vector<std::uint8_t> meshFileToGlb(const std::filesystem::path& path);
 
+// The checks of a GLB's 20-byte header against the file's size (magic, version, total
+// length, the JSON chunk inside the file and within kMaxJsonBytes); returns the JSON chunk's
+// length. Throws InputError naming `label`.
+std::uint64_t checkGlbHeader(std::span<const std::uint8_t> header, std::uint64_t fileBytes, const std::string& label);
 // Parses a GLB container; returns the JSON chunk text and the BIN chunk (may be empty).
 void splitGlb(std::span<const std::uint8_t> bytes, const std::string& label, std::string& json,
               std::span<const std::uint8_t>& bin);

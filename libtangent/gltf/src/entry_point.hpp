@@ -8,6 +8,7 @@
 #pragma once
 
 #include <filesystem>
+#include <new>
 #include <stdexcept>
 #include <string>
 #include <utility>
@@ -30,6 +31,10 @@ auto throwingInputError(const std::filesystem::path& input, Work&& work) -> decl
   } catch (const std::logic_error& e) {
     // A conversion (stoi and the like) or a size the input drove out of range.
     throw InputError(input.string(), "", std::string("malformed input: ") + e.what());
+  } catch (const std::bad_alloc&) {
+    // Loading bounds what a file can make us allocate (kImpliedValuesFree and the byte
+    // checks); what is left is a file too big for this machine's memory, named as such.
+    throw InputError(input.string(), "", "out of memory: the file needs more memory than this process could get");
   }
 }
 

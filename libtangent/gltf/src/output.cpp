@@ -8,7 +8,9 @@
 
 #include <atomic>
 #include <cerrno>
+#include <cstdio>
 #include <cstring>
+#include <iostream>
 #include <mutex>
 #include <set>
 #include <stdexcept>
@@ -182,9 +184,118 @@ fs::path temporaryBeside(const fs::path& path) {
 
 }  // namespace
 
+namespace {
+
+// "/proc/PID/fd/N" (PID this process, as /proc/self and /dev/fd resolve) -> N, else -1.
+int ownDescriptorNamed(const fs::path& path) {
+  const std::string prefix = "/proc/" + std::to_string(::getpid()) + "/fd/";
+  const std::string text = path.string();
+  if (text.rfind(prefix, 0) != 0 || text.size() == prefix.size() || text.size() > prefix.size() + 9) return -1;
+  int descriptor = 0;
+  for (std::size_t i = prefix.size(); i < text.size(); ++i) {
+    if (text[i] < '0' || text[i] > '9') return -1;
+    descriptor = descriptor * 10 + (text[i] - '0');
+  }
+  return descriptor;
+}
+
+// `path` with its folder's links resolved (the name itself as it is), where that folder exists.
+fs::path withRealFolder(const fs::path& path) {
+  std::error_code ec;
+  const fs::path absolute = fs::absolute(path, ec);
+  if (ec) return path;
+  const fs::path folder = fs::canonical(absolute.parent_path(), ec);
+  return ec ? absolute.lexically_normal() : folder / absolute.filename();
+}
+
+// Writes every piece to `fd`, which stays open; throws naming `path`.
+void writeAll(int fd, const fs::path& path, const std::vector<std::span<const std::uint8_t>>& pieces) {
+  for (const auto& piece : pieces) {
+    const std::uint8_t* at = piece.data();
+    std::size_t left = piece.size();
+    while (left > 0) {
+      const ssize_t written = ::write(fd, at, std::min<std::size_t>(left, std::size_t(1) << 30));
+      if (written < 0 && errno == EINTR) continue;
+      if (written <= 0) throw std::runtime_error(path.string() + ": write failed: " + reason(written < 0 ? errno : ENOSPC));
+      at += written;
+      left -= static_cast<std::size_t>(written);
+    }
+  }
+}
+
+void writeInPlace(const WriteTarget& target, const fs::path& path, const std::vector<std::span<const std::uint8_t>>& pieces) {
+  if (target.kind == WriteTarget::Kind::descriptor) {
+    // What this process printed through its streams goes first, in order.
+    std::cout.flush();
+    std::cerr.flush();
+    std::fflush(nullptr);
+    if (::fcntl(target.descriptor, F_GETFD) < 0)
+      throw std::runtime_error(path.string() + ": descriptor " + std::to_string(target.descriptor) + " is not open");
+    writeAll(target.descriptor, path, pieces);
+    return;
+  }
+  // Non-blocking for the open only: a FIFO nobody reads refuses at once instead of waiting.
+  struct stat status {};
+  const bool regular = ::stat(target.file.c_str(), &status) == 0 && S_ISREG(status.st_mode);
+  const int fd = ::open(target.file.c_str(), O_WRONLY | O_NOCTTY | O_CLOEXEC | O_NONBLOCK | (regular ? O_TRUNC : 0));
+  if (fd < 0) {
+    const int error = errno;
+    if (error == ENXIO && S_ISFIFO(status.st_mode))
+      throw std::runtime_error(path.string() + ": a FIFO that nobody reads; not written (start its reader first)");
+    throw std::runtime_error(path.string() + ": cannot be opened for writing: " + reason(error));
+  }
+  const int flags = ::fcntl(fd, F_GETFL);
+  if (flags >= 0) ::fcntl(fd, F_SETFL, flags & ~O_NONBLOCK);
+  try {
+    writeAll(fd, path, pieces);
+  } catch (...) {
+    ::close(fd);
+    throw;
+  }
+  if (::close(fd) != 0 && errno != EINTR) throw std::runtime_error(path.string() + ": write failed: " + reason(errno));
+}
+
+}  // namespace
+
+WriteTarget writeTargetOf(const fs::path& path) {
+  fs::path at = path;
+  for (int links = 0;; ++links) {
+    if (links > 40) throw std::runtime_error(path.string() + ": more than 40 symbolic links to follow (a loop?); not written");
+    const fs::path real = withRealFolder(at);
+    if (const int descriptor = ownDescriptorNamed(real); descriptor >= 0)
+      return {WriteTarget::Kind::descriptor, real, descriptor};
+    // Names under /proc are the kernel's: written in place, whatever they lead to.
+    if (real.string().rfind("/proc/", 0) == 0) return {WriteTarget::Kind::inPlace, real, -1};
+    struct stat status {};
+    if (::lstat(at.c_str(), &status) != 0) {
+      if (errno == ENOENT) return {WriteTarget::Kind::replace, at, -1};  // not there yet: created
+      throw std::runtime_error(path.string() + ": cannot be examined: " + reason(errno));
+    }
+    if (S_ISLNK(status.st_mode)) {
+      std::error_code ec;
+      const fs::path next = fs::read_symlink(at, ec);
+      if (ec) throw std::runtime_error(path.string() + ": cannot read the link: " + ec.message());
+      at = next.is_absolute() ? next : at.parent_path() / next;
+      continue;
+    }
+    if (S_ISREG(status.st_mode)) return {WriteTarget::Kind::replace, at, -1};
+    if (S_ISDIR(status.st_mode)) throw std::runtime_error(path.string() + ": is a folder; not written");
+    if (S_ISBLK(status.st_mode)) throw std::runtime_error(path.string() + ": is a block device; not written (give a file name)");
+    if (S_ISSOCK(status.st_mode)) throw std::runtime_error(path.string() + ": is a socket; a socket cannot be written as a file");
+    return {WriteTarget::Kind::inPlace, at, -1};  // character device, FIFO
+  }
+}
+
 StagedFile::StagedFile(const fs::path& path, const std::vector<std::span<const std::uint8_t>>& pieces) : path_(path) {
-  removeStaleTemporaries(path.parent_path().empty() ? fs::path(".") : path.parent_path());
-  const fs::path temp = temporaryBeside(path);
+  const WriteTarget target = writeTargetOf(path);
+  if (target.kind != WriteTarget::Kind::replace) {
+    writeInPlace(target, path, pieces);
+    committed_ = true;
+    return;
+  }
+  target_ = target.file;
+  removeStaleTemporaries(target_.parent_path().empty() ? fs::path(".") : target_.parent_path());
+  const fs::path temp = temporaryBeside(target_);
   auto guard = std::make_unique<TemporaryGuard>(temp);
   const int fd = ::open(temp.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0666);
   if (fd < 0) throw std::runtime_error(path.string() + ": cannot create a temporary file beside it: " + reason(errno));
@@ -230,14 +341,14 @@ StagedFile::StagedFile(const fs::path& path, const std::vector<std::span<const s
 }
 
 StagedFile::~StagedFile() {
-  if (!committed_) ::unlink(temporary_.c_str());
+  if (!committed_ && !temporary_.empty()) ::unlink(temporary_.c_str());
   if (!previous_.empty()) ::unlink(previous_.c_str());
 }
 
 void StagedFile::commit() {
   if (committed_) return;
   committed_ = true;
-  if (::rename(temporary_.c_str(), path_.c_str()) != 0) {
+  if (::rename(temporary_.c_str(), target_.c_str()) != 0) {
     const int error = errno;
     ::unlink(temporary_.c_str());
     throw std::runtime_error(path_.string() + ": cannot rename the temporary file into place: " + reason(error));
@@ -252,10 +363,10 @@ void StagedFile::commitKeepingPrevious() {
   struct stat status {};
   fs::path previous;
   bool movedAside = false;
-  if (::lstat(path_.c_str(), &status) == 0 && !S_ISDIR(status.st_mode)) {
-    previous = temporaryBeside(path_);
-    if (::link(path_.c_str(), previous.c_str()) != 0) {
-      if (::rename(path_.c_str(), previous.c_str()) != 0) {
+  if (::lstat(target_.c_str(), &status) == 0 && !S_ISDIR(status.st_mode)) {
+    previous = temporaryBeside(target_);
+    if (::link(target_.c_str(), previous.c_str()) != 0) {
+      if (::rename(target_.c_str(), previous.c_str()) != 0) {
         const int error = errno;
         committed_ = true;
         ::unlink(temporary_.c_str());
@@ -265,10 +376,10 @@ void StagedFile::commitKeepingPrevious() {
     }
   }
   committed_ = true;
-  if (::rename(temporary_.c_str(), path_.c_str()) != 0) {
+  if (::rename(temporary_.c_str(), target_.c_str()) != 0) {
     const int error = errno;
     ::unlink(temporary_.c_str());
-    if (movedAside) ::rename(previous.c_str(), path_.c_str());
+    if (movedAside) ::rename(previous.c_str(), target_.c_str());
     else if (!previous.empty()) ::unlink(previous.c_str());
     throw std::runtime_error(path_.string() + ": cannot rename the temporary file into place: " + reason(error));
   }
@@ -277,13 +388,13 @@ void StagedFile::commitKeepingPrevious() {
 }
 
 std::string StagedFile::undo() {
-  if (!committed_) return "";
+  if (!committed_ || target_.empty()) return "";  // nothing renamed (or written in place: not undone)
   if (previous_.empty()) {
-    if (::unlink(path_.c_str()) != 0 && errno != ENOENT)
+    if (::unlink(target_.c_str()) != 0 && errno != ENOENT)
       return path_.string() + " could not be removed again: " + reason(errno);
     return "";
   }
-  if (::rename(previous_.c_str(), path_.c_str()) != 0) {
+  if (::rename(previous_.c_str(), target_.c_str()) != 0) {
     const std::string problem =
         path_.string() + " could not be put back (" + reason(errno) + "); its earlier bytes are in " + previous_.string();
     previous_.clear();  // left for the user

@@ -318,19 +318,27 @@ void verifyMeshData(const Asset& asset) {
   // primitives share it (CAD scenes: 1e5 primitives on a few accessors).
   std::unordered_map<int, std::size_t> countOf;
   std::set<std::pair<int, std::size_t>> indicesChecked;
-  std::uint64_t unstored = 0;  // decoded bytes of the accessors seen that the file does not store
+  // Values the file implies without storing them, every accessor once (meshes, skins and
+  // animations alike): within the budget of kImpliedValuesFree.
+  std::uint64_t storedBytes = 0;
+  for (const tinygltf::Buffer& buffer : asset.model.buffers) storedBytes += buffer.data.size();
+  const std::uint64_t impliedBudget =
+      std::min(kMaxImpliedValues, kImpliedValuesFree + kImpliedValuesPerStoredByte * storedBytes);
+  std::uint64_t implied = 0;
+  for (std::size_t a = 0; a < asset.model.accessors.size(); ++a) {
+    const std::uint64_t values = impliedValues(asset.model, static_cast<int>(a));
+    implied += values;
+    if (values > 0 && implied > impliedBudget)
+      throw InputError(file + ": /accessors/" + std::to_string(a) + ": has no bufferView: its " +
+                       std::to_string(asset.model.accessors[a].count) + " elements are zeros the file does not store, " +
+                       std::to_string(values) + " values to compute (" + std::to_string(implied) +
+                       " with the accessors before it); a file whose buffers hold " + std::to_string(storedBytes) +
+                       " bytes may imply at most " + std::to_string(impliedBudget));
+  }
   auto checkAccessor = [&](const tinygltf::Model& model, int accessor, const std::string& where) {
     auto known = countOf.find(accessor);
     if (known != countOf.end()) return known->second;
     const std::size_t count = detail::checkAccessor(model, accessor, where);
-    if (const std::uint64_t bytes = unstoredBytes(model, accessor); bytes > 0) {
-      unstored += bytes;
-      if (unstored > kMaxUnstoredBytes)
-        throw InputError(file + ": /accessors/" + std::to_string(accessor) + ": has no bufferView: its " + std::to_string(count) +
-                         " elements are zeros the file does not store, " + std::to_string(bytes) + " bytes decoded (" +
-                         std::to_string(unstored) + " with the accessors before it); the limit is " +
-                         std::to_string(kMaxUnstoredBytes) + " bytes of such data per file");
-    }
     return countOf.emplace(accessor, count).first->second;
   };
   const std::size_t meshCount = doc.contains("meshes") ? doc["meshes"].size() : 0;

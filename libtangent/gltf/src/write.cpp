@@ -115,32 +115,45 @@ std::vector<std::filesystem::path> binsOfPreviousOutput(const std::filesystem::p
 std::string gltfJsonText(const std::filesystem::path& path);
 std::vector<std::filesystem::path> filesNamedBy(const Json& doc, const std::filesystem::path& dir);
 
-// The files that the .gltf and .glb files beside `output`, other than it, name (buffer and
-// image uris, decoded, as `output`'s folder / name): a file of the user's that shares the
-// previous output's .bin keeps it. nullopt where the folder or such a file cannot be read or
-// parsed: then every file counts as named.
-std::optional<std::set<std::filesystem::path>> filesNamedBeside(const std::filesystem::path& output) {
+// What the .gltf and .glb files beside `output`, other than it, name (buffer and image uris,
+// decoded, as `output`'s folder / name): a file of the user's that shares the previous
+// output's .bin keeps it. A neighbour that cannot be read or parsed names what it names
+// unknown: then every file that exists counts as named (kept, and no new file goes there),
+// never every name there could be.
+struct NamedBeside {
+  std::set<std::filesystem::path> files;
+  bool unknown = false;  // some neighbour (or the folder) could not be read
+  bool names(const std::filesystem::path& path) const {
+    std::error_code ec;
+    return files.count(path.lexically_normal()) > 0 || (unknown && std::filesystem::exists(std::filesystem::symlink_status(path, ec)));
+  }
+};
+
+NamedBeside filesNamedBeside(const std::filesystem::path& output) {
   namespace fs = std::filesystem;
   const fs::path folder = output.parent_path().empty() ? fs::path(".") : output.parent_path();
-  std::set<fs::path> named;
+  NamedBeside named;
   std::error_code ec;
   for (fs::directory_iterator it(folder, ec), end; it != end; it.increment(ec)) {
-    if (ec) return std::nullopt;
+    if (ec) break;
     const fs::path& path = it->path();
     const std::string extension = lowerExtension(path);
     if ((extension != ".gltf" && extension != ".glb") || path.filename() == output.filename()) continue;
     std::error_code fileError;
     if (!it->is_regular_file(fileError)) continue;
     const std::string text = gltfJsonText(path);
-    if (text.empty()) return std::nullopt;
+    if (text.empty()) {
+      named.unknown = true;
+      continue;
+    }
     try {
       checkJsonDepth(text, path.string());
-      for (const fs::path& file : filesNamedBy(Json::parse(text), folder)) named.insert(file);
+      for (const fs::path& file : filesNamedBy(Json::parse(text), folder)) named.files.insert(file.lexically_normal());
     } catch (const std::exception&) {
-      return std::nullopt;
+      named.unknown = true;
     }
   }
-  if (ec) return std::nullopt;
+  if (ec) named.unknown = true;
   return named;
 }
 
@@ -155,13 +168,25 @@ bool holdsBytes(const std::filesystem::path& path, const std::vector<std::uint8_
   return readFileInto(path, present) && present == bytes;
 }
 
-// STEM.bin, or STEM.1.bin, STEM.2.bin... : the first that the previous .gltf does not use and
-// that is not `taken` (a file of this run's, or one another .gltf beside the output uses).
+// STEM.bin, or STEM.1.bin, STEM.2.bin... : the first that the previous .gltf does not use,
+// that is not `taken` (a file of this run's, or one another .gltf beside the output uses) and
+// that names nothing there yet (a file no glTF names may still be the user's: never replaced).
+// Bounded: a folder where the first kMaxBinNames are all taken is refused, saying so.
+constexpr int kMaxBinNames = 10000;
 std::filesystem::path freeBinName(const std::filesystem::path& output, const std::vector<std::filesystem::path>& previousBins,
                                   const std::function<bool(const std::filesystem::path&)>& taken) {
   std::filesystem::path candidate = output;
   candidate.replace_extension(".bin");
-  for (int n = 1; std::find(previousBins.begin(), previousBins.end(), candidate) != previousBins.end() || taken(candidate); ++n) {
+  auto occupied = [&](const std::filesystem::path& path) {
+    std::error_code ec;
+    return std::find(previousBins.begin(), previousBins.end(), path) != previousBins.end() || taken(path) ||
+           std::filesystem::exists(std::filesystem::symlink_status(path, ec));
+  };
+  for (int n = 1; occupied(candidate); ++n) {
+    if (n >= kMaxBinNames)
+      throw std::runtime_error(output.string() + ": no free name for its .bin: " + output.stem().string() + ".bin and " +
+                               output.stem().string() + ".1.bin to ." + std::to_string(kMaxBinNames - 1) +
+                               ".bin are all in use beside it (or named by a .gltf there)");
     candidate = output;
     candidate.replace_extension("." + std::to_string(n) + ".bin");
   }
@@ -494,8 +519,11 @@ void OutputDocument::placeImages(const std::filesystem::path& outputDir, const s
   }
 }
 
-std::uint64_t OutputDocument::write(const std::filesystem::path& output, const ProtectedFiles* runFiles) {
+std::uint64_t OutputDocument::write(const std::filesystem::path& requested, const ProtectedFiles* runFiles) {
   namespace fs = std::filesystem;
+  // A link to a file is written at its target, and the .bin and image copies go beside that.
+  const output::WriteTarget target = output::writeTargetOf(requested);
+  const fs::path output = target.kind == output::WriteTarget::Kind::replace ? target.file : requested;
   runFiles_ = runFiles;
   outputPath_ = output;
   filesWritten_.clear();
@@ -531,10 +559,10 @@ std::uint64_t OutputDocument::write(const std::filesystem::path& output, const P
   // The .bin's name first: no image copy may go there.
   const std::vector<fs::path> previousBins = bin.empty() ? std::vector<fs::path>{} : binsOfPreviousOutput(output);
   // Read once, before anything is written: what the other glTF files beside the output name.
-  const auto namedBeside = bin.empty() ? std::optional<std::set<fs::path>>(std::set<fs::path>{}) : filesNamedBeside(output);
+  const NamedBeside namedBeside = bin.empty() ? NamedBeside{} : filesNamedBeside(output);
   auto usedBeside = [&](const fs::path& path) {
     const fs::path folder = output.parent_path().empty() ? fs::path(".") : output.parent_path();
-    return !namedBeside || namedBeside->count((folder / path.filename()).lexically_normal()) > 0;
+    return namedBeside.names(folder / path.filename());
   };
   const fs::path binPath =
       bin.empty() ? fs::path()
@@ -625,12 +653,17 @@ std::string gltfJsonText(const std::filesystem::path& path) {
     return value;
   };
   if (in.gcount() == sizeof header && std::memcmp(header, "glTF", 4) == 0) {
-    if (std::memcmp(header + 16, "JSON", 4) != 0 || u32(12) > (std::uint32_t(1) << 30)) return {};
+    std::error_code ec;
+    const std::uintmax_t size = std::filesystem::file_size(path, ec);
+    if (ec || std::memcmp(header + 16, "JSON", 4) != 0 || u32(12) > kMaxJsonBytes || u32(12) > size - sizeof header) return {};
     std::string text(u32(12), '\0');
     in.read(text.data(), static_cast<std::streamsize>(text.size()));
     if (in.gcount() != static_cast<std::streamsize>(text.size())) return {};
     return text;
   }
+  std::error_code ec;
+  const std::uintmax_t size = std::filesystem::file_size(path, ec);
+  if (ec || size > kMaxJsonBytes) return {};  // no glTF we could read: what it names is unknown
   std::vector<std::uint8_t> bytes;
   if (!readFileInto(path, bytes)) return {};
   return std::string(bytes.begin(), bytes.end());

@@ -4,6 +4,12 @@
 // ".NAME.tmp-PID-N", are written, synced and closed with every step checked, and only then
 // renamed over the destination. A failure at any step removes the temporary and names the
 // file and the reason ("No space left on device"); the previous file stays as it was.
+//
+// Only regular files are replaced (writeTargetOf is the rule): a name not yet there or a
+// regular file is written as above; a symbolic link is followed and its target written so
+// (beside the target; the link stays); a character device, a FIFO with a reader, or a name
+// for a descriptor (/dev/stdout, /proc/self/fd/N) is opened and written in place, never
+// renamed over; a block device, a socket, a FIFO without a reader or a folder is refused.
 #pragma once
 
 #include <cstdint>
@@ -20,6 +26,22 @@ namespace tangent::output {
 // std::runtime_error naming `path` and the reason.
 void writeFileAtomic(const std::filesystem::path& path, const std::vector<std::span<const std::uint8_t>>& pieces);
 void writeFileAtomic(const std::filesystem::path& path, std::string_view text);
+
+// Where the bytes for `path` go.
+struct WriteTarget {
+  enum class Kind {
+    replace,     // `file` (a regular file, or a name not yet there) is replaced atomically
+    inPlace,     // `file` (a device, FIFO, or a descriptor of another process) is opened and written
+    descriptor,  // `path` names this process's open descriptor `descriptor`: written to it
+  };
+  Kind kind = Kind::replace;
+  std::filesystem::path file;
+  int descriptor = -1;
+};
+// The rule above, for `path`: links followed (at most 40), every name under /proc written in
+// place. Throws std::runtime_error naming `path` for what is refused (block device, socket,
+// folder, a loop of links).
+WriteTarget writeTargetOf(const std::filesystem::path& path);
 
 // Temporaries of processes that no longer run (killed, or the machine went down) in
 // `folder`: removed, once per folder and process. Called for every folder a writer writes to.
@@ -43,6 +65,8 @@ class TemporaryGuard {
 // may replace what is there only once another file is written (the image copies of a bake,
 // after its output). Destroyed before commit() (the other write failed), the temporary is
 // removed and `path` was never touched. The constructor throws as writeFileAtomic does.
+// Where `path` is not replaced but written in place (writeTargetOf), the constructor writes
+// it and commit() has nothing left to do: bytes sent to a device cannot be taken back.
 class StagedFile {
  public:
   StagedFile(const std::filesystem::path& path, const std::vector<std::span<const std::uint8_t>>& pieces);
@@ -63,7 +87,8 @@ class StagedFile {
   std::string undo();
   void dropPrevious();
 
-  std::filesystem::path path_, temporary_, previous_;
+  // path_: as the caller named it (messages); target_: the regular file renamed over.
+  std::filesystem::path path_, target_, temporary_, previous_;
   std::unique_ptr<TemporaryGuard> guard_;
   bool committed_ = false;
 };
