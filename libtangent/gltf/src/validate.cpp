@@ -303,8 +303,20 @@ class Validator {
     integer(*info, "texCoord", p, 0, 1 << 20, false);
     if (const Json* extensions = objectMember(*info, "extensions", p)) {
       if (const Json* transform = objectMember(*extensions, "KHR_texture_transform", join(p, "extensions")))
-        integer(*transform, "texCoord", join(p, "extensions/KHR_texture_transform"), 0, 1 << 20, false);
+        textureTransform(*transform, join(p, "extensions/KHR_texture_transform"));
     }
+  }
+
+  // KHR_texture_transform: offset and scale [u, v], rotation in radians, texCoord a UV set.
+  void textureTransform(const Json& transform, const std::string& pointer) {
+    for (const char* key : {"offset", "scale"}) {
+      auto it = transform.find(key);
+      if (it == transform.end()) continue;
+      if (!it->is_array() || it->size() != 2 || !(*it)[0].is_number() || !(*it)[1].is_number())
+        fail(join(pointer, key), "must be an array of 2 numbers");
+    }
+    member(transform, "rotation", pointer, &Json::is_number, "a number");
+    integer(transform, "texCoord", pointer, 0, 1 << 20, false);
   }
 
   void materials() {
@@ -315,6 +327,13 @@ class Validator {
       if (const Json* pbr = objectMember(material, "pbrMetallicRoughness", pointer)) {
         for (const char* key : {"baseColorTexture", "metallicRoughnessTexture"})
           textureInfo(*pbr, key, join(pointer, "pbrMetallicRoughness"));
+      }
+      // The one material extension whose textures the viewer reads (with their transforms).
+      if (const Json* extensions = objectMember(material, "extensions", pointer)) {
+        const std::string ep = join(pointer, "extensions/KHR_materials_specular");
+        if (const Json* specular = objectMember(*extensions, "KHR_materials_specular", join(pointer, "extensions"))) {
+          for (const char* key : {"specularTexture", "specularColorTexture"}) textureInfo(*specular, key, ep);
+        }
       }
     }
   }
