@@ -382,6 +382,8 @@ for name, mutate, phrase in [
          "/animations/0/samplers/0/output: accessor 6 is VEC4 FLOAT; a translation channel (/animations/0/channels/0) needs VEC3 FLOAT"),
         ("animation_output_rotation_short", setter(["accessors", 7, "normalized"], DELETE),
          "/animations/0/samplers/4/output: accessor 7 is VEC4 SHORT; a rotation channel (/animations/0/channels/4) needs VEC4 FLOAT or normalized"),
+        ("animation_output_rotation_mat2", setter(["accessors", 6, "type"], "MAT2"),
+         "/animations/0/samplers/1/output: accessor 6 is MAT2 FLOAT; a rotation channel (/animations/0/channels/1) needs VEC4"),
         ("animation_output_weights_vec3", setter(SAMPLER + [3, "output"], 5),
          "/animations/0/samplers/3/output: accessor 5 is VEC3 FLOAT; a weights channel (/animations/0/channels/3) needs SCALAR"),
         ("animation_output_count", setter(["accessors", 5, "count"], 3),

@@ -77,6 +77,9 @@ int componentsOf(const std::string& type) {
   return 0;
 }
 
+// Components of a SCALAR or VECn; 0 for the matrices (a MAT2 is not a VEC4).
+int vectorComponentsOf(const std::string& type) { return type.rfind("MAT", 0) == 0 ? 0 : componentsOf(type); }
+
 class Validator {
  public:
   Validator(const Json& doc, const std::string& label) : doc_(doc), label_(label) {}
@@ -560,7 +563,7 @@ class Validator {
   void keyframeTimes(const Json& sampler, const std::string& pointer) const {
     const std::int64_t input = sampler["input"].get<std::int64_t>();
     const Json& times = at("accessors", input);
-    if (!keyframeTimesFormatAllowed(componentsOf(times["type"].get<std::string>()), times["componentType"].get<int>()))
+    if (!keyframeTimesFormatAllowed(vectorComponentsOf(times["type"].get<std::string>()), times["componentType"].get<int>()))
       fail(join(pointer, "input"), accessorFormat(input) + "; an animation sampler's input (keyframe times) must be SCALAR FLOAT");
     if (!times.contains("min") || !times.contains("max"))
       fail(join(pointer, "input"), "accessor " + std::to_string(input) + " has no min and max, which a sampler's input must have");
@@ -573,7 +576,7 @@ class Validator {
     const Json& values = at("accessors", output);
     const std::string op = join(pointer, "output");
     const std::string channel = std::string(animationPathName(target.path)) + " channel (" + target.channel + ")";
-    if (!keyframeValuesFormatAllowed(target.path, componentsOf(values["type"].get<std::string>()), values["componentType"].get<int>(),
+    if (!keyframeValuesFormatAllowed(target.path, vectorComponentsOf(values["type"].get<std::string>()), values["componentType"].get<int>(),
                                      normalized(values)))
       fail(op, accessorFormat(output) + "; a " + channel + " needs " + keyframeValuesFormatNeeded(target.path));
     const std::int64_t keyframes = accessorCount_[static_cast<std::size_t>(input)];
