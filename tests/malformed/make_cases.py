@@ -292,6 +292,138 @@ gltf_case("animation_channel_sampler", setter(["animations"], [{"samplers": [{"i
                                                                   "channels": [{"sampler": 5, "target": {"node": 0}}]}]),
           "/animations/0/channels/0/sampler")
 
+# --- animations and morph targets (glTF 2.0 3.7.2.2 and 3.11): the base quad with a morph
+# target, its mesh and node weights, and one animation over every path, interpolation and
+# output format the spec allows; each case below breaks one rule of it.
+ANIM_BIN = (struct.pack("<2f", 0, 1)                                                  # times
+            + struct.pack("<18f", 0, 0, 0, 1, 1, 1, 0, 0, 0, 0, 0, 0, 2, 2, 2, 0, 0, 0)  # VEC3 x 6
+            + struct.pack("<8f", 0, 0, 0, 1, 0, 0, 0.7071, 0.7071)                    # VEC4 float x 2
+            + struct.pack("<8h", 0, 0, 0, 32767, 0, 0, 23170, 23170)                  # VEC4 short x 2
+            + struct.pack("<6f", 0, 1, 0, 0, 0, 0))                                   # SCALAR x 6
+
+
+def animated_document():
+    doc = base_document()
+    doc["buffers"].append({"uri": "anim.bin", "byteLength": len(ANIM_BIN)})
+    doc["bufferViews"] += [{"buffer": 1, "byteOffset": offset, "byteLength": length}
+                           for offset, length in ((0, 8), (8, 72), (80, 32), (112, 16), (128, 24))]
+    doc["accessors"] += [
+        {"bufferView": 4, "componentType": 5126, "count": 2, "type": "SCALAR", "min": [0], "max": [1]},  # 4 times
+        {"bufferView": 5, "componentType": 5126, "count": 2, "type": "VEC3"},                            # 5 translation
+        {"bufferView": 6, "componentType": 5126, "count": 2, "type": "VEC4"},                            # 6 rotation
+        {"bufferView": 7, "componentType": 5122, "normalized": True, "count": 2, "type": "VEC4"},        # 7 rotation
+        {"bufferView": 5, "componentType": 5126, "count": 6, "type": "VEC3"},                            # 8 cubic scale
+        {"bufferView": 8, "componentType": 5126, "count": 2, "type": "SCALAR"},                          # 9 weights
+    ]
+    doc["meshes"][0]["primitives"][0]["targets"] = [{"POSITION": 1}]
+    doc["meshes"][0]["weights"] = [0.0]
+    doc["nodes"][0]["weights"] = [0.5]
+    doc["nodes"].append({"name": "pivot"})
+    doc["scenes"][0]["nodes"] = [0, 1]
+    doc["animations"] = [{"name": "every path", "samplers": [
+        {"input": 4, "output": 5},
+        {"input": 4, "output": 6, "interpolation": "STEP"},
+        {"input": 4, "output": 8, "interpolation": "CUBICSPLINE"},
+        {"input": 4, "output": 9, "interpolation": "LINEAR"},
+        {"input": 4, "output": 7}], "channels": [
+        {"sampler": 0, "target": {"node": 0, "path": "translation"}},
+        {"sampler": 1, "target": {"node": 0, "path": "rotation"}},
+        {"sampler": 2, "target": {"node": 0, "path": "scale"}},
+        {"sampler": 3, "target": {"node": 0, "path": "weights"}},
+        {"sampler": 4, "target": {"node": 1, "path": "rotation"}}]}]
+    return doc
+
+
+def anim_case(name, mutate, expect, **kw):
+    doc = animated_document()
+    mutate(doc)
+    add(name, {"in.gltf": json.dumps(doc).encode(), "base.bin": BIN, "anim.bin": ANIM_BIN, "tex.png": PNG}, expect, **kw)
+
+
+def animation_pointer(doc):
+    doc["extensionsUsed"] = ["KHR_animation_pointer"]
+    doc["animations"][0]["channels"][4]["target"] = {
+        "path": "pointer", "extensions": {"KHR_animation_pointer": {"pointer": "/nodes/1/rotation"}}}
+
+
+def input_unsigned_byte(doc):
+    doc["accessors"].append({"bufferView": 4, "componentType": 5121, "count": 2, "type": "SCALAR", "min": [0], "max": [1]})
+    doc["animations"][0]["samplers"][0]["input"] = 10
+
+
+def second_primitive_without_targets(doc):
+    primitive = dict(doc["meshes"][0]["primitives"][0])
+    del primitive["targets"]
+    doc["meshes"][0]["primitives"].append(primitive)
+
+
+# Valid: they pass as the base quad does (check finds TANGENT missing).
+anim_case("animation_valid", lambda doc: None, "", bake=0, check=1, info=0)
+anim_case("animation_pointer_valid", animation_pointer, "", bake=0, check=1, info=0)
+CHANNEL, SAMPLER = ["animations", 0, "channels"], ["animations", 0, "samplers"]
+for name, mutate, phrase in [
+        ("animation_path_unknown", setter(CHANNEL + [1, "target", "path"], "scale_xyz"),
+         '/animations/0/channels/1/target/path: "scale_xyz" is not one of translation, rotation, scale, weights'),
+        ("animation_path_missing", setter(CHANNEL + [0, "target", "path"], DELETE), "/animations/0/channels/0/target/path: is required"),
+        ("animation_path_pointer_unused", setter(CHANNEL + [4, "target", "path"], "pointer"),
+         '/animations/0/channels/4/target/path: "pointer" is not one of'),
+        ("animation_target_missing", setter(CHANNEL + [0, "target"], DELETE), "/animations/0/channels/0/target: is required"),
+        ("animation_target_node_dangling", setter(CHANNEL + [0, "target", "node"], 9),
+         "/animations/0/channels/0/target/node: refers to nodes 9"),
+        ("animation_target_twice", setter(CHANNEL + [4, "target", "node"], 0),
+         "/animations/0/channels/4/target: animates the same node and path as /animations/0/channels/1"),
+        ("animation_interpolation_unknown", setter(SAMPLER + [1, "interpolation"], "QUADRATIC"),
+         '/animations/0/samplers/1/interpolation: "QUADRATIC" is not one of LINEAR, STEP, CUBICSPLINE'),
+        ("animation_input_unsigned_byte", input_unsigned_byte,
+         "/animations/0/samplers/0/input: accessor 10 is SCALAR UNSIGNED_BYTE; an animation sampler's input (keyframe times) "
+         "must be SCALAR FLOAT"),
+        ("animation_input_no_min_max", setter(["accessors", 4, "min"], DELETE),
+         "/animations/0/samplers/0/input: accessor 4 has no min and max"),
+        ("animation_output_translation_vec4", setter(SAMPLER + [0, "output"], 6),
+         "/animations/0/samplers/0/output: accessor 6 is VEC4 FLOAT; a translation channel (/animations/0/channels/0) needs VEC3 FLOAT"),
+        ("animation_output_rotation_short", setter(["accessors", 7, "normalized"], DELETE),
+         "/animations/0/samplers/4/output: accessor 7 is VEC4 SHORT; a rotation channel (/animations/0/channels/4) needs VEC4 FLOAT or normalized"),
+        ("animation_output_rotation_mat2", setter(["accessors", 6, "type"], "MAT2"),
+         "/animations/0/samplers/1/output: accessor 6 is MAT2 FLOAT; a rotation channel (/animations/0/channels/1) needs VEC4"),
+        ("animation_output_weights_vec3", setter(SAMPLER + [3, "output"], 5),
+         "/animations/0/samplers/3/output: accessor 5 is VEC3 FLOAT; a weights channel (/animations/0/channels/3) needs SCALAR"),
+        ("animation_output_count", setter(["accessors", 5, "count"], 3),
+         "/animations/0/samplers/0/output: accessor 5 has 3 elements; a translation channel (/animations/0/channels/0) with 2 keyframes needs 2"),
+        ("animation_output_count_cubicspline", setter(SAMPLER + [2, "output"], 5),
+         "accessor 5 has 2 elements; a scale channel (/animations/0/channels/2) with 2 keyframes (CUBICSPLINE: 3 each) needs 6"),
+        ("animation_output_count_weights", setter(["accessors", 9, "count"], 4),
+         "accessor 9 has 4 elements; a weights channel (/animations/0/channels/3) with 2 keyframes of 1 morph target(s) needs 2"),
+        ("animation_weights_node_without_mesh", setter(CHANNEL + [3, "target", "node"], 1),
+         "/animations/0/channels/3/target: animates the weights of node 1, which has no mesh"),
+        ("morph_target_counts_differ", second_primitive_without_targets,
+         "/meshes/0/primitives/1/targets: has 0 morph target(s); primitive 0 of the mesh has 1"),
+        ("morph_mesh_weights_longer", setter(["meshes", 0, "weights"], [0.0, 0.0]),
+         "/meshes/0/weights: has 2 weight(s); mesh 0 has 1 morph target(s)"),
+        ("morph_node_weights_longer", setter(["nodes", 0, "weights"], [0.5, 0.5, 0.5]),
+         "/nodes/0/weights: has 3 weight(s); mesh 0 has 1 morph target(s)"),
+        ("morph_node_weights_without_mesh", setter(["nodes", 1, "weights"], [1.0]), "/nodes/1/weights: needs a mesh"),
+        ("morph_weight_not_number", setter(["meshes", 0, "weights"], ["0"]), "/meshes/0/weights/0: must be a number")]:
+    anim_case(name, mutate, phrase)
+# A sample model with morph targets and a weights animation, where the system has it.
+MORPH_CUBE = "/usr/share/assimp/models/glTF2/glTF-Sample-Models/AnimatedMorphCube-glTF/AnimatedMorphCube"
+if os.path.exists(MORPH_CUBE + ".gltf") and os.path.exists(MORPH_CUBE + ".bin"):
+    with open(MORPH_CUBE + ".gltf", "rb") as f, open(MORPH_CUBE + ".bin", "rb") as g:
+        add("animation_sample_morph_cube", {"in.gltf": f.read(), "AnimatedMorphCube.bin": g.read()}, "",
+            bake=0, check=0, info=0)
+
+# KHR_texture_transform: members of the wrong type are named by their JSON path (they were
+# "type must be number, but is array" from bake and check, and passed info).
+TRANSFORM = ["materials", 0, "normalTexture", "extensions", "KHR_texture_transform"]
+gltf_case("texture_transform_valid", setter(TRANSFORM[:-1], {"KHR_texture_transform": {"offset": [0.5, 0], "rotation": 0.25,
+                                                                                       "scale": [2, 2], "texCoord": 0}}),
+          "", bake=0, check=1, info=0)
+for name, member, value, phrase in [
+        ("texture_transform_offset_nested", "offset", [[1], [2]], "offset: must be an array of 2 numbers"),
+        ("texture_transform_scale_three", "scale", [1, 2, 3], "scale: must be an array of 2 numbers"),
+        ("texture_transform_rotation_array", "rotation", [1], "rotation: must be a number")]:
+    gltf_case(name, setter(TRANSFORM[:-1], {"KHR_texture_transform": {member: value}}),
+              "/materials/0/normalTexture/extensions/KHR_texture_transform/" + phrase)
+
 # --- URIs: everything that is not data: or a relative path inside the asset's folder
 for tag, uri, phrase in [
         ("parent_escape", "../../../../../../etc/passwd", "leaves the asset root"),

@@ -1374,6 +1374,10 @@ struct GltfWriter {
       accessors[index]["min"] = lo;
       accessors[index]["max"] = hi;
     }
+    if (std::string(type) == "SCALAR" && !values.empty()) {  // an animation sampler's input needs them too
+      accessors[index]["min"] = {*std::min_element(values.begin(), values.end())};
+      accessors[index]["max"] = {*std::max_element(values.begin(), values.end())};
+    }
     return index;
   }
   int shorts(const std::vector<std::uint16_t>& values, const char* type, int components, bool indices = false) {

@@ -5,8 +5,11 @@
 #include <cstdint>
 #include <deque>
 #include <limits>
+#include <optional>
+#include <utility>
 #include <vector>
 
+#include "animation_rules.hpp"
 #include "tangent/gltf.hpp"
 
 namespace tangent::gltf::detail {
@@ -54,6 +57,17 @@ int componentBytesOf(std::int64_t componentType) {
   }
 }
 
+const char* componentTypeNameOf(std::int64_t componentType) {
+  switch (componentType) {
+    case 5120: return "BYTE";
+    case 5121: return "UNSIGNED_BYTE";
+    case 5122: return "SHORT";
+    case 5123: return "UNSIGNED_SHORT";
+    case 5125: return "UNSIGNED_INT";
+    default: return "FLOAT";
+  }
+}
+
 int componentsOf(const std::string& type) {
   static const std::array<std::pair<const char*, int>, 7> types = {
       {{"SCALAR", 1}, {"VEC2", 2}, {"VEC3", 3}, {"VEC4", 4}, {"MAT2", 4}, {"MAT3", 9}, {"MAT4", 16}}};
@@ -62,6 +76,9 @@ int componentsOf(const std::string& type) {
   }
   return 0;
 }
+
+// Components of a SCALAR or VECn; 0 for the matrices (a MAT2 is not a VEC4).
+int vectorComponentsOf(const std::string& type) { return type.rfind("MAT", 0) == 0 ? 0 : componentsOf(type); }
 
 class Validator {
  public:
@@ -289,8 +306,20 @@ class Validator {
     integer(*info, "texCoord", p, 0, 1 << 20, false);
     if (const Json* extensions = objectMember(*info, "extensions", p)) {
       if (const Json* transform = objectMember(*extensions, "KHR_texture_transform", join(p, "extensions")))
-        integer(*transform, "texCoord", join(p, "extensions/KHR_texture_transform"), 0, 1 << 20, false);
+        textureTransform(*transform, join(p, "extensions/KHR_texture_transform"));
     }
+  }
+
+  // KHR_texture_transform: offset and scale [u, v], rotation in radians, texCoord a UV set.
+  void textureTransform(const Json& transform, const std::string& pointer) {
+    for (const char* key : {"offset", "scale"}) {
+      auto it = transform.find(key);
+      if (it == transform.end()) continue;
+      if (!it->is_array() || it->size() != 2 || !(*it)[0].is_number() || !(*it)[1].is_number())
+        fail(join(pointer, key), "must be an array of 2 numbers");
+    }
+    member(transform, "rotation", pointer, &Json::is_number, "a number");
+    integer(transform, "texCoord", pointer, 0, 1 << 20, false);
   }
 
   void materials() {
@@ -302,6 +331,13 @@ class Validator {
         for (const char* key : {"baseColorTexture", "metallicRoughnessTexture"})
           textureInfo(*pbr, key, join(pointer, "pbrMetallicRoughness"));
       }
+      // The one material extension whose textures the viewer reads (with their transforms).
+      if (const Json* extensions = objectMember(material, "extensions", pointer)) {
+        const std::string ep = join(pointer, "extensions/KHR_materials_specular");
+        if (const Json* specular = objectMember(*extensions, "KHR_materials_specular", join(pointer, "extensions"))) {
+          for (const char* key : {"specularTexture", "specularColorTexture"}) textureInfo(*specular, key, ep);
+        }
+      }
     }
   }
 
@@ -310,7 +346,20 @@ class Validator {
     for (const auto& [name, value] : map.items()) referenceValue(value, pointer + "/" + name, "accessors");
   }
 
+  // `weights` of a mesh or node: one number per morph target of the mesh (glTF 2.0 3.7.2.2).
+  void morphWeights(const Json& owner, const std::string& pointer, std::size_t mesh) const {
+    const Json* weights = arrayMember(owner, "weights", pointer);
+    if (!weights) return;
+    for (std::size_t k = 0; k < weights->size(); ++k) {
+      if (!(*weights)[k].is_number()) fail(join(pointer, "weights/" + std::to_string(k)), "must be a number");
+    }
+    if (weights->size() != meshTargets_[mesh])
+      fail(join(pointer, "weights"), "has " + std::to_string(weights->size()) + " weight(s); mesh " + std::to_string(mesh) +
+                                         " has " + std::to_string(meshTargets_[mesh]) + " morph target(s)");
+  }
+
   void meshes() {
+    meshTargets_.assign(count("meshes"), 0);
     for (std::size_t m = 0; m < count("meshes"); ++m) {
       const Json& mesh = doc_["meshes"][m];
       const std::string meshPointer = "/meshes/" + std::to_string(m);
@@ -325,9 +374,16 @@ class Validator {
         const std::int64_t indices = reference(primitive, "indices", pointer, "accessors");
         reference(primitive, "material", pointer, "materials");
         const std::int64_t mode = integer(primitive, "mode", pointer, 0, 6, false, 4);
-        if (const Json* targets = arrayMember(primitive, "targets", pointer)) {
+        const Json* targets = arrayMember(primitive, "targets", pointer);
+        if (targets) {
           for (std::size_t t = 0; t < targets->size(); ++t) accessorMap((*targets)[t], pointer + "/targets/" + std::to_string(t));
         }
+        // glTF 2.0 3.7.2.2: every primitive of a mesh has the same number of morph targets.
+        const std::size_t targetCount = targets ? targets->size() : 0;
+        if (p == 0) meshTargets_[m] = targetCount;
+        else if (targetCount != meshTargets_[m])
+          fail(join(pointer, "targets"), "has " + std::to_string(targetCount) + " morph target(s); primitive 0 of the mesh has " +
+                                             std::to_string(meshTargets_[m]) + " (every primitive of a mesh must have as many)");
         // glTF 2.0 3.7.2.1: TRIANGLES draw count / 3 triangles; a remainder is invalid.
         std::int64_t vertices = -1;
         if (indices >= 0) vertices = accessorCount_[static_cast<std::size_t>(indices)];
@@ -337,6 +393,7 @@ class Validator {
           fail(pointer, std::string(indices >= 0 ? "indices" : "vertex") + " count " + std::to_string(vertices) +
                             " is not a multiple of 3, as mode 4 (TRIANGLES) requires");
       }
+      morphWeights(mesh, meshPointer, m);
     }
   }
 
@@ -346,7 +403,9 @@ class Validator {
     for (std::size_t i = 0; i < n; ++i) {
       const Json& node = doc_["nodes"][i];
       const std::string pointer = "/nodes/" + std::to_string(i);
-      reference(node, "mesh", pointer, "meshes");
+      const std::int64_t mesh = reference(node, "mesh", pointer, "meshes");
+      if (mesh >= 0) morphWeights(node, pointer, static_cast<std::size_t>(mesh));
+      else if (node.contains("weights")) fail(join(pointer, "weights"), "needs a mesh (the node has none)");
       reference(node, "skin", pointer, "skins");
       reference(node, "camera", pointer, "cameras");
       if (const Json* children = arrayMember(node, "children", pointer)) {
@@ -402,32 +461,150 @@ class Validator {
     }
   }
 
+  bool extensionUsed(const char* name) const {
+    auto it = doc_.find("extensionsUsed");
+    if (it == doc_.end()) return false;
+    for (const Json& used : *it) {
+      if (used == name) return true;
+    }
+    return false;
+  }
+
+  // "accessor 4 is SCALAR UNSIGNED_BYTE" (normalized when so), for messages.
+  std::string accessorFormat(std::int64_t a) const {
+    const Json& accessor = at("accessors", a);
+    return "accessor " + std::to_string(a) + " is " + accessor["type"].get<std::string>() + " " +
+           (normalized(accessor) ? "normalized " : "") + componentTypeNameOf(accessor["componentType"].get<std::int64_t>());
+  }
+  static bool normalized(const Json& accessor) {
+    auto it = accessor.find("normalized");
+    return it != accessor.end() && it->is_boolean() && it->get<bool>();
+  }
+
+  // A channel's target node and path, the channel's JSON pointer and its sampler's index.
+  struct AnimatedTarget {
+    std::int64_t node = -1;
+    AnimationPath path = AnimationPath::translation;
+    std::string channel;
+    std::size_t sampler = 0;
+  };
+
+  // glTF 2.0 3.11 (animation_rules.hpp). References and names of every sampler and channel
+  // come first, so that a dangling index is reported as such; then the accessors' formats
+  // and counts, which need the channels' paths.
   void animations() {
+    const bool animationPointer = extensionUsed("KHR_animation_pointer");
     for (std::size_t i = 0; i < count("animations"); ++i) {
       const Json& animation = doc_["animations"][i];
       const std::string pointer = "/animations/" + std::to_string(i);
       const Json* samplers = arrayMember(animation, "samplers", pointer);
       const std::size_t samplerCount = samplers ? samplers->size() : 0;
-      for (std::size_t s = 0; s < samplerCount; ++s) {
-        const std::string sp = pointer + "/samplers/" + std::to_string(s);
-        if (!(*samplers)[s].is_object()) fail(sp, "must be an object");
-        reference((*samplers)[s], "input", sp, "accessors", true);
-        reference((*samplers)[s], "output", sp, "accessors", true);
-      }
+      std::vector<Interpolation> interpolation(samplerCount);
+      for (std::size_t s = 0; s < samplerCount; ++s)
+        interpolation[s] = animationSampler((*samplers)[s], pointer + "/samplers/" + std::to_string(s));
+      std::vector<AnimatedTarget> targets;
       if (const Json* channels = arrayMember(animation, "channels", pointer)) {
         for (std::size_t c = 0; c < channels->size(); ++c) {
           const std::string cp = pointer + "/channels/" + std::to_string(c);
           if (!(*channels)[c].is_object()) fail(cp, "must be an object");
-          integer((*channels)[c], "sampler", cp, 0, static_cast<std::int64_t>(samplerCount) - 1, true);
-          if (const Json* target = objectMember((*channels)[c], "target", cp)) reference(*target, "node", join(cp, "target"), "nodes");
+          const std::int64_t s = integer((*channels)[c], "sampler", cp, 0, static_cast<std::int64_t>(samplerCount) - 1, true);
+          std::optional<AnimatedTarget> target = animationTarget((*channels)[c], cp, animationPointer);
+          if (!target) continue;
+          for (const AnimatedTarget& earlier : targets) {
+            if (earlier.node == target->node && earlier.path == target->path)
+              fail(join(cp, "target"), "animates the same node and path as " + earlier.channel + " (each target once an animation)");
+          }
+          target->channel = cp;
+          target->sampler = static_cast<std::size_t>(s);
+          targets.push_back(*target);
         }
       }
+      for (std::size_t s = 0; s < samplerCount; ++s) keyframeTimes((*samplers)[s], pointer + "/samplers/" + std::to_string(s));
+      for (const AnimatedTarget& target : targets) {
+        const std::string sp = pointer + "/samplers/" + std::to_string(target.sampler);
+        keyframeValues((*samplers)[target.sampler], sp, interpolation[target.sampler], target);
+      }
     }
+  }
+
+  // A sampler's references and interpolation.
+  Interpolation animationSampler(const Json& sampler, const std::string& pointer) const {
+    if (!sampler.is_object()) fail(pointer, "must be an object");
+    reference(sampler, "input", pointer, "accessors", true);
+    reference(sampler, "output", pointer, "accessors", true);
+    const Json* name = member(sampler, "interpolation", pointer, &Json::is_string, "a string");
+    if (!name) return Interpolation::linear;
+    const std::optional<Interpolation> interpolation = interpolationOf(name->get<std::string>());
+    if (!interpolation) fail(join(pointer, "interpolation"), name->dump() + " is not one of " + kInterpolationNames);
+    return *interpolation;
+  }
+
+  // A channel's target; nullopt for a channel whose values nothing checks further
+  // (KHR_animation_pointer's "pointer", or a channel without a node, which is ignored).
+  std::optional<AnimatedTarget> animationTarget(const Json& channel, const std::string& pointer, bool animationPointer) const {
+    const Json* target = objectMember(channel, "target", pointer);
+    if (!target) fail(join(pointer, "target"), "is required");
+    const std::string tp = join(pointer, "target");
+    const std::int64_t node = reference(*target, "node", tp, "nodes");
+    const Json* name = member(*target, "path", tp, &Json::is_string, "a string");
+    if (!name) fail(join(tp, "path"), "is required");
+    const std::optional<AnimationPath> path = animationPathOf(name->get<std::string>());
+    if (!path) {
+      if (animationPointer && *name == "pointer") return std::nullopt;
+      fail(join(tp, "path"), name->dump() + " is not one of " + kAnimationPathNames);
+    }
+    if (node < 0) return std::nullopt;
+    AnimatedTarget animated;
+    animated.node = node;
+    animated.path = *path;
+    return animated;
+  }
+
+  void keyframeTimes(const Json& sampler, const std::string& pointer) const {
+    const std::int64_t input = sampler["input"].get<std::int64_t>();
+    const Json& times = at("accessors", input);
+    if (!keyframeTimesFormatAllowed(vectorComponentsOf(times["type"].get<std::string>()), times["componentType"].get<int>()))
+      fail(join(pointer, "input"), accessorFormat(input) + "; an animation sampler's input (keyframe times) must be SCALAR FLOAT");
+    if (!times.contains("min") || !times.contains("max"))
+      fail(join(pointer, "input"), "accessor " + std::to_string(input) + " has no min and max, which a sampler's input must have");
+  }
+
+  // The sampler's output for `target`: its format, and as many values as the input's keyframes need.
+  void keyframeValues(const Json& sampler, const std::string& pointer, Interpolation interpolation, const AnimatedTarget& target) const {
+    const std::size_t morphTargets = target.path == AnimationPath::weights ? animatedMorphTargets(target) : 0;
+    const std::int64_t input = sampler["input"].get<std::int64_t>(), output = sampler["output"].get<std::int64_t>();
+    const Json& values = at("accessors", output);
+    const std::string op = join(pointer, "output");
+    const std::string channel = std::string(animationPathName(target.path)) + " channel (" + target.channel + ")";
+    if (!keyframeValuesFormatAllowed(target.path, vectorComponentsOf(values["type"].get<std::string>()), values["componentType"].get<int>(),
+                                     normalized(values)))
+      fail(op, accessorFormat(output) + "; a " + channel + " needs " + keyframeValuesFormatNeeded(target.path));
+    const std::int64_t keyframes = accessorCount_[static_cast<std::size_t>(input)];
+    const std::int64_t stored = accessorCount_[static_cast<std::size_t>(output)];
+    const std::uint64_t needed = keyframeValueCount(static_cast<std::uint64_t>(keyframes), interpolation, target.path, morphTargets);
+    if (static_cast<std::uint64_t>(stored) != needed)
+      fail(op, "accessor " + std::to_string(output) + " has " + std::to_string(stored) + " elements; a " + channel + " with " +
+                   std::to_string(keyframes) + " keyframes" +
+                   (interpolation == Interpolation::cubicSpline ? " (CUBICSPLINE: 3 each)" : "") +
+                   (target.path == AnimationPath::weights ? " of " + std::to_string(morphTargets) + " morph target(s)" : "") +
+                   " needs " + std::to_string(needed));
+  }
+
+  // The morph targets a weights channel animates: those of its node's mesh.
+  std::size_t animatedMorphTargets(const AnimatedTarget& target) const {
+    const Json& node = at("nodes", target.node);
+    const std::string where = join(target.channel, "target");
+    const std::string what = "animates the weights of node " + std::to_string(target.node);
+    if (!node.contains("mesh")) fail(where, what + ", which has no mesh");
+    const std::size_t mesh = node["mesh"].get<std::size_t>();
+    if (meshTargets_[mesh] == 0) fail(where, what + ", whose mesh " + std::to_string(mesh) + " has no morph targets");
+    return meshTargets_[mesh];
   }
 
   const Json& doc_;
   const std::string& label_;
   std::vector<std::int64_t> viewLength_, viewStride_, accessorCount_;
+  std::vector<std::size_t> meshTargets_;  // morph targets of each mesh (meshes() fills it)
 };
 
 }  // namespace
