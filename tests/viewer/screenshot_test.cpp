@@ -13,6 +13,7 @@
 #include <filesystem>
 #include <fstream>
 #include <functional>
+#include <limits>
 #include <map>
 #include <numeric>
 
@@ -2538,4 +2539,98 @@ TEST(Viewer, AutoExposureKeepsTheBumpsOfALightSurface) {
   EXPECT_GE(litBright / litDim - 1, 0.8 * (linearBright / linearDim - 1));
   EXPECT_GT(litBright, srgbToLinear(0.6));
   EXPECT_LT(litBright, 0.9);
+}
+
+// ---- Trust: untrusted data is noted by element and drawn without it; files under one rule ----
+
+// A quad over [-1, 1]^2 facing +z (node 0), skinned to joint node 1 with one weight per
+// vertex, with one morph target (POSITION deltas) and a directional light on node 2. A case
+// spoils one part of it: the arrays before they are written, the document after.
+struct TrustQuad {
+  std::vector<float> weights{1, 0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0};
+  std::vector<std::uint16_t> joints = std::vector<std::uint16_t>(16, 0);
+  std::vector<float> inverseBind{1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1};
+  std::vector<float> morphPositions = std::vector<float>(12, 0.0f);
+  std::function<void(nlohmann::json&)> patch;
+
+  fs::path write(const TempDir& dir, const std::string& name) const {
+    GltfWriter gltf;
+    const int position = gltf.floats({-1, -1, 0, 1, -1, 0, 1, 1, 0, -1, 1, 0}, "VEC3", 3);
+    const int normal = gltf.floats({0, 0, 1, 0, 0, 1, 0, 0, 1, 0, 0, 1}, "VEC3", 3);
+    const int uv = gltf.floats({0, 1, 1, 1, 1, 0, 0, 0}, "VEC2", 2);
+    const int joint = gltf.shorts(joints, "VEC4", 4), weight = gltf.floats(weights, "VEC4", 4);
+    const int morph = gltf.add(morphPositions.data(), morphPositions.size() * sizeof(float), 5126, 4, "VEC3");
+    const int indices = gltf.shorts({0, 1, 2, 0, 2, 3}, "SCALAR", 1, true);
+    const int inverse = gltf.add(inverseBind.data(), inverseBind.size() * sizeof(float), 5126, 1, "MAT4");
+    const nlohmann::json attributes = {{"POSITION", position}, {"NORMAL", normal}, {"TEXCOORD_0", uv}, {"JOINTS_0", joint}, {"WEIGHTS_0", weight}};
+    const nlohmann::json primitive = {{"attributes", attributes}, {"indices", indices}, {"targets", {{{"POSITION", morph}}}}};
+    nlohmann::json doc = {
+        {"scene", 0},
+        {"scenes", {{{"nodes", {0, 1, 2}}}}},
+        {"nodes", {{{"mesh", 0}, {"skin", 0}, {"weights", {1.0}}}, nlohmann::json::object(),
+                   {{"extensions", {{"KHR_lights_punctual", {{"light", 0}}}}}, {"rotation", {-0.3826834, 0, 0, 0.9238795}}}}},
+        {"skins", {{{"joints", {1}}, {"inverseBindMatrices", inverse}}}},
+        {"meshes", {{{"name", "trust quad"}, {"primitives", {primitive}}}}},
+        {"extensionsUsed", {"KHR_lights_punctual"}},
+        {"extensions", {{"KHR_lights_punctual", {{"lights", {{{"type", "directional"}, {"intensity", 3.0}}}}}}}},
+    };
+    if (patch) patch(doc);
+    return gltf.write(dir / (name + ".gltf"), doc);
+  }
+};
+
+// Each kind of non-finite or out-of-range skin, morph, node and light data: the screenshot run
+// names the element in a note and draws the quad without it (unskinned, unmorphed, the node at
+// the identity, the light left out), exit 0 with a frame that is not empty. They used to give an
+// empty frame (NaN corners) or pass without a word (a joint or light index past its array).
+TEST(Viewer, NonFiniteOrOutOfRangeSceneDataIsNotedAndTheRestDrawn) {
+  TempDir dir;
+  const float nan = std::numeric_limits<float>::quiet_NaN();
+  struct Case {
+    const char* name;
+    std::function<void(TrustQuad&)> spoil;
+    const char* note;
+  };
+  const Case cases[] = {
+      {"intact", [](TrustQuad&) {}, nullptr},
+      {"weights-nan", [&](TrustQuad& q) { q.weights[8] = nan; }, "mesh 0 'trust quad' primitive 0: WEIGHTS_0 element 2 is not finite; skin not applied"},
+      {"inverse-bind-nan", [&](TrustQuad& q) { q.inverseBind[12] = nan; },
+       "skin 0: inverseBindMatrices element 0 is not finite; meshes with this skin shown unskinned"},
+      {"node-matrix-1e39", [](TrustQuad& q) {
+         q.patch = [](nlohmann::json& doc) { doc["nodes"][0]["matrix"] = {1e39, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1}; };
+       }, "node 0: matrix not finite; treated as identity"},
+      {"joint-past-skin", [](TrustQuad& q) { q.joints[4] = 5; },
+       "node 0: mesh 0 'trust quad' primitive 0: JOINTS_0 at corner 1 names joint 5, past the 1 joint(s) of skin 0; the node drawn unskinned"},
+      {"light-past-lights", [](TrustQuad& q) {
+         q.patch = [](nlohmann::json& doc) { doc["nodes"][2]["extensions"]["KHR_lights_punctual"]["light"] = 7; };
+       }, "node 2: KHR_lights_punctual light 7 is not one of the file's 1 light(s); left out"},
+      {"light-intensity-1e39", [](TrustQuad& q) {
+         q.patch = [](nlohmann::json& doc) { doc["extensions"]["KHR_lights_punctual"]["lights"][0]["intensity"] = 1e39; };
+       }, "node 2: KHR_lights_punctual light 0: intensity not finite; left out"},
+      {"morph-delta-nan", [&](TrustQuad& q) { q.morphPositions[4] = nan; },
+       "mesh 0 'trust quad' primitive 0: morph target 0 POSITION element 1 is not finite; morph targets not applied"},
+      {"morph-weight-1e39", [](TrustQuad& q) {
+         q.patch = [](nlohmann::json& doc) { doc["nodes"][0]["weights"] = {1e39}; };
+       }, "node 0: morph weight 0 is not finite; treated as 0"},
+  };
+  for (const Case& c : cases) {
+    TrustQuad quad;
+    c.spoil(quad);
+    const fs::path file = quad.write(dir, c.name);
+    const fs::path shot = dir / (std::string(c.name) + ".png");
+    std::string output;
+    const int exit = run("'" + file.string() + "' --camera front --ortho --size 64x64 --msaa 0 --screenshot '" + shot.string() + "'", output);
+    ASSERT_EQ(exit, 0) << c.name << "\n" << output;
+    if (c.note) EXPECT_NE(output.find(std::string("note: ") + file.string() + ": " + c.note), std::string::npos) << c.name << "\n" << output;
+    else EXPECT_EQ(output.find("note:"), std::string::npos) << c.name << "\n" << output;
+    // The quad covers the middle of the front view (44 x 44 of its 64 x 64 pixels, the camera
+    // framing the quad's bounding sphere); an empty frame is all background.
+    const Image image = readPng(shot);
+    ASSERT_EQ(image.width, 64) << c.name;
+    int drawn = 0;
+    for (int y = 0; y < image.height; ++y)
+      for (int x = 0; x < image.width; ++x) drawn += backgroundShare(Image{1, 1, {image.at(x, y)[0], image.at(x, y)[1], image.at(x, y)[2]}}) == 0;
+    std::printf("%s: %d of %d pixels drawn\n", c.name, drawn, image.width * image.height);
+    EXPECT_GT(drawn, image.width * image.height / 3) << c.name << ": the frame is (nearly) empty\n" << output;
+  }
 }
