@@ -14,6 +14,9 @@ namespace tangent::viewer {
 struct DecodedImage {
   int width = 0, height = 0;
   std::vector<unsigned char> rgba;  // rows as stored (glTF's UV origin is the first row)
+  // What the decoder itself said while decoding (libpng's warnings, which it writes to stderr),
+  // each naming the image: for the note channel, never straight to the terminal.
+  std::vector<std::string> notes;
 };
 
 // The most memory an image may take decoded, as RGBA8: 1 GiB, a 16384 x 16384 texture. The
@@ -40,7 +43,7 @@ int maxTextureSize();
 Texture uploadTexture(const DecodedImage& image, bool srgb);
 
 // decodeImage, fitTextureSize, then uploadTexture; on failure an empty Texture. Errors and notes
-// go to `messages`.
+// (the decoder's own among them) go to `messages`.
 Texture loadTexture(const gltf::ImageSource& source, bool srgb, std::vector<std::string>& messages);
 
 // Writes RGBA8 pixels (rows bottom-up, as glReadPixels gives them) as a PNG; false + error.

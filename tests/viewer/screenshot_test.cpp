@@ -16,6 +16,7 @@
 #include <limits>
 #include <map>
 #include <numeric>
+#include <sstream>
 
 #include <nlohmann/json.hpp>
 
@@ -2633,4 +2634,53 @@ TEST(Viewer, NonFiniteOrOutOfRangeSceneDataIsNotedAndTheRestDrawn) {
     std::printf("%s: %d of %d pixels drawn\n", c.name, drawn, image.width * image.height);
     EXPECT_GT(drawn, image.width * image.height / 3) << c.name << ": the frame is (nearly) empty\n" << output;
   }
+}
+
+// A mesh name with ESC, CR, LF and NUL reaches the terminal escaped as the CLI escapes it
+// (\xHH): no control byte in the output, and no line of the name's own (it would forge an "ok"
+// line in a CI log). Both print paths: --stats (no window) and the screenshot run.
+TEST(Viewer, FileTextIsPrintedEscaped) {
+  TempDir dir;
+  TrustQuad quad;
+  quad.patch = [](nlohmann::json& doc) {
+    doc["meshes"][0]["name"] = std::string("a\x1b[31mred\r\nok all passed\0end", 28);
+    doc["meshes"][0]["primitives"][0]["attributes"].erase("NORMAL");  // a note that names the mesh
+  };
+  const fs::path file = quad.write(dir, "names");
+  for (const std::string& mode : {std::string(" --stats"), " --size 64x64 --screenshot '" + (dir / "x.png").string() + "'"}) {
+    std::string output;
+    ASSERT_EQ(run("'" + file.string() + "'" + mode, output), 0) << output;
+    EXPECT_NE(output.find("mesh 0 'a\\x1B[31mred\\x0D\\x0Aok all passed\\x00end' primitive 0: no NORMAL"), std::string::npos) << mode << "\n" << output;
+    EXPECT_EQ(output.find('\x1b'), std::string::npos) << mode;
+    EXPECT_EQ(output.find('\r'), std::string::npos) << mode;
+    EXPECT_EQ(output.find('\0'), std::string::npos) << mode;
+    EXPECT_EQ(output.find("\nok"), std::string::npos) << mode << "\n" << output;
+  }
+}
+
+// libpng's own messages ("libpng error: IDAT: CRC error", which it writes to stderr itself) come
+// through the note channel, escaped and naming the glTF and its image; nothing of the decoder's
+// reaches the terminal raw. The quad is still drawn (without its texture), exit 0.
+TEST(Viewer, ImageDecoderMessagesGoThroughTheNoteChannel) {
+  TempDir dir;
+  writeRgbaPng(dir / "broken.png", 8, 8, [](int, int) { return std::array<unsigned char, 4>{200, 40, 40, 255}; });
+  {
+    // The IDAT chunk's CRC, the 4 bytes before IEND's 12, spoiled.
+    std::fstream png(dir / "broken.png", std::ios::in | std::ios::out | std::ios::binary);
+    png.seekg(-13, std::ios::end);
+    const char byte = static_cast<char>(png.get());
+    png.seekp(-13, std::ios::end);
+    png.put(static_cast<char>(byte ^ 0x5a));
+  }
+  const nlohmann::json material = {{"pbrMetallicRoughness", {{"baseColorTexture", {{"index", 0}}}}},
+                                   {"extensions", {{"KHR_materials_unlit", nlohmann::json::object()}}}};
+  const fs::path file = quadAsset(dir, "broken", material, "broken.png");
+  std::string output;
+  ASSERT_EQ(run("'" + file.string() + "' --size 64x64 --screenshot '" + (dir / "x.png").string() + "'", output), 0) << output;
+  EXPECT_NE(output.find("note: " + file.string() + ": image 0 'broken.png': decoder says: libpng error: IDAT: CRC error"), std::string::npos)
+      << output;
+  EXPECT_NE(output.find("note: " + file.string() + ": image 0 'broken.png': cannot be read"), std::string::npos) << output;
+  std::istringstream lines(output);
+  for (std::string line; std::getline(lines, line);)
+    EXPECT_TRUE(line.rfind("note: ", 0) == 0 || line.rfind("wrote ", 0) == 0 || line.rfind("image-based", 0) == 0) << "a raw line: " << line;
 }
