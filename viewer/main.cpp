@@ -33,6 +33,7 @@
 #include "shader_check.hpp"
 #include "shader_library.hpp"
 #include "tangent/gltf.hpp"
+#include "tangent/input_file.hpp"
 #include "tangent/scene.hpp"
 #include "tangent/text.hpp"
 #include "textures.hpp"
@@ -133,6 +134,7 @@ struct Options {
   RenderSettings settings;
   bool negateW = false;
   fs::path sphereMap = demoFolder() / "spheremap.png";
+  bool sphereMapGiven = false;  // --sphere-map: its failure is an error, not a note
   fs::path shaderDir = resourceFolder("shaders");
   fs::path assetRoot;  // --asset-root: the folder buffer and image URIs may not leave
   int frames = 1;
@@ -202,7 +204,7 @@ int parseOptions(int argc, char** argv, Options& options) {
       else if (arg == "--flip-green") options.settings.flipGreen = true;
       else if (arg == "--negate-w") options.negateW = true;
       else if (arg == "--reflectivity") options.settings.reflectivity = std::clamp(std::stof(value()), 0.0f, 1.0f);
-      else if (arg == "--sphere-map") options.sphereMap = value();
+      else if (arg == "--sphere-map") options.sphereMap = value(), options.sphereMapGiven = true;
       else if (arg == "--uv-scale") options.settings.uvScale = std::stof(value());
       else if (arg == "--frames") options.frames = std::clamp(std::stoi(value()), 1, 10000);
       else if (arg == "--shader-dir") options.shaderDir = value();
@@ -393,13 +395,18 @@ struct Viewer {
                  options.frameBox ? options.frameBox->second : renderer.boundsMax(), options.camera,
                  float(options.width) / float(options.height));
     camera.orthographic = options.orthographic;
-    if (options.settings.reflectivity > 0 || fs::exists(options.sphereMap)) {
+    if (options.settings.reflectivity > 0 || options.sphereMapGiven || fs::exists(options.sphereMap)) {
       std::vector<std::string> sphereMessages;
-      // A default sphere map that fails matters only when reflections are on.
-      if (renderer.loadSphereMap(options.sphereMap, sphereMessages) || options.settings.reflectivity > 0) {
-        for (const auto& m : sphereMessages) printNote(m);
-        messages.insert(messages.end(), sphereMessages.begin(), sphereMessages.end());
+      const bool sphereLoaded = renderer.loadSphereMap(options.sphereMap, sphereMessages);
+      messages.insert(messages.end(), sphereMessages.begin(), sphereMessages.end());
+      // One that --sphere-map names and that cannot be used is an error (a screenshot without it
+      // would mislead); a default one that fails matters only when reflections are on.
+      if (!sphereLoaded && options.sphereMapGiven) {
+        for (const auto& m : sphereMessages) printError("--sphere-map: " + m);
+        return false;
       }
+      if (sphereLoaded || options.settings.reflectivity > 0)
+        for (const auto& m : sphereMessages) printNote(m);
     }
     return true;
   }
@@ -763,6 +770,18 @@ void printState(const Viewer& viewer, GLFWwindow* window) {
 int interactive(Viewer& viewer, GLFWwindow* window) {
   IMGUI_CHECKVERSION();
   ImGui::CreateContext();
+  // The panel's layout file (Dear ImGui's imgui.ini in the working folder), under the input
+  // rule: where it is there but not a regular file of bounded size (a FIFO would block the
+  // first frame), it is neither read nor written.
+  if (const char* ini = ImGui::GetIO().IniFilename; ini && fs::exists(fs::symlink_status(ini))) {
+    try {
+      tangent::gltf::requireInputFile(ini, "a settings file");
+    } catch (const std::exception& e) {
+      ImGui::GetIO().IniFilename = nullptr;
+      viewer.messages.push_back(std::string(e.what()) + "; the panel's layout is neither read nor saved");
+      printNote(viewer.messages.back());
+    }
+  }
   ImGui_ImplGlfw_InitForOpenGL(window, true);
   ImGui_ImplOpenGL3_Init("#version 330 core");
   Input input;
@@ -873,9 +892,39 @@ int interactive(Viewer& viewer, GLFWwindow* window) {
 #include "web/web.inc"
 #else
 
+// The files the command line names, under the input rule of every reader (a regular file of
+// bounded size; tangent/input_file.hpp), before any window opens: a folder, a FIFO or a device
+// is a clean error naming the option and the file, where it would block or be ignored. False
+// after printing the error.
+bool commandLineFilesReadable(const Options& options) {
+  auto readable = [](const char* option, const fs::path& file) {
+    try {
+      tangent::gltf::requireInputFile(file, "a glTF file");
+      return true;
+    } catch (const std::exception& e) {
+      printError(std::string(option) + ": " + e.what());
+      return false;
+    }
+  };
+  if (!options.checkShaders && !readable("input", options.input)) return false;
+  if (options.compare == CompareSource::otherFile && !readable("--compare", options.compareFile)) return false;
+  if (options.sphereMapGiven) {
+    tangent::gltf::ImageSource sphereMap;
+    sphereMap.file = options.sphereMap;
+    sphereMap.label = options.sphereMap.string();
+    std::string error;
+    if (!checkImageFile(sphereMap, error)) {
+      printError("--sphere-map: " + error);
+      return false;
+    }
+  }
+  return true;
+}
+
 int main(int argc, char** argv) {
   Options options;
   if (const int exit = parseOptions(argc, argv, options); exit >= 0) return exit;
+  if (!commandLineFilesReadable(options)) return 1;
   if (options.stats && !options.screenshot && !options.checkShaders) {
     // The scene alone: no window, no GL.
     try {

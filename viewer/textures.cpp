@@ -17,9 +17,24 @@
 #include <cstdio>
 #include <vector>
 
+#include "tangent/gltf.hpp"
+#include "tangent/input_file.hpp"
 #include "tangent/text.hpp"
 
 namespace tangent::viewer {
+
+bool checkImageFile(const gltf::ImageSource& source, std::string& error) {
+  if (!source.bytes.empty() || source.file.empty()) return true;
+  // The rule's message begins with the file's path; the label names it too (and the glTF image).
+  const std::string prefix = source.label == source.file.string() ? "" : source.label + ": ";
+  try {
+    if (gltf::requireInputFile(source.file, "an image") > 0) return true;
+    error = prefix + source.file.string() + ": is empty (0 bytes), not an image";
+  } catch (const gltf::InputError& e) {
+    error = prefix + e.what();
+  }
+  return false;
+}
 
 #ifndef __EMSCRIPTEN__
 namespace {
@@ -155,6 +170,7 @@ bool decodePixels(const gltf::ImageSource& source, DecodedImage& image, std::str
 }  // namespace
 
 bool decodeImage(const gltf::ImageSource& source, DecodedImage& image, std::string& error) {
+  if (!checkImageFile(source, error)) return false;
   StderrCapture decoderOutput;
   const bool decoded = decodePixels(source, image, error);
   image.notes = decoderOutput.finish(source.label);

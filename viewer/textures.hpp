@@ -19,13 +19,19 @@ struct DecodedImage {
   std::vector<std::string> notes;
 };
 
+// An image file (source.file) under the input rule of every reader (tangent/input_file.hpp): a
+// regular file of bounded size, and not empty. False + error naming the image otherwise; true
+// for an embedded image.
+bool checkImageFile(const gltf::ImageSource& source, std::string& error);
+
 // The most memory an image may take decoded, as RGBA8: 1 GiB, a 16384 x 16384 texture. The
 // header's size is checked before decoding, so that a small file claiming 60000 x 60000 pixels is
 // refused instead of asking for 14 GB.
 inline constexpr std::uint64_t kMaxDecodedImageBytes = std::uint64_t(1) << 30;
 
 // RGBA8 pixels of an image (grey spread to RGB, alpha 255 when absent); false + error, which
-// names the image (ImageSource::label), also for one over kMaxDecodedImageBytes.
+// names the image (ImageSource::label), also for a file checkImageFile refuses and for one over
+// kMaxDecodedImageBytes.
 bool decodeImage(const gltf::ImageSource& source, DecodedImage& image, std::string& error);
 
 // Downscales an image wider or taller than maxSize (GL_MAX_TEXTURE_SIZE) to fit, keeping its

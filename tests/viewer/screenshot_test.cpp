@@ -3,6 +3,7 @@
 // llvmpipe (the CTest entry wraps it in xvfb-run).
 #include <OpenImageIO/imageio.h>
 #include <gtest/gtest.h>
+#include <sys/stat.h>
 
 #include <algorithm>
 #include <array>
@@ -2634,6 +2635,46 @@ TEST(Viewer, NonFiniteOrOutOfRangeSceneDataIsNotedAndTheRestDrawn) {
     std::printf("%s: %d of %d pixels drawn\n", c.name, drawn, image.width * image.height);
     EXPECT_GT(drawn, image.width * image.height / 3) << c.name << ": the frame is (nearly) empty\n" << output;
   }
+}
+
+// --sphere-map, --compare and the input under the input rule of every reader: a folder, an
+// empty file, a FIFO and a character device are a clean error naming the option, the file and
+// why, at once (the time limit fails a run that blocks or reads forever). /dev/zero used to be
+// read forever, a FIFO to block, a folder and an empty file to be ignored.
+TEST(Viewer, CommandLineFilesMustBeRegularFilesOfBoundedSize) {
+  TempDir dir;
+  fs::create_directories(dir / "folder.png");
+  std::ofstream(dir / "empty.png").close();
+  ASSERT_EQ(::mkfifo((dir / "fifo.png").c_str(), 0600), 0);
+  ASSERT_EQ(::mkfifo((dir / "fifo.gltf").c_str(), 0600), 0);
+  const std::string demo = "'" + (fs::path(TANGENT_SOURCE_DIR) / "data" / "demo" / "quad.gltf").string() + "'";
+  const std::string shot = " --size 64x64 --screenshot '" + (dir / "x.png").string() + "'";
+  struct Case {
+    std::string arguments;
+    std::string error;
+  };
+  const Case cases[] = {
+      {demo + " --sphere-map '" + (dir / "folder.png").string() + "'", "--sphere-map: " + (dir / "folder.png").string() + ": is a directory, not an image"},
+      {demo + " --sphere-map '" + (dir / "empty.png").string() + "'", "--sphere-map: " + (dir / "empty.png").string() + ": is empty (0 bytes), not an image"},
+      {demo + " --sphere-map '" + (dir / "fifo.png").string() + "'", "--sphere-map: " + (dir / "fifo.png").string() + ": is not a regular file"},
+      {demo + " --sphere-map /dev/zero", "--sphere-map: /dev/zero: is not a regular file"},
+      {demo + " --compare '" + (dir / "fifo.gltf").string() + "'", "--compare: " + (dir / "fifo.gltf").string() + ": is not a regular file"},
+      {"'" + (dir / "fifo.gltf").string() + "'", "input: " + (dir / "fifo.gltf").string() + ": is not a regular file"},
+      {"'" + dir.path().string() + "'", "input: " + dir.path().string() + ": is a directory, not a glTF file"},
+  };
+  for (const Case& c : cases) {
+    std::string output;
+    const auto result = tangent::testing::runCommand("timeout 30 " + std::string(TANGENT_VIEW) + " " + c.arguments + shot);
+    EXPECT_EQ(result.exitCode, 1) << c.arguments << " (124: it hung)\n" << result.output;
+    EXPECT_NE(result.output.find("error: " + c.error), std::string::npos) << c.arguments << "\n" << result.output;
+    EXPECT_FALSE(fs::exists(dir / "x.png")) << c.arguments;
+  }
+  // A sphere map that is a regular file but no image: also an error, now that --sphere-map names it.
+  std::ofstream(dir / "text.png") << "not an image";
+  const auto result = tangent::testing::runCommand("timeout 60 " + std::string(TANGENT_VIEW) + " " + demo + " --sphere-map '" +
+                                                   (dir / "text.png").string() + "'" + shot);
+  EXPECT_EQ(result.exitCode, 1) << result.output;
+  EXPECT_NE(result.output.find("error: --sphere-map: " + (dir / "text.png").string() + ": cannot be decoded"), std::string::npos) << result.output;
 }
 
 // A mesh name with ESC, CR, LF and NUL reaches the terminal escaped as the CLI escapes it
