@@ -892,6 +892,8 @@ int interactive(Viewer& viewer, GLFWwindow* window) {
 #include "web/web.inc"
 #else
 
+namespace {
+
 // The files the command line names, under the input rule of every reader (a regular file of
 // bounded size; tangent/input_file.hpp), before any window opens: a folder, a FIFO or a device
 // is a clean error naming the option and the file, where it would block or be ignored. False
@@ -920,6 +922,8 @@ bool commandLineFilesReadable(const Options& options) {
   }
   return true;
 }
+
+}  // namespace
 
 int main(int argc, char** argv) {
   Options options;
