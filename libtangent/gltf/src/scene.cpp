@@ -133,7 +133,8 @@ float jsonFloat(const Json& value) {
   if (!value.is_number()) return std::numeric_limits<float>::quiet_NaN();
   const double d = value.get<double>();
   if (std::abs(d) <= static_cast<double>(std::numeric_limits<float>::max())) return static_cast<float>(d);
-  return d > 0 ? std::numeric_limits<float>::infinity() : d < 0 ? -std::numeric_limits<float>::infinity() : std::numeric_limits<float>::quiet_NaN();
+  constexpr float kInfinity = std::numeric_limits<float>::infinity();
+  return d > 0 ? kInfinity : d < 0 ? -kInfinity : std::numeric_limits<float>::quiet_NaN();
 }
 
 float floatValue(const Json& object, const char* key, float otherwise) {
@@ -563,7 +564,8 @@ bool posable(const Json& doc) {
 // Every node's parent, local transform, morph weights and skin (glTF 2.0 3.5). A node whose
 // transform is unusable (`unusable`, which flattenScene has reported) keeps the identity; a morph
 // weight that is not finite is 0, with a message naming the node.
-std::vector<SceneNode> readNodes(const Json& doc, const std::vector<char>& unusable, const std::string& file, std::vector<std::string>& messages) {
+std::vector<SceneNode> readNodes(const Json& doc, const std::vector<char>& unusable, const std::string& file,
+                                 std::vector<std::string>& messages) {
   const std::size_t nodeCount = doc["nodes"].size();
   std::vector<SceneNode> nodes(nodeCount);
   for (std::size_t n = 0; n < nodeCount; ++n) {
@@ -797,7 +799,8 @@ Scene flattenScene(const std::filesystem::path& input, const SceneOptions& optio
     visited[nodeIndex] = 1;
     const Json& node = doc["nodes"][nodeIndex];
     glm::mat4 world = parent * localTransform(node, !unusableTransform[nodeIndex]);
-    if (!unusableTransform[nodeIndex] && !std::all_of(glm::value_ptr(world), glm::value_ptr(world) + 16, [](float v) { return std::isfinite(v); })) {
+    const auto finite = [](float v) { return std::isfinite(v); };
+    if (!unusableTransform[nodeIndex] && !std::all_of(glm::value_ptr(world), glm::value_ptr(world) + 16, finite)) {
       // Finite transforms whose product is not (scales of 1e30 under 1e30): the parent's alone.
       scene.messages.push_back(file + ": node " + std::to_string(nodeIndex) +
                                ": world transform not finite (its transforms' product overflows); its own treated as identity");
@@ -810,11 +813,13 @@ Scene flattenScene(const std::filesystem::path& input, const SceneOptions& optio
     }
     if (node.contains("extensions") && node["extensions"].contains("KHR_lights_punctual")) {
       const Json& reference = node["extensions"]["KHR_lights_punctual"];
-      const std::int64_t lightIndex = reference.contains("light") && reference["light"].is_number_integer() ? reference["light"].get<std::int64_t>() : -1;
+      const bool hasIndex = reference.contains("light") && reference["light"].is_number_integer();
+      const std::int64_t lightIndex = hasIndex ? reference["light"].get<std::int64_t>() : -1;
       const std::string where = file + ": node " + std::to_string(nodeIndex) + ": KHR_lights_punctual light ";
       if (lightIndex < 0 || lightIndex >= static_cast<std::int64_t>(lightDefinitions.size())) {
-        scene.messages.push_back(where + (reference.contains("light") ? text::dumpJson(reference["light"]) : std::string("(none)")) + " is not one of the file's " +
-                                 std::to_string(lightDefinitions.size()) + " light(s); left out");
+        const std::string named = reference.contains("light") ? text::dumpJson(reference["light"]) : std::string("(none)");
+        scene.messages.push_back(where + named + " is not one of the file's " + std::to_string(lightDefinitions.size()) +
+                                 " light(s); left out");
       } else {
         LightDesc light = lightAt(lightDefinitions[static_cast<std::size_t>(lightIndex)], world);
         light.definition = static_cast<int>(lightIndex);
