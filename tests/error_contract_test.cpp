@@ -3,6 +3,7 @@
 // each of them throw InputError, and nothing else, with the file and the element at fault in
 // its message. One test per entry point, and the translation of what code below them throws.
 #include <gtest/gtest.h>
+#include <sys/stat.h>
 
 #include <filesystem>
 #include <fstream>
@@ -14,6 +15,7 @@
 #include "support/temp_dir.hpp"
 #include "tangent/check.hpp"
 #include "tangent/gltf.hpp"
+#include "tangent/input_file.hpp"
 #include "tangent/scene.hpp"
 
 namespace {
@@ -101,6 +103,31 @@ TEST(ErrorContract, ForeignExceptionsBecomeInputErrorAtTheEntryPoint) {
   } catch (const InputError& e) {
     EXPECT_STREQ(e.what(), "a.gltf: /nodes/3: is wrong");
   }
+}
+
+// The one input rule (tangent/input_file.hpp): a regular file passes with its size; a folder,
+// a FIFO (which would block a reader) and a character device (/dev/zero never ends) are refused
+// by name before anything opens them, and an entry point given one says the same.
+TEST(ErrorContract, OnlyRegularFilesOfBoundedSizeAreRead) {
+  TempDir dir;
+  std::ofstream(dir / "three.bin") << "abc";
+  EXPECT_EQ(tangent::gltf::requireInputFile(dir / "three.bin", "a glTF file"), 3u);
+  ASSERT_EQ(::mkfifo((dir / "fifo.gltf").c_str(), 0600), 0);
+  const std::pair<fs::path, std::string> refused[] = {
+      {dir / "missing.gltf", ": no such file"},
+      {dir.path(), ": is a directory, not a glTF file"},
+      {dir / "fifo.gltf", ": is not a regular file"},
+      {"/dev/zero", ": is not a regular file"},
+  };
+  for (const auto& [file, why] : refused) {
+    try {
+      tangent::gltf::requireInputFile(file, "a glTF file");
+      ADD_FAILURE() << file << " passed";
+    } catch (const InputError& e) {
+      EXPECT_EQ(std::string(e.what()).rfind(file.string() + why, 0), 0u) << e.what();
+    }
+  }
+  expectInputError([&] { tangent::gltf::loadScene(dir / "fifo.gltf"); }, dir / "fifo.gltf", "is not a regular file");
 }
 
 }  // namespace

@@ -33,13 +33,23 @@
 #include "shader_check.hpp"
 #include "shader_library.hpp"
 #include "tangent/gltf.hpp"
+#include "tangent/input_file.hpp"
 #include "tangent/scene.hpp"
+#include "tangent/text.hpp"
 #include "textures.hpp"
 
 namespace {
 
 namespace fs = std::filesystem;
 using namespace tangent::viewer;
+
+// The note channel. Every line the viewer prints that may carry file-derived text (names, paths,
+// the decoders' and loaders' messages) goes through here, escaped as the CLI escapes it
+// (tools/tangent/commands.hpp's shown()): no control character reaches the terminal, and no
+// name can begin a line of its own (a mesh named "\nok" forging a line of a CI log).
+std::string shown(std::string_view text) { return tangent::text::terminalSafe(text, 4096); }
+void printNote(std::string_view text) { std::cerr << "note: " << shown(text) << "\n"; }
+void printError(std::string_view text) { std::cerr << "error: " << shown(text) << "\n"; }
 
 const char* kUsage =
     "usage: tangent-view [IN] [options]\n"
@@ -124,6 +134,7 @@ struct Options {
   RenderSettings settings;
   bool negateW = false;
   fs::path sphereMap = demoFolder() / "spheremap.png";
+  bool sphereMapGiven = false;  // --sphere-map: its failure is an error, not a note
   fs::path shaderDir = resourceFolder("shaders");
   fs::path assetRoot;  // --asset-root: the folder buffer and image URIs may not leave
   int frames = 1;
@@ -193,7 +204,7 @@ int parseOptions(int argc, char** argv, Options& options) {
       else if (arg == "--flip-green") options.settings.flipGreen = true;
       else if (arg == "--negate-w") options.negateW = true;
       else if (arg == "--reflectivity") options.settings.reflectivity = std::clamp(std::stof(value()), 0.0f, 1.0f);
-      else if (arg == "--sphere-map") options.sphereMap = value();
+      else if (arg == "--sphere-map") options.sphereMap = value(), options.sphereMapGiven = true;
       else if (arg == "--uv-scale") options.settings.uvScale = std::stof(value());
       else if (arg == "--frames") options.frames = std::clamp(std::stoi(value()), 1, 10000);
       else if (arg == "--shader-dir") options.shaderDir = value();
@@ -247,13 +258,13 @@ int parseOptions(int argc, char** argv, Options& options) {
       else if (!arg.empty() && arg[0] == '-') throw std::invalid_argument("unknown option " + arg);
       else options.input = arg;
     } catch (const std::exception& e) {
-      std::cerr << "tangent-view: " << e.what() << "\n\n" << kUsage;
+      std::cerr << "tangent-view: " << shown(e.what()) << "\n\n" << kUsage;
       return 2;
     }
   }
   OrbitCamera probe;
   if (!probe.frame(glm::vec3(-1), glm::vec3(1), options.camera)) {
-    std::cerr << "tangent-view: unknown --camera " << options.camera << "\n";
+    std::cerr << "tangent-view: unknown --camera " << shown(options.camera) << "\n";
     return 2;
   }
   return -1;
@@ -270,7 +281,7 @@ tangent::gltf::SceneOptions sceneOptionsFor(const Options& options) {
 void printSceneStats(const fs::path& file, const tangent::gltf::Scene& scene) {
   std::size_t triangles = 0;
   for (const auto& instance : scene.instances) triangles += scene.items[instance.item].positions.size() / 9;
-  std::printf("scene %s: %zu primitive(s), %zu instance(s), %zu triangle(s) drawn, %zu image(s), %zu light(s)\n", file.string().c_str(),
+  std::printf("scene %s: %zu primitive(s), %zu instance(s), %zu triangle(s) drawn, %zu image(s), %zu light(s)\n", shown(file.string()).c_str(),
               scene.items.size(), scene.instances.size(), triangles, scene.images.size(), scene.lights.size());
   std::fflush(stdout);
 }
@@ -301,7 +312,7 @@ struct Viewer {
         const std::string text = "no animation '" + options.animation.value_or("0") + "' in " + loaded.string() + " (it has " +
                                  std::to_string(scene.animations.size()) + ")";
         messages.push_back(text);
-        std::cerr << "error: " << text << "\n";
+        printError(text);
         return !options.screenshot;  // a screenshot of another pose would mislead
       }
       pose = PoseTime{*animation, options.time.value_or(0.0f)};
@@ -321,7 +332,7 @@ struct Viewer {
     auto refuse = [&](const std::string& why) {
       const std::string text = "--compare " + options.compareFile.string() + ": " + why + "; compared with fresh tangents instead";
       messages.push_back(text);
-      std::cerr << "error: " << text << "\n";
+      printError(text);
       options.compare = CompareSource::fresh;
       renderer.setCompareTangents({});
       return false;
@@ -375,22 +386,27 @@ struct Viewer {
       }
     } catch (const std::exception& e) {
       messages.push_back(std::string("cannot open: ") + e.what());
-      std::cerr << "error: " << e.what() << "\n";
+      printError(e.what());
       return false;
     }
-    for (const auto& m : messages) std::cerr << "note: " << m << "\n";
+    for (const auto& m : messages) printNote(m);
     if (!choosePose()) return false;
     camera.frame(options.frameBox ? options.frameBox->first : renderer.boundsMin(),
                  options.frameBox ? options.frameBox->second : renderer.boundsMax(), options.camera,
                  float(options.width) / float(options.height));
     camera.orthographic = options.orthographic;
-    if (options.settings.reflectivity > 0 || fs::exists(options.sphereMap)) {
+    if (options.settings.reflectivity > 0 || options.sphereMapGiven || fs::exists(options.sphereMap)) {
       std::vector<std::string> sphereMessages;
-      // A default sphere map that fails matters only when reflections are on.
-      if (renderer.loadSphereMap(options.sphereMap, sphereMessages) || options.settings.reflectivity > 0) {
-        for (const auto& m : sphereMessages) std::cerr << "note: " << m << "\n";
-        messages.insert(messages.end(), sphereMessages.begin(), sphereMessages.end());
+      const bool sphereLoaded = renderer.loadSphereMap(options.sphereMap, sphereMessages);
+      messages.insert(messages.end(), sphereMessages.begin(), sphereMessages.end());
+      // One that --sphere-map names and that cannot be used is an error (a screenshot without it
+      // would mislead); a default one that fails matters only when reflections are on.
+      if (!sphereLoaded && options.sphereMapGiven) {
+        for (const auto& m : sphereMessages) printError("--sphere-map: " + m);
+        return false;
       }
+      if (sphereLoaded || options.settings.reflectivity > 0)
+        for (const auto& m : sphereMessages) printNote(m);
     }
     return true;
   }
@@ -479,7 +495,7 @@ int screenshot(Viewer& viewer) {
       cpuMilliseconds.push_back(1000.0 * static_cast<double>(std::clock() - cpuStart) / CLOCKS_PER_SEC);
     }
   } catch (const std::exception& e) {
-    std::cerr << "error: " << e.what() << "\n";
+    printError(e.what());
     return 1;
   }
   std::vector<unsigned char> pixels(static_cast<std::size_t>(o.width) * o.height * 4);
@@ -493,7 +509,7 @@ int screenshot(Viewer& viewer) {
   }
   std::string error;
   if (!writePng(o.screenshot->string(), o.width, o.height, pixels, error)) {
-    std::cerr << "error: " << error << "\n";
+    printError(error);
     return 1;
   }
   std::sort(milliseconds.begin(), milliseconds.end());
@@ -502,7 +518,7 @@ int screenshot(Viewer& viewer) {
   // frame (and again only when something moves), are counted apart.
   std::printf("wrote %s (%dx%d, %d samples): %zu triangles, %d draw calls, %zu shader variants, %d shadow pass(es) of %d draw "
               "call(s), exposure %.4g, median frame %.2f ms (CPU %.2f ms) over %d frame(s)\n",
-              o.screenshot->string().c_str(), o.width, o.height, std::max(samples, 1), stats.triangles, stats.drawCalls,
+              shown(o.screenshot->string()).c_str(), o.width, o.height, std::max(samples, 1), stats.triangles, stats.drawCalls,
               viewer.shaders.variantsCompiled(), viewer.renderer.shadowPasses(), shadowDrawCalls, stats.exposure, milliseconds[milliseconds.size() / 2],
               cpuMilliseconds[cpuMilliseconds.size() / 2], o.frames);
   if (viewer.renderer.environmentMilliseconds() > 0)
@@ -747,13 +763,25 @@ void printState(const Viewer& viewer, GLFWwindow* window) {
       {"windowWidth", windowWidth(window)},
       {"messages", viewer.messages},
   };
-  std::printf("state %s\n", state.dump().c_str());
+  std::printf("state %s\n", tangent::text::dumpJson(state).c_str());
   std::fflush(stdout);
 }
 
 int interactive(Viewer& viewer, GLFWwindow* window) {
   IMGUI_CHECKVERSION();
   ImGui::CreateContext();
+  // The panel's layout file (Dear ImGui's imgui.ini in the working folder), under the input
+  // rule: where it is there but not a regular file of bounded size (a FIFO would block the
+  // first frame), it is neither read nor written.
+  if (const char* ini = ImGui::GetIO().IniFilename; ini && fs::exists(fs::symlink_status(ini))) {
+    try {
+      tangent::gltf::requireInputFile(ini, "a settings file");
+    } catch (const std::exception& e) {
+      ImGui::GetIO().IniFilename = nullptr;
+      viewer.messages.push_back(std::string(e.what()) + "; the panel's layout is neither read nor saved");
+      printNote(viewer.messages.back());
+    }
+  }
   ImGui_ImplGlfw_InitForOpenGL(window, true);
   ImGui_ImplOpenGL3_Init("#version 330 core");
   Input input;
@@ -836,7 +864,7 @@ int interactive(Viewer& viewer, GLFWwindow* window) {
         stats = viewer.renderer.render(viewer.camera.matrices(float(width) / float(height)), viewer.options.settings, width, height);
       } catch (const std::exception& e) {
         viewer.messages.push_back(e.what());
-        std::cerr << "error: " << e.what() << "\n";
+        printError(e.what());
         viewer.options.settings.view = DebugView::lit;
         viewer.shaders.reload();
       }
@@ -864,18 +892,52 @@ int interactive(Viewer& viewer, GLFWwindow* window) {
 #include "web/web.inc"
 #else
 
+namespace {
+
+// The files the command line names, under the input rule of every reader (a regular file of
+// bounded size; tangent/input_file.hpp), before any window opens: a folder, a FIFO or a device
+// is a clean error naming the option and the file, where it would block or be ignored. False
+// after printing the error.
+bool commandLineFilesReadable(const Options& options) {
+  auto readable = [](const char* option, const fs::path& file) {
+    try {
+      tangent::gltf::requireInputFile(file, "a glTF file");
+      return true;
+    } catch (const std::exception& e) {
+      printError(std::string(option) + ": " + e.what());
+      return false;
+    }
+  };
+  if (!options.checkShaders && !readable("input", options.input)) return false;
+  if (options.compare == CompareSource::otherFile && !readable("--compare", options.compareFile)) return false;
+  if (options.sphereMapGiven) {
+    tangent::gltf::ImageSource sphereMap;
+    sphereMap.file = options.sphereMap;
+    sphereMap.label = options.sphereMap.string();
+    std::string error;
+    if (!checkImageFile(sphereMap, error)) {
+      printError("--sphere-map: " + error);
+      return false;
+    }
+  }
+  return true;
+}
+
+}  // namespace
+
 int main(int argc, char** argv) {
   Options options;
   if (const int exit = parseOptions(argc, argv, options); exit >= 0) return exit;
+  if (!commandLineFilesReadable(options)) return 1;
   if (options.stats && !options.screenshot && !options.checkShaders) {
     // The scene alone: no window, no GL.
     try {
       const tangent::gltf::Scene scene = tangent::gltf::loadScene(options.input, sceneOptionsFor(options));
-      for (const auto& m : scene.messages) std::cerr << "note: " << m << "\n";
+      for (const auto& m : scene.messages) printNote(m);
       printSceneStats(options.input, scene);
       return 0;
     } catch (const std::exception& e) {
-      std::cerr << "error: " << e.what() << "\n";
+      printError(e.what());
       return 1;
     }
   }
@@ -916,7 +978,7 @@ int main(int argc, char** argv) {
     ShaderLibrary shaders(options.shaderDir);
     int checked = 0;
     const auto problems = checkShaderInputs(shaders, checked);
-    for (const auto& problem : problems) std::cerr << "error: " << problem << "\n";
+    for (const auto& problem : problems) printError(problem);
     std::printf("%d programs linked, vertex inputs %s the layout tables\n", checked, problems.empty() ? "agree with" : "DISAGREE with");
     exit = problems.empty() ? 0 : 1;
   } else {

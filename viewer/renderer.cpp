@@ -14,6 +14,7 @@
 #include <span>
 
 #include "shadow_cube.hpp"
+#include "tangent/text.hpp"
 #include "textures.hpp"
 #include "vertex_layout.hpp"
 #include "vertex_weld.hpp"
@@ -165,7 +166,7 @@ std::vector<Light> lightsFrom(const gltf::Scene& scene, glm::vec3 center, float 
     std::string named;
     for (std::size_t i : left) {
       const gltf::LightDesc& source = scene.lights[i];
-      named += (named.empty() ? "" : ", ") + std::to_string(source.definition) + (source.name.empty() ? "" : " '" + source.name + "'") +
+      named += (named.empty() ? "" : ", ") + std::to_string(source.definition) + (source.name.empty() ? "" : " '" + text::quoted(source.name) + "'") +
                " (node " + std::to_string(source.node) + ")";
     }
     std::vector<Light> kept;
@@ -234,7 +235,7 @@ void Renderer::setScene(gltf::Scene scene, std::vector<std::string>& messages) {
       if (ref->image < 0 || ref->image >= static_cast<int>(imageCount)) continue;
       (ref->colour ? usedAsColour : usedAsData)[ref->image] = true;
       if (ref->texCoord > 1)
-        messages.push_back("material '" + material.name + "': texCoord " + std::to_string(ref->texCoord) +
+        messages.push_back("material '" + text::quoted(material.name) + "': texCoord " + std::to_string(ref->texCoord) +
                            " shown with TEXCOORD_0 (the viewer reads sets 0 and 1)");
     }
   }
@@ -245,7 +246,9 @@ void Renderer::setScene(gltf::Scene scene, std::vector<std::string>& messages) {
     if (!usedAsColour[i] && !usedAsData[i]) continue;
     DecodedImage image;
     std::string error;
-    if (!decodeImage(scene_.images[i], image, error)) {
+    const bool decoded = decodeImage(scene_.images[i], image, error);
+    messages.insert(messages.end(), image.notes.begin(), image.notes.end());
+    if (!decoded) {
       messages.push_back(error);
       continue;
     }

@@ -8,6 +8,7 @@
 #include <stdexcept>
 
 #include "debug_colours.hpp"
+#include "tangent/input_file.hpp"
 #include "tangent/tangent.hpp"
 
 namespace tangent::viewer {
@@ -57,6 +58,7 @@ std::string forTarget(std::string text, const std::string& defines) {
 
 std::string ShaderLibrary::source(const std::string& file, int depth) const {
   if (depth > 8) throw std::runtime_error("shader includes nest too deep at " + file);
+  tangent::gltf::requireInputFile(directory_ / file, "a shader");  // the input rule: no FIFO, device or folder
   std::ifstream in(directory_ / file);
   if (!in) throw std::runtime_error("cannot read shader " + (directory_ / file).string());
   std::string text(std::istreambuf_iterator<char>(in), {});

@@ -10,15 +10,94 @@
 #include "tangent/output.hpp"
 #endif
 
+#ifndef __EMSCRIPTEN__
+#include <unistd.h>
+#endif
+
 #include <algorithm>
 #include <span>
 #include <cmath>
 #include <cstdio>
 #include <vector>
 
+#include "tangent/gltf.hpp"
+#include "tangent/input_file.hpp"
+#include "tangent/text.hpp"
+
 namespace tangent::viewer {
+
+bool checkImageFile(const gltf::ImageSource& source, std::string& error) {
+  if (!source.bytes.empty() || source.file.empty()) return true;
+  // The rule's message begins with the file's path; the label names it too (and the glTF image).
+  const std::string prefix = source.label == source.file.string() ? "" : source.label + ": ";
+  try {
+    if (gltf::requireInputFile(source.file, "an image") > 0) return true;
+    error = prefix + source.file.string() + ": is empty (0 bytes), not an image";
+  } catch (const gltf::InputError& e) {
+    error = prefix + e.what();
+  }
+  return false;
+}
+
 #ifndef __EMSCRIPTEN__
 namespace {
+
+// What libpng (inside OpenImageIO's PNG reader) writes to stderr on its own ("libpng warning:
+// iCCP: known incorrect sRGB profile"), caught while an image is decoded: stderr (fd 2) goes to
+// a temporary file from construction to finish(), and each line comes back as a note naming
+// the image, so that it reaches the terminal only escaped, through the note channel.
+class StderrCapture {
+ public:
+  StderrCapture() {
+    std::fflush(stderr);
+    file_ = std::tmpfile();
+    if (!file_) return;
+    saved_ = dup(2);
+    if (saved_ < 0 || dup2(fileno(file_), 2) < 0) {
+      if (saved_ >= 0) close(saved_);
+      saved_ = -1;
+    }
+  }
+  StderrCapture(const StderrCapture&) = delete;
+  StderrCapture& operator=(const StderrCapture&) = delete;
+  ~StderrCapture() { restore(); }
+
+  // The captured lines, each as "<label>: <line>" (empty lines dropped, at most 20).
+  std::vector<std::string> finish(const std::string& label) {
+    std::vector<std::string> lines;
+    if (!restore()) return lines;
+    std::rewind(file_);
+    std::string text;
+    char buffer[4096];
+    for (std::size_t n; (n = std::fread(buffer, 1, sizeof buffer, file_)) > 0 && text.size() < (1u << 16);) text.append(buffer, n);
+    std::fclose(file_);
+    file_ = nullptr;
+    for (std::size_t start = 0; start < text.size() && lines.size() < 20;) {
+      std::size_t end = text.find('\n', start);
+      if (end == std::string::npos) end = text.size();
+      if (end > start) lines.push_back(label + ": decoder says: " + text::quoted(text.substr(start, end - start)));
+      start = end + 1;
+    }
+    return lines;
+  }
+
+ private:
+  // Puts stderr back; false when nothing was captured.
+  bool restore() {
+    if (saved_ < 0) {
+      if (file_) std::fclose(file_), file_ = nullptr;
+      return false;
+    }
+    std::fflush(stderr);
+    dup2(saved_, 2);
+    close(saved_);
+    saved_ = -1;
+    return file_ != nullptr;
+  }
+
+  std::FILE* file_ = nullptr;
+  int saved_ = -1;
+};
 
 std::string extensionFor(const std::string& mimeType) {
   if (mimeType == "image/jpeg") return ".jpg";
@@ -40,9 +119,8 @@ std::string refusal(const OIIO::ImageSpec& spec) {
          " decoded, over the viewer's limit of " + std::to_string(kMaxDecodedImageBytes >> 30) + " GiB; not decoded";
 }
 
-}  // namespace
-
-bool decodeImage(const gltf::ImageSource& source, DecodedImage& image, std::string& error) {
+// The pixels of an image that checkImageFile allowed (decodeImage's work).
+bool decodePixels(const gltf::ImageSource& source, DecodedImage& image, std::string& error) {
   std::unique_ptr<OIIO::ImageInput> input;
   OIIO::Filesystem::IOMemReader memory(source.bytes.data(), source.bytes.size());
   // glTF's alpha is straight (unassociated): keep colour as stored, not premultiplied.
@@ -90,6 +168,16 @@ bool decodeImage(const gltf::ImageSource& source, DecodedImage& image, std::stri
     }
   }
   return true;
+}
+
+}  // namespace
+
+bool decodeImage(const gltf::ImageSource& source, DecodedImage& image, std::string& error) {
+  if (!checkImageFile(source, error)) return false;
+  StderrCapture decoderOutput;
+  const bool decoded = decodePixels(source, image, error);
+  image.notes = decoderOutput.finish(source.label);
+  return decoded;
 }
 
 // A resampled copy of the image at width x height (false where it cannot be made).
@@ -148,7 +236,9 @@ Texture uploadTexture(const DecodedImage& image, bool srgb) {
 Texture loadTexture(const gltf::ImageSource& source, bool srgb, std::vector<std::string>& messages) {
   DecodedImage image;
   std::string error;
-  if (!decodeImage(source, image, error)) {
+  const bool decoded = decodeImage(source, image, error);
+  messages.insert(messages.end(), image.notes.begin(), image.notes.end());
+  if (!decoded) {
     messages.push_back(error);
     return {};
   }

@@ -14,7 +14,15 @@ namespace tangent::viewer {
 struct DecodedImage {
   int width = 0, height = 0;
   std::vector<unsigned char> rgba;  // rows as stored (glTF's UV origin is the first row)
+  // What the decoder itself said while decoding (libpng's warnings, which it writes to stderr),
+  // each naming the image: for the note channel, never straight to the terminal.
+  std::vector<std::string> notes;
 };
+
+// An image file (source.file) under the input rule of every reader (tangent/input_file.hpp): a
+// regular file of bounded size, and not empty. False + error naming the image otherwise; true
+// for an embedded image.
+bool checkImageFile(const gltf::ImageSource& source, std::string& error);
 
 // The most memory an image may take decoded, as RGBA8: 1 GiB, a 16384 x 16384 texture. The
 // header's size is checked before decoding, so that a small file claiming 60000 x 60000 pixels is
@@ -22,7 +30,8 @@ struct DecodedImage {
 inline constexpr std::uint64_t kMaxDecodedImageBytes = std::uint64_t(1) << 30;
 
 // RGBA8 pixels of an image (grey spread to RGB, alpha 255 when absent); false + error, which
-// names the image (ImageSource::label), also for one over kMaxDecodedImageBytes.
+// names the image (ImageSource::label), also for a file checkImageFile refuses and for one over
+// kMaxDecodedImageBytes.
 bool decodeImage(const gltf::ImageSource& source, DecodedImage& image, std::string& error);
 
 // Downscales an image wider or taller than maxSize (GL_MAX_TEXTURE_SIZE) to fit, keeping its
@@ -40,7 +49,7 @@ int maxTextureSize();
 Texture uploadTexture(const DecodedImage& image, bool srgb);
 
 // decodeImage, fitTextureSize, then uploadTexture; on failure an empty Texture. Errors and notes
-// go to `messages`.
+// (the decoder's own among them) go to `messages`.
 Texture loadTexture(const gltf::ImageSource& source, bool srgb, std::vector<std::string>& messages);
 
 // Writes RGBA8 pixels (rows bottom-up, as glReadPixels gives them) as a PNG; false + error.

@@ -3,6 +3,7 @@
 // llvmpipe (the CTest entry wraps it in xvfb-run).
 #include <OpenImageIO/imageio.h>
 #include <gtest/gtest.h>
+#include <sys/stat.h>
 
 #include <algorithm>
 #include <array>
@@ -13,8 +14,10 @@
 #include <filesystem>
 #include <fstream>
 #include <functional>
+#include <limits>
 #include <map>
 #include <numeric>
+#include <sstream>
 
 #include <nlohmann/json.hpp>
 
@@ -2542,4 +2545,187 @@ TEST(Viewer, AutoExposureKeepsTheBumpsOfALightSurface) {
   EXPECT_GE(litBright / litDim - 1, 0.8 * (linearBright / linearDim - 1));
   EXPECT_GT(litBright, srgbToLinear(0.6));
   EXPECT_LT(litBright, 0.9);
+}
+
+// ---- Trust: untrusted data is noted by element and drawn without it; files under one rule ----
+
+// A quad over [-1, 1]^2 facing +z (node 0), skinned to joint node 1 with one weight per
+// vertex, with one morph target (POSITION deltas) and a directional light on node 2. A case
+// spoils one part of it: the arrays before they are written, the document after.
+struct TrustQuad {
+  std::vector<float> weights{1, 0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0};
+  std::vector<std::uint16_t> joints = std::vector<std::uint16_t>(16, 0);
+  std::vector<float> inverseBind{1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1};
+  std::vector<float> morphPositions = std::vector<float>(12, 0.0f);
+  std::function<void(nlohmann::json&)> patch;
+
+  fs::path write(const TempDir& dir, const std::string& name) const {
+    GltfWriter gltf;
+    const int position = gltf.floats({-1, -1, 0, 1, -1, 0, 1, 1, 0, -1, 1, 0}, "VEC3", 3);
+    const int normal = gltf.floats({0, 0, 1, 0, 0, 1, 0, 0, 1, 0, 0, 1}, "VEC3", 3);
+    const int uv = gltf.floats({0, 1, 1, 1, 1, 0, 0, 0}, "VEC2", 2);
+    const int joint = gltf.shorts(joints, "VEC4", 4), weight = gltf.floats(weights, "VEC4", 4);
+    const int morph = gltf.add(morphPositions.data(), morphPositions.size() * sizeof(float), 5126, 4, "VEC3");
+    const int indices = gltf.shorts({0, 1, 2, 0, 2, 3}, "SCALAR", 1, true);
+    const int inverse = gltf.add(inverseBind.data(), inverseBind.size() * sizeof(float), 5126, 1, "MAT4");
+    const nlohmann::json attributes = {{"POSITION", position}, {"NORMAL", normal}, {"TEXCOORD_0", uv}, {"JOINTS_0", joint}, {"WEIGHTS_0", weight}};
+    const nlohmann::json primitive = {{"attributes", attributes}, {"indices", indices}, {"targets", {{{"POSITION", morph}}}}};
+    nlohmann::json doc = {
+        {"scene", 0},
+        {"scenes", {{{"nodes", {0, 1, 2}}}}},
+        {"nodes", {{{"mesh", 0}, {"skin", 0}, {"weights", {1.0}}}, nlohmann::json::object(),
+                   {{"extensions", {{"KHR_lights_punctual", {{"light", 0}}}}}, {"rotation", {-0.3826834, 0, 0, 0.9238795}}}}},
+        {"skins", {{{"joints", {1}}, {"inverseBindMatrices", inverse}}}},
+        {"meshes", {{{"name", "trust quad"}, {"primitives", {primitive}}}}},
+        {"extensionsUsed", {"KHR_lights_punctual"}},
+        {"extensions", {{"KHR_lights_punctual", {{"lights", {{{"type", "directional"}, {"intensity", 3.0}}}}}}}},
+    };
+    if (patch) patch(doc);
+    return gltf.write(dir / (name + ".gltf"), doc);
+  }
+};
+
+// Each kind of non-finite or out-of-range skin, morph, node and light data: the screenshot run
+// names the element in a note and draws the quad without it (unskinned, unmorphed, the node at
+// the identity, the light left out), exit 0 with a frame that is not empty. They used to give an
+// empty frame (NaN corners) or pass without a word (a joint or light index past its array).
+TEST(Viewer, NonFiniteOrOutOfRangeSceneDataIsNotedAndTheRestDrawn) {
+  TempDir dir;
+  const float nan = std::numeric_limits<float>::quiet_NaN();
+  struct Case {
+    const char* name;
+    std::function<void(TrustQuad&)> spoil;
+    const char* note;
+  };
+  const Case cases[] = {
+      {"intact", [](TrustQuad&) {}, nullptr},
+      {"weights-nan", [&](TrustQuad& q) { q.weights[8] = nan; }, "mesh 0 'trust quad' primitive 0: WEIGHTS_0 element 2 is not finite; skin not applied"},
+      {"inverse-bind-nan", [&](TrustQuad& q) { q.inverseBind[12] = nan; },
+       "skin 0: inverseBindMatrices element 0 is not finite; meshes with this skin shown unskinned"},
+      {"node-matrix-1e39", [](TrustQuad& q) {
+         q.patch = [](nlohmann::json& doc) { doc["nodes"][0]["matrix"] = {1e39, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1}; };
+       }, "node 0: matrix not finite; treated as identity"},
+      {"joint-past-skin", [](TrustQuad& q) { q.joints[4] = 5; },
+       "node 0: mesh 0 'trust quad' primitive 0: JOINTS_0 at corner 1 names joint 5, past the 1 joint(s) of skin 0; the node drawn unskinned"},
+      {"light-past-lights", [](TrustQuad& q) {
+         q.patch = [](nlohmann::json& doc) { doc["nodes"][2]["extensions"]["KHR_lights_punctual"]["light"] = 7; };
+       }, "node 2: KHR_lights_punctual light 7 is not one of the file's 1 light(s); left out"},
+      {"light-intensity-1e39", [](TrustQuad& q) {
+         q.patch = [](nlohmann::json& doc) { doc["extensions"]["KHR_lights_punctual"]["lights"][0]["intensity"] = 1e39; };
+       }, "node 2: KHR_lights_punctual light 0: intensity not finite; left out"},
+      {"morph-delta-nan", [&](TrustQuad& q) { q.morphPositions[4] = nan; },
+       "mesh 0 'trust quad' primitive 0: morph target 0 POSITION element 1 is not finite; morph targets not applied"},
+      {"morph-weight-1e39", [](TrustQuad& q) {
+         q.patch = [](nlohmann::json& doc) { doc["nodes"][0]["weights"] = {1e39}; };
+       }, "node 0: morph weight 0 is not finite; treated as 0"},
+  };
+  for (const Case& c : cases) {
+    TrustQuad quad;
+    c.spoil(quad);
+    const fs::path file = quad.write(dir, c.name);
+    const fs::path shot = dir / (std::string(c.name) + ".png");
+    std::string output;
+    const int exit = run("'" + file.string() + "' --camera front --ortho --size 64x64 --msaa 0 --screenshot '" + shot.string() + "'", output);
+    ASSERT_EQ(exit, 0) << c.name << "\n" << output;
+    if (c.note) EXPECT_NE(output.find(std::string("note: ") + file.string() + ": " + c.note), std::string::npos) << c.name << "\n" << output;
+    else EXPECT_EQ(output.find("note:"), std::string::npos) << c.name << "\n" << output;
+    // The quad covers the middle of the front view (44 x 44 of its 64 x 64 pixels, the camera
+    // framing the quad's bounding sphere); an empty frame is all background.
+    const Image image = readPng(shot);
+    ASSERT_EQ(image.width, 64) << c.name;
+    int drawn = 0;
+    for (int y = 0; y < image.height; ++y)
+      for (int x = 0; x < image.width; ++x) drawn += backgroundShare(Image{1, 1, {image.at(x, y)[0], image.at(x, y)[1], image.at(x, y)[2]}}) == 0;
+    std::printf("%s: %d of %d pixels drawn\n", c.name, drawn, image.width * image.height);
+    EXPECT_GT(drawn, image.width * image.height / 3) << c.name << ": the frame is (nearly) empty\n" << output;
+  }
+}
+
+// --sphere-map, --compare and the input under the input rule of every reader: a folder, an
+// empty file, a FIFO and a character device are a clean error naming the option, the file and
+// why, at once (the time limit fails a run that blocks or reads forever). /dev/zero used to be
+// read forever, a FIFO to block, a folder and an empty file to be ignored.
+TEST(Viewer, CommandLineFilesMustBeRegularFilesOfBoundedSize) {
+  TempDir dir;
+  fs::create_directories(dir / "folder.png");
+  std::ofstream(dir / "empty.png").close();
+  ASSERT_EQ(::mkfifo((dir / "fifo.png").c_str(), 0600), 0);
+  ASSERT_EQ(::mkfifo((dir / "fifo.gltf").c_str(), 0600), 0);
+  const std::string demo = "'" + (fs::path(TANGENT_SOURCE_DIR) / "data" / "demo" / "quad.gltf").string() + "'";
+  const std::string shot = " --size 64x64 --screenshot '" + (dir / "x.png").string() + "'";
+  struct Case {
+    std::string arguments;
+    std::string error;
+  };
+  const Case cases[] = {
+      {demo + " --sphere-map '" + (dir / "folder.png").string() + "'", "--sphere-map: " + (dir / "folder.png").string() + ": is a directory, not an image"},
+      {demo + " --sphere-map '" + (dir / "empty.png").string() + "'", "--sphere-map: " + (dir / "empty.png").string() + ": is empty (0 bytes), not an image"},
+      {demo + " --sphere-map '" + (dir / "fifo.png").string() + "'", "--sphere-map: " + (dir / "fifo.png").string() + ": is not a regular file"},
+      {demo + " --sphere-map /dev/zero", "--sphere-map: /dev/zero: is not a regular file"},
+      {demo + " --compare '" + (dir / "fifo.gltf").string() + "'", "--compare: " + (dir / "fifo.gltf").string() + ": is not a regular file"},
+      {"'" + (dir / "fifo.gltf").string() + "'", "input: " + (dir / "fifo.gltf").string() + ": is not a regular file"},
+      {"'" + dir.path().string() + "'", "input: " + dir.path().string() + ": is a directory, not a glTF file"},
+  };
+  for (const Case& c : cases) {
+    std::string output;
+    const auto result = tangent::testing::runCommand("timeout 30 " + std::string(TANGENT_VIEW) + " " + c.arguments + shot);
+    EXPECT_EQ(result.exitCode, 1) << c.arguments << " (124: it hung)\n" << result.output;
+    EXPECT_NE(result.output.find("error: " + c.error), std::string::npos) << c.arguments << "\n" << result.output;
+    EXPECT_FALSE(fs::exists(dir / "x.png")) << c.arguments;
+  }
+  // A sphere map that is a regular file but no image: also an error, now that --sphere-map names it.
+  std::ofstream(dir / "text.png") << "not an image";
+  const auto result = tangent::testing::runCommand("timeout 60 " + std::string(TANGENT_VIEW) + " " + demo + " --sphere-map '" +
+                                                   (dir / "text.png").string() + "'" + shot);
+  EXPECT_EQ(result.exitCode, 1) << result.output;
+  EXPECT_NE(result.output.find("error: --sphere-map: " + (dir / "text.png").string() + ": cannot be decoded"), std::string::npos) << result.output;
+}
+
+// A mesh name with ESC, CR, LF and NUL reaches the terminal escaped as the CLI escapes it
+// (\xHH): no control byte in the output, and no line of the name's own (it would forge an "ok"
+// line in a CI log). Both print paths: --stats (no window) and the screenshot run.
+TEST(Viewer, FileTextIsPrintedEscaped) {
+  TempDir dir;
+  TrustQuad quad;
+  quad.patch = [](nlohmann::json& doc) {
+    doc["meshes"][0]["name"] = std::string("a\x1b[31mred\r\nok all passed\0end", 28);
+    doc["meshes"][0]["primitives"][0]["attributes"].erase("NORMAL");  // a note that names the mesh
+  };
+  const fs::path file = quad.write(dir, "names");
+  for (const std::string& mode : {std::string(" --stats"), " --size 64x64 --screenshot '" + (dir / "x.png").string() + "'"}) {
+    std::string output;
+    ASSERT_EQ(run("'" + file.string() + "'" + mode, output), 0) << output;
+    EXPECT_NE(output.find("mesh 0 'a\\x1B[31mred\\x0D\\x0Aok all passed\\x00end' primitive 0: no NORMAL"), std::string::npos) << mode << "\n" << output;
+    EXPECT_EQ(output.find('\x1b'), std::string::npos) << mode;
+    EXPECT_EQ(output.find('\r'), std::string::npos) << mode;
+    EXPECT_EQ(output.find('\0'), std::string::npos) << mode;
+    EXPECT_EQ(output.find("\nok"), std::string::npos) << mode << "\n" << output;
+  }
+}
+
+// libpng's own messages ("libpng error: IDAT: CRC error", which it writes to stderr itself) come
+// through the note channel, escaped and naming the glTF and its image; nothing of the decoder's
+// reaches the terminal raw. The quad is still drawn (without its texture), exit 0.
+TEST(Viewer, ImageDecoderMessagesGoThroughTheNoteChannel) {
+  TempDir dir;
+  writeRgbaPng(dir / "broken.png", 8, 8, [](int, int) { return std::array<unsigned char, 4>{200, 40, 40, 255}; });
+  {
+    // The IDAT chunk's CRC, the 4 bytes before IEND's 12, spoiled.
+    std::fstream png(dir / "broken.png", std::ios::in | std::ios::out | std::ios::binary);
+    png.seekg(-13, std::ios::end);
+    const char byte = static_cast<char>(png.get());
+    png.seekp(-13, std::ios::end);
+    png.put(static_cast<char>(byte ^ 0x5a));
+  }
+  const nlohmann::json material = {{"pbrMetallicRoughness", {{"baseColorTexture", {{"index", 0}}}}},
+                                   {"extensions", {{"KHR_materials_unlit", nlohmann::json::object()}}}};
+  const fs::path file = quadAsset(dir, "broken", material, "broken.png");
+  std::string output;
+  ASSERT_EQ(run("'" + file.string() + "' --size 64x64 --screenshot '" + (dir / "x.png").string() + "'", output), 0) << output;
+  EXPECT_NE(output.find("note: " + file.string() + ": image 0 'broken.png': decoder says: libpng error: IDAT: CRC error"), std::string::npos)
+      << output;
+  EXPECT_NE(output.find("note: " + file.string() + ": image 0 'broken.png': cannot be read"), std::string::npos) << output;
+  std::istringstream lines(output);
+  for (std::string line; std::getline(lines, line);)
+    EXPECT_TRUE(line.rfind("note: ", 0) == 0 || line.rfind("wrote ", 0) == 0 || line.rfind("image-based", 0) == 0) << "a raw line: " << line;
 }

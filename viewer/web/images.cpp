@@ -21,6 +21,7 @@ bool decodeImage(const gltf::ImageSource& source, DecodedImage& image, std::stri
     bytes = reinterpret_cast<const unsigned char*>(source.bytes.data());
     size = source.bytes.size();
   } else if (!source.file.empty()) {
+    if (!checkImageFile(source, error)) return false;
     std::FILE* in = std::fopen(source.file.string().c_str(), "rb");
     if (!in) {
       error = source.label + ": cannot be decoded: cannot open " + source.file.string();

@@ -10,12 +10,36 @@
 #include <string_view>
 
 #include "tangent/gltf.hpp"
+#include "tangent/input_file.hpp"
 #include "tangent/text.hpp"
 #include "compression.hpp"
 #include "document.hpp"
 #include "primitive.hpp"
 #include "uri.hpp"
 #include "validate.hpp"
+
+namespace tangent::gltf {
+
+std::uintmax_t requireInputFile(const std::filesystem::path& path, const char* kind) {
+  std::error_code ec;
+  const auto status = std::filesystem::status(path, ec);
+  if (ec == std::errc::filename_too_long)
+    throw InputError(text::quoted(path.string()) + ": the name is too long (" + std::to_string(path.string().size()) +
+                     " bytes; the system allows " + std::to_string(PATH_MAX) + " in a path and " + std::to_string(NAME_MAX) +
+                     " in one of its names)");
+  const std::string name = path.string();  // escaped where it is printed, as every message
+  if (!std::filesystem::exists(status)) throw InputError(name + ": no such file");
+  if (std::filesystem::is_directory(status)) throw InputError(name + ": is a directory, not " + kind);
+  if (!std::filesystem::is_regular_file(status))
+    throw InputError(name + ": is not a regular file (a FIFO, socket or device is not read: it may block or never end)");
+  const std::uintmax_t size = std::filesystem::file_size(path, ec);
+  if (ec) throw InputError(name + ": its size cannot be read (" + ec.message() + ")");
+  if (size >= kMaxInputBytes)
+    throw InputError(name + ": is " + std::to_string(size) + " bytes; inputs are limited to 4 GiB");
+  return size;
+}
+
+}  // namespace tangent::gltf
 
 namespace tangent::gltf::detail {
 namespace {
@@ -35,29 +59,8 @@ void appendU32(std::vector<std::uint8_t>& out, std::uint32_t v) {
   out.insert(out.end(), p, p + 4);
 }
 
-// Largest input file read whole (a GLB cannot be larger than 4 GiB).
-constexpr std::uintmax_t kMaxInputBytes = std::uintmax_t(4) << 30;
-
-// The input is a regular file, or an InputError says why not: a name the system refuses as too
-// long (it was reported as missing), missing, a directory, something else. `kind`: "a glTF file".
-void requireRegularFile(const std::filesystem::path& path, const char* kind) {
-  std::error_code ec;
-  const auto status = std::filesystem::status(path, ec);
-  if (ec == std::errc::filename_too_long)
-    throw InputError(text::quoted(path.string()) + ": the name is too long (" + std::to_string(path.string().size()) +
-                     " bytes; the system allows " + std::to_string(PATH_MAX) + " in a path and " + std::to_string(NAME_MAX) +
-                     " in one of its names)");
-  if (!std::filesystem::exists(status)) throw InputError(path.string() + ": no such file");
-  if (std::filesystem::is_directory(status)) throw InputError(path.string() + ": is a directory, not " + kind);
-  if (!std::filesystem::is_regular_file(status)) throw InputError(path.string() + ": is not a regular file");
-}
-
 std::vector<std::uint8_t> readFileBytes(const std::filesystem::path& path) {
-  requireRegularFile(path, "a glTF file");
-  std::error_code ec;
-  const std::uintmax_t size = std::filesystem::file_size(path, ec);
-  if (ec || size >= kMaxInputBytes)
-    throw InputError(path.string() + ": is " + std::to_string(size) + " bytes; inputs are limited to 4 GiB");
+  const std::uintmax_t size = requireInputFile(path, "a glTF file");
   // A GLB's header is checked before the file is read: a chunk it cannot hold is refused
   // without reading gigabytes first.
   if (std::ifstream head(path, std::ios::binary); head) {
@@ -319,7 +322,7 @@ std::vector<std::uint8_t> makeGlb(const std::string& json, std::span<const std::
 Asset loadAsset(const std::filesystem::path& path, const std::filesystem::path& assetRoot) {
   const std::string label = path.string();
   if (isMeshFile(path)) {
-    requireRegularFile(path, "a mesh file");
+    requireInputFile(path, "a mesh file");
     return loadAssetBytes(meshFileToGlb(path), path, assetRoot, true);
   }
   return loadAssetBytes(readFileBytes(path), path, assetRoot, false);
@@ -332,7 +335,7 @@ Asset loadAssetBytes(std::vector<std::uint8_t> bytes, const std::filesystem::pat
   asset.root = assetRootFor(path, assetRoot);
   asset.fromMeshFile = fromMeshFile;
   const std::string label = path.string();
-  if (bytes.size() >= kMaxInputBytes) throw InputError(label + ": inputs are limited to 4 GiB");
+  if (bytes.size() >= gltf::kMaxInputBytes) throw InputError(label + ": inputs are limited to 4 GiB");
   asset.binary = bytes.size() >= 4 && readU32(bytes.data()) == kGlbMagic;
   if (bytes.empty()) throw InputError(label + ": is empty (0 bytes), not glTF");
   if (!asset.binary && lowerExtension(path) == ".glb")

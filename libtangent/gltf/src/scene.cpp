@@ -19,6 +19,7 @@
 #include "entry_point.hpp"
 #include "primitive.hpp"
 #include "tangent/gltf.hpp"
+#include "tangent/text.hpp"
 #include "tangent_rules.hpp"
 #include "uri.hpp"
 
@@ -127,10 +128,57 @@ TextureRef colourTextureRef(const Json& doc, const Json& info) {
   return ref;
 }
 
+// A JSON number as a float: NaN for what is not a number, +-infinity past FLT_MAX (1e39), where
+// a plain conversion would be undefined. The checks below then see what is not finite.
+float jsonFloat(const Json& value) {
+  if (!value.is_number()) return std::numeric_limits<float>::quiet_NaN();
+  const double d = value.get<double>();
+  if (std::abs(d) <= static_cast<double>(std::numeric_limits<float>::max())) return static_cast<float>(d);
+  constexpr float kInfinity = std::numeric_limits<float>::infinity();
+  return d > 0 ? kInfinity : d < 0 ? -kInfinity : std::numeric_limits<float>::quiet_NaN();
+}
+
+float floatValue(const Json& object, const char* key, float otherwise) {
+  return object.contains(key) ? jsonFloat(object[key]) : otherwise;
+}
+
 template <std::size_t N>
 void readFloats(const Json& object, const char* key, std::array<float, N>& out) {
   if (!object.contains(key) || !object[key].is_array() || object[key].size() != N) return;
-  for (std::size_t i = 0; i < N; ++i) out[i] = object[key][i].get<float>();
+  for (std::size_t i = 0; i < N; ++i) out[i] = jsonFloat(object[key][i]);
+}
+
+template <std::size_t N>
+bool allFinite(const std::array<float, N>& values) {
+  return std::all_of(values.begin(), values.end(), [](float v) { return std::isfinite(v); });
+}
+
+// The first element (a group of `components` values) of `values` with a value that is not
+// finite, or -1 when every one is.
+std::int64_t firstNonFinite(std::span<const float> values, std::size_t components) {
+  for (std::size_t i = 0; i < values.size(); ++i)
+    if (!std::isfinite(values[i])) return static_cast<std::int64_t>(i / components);
+  return -1;
+}
+
+// What makes a node's own transform unusable, or "" when nothing does: a value of its matrix,
+// translation, rotation or scale that is not finite (NaN, or 1e39, past a float's range). Such
+// a node is shown with the identity instead (flattenScene says so, once per node).
+std::string transformProblem(const Json& node) {
+  if (node.contains("matrix") && node["matrix"].is_array() && node["matrix"].size() == 16) {
+    std::array<float, 16> matrix{};
+    readFloats(node, "matrix", matrix);
+    if (!allFinite(matrix)) return "matrix not finite";
+  }
+  std::array<float, 3> translation{0, 0, 0}, scale{1, 1, 1};
+  std::array<float, 4> rotation{0, 0, 0, 1};
+  readFloats(node, "translation", translation);
+  readFloats(node, "rotation", rotation);
+  readFloats(node, "scale", scale);
+  if (!allFinite(translation)) return "translation not finite";
+  if (!allFinite(rotation)) return "rotation not finite";
+  if (!allFinite(scale)) return "scale not finite";
+  return "";
 }
 
 std::vector<MaterialDesc> readMaterials(const Json& doc) {
@@ -143,8 +191,8 @@ std::vector<MaterialDesc> readMaterials(const Json& doc) {
     if (m.contains("pbrMetallicRoughness")) {
       const Json& pbr = m["pbrMetallicRoughness"];
       readFloats(pbr, "baseColorFactor", material.baseColor);
-      material.metallic = pbr.value("metallicFactor", 1.0f);
-      material.roughness = pbr.value("roughnessFactor", 1.0f);
+      material.metallic = floatValue(pbr, "metallicFactor", 1.0f);
+      material.roughness = floatValue(pbr, "roughnessFactor", 1.0f);
       if (pbr.contains("baseColorTexture")) material.baseColorTexture = colourTextureRef(doc, pbr["baseColorTexture"]);
       if (pbr.contains("metallicRoughnessTexture")) material.metallicRoughnessTexture = textureRef(doc, pbr["metallicRoughnessTexture"]);
     }
@@ -156,12 +204,12 @@ std::vector<MaterialDesc> readMaterials(const Json& doc) {
     material.alphaMode = alphaMode == "MASK"    ? MaterialDesc::AlphaMode::mask
                          : alphaMode == "BLEND" ? MaterialDesc::AlphaMode::blend
                                                 : MaterialDesc::AlphaMode::opaque;
-    material.alphaCutoff = m.value("alphaCutoff", 0.5f);
+    material.alphaCutoff = floatValue(m, "alphaCutoff", 0.5f);
     material.unlit = m.contains("extensions") && m["extensions"].contains("KHR_materials_unlit");
     if (m.contains("extensions") && m["extensions"].contains("KHR_materials_specular")) {
       const Json& specular = m["extensions"]["KHR_materials_specular"];
       material.hasSpecular = true;
-      material.specularFactor = specular.value("specularFactor", 1.0f);
+      material.specularFactor = floatValue(specular, "specularFactor", 1.0f);
       readFloats(specular, "specularColorFactor", material.specularColor);
       if (specular.contains("specularTexture")) material.specularTexture = textureRef(doc, specular["specularTexture"]);
       if (specular.contains("specularColorTexture")) material.specularColorTexture = colourTextureRef(doc, specular["specularColorTexture"]);
@@ -171,10 +219,12 @@ std::vector<MaterialDesc> readMaterials(const Json& doc) {
   return materials;
 }
 
-glm::mat4 localTransform(const Json& node) {
+// The node's local transform; the identity where transformProblem finds one (`usable` false).
+glm::mat4 localTransform(const Json& node, bool usable) {
+  if (!usable) return glm::mat4(1);
   if (node.contains("matrix") && node["matrix"].size() == 16) {
     glm::mat4 m;
-    for (int i = 0; i < 16; ++i) glm::value_ptr(m)[i] = node["matrix"][i].get<float>();
+    for (int i = 0; i < 16; ++i) glm::value_ptr(m)[i] = jsonFloat(node["matrix"][i]);
     return m;
   }
   std::array<float, 3> t{0, 0, 0}, s{1, 1, 1};
@@ -243,12 +293,17 @@ void readDeformation(const detail::Asset& asset, const Json& primitive, std::siz
         const Json& target = primitive["targets"][t];
         MorphTarget morph;
         const std::string prefix = where + ": morph target " + std::to_string(t) + " ";
-        if (const int a = detail::accessorOf(target, "POSITION"); a >= 0)
-          morph.positions = perCorner(detail::readVectors(asset.model, a, 3, vertexCount, prefix + "POSITION"), 3, corners);
-        if (const int a = detail::accessorOf(target, "NORMAL"); a >= 0)
-          morph.normals = perCorner(detail::readVectors(asset.model, a, 3, vertexCount, prefix + "NORMAL"), 3, corners);
-        if (const int a = detail::accessorOf(target, "TANGENT"); a >= 0 && item.tangentsFromFile)
-          morph.tangents = perCorner(detail::readVectors(asset.model, a, 3, vertexCount, prefix + "TANGENT"), 3, corners);
+        // The deltas of one attribute, per corner; a value that is not finite would carry every
+        // corner it moves to NaN, so it is refused by element.
+        auto deltas = [&](int accessor, const char* attribute) {
+          const std::vector<float> values = detail::readVectors(asset.model, accessor, 3, vertexCount, prefix + attribute);
+          if (const std::int64_t bad = firstNonFinite(values, 3); bad >= 0)
+            throw InputError(prefix + attribute + " element " + std::to_string(bad) + " is not finite");
+          return perCorner(values, 3, corners);
+        };
+        if (const int a = detail::accessorOf(target, "POSITION"); a >= 0) morph.positions = deltas(a, "POSITION");
+        if (const int a = detail::accessorOf(target, "NORMAL"); a >= 0) morph.normals = deltas(a, "NORMAL");
+        if (const int a = detail::accessorOf(target, "TANGENT"); a >= 0 && item.tangentsFromFile) morph.tangents = deltas(a, "TANGENT");
         item.morphTargets.push_back(std::move(morph));
       }
     }
@@ -265,6 +320,9 @@ void readDeformation(const detail::Asset& asset, const Json& primitive, std::siz
       if (j < 0 || w < 0) break;
       joints.push_back(detail::readVectors(asset.model, j, 4, vertexCount, where + ": JOINTS_" + std::to_string(set)));
       weights.push_back(detail::readVectors(asset.model, w, 4, vertexCount, where + ": WEIGHTS_" + std::to_string(set)));
+      // A weight that is not finite would make the corner's skin matrix, and so the corner, NaN.
+      if (const std::int64_t bad = firstNonFinite(weights.back(), 4); bad >= 0)
+        throw InputError(where + ": WEIGHTS_" + std::to_string(set) + " element " + std::to_string(bad) + " is not finite");
     }
     const int sets = static_cast<int>(joints.size());
     item.influencesPerCorner = 4 * sets;
@@ -469,17 +527,28 @@ LightDesc lightAt(const Json& definition, const glm::mat4& world) {
   light.type = type == "point" ? LightDesc::Type::point : type == "spot" ? LightDesc::Type::spot : LightDesc::Type::directional;
   light.name = definition.value("name", "");
   readFloats(definition, "color", light.color);
-  light.intensity = definition.value("intensity", 1.0f);
-  light.range = definition.value("range", 0.0f);
+  light.intensity = floatValue(definition, "intensity", 1.0f);
+  light.range = floatValue(definition, "range", 0.0f);
   if (definition.contains("spot")) {
-    light.innerConeAngle = definition["spot"].value("innerConeAngle", 0.0f);
-    light.outerConeAngle = definition["spot"].value("outerConeAngle", 0.785398f);
+    light.innerConeAngle = floatValue(definition["spot"], "innerConeAngle", 0.0f);
+    light.outerConeAngle = floatValue(definition["spot"], "outerConeAngle", 0.785398f);
   }
   const glm::vec3 position = glm::vec3(world * glm::vec4(0, 0, 0, 1));
   const glm::vec3 direction = glm::normalize(glm::vec3(world * glm::vec4(0, 0, -1, 0)));
   light.position = {position.x, position.y, position.z};
   light.direction = {direction.x, direction.y, direction.z};
   return light;
+}
+
+// What makes a light unusable, or "" when nothing does: a value that is not finite (its own, or
+// its place and direction, as its node puts them).
+std::string lightProblem(const LightDesc& light) {
+  if (!allFinite(light.color)) return "color not finite";
+  if (!std::isfinite(light.intensity)) return "intensity not finite";
+  if (!std::isfinite(light.range)) return "range not finite";
+  if (!std::isfinite(light.innerConeAngle) || !std::isfinite(light.outerConeAngle)) return "spot cone angle not finite";
+  if (!allFinite(light.position) || !allFinite(light.direction)) return "position or direction not finite (its node's transform)";
+  return "";
 }
 
 bool posable(const Json& doc) {
@@ -493,20 +562,27 @@ bool posable(const Json& doc) {
   return false;
 }
 
-// Every node's parent, local transform, morph weights and skin (glTF 2.0 3.5).
-std::vector<SceneNode> readNodes(const Json& doc) {
+// Every node's parent, local transform, morph weights and skin (glTF 2.0 3.5). A node whose
+// transform is unusable (`unusable`, which flattenScene has reported) keeps the identity; a morph
+// weight that is not finite is 0, with a message naming the node.
+std::vector<SceneNode> readNodes(const Json& doc, const std::vector<char>& unusable, const std::string& file,
+                                 std::vector<std::string>& messages) {
   const std::size_t nodeCount = doc["nodes"].size();
   std::vector<SceneNode> nodes(nodeCount);
   for (std::size_t n = 0; n < nodeCount; ++n) {
     const Json& node = doc["nodes"][n];
     SceneNode& out = nodes[n];
-    if (node.contains("matrix") && node["matrix"].is_array() && node["matrix"].size() == 16) {
+    if (unusable[n]) {
+      // the identity: SceneNode's defaults
+    } else if (node.contains("matrix") && node["matrix"].is_array() && node["matrix"].size() == 16) {
       out.hasMatrix = true;
       readFloats(node, "matrix", out.matrix);
     }
-    readFloats(node, "translation", out.translation);
-    readFloats(node, "rotation", out.rotation);
-    readFloats(node, "scale", out.scale);
+    if (!unusable[n]) {
+      readFloats(node, "translation", out.translation);
+      readFloats(node, "rotation", out.rotation);
+      readFloats(node, "scale", out.scale);
+    }
     out.skin = node.value("skin", -1);
     const Json* weights = nullptr;
     if (node.contains("weights") && node["weights"].is_array()) weights = &node["weights"];
@@ -515,8 +591,15 @@ std::vector<SceneNode> readNodes(const Json& doc) {
       if (mesh >= 0 && mesh < static_cast<int>(doc["meshes"].size()) && doc["meshes"][mesh].contains("weights"))
         weights = &doc["meshes"][mesh]["weights"];
     }
-    if (weights)
-      for (const Json& w : *weights) out.weights.push_back(w.is_number() ? w.get<float>() : 0.0f);
+    if (weights) {
+      for (const Json& w : *weights) {
+        const float weight = jsonFloat(w);
+        if (!std::isfinite(weight))
+          messages.push_back(file + ": node " + std::to_string(n) + ": morph weight " + std::to_string(out.weights.size()) +
+                             " is not finite; treated as 0");
+        out.weights.push_back(std::isfinite(weight) ? weight : 0.0f);
+      }
+    }
     for (const Json& child : node.value("children", Json::array())) {
       const auto c = child.get<std::size_t>();
       if (c < nodeCount) nodes[c].parent = static_cast<int>(n);
@@ -543,6 +626,8 @@ std::vector<Skin> readSkins(const detail::Asset& asset, std::size_t nodeCount, s
       skin.inverseBindMatrices.assign(skin.joints.size(), identity);
       if (const int a = detail::accessorOf(json, "inverseBindMatrices"); a >= 0) {
         const std::vector<float> matrices = detail::readVectors(asset.model, a, 16, skin.joints.size(), where + ": inverseBindMatrices");
+        if (const std::int64_t bad = firstNonFinite(matrices, 16); bad >= 0)
+          throw InputError(where + ": inverseBindMatrices element " + std::to_string(bad) + " is not finite");
         for (std::size_t j = 0; j < skin.joints.size(); ++j) std::copy_n(&matrices[16 * j], 16, skin.inverseBindMatrices[j].begin());
       }
     } catch (const InputError& e) {
@@ -554,6 +639,29 @@ std::vector<Skin> readSkins(const detail::Asset& asset, std::size_t nodeCount, s
   for (SceneNode& node : nodes)
     if (node.skin >= static_cast<int>(skins.size()) || (node.skin >= 0 && skins[node.skin].joints.empty())) node.skin = -1;
   return skins;
+}
+
+// glTF 2.0 3.7.3.1: a JOINTS value is an index into the skin's joints. A node whose skin has
+// fewer joints than one of its primitives names (with a weight) is drawn unskinned, with a
+// message naming the node, the primitive and the joint; the rest of its skinning would be a guess.
+void dropSkinsPastTheirJoints(Scene& scene, const std::string& file) {
+  for (const DrawInstance& instance : scene.instances) {
+    if (instance.node >= scene.nodes.size()) continue;
+    SceneNode& node = scene.nodes[instance.node];
+    if (node.skin < 0) continue;
+    const DrawItem& item = scene.items[instance.item];
+    const std::size_t jointCount = scene.skins[static_cast<std::size_t>(node.skin)].joints.size();
+    for (std::size_t i = 0; i < item.joints.size(); ++i) {
+      if (item.jointWeights[i] == 0 || item.joints[i] < jointCount) continue;
+      const auto influences = static_cast<std::size_t>(item.influencesPerCorner);
+      scene.messages.push_back(file + ": node " + std::to_string(instance.node) + ": " + item.label + ": JOINTS_" +
+                               std::to_string(i % influences / 4) + " at corner " + std::to_string(i / influences) + " names joint " +
+                               std::to_string(item.joints[i]) + ", past the " + std::to_string(jointCount) + " joint(s) of skin " +
+                               std::to_string(node.skin) + "; the node drawn unskinned");
+      node.skin = -1;
+      break;
+    }
+  }
 }
 
 // glTF 2.0 3.11. A channel or sampler that cannot be used is left out with a message.
@@ -583,6 +691,10 @@ std::vector<Animation> readAnimations(const detail::Asset& asset, std::size_t no
         detail::AccessorData header;
         sampler.values = detail::readFloats(asset.model, output, where + ": sampler " + std::to_string(s) + " output", header);
         if (sampler.times.empty()) throw InputError(where + ": sampler " + std::to_string(s) + " has no keyframes");
+        if (const std::int64_t bad = firstNonFinite(sampler.times, 1); bad >= 0)
+          throw InputError(where + ": sampler " + std::to_string(s) + " input element " + std::to_string(bad) + " is not finite");
+        if (const std::int64_t bad = firstNonFinite(sampler.values, 1); bad >= 0)
+          throw InputError(where + ": sampler " + std::to_string(s) + " output value " + std::to_string(bad) + " is not finite");
         for (std::size_t k = 1; k < sampler.times.size(); ++k)
           if (!(sampler.times[k] > sampler.times[k - 1]))
             throw InputError(where + ": sampler " + std::to_string(s) + " input times do not increase");
@@ -658,6 +770,15 @@ Scene flattenScene(const std::filesystem::path& input, const SceneOptions& optio
   // loadAsset's validation leaves each node one parent at most and no cycle; a node that the
   // scene lists twice, or lists beside an ancestor, is shown once, so each node costs one visit.
   const std::size_t nodeCount = doc.contains("nodes") ? doc["nodes"].size() : 0;
+  const std::string file = input.string();
+  // Nodes whose own transform is unusable: shown with the identity, each named once.
+  std::vector<char> unusableTransform(nodeCount, 0);
+  for (std::size_t n = 0; n < nodeCount; ++n) {
+    if (const std::string problem = transformProblem(doc["nodes"][n]); !problem.empty()) {
+      unusableTransform[n] = 1;
+      scene.messages.push_back(file + ": node " + std::to_string(n) + ": " + problem + "; treated as identity");
+    }
+  }
   std::vector<char> visited(nodeCount, 0);
   std::size_t reachedAgain = 0;
   std::vector<std::optional<std::vector<std::int64_t>>> meshItems(doc.contains("meshes") ? doc["meshes"].size() : 0);
@@ -675,18 +796,36 @@ Scene flattenScene(const std::filesystem::path& input, const SceneOptions& optio
     }
     visited[nodeIndex] = 1;
     const Json& node = doc["nodes"][nodeIndex];
-    const glm::mat4 world = parent * localTransform(node);
+    glm::mat4 world = parent * localTransform(node, !unusableTransform[nodeIndex]);
+    const auto finite = [](float v) { return std::isfinite(v); };
+    if (!unusableTransform[nodeIndex] && !std::all_of(glm::value_ptr(world), glm::value_ptr(world) + 16, finite)) {
+      // Finite transforms whose product is not (scales of 1e30 under 1e30): the parent's alone.
+      scene.messages.push_back(file + ": node " + std::to_string(nodeIndex) +
+                               ": world transform not finite (its transforms' product overflows); its own treated as identity");
+      world = parent;
+    }
     // Pushed in reverse so that nodes are visited in document order (depth first).
     if (node.contains("children")) {
       const Json& children = node["children"];
       for (auto it = children.rbegin(); it != children.rend(); ++it) stack.emplace_back(it->get<int>(), world);
     }
     if (node.contains("extensions") && node["extensions"].contains("KHR_lights_punctual")) {
-      const int lightIndex = node["extensions"]["KHR_lights_punctual"].value("light", -1);
-      if (lightIndex >= 0 && lightIndex < static_cast<int>(lightDefinitions.size())) {
-        scene.lights.push_back(lightAt(lightDefinitions[lightIndex], world));
-        scene.lights.back().definition = lightIndex;
-        scene.lights.back().node = nodeIndex;
+      const Json& reference = node["extensions"]["KHR_lights_punctual"];
+      const bool hasIndex = reference.contains("light") && reference["light"].is_number_integer();
+      const std::int64_t lightIndex = hasIndex ? reference["light"].get<std::int64_t>() : -1;
+      const std::string where = file + ": node " + std::to_string(nodeIndex) + ": KHR_lights_punctual light ";
+      if (lightIndex < 0 || lightIndex >= static_cast<std::int64_t>(lightDefinitions.size())) {
+        const std::string named = reference.contains("light") ? text::dumpJson(reference["light"]) : std::string("(none)");
+        scene.messages.push_back(where + named + " is not one of the file's " + std::to_string(lightDefinitions.size()) +
+                                 " light(s); left out");
+      } else {
+        LightDesc light = lightAt(lightDefinitions[static_cast<std::size_t>(lightIndex)], world);
+        light.definition = static_cast<int>(lightIndex);
+        light.node = nodeIndex;
+        if (const std::string problem = lightProblem(light); !problem.empty())
+          scene.messages.push_back(where + std::to_string(lightIndex) + ": " + problem + "; left out");
+        else
+          scene.lights.push_back(std::move(light));
       }
     }
     if (!node.contains("mesh")) continue;
@@ -704,8 +843,9 @@ Scene flattenScene(const std::filesystem::path& input, const SceneOptions& optio
     }
   }
   if (nodeCount > 0 && posable(doc)) {
-    scene.nodes = readNodes(doc);
+    scene.nodes = readNodes(doc, unusableTransform, file, scene.messages);
     scene.skins = readSkins(asset, nodeCount, scene.nodes, scene.messages);
+    dropSkinsPastTheirJoints(scene, file);
     scene.animations = readAnimations(asset, nodeCount, scene.messages);
   }
   if (reachedAgain > 0)
