@@ -1090,6 +1090,34 @@ TEST(Viewer, BadInputIsAnErrorNotACrash) {
 
 // ---- Bounded by the input's size ----
 
+// Indices without a bufferView (zeros by the spec) implying 10^6 and 10^9 triangles in a file of
+// a few hundred bytes: refused by name before anything is decoded, as bake, check and info refuse
+// them (the viewer died of std::bad_alloc). Under an address-space limit where the build has no
+// AddressSanitizer (which reserves terabytes of address space by design).
+TEST(Viewer, AccessorsWithoutDataAreRefusedByTheWorkTheyImply) {
+  TempDir dir;
+  writeRgbaPng(dir / "white.png", 4, 4, [](int, int) { return std::array<unsigned char, 4>{255, 255, 255, 255}; });
+  for (const long long triangles : {1000000LL, 1000000000LL}) {
+    nlohmann::json accessors = {
+        {{"bufferView", 0}, {"componentType", 5126}, {"count", 4}, {"type", "VEC3"}, {"min", {-1, -1, 0}}, {"max", {1, 1, 0}}},
+        {{"bufferView", 1}, {"componentType", 5126}, {"count", 4}, {"type", "VEC3"}},
+        {{"bufferView", 2}, {"componentType", 5126}, {"count", 4}, {"type", "VEC2"}},
+        {{"bufferView", 3}, {"componentType", 5126}, {"count", 4}, {"type", "VEC2"}},
+        {{"componentType", 5125}, {"count", 3 * triangles}, {"type", "SCALAR"}}};
+    const fs::path file = quadAsset(dir, "zeros" + std::to_string(triangles), nlohmann::json::object(), "white.png",
+                                    {{"accessors", accessors}});
+#if defined(__SANITIZE_ADDRESS__)
+    const std::string limit;
+#else
+    const std::string limit = "prlimit --as=2000000000 ";
+#endif
+    const auto result = tangent::testing::runCommand(limit + TANGENT_VIEW + " '" + file.string() + "' --stats");
+    EXPECT_EQ(result.exitCode, 1) << result.output;
+    EXPECT_NE(result.output.find(file.filename().string() + ": /accessors/4: has no bufferView"), std::string::npos) << result.output;
+    EXPECT_EQ(result.output.find("bad_alloc"), std::string::npos) << result.output;
+  }
+}
+
 // quadAsset's quad, drawn by `nodes` (the glTF nodes array) from the scene's `roots`.
 fs::path nodesAsset(const TempDir& dir, const std::string& name, nlohmann::json nodes, nlohmann::json roots) {
   writeRgbaPng(dir / "white.png", 4, 4, [](int, int) { return std::array<unsigned char, 4>{255, 255, 255, 255}; });

@@ -365,10 +365,10 @@ int bakeCommand(const std::vector<std::string>& args) {
     return bakeTrees(inputs, outDir, options, force, verify, quiet, reportPath);
   }
   if (force || verify) return usageError(std::string(force ? "--force" : "--verify") + " goes with --recursive");
-  // A folder with no -o or --out-dir: the folder form was meant, not `bake IN OUT`. (With an
-  // output given, loading refuses the folder as an input, exit 1, as any unreadable input.)
+  // A folder without -o (with --out-dir, or as `bake IN OUT`): the folder form was meant. (With
+  // -o, loading refuses the folder as an input, exit 1, as any unreadable input.)
   for (const fs::path& input : inputs) {
-    if (output.empty() && outDir.empty() && fs::is_directory(input))
+    if (output.empty() && fs::is_directory(input))
       return usageError(shown(input.string()) + " is a folder: bake a folder with --recursive --out-dir DIR");
   }
   // glTF-Transform's form: `tangent bake in.glb out.glb`, the same as -o.
