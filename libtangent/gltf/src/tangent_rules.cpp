@@ -436,11 +436,18 @@ std::vector<float> coarseVertexDegrees(const PrimitiveGeometry& geometry, const 
 // gltfpack outputs). kSecondOrderMargin covers the products of moves the first order leaves
 // out, and S turns by at most asin(E / |S|); where E reaches |S| the vertex cannot be compared.
 // Where the coarse bound is already small, it is kept (the finer one is not computed there).
-ReferenceAllowance referenceAllowance(const PrimitiveGeometry& geometry, const InputRounding& rounding) {
+namespace {
+
+constexpr float kCoarseEnoughDegrees = 4.0f;  // a 10 deg turn is caught under it anyway
+
+// Both bounds per vertex (and `allowance`'s orientations); the finer one holds only at the
+// vertices whose coarse bound exceeds `fineAbove` (-1: every vertex): the inputs of no triangle
+// of such a vertex are not moved.
+AllowanceBounds computeAllowanceBounds(const PrimitiveGeometry& geometry, const InputRounding& rounding, float fineAbove,
+                                       ReferenceAllowance& allowance) {
   constexpr double kSecondOrderMargin = 1.25;
-  constexpr float kCoarseEnoughDegrees = 4.0f;  // a 10 deg turn is caught under it anyway
-  ReferenceAllowance allowance;
-  if (!rounding.any()) return allowance;
+  AllowanceBounds bounds;
+  if (!rounding.any()) return bounds;
   const std::vector<float> coarse = coarseVertexDegrees(geometry, rounding);
   const double eu = rounding.uv, ep = rounding.position;
   const std::size_t triangles = geometry.corners.size() / 3, vertexCount = geometry.vertexCount;
@@ -512,8 +519,8 @@ ReferenceAllowance referenceAllowance(const PrimitiveGeometry& geometry, const I
     std::sort(affected.begin(), affected.end());
     affected.erase(std::unique(affected.begin(), affected.end()), affected.end());
     const bool needed = std::any_of(affected.begin(), affected.end(), [&](std::uint32_t t) {
-      return coarse[geometry.corners[3 * t]] > kCoarseEnoughDegrees || coarse[geometry.corners[3 * t + 1]] > kCoarseEnoughDegrees ||
-             coarse[geometry.corners[3 * t + 2]] > kCoarseEnoughDegrees;
+      return coarse[geometry.corners[3 * t]] > fineAbove || coarse[geometry.corners[3 * t + 1]] > fineAbove ||
+             coarse[geometry.corners[3 * t + 2]] > fineAbove;
     });
     if (!needed) return;
     auto& changes = scratch.changes;
@@ -592,13 +599,31 @@ ReferenceAllowance referenceAllowance(const PrimitiveGeometry& geometry, const I
         for (const auto& [vertex, moved] : result) movement[vertex] += moved;
     }
   }
+  bounds.coarseDegrees = coarse;
+  bounds.fineDegrees.assign(vertexCount, kUncomparableDegrees);
   for (std::size_t v = 0; v < vertexCount; ++v) {
     const double size = std::hypot(sum[3 * v], sum[3 * v + 1], sum[3 * v + 2]);
     const double moved = kSecondOrderMargin * movement[v];
-    const float fine = turnDegrees(moved, size);
-    allowance.vertexDegrees[v] = coarse[v] <= kCoarseEnoughDegrees ? coarse[v] : std::min(coarse[v], fine);
+    bounds.fineDegrees[v] = turnDegrees(moved, size);
+  }
+  return bounds;
+}
+
+}  // namespace
+
+ReferenceAllowance referenceAllowance(const PrimitiveGeometry& geometry, const InputRounding& rounding) {
+  ReferenceAllowance allowance;
+  const AllowanceBounds bounds = computeAllowanceBounds(geometry, rounding, kCoarseEnoughDegrees, allowance);
+  for (std::size_t v = 0; v < allowance.vertexDegrees.size(); ++v) {
+    const float coarse = bounds.coarseDegrees[v];
+    allowance.vertexDegrees[v] = coarse <= kCoarseEnoughDegrees ? coarse : std::min(coarse, bounds.fineDegrees[v]);
   }
   return allowance;
+}
+
+AllowanceBounds allowanceBounds(const PrimitiveGeometry& geometry, const InputRounding& rounding) {
+  ReferenceAllowance unused;
+  return computeAllowanceBounds(geometry, rounding, -1.0f, unused);
 }
 
 }  // namespace tangent::gltf::detail

@@ -84,6 +84,16 @@ struct ReferenceAllowance {
 inline constexpr float kUncomparableDegrees = 180.0f;
 ReferenceAllowance referenceAllowance(const PrimitiveGeometry& geometry, const InputRounding& rounding);
 
+// The two bounds referenceAllowance takes the smaller of, per vertex (degrees, empty when
+// there is no input rounding): the coarse triangle-by-triangle one and the finer first-order
+// one, here computed at every vertex (referenceAllowance computes it only where the coarse
+// one exceeds 4 deg). For tests holding each bound to an independent estimate.
+struct AllowanceBounds {
+  std::vector<float> coarseDegrees;
+  std::vector<float> fineDegrees;
+};
+AllowanceBounds allowanceBounds(const PrimitiveGeometry& geometry, const InputRounding& rounding);
+
 // ---- per-element rules ----
 
 inline bool finite4(const float* t) {
