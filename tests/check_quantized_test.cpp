@@ -1,8 +1,8 @@
 // SPDX-License-Identifier: MIT
 // The stored-tangent rules on quantized data (issue 11): the derived limits, clean bakes through
 // gltfpack and gltf-transform quantize checking clean, every negative control caught in
-// float and quantized form, bake keeping exactly what check passes, and bake's quantized
-// TANGENT output.
+// float and quantized form, bake keeping exactly what check passes, bake's quantized
+// TANGENT output, and (issue 68) a turn just over / under a corner's limit through `tangent check`.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -11,7 +11,9 @@
 #include <fstream>
 #include <functional>
 #include <limits>
+#include <optional>
 #include <set>
+#include <tuple>
 
 #include "accessors.hpp"
 #include "asset.hpp"
@@ -897,6 +899,148 @@ TEST(PipelineMatrix, CleanBakesCheckCleanAndTenDegreeTurnsAreCaught) {
   for (const PipelineRow& row : rows)
     std::printf("%-34s %-12s %8.1f%% %9.3g %9.3g %9.3g %8.2f%% %8.1f%%\n", row.asset.c_str(), row.pipeline.c_str(), 100 * row.comparedShare,
                 row.maxAllowance, row.worstAngle, row.tightest, 100 * row.beyondTurnShare, 100 * row.caught);
+}
+
+// ---- boundary controls (issue 68): one stored tangent turned to just over its corner's limit
+// (tolerance + TANGENT's and NORMAL's rounding + the input allowance) is a `reference` finding
+// through `tangent check`, turned to just under it is clean, for each stored component type:
+// a float bake; gltfpack (BYTE TANGENT and NORMAL, 14-bit positions); gltfpack -vn 16 rebaked
+// with SHORT tangents (SHORT TANGENT and NORMAL); both at 12-bit UVs (where the coarse bound
+// gives the allowance) and 8-bit UVs (-vt 8: the fine bound). At each, the vertex with the
+// largest allowance the coarse bound gives and the one the fine bound gives. ----
+
+// Degrees either side of the limit: less than half the smallest bound in play (SHORT's 0.0986
+// deg), so that any bound doubled or halved moves the limit past a control. BYTE's lattice is
+// too sparse for that near a unit vector; its bounds are 0.391 deg and more.
+double justDegrees(double scale) { return scale == 127 ? 0.1 : 0.02; }
+constexpr double kNotOnTheLimit = 1e-3;  // degrees: clear of the float allowance's rounding
+
+struct BoundaryControl {
+  std::uint32_t vertex = 0;
+  float under[3] = {}, over[3] = {};  // decodable in the file's TANGENT component type
+  double underAngle = 0, overAngle = 0;
+};
+
+// Stored tangents near the turn of the computed frame about the normal by +-limit, on the grid
+// of the component type (`scale`: 127, 32767 or 0 for float), whose largest angle to the
+// vertex's computed frames lies within justDegrees under and over the limit; unit and in the
+// normal plane within what `unit` and `orthogonal` accept (6.82e-3 for BYTE, 1.72e-3 for
+// SHORT, 1e-3 for float; 1.78 deg for BYTE with BYTE normals, 1 deg at least), so that only
+// `reference` can fail.
+std::optional<BoundaryControl> boundaryControl(const ReferenceView& view, std::uint32_t v, const std::vector<std::uint32_t>& corners,
+                                               double scale) {
+  const double limit = view.limit[v];
+  const float* n = &view.geometry.normals[3 * v];
+  BoundaryControl control{v};
+  bool haveUnder = false, haveOver = false;
+  auto consider = [&](const float* x) {
+    if (std::abs(detail::length3(x) - 1) > (scale == 127 ? 6e-3 : 5e-4) || detail::offPlaneDegrees(x, n) > (scale == 127 ? 1.5 : 0.8)) return;
+    double angle = 0;
+    for (const std::uint32_t c : corners) angle = std::max(angle, detail::angleBetweenDegrees(x, &view.computed[4 * c]));
+    if (std::abs(angle - limit) < kNotOnTheLimit) return;
+    if (angle > limit && angle <= limit + justDegrees(scale) && (!haveOver || angle < control.overAngle))
+      haveOver = true, control.overAngle = angle, std::copy(x, x + 3, control.over);
+    if (angle < limit && angle >= limit - justDegrees(scale) && (!haveUnder || angle > control.underAngle))
+      haveUnder = true, control.underAngle = angle, std::copy(x, x + 3, control.under);
+  };
+  for (const double way : {1.0, -1.0}) {
+    for (double turn = limit - 0.5; turn <= limit + 0.5; turn += 0.002) {
+      float x[3] = {view.computed[4 * corners.front()], view.computed[4 * corners.front() + 1], view.computed[4 * corners.front() + 2]};
+      turnAbout(x, n, way * turn);
+      if (scale == 0) {
+        consider(x);
+        continue;
+      }
+      for (int i = 0; i < 125; ++i) {
+        const int offset[3] = {i % 5 - 2, i / 5 % 5 - 2, i / 25 - 2};
+        float onGrid[3];
+        for (int k = 0; k < 3; ++k) onGrid[k] = static_cast<float>((std::round(x[k] * scale) + offset[k]) / scale);
+        consider(onGrid);
+      }
+    }
+  }
+  if (!haveUnder || !haveOver) return std::nullopt;
+  return control;
+}
+
+// The file with vertex v's tangent replaced by `xyz`, through `tangent check`: exit code 0
+// (clean) or 1 with `reference` naming the vertex and no other finding.
+void expectCheckVerdict(const fs::path& file, const fs::path& control, std::uint32_t v, const float* xyz, bool finding) {
+  fs::copy_file(file, control, fs::copy_options::overwrite_existing);
+  patchTangents(control, [&](TangentEdit& edit) { std::copy(xyz, xyz + 3, &edit.tangents[4 * v]); });
+  const auto cli = runCommand(std::string(TANGENT_CLI) + " check " + quoted(control));
+  EXPECT_EQ(cli.exitCode, finding ? 1 : 0) << control << "\n" << cli.output;
+  const FileCheck check = tangent::gltf::checkFile(control, {});
+  EXPECT_EQ(findingNames(check), finding ? std::vector<std::string>{"reference"} : std::vector<std::string>{}) << describe(check);
+  if (finding) {
+    EXPECT_NE(describe(check).find("(vertex " + std::to_string(v) + ")"), std::string::npos) << describe(check);
+  }
+}
+
+TEST(AllowanceBoundary, ATurnJustOverTheLimitIsAFindingJustUnderIsClean) {
+  if (gltfpack().empty()) TANGENT_SKIP_OR_FAIL("gltfpack is not installed (scripts/install-deps.sh): the boundary was not tested");
+  TempDir dir;
+  const fs::path input = tangent::testing::writeAsset(tangent::testing::meshAsset("grid", tangent::testing::makeGrid(12, 12, false)), dir / "in", true);
+  const fs::path floats = dir / "grid-float.glb";
+  tangent::gltf::bakeFile(input, floats, {});
+  // gltfpack's defaults (12-bit UVs) leave the coarse bound under 4 deg, -vt 8 above it.
+  std::vector<std::tuple<fs::path, std::string, double>> forms = {{floats, "float", 0.0}};
+  for (const std::string uvFlags : {"", " -vt 8"}) {
+    const std::string suffix = uvFlags.empty() ? "" : "-vt8";
+    const fs::path bytes = dir / ("grid-byte" + suffix + ".glb"), shortNormals = dir / ("grid-short-normals" + suffix + ".glb");
+    const fs::path shorts = dir / ("grid-short" + suffix + ".glb");
+    auto run = runCommand("gltfpack -i " + quoted(floats) + " -o " + quoted(bytes) + uvFlags);
+    ASSERT_EQ(run.exitCode, 0) << run.output;
+    run = runCommand("gltfpack -i " + quoted(floats) + " -o " + quoted(shortNormals) + " -vn 16" + uvFlags);
+    ASSERT_EQ(run.exitCode, 0) << run.output;
+    removeTangent(shortNormals);
+    tangent::gltf::BakeOptions options;
+    options.tangentFormat = tangent::gltf::TangentFormat::normalizedShort;
+    tangent::gltf::bakeFile(shortNormals, shorts, options);
+    forms.push_back({bytes, "normalized BYTE", 127.0});
+    forms.push_back({shorts, "normalized SHORT", 32767.0});
+  }
+
+  for (const auto& [file, component, scale] : forms) {
+    bool fineUsed = false, coarseUsed = false;
+    SCOPED_TRACE(file.filename().string());
+    const FileCheck clean = tangent::gltf::checkFile(file, {});
+    ASSERT_TRUE(clean.clean()) << describe(clean);
+    ASSERT_EQ(clean.primitives.size(), 1u);
+    EXPECT_EQ(clean.primitives[0].tangentComponent, component);
+    const ReferenceView view = referenceView(file);
+    const auto& g = view.geometry;
+    std::vector<std::vector<std::uint32_t>> cornersOf(g.vertexCount);
+    for (std::size_t c = 0; c < g.corners.size(); ++c) cornersOf[g.corners[c]].push_back(static_cast<std::uint32_t>(c));
+    // The vertices: the largest allowance the coarse bound gives, and the largest the fine one
+    // gives (the next largest where the component type's grid has no control near the limit).
+    const detail::Asset asset = detail::loadAsset(file);
+    const Json& primitive = asset.json["meshes"][0]["primitives"][0];
+    const auto needs = detail::primitiveNeeds(asset.json, primitive, false);
+    const auto bounds = detail::allowanceBounds(g, detail::inputRounding(asset, primitive, needs.texCoord, needs.hasNormalTexture));
+    std::vector<std::uint32_t> byCoarse, byFine;
+    for (std::uint32_t v = 0; v < g.vertexCount; ++v)
+      if (view.compared[v] && view.allowance.vertex(v) <= 20)
+        (!bounds.fineDegrees.empty() && view.allowance.vertex(v) < bounds.coarseDegrees[v] ? byFine : byCoarse).push_back(v);
+    for (auto* candidates : {&byCoarse, &byFine}) {
+      std::stable_sort(candidates->begin(), candidates->end(),
+                       [&](std::uint32_t a, std::uint32_t b) { return view.allowance.vertex(a) > view.allowance.vertex(b); });
+      std::optional<BoundaryControl> control;
+      for (const std::uint32_t v : *candidates)
+        if ((control = boundaryControl(view, v, cornersOf[v], scale))) break;
+      if (!control) continue;
+      const std::uint32_t v = control->vertex;
+      (candidates == &byFine ? fineUsed : coarseUsed) = view.allowance.vertex(v) > 0;
+      std::printf("%s vertex %u: allowance %.3f deg (%s bound), limit %.3f deg, controls at %.3f and %.3f deg\n", file.filename().c_str(), v,
+                  view.allowance.vertex(v), candidates == &byFine ? "fine" : "coarse", view.limit[v], control->underAngle, control->overAngle);
+      expectCheckVerdict(file, dir / "under.glb", v, control->under, false);
+      expectCheckVerdict(file, dir / "over.glb", v, control->over, true);
+    }
+    EXPECT_FALSE(byCoarse.empty() && byFine.empty()) << "no comparable vertex";
+    if (scale != 0) {
+      EXPECT_TRUE(file.stem().string().ends_with("vt8") ? fineUsed : coarseUsed) << "the controls did not reach the bound";
+    }
+  }
 }
 
 }  // namespace pipeline
