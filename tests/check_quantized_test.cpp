@@ -907,7 +907,10 @@ TEST(PipelineMatrix, CleanBakesCheckCleanAndTenDegreeTurnsAreCaught) {
 // a float bake; gltfpack (BYTE TANGENT and NORMAL, 14-bit positions); gltfpack -vn 16 rebaked
 // with SHORT tangents (SHORT TANGENT and NORMAL); both at 12-bit UVs (where the coarse bound
 // gives the allowance) and 8-bit UVs (-vt 8: the fine bound). At each, the vertex with the
-// largest allowance the coarse bound gives and the one the fine bound gives. ----
+// largest allowance the coarse bound gives and the one the fine bound gives. The limit is
+// composed here from docs/check.md (tolerance, each vector's asin(sqrt(3) e)) and the coarse
+// allowance recomputed by its formula, so that a bound changed in tangent_rules.cpp moves the
+// controls' verdicts; the fine bound's size is held by check_allowance_test.cpp. ----
 
 // Degrees either side of the limit: less than half the smallest bound in play (SHORT's 0.0986
 // deg), so that any bound doubled or halved moves the limit past a control. BYTE's lattice is
@@ -928,8 +931,7 @@ struct BoundaryControl {
 // SHORT, 1e-3 for float; 1.78 deg for BYTE with BYTE normals, 1 deg at least), so that only
 // `reference` can fail.
 std::optional<BoundaryControl> boundaryControl(const ReferenceView& view, std::uint32_t v, const std::vector<std::uint32_t>& corners,
-                                               double scale) {
-  const double limit = view.limit[v];
+                                               double scale, double limit) {
   const float* n = &view.geometry.normals[3 * v];
   BoundaryControl control{v};
   bool haveUnder = false, haveOver = false;
@@ -961,6 +963,53 @@ std::optional<BoundaryControl> boundaryControl(const ReferenceView& view, std::u
   }
   if (!haveUnder || !haveOver) return std::nullopt;
   return control;
+}
+
+// A stored vector's direction error by docs/check.md's table, from the component type's name.
+double vectorDegrees(const std::string& component) {
+  const double e = component == "normalized BYTE" ? 0.5 / 127 : component == "normalized SHORT" ? 0.5 / 511 + 0.5 / 32767 : 0;
+  return std::asin(std::sqrt(3.0) * e) * 180 / M_PI;
+}
+
+// The coarse input allowance at vertex v by docs/check.md's formula, written out here apart from
+// tangent_rules.cpp: asin(sum a_i 2 sin(theta_i / 2) / |S|) over v's triangles, theta_i =
+// asin((2 eu (|e1| + |e2|) + 2 sqrt(3) ep (|dv1| + |dv2|) + 8 sqrt(3) ep eu) / |v|), a_i the
+// corner angle, S the angle-weighted sum of the triangles' tangent directions in v's normal plane.
+double coarseDegreesAt(const detail::PrimitiveGeometry& g, const detail::InputRounding& rounding, std::uint32_t v) {
+  const double eu = rounding.uv, ep = rounding.position, root3 = std::sqrt(3.0);
+  const float* n = &g.normals[3 * v];
+  double sum[3] = {0, 0, 0}, moved = 0;
+  for (std::size_t t = 0; t < g.corners.size() / 3; ++t) {
+    const std::uint32_t* c = &g.corners[3 * t];
+    const int k = c[0] == v ? 0 : c[1] == v ? 1 : c[2] == v ? 2 : -1;
+    if (k < 0) continue;
+    double e1[3], e2[3], direction[3];
+    for (int i = 0; i < 3; ++i) {
+      e1[i] = double(g.positions[3 * c[1] + i]) - g.positions[3 * c[0] + i];
+      e2[i] = double(g.positions[3 * c[2] + i]) - g.positions[3 * c[0] + i];
+    }
+    const double du1 = double(g.uvs[2 * c[1]]) - g.uvs[2 * c[0]], dv1 = double(g.uvs[2 * c[1] + 1]) - g.uvs[2 * c[0] + 1];
+    const double du2 = double(g.uvs[2 * c[2]]) - g.uvs[2 * c[0]], dv2 = double(g.uvs[2 * c[2] + 1]) - g.uvs[2 * c[0] + 1];
+    const double sign = du1 * dv2 - du2 * dv1 < 0 ? -1 : 1;
+    for (int i = 0; i < 3; ++i) direction[i] = sign * (e1[i] * dv2 - e2[i] * dv1);
+    const double length = std::hypot(direction[0], direction[1], direction[2]);
+    const double change = 2 * eu * (std::hypot(e1[0], e1[1], e1[2]) + std::hypot(e2[0], e2[1], e2[2])) +
+                          2 * root3 * ep * (std::abs(dv1) + std::abs(dv2)) + 8 * root3 * ep * eu;
+    const double chord = change < length ? 2 * std::sin(std::asin(change / length) / 2) : 2;
+    const float* here = &g.positions[3 * c[k]];
+    const float* next = &g.positions[3 * c[(k + 1) % 3]];
+    const float* prev = &g.positions[3 * c[(k + 2) % 3]];
+    const float a[3] = {next[0] - here[0], next[1] - here[1], next[2] - here[2]};
+    const float b[3] = {prev[0] - here[0], prev[1] - here[1], prev[2] - here[2]};
+    const double weight = detail::angleBetweenDegrees(a, b) * M_PI / 180;
+    moved += weight * chord;
+    const double along = (direction[0] * n[0] + direction[1] * n[1] + direction[2] * n[2]) / (double(n[0]) * n[0] + double(n[1]) * n[1] + double(n[2]) * n[2]);
+    for (int i = 0; i < 3; ++i) direction[i] -= along * n[i];
+    const double projected = std::hypot(direction[0], direction[1], direction[2]);
+    for (int i = 0; i < 3; ++i) sum[i] += weight * direction[i] / projected;
+  }
+  const double size = std::hypot(sum[0], sum[1], sum[2]);
+  return moved < size ? std::asin(moved / size) * 180 / M_PI : 180;
 }
 
 // The file with vertex v's tangent replaced by `xyz`, through `tangent check`: exit code 0
@@ -1017,7 +1066,8 @@ TEST(AllowanceBoundary, ATurnJustOverTheLimitIsAFindingJustUnderIsClean) {
     const detail::Asset asset = detail::loadAsset(file);
     const Json& primitive = asset.json["meshes"][0]["primitives"][0];
     const auto needs = detail::primitiveNeeds(asset.json, primitive, false);
-    const auto bounds = detail::allowanceBounds(g, detail::inputRounding(asset, primitive, needs.texCoord, needs.hasNormalTexture));
+    const detail::InputRounding rounding = detail::inputRounding(asset, primitive, needs.texCoord, needs.hasNormalTexture);
+    const auto bounds = detail::allowanceBounds(g, rounding);
     std::vector<std::uint32_t> byCoarse, byFine;
     for (std::uint32_t v = 0; v < g.vertexCount; ++v)
       if (view.compared[v] && view.allowance.vertex(v) <= 20)
@@ -1026,13 +1076,26 @@ TEST(AllowanceBoundary, ATurnJustOverTheLimitIsAFindingJustUnderIsClean) {
       std::stable_sort(candidates->begin(), candidates->end(),
                        [&](std::uint32_t a, std::uint32_t b) { return view.allowance.vertex(a) > view.allowance.vertex(b); });
       std::optional<BoundaryControl> control;
+      // The limit written out: the default tolerance, both vectors' direction errors, the allowance.
+      const auto limitAt = [&](std::uint32_t v) {
+        return 1.0 + vectorDegrees(clean.primitives[0].tangentComponent) + vectorDegrees(clean.primitives[0].normalComponent) +
+               view.allowance.vertex(v);
+      };
       for (const std::uint32_t v : *candidates)
-        if ((control = boundaryControl(view, v, cornersOf[v], scale))) break;
+        if ((control = boundaryControl(view, v, cornersOf[v], scale, limitAt(v)))) break;
       if (!control) continue;
       const std::uint32_t v = control->vertex;
+      EXPECT_NEAR(view.limit[v], limitAt(v), 1e-9);
+      // The allowance itself: the coarse bound written out, or (from the fine bound) below it.
+      const double coarse = rounding.any() ? coarseDegreesAt(g, rounding, v) : 0;
+      if (candidates == &byCoarse) {
+        EXPECT_NEAR(view.allowance.vertex(v), coarse, 1e-4 * std::max(1.0, coarse)) << "vertex " << v;
+      } else {
+        EXPECT_LT(view.allowance.vertex(v), coarse) << "vertex " << v;
+      }
       (candidates == &byFine ? fineUsed : coarseUsed) = view.allowance.vertex(v) > 0;
       std::printf("%s vertex %u: allowance %.3f deg (%s bound), limit %.3f deg, controls at %.3f and %.3f deg\n", file.filename().c_str(), v,
-                  view.allowance.vertex(v), candidates == &byFine ? "fine" : "coarse", view.limit[v], control->underAngle, control->overAngle);
+                  view.allowance.vertex(v), candidates == &byFine ? "fine" : "coarse", limitAt(v), control->underAngle, control->overAngle);
       expectCheckVerdict(file, dir / "under.glb", v, control->under, false);
       expectCheckVerdict(file, dir / "over.glb", v, control->over, true);
     }
