@@ -440,9 +440,9 @@ namespace {
 
 constexpr float kCoarseEnoughDegrees = 4.0f;  // a 10 deg turn is caught under it anyway
 
-// Both bounds per vertex (and `allowance`'s orientations); the finer one holds only at the
-// vertices whose coarse bound exceeds `fineAbove` (-1: every vertex): the inputs of no triangle
-// of such a vertex are not moved.
+// Both bounds per vertex (and `allowance`'s orientations). The finer one moves only the inputs
+// of triangles with a vertex whose coarse bound exceeds `fineAbove` (-1: every triangle), so it
+// holds at those vertices alone.
 AllowanceBounds computeAllowanceBounds(const PrimitiveGeometry& geometry, const InputRounding& rounding, float fineAbove,
                                        ReferenceAllowance& allowance) {
   constexpr double kSecondOrderMargin = 1.25;
