@@ -182,10 +182,6 @@ fs::path temporaryBeside(const fs::path& path) {
   return folder / ("." + path.filename().string() + ".tmp-" + std::to_string(::getpid()) + "-" + std::to_string(counter++));
 }
 
-}  // namespace
-
-namespace {
-
 // "/proc/PID/fd/N" (PID this process, as /proc/self and /dev/fd resolve) -> N, else -1.
 int ownDescriptorNamed(const fs::path& path) {
   const std::string prefix = "/proc/" + std::to_string(::getpid()) + "/fd/";
@@ -208,19 +204,33 @@ fs::path withRealFolder(const fs::path& path) {
   return ec ? absolute.lexically_normal() : folder / absolute.filename();
 }
 
-// Writes every piece to `fd`, which stays open; throws naming `path`.
-void writeAll(int fd, const fs::path& path, const std::vector<std::span<const std::uint8_t>>& pieces) {
+// Writes every piece to `fd`, which stays open; throws "PATH: write failed: REASON". With
+// `startWriteback` (a file to be synced), each 8 MiB written is handed to the disk at once
+// (sync_file_range starts the writeback and does not wait), so that the fsync after waits for
+// the last part only instead of the whole file: the disk writes while the rest is copied.
+void writeAll(int fd, const fs::path& path, const std::vector<std::span<const std::uint8_t>>& pieces, bool startWriteback) {
+  constexpr std::size_t kWritebackBytes = std::size_t(8) << 20;
+  std::size_t total = 0, handedOver = 0;
   for (const auto& piece : pieces) {
     const std::uint8_t* at = piece.data();
     std::size_t left = piece.size();
     while (left > 0) {
-      const ssize_t written = ::write(fd, at, std::min<std::size_t>(left, std::size_t(1) << 30));
+      const ssize_t written = ::write(fd, at, std::min<std::size_t>(left, kWritebackBytes));
       if (written < 0 && errno == EINTR) continue;
       if (written <= 0) throw std::runtime_error(path.string() + ": write failed: " + reason(written < 0 ? errno : ENOSPC));
       at += written;
       left -= static_cast<std::size_t>(written);
+      total += static_cast<std::size_t>(written);
+#if defined(__linux__) && defined(SYNC_FILE_RANGE_WRITE)
+      if (startWriteback && total - handedOver >= kWritebackBytes) {
+        ::sync_file_range(fd, static_cast<off_t>(handedOver), static_cast<off_t>(total - handedOver), SYNC_FILE_RANGE_WRITE);
+        handedOver = total;  // advice only: where it fails, fsync does it all
+      }
+#endif
     }
   }
+  (void)startWriteback;
+  (void)handedOver;
 }
 
 void writeInPlace(const WriteTarget& target, const fs::path& path, const std::vector<std::span<const std::uint8_t>>& pieces) {
@@ -231,7 +241,7 @@ void writeInPlace(const WriteTarget& target, const fs::path& path, const std::ve
     std::fflush(nullptr);
     if (::fcntl(target.descriptor, F_GETFD) < 0)
       throw std::runtime_error(path.string() + ": descriptor " + std::to_string(target.descriptor) + " is not open");
-    writeAll(target.descriptor, path, pieces);
+    writeAll(target.descriptor, path, pieces, false);
     return;
   }
   // Non-blocking for the open only: a FIFO nobody reads refuses at once instead of waiting.
@@ -247,7 +257,7 @@ void writeInPlace(const WriteTarget& target, const fs::path& path, const std::ve
   const int flags = ::fcntl(fd, F_GETFL);
   if (flags >= 0) ::fcntl(fd, F_SETFL, flags & ~O_NONBLOCK);
   try {
-    writeAll(fd, path, pieces);
+    writeAll(fd, path, pieces, false);
   } catch (...) {
     ::close(fd);
     throw;
@@ -304,31 +314,13 @@ StagedFile::StagedFile(const fs::path& path, const std::vector<std::span<const s
     ::unlink(temp.c_str());
     throw std::runtime_error(path.string() + ": " + step + ": " + reason(error));
   };
-  // Each 8 MiB written is handed to the disk at once (sync_file_range starts the writeback and
-  // does not wait), so that the fsync below waits for the last part only instead of the whole
-  // file: the disk writes while the rest is copied. fsync still makes the whole file durable.
-  constexpr std::size_t kWritebackBytes = std::size_t(8) << 20;
-  std::size_t total = 0, handedOver = 0;
-  for (const auto& piece : pieces) {
-    const std::uint8_t* at = piece.data();
-    std::size_t left = piece.size();
-    while (left > 0) {
-      const ssize_t written = ::write(fd, at, std::min<std::size_t>(left, kWritebackBytes));
-      if (written < 0 && errno == EINTR) continue;
-      if (written <= 0) fail("write failed", written < 0 ? errno : ENOSPC);
-      at += written;
-      left -= static_cast<std::size_t>(written);
-#if defined(__linux__) && defined(SYNC_FILE_RANGE_WRITE)
-      total += static_cast<std::size_t>(written);
-      if (total - handedOver >= kWritebackBytes) {
-        ::sync_file_range(fd, static_cast<off_t>(handedOver), static_cast<off_t>(total - handedOver), SYNC_FILE_RANGE_WRITE);
-        handedOver = total;  // advice only: where it fails, fsync does it all
-      }
-#endif
-    }
+  try {
+    writeAll(fd, path, pieces, true);
+  } catch (...) {
+    ::close(fd);
+    ::unlink(temp.c_str());
+    throw;
   }
-  (void)total;
-  (void)handedOver;
   // Delayed allocation can report a full disk only here.
   if (::fsync(fd) != 0 && errno != EINVAL && errno != EROFS) fail("write failed", errno);
   if (::close(fd) != 0) {
