@@ -643,8 +643,10 @@ std::vector<std::filesystem::path> filesNamedBy(const Json& doc, const std::file
 // The JSON of a .gltf, or of a .glb's first chunk (read alone: the binary chunk is not), as
 // text; empty where the file cannot be read or is neither.
 std::string gltfJsonText(const std::filesystem::path& path) {
+  std::error_code ec;
+  const std::uintmax_t size = std::filesystem::file_size(path, ec);
   std::ifstream in(path, std::ios::binary);
-  if (!in) return {};
+  if (ec || !in) return {};
   char header[20] = {};
   in.read(header, sizeof header);
   const auto u32 = [&](int at) {
@@ -653,17 +655,13 @@ std::string gltfJsonText(const std::filesystem::path& path) {
     return value;
   };
   if (in.gcount() == sizeof header && std::memcmp(header, "glTF", 4) == 0) {
-    std::error_code ec;
-    const std::uintmax_t size = std::filesystem::file_size(path, ec);
-    if (ec || std::memcmp(header + 16, "JSON", 4) != 0 || u32(12) > kMaxJsonBytes || u32(12) > size - sizeof header) return {};
+    if (std::memcmp(header + 16, "JSON", 4) != 0 || u32(12) > kMaxJsonBytes || u32(12) > size - sizeof header) return {};
     std::string text(u32(12), '\0');
     in.read(text.data(), static_cast<std::streamsize>(text.size()));
     if (in.gcount() != static_cast<std::streamsize>(text.size())) return {};
     return text;
   }
-  std::error_code ec;
-  const std::uintmax_t size = std::filesystem::file_size(path, ec);
-  if (ec || size > kMaxJsonBytes) return {};  // no glTF we could read: what it names is unknown
+  if (size > kMaxJsonBytes) return {};  // no glTF we could read: what it names is unknown
   std::vector<std::uint8_t> bytes;
   if (!readFileInto(path, bytes)) return {};
   return std::string(bytes.begin(), bytes.end());
