@@ -9,6 +9,7 @@
 #include <utility>
 #include <vector>
 
+#include "accessors.hpp"
 #include "animation_rules.hpp"
 #include "tangent/gltf.hpp"
 
@@ -54,17 +55,6 @@ int componentBytesOf(std::int64_t componentType) {
     case 5122: case 5123: return 2;
     case 5125: case 5126: return 4;
     default: return 0;
-  }
-}
-
-const char* componentTypeNameOf(std::int64_t componentType) {
-  switch (componentType) {
-    case 5120: return "BYTE";
-    case 5121: return "UNSIGNED_BYTE";
-    case 5122: return "SHORT";
-    case 5123: return "UNSIGNED_SHORT";
-    case 5125: return "UNSIGNED_INT";
-    default: return "FLOAT";
   }
 }
 
@@ -474,7 +464,7 @@ class Validator {
   std::string accessorFormat(std::int64_t a) const {
     const Json& accessor = at("accessors", a);
     return "accessor " + std::to_string(a) + " is " + accessor["type"].get<std::string>() + " " +
-           (normalized(accessor) ? "normalized " : "") + componentTypeNameOf(accessor["componentType"].get<std::int64_t>());
+           (normalized(accessor) ? "normalized " : "") + componentTypeName(accessor["componentType"].get<int>());
   }
   static bool normalized(const Json& accessor) {
     auto it = accessor.find("normalized");
