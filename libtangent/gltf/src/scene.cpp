@@ -572,13 +572,11 @@ std::vector<SceneNode> readNodes(const Json& doc, const std::vector<char>& unusa
   for (std::size_t n = 0; n < nodeCount; ++n) {
     const Json& node = doc["nodes"][n];
     SceneNode& out = nodes[n];
-    if (unusable[n]) {
-      // the identity: SceneNode's defaults
-    } else if (node.contains("matrix") && node["matrix"].is_array() && node["matrix"].size() == 16) {
-      out.hasMatrix = true;
-      readFloats(node, "matrix", out.matrix);
-    }
-    if (!unusable[n]) {
+    if (!unusable[n]) {  // else the identity: SceneNode's defaults
+      if (node.contains("matrix") && node["matrix"].is_array() && node["matrix"].size() == 16) {
+        out.hasMatrix = true;
+        readFloats(node, "matrix", out.matrix);
+      }
       readFloats(node, "translation", out.translation);
       readFloats(node, "rotation", out.rotation);
       readFloats(node, "scale", out.scale);
