@@ -45,9 +45,9 @@ using namespace tangent::viewer;
 
 // The note channel. Every line the viewer prints that may carry file-derived text (names, paths,
 // the decoders' and loaders' messages) goes through here, escaped as the CLI escapes it
-// (tools/tangent/commands.hpp's shown()): no control character reaches the terminal, and no
+// (text::shown): no control character reaches the terminal, and no
 // name can begin a line of its own (a mesh named "\nok" forging a line of a CI log).
-std::string shown(std::string_view text) { return tangent::text::terminalSafe(text, 4096); }
+using tangent::text::shown;
 void printNote(std::string_view text) { std::cerr << "note: " << shown(text) << "\n"; }
 void printError(std::string_view text) { std::cerr << "error: " << shown(text) << "\n"; }
 

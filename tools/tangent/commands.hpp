@@ -14,7 +14,7 @@ namespace tangent::cli {
 
 // File-derived text (paths, names, messages that quote them) on its way to a terminal or a
 // log: control characters and bytes that are not UTF-8 escaped, cut past a few kilobytes.
-inline std::string shown(std::string_view text) { return text::terminalSafe(text, 4096); }
+using text::shown;
 
 // Exit codes shared by every command.
 constexpr int kExitOk = 0;

@@ -33,6 +33,12 @@ std::string terminalSafeLines(std::string_view text, std::size_t maxBytes = stat
 // A piece of file-derived text inside a message: terminalSafe, cut to kMaxMessageText.
 std::string quoted(std::string_view text);
 
+// Longest whole message (an error naming file, element and reason) a program prints.
+inline constexpr std::size_t kMaxShownMessage = 4096;
+// A whole message for the terminal, as the CLI and the viewer print every one: terminalSafe,
+// cut to kMaxShownMessage.
+inline std::string shown(std::string_view message) { return terminalSafe(message, kMaxShownMessage); }
+
 // A relative file path as a URI reference (RFC 3986 section 4.2): glTF's buffer and image
 // URIs, SARIF's artifactLocation.uri. A path segment may carry unreserved characters,
 // sub-delimiters, ':' and '@' (section 3.3), '/' separates segments; everything else is
