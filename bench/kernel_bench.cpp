@@ -11,6 +11,7 @@
 // time (all threads) and wall time per call; scripts/bench.sh takes the medians of repetitions.
 #include <benchmark/benchmark.h>
 #include <malloc.h>
+#include <sys/resource.h>
 #if __has_include(<valgrind/callgrind.h>)
 #include <valgrind/callgrind.h>
 #define TANGENT_HAVE_CALLGRIND 1
@@ -154,6 +155,84 @@ void reportProcessCpuTime(benchmark::internal::Benchmark* b) {
   b->MeasureProcessCPUTime()->Unit(benchmark::kMillisecond);
 }
 
+// The call as a pipeline makes it: once per mesh, with other work in between. Before each
+// timed call the heap is left as that other work leaves it (scrambleHeap); the timing covers
+// the call alone. Counters: minor page faults and kernel (system) milliseconds per call.
+// "plain/warm" is the same plain call back to back, nothing in between.
+void scrambleHeap(std::size_t bytes) {
+  malloc_trim(0);  // freed memory back to the kernel
+  {
+    std::unique_ptr<unsigned char[]> other(new unsigned char[bytes]);  // unrelated work of the call's size
+    for (std::size_t i = 0; i < bytes; i += 4096) other[i] = static_cast<unsigned char>(i);
+    benchmark::DoNotOptimize(other.get());
+  }
+  malloc_trim(0);
+}
+
+struct Usage {
+  double faults = 0, systemSeconds = 0;
+  static Usage now() {
+    rusage r{};
+    getrusage(RUSAGE_SELF, &r);
+    return {double(r.ru_minflt), double(r.ru_stime.tv_sec) + 1e-6 * double(r.ru_stime.tv_usec)};
+  }
+};
+
+void timeFresh(benchmark::State& state, const Input& in, bool scramble, const std::function<void()>& call) {
+  const std::size_t bytes = in.indices.size() * 64;  // about what one call of the library or a peer touches
+  Usage total;
+  std::size_t calls = 0;
+  call();  // the code and the input paged in; what stays of the call's memory is the call's to keep
+  for (auto _ : state) {
+    if (scramble) {
+      state.PauseTiming();
+      scrambleHeap(bytes);
+      state.ResumeTiming();
+    }
+    const Usage before = Usage::now();
+    call();
+    const Usage after = Usage::now();
+    total.faults += after.faults - before.faults;
+    total.systemSeconds += after.systemSeconds - before.systemSeconds;
+    ++calls;
+    benchmark::ClobberMemory();
+  }
+  state.counters["faults_per_call"] = total.faults / double(std::max<std::size_t>(1, calls));
+  state.counters["system_ms_per_call"] = 1e3 * total.systemSeconds / double(std::max<std::size_t>(1, calls));
+  counters(state, in, 1);
+}
+
+void registerFreshMemory(const InputSource& source) {
+  if (source.name.rfind("sphere-", 0) != 0) return;  // single-primitive spheres: the sizes
+  for (const bool scramble : {false, true}) {
+    const std::string mode = scramble ? "cold" : "warm";
+    // The README's plain call: no workspace of the caller's.
+    reportProcessCpuTime(benchmark::RegisterBenchmark(("plain/" + mode + "/t1/" + source.name).c_str(),
+                                                      [source, scramble](benchmark::State& state) {
+                                                        const Input& in = input(source);
+                                                        std::vector<float> tangents(in.indices.size() * 4);
+                                                        timeFresh(state, in, scramble, [&] {
+                                                          tangent::computeCornerTangents(in.arrays(), tangents, options(1));
+                                                          benchmark::DoNotOptimize(tangents.data());
+                                                        });
+                                                      }));
+    if (!scramble) continue;
+    for (tangent::bench::Peer peer : tangent::bench::peers()) {
+      std::string name(toString(peer));
+      std::replace(name.begin(), name.end(), '/', '-');
+      reportProcessCpuTime(benchmark::RegisterBenchmark((name + "/cold/" + source.name).c_str(),
+                                                        [source, peer](benchmark::State& state) {
+                                                          const Input& in = input(source);
+                                                          std::vector<float> tangents(in.indices.size() * 4);
+                                                          timeFresh(state, in, true, [&] {
+                                                            tangent::bench::runPeer(peer, in.arrays(), tangents);
+                                                            benchmark::DoNotOptimize(tangents.data());
+                                                          });
+                                                        }));
+    }
+  }
+}
+
 void registerInput(const InputSource& source) {
   const std::pair<const char*, unsigned> threadSettings[] = {{"t1", 1u}, {"t2", 2u}, {"tall", 0u}};
   for (const auto& [label, threads] : threadSettings) {
@@ -208,14 +287,18 @@ void registerInput(const InputSource& source) {
     const Input& in = input(source);
     std::vector<float> tangents(in.indices.size() * 4);
     std::vector<std::uint32_t> cornerVertex(in.indices.size());
+    std::size_t workspaceBytes = 0;
     for (auto _ : state) {
       tangent::TangentWorkspace workspace;
       tangent::computeCornerTangents(in.arrays(), tangent::CornerOutputs{tangents, {}, cornerVertex}, options(1), workspace);
       benchmark::DoNotOptimize(tangents.data());
       benchmark::ClobberMemory();
+      workspaceBytes = workspace.bytesReserved();
     }
+    state.counters["workspace_bytes_per_triangle"] = double(workspaceBytes) / double(std::max<std::size_t>(1, in.triangles()));
     counters(state, in, 1);
   }));
+  registerFreshMemory(source);
   for (tangent::bench::Peer peer : tangent::bench::peers()) {
     std::string name(toString(peer));
     std::replace(name.begin(), name.end(), '/', '-');  // "meshopt-compatible": one name segment

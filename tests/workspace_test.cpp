@@ -21,6 +21,7 @@
 #include <optional>
 #include <set>
 #include <string>
+#include <thread>
 
 #include "support/random_meshes.hpp"
 #include "support/test_assets.hpp"
@@ -310,6 +311,138 @@ TEST(Workspace, RepeatedCallsReuseTheirMemory) {
   const Output smaller = compute(arraysOf(small), 1, workspace);
   EXPECT_EQ(workspace.bytesReserved(), reserved);
   EXPECT_EQ(smaller.tangents, compute(arraysOf(small), 1).tangents);  // a reused workspace changes nothing
+}
+
+// The plain call (no workspace of the caller's) runs on its thread's cached workspace: every
+// method, thread count and vector width gives the bits of a fresh workspace, whatever the
+// cache held before (a larger mesh, another method) and after it was released.
+std::vector<float> plainCall(const tangent::MeshArrays& mesh, tangent::Method method, unsigned threads,
+                             std::vector<tangent::FrameSource>* sources = nullptr) {
+  std::vector<float> tangents(mesh.indices.size() * 4, std::numeric_limits<float>::quiet_NaN());
+  tangent::Options options;
+  options.method = method;
+  options.threads = threads;
+  if (sources) sources->assign(mesh.indices.size(), tangent::FrameSource{});
+  tangent::computeCornerTangents(mesh, tangents, options, sources ? std::span(*sources) : std::span<tangent::FrameSource>());
+  return tangents;
+}
+
+std::vector<float> freshCall(const tangent::MeshArrays& mesh, tangent::Method method, unsigned threads,
+                             std::vector<tangent::FrameSource>* sources = nullptr) {
+  std::vector<float> tangents(mesh.indices.size() * 4, std::numeric_limits<float>::quiet_NaN());
+  tangent::Options options;
+  options.method = method;
+  options.threads = threads;
+  if (sources) sources->assign(mesh.indices.size(), tangent::FrameSource{});
+  tangent::TangentWorkspace workspace;
+  tangent::computeCornerTangents(mesh, tangent::CornerOutputs{tangents, sources ? std::span(*sources) : std::span<tangent::FrameSource>()},
+                                 options, workspace);
+  return tangents;
+}
+
+bool sameBits(const std::vector<float>& a, const std::vector<float>& b) {
+  return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(float)) == 0;
+}
+
+TEST(CachedWorkspace, PlainCallsGiveTheBitsOfAFreshWorkspaceForEveryMethodThreadCountAndOrder) {
+  tangent::releaseCachedWorkspaces();
+  ASSERT_EQ(tangent::cachedWorkspaceBytes(), 0u);
+  const GridMesh big = hardMesh(), small = tangent::testing::makeTorus(64, 32);
+  const auto shuffled = tangent::testing::shuffleFacesAndRotateCorners(big, 7);
+  const tangent::Method methods[] = {tangent::Method::mikktspace, tangent::Method::lengyel, tangent::Method::flat,
+                                     tangent::Method::meshopt};
+  for (const tangent::Method method : methods) {
+    for (const unsigned threads : {1u, 2u, 8u}) {
+      // Big, then small on the big one's memory, then the big one shuffled, then big again.
+      for (const GridMesh* m : {&big, &small, &shuffled.mesh, &big}) {
+        std::vector<tangent::FrameSource> cachedSources, freshSources;
+        const std::vector<float> cached = plainCall(arraysOf(*m), method, threads, &cachedSources);
+        ASSERT_TRUE(sameBits(cached, freshCall(arraysOf(*m), method, threads, &freshSources)))
+            << tangent::toString(method) << " threads " << threads << " corners " << m->indices.size();
+        ASSERT_EQ(cachedSources, freshSources);
+      }
+      EXPECT_GT(tangent::cachedWorkspaceBytes(), 0u) << "the plain call keeps its workspace";
+    }
+  }
+  // The shuffled mesh's corners carry the original corners' bits, as for a fresh workspace.
+  const std::vector<float> one = plainCall(arraysOf(big), tangent::Method::mikktspace, 1);
+  const std::vector<float> s = plainCall(arraysOf(shuffled.mesh), tangent::Method::mikktspace, 2);
+  for (std::size_t c = 0; c < shuffled.originalCorner.size(); ++c)
+    ASSERT_EQ(0, std::memcmp(&s[4 * c], &one[4 * shuffled.originalCorner[c]], 16)) << "corner " << c;
+  // Released: nothing held, and the next call allocates again with the same bits.
+  tangent::releaseCachedWorkspaces();
+  EXPECT_EQ(tangent::cachedWorkspaceBytes(), 0u);
+  EXPECT_TRUE(sameBits(plainCall(arraysOf(big), tangent::Method::mikktspace, 2), one));
+  tangent::releaseCachedWorkspaces();
+}
+
+TEST(CachedWorkspace, EveryVectorWidthGivesTheSameBitsOnTheCachedWorkspace) {
+  const GridMesh m = hardMesh();
+  const std::vector<float> scalar = [&] {
+    ScopedVectorIsa isa("scalar");
+    return freshCall(arraysOf(m), tangent::Method::mikktspace, 1);
+  }();
+  for (const char* width : {"scalar", "sse2", "avx2", "simd128"}) {
+    ScopedVectorIsa isa(width);  // capped at what this build and processor have
+    for (const unsigned threads : {1u, 2u})
+      ASSERT_TRUE(sameBits(plainCall(arraysOf(m), tangent::Method::mikktspace, threads), scalar)) << width << " " << threads;
+  }
+  tangent::releaseCachedWorkspaces();
+}
+
+TEST(CachedWorkspace, TheLimitFreesWhatIsOverItAndZeroKeepsNothing) {
+  const GridMesh m = tangent::testing::makeTorus(200, 100);
+  const std::vector<float> expected = freshCall(arraysOf(m), tangent::Method::mikktspace, 1);
+  tangent::releaseCachedWorkspaces();
+  EXPECT_EQ(tangent::workspaceCacheLimit(), tangent::kDefaultWorkspaceCacheLimit);
+  EXPECT_TRUE(sameBits(plainCall(arraysOf(m), tangent::Method::mikktspace, 1), expected));
+  const std::size_t held = tangent::cachedWorkspaceBytes();
+  EXPECT_GT(held, m.indices.size() * 16);
+  tangent::setWorkspaceCacheLimit(held - 1);  // this mesh's workspace is over it
+  EXPECT_TRUE(sameBits(plainCall(arraysOf(m), tangent::Method::mikktspace, 1), expected));
+  EXPECT_EQ(tangent::cachedWorkspaceBytes(), 0u);
+  tangent::setWorkspaceCacheLimit(held);  // exactly at the limit: kept
+  EXPECT_TRUE(sameBits(plainCall(arraysOf(m), tangent::Method::mikktspace, 1), expected));
+  EXPECT_EQ(tangent::cachedWorkspaceBytes(), held);
+  tangent::setWorkspaceCacheLimit(0);  // off: the call uses a workspace of its own
+  tangent::releaseCachedWorkspaces();
+  EXPECT_TRUE(sameBits(plainCall(arraysOf(m), tangent::Method::mikktspace, 1), expected));
+  EXPECT_EQ(tangent::cachedWorkspaceBytes(), 0u);
+  tangent::setWorkspaceCacheLimit(tangent::kDefaultWorkspaceCacheLimit);
+}
+
+TEST(CachedWorkspace, ANestedCallTakesAWorkspaceOfItsOwnAndThreadsKeepTheirOwn) {
+  const GridMesh m = tangent::testing::makeTorus(64, 32);
+  const std::vector<float> expected = freshCall(arraysOf(m), tangent::Method::mikktspace, 1);
+  tangent::releaseCachedWorkspaces();
+  {
+    tangent::CachedWorkspace outer;
+    tangent::CachedWorkspace inner;  // a call nested in another on this thread
+    EXPECT_NE(&outer.get(), &inner.get());
+    EXPECT_TRUE(sameBits(plainCall(arraysOf(m), tangent::Method::mikktspace, 1), expected));
+    tangent::releaseCachedWorkspaces();  // the leased one stays
+  }
+  {
+    tangent::CachedWorkspace again;  // the thread's cached one, kept through the release above
+    EXPECT_EQ(tangent::cachedWorkspaceBytes(), again.get().bytesReserved());
+  }
+  tangent::releaseCachedWorkspaces();
+  // Another thread's call keeps its own workspace, freed by a release from this thread or at its end.
+  std::atomic<bool> called{false}, released{false};
+  std::thread other([&] {
+    EXPECT_TRUE(sameBits(plainCall(arraysOf(m), tangent::Method::mikktspace, 1), expected));
+    called = true;
+    while (!released) std::this_thread::yield();
+  });
+  while (!called) std::this_thread::yield();
+  EXPECT_GT(tangent::cachedWorkspaceBytes(), 0u);
+  tangent::releaseCachedWorkspaces();
+  EXPECT_EQ(tangent::cachedWorkspaceBytes(), 0u);
+  released = true;
+  other.join();
+  std::thread ending([&] { plainCall(arraysOf(m), tangent::Method::mikktspace, 1); });
+  ending.join();
+  EXPECT_EQ(tangent::cachedWorkspaceBytes(), 0u) << "a thread's cache ends with it";
 }
 
 // The workspace's large arrays: blocks of 2 MiB and more are mapped fresh on 2 MiB

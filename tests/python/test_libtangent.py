@@ -124,6 +124,21 @@ def test_report_and_vertex_split():
     assert split["corner_vertex"].tolist() == expected
 
 
+def test_calls_keep_their_workspace_until_released():
+    arrays = uv_sphere(96, 48)
+    libtangent.release_cached_workspaces()
+    assert libtangent.cached_workspace_bytes() == 0
+    first = libtangent.compute_tangents(*arrays, threads=1)
+    held = libtangent.cached_workspace_bytes()
+    assert held > 3 * 96 * 48 * 2 * 16  # the per-corner scratch stays for the next call
+    again = libtangent.compute_tangents(*arrays, threads=1)
+    assert libtangent.cached_workspace_bytes() == held
+    assert first["tangents"].tobytes() == again["tangents"].tobytes()
+    libtangent.release_cached_workspaces()
+    assert libtangent.cached_workspace_bytes() == 0
+    assert libtangent.compute_tangents(*arrays, threads=1)["tangents"].tobytes() == first["tangents"].tobytes()
+
+
 def cli_bake_report(tmp_path, source, output):
     report = tmp_path / "report.json"
     subprocess.run([CLI, "bake", str(source), "-o", str(output), "--report", str(report), "--quiet"], check=True)

@@ -138,8 +138,8 @@ Report computeCornerTangents(const StridedMesh& mesh, const CornerOutputs& outpu
 
 Report computeCornerTangents(const MeshArrays& mesh, std::span<float> cornerTangents, const Options& options,
                              std::span<FrameSource> cornerSources) {
-  TangentWorkspace workspace;
-  return computeCornerTangents(mesh, CornerOutputs{cornerTangents, cornerSources, {}}, options, workspace);
+  CachedWorkspace workspace;
+  return computeCornerTangents(mesh, CornerOutputs{cornerTangents, cornerSources, {}}, options, workspace.get());
 }
 
 }  // namespace tangent

@@ -8,6 +8,8 @@
 #include <bit>
 #include <cstring>
 #include <limits>
+#include <memory>
+#include <mutex>
 #include <stdexcept>
 #include <string>
 
@@ -116,5 +118,89 @@ TangentWorkspace::~TangentWorkspace() = default;
 TangentWorkspace::TangentWorkspace(TangentWorkspace&&) noexcept = default;
 TangentWorkspace& TangentWorkspace::operator=(TangentWorkspace&&) noexcept = default;
 std::size_t TangentWorkspace::bytesReserved() const { return data_->bytes(); }
+
+namespace {
+
+std::atomic<std::size_t> cacheLimit{kDefaultWorkspaceCacheLimit};
+
+// One thread's cached workspace. Its owner leases it for a call; releaseCachedWorkspaces()
+// from any thread frees it when not leased, hence the mutex (never contended in a call).
+struct ThreadCache {
+  std::mutex mutex;
+  std::unique_ptr<TangentWorkspace> workspace;
+  bool leased = false;
+  ThreadCache();
+  ~ThreadCache();
+};
+
+// Every live thread's cache (a thread's is listed on its first plain call, removed at its
+// end). Never destroyed: worker threads may end after the static objects are gone.
+std::mutex& registryMutex() {
+  static auto* mutex = new std::mutex;
+  return *mutex;
+}
+std::vector<ThreadCache*>& registry() {
+  static auto* caches = new std::vector<ThreadCache*>;
+  return *caches;
+}
+ThreadCache::ThreadCache() {
+  std::lock_guard lock(registryMutex());
+  registry().push_back(this);
+}
+ThreadCache::~ThreadCache() {
+  std::lock_guard lock(registryMutex());
+  std::erase(registry(), this);
+}
+
+ThreadCache& threadCache() {
+  thread_local ThreadCache cache;
+  return cache;
+}
+
+}  // namespace
+
+CachedWorkspace::CachedWorkspace() {
+  if (cacheLimit.load(std::memory_order_relaxed) > 0) {
+    ThreadCache& cache = threadCache();
+    std::lock_guard lock(cache.mutex);
+    if (!cache.leased) {
+      if (!cache.workspace) cache.workspace = std::make_unique<TangentWorkspace>();
+      cache.leased = true;
+      workspace_ = cache.workspace.get();
+      return;
+    }
+  }
+  own_ = std::make_unique<TangentWorkspace>();
+  workspace_ = own_.get();
+}
+
+CachedWorkspace::~CachedWorkspace() {
+  if (own_) return;
+  ThreadCache& cache = threadCache();
+  std::lock_guard lock(cache.mutex);
+  cache.leased = false;
+  if (cache.workspace->bytesReserved() > cacheLimit.load(std::memory_order_relaxed)) cache.workspace.reset();
+}
+
+std::size_t workspaceCacheLimit() { return cacheLimit.load(std::memory_order_relaxed); }
+void setWorkspaceCacheLimit(std::size_t bytes) { cacheLimit.store(bytes, std::memory_order_relaxed); }
+
+void releaseCachedWorkspaces() {
+  std::lock_guard lock(registryMutex());
+  for (ThreadCache* cache : registry()) {
+    std::lock_guard cacheLock(cache->mutex);
+    if (!cache->leased) cache->workspace.reset();
+  }
+}
+
+std::size_t cachedWorkspaceBytes() {
+  std::lock_guard lock(registryMutex());
+  std::size_t bytes = 0;
+  for (ThreadCache* cache : registry()) {
+    std::lock_guard cacheLock(cache->mutex);
+    if (cache->workspace) bytes += cache->workspace->bytesReserved();
+  }
+  return bytes;
+}
 
 }  // namespace tangent

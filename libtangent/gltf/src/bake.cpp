@@ -388,7 +388,7 @@ class PrimitiveBaker {
   detail::Asset& asset_;
   detail::OutputDocument& output_;
   const BakeOptions& options_;
-  TangentWorkspace workspace_;                              // reused by every compute
+  CachedWorkspace workspace_;  // the thread's cached workspace (tangent.hpp), for every compute
   std::optional<Arena> arena_;                              // bake's own passes over a primitive's corners
   [[maybe_unused]] unsigned arenaThreads_ = 0;              // arena_'s (none without threads)
   std::unordered_map<std::string, SharedBake> baked_;       // by detail::sameInputKey
@@ -728,7 +728,7 @@ ComputedTangents PrimitiveBaker::computeSplit(PrimitivePlan& plan, const Strided
   BulkVector<float> cornerTangents(mesh.indexCount * 4);
   BulkVector<std::uint32_t> cornerVertex(mesh.indexCount);
   const Options options = coreOptions(mesh.indexCount);
-  result.tangents = computeCornerTangents(mesh, CornerOutputs{cornerTangents, {}, cornerVertex}, options, workspace_);
+  result.tangents = computeCornerTangents(mesh, CornerOutputs{cornerTangents, {}, cornerVertex}, options, workspace_.get());
   computed.split = splitVertices(mesh, cornerTangents, std::move(cornerVertex), result.tangents.outputVertices, arenaFor(options));
   result.verticesIn = mesh.vertexCount;
   result.verticesOut = computed.split.source.size();
@@ -763,7 +763,7 @@ std::optional<ComputedTangents> PrimitiveBaker::computeFrames(PrimitivePlan& pla
     if (!target.normals.empty()) detail::unitNormals(morphedNormals);
     BulkVector<float> morphedTangents(corners.size() * 4);
     computeCornerTangents({morphedPositions, morphedNormals, geometry.uvs, corners}, CornerOutputs{morphedTangents},
-                          options, workspace_);
+                          options, workspace_.get());
     std::vector<float> deltas(split.source.size() * 3, 0.0f);
     for (std::size_t v = 0; v < split.source.size(); ++v) {
       if (split.firstCorner[v] == kNoCorner) continue;

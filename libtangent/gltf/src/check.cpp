@@ -531,8 +531,8 @@ std::vector<PrimitiveCheck> checkPrimitives(const Asset& asset, const std::vecto
       groups[group.first->second].push_back(i);
     }
   }
-  TangentWorkspace workspace;
-  for (const std::vector<std::size_t>& members : groups) checkVertexGroup(asset, primitives, members, options, workspace, results);
+  CachedWorkspace workspace;  // the thread's cached workspace (tangent.hpp)
+  for (const std::vector<std::size_t>& members : groups) checkVertexGroup(asset, primitives, members, options, workspace.get(), results);
   for (std::size_t i = 0; i < primitives.size(); ++i) {
     if (sameAs[i] != i) results[i] = results[sameAs[i]];
   }

@@ -14,8 +14,8 @@
 namespace tangent {
 
 Report computeTangents(CornerMesh& cornerMesh, const Options& options, std::span<FrameSource> cornerSources) {
-  TangentWorkspace workspace;
-  return computeTangents(cornerMesh, options, workspace, cornerSources);
+  CachedWorkspace workspace;
+  return computeTangents(cornerMesh, options, workspace.get(), cornerSources);
 }
 
 Report computeTangents(CornerMesh& cornerMesh, const Options& options, TangentWorkspace& workspace,

@@ -199,6 +199,38 @@ class TangentWorkspace {
   std::unique_ptr<detail::WorkspaceData> data_;
 };
 
+// The calls without a TangentWorkspace argument (the plain computeCornerTangents below, the
+// OpenMesh computeTangents) and the glTF layer's bake and check keep their scratch memory
+// between calls: one workspace per calling thread, kept after a call while it holds at most
+// workspaceCacheLimit() bytes (mikktspace: about 70 bytes a triangle). So a pipeline that
+// calls once per mesh, with other work in between, touches no fresh memory from its second
+// call on; fresh memory costs a page fault per page and the kernel's zeroing of it, a third of
+// a plain call's time at 1e5 triangles before this cache (docs/benchmarks.md, "Fresh
+// memory"). The memory stays with the thread until releaseCachedWorkspaces(), a call that
+// leaves the workspace over the limit, or the thread's end. A call made while its thread's
+// cached workspace is in use (a call nested in another on the same thread) takes a workspace
+// of its own. Every call gives the same bits with or without the cache.
+class CachedWorkspace {  // the calling thread's cached workspace, leased for one call
+ public:
+  CachedWorkspace();
+  ~CachedWorkspace();  // back to the cache, or freed when over the limit
+  CachedWorkspace(const CachedWorkspace&) = delete;
+  CachedWorkspace& operator=(const CachedWorkspace&) = delete;
+  TangentWorkspace& get() { return *workspace_; }
+
+ private:
+  TangentWorkspace* workspace_ = nullptr;
+  std::unique_ptr<TangentWorkspace> own_;  // set where the cache was in use or is off
+};
+inline constexpr std::size_t kDefaultWorkspaceCacheLimit = std::size_t(512) << 20;
+std::size_t workspaceCacheLimit();
+// For every thread from its next call on; 0 keeps nothing (each call allocates and frees).
+void setWorkspaceCacheLimit(std::size_t bytes);
+// Frees every thread's cached workspace that no call is using now (safe from any thread).
+void releaseCachedWorkspaces();
+// What the cached workspaces of all threads hold now.
+std::size_t cachedWorkspaceBytes();
+
 // What a call writes; the caller owns every array.
 struct CornerOutputs {
   std::span<float> tangents;                   // required: x, y, z, w per corner (4 floats)
@@ -224,7 +256,7 @@ Report computeCornerTangents(const MeshArrays& mesh, const CornerOutputs& output
 Report computeCornerTangents(const StridedMesh& mesh, const CornerOutputs& outputs, const Options& options,
                              TangentWorkspace& workspace);
 
-// The same with a workspace of its own. Computes one tangent (x, y, z, w) per corner into cornerTangents (4 floats per corner).
+// The same with the calling thread's cached workspace (CachedWorkspace). Computes one tangent (x, y, z, w) per corner into cornerTangents (4 floats per corner).
 // xyz is unit length and orthogonal to the corner's normal, w is exactly +1 or -1, and every
 // value is finite, whatever the input. When cornerSources is not empty (one per corner) it
 // receives where each frame came from. Throws std::invalid_argument when the array sizes
