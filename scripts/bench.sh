@@ -113,16 +113,18 @@ else
 fi
 export TANGENT_INSTRUCTIONS
 
-measure() {  # measure LABEL COMMAND...: prints "median_seconds max_rss_kb"
+measure() {  # measure LABEL COMMAND...: prints "median_seconds max_rss_kb median_user_s median_system_s median_minor_faults"
   # Wall time from a monotonic clock in ns around the child alone (GNU time's %e has 10 ms
-  # steps, the bake's whole run is ~100 ms), and that child's peak RSS from wait4.
+  # steps, the bake's whole run is ~100 ms), and that child's peak RSS, user and system (the
+  # kernel's share: page faults, zeroing fresh memory, file I/O) time and minor page faults
+  # from wait4.
   # At least $runs runs; short commands are repeated until 2 s were spent or 15 runs, so that
   # their median is stable.
   shift  # the label only documents the call
   python3 - "$runs" "$@" <<'PY' || echo "nan nan"
 import os, statistics, subprocess, sys, time
 runs, command = int(sys.argv[1]), sys.argv[2:]
-walls, rss, spent = [], [], 0.0
+walls, rss, user, system, faults, spent = [], [], [], [], [], 0.0
 while len(walls) < runs or (spent < 2.0 and len(walls) < 15):
     start = time.monotonic_ns()
     child = subprocess.Popen(command, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
@@ -132,19 +134,22 @@ while len(walls) < runs or (spent < 2.0 and len(walls) < 15):
         print("failed: " + " ".join(command), file=sys.stderr)
         sys.exit(1)
     walls.append(wall); rss.append(usage.ru_maxrss); spent += wall
-print(f"{statistics.median(walls):.4f} {max(rss)}")
+    user.append(usage.ru_utime); system.append(usage.ru_stime); faults.append(usage.ru_minflt)
+print(f"{statistics.median(walls):.4f} {max(rss)} {statistics.median(user):.4f} {statistics.median(system):.4f} {statistics.median(faults):.0f}")
 PY
 }
 
 rows=()
+fresh_rows=()
 for size in "${sizes[@]}"; do
   read -r n name target <<<"$size"
   "$bin/tangent-make-data" --sphere "$n" "$out/spheres" --one-primitive >/dev/null
   input="$out/spheres/sphere-$n.gltf"
   triangles=$((2 * n * (n - 1)))
-  read -r ours ours_kb <<<"$(measure bake "$bin/tangent" bake "$input" -o "$out/ours.glb" -q)"
-  read -r gt gt_kb <<<"$(measure gltf-transform node bench/node/node_modules/@gltf-transform/cli/bin/cli.js tangents "$input" "$out/gt.glb")"
-  read -r as as_kb <<<"$(measure assimp assimp export "$input" "$out/assimp.assbin" -fassbin -cts)"
+  read -r ours ours_kb ours_user ours_sys ours_faults <<<"$(measure bake "$bin/tangent" bake "$input" -o "$out/ours.glb" -q)"
+  read -r gt gt_kb _ <<<"$(measure gltf-transform node bench/node/node_modules/@gltf-transform/cli/bin/cli.js tangents "$input" "$out/gt.glb")"
+  read -r as as_kb _ <<<"$(measure assimp assimp export "$input" "$out/assimp.assbin" -fassbin -cts)"
+  fresh_rows+=("$triangles $ours $ours_user $ours_sys $ours_faults $(stat -c %s "$out/spheres/sphere-$n.bin") $(stat -c %s "$out/ours.glb")")
   kernel_runs=$runs; [ "$target" -gt 2000000 ] && kernel_runs=1  # the npm reference needs minutes there
   # The same analytic sphere as the kernel benchmark's sphere-$name (tools/bench/analytic_surfaces.cpp).
   wasm_json=$(cd bench/node && node mikktspace_kernel.mjs "$target" "$kernel_runs")
@@ -169,6 +174,7 @@ export TANGENT_WASM_ASSETS="$(printf '%s\n' "${wasm_assets[@]}")"
 TANGENT_WASM_SCALING=""
 [ $quick = 1 ] || TANGENT_WASM_SCALING=$(cd bench/node && node wasm_scaling.mjs 7) || TANGENT_WASM_SCALING=""
 export TANGENT_WASM_SCALING
+export TANGENT_FRESH_PROCESS="$(printf '%s\n' "${fresh_rows[@]}")"
 
 # The report.
 KERNEL_REPS=$kernel_reps python3 - "$out" $quick "${rows[@]}" <<'PY'
@@ -305,6 +311,43 @@ lines += ["", "Log-log slope of time per triangle against triangles, sphere-1e5 
           "from the medians; beside it the same from each size's fastest repetition, which shows how much of the "
           "slope the host's slow phases add (they slow the large, memory-bound calls more):", ""]
 lines += slopes if slopes else ["- not measured in this run (needs sphere-1e5 and sphere-4e6; `--quick` runs 1e5 only)"]
+# Fresh memory (issue 67): the call as a pipeline makes it, once per mesh with other work in between.
+fresh = [i for i in inputs if entry(f"plain/cold/t1/{i}") is not None]
+lines += ["", "## Fresh memory: one call with other work before it", "",
+          "The README's plain call `computeCornerTangents(arrays, tangents, {.threads = 1})` (no workspace of the caller's) "
+          "back to back (warm), and with the heap left as a pipeline's other work leaves it before each call (cold: "
+          "`malloc_trim(0)`, an unrelated allocation of 64 bytes a corner touched and freed, `malloc_trim(0)` again; "
+          "outside the timing); meshoptimizer under the same treatment. Milliseconds per call (CPU time), minor page faults "
+          "and kernel (system) milliseconds per call (`getrusage` around the call alone). The plain call keeps its thread's "
+          "workspace between calls (`CachedWorkspace`, tangent.hpp); \"fresh workspace\" is a call with a new "
+          "`TangentWorkspace` each time, what the first call in a process pays.", ""]
+if fresh:
+    lines += ["| input | plain warm | plain cold | faults/call | system ms/call | fresh workspace | workspace bytes/triangle | "
+              "meshopt compatible cold | faults/call | meshopt default cold | plain cold ÷ meshopt compatible cold | plain cold ÷ library warm |",
+              "|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|"]
+    for i in fresh:
+        cold, compatible = ms(f"plain/cold/t1/{i}"), ms(f"meshopt-compatible/cold/{i}")
+        cold_entry, compatible_entry = entry(f"plain/cold/t1/{i}"), entry(f"meshopt-compatible/cold/{i}") or {}
+        per_triangle = (entry(f"library-cold/t1/{i}") or {}).get("workspace_bytes_per_triangle", float("nan"))
+        lines.append(f"| {i} | {fmt(ms(f'plain/warm/t1/{i}'))} | {fmt(cold)} | {cold_entry.get('faults_per_call', float('nan')):.0f} | "
+                     f"{fmt(cold_entry.get('system_ms_per_call', float('nan')))} | {fmt(ms(f'library-cold/t1/{i}'))} | {per_triangle:.0f} | "
+                     f"{fmt(compatible)} | {compatible_entry.get('faults_per_call', float('nan')):.0f} | {fmt(ms(f'meshopt-default/cold/{i}'))} | "
+                     f"{ratio(cold, compatible)} | {ratio(cold, ms(f'library/t1/{i}'))} |")
+    lines += ["", "- \"library warm\" is the first table's library 1 thread (a workspace the caller keeps, the vertex split asked for too).",
+              "- One fault per 64 KiB of the call's peak working set (its workspace) would be: "
+              + ", ".join(f"{i} {triangles[i] * (entry(f'library-cold/t1/{i}') or {}).get('workspace_bytes_per_triangle', 0) / 65536:,.0f}"
+                          for i in fresh) + " faults."]
+lines += ["", "Whole process, `tangent bake` of one primitive (the spheres of the next table) in a fresh process: "
+          "every byte it uses is fresh memory, which the kernel maps and zeroes (the system time).", "",
+          "| triangles | wall s | user s | system s | system share of CPU | minor faults | peak ÷ (input + output) bytes |",
+          "|---:|---:|---:|---:|---:|---:|---:|"]
+for line in os.environ.get("TANGENT_FRESH_PROCESS", "").splitlines():
+    f = line.split()
+    if len(f) != 7: continue
+    t, wall, user, system, faults, bin_bytes, out_bytes = int(f[0]), float(f[1]), float(f[2]), float(f[3]), float(f[4]), int(f[5]), int(f[6])
+    peak = next((int(r[2]) * 1024 for r in rows if int(r[0]) == t), 0)
+    lines.append(f"| {t:,} | {wall:.3f} | {user:.3f} | {system:.3f} | {100 * system / max(1e-9, user + system):.0f}% | {faults:,.0f} | "
+                 f"{peak / max(1, bin_bytes + out_bytes):.2f}x |")
 lines += ["", "## Whole process on generated UV spheres (glTF, one primitive, normal-mapped material)", "",
           "| triangles | tangent bake s | peak MB | gltf-transform tangents s | peak MB | assimp export -cts s | peak MB | bake speed-up vs gltf-transform | bake memory vs gltf-transform | bake time ÷ assimp time |",
           "|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|"]
@@ -353,13 +396,17 @@ if begin in readme and end in readme:
     import datetime
     head = [f"{datetime.date.today().isoformat()}, {cpu}, {os.cpu_count()} hardware threads. Milliseconds per call "
             "(CPU time; all threads: wall):", "",
-            f"| input | triangles | libtangent 1 thread | libtangent all ({threads}) threads | meshopt compatible | meshopt default | "
-            "libtangent 1 thread ÷ meshopt compatible |",
-            "|---|---:|---:|---:|---:|---:|---:|"]
+            f"| input | triangles | libtangent 1 thread | libtangent 1 thread, cold | libtangent all ({threads}) threads | meshopt compatible | "
+            "meshopt compatible, cold | meshopt default | libtangent 1 thread ÷ meshopt compatible (cold) |",
+            "|---|---:|---:|---:|---:|---:|---:|---:|---:|"]
     for i in inputs:
         one, compatible = ms(f"library/t1/{i}"), ms(f"meshopt-compatible/{i}")
-        head.append(f"| {i.replace('asset:', '')} | {triangles[i]:,} | {fmt(one)} | {fmt(ms(f'library/tall/{i}', 'real_time'))} | "
-                    f"{fmt(compatible)} | {fmt(ms(f'meshopt-default/{i}'))} | {ratio(one, compatible)} |")
+        cold, compatible_cold = ms(f"plain/cold/t1/{i}"), ms(f"meshopt-compatible/cold/{i}")
+        cold_ratio = f" ({ratio(cold, compatible_cold)})" if cold == cold else ""
+        head.append(f"| {i.replace('asset:', '')} | {triangles[i]:,} | {fmt(one)} | {fmt(cold)} | {fmt(ms(f'library/tall/{i}', 'real_time'))} | "
+                    f"{fmt(compatible)} | {fmt(compatible_cold)} | {fmt(ms(f'meshopt-default/{i}'))} | {ratio(one, compatible)}{cold_ratio} |")
+    head += ["", "Cold: the plain call with the heap emptied and other memory touched before each call, meshoptimizer under the same "
+             "treatment (docs/benchmarks.md, \"Fresh memory\")."]
     if rows:
         t, o, okb, g, gkb = rows[-1][:5]
         head += ["", f"Whole process on one {int(t):,}-triangle primitive: `tangent bake` {float(o):.2f} s and {int(okb)/1024:.0f} MB, "
