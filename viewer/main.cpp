@@ -36,6 +36,7 @@
 #include "tangent/input_file.hpp"
 #include "tangent/scene.hpp"
 #include "tangent/text.hpp"
+#include "tangent/tangent.hpp"
 #include "textures.hpp"
 
 namespace {
@@ -378,7 +379,10 @@ struct Viewer {
       messages = scene.messages;
       renderer.setScene(std::move(scene), messages);
       loaded = file;
-      if (!applyCompare() && options.screenshot) return false;  // a screenshot of another comparison would mislead
+      const bool compared = applyCompare();
+      // The viewer keeps the scene, not the scratch memory of computing its frames (tangent.hpp).
+      tangent::releaseCachedWorkspaces();
+      if (!compared && options.screenshot) return false;  // a screenshot of another comparison would mislead
       loadedDemo = -1;
       for (int i = 0; i < static_cast<int>(std::size(kDemoFiles)); ++i) {
         std::error_code ec;
