@@ -55,3 +55,45 @@ def test_binary_output_to_a_terminal_is_refused(tmp_path):
     # To a pipe it goes.
     done = tangent("bake", asset, "-o", "-")
     assert done.returncode == 0 and done.stdout[:4] == b"glTF"
+
+
+def test_a_usage_error_is_one_line_that_points_at_the_help(tmp_path):
+    doc, blob = grid(4)
+    asset = write(tmp_path / "in.glb", glb_bytes(doc, blob))
+    mistakes = {
+        "bake": [("bake", asset), ("bake", asset, "-o", tmp_path / "o.glb", "--no-such-option"),
+                 ("bake", asset, "-o", tmp_path / "o.glb", "--method", "best")],
+        "check": [("check",), ("check", asset, "--format", "pdf")],
+        "info": [("info",), ("info", asset, "--no-such-option")],
+        "bench": [("bench", "--no-such-option")],
+        "": [("bakery",)],
+    }
+    for command, cases in mistakes.items():
+        pointer = f"(see tangent {command} --help)".replace("  ", " ").encode()
+        for args in cases:
+            done = tangent(*args)
+            assert done.returncode == 2, (args, done.stderr)
+            lines = done.stderr.decode().splitlines()
+            assert len(lines) == 1 and lines[0].endswith(pointer.decode()), (args, done.stderr)
+            assert lines[0].startswith(f"tangent {command}:".replace(" :", ":")), (args, done.stderr)
+        if command:
+            shown = tangent(command, "--help")
+            assert shown.returncode == 0 and shown.stdout.startswith(f"usage: tangent {command}".encode()), shown.stdout
+
+
+def test_progress_names_each_file_by_its_path_in_the_tree(tmp_path):
+    if shutil.which("script") is None:
+        skip_or_fail("script(1) from util-linux is not installed")
+    doc, blob = grid(4)
+    for folder in ("walls", "floors"):
+        write(tmp_path / "tree" / folder / "brick.glb", glb_bytes(doc, blob))
+    out = tmp_path / "out"
+    shown = subprocess.run(["script", "-qec", f"'{CLI}' bake --recursive '{tmp_path / 'tree'}' --out-dir '{out}' -q", "/dev/null"],
+                           capture_output=True, timeout=120)
+    # Two files of one name: the progress line tells them apart by their folders in the tree.
+    progress = set(re.findall(rb"\[\d/2\] ([^ ]+)  \d+:\d\d", shown.stdout))
+    assert progress == set(), "--quiet shows no progress: " + repr(shown.stdout)
+    shown = subprocess.run(["script", "-qec", f"'{CLI}' bake --recursive '{tmp_path / 'tree'}' --out-dir '{out}' --force",
+                            "/dev/null"], capture_output=True, timeout=120)
+    progress = set(re.findall(rb"\[\d/2\] ([^ ]+)  \d+:\d\d", shown.stdout))
+    assert progress == {b"walls/brick.glb", b"floors/brick.glb"}, shown.stdout

@@ -107,7 +107,7 @@ std::string namingInput(const std::filesystem::path& input, const std::string& m
 }
 
 int usageError(const std::string& message) {
-  std::cerr << "tangent bake: " << message << "\n\n" << kBakeUsage;
+  std::cerr << "tangent bake: " << message << " (see tangent bake --help)\n";
   return kExitUsage;
 }
 
@@ -135,6 +135,11 @@ bool reportWouldReplace(const std::filesystem::path& reportPath, const gltf::Pro
   return false;
 }
 
+// Ctrl-C's notice, on a line of its own: over a progress line it replaces that line first.
+constexpr const char* kStopNotice = "tangent: stopping after the current file (press Ctrl-C again to stop at once)\n";
+constexpr const char* kStopNoticeOverProgress =
+    "\r\033[Ktangent: stopping after the current file (press Ctrl-C again to stop at once)\n";
+
 // One line on a terminal (stderr) while a batch runs: files done of all, the current file,
 // time so far and the time left at the pace so far. Nothing when off (not a terminal, --quiet).
 class ProgressLine {
@@ -143,12 +148,12 @@ class ProgressLine {
   void show(std::size_t done, std::size_t total, const std::filesystem::path& current) {
     if (!on_) return;
     const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - started_).count();
-    std::cerr << "\r[" << done << "/" << total << "] " << shown(current.filename().string()).substr(0, 40) << "  "
-              << clock(elapsed);
+    std::cerr << "\r[" << done << "/" << total << "] " << tail(shown(current.string())) << "  " << clock(elapsed);
     if (done > 0) std::cerr << ", about " << clock(elapsed / static_cast<double>(done) * static_cast<double>(total - done)) << " left";
     std::cerr << "\033[K" << std::flush;
     visible_ = true;
   }
+  bool onTerminal() const { return on_; }
   void clear() {
     if (!visible_) return;
     std::cerr << "\r\033[K" << std::flush;
@@ -156,6 +161,13 @@ class ProgressLine {
   }
 
  private:
+  // The end of a long path, where names differ, cut at a character boundary.
+  static std::string tail(const std::string& text, std::size_t width = 48) {
+    if (text.size() <= width) return text;
+    std::size_t start = text.size() - (width - 3);
+    while (start < text.size() && (static_cast<unsigned char>(text[start]) & 0xC0) == 0x80) ++start;
+    return "..." + text.substr(start);
+  }
   static std::string clock(double seconds) {
     const auto whole = static_cast<long long>(seconds + 0.5);
     char text[32];
@@ -220,12 +232,18 @@ int bakeTrees(const std::vector<std::filesystem::path>& folders, const std::file
   ProgressLine progress(!quiet && ::isatty(STDERR_FILENO));
   std::size_t done = 0;
   batch.stopRequested = output::stopRequested;
+  // The progress names each file by its path in its tree (led by the folder's name when there
+  // are several), as the output tree has it.
+  std::filesystem::path shownRoot;
   batch.onStart = [&](std::size_t, std::size_t, const std::filesystem::path& input) {
-    progress.show(done, allInputs.size(), input);
+    const std::filesystem::path relative = input.lexically_relative(shownRoot.parent_path());
+    progress.show(done, allInputs.size(), folders.size() == 1 ? input.lexically_relative(shownRoot) : relative);
   };
-  output::stopGracefullyOnSignal("tangent: stopping after the current file (press Ctrl-C again to stop at once)\n");
+  output::stopGracefullyOnSignal(progress.onTerminal() ? kStopNoticeOverProgress : kStopNotice);
   for (const auto& folder : folders) {
     const std::filesystem::path target = folders.size() == 1 ? outDir : outDir / folder.filename();
+    shownRoot = folder.lexically_normal();
+    if (!shownRoot.has_filename()) shownRoot = shownRoot.parent_path();  // "dir/" names dir
     if (output::stopRequested()) break;
     try {
       gltf::bakeTree(folder, target, batch, [&](const gltf::BatchEntry& entry) {
@@ -430,7 +448,7 @@ int bakeCommand(const std::vector<std::string>& args) {
   int failed = 0;
   nlohmann::ordered_json report = nlohmann::ordered_json::array();
   if (inputs.size() > 1)
-    output::stopGracefullyOnSignal("tangent: stopping after the current file (press Ctrl-C again to stop at once)\n");
+    output::stopGracefullyOnSignal(progress.onTerminal() ? kStopNoticeOverProgress : kStopNotice);
   std::size_t done = 0;
   for (std::size_t n = 0; n < inputs.size() && !output::stopRequested(); ++n, ++done) {
     const fs::path& input = inputs[n];

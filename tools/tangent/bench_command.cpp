@@ -387,7 +387,7 @@ int benchCommand(const std::vector<std::string>& args) {
       else if (arg == "--triangles" && i + 1 < args.size()) peerTriangles = std::max<std::size_t>(std::stoul(args[++i]), 8);
       else throw std::invalid_argument(arg);
     } catch (const std::exception&) {
-      std::cerr << "tangent bench: bad option '" << arg << "'\n\n" << kBenchUsage;
+      std::cerr << "tangent bench: bad option '" << shown(arg) << "' (see tangent bench --help)\n";
       return kExitUsage;
     }
   }

@@ -31,7 +31,7 @@ const char* kCheckUsage =
     "or normalized BYTE/SHORT VEC4 (format), finite, unit, w exactly +-1 and the same on a\n"
     "triangle's corners (w, w-uniform), orthogonal to NORMAL, handedness matching the normal\n"
     "texture's UV orientation, and close to freshly computed tangents (reference). Limits for\n"
-    "quantized data follow from the rounding step (README, \"Limits per component type\").\n"
+    "quantized data follow from the rounding step (docs/check.md, \"Limits per component type\").\n"
     "\n"
     "options:\n"
     "  --format FORMAT     text (default) | json | junit | github | sarif | html (one page with thumbnails\n"
@@ -390,7 +390,7 @@ void writeSarif(std::ostream& out, const std::vector<gltf::FileCheck>& checks, c
 }
 
 int usageError(const std::string& message) {
-  std::cerr << "tangent check: " << message << "\n\n" << kCheckUsage;
+  std::cerr << "tangent check: " << message << " (see tangent check --help)\n";
   return kExitUsage;
 }
 

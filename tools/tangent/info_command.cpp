@@ -22,7 +22,7 @@ int infoCommand(const std::vector<std::string>& args) {
     if (arg == "--json") json = true;
     else if (arg == "--asset-root") {
       if (i + 1 >= args.size() || !std::filesystem::is_directory(args[i + 1])) {
-        std::cerr << "tangent info: --asset-root needs a directory\n";
+        std::cerr << "tangent info: --asset-root needs a directory (see tangent info --help)\n";
         return kExitUsage;
       }
       assetRoot = args[++i];
@@ -38,12 +38,12 @@ int infoCommand(const std::vector<std::string>& args) {
                    "  -h, --help         this text\n";
       return kExitOk;
     } else if (!arg.empty() && arg[0] == '-') {
-      std::cerr << "tangent info: unknown option '" << arg << "'\n";
+      std::cerr << "tangent info: unknown option '" << shown(arg) << "' (see tangent info --help)\n";
       return kExitUsage;
     } else inputs.push_back(arg);
   }
   if (inputs.empty()) {
-    std::cerr << "tangent info: no input files\nusage: tangent info IN... [--json]\n";
+    std::cerr << "tangent info: no input files (see tangent info --help)\n";
     return kExitUsage;
   }
   int failed = 0;

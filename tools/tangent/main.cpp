@@ -71,7 +71,7 @@ int run(std::vector<std::string> args) {
   if (command == "info") return tangent::cli::infoCommand(args);
   if (command == "check") return tangent::cli::checkCommand(args);
   if (command == "bench") return tangent::cli::benchCommand(args);
-  std::cerr << "tangent: unknown command '" << command << "'\n" << kUsage;
+  std::cerr << "tangent: unknown command '" << tangent::text::shown(command) << "' (see tangent --help)\n";
   return tangent::cli::kExitUsage;
 }
 
