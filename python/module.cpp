@@ -81,15 +81,32 @@ py::array_t<std::uint32_t, py::array::c_style> indexArray(const py::handle& obje
 }
 
 // The options of `tangent bake`, from bake()'s and bake_tree()'s keyword arguments.
-tangent::gltf::BakeOptions bakeOptions(const std::string& methodName, const std::string& weightingName, int threads, bool all,
-                                       bool overwrite, const std::optional<std::filesystem::path>& assetRoot) {
+struct BakeKeywords {
+  std::string method, weighting;
+  int threads = 0;
+  bool all = false, overwrite = false;
+  std::optional<std::filesystem::path> assetRoot;
+  std::string tangentFormat, normals;
+  double creaseAngle = 60;
+};
+
+tangent::gltf::BakeOptions bakeOptions(const BakeKeywords& k) {
   tangent::gltf::BakeOptions options;
-  options.tangents.method = method(methodName);
-  options.tangents.weighting = weighting(weightingName);
-  options.tangents.threads = threadCount(threads);
-  options.all = all;
-  options.overwrite = overwrite;
-  if (assetRoot) options.assetRoot = *assetRoot;
+  options.tangents.method = method(k.method);
+  options.tangents.weighting = weighting(k.weighting);
+  options.tangents.threads = threadCount(k.threads);
+  options.all = k.all;
+  options.overwrite = k.overwrite;
+  if (k.assetRoot) options.assetRoot = *k.assetRoot;
+  const auto format = tangent::gltf::parseTangentFormat(k.tangentFormat);
+  if (!format) badArgument("tangent_format", "'" + k.tangentFormat + "' is not float, short or byte");
+  options.tangentFormat = *format;
+  const auto normals = tangent::gltf::parseNormalsMode(k.normals);
+  if (!normals) badArgument("normals", "'" + k.normals + "' is not flat, smooth or keep");
+  options.normals = *normals;
+  if (!(k.creaseAngle >= 0 && k.creaseAngle <= 180))
+    badArgument("crease_angle", std::to_string(k.creaseAngle) + " is not degrees in [0, 180]");
+  options.creaseAngleDegrees = k.creaseAngle;
   return options;
 }
 
@@ -190,11 +207,9 @@ The GIL is released while the core runs.)");
       "bake",
       [](const std::filesystem::path& input, const std::filesystem::path& output, const std::string& methodName,
          const std::string& weightingName, int threads, bool all, bool overwrite, std::optional<std::filesystem::path> assetRoot,
-         const std::string& tangentFormat) {
-        tangent::gltf::BakeOptions options = bakeOptions(methodName, weightingName, threads, all, overwrite, assetRoot);
-        const auto format = tangent::gltf::parseTangentFormat(tangentFormat);
-        if (!format) badArgument("tangent_format", "'" + tangentFormat + "' is not float, short or byte");
-        options.tangentFormat = *format;
+         const std::string& tangentFormat, const std::string& normals, double creaseAngle) {
+        const tangent::gltf::BakeOptions options =
+            bakeOptions({methodName, weightingName, threads, all, overwrite, assetRoot, tangentFormat, normals, creaseAngle});
         nlohmann::ordered_json entry = {{"input", input.string()}, {"output", output.string()}, {"status", "ok"}};
         {
           py::gil_scoped_release released;
@@ -204,7 +219,7 @@ The GIL is released while the core runs.)");
       },
       py::arg("input"), py::arg("output"), py::kw_only(), py::arg("method") = "mikktspace", py::arg("weighting") = "angle",
       py::arg("threads") = 0, py::arg("all") = false, py::arg("overwrite") = false, py::arg("asset_root") = py::none(),
-      py::arg("tangent_format") = "float",
+      py::arg("tangent_format") = "float", py::arg("normals") = "flat", py::arg("crease_angle") = 60.0,
       R"(Bake TANGENT into a glTF file, as `tangent bake INPUT -o OUTPUT` does.
 
 Computes TANGENT for every triangle primitive whose material has a normalTexture, from the
@@ -219,6 +234,10 @@ overwrite: recompute valid existing TANGENT too
 asset_root: folder buffer and image URIs may not leave (default: the input's folder)
 tangent_format: float (default) | short | byte: TANGENT as float or normalized SHORT/BYTE
   (KHR_mesh_quantization)
+normals: flat (default) | smooth | keep: for a primitive without NORMAL, write flat normals
+  (what the specification requires of clients) or smooth ones, or keep it without (and skip it)
+crease_angle: with normals="smooth": triangles meeting at more than this many degrees stay
+  sharp (default 60, in [0, 180])
 
 Returns the dict `tangent bake --report` writes for this file.
 Raises libtangent.InputError with the CLI's message on a file it refuses.)");
@@ -227,9 +246,9 @@ Raises libtangent.InputError with the CLI's message on a file it refuses.)");
       "bake_tree",
       [](const std::filesystem::path& inputFolder, const std::filesystem::path& outputFolder, const std::string& methodName,
          const std::string& weightingName, int threads, bool all, bool overwrite, std::optional<std::filesystem::path> assetRoot,
-         bool force) {
+         bool force, const std::string& tangentFormat, const std::string& normals, double creaseAngle) {
         tangent::gltf::BatchOptions options;
-        options.bake = bakeOptions(methodName, weightingName, threads, all, overwrite, assetRoot);
+        options.bake = bakeOptions({methodName, weightingName, threads, all, overwrite, assetRoot, tangentFormat, normals, creaseAngle});
         options.force = force;
         nlohmann::ordered_json entries = nlohmann::ordered_json::array();
         {
@@ -240,7 +259,8 @@ Raises libtangent.InputError with the CLI's message on a file it refuses.)");
       },
       py::arg("input_folder"), py::arg("output_folder"), py::kw_only(), py::arg("method") = "mikktspace",
       py::arg("weighting") = "angle", py::arg("threads") = 0, py::arg("all") = false, py::arg("overwrite") = false,
-      py::arg("asset_root") = py::none(), py::arg("force") = false,
+      py::arg("asset_root") = py::none(), py::arg("force") = false, py::arg("tangent_format") = "float",
+      py::arg("normals") = "flat", py::arg("crease_angle") = 60.0,
       R"(Bake a folder tree, as `tangent bake INPUT_FOLDER --recursive --out-dir OUTPUT_FOLDER` does.
 
 Every .gltf, .glb, .obj, .ply and .off under INPUT_FOLDER is baked into the same relative

@@ -45,6 +45,8 @@ def bake(
     overwrite: bool = False,
     asset_root: Optional[PathLike] = None,
     tangent_format: str = "float",
+    normals: str = "flat",
+    crease_angle: float = 60.0,
 ) -> dict[str, Any]: ...
 
 def check(
@@ -74,6 +76,9 @@ def bake_tree(
     overwrite: bool = False,
     asset_root: Optional[PathLike] = None,
     force: bool = False,
+    tangent_format: str = "float",
+    normals: str = "flat",
+    crease_angle: float = 60.0,
 ) -> list[dict[str, Any]]: ...
 
 def release_cached_workspaces() -> None: ...
