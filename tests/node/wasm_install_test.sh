@@ -62,3 +62,14 @@ if npx --no-install tangent-wasm in.glb out.glb 2>/dev/null; then echo "tangent-
 if npx --no-install tangent-wasm in.glb out.glb --overwrite 2>/dev/null; then echo "tangent-wasm took --overwrite" >&2; exit 1; fi
 npx --no-install tangent-wasm in.glb out.glb --force >/dev/null
 echo "installed package: ok"
+# --help exits 0 with the usage on standard output.
+help=$(npx --no-install tangent-wasm --help) || { echo "tangent-wasm --help exited non-zero" >&2; exit 1; }
+grep -q "^usage: tangent-wasm" <<<"$help" || { echo "tangent-wasm --help printed no usage: $help" >&2; exit 1; }
+# npm pack never makes a package without its builds: the package folder copied out of the
+# checkout, dist/ removed, is refused by the prepack step, naming what to run.
+mkdir -p "$work/no-dist" && cp -r "$source_dir/wasm/package/." "$work/no-dist/package" && rm -rf "$work/no-dist/package/dist"
+if refused=$(cd "$work/no-dist/package" && npm pack --pack-destination "$work/no-dist" 2>&1); then
+  echo "npm pack made a package without dist/" >&2; exit 1
+fi
+grep -q "wasm/build.sh" <<<"$refused" || { echo "npm pack without dist/ did not say what to run: $refused" >&2; exit 1; }
+if ls "$work/no-dist"/*.tgz >/dev/null 2>&1; then echo "npm pack left a tarball without dist/" >&2; exit 1; fi

@@ -20,10 +20,16 @@ if (args.includes('--overwrite')) {
   console.error('tangent-wasm: --overwrite is not an option here; --force replaces an existing output');
   process.exit(2);
 }
+const usage = 'usage: tangent-wasm IN.gltf|IN.glb OUT.gltf|OUT.glb [--force]';
+if (args.includes('--help') || args.includes('-h')) {
+  console.log(`${usage}\n\nBakes MikkTSpace tangents into every normal-mapped triangle primitive with glTF-Transform\n` +
+    'and this package\'s generateTangents. Never writes over IN; --force replaces an existing OUT.');
+  process.exit(0);
+}
 const force = args.includes('--force');
 const files = args.filter((a) => a !== '--force');
-if (files.length !== 2 || args.includes('--help')) {
-  console.error('usage: tangent-wasm IN.gltf|IN.glb OUT.gltf|OUT.glb [--force]');
+if (files.length !== 2) {
+  console.error(`tangent-wasm: expected IN and OUT (${usage})`);
   process.exit(2);
 }
 const [input, output] = files.map((f) => path.resolve(f));
