@@ -94,6 +94,26 @@ class BuildWithCMake(build_ext):
         subprocess.run(arguments, check=True)
 
 
+def require_wheel_support():
+    """setuptools before 70.1 builds wheels through the `wheel` package; without it the build
+    ends in a bare "invalid command 'bdist_wheel'". Say what is missing and how to get it."""
+    if not any(arg.startswith("bdist_wheel") for arg in sys.argv[1:]):
+        return
+    try:
+        import setuptools.command.bdist_wheel  # noqa: F401  (setuptools 70.1 and later)
+        return
+    except ImportError:
+        pass
+    try:
+        import wheel.bdist_wheel  # noqa: F401
+    except ImportError:
+        sys.exit(f"setup.py: building libtangent's wheel needs the `wheel` package, which {os.path.realpath(sys.executable)} "
+                 "does not have (and no package index is used). Make the venv from Debian's interpreter, which has it "
+                 "from python3-wheel: /usr/bin/python3 -m venv --system-site-packages .venv && "
+                 ".venv/bin/pip install --no-build-isolation --no-index .")
+
+
+require_wheel_support()
 scratch = cmake_build_dir() / "setuptools"
 scratch.mkdir(parents=True, exist_ok=True)
 setup(

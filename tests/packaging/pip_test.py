@@ -173,6 +173,18 @@ stray = [p.name for p in checkout.glob("*.egg-info")] + [p.name for p in (checko
 if stray:
     fail(f"setuptools left {stray} in the checkout instead of build-pip/")
 
+# 4b. An interpreter without the `wheel` package (as a venv of a non-Debian Python has none and
+# no index to fetch it from): setup.py says what is missing and the command that works, instead
+# of setuptools' bare "invalid command 'bdist_wheel'".
+without_wheel = subprocess.run(
+    ["/usr/bin/python3", "-c", "import runpy, sys; sys.modules['wheel'] = sys.modules['wheel.bdist_wheel'] = None; "
+     "sys.argv = ['setup.py', 'bdist_wheel']; runpy.run_path('setup.py', run_name='__main__')"],
+    cwd=checkout, capture_output=True, text=True, timeout=120)
+if without_wheel.returncode == 0 or "needs the `wheel` package" not in without_wheel.stderr or \
+        "/usr/bin/python3 -m venv --system-site-packages" not in without_wheel.stderr:
+    fail(f"setup.py bdist_wheel without `wheel`: exit {without_wheel.returncode}, {without_wheel.stderr[-2000:]}")
+print("setup.py without the wheel package:", without_wheel.stderr.strip().splitlines()[-1][:120])
+
 # 5. Uninstall: the venv's site-packages as a fresh venv's.
 installed = site_packages(venv_python)
 run([venv_python, "-m", "pip", "uninstall", "-y", "libtangent"], cwd=work)
