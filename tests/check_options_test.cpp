@@ -585,8 +585,9 @@ TEST(CheckFormats, DashWritesToStandardOutput) {
 }
 
 // bake -o -: the .glb goes to stdout, byte for byte what -o FILE writes; messages go to
-// stderr; an asset with external images is refused (a stream cannot carry them) and leaves
-// nothing behind.
+// stderr; external images are embedded, and one that cannot be (no mimeType, bytes of no known
+// image type) is refused naming it; with --keep-external an asset with external images is
+// refused (a stream cannot carry them) and leaves nothing behind.
 TEST(BakeOutput, DashWritesTheGlbToStandardOutput) {
   TempDir dir;
   std::ofstream(dir / "quad.obj") << "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nvt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\nvn 0 0 1\n"
@@ -606,7 +607,12 @@ TEST(BakeOutput, DashWritesTheGlbToStandardOutput) {
 
   const fs::path quad = writeQuad(dir.path(), "quad");  // refers to normal.png
   std::ofstream(dir / "normal.png") << "not read";
-  const auto refused = runCommand("(" + cli + " bake " + quoted(quad) + " -o - 2>&1 >/dev/null)");
+  const auto unknown = runCommand("(" + cli + " bake " + quoted(quad) + " -o - 2>&1 >/dev/null)");
+  EXPECT_EQ(unknown.exitCode, 1);
+  EXPECT_NE(unknown.output.find("quad.gltf: /images/0: has no mimeType and its bytes are not PNG, JPEG, WebP or KTX2"),
+            std::string::npos)
+      << unknown.output;
+  const auto refused = runCommand("(" + cli + " bake " + quoted(quad) + " -o - --keep-external 2>&1 >/dev/null)");
   EXPECT_EQ(refused.exitCode, 1);
   EXPECT_NE(refused.output.find("quad.gltf: -o - writes one .glb, but the asset refers to external files (normal.png)"),
             std::string::npos)

@@ -180,7 +180,9 @@ TEST(Check, UndrawnVerticesOfTheBufferAreLeftOutAndTheRestIsClean) {
       .write(reinterpret_cast<const char*>(bin.data()), static_cast<std::streamsize>(bin.size()));
   std::ofstream(dir / "grid.gltf") << doc.dump();
   std::ofstream(dir / "normal.png") << "never read";
-  tangent::gltf::bakeFile(dir / "grid.gltf", dir / "baked.glb", {});
+  tangent::gltf::BakeOptions keepImage;  // a .glb would embed the image (and refuse these bytes)
+  keepImage.keepExternalImages = true;
+  tangent::gltf::bakeFile(dir / "grid.gltf", dir / "baked.glb", keepImage);
 
   const FileCheck check = tangent::gltf::checkFile(dir / "baked.glb", {});
   ASSERT_TRUE(check.error.empty()) << check.error;

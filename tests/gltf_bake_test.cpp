@@ -482,21 +482,24 @@ TEST(Bake, ExternalImagesAreCopiedBesideTheOutput) {
 }
 
 // A copy an earlier bake left beside the output is not written again (each write is a flush to
-// disk); one that differs from the input's image is replaced.
+// disk); one that differs from the input's image is replaced. (.glb outputs that keep their
+// images external: by default a .glb embeds them.)
 TEST(Bake, ImageCopiesAlreadyBesideTheOutputAreNotRewritten) {
   TempDir dir;
   const fs::path demo = fs::path(TANGENT_SOURCE_DIR) / "data" / "demo" / "demo.gltf";
   const fs::path image = dir / "bumps_normal.png";
-  tangent::gltf::bakeFile(demo, dir / "a.glb", {});
+  tangent::gltf::BakeOptions keep;
+  keep.keepExternalImages = true;
+  tangent::gltf::bakeFile(demo, dir / "a.glb", keep);
   ASSERT_EQ(fileBytes(image), fileBytes(demo.parent_path() / "bumps_normal.png"));
   struct stat before {};
   ASSERT_EQ(::stat(image.c_str(), &before), 0);
-  tangent::gltf::bakeFile(demo, dir / "b.glb", {});
+  tangent::gltf::bakeFile(demo, dir / "b.glb", keep);
   struct stat after {};
   ASSERT_EQ(::stat(image.c_str(), &after), 0);
   EXPECT_EQ(before.st_ino, after.st_ino) << "rewritten (a new file renamed into place)";
   std::ofstream(image, std::ios::binary) << "not the image";
-  tangent::gltf::bakeFile(demo, dir / "c.glb", {});
+  tangent::gltf::bakeFile(demo, dir / "c.glb", keep);
   EXPECT_EQ(fileBytes(image), fileBytes(demo.parent_path() / "bumps_normal.png"));
 }
 

@@ -502,6 +502,12 @@ def with_external_image(doc, uri="tex/n.png"):
     return doc
 
 
+def keeping_images(suffix):
+    """The options under which an output of `suffix` copies external images beside it (a .glb
+    embeds them unless told to keep them external)."""
+    return ["--keep-external"] if suffix == ".glb" else []
+
+
 @pytest.mark.parametrize("suffix", [".glb", ".gltf"])
 def test_a_full_disk_leaves_no_image_copy_or_folder_behind(tmp_path, suffix):
     # The image copy (one page) fits, the output after it does not: the failed bake takes the
@@ -509,10 +515,11 @@ def test_a_full_disk_leaves_no_image_copy_or_folder_behind(tmp_path, suffix):
     doc, blob = grid(24)
     asset = write(tmp_path / "in" / "in.gltf", gltf_bytes(with_external_image(doc), blob))
     write(tmp_path / "in" / "tex" / "n.png", PNG)
+    keep = " ".join(keeping_images(suffix))
     script = f"""
       mkdir "$DISK/out" && echo kept > "$DISK/out/earlier.txt"
       {FILL_BUT_ONE_PAGE}
-      "$T" bake '{asset}' -o "$DISK/out/o{suffix}"; echo "exit=$?"
+      "$T" bake '{asset}' -o "$DISK/out/o{suffix}" {keep}; echo "exit=$?"
       rm -f "$DISK/filler"
       cd "$DISK" && find . | sort
     """
@@ -534,11 +541,12 @@ def test_a_full_disk_leaves_an_earlier_image_copy_as_it_was(tmp_path, suffix):
     asset = write(tmp_path / "in" / "in.gltf", gltf_bytes(with_external_image(doc), blob))
     write(tmp_path / "in" / "tex" / "n.png", PNG)
     changed = write(tmp_path / "changed.png", PNG + b"\0" * 16)
+    keep = " ".join(keeping_images(suffix))
     script = f"""
-      "$T" bake '{asset}' -o "$DISK/out/o{suffix}" --quiet || exit 10
+      "$T" bake '{asset}' -o "$DISK/out/o{suffix}" --quiet {keep} || exit 10
       cp '{changed}' '{asset.parent}/tex/n.png' && cp -r "$DISK/out" "$DISK/before" || exit 11
       {FILL_BUT_ONE_PAGE}
-      "$T" bake '{asset}' -o "$DISK/out/o{suffix}" --method flat; echo "exit=$?"
+      "$T" bake '{asset}' -o "$DISK/out/o{suffix}" --method flat {keep}; echo "exit=$?"
       rm -f "$DISK/filler"
       cp -r "$DISK/out" '{tmp_path}/after' && cp -r "$DISK/before" '{tmp_path}/before'
     """
@@ -552,7 +560,7 @@ def test_a_full_disk_leaves_an_earlier_image_copy_as_it_was(tmp_path, suffix):
     assert temporaries(tmp_path / "after") == [], output
 
     # With room, the same bake over the same folder replaces the copy.
-    done = tangent("bake", asset, "-o", tmp_path / "after" / f"o{suffix}", "--quiet")
+    done = tangent("bake", asset, "-o", tmp_path / "after" / f"o{suffix}", "--quiet", *keeping_images(suffix))
     assert done.returncode == 0, done.stderr
     assert (tmp_path / "after" / "tex" / "n.png").read_bytes() == changed.read_bytes()
     assert temporaries(tmp_path / "after") == []
@@ -564,7 +572,7 @@ def test_an_image_copy_that_would_replace_a_folder_is_refused_before_anything_is
     write(tmp_path / "in" / "tex" / "n.png", PNG)
     write(tmp_path / "out" / "tex" / "n.png" / "kept.txt", b"a folder where the copy would go")
     for suffix in (".glb", ".gltf"):
-        done = tangent("bake", asset, "-o", tmp_path / "out" / f"o{suffix}")
+        done = tangent("bake", asset, "-o", tmp_path / "out" / f"o{suffix}", *keeping_images(suffix))
         assert done.returncode == 1, done.stderr
         kept = hashlib.sha256(b"a folder where the copy would go").hexdigest()
         assert snapshot(tmp_path / "out") == {"tex/n.png/kept.txt": kept}, done.stderr
@@ -580,7 +588,7 @@ def test_an_image_copy_that_would_go_where_the_output_is_written_is_refused(tmp_
     asset = write(tmp_path / "in" / "in.gltf", gltf_bytes(with_external_image(doc, uri=taken), blob))
     write(tmp_path / "in" / taken, PNG)
     (tmp_path / "out").mkdir()
-    done = tangent("bake", asset, "-o", tmp_path / "out" / f"o{suffix}")
+    done = tangent("bake", asset, "-o", tmp_path / "out" / f"o{suffix}", *keeping_images(suffix))
     assert done.returncode == 1, done.stderr
     assert f"{taken}: the output is written there".encode() in done.stderr, done.stderr
     assert snapshot(tmp_path / "out") == {}, done.stderr
@@ -635,7 +643,8 @@ def peak_memory_kb(*args):
 
 def test_a_huge_texture_is_not_read_by_info_check_or_a_bake_beside_it(tmp_path):
     # A 1 GiB image file (sparse: no disk used): loading never reads image files, so info,
-    # check and a bake into the same folder (no copy to make) stay far below its size. The
+    # check and a bake into the same folder keeping it external (no copy to make) stay far
+    # below its size. The
     # loader used to read each image whole and drop it.
     doc, blob = grid(8)
     asset = write(tmp_path / "in.gltf", gltf_bytes(with_external_image(doc), blob))
@@ -645,7 +654,7 @@ def test_a_huge_texture_is_not_read_by_info_check_or_a_bake_beside_it(tmp_path):
         f.truncate(1 << 30)
     assert tangent("bake", asset, "-o", tmp_path / "baked.gltf", "--quiet").returncode == 0
     limit_kb = 256 << 10
-    for args in (["info", asset], ["check", tmp_path / "baked.gltf"], ["bake", asset, "-o", tmp_path / "o.glb", "--quiet"]):
+    for args in (["info", asset], ["check", tmp_path / "baked.gltf"], ["bake", asset, "-o", tmp_path / "o.glb", "--quiet", "--keep-external"]):
         status, peak = peak_memory_kb(*args)
         assert status == 0, args
         assert peak < limit_kb, (args, peak)
@@ -672,9 +681,17 @@ def test_embedded_images_survive_byte_for_byte_and_broken_ones_are_warnings(tmp_
     data = (tmp_path / "out" / "o.glb").read_bytes()
     json_length = struct.unpack_from("<I", data, 12)[0]
     bin_chunk = data[28 + json_length:]
-    view = out["bufferViews"][out["images"][1]["bufferView"]]
-    assert bin_chunk[view.get("byteOffset", 0):view.get("byteOffset", 0) + view["byteLength"]] == PNG
-    assert [image.get("uri") for image in out["images"]] == [uri, None, "missing.png", "data:image/png,not-base64"]
+    # The data: URI image is embedded too (a .glb is one file), its bytes as they were.
+    for image in out["images"][:2]:
+        view = out["bufferViews"][image["bufferView"]]
+        assert bin_chunk[view.get("byteOffset", 0):view.get("byteOffset", 0) + view["byteLength"]] == PNG
+        assert image["mimeType"] == "image/png"
+    assert [image.get("uri") for image in out["images"]] == [None, None, "missing.png", "data:image/png,not-base64"]
+    # --keep-external carries the data: URI through as it is.
+    done = tangent("bake", asset, "-o", tmp_path / "out" / "kept.glb", "--keep-external")
+    assert done.returncode == 0, done.stderr
+    kept = assert_valid_glb(tmp_path / "out" / "kept.glb")
+    assert [image.get("uri") for image in kept["images"]] == [uri, None, "missing.png", "data:image/png,not-base64"]
 
 
 # --- interrupted batches ------------------------------------------------------------------

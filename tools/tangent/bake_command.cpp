@@ -34,7 +34,7 @@ const char* kBakeUsage =
     "\n"
     "options:\n"
     "  -o, --output FILE      output file (.glb or .gltf + .bin); one input only. \"-\": a .glb on standard\n"
-    "                         output (the asset may refer to no external image; messages go to stderr)\n"
+    "                         output (messages go to stderr)\n"
     "  --out-dir DIR          write each output into DIR under the input's name\n"
     "  --method NAME          mikktspace (default) | lengyel | flat | meshopt (meshoptimizer's default weighting)\n"
     "  --weighting NAME       angle (default) | area | uniform   (lengyel only)\n"
@@ -42,6 +42,9 @@ const char* kBakeUsage =
     "  --all                  bake every triangle primitive, normal texture or not (TEXCOORD_0)\n"
     "  --overwrite            recompute valid existing TANGENT too\n"
     "  --asset-root DIR       folder buffer and image URIs may not leave (default: the input's folder)\n"
+    "  --keep-external        a .glb output keeps its images as files, copied beside it, instead of\n"
+    "                         embedding them (a .glb is one self-contained file by default; a .gltf's\n"
+    "                         images are always files)\n"
     "  --recursive            inputs are folders: bake every .gltf/.glb/.obj/.ply/.off under them\n"
     "                         into the same relative path under --out-dir, keeping a manifest\n"
     "                         (DIR/tangent-manifest.json) so that a re-run skips unchanged files\n"
@@ -79,14 +82,14 @@ class StdoutTarget {
   StdoutTarget(const StdoutTarget&) = delete;
   StdoutTarget& operator=(const StdoutTarget&) = delete;
   std::filesystem::path file() const { return dir_ / "stdout.glb"; }
-  // Streams the baked file; refuses when the bake placed files beside it (external images,
-  // whose relative URIs a stream cannot carry).
+  // Streams the baked file; refuses when the bake placed files beside it (external images
+  // kept by --keep-external, whose relative URIs a stream cannot carry).
   void send(const std::filesystem::path& input) const {
     namespace fs = std::filesystem;
     for (const auto& entry : fs::directory_iterator(dir_)) {
       if (entry.path() != file())
         throw std::runtime_error(input.string() + ": -o - writes one .glb, but the asset refers to external files (" +
-                                 entry.path().filename().string() + "); write it with -o FILE instead");
+                                 entry.path().filename().string() + "); write it with -o FILE, or leave out --keep-external");
     }
     std::ifstream in(file(), std::ios::binary);
     std::cout << in.rdbuf();
@@ -339,6 +342,8 @@ int bakeCommand(const std::vector<std::string>& args) {
       if (!v) return usageError("--asset-root needs a directory");
       options.assetRoot = *v;
       if (!fs::is_directory(options.assetRoot)) return usageError("--asset-root " + *v + " is not a directory");
+    } else if (arg == "--keep-external") {
+      options.keepExternalImages = true;
     } else if (arg == "--recursive") {
       recursive = true;
     } else if (arg == "--force") {

@@ -1149,7 +1149,7 @@ BakeResult bakeChecked(const std::filesystem::path& input, const std::filesystem
   if (std::any_of(result.primitives.begin(), result.primitives.end(),
                   [](const PrimitiveResult& p) { return p.action == PrimitiveAction::baked && p.tangentFormat != TangentFormat::float32; }))
     declareRequiredExtension(doc, "KHR_mesh_quantization");
-  result.bytesWritten = document.write(output, options.protectedFiles);
+  result.bytesWritten = document.write(output, options.protectedFiles, options.keepExternalImages);
   result.filesWritten = document.filesWritten();
   result.extensionsRemoved = document.extensionsRemoved();
   return result;

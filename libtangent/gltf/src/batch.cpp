@@ -42,7 +42,8 @@ Json optionsJson(const BakeOptions& options) {
             {"overwrite", options.overwrite},
             {"assetRoot", options.assetRoot.string()},
             {"tangentFormat", std::string(toString(options.tangentFormat))},
-            {"normals", std::string(toString(options.normals))}};
+            {"normals", std::string(toString(options.normals))},
+            {"keepExternalImages", options.keepExternalImages}};
   if (options.normals == NormalsMode::smooth) json["creaseAngleDegrees"] = options.creaseAngleDegrees;
   return json;
 }

@@ -89,7 +89,10 @@ class OutputDocument {
   // Writes `output` (.glb, or .gltf plus a .bin beside it) atomically; returns bytes written.
   // Nothing is written over the input, the files it uses or `runFiles` (a run's other files;
   // may be null): InputError before anything is written, or another name for the .bin.
-  std::uint64_t write(const std::filesystem::path& output, const ProtectedFiles* runFiles = nullptr);
+  // A .glb is one self-contained file (its images embedded, embedImages) unless
+  // `keepExternalImages`: then, as a .gltf's, its external images are copied beside it.
+  std::uint64_t write(const std::filesystem::path& output, const ProtectedFiles* runFiles = nullptr,
+                      bool keepExternalImages = false);
 
   // What write() put in place: the output, its .bin, and the image copies beside it (staged, or
   // already there with the same bytes).
@@ -99,7 +102,15 @@ class OutputDocument {
   const std::vector<std::string>& extensionsRemoved() const { return extensionsRemoved_; }
 
  private:
+  // Appends a bufferView of buffer 0 holding `bytes` (byteStride and target where not 0);
+  // returns its index.
+  int addBufferView(ViewBytes bytes, std::size_t byteStride, int target);
   void dropOrphans();
+  // Every image with a uri (a file the loader let through, or a base64 data: URI) moved into a
+  // new bufferView, byte for byte, with its mimeType (declared, else from the bytes; refused,
+  // naming /images/N, where neither says): a .glb then needs no file beside it. Images whose
+  // file is missing or whose data: URI is not base64 (loading warned) are left as they are.
+  void embedImages();
   // Lays every bufferView out in one buffer (4-byte aligned) and returns that buffer's bytes
   // as pieces of the memory they are in (loaded buffers, new views, padding): no copy.
   // EXT_meshopt_compression views keep their compressed bytes (in that buffer) and lie in a

@@ -9,6 +9,7 @@
 #include <cstring>
 #include <fstream>
 #include <functional>
+#include <initializer_list>
 #include <map>
 #include <optional>
 #include <set>
@@ -193,6 +194,21 @@ std::filesystem::path freeBinName(const std::filesystem::path& output, const std
   return candidate;
 }
 
+// The media type an image's bytes begin with, among those glTF and its image extensions put
+// in a .glb (PNG, JPEG: glTF 2.0 3.9; WebP: EXT_texture_webp; KTX2: KHR_texture_basisu); empty
+// for any other.
+std::string imageTypeOfBytes(std::span<const std::uint8_t> bytes) {
+  auto startsWith = [&](std::size_t at, std::initializer_list<std::uint8_t> magic) {
+    return bytes.size() >= at + magic.size() &&
+           std::equal(magic.begin(), magic.end(), bytes.begin() + static_cast<std::ptrdiff_t>(at));
+  };
+  if (startsWith(0, {0x89, 'P', 'N', 'G', 0x0D, 0x0A, 0x1A, 0x0A})) return "image/png";
+  if (startsWith(0, {0xFF, 0xD8, 0xFF})) return "image/jpeg";
+  if (startsWith(0, {'R', 'I', 'F', 'F'}) && startsWith(8, {'W', 'E', 'B', 'P'})) return "image/webp";
+  if (startsWith(0, {0xAB, 'K', 'T', 'X', ' ', '2', '0', 0xBB, 0x0D, 0x0A, 0x1A, 0x0A})) return "image/ktx2";
+  return {};
+}
+
 }  // namespace
 
 void forEachAccessorRef(Json& doc, const std::function<void(Json&)>& visit) {
@@ -270,21 +286,26 @@ int OutputDocument::addAccessor(Json accessor, ViewBytes bytes, std::size_t elem
     for (std::size_t i = 0; i < count; ++i) std::memcpy(&padded[i * stride], &packed[i * elementSize], elementSize);
     bytes = std::move(padded);
   }
-  if (!doc.contains("bufferViews")) doc["bufferViews"] = Json::array();
+  const int viewIndex = addBufferView(std::move(bytes), stride, target);
   if (!doc.contains("accessors")) doc["accessors"] = Json::array();
-  Json view = Json::object();
-  view["buffer"] = 0;
-  view["byteLength"] = bytes.bytes().size();
-  if (stride != 0) view["byteStride"] = stride;
-  if (target != 0) view["target"] = target;
-  const int viewIndex = static_cast<int>(doc["bufferViews"].size());
-  doc["bufferViews"].push_back(std::move(view));
-  newViewBytes_.push_back(std::move(bytes));
   Json placed = Json::object();
   placed["bufferView"] = viewIndex;
   for (auto& [key, value] : accessor.items()) placed[key] = value;
   doc["accessors"].push_back(std::move(placed));
   return static_cast<int>(doc["accessors"].size()) - 1;
+}
+
+int OutputDocument::addBufferView(ViewBytes bytes, std::size_t byteStride, int target) {
+  Json& doc = asset_.json;
+  if (!doc.contains("bufferViews")) doc["bufferViews"] = Json::array();
+  Json view = Json::object();
+  view["buffer"] = 0;
+  view["byteLength"] = bytes.bytes().size();
+  if (byteStride != 0) view["byteStride"] = byteStride;
+  if (target != 0) view["target"] = target;
+  doc["bufferViews"].push_back(std::move(view));
+  newViewBytes_.push_back(std::move(bytes));
+  return static_cast<int>(doc["bufferViews"].size()) - 1;
 }
 
 void OutputDocument::dropOrphans() {
@@ -519,7 +540,55 @@ void OutputDocument::placeImages(const std::filesystem::path& outputDir, const s
   }
 }
 
-std::uint64_t OutputDocument::write(const std::filesystem::path& requested, const ProtectedFiles* runFiles) {
+void OutputDocument::embedImages() {
+  namespace fs = std::filesystem;
+  Json& doc = asset_.json;
+  if (!doc.contains("images")) return;
+  const std::string label = asset_.path.string();
+  const fs::path baseDir = fs::absolute(asset_.path).parent_path();
+  for (std::size_t i = 0; i < doc["images"].size(); ++i) {
+    const std::string what = "/images/" + std::to_string(i);
+    std::string uri, mimeType;
+    {
+      const Json& image = doc["images"][i];
+      if (!image.contains("uri") || !image["uri"].is_string()) continue;
+      uri = image["uri"].get<std::string>();
+      if (image.contains("mimeType") && image["mimeType"].is_string())
+        mimeType = image["mimeType"].get<std::string>();
+    }
+    std::vector<std::uint8_t> bytes;
+    if (isDataUri(uri)) {
+      try {
+        bytes = decodeDataUri(uri, label + ": " + what + " uri");
+      } catch (const InputError&) {
+        continue;  // not base64: carried through as it is (loading warned)
+      }
+    } else {
+      // The loader's rule and resolver: inside the asset root, or refused there already.
+      fs::path file;
+      try {
+        file = resolveFileUri(uri, baseDir, asset_.root, label, what);
+      } catch (const MissingFileError&) {
+        continue;  // missing: kept as written (loading warned)
+      }
+      if (!readFileInto(file, bytes))
+        throw InputError(label + ": " + what + ": " + file.string() + " cannot be read to embed it in the .glb");
+    }
+    if (mimeType.empty()) mimeType = imageTypeOfBytes(bytes);
+    if (mimeType.empty())
+      throw InputError(label + ": " + what +
+                       ": has no mimeType and its bytes are not PNG, JPEG, WebP or KTX2, so it cannot be embedded in "
+                       "a .glb (which needs one); write a .gltf, or keep the image external");
+    const int view = addBufferView(std::move(bytes), 0, 0);
+    Json& image = doc["images"][i];  // after the insertion into bufferViews
+    image.erase("uri");
+    image["bufferView"] = view;
+    image["mimeType"] = mimeType;
+  }
+}
+
+std::uint64_t OutputDocument::write(const std::filesystem::path& requested, const ProtectedFiles* runFiles,
+                                    bool keepExternalImages) {
   namespace fs = std::filesystem;
   // A link to a file is written at its target, and the .bin and image copies go beside that.
   const output::WriteTarget target = output::writeTargetOf(requested);
@@ -532,9 +601,10 @@ std::uint64_t OutputDocument::write(const std::filesystem::path& requested, cons
                      "writes over one (choose another output name or folder)");
   dropOrphans();
   extensionsRemoved_ = dropUnusedCompressionExtensions(asset_.json);
+  const bool glb = output.extension() == ".glb";
+  if (glb && !keepExternalImages) embedImages();  // new views: before the buffers are packed
   const std::vector<std::span<const std::uint8_t>> bin = packBuffers();
   const fs::path outputDir = fs::absolute(output).parent_path();
-  const bool glb = output.extension() == ".glb";
   Json& doc = asset_.json;
   std::uint64_t binBytes = 0;
   for (const auto& piece : bin) binBytes += piece.size();
@@ -543,7 +613,7 @@ std::uint64_t OutputDocument::write(const std::filesystem::path& requested, cons
   if (glb) {
     // Refused before anything is written, images included.
     output::checkGlbFits(output, 0, binBytes);
-    placeImages(outputDir, {output}, created);
+    if (keepExternalImages) placeImages(outputDir, {output}, created);
     const std::string json = text::dumpJson(doc);
     output::checkGlbFits(output, json.size(), binBytes);
     // Written from the pieces' own memory: no whole copy of the file.

@@ -76,6 +76,10 @@ struct BakeOptions {
   std::filesystem::path assetRoot;
   NormalsMode normals = NormalsMode::flat;  // for primitives without NORMAL
   double creaseAngleDegrees = 60;           // NormalsMode::smooth: larger angles between triangles stay sharp
+  // A .glb output embeds the images the input refers to by URI (files and data: URIs) in its
+  // BIN chunk, as its buffers, so that it is one self-contained file; true keeps external
+  // images as files copied beside it instead, as a .gltf output always does.
+  bool keepExternalImages = false;
   // The other files of a run (not owned; null: only this bake's own input and its files).
   const ProtectedFiles* protectedFiles = nullptr;
 };
