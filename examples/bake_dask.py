@@ -79,7 +79,7 @@ def main(argv=None):
     options = {"method": args.method, "all": args.all}
     # The manifest's options record: what changes outputs (threads never do).
     manifest_options = {"method": args.method, "weighting": "angle", "all": args.all, "overwrite": False, "assetRoot": "",
-                        "tangentFormat": "float", "normals": "flat"}
+                        "tangentFormat": "float", "normals": "flat", "keepExternalImages": False}
     manifest_path = output_folder / MANIFEST
     previous = {}
     if manifest_path.exists():

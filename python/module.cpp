@@ -88,6 +88,7 @@ struct BakeKeywords {
   std::optional<std::filesystem::path> assetRoot;
   std::string tangentFormat, normals;
   double creaseAngle = 60;
+  bool keepExternal = false;
 };
 
 tangent::gltf::BakeOptions bakeOptions(const BakeKeywords& k) {
@@ -107,6 +108,7 @@ tangent::gltf::BakeOptions bakeOptions(const BakeKeywords& k) {
   if (!(k.creaseAngle >= 0 && k.creaseAngle <= 180))
     badArgument("crease_angle", std::to_string(k.creaseAngle) + " is not degrees in [0, 180]");
   options.creaseAngleDegrees = k.creaseAngle;
+  options.keepExternalImages = k.keepExternal;
   return options;
 }
 
@@ -207,9 +209,9 @@ The GIL is released while the core runs.)");
       "bake",
       [](const std::filesystem::path& input, const std::filesystem::path& output, const std::string& methodName,
          const std::string& weightingName, int threads, bool all, bool overwrite, std::optional<std::filesystem::path> assetRoot,
-         const std::string& tangentFormat, const std::string& normals, double creaseAngle) {
-        const tangent::gltf::BakeOptions options =
-            bakeOptions({methodName, weightingName, threads, all, overwrite, assetRoot, tangentFormat, normals, creaseAngle});
+         const std::string& tangentFormat, const std::string& normals, double creaseAngle, bool keepExternal) {
+        const tangent::gltf::BakeOptions options = bakeOptions(
+            {methodName, weightingName, threads, all, overwrite, assetRoot, tangentFormat, normals, creaseAngle, keepExternal});
         nlohmann::ordered_json entry = {{"input", input.string()}, {"output", output.string()}, {"status", "ok"}};
         {
           py::gil_scoped_release released;
@@ -220,6 +222,7 @@ The GIL is released while the core runs.)");
       py::arg("input"), py::arg("output"), py::kw_only(), py::arg("method") = "mikktspace", py::arg("weighting") = "angle",
       py::arg("threads") = 0, py::arg("all") = false, py::arg("overwrite") = false, py::arg("asset_root") = py::none(),
       py::arg("tangent_format") = "float", py::arg("normals") = "flat", py::arg("crease_angle") = 60.0,
+      py::arg("keep_external") = false,
       R"(Bake TANGENT into a glTF file, as `tangent bake INPUT -o OUTPUT` does.
 
 Computes TANGENT for every triangle primitive whose material has a normalTexture, from the
@@ -238,6 +241,8 @@ normals: flat (default) | smooth | keep: for a primitive without NORMAL, write f
   (what the specification requires of clients) or smooth ones, or keep it without (and skip it)
 crease_angle: with normals="smooth": triangles meeting at more than this many degrees stay
   sharp (default 60, in [0, 180])
+keep_external: a .glb output keeps the input's image files external (copied beside it) instead
+  of embedding them (the default: one self-contained file)
 
 Returns the dict `tangent bake --report` writes for this file.
 Raises libtangent.InputError with the CLI's message on a file it refuses.)");
@@ -246,9 +251,10 @@ Raises libtangent.InputError with the CLI's message on a file it refuses.)");
       "bake_tree",
       [](const std::filesystem::path& inputFolder, const std::filesystem::path& outputFolder, const std::string& methodName,
          const std::string& weightingName, int threads, bool all, bool overwrite, std::optional<std::filesystem::path> assetRoot,
-         bool force, const std::string& tangentFormat, const std::string& normals, double creaseAngle) {
+         bool force, const std::string& tangentFormat, const std::string& normals, double creaseAngle, bool keepExternal) {
         tangent::gltf::BatchOptions options;
-        options.bake = bakeOptions({methodName, weightingName, threads, all, overwrite, assetRoot, tangentFormat, normals, creaseAngle});
+        options.bake = bakeOptions(
+            {methodName, weightingName, threads, all, overwrite, assetRoot, tangentFormat, normals, creaseAngle, keepExternal});
         options.force = force;
         nlohmann::ordered_json entries = nlohmann::ordered_json::array();
         {
@@ -260,7 +266,7 @@ Raises libtangent.InputError with the CLI's message on a file it refuses.)");
       py::arg("input_folder"), py::arg("output_folder"), py::kw_only(), py::arg("method") = "mikktspace",
       py::arg("weighting") = "angle", py::arg("threads") = 0, py::arg("all") = false, py::arg("overwrite") = false,
       py::arg("asset_root") = py::none(), py::arg("force") = false, py::arg("tangent_format") = "float",
-      py::arg("normals") = "flat", py::arg("crease_angle") = 60.0,
+      py::arg("normals") = "flat", py::arg("crease_angle") = 60.0, py::arg("keep_external") = false,
       R"(Bake a folder tree, as `tangent bake INPUT_FOLDER --recursive --out-dir OUTPUT_FOLDER` does.
 
 Every .gltf, .glb, .obj, .ply and .off under INPUT_FOLDER is baked into the same relative

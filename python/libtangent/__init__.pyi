@@ -47,6 +47,7 @@ def bake(
     tangent_format: str = "float",
     normals: str = "flat",
     crease_angle: float = 60.0,
+    keep_external: bool = False,
 ) -> dict[str, Any]: ...
 
 def check(
@@ -79,6 +80,7 @@ def bake_tree(
     tangent_format: str = "float",
     normals: str = "flat",
     crease_angle: float = 60.0,
+    keep_external: bool = False,
 ) -> list[dict[str, Any]]: ...
 
 def release_cached_workspaces() -> None: ...

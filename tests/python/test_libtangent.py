@@ -194,6 +194,20 @@ def test_normals_and_crease_angle_give_the_cli_bytes(tmp_path):
         libtangent.bake(source, tmp_path / "x.glb", normals="smooth", crease_angle=200)
 
 
+def test_keep_external_gives_the_cli_bytes_and_the_default_embeds(tmp_path):
+    for keep in (False, True):
+        cli, ours = tmp_path / f"cli-{keep}" / "out.glb", tmp_path / f"py-{keep}" / "out.glb"
+        cli.parent.mkdir()
+        ours.parent.mkdir()
+        subprocess.run([CLI, "bake", str(DEMO / "demo.gltf"), "-o", str(cli), "--quiet", *(["--keep-external"] if keep else [])],
+                       check=True)
+        libtangent.bake(DEMO / "demo.gltf", ours, keep_external=keep)
+        assert ours.read_bytes() == cli.read_bytes(), keep
+        beside = sorted(p.name for p in ours.parent.iterdir() if p.name != "out.glb")
+        assert beside == sorted(p.name for p in cli.parent.iterdir() if p.name != "out.glb")
+        assert bool(beside) == keep  # embedded by default: nothing beside the .glb
+
+
 def test_bake_tree_takes_the_cli_options_too(tmp_path):
     tree = tmp_path / "tree"
     tree.mkdir()
