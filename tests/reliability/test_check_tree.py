@@ -1,7 +1,8 @@
 # SPDX-License-Identifier: MIT
 """`tangent check DIR --recursive`: the files `bake --recursive` would bake, one report over the
 whole tree in every format, the exit code over all files (a broken file named, the rest still
-checked), a progress line on a terminal only."""
+checked), a progress line on a terminal only; and the GitLab code quality report
+(`--format codeclimate`) with fingerprints that stay put and never repeat."""
 import json
 import os
 import re
@@ -139,7 +140,7 @@ def test_every_format_is_one_valid_report_over_the_tree(tmp_path):
     names = ["tree/" + name for name in sorted(expected)]
     broken = "tree/levels/deep/broken.glb"
     outputs = {}
-    for fmt in ("text", "json", "junit", "github", "sarif", "html"):
+    for fmt in ("text", "json", "junit", "github", "sarif", "codeclimate", "html"):
         done = check(tmp_path, "tree", "--recursive", "--format", fmt, "-o", f"report.{fmt}",
                      env=dict(os.environ, TANGENT_VIEW=""))  # html: no thumbnails
         assert done.returncode == 2, (fmt, done.stderr)
@@ -162,8 +163,61 @@ def test_every_format_is_one_valid_report_over_the_tree(tmp_path):
     assert [n["locations"][0]["physicalLocation"]["artifactLocation"]["uri"] for n in notifications] == [broken]
     failing = {r["locations"][0]["physicalLocation"]["artifactLocation"]["uri"] for r in run["results"]}
     assert failing == {"tree/levels/missing.glb", "tree/levels/deep/flipped.glb"}
+    issues = json.loads(outputs["codeclimate"])
+    assert {i["location"]["path"] for i in issues} == failing | {broken}
     for fmt in ("text", "html"):
         assert all(outputs[fmt].count(name) >= 1 for name in names), outputs[fmt][:2000]
+
+
+# --- GitLab code quality ------------------------------------------------------------------
+
+def test_codeclimate_issues_have_what_gitlab_reads(tmp_path):
+    make_tree(tmp_path)
+    done = check(tmp_path, "tree", "--recursive", "--format", "codeclimate")
+    assert done.returncode == 2
+    issues = json.loads(done.stdout)
+    assert isinstance(issues, list) and issues
+    for issue in issues:
+        assert isinstance(issue["description"], str) and issue["description"], issue
+        assert re.fullmatch(r"tangent-check/[a-z-]+", issue["check_name"]), issue
+        assert re.fullmatch(r"[0-9a-f]{64}", issue["fingerprint"]), issue
+        assert issue["severity"] in ("info", "minor", "major", "critical", "blocker"), issue
+        location = issue["location"]
+        assert not location["path"].startswith(("/", "./")), location
+        assert isinstance(location["lines"]["begin"], int) and location["lines"]["begin"] >= 1, location
+    by_check = {}
+    for issue in issues:
+        by_check.setdefault(issue["check_name"], []).append(issue)
+    (unreadable,) = by_check["tangent-check/unreadable"]
+    assert unreadable["severity"] == "blocker" and unreadable["location"]["path"] == "tree/levels/deep/broken.glb"
+    (present,) = by_check["tangent-check/present"]
+    assert present["location"]["path"] == "tree/levels/missing.glb" and present["severity"] == "major"
+    assert "/meshes/0/primitives/0" in present["description"], present
+    assert by_check["tangent-check/handedness"][0]["location"]["path"] == "tree/levels/deep/flipped.glb"
+
+
+def test_codeclimate_fingerprints_are_stable_across_runs_and_unique_per_finding(tmp_path):
+    tree, _ = make_tree(tmp_path)
+
+    def fingerprints(cwd, folder):
+        done = check(tmp_path, folder, "--recursive", "--format", "codeclimate", cwd=cwd)
+        return {(i["location"]["path"], i["check_name"], i["description"].split(":")[1]): i["fingerprint"]
+                for i in json.loads(done.stdout)}, [i["fingerprint"] for i in json.loads(done.stdout)]
+
+    first, listed = fingerprints(tmp_path, "tree")
+    assert len(listed) == len(set(listed)) >= 4, listed  # unique per finding, several per file
+    assert len({f for (path, _, _), f in first.items() if path == "tree/levels/deep/flipped.glb"}) >= 2
+    second, _ = fingerprints(tmp_path, "tree")
+    assert second == first
+    # The same tree elsewhere, named the same from where it runs: the same fingerprints.
+    shutil.copytree(tree, tmp_path / "copy" / "tree", symlinks=True)
+    assert fingerprints(tmp_path / "copy", "tree")[0] == first
+    # "./tree" is the path "tree/...", as GitLab's paths from the repository root are.
+    assert fingerprints(tmp_path, "./tree")[0] == first
+    # A finding's fingerprint follows the file, the element and the check, not the counts.
+    write(tree / "levels" / "missing.glb", glb_bytes(*grid(7)))
+    third, _ = fingerprints(tmp_path, "tree")
+    assert third == first
 
 
 # --- progress -----------------------------------------------------------------------------

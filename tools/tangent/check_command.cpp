@@ -1,8 +1,8 @@
 // SPDX-License-Identifier: MIT
 // `tangent check`: text for people, JSON for tools (docs/check-json.md), JUnit XML for CI
 // servers (one test case per primitive and check), GitHub workflow annotations and SARIF 2.1.0
-// for code-scanning tools, and a self-contained HTML page for people (check_html.cpp). One
-// report over every file given or found under --recursive folders.
+// for code-scanning tools, GitLab's code quality report, and a self-contained HTML page for
+// people (check_html.cpp). One report over every file given or found under --recursive folders.
 #include <unistd.h>
 
 #include <algorithm>
@@ -13,6 +13,7 @@
 #include <ctime>
 #include <fstream>
 #include <iostream>
+#include <map>
 #include <optional>
 #include <set>
 #include <sstream>
@@ -23,6 +24,7 @@
 #include "commands.hpp"
 #include "tangent/batch.hpp"
 #include "tangent/check.hpp"
+#include "tangent/digest.hpp"
 #include "tangent/gltf.hpp"
 #include "tangent/text.hpp"
 
@@ -42,8 +44,8 @@ const char* kCheckUsage =
     "while several are checked, a progress line shows on stderr when it is a terminal.\n"
     "\n"
     "options:\n"
-    "  --format FORMAT     text (default) | json | junit | github | sarif | html (one page with thumbnails\n"
-    "                      from tangent-view's error view: docs/check.md)\n"
+    "  --format FORMAT     text (default) | json | junit | github | sarif | codeclimate (GitLab code quality)\n"
+    "                      | html (one page with thumbnails from tangent-view's error view: docs/check.md)\n"
     "  --recursive         inputs may be folders: check every .gltf/.glb/.obj/.ply/.off under them, the\n"
     "                      files bake --recursive would bake; a file given is checked as it is\n"
     "  -o, --output FILE   write the report to FILE (\"-\": standard output, the default)\n"
@@ -330,9 +332,8 @@ constexpr const char* kSarifWarningRule = "warning";
 
 nlohmann::ordered_json primitiveLocations(const nlohmann::ordered_json& artifact, const gltf::PrimitiveCheck& p) {
   using Json = nlohmann::ordered_json;
-  const std::string pointer = "/meshes/" + std::to_string(p.mesh) + "/primitives/" + std::to_string(p.primitive);
   return Json::array({{{"physicalLocation", {{"artifactLocation", artifact}}},
-                       {"logicalLocations", Json::array({{{"name", primitiveName(p)}, {"fullyQualifiedName", pointer}, {"kind", "object"}}})}}});
+                       {"logicalLocations", Json::array({{{"name", primitiveName(p)}, {"fullyQualifiedName", primitivePointer(p)}, {"kind", "object"}}})}}});
 }
 
 void writeSarif(std::ostream& out, const std::vector<gltf::FileCheck>& checks, const gltf::CheckOptions& options) {
@@ -354,7 +355,7 @@ void writeSarif(std::ostream& out, const std::vector<gltf::FileCheck>& checks, c
     for (const auto& p : file.primitives)
       if (!p.generator.empty())
         generators.push_back({{"uri", artifact["uri"]},
-                              {"primitive", "/meshes/" + std::to_string(p.mesh) + "/primitives/" + std::to_string(p.primitive)},
+                              {"primitive", primitivePointer(p)},
                               {"generator", p.generator}});
     if (!file.error.empty())
       notifications.push_back({{"level", "error"}, {"message", {{"text", file.error}}},
@@ -397,6 +398,59 @@ void writeSarif(std::ostream& out, const std::vector<gltf::FileCheck>& checks, c
                              {"results", results}}})}};
   if (!generators.empty()) log["runs"][0]["properties"] = {{"generators", generators}};
   out << text::dumpJson(log, 2) << "\n";
+}
+
+// GitLab code quality (artifacts:reports:codequality, a subset of the Code Climate issue spec):
+// a JSON array of issues with description, check_name, fingerprint, severity and location.path
+// with location.lines.begin. A glTF element is no line of text: lines.begin is 1 and the
+// description names the element by its JSON pointer. GitLab matches an issue between the target
+// branch and the merge request by its fingerprint, the SHA-256 of the file, the element and the
+// rule: the same while the finding stays, whatever its counts; unique within a report.
+std::string codeClimatePath(const std::string& file) {
+  return std::filesystem::path(file).lexically_normal().generic_string();  // "./a.glb": "a.glb"
+}
+
+// A warning's rule: its words before the first ':' without the numbers in them ("reference
+// compared only 682 of 23322 corners (2.9%, ..." and "NORMAL is not unit length: worst 0.06"
+// keep one fingerprint while the counts change).
+std::string warningKind(const std::string& warning) {
+  std::string kind;
+  for (char c : warning.substr(0, warning.find(':')))
+    if (!std::isdigit(static_cast<unsigned char>(c))) kind += c;
+  return kind;
+}
+
+void writeCodeClimate(std::ostream& out, const std::vector<gltf::FileCheck>& checks) {
+  using Json = nlohmann::ordered_json;
+  Json issues = Json::array();
+  std::map<std::string, std::size_t> seen;  // fingerprint input -> earlier issues with it
+  // `kind` tells a primitive's warnings apart (they share one rule).
+  auto add = [&](const gltf::FileCheck& file, const std::string& element, const std::string& rule, const char* severity,
+                 const std::string& description, const std::string& kind = {}) {
+    const std::string path = codeClimatePath(file.file);
+    std::string identity = path + '\0' + element + '\0' + rule + '\0' + kind;
+    if (const std::size_t earlier = seen[identity]++; earlier > 0) identity += '\0' + std::to_string(earlier);
+    issues.push_back({{"type", "issue"},
+                      {"description", description},
+                      {"check_name", "tangent-check/" + rule},
+                      {"fingerprint", gltf::sha256Hex(identity)},
+                      {"severity", severity},
+                      {"location", {{"path", path}, {"lines", {{"begin", 1}}}}}});
+  };
+  for (const auto& file : checks) {
+    if (!file.error.empty()) add(file, "", "unreadable", "blocker", "tangent check: unreadable: " + file.error);
+    for (const auto& p : file.primitives) {
+      const std::string element = primitiveName(p) + " (" + primitivePointer(p) + ")";
+      for (const auto& f : p.findings) {
+        std::string description = "tangent check " + f.check + ": " + element + ": " + findingSummary(f);
+        if (!f.worst.empty()) description += "; worst: " + f.worst.front().detail;
+        add(file, primitivePointer(p), f.check, "major", description);
+      }
+      for (const auto& warning : p.warnings)
+        add(file, primitivePointer(p), "warning", "minor", "tangent check warning: " + element + ": " + warning, warningKind(warning));
+    }
+  }
+  out << text::dumpJson(issues, 2) << "\n";
 }
 
 int usageError(const std::string& message) {
@@ -500,11 +554,11 @@ int checkCommand(const std::vector<std::string>& args) {
     } else if (arg == "--config") {
       ++i;  // read above
     } else if (arg == "--format") {
-      if (!hasValue) return usageError("--format needs text, json, junit, github, sarif or html");
+      if (!hasValue) return usageError("--format needs text, json, junit, github, sarif, codeclimate or html");
       formatName = args[++i];
       if (formatName != "text" && formatName != "json" && formatName != "junit" && formatName != "github" && formatName != "sarif" &&
-          formatName != "html")
-        return usageError("--format must be text, json, junit, github, sarif or html");
+          formatName != "codeclimate" && formatName != "html")
+        return usageError("--format must be text, json, junit, github, sarif, codeclimate or html");
     } else if (arg == "-o" || arg == "--output") {
       if (!hasValue) return usageError(arg + " needs a file name (\"-\" for standard output)");
       output = args[++i];
@@ -615,6 +669,7 @@ int checkCommand(const std::vector<std::string>& args) {
   else if (formatName == "junit") writeJunit(report, checks, times);
   else if (formatName == "github") writeGithub(report, checks);
   else if (formatName == "sarif") writeSarif(report, checks, options);
+  else if (formatName == "codeclimate") writeCodeClimate(report, checks);
   else if (formatName == "html") report << htmlReport(checks, options, output);
   else writeText(report, checks);
   if (!writeTextOutput(output, report.str(), "check")) return kExitUsage;
