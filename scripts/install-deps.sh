@@ -9,7 +9,7 @@ packages=(
   libgtest-dev libgmock-dev libbenchmark-dev libtbb-dev linux-perf valgrind
   libdraco-dev libmeshoptimizer-dev gltfpack libxml2-utils dpkg-dev file
   assimp-testmodels python3 gnuplot-nox clang bc emscripten chromium
-  pybind11-dev python3-dev python3-numpy python3-pytest python3-distributed python3-dask
+  pybind11-dev python3-dev python3-numpy python3-pytest python3-yaml python3-distributed python3-dask
   python3-venv python3-setuptools python3-wheel python3-build mypy
   libglfw3-dev libepoxy-dev libimgui-dev libfreetype-dev libstb-dev xvfb xauth libgl1-mesa-dri xdotool x11-apps
 )

@@ -143,45 +143,6 @@ constexpr const char* kStopNotice = "tangent: stopping after the current file (p
 constexpr const char* kStopNoticeOverProgress =
     "\r\033[Ktangent: stopping after the current file (press Ctrl-C again to stop at once)\n";
 
-// One line on a terminal (stderr) while a batch runs: files done of all, the current file,
-// time so far and the time left at the pace so far. Nothing when off (not a terminal, --quiet).
-class ProgressLine {
- public:
-  explicit ProgressLine(bool on) : on_(on), started_(std::chrono::steady_clock::now()) {}
-  void show(std::size_t done, std::size_t total, const std::filesystem::path& current) {
-    if (!on_) return;
-    const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - started_).count();
-    std::cerr << "\r[" << done << "/" << total << "] " << tail(shown(current.string())) << "  " << clock(elapsed);
-    if (done > 0) std::cerr << ", about " << clock(elapsed / static_cast<double>(done) * static_cast<double>(total - done)) << " left";
-    std::cerr << "\033[K" << std::flush;
-    visible_ = true;
-  }
-  bool onTerminal() const { return on_; }
-  void clear() {
-    if (!visible_) return;
-    std::cerr << "\r\033[K" << std::flush;
-    visible_ = false;
-  }
-
- private:
-  // The end of a long path, where names differ, cut at a character boundary.
-  static std::string tail(const std::string& text, std::size_t width = 48) {
-    if (text.size() <= width) return text;
-    std::size_t start = text.size() - (width - 3);
-    while (start < text.size() && (static_cast<unsigned char>(text[start]) & 0xC0) == 0x80) ++start;
-    return "..." + text.substr(start);
-  }
-  static std::string clock(double seconds) {
-    const auto whole = static_cast<long long>(seconds + 0.5);
-    char text[32];
-    std::snprintf(text, sizeof text, "%lld:%02lld", whole / 60, whole % 60);
-    return text;
-  }
-  bool on_;
-  bool visible_ = false;
-  std::chrono::steady_clock::time_point started_;
-};
-
 // --recursive: each folder into --out-dir (into --out-dir/NAME when there are several).
 int bakeTrees(const std::vector<std::filesystem::path>& folders, const std::filesystem::path& outDir,
               const gltf::BakeOptions& options, bool force, bool verify, bool quiet, const std::filesystem::path& reportPath) {

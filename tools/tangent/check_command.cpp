@@ -1,7 +1,10 @@
 // SPDX-License-Identifier: MIT
 // `tangent check`: text for people, JSON for tools (docs/check-json.md), JUnit XML for CI
 // servers (one test case per primitive and check), GitHub workflow annotations and SARIF 2.1.0
-// for code-scanning tools, and a self-contained HTML page for people (check_html.cpp).
+// for code-scanning tools, GitLab's code quality report, and a self-contained HTML page for
+// people (check_html.cpp). One report over every file given or found under --recursive folders.
+#include <unistd.h>
+
 #include <algorithm>
 #include <bitset>
 #include <cctype>
@@ -10,14 +13,18 @@
 #include <ctime>
 #include <fstream>
 #include <iostream>
+#include <map>
 #include <optional>
+#include <set>
 #include <sstream>
 #include <utility>
 
 #include "check_html.hpp"
 #include "check_names.hpp"
 #include "commands.hpp"
+#include "tangent/batch.hpp"
 #include "tangent/check.hpp"
+#include "tangent/digest.hpp"
 #include "tangent/gltf.hpp"
 #include "tangent/text.hpp"
 
@@ -26,16 +33,21 @@ namespace {
 
 const char* kCheckUsage =
     "usage: tangent check IN... [options]\n"
+    "       tangent check DIR... --recursive [options]\n"
     "\n"
     "Checks the TANGENT of every primitive whose material has a normal texture: present, float\n"
     "or normalized BYTE/SHORT VEC4 (format), finite, unit, w exactly +-1 and the same on a\n"
     "triangle's corners (w, w-uniform), orthogonal to NORMAL, handedness matching the normal\n"
     "texture's UV orientation, and close to freshly computed tangents (reference). Limits for\n"
     "quantized data follow from the rounding step (docs/check.md, \"Limits per component type\").\n"
+    "One report covers every file (one that cannot be read is named, the rest are still checked);\n"
+    "while several are checked, a progress line shows on stderr when it is a terminal.\n"
     "\n"
     "options:\n"
-    "  --format FORMAT     text (default) | json | junit | github | sarif | html (one page with thumbnails\n"
-    "                      from tangent-view's error view: docs/check.md)\n"
+    "  --format FORMAT     text (default) | json | junit | github | sarif | codeclimate (GitLab code quality)\n"
+    "                      | html (one page with thumbnails from tangent-view's error view: docs/check.md)\n"
+    "  --recursive         inputs may be folders: check every .gltf/.glb/.obj/.ply/.off under them, the\n"
+    "                      files bake --recursive would bake; a file given is checked as it is\n"
     "  -o, --output FILE   write the report to FILE (\"-\": standard output, the default)\n"
     "  --only CHECKS       run only these checks (comma-separated names)\n"
     "  --ignore CHECKS     leave these checks out\n"
@@ -320,9 +332,8 @@ constexpr const char* kSarifWarningRule = "warning";
 
 nlohmann::ordered_json primitiveLocations(const nlohmann::ordered_json& artifact, const gltf::PrimitiveCheck& p) {
   using Json = nlohmann::ordered_json;
-  const std::string pointer = "/meshes/" + std::to_string(p.mesh) + "/primitives/" + std::to_string(p.primitive);
   return Json::array({{{"physicalLocation", {{"artifactLocation", artifact}}},
-                       {"logicalLocations", Json::array({{{"name", primitiveName(p)}, {"fullyQualifiedName", pointer}, {"kind", "object"}}})}}});
+                       {"logicalLocations", Json::array({{{"name", primitiveName(p)}, {"fullyQualifiedName", primitivePointer(p)}, {"kind", "object"}}})}}});
 }
 
 void writeSarif(std::ostream& out, const std::vector<gltf::FileCheck>& checks, const gltf::CheckOptions& options) {
@@ -344,7 +355,7 @@ void writeSarif(std::ostream& out, const std::vector<gltf::FileCheck>& checks, c
     for (const auto& p : file.primitives)
       if (!p.generator.empty())
         generators.push_back({{"uri", artifact["uri"]},
-                              {"primitive", "/meshes/" + std::to_string(p.mesh) + "/primitives/" + std::to_string(p.primitive)},
+                              {"primitive", primitivePointer(p)},
                               {"generator", p.generator}});
     if (!file.error.empty())
       notifications.push_back({{"level", "error"}, {"message", {{"text", file.error}}},
@@ -389,6 +400,59 @@ void writeSarif(std::ostream& out, const std::vector<gltf::FileCheck>& checks, c
   out << text::dumpJson(log, 2) << "\n";
 }
 
+// GitLab code quality (artifacts:reports:codequality, a subset of the Code Climate issue spec):
+// a JSON array of issues with description, check_name, fingerprint, severity and location.path
+// with location.lines.begin. A glTF element is no line of text: lines.begin is 1 and the
+// description names the element by its JSON pointer. GitLab matches an issue between the target
+// branch and the merge request by its fingerprint, the SHA-256 of the file, the element and the
+// rule: the same while the finding stays, whatever its counts; unique within a report.
+std::string codeClimatePath(const std::string& file) {
+  return std::filesystem::path(file).lexically_normal().generic_string();  // "./a.glb": "a.glb"
+}
+
+// A warning's rule: its words before the first ':' without the numbers in them ("reference
+// compared only 682 of 23322 corners (2.9%, ..." and "NORMAL is not unit length: worst 0.06"
+// keep one fingerprint while the counts change).
+std::string warningKind(const std::string& warning) {
+  std::string kind;
+  for (char c : warning.substr(0, warning.find(':')))
+    if (!std::isdigit(static_cast<unsigned char>(c))) kind += c;
+  return kind;
+}
+
+void writeCodeClimate(std::ostream& out, const std::vector<gltf::FileCheck>& checks) {
+  using Json = nlohmann::ordered_json;
+  Json issues = Json::array();
+  std::map<std::string, std::size_t> seen;  // fingerprint input -> earlier issues with it
+  // `kind` tells a primitive's warnings apart (they share one rule).
+  auto add = [&](const gltf::FileCheck& file, const std::string& element, const std::string& rule, const char* severity,
+                 const std::string& description, const std::string& kind = {}) {
+    const std::string path = codeClimatePath(file.file);
+    std::string identity = path + '\0' + element + '\0' + rule + '\0' + kind;
+    if (const std::size_t earlier = seen[identity]++; earlier > 0) identity += '\0' + std::to_string(earlier);
+    issues.push_back({{"type", "issue"},
+                      {"description", description},
+                      {"check_name", "tangent-check/" + rule},
+                      {"fingerprint", gltf::sha256Hex(identity)},
+                      {"severity", severity},
+                      {"location", {{"path", path}, {"lines", {{"begin", 1}}}}}});
+  };
+  for (const auto& file : checks) {
+    if (!file.error.empty()) add(file, "", "unreadable", "blocker", "tangent check: unreadable: " + file.error);
+    for (const auto& p : file.primitives) {
+      const std::string element = primitiveName(p) + " (" + primitivePointer(p) + ")";
+      for (const auto& f : p.findings) {
+        std::string description = "tangent check " + f.check + ": " + element + ": " + findingSummary(f);
+        if (!f.worst.empty()) description += "; worst: " + f.worst.front().detail;
+        add(file, primitivePointer(p), f.check, "major", description);
+      }
+      for (const auto& warning : p.warnings)
+        add(file, primitivePointer(p), "warning", "minor", "tangent check warning: " + element + ": " + warning, warningKind(warning));
+    }
+  }
+  out << text::dumpJson(issues, 2) << "\n";
+}
+
 int usageError(const std::string& message) {
   std::cerr << "tangent check: " << message << " (see tangent check --help)\n";
   return kExitUsage;
@@ -409,6 +473,45 @@ std::optional<std::bitset<gltf::kCheckCount>> parseCheckList(const std::string& 
   return set;
 }
 
+// A file to check, and how the progress line names it: by its path in its tree (led by the
+// folder's name when there are several), as bake --recursive names it.
+struct CheckInput {
+  std::filesystem::path path, shownAs;
+};
+
+// The inputs as given; with `recursive`, each folder replaced by the files bake --recursive would
+// bake under it (gltf::findInputs, sorted), named lexically normal ("./a/x.glb" is "a/x.glb", as
+// code-review tools want paths from the repository root). A file reached twice is checked once.
+std::vector<CheckInput> filesToCheck(const std::vector<std::string>& inputs, bool recursive) {
+  namespace fs = std::filesystem;
+  std::vector<CheckInput> files;
+  std::set<fs::path> seen;
+  auto add = [&](const fs::path& path, const fs::path& shownAs) {
+    std::error_code ec;
+    const fs::path absolute = fs::absolute(path, ec).lexically_normal();
+    if (seen.insert(ec ? path : absolute).second) files.push_back({path, shownAs.empty() ? path : shownAs});
+  };
+  std::size_t folders = 0;
+  for (const auto& input : inputs) {
+    std::error_code ec;
+    folders += recursive && fs::is_directory(input, ec);
+  }
+  for (const auto& input : inputs) {
+    std::error_code ec;
+    if (!recursive || !fs::is_directory(input, ec)) {
+      add(input, {});
+      continue;
+    }
+    fs::path root = fs::path(input).lexically_normal();
+    if (!root.has_filename()) root = root.parent_path();  // "dir/" names dir
+    for (const fs::path& found : gltf::findInputs(input)) {
+      const fs::path path = found.lexically_normal();
+      add(path, path.lexically_relative(folders == 1 ? root : root.parent_path()));
+    }
+  }
+  return files;
+}
+
 std::optional<double> parseDegrees(const std::string& text) {
   try {
     std::size_t used = 0;
@@ -426,6 +529,7 @@ int checkCommand(const std::vector<std::string>& args) {
   std::vector<std::string> inputs;
   std::string formatName = "text", output = "-";
   gltf::CheckOptions options;
+  bool recursive = false;
   // The config file first, whatever its place: the command line overrides it.
   for (std::size_t i = 0; i < args.size() && args[i] != "--"; ++i) {
     if (args[i] != "--config") continue;
@@ -450,11 +554,11 @@ int checkCommand(const std::vector<std::string>& args) {
     } else if (arg == "--config") {
       ++i;  // read above
     } else if (arg == "--format") {
-      if (!hasValue) return usageError("--format needs text, json, junit, github, sarif or html");
+      if (!hasValue) return usageError("--format needs text, json, junit, github, sarif, codeclimate or html");
       formatName = args[++i];
       if (formatName != "text" && formatName != "json" && formatName != "junit" && formatName != "github" && formatName != "sarif" &&
-          formatName != "html")
-        return usageError("--format must be text, json, junit, github, sarif or html");
+          formatName != "codeclimate" && formatName != "html")
+        return usageError("--format must be text, json, junit, github, sarif, codeclimate or html");
     } else if (arg == "-o" || arg == "--output") {
       if (!hasValue) return usageError(arg + " needs a file name (\"-\" for standard output)");
       output = args[++i];
@@ -498,6 +602,8 @@ int checkCommand(const std::vector<std::string>& args) {
       options.all = true;
     } else if (arg == "--identify") {
       options.identify = true;
+    } else if (arg == "--recursive") {
+      recursive = true;
     } else if (arg == "--asset-root") {
       if (!hasValue) return usageError("--asset-root needs a directory");
       options.assetRoot = args[++i];
@@ -510,10 +616,27 @@ int checkCommand(const std::vector<std::string>& args) {
   }
   if (inputs.empty()) return usageError("no input files");
   if (options.enabled.none()) return usageError("--only/--ignore leave no check to run");
+  if (!recursive) {
+    for (const auto& input : inputs) {
+      std::error_code ec;
+      if (std::filesystem::is_directory(input, ec))
+        return usageError(shown(input) + ": is a directory; add --recursive to check every .gltf, .glb, .obj, .ply and .off under it");
+    }
+  }
+  std::vector<CheckInput> files;
+  try {
+    files = filesToCheck(inputs, recursive);
+  } catch (const std::exception& e) {  // a folder that cannot be listed
+    std::cerr << "tangent check: " << shown(e.what()) << "\n";
+    return kExitUsage;
+  }
+  if (files.empty())
+    std::cerr << "tangent check: no .gltf, .glb, .obj, .ply or .off file under " << shown(inputs.front())
+              << (inputs.size() > 1 ? " or the other folders" : "") << "\n";
   // The report never goes over an input or a file one uses (refused before anything is read).
   if (output != "-") {
     gltf::ProtectedFiles inputFiles;
-    for (const auto& input : inputs) inputFiles.addInput(input);
+    for (const auto& file : files) inputFiles.addInput(file.path);
     if (inputFiles.contains(output))
       return usageError("-o " + shown(output) + " is an input or a file an input uses; the report is never written over one");
   }
@@ -521,7 +644,10 @@ int checkCommand(const std::vector<std::string>& args) {
   std::vector<gltf::FileCheck> checks;
   RunTimes times;
   bool unreadable = false, findings = false;
-  for (const auto& input : inputs) {
+  ProgressLine progress(files.size() > 1 && ::isatty(STDERR_FILENO));
+  for (std::size_t n = 0; n < files.size(); ++n) {
+    const std::string input = files[n].path.string();
+    progress.show(n, files.size(), files[n].shownAs);
     times.startedUtc.push_back(isoTimestampUtc(std::chrono::system_clock::now()));
     const auto started = std::chrono::steady_clock::now();
     try {
@@ -537,11 +663,13 @@ int checkCommand(const std::vector<std::string>& args) {
     unreadable = unreadable || !checks.back().error.empty();
     findings = findings || !checks.back().clean();
   }
+  progress.clear();
   std::ostringstream report;
   if (formatName == "json") writeJson(report, checks, options);
   else if (formatName == "junit") writeJunit(report, checks, times);
   else if (formatName == "github") writeGithub(report, checks);
   else if (formatName == "sarif") writeSarif(report, checks, options);
+  else if (formatName == "codeclimate") writeCodeClimate(report, checks);
   else if (formatName == "html") report << htmlReport(checks, options, output);
   else writeText(report, checks);
   if (!writeTextOutput(output, report.str(), "check")) return kExitUsage;

@@ -14,6 +14,12 @@ inline std::string primitiveName(const gltf::PrimitiveCheck& p) {
          " primitive " + std::to_string(p.primitive);
 }
 
+// The primitive as a JSON pointer into the document (SARIF's logical location, the code quality
+// report's element).
+inline std::string primitivePointer(const gltf::PrimitiveCheck& p) {
+  return "/meshes/" + std::to_string(p.mesh) + "/primitives/" + std::to_string(p.primitive);
+}
+
 inline std::string findingSummary(const gltf::CheckFinding& f) {
   return std::to_string(f.failed) + " of " + std::to_string(f.total) + " " + f.unit + ": " + f.message;
 }

@@ -14,7 +14,7 @@ const char* kUsage =
     "commands:\n"
     "  bake IN OUT | IN... (-o OUT | --out-dir DIR) | DIR... --recursive --out-dir DIR\n"
     "                                        compute TANGENT for primitives with a normal texture\n"
-    "  check IN... [--format text|json|junit|github|sarif|html]\n"
+    "  check IN... | DIR... --recursive [--format text|json|junit|github|sarif|codeclimate|html]\n"
     "                                        validate stored tangents (for CI)\n"
     "  info IN... [--json]                   meshes, primitives, attributes, which need tangents\n"
     "  bench [--stress | --peers]            error against run time; the stress suite; against the reference C\n"

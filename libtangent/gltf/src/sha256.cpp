@@ -6,6 +6,8 @@
 #include <bit>
 #include <cstdio>
 
+#include "tangent/digest.hpp"
+
 namespace tangent::gltf::detail {
 namespace {
 
@@ -73,3 +75,13 @@ std::string Sha256::hexDigest() {
 }
 
 }  // namespace tangent::gltf::detail
+
+namespace tangent::gltf {
+
+std::string sha256Hex(std::string_view bytes) {
+  detail::Sha256 hash;
+  hash.update({reinterpret_cast<const std::uint8_t*>(bytes.data()), bytes.size()});
+  return hash.hexDigest();
+}
+
+}  // namespace tangent::gltf
