@@ -316,28 +316,33 @@ TEST(Workspace, RepeatedCallsReuseTheirMemory) {
 // The plain call (no workspace of the caller's) runs on its thread's cached workspace: every
 // method, thread count and vector width gives the bits of a fresh workspace, whatever the
 // cache held before (a larger mesh, another method) and after it was released.
-std::vector<float> plainCall(const tangent::MeshArrays& mesh, tangent::Method method, unsigned threads,
-                             std::vector<tangent::FrameSource>* sources = nullptr) {
+// One call of `method` on `threads`: the plain call (the thread's cached workspace) or, with
+// `fresh`, a call on a new TangentWorkspace; `sources`, where given, gets each corner's source.
+std::vector<float> callWith(bool fresh, const tangent::MeshArrays& mesh, tangent::Method method, unsigned threads,
+                            std::vector<tangent::FrameSource>* sources) {
   std::vector<float> tangents(mesh.indices.size() * 4, std::numeric_limits<float>::quiet_NaN());
   tangent::Options options;
   options.method = method;
   options.threads = threads;
   if (sources) sources->assign(mesh.indices.size(), tangent::FrameSource{});
-  tangent::computeCornerTangents(mesh, tangents, options, sources ? std::span(*sources) : std::span<tangent::FrameSource>());
+  const std::span<tangent::FrameSource> sourceSpan = sources ? std::span(*sources) : std::span<tangent::FrameSource>();
+  if (fresh) {
+    tangent::TangentWorkspace workspace;
+    tangent::computeCornerTangents(mesh, tangent::CornerOutputs{tangents, sourceSpan}, options, workspace);
+  } else {
+    tangent::computeCornerTangents(mesh, tangents, options, sourceSpan);
+  }
   return tangents;
+}
+
+std::vector<float> plainCall(const tangent::MeshArrays& mesh, tangent::Method method, unsigned threads,
+                             std::vector<tangent::FrameSource>* sources = nullptr) {
+  return callWith(false, mesh, method, threads, sources);
 }
 
 std::vector<float> freshCall(const tangent::MeshArrays& mesh, tangent::Method method, unsigned threads,
                              std::vector<tangent::FrameSource>* sources = nullptr) {
-  std::vector<float> tangents(mesh.indices.size() * 4, std::numeric_limits<float>::quiet_NaN());
-  tangent::Options options;
-  options.method = method;
-  options.threads = threads;
-  if (sources) sources->assign(mesh.indices.size(), tangent::FrameSource{});
-  tangent::TangentWorkspace workspace;
-  tangent::computeCornerTangents(mesh, tangent::CornerOutputs{tangents, sources ? std::span(*sources) : std::span<tangent::FrameSource>()},
-                                 options, workspace);
-  return tangents;
+  return callWith(true, mesh, method, threads, sources);
 }
 
 bool sameBits(const std::vector<float>& a, const std::vector<float>& b) {
