@@ -200,8 +200,7 @@ int bakeTrees(const std::vector<std::filesystem::path>& folders, const std::file
   // are several), as the output tree has it.
   std::filesystem::path shownRoot;
   batch.onStart = [&](std::size_t, std::size_t, const std::filesystem::path& input) {
-    const std::filesystem::path relative = input.lexically_relative(shownRoot.parent_path());
-    progress.show(done, allInputs.size(), folders.size() == 1 ? input.lexically_relative(shownRoot) : relative);
+    progress.show(done, allInputs.size(), input.lexically_relative(folders.size() == 1 ? shownRoot : shownRoot.parent_path()));
   };
   output::stopGracefullyOnSignal(progress.onTerminal() ? kStopNoticeOverProgress : kStopNotice);
   for (const auto& folder : folders) {
