@@ -198,15 +198,14 @@ int bakeTrees(const std::vector<std::filesystem::path>& folders, const std::file
   batch.stopRequested = output::stopRequested;
   // The progress names each file by its path in its tree (led by the folder's name when there
   // are several), as the output tree has it.
-  std::filesystem::path shownRoot;
+  const std::filesystem::path* currentFolder = nullptr;
   batch.onStart = [&](std::size_t, std::size_t, const std::filesystem::path& input) {
-    progress.show(done, allInputs.size(), input.lexically_relative(folders.size() == 1 ? shownRoot : shownRoot.parent_path()));
+    progress.show(done, allInputs.size(), pathInTree(input, *currentFolder, folders.size() > 1));
   };
   output::stopGracefullyOnSignal(progress.onTerminal() ? kStopNoticeOverProgress : kStopNotice);
   for (const auto& folder : folders) {
     const std::filesystem::path target = folders.size() == 1 ? outDir : outDir / folder.filename();
-    shownRoot = folder.lexically_normal();
-    if (!shownRoot.has_filename()) shownRoot = shownRoot.parent_path();  // "dir/" names dir
+    currentFolder = &folder;
     if (output::stopRequested()) break;
     try {
       gltf::bakeTree(folder, target, batch, [&](const gltf::BatchEntry& entry) {

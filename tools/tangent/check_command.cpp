@@ -502,11 +502,9 @@ std::vector<CheckInput> filesToCheck(const std::vector<std::string>& inputs, boo
       add(input, {});
       continue;
     }
-    fs::path root = fs::path(input).lexically_normal();
-    if (!root.has_filename()) root = root.parent_path();  // "dir/" names dir
     for (const fs::path& found : gltf::findInputs(input)) {
       const fs::path path = found.lexically_normal();
-      add(path, path.lexically_relative(folders == 1 ? root : root.parent_path()));
+      add(path, pathInTree(path, input, folders > 1));
     }
   }
   return files;

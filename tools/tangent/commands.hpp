@@ -51,6 +51,15 @@ inline bool writeTextOutput(const std::string& path, const std::string& text, co
   }
 }
 
+// How the progress line names `file`, found under `folder` (a folder of the command line): its
+// path in the tree, led by the folder's name when the command was given several folders.
+inline std::filesystem::path pathInTree(const std::filesystem::path& file, const std::filesystem::path& folder,
+                                        bool severalFolders) {
+  std::filesystem::path root = folder.lexically_normal();
+  if (!root.has_filename()) root = root.parent_path();  // "dir/" names dir
+  return file.lexically_relative(severalFolders ? root.parent_path() : root);
+}
+
 // One line on a terminal (stderr) while a batch runs (bake's inputs, check's files): files done
 // of all, the current file, time so far and the time left at the pace so far. Nothing when off
 // (not a terminal, --quiet).
