@@ -25,6 +25,7 @@
 #include "validate.hpp"
 #include "tangent/gltf.hpp"
 #include "tangent/text.hpp"
+#include "tangent/verdict.hpp"
 
 namespace tangent::gltf {
 namespace {
@@ -66,6 +67,8 @@ class FindingBuilder {
     finding_.worst.insert(finding_.worst.end(), other.finding_.worst.begin(), other.finding_.worst.end());
     if (finding_.worst.size() > 4 * kWorstKept) trim();
   }
+  // `bit` where the check runs, else 0: a check --only/--ignore leaves out marks no corner.
+  std::uint8_t problemBit(std::uint8_t bit) const { return enabled_ ? bit : 0; }
   // Adds the finding to `primitive` (or records a pass, or that the check was ignored).
   void finish(PrimitiveCheck& primitive, std::string message) {
     if (!enabled_) {
@@ -122,15 +125,23 @@ struct VertexFindings {
       : finite(CheckId::finite, "vertices", total, "none", 0, options),
         unit(CheckId::unit, "vertices", total, "length", stored.limits.unitDeviation, options),
         w(CheckId::w, "vertices", total, "none", 0, options) {}
-  void check(std::size_t v, const StoredTangents& stored) {
+  // The CornerProblem bits of vertex v's failures.
+  std::uint8_t check(std::size_t v, const StoredTangents& stored) {
     const float* t = &stored.values[4 * v];
     if (!finite4(t)) {
       finite.fail(v, 1, "vertex " + std::to_string(v) + " " + tangentText(t));
-      return;
+      return finite.problemBit(kProblemNotFinite);
     }
-    if (!unitOk(t, stored.limits))
+    std::uint8_t problems = 0;
+    if (!unitOk(t, stored.limits)) {
       unit.fail(v, unitDeviation(t), format("vertex %zu |xyz| = %.6g ", v, length3(t)) + tangentText(t));
-    if (!validW(t[3])) w.fail(v, std::abs(std::abs(t[3]) - 1.0), format("vertex %zu w = %.6g", v, t[3]));
+      problems |= unit.problemBit(kProblemNotUnit);
+    }
+    if (!validW(t[3])) {
+      w.fail(v, std::abs(std::abs(t[3]) - 1.0), format("vertex %zu w = %.6g", v, t[3]));
+      problems |= w.problemBit(kProblemBadW);
+    }
+    return problems;
   }
   void merge(const VertexFindings& other) {
     finite.merge(other.finite);
@@ -226,37 +237,73 @@ void coverageWarning(const CheckOptions& options, const char* check, const char*
                                    100.0 * double(compared) / double(total), options.minCoverage, why.c_str()));
 }
 
-// The checks of one primitive that need its triangles (w-uniform, handedness, orthogonal on the
-// vertices it draws, reference), after the per-vertex ones. `used` is the part of its vertex
-// buffer it draws and `part` that part's geometry (gatherGeometry or keepUsedVertices);
-// elements in messages are the buffer's vertices and the primitive's triangles and corners.
-void checkDrawnPart(const UsedVertices& used, const PrimitiveGeometry& part, const StoredTangents& stored,
-                    const VertexFindings& undrawn, const InputRounding& rounding, const CheckOptions& options,
-                    TangentWorkspace& workspace, PrimitiveCheck& result) {
-  const std::vector<float>& tangents = stored.values;
-  VertexFindings vertexFindings(result.vertices, stored, options);
-  for (const std::uint32_t v : used.vertices) vertexFindings.check(v, stored);
-  vertexFindings.merge(undrawn);
-  vertexFindings.finish(result, stored);
+// check's `reference` rule at one corner: every count, finding and per-corner verdict of
+// `reference` comes from it. `allowanceDegrees` is the corner's vertex's allowance for rounded
+// positions/UVs; `wDecided` whether rounding leaves its triangle's UV orientation decided.
+struct ReferenceJudgement {
+  ReferenceVerdict verdict = ReferenceVerdict::notChecked;
+  double angle = 0;          // degrees, where compared
+  double limit = 0;          // the corner's limit, where compared
+  bool wUndecided = false;   // compared on the angle alone
+  bool wDiffers = false;     // the w compared differs from the recomputed one
+};
 
-  // Rounded positions and UVs (KHR_mesh_quantization) move the recomputed frame: per vertex
-  // allowance, and triangles whose UV orientation the rounding leaves open.
-  // A primitive without NORMAL is judged against the spec's flat normals (glTF 2.0 3.7.2.1),
-  // as bake generates them: `flat` splits the part's vertices per face; `frames` is what the
-  // reference is computed from, its corners in the part's order.
-  const bool flatNormals = part.normals.empty();
-  PrimitiveGeometry flat;
-  if (flatNormals) {
-    std::vector<std::uint32_t> source;
-    flat = withGeneratedNormals(part, /*smooth=*/false, 0, source);
+ReferenceJudgement judgeReference(FrameSource source, float allowanceDegrees, bool wDecided, const float* stored, const float* fresh,
+                                  const StoredTangentLimits& limits, double toleranceDegrees) {
+  ReferenceJudgement judgement;
+  if (source == FrameSource::neighbour || source == FrameSource::fixed) {
+    judgement.verdict = ReferenceVerdict::undefined;
+    return judgement;
   }
-  const PrimitiveGeometry& frames = flatNormals ? flat : part;
-  const ReferenceAllowance allowance = referenceAllowance(frames, rounding);
+  if (allowanceDegrees >= kUncomparableDegrees) {
+    judgement.verdict = ReferenceVerdict::unresolved;
+    return judgement;
+  }
+  if (!finite4(stored)) return judgement;  // `finite` reported it
+  // w follows the triangle's UV orientation: where rounding leaves that open, only the angle is
+  // compared (handedness skips the triangle alike), and only where w agrees: where it differs,
+  // the rounding turned the triangle over, and its corner's frame now comes from the group of
+  // the other orientation at the vertex, which no allowance bounds.
+  if (!wDecided && (stored[3] < 0) != (fresh[3] < 0)) {
+    judgement.verdict = ReferenceVerdict::unresolved;
+    return judgement;
+  }
+  judgement.angle = angleBetweenDegrees(stored, fresh);
+  judgement.limit = referenceLimitDegrees(limits, toleranceDegrees, allowanceDegrees);
+  judgement.wUndecided = !wDecided;
+  const float comparedW = wDecided ? stored[3] : fresh[3];
+  judgement.wDiffers = (comparedW < 0) != (fresh[3] < 0);
+  judgement.verdict = referenceFails(judgement.angle, comparedW, fresh[3], judgement.limit) ? ReferenceVerdict::disagrees
+                                                                                             : ReferenceVerdict::agrees;
+  return judgement;
+}
 
+// One primitive's drawn part as the phases of checkDrawnPart read it. `used` is the part of its
+// vertex buffer it draws and `part` that part's geometry (gatherGeometry or keepUsedVertices);
+// elements in messages are the buffer's vertices and the primitive's triangles and corners.
+// `frames` is what the reference is computed from: `part`, or (a primitive without NORMAL)
+// its split with the spec's flat normals, its corners in the part's order.
+struct DrawnPart {
+  const UsedVertices& used;
+  const PrimitiveGeometry& part;
+  const StoredTangents& stored;
+  const PrimitiveGeometry& frames;
+  const ReferenceAllowance& allowance;
+  bool flatNormals = false;
+  // Per corner, the verdict the phases fill in; null where the caller keeps none (the CLI).
+  std::vector<CornerVerdict>* verdicts = nullptr;
+  // Per vertex of `part`, the CornerProblem bits of the per-vertex checks (empty without verdicts).
+  std::vector<std::uint8_t> vertexProblems;
+};
+
+// w-uniform and handedness, triangle by triangle.
+void checkTriangles(DrawnPart& drawn, const CheckOptions& options, PrimitiveCheck& result) {
+  const UsedVertices& used = drawn.used;
+  const PrimitiveGeometry& part = drawn.part;
+  const std::vector<float>& tangents = drawn.stored.values;
   const std::size_t triangleCount = part.corners.size() / 3;
   FindingBuilder uniform(CheckId::wUniform, "triangles", triangleCount, "none", 0, options);
   FindingBuilder handedness(CheckId::handedness, "triangles", triangleCount, "uv-area", 0, options);
-  FindingBuilder orthogonal(CheckId::orthogonal, "vertices", result.vertices, "degrees", stored.orthogonalLimit, options);
   std::uint64_t handednessDegenerate = 0;  // no UV or 3D area: no orientation to judge
   for (std::size_t t = 0; t < triangleCount; ++t) {
     const std::uint32_t* local = &part.corners[3 * t];
@@ -274,35 +321,47 @@ void checkDrawnPart(const UsedVertices& used, const PrimitiveGeometry& part, con
       ++handednessDegenerate;
       continue;
     }
-    // Each corner's w against the triangle's orientation (as the viewer marks corners): one
+    // Each corner's w against the triangle's orientation (the corners the verdicts mark): one
     // flipped corner fails the triangle here too, besides `w-uniform`. Invalid w: `w` reported it.
     const float w[3] = {w0, w1, w2};
     if (!validW(w0) && !validW(w1) && !validW(w2)) continue;
-    if (!allowance.decided(t)) {
+    if (!drawn.allowance.decided(t)) {
       ++result.handednessUndecided;
       continue;
     }
-    if (std::any_of(w, w + 3, [&](float corner) { return validW(corner) && corner != expected; }))
-      handedness.fail(t, std::abs(det),
-                      uniformW ? format("triangle %zu (vertices %u %u %u) has w = %.0f, its UV orientation needs %.0f", t, c[0], c[1],
-                                        c[2], w0, expected)
-                               : format("triangle %zu (vertices %u %u %u) has w = %.6g %.6g %.6g, its UV orientation needs %.0f", t,
-                                        c[0], c[1], c[2], w0, w1, w2, expected));
+    const auto flipped = [&](float corner) { return validW(corner) && corner != expected; };
+    if (!std::any_of(w, w + 3, flipped)) continue;
+    handedness.fail(t, std::abs(det),
+                    uniformW ? format("triangle %zu (vertices %u %u %u) has w = %.0f, its UV orientation needs %.0f", t, c[0], c[1],
+                                      c[2], w0, expected)
+                             : format("triangle %zu (vertices %u %u %u) has w = %.6g %.6g %.6g, its UV orientation needs %.0f", t,
+                                      c[0], c[1], c[2], w0, w1, w2, expected));
+    if (drawn.verdicts)
+      for (int k = 0; k < 3; ++k)
+        if (flipped(w[k])) (*drawn.verdicts)[3 * t + k].problems |= handedness.problemBit(kProblemHandedness);
   }
   uniform.finish(result, "w differs between the corners of a triangle (a vertex shared across a mirror seam?)");
   handedness.finish(result, "w disagrees with the triangle's orientation in the normal texture's UV set (w = -sign(UV area) in glTF)");
   if (options.runs(CheckId::handedness))
     coverageWarning(options, "handedness", "triangles", triangleCount, result.handednessUndecided, handednessDegenerate,
                     "whose UV orientation rounded positions/UVs leave undecided", "without UV or 3D area", result);
+}
 
+// orthogonal on the vertices the primitive draws.
+void checkOrthogonal(DrawnPart& drawn, const CheckOptions& options, PrimitiveCheck& result) {
+  const UsedVertices& used = drawn.used;
+  const PrimitiveGeometry& part = drawn.part;
+  const StoredTangents& stored = drawn.stored;
+  const std::vector<float>& tangents = stored.values;
+  FindingBuilder orthogonal(CheckId::orthogonal, "vertices", result.vertices, "degrees", stored.orthogonalLimit, options);
   // Per vertex, the normal its tangent is judged against: NORMAL, or (flat normals) the face
   // normal of its corner furthest from its tangent's plane.
   std::vector<const float*> normalOf(part.vertexCount, nullptr);
-  if (flatNormals) {
+  if (drawn.flatNormals) {
     std::vector<double> worstOffPlane(part.vertexCount, -2);
     for (std::size_t c = 0; c < part.corners.size(); ++c) {
       const std::uint32_t local = part.corners[c];
-      const float* n = &flat.normals[3 * flat.corners[c]];
+      const float* n = &drawn.frames.normals[3 * drawn.frames.corners[c]];
       const double offPlane = offPlaneDegrees(&tangents[4 * used.vertices[local]], n);
       if (offPlane > worstOffPlane[local]) worstOffPlane[local] = offPlane, normalOf[local] = n;
     }
@@ -315,9 +374,10 @@ void checkDrawnPart(const UsedVertices& used, const PrimitiveGeometry& part, con
     const float* normal = normalOf[local];
     if (!finite4(t) || !normal) continue;
     const double offPlane = offPlaneDegrees(t, normal);
-    if (offPlane > stored.orthogonalLimit)
-      orthogonal.fail(v, offPlane, format("vertex %u is %.4g deg out of the tangent plane, N = (%.4g, %.4g, %.4g)%s, T = ", v, offPlane,
-                                          normal[0], normal[1], normal[2], flatNormals ? " (flat)" : "") + tangentText(t));
+    if (!(offPlane > stored.orthogonalLimit)) continue;
+    orthogonal.fail(v, offPlane, format("vertex %u is %.4g deg out of the tangent plane, N = (%.4g, %.4g, %.4g)%s, T = ", v, offPlane,
+                                        normal[0], normal[1], normal[2], drawn.flatNormals ? " (flat)" : "") + tangentText(t));
+    if (drawn.verdicts) drawn.vertexProblems[local] |= orthogonal.problemBit(kProblemNotOrthogonal);
   }
   // The limits in words: the tolerance, plus rounding where there is any.
   const bool roundedFrame = stored.limits.tangentAngleDegrees > 0 || stored.limits.normalAngleDegrees > 0;
@@ -326,77 +386,107 @@ void checkDrawnPart(const UsedVertices& used, const PrimitiveGeometry& part, con
                             result.normalComponent.c_str())
                    : "";
   orthogonal.finish(result, format("xyz leaves the plane normal to NORMAL by more than %.3g deg", stored.orthogonalLimit) + frameRounding);
+}
 
-  // Against freshly computed tangents, on corners where the method defines a frame: computed on
-  // the vertices the primitive draws, as bake computes them.
-  FindingBuilder reference(CheckId::reference, "corners", part.corners.size(), "degrees", stored.referenceLimit, options);
+// reference: against freshly computed tangents, on corners where the method defines a frame,
+// computed on the vertices the primitive draws, as bake computes them (judgeReference per corner).
+void checkReference(DrawnPart& drawn, const CheckOptions& options, TangentWorkspace& workspace, PrimitiveCheck& result) {
+  const StoredTangents& stored = drawn.stored;
+  const std::vector<std::uint32_t>& corners = drawn.part.corners;
+  const std::string generator = toString(Generator{options.method, options.weighting});
+  FindingBuilder reference(CheckId::reference, "corners", corners.size(), "degrees", stored.referenceLimit, options);
   if (options.runs(CheckId::reference)) {
     std::vector<float> computed;
     std::vector<FrameSource> sources;
-    computeFrames(frames, options.method, options.weighting, workspace, computed, sources);
-    for (std::size_t c = 0; c < part.corners.size(); ++c) {
-      if (sources[c] == FrameSource::neighbour || sources[c] == FrameSource::fixed) {
-        ++result.referenceUndefined;
-        continue;
-      }
-      const std::uint32_t local = part.corners[c];
-      const std::uint32_t v = used.vertices[local];
-      const float extra = allowance.vertex(frames.corners[c]);
-      if (extra >= kUncomparableDegrees) {
-        ++result.referenceUnresolved;
-        continue;
-      }
-      result.referenceAllowanceMaxDegrees = std::max(result.referenceAllowanceMaxDegrees, double(extra));
-      const float* storedTangent = &tangents[4 * v];
+    computeFrames(drawn.frames, options.method, options.weighting, workspace, computed, sources);
+    for (std::size_t c = 0; c < corners.size(); ++c) {
+      const std::uint32_t v = drawn.used.vertices[corners[c]];
+      const float extra = drawn.allowance.vertex(drawn.frames.corners[c]);
+      const float* storedTangent = &stored.values[4 * v];
       const float* fresh = &computed[4 * c];
-      if (!finite4(storedTangent)) continue;  // `finite` reported it
-      const double angle = angleBetweenDegrees(storedTangent, fresh);
-      const double limit = referenceLimitDegrees(stored.limits, options.referenceToleranceDegrees, extra);
-      // w follows the triangle's UV orientation: where rounding leaves that open, only the
-      // angle is compared (handedness skips the triangle alike), and only where w agrees: where
-      // it differs, the rounding turned the triangle over, and its corner's frame now comes from
-      // the group of the other orientation at the vertex, which no allowance bounds.
-      const bool wDecided = allowance.decided(c / 3);
-      if (!wDecided && (storedTangent[3] < 0) != (fresh[3] < 0)) {
-        ++result.referenceUnresolved;
-        continue;
-      }
-      if (!wDecided) ++result.referenceWUndecided;
-      const float comparedW = wDecided ? storedTangent[3] : fresh[3];
-      if (referenceFails(angle, comparedW, fresh[3], limit)) {
-        const bool wDiffers = (comparedW < 0) != (fresh[3] < 0);
-        reference.fail(c, angle,
-                       format("corner %zu (vertex %u): %.4g deg from %s (limit %.3g)%s; stored ", c, v, angle,
-                              toString(Generator{options.method, options.weighting}).c_str(), limit, wDiffers ? ", w differs" : "") +
+      const ReferenceJudgement judged = judgeReference(sources[c], extra, drawn.allowance.decided(c / 3), storedTangent, fresh,
+                                                       stored.limits, options.referenceToleranceDegrees);
+      if (judged.verdict == ReferenceVerdict::undefined) ++result.referenceUndefined;
+      if (judged.verdict == ReferenceVerdict::unresolved) ++result.referenceUnresolved;
+      if (judged.verdict != ReferenceVerdict::undefined && extra < kUncomparableDegrees)
+        result.referenceAllowanceMaxDegrees = std::max(result.referenceAllowanceMaxDegrees, double(extra));
+      if (judged.wUndecided) ++result.referenceWUndecided;
+      if (judged.verdict == ReferenceVerdict::disagrees)
+        reference.fail(c, judged.angle,
+                       format("corner %zu (vertex %u): %.4g deg from %s (limit %.3g)%s; stored ", c, v, judged.angle, generator.c_str(),
+                              judged.limit, judged.wDiffers ? ", w differs" : "") +
                            tangentText(storedTangent) + ", computed " + tangentText(fresh),
-                       wDiffers);
-      }
+                       judged.wDiffers);
+      if (!drawn.verdicts) continue;
+      CornerVerdict& verdict = (*drawn.verdicts)[c];
+      verdict.reference = judged.verdict;
+      verdict.wUndecided = judged.wUndecided;
+      verdict.referenceDegrees = static_cast<float>(judged.angle);
+      if (judged.verdict == ReferenceVerdict::disagrees) verdict.problems |= kProblemFarFromReference;
     }
+    coverageWarning(options, "reference", "corners", corners.size(), result.referenceUnresolved, result.referenceUndefined,
+                    "whose frame or UV orientation rounded positions/UVs leave undecided", ("where " + generator + " defines no frame").c_str(),
+                    result);
   }
-  if (options.runs(CheckId::reference))
-    coverageWarning(options, "reference", "corners", part.corners.size(), result.referenceUnresolved, result.referenceUndefined,
-                    "whose frame or UV orientation rounded positions/UVs leave undecided",
-                    ("where " + toString(Generator{options.method, options.weighting}) + " defines no frame").c_str(), result);
-  if (options.identify) identifyGenerator(frames, part, used, tangents, workspace, result);
+  std::string referenceRounding;
+  if (stored.limits.tangentAngleDegrees > 0 || stored.limits.normalAngleDegrees > 0)
+    referenceRounding = format(" (%.3g + rounding of %s TANGENT and %s NORMAL)", options.referenceToleranceDegrees, stored.component,
+                               result.normalComponent.c_str());
+  if (drawn.allowance.orientationDecided.size())
+    referenceRounding += format(", plus up to %.3g deg per corner for rounded positions/UVs", result.referenceAllowanceMaxDegrees);
+  reference.finish(result, format("differs from freshly computed %s tangents by more than %.3g deg", generator.c_str(), stored.referenceLimit) +
+                               referenceRounding + ", or in w");
+}
+
+// The checks of one primitive that need its triangles (w-uniform, handedness, orthogonal on the
+// vertices it draws, reference), after the per-vertex ones, as the phases above; `verdicts`
+// (null: not kept) gets the verdict of each corner of part.corners.
+void checkDrawnPart(const UsedVertices& used, const PrimitiveGeometry& part, const StoredTangents& stored,
+                    const VertexFindings& undrawn, const InputRounding& rounding, const CheckOptions& options,
+                    TangentWorkspace& workspace, PrimitiveCheck& result, std::vector<CornerVerdict>* verdicts) {
+  if (verdicts) verdicts->assign(part.corners.size(), CornerVerdict{});
+  std::vector<std::uint8_t> vertexProblems(verdicts ? part.vertexCount : 0, 0);
+  VertexFindings vertexFindings(result.vertices, stored, options);
+  for (std::size_t local = 0; local < used.vertices.size(); ++local) {
+    const std::uint8_t problems = vertexFindings.check(used.vertices[local], stored);
+    if (verdicts) vertexProblems[local] = problems;
+  }
+  vertexFindings.merge(undrawn);
+  vertexFindings.finish(result, stored);
+
+  // Rounded positions and UVs (KHR_mesh_quantization) move the recomputed frame: per vertex
+  // allowance, and triangles whose UV orientation the rounding leaves open.
+  // A primitive without NORMAL is judged against the spec's flat normals (glTF 2.0 3.7.2.1),
+  // as bake generates them (withGeneratedNormals: a triangle without area gets +Z).
+  const bool flatNormals = part.normals.empty();
+  PrimitiveGeometry flat;
+  if (flatNormals) {
+    std::vector<std::uint32_t> source;
+    flat = withGeneratedNormals(part, /*smooth=*/false, 0, source);
+  }
+  const PrimitiveGeometry& frames = flatNormals ? flat : part;
+  const ReferenceAllowance allowance = referenceAllowance(frames, rounding);
+  DrawnPart drawn{used, part, stored, frames, allowance, flatNormals, verdicts, std::move(vertexProblems)};
+
+  checkTriangles(drawn, options, result);
+  checkOrthogonal(drawn, options, result);
+  checkReference(drawn, options, workspace, result);
+  if (options.identify) identifyGenerator(frames, part, used, stored.values, workspace, result);
   // Ignored checks listed in check order (they finish in the order the passes run).
   std::sort(result.ignored.begin(), result.ignored.end(),
             [](const std::string& a, const std::string& b) { return *parseCheck(a) < *parseCheck(b); });
-  std::string referenceRounding;
-  if (roundedFrame)
-    referenceRounding = format(" (%.3g + rounding of %s TANGENT and %s NORMAL)", options.referenceToleranceDegrees, stored.component,
-                               result.normalComponent.c_str());
-  if (allowance.orientationDecided.size())
-    referenceRounding += format(", plus up to %.3g deg per corner for rounded positions/UVs", result.referenceAllowanceMaxDegrees);
-  reference.finish(result, format("differs from freshly computed %s tangents by more than %.3g deg",
-                                  toString(Generator{options.method, options.weighting}).c_str(), stored.referenceLimit) +
-                               referenceRounding + ", or in w");
+  if (verdicts)
+    for (std::size_t c = 0; c < part.corners.size(); ++c) (*verdicts)[c].problems |= drawn.vertexProblems[part.corners[c]];
 }
 
 // The primitives `members` of `primitives`, which share their vertex attributes and TANGENT
 // (sameVertexKey and the TANGENT accessor): the buffer and the stored tangents are read once;
-// the vertices no member draws are checked once and count for every member.
+// the vertices no member draws are checked once and count for every member. `verdicts` (null:
+// not kept) is indexed as `results` and gets each checked member's corner verdicts.
 void checkVertexGroup(const Asset& asset, const std::vector<PrimitiveToCheck>& primitives, const std::vector<std::size_t>& members,
-                      const CheckOptions& options, TangentWorkspace& workspace, std::vector<PrimitiveCheck>& results) {
+                      const CheckOptions& options, TangentWorkspace& workspace, std::vector<PrimitiveCheck>& results,
+                      std::vector<std::vector<CornerVerdict>>* verdicts) {
+  auto verdictsOf = [&](std::size_t member) { return verdicts ? &(*verdicts)[member] : nullptr; };
   const PrimitiveToCheck& first = primitives[members.front()];
   PrimitiveGeometry buffer = readVertices(asset, *first.primitive, first.needs, first.where, /*normalOptional=*/true);
 
@@ -500,12 +590,12 @@ void checkVertexGroup(const Asset& asset, const std::vector<PrimitiveToCheck>& p
     // The usual single primitive: the buffer, kept to the vertices it draws in place, is its
     // part (no gathered copy of every attribute).
     keepUsedVertices(buffer, parts[0]);
-    checkDrawnPart(parts[0], buffer, stored, undrawn, rounding, options, workspace, results[members[0]]);
+    checkDrawnPart(parts[0], buffer, stored, undrawn, rounding, options, workspace, results[members[0]], verdictsOf(members[0]));
     return;
   }
   for (std::size_t k = 0; k < members.size(); ++k)
     checkDrawnPart(parts[k], gatherGeometry(buffer, parts[k]), stored, undrawn, rounding, options, workspace,
-                   results[members[k]]);
+                   results[members[k]], verdictsOf(members[k]));
 }
 
 }  // namespace
@@ -513,8 +603,9 @@ void checkVertexGroup(const Asset& asset, const std::vector<PrimitiveToCheck>& p
 namespace detail {
 
 std::vector<PrimitiveCheck> checkPrimitives(const Asset& asset, const std::vector<PrimitiveToCheck>& primitives,
-                                            const CheckOptions& options) {
+                                            const CheckOptions& options, std::vector<std::vector<CornerVerdict>>* verdicts) {
   std::vector<PrimitiveCheck> results(primitives.size());
+  if (verdicts) verdicts->assign(primitives.size(), {});
   // One verdict per set of inputs and TANGENT; those sets grouped by vertex buffer and TANGENT.
   std::vector<std::size_t> sameAs(primitives.size());
   std::vector<std::vector<std::size_t>> groups;
@@ -532,9 +623,12 @@ std::vector<PrimitiveCheck> checkPrimitives(const Asset& asset, const std::vecto
     }
   }
   CachedWorkspace workspace;  // the thread's cached workspace (tangent.hpp)
-  for (const std::vector<std::size_t>& members : groups) checkVertexGroup(asset, primitives, members, options, workspace.get(), results);
+  for (const std::vector<std::size_t>& members : groups)
+    checkVertexGroup(asset, primitives, members, options, workspace.get(), results, verdicts);
   for (std::size_t i = 0; i < primitives.size(); ++i) {
-    if (sameAs[i] != i) results[i] = results[sameAs[i]];
+    if (sameAs[i] == i) continue;
+    results[i] = results[sameAs[i]];
+    if (verdicts) (*verdicts)[i] = (*verdicts)[sameAs[i]];
   }
   return results;
 }
@@ -570,75 +664,83 @@ long normalTextureImage(const Json& doc, const Json& primitive) {
   return texture < 0 ? -1 : index(doc["textures"][texture], "source", "images");
 }
 
+// The primitives of `asset` (loaded from `input`) that need tangents, checked into `result`;
+// `corners` (null: not kept) gets the verdicts per corner of those that reached the per-corner
+// checks, keyed by their indices.
+void checkLoaded(const detail::Asset& asset, const std::filesystem::path& input, const CheckOptions& options, FileCheck& result,
+                 std::vector<PrimitiveVerdicts>* corners) {
+  const Json& doc = asset.json;
+  std::vector<detail::PrimitiveToCheck> pending;  // primitives to check, and their slots in result.primitives
+  std::vector<std::size_t> pendingSlot;
+  const std::size_t meshCount = doc.contains("meshes") ? doc["meshes"].size() : 0;
+  for (std::size_t m = 0; m < meshCount; ++m) {
+    const Json& mesh = doc["meshes"][m];
+    for (std::size_t p = 0; p < mesh["primitives"].size(); ++p) {
+      const Json& primitive = mesh["primitives"][p];
+      const std::string label = detail::primitiveLabel(doc, static_cast<int>(m), static_cast<int>(p));
+      const detail::PrimitiveNeeds needs = detail::primitiveNeeds(doc, primitive, options.all || asset.fromMeshFile);
+      const bool hasUv = detail::accessorOf(primitive["attributes"], "TEXCOORD_" + std::to_string(needs.texCoord)) >= 0;
+      auto newCheck = [&] {
+        PrimitiveCheck check;
+        check.mesh = static_cast<int>(m);
+        check.primitive = static_cast<int>(p);
+        check.texCoord = needs.texCoord;
+        if (mesh.contains("name") && mesh["name"].is_string()) check.meshName = mesh["name"].get<std::string>();
+        return check;
+      };
+      if (const std::string problem = detail::missingUvSet(primitive, needs); !problem.empty()) {
+        // A normal texture sampling a UV set the primitive lacks: a broken file, not a skip.
+        PrimitiveCheck check = newCheck();
+        FindingBuilder formatCheck(CheckId::format, "primitive", 1, "none", 0, options);
+        formatCheck.fail(0, 1, problem);
+        formatCheck.finish(check, problem);
+        skipFrom(CheckId::finite, options, check);
+        result.primitives.push_back(std::move(check));
+        continue;
+      }
+      // A primitive without NORMAL is checked against the spec's flat normals (checkDrawnPart).
+      if (!detail::bakesTangents(needs) || !hasUv) {
+        std::string why = needs.why;
+        if (detail::bakesTangents(needs)) why = "no TEXCOORD_" + std::to_string(needs.texCoord) + " attribute";
+        result.skipped.push_back(label + ": " + why);
+        continue;
+      }
+      if (options.allowMissing && detail::accessorOf(primitive["attributes"], "TANGENT") < 0) {
+        result.skipped.push_back(label + ": no TANGENT, allowed (--allow-missing: clients compute MikkTSpace from TEXCOORD_" +
+                                 std::to_string(needs.texCoord) + ")");
+        continue;
+      }
+      // Checked below, all together: primitives that share inputs or a vertex buffer share work.
+      pendingSlot.push_back(result.primitives.size());
+      pending.push_back({&primitive, needs, input.string() + ": " + label});
+      result.primitives.push_back(newCheck());
+    }
+  }
+  std::vector<std::vector<CornerVerdict>> cornerVerdicts;
+  std::vector<PrimitiveCheck> verdicts = detail::checkPrimitives(asset, pending, options, corners ? &cornerVerdicts : nullptr);
+  for (std::size_t i = 0; i < pending.size(); ++i) {
+    PrimitiveCheck& named = result.primitives[pendingSlot[i]];
+    PrimitiveCheck& verdict = verdicts[i];
+    verdict.mesh = named.mesh;
+    verdict.primitive = named.primitive;
+    verdict.meshName = std::move(named.meshName);
+    verdict.texCoord = named.texCoord;
+    named = std::move(verdict);
+    // A normal texture whose image holds no data (neither uri nor bufferView; the loader
+    // warned): the tangents are checked all the same.
+    const long image = normalTextureImage(doc, *pending[i].primitive);
+    if (image >= 0 && doc["images"][image].is_object() && !doc["images"][image].contains("uri") && !doc["images"][image].contains("bufferView"))
+      named.warnings.push_back(format("its normal texture's image, images[%ld], has neither uri nor bufferView (no image data)", image));
+    if (corners && !cornerVerdicts[i].empty())
+      corners->push_back({PrimitiveIndex{named.mesh, named.primitive}, std::move(cornerVerdicts[i])});
+  }
+}
+
 FileCheck checkAsset(const std::filesystem::path& input, const CheckOptions& options) {
   FileCheck result;
   result.file = input.string();
   const auto started = std::chrono::steady_clock::now();
-  {
-    const detail::Asset asset = detail::loadAsset(input, options.assetRoot);
-    const Json& doc = asset.json;
-    std::vector<detail::PrimitiveToCheck> pending;  // primitives to check, and their slots in result.primitives
-    std::vector<std::size_t> pendingSlot;
-    const std::size_t meshCount = doc.contains("meshes") ? doc["meshes"].size() : 0;
-    for (std::size_t m = 0; m < meshCount; ++m) {
-      const Json& mesh = doc["meshes"][m];
-      for (std::size_t p = 0; p < mesh["primitives"].size(); ++p) {
-        const Json& primitive = mesh["primitives"][p];
-        const std::string label = detail::primitiveLabel(doc, static_cast<int>(m), static_cast<int>(p));
-        const detail::PrimitiveNeeds needs = detail::primitiveNeeds(doc, primitive, options.all || asset.fromMeshFile);
-        const bool hasUv = detail::accessorOf(primitive["attributes"], "TEXCOORD_" + std::to_string(needs.texCoord)) >= 0;
-        auto newCheck = [&] {
-          PrimitiveCheck check;
-          check.mesh = static_cast<int>(m);
-          check.primitive = static_cast<int>(p);
-          check.texCoord = needs.texCoord;
-          if (mesh.contains("name") && mesh["name"].is_string()) check.meshName = mesh["name"].get<std::string>();
-          return check;
-        };
-        if (const std::string problem = detail::missingUvSet(primitive, needs); !problem.empty()) {
-          // A normal texture sampling a UV set the primitive lacks: a broken file, not a skip.
-          PrimitiveCheck check = newCheck();
-          FindingBuilder formatCheck(CheckId::format, "primitive", 1, "none", 0, options);
-          formatCheck.fail(0, 1, problem);
-          formatCheck.finish(check, problem);
-          skipFrom(CheckId::finite, options, check);
-          result.primitives.push_back(std::move(check));
-          continue;
-        }
-        // A primitive without NORMAL is checked against the spec's flat normals (checkDrawnPart).
-        if (!detail::bakesTangents(needs) || !hasUv) {
-          std::string why = needs.why;
-          if (detail::bakesTangents(needs)) why = "no TEXCOORD_" + std::to_string(needs.texCoord) + " attribute";
-          result.skipped.push_back(label + ": " + why);
-          continue;
-        }
-        if (options.allowMissing && detail::accessorOf(primitive["attributes"], "TANGENT") < 0) {
-          result.skipped.push_back(label + ": no TANGENT, allowed (--allow-missing: clients compute MikkTSpace from TEXCOORD_" +
-                                   std::to_string(needs.texCoord) + ")");
-          continue;
-        }
-        // Checked below, all together: primitives that share inputs or a vertex buffer share work.
-        pendingSlot.push_back(result.primitives.size());
-        pending.push_back({&primitive, needs, input.string() + ": " + label});
-        result.primitives.push_back(newCheck());
-      }
-    }
-    std::vector<PrimitiveCheck> verdicts = detail::checkPrimitives(asset, pending, options);
-    for (std::size_t i = 0; i < pending.size(); ++i) {
-      PrimitiveCheck& named = result.primitives[pendingSlot[i]];
-      PrimitiveCheck& verdict = verdicts[i];
-      verdict.mesh = named.mesh;
-      verdict.primitive = named.primitive;
-      verdict.meshName = std::move(named.meshName);
-      verdict.texCoord = named.texCoord;
-      named = std::move(verdict);
-      // A normal texture whose image holds no data (neither uri nor bufferView; the loader
-      // warned): the tangents are checked all the same.
-      const long image = normalTextureImage(doc, *pending[i].primitive);
-      if (image >= 0 && doc["images"][image].is_object() && !doc["images"][image].contains("uri") && !doc["images"][image].contains("bufferView"))
-        named.warnings.push_back(format("its normal texture's image, images[%ld], has neither uri nor bufferView (no image data)", image));
-    }
-  }
+  checkLoaded(detail::loadAsset(input, options.assetRoot), input, options, result, nullptr);
   result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
   return result;
 }
@@ -647,6 +749,18 @@ FileCheck checkAsset(const std::filesystem::path& input, const CheckOptions& opt
 
 FileCheck checkFile(const std::filesystem::path& input, const CheckOptions& options) {
   return detail::throwingInputError(input, [&] { return checkAsset(input, options); });
+}
+
+std::vector<PrimitiveVerdicts> detail::checkCorners(const Asset& asset, const std::filesystem::path& input, const CheckOptions& options) {
+  FileCheck discarded;
+  std::vector<PrimitiveVerdicts> corners;
+  checkLoaded(asset, input, options, discarded, &corners);
+  return corners;
+}
+
+std::vector<PrimitiveVerdicts> checkCorners(const std::filesystem::path& input, const CheckOptions& options) {
+  return detail::throwingInputError(
+      input, [&] { return detail::checkCorners(detail::loadAsset(input, options.assetRoot), input, options); });
 }
 
 nlohmann::ordered_json toJson(const FileCheck& check) {

@@ -10,6 +10,7 @@
 #include "asset.hpp"
 #include "primitive.hpp"
 #include "tangent/check.hpp"
+#include "tangent/verdict.hpp"
 
 namespace tangent::gltf::detail {
 
@@ -28,8 +29,13 @@ struct PrimitiveToCheck {
 // and the stored tangents once; each is judged on the vertices it draws, plus those no primitive
 // of the buffer draws (the validator requires them valid too), and on its own triangles, so the
 // time is linear in the buffer plus the corners. Throws InputError for malformed accessors.
+// `verdicts` (null: not kept) gets, per primitive, its corners' verdicts (empty where present or
+// format failed).
 std::vector<PrimitiveCheck> checkPrimitives(const Asset& asset, const std::vector<PrimitiveToCheck>& primitives,
-                                            const CheckOptions& options);
+                                            const CheckOptions& options, std::vector<std::vector<CornerVerdict>>* verdicts = nullptr);
+
+// checkCorners (tangent/verdict.hpp) on an asset already loaded from `input` (the viewer's).
+std::vector<PrimitiveVerdicts> checkCorners(const Asset& asset, const std::filesystem::path& input, const CheckOptions& options);
 
 // "unit: 3 of 24 vertices; reference: 12 of 36 corners": the findings in one line.
 std::string findingsSummary(const PrimitiveCheck& check);
