@@ -32,6 +32,7 @@
 #include "resources.hpp"
 #include "shader_check.hpp"
 #include "shader_library.hpp"
+#include "tangent/check.hpp"
 #include "tangent/gltf.hpp"
 #include "tangent/input_file.hpp"
 #include "tangent/scene.hpp"
@@ -70,7 +71,8 @@ const char* kUsage =
     "                           per-pixel angle between the file's tangent frames and the --compare set's:\n"
     "                           blue 0, green 1 deg, yellow 5 deg, red >= 20 deg) (default lit)\n"
     "  --compare SET            split view: left of the divider the file's TANGENT, right of it SET:\n"
-    "                           fresh (MikkTSpace computed at load, the default set of compare-angle) |\n"
+    "                           fresh (the --reference generator's tangents computed at load, the default\n"
+    "                           set of compare-angle) |\n"
     "                           file (the file's TANGENT again: both sides alike) | FILE.gltf/.glb (a second\n"
     "                           file's TANGENT, for the same triangles in the same order, e.g. another bake)\n"
     "  --split F                the divider's place, a fraction of the width from the left (default 0.5)\n"
@@ -104,6 +106,9 @@ const char* kUsage =
     "                           them, triangles, images, lights); without --screenshot, load the file, print\n"
     "                           and exit without a window (1 when it cannot be loaded)\n"
     "  --asset-root DIR         folder buffer and image URIs may not leave (default: the file's folder)\n"
+    "  --reference NAME         what the fresh tangents and the error view's verdicts use, as tangent check\n"
+    "                           --reference: mikktspace (default) | lengyel/angle | lengyel/area |\n"
+    "                           lengyel/uniform | flat | meshopt (the error view is check --all's verdict)\n"
     "  --shader-dir DIR         where the shaders are (default: the source tree's shaders/)\n"
     "  --print-state            in the window: print the settings the keys and the mouse change (view,\n"
     "                           toggles, divider, camera) as a JSON line after each key press, each mouse\n"
@@ -122,7 +127,7 @@ const fs::path& demoFolder() {
 }
 
 // What the split view's right side and the compare-angle view compare the file's tangents with
-// (--compare): MikkTSpace computed at load, the file's own TANGENT again, or a second file's.
+// (--compare): the --reference generator's tangents computed at load, the file's own TANGENT again, or a second file's.
 enum class CompareSource : std::uint8_t { fresh, file, otherFile };
 
 struct Options {
@@ -134,6 +139,7 @@ struct Options {
   bool orthographic = false;
   RenderSettings settings;
   bool negateW = false;
+  tangent::gltf::Generator reference;  // --reference: the fresh tangents' generator and check's
   fs::path sphereMap = demoFolder() / "spheremap.png";
   bool sphereMapGiven = false;  // --sphere-map: its failure is an error, not a note
   fs::path shaderDir = resourceFolder("shaders");
@@ -204,6 +210,12 @@ int parseOptions(int argc, char** argv, Options& options) {
       } else if (arg == "--msaa") options.msaaSamples = std::clamp(std::stoi(value()), 0, 16);
       else if (arg == "--flip-green") options.settings.flipGreen = true;
       else if (arg == "--negate-w") options.negateW = true;
+      else if (arg == "--reference") {
+        const std::string name = value();
+        const std::optional<tangent::gltf::Generator> generator = tangent::gltf::parseGenerator(name);
+        if (!generator) throw std::invalid_argument("--reference must be " + tangent::gltf::generatorNames() + ", not " + name);
+        options.reference = *generator;
+      }
       else if (arg == "--reflectivity") options.settings.reflectivity = std::clamp(std::stof(value()), 0.0f, 1.0f);
       else if (arg == "--sphere-map") options.sphereMap = value(), options.sphereMapGiven = true;
       else if (arg == "--uv-scale") options.settings.uvScale = std::stof(value());
@@ -275,6 +287,8 @@ tangent::gltf::SceneOptions sceneOptionsFor(const Options& options) {
   tangent::gltf::SceneOptions sceneOptions;
   sceneOptions.negateFileW = options.negateW;
   sceneOptions.assetRoot = options.assetRoot;
+  sceneOptions.check.method = options.reference.method;
+  sceneOptions.check.weighting = options.reference.weighting;
   return sceneOptions;
 }
 
@@ -343,7 +357,9 @@ struct Viewer {
     } else if (options.compare == CompareSource::otherFile) {
       tangent::gltf::Scene other;
       try {
-        other = tangent::gltf::loadScene(options.compareFile);
+        tangent::gltf::SceneOptions otherOptions;  // its TANGENT only: no verdicts
+        otherOptions.judge = false;
+        other = tangent::gltf::loadScene(options.compareFile, otherOptions);
       } catch (const std::exception& e) {
         return refuse(e.what());
       }
@@ -588,7 +604,8 @@ void drawPanel(Viewer& viewer, GLFWwindow* window, const FrameStats& stats, doub
     for (std::size_t i = 0; i < std::size(kDebugViews); ++i) names[i] = kDebugViews[i].name;
     if (ImGui::Combo("view (1-9, 0)", &view, names, static_cast<int>(std::size(kDebugViews)))) s.view = static_cast<DebugView>(view);
     if (s.view == DebugView::tangentError) {
-      ImGui::TextWrapped("error vs freshly computed, per vertex; magenta: fails tangent check");
+      ImGui::TextWrapped("error vs freshly computed (%s), per corner, as tangent check --all judges it; magenta: fails tangent check",
+                         tangent::gltf::toString(viewer.options.reference).c_str());
       drawHeatmapLegend();
       const auto& items = viewer.renderer.scene().items;
       if (std::none_of(items.begin(), items.end(), [](const auto& item) { return item.tangentsFromFile; }))
@@ -644,7 +661,7 @@ void drawPanel(Viewer& viewer, GLFWwindow* window, const FrameStats& stats, doub
       o.compareFile = otherFile;
       viewer.applyCompare();
     };
-    if (ImGui::Combo("compare with", &source, "fresh MikkTSpace\0" "the file itself\0" "a second file\0")) {
+    if (ImGui::Combo("compare with", &source, "fresh (--reference)\0" "the file itself\0" "a second file\0")) {
       secondFileChosen = static_cast<CompareSource>(source) == CompareSource::otherFile;
       if (!secondFileChosen) {
         o.compare = static_cast<CompareSource>(source);
@@ -655,7 +672,7 @@ void drawPanel(Viewer& viewer, GLFWwindow* window, const FrameStats& stats, doub
     }
     if (secondFileChosen && ImGui::InputText("second file", otherFile, sizeof otherFile, ImGuiInputTextFlags_EnterReturnsTrue))
       compareWithFile();
-    const std::string right = o.compare == CompareSource::fresh  ? "MikkTSpace computed at load"
+    const std::string right = o.compare == CompareSource::fresh  ? tangent::gltf::toString(o.reference) + " computed at load"
                               : o.compare == CompareSource::file ? "the file's TANGENT again"
                                                                  : o.compareFile.string() + "'s TANGENT";
     ImGui::TextWrapped("left: the file's TANGENT; right (and compare-angle, key a): %s", right.c_str());

@@ -209,11 +209,6 @@ struct Thumbnail {
   std::string missing;  // why there is none
 };
 
-std::string scenePrimitiveLabel(const gltf::PrimitiveCheck& p, bool namedEvenIfEmpty) {
-  return "mesh " + std::to_string(p.mesh) + (p.meshName.empty() && !namedEvenIfEmpty ? "" : " '" + p.meshName + "'") +
-         " primitive " + std::to_string(p.primitive);
-}
-
 std::string numberList(const Vec3& lo, const Vec3& hi) {
   char text[256];
   std::snprintf(text, sizeof text, "%.9g,%.9g,%.9g,%.9g,%.9g,%.9g", lo[0], lo[1], lo[2], hi[0], hi[1], hi[2]);
@@ -232,8 +227,9 @@ std::vector<Thumbnail> renderFile(const gltf::FileCheck& file, const gltf::Check
   std::string sceneError;
   if (renderer.unavailable.empty()) {
     try {
+      // Judged as check judged it: the flagged triangles are those of its findings.
       gltf::SceneOptions sceneOptions;
-      sceneOptions.method = options.method;
+      sceneOptions.check = options;
       sceneOptions.assetRoot = options.assetRoot;
       scene = gltf::loadScene(file.file, sceneOptions);
     } catch (const std::exception& e) {
@@ -258,11 +254,8 @@ std::vector<Thumbnail> renderFile(const gltf::FileCheck& file, const gltf::Check
       continue;
     }
     std::optional<std::size_t> item;
-    for (std::size_t k = 0; k < scene->items.size() && !item; ++k) {
-      if (scene->items[k].label == scenePrimitiveLabel(p, false) ||
-          scene->items[k].label == scenePrimitiveLabel(p, true))
-        item = k;
-    }
+    for (std::size_t k = 0; k < scene->items.size() && !item; ++k)
+      if (scene->items[k].primitive == gltf::PrimitiveIndex{p.mesh, p.primitive}) item = k;
     const auto instance = std::find_if(scene->instances.begin(), scene->instances.end(),
                                        [&](const gltf::DrawInstance& d) { return item && d.item == *item; });
     if (!item || instance == scene->instances.end()) {
@@ -284,7 +277,8 @@ std::vector<Thumbnail> renderFile(const gltf::FileCheck& file, const gltf::Check
          {fs::absolute(file.file).string(), std::string("--screenshot"), png.string(), std::string("--size"),
           std::to_string(kThumbnailWidth) + "x" + std::to_string(kThumbnailHeight), std::string("--view"),
           std::string("error"), std::string("--camera"), framing->camera, std::string("--frame-box"),
-          numberList(framing->lo, framing->hi), std::string("--no-shadows")})
+          numberList(framing->lo, framing->hi), std::string("--no-shadows"), std::string("--reference"),
+          gltf::toString(gltf::Generator{options.method, options.weighting})})
       command.push_back(arg);
     if (!options.assetRoot.empty()) command.insert(command.end(), {"--asset-root", options.assetRoot.string()});
     const int status = runLogged(command, log);

@@ -20,7 +20,7 @@ Vec3 transformDirection(const std::array<float, 16>& m, const float* d) {
           m[2] * d[0] + m[6] * d[1] + m[10] * d[2]};
 }
 
-// The CornerProblem bits a check sets (scene.cpp computes them as check.cpp judges).
+// The CornerProblem bits a check sets (check's verdict per corner, tangent/verdict.hpp).
 std::uint8_t problemBits(std::optional<CheckId> check) {
   if (!check) return 0xff;
   switch (*check) {

@@ -16,7 +16,9 @@
 #include "accessors.hpp"
 #include "animation_rules.hpp"
 #include "asset.hpp"
+#include "check_primitive.hpp"
 #include "entry_point.hpp"
+#include "normals.hpp"
 #include "primitive.hpp"
 #include "tangent/gltf.hpp"
 #include "tangent/text.hpp"
@@ -236,7 +238,8 @@ glm::mat4 localTransform(const Json& node, bool usable) {
   return glm::translate(glm::mat4(1), glm::vec3(t[0], t[1], t[2])) * glm::mat4_cast(q) * glm::scale(glm::mat4(1), glm::vec3(s[0], s[1], s[2]));
 }
 
-// Reads what exists of POSITION, NORMAL and UVs; fills in flat normals and zero UVs.
+// Reads what exists of POSITION, NORMAL and UVs; zero UVs where there are none, no normals
+// where there is no NORMAL (cornerGeometry generates them).
 detail::PrimitiveGeometry readForDisplay(const detail::Asset& asset, const Json& primitive, const detail::PrimitiveNeeds& needs,
                                          const std::string& where, std::vector<std::string>& messages, bool& hasUvs) {
   const Json& attributes = primitive["attributes"];
@@ -262,10 +265,7 @@ detail::PrimitiveGeometry readForDisplay(const detail::Asset& asset, const Json&
     geometry.corners = detail::triangleList(geometry.mode, std::move(sequence));
   }
   if (hasNormal) geometry.normals = detail::readVectors(asset.model, detail::accessorOf(attributes, "NORMAL"), 3, geometry.vertexCount, where + ": NORMAL");
-  else {
-    messages.push_back(where + ": no NORMAL; shown with face normals");
-    geometry.normals.assign(geometry.vertexCount * 3, 0.0f);
-  }
+  else messages.push_back(where + ": no NORMAL; shown with face normals");  // cornerGeometry's, empty here
   if (hasUvs) geometry.uvs = detail::readVectors(asset.model, detail::accessorOf(attributes, "TEXCOORD_" + std::to_string(needs.texCoord)), 2, geometry.vertexCount, where);
   else {
     messages.push_back(where + ": no TEXCOORD_" + std::to_string(needs.texCoord) + "; tangents undefined, textures not applied");
@@ -346,51 +346,115 @@ void readDeformation(const detail::Asset& asset, const Json& primitive, std::siz
   }
 }
 
-DrawItem makeDrawItem(const detail::Asset& asset, const Json& primitive, const std::string& label, const SceneOptions& options,
+// A primitive's corners as the core sees them in bake and check: positions, the normal
+// texture's UVs and NORMAL where the file has it, else the flat normals withGeneratedNormals
+// gives (glTF 2.0 3.7.2.1; a triangle without area gets +Z), so that the fresh tangents are
+// check's reference.
+struct CornerGeometry {
+  std::vector<float> positions, normals, uvs;  // 3, 3 and 2 per corner
+};
+
+CornerGeometry cornerGeometry(const detail::PrimitiveGeometry& geometry) {
+  CornerGeometry out;
+  out.positions = perCorner(geometry.positions, 3, geometry.corners);
+  out.uvs = perCorner(geometry.uvs, 2, geometry.corners);
+  if (!geometry.normals.empty()) {
+    out.normals = perCorner(geometry.normals, 3, geometry.corners);
+    return out;
+  }
+  std::vector<std::uint32_t> source;
+  const detail::PrimitiveGeometry flat = detail::withGeneratedNormals(geometry, /*smooth=*/false, 0, source);
+  out.normals = perCorner(flat.normals, 3, flat.corners);
+  return out;
+}
+
+// The normals shaded with: the core's, except that a zero NORMAL takes its triangle's face
+// normal (display only: check and the fresh tangents see the zero, as bake does).
+std::vector<float> shadedNormals(const CornerGeometry& corners) {
+  std::vector<float> normals = corners.normals;
+  for (std::size_t t = 0; t < normals.size() / 9; ++t) {
+    const float* p = &corners.positions[9 * t];
+    const glm::vec3 face = glm::cross(glm::make_vec3(p + 3) - glm::make_vec3(p), glm::make_vec3(p + 6) - glm::make_vec3(p));
+    const float length = glm::length(face);
+    for (int k = 0; k < 3; ++k) {
+      float* n = &normals[9 * t + 3 * k];
+      if (n[0] == 0 && n[1] == 0 && n[2] == 0 && length > 0) std::copy_n(glm::value_ptr(face / length), 3, n);
+    }
+  }
+  return normals;
+}
+
+// The file's TANGENT per corner into item.tangents (which hold the computed ones on entry), or a
+// message why the computed ones stay.
+void readFileTangents(const detail::Asset& asset, const Json& primitive, const detail::PrimitiveNeeds& needs,
+                      const detail::PrimitiveGeometry& geometry, const std::string& where, const SceneOptions& options, DrawItem& item,
                       std::vector<std::string>& messages) {
+  const int tangentAccessor = detail::accessorOf(primitive["attributes"], "TANGENT");
+  if (tangentAccessor >= 0) {
+    const auto data = detail::readAccessor(asset.model, tangentAccessor, where + ": TANGENT");
+    if (data.type == TINYGLTF_TYPE_VEC4 && data.count == geometry.vertexCount) {
+      const std::vector<float> fileTangents = detail::toFloats(data);
+      item.tangentsFromFile = true;
+      for (std::size_t c = 0; c < geometry.corners.size(); ++c)
+        std::copy_n(&fileTangents[4 * geometry.corners[c]], 4, &item.tangents[4 * c]);
+    } else {
+      messages.push_back(where + ": TANGENT is not a VEC4 per vertex; computed tangents shown");
+    }
+  } else if (needs.hasNormalTexture) {
+    messages.push_back(where + ": no TANGENT; computed with " + toString(Generator{options.check.method, options.check.weighting}) +
+                       " at load");
+  }
+  if (options.negateFileW)
+    for (std::size_t c = 0; c < geometry.corners.size(); ++c) item.tangents[4 * c + 3] = -item.tangents[4 * c + 3];
+}
+
+// check's verdict on each corner (tangent/verdict.hpp), where check judged the primitive: the
+// error view's angle and problem bits.
+void applyVerdicts(const PrimitiveVerdicts* verdicts, const std::string& where, DrawItem& item, std::vector<std::string>& messages) {
+  const std::size_t corners = item.positions.size() / 3;
+  item.tangentErrorDegrees.assign(corners, 0.0f);
+  item.cornerProblems.assign(corners, 0);
+  if (!verdicts) return;
+  if (verdicts->corners.size() != corners) {
+    messages.push_back(where + ": check judged " + std::to_string(verdicts->corners.size()) + " corners, " +
+                       std::to_string(corners) + " are shown; no verdict shown");
+    return;
+  }
+  for (std::size_t c = 0; c < corners; ++c) {
+    item.tangentErrorDegrees[c] = verdicts->corners[c].referenceDegrees;
+    item.cornerProblems[c] = verdicts->corners[c].problems;
+  }
+}
+
+DrawItem makeDrawItem(const detail::Asset& asset, const Json& primitive, PrimitiveIndex index, const PrimitiveVerdicts* verdicts,
+                      const SceneOptions& options, std::vector<std::string>& messages) {
   const Json& doc = asset.json;
-  const std::string where = asset.path.string() + ": " + label;
   DrawItem item;
-  item.label = label;
+  item.primitive = index;
+  item.label = detail::primitiveLabel(doc, index.mesh, index.primitive);
+  const std::string where = asset.path.string() + ": " + item.label;
   item.material = primitive.value("material", -1);
   const detail::PrimitiveNeeds needs = detail::primitiveNeeds(doc, primitive, true);
   const detail::PrimitiveGeometry geometry = readForDisplay(asset, primitive, needs, where, messages, item.hasUvs);
   const std::size_t cornerCount = geometry.corners.size();
   const std::vector<std::uint32_t>& corners = geometry.corners;
+  CornerGeometry core = cornerGeometry(geometry);
 
-  // Flat normals where the file has none.
-  std::vector<float> normals = geometry.normals;
-  std::vector<float> cornerNormals(cornerCount * 3);
-  for (std::size_t t = 0; t < cornerCount / 3; ++t) {
-    const float* p[3] = {&geometry.positions[3 * corners[3 * t]], &geometry.positions[3 * corners[3 * t + 1]],
-                         &geometry.positions[3 * corners[3 * t + 2]]};
-    const glm::vec3 face = glm::cross(glm::make_vec3(p[1]) - glm::make_vec3(p[0]), glm::make_vec3(p[2]) - glm::make_vec3(p[0]));
-    const float length = glm::length(face);
-    for (int k = 0; k < 3; ++k) {
-      const float* n = &normals[3 * corners[3 * t + k]];
-      const bool useFace = n[0] == 0 && n[1] == 0 && n[2] == 0 && length > 0;
-      for (int i = 0; i < 3; ++i) cornerNormals[3 * (3 * t + k) + i] = useFace ? face[i] / length : n[i];
-    }
-  }
-
-  // Fresh tangents, per corner.
-  std::vector<float> positionsPerCorner(cornerCount * 3), uvsPerCorner(cornerCount * 2);
-  for (std::size_t c = 0; c < cornerCount; ++c) {
-    for (int i = 0; i < 3; ++i) positionsPerCorner[3 * c + i] = geometry.positions[3 * corners[c] + i];
-    for (int i = 0; i < 2; ++i) uvsPerCorner[2 * c + i] = geometry.uvs[2 * corners[c] + i];
-  }
+  // Fresh tangents, per corner, as check computes its reference.
   std::vector<std::uint32_t> identity(cornerCount);
   std::iota(identity.begin(), identity.end(), 0u);
-  Options core;
-  core.method = options.method;
+  Options coreOptions;
+  coreOptions.method = options.check.method;
+  coreOptions.weighting = options.check.weighting;
+  coreOptions.uvOrigin = kGltfUvOrigin;
   item.computedTangents.resize(cornerCount * 4);
   std::vector<FrameSource> sources(cornerCount);
   if (cornerCount > 0)
-    item.report = computeCornerTangents({positionsPerCorner, cornerNormals, uvsPerCorner, identity}, item.computedTangents, core, sources);
+    item.report = computeCornerTangents({core.positions, core.normals, core.uvs, identity}, item.computedTangents, coreOptions, sources);
 
-  item.positions = std::move(positionsPerCorner);
-  item.normals = cornerNormals;
-  item.uvNormal = uvsPerCorner;
+  item.normals = shadedNormals(core);
+  item.positions = std::move(core.positions);
+  item.uvNormal = std::move(core.uvs);
   // TEXCOORD_0 and _1 as stored, per corner: the viewer applies each texture's own set and
   // KHR_texture_transform (the normal texture's are in uvNormal already).
   for (int set = 0; set < 2; ++set) {
@@ -398,79 +462,16 @@ DrawItem makeDrawItem(const detail::Asset& asset, const Json& primitive, const s
     const int accessor = detail::accessorOf(primitive["attributes"], "TEXCOORD_" + std::to_string(set));
     if (accessor < 0) continue;
     const std::vector<float> uvs = detail::readVectors(asset.model, accessor, 2, geometry.vertexCount, where + ": TEXCOORD_" + std::to_string(set));
-    for (std::size_t c = 0; c < cornerCount; ++c)
-      for (int i = 0; i < 2; ++i) item.uvSets[set][2 * c + i] = uvs[2 * corners[c] + i];
+    item.uvSets[set] = perCorner(uvs, 2, corners);
   }
 
-  // The file's tangents, and what check would say of each corner.
-  const int tangentAccessor = detail::accessorOf(primitive["attributes"], "TANGENT");
+  // The file's tangents, and what check says of each corner.
   item.tangents = item.computedTangents;
-  item.tangentErrorDegrees.assign(cornerCount, 0.0f);
-  item.cornerProblems.assign(cornerCount, 0);
-  // check's limits for this primitive's component types (tangent_rules.hpp); float until known.
-  detail::StoredTangentLimits limits;
-  detail::ReferenceAllowance allowance;
-  if (tangentAccessor >= 0) {
-    const auto data = detail::readAccessor(asset.model, tangentAccessor, where + ": TANGENT");
-    const int normalAccessor = detail::accessorOf(primitive["attributes"], "NORMAL");
-    const auto tangentComponent = detail::storedComponentOf(data.componentType, data.normalized);
-    if (tangentComponent && normalAccessor >= 0 && item.hasUvs) {
-      const Json& normal = doc["accessors"][normalAccessor];
-      limits = detail::storedTangentLimits(*tangentComponent, detail::storedComponentOf(normal.value("componentType", 0), normal.value("normalized", false))
-                                                                  .value_or(detail::StoredComponent::float32));
-      allowance = detail::referenceAllowance(geometry, detail::inputRounding(asset, primitive, needs.texCoord, needs.hasNormalTexture));
-    }
-    if (data.type == TINYGLTF_TYPE_VEC4 && data.count == geometry.vertexCount) {
-      const std::vector<float> fileTangents = detail::toFloats(data);
-      item.tangentsFromFile = true;
-      for (std::size_t c = 0; c < cornerCount; ++c) {
-        for (int i = 0; i < 4; ++i) item.tangents[4 * c + i] = fileTangents[4 * corners[c] + i];
-        if (options.negateFileW) item.tangents[4 * c + 3] = -item.tangents[4 * c + 3];
-      }
-    } else {
-      messages.push_back(where + ": TANGENT is not a VEC4 per vertex; computed tangents shown");
-    }
-  } else if (needs.hasNormalTexture) {
-    messages.push_back(where + ": no TANGENT; computed with " + std::string(toString(options.method)) + " at load");
-  }
-  if (!item.tangentsFromFile && options.negateFileW) {
-    for (std::size_t c = 0; c < cornerCount; ++c) item.tangents[4 * c + 3] = -item.tangents[4 * c + 3];
-  }
-  for (std::size_t t = 0; t < cornerCount / 3; ++t) {
-    const double det = detail::uvAreaTimesTwo(&item.uvNormal[6 * t], &item.uvNormal[6 * t + 2], &item.uvNormal[6 * t + 4]);
-    const double area = detail::areaTimesTwo(&item.positions[9 * t], &item.positions[9 * t + 3], &item.positions[9 * t + 6]);
-    for (int k = 0; k < 3; ++k) {
-      const std::size_t c = 3 * t + k;
-      const float* stored = &item.tangents[4 * c];
-      const float* fresh = &item.computedTangents[4 * c];
-      std::uint8_t problems = 0;
-      if (!detail::finite4(stored)) {
-        item.cornerProblems[c] = kProblemNotFinite;
-        item.tangentErrorDegrees[c] = 180.0f;
-        continue;
-      }
-      if (!detail::unitOk(stored, limits)) problems |= kProblemNotUnit;
-      if (!detail::validW(stored[3])) problems |= kProblemBadW;
-      if (detail::offPlaneDegrees(stored, &item.normals[3 * c]) > detail::orthogonalLimitDegrees(limits, options.toleranceDegrees))
-        problems |= kProblemNotOrthogonal;
-      const float expected = detail::expectedW(det);
-      if (expected != 0 && area > 0 && detail::validW(stored[3]) && stored[3] != expected && allowance.decided(t))
-        problems |= kProblemHandedness;
-      const float inputAllowance = allowance.vertex(corners[c]);
-      const bool comparable = (sources[c] == FrameSource::computed || sources[c] == FrameSource::inherited) &&
-                              inputAllowance < detail::kUncomparableDegrees;
-      const double angle = detail::angleBetweenDegrees(stored, fresh);
-      item.tangentErrorDegrees[c] = comparable ? static_cast<float>(angle) : 0.0f;
-      if (comparable && detail::referenceFails(angle, stored[3], fresh[3],
-                                               detail::referenceLimitDegrees(limits, options.toleranceDegrees, inputAllowance)))
-        problems |= kProblemFarFromReference;
-      item.cornerProblems[c] = problems;
-    }
-  }
-  // Frames nothing defines (DrawItem::tangents): the fixed fallback, marked; after the checks
-  // above, which compare the computed frames with themselves there. The computed set is marked
-  // even where the file has TANGENT (it is what the compare view shows beside the file's); the
-  // file's own frames are kept as written.
+  readFileTangents(asset, primitive, needs, geometry, where, options, item, messages);
+  applyVerdicts(verdicts, where, item, messages);
+  // Frames nothing defines (DrawItem::tangents): the fixed fallback, marked. The computed set is
+  // marked even where the file has TANGENT (it is what the compare view shows beside the
+  // file's); the file's own frames are kept as written.
   markUndefinedFrames(sources, item.computedTangents);
   if (!item.tangentsFromFile) markUndefinedFrames(sources, item.tangents);
   readDeformation(asset, primitive, geometry.vertexCount, corners, where, item, messages);
@@ -479,19 +480,23 @@ DrawItem makeDrawItem(const detail::Asset& asset, const Json& primitive, const s
 
 // The items that a mesh's primitives become, read on the mesh's first instance and shared by the
 // rest: per primitive, an index into scene.items, or -1 where it is not shown (the message says
-// why, once).
-std::vector<std::int64_t> readMeshItems(const detail::Asset& asset, int meshIndex, const SceneOptions& options, Scene& scene) {
+// why, once). `verdicts`: check's, on every primitive it judged, in (mesh, primitive) order.
+std::vector<std::int64_t> readMeshItems(const detail::Asset& asset, int meshIndex, const std::vector<PrimitiveVerdicts>& verdicts,
+                                        const SceneOptions& options, Scene& scene) {
   const Json& doc = asset.json;
   const Json& primitives = doc["meshes"][meshIndex]["primitives"];
   std::vector<std::int64_t> items(primitives.size(), -1);
   for (std::size_t p = 0; p < primitives.size(); ++p) {
-    const std::string label = detail::primitiveLabel(doc, meshIndex, static_cast<int>(p));
+    const PrimitiveIndex index{meshIndex, static_cast<int>(p)};
     const detail::PrimitiveNeeds needs = detail::primitiveNeeds(doc, primitives[p], true);
     if (!needs.triangles) {
-      scene.messages.push_back(label + ": " + needs.why + "; not shown");
+      scene.messages.push_back(detail::primitiveLabel(doc, index.mesh, index.primitive) + ": " + needs.why + "; not shown");
       continue;
     }
-    DrawItem item = makeDrawItem(asset, primitives[p], label, options, scene.messages);
+    const auto judged = std::lower_bound(verdicts.begin(), verdicts.end(), index,
+                                         [](const PrimitiveVerdicts& v, const PrimitiveIndex& i) { return v.primitive < i; });
+    const bool found = judged != verdicts.end() && judged->primitive == index;
+    DrawItem item = makeDrawItem(asset, primitives[p], index, found ? &*judged : nullptr, options, scene.messages);
     glm::vec3 lo(std::numeric_limits<float>::max()), hi(-std::numeric_limits<float>::max());
     for (std::size_t c = 0; c < item.positions.size() / 3; ++c) {
       const glm::vec3 position = glm::make_vec3(&item.positions[3 * c]);
@@ -750,6 +755,20 @@ std::vector<int> rootNodes(const Json& doc) {
   return roots;
 }
 
+// check's verdict on every corner it judges (checkCorners with options.check): what the error
+// view shows. A file check cannot judge is still shown, without verdicts, and a message says why.
+std::vector<PrimitiveVerdicts> judgeCorners(const detail::Asset& asset, const std::filesystem::path& input, const SceneOptions& options,
+                                            std::vector<std::string>& messages) {
+  try {
+    return detail::checkCorners(asset, input, options.check);
+  } catch (const std::bad_alloc&) {
+    throw;
+  } catch (const std::exception& e) {
+    messages.push_back(std::string(e.what()) + "; tangent check cannot judge it, so the error view shows no verdict");
+    return {};
+  }
+}
+
 Scene flattenScene(const std::filesystem::path& input, const SceneOptions& options) {
   const detail::Asset asset = detail::loadAsset(input, options.assetRoot);
   const Json& doc = asset.json;
@@ -757,6 +776,8 @@ Scene flattenScene(const std::filesystem::path& input, const SceneOptions& optio
   scene.messages = asset.warnings;
   scene.images = readImages(asset);
   scene.materials = readMaterials(doc);
+  const std::vector<PrimitiveVerdicts> verdicts =
+      options.judge ? judgeCorners(asset, input, options, scene.messages) : std::vector<PrimitiveVerdicts>{};
 
   std::vector<Json> lightDefinitions;
   if (doc.contains("extensions") && doc["extensions"].contains("KHR_lights_punctual") &&
@@ -829,7 +850,7 @@ Scene flattenScene(const std::filesystem::path& input, const SceneOptions& optio
     if (!node.contains("mesh")) continue;
     const int meshIndex = node["mesh"].get<int>();
     if (meshIndex < 0 || meshIndex >= static_cast<int>(meshItems.size())) continue;
-    if (!meshItems[meshIndex]) meshItems[meshIndex] = readMeshItems(asset, meshIndex, options, scene);
+    if (!meshItems[meshIndex]) meshItems[meshIndex] = readMeshItems(asset, meshIndex, verdicts, options, scene);
     for (const std::int64_t item : *meshItems[meshIndex]) {
       if (item < 0) continue;
       DrawInstance instance;

@@ -1,8 +1,8 @@
 // SPDX-License-Identifier: MIT
 // A glTF file flattened for display: every triangle primitive the default scene shows, once,
 // as a draw item in object space, one vertex per corner, with the file's tangents (or computed
-// ones when the file has none), freshly computed tangents, and what `tangent check` would say of
-// each corner; and every node that shows it as an instance: which item, where. A mesh that
+// ones when the file has none), freshly computed tangents, and what `tangent check` says of each
+// corner (checkCorners, tangent/verdict.hpp); and every node that shows it as an instance: which item, where. A mesh that
 // 100,000 nodes share is read and its tangents computed once. Images are referenced, never
 // decoded here (the viewer decodes them).
 #pragma once
@@ -14,7 +14,9 @@
 #include <string>
 #include <vector>
 
+#include "tangent/check.hpp"
 #include "tangent/tangent.hpp"
+#include "tangent/verdict.hpp"
 
 namespace tangent::gltf {
 
@@ -86,16 +88,6 @@ inline void markUndefinedFrames(std::span<const FrameSource> sources, std::span<
     if (sources[c] == FrameSource::fixed) tangents[4 * c + 3] = kUndefinedTangentW;
 }
 
-// Bits of DrawItem::cornerProblems: the checks of `tangent check` that fail at a corner.
-enum CornerProblem : std::uint8_t {
-  kProblemNotFinite = 1,
-  kProblemNotUnit = 2,
-  kProblemBadW = 4,
-  kProblemNotOrthogonal = 8,
-  kProblemHandedness = 16,
-  kProblemFarFromReference = 32,
-};
-
 // A morph target of a primitive (glTF 2.0 3.7.2.2): deltas added, times the target's weight, to
 // the attributes. Per corner, as DrawItem's arrays; empty where the target lacks the attribute.
 struct MorphTarget {
@@ -106,7 +98,8 @@ struct MorphTarget {
 
 // One triangle primitive of a mesh, as every node that shows it draws it.
 struct DrawItem {
-  std::string label;  // "mesh 0 'Name' primitive 1"
+  PrimitiveIndex primitive;  // which primitive of the file: how check's findings and verdicts name it
+  std::string label;  // "mesh 0 'Name' primitive 1", for messages
   int material = -1;  // -1: default material
   // Of the finite positions; boundsMin > boundsMax when there is none.
   std::array<float, 3> boundsMin{0, 0, 0}, boundsMax{0, 0, 0};  // object space
@@ -116,15 +109,21 @@ struct DrawItem {
   std::vector<float> uvNormal;       // 2, the normal texture's UV set (transform applied)
   std::array<std::vector<float>, 2> uvSets;  // 2 each, TEXCOORD_0 and _1 as stored (zeros when absent)
   std::vector<float> tangents;       // 4, the file's TANGENT, or computed when it has none
-  std::vector<float> computedTangents;  // 4, freshly computed (options.method)
+  // 4, freshly computed as `tangent check` computes its reference (options.check's method and
+  // weighting; without NORMAL, from the flat normals bake and check generate)
+  std::vector<float> computedTangents;
   // In `computedTangents` (and in `tangents` where the file has no TANGENT), w =
   // kUndefinedTangentW at a corner whose frame nothing defines: no triangle with usable UVs
   // meets the corner's vertex or its neighbours (a primitive without TEXCOORD, a UV island of
   // zero area), so the core gave it a fixed axis perpendicular to the normal
   // (FrameSource::fixed). Shading treats it as +1; the views of the frame show their
   // "no tangent" colour. The file's TANGENT is kept as written.
-  std::vector<float> tangentErrorDegrees;  // angle between the two, per corner
-  std::vector<std::uint8_t> cornerProblems;  // CornerProblem bits
+  // Per corner, from check's verdict (CornerVerdict) with options.check: the angle between the
+  // file's tangent and check's reference where check compared them (agrees or disagrees), else
+  // 0; and the CornerProblem bits of the checks that fail there. Zero where check judges no
+  // corner (a primitive it skips, without TANGENT, or failing present or format).
+  std::vector<float> tangentErrorDegrees;
+  std::vector<std::uint8_t> cornerProblems;
   bool tangentsFromFile = false;
   bool hasUvs = false;
   Report report;  // of the fresh computation
@@ -184,10 +183,21 @@ struct Animation {
   float duration = 0;  // the last keyframe time of any sampler
 };
 
+// CheckOptions as the viewer judges by default: `all`, so that every primitive it shows with a
+// UV set is judged, as `tangent check --all` judges it.
+inline CheckOptions viewerCheckOptions() {
+  CheckOptions options;
+  options.all = true;
+  return options;
+}
+
 struct SceneOptions {
-  Method method = Method::mikktspace;
-  bool negateFileW = false;   // for tests and demonstrations: flip the file's handedness
-  double toleranceDegrees = 1.0;
+  // How the fresh tangents are computed (method, weighting) and each corner judged: check's
+  // options (its assetRoot is not read; assetRoot below is).
+  CheckOptions check = viewerCheckOptions();
+  bool judge = true;          // false: no verdicts (cornerProblems and tangentErrorDegrees zero), no check run
+  bool negateFileW = false;   // for tests and demonstrations: flip the file's handedness (shown,
+                              // not judged: the verdicts are check's, on the file as stored)
   std::filesystem::path assetRoot;  // folder buffer and image URIs may not leave (empty: the file's)
 };
 
