@@ -245,7 +245,12 @@ detail::PrimitiveGeometry readForDisplay(const detail::Asset& asset, const Json&
   const Json& attributes = primitive["attributes"];
   const bool hasNormal = detail::accessorOf(attributes, "NORMAL") >= 0;
   hasUvs = detail::accessorOf(attributes, "TEXCOORD_" + std::to_string(needs.texCoord)) >= 0;
-  if (hasNormal && hasUvs) return detail::readGeometry(asset, primitive, needs, where);
+  // As check and bake read it (the normal texture's KHR_texture_transform applied): without
+  // NORMAL, cornerGeometry generates the normals.
+  if (hasUvs) {
+    if (!hasNormal) messages.push_back(where + ": no NORMAL; shown with face normals");
+    return detail::readGeometry(asset, primitive, needs, where, /*normalOptional=*/true);
+  }
   // Fall back: positions and indices, then derived normals / zero UVs.
   const int position = detail::accessorOf(attributes, "POSITION");
   if (position < 0) throw InputError(where + ": has no POSITION attribute");
@@ -266,11 +271,8 @@ detail::PrimitiveGeometry readForDisplay(const detail::Asset& asset, const Json&
   }
   if (hasNormal) geometry.normals = detail::readVectors(asset.model, detail::accessorOf(attributes, "NORMAL"), 3, geometry.vertexCount, where + ": NORMAL");
   else messages.push_back(where + ": no NORMAL; shown with face normals");  // cornerGeometry's, empty here
-  if (hasUvs) geometry.uvs = detail::readVectors(asset.model, detail::accessorOf(attributes, "TEXCOORD_" + std::to_string(needs.texCoord)), 2, geometry.vertexCount, where);
-  else {
-    messages.push_back(where + ": no TEXCOORD_" + std::to_string(needs.texCoord) + "; tangents undefined, textures not applied");
-    geometry.uvs.assign(geometry.vertexCount * 2, 0.0f);
-  }
+  messages.push_back(where + ": no TEXCOORD_" + std::to_string(needs.texCoord) + "; tangents undefined, textures not applied");
+  geometry.uvs.assign(geometry.vertexCount * 2, 0.0f);
   return geometry;
 }
 
