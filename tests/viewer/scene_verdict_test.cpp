@@ -92,24 +92,30 @@ void expectViewerJudgesAsCheck(const fs::path& file, const CheckOptions& options
   }
 }
 
-// A baked UV sphere through gltfpack -vt 8: 8-bit UVs leave the UV orientation of many small
-// triangles undecided. check compares their corners on the angle alone where w agrees and calls
-// the others unresolved; the viewer's copy flagged those as far from the reference.
+// A baked UV sphere, and NormalTangentMirrorTest where ../shared/assets has it, through gltfpack
+// -vt 8: 8-bit UVs leave the UV orientation of many small triangles undecided. check compares
+// their corners on the angle alone where w agrees and calls the others unresolved; the viewer's
+// copy flagged one corner of NormalTangentMirrorTest's as far from the reference.
 TEST(SceneVerdict, AWUndecidedAfterRoundingIsJudgedAsCheckJudgesIt) {
   if (tangent::testing::runCommand("command -v gltfpack").exitCode != 0)
     TANGENT_SKIP_OR_FAIL("gltfpack is not installed (scripts/install-deps.sh): the rounded-UV case was not tested");
   TempDir dir;
-  const fs::path source =
-      tangent::testing::writeAsset(tangent::testing::meshAsset("sphere", tangent::testing::makeSphere(64, 64)), dir / "in", true);
-  const fs::path baked = dir / "sphere-baked.glb", packed = dir / "sphere-vt8.glb";
-  tangent::gltf::bakeFile(source, baked, {});
-  const auto pack = tangent::testing::runCommand("gltfpack -i '" + baked.string() + "' -o '" + packed.string() + "' -vt 8");
-  ASSERT_EQ(pack.exitCode, 0) << pack.output;
-  CornerCounts counts;
-  expectViewerJudgesAsCheck(packed, tangent::gltf::viewerCheckOptions(), counts);
-  EXPECT_GT(counts.wUndecided, 0u) << "no corner compared with its w undecided";
-  EXPECT_GT(counts.unresolved, 0u) << "no corner left unresolved";
-  EXPECT_GT(counts.compared, 0u);
+  std::vector<fs::path> sources = {
+      tangent::testing::writeAsset(tangent::testing::meshAsset("sphere", tangent::testing::makeSphere(64, 64)), dir / "in", true)};
+  if (const fs::path shared = tangent::testing::sharedAssets(); !shared.empty())
+    sources.push_back(shared / "NormalTangentMirrorTest.glb");
+  for (const fs::path& source : sources) {
+    SCOPED_TRACE(source.string());
+    const fs::path baked = dir / (source.stem().string() + "-baked.glb"), packed = dir / (source.stem().string() + "-vt8.glb");
+    tangent::gltf::bakeFile(source, baked, {});
+    const auto pack = tangent::testing::runCommand("gltfpack -i '" + baked.string() + "' -o '" + packed.string() + "' -vt 8");
+    ASSERT_EQ(pack.exitCode, 0) << pack.output;
+    CornerCounts counts;
+    expectViewerJudgesAsCheck(packed, tangent::gltf::viewerCheckOptions(), counts);
+    EXPECT_GT(counts.wUndecided, 0u) << "no corner compared with its w undecided";
+    EXPECT_GT(counts.unresolved, 0u) << "no corner left unresolved";
+    EXPECT_GT(counts.compared, 0u);
+  }
 }
 
 // A grid with a zero-area triangle (three points on a line, with UV area), baked with flat
