@@ -171,8 +171,8 @@ std::vector<glm::mat4> jointMatrices(const gltf::Skin& skin, const ScenePose& po
 
 namespace {
 
-// MikkTSpace tangents (4 per corner) for the corners' positions and normals and the item's
-// normal-map UVs, each corner its own vertex; `sources` says where each frame came from. The
+// Fresh tangents as the load computed the item's (DrawItem::freshOptions), 4 per corner, for
+// the corners' positions and normals and the item's normal-map UVs, each corner its own vertex; `sources` says where each frame came from. The
 // frames nothing defines are marked undefined as the load marks the item's computed set
 // (gltf::markUndefinedFrames), so a morph does not turn them into a frame the views would show.
 void freshCornerTangents(const gltf::DrawItem& item, std::span<const float> positions, std::span<const float> normals, std::vector<float>& fresh,
@@ -183,7 +183,7 @@ void freshCornerTangents(const gltf::DrawItem& item, std::span<const float> posi
   fresh.assign(corners * 4, 0.0f);
   sources.assign(corners, FrameSource{});
   if (corners == 0) return;
-  computeCornerTangents({positions, normals, item.uvNormal, identity}, fresh, Options{}, sources);
+  computeCornerTangents({positions, normals, item.uvNormal, identity}, fresh, item.freshOptions, sources);
   gltf::markUndefinedFrames(sources, fresh);
 }
 

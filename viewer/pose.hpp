@@ -47,7 +47,7 @@ struct DeformedCorners {
 };
 
 // How a compare set follows the morph targets: the file's TANGENT deltas added, as the file's
-// tangents get them (a set from a file), or MikkTSpace computed afresh on the morphed corners
+// tangents get them (a set from a file), or the fresh generator's (DrawItem::freshOptions) computed afresh on the morphed corners
 // (the set computed at load: fresh tangents of the shape drawn).
 enum class CompareMorph : std::uint8_t { addDeltas, recompute };
 
@@ -61,7 +61,7 @@ void deformItem(const gltf::DrawItem& item, std::span<const float> weights, std:
 bool morphs(const gltf::DrawItem& item, std::span<const float> weights);
 
 // For the error view on a morphing primitive: per corner, the angle in degrees between its
-// morphed tangent (the file's TANGENT plus its weighted deltas) and MikkTSpace tangents
+// morphed tangent (the file's TANGENT plus its weighted deltas) and the fresh generator's tangents
 // computed afresh on its morphed positions and normals (180 where the handedness differs, 0
 // where the fresh frame had no triangle of its own to come from). Skinning moves both alike, so
 // it is left out: this is what judges a file's TANGENT deltas.

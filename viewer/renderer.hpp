@@ -246,7 +246,7 @@ class Renderer {
     bool errorsCurrent = false;  // tangentErrorDegrees belong to the pose drawn
     std::vector<glm::mat4> joints;  // the skin's joint matrices at the pose (empty: unskinned)
     // The compare set is the fresh one and this pose morphs: until the split or compare-angle
-    // view shows it, it holds the file's deltas added, not MikkTSpace on the morphed corners.
+    // view shows it, it holds the file's deltas added, not the fresh generator on the morphed corners.
     bool compareStale = false;
   };
   // Packs a deformed instance's corners into its vertex buffer.

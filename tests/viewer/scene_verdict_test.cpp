@@ -56,8 +56,9 @@ void expectViewerJudgesAsCheck(const fs::path& file, const CheckOptions& options
     if (judged == verdicts.end()) {
       // present or format failed: no corner judged, none shown as judged.
       EXPECT_FALSE(p.findings.empty());
-      if (item != scene.items.end())
+      if (item != scene.items.end()) {
         EXPECT_TRUE(std::all_of(item->cornerProblems.begin(), item->cornerProblems.end(), [](auto bits) { return bits == 0; }));
+      }
       continue;
     }
     ASSERT_NE(item, scene.items.end());

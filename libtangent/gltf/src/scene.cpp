@@ -445,14 +445,14 @@ DrawItem makeDrawItem(const detail::Asset& asset, const Json& primitive, Primiti
   // Fresh tangents, per corner, as check computes its reference.
   std::vector<std::uint32_t> identity(cornerCount);
   std::iota(identity.begin(), identity.end(), 0u);
-  Options coreOptions;
-  coreOptions.method = options.check.method;
-  coreOptions.weighting = options.check.weighting;
-  coreOptions.uvOrigin = kGltfUvOrigin;
+  item.freshOptions.method = options.check.method;
+  item.freshOptions.weighting = options.check.weighting;
+  item.freshOptions.uvOrigin = kGltfUvOrigin;
   item.computedTangents.resize(cornerCount * 4);
   std::vector<FrameSource> sources(cornerCount);
   if (cornerCount > 0)
-    item.report = computeCornerTangents({core.positions, core.normals, core.uvs, identity}, item.computedTangents, coreOptions, sources);
+    item.report =
+        computeCornerTangents({core.positions, core.normals, core.uvs, identity}, item.computedTangents, item.freshOptions, sources);
 
   item.normals = shadedNormals(core);
   item.positions = std::move(core.positions);

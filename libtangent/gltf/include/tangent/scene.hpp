@@ -112,6 +112,7 @@ struct DrawItem {
   // 4, freshly computed as `tangent check` computes its reference (options.check's method and
   // weighting; without NORMAL, from the flat normals bake and check generate)
   std::vector<float> computedTangents;
+  Options freshOptions;  // what computedTangents were computed with: the viewer recomputes deformed corners alike
   // In `computedTangents` (and in `tangents` where the file has no TANGENT), w =
   // kUndefinedTangentW at a corner whose frame nothing defines: no triangle with usable UVs
   // meets the corner's vertex or its neighbours (a primitive without TEXCOORD, a UV island of
