@@ -2,9 +2,9 @@
 // A glTF file flattened for display: every triangle primitive the default scene shows, once,
 // as a draw item in object space, one vertex per corner, with the file's tangents (or computed
 // ones when the file has none), freshly computed tangents, and what `tangent check` says of each
-// corner (checkCorners, tangent/verdict.hpp); and every node that shows it as an instance: which item, where. A mesh that
-// 100,000 nodes share is read and its tangents computed once. Images are referenced, never
-// decoded here (the viewer decodes them).
+// corner (checkCorners, tangent/verdict.hpp); and every node that shows it as an instance: which
+// item, where. A mesh that 100,000 nodes share is read and its tangents computed once. Images are
+// referenced, never decoded here (the viewer decodes them).
 #pragma once
 
 #include <array>
@@ -112,7 +112,7 @@ struct DrawItem {
   // 4, freshly computed as `tangent check` computes its reference (options.check's method and
   // weighting; without NORMAL, from the flat normals bake and check generate)
   std::vector<float> computedTangents;
-  Options freshOptions;  // what computedTangents were computed with: the viewer recomputes deformed corners alike
+  Options freshOptions;  // what computedTangents were computed with; deformed corners are recomputed alike
   // In `computedTangents` (and in `tangents` where the file has no TANGENT), w =
   // kUndefinedTangentW at a corner whose frame nothing defines: no triangle with usable UVs
   // meets the corner's vertex or its neighbours (a primitive without TEXCOORD, a UV island of
@@ -196,7 +196,7 @@ struct SceneOptions {
   // How the fresh tangents are computed (method, weighting) and each corner judged: check's
   // options (its assetRoot is not read; assetRoot below is).
   CheckOptions check = viewerCheckOptions();
-  bool judge = true;          // false: no verdicts (cornerProblems and tangentErrorDegrees zero), no check run
+  bool judge = true;          // false: no check run, cornerProblems and tangentErrorDegrees zero
   bool negateFileW = false;   // for tests and demonstrations: flip the file's handedness (shown,
                               // not judged: the verdicts are check's, on the file as stored)
   std::filesystem::path assetRoot;  // folder buffer and image URIs may not leave (empty: the file's)
