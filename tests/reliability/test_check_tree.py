@@ -237,3 +237,14 @@ def test_progress_names_each_file_in_the_tree_on_a_terminal_only(tmp_path):
     assert [int(k) for k, _ in progress] == [0, 1, 2, 3]
     assert shown.stdout.rstrip(b"\r\n").endswith(b"\r\x1b[K"), shown.stdout[-200:]  # cleared at the end
     assert json.loads((tmp_path / "report.json").read_text())["summary"]["files"] == 4
+
+
+def test_quiet_check_shows_no_progress_on_a_terminal(tmp_path):
+    make_tree(tmp_path, broken=False)
+    if shutil.which("script") is None:
+        skip_or_fail("script(1) from util-linux is not installed")
+    shown = subprocess.run(["script", "-qec", f"'{CLI}' check tree --recursive -q --format json -o report.json", "/dev/null"],
+                           cwd=tmp_path, capture_output=True, timeout=120)
+    assert shown.returncode == 1, shown.stdout
+    assert re.findall(rb"\[\d/4\]", shown.stdout) == [], shown.stdout
+    assert json.loads((tmp_path / "report.json").read_text())["summary"]["files"] == 4

@@ -525,7 +525,7 @@ int checkCommand(const std::vector<std::string>& args) {
   std::vector<gltf::FileCheck> checks;
   RunTimes times;
   bool unreadable = false, findings = false;
-  ProgressLine progress(files.size() > 1 && ::isatty(STDERR_FILENO));
+  ProgressLine progress(!parsed.flag("quiet") && files.size() > 1 && ::isatty(STDERR_FILENO));
   for (std::size_t n = 0; n < files.size(); ++n) {
     const std::string input = files[n].path.string();
     progress.show(n, files.size(), files[n].shownAs);

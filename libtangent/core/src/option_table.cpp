@@ -70,6 +70,8 @@ constexpr Option kTable[] = {
    "would bake; a file given is checked as it is"},
   {"output", 'o', Kind::path, "", "", 0, 0, false, kCheck, kCli, "FILE",
    "write the report to FILE (\"-\": standard output, the default)"},
+  {"quiet", 'q', Kind::flag, "", "false", 0, 0, false, kCheck, kCli, "",
+   "no progress line on a terminal: the report, and errors on stderr, only"},
   {"only", 0, Kind::list, kCheckNames, "", 0, 0, false, kCheck, kCliPython, "CHECKS",
    "run only these checks (comma-separated on the command line)"},
   {"ignore", 0, Kind::list, kCheckNames, "", 0, 0, false, kCheck, kCliPython, "CHECKS", "leave these checks out"},
