@@ -634,6 +634,8 @@ FileCheck checkAsset(const std::filesystem::path& input, const CheckOptions& opt
       named = std::move(verdict);
       // A normal texture whose image holds no data (neither uri nor bufferView; the loader
       // warned): the tangents are checked all the same.
+      // Consumers of the frame on other UV sets: the one TANGENT cannot serve them all.
+      if (!pending[i].needs.otherFrames.empty()) named.warnings.push_back(pending[i].needs.otherFrames);
       const long image = normalTextureImage(doc, *pending[i].primitive);
       if (image >= 0 && doc["images"][image].is_object() && !doc["images"][image].contains("uri") && !doc["images"][image].contains("bufferView"))
         named.warnings.push_back(format("its normal texture's image, images[%ld], has neither uri nor bufferView (no image data)", image));
