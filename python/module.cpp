@@ -271,8 +271,9 @@ The GIL is released while the core runs.)");
       py::arg("input"), py::arg("output"),
       R"(Bake TANGENT into a glTF file, as `tangent bake INPUT -o OUTPUT` does.
 
-Computes TANGENT for every triangle primitive whose material has a normalTexture, from the
-UV set that texture uses, and writes OUTPUT (.glb, or .gltf + .bin). Inputs: .gltf, .glb,
+Computes TANGENT for every triangle primitive whose material reads the tangent frame (a
+normalTexture, a clearcoat normal texture, anisotropy), from the UV set that texture uses,
+and writes OUTPUT (.glb, or .gltf + .bin). Inputs: .gltf, .glb,
 .obj, .ply, .off. The input is never written to; the output is written atomically.
 
 Returns the dict `tangent bake --report` writes for this file.

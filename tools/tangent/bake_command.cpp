@@ -28,8 +28,9 @@ const char* kBakeUsageHead =
     "       tangent bake IN... (-o OUT | --out-dir DIR) [options]\n"
     "       tangent bake FOLDER... --recursive --out-dir DIR [options]\n"
     "\n"
-    "Computes TANGENT for every triangle primitive whose material has a normalTexture, from the\n"
-    "UV set that texture uses, and writes a new file. Inputs: .gltf, .glb, .obj, .ply, .off\n"
+    "Computes TANGENT for every triangle primitive whose material reads the tangent frame (a\n"
+    "normalTexture, a clearcoat normal texture, anisotropy), from the UV set that texture uses,\n"
+    "and writes a new file. Inputs: .gltf, .glb, .obj, .ply, .off\n"
     "(OBJ/PLY/OFF become .glb; they carry no materials, so all their meshes are baked).\n"
     "The input is never written to; outputs are written atomically.\n"
     "\n";
