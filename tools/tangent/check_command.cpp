@@ -305,14 +305,40 @@ const char* checkDescription(std::size_t index) {
 // results of level "warning" under one more rule.
 constexpr const char* kSarifWarningRule = "warning";
 
-nlohmann::ordered_json primitiveLocations(const nlohmann::ordered_json& artifact, const gltf::PrimitiveCheck& p) {
+// The line on which an element (a JSON pointer) starts in a .gltf's text, for the reports that
+// point code-review tools at lines (SARIF's region, GitLab's lines.begin); nullopt for a .glb or
+// a mesh file, whose elements are on no line of text. Each .gltf is read once.
+class ElementLines {
+ public:
+  std::optional<std::size_t> line(const std::string& file, const std::string& pointer) {
+    auto [text, unread] = texts_.try_emplace(file);
+    if (unread) {
+      std::string extension = std::filesystem::path(file).extension().string();
+      for (char& c : extension) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+      if (extension == ".gltf") {
+        std::ifstream in(file, std::ios::binary);
+        text->second.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+      }
+    }
+    return text->second.empty() ? std::nullopt : text::jsonPointerLine(text->second, pointer);
+  }
+
+ private:
+  std::map<std::string, std::string> texts_;
+};
+
+nlohmann::ordered_json primitiveLocations(const nlohmann::ordered_json& artifact, const gltf::PrimitiveCheck& p,
+                                          std::optional<std::size_t> line) {
   using Json = nlohmann::ordered_json;
-  return Json::array({{{"physicalLocation", {{"artifactLocation", artifact}}},
+  Json physical = {{"artifactLocation", artifact}};
+  if (line) physical["region"] = {{"startLine", *line}};
+  return Json::array({{{"physicalLocation", physical},
                        {"logicalLocations", Json::array({{{"name", primitiveName(p)}, {"fullyQualifiedName", primitivePointer(p)}, {"kind", "object"}}})}}});
 }
 
 void writeSarif(std::ostream& out, const std::vector<gltf::FileCheck>& checks, const gltf::CheckOptions& options) {
   using Json = nlohmann::ordered_json;
+  ElementLines lines;
   Json rules = Json::array();
   for (std::size_t i = 0; i < gltf::kCheckCount; ++i)
     rules.push_back({{"id", gltf::kCheckNames[i]}, {"name", gltf::kCheckNames[i]}, {"shortDescription", {{"text", checkDescription(i)}}},
@@ -347,7 +373,7 @@ void writeSarif(std::ostream& out, const std::vector<gltf::FileCheck>& checks, c
              {"ruleIndex", ruleIndex},
              {"level", "error"},
              {"message", {{"text", primitiveName(p) + ": " + findingSummary(f)}}},
-             {"locations", primitiveLocations(artifact, p)},
+             {"locations", primitiveLocations(artifact, p, lines.line(file.file, primitivePointer(p)))},
              {"properties", properties}});
       }
       for (const auto& warning : p.warnings)
@@ -355,7 +381,7 @@ void writeSarif(std::ostream& out, const std::vector<gltf::FileCheck>& checks, c
                            {"ruleIndex", warningRule},
                            {"level", "warning"},
                            {"message", {{"text", primitiveName(p) + ": " + warning}}},
-                           {"locations", primitiveLocations(artifact, p)}});
+                           {"locations", primitiveLocations(artifact, p, lines.line(file.file, primitivePointer(p)))}});
     }
   }
   bool unreadable = false;
@@ -377,8 +403,8 @@ void writeSarif(std::ostream& out, const std::vector<gltf::FileCheck>& checks, c
 
 // GitLab code quality (artifacts:reports:codequality, a subset of the Code Climate issue spec):
 // a JSON array of issues with description, check_name, fingerprint, severity and location.path
-// with location.lines.begin. A glTF element is no line of text: lines.begin is 1 and the
-// description names the element by its JSON pointer. GitLab matches an issue between the target
+// with location.lines.begin: in a .gltf the line its primitive starts on, in a .glb (whose
+// elements are on no line of text) 1; the description names the element by its JSON pointer. GitLab matches an issue between the target
 // branch and the merge request by its fingerprint, the SHA-256 of the file, the element and the
 // rule: the same while the finding stays, whatever its counts; unique within a report.
 std::string codeClimatePath(const std::string& file) {
@@ -399,6 +425,7 @@ void writeCodeClimate(std::ostream& out, const std::vector<gltf::FileCheck>& che
   using Json = nlohmann::ordered_json;
   Json issues = Json::array();
   std::map<std::string, std::size_t> seen;  // fingerprint input -> earlier issues with it
+  ElementLines lines;
   // `kind` tells a primitive's warnings apart (they share one rule).
   auto add = [&](const gltf::FileCheck& file, const std::string& element, const std::string& rule, const char* severity,
                  const std::string& description, const std::string& kind = {}) {
@@ -410,7 +437,7 @@ void writeCodeClimate(std::ostream& out, const std::vector<gltf::FileCheck>& che
                       {"check_name", "tangent-check/" + rule},
                       {"fingerprint", gltf::sha256Hex(identity)},
                       {"severity", severity},
-                      {"location", {{"path", path}, {"lines", {{"begin", 1}}}}}});
+                      {"location", {{"path", path}, {"lines", {{"begin", lines.line(file.file, element).value_or(1)}}}}}});
   };
   for (const auto& file : checks) {
     if (!file.error.empty()) add(file, "", "unreadable", "blocker", "tangent check: unreadable: " + file.error);
