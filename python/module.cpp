@@ -305,6 +305,37 @@ Returns the list `tangent bake --recursive --report` writes: per file
 "input", "output", "status" ("ok" | "failed"), "unchanged", "digest", "error" when failed,
 and the bake report when baked in this run.)");
 
+  m.def(
+      "check_tree",
+      [](const std::filesystem::path& folder, const py::kwargs& kwargs) {
+        tangent::gltf::CheckOptions options;
+        applyKeywords(kwargs, options::kCheck, "check_tree", [&](const options::Option& option, const std::string& value) {
+          tangent::gltf::applyCheckOption(options, option, value);
+        });
+        nlohmann::ordered_json files = nlohmann::ordered_json::array();
+        {
+          py::gil_scoped_release released;
+          for (const std::filesystem::path& input : tangent::gltf::findInputs(folder)) {
+            try {
+              files.push_back(tangent::gltf::toJson(tangent::gltf::checkFile(input, options)));
+            } catch (const tangent::gltf::InputError& e) {  // one unreadable file: named, the rest still checked
+              tangent::gltf::FileCheck unreadable;
+              unreadable.file = input.string();
+              unreadable.error = e.what();
+              files.push_back(tangent::gltf::toJson(unreadable));
+            }
+          }
+        }
+        return toPython(files);
+      },
+      py::arg("folder"),
+      R"(Check every .gltf, .glb, .obj, .ply and .off under a folder, as `tangent check FOLDER --recursive
+--format json` does (the files bake_tree() would bake, sorted).
+
+Returns the report's "files" list: one entry per file as check() returns it; a file that
+cannot be read is an entry with "status" "error" and its "error", and the others are checked.
+Raises libtangent.InputError where the folder cannot be listed.)");
+
   m.def("option_table", &optionTable,
         R"(Every option of compute_tangents(), bake(), bake_tree() and check(), of the `tangent` command and
 of the npm package, from the one table they are all made from (tangent/option_table.hpp): a list of

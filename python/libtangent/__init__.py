@@ -2,7 +2,7 @@
 """libtangent: the compiled module libtangent._libtangent (python/module.cpp), re-exported.
 Type checkers read __init__.pyi beside this file (py.typed marks the package as typed).
 
-compute_tangents(), bake(), bake_tree() and check() take their keyword arguments from the option
+compute_tangents(), bake(), bake_tree(), check() and check_tree() take their keyword arguments from the option
 table every front end shares (option_table(); the `tangent` command's options, spelled
 snake_case): their signatures and the "Options" part of their docstrings are made from it here."""
 import functools
@@ -60,3 +60,4 @@ compute_tangents = _with_table_options(_libtangent.compute_tangents, "compute_ta
 bake = _with_table_options(_libtangent.bake, "bake", ["input", "output"])
 bake_tree = _with_table_options(_libtangent.bake_tree, "bake_tree", ["input_folder", "output_folder"])
 check = _with_table_options(_libtangent.check, "check", ["path"])
+check_tree = _with_table_options(_libtangent.check_tree, "check", ["folder"])

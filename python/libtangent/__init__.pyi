@@ -67,6 +67,23 @@ def check(
     identify: bool = False,
 ) -> dict[str, Any]: ...
 
+def check_tree(
+    folder: PathLike,
+    *,
+    only: Optional[Sequence[str]] = None,
+    ignore: Optional[Sequence[str]] = None,
+    tolerance: float = 1.0,
+    orthogonal_tolerance: Optional[float] = None,
+    reference_tolerance: Optional[float] = None,
+    min_coverage: float = 0.5,
+    allow_missing: bool = False,
+    method: Literal['mikktspace', 'lengyel'] = 'mikktspace',
+    reference: Literal['mikktspace', 'lengyel/angle', 'lengyel/area', 'lengyel/uniform', 'flat', 'meshopt', 'lengyel'] = 'mikktspace',
+    all: bool = False,
+    asset_root: Optional[PathLike] = None,
+    identify: bool = False,
+) -> list[dict[str, Any]]: ...
+
 def bake_tree(
     input_folder: PathLike,
     output_folder: PathLike,

@@ -19,7 +19,8 @@ SOURCE = pathlib.Path(os.environ.get("TANGENT_SOURCE_DIR", pathlib.Path(__file__
 CLI = os.environ.get("TANGENT_CLI")
 TABLE = libtangent.option_table()
 FUNCTIONS = {"compute_tangents": libtangent.compute_tangents, "bake": libtangent.bake,
-             "bake_tree": libtangent.bake_tree, "check": libtangent.check}
+             "bake_tree": libtangent.bake_tree, "check": libtangent.check, "check_tree": libtangent.check_tree}
+COMMAND_OF = {"check_tree": "check"}  # check_tree() takes check()'s options
 DEMO = SOURCE / "data" / "demo" / "demo.gltf"
 
 
@@ -64,8 +65,8 @@ def test_cli_help_lists_the_tables_options(command, commands):
 def test_python_signatures_are_the_tables(name):
     parameters = inspect.signature(FUNCTIONS[name]).parameters.values()
     keywords = {p.name: p.default for p in parameters if p.kind == inspect.Parameter.KEYWORD_ONLY}
-    assert keywords == {row["python"]: row["default"] for row in rows(name, "python")}
-    for row in rows(name, "python"):
+    assert keywords == {row["python"]: row["default"] for row in rows(COMMAND_OF.get(name, name), "python")}
+    for row in rows(COMMAND_OF.get(name, name), "python"):
         assert row["python"] + ":" in FUNCTIONS[name].__doc__, (name, row["python"])
 
 
@@ -91,7 +92,7 @@ def test_stubs_are_the_tables(name):
     [function] = [node for node in tree.body if isinstance(node, ast.FunctionDef) and node.name == name]
     stubbed = {arg.arg: (ast.unparse(arg.annotation), ast.literal_eval(default))
                for arg, default in zip(function.args.kwonlyargs, function.args.kw_defaults)}
-    expected = {row["python"]: (stub_annotation(row), row["default"]) for row in rows(name, "python")}
+    expected = {row["python"]: (stub_annotation(row), row["default"]) for row in rows(COMMAND_OF.get(name, name), "python")}
     lines = "\n".join(f"    {key}: {annotation} = {default!r}," for key, (annotation, default) in expected.items())
     assert stubbed == expected, f"__init__.pyi's {name}() should take, after `*,`:\n{lines}"
 
