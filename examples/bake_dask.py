@@ -66,9 +66,18 @@ def main(argv=None):
     parser.add_argument("--workers", type=int, default=2)
     parser.add_argument("--scheduler", help="address of a running Dask scheduler (default: a LocalCluster)")
     parser.add_argument("--report", help="write the per-file report (JSON) here")
-    parser.add_argument("--method", default="mikktspace")
-    parser.add_argument("--all", action="store_true")
-    parser.add_argument("--force", action="store_true")
+    parser.add_argument("--force", action="store_true", help="bake everything, whatever the manifest says")
+    # bake()'s options, from the option table the `tangent` command's come from (threads: each
+    # worker runs one thread).
+    baked = [row for row in libtangent.option_table()
+             if "bake" in row["commands"] and "python" in row["front_ends"] and row["python"] != "threads"]
+    for row in baked:
+        if row["kind"] == "flag":
+            parser.add_argument("--" + row["name"], action="store_true", help=row["help"])
+        else:
+            kind = {"integer": int, "number": float}.get(row["kind"], str)
+            parser.add_argument("--" + row["name"], type=kind, choices=row["choices"] or None, default=row["default"],
+                                help=row["help"])
     args = parser.parse_args(argv)
 
     from dask.distributed import Client, LocalCluster  # Debian: python3-distributed
@@ -76,10 +85,9 @@ def main(argv=None):
     input_folder = pathlib.Path(args.input_folder).resolve()
     output_folder = pathlib.Path(args.output_folder).resolve()
     output_folder.mkdir(parents=True, exist_ok=True)
-    options = {"method": args.method, "all": args.all}
-    # The manifest's options record: what changes outputs (threads never do).
-    manifest_options = {"method": args.method, "weighting": "angle", "all": args.all, "overwrite": False, "assetRoot": "",
-                        "tangentFormat": "float", "normals": "flat", "keepExternalImages": False}
+    options = {row["python"]: getattr(args, row["python"]) for row in baked}
+    # The manifest's options record, as bake_tree() writes it: what changes outputs.
+    manifest_options = libtangent.manifest_options(**options)
     manifest_path = output_folder / MANIFEST
     previous = {}
     if manifest_path.exists():

@@ -8,7 +8,6 @@
 #include <pybind11/stl.h>
 #include <pybind11/stl/filesystem.h>
 
-#include <bitset>
 #include <filesystem>
 #include <optional>
 #include <string>
@@ -16,6 +15,7 @@
 #include "tangent/batch.hpp"
 #include "tangent/check.hpp"
 #include "tangent/gltf.hpp"
+#include "tangent/option_table.hpp"
 #include "tangent/tangent.hpp"
 #include "tangent/text.hpp"
 
@@ -28,23 +28,6 @@ py::object toPython(const nlohmann::ordered_json& json) { return py::module_::im
 
 [[noreturn]] void badArgument(const std::string& argument, const std::string& what) {
   throw py::value_error("libtangent: " + argument + ": " + what);
-}
-
-tangent::Method method(const std::string& name) {
-  const std::optional<tangent::Method> m = tangent::parseMethod(name);
-  if (!m) badArgument("method", "'" + name + "' is not mikktspace, lengyel, flat or meshopt");
-  return *m;
-}
-
-tangent::Weighting weighting(const std::string& name) {
-  const std::optional<tangent::Weighting> w = tangent::parseWeighting(name);
-  if (!w) badArgument("weighting", "'" + name + "' is not angle, area or uniform");
-  return *w;
-}
-
-unsigned threadCount(int threads) {
-  if (threads < 0 || threads > 256) badArgument("threads", std::to_string(threads) + " is not 0 (all) to 256");
-  return static_cast<unsigned>(threads);
 }
 
 // A float array of shape (n, width) or (n * width,), as float32 C-contiguous (converted only
@@ -80,41 +63,118 @@ py::array_t<std::uint32_t, py::array::c_style> indexArray(const py::handle& obje
   return py::array_t<std::uint32_t, py::array::c_style | py::array::forcecast>::ensure(any);
 }
 
-// The options of `tangent bake`, from bake()'s and bake_tree()'s keyword arguments.
-struct BakeKeywords {
-  std::string method, weighting;
-  int threads = 0;
-  bool all = false, overwrite = false;
-  std::optional<std::filesystem::path> assetRoot;
-  std::string tangentFormat, normals;
-  double creaseAngle = 60;
-  bool keepExternal = false;
-};
+namespace options = tangent::options;
 
-tangent::gltf::BakeOptions bakeOptions(const BakeKeywords& k) {
-  tangent::gltf::BakeOptions options;
-  options.tangents.method = method(k.method);
-  options.tangents.weighting = weighting(k.weighting);
-  options.tangents.threads = threadCount(k.threads);
-  options.all = k.all;
-  options.overwrite = k.overwrite;
-  if (k.assetRoot) options.assetRoot = *k.assetRoot;
-  const auto format = tangent::gltf::parseTangentFormat(k.tangentFormat);
-  if (!format) badArgument("tangent_format", "'" + k.tangentFormat + "' is not float, short or byte");
-  options.tangentFormat = *format;
-  const auto normals = tangent::gltf::parseNormalsMode(k.normals);
-  if (!normals) badArgument("normals", "'" + k.normals + "' is not flat, smooth or keep");
-  options.normals = *normals;
-  if (!(k.creaseAngle >= 0 && k.creaseAngle <= 180))
-    badArgument("crease_angle", std::to_string(k.creaseAngle) + " is not degrees in [0, 180]");
-  options.creaseAngleDegrees = k.creaseAngle;
-  options.keepExternalImages = k.keepExternal;
-  return options;
+// A keyword argument's value as the option table's text ("true", "60", "unit,w"), checked
+// against the table; ValueError (TypeError for a wrong type) naming the argument otherwise.
+std::string optionText(const options::Option& option, const py::handle& value) {
+  using options::Kind;
+  const std::string name = options::pythonName(option.name);
+  const bool isBool = py::isinstance<py::bool_>(value);
+  std::string text;
+  switch (option.kind) {
+    case Kind::flag:
+      if (!isBool) throw py::type_error("libtangent: " + name + ": must be True or False");
+      text = value.cast<bool>() ? "true" : "false";
+      break;
+    case Kind::choice:
+    case Kind::text:
+      if (!py::isinstance<py::str>(value)) throw py::type_error("libtangent: " + name + ": must be a str");
+      text = value.cast<std::string>();
+      break;
+    case Kind::integer:
+      if (isBool || !py::isinstance<py::int_>(value)) throw py::type_error("libtangent: " + name + ": must be an int");
+      text = py::str(value).cast<std::string>();
+      break;
+    case Kind::number:
+      if (isBool || !(py::isinstance<py::int_>(value) || py::isinstance<py::float_>(value)))
+        throw py::type_error("libtangent: " + name + ": must be a number");
+      text = py::repr(py::float_(py::reinterpret_borrow<py::object>(value))).cast<std::string>();
+      break;
+    case Kind::path:
+      text = py::str(py::module_::import("os").attr("fspath")(value)).cast<std::string>();
+      break;
+    case Kind::list:
+      if (py::isinstance<py::str>(value)) throw py::type_error("libtangent: " + name + ": must be a list of names, not a str");
+      for (const py::handle item : value) {
+        if (!py::isinstance<py::str>(item)) throw py::type_error("libtangent: " + name + ": must be a list of str");
+        text += (text.empty() ? "" : ",") + item.cast<std::string>();
+      }
+      break;
+  }
+  if (const auto why = options::checkValue(option, text)) badArgument(name, *why);
+  return text;
+}
+
+// Applies the keyword arguments of `function` (the options of `command` in the table) through
+// `apply(option, text)`, in the table's order (so that, as documented, reference overrides
+// method and orthogonal_tolerance overrides tolerance); None is "not given". An argument the
+// table does not give `function` is a TypeError, as Python's own.
+template <typename Apply>
+void applyKeywords(const py::kwargs& kwargs, unsigned command, const char* function, Apply apply) {
+  for (const auto& item : kwargs) {
+    std::string name = py::str(item.first).cast<std::string>();
+    for (char& c : name) c = c == '_' ? '-' : c;
+    if (!options::find(name, command, options::kPython))
+      throw py::type_error(std::string(function) + "() got an unexpected keyword argument '" + py::str(item.first).cast<std::string>() + "'");
+  }
+  for (const options::Option& option : options::table()) {
+    if (!(option.commands & command) || !(option.frontEnds & options::kPython)) continue;
+    const std::string name = options::pythonName(option.name);
+    if (!kwargs.contains(name) || kwargs[name.c_str()].is_none()) continue;
+    apply(option, optionText(option, kwargs[name.c_str()]));
+  }
+}
+
+// The table as Python sees it (libtangent.option_table()): what __init__.py builds the
+// signatures and docstrings from, and what tests compare the CLI, the stubs and npm with.
+py::list optionTable() {
+  using options::Kind;
+  py::list rows;
+  const std::pair<unsigned, const char*> commands[] = {
+      {options::kArrays, "compute_tangents"}, {options::kBake, "bake"}, {options::kBakeTree, "bake_tree"}, {options::kCheck, "check"}};
+  const std::pair<unsigned, const char*> frontEnds[] = {{options::kCommandLine, "cli"}, {options::kPython, "python"}, {options::kNpm, "npm"}};
+  const char* kinds[] = {"flag", "choice", "integer", "number", "path", "text", "list"};
+  for (const options::Option& option : options::table()) {
+    py::dict row;
+    row["name"] = std::string(option.name);
+    row["python"] = options::pythonName(option.name);
+    row["npm"] = options::npmName(option.name);
+    row["short"] = option.shortName ? std::string(1, option.shortName) : std::string();
+    row["kind"] = kinds[static_cast<int>(option.kind)];
+    py::list choices;
+    for (std::string_view rest = option.choices; !rest.empty();) {
+      const std::size_t bar = rest.find('|');
+      choices.append(std::string(rest.substr(0, bar)));
+      rest = bar == std::string_view::npos ? std::string_view() : rest.substr(bar + 1);
+    }
+    row["choices"] = choices;
+    const std::string text(option.defaultValue);
+    py::object defaultValue = py::none();
+    if (option.kind == Kind::flag) defaultValue = py::bool_(text == "true");
+    else if (!text.empty() && option.kind == Kind::integer) defaultValue = py::int_(std::stoll(text));
+    else if (!text.empty() && option.kind == Kind::number) defaultValue = py::float_(std::stod(text));
+    else if (!text.empty()) defaultValue = py::str(text);
+    row["default"] = defaultValue;
+    row["min"] = option.min;
+    row["max"] = option.max;
+    row["min_open"] = option.minOpen;
+    py::list in, at;
+    for (const auto& [bit, name] : commands)
+      if (option.commands & bit) in.append(name);
+    for (const auto& [bit, name] : frontEnds)
+      if (option.frontEnds & bit) at.append(name);
+    row["commands"] = in;
+    row["front_ends"] = at;
+    row["value_name"] = std::string(option.valueName);
+    row["help"] = std::string(option.help);
+    rows.append(row);
+  }
+  return rows;
 }
 
 py::dict computeTangents(const py::handle& positionsIn, const py::handle& normalsIn, const py::handle& uvsIn,
-                         const py::handle& indicesIn, const std::string& methodName, const std::string& weightingName,
-                         int threads, const std::string& uvOrigin) {
+                         const py::handle& indicesIn, const py::kwargs& kwargs) {
   const auto positions = floatRows(positionsIn, "positions", 3);
   const auto normals = floatRows(normalsIn, "normals", 3);
   const auto uvs = floatRows(uvsIn, "uvs", 2);
@@ -125,12 +185,8 @@ py::dict computeTangents(const py::handle& positionsIn, const py::handle& normal
   if (static_cast<std::size_t>(uvs.size() / 2) != vertices)
     badArgument("uvs", std::to_string(uvs.size() / 2) + " UVs for " + std::to_string(vertices) + " positions");
   tangent::Options options;
-  options.method = method(methodName);
-  options.weighting = weighting(weightingName);
-  options.threads = threadCount(threads);
-  const std::optional<tangent::UvOrigin> origin = tangent::parseUvOrigin(uvOrigin);  // the core's names
-  if (!origin) badArgument("uv_origin", "'" + uvOrigin + "' is not top-left (glTF) or bottom-left (OpenGL, OBJ)");
-  options.uvOrigin = *origin;
+  applyKeywords(kwargs, options::kArrays, "compute_tangents",
+                [&](const options::Option& option, const std::string& value) { options::applyOption(options, option, value); });
 
   const std::size_t corners = static_cast<std::size_t>(indices.size());
   py::array_t<float> tangents({static_cast<py::ssize_t>(corners), py::ssize_t(4)});
@@ -185,18 +241,11 @@ PYBIND11_MODULE(_libtangent, m) {
   });
 
   m.def("compute_tangents", &computeTangents, py::arg("positions"), py::arg("normals"), py::arg("uvs"), py::arg("indices"),
-        py::kw_only(), py::arg("method") = "mikktspace", py::arg("weighting") = "angle", py::arg("threads") = 0,
-        py::arg("uv_origin") = "top-left",
         R"(Tangent frames per corner of an indexed triangle list.
 
 positions, normals: float arrays of shape (n, 3) or (3n,); uvs: (n, 2) or (2n,);
 indices: integer array of shape (t, 3) or (3t,), each below n. float32 and uint32 C-contiguous
 arrays are used without copying; others are converted.
-
-method: mikktspace (default; what normal-map bakers use) | lengyel | flat | meshopt
-weighting: angle (default) | area | uniform   (lengyel only)
-threads: worker threads, 0 = all hardware threads; the result never depends on it
-uv_origin: top-left (glTF, default) | bottom-left (OpenGL, OBJ): decides the sign of w
 
 Returns a dict: "tangents" float32 (3t, 4): x, y, z, w per corner, unit, w = +-1;
 "corner_vertex" uint32 (3t,): the vertex each corner uses after splitting (input vertex v
@@ -207,11 +256,11 @@ The GIL is released while the core runs.)");
 
   m.def(
       "bake",
-      [](const std::filesystem::path& input, const std::filesystem::path& output, const std::string& methodName,
-         const std::string& weightingName, int threads, bool all, bool overwrite, std::optional<std::filesystem::path> assetRoot,
-         const std::string& tangentFormat, const std::string& normals, double creaseAngle, bool keepExternal) {
-        const tangent::gltf::BakeOptions options = bakeOptions(
-            {methodName, weightingName, threads, all, overwrite, assetRoot, tangentFormat, normals, creaseAngle, keepExternal});
+      [](const std::filesystem::path& input, const std::filesystem::path& output, const py::kwargs& kwargs) {
+        tangent::gltf::BakeOptions options;
+        applyKeywords(kwargs, options::kBake, "bake", [&](const options::Option& option, const std::string& value) {
+          tangent::gltf::applyBakeOption(options, option, value);
+        });
         nlohmann::ordered_json entry = {{"input", input.string()}, {"output", output.string()}, {"status", "ok"}};
         {
           py::gil_scoped_release released;
@@ -219,43 +268,24 @@ The GIL is released while the core runs.)");
         }
         return toPython(entry);
       },
-      py::arg("input"), py::arg("output"), py::kw_only(), py::arg("method") = "mikktspace", py::arg("weighting") = "angle",
-      py::arg("threads") = 0, py::arg("all") = false, py::arg("overwrite") = false, py::arg("asset_root") = py::none(),
-      py::arg("tangent_format") = "float", py::arg("normals") = "flat", py::arg("crease_angle") = 60.0,
-      py::arg("keep_external") = false,
+      py::arg("input"), py::arg("output"),
       R"(Bake TANGENT into a glTF file, as `tangent bake INPUT -o OUTPUT` does.
 
-Computes TANGENT for every triangle primitive whose material has a normalTexture, from the
-UV set that texture uses, and writes OUTPUT (.glb, or .gltf + .bin). Inputs: .gltf, .glb,
+Computes TANGENT for every triangle primitive whose material reads the tangent frame (a
+normalTexture, a clearcoat normal texture, anisotropy), from the UV set that texture uses,
+and writes OUTPUT (.glb, or .gltf + .bin). Inputs: .gltf, .glb,
 .obj, .ply, .off. The input is never written to; the output is written atomically.
-
-method: mikktspace (default) | lengyel | flat | meshopt
-weighting: angle (default) | area | uniform   (lengyel only)
-threads: worker threads (0 = all); the output never depends on it
-all: bake every triangle primitive, normal texture or not (TEXCOORD_0)
-overwrite: recompute valid existing TANGENT too
-asset_root: folder buffer and image URIs may not leave (default: the input's folder)
-tangent_format: float (default) | short | byte: TANGENT as float or normalized SHORT/BYTE
-  (KHR_mesh_quantization)
-normals: flat (default) | smooth | keep: for a primitive without NORMAL, write flat normals
-  (what the specification requires of clients) or smooth ones, or keep it without (and skip it)
-crease_angle: with normals="smooth": triangles meeting at more than this many degrees stay
-  sharp (default 60, in [0, 180])
-keep_external: a .glb output keeps the input's image files external (copied beside it) instead
-  of embedding them (the default: one self-contained file)
 
 Returns the dict `tangent bake --report` writes for this file.
 Raises libtangent.InputError with the CLI's message on a file it refuses.)");
 
   m.def(
       "bake_tree",
-      [](const std::filesystem::path& inputFolder, const std::filesystem::path& outputFolder, const std::string& methodName,
-         const std::string& weightingName, int threads, bool all, bool overwrite, std::optional<std::filesystem::path> assetRoot,
-         bool force, const std::string& tangentFormat, const std::string& normals, double creaseAngle, bool keepExternal) {
+      [](const std::filesystem::path& inputFolder, const std::filesystem::path& outputFolder, const py::kwargs& kwargs) {
         tangent::gltf::BatchOptions options;
-        options.bake = bakeOptions(
-            {methodName, weightingName, threads, all, overwrite, assetRoot, tangentFormat, normals, creaseAngle, keepExternal});
-        options.force = force;
+        applyKeywords(kwargs, options::kBakeTree, "bake_tree", [&](const options::Option& option, const std::string& value) {
+          tangent::gltf::applyBatchOption(options, option, value);
+        });
         nlohmann::ordered_json entries = nlohmann::ordered_json::array();
         {
           py::gil_scoped_release released;
@@ -263,10 +293,7 @@ Raises libtangent.InputError with the CLI's message on a file it refuses.)");
         }
         return toPython(entries);
       },
-      py::arg("input_folder"), py::arg("output_folder"), py::kw_only(), py::arg("method") = "mikktspace",
-      py::arg("weighting") = "angle", py::arg("threads") = 0, py::arg("all") = false, py::arg("overwrite") = false,
-      py::arg("asset_root") = py::none(), py::arg("force") = false, py::arg("tangent_format") = "float",
-      py::arg("normals") = "flat", py::arg("crease_angle") = 60.0, py::arg("keep_external") = false,
+      py::arg("input_folder"), py::arg("output_folder"),
       R"(Bake a folder tree, as `tangent bake INPUT_FOLDER --recursive --out-dir OUTPUT_FOLDER` does.
 
 Every .gltf, .glb, .obj, .ply and .off under INPUT_FOLDER is baked into the same relative
@@ -274,9 +301,59 @@ path under OUTPUT_FOLDER; one failure never stops the rest. OUTPUT_FOLDER/tangen
 records each input's SHA-256 (with the buffers and images it names) and the options, so a
 re-run skips what is unchanged (force=True bakes everything).
 
-Options as for bake(). Returns the list `tangent bake --recursive --report` writes: per file
+Returns the list `tangent bake --recursive --report` writes: per file
 "input", "output", "status" ("ok" | "failed"), "unchanged", "digest", "error" when failed,
 and the bake report when baked in this run.)");
+
+  m.def(
+      "check_tree",
+      [](const std::filesystem::path& folder, const py::kwargs& kwargs) {
+        tangent::gltf::CheckOptions options;
+        applyKeywords(kwargs, options::kCheck, "check_tree", [&](const options::Option& option, const std::string& value) {
+          tangent::gltf::applyCheckOption(options, option, value);
+        });
+        nlohmann::ordered_json files = nlohmann::ordered_json::array();
+        {
+          py::gil_scoped_release released;
+          for (const std::filesystem::path& input : tangent::gltf::findInputs(folder)) {
+            try {
+              files.push_back(tangent::gltf::toJson(tangent::gltf::checkFile(input, options)));
+            } catch (const tangent::gltf::InputError& e) {  // one unreadable file: named, the rest still checked
+              tangent::gltf::FileCheck unreadable;
+              unreadable.file = input.string();
+              unreadable.error = e.what();
+              files.push_back(tangent::gltf::toJson(unreadable));
+            }
+          }
+        }
+        return toPython(files);
+      },
+      py::arg("folder"),
+      R"(Check every .gltf, .glb, .obj, .ply and .off under a folder, as `tangent check FOLDER --recursive
+--format json` does (the files bake_tree() would bake, sorted).
+
+Returns the report's "files" list: one entry per file as check() returns it; a file that
+cannot be read is an entry with "status" "error" and its "error", and the others are checked.
+Raises libtangent.InputError where the folder cannot be listed.)");
+
+  m.def("option_table", &optionTable,
+        R"(Every option of compute_tangents(), bake(), bake_tree() and check(), of the `tangent` command and
+of the npm package, from the one table they are all made from (tangent/option_table.hpp): a list of
+dicts with "name" (the command line's), "python", "npm", "kind", "choices", "default", "min", "max",
+"commands", "front_ends", "value_name" and "help".)");
+
+  m.def(
+      "manifest_options",
+      [](const py::kwargs& kwargs) {
+        tangent::gltf::BatchOptions options;
+        applyKeywords(kwargs, options::kBakeTree, "manifest_options", [&](const options::Option& option, const std::string& value) {
+          tangent::gltf::applyBatchOption(options, option, value);
+        });
+        return toPython(tangent::gltf::manifestOptions(options.bake));
+      },
+      R"(The "options" record bake_tree() keeps in tangent-manifest.json for these keyword arguments (those
+of bake_tree()): what changes an output besides its input. A run whose record differs bakes
+everything again; a tool that writes the manifest itself (examples/bake_dask.py) records this.)");
 
   m.def("release_cached_workspaces", [] { tangent::releaseCachedWorkspaces(); },
         R"(Frees the scratch memory compute_tangents(), bake() and check() keep between calls.
@@ -316,41 +393,11 @@ then does other work.)");
 
   m.def(
       "check",
-      [](const std::filesystem::path& input, const std::string& methodName, double tolerance, bool all,
-         std::optional<std::filesystem::path> assetRoot, std::optional<std::vector<std::string>> only,
-         const std::vector<std::string>& ignore, bool allowMissing, std::optional<double> orthogonalTolerance,
-         std::optional<double> referenceTolerance, std::optional<std::string> reference, double minCoverage) {
+      [](const std::filesystem::path& input, const py::kwargs& kwargs) {
         tangent::gltf::CheckOptions options;
-        options.method = method(methodName);
-        if (options.method == tangent::Method::flat) badArgument("method", "check compares with mikktspace or lengyel");
-        if (reference) {
-          const std::optional<tangent::gltf::Generator> generator = tangent::gltf::parseGenerator(*reference);
-          if (!generator) badArgument("reference", "'" + *reference + "' is not " + tangent::gltf::generatorNames());
-          options.method = generator->method;
-          options.weighting = generator->weighting;
-        }
-        auto degrees = [](const char* argument, double value) {
-          if (!(value > 0 && value <= 180)) badArgument(argument, "must be degrees in (0, 180]");
-          return value;
-        };
-        options.orthogonalToleranceDegrees = degrees("orthogonal_tolerance", orthogonalTolerance.value_or(degrees("tolerance", tolerance)));
-        options.referenceToleranceDegrees = degrees("reference_tolerance", referenceTolerance.value_or(tolerance));
-        auto checkSet = [](const char* argument, const std::vector<std::string>& names) {
-          std::bitset<tangent::gltf::kCheckCount> set;
-          for (const auto& name : names) {
-            const auto id = tangent::gltf::parseCheck(name);
-            if (!id) badArgument(argument, "'" + name + "' is not a check name");
-            set.set(static_cast<std::size_t>(*id));
-          }
-          return set;
-        };
-        if (only) options.enabled = checkSet("only", *only);
-        options.enabled &= ~checkSet("ignore", ignore);
-        options.allowMissing = allowMissing;
-        options.all = all;
-        if (!(minCoverage >= 0 && minCoverage <= 1)) badArgument("min_coverage", "must be a fraction in [0, 1] (0: no coverage warning)");
-        options.minCoverage = minCoverage;
-        if (assetRoot) options.assetRoot = *assetRoot;
+        applyKeywords(kwargs, options::kCheck, "check", [&](const options::Option& option, const std::string& value) {
+          tangent::gltf::applyCheckOption(options, option, value);
+        });
         tangent::gltf::FileCheck result;
         {
           py::gil_scoped_release released;
@@ -358,26 +405,11 @@ then does other work.)");
         }
         return toPython(tangent::gltf::toJson(result));
       },
-      py::arg("path"), py::kw_only(), py::arg("method") = "mikktspace", py::arg("tolerance") = 1.0, py::arg("all") = false,
-      py::arg("asset_root") = py::none(), py::arg("only") = py::none(), py::arg("ignore") = std::vector<std::string>(),
-      py::arg("allow_missing") = false, py::arg("orthogonal_tolerance") = py::none(), py::arg("reference_tolerance") = py::none(),
-      py::arg("reference") = py::none(), py::arg("min_coverage") = tangent::gltf::kDefaultMinCoverage,
+      py::arg("path"),
       R"(Check the TANGENTs stored in a glTF file, as `tangent check PATH --format json` does.
 
 Per primitive that needs tangents: present, format, finite, unit, w, w-uniform, orthogonal,
 handedness, reference (within `tolerance` degrees of freshly computed `method` tangents).
-
-method: mikktspace (default) | lengyel
-reference: the generator reference measures against, as `--reference` names it (mikktspace,
-  lengyel/angle, lengyel/area, lengyel/uniform, flat, meshopt); overrides method
-tolerance: degrees, for orthogonal and reference (default 1), on top of the rounding limits
-orthogonal_tolerance, reference_tolerance: the same for one check (default: tolerance)
-only: run only these checks (names as above); ignore: leave these out
-allow_missing: a primitive without TANGENT is skipped, not a finding
-min_coverage: warn where reference or handedness compared less than this share of a primitive's
-  corners or triangles (default 0.5; 0: never), as `--min-coverage` does
-all: every triangle primitive, not only normal-mapped ones
-asset_root: folder buffer and image URIs may not leave (default: the file's folder)
 
 Returns the file's entry of the JSON report (docs/check-json.md): "status" is "clean" or
 "findings". Raises libtangent.InputError with the CLI's message on an unreadable file.)");

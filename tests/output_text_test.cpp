@@ -217,4 +217,26 @@ TEST(Output, CommitAllFinishesBeforeASignalBetweenItsRenamesEndsTheProcess) {
   EXPECT_EQ(namesIn(dir.path()), (std::vector<std::string>{"earlier.png", "out.glb"}));
 }
 
+// The line a JSON pointer's value starts on, for reports that point code-review tools at a
+// .gltf's lines: members found past skipped values of every kind, arrays by index, and text
+// that is not JSON (or does not hold the element) answered with nullopt, deep or not.
+TEST(JsonPointerLine, FindsTheLineOfAnElement) {
+  const std::string json =
+      "{\n  \"asset\": {\"version\": \"2.0\", \"extras\": [1, {\"a\": \"}]\\\"\"}, null, -1.5e3]},\n"
+      "  \"meshes\": [\n    {\"primitives\": []},\n    {\"name\": \"b\",\n     \"primitives\": [\n"
+      "       {\"attributes\": {}},\n\n       {\"attributes\": {}}]}]}\n";
+  EXPECT_EQ(tangent::text::jsonPointerLine(json, ""), 1u);
+  EXPECT_EQ(tangent::text::jsonPointerLine(json, "/meshes"), 3u);
+  EXPECT_EQ(tangent::text::jsonPointerLine(json, "/meshes/1/primitives/0"), 7u);
+  EXPECT_EQ(tangent::text::jsonPointerLine(json, "/meshes/1/primitives/1"), 9u);
+  EXPECT_EQ(tangent::text::jsonPointerLine(json, "/meshes/1/primitives/2"), std::nullopt);
+  EXPECT_EQ(tangent::text::jsonPointerLine(json, "/meshes/0/primitives/0"), std::nullopt);
+  EXPECT_EQ(tangent::text::jsonPointerLine(json, "/nodes"), std::nullopt);
+  EXPECT_EQ(tangent::text::jsonPointerLine(json, "/meshes/x"), std::nullopt);
+  for (const std::string broken : {"", "{", "{\"meshes\": [", "[[[[", "{\"meshes\" [1]}", "\"\\"})
+    EXPECT_EQ(tangent::text::jsonPointerLine(broken, "/meshes/0"), std::nullopt) << broken;
+  const std::string deep = std::string(200000, '[') + std::string(200000, ']');
+  EXPECT_EQ(tangent::text::jsonPointerLine("{\"a\": " + deep + ", \"b\":\n 1}", "/b"), 2u);
+}
+
 }  // namespace

@@ -2,7 +2,7 @@
 """Type stubs of the package libtangent, whose __init__.py re-exports the compiled module
 libtangent._libtangent (python/module.cpp): see help(libtangent)."""
 import os
-from typing import Any, Optional, TypedDict, Union
+from typing import Any, Literal, Optional, Sequence, TypedDict, Union
 
 import numpy as np
 import numpy.typing as npt
@@ -28,61 +28,82 @@ def compute_tangents(
     uvs: npt.ArrayLike,
     indices: npt.ArrayLike,
     *,
-    method: str = "mikktspace",
-    weighting: str = "angle",
+    method: Literal['mikktspace', 'lengyel', 'flat', 'meshopt'] = 'mikktspace',
+    weighting: Literal['angle', 'area', 'uniform'] = 'angle',
     threads: int = 0,
-    uv_origin: str = "top-left",
+    uv_origin: Literal['top-left', 'bottom-left'] = 'top-left',
 ) -> TangentResult: ...
 
 def bake(
     input: PathLike,
     output: PathLike,
     *,
-    method: str = "mikktspace",
-    weighting: str = "angle",
+    method: Literal['mikktspace', 'lengyel', 'flat', 'meshopt'] = 'mikktspace',
+    weighting: Literal['angle', 'area', 'uniform'] = 'angle',
     threads: int = 0,
     all: bool = False,
     overwrite: bool = False,
     asset_root: Optional[PathLike] = None,
-    tangent_format: str = "float",
-    normals: str = "flat",
-    crease_angle: float = 60.0,
     keep_external: bool = False,
+    tangent_format: Literal['float', 'short', 'byte'] = 'float',
+    normals: Literal['flat', 'smooth', 'keep'] = 'flat',
+    crease_angle: float = 60.0,
 ) -> dict[str, Any]: ...
 
 def check(
     path: PathLike,
     *,
-    method: str = "mikktspace",
+    only: Optional[Sequence[str]] = None,
+    ignore: Optional[Sequence[str]] = None,
     tolerance: float = 1.0,
-    all: bool = False,
-    asset_root: Optional[PathLike] = None,
-    only: Optional[list[str]] = None,
-    ignore: list[str] = ...,
-    allow_missing: bool = False,
     orthogonal_tolerance: Optional[float] = None,
     reference_tolerance: Optional[float] = None,
-    reference: Optional[str] = None,
     min_coverage: float = 0.5,
+    allow_missing: bool = False,
+    method: Literal['mikktspace', 'lengyel'] = 'mikktspace',
+    reference: Literal['mikktspace', 'lengyel/angle', 'lengyel/area', 'lengyel/uniform', 'flat', 'meshopt', 'lengyel'] = 'mikktspace',
+    all: bool = False,
+    asset_root: Optional[PathLike] = None,
+    identify: bool = False,
 ) -> dict[str, Any]: ...
+
+def check_tree(
+    folder: PathLike,
+    *,
+    only: Optional[Sequence[str]] = None,
+    ignore: Optional[Sequence[str]] = None,
+    tolerance: float = 1.0,
+    orthogonal_tolerance: Optional[float] = None,
+    reference_tolerance: Optional[float] = None,
+    min_coverage: float = 0.5,
+    allow_missing: bool = False,
+    method: Literal['mikktspace', 'lengyel'] = 'mikktspace',
+    reference: Literal['mikktspace', 'lengyel/angle', 'lengyel/area', 'lengyel/uniform', 'flat', 'meshopt', 'lengyel'] = 'mikktspace',
+    all: bool = False,
+    asset_root: Optional[PathLike] = None,
+    identify: bool = False,
+) -> list[dict[str, Any]]: ...
 
 def bake_tree(
     input_folder: PathLike,
     output_folder: PathLike,
     *,
-    method: str = "mikktspace",
-    weighting: str = "angle",
+    method: Literal['mikktspace', 'lengyel', 'flat', 'meshopt'] = 'mikktspace',
+    weighting: Literal['angle', 'area', 'uniform'] = 'angle',
     threads: int = 0,
     all: bool = False,
     overwrite: bool = False,
     asset_root: Optional[PathLike] = None,
-    force: bool = False,
-    tangent_format: str = "float",
-    normals: str = "flat",
-    crease_angle: float = 60.0,
     keep_external: bool = False,
+    force: bool = False,
+    verify: bool = False,
+    tangent_format: Literal['float', 'short', 'byte'] = 'float',
+    normals: Literal['flat', 'smooth', 'keep'] = 'flat',
+    crease_angle: float = 60.0,
 ) -> list[dict[str, Any]]: ...
 
+def option_table() -> list[dict[str, Any]]: ...
+def manifest_options(**options: Any) -> dict[str, Any]: ...
 def release_cached_workspaces() -> None: ...
 def cached_workspace_bytes() -> int: ...
 def find_inputs(folder: PathLike) -> list[str]: ...

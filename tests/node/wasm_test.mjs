@@ -12,7 +12,7 @@ import { NodeIO } from '@gltf-transform/core';
 import { ALL_EXTENSIONS } from '@gltf-transform/extensions';
 import { tangents, unweld } from '@gltf-transform/functions';
 import validator from 'gltf-validator';
-import { generateTangents, generateTangentsIndexed } from '../../wasm/package/index.mjs';
+import { generateGltfTangents, generateTangents, generateTangentsIndexed, optionChoices } from '../../wasm/package/index.mjs';
 import createTangentModule from '../../wasm/package/dist/tangent_wasm.cjs';
 
 const [tool, workDir, ...assets] = process.argv.slice(2);
@@ -243,6 +243,34 @@ try {
 } catch (e) {
   if (!/method: 'smooth' is not mikktspace, lengyel, flat or meshopt/.test(e.message)) fail(`unexpected error message: ${e.message}`);
   else console.log(`ok   unknown method refused: ${e.message}`);
+}
+
+// 1d'. The w conventions and the options' checks: generateGltfTangents is generateTangents with
+// w negated (glTF's sign), and the indexed call's w at every corner; a misspelt option
+// (Python's uv_origin) is a TypeError, not ignored; optionChoices lead with the defaults.
+{
+  const flat = deindex(generated(24, 2));
+  const mikk = generateTangents(flat.position, flat.normal, flat.texcoord);
+  const gltf = generateGltfTangents(flat.position, flat.normal, flat.texcoord);
+  const bottom = generateGltfTangents(flat.position, flat.normal, flat.texcoord, { uvOrigin: 'bottom-left' });
+  let differing = 0;
+  for (let i = 0; i < mikk.length; i++) {
+    const expected = i % 4 === 3 ? -mikk[i] : mikk[i];
+    if (!Object.is(gltf[i], expected) || !Object.is(bottom[i], mikk[i])) differing++;
+  }
+  if (differing) fail(`generateGltfTangents: ${differing} values are not generateTangents's with w negated`);
+  else console.log('ok   generateGltfTangents is generateTangents with glTF\'s w');
+  for (const [options, error] of [[{ uv_origin: 'top-left' }, TypeError], [{ uvOrigin: 'top-left' }, TypeError],
+                                  [{ weighting: 'heavy' }, RangeError]]) {
+    try {
+      generateTangents(flat.position, flat.normal, flat.texcoord, options);
+      fail(`generateTangents accepted ${JSON.stringify(options)}`);
+    } catch (e) {
+      if (!(e instanceof error)) fail(`${JSON.stringify(options)}: ${e.constructor.name} ${e.message}`);
+      else console.log(`ok   ${JSON.stringify(options)} refused: ${e.message}`);
+    }
+  }
+  if (optionChoices.method[0] !== 'mikktspace' || optionChoices.uvOrigin[0] !== 'top-left') fail('optionChoices: defaults not first');
 }
 
 // 1e. generateTangents's `output` option: the tangents written into the caller's array, which is

@@ -233,6 +233,23 @@ def test_check_equals_the_cli_json(tmp_path):
     assert unbaked["primitives"][0]["findings"][0]["check"] == "present"
 
 
+def test_check_tree_equals_the_cli_over_a_folder(tmp_path):
+    tree = tmp_path / "tree"
+    (tree / "nested").mkdir(parents=True)
+    libtangent.bake(DEMO / "demo.gltf", tree / "nested" / "baked.glb")
+    for name in ("demo.gltf", "demo.bin"):
+        shutil.copy(DEMO / name, tree / name)
+    (tree / "broken.glb").write_bytes(b"glTF\x02\x00\x00\x00")
+    files = libtangent.check_tree(tree, allow_missing=False)
+    done = subprocess.run([CLI, "check", str(tree), "--recursive", "--format", "json"], capture_output=True)
+    assert done.returncode == 2  # an unreadable file
+    assert files == json.loads(done.stdout)["files"]
+    assert [pathlib.Path(f["file"]).name for f in files] == ["broken.glb", "demo.gltf", "baked.glb"]
+    assert [f["status"] for f in files] == ["error", "findings", "clean"]
+    with pytest.raises(TypeError, match="unexpected keyword argument 'recursive'"):
+        libtangent.check_tree(tree, recursive=True)
+
+
 def test_check_options_match_the_cli(tmp_path):
     unbaked = DEMO / "demo.gltf"  # no TANGENT: `present` fails unless missing tangents are allowed
     assert libtangent.check(unbaked, allow_missing=True)["status"] == "clean"
@@ -256,7 +273,7 @@ def test_check_options_match_the_cli(tmp_path):
     assert limits["referenceAllowanceMaxDegrees"] == 0
     assert limits["orthogonalDegrees"] == pytest.approx(0.5 + direction, rel=1e-12)
     assert limits["referenceDegrees"] == pytest.approx(2 + direction, rel=1e-12)
-    with pytest.raises(ValueError, match="only: 'units' is not a check name"):
+    with pytest.raises(ValueError, match="only: 'units' is not one of present, format"):
         libtangent.check(unbaked, only=["units"])
     with pytest.raises(ValueError, match="tangent_format"):
         libtangent.bake(unbaked, tmp_path / "x.glb", tangent_format="half")

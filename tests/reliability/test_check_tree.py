@@ -12,7 +12,7 @@ import subprocess
 import xml.dom.minidom
 
 from conftest import skip_or_fail
-from test_outputs import CLI, glb_bytes, grid, tangent, write
+from test_outputs import CLI, glb_bytes, gltf_bytes, grid, tangent, write
 
 
 # --- assets -------------------------------------------------------------------------------
@@ -237,3 +237,37 @@ def test_progress_names_each_file_in_the_tree_on_a_terminal_only(tmp_path):
     assert [int(k) for k, _ in progress] == [0, 1, 2, 3]
     assert shown.stdout.rstrip(b"\r\n").endswith(b"\r\x1b[K"), shown.stdout[-200:]  # cleared at the end
     assert json.loads((tmp_path / "report.json").read_text())["summary"]["files"] == 4
+
+
+def test_quiet_check_shows_no_progress_on_a_terminal(tmp_path):
+    make_tree(tmp_path, broken=False)
+    if shutil.which("script") is None:
+        skip_or_fail("script(1) from util-linux is not installed")
+    shown = subprocess.run(["script", "-qec", f"'{CLI}' check tree --recursive -q --format json -o report.json", "/dev/null"],
+                           cwd=tmp_path, capture_output=True, timeout=120)
+    assert shown.returncode == 1, shown.stdout
+    assert re.findall(rb"\[\d/4\]", shown.stdout) == [], shown.stdout
+    assert json.loads((tmp_path / "report.json").read_text())["summary"]["files"] == 4
+
+
+def test_code_review_reports_point_at_the_primitives_line_in_a_gltf(tmp_path):
+    """GitLab's lines.begin and SARIF's region: the line a .gltf's primitive starts on (the
+    .gltf indented, its second primitive lacking TANGENT); a .glb has no lines: 1, no region."""
+    doc, blob = grid(4)
+    doc["meshes"][0]["primitives"].append(dict(doc["meshes"][0]["primitives"][0]))
+    gltf = json.loads(gltf_bytes(doc, blob))
+    text = json.dumps(gltf, indent=2)
+    lines = text.splitlines()
+    starts = [k + 2 for k, line in enumerate(lines) if line.strip() == '"primitives": [']
+    expected = starts[0] + len(json.dumps(gltf["meshes"][0]["primitives"][0], indent=2).splitlines())
+    assert lines[expected - 1].strip() == "{", lines[expected - 2:expected + 1]
+    write(tmp_path / "scene.gltf", text.encode())
+    write(tmp_path / "scene.glb", glb_bytes(doc, blob))
+    climate = json.loads(check(tmp_path, "scene.gltf", "scene.glb", "--format", "codeclimate").stdout)
+    begins = [(i["location"]["path"], i["location"]["lines"]["begin"]) for i in climate if i["check_name"] == "tangent-check/present"]
+    assert begins == [("scene.gltf", starts[0]), ("scene.gltf", expected), ("scene.glb", 1), ("scene.glb", 1)], begins
+    sarif = json.loads(check(tmp_path, "scene.gltf", "scene.glb", "--format", "sarif").stdout)
+    regions = [(r["locations"][0]["physicalLocation"]["artifactLocation"]["uri"], r["locations"][0]["physicalLocation"].get("region"))
+               for r in sarif["runs"][0]["results"]]
+    assert regions == [("scene.gltf", {"startLine": starts[0]}), ("scene.gltf", {"startLine": expected}),
+                       ("scene.glb", None), ("scene.glb", None)], regions

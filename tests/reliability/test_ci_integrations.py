@@ -141,6 +141,14 @@ def test_the_action_inputs_reach_tangent_check(tmp_path):
     assert log["runs"][0]["results"] == [] and log["runs"][0]["invocations"][0]["executionSuccessful"] is True
     settings = log["runs"][0]["invocations"][0]["properties"]["settings"]
     assert settings["allowMissing"] is True, settings
+    # One path a line: a folder whose name holds a space is one path (and an empty line none).
+    (repo / "assets" / "ok").rename(repo / "assets" / "ok props")
+    write(repo / "assets" / "ok props" / "also missing.glb", (repo / "assets" / "bad" / "missing.glb").read_bytes())
+    code, outputs, _ = run_action(repo, tmp_path, paths="assets/ok props\n\nassets/bad/missing.glb\n", tangent=CLI,
+                                  **{"fail-on-findings": "false"})
+    assert code == 0 and outputs["check"]["exit-code"] == "1", outputs
+    assert sorted(sarif_results(repo / "tangent-check.sarif")) == [("present", "assets/bad/missing.glb"),
+                                                                    ("present", "assets/ok%20props/also%20missing.glb")]  # SARIF URIs are percent-encoded
     # A broken file fails the job whatever fail-on-findings says; the SARIF still goes up.
     write(repo / "assets" / "broken.glb", b"glTF")
     code, outputs, uploads = run_action(repo, tmp_path, paths="assets", tangent=CLI, **{"fail-on-findings": "false"})

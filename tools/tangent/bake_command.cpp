@@ -14,6 +14,7 @@
 #include <string>
 #include <utility>
 
+#include "arguments.hpp"
 #include "commands.hpp"
 #include "tangent/batch.hpp"
 #include "tangent/gltf.hpp"
@@ -22,44 +23,17 @@
 namespace tangent::cli {
 namespace {
 
-const char* kBakeUsage =
+const char* kBakeUsageHead =
     "usage: tangent bake IN OUT [options]\n"
     "       tangent bake IN... (-o OUT | --out-dir DIR) [options]\n"
     "       tangent bake FOLDER... --recursive --out-dir DIR [options]\n"
     "\n"
-    "Computes TANGENT for every triangle primitive whose material has a normalTexture, from the\n"
-    "UV set that texture uses, and writes a new file. Inputs: .gltf, .glb, .obj, .ply, .off\n"
+    "Computes TANGENT for every triangle primitive whose material reads the tangent frame (a\n"
+    "normalTexture, a clearcoat normal texture, anisotropy), from the UV set that texture uses,\n"
+    "and writes a new file. Inputs: .gltf, .glb, .obj, .ply, .off\n"
     "(OBJ/PLY/OFF become .glb; they carry no materials, so all their meshes are baked).\n"
     "The input is never written to; outputs are written atomically.\n"
-    "\n"
-    "options:\n"
-    "  -o, --output FILE      output file (.glb or .gltf + .bin); one input only. \"-\": a .glb on standard\n"
-    "                         output (messages go to stderr)\n"
-    "  --out-dir DIR          write each output into DIR under the input's name\n"
-    "  --method NAME          mikktspace (default) | lengyel | flat | meshopt (meshoptimizer's default weighting)\n"
-    "  --weighting NAME       angle (default) | area | uniform   (lengyel only)\n"
-    "  --threads N            worker threads (default: all hardware threads); the output never depends on it\n"
-    "  --all                  bake every triangle primitive, normal texture or not (TEXCOORD_0)\n"
-    "  --overwrite            recompute valid existing TANGENT too\n"
-    "  --asset-root DIR       folder buffer and image URIs may not leave (default: the input's folder)\n"
-    "  --keep-external        a .glb output keeps its images as files, copied beside it, instead of\n"
-    "                         embedding them (a .glb is one self-contained file by default; a .gltf's\n"
-    "                         images are always files)\n"
-    "  --recursive            inputs are folders: bake every .gltf/.glb/.obj/.ply/.off under them\n"
-    "                         into the same relative path under --out-dir, keeping a manifest\n"
-    "                         (DIR/tangent-manifest.json) so that a re-run skips unchanged files\n"
-    "  --force                with --recursive: bake everything, whatever the manifest says\n"
-    "  --verify               with --recursive: hash every input, even where its size and modification\n"
-    "                         time say it is unchanged\n"
-    "  --tangent-format F     float (default) | short | byte: TANGENT as float or normalized SHORT/BYTE\n"
-    "                         (KHR_mesh_quantization, declared used and required); kept TANGENTs stay as they are\n"
-    "  --normals MODE         flat (default) | smooth | keep: for a primitive without NORMAL, write flat\n"
-    "                         normals (what the specification requires of clients) or smooth ones and\n"
-    "                         compute tangents from them, or leave it as it is\n"
-    "  --crease-angle DEG     with --normals smooth: triangles meeting at more than DEG stay sharp (default 60)\n"
-    "  --report FILE.json     write what was done, per file and primitive (\"-\": standard output)\n"
-    "  --quiet                print errors only\n"
-    "  -h, --help             this text\n";
+    "\n";
 
 // -o -: the bake goes to a private temporary folder, then its bytes to standard output.
 class StdoutTarget {
@@ -246,98 +220,23 @@ int bakeTrees(const std::vector<std::filesystem::path>& folders, const std::file
 
 int bakeCommand(const std::vector<std::string>& args) {
   namespace fs = std::filesystem;
-  std::vector<fs::path> inputs;
-  fs::path output, outDir, reportPath;
-  gltf::BakeOptions options;
-  bool quiet = false, recursive = false, force = false, verify = false, operandsOnly = false;
-  for (std::size_t i = 0; i < args.size(); ++i) {
-    const std::string& arg = args[i];
-    if (operandsOnly || arg == "--") {  // "--" ends the options
-      if (std::exchange(operandsOnly, true)) inputs.emplace_back(arg);
-      continue;
-    }
-    auto value = [&](const char* name) -> const std::string* {
-      if (i + 1 >= args.size()) return nullptr;
-      (void)name;
-      return &args[++i];
-    };
-    if (arg == "-h" || arg == "--help") {
-      std::cout << kBakeUsage;
-      return kExitOk;
-    } else if (arg == "-o" || arg == "--output") {
-      const std::string* v = value("-o");
-      if (!v) return usageError(arg + " needs a file name");
-      output = *v;
-    } else if (arg == "--out-dir") {
-      const std::string* v = value("--out-dir");
-      if (!v) return usageError("--out-dir needs a directory");
-      outDir = *v;
-    } else if (arg == "--method") {
-      const std::string* v = value("--method");
-      const std::optional<Method> method = v ? parseMethod(*v) : std::nullopt;
-      if (!method) return usageError("--method must be mikktspace, lengyel, flat or meshopt");
-      options.tangents.method = *method;
-    } else if (arg == "--weighting") {
-      const std::string* v = value("--weighting");
-      const std::optional<Weighting> weighting = v ? parseWeighting(*v) : std::nullopt;
-      if (!weighting) return usageError("--weighting must be angle, area or uniform");
-      options.tangents.weighting = *weighting;
-    } else if (arg == "--threads") {
-      const std::string* v = value("--threads");
-      int threads = 0;
-      try {
-        threads = v ? std::stoi(*v) : 0;
-      } catch (const std::exception&) {
-        threads = 0;
-      }
-      if (threads < 1 || threads > 256) return usageError("--threads must be a number from 1 to 256");
-      options.tangents.threads = static_cast<unsigned>(threads);
-    } else if (arg == "--report") {
-      const std::string* v = value("--report");
-      if (!v) return usageError("--report needs a file name");
-      reportPath = *v;
-    } else if (arg == "--asset-root") {
-      const std::string* v = value("--asset-root");
-      if (!v) return usageError("--asset-root needs a directory");
-      options.assetRoot = *v;
-      if (!fs::is_directory(options.assetRoot)) return usageError("--asset-root " + *v + " is not a directory");
-    } else if (arg == "--keep-external") {
-      options.keepExternalImages = true;
-    } else if (arg == "--recursive") {
-      recursive = true;
-    } else if (arg == "--force") {
-      force = true;
-    } else if (arg == "--verify") {
-      verify = true;
-    } else if (arg == "--all") {
-      options.all = true;
-    } else if (arg == "--overwrite") {
-      options.overwrite = true;
-    } else if (arg == "--tangent-format") {
-      const std::string* v = value("--tangent-format");
-      const std::optional<gltf::TangentFormat> format = v ? gltf::parseTangentFormat(*v) : std::nullopt;
-      if (!format) return usageError("--tangent-format must be float, short or byte");
-      options.tangentFormat = *format;
-    } else if (arg == "--normals") {
-      const std::string* v = value("--normals");
-      const std::optional<gltf::NormalsMode> mode = v ? gltf::parseNormalsMode(*v) : std::nullopt;
-      if (!mode) return usageError("--normals must be flat, smooth or keep");
-      options.normals = *mode;
-    } else if (arg == "--crease-angle") {
-      const std::string* v = value("--crease-angle");
-      char* end = nullptr;
-      const double degrees = v ? std::strtod(v->c_str(), &end) : -1;
-      if (!v || end == v->c_str() || *end != '\0' || !(degrees >= 0 && degrees <= 180))
-        return usageError("--crease-angle must be degrees in [0, 180]");
-      options.creaseAngleDegrees = degrees;
-    } else if (arg == "--quiet" || arg == "-q") {
-      quiet = true;
-    } else if (!arg.empty() && arg[0] == '-') {
-      return usageError("unknown option '" + arg + "'");
-    } else {
-      inputs.emplace_back(arg);
-    }
+  const Arguments parsed = parseArguments(args, options::kBake | options::kBakeTree);
+  if (parsed.help) {
+    std::cout << kBakeUsageHead << options::helpText(options::kBake | options::kBakeTree);
+    return kExitOk;
   }
+  if (!parsed.error.empty()) return usageError(parsed.error);
+  std::vector<fs::path> inputs(parsed.operands.begin(), parsed.operands.end());
+  const bool operandsOnly = parsed.afterDashes;
+  gltf::BatchOptions batch;
+  for (const auto& [option, value] : parsed.values) gltf::applyBatchOption(batch, *option, value);
+  gltf::BakeOptions& options = batch.bake;
+  fs::path output = parsed.last("output") ? *parsed.last("output") : "";
+  const fs::path outDir = parsed.last("out-dir") ? *parsed.last("out-dir") : "";
+  const fs::path reportPath = parsed.last("report") ? *parsed.last("report") : "";
+  const bool quiet = parsed.flag("quiet"), recursive = parsed.flag("recursive"), force = batch.force, verify = batch.verify;
+  if (!options.assetRoot.empty() && !fs::is_directory(options.assetRoot))
+    return usageError("--asset-root " + shown(options.assetRoot.string()) + " is not a directory");
   if (inputs.empty()) return usageError("no input files");
   if (recursive) {
     if (outDir.empty() || !output.empty()) return usageError("--recursive needs --out-dir DIR (and no -o)");

@@ -19,6 +19,7 @@
 #include <sstream>
 #include <utility>
 
+#include "arguments.hpp"
 #include "check_html.hpp"
 #include "check_names.hpp"
 #include "commands.hpp"
@@ -31,7 +32,7 @@
 namespace tangent::cli {
 namespace {
 
-const char* kCheckUsage =
+const char* kCheckUsageHead =
     "usage: tangent check IN... [options]\n"
     "       tangent check DIR... --recursive [options]\n"
     "\n"
@@ -42,34 +43,8 @@ const char* kCheckUsage =
     "quantized data follow from the rounding step (docs/check.md, \"Limits per component type\").\n"
     "One report covers every file (one that cannot be read is named, the rest are still checked);\n"
     "while several are checked, a progress line shows on stderr when it is a terminal.\n"
-    "\n"
-    "options:\n"
-    "  --format FORMAT     text (default) | json | junit | github | sarif | codeclimate (GitLab code quality)\n"
-    "                      | html (one page with thumbnails from tangent-view's error view: docs/check.md)\n"
-    "  --recursive         inputs may be folders: check every .gltf/.glb/.obj/.ply/.off under them, the\n"
-    "                      files bake --recursive would bake; a file given is checked as it is\n"
-    "  -o, --output FILE   write the report to FILE (\"-\": standard output, the default)\n"
-    "  --only CHECKS       run only these checks (comma-separated names)\n"
-    "  --ignore CHECKS     leave these checks out\n"
-    "  --tolerance DEG     for orthogonal and reference (default 1), on top of the rounding limits\n"
-    "  --tolerance CHECK=DEG  for one of them: orthogonal=DEG or reference=DEG\n"
-    "  --min-coverage FRACTION  warn where reference compared fewer than FRACTION of a primitive's\n"
-    "                      corners, or handedness of its triangles (default 0.5; 0: never), as rounded\n"
-    "                      UVs/positions leave the rest undecided (a warning: the exit code stays)\n"
-    "  --allow-missing     a primitive without TANGENT is skipped, not a finding (clients compute MikkTSpace)\n"
-    "  --config FILE.json  settings from a file (only, ignore, tolerance, method, minCoverage, allowMissing, all);\n"
-    "                      options on the command line override it\n"
-    "  --reference NAME    what reference is measured against: mikktspace (default) | lengyel/angle |\n"
-    "                      lengyel/area | lengyel/uniform | flat | meshopt (the names --identify reports)\n"
-    "  --method NAME       mikktspace | lengyel: --reference mikktspace or lengyel/angle\n"
-    "  --all               check every triangle primitive (TEXCOORD_0 without a normal texture)\n"
-    "  --identify          name the generator closest to the stored tangents (mikktspace, lengyel/angle,\n"
-    "                      lengyel/area, lengyel/uniform, flat, meshopt) with its median and max angle, or\n"
-    "                      none of these (with the nearest)\n"
-    "  --asset-root DIR    folder buffer and image URIs may not leave (default: the input's folder)\n"
-    "  -h, --help          this text\n"
-    "checks: present format finite unit w w-uniform orthogonal handedness reference\n"
-    "exit codes: 0 clean, 1 findings, 2 unreadable input or usage error\n";
+    "\n";
+const char* kCheckUsageTail = "exit codes: 0 clean, 1 findings, 2 unreadable input or usage error\n";
 
 // XML 1.0 text: the markup characters as entities, control characters XML forbids as a space,
 // bytes that are not UTF-8 as \xHH (the document declares UTF-8).
@@ -330,14 +305,40 @@ const char* checkDescription(std::size_t index) {
 // results of level "warning" under one more rule.
 constexpr const char* kSarifWarningRule = "warning";
 
-nlohmann::ordered_json primitiveLocations(const nlohmann::ordered_json& artifact, const gltf::PrimitiveCheck& p) {
+// The line on which an element (a JSON pointer) starts in a .gltf's text, for the reports that
+// point code-review tools at lines (SARIF's region, GitLab's lines.begin); nullopt for a .glb or
+// a mesh file, whose elements are on no line of text. Each .gltf is read once.
+class ElementLines {
+ public:
+  std::optional<std::size_t> line(const std::string& file, const std::string& pointer) {
+    auto [text, unread] = texts_.try_emplace(file);
+    if (unread) {
+      std::string extension = std::filesystem::path(file).extension().string();
+      for (char& c : extension) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+      if (extension == ".gltf") {
+        std::ifstream in(file, std::ios::binary);
+        text->second.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+      }
+    }
+    return text->second.empty() ? std::nullopt : text::jsonPointerLine(text->second, pointer);
+  }
+
+ private:
+  std::map<std::string, std::string> texts_;
+};
+
+nlohmann::ordered_json primitiveLocations(const nlohmann::ordered_json& artifact, const gltf::PrimitiveCheck& p,
+                                          std::optional<std::size_t> line) {
   using Json = nlohmann::ordered_json;
-  return Json::array({{{"physicalLocation", {{"artifactLocation", artifact}}},
+  Json physical = {{"artifactLocation", artifact}};
+  if (line) physical["region"] = {{"startLine", *line}};
+  return Json::array({{{"physicalLocation", physical},
                        {"logicalLocations", Json::array({{{"name", primitiveName(p)}, {"fullyQualifiedName", primitivePointer(p)}, {"kind", "object"}}})}}});
 }
 
 void writeSarif(std::ostream& out, const std::vector<gltf::FileCheck>& checks, const gltf::CheckOptions& options) {
   using Json = nlohmann::ordered_json;
+  ElementLines lines;
   Json rules = Json::array();
   for (std::size_t i = 0; i < gltf::kCheckCount; ++i)
     rules.push_back({{"id", gltf::kCheckNames[i]}, {"name", gltf::kCheckNames[i]}, {"shortDescription", {{"text", checkDescription(i)}}},
@@ -372,7 +373,7 @@ void writeSarif(std::ostream& out, const std::vector<gltf::FileCheck>& checks, c
              {"ruleIndex", ruleIndex},
              {"level", "error"},
              {"message", {{"text", primitiveName(p) + ": " + findingSummary(f)}}},
-             {"locations", primitiveLocations(artifact, p)},
+             {"locations", primitiveLocations(artifact, p, lines.line(file.file, primitivePointer(p)))},
              {"properties", properties}});
       }
       for (const auto& warning : p.warnings)
@@ -380,7 +381,7 @@ void writeSarif(std::ostream& out, const std::vector<gltf::FileCheck>& checks, c
                            {"ruleIndex", warningRule},
                            {"level", "warning"},
                            {"message", {{"text", primitiveName(p) + ": " + warning}}},
-                           {"locations", primitiveLocations(artifact, p)}});
+                           {"locations", primitiveLocations(artifact, p, lines.line(file.file, primitivePointer(p)))}});
     }
   }
   bool unreadable = false;
@@ -402,8 +403,8 @@ void writeSarif(std::ostream& out, const std::vector<gltf::FileCheck>& checks, c
 
 // GitLab code quality (artifacts:reports:codequality, a subset of the Code Climate issue spec):
 // a JSON array of issues with description, check_name, fingerprint, severity and location.path
-// with location.lines.begin. A glTF element is no line of text: lines.begin is 1 and the
-// description names the element by its JSON pointer. GitLab matches an issue between the target
+// with location.lines.begin: in a .gltf the line its primitive starts on, in a .glb (whose
+// elements are on no line of text) 1; the description names the element by its JSON pointer. GitLab matches an issue between the target
 // branch and the merge request by its fingerprint, the SHA-256 of the file, the element and the
 // rule: the same while the finding stays, whatever its counts; unique within a report.
 std::string codeClimatePath(const std::string& file) {
@@ -424,6 +425,7 @@ void writeCodeClimate(std::ostream& out, const std::vector<gltf::FileCheck>& che
   using Json = nlohmann::ordered_json;
   Json issues = Json::array();
   std::map<std::string, std::size_t> seen;  // fingerprint input -> earlier issues with it
+  ElementLines lines;
   // `kind` tells a primitive's warnings apart (they share one rule).
   auto add = [&](const gltf::FileCheck& file, const std::string& element, const std::string& rule, const char* severity,
                  const std::string& description, const std::string& kind = {}) {
@@ -435,7 +437,7 @@ void writeCodeClimate(std::ostream& out, const std::vector<gltf::FileCheck>& che
                       {"check_name", "tangent-check/" + rule},
                       {"fingerprint", gltf::sha256Hex(identity)},
                       {"severity", severity},
-                      {"location", {{"path", path}, {"lines", {{"begin", 1}}}}}});
+                      {"location", {{"path", path}, {"lines", {{"begin", lines.line(file.file, element).value_or(1)}}}}}});
   };
   for (const auto& file : checks) {
     if (!file.error.empty()) add(file, "", "unreadable", "blocker", "tangent check: unreadable: " + file.error);
@@ -456,21 +458,6 @@ void writeCodeClimate(std::ostream& out, const std::vector<gltf::FileCheck>& che
 int usageError(const std::string& message) {
   std::cerr << "tangent check: " << message << " (see tangent check --help)\n";
   return kExitUsage;
-}
-
-// "unit,w" -> the set; nullopt (after a message) on an unknown name.
-std::optional<std::bitset<gltf::kCheckCount>> parseCheckList(const std::string& list) {
-  std::bitset<gltf::kCheckCount> set;
-  std::size_t start = 0;
-  while (start <= list.size()) {
-    const std::size_t comma = std::min(list.find(',', start), list.size());
-    const std::string name = list.substr(start, comma - start);
-    const std::optional<gltf::CheckId> id = gltf::parseCheck(name);
-    if (!id) return std::nullopt;
-    set.set(static_cast<std::size_t>(*id));
-    start = comma + 1;
-  }
-  return set;
 }
 
 // A file to check, and how the progress line names it: by its path in its tree (led by the
@@ -510,108 +497,31 @@ std::vector<CheckInput> filesToCheck(const std::vector<std::string>& inputs, boo
   return files;
 }
 
-std::optional<double> parseDegrees(const std::string& text) {
-  try {
-    std::size_t used = 0;
-    const double degrees = std::stod(text, &used);
-    if (used != text.size() || !(degrees > 0) || degrees > 180) return std::nullopt;
-    return degrees;
-  } catch (const std::exception&) {
-    return std::nullopt;
-  }
-}
-
 }  // namespace
 
 int checkCommand(const std::vector<std::string>& args) {
-  std::vector<std::string> inputs;
-  std::string formatName = "text", output = "-";
+  const Arguments parsed = parseArguments(args, options::kCheck);
+  if (parsed.help) {
+    std::cout << kCheckUsageHead << options::helpText(options::kCheck) << kCheckUsageTail;
+    return kExitOk;
+  }
+  if (!parsed.error.empty()) return usageError(parsed.error);
+  const std::vector<std::string>& inputs = parsed.operands;
+  const std::string formatName = parsed.last("format") ? *parsed.last("format") : "text";
+  const std::string output = parsed.last("output") ? *parsed.last("output") : "-";
+  const bool recursive = parsed.flag("recursive");
   gltf::CheckOptions options;
-  bool recursive = false;
   // The config file first, whatever its place: the command line overrides it.
-  for (std::size_t i = 0; i < args.size() && args[i] != "--"; ++i) {
-    if (args[i] != "--config") continue;
-    if (i + 1 >= args.size()) return usageError("--config needs a JSON file");
+  if (const std::string* config = parsed.last("config")) {
     try {
-      gltf::applyCheckConfig(args[i + 1], options);
+      gltf::applyCheckConfig(*config, options);
     } catch (const std::exception& e) {
       return usageError(shown(e.what()));
     }
   }
-  bool operandsOnly = false;
-  for (std::size_t i = 0; i < args.size(); ++i) {
-    const std::string& arg = args[i];
-    if (operandsOnly || arg == "--") {  // "--" ends the options
-      if (std::exchange(operandsOnly, true)) inputs.push_back(arg);
-      continue;
-    }
-    const bool hasValue = i + 1 < args.size();
-    if (arg == "-h" || arg == "--help") {
-      std::cout << kCheckUsage;
-      return kExitOk;
-    } else if (arg == "--config") {
-      ++i;  // read above
-    } else if (arg == "--format") {
-      if (!hasValue) return usageError("--format needs text, json, junit, github, sarif, codeclimate or html");
-      formatName = args[++i];
-      if (formatName != "text" && formatName != "json" && formatName != "junit" && formatName != "github" && formatName != "sarif" &&
-          formatName != "codeclimate" && formatName != "html")
-        return usageError("--format must be text, json, junit, github, sarif, codeclimate or html");
-    } else if (arg == "-o" || arg == "--output") {
-      if (!hasValue) return usageError(arg + " needs a file name (\"-\" for standard output)");
-      output = args[++i];
-    } else if (arg == "--only" || arg == "--ignore") {
-      const std::optional<std::bitset<gltf::kCheckCount>> set = hasValue ? parseCheckList(args[++i]) : std::nullopt;
-      if (!set) return usageError(arg + " needs check names separated by commas: present format finite unit w w-uniform orthogonal handedness reference");
-      if (arg == "--only") options.enabled = *set;
-      else options.enabled &= ~*set;
-    } else if (arg == "--tolerance") {
-      if (!hasValue) return usageError("--tolerance needs degrees, or orthogonal=DEG / reference=DEG");
-      const std::string& value = args[++i];
-      const std::size_t equals = value.find('=');
-      const std::string check = equals == std::string::npos ? "" : value.substr(0, equals);
-      const std::optional<double> degrees = parseDegrees(equals == std::string::npos ? value : value.substr(equals + 1));
-      if (!degrees) return usageError("--tolerance must be a number of degrees in (0, 180]");
-      if (check.empty() || check == "orthogonal") options.orthogonalToleranceDegrees = *degrees;
-      if (check.empty() || check == "reference") options.referenceToleranceDegrees = *degrees;
-      if (!check.empty() && check != "orthogonal" && check != "reference")
-        return usageError("--tolerance " + check + "=...: only orthogonal and reference have a tolerance");
-    } else if (arg == "--min-coverage") {
-      if (!hasValue) return usageError("--min-coverage needs a fraction in [0, 1]");
-      const std::string& value = args[++i];
-      char* end = nullptr;
-      const double fraction = std::strtod(value.c_str(), &end);
-      if (value.empty() || end != value.c_str() + value.size() || !(fraction >= 0) || fraction > 1)
-        return usageError("--min-coverage must be a fraction in [0, 1] (0: no coverage warning)");
-      options.minCoverage = fraction;
-    } else if (arg == "--allow-missing") {
-      options.allowMissing = true;
-    } else if (arg == "--method") {
-      const std::optional<Method> method = hasValue ? parseMethod(args[++i]) : std::nullopt;
-      if (!method || *method == Method::flat) return usageError("--method must be mikktspace or lengyel");
-      options.method = *method;
-      options.weighting = Weighting::angle;
-    } else if (arg == "--reference") {
-      const std::optional<gltf::Generator> generator = hasValue ? gltf::parseGenerator(args[++i]) : std::nullopt;
-      if (!generator) return usageError("--reference must be " + gltf::generatorNames());
-      options.method = generator->method;
-      options.weighting = generator->weighting;
-    } else if (arg == "--all") {
-      options.all = true;
-    } else if (arg == "--identify") {
-      options.identify = true;
-    } else if (arg == "--recursive") {
-      recursive = true;
-    } else if (arg == "--asset-root") {
-      if (!hasValue) return usageError("--asset-root needs a directory");
-      options.assetRoot = args[++i];
-      if (!std::filesystem::is_directory(options.assetRoot)) return usageError("--asset-root " + args[i] + " is not a directory");
-    } else if (!arg.empty() && arg[0] == '-') {
-      return usageError("unknown option '" + arg + "'");
-    } else {
-      inputs.push_back(arg);
-    }
-  }
+  for (const auto& [option, value] : parsed.values) gltf::applyCheckOption(options, *option, value);
+  if (!options.assetRoot.empty() && !std::filesystem::is_directory(options.assetRoot))
+    return usageError("--asset-root " + shown(options.assetRoot.string()) + " is not a directory");
   if (inputs.empty()) return usageError("no input files");
   if (options.enabled.none()) return usageError("--only/--ignore leave no check to run");
   if (!recursive) {
@@ -642,7 +552,7 @@ int checkCommand(const std::vector<std::string>& args) {
   std::vector<gltf::FileCheck> checks;
   RunTimes times;
   bool unreadable = false, findings = false;
-  ProgressLine progress(files.size() > 1 && ::isatty(STDERR_FILENO));
+  ProgressLine progress(!parsed.flag("quiet") && files.size() > 1 && ::isatty(STDERR_FILENO));
   for (std::size_t n = 0; n < files.size(); ++n) {
     const std::string input = files[n].path.string();
     progress.show(n, files.size(), files[n].shownAs);

@@ -70,6 +70,14 @@ int infoCommand(const std::vector<std::string>& args) {
             std::cout << "      " << name << ": " << description.get<std::string>() << "\n";
           if (primitive.contains("morphTargets"))
             std::cout << "      morph targets: " << primitive["morphTargets"].dump() << "\n";
+          if (!primitive["frameConsumers"].empty()) {
+            std::cout << "      tangent frame read by:";
+            for (const auto& use : primitive["frameConsumers"])
+              std::cout << " " << use["consumer"].get<std::string>() << " (TEXCOORD_" << use["texCoord"].get<int>() << ")";
+            std::cout << "\n";
+          }
+          if (primitive.contains("frameWarning"))
+            std::cout << "      warning: " << shown(primitive["frameWarning"].get<std::string>()) << "\n";
         }
       }
       for (const auto& w : info["warnings"]) std::cerr << "warning: " << shown(w.get<std::string>()) << "\n";

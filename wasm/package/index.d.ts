@@ -5,6 +5,19 @@ export declare const ready: Promise<void>;
 /** The command line's names (`tangent bake --method`, `--weighting`). */
 export type Method = 'mikktspace' | 'lengyel' | 'flat' | 'meshopt';
 export type Weighting = 'angle' | 'area' | 'uniform';
+/** Where UV (0, 0) is; it decides the sign of w. */
+export type UvOrigin = 'top-left' | 'bottom-left';
+
+/**
+ * Every option's choices, the first the default: the option table every front end shares
+ * (the `tangent` command's --method, --weighting; Python's uv_origin). An unknown option is a
+ * TypeError, a value not among its choices a RangeError.
+ */
+export declare const optionChoices: {
+  readonly method: readonly Method[];
+  readonly weighting: readonly Weighting[];
+  readonly uvOrigin: readonly UvOrigin[];
+};
 
 export interface MethodOptions {
   /** 'mikktspace' (default), 'lengyel', 'flat' or 'meshopt' (meshoptimizer's default weighting). */
@@ -23,10 +36,20 @@ export interface DeindexedOptions extends MethodOptions {
 
 /**
  * Tangents of a de-indexed triangle list, xyzw per vertex, w in MikkTSpace's own convention
- * (as the npm `mikktspace` package returns it; glTF-Transform's tangents() negates it).
+ * (as the npm `mikktspace` package returns it; glTF-Transform's tangents() negates it). The
+ * drop-in for that package; every other function returns glTF's w.
  */
 export declare function generateTangents(position: Float32Array, normal: Float32Array, texcoord: Float32Array,
   options?: DeindexedOptions): Float32Array;
+
+export interface GltfDeindexedOptions extends DeindexedOptions {
+  /** 'top-left' (glTF; default) or 'bottom-left' (MikkTSpace's own w). */
+  uvOrigin?: UvOrigin;
+}
+
+/** The same tangents with w in glTF's convention (what a glTF TANGENT stores). */
+export declare function generateGltfTangents(position: Float32Array, normal: Float32Array, texcoord: Float32Array,
+  options?: GltfDeindexedOptions): Float32Array;
 
 /** The core's Report, as `tangent bake --report` writes it (the `tangents` object). */
 export interface TangentReport {
@@ -62,7 +85,7 @@ export interface IndexedTangents {
 
 export interface IndexedOptions extends MethodOptions {
   /** 'top-left' (glTF; default) or 'bottom-left' (MikkTSpace's own w). */
-  uvOrigin?: 'top-left' | 'bottom-left';
+  uvOrigin?: UvOrigin;
 }
 
 export declare function generateTangentsIndexed(position: Float32Array, normal: Float32Array, texcoord: Float32Array,

@@ -78,9 +78,54 @@ function copyOut(Type, pointer, length) {
   return copy;
 }
 
-// The options every call takes, with the command line's defaults.
-function names(options, uvOrigin) {
-  return { method: options.method ?? 'mikktspace', weighting: options.weighting ?? 'angle', uvOrigin };
+// The options of the core on arrays as the option table (libtangent/core/src/option_table.cpp)
+// gives them to npm: choices, the first the default. tests/python/test_option_table.py compares
+// this object, index.d.ts and the table, so that they cannot drift apart.
+export const optionChoices = Object.freeze({
+  method: Object.freeze(['mikktspace', 'lengyel', 'flat', 'meshopt']),
+  weighting: Object.freeze(['angle', 'area', 'uniform']),
+  uvOrigin: Object.freeze(['top-left', 'bottom-left']),
+});
+
+function describe(choices) {
+  return choices.length < 2 ? choices.join('') : `${choices.slice(0, -1).join(', ')} or ${choices[choices.length - 1]}`;
+}
+
+// The options of a call, checked: an unknown name is a TypeError (a misspelt option would
+// otherwise be ignored), a value not among its choices a RangeError; unset ones take the
+// table's defaults. `taken`: the names this function accepts.
+function names(options, taken) {
+  for (const key of Object.keys(options)) {
+    if (!taken.includes(key)) throw new TypeError(`libtangent: unknown option '${key}' (options: ${taken.join(', ')})`);
+  }
+  const chosen = {};
+  for (const [key, choices] of Object.entries(optionChoices)) {
+    const value = options[key] ?? choices[0];
+    if (!choices.includes(value)) throw new RangeError(`libtangent: ${key}: '${value}' is not ${describe(choices)}`);
+    chosen[key] = value;
+  }
+  return chosen;
+}
+
+function deindexed(position, normal, texcoord, output, chosen) {
+  requireFloat32('position', position, 3);
+  requireFloat32('normal', normal, 3);
+  requireFloat32('texcoord', texcoord, 2);
+  const n = position.length / 3;
+  if (normal.length !== n * 3) throw new RangeError(`normal: expected ${n * 3} floats, got ${normal.length}`);
+  if (texcoord.length !== n * 2) throw new RangeError(`texcoord: expected ${n * 2} floats, got ${texcoord.length}`);
+  if (n % 3 !== 0) throw new RangeError(`position: ${n} vertices are not whole triangles`);
+  if (output !== undefined) {
+    requireFloat32('output', output, 4);
+    if (output.length !== n * 4) throw new RangeError(`output: expected ${n * 4} floats, got ${output.length}`);
+  }
+  shareCorners(position, normal, texcoord, n);
+  run(null, null, null, null, n, n, chosen, false);
+  // A new array is memory the process has not touched yet (a page fault per 4 KiB as the copy
+  // writes it, on every call); the caller's own array, reused from call to call, is not.
+  if (output === undefined) return copyOut(Float32Array, wasm._tangent_corner_tangents(), n * 4);
+  output.set(view(Float32Array, wasm._tangent_corner_tangents(), n * 4));
+  return output;
 }
 
 /**
@@ -93,25 +138,19 @@ function names(options, uvOrigin) {
  * it saves the new array's first touch).
  */
 export function generateTangents(position, normal, texcoord, options = {}) {
-  requireFloat32('position', position, 3);
-  requireFloat32('normal', normal, 3);
-  requireFloat32('texcoord', texcoord, 2);
-  const n = position.length / 3;
-  if (normal.length !== n * 3) throw new RangeError(`normal: expected ${n * 3} floats, got ${normal.length}`);
-  if (texcoord.length !== n * 2) throw new RangeError(`texcoord: expected ${n * 2} floats, got ${texcoord.length}`);
-  if (n % 3 !== 0) throw new RangeError(`position: ${n} vertices are not whole triangles`);
-  const output = options.output;
-  if (output !== undefined) {
-    requireFloat32('output', output, 4);
-    if (output.length !== n * 4) throw new RangeError(`output: expected ${n * 4} floats, got ${output.length}`);
-  }
-  shareCorners(position, normal, texcoord, n);
-  run(null, null, null, null, n, n, names(options, 'bottom-left'), false);
-  // A new array is memory the process has not touched yet (a page fault per 4 KiB as the copy
-  // writes it, on every call); the caller's own array, reused from call to call, is not.
-  if (output === undefined) return copyOut(Float32Array, wasm._tangent_corner_tangents(), n * 4);
-  output.set(view(Float32Array, wasm._tangent_corner_tangents(), n * 4));
-  return output;
+  // The npm mikktspace package's w: its function takes no uvOrigin.
+  const chosen = { ...names(options, ['method', 'weighting', 'output']), uvOrigin: 'bottom-left' };
+  return deindexed(position, normal, texcoord, options.output, chosen);
+}
+
+/**
+ * The same de-indexed tangents with w in glTF's convention (options.uvOrigin 'top-left', the
+ * default), as generateTangentsIndexed returns it: what to store as a glTF TANGENT directly.
+ * Options as for generateTangentsIndexed, and options.output as for generateTangents.
+ */
+export function generateGltfTangents(position, normal, texcoord, options = {}) {
+  const chosen = names(options, ['method', 'weighting', 'uvOrigin', 'output']);
+  return deindexed(position, normal, texcoord, options.output, chosen);
 }
 
 /**
@@ -127,7 +166,7 @@ export function generateTangentsIndexed(position, normal, texcoord, indices, opt
   requireFloat32('texcoord', texcoord, 2);
   const index = indices instanceof Uint32Array ? indices : Uint32Array.from(indices);
   const vertexCount = position.length / 3;
-  const report = run(position, normal, texcoord, index, vertexCount, index.length, names(options, options.uvOrigin ?? 'top-left'), true);
+  const report = run(position, normal, texcoord, index, vertexCount, index.length, names(options, ['method', 'weighting', 'uvOrigin']), true);
   const outputVertices = report.outputVertices;
   return {
     vertexCount: outputVertices,

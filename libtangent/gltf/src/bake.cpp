@@ -785,10 +785,7 @@ std::optional<StridedMesh> PrimitiveBaker::inPlaceMesh(const PrimitivePlan& plan
   const Json& primitive = primitiveJson(plan);
   if (plan.generatesNormals || primitive.value("mode", 4) != 4) return std::nullopt;
   if (primitive.contains("targets") && !primitive["targets"].empty()) return std::nullopt;
-  if (plan.needs.hasNormalTexture) {
-    const Json& normalTexture = output_.json()["materials"][primitive["material"].get<int>()]["normalTexture"];
-    if (normalTexture.contains("extensions") && normalTexture["extensions"].contains("KHR_texture_transform")) return std::nullopt;
-  }
+  if (plan.needs.hasNormalTexture && detail::frameTextureTransform(output_.json(), primitive)) return std::nullopt;
   const Json& attributes = primitive["attributes"];
   const std::string uvName = "TEXCOORD_" + std::to_string(plan.needs.texCoord);
   const int positionIndex = detail::accessorOf(attributes, "POSITION"), normalIndex = detail::accessorOf(attributes, "NORMAL");
@@ -1135,9 +1132,15 @@ BakeResult bakeChecked(const std::filesystem::path& input, const std::filesystem
   Json& doc = document.json();
   result.primitives = baker.bakeAll();
   for (const PrimitiveResult& baked : result.primitives) {
+    const std::string where = input.string() + ": " + detail::primitiveLabel(doc, baked.mesh, baked.primitive);
+    // Consumers of the frame on other UV sets: TANGENT follows the first (the normal texture).
+    if (baked.action == PrimitiveAction::baked) {
+      const Json& primitive = doc["meshes"][baked.mesh]["primitives"][baked.primitive];
+      const std::string other = detail::primitiveNeeds(doc, primitive, options.all || asset.fromMeshFile).otherFrames;
+      if (!other.empty()) result.warnings.push_back(where + ": " + other);
+    }
     // Non-finite input is baked (its corners get fallback frames) but never silently.
     if (!baked.tangents.nonFiniteTriangles && !baked.tangents.invalidNormals) continue;
-    const std::string where = input.string() + ": " + detail::primitiveLabel(doc, baked.mesh, baked.primitive);
     if (baked.tangents.nonFiniteTriangles)
       result.warnings.push_back(where + ": " + std::to_string(baked.tangents.nonFiniteTriangles) +
                                 " triangles have non-finite (NaN or infinite) positions or UVs; their corners got fallback frames");

@@ -34,8 +34,9 @@ bool isInput(const fs::path& path) {
   return ext == ".gltf" || ext == ".glb" || detail::isMeshFile(path);
 }
 
-// What changes the output besides the input: the options (threads never do).
-Json optionsJson(const BakeOptions& options) {
+}  // namespace
+
+Json manifestOptions(const BakeOptions& options) {
   Json json{{"method", std::string(toString(options.tangents.method))},
             {"weighting", std::string(toString(options.tangents.weighting))},
             {"all", options.all},
@@ -47,6 +48,8 @@ Json optionsJson(const BakeOptions& options) {
   if (options.normals == NormalsMode::smooth) json["creaseAngleDegrees"] = options.creaseAngleDegrees;
   return json;
 }
+
+namespace {
 
 Json readManifest(const fs::path& path) {
   std::error_code ec;
@@ -292,7 +295,7 @@ std::vector<BatchEntry> bakeTree(const fs::path& inputFolder, const fs::path& ou
   if (!fs::is_directory(outputFolder, ec)) throw std::runtime_error(outputFolder.string() + ": cannot create the output folder");
   const fs::path manifestPath = outputFolder / kManifestName;
   const Json previous = readManifest(manifestPath);
-  const Json optionsNow = optionsJson(options.bake);
+  const Json optionsNow = manifestOptions(options.bake);
   Json previousFiles = previous.contains("options") && previous["options"] == optionsNow && previous.contains("files") &&
                                previous["files"].is_object()
                            ? previous["files"]

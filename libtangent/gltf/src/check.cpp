@@ -726,6 +726,8 @@ void checkLoaded(const detail::Asset& asset, const std::filesystem::path& input,
     verdict.meshName = std::move(named.meshName);
     verdict.texCoord = named.texCoord;
     named = std::move(verdict);
+    // Consumers of the frame on other UV sets: the one TANGENT cannot serve them all.
+    if (!pending[i].needs.otherFrames.empty()) named.warnings.push_back(pending[i].needs.otherFrames);
     // A normal texture whose image holds no data (neither uri nor bufferView; the loader
     // warned): the tangents are checked all the same.
     const long image = normalTextureImage(doc, *pending[i].primitive);

@@ -69,6 +69,15 @@ nlohmann::ordered_json describe(const std::filesystem::path& input, const std::f
       primitiveOut["needsTangents"] = detail::bakesTangents(needs) && drawsTriangles;
       primitiveOut["hasTangents"] = hasTangent;
       if (needs.texCoord >= 0 && needs.hasNormalTexture) primitiveOut["normalTexCoord"] = needs.texCoord;
+      // Every material feature that reads the tangent frame, the one TANGENT follows first.
+      Json consumers = Json::array();
+      for (const detail::ConsumerUse& use : needs.consumers) {
+        Json entry = {{"consumer", detail::toString(use.consumer)}, {"texCoord", use.texCoord}, {"texture", use.sampled}};
+        if (use.texCoordFromTransform) entry["texCoordFromTransform"] = true;
+        consumers.push_back(std::move(entry));
+      }
+      primitiveOut["frameConsumers"] = std::move(consumers);
+      if (!needs.otherFrames.empty()) primitiveOut["frameWarning"] = needs.otherFrames;
       primitiveOut["why"] = needs.triangles && !drawsTriangles
                                 ? "draws no triangle (" + std::to_string(vertices) + " vertices); left as it is"
                                 : detail::bakeReason(needs, asset.fromMeshFile);

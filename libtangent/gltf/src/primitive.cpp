@@ -23,27 +23,124 @@ std::string primitiveLabel(const Json& doc, int mesh, int primitive) {
   return label + " primitive " + std::to_string(primitive);
 }
 
+const char* toString(FrameConsumer consumer) {
+  switch (consumer) {
+    case FrameConsumer::normalTexture: return "normalTexture";
+    case FrameConsumer::clearcoatNormalTexture: return "clearcoatNormalTexture";
+    case FrameConsumer::anisotropy: return "anisotropy";
+  }
+  return "";
+}
+
+namespace {
+
+// The primitive's material, or null (validate.cpp has checked the document's types).
+const Json* materialOf(const Json& doc, const Json& primitive) {
+  if (!primitive.contains("material") || !primitive["material"].is_number_integer() || !doc.contains("materials")) return nullptr;
+  const int index = primitive["material"].get<int>();
+  if (index < 0 || index >= static_cast<int>(doc["materials"].size())) return nullptr;
+  return &doc["materials"][index];
+}
+
+const Json* member(const Json& owner, const char* key) {
+  return owner.is_object() && owner.contains(key) && owner[key].is_object() ? &owner[key] : nullptr;
+}
+
+const Json* extension(const Json& owner, const char* name) {
+  const Json* extensions = member(owner, "extensions");
+  return extensions ? member(*extensions, name) : nullptr;
+}
+
+// A consumer with its texture info (null: anisotropy without a texture), in the order TANGENT
+// follows them.
+std::vector<std::pair<ConsumerUse, const Json*>> consumersOf(const Json& material) {
+  std::vector<std::pair<ConsumerUse, const Json*>> found;
+  auto add = [&](FrameConsumer consumer, const Json* info) {
+    ConsumerUse use{consumer, 0, false, info != nullptr};
+    if (info) {
+      use.texCoord = info->contains("texCoord") && (*info)["texCoord"].is_number_integer() ? (*info)["texCoord"].get<int>() : 0;
+      const Json* transform = extension(*info, "KHR_texture_transform");
+      if (transform && transform->contains("texCoord") && (*transform)["texCoord"].is_number_integer()) {
+        use.texCoord = (*transform)["texCoord"].get<int>();
+        use.texCoordFromTransform = true;
+      }
+    }
+    found.emplace_back(use, info);
+  };
+  if (const Json* normal = member(material, "normalTexture")) add(FrameConsumer::normalTexture, normal);
+  if (const Json* clearcoat = extension(material, "KHR_materials_clearcoat"))
+    if (const Json* normal = member(*clearcoat, "clearcoatNormalTexture")) add(FrameConsumer::clearcoatNormalTexture, normal);
+  if (const Json* anisotropy = extension(material, "KHR_materials_anisotropy")) {
+    const Json* texture = member(*anisotropy, "anisotropyTexture");
+    const bool strength = anisotropy->contains("anisotropyStrength") && (*anisotropy)["anisotropyStrength"].is_number() &&
+                          (*anisotropy)["anisotropyStrength"].get<double>() != 0;
+    if (texture || strength) add(FrameConsumer::anisotropy, texture);
+  }
+  return found;
+}
+
+const Json* transformOf(const Json* info) { return info ? extension(*info, "KHR_texture_transform") : nullptr; }
+
+// "clearcoatNormalTexture samples TEXCOORD_1" for each consumer whose frame the first one's
+// TANGENT does not give: another UV set, or the same set through another transform.
+std::string otherFrames(const std::vector<std::pair<ConsumerUse, const Json*>>& consumers) {
+  std::string text;
+  const auto& [first, firstInfo] = consumers.front();
+  const Json none = Json::object();
+  const Json& firstTransform = transformOf(firstInfo) ? *transformOf(firstInfo) : none;
+  for (std::size_t i = 1; i < consumers.size(); ++i) {
+    const auto& [use, info] = consumers[i];
+    if (!use.sampled) continue;  // anisotropy without a texture reads TANGENT as it is
+    Json transform = transformOf(info) ? *transformOf(info) : none, compared = firstTransform;
+    transform.erase("texCoord");
+    compared.erase("texCoord");
+    std::string why;
+    if (use.texCoord != first.texCoord) why = " samples TEXCOORD_" + std::to_string(use.texCoord);
+    else if (transform != compared) why = " has another KHR_texture_transform";
+    if (!why.empty()) text += std::string(text.empty() ? "" : "; ") + toString(use.consumer) + why;
+  }
+  if (text.empty()) return text;
+  return text + ", but TANGENT follows the " + toString(first.consumer) + " (TEXCOORD_" + std::to_string(first.texCoord) +
+         "): one TANGENT cannot give both frames";
+}
+
+}  // namespace
+
+const Json* frameTextureTransform(const Json& doc, const Json& primitive) {
+  const Json* material = materialOf(doc, primitive);
+  if (!material) return nullptr;
+  const auto consumers = consumersOf(*material);
+  return consumers.empty() ? nullptr : transformOf(consumers.front().second);
+}
+
 PrimitiveNeeds primitiveNeeds(const Json& doc, const Json& primitive, bool all) {
   PrimitiveNeeds needs;
   const int mode = primitive.value("mode", 4);
   needs.triangles = mode == 4 || mode == 5 || mode == 6;
-  if (primitive.contains("material") && primitive["material"].is_number_integer() && doc.contains("materials")) {
-    const int materialIndex = primitive["material"].get<int>();
-    if (materialIndex >= 0 && materialIndex < static_cast<int>(doc["materials"].size())) {
-      const Json& material = doc["materials"][materialIndex];
-      if (material.contains("normalTexture") && material["normalTexture"].is_object()) {
-        const Json& normalTexture = material["normalTexture"];
-        needs.hasNormalTexture = true;
-        needs.texCoord = normalTexture.value("texCoord", 0);
-        if (normalTexture.contains("extensions") && normalTexture["extensions"].contains("KHR_texture_transform")) {
-          const Json& transform = normalTexture["extensions"]["KHR_texture_transform"];
-          if (transform.contains("texCoord") && transform["texCoord"].is_number_integer()) {
-            needs.texCoord = transform["texCoord"].get<int>();
-            needs.texCoordFromTransform = true;
-          }
-        }
-        needs.why = "material " + std::to_string(materialIndex) + " has a normalTexture on TEXCOORD_" +
-                    std::to_string(needs.texCoord) + (needs.texCoordFromTransform ? " (KHR_texture_transform)" : "");
+  if (const Json* material = materialOf(doc, primitive)) {
+    const auto consumers = consumersOf(*material);
+    for (const auto& [use, info] : consumers) needs.consumers.push_back(use);
+    if (!consumers.empty()) {
+      const ConsumerUse& first = needs.consumers.front();
+      needs.hasNormalTexture = true;
+      needs.texCoord = first.texCoord;
+      needs.texCoordFromTransform = first.texCoordFromTransform;
+      needs.why = "material " + std::to_string(primitive["material"].get<int>()) + " has " +
+                  (first.consumer == FrameConsumer::anisotropy ? std::string("anisotropy (KHR_materials_anisotropy)")
+                                                               : "a " + std::string(toString(first.consumer))) +
+                  (first.sampled || first.consumer != FrameConsumer::anisotropy ? " on TEXCOORD_" + std::to_string(first.texCoord)
+                                                                                 : ", no texture: TEXCOORD_0") +
+                  (first.texCoordFromTransform ? " (KHR_texture_transform)" : "");
+      needs.otherFrames = otherFrames(consumers);
+      // Anisotropy alone, without a texture, on a primitive without UVs: no frame to compute
+      // (left as it is, not a broken file as a texture on a missing UV set is).
+      if (first.consumer == FrameConsumer::anisotropy && !first.sampled &&
+          (!primitive.contains("attributes") || accessorOf(primitive["attributes"], "TEXCOORD_0") < 0)) {
+        needs.hasNormalTexture = false;
+        needs.texCoord = -1;
+        needs.why = "material " + std::to_string(primitive["material"].get<int>()) +
+                    " has anisotropy but no texture, and the primitive has no TEXCOORD_0 to compute tangents from";
+        return needs.triangles ? needs : (needs.why = "mode " + std::to_string(mode) + " is not triangles", needs);
       }
     }
   }
@@ -102,13 +199,8 @@ std::string inputKey(const Json& doc, const Json& primitive, const PrimitiveNeed
     draco = &primitive["extensions"]["KHR_draco_mesh_compression"];
   key.push_back(draco ? *draco : Json(nullptr));
   key.push_back(needs.texCoord);
-  Json transform = nullptr;
-  if (needs.hasNormalTexture && primitive.contains("material")) {
-    const Json& normalTexture = doc["materials"][primitive["material"].get<int>()]["normalTexture"];
-    if (normalTexture.contains("extensions") && normalTexture["extensions"].contains("KHR_texture_transform"))
-      transform = normalTexture["extensions"]["KHR_texture_transform"];
-  }
-  key.push_back(std::move(transform));
+  const Json* transform = needs.hasNormalTexture ? frameTextureTransform(doc, primitive) : nullptr;
+  key.push_back(transform ? *transform : Json(nullptr));
   return key.dump();
 }
 
@@ -237,11 +329,8 @@ PrimitiveGeometry readVertices(const Asset& asset, const Json& primitive, const 
     geometry.normalLengths = unitNormals(geometry.normals);
   }
   geometry.uvs = readVectors(model, uvAccessor, 2, geometry.vertexCount, where + ": " + uvName);
-  if (needs.hasNormalTexture) {
-    const Json& normalTexture = asset.json["materials"][primitive["material"].get<int>()]["normalTexture"];
-    if (normalTexture.contains("extensions") && normalTexture["extensions"].contains("KHR_texture_transform"))
-      applyTextureTransform(geometry.uvs, normalTexture["extensions"]["KHR_texture_transform"]);
-  }
+  if (const Json* transform = needs.hasNormalTexture ? frameTextureTransform(asset.json, primitive) : nullptr)
+    applyTextureTransform(geometry.uvs, *transform);
   return geometry;
 }
 

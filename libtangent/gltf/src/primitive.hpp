@@ -15,15 +15,41 @@
 
 namespace tangent::gltf::detail {
 
+// A material feature that reads the tangent frame: the normal texture (glTF 2.0 3.9.3),
+// KHR_materials_clearcoat's clearcoatNormalTexture, KHR_materials_anisotropy (its direction is
+// given in the tangent frame, with or without a texture).
+enum class FrameConsumer { normalTexture, clearcoatNormalTexture, anisotropy };
+const char* toString(FrameConsumer consumer);  // "normalTexture", "clearcoatNormalTexture", "anisotropy"
+
+struct ConsumerUse {
+  FrameConsumer consumer = FrameConsumer::normalTexture;
+  int texCoord = 0;                  // the UV set its texture samples (TEXCOORD_0 without a texture)
+  bool texCoordFromTransform = false;  // KHR_texture_transform overrode texCoord
+  bool sampled = false;              // it has a texture (anisotropy may have none)
+};
+
 struct PrimitiveNeeds {
   bool triangles = false;        // mode 4, 5 or 6
+  // Some material feature reads the frame (consumers is not empty): a normal texture, a
+  // clearcoat normal texture or anisotropy.
   bool hasNormalTexture = false;
-  int texCoord = -1;             // UV set the normal texture samples, -1 when none
+  int texCoord = -1;             // UV set the first consumer samples, -1 when none
   bool texCoordFromTransform = false;  // KHR_texture_transform overrode texCoord
   std::string why;               // human-readable: why tangents are (not) needed
+  // Every consumer, the one TANGENT follows first: the normal texture, else the clearcoat
+  // normal texture, else anisotropy (the core spec computes tangents from the normal texture's
+  // UV set; the extensions read the same TANGENT).
+  std::vector<ConsumerUse> consumers;
+  // "" or, where another consumer samples another UV set or through another
+  // KHR_texture_transform (one TANGENT cannot serve both), which: a warning of bake and check.
+  std::string otherFrames;
 };
 
 PrimitiveNeeds primitiveNeeds(const nlohmann::ordered_json& doc, const nlohmann::ordered_json& primitive, bool all);
+
+// The KHR_texture_transform of the texture TANGENT follows (the first consumer's), or null:
+// the UVs tangents are computed from are turned by it.
+const nlohmann::ordered_json* frameTextureTransform(const nlohmann::ordered_json& doc, const nlohmann::ordered_json& primitive);
 
 // The one rule for whether tangents are computed for a primitive: triangles and a UV set to
 // bake from. bake computes them, check judges them, info says "needs tangents".

@@ -245,18 +245,16 @@ InputRounding inputRounding(const Asset& asset, const Json& primitive, int texCo
   rounding.position = halfRoundingStep(asset.model, accessorOf(attributes, "POSITION"), asset.path.string() + ": POSITION", draco);
   rounding.uv = halfRoundingStep(asset.model, accessorOf(attributes, "TEXCOORD_" + std::to_string(texCoord)),
                                  asset.path.string() + ": TEXCOORD_" + std::to_string(texCoord), draco);
-  // The reference sees UVs after the normal texture's KHR_texture_transform: its scale scales the step.
-  if (rounding.uv > 0 && hasNormalTexture && primitive.contains("material")) {
-    const Json& texture = asset.json["materials"][primitive["material"].get<int>()]["normalTexture"];
-    if (texture.contains("extensions") && texture["extensions"].contains("KHR_texture_transform")) {
-      const Json& transform = texture["extensions"]["KHR_texture_transform"];
-      if (transform.contains("scale") && transform["scale"].size() == 2)
-        rounding.uv *= std::max(std::abs(transform["scale"][0].get<double>()), std::abs(transform["scale"][1].get<double>()));
-      // A rotation mixes the two components: each moves by up to (|cos| + |sin|) times as much.
-      if (transform.contains("rotation") && transform["rotation"].is_number()) {
-        const double rotation = transform["rotation"].get<double>();
-        rounding.uv *= std::abs(std::cos(rotation)) + std::abs(std::sin(rotation));
-      }
+  // The reference sees UVs after the frame texture's KHR_texture_transform: its scale scales the step.
+  const Json* frameTransform = rounding.uv > 0 && hasNormalTexture ? frameTextureTransform(asset.json, primitive) : nullptr;
+  if (frameTransform) {
+    const Json& transform = *frameTransform;
+    if (transform.contains("scale") && transform["scale"].size() == 2)
+      rounding.uv *= std::max(std::abs(transform["scale"][0].get<double>()), std::abs(transform["scale"][1].get<double>()));
+    // A rotation mixes the two components: each moves by up to (|cos| + |sin|) times as much.
+    if (transform.contains("rotation") && transform["rotation"].is_number()) {
+      const double rotation = transform["rotation"].get<double>();
+      rounding.uv *= std::abs(std::cos(rotation)) + std::abs(std::sin(rotation));
     }
   }
   return rounding;

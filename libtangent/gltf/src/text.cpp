@@ -2,6 +2,8 @@
 // UTF-8 validity after the Unicode Standard, table 3-7 (well-formed byte sequences).
 #include "tangent/text.hpp"
 
+#include <algorithm>
+
 namespace tangent::text {
 namespace {
 
@@ -160,6 +162,94 @@ std::string uriPath(std::string_view path) {
 
 std::string uriQueryValue(std::string_view value) {
   return percentEncode(value, "-._~/");  // unreserved and '/'
+}
+
+namespace {
+
+// A forward reader of JSON text that skips values without building them.
+class JsonCursor {
+ public:
+  explicit JsonCursor(std::string_view text) : text_(text) {}
+  std::size_t at() const { return at_; }
+  char peek() {
+    while (at_ < text_.size() && (text_[at_] == ' ' || text_[at_] == '\n' || text_[at_] == '\r' || text_[at_] == '\t')) ++at_;
+    return at_ < text_.size() ? text_[at_] : '\0';
+  }
+  bool take(char c) {
+    if (peek() != c) return false;
+    ++at_;
+    return true;
+  }
+  // A string's raw contents (escapes left as they are: pointers here name plain keys).
+  std::optional<std::string_view> string() {
+    if (!take('"')) return std::nullopt;
+    const std::size_t start = at_;
+    while (at_ < text_.size() && text_[at_] != '"') at_ += text_[at_] == '\\' ? 2 : 1;
+    if (at_ >= text_.size()) return std::nullopt;
+    return text_.substr(start, at_++ - start);
+  }
+  // Skips one value of any depth (brackets counted, strings skipped whole).
+  bool skipValue() {
+    std::size_t depth = 0;
+    do {
+      const char c = peek();
+      if (c == '"') {
+        if (!string()) return false;
+      } else if (c == '{' || c == '[') {
+        ++depth, ++at_;
+      } else if (c == '}' || c == ']') {
+        if (depth == 0) return false;
+        --depth, ++at_;
+      } else if (c == ',' || c == ':') {
+        if (depth == 0) return false;
+        ++at_;
+      } else if (c == '\0') {
+        return false;
+      } else {
+        while (at_ < text_.size() && std::string_view(",}] \n\r\t").find(text_[at_]) == std::string_view::npos) ++at_;
+      }
+    } while (depth > 0);
+    return true;
+  }
+
+ private:
+  std::string_view text_;
+  std::size_t at_ = 0;
+};
+
+// Moves `cursor` from the start of an object or array to the start of its member `token`.
+bool enter(JsonCursor& cursor, std::string_view token) {
+  if (cursor.take('{')) {
+    for (bool first = true;; first = false) {
+      if (!first && !cursor.take(',')) return false;
+      const auto key = cursor.string();
+      if (!key || !cursor.take(':')) return false;
+      if (*key == token) return true;
+      if (!cursor.skipValue()) return false;
+    }
+  }
+  if (!cursor.take('[') || token.empty() || token.find_first_not_of("0123456789") != std::string_view::npos) return false;
+  std::size_t index = 0;
+  for (const char digit : token) index = index * 10 + static_cast<std::size_t>(digit - '0');
+  for (std::size_t k = 0; k < index; ++k)
+    if (!cursor.skipValue() || !cursor.take(',')) return false;
+  return cursor.peek() != ']' && cursor.peek() != '\0';
+}
+
+}  // namespace
+
+std::optional<std::size_t> jsonPointerLine(std::string_view json, std::string_view pointer) {
+  JsonCursor cursor(json);
+  while (!pointer.empty()) {
+    if (pointer.front() != '/') return std::nullopt;
+    pointer.remove_prefix(1);
+    const std::size_t end = std::min(pointer.find('/'), pointer.size());
+    if (!enter(cursor, pointer.substr(0, end))) return std::nullopt;
+    pointer.remove_prefix(end);
+  }
+  cursor.peek();
+  const std::size_t at = std::min(cursor.at(), json.size());
+  return 1 + static_cast<std::size_t>(std::count(json.begin(), json.begin() + static_cast<std::ptrdiff_t>(at), '\n'));
 }
 
 }  // namespace tangent::text

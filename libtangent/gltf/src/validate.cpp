@@ -321,11 +321,23 @@ class Validator {
         for (const char* key : {"baseColorTexture", "metallicRoughnessTexture"})
           textureInfo(*pbr, key, join(pointer, "pbrMetallicRoughness"));
       }
-      // The one material extension whose textures the viewer reads (with their transforms).
+      // The material extensions whose textures the viewer reads or that read the tangent frame
+      // (clearcoat's normal texture, anisotropy: tangent_rules' consumers), with their transforms.
       if (const Json* extensions = objectMember(material, "extensions", pointer)) {
-        const std::string ep = join(pointer, "extensions/KHR_materials_specular");
-        if (const Json* specular = objectMember(*extensions, "KHR_materials_specular", join(pointer, "extensions"))) {
-          for (const char* key : {"specularTexture", "specularColorTexture"}) textureInfo(*specular, key, ep);
+        const std::string ep = join(pointer, "extensions");
+        if (const Json* specular = objectMember(*extensions, "KHR_materials_specular", ep)) {
+          for (const char* key : {"specularTexture", "specularColorTexture"})
+            textureInfo(*specular, key, join(ep, "KHR_materials_specular"));
+        }
+        if (const Json* clearcoat = objectMember(*extensions, "KHR_materials_clearcoat", ep)) {
+          const std::string cp = join(ep, "KHR_materials_clearcoat");
+          for (const char* key : {"clearcoatFactor", "clearcoatRoughnessFactor"}) member(*clearcoat, key, cp, &Json::is_number, "a number");
+          for (const char* key : {"clearcoatTexture", "clearcoatRoughnessTexture", "clearcoatNormalTexture"}) textureInfo(*clearcoat, key, cp);
+        }
+        if (const Json* anisotropy = objectMember(*extensions, "KHR_materials_anisotropy", ep)) {
+          const std::string ap = join(ep, "KHR_materials_anisotropy");
+          for (const char* key : {"anisotropyStrength", "anisotropyRotation"}) member(*anisotropy, key, ap, &Json::is_number, "a number");
+          textureInfo(*anisotropy, "anisotropyTexture", ap);
         }
       }
     }

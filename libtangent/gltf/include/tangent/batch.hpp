@@ -30,6 +30,14 @@ struct BatchOptions {
   std::function<void(std::size_t index, std::size_t total, const std::filesystem::path& input)> onStart;
 };
 
+// The manifest's "options" record: what changes an output besides its input (threads never do);
+// a run whose options differ from the manifest's bakes everything again.
+nlohmann::ordered_json manifestOptions(const BakeOptions& options);
+
+// A checked value of the option table into `options` (force, verify, and bake's options into
+// options.bake); false when the option is not one of bake_tree's.
+bool applyBatchOption(BatchOptions& options, const options::Option& option, std::string_view value);
+
 // What a run did with a file: baked (some primitive got tangents), kept (written, but every
 // primitive kept its tangents or needed none), unchanged (skipped: the manifest's digest
 // matches and the output is there), failed.

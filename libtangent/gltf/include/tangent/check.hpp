@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "tangent/option_table.hpp"
 #include "tangent/tangent.hpp"
 
 namespace tangent::gltf {
@@ -60,6 +61,10 @@ struct CheckOptions {
   std::string configFile;                  // where the settings came from, for the report ("" for none)
   bool runs(CheckId id) const { return enabled.test(static_cast<std::size_t>(id)); }
 };
+
+// A checked value of the option table (tangent/option_table.hpp) into `options`, as the command
+// line and Python's check() give them; false when the option is not one of check's.
+bool applyCheckOption(CheckOptions& options, const options::Option& option, std::string_view value);
 
 // Reads a check configuration (JSON: only, ignore, tolerance {orthogonal, reference}, method,
 // reference (a generator name), minCoverage, allowMissing, all; README "tangent check") into `options`. Throws std::runtime_error naming

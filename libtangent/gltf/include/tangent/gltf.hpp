@@ -15,6 +15,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "tangent/option_table.hpp"
 #include "tangent/tangent.hpp"
 
 namespace tangent::gltf {
@@ -83,6 +84,10 @@ struct BakeOptions {
   // The other files of a run (not owned; null: only this bake's own input and its files).
   const ProtectedFiles* protectedFiles = nullptr;
 };
+
+// A checked value of the option table (tangent/option_table.hpp) into `options`; false when the
+// option is not one of bake's options (nothing changed).
+bool applyBakeOption(BakeOptions& options, const options::Option& option, std::string_view value);
 
 // What bake did with a primitive; toString gives the report's "action" names.
 enum class PrimitiveAction { baked, kept, skipped };

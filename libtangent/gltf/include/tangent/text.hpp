@@ -7,6 +7,7 @@
 
 #include <cstddef>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <string>
 #include <string_view>
 
@@ -54,5 +55,11 @@ std::string uriQueryValue(std::string_view value);
 // JSON as every writer writes it (reports, manifests, glTF documents): strings and keys that
 // are not valid UTF-8 pass through utf8Safe first, where nlohmann's dump would throw.
 std::string dumpJson(const nlohmann::ordered_json& json, int indent = -1);
+
+// The line (from 1) on which the value at JSON pointer `pointer` ("/meshes/0/primitives/1")
+// starts in the JSON text `json`, for reports that point code-review tools at a line of a
+// .gltf; nullopt where the text does not hold it (or is not JSON). Linear in the text, no
+// recursion (any nesting depth).
+std::optional<std::size_t> jsonPointerLine(std::string_view json, std::string_view pointer);
 
 }  // namespace tangent::text
