@@ -97,7 +97,7 @@ TriangleData evaluateTriangles(const WorkspaceData& ws, const MeshArrays& mesh, 
         bool invalid = false;
         data.cornerNormals[corner] = cornerNormal(vec3At(mesh.normals, mesh.indices[corner]), triangle, invalid);
         data.invalidNormal[corner] = invalid;
-        if (triangle.kind != TriangleKind::usable) continue;
+        if (triangle.kind != TriangleKind::usable || options.method == Method::flat) continue;  // flat weighs all alike
         if (options.method == Method::meshopt) {
           data.cornerWeights[corner] = projectedEdgeWeight(positions, k, data.cornerNormals[corner], triangle.tangent);
           continue;
@@ -208,6 +208,11 @@ Report lengyelOnArrays(WorkspaceData& ws, const MeshArrays& mesh, const CornerOu
     data = evaluateTriangles(ws, mesh, weldOf, options, report);
     report.nonManifoldFaces = countNonManifoldFaces(ws, mesh, weldOf);
   });
+  if (grouping == Grouping::perFace) {
+    flatFrames(ws, mesh, weldOf, data, outputs);
+    finishOutputs(ws, mesh, outputs, options, report);
+    return report;
+  }
   CornerGroups cornerGroups = groupCorners(ws, mesh, weldOf, data, grouping);
   sumAndOrthonormalize(ws, data, cornerGroups, options.method);
   fillUndefinedGroups(mesh, weldOf, cornerGroups);

@@ -14,32 +14,40 @@
 
 namespace tangent::detail {
 
-CornerGroups groupCorners(const WorkspaceData& ws, const MeshArrays& mesh, const std::vector<std::uint32_t>& weldOf,
-                          const TriangleData& data, Grouping grouping) {
-  const std::size_t cornerCount = mesh.indices.size();
+namespace {
+
+// groupCorners over `cornerCount` corners, the i-th of them cornerAt(i) in increasing order:
+// every corner, or a few (groupCornersAt). The groups of a position hold all its corners
+// listed, so the caller lists all corners of each position it wants grouped.
+template <typename CornerAt>
+CornerGroups groupListedCorners(const WorkspaceData& ws, const MeshArrays& mesh, const std::vector<std::uint32_t>& weldOf,
+                                const TriangleData& data, Grouping grouping, std::size_t cornerCount,
+                                const CornerAt& cornerAt) {
+  const bool everyCorner = cornerCount == mesh.indices.size();
   // The keys in CornerKey order without one sort of them all: each corner's slot is counted
   // out by its weld (the key's first field), corners of one weld in corner order, and then
   // each weld's run (the few corners at one position) is sorted by the whole key. The same
   // order as sorting every key, in linear time but for the runs.
   std::vector<std::uint32_t> slot(cornerCount), runStart(ws.vertexCount + 1, 0);
-  for (std::size_t c = 0; c < cornerCount; ++c) ++runStart[weldOf[mesh.indices[c]] + 1];
+  for (std::size_t i = 0; i < cornerCount; ++i) ++runStart[weldOf[mesh.indices[cornerAt(i)]] + 1];
   for (std::size_t v = 0; v < ws.vertexCount; ++v) runStart[v + 1] += runStart[v];
   {
     std::vector<std::uint32_t> next(runStart.begin(), runStart.end() - 1);
-    for (std::size_t c = 0; c < cornerCount; ++c) slot[c] = next[weldOf[mesh.indices[c]]]++;
+    for (std::size_t i = 0; i < cornerCount; ++i) slot[i] = next[weldOf[mesh.indices[cornerAt(i)]]]++;
   }
   CornerGroups result;
   std::vector<CornerKey>& keys = result.keys;
   keys.resize(cornerCount);
   forRange(ws, cornerCount, 1 << 14, [&](std::size_t begin, std::size_t end) {
-    for (std::size_t c = begin; c < end; ++c) {
+    for (std::size_t i = begin; i < end; ++i) {
+      const std::size_t c = cornerAt(i);
       const TriangleTangent& triangle = data.triangles[c / 3];
       const std::uint32_t vertex = mesh.indices[c];
-      CornerKey& key = keys[slot[c]];
+      CornerKey& key = keys[slot[i]];
       key.weld = weldOf[vertex];
       key.orientation = triangle.kind == TriangleKind::usable ? triangle.orientation : 0;
       key.tag = grouping == Grouping::perFace ? c / 3 + 1 : 0;
-      for (int i = 0; i < 3; ++i) key.normal[i] = bitsOf(data.cornerNormals[c][i]);
+      for (int axis = 0; axis < 3; ++axis) key.normal[axis] = bitsOf(data.cornerNormals[c][axis]);
       key.uv[0] = bitsOf(mesh.uvs[2 * vertex]);
       key.uv[1] = bitsOf(mesh.uvs[2 * vertex + 1]);
       key.corner = static_cast<std::uint32_t>(c);
@@ -62,7 +70,7 @@ CornerGroups groupCorners(const WorkspaceData& ws, const MeshArrays& mesh, const
   result.groups.resize(groupCount);
   result.groupStart.resize(groupCount + 1);
   result.sortedCorners.resize(cornerCount);
-  result.cornerGroup.resize(cornerCount);
+  if (everyCorner) result.cornerGroup.resize(cornerCount);
   forRange(ws, cornerCount, 1 << 14, [&](std::size_t begin, std::size_t end) {
     for (std::size_t i = begin; i < end; ++i) {
       const CornerKey& key = keys[i];
@@ -76,11 +84,23 @@ CornerGroups groupCorners(const WorkspaceData& ws, const MeshArrays& mesh, const
         result.groupStart[g] = static_cast<std::uint32_t>(i);
       }
       result.sortedCorners[i] = key.corner;
-      result.cornerGroup[key.corner] = g;
+      if (everyCorner) result.cornerGroup[key.corner] = g;
     }
   });
   result.groupStart[groupCount] = static_cast<std::uint32_t>(cornerCount);
   return result;
+}
+
+}  // namespace
+
+CornerGroups groupCorners(const WorkspaceData& ws, const MeshArrays& mesh, const std::vector<std::uint32_t>& weldOf,
+                          const TriangleData& data, Grouping grouping) {
+  return groupListedCorners(ws, mesh, weldOf, data, grouping, mesh.indices.size(), [](std::size_t i) { return i; });
+}
+
+CornerGroups groupCornersAt(const WorkspaceData& ws, const MeshArrays& mesh, const std::vector<std::uint32_t>& weldOf,
+                            const TriangleData& data, Grouping grouping, std::span<const std::uint32_t> corners) {
+  return groupListedCorners(ws, mesh, weldOf, data, grouping, corners.size(), [&](std::size_t i) { return corners[i]; });
 }
 
 namespace {
