@@ -35,7 +35,7 @@ void writeFrame(float* tangents, std::size_t corner, const Vec3& tangent, double
 // and those that share a triangle with it (a superset of the 1-ring fillUndefinedGroups
 // gathers; a position more adds groups no answer reads).
 std::vector<std::uint32_t> cornersNearUndefined(const WorkspaceData& ws, const MeshArrays& mesh,
-                                                const std::vector<std::uint32_t>& weldOf,
+                                                std::span<const std::uint32_t> weldOf,
                                                 const std::vector<std::uint32_t>& undefined) {
   enum : std::uint8_t { kFar = 0, kUndefinedHere = 1, kNeighbour = 2 };
   std::vector<std::uint8_t> near(ws.vertexCount, kFar);
@@ -53,7 +53,7 @@ std::vector<std::uint32_t> cornersNearUndefined(const WorkspaceData& ws, const M
 
 }  // namespace
 
-void flatFrames(WorkspaceData& ws, const MeshArrays& mesh, const std::vector<std::uint32_t>& weldOf,
+void flatFrames(WorkspaceData& ws, const MeshArrays& mesh, std::span<const std::uint32_t> weldOf,
                 const TriangleData& data, const CornerOutputs& outputs) {
   ensureSize(ws.cornerState, ws.cornerCount);
   ensureSize(ws.cornerLink, ws.cornerCount);

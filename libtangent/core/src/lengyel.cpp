@@ -22,32 +22,60 @@
 namespace tangent::detail {
 namespace {
 
+// The open-addressing probe's hash of a position's canonical bits (+0 and -0 alike).
+std::uint64_t positionHash(const std::uint32_t bits[3]) {
+  std::uint64_t h = bits[0] * 0x9E3779B97F4A7C15ull ^ bits[1] * 0xC2B2AE3D27D4EB4Full ^ bits[2] * 0x165667B19E3779F9ull;
+  h ^= h >> 32;
+  h *= 0xFF51AFD7ED558CCDull;
+  return h ^ (h >> 29);
+}
+
 // Each vertex's representative: the smallest vertex with the same position bits (+0 and -0
-// alike). Its position is the one every corner at that point is evaluated with.
-std::vector<std::uint32_t> positionWeld(const WorkspaceData& ws, const MeshArrays& mesh) {
-  struct Entry {
-    std::uint32_t bits[3];
-    std::uint32_t vertex;
-    bool operator<(const Entry& o) const {
-      return std::tie(bits[0], bits[1], bits[2], vertex) < std::tie(o.bits[0], o.bits[1], o.bits[2], o.vertex);
-    }
-  };
+// alike). Its position is the one every corner at that point is evaluated with. Vertices go
+// into an open-addressing table (vertex + 1, 0 empty) in increasing order, so the first of a
+// position found there is its smallest; a block's slots are fetched ahead of its probes (the
+// table is larger than the caches). Into the workspace: ws.positionRepresentative.
+std::span<const std::uint32_t> positionWeld(WorkspaceData& ws, const MeshArrays& mesh) {
   const std::size_t vertexCount = ws.vertexCount;
-  std::vector<Entry> entries(vertexCount);
-  forRange(ws, vertexCount, 1 << 14, [&](std::size_t begin, std::size_t end) {
-    for (std::size_t v = begin; v < end; ++v) {
-      for (int i = 0; i < 3; ++i) entries[v].bits[i] = canonicalBits(mesh.positions[3 * v + i]);
-      entries[v].vertex = static_cast<std::uint32_t>(v);
+  std::size_t tableSize = 64;
+  while (tableSize < 2 * vertexCount) tableSize *= 2;
+  ensureSize(ws.positionTable, tableSize);
+  ensureSize(ws.positionRepresentative, vertexCount);
+  std::uint32_t* table = ws.positionTable.data();
+  std::uint32_t* representative = ws.positionRepresentative.data();
+  std::fill(table, table + tableSize, 0u);
+  auto bitsAt = [&](std::size_t v, std::uint32_t bits[3]) {
+    for (int i = 0; i < 3; ++i) bits[i] = canonicalBits(mesh.positions[3 * v + i]);
+  };
+  constexpr std::size_t kBlock = 32;
+  std::uint64_t slotOf[kBlock];
+  for (std::size_t first = 0; first < vertexCount; first += kBlock) {
+    const std::size_t count = std::min(kBlock, vertexCount - first);
+    for (std::size_t i = 0; i < count; ++i) {
+      std::uint32_t bits[3];
+      bitsAt(first + i, bits);
+      slotOf[i] = positionHash(bits) & (tableSize - 1);
+      prefetch(table + slotOf[i]);
     }
-  });
-  sortInParallel(ws, entries.begin(), entries.end(), [](const Entry& a, const Entry& b) { return a < b; });
-  std::vector<std::uint32_t> weldOf(vertexCount);
-  std::uint32_t representative = 0;
-  for (std::size_t i = 0; i < vertexCount; ++i) {
-    if (i == 0 || std::memcmp(entries[i].bits, entries[i - 1].bits, sizeof entries[i].bits) != 0) representative = entries[i].vertex;
-    weldOf[entries[i].vertex] = representative;
+    for (std::size_t i = 0; i < count; ++i) {
+      const std::size_t v = first + i;
+      std::uint32_t bits[3], other[3];
+      bitsAt(v, bits);
+      for (std::size_t slot = slotOf[i];; slot = (slot + 1) & (tableSize - 1)) {
+        if (table[slot] == 0) {
+          table[slot] = static_cast<std::uint32_t>(v + 1);
+          representative[v] = static_cast<std::uint32_t>(v);
+          break;
+        }
+        bitsAt(table[slot] - 1, other);
+        if (std::memcmp(bits, other, sizeof bits) == 0) {
+          representative[v] = table[slot] - 1;
+          break;
+        }
+      }
+    }
   }
-  return weldOf;
+  return {representative, vertexCount};
 }
 
 Vec3 vec3At(std::span<const float> values, std::uint32_t vertex) {
@@ -74,7 +102,7 @@ double projectedEdgeWeight(const std::array<Vec3, 3>& positions, int k, const Ve
 
 // Each triangle evaluated at its corners' positions (their representatives') and UVs, each
 // corner given its normal and its weighting's term (meshopt: its own); counts into the report.
-TriangleData evaluateTriangles(const WorkspaceData& ws, const MeshArrays& mesh, const std::vector<std::uint32_t>& weldOf,
+TriangleData evaluateTriangles(const WorkspaceData& ws, const MeshArrays& mesh, std::span<const std::uint32_t> weldOf,
                                const Options& options, Report& report) {
   const std::size_t triangleCount = ws.cornerCount / 3;
   TriangleData data;
@@ -125,7 +153,7 @@ TriangleData evaluateTriangles(const WorkspaceData& ws, const MeshArrays& mesh, 
 // corners at one position are left out, as the OpenMesh call's weld leaves them out. Each edge
 // is counted out to its smaller end (a counting sort), and each end's few edges are sorted by
 // their other end: linear time but for those runs.
-std::uint64_t countNonManifoldFaces(const WorkspaceData& ws, const MeshArrays& mesh, const std::vector<std::uint32_t>& weldOf) {
+std::uint64_t countNonManifoldFaces(const WorkspaceData& ws, const MeshArrays& mesh, std::span<const std::uint32_t> weldOf) {
   const std::size_t triangleCount = ws.cornerCount / 3;
   auto ends = [&](std::size_t t, int k) {
     const std::uint32_t a = weldOf[mesh.indices[3 * t + k]], b = weldOf[mesh.indices[3 * t + (k + 1) % 3]];
@@ -197,7 +225,7 @@ Report lengyelOnArrays(WorkspaceData& ws, const MeshArrays& mesh, const CornerOu
   if (options.method == Method::lengyel) report.weighting = options.weighting;
   report.triangles = ws.cornerCount / 3;
   report.corners = ws.cornerCount;
-  std::vector<std::uint32_t> weldOf;
+  std::span<const std::uint32_t> weldOf;
   TriangleData data;
   // The weld and buckets serve the vertex split only: beside the method's own first phases
   // (on one thread below four, as mikktspace's kernel runs them).

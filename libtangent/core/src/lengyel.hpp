@@ -90,11 +90,11 @@ struct CornerGroups {
 };
 
 // Sorts the corners by key (in parallel) and cuts them into groups.
-CornerGroups groupCorners(const WorkspaceData& ws, const MeshArrays& mesh, const std::vector<std::uint32_t>& weldOf,
+CornerGroups groupCorners(const WorkspaceData& ws, const MeshArrays& mesh, std::span<const std::uint32_t> weldOf,
                           const TriangleData& data, Grouping grouping);
 // The same over the listed corners only (increasing; every corner of each position it
 // lists): the groups of those positions, as groupCorners makes them; no cornerGroup.
-CornerGroups groupCornersAt(const WorkspaceData& ws, const MeshArrays& mesh, const std::vector<std::uint32_t>& weldOf,
+CornerGroups groupCornersAt(const WorkspaceData& ws, const MeshArrays& mesh, std::span<const std::uint32_t> weldOf,
                             const TriangleData& data, Grouping grouping, std::span<const std::uint32_t> corners);
 
 // Each group's weighted terms summed in value order (so no order of the input moves a bit),
@@ -105,11 +105,11 @@ void sumAndOrthonormalize(const WorkspaceData& ws, const TriangleData& data, Cor
 // Gives every group without a frame one (see FrameSource): a group of its position with the
 // same attributes, any group of its position, a group of a neighbouring position, or a fixed
 // perpendicular.
-void fillUndefinedGroups(const MeshArrays& mesh, const std::vector<std::uint32_t>& weldOf, CornerGroups& cornerGroups);
+void fillUndefinedGroups(const MeshArrays& mesh, std::span<const std::uint32_t> weldOf, CornerGroups& cornerGroups);
 
 // Method `flat`'s frames and sources into the outputs and cornerState (flat_frames.cpp): each
 // corner of a usable triangle from its triangle alone; groups only where a fallback is needed.
-void flatFrames(WorkspaceData& ws, const MeshArrays& mesh, const std::vector<std::uint32_t>& weldOf,
+void flatFrames(WorkspaceData& ws, const MeshArrays& mesh, std::span<const std::uint32_t> weldOf,
                 const TriangleData& data, const CornerOutputs& outputs);
 
 // The unit normal a corner works with: its own, or when that is zero or not finite the

@@ -20,7 +20,7 @@ namespace {
 // every corner, or a few (groupCornersAt). The groups of a position hold all its corners
 // listed, so the caller lists all corners of each position it wants grouped.
 template <typename CornerAt>
-CornerGroups groupListedCorners(const WorkspaceData& ws, const MeshArrays& mesh, const std::vector<std::uint32_t>& weldOf,
+CornerGroups groupListedCorners(const WorkspaceData& ws, const MeshArrays& mesh, std::span<const std::uint32_t> weldOf,
                                 const TriangleData& data, Grouping grouping, std::size_t cornerCount,
                                 const CornerAt& cornerAt) {
   const bool everyCorner = cornerCount == mesh.indices.size();
@@ -93,12 +93,12 @@ CornerGroups groupListedCorners(const WorkspaceData& ws, const MeshArrays& mesh,
 
 }  // namespace
 
-CornerGroups groupCorners(const WorkspaceData& ws, const MeshArrays& mesh, const std::vector<std::uint32_t>& weldOf,
+CornerGroups groupCorners(const WorkspaceData& ws, const MeshArrays& mesh, std::span<const std::uint32_t> weldOf,
                           const TriangleData& data, Grouping grouping) {
   return groupListedCorners(ws, mesh, weldOf, data, grouping, mesh.indices.size(), [](std::size_t i) { return i; });
 }
 
-CornerGroups groupCornersAt(const WorkspaceData& ws, const MeshArrays& mesh, const std::vector<std::uint32_t>& weldOf,
+CornerGroups groupCornersAt(const WorkspaceData& ws, const MeshArrays& mesh, std::span<const std::uint32_t> weldOf,
                             const TriangleData& data, Grouping grouping, std::span<const std::uint32_t> corners) {
   return groupListedCorners(ws, mesh, weldOf, data, grouping, corners.size(), [&](std::size_t i) { return corners[i]; });
 }
@@ -171,7 +171,7 @@ bool frameFromCandidates(const std::vector<const Group*>& candidates, Group& gro
 }
 
 // The positions (welds) that share a triangle with each weld in `wanted`.
-std::vector<std::vector<std::uint32_t>> neighbourWelds(const MeshArrays& mesh, const std::vector<std::uint32_t>& weldOf,
+std::vector<std::vector<std::uint32_t>> neighbourWelds(const MeshArrays& mesh, std::span<const std::uint32_t> weldOf,
                                                        const std::vector<std::uint8_t>& wanted) {
   std::vector<std::vector<std::uint32_t>> ring(wanted.size());
   for (std::size_t t = 0; 3 * t < mesh.indices.size(); ++t) {
@@ -188,7 +188,7 @@ std::vector<std::vector<std::uint32_t>> neighbourWelds(const MeshArrays& mesh, c
 
 }  // namespace
 
-void fillUndefinedGroups(const MeshArrays& mesh, const std::vector<std::uint32_t>& weldOf, CornerGroups& cornerGroups) {
+void fillUndefinedGroups(const MeshArrays& mesh, std::span<const std::uint32_t> weldOf, CornerGroups& cornerGroups) {
   std::vector<Group>& groups = cornerGroups.groups;
   // The groups without a frame, in order (few; `flat` has three groups a triangle, and the
   // passes below then read only these instead of every group again).

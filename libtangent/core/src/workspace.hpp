@@ -146,6 +146,9 @@ struct WorkspaceData {
   BulkVector<std::uint32_t> bucketExtra;    // per welded id: extra output vertices, then offsets
   BulkVector<std::uint8_t> bucketUniform;   // per welded id: BucketChain, then BucketUniform
                                              // bits (state_bits.hpp)
+  // lengyel, meshopt and flat: each vertex's position representative (the smallest vertex
+  // with the same position bits) and the open-addressing table that finds it (lengyel.cpp).
+  BulkVector<std::uint32_t> positionRepresentative, positionTable;
   PerThread<BucketScratch> scratch;
   // Strided or 16-bit-indexed input, packed (entry.cpp).
   BulkVector<float> packedPositions, packedNormals, packedUvs;
