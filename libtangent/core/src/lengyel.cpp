@@ -207,8 +207,7 @@ void writeCorners(WorkspaceData& ws, const TriangleData& data, const CornerGroup
   forRange(ws, ws.cornerCount, 1 << 14, [&](std::size_t begin, std::size_t end) {
     for (std::size_t c = begin; c < end; ++c) {
       const Group& group = cornerGroups.groups[cornerGroups.cornerGroup[c]];
-      for (int i = 0; i < 3; ++i) tangents[4 * c + i] = static_cast<float>(group.tangent[i]);
-      tangents[4 * c + 3] = static_cast<float>(group.w);
+      writeCornerFrame(tangents, c, group.tangent, group.w);
       ws.cornerState[c] = static_cast<std::uint8_t>(static_cast<std::uint8_t>(group.source) | (data.invalidNormal[c] ? kInvalidNormal : 0));
       ws.cornerLink[c] = kNone;
     }

@@ -97,6 +97,33 @@ CornerGroups groupCorners(const WorkspaceData& ws, const MeshArrays& mesh, std::
 CornerGroups groupCornersAt(const WorkspaceData& ws, const MeshArrays& mesh, std::span<const std::uint32_t> weldOf,
                             const TriangleData& data, Grouping grouping, std::span<const std::uint32_t> corners);
 
+// A corner's weighted terms in its group's sum.
+struct Contribution {
+  Vec3 tangent;
+  Vec3 bitangent;
+  bool operator<(const Contribution& o) const {
+    return std::tie(tangent.v[0], tangent.v[1], tangent.v[2], bitangent.v[0], bitangent.v[1], bitangent.v[2]) <
+           std::tie(o.tangent.v[0], o.tangent.v[1], o.tangent.v[2], o.bitangent.v[0], o.bitangent.v[1], o.bitangent.v[2]);
+  }
+};
+
+// Appends the corner's terms where its triangle is usable and its weight positive (`flat`
+// weighs every corner alike).
+inline void addTerm(const TriangleData& data, std::uint32_t corner, Method method, std::vector<Contribution>& terms) {
+  const TriangleTangent& triangle = data.triangles[corner / 3];
+  if (triangle.kind != TriangleKind::usable) return;
+  const double weight = method == Method::flat ? 1.0 : data.cornerWeights[corner];
+  if (!(weight > 0)) return;
+  terms.push_back({triangle.tangent * weight, triangle.bitangent * weight});
+}
+
+// One group's frame from its terms, the one statement of it: summed in value order (`terms`
+// sorted here) onto tangentSum (zero on entry), made orthogonal to the group's unit normal, w
+// from the bitangents' side (meshopt: from the UV orientation, the group's key). False where
+// nothing is left (tangent and w untouched): the group is undefined.
+bool sumTerms(std::vector<Contribution>& terms, const Vec3& normal, int orientation, Method method, Vec3& tangentSum,
+              Vec3& tangent, double& w);
+
 // Each group's weighted terms summed in value order (so no order of the input moves a bit),
 // then made orthogonal to its normal; w from the bitangents' side (meshopt: from the UV
 // orientation, as meshoptimizer signs its frames). `flat` weights every term alike.
@@ -107,10 +134,22 @@ void sumAndOrthonormalize(const WorkspaceData& ws, const TriangleData& data, Cor
 // perpendicular.
 void fillUndefinedGroups(const MeshArrays& mesh, std::span<const std::uint32_t> weldOf, CornerGroups& cornerGroups);
 
+// The frames of the corners marked kUndefined in cornerState (their groups have no frame), by
+// lengyel's groups and fallbacks over the positions those read only; the mark cleared, the
+// source written (lengyel_groups.cpp). The phases that frame groups directly end with it.
+void frameUndefinedCorners(WorkspaceData& ws, const MeshArrays& mesh, std::span<const std::uint32_t> weldOf,
+                           const TriangleData& data, Grouping grouping, Method method, const CornerOutputs& outputs);
+
 // Method `flat`'s frames and sources into the outputs and cornerState (flat_frames.cpp): each
 // corner of a usable triangle from its triangle alone; groups only where a fallback is needed.
 void flatFrames(WorkspaceData& ws, const MeshArrays& mesh, std::span<const std::uint32_t> weldOf,
                 const TriangleData& data, const CornerOutputs& outputs);
+
+// A frame into a corner's output slot (x, y, z, w as floats).
+inline void writeCornerFrame(float* tangents, std::size_t corner, const Vec3& tangent, double w) {
+  for (int i = 0; i < 3; ++i) tangents[4 * corner + i] = static_cast<float>(tangent[i]);
+  tangents[4 * corner + 3] = static_cast<float>(w);
+}
 
 // The unit normal a corner works with: its own, or when that is zero or not finite the
 // triangle's (or +z); `invalid` tells which.
