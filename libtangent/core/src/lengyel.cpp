@@ -235,15 +235,16 @@ Report lengyelOnArrays(WorkspaceData& ws, const MeshArrays& mesh, const CornerOu
     data = evaluateTriangles(ws, mesh, weldOf, options, report);
     report.nonManifoldFaces = countNonManifoldFaces(ws, mesh, weldOf);
   });
+  // Frames by the shortest way that gives the full grouping's bits: flat's one-corner groups,
+  // the buckets where they are lengyel's groups, else every corner's key sorted.
   if (grouping == Grouping::perFace) {
     flatFrames(ws, mesh, weldOf, data, outputs);
-    finishOutputs(ws, mesh, outputs, options, report);
-    return report;
+  } else if (!bucketFrames(ws, mesh, weldOf, data, options.method, outputs)) {
+    CornerGroups cornerGroups = groupCorners(ws, mesh, weldOf, data, grouping);
+    sumAndOrthonormalize(ws, data, cornerGroups, options.method);
+    fillUndefinedGroups(mesh, weldOf, cornerGroups);
+    writeCorners(ws, data, cornerGroups, outputs);
   }
-  CornerGroups cornerGroups = groupCorners(ws, mesh, weldOf, data, grouping);
-  sumAndOrthonormalize(ws, data, cornerGroups, options.method);
-  fillUndefinedGroups(mesh, weldOf, cornerGroups);
-  writeCorners(ws, data, cornerGroups, outputs);
   finishOutputs(ws, mesh, outputs, options, report);
   return report;
 }

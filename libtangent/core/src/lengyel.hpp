@@ -140,6 +140,12 @@ void fillUndefinedGroups(const MeshArrays& mesh, std::span<const std::uint32_t> 
 void frameUndefinedCorners(WorkspaceData& ws, const MeshArrays& mesh, std::span<const std::uint32_t> weldOf,
                            const TriangleData& data, Grouping grouping, Method method, const CornerOutputs& outputs);
 
+// lengyel's and meshopt's frames and sources as flatFrames writes them, each group read off
+// one weld bucket (bucket_frames.cpp); false, writing nothing, where buckets and groups
+// differ (an invalid normal; two normals of one position and UV with the same unit bits).
+bool bucketFrames(WorkspaceData& ws, const MeshArrays& mesh, std::span<const std::uint32_t> weldOf,
+                  const TriangleData& data, Method method, const CornerOutputs& outputs);
+
 // Method `flat`'s frames and sources into the outputs and cornerState (flat_frames.cpp): each
 // corner of a usable triangle from its triangle alone; groups only where a fallback is needed.
 void flatFrames(WorkspaceData& ws, const MeshArrays& mesh, std::span<const std::uint32_t> weldOf,
