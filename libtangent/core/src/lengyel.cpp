@@ -100,16 +100,34 @@ double projectedEdgeWeight(const std::array<Vec3, 3>& positions, int k, const Ve
   return std::isfinite(weight) ? weight : 0;
 }
 
+// A corner's term's weight: its weighting's (meshopt: its own), 0 where the triangle is not
+// usable or the method weighs all alike (flat).
+double cornerWeight(const Options& options, const std::array<Vec3, 3>& positions, int k, const Vec3& normal,
+                    const TriangleTangent& triangle) {
+  if (triangle.kind != TriangleKind::usable || options.method == Method::flat) return 0;
+  if (options.method == Method::meshopt) return projectedEdgeWeight(positions, k, normal, triangle.tangent);
+  switch (options.weighting) {
+    case Weighting::angle: return cornerAngle(positions, k);
+    case Weighting::area: return triangle.area;
+    case Weighting::uniform: return 1.0;
+  }
+  return 0;
+}
+
 // Each triangle evaluated at its corners' positions (their representatives') and UVs, each
-// corner given its normal and its weighting's term (meshopt: its own); counts into the report.
-TriangleData evaluateTriangles(const WorkspaceData& ws, const MeshArrays& mesh, std::span<const std::uint32_t> weldOf,
+// corner given its normal and its weighting's term (meshopt: its own), into the workspace's
+// arrays; counts into the report.
+TriangleData evaluateTriangles(WorkspaceData& ws, const MeshArrays& mesh, std::span<const std::uint32_t> weldOf,
                                const Options& options, Report& report) {
   const std::size_t triangleCount = ws.cornerCount / 3;
-  TriangleData data;
-  data.triangles.resize(triangleCount);
-  data.cornerNormals.resize(3 * triangleCount);
-  data.cornerWeights.assign(3 * triangleCount, 0.0);
-  data.invalidNormal.assign(3 * triangleCount, 0);
+  ensureSize(ws.triangleTangents, triangleCount);
+  ensureSize(ws.cornerNormals, 3 * triangleCount);
+  ensureSize(ws.cornerWeights, 3 * triangleCount);
+  ensureSize(ws.invalidNormal, 3 * triangleCount);
+  const TriangleData data{{ws.triangleTangents.data(), triangleCount},
+                          {ws.cornerNormals.data(), 3 * triangleCount},
+                          {ws.cornerWeights.data(), 3 * triangleCount},
+                          {ws.invalidNormal.data(), 3 * triangleCount}};
   forRange(ws, triangleCount, 1024, [&](std::size_t begin, std::size_t end) {
     for (std::size_t t = begin; t < end; ++t) {
       std::array<Vec3, 3> positions;
@@ -125,16 +143,7 @@ TriangleData evaluateTriangles(const WorkspaceData& ws, const MeshArrays& mesh, 
         bool invalid = false;
         data.cornerNormals[corner] = cornerNormal(vec3At(mesh.normals, mesh.indices[corner]), triangle, invalid);
         data.invalidNormal[corner] = invalid;
-        if (triangle.kind != TriangleKind::usable || options.method == Method::flat) continue;  // flat weighs all alike
-        if (options.method == Method::meshopt) {
-          data.cornerWeights[corner] = projectedEdgeWeight(positions, k, data.cornerNormals[corner], triangle.tangent);
-          continue;
-        }
-        switch (options.weighting) {
-          case Weighting::angle: data.cornerWeights[corner] = cornerAngle(positions, k); break;
-          case Weighting::area: data.cornerWeights[corner] = triangle.area; break;
-          case Weighting::uniform: data.cornerWeights[corner] = 1.0; break;
-        }
+        data.cornerWeights[corner] = cornerWeight(options, positions, k, data.cornerNormals[corner], triangle);
       }
     }
   });

@@ -30,12 +30,13 @@ Report lengyelOnArrays(WorkspaceData& ws, const MeshArrays& mesh, const CornerOu
 // corner and per comparison of the grouping's sorts (out of line they were 8-10% of a call).
 inline std::uint64_t bitsOf(double value) { return bitCast<std::uint64_t>(value == 0.0 ? 0.0 : value); }
 
-// Per corner, what the triangle pass found (one entry per corner of `indices`).
+// Per corner, what the triangle pass found (one entry per corner of `indices`), in the
+// workspace's arrays (triangleTangents, cornerNormals, cornerWeights, invalidNormal).
 struct TriangleData {
-  std::vector<TriangleTangent> triangles;
-  std::vector<Vec3> cornerNormals;       // unit (see cornerNormal)
-  std::vector<double> cornerWeights;     // the weighting's term; 0 where the triangle is not usable
-  std::vector<std::uint8_t> invalidNormal;
+  std::span<TriangleTangent> triangles;
+  std::span<Vec3> cornerNormals;       // unit (see cornerNormal)
+  std::span<double> cornerWeights;     // the weighting's term; 0 where the triangle is not usable
+  std::span<std::uint8_t> invalidNormal;
 };
 
 // The corners' key, sorted: equal keys (all but `corner`) are one group.

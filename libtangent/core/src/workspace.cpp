@@ -26,7 +26,8 @@ std::size_t WorkspaceData::bytes() const {
          size(orientation) + size(triangleFlags) + size(cornerLink) + size(cornerState) + size(meshPositions) + size(meshNormals) + size(meshUvs) + size(meshTangents) + size(meshIndices) +
          size(meshRepresentative) + size(meshRepresentativeValues) + size(packedPositions) + size(packedNormals) +
          size(packedUvs) + size(packedIndices) +
-         size(bucketExtra) + size(bucketUniform) + size(positionRepresentative) + size(positionTable);
+         size(bucketExtra) + size(bucketUniform) + size(positionRepresentative) + size(positionTable) +
+         size(triangleTangents) + size(cornerNormals) + size(cornerWeights) + size(invalidNormal);
 }
 
 void checkArraySizes(const MeshArrays& mesh) {

@@ -22,6 +22,7 @@
 
 #include "tangent/bulk_buffer.hpp"
 #include "state_bits.hpp"
+#include "triangle_tangent.hpp"
 #include "tangent/tangent.hpp"
 
 namespace tangent::detail {
@@ -146,7 +147,12 @@ struct WorkspaceData {
   BulkVector<std::uint32_t> bucketExtra;    // per welded id: extra output vertices, then offsets
   BulkVector<std::uint8_t> bucketUniform;   // per welded id: BucketChain, then BucketUniform
                                              // bits (state_bits.hpp)
-  // lengyel, meshopt and flat: each vertex's position representative (the smallest vertex
+  // lengyel, meshopt and flat: the triangle pass's results (TriangleData, lengyel.hpp) ...
+  BulkVector<TriangleTangent> triangleTangents;
+  BulkVector<Vec3> cornerNormals;
+  BulkVector<double> cornerWeights;
+  BulkVector<std::uint8_t> invalidNormal;
+  // ... and each vertex's position representative (the smallest vertex
   // with the same position bits) and the open-addressing table that finds it (lengyel.cpp).
   BulkVector<std::uint32_t> positionRepresentative, positionTable;
   PerThread<BucketScratch> scratch;
