@@ -64,20 +64,23 @@ int orientationOf(const TriangleData& data, std::uint32_t corner) {
 // first corner's normal, its frame written to its corners, or its corners marked kUndefined.
 void frameBucket(WorkspaceData& ws, const TriangleData& data, Method method, std::span<const std::uint32_t> corners,
                  std::vector<Contribution>& terms, float* tangents) {
+  unsigned present = 0;  // bit o + 1: a corner of orientation o (most buckets have one)
+  for (const std::uint32_t c : corners) present |= 1u << (orientationOf(data, c) + 1);
+  const bool one = (present & (present - 1)) == 0;
   for (const int orientation : {-1, 0, 1}) {
+    if (!(present & 1u << (orientation + 1))) continue;
     terms.clear();
     std::uint32_t first = kNone;
     for (const std::uint32_t c : corners) {
-      if (orientationOf(data, c) != orientation) continue;
+      if (!one && orientationOf(data, c) != orientation) continue;
       if (first == kNone) first = c;
       addTerm(data, c, method, terms);
     }
-    if (first == kNone) continue;
     Vec3 tangentSum(0, 0, 0), tangent;
     double w = 1;
     const bool framed = sumTerms(terms, data.cornerNormals[first], orientation, method, tangentSum, tangent, w);
     for (const std::uint32_t c : corners) {
-      if (orientationOf(data, c) != orientation) continue;
+      if (!one && orientationOf(data, c) != orientation) continue;
       if (framed) writeCornerFrame(tangents, c, tangent, w);
       ws.cornerState[c] = framed ? 0 : kUndefined;  // no invalid normals on this path
       ws.cornerLink[c] = kNone;

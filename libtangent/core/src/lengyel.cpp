@@ -114,6 +114,20 @@ double cornerWeight(const Options& options, const std::array<Vec3, 3>& positions
   return 0;
 }
 
+// Each vertex's normal made unit, or marked invalid, once for all its corners
+// (ws.vertexUnitNormals, ws.vertexNormalInvalid).
+void unitNormalsOfVertices(WorkspaceData& ws, const MeshArrays& mesh) {
+  ensureSize(ws.vertexUnitNormals, ws.vertexCount);
+  ensureSize(ws.vertexNormalInvalid, ws.vertexCount);
+  forRange(ws, ws.vertexCount, 1 << 14, [&](std::size_t begin, std::size_t end) {
+    for (std::size_t v = begin; v < end; ++v) {
+      bool invalid = false;
+      ws.vertexUnitNormals[v] = unitNormal(vec3At(mesh.normals, static_cast<std::uint32_t>(v)), invalid);
+      ws.vertexNormalInvalid[v] = invalid;
+    }
+  });
+}
+
 // Each triangle evaluated at its corners' positions (their representatives') and UVs, each
 // corner given its normal and its weighting's term (meshopt: its own), into the workspace's
 // arrays; counts into the report.
@@ -128,6 +142,7 @@ TriangleData evaluateTriangles(WorkspaceData& ws, const MeshArrays& mesh, std::s
                           {ws.cornerNormals.data(), 3 * triangleCount},
                           {ws.cornerWeights.data(), 3 * triangleCount},
                           {ws.invalidNormal.data(), 3 * triangleCount}};
+  unitNormalsOfVertices(ws, mesh);
   forRange(ws, triangleCount, 1024, [&](std::size_t begin, std::size_t end) {
     for (std::size_t t = begin; t < end; ++t) {
       std::array<Vec3, 3> positions;
@@ -140,8 +155,9 @@ TriangleData evaluateTriangles(WorkspaceData& ws, const MeshArrays& mesh, std::s
       const TriangleTangent& triangle = data.triangles[t] = triangleTangent(positions, uvs);
       for (int k = 0; k < 3; ++k) {
         const std::size_t corner = 3 * t + k;
-        bool invalid = false;
-        data.cornerNormals[corner] = cornerNormal(vec3At(mesh.normals, mesh.indices[corner]), triangle, invalid);
+        const std::uint32_t vertex = mesh.indices[corner];
+        const bool invalid = ws.vertexNormalInvalid[vertex];
+        data.cornerNormals[corner] = invalid ? replacedNormal(triangle) : ws.vertexUnitNormals[vertex];
         data.invalidNormal[corner] = invalid;
         data.cornerWeights[corner] = cornerWeight(options, positions, k, data.cornerNormals[corner], triangle);
       }

@@ -158,12 +158,15 @@ inline void writeCornerFrame(float* tangents, std::size_t corner, const Vec3& ta
   tangents[4 * corner + 3] = static_cast<float>(w);
 }
 
-// The unit normal a corner works with: its own, or when that is zero or not finite the
-// triangle's (or +z); `invalid` tells which.
-inline Vec3 cornerNormal(const Vec3& stored, const TriangleTangent& triangle, bool& invalid) {
+// A stored normal made unit; `invalid` where it is zero or not finite (the result unused).
+inline Vec3 unitNormal(const Vec3& stored, bool& invalid) {
   const double length = stored.norm();
   invalid = !(length > 0 && std::isfinite(length));
-  if (!invalid) return stored / length;
+  return invalid ? stored : stored / length;
+}
+
+// What replaces a corner's invalid normal: its triangle's (or +z).
+inline Vec3 replacedNormal(const TriangleTangent& triangle) {
   return triangle.faceNormal.norm() > 0 ? triangle.faceNormal : Vec3(0, 0, 1);
 }
 

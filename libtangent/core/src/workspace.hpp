@@ -152,6 +152,8 @@ struct WorkspaceData {
   BulkVector<Vec3> cornerNormals;
   BulkVector<double> cornerWeights;
   BulkVector<std::uint8_t> invalidNormal;
+  BulkVector<Vec3> vertexUnitNormals;         // per vertex, read by each of its corners
+  BulkVector<std::uint8_t> vertexNormalInvalid;
   // ... and each vertex's position representative (the smallest vertex
   // with the same position bits) and the open-addressing table that finds it (lengyel.cpp).
   BulkVector<std::uint32_t> positionRepresentative, positionTable;
