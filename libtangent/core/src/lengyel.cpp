@@ -177,8 +177,9 @@ TriangleData evaluateTriangles(WorkspaceData& ws, const MeshArrays& mesh, std::s
 // Faces on an edge (two distinct positions) that more than two faces share; triangles with two
 // corners at one position are left out, as the OpenMesh call's weld leaves them out. Each edge
 // is counted out to its smaller end (a counting sort), and each end's few edges are sorted by
-// their other end: linear time but for those runs.
-std::uint64_t countNonManifoldFaces(const WorkspaceData& ws, const MeshArrays& mesh, std::span<const std::uint32_t> weldOf) {
+// their other end: linear time but for those runs. Into the workspace's edgeStart, edgeNext,
+// edges and onSharedEdge.
+std::uint64_t countNonManifoldFaces(WorkspaceData& ws, const MeshArrays& mesh, std::span<const std::uint32_t> weldOf) {
   const std::size_t triangleCount = ws.cornerCount / 3;
   auto ends = [&](std::size_t t, int k) {
     const std::uint32_t a = weldOf[mesh.indices[3 * t + k]], b = weldOf[mesh.indices[3 * t + (k + 1) % 3]];
@@ -188,27 +189,33 @@ std::uint64_t countNonManifoldFaces(const WorkspaceData& ws, const MeshArrays& m
     const std::uint32_t w0 = weldOf[mesh.indices[3 * t]], w1 = weldOf[mesh.indices[3 * t + 1]], w2 = weldOf[mesh.indices[3 * t + 2]];
     return w0 == w1 || w1 == w2 || w0 == w2;
   };
-  std::vector<std::uint32_t> start(ws.vertexCount + 1, 0);
+  ensureSize(ws.edgeStart, ws.vertexCount + 1);
+  ensureSize(ws.edgeNext, ws.vertexCount);
+  std::uint32_t* start = ws.edgeStart.data();
+  std::fill(start, start + ws.vertexCount + 1, 0u);
   for (std::size_t t = 0; t < triangleCount; ++t) {
     if (collapsed(t)) continue;
     for (int k = 0; k < 3; ++k) ++start[ends(t, k).first + 1];
   }
   for (std::size_t v = 0; v < ws.vertexCount; ++v) start[v + 1] += start[v];
   // Each edge as its larger end (high half) and its triangle (low half).
-  std::vector<std::uint64_t> edges(start[ws.vertexCount]);
-  {
-    std::vector<std::uint32_t> next(start.begin(), start.end() - 1);
-    for (std::size_t t = 0; t < triangleCount; ++t) {
-      if (collapsed(t)) continue;
-      for (int k = 0; k < 3; ++k) {
-        const auto [low, high] = ends(t, k);
-        edges[next[low]++] = std::uint64_t(high) << 32 | t;
-      }
+  ensureSize(ws.edges, start[ws.vertexCount]);
+  std::uint64_t* edges = ws.edges.data();
+  std::uint32_t* next = ws.edgeNext.data();
+  std::copy(start, start + ws.vertexCount, next);
+  for (std::size_t t = 0; t < triangleCount; ++t) {
+    if (collapsed(t)) continue;
+    for (int k = 0; k < 3; ++k) {
+      const auto [low, high] = ends(t, k);
+      edges[next[low]++] = std::uint64_t(high) << 32 | t;
     }
   }
-  std::vector<std::uint8_t> onShared(triangleCount, 0);
+  ensureSize(ws.onSharedEdge, triangleCount);
+  std::uint8_t* onShared = ws.onSharedEdge.data();
+  std::fill(onShared, onShared + triangleCount, std::uint8_t(0));
   for (std::size_t v = 0; v < ws.vertexCount; ++v) {
-    const auto first = edges.begin() + start[v], last = edges.begin() + start[v + 1];
+    std::uint64_t* const first = edges + start[v];
+    std::uint64_t* const last = edges + start[v + 1];
     if (last - first < 3) continue;
     std::sort(first, last);
     for (auto i = first; i != last;) {
@@ -220,7 +227,7 @@ std::uint64_t countNonManifoldFaces(const WorkspaceData& ws, const MeshArrays& m
       i = j;
     }
   }
-  return static_cast<std::uint64_t>(std::count(onShared.begin(), onShared.end(), 1));
+  return static_cast<std::uint64_t>(std::count(onShared, onShared + triangleCount, std::uint8_t(1)));
 }
 
 // Every corner's frame into the output (w on the stored UVs, bottom-left), its source and

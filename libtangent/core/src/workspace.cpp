@@ -28,7 +28,8 @@ std::size_t WorkspaceData::bytes() const {
          size(packedUvs) + size(packedIndices) +
          size(bucketExtra) + size(bucketUniform) + size(positionRepresentative) + size(positionTable) +
          size(triangleTangents) + size(cornerNormals) + size(cornerWeights) + size(invalidNormal) +
-         size(vertexUnitNormals) + size(vertexNormalInvalid);
+         size(vertexUnitNormals) + size(vertexNormalInvalid) + size(edgeStart) + size(edgeNext) + size(edges) +
+         size(onSharedEdge);
 }
 
 void checkArraySizes(const MeshArrays& mesh) {

@@ -157,6 +157,10 @@ struct WorkspaceData {
   // ... and each vertex's position representative (the smallest vertex
   // with the same position bits) and the open-addressing table that finds it (lengyel.cpp).
   BulkVector<std::uint32_t> positionRepresentative, positionTable;
+  // ... and the non-manifold count's edges, by their smaller end (lengyel.cpp).
+  BulkVector<std::uint32_t> edgeStart, edgeNext;
+  BulkVector<std::uint64_t> edges;
+  BulkVector<std::uint8_t> onSharedEdge;
   PerThread<BucketScratch> scratch;
   // Strided or 16-bit-indexed input, packed (entry.cpp).
   BulkVector<float> packedPositions, packedNormals, packedUvs;
