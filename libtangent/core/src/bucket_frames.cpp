@@ -7,7 +7,7 @@
 // with one orientation: its terms, its first corner and so its frame are the full grouping's.
 // Elsewhere the caller runs the full grouping.
 #include <algorithm>
-#include <cstring>
+#include <compare>
 
 #include "lengyel.hpp"
 
