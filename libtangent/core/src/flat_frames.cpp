@@ -14,13 +14,12 @@ void flatFrames(WorkspaceData& ws, const MeshArrays& mesh, std::span<const std::
   ensureSize(ws.cornerLink, ws.cornerCount);
   float* tangents = outputs.tangents.data();
   forRange(ws, ws.cornerCount, 1 << 14, [&](std::size_t begin, std::size_t end) {
-    std::vector<Contribution> terms;
     for (std::size_t c = begin; c < end; ++c) {
-      terms.clear();
-      addTerm(data, static_cast<std::uint32_t>(c), Method::flat, terms);
+      Contribution term;
+      const std::size_t termCount = termOf(data, static_cast<std::uint32_t>(c), Method::flat, term) ? 1 : 0;
       Vec3 tangentSum(0, 0, 0), tangent;
       double w = 1;
-      const bool framed = sumTerms(terms, data.cornerNormals[c], data.triangles[c / 3].orientation, Method::flat, tangentSum, tangent, w);
+      const bool framed = sumTerms({&term, termCount}, data.cornerNormals[c], data.triangles[c / 3].orientation, Method::flat, tangentSum, tangent, w);
       if (framed) writeCornerFrame(tangents, c, tangent, w);
       ws.cornerState[c] = static_cast<std::uint8_t>((framed ? 0 : kUndefined) | (data.invalidNormal[c] ? kInvalidNormal : 0));
       ws.cornerLink[c] = kNone;

@@ -108,21 +108,27 @@ struct Contribution {
   }
 };
 
-// Appends the corner's terms where its triangle is usable and its weight positive (`flat`
-// weighs every corner alike).
-inline void addTerm(const TriangleData& data, std::uint32_t corner, Method method, std::vector<Contribution>& terms) {
+// The corner's terms, where its triangle is usable and its weight positive (`flat` weighs
+// every corner alike); false where it has none.
+inline bool termOf(const TriangleData& data, std::uint32_t corner, Method method, Contribution& term) {
   const TriangleTangent& triangle = data.triangles[corner / 3];
-  if (triangle.kind != TriangleKind::usable) return;
+  if (triangle.kind != TriangleKind::usable) return false;
   const double weight = method == Method::flat ? 1.0 : data.cornerWeights[corner];
-  if (!(weight > 0)) return;
-  terms.push_back({triangle.tangent * weight, triangle.bitangent * weight});
+  if (!(weight > 0)) return false;
+  term = {triangle.tangent * weight, triangle.bitangent * weight};
+  return true;
+}
+
+inline void addTerm(const TriangleData& data, std::uint32_t corner, Method method, std::vector<Contribution>& terms) {
+  Contribution term;
+  if (termOf(data, corner, method, term)) terms.push_back(term);
 }
 
 // One group's frame from its terms, the one statement of it: summed in value order (`terms`
 // sorted here) onto tangentSum (zero on entry), made orthogonal to the group's unit normal, w
 // from the bitangents' side (meshopt: from the UV orientation, the group's key). False where
 // nothing is left (tangent and w untouched): the group is undefined.
-bool sumTerms(std::vector<Contribution>& terms, const Vec3& normal, int orientation, Method method, Vec3& tangentSum,
+bool sumTerms(std::span<Contribution> terms, const Vec3& normal, int orientation, Method method, Vec3& tangentSum,
               Vec3& tangent, double& w);
 
 // Each group's weighted terms summed in value order (so no order of the input moves a bit),

@@ -103,7 +103,7 @@ CornerGroups groupCornersAt(const WorkspaceData& ws, const MeshArrays& mesh, std
   return groupListedCorners(ws, mesh, weldOf, data, grouping, corners.size(), [&](std::size_t i) { return corners[i]; });
 }
 
-bool sumTerms(std::vector<Contribution>& terms, const Vec3& normal, int orientation, Method method, Vec3& tangentSum,
+bool sumTerms(std::span<Contribution> terms, const Vec3& normal, int orientation, Method method, Vec3& tangentSum,
               Vec3& tangent, double& w) {
   if (terms.size() > 1) std::sort(terms.begin(), terms.end());
   Vec3 bitangentSum(0, 0, 0);
