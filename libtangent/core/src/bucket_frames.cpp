@@ -56,7 +56,7 @@ bool bucketsHaveDistinctGroupValues(WorkspaceData& ws, const MeshArrays& mesh, s
 
 // The key's orientation of a corner: its triangle's where usable, else 0.
 int orientationOf(const TriangleData& data, std::uint32_t corner) {
-  const TriangleTangent& triangle = data.triangles[corner / 3];
+  const TriangleTerms& triangle = data.triangles[corner / 3];
   return triangle.kind == TriangleKind::usable ? triangle.orientation : 0;
 }
 

@@ -134,11 +134,11 @@ void unitNormalsOfVertices(WorkspaceData& ws, const MeshArrays& mesh) {
 TriangleData evaluateTriangles(WorkspaceData& ws, const MeshArrays& mesh, std::span<const std::uint32_t> weldOf,
                                const Options& options, Report& report) {
   const std::size_t triangleCount = ws.cornerCount / 3;
-  ensureSize(ws.triangleTangents, triangleCount);
+  ensureSize(ws.triangleTerms, triangleCount);
   ensureSize(ws.cornerNormals, 3 * triangleCount);
   ensureSize(ws.cornerWeights, 3 * triangleCount);
   ensureSize(ws.invalidNormal, 3 * triangleCount);
-  const TriangleData data{{ws.triangleTangents.data(), triangleCount},
+  const TriangleData data{{ws.triangleTerms.data(), triangleCount},
                           {ws.cornerNormals.data(), 3 * triangleCount},
                           {ws.cornerWeights.data(), 3 * triangleCount},
                           {ws.invalidNormal.data(), 3 * triangleCount}};
@@ -152,7 +152,8 @@ TriangleData evaluateTriangles(WorkspaceData& ws, const MeshArrays& mesh, std::s
         positions[k] = vec3At(mesh.positions, weldOf[vertex]);
         uvs[k] = {mesh.uvs[2 * vertex], mesh.uvs[2 * vertex + 1]};
       }
-      const TriangleTangent& triangle = data.triangles[t] = triangleTangent(positions, uvs);
+      const TriangleTangent triangle = triangleTangent(positions, uvs);
+      data.triangles[t] = {triangle.tangent, triangle.bitangent, triangle.orientation, triangle.kind};
       for (int k = 0; k < 3; ++k) {
         const std::size_t corner = 3 * t + k;
         const std::uint32_t vertex = mesh.indices[corner];
@@ -163,7 +164,7 @@ TriangleData evaluateTriangles(WorkspaceData& ws, const MeshArrays& mesh, std::s
       }
     }
   });
-  for (const TriangleTangent& triangle : data.triangles) {
+  for (const TriangleTerms& triangle : data.triangles) {
     switch (triangle.kind) {
       case TriangleKind::usable: break;
       case TriangleKind::degenerate: ++report.degenerateTriangles; break;

@@ -31,9 +31,9 @@ Report lengyelOnArrays(WorkspaceData& ws, const MeshArrays& mesh, const CornerOu
 inline std::uint64_t bitsOf(double value) { return bitCast<std::uint64_t>(value == 0.0 ? 0.0 : value); }
 
 // Per corner, what the triangle pass found (one entry per corner of `indices`), in the
-// workspace's arrays (triangleTangents, cornerNormals, cornerWeights, invalidNormal).
+// workspace's arrays (triangleTerms, cornerNormals, cornerWeights, invalidNormal).
 struct TriangleData {
-  std::span<TriangleTangent> triangles;
+  std::span<TriangleTerms> triangles;
   std::span<Vec3> cornerNormals;       // unit (see cornerNormal)
   std::span<double> cornerWeights;     // the weighting's term; 0 where the triangle is not usable
   std::span<std::uint8_t> invalidNormal;
@@ -111,7 +111,7 @@ struct Contribution {
 // The corner's terms, where its triangle is usable and its weight positive (`flat` weighs
 // every corner alike); false where it has none.
 inline bool termOf(const TriangleData& data, std::uint32_t corner, Method method, Contribution& term) {
-  const TriangleTangent& triangle = data.triangles[corner / 3];
+  const TriangleTerms& triangle = data.triangles[corner / 3];
   if (triangle.kind != TriangleKind::usable) return false;
   const double weight = method == Method::flat ? 1.0 : data.cornerWeights[corner];
   if (!(weight > 0)) return false;

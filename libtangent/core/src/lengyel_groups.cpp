@@ -41,7 +41,7 @@ CornerGroups groupListedCorners(const WorkspaceData& ws, const MeshArrays& mesh,
   forRange(ws, cornerCount, 1 << 14, [&](std::size_t begin, std::size_t end) {
     for (std::size_t i = begin; i < end; ++i) {
       const std::size_t c = cornerAt(i);
-      const TriangleTangent& triangle = data.triangles[c / 3];
+      const TriangleTerms& triangle = data.triangles[c / 3];
       const std::uint32_t vertex = mesh.indices[c];
       CornerKey& key = keys[slot[i]];
       key.weld = weldOf[vertex];

@@ -27,7 +27,7 @@ std::size_t WorkspaceData::bytes() const {
          size(meshRepresentative) + size(meshRepresentativeValues) + size(packedPositions) + size(packedNormals) +
          size(packedUvs) + size(packedIndices) +
          size(bucketExtra) + size(bucketUniform) + size(positionRepresentative) + size(positionTable) +
-         size(triangleTangents) + size(cornerNormals) + size(cornerWeights) + size(invalidNormal) +
+         size(triangleTerms) + size(cornerNormals) + size(cornerWeights) + size(invalidNormal) +
          size(vertexUnitNormals) + size(vertexNormalInvalid) + size(edgeStart) + size(edgeNext) + size(edges) +
          size(onSharedEdge);
 }

@@ -148,7 +148,7 @@ struct WorkspaceData {
   BulkVector<std::uint8_t> bucketUniform;   // per welded id: BucketChain, then BucketUniform
                                              // bits (state_bits.hpp)
   // lengyel, meshopt and flat: the triangle pass's results (TriangleData, lengyel.hpp) ...
-  BulkVector<TriangleTangent> triangleTangents;
+  BulkVector<TriangleTerms> triangleTerms;
   BulkVector<Vec3> cornerNormals;
   BulkVector<double> cornerWeights;
   BulkVector<std::uint8_t> invalidNormal;
