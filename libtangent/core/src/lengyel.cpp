@@ -182,21 +182,23 @@ TriangleData evaluateTriangles(WorkspaceData& ws, const MeshArrays& mesh, std::s
 // edges and onSharedEdge.
 std::uint64_t countNonManifoldFaces(WorkspaceData& ws, const MeshArrays& mesh, std::span<const std::uint32_t> weldOf) {
   const std::size_t triangleCount = ws.cornerCount / 3;
-  auto ends = [&](std::size_t t, int k) {
-    const std::uint32_t a = weldOf[mesh.indices[3 * t + k]], b = weldOf[mesh.indices[3 * t + (k + 1) % 3]];
-    return std::pair(std::min(a, b), std::max(a, b));
+  // A triangle's three positions, read once; false where two are one (collapsed).
+  auto weldsOf = [&](std::size_t t, std::uint32_t welds[3]) {
+    for (int k = 0; k < 3; ++k) welds[k] = weldOf[mesh.indices[3 * t + k]];
+    return welds[0] != welds[1] && welds[1] != welds[2] && welds[0] != welds[2];
   };
-  auto collapsed = [&](std::size_t t) {
-    const std::uint32_t w0 = weldOf[mesh.indices[3 * t]], w1 = weldOf[mesh.indices[3 * t + 1]], w2 = weldOf[mesh.indices[3 * t + 2]];
-    return w0 == w1 || w1 == w2 || w0 == w2;
+  auto ends = [](const std::uint32_t welds[3], int k) {
+    const std::uint32_t a = welds[k], b = welds[(k + 1) % 3];
+    return std::pair(std::min(a, b), std::max(a, b));
   };
   ensureSize(ws.edgeStart, ws.vertexCount + 1);
   ensureSize(ws.edgeNext, ws.vertexCount);
   std::uint32_t* start = ws.edgeStart.data();
   std::fill(start, start + ws.vertexCount + 1, 0u);
+  std::uint32_t welds[3];
   for (std::size_t t = 0; t < triangleCount; ++t) {
-    if (collapsed(t)) continue;
-    for (int k = 0; k < 3; ++k) ++start[ends(t, k).first + 1];
+    if (!weldsOf(t, welds)) continue;
+    for (int k = 0; k < 3; ++k) ++start[ends(welds, k).first + 1];
   }
   for (std::size_t v = 0; v < ws.vertexCount; ++v) start[v + 1] += start[v];
   // Each edge as its larger end (high half) and its triangle (low half).
@@ -205,9 +207,9 @@ std::uint64_t countNonManifoldFaces(WorkspaceData& ws, const MeshArrays& mesh, s
   std::uint32_t* next = ws.edgeNext.data();
   std::copy(start, start + ws.vertexCount, next);
   for (std::size_t t = 0; t < triangleCount; ++t) {
-    if (collapsed(t)) continue;
+    if (!weldsOf(t, welds)) continue;
     for (int k = 0; k < 3; ++k) {
-      const auto [low, high] = ends(t, k);
+      const auto [low, high] = ends(welds, k);
       edges[next[low]++] = std::uint64_t(high) << 32 | t;
     }
   }
