@@ -22,32 +22,60 @@
 namespace tangent::detail {
 namespace {
 
+// The open-addressing probe's hash of a position's canonical bits (+0 and -0 alike).
+std::uint64_t positionHash(const std::uint32_t bits[3]) {
+  std::uint64_t h = bits[0] * 0x9E3779B97F4A7C15ull ^ bits[1] * 0xC2B2AE3D27D4EB4Full ^ bits[2] * 0x165667B19E3779F9ull;
+  h ^= h >> 32;
+  h *= 0xFF51AFD7ED558CCDull;
+  return h ^ (h >> 29);
+}
+
 // Each vertex's representative: the smallest vertex with the same position bits (+0 and -0
-// alike). Its position is the one every corner at that point is evaluated with.
-std::vector<std::uint32_t> positionWeld(const WorkspaceData& ws, const MeshArrays& mesh) {
-  struct Entry {
-    std::uint32_t bits[3];
-    std::uint32_t vertex;
-    bool operator<(const Entry& o) const {
-      return std::tie(bits[0], bits[1], bits[2], vertex) < std::tie(o.bits[0], o.bits[1], o.bits[2], o.vertex);
-    }
-  };
+// alike). Its position is the one every corner at that point is evaluated with. Vertices go
+// into an open-addressing table (vertex + 1, 0 empty) in increasing order, so the first of a
+// position found there is its smallest; a block's slots are fetched ahead of its probes (the
+// table is larger than the caches). Into the workspace: ws.positionRepresentative.
+std::span<const std::uint32_t> positionWeld(WorkspaceData& ws, const MeshArrays& mesh) {
   const std::size_t vertexCount = ws.vertexCount;
-  std::vector<Entry> entries(vertexCount);
-  forRange(ws, vertexCount, 1 << 14, [&](std::size_t begin, std::size_t end) {
-    for (std::size_t v = begin; v < end; ++v) {
-      for (int i = 0; i < 3; ++i) entries[v].bits[i] = canonicalBits(mesh.positions[3 * v + i]);
-      entries[v].vertex = static_cast<std::uint32_t>(v);
+  std::size_t tableSize = 64;
+  while (tableSize < 2 * vertexCount) tableSize *= 2;
+  ensureSize(ws.positionTable, tableSize);
+  ensureSize(ws.positionRepresentative, vertexCount);
+  std::uint32_t* table = ws.positionTable.data();
+  std::uint32_t* representative = ws.positionRepresentative.data();
+  std::fill(table, table + tableSize, 0u);
+  auto bitsAt = [&](std::size_t v, std::uint32_t bits[3]) {
+    for (int i = 0; i < 3; ++i) bits[i] = canonicalBits(mesh.positions[3 * v + i]);
+  };
+  constexpr std::size_t kBlock = 32;
+  std::uint64_t slotOf[kBlock];
+  for (std::size_t first = 0; first < vertexCount; first += kBlock) {
+    const std::size_t count = std::min(kBlock, vertexCount - first);
+    for (std::size_t i = 0; i < count; ++i) {
+      std::uint32_t bits[3];
+      bitsAt(first + i, bits);
+      slotOf[i] = positionHash(bits) & (tableSize - 1);
+      prefetch(table + slotOf[i]);
     }
-  });
-  sortInParallel(ws, entries.begin(), entries.end(), [](const Entry& a, const Entry& b) { return a < b; });
-  std::vector<std::uint32_t> weldOf(vertexCount);
-  std::uint32_t representative = 0;
-  for (std::size_t i = 0; i < vertexCount; ++i) {
-    if (i == 0 || std::memcmp(entries[i].bits, entries[i - 1].bits, sizeof entries[i].bits) != 0) representative = entries[i].vertex;
-    weldOf[entries[i].vertex] = representative;
+    for (std::size_t i = 0; i < count; ++i) {
+      const std::size_t v = first + i;
+      std::uint32_t bits[3], other[3];
+      bitsAt(v, bits);
+      for (std::size_t slot = slotOf[i];; slot = (slot + 1) & (tableSize - 1)) {
+        if (table[slot] == 0) {
+          table[slot] = static_cast<std::uint32_t>(v + 1);
+          representative[v] = static_cast<std::uint32_t>(v);
+          break;
+        }
+        bitsAt(table[slot] - 1, other);
+        if (std::memcmp(bits, other, sizeof bits) == 0) {
+          representative[v] = table[slot] - 1;
+          break;
+        }
+      }
+    }
   }
-  return weldOf;
+  return {representative, vertexCount};
 }
 
 Vec3 vec3At(std::span<const float> values, std::uint32_t vertex) {
@@ -72,16 +100,49 @@ double projectedEdgeWeight(const std::array<Vec3, 3>& positions, int k, const Ve
   return std::isfinite(weight) ? weight : 0;
 }
 
+// A corner's term's weight: its weighting's (meshopt: its own), 0 where the triangle is not
+// usable or the method weighs all alike (flat).
+double cornerWeight(const Options& options, const std::array<Vec3, 3>& positions, int k, const Vec3& normal,
+                    const TriangleTangent& triangle) {
+  if (triangle.kind != TriangleKind::usable || options.method == Method::flat) return 0;
+  if (options.method == Method::meshopt) return projectedEdgeWeight(positions, k, normal, triangle.tangent);
+  switch (options.weighting) {
+    case Weighting::angle: return cornerAngle(positions, k);
+    case Weighting::area: return triangle.area;
+    case Weighting::uniform: return 1.0;
+  }
+  return 0;
+}
+
+// Each vertex's normal made unit, or marked invalid, once for all its corners
+// (ws.vertexUnitNormals, ws.vertexNormalInvalid).
+void unitNormalsOfVertices(WorkspaceData& ws, const MeshArrays& mesh) {
+  ensureSize(ws.vertexUnitNormals, ws.vertexCount);
+  ensureSize(ws.vertexNormalInvalid, ws.vertexCount);
+  forRange(ws, ws.vertexCount, 1 << 14, [&](std::size_t begin, std::size_t end) {
+    for (std::size_t v = begin; v < end; ++v) {
+      bool invalid = false;
+      ws.vertexUnitNormals[v] = unitNormal(vec3At(mesh.normals, static_cast<std::uint32_t>(v)), invalid);
+      ws.vertexNormalInvalid[v] = invalid;
+    }
+  });
+}
+
 // Each triangle evaluated at its corners' positions (their representatives') and UVs, each
-// corner given its normal and its weighting's term (meshopt: its own); counts into the report.
-TriangleData evaluateTriangles(const WorkspaceData& ws, const MeshArrays& mesh, const std::vector<std::uint32_t>& weldOf,
+// corner given its normal and its weighting's term (meshopt: its own), into the workspace's
+// arrays; counts into the report.
+TriangleData evaluateTriangles(WorkspaceData& ws, const MeshArrays& mesh, std::span<const std::uint32_t> weldOf,
                                const Options& options, Report& report) {
   const std::size_t triangleCount = ws.cornerCount / 3;
-  TriangleData data;
-  data.triangles.resize(triangleCount);
-  data.cornerNormals.resize(3 * triangleCount);
-  data.cornerWeights.assign(3 * triangleCount, 0.0);
-  data.invalidNormal.assign(3 * triangleCount, 0);
+  ensureSize(ws.triangleTerms, triangleCount);
+  ensureSize(ws.cornerNormals, 3 * triangleCount);
+  ensureSize(ws.cornerWeights, 3 * triangleCount);
+  ensureSize(ws.invalidNormal, 3 * triangleCount);
+  const TriangleData data{{ws.triangleTerms.data(), triangleCount},
+                          {ws.cornerNormals.data(), 3 * triangleCount},
+                          {ws.cornerWeights.data(), 3 * triangleCount},
+                          {ws.invalidNormal.data(), 3 * triangleCount}};
+  unitNormalsOfVertices(ws, mesh);
   forRange(ws, triangleCount, 1024, [&](std::size_t begin, std::size_t end) {
     for (std::size_t t = begin; t < end; ++t) {
       std::array<Vec3, 3> positions;
@@ -91,26 +152,19 @@ TriangleData evaluateTriangles(const WorkspaceData& ws, const MeshArrays& mesh, 
         positions[k] = vec3At(mesh.positions, weldOf[vertex]);
         uvs[k] = {mesh.uvs[2 * vertex], mesh.uvs[2 * vertex + 1]};
       }
-      const TriangleTangent& triangle = data.triangles[t] = triangleTangent(positions, uvs);
+      const TriangleTangent triangle = triangleTangent(positions, uvs);
+      data.triangles[t] = {triangle.tangent, triangle.bitangent, triangle.orientation, triangle.kind};
       for (int k = 0; k < 3; ++k) {
         const std::size_t corner = 3 * t + k;
-        bool invalid = false;
-        data.cornerNormals[corner] = cornerNormal(vec3At(mesh.normals, mesh.indices[corner]), triangle, invalid);
+        const std::uint32_t vertex = mesh.indices[corner];
+        const bool invalid = ws.vertexNormalInvalid[vertex];
+        data.cornerNormals[corner] = invalid ? replacedNormal(triangle) : ws.vertexUnitNormals[vertex];
         data.invalidNormal[corner] = invalid;
-        if (triangle.kind != TriangleKind::usable) continue;
-        if (options.method == Method::meshopt) {
-          data.cornerWeights[corner] = projectedEdgeWeight(positions, k, data.cornerNormals[corner], triangle.tangent);
-          continue;
-        }
-        switch (options.weighting) {
-          case Weighting::angle: data.cornerWeights[corner] = cornerAngle(positions, k); break;
-          case Weighting::area: data.cornerWeights[corner] = triangle.area; break;
-          case Weighting::uniform: data.cornerWeights[corner] = 1.0; break;
-        }
+        data.cornerWeights[corner] = cornerWeight(options, positions, k, data.cornerNormals[corner], triangle);
       }
     }
   });
-  for (const TriangleTangent& triangle : data.triangles) {
+  for (const TriangleTerms& triangle : data.triangles) {
     switch (triangle.kind) {
       case TriangleKind::usable: break;
       case TriangleKind::degenerate: ++report.degenerateTriangles; break;
@@ -124,38 +178,47 @@ TriangleData evaluateTriangles(const WorkspaceData& ws, const MeshArrays& mesh, 
 // Faces on an edge (two distinct positions) that more than two faces share; triangles with two
 // corners at one position are left out, as the OpenMesh call's weld leaves them out. Each edge
 // is counted out to its smaller end (a counting sort), and each end's few edges are sorted by
-// their other end: linear time but for those runs.
-std::uint64_t countNonManifoldFaces(const WorkspaceData& ws, const MeshArrays& mesh, const std::vector<std::uint32_t>& weldOf) {
+// their other end: linear time but for those runs. Into the workspace's edgeStart, edgeNext,
+// edges and onSharedEdge.
+std::uint64_t countNonManifoldFaces(WorkspaceData& ws, const MeshArrays& mesh, std::span<const std::uint32_t> weldOf) {
   const std::size_t triangleCount = ws.cornerCount / 3;
-  auto ends = [&](std::size_t t, int k) {
-    const std::uint32_t a = weldOf[mesh.indices[3 * t + k]], b = weldOf[mesh.indices[3 * t + (k + 1) % 3]];
+  // A triangle's three positions, read once; false where two are one (collapsed).
+  auto weldsOf = [&](std::size_t t, std::uint32_t welds[3]) {
+    for (int k = 0; k < 3; ++k) welds[k] = weldOf[mesh.indices[3 * t + k]];
+    return welds[0] != welds[1] && welds[1] != welds[2] && welds[0] != welds[2];
+  };
+  auto ends = [](const std::uint32_t welds[3], int k) {
+    const std::uint32_t a = welds[k], b = welds[(k + 1) % 3];
     return std::pair(std::min(a, b), std::max(a, b));
   };
-  auto collapsed = [&](std::size_t t) {
-    const std::uint32_t w0 = weldOf[mesh.indices[3 * t]], w1 = weldOf[mesh.indices[3 * t + 1]], w2 = weldOf[mesh.indices[3 * t + 2]];
-    return w0 == w1 || w1 == w2 || w0 == w2;
-  };
-  std::vector<std::uint32_t> start(ws.vertexCount + 1, 0);
+  ensureSize(ws.edgeStart, ws.vertexCount + 1);
+  ensureSize(ws.edgeNext, ws.vertexCount);
+  std::uint32_t* start = ws.edgeStart.data();
+  std::fill(start, start + ws.vertexCount + 1, 0u);
+  std::uint32_t welds[3];
   for (std::size_t t = 0; t < triangleCount; ++t) {
-    if (collapsed(t)) continue;
-    for (int k = 0; k < 3; ++k) ++start[ends(t, k).first + 1];
+    if (!weldsOf(t, welds)) continue;
+    for (int k = 0; k < 3; ++k) ++start[ends(welds, k).first + 1];
   }
   for (std::size_t v = 0; v < ws.vertexCount; ++v) start[v + 1] += start[v];
   // Each edge as its larger end (high half) and its triangle (low half).
-  std::vector<std::uint64_t> edges(start[ws.vertexCount]);
-  {
-    std::vector<std::uint32_t> next(start.begin(), start.end() - 1);
-    for (std::size_t t = 0; t < triangleCount; ++t) {
-      if (collapsed(t)) continue;
-      for (int k = 0; k < 3; ++k) {
-        const auto [low, high] = ends(t, k);
-        edges[next[low]++] = std::uint64_t(high) << 32 | t;
-      }
+  ensureSize(ws.edges, start[ws.vertexCount]);
+  std::uint64_t* edges = ws.edges.data();
+  std::uint32_t* next = ws.edgeNext.data();
+  std::copy(start, start + ws.vertexCount, next);
+  for (std::size_t t = 0; t < triangleCount; ++t) {
+    if (!weldsOf(t, welds)) continue;
+    for (int k = 0; k < 3; ++k) {
+      const auto [low, high] = ends(welds, k);
+      edges[next[low]++] = std::uint64_t(high) << 32 | t;
     }
   }
-  std::vector<std::uint8_t> onShared(triangleCount, 0);
+  ensureSize(ws.onSharedEdge, triangleCount);
+  std::uint8_t* onShared = ws.onSharedEdge.data();
+  std::fill(onShared, onShared + triangleCount, std::uint8_t(0));
   for (std::size_t v = 0; v < ws.vertexCount; ++v) {
-    const auto first = edges.begin() + start[v], last = edges.begin() + start[v + 1];
+    std::uint64_t* const first = edges + start[v];
+    std::uint64_t* const last = edges + start[v + 1];
     if (last - first < 3) continue;
     std::sort(first, last);
     for (auto i = first; i != last;) {
@@ -167,7 +230,7 @@ std::uint64_t countNonManifoldFaces(const WorkspaceData& ws, const MeshArrays& m
       i = j;
     }
   }
-  return static_cast<std::uint64_t>(std::count(onShared.begin(), onShared.end(), 1));
+  return static_cast<std::uint64_t>(std::count(onShared, onShared + triangleCount, std::uint8_t(1)));
 }
 
 // Every corner's frame into the output (w on the stored UVs, bottom-left), its source and
@@ -179,8 +242,7 @@ void writeCorners(WorkspaceData& ws, const TriangleData& data, const CornerGroup
   forRange(ws, ws.cornerCount, 1 << 14, [&](std::size_t begin, std::size_t end) {
     for (std::size_t c = begin; c < end; ++c) {
       const Group& group = cornerGroups.groups[cornerGroups.cornerGroup[c]];
-      for (int i = 0; i < 3; ++i) tangents[4 * c + i] = static_cast<float>(group.tangent[i]);
-      tangents[4 * c + 3] = static_cast<float>(group.w);
+      writeCornerFrame(tangents, c, group.tangent, group.w);
       ws.cornerState[c] = static_cast<std::uint8_t>(static_cast<std::uint8_t>(group.source) | (data.invalidNormal[c] ? kInvalidNormal : 0));
       ws.cornerLink[c] = kNone;
     }
@@ -197,7 +259,7 @@ Report lengyelOnArrays(WorkspaceData& ws, const MeshArrays& mesh, const CornerOu
   if (options.method == Method::lengyel) report.weighting = options.weighting;
   report.triangles = ws.cornerCount / 3;
   report.corners = ws.cornerCount;
-  std::vector<std::uint32_t> weldOf;
+  std::span<const std::uint32_t> weldOf;
   TriangleData data;
   // The weld and buckets serve the vertex split only: beside the method's own first phases
   // (on one thread below four, as mikktspace's kernel runs them).
@@ -208,10 +270,16 @@ Report lengyelOnArrays(WorkspaceData& ws, const MeshArrays& mesh, const CornerOu
     data = evaluateTriangles(ws, mesh, weldOf, options, report);
     report.nonManifoldFaces = countNonManifoldFaces(ws, mesh, weldOf);
   });
-  CornerGroups cornerGroups = groupCorners(ws, mesh, weldOf, data, grouping);
-  sumAndOrthonormalize(ws, data, cornerGroups, options.method);
-  fillUndefinedGroups(mesh, weldOf, cornerGroups);
-  writeCorners(ws, data, cornerGroups, outputs);
+  // Frames by the shortest way that gives the full grouping's bits: flat's one-corner groups,
+  // the buckets where they are lengyel's groups, else every corner's key sorted.
+  if (grouping == Grouping::perFace) {
+    flatFrames(ws, mesh, weldOf, data, outputs);
+  } else if (!bucketFrames(ws, mesh, weldOf, data, options.method, outputs)) {
+    CornerGroups cornerGroups = groupCorners(ws, mesh, weldOf, data, grouping);
+    sumAndOrthonormalize(ws, data, cornerGroups, options.method);
+    fillUndefinedGroups(mesh, weldOf, cornerGroups);
+    writeCorners(ws, data, cornerGroups, outputs);
+  }
   finishOutputs(ws, mesh, outputs, options, report);
   return report;
 }

@@ -6,6 +6,7 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <span>
 #include <tuple>
 #include <vector>
 
@@ -29,12 +30,13 @@ Report lengyelOnArrays(WorkspaceData& ws, const MeshArrays& mesh, const CornerOu
 // corner and per comparison of the grouping's sorts (out of line they were 8-10% of a call).
 inline std::uint64_t bitsOf(double value) { return bitCast<std::uint64_t>(value == 0.0 ? 0.0 : value); }
 
-// Per corner, what the triangle pass found (one entry per corner of `indices`).
+// Per corner, what the triangle pass found (one entry per corner of `indices`), in the
+// workspace's arrays (triangleTerms, cornerNormals, cornerWeights, invalidNormal).
 struct TriangleData {
-  std::vector<TriangleTangent> triangles;
-  std::vector<Vec3> cornerNormals;       // unit (see cornerNormal)
-  std::vector<double> cornerWeights;     // the weighting's term; 0 where the triangle is not usable
-  std::vector<std::uint8_t> invalidNormal;
+  std::span<TriangleTerms> triangles;
+  std::span<Vec3> cornerNormals;       // unit (see cornerNormal)
+  std::span<double> cornerWeights;     // the weighting's term; 0 where the triangle is not usable
+  std::span<std::uint8_t> invalidNormal;
 };
 
 // The corners' key, sorted: equal keys (all but `corner`) are one group.
@@ -85,12 +87,49 @@ struct CornerGroups {
   std::vector<Group> groups;
   std::vector<std::uint32_t> groupStart;
   std::vector<std::uint32_t> sortedCorners;
-  std::vector<std::uint32_t> cornerGroup;
+  std::vector<std::uint32_t> cornerGroup;  // every corner's group (groupCorners only)
 };
 
 // Sorts the corners by key (in parallel) and cuts them into groups.
-CornerGroups groupCorners(const WorkspaceData& ws, const MeshArrays& mesh, const std::vector<std::uint32_t>& weldOf,
+CornerGroups groupCorners(const WorkspaceData& ws, const MeshArrays& mesh, std::span<const std::uint32_t> weldOf,
                           const TriangleData& data, Grouping grouping);
+// The same over the listed corners only (increasing; every corner of each position it
+// lists): the groups of those positions, as groupCorners makes them; no cornerGroup.
+CornerGroups groupCornersAt(const WorkspaceData& ws, const MeshArrays& mesh, std::span<const std::uint32_t> weldOf,
+                            const TriangleData& data, Grouping grouping, std::span<const std::uint32_t> corners);
+
+// A corner's weighted terms in its group's sum.
+struct Contribution {
+  Vec3 tangent;
+  Vec3 bitangent;
+  bool operator<(const Contribution& o) const {
+    return std::tie(tangent.v[0], tangent.v[1], tangent.v[2], bitangent.v[0], bitangent.v[1], bitangent.v[2]) <
+           std::tie(o.tangent.v[0], o.tangent.v[1], o.tangent.v[2], o.bitangent.v[0], o.bitangent.v[1], o.bitangent.v[2]);
+  }
+};
+
+// The corner's terms, where its triangle is usable and its weight positive (`flat` weighs
+// every corner alike); false where it has none.
+inline bool termOf(const TriangleData& data, std::uint32_t corner, Method method, Contribution& term) {
+  const TriangleTerms& triangle = data.triangles[corner / 3];
+  if (triangle.kind != TriangleKind::usable) return false;
+  const double weight = method == Method::flat ? 1.0 : data.cornerWeights[corner];
+  if (!(weight > 0)) return false;
+  term = {triangle.tangent * weight, triangle.bitangent * weight};
+  return true;
+}
+
+inline void addTerm(const TriangleData& data, std::uint32_t corner, Method method, std::vector<Contribution>& terms) {
+  Contribution term;
+  if (termOf(data, corner, method, term)) terms.push_back(term);
+}
+
+// One group's frame from its terms, the one statement of it: summed in value order (`terms`
+// sorted here) onto tangentSum (zero on entry), made orthogonal to the group's unit normal, w
+// from the bitangents' side (meshopt: from the UV orientation, the group's key). False where
+// nothing is left (tangent and w untouched): the group is undefined.
+bool sumTerms(std::span<Contribution> terms, const Vec3& normal, int orientation, Method method, Vec3& tangentSum,
+              Vec3& tangent, double& w);
 
 // Each group's weighted terms summed in value order (so no order of the input moves a bit),
 // then made orthogonal to its normal; w from the bitangents' side (meshopt: from the UV
@@ -100,14 +139,40 @@ void sumAndOrthonormalize(const WorkspaceData& ws, const TriangleData& data, Cor
 // Gives every group without a frame one (see FrameSource): a group of its position with the
 // same attributes, any group of its position, a group of a neighbouring position, or a fixed
 // perpendicular.
-void fillUndefinedGroups(const MeshArrays& mesh, const std::vector<std::uint32_t>& weldOf, CornerGroups& cornerGroups);
+void fillUndefinedGroups(const MeshArrays& mesh, std::span<const std::uint32_t> weldOf, CornerGroups& cornerGroups);
 
-// The unit normal a corner works with: its own, or when that is zero or not finite the
-// triangle's (or +z); `invalid` tells which.
-inline Vec3 cornerNormal(const Vec3& stored, const TriangleTangent& triangle, bool& invalid) {
+// The frames of the corners marked kUndefined in cornerState (their groups have no frame), by
+// lengyel's groups and fallbacks over the positions those read only; the mark cleared, the
+// source written (lengyel_groups.cpp). The phases that frame groups directly end with it.
+void frameUndefinedCorners(WorkspaceData& ws, const MeshArrays& mesh, std::span<const std::uint32_t> weldOf,
+                           const TriangleData& data, Grouping grouping, Method method, const CornerOutputs& outputs);
+
+// lengyel's and meshopt's frames and sources as flatFrames writes them, each group read off
+// one weld bucket (bucket_frames.cpp); false, writing nothing, where buckets and groups
+// differ (an invalid normal; two normals of one position and UV with the same unit bits).
+bool bucketFrames(WorkspaceData& ws, const MeshArrays& mesh, std::span<const std::uint32_t> weldOf,
+                  const TriangleData& data, Method method, const CornerOutputs& outputs);
+
+// Method `flat`'s frames and sources into the outputs and cornerState (flat_frames.cpp): each
+// corner of a usable triangle from its triangle alone; groups only where a fallback is needed.
+void flatFrames(WorkspaceData& ws, const MeshArrays& mesh, std::span<const std::uint32_t> weldOf,
+                const TriangleData& data, const CornerOutputs& outputs);
+
+// A frame into a corner's output slot (x, y, z, w as floats).
+inline void writeCornerFrame(float* tangents, std::size_t corner, const Vec3& tangent, double w) {
+  for (int i = 0; i < 3; ++i) tangents[4 * corner + i] = static_cast<float>(tangent[i]);
+  tangents[4 * corner + 3] = static_cast<float>(w);
+}
+
+// A stored normal made unit; `invalid` where it is zero or not finite (the result unused).
+inline Vec3 unitNormal(const Vec3& stored, bool& invalid) {
   const double length = stored.norm();
   invalid = !(length > 0 && std::isfinite(length));
-  if (!invalid) return stored / length;
+  return invalid ? stored : stored / length;
+}
+
+// What replaces a corner's invalid normal: its triangle's (or +z).
+inline Vec3 replacedNormal(const TriangleTangent& triangle) {
   return triangle.faceNormal.norm() > 0 ? triangle.faceNormal : Vec3(0, 0, 1);
 }
 

@@ -14,32 +14,40 @@
 
 namespace tangent::detail {
 
-CornerGroups groupCorners(const WorkspaceData& ws, const MeshArrays& mesh, const std::vector<std::uint32_t>& weldOf,
-                          const TriangleData& data, Grouping grouping) {
-  const std::size_t cornerCount = mesh.indices.size();
+namespace {
+
+// groupCorners over `cornerCount` corners, the i-th of them cornerAt(i) in increasing order:
+// every corner, or a few (groupCornersAt). The groups of a position hold all its corners
+// listed, so the caller lists all corners of each position it wants grouped.
+template <typename CornerAt>
+CornerGroups groupListedCorners(const WorkspaceData& ws, const MeshArrays& mesh, std::span<const std::uint32_t> weldOf,
+                                const TriangleData& data, Grouping grouping, std::size_t cornerCount,
+                                const CornerAt& cornerAt) {
+  const bool everyCorner = cornerCount == mesh.indices.size();
   // The keys in CornerKey order without one sort of them all: each corner's slot is counted
   // out by its weld (the key's first field), corners of one weld in corner order, and then
   // each weld's run (the few corners at one position) is sorted by the whole key. The same
   // order as sorting every key, in linear time but for the runs.
   std::vector<std::uint32_t> slot(cornerCount), runStart(ws.vertexCount + 1, 0);
-  for (std::size_t c = 0; c < cornerCount; ++c) ++runStart[weldOf[mesh.indices[c]] + 1];
+  for (std::size_t i = 0; i < cornerCount; ++i) ++runStart[weldOf[mesh.indices[cornerAt(i)]] + 1];
   for (std::size_t v = 0; v < ws.vertexCount; ++v) runStart[v + 1] += runStart[v];
   {
     std::vector<std::uint32_t> next(runStart.begin(), runStart.end() - 1);
-    for (std::size_t c = 0; c < cornerCount; ++c) slot[c] = next[weldOf[mesh.indices[c]]]++;
+    for (std::size_t i = 0; i < cornerCount; ++i) slot[i] = next[weldOf[mesh.indices[cornerAt(i)]]]++;
   }
   CornerGroups result;
   std::vector<CornerKey>& keys = result.keys;
   keys.resize(cornerCount);
   forRange(ws, cornerCount, 1 << 14, [&](std::size_t begin, std::size_t end) {
-    for (std::size_t c = begin; c < end; ++c) {
-      const TriangleTangent& triangle = data.triangles[c / 3];
+    for (std::size_t i = begin; i < end; ++i) {
+      const std::size_t c = cornerAt(i);
+      const TriangleTerms& triangle = data.triangles[c / 3];
       const std::uint32_t vertex = mesh.indices[c];
-      CornerKey& key = keys[slot[c]];
+      CornerKey& key = keys[slot[i]];
       key.weld = weldOf[vertex];
       key.orientation = triangle.kind == TriangleKind::usable ? triangle.orientation : 0;
       key.tag = grouping == Grouping::perFace ? c / 3 + 1 : 0;
-      for (int i = 0; i < 3; ++i) key.normal[i] = bitsOf(data.cornerNormals[c][i]);
+      for (int axis = 0; axis < 3; ++axis) key.normal[axis] = bitsOf(data.cornerNormals[c][axis]);
       key.uv[0] = bitsOf(mesh.uvs[2 * vertex]);
       key.uv[1] = bitsOf(mesh.uvs[2 * vertex + 1]);
       key.corner = static_cast<std::uint32_t>(c);
@@ -62,7 +70,7 @@ CornerGroups groupCorners(const WorkspaceData& ws, const MeshArrays& mesh, const
   result.groups.resize(groupCount);
   result.groupStart.resize(groupCount + 1);
   result.sortedCorners.resize(cornerCount);
-  result.cornerGroup.resize(cornerCount);
+  if (everyCorner) result.cornerGroup.resize(cornerCount);
   forRange(ws, cornerCount, 1 << 14, [&](std::size_t begin, std::size_t end) {
     for (std::size_t i = begin; i < end; ++i) {
       const CornerKey& key = keys[i];
@@ -76,28 +84,41 @@ CornerGroups groupCorners(const WorkspaceData& ws, const MeshArrays& mesh, const
         result.groupStart[g] = static_cast<std::uint32_t>(i);
       }
       result.sortedCorners[i] = key.corner;
-      result.cornerGroup[key.corner] = g;
+      if (everyCorner) result.cornerGroup[key.corner] = g;
     }
   });
   result.groupStart[groupCount] = static_cast<std::uint32_t>(cornerCount);
   return result;
 }
 
-namespace {
-
-struct Contribution {
-  Vec3 tangent;
-  Vec3 bitangent;
-  bool operator<(const Contribution& o) const {
-    return std::tie(tangent.v[0], tangent.v[1], tangent.v[2], bitangent.v[0], bitangent.v[1], bitangent.v[2]) <
-           std::tie(o.tangent.v[0], o.tangent.v[1], o.tangent.v[2], o.bitangent.v[0], o.bitangent.v[1], o.bitangent.v[2]);
-  }
-};
-
 }  // namespace
 
+CornerGroups groupCorners(const WorkspaceData& ws, const MeshArrays& mesh, std::span<const std::uint32_t> weldOf,
+                          const TriangleData& data, Grouping grouping) {
+  return groupListedCorners(ws, mesh, weldOf, data, grouping, mesh.indices.size(), [](std::size_t i) { return i; });
+}
+
+CornerGroups groupCornersAt(const WorkspaceData& ws, const MeshArrays& mesh, std::span<const std::uint32_t> weldOf,
+                            const TriangleData& data, Grouping grouping, std::span<const std::uint32_t> corners) {
+  return groupListedCorners(ws, mesh, weldOf, data, grouping, corners.size(), [&](std::size_t i) { return corners[i]; });
+}
+
+bool sumTerms(std::span<Contribution> terms, const Vec3& normal, int orientation, Method method, Vec3& tangentSum,
+              Vec3& tangent, double& w) {
+  if (terms.size() > 1) std::sort(terms.begin(), terms.end());
+  Vec3 bitangentSum(0, 0, 0);
+  for (const Contribution& term : terms) {
+    tangentSum += term.tangent;
+    bitangentSum += term.bitangent;
+  }
+  if (!orthonormalize(tangentSum.data(), normal.data(), tangent.data())) return false;
+  const double side = (normal % tangent) | bitangentSum;
+  const double uvSide = orientation < 0 ? -1.0 : 1.0;
+  w = method == Method::meshopt ? uvSide : side > 0 ? 1.0 : side < 0 ? -1.0 : uvSide;
+  return true;
+}
+
 void sumAndOrthonormalize(const WorkspaceData& ws, const TriangleData& data, CornerGroups& cornerGroups, Method method) {
-  const bool flat = method == Method::flat;
   std::vector<Group>& groups = cornerGroups.groups;
   forRange(ws, groups.size(), 1024, [&](std::size_t begin, std::size_t end) {
     std::vector<Contribution> terms;
@@ -105,24 +126,9 @@ void sumAndOrthonormalize(const WorkspaceData& ws, const TriangleData& data, Cor
       Group& group = groups[g];
       terms.clear();
       for (std::uint32_t i = cornerGroups.groupStart[g]; i < cornerGroups.groupStart[g + 1]; ++i) {
-        const std::uint32_t corner = cornerGroups.sortedCorners[i];
-        const TriangleTangent& triangle = data.triangles[corner / 3];
-        if (triangle.kind != TriangleKind::usable) continue;
-        const double weight = flat ? 1.0 : data.cornerWeights[corner];
-        if (!(weight > 0)) continue;
-        terms.push_back({triangle.tangent * weight, triangle.bitangent * weight});
+        addTerm(data, cornerGroups.sortedCorners[i], method, terms);
       }
-      if (terms.size() > 1) std::sort(terms.begin(), terms.end());
-      Vec3 bitangentSum(0, 0, 0);
-      for (const Contribution& term : terms) {
-        group.tangentSum += term.tangent;
-        bitangentSum += term.bitangent;
-      }
-      if (!orthonormalize(group.tangentSum.data(), group.normal.data(), group.tangent.data())) continue;
-      const double side = (group.normal % group.tangent) | bitangentSum;
-      const double uvSide = group.key->orientation < 0 ? -1.0 : 1.0;
-      group.w = method == Method::meshopt ? uvSide : side > 0 ? 1.0 : side < 0 ? -1.0 : uvSide;
-      group.defined = true;
+      group.defined = sumTerms(terms, group.normal, group.key->orientation, method, group.tangentSum, group.tangent, group.w);
     }
   });
 }
@@ -151,7 +157,7 @@ bool frameFromCandidates(const std::vector<const Group*>& candidates, Group& gro
 }
 
 // The positions (welds) that share a triangle with each weld in `wanted`.
-std::vector<std::vector<std::uint32_t>> neighbourWelds(const MeshArrays& mesh, const std::vector<std::uint32_t>& weldOf,
+std::vector<std::vector<std::uint32_t>> neighbourWelds(const MeshArrays& mesh, std::span<const std::uint32_t> weldOf,
                                                        const std::vector<std::uint8_t>& wanted) {
   std::vector<std::vector<std::uint32_t>> ring(wanted.size());
   for (std::size_t t = 0; 3 * t < mesh.indices.size(); ++t) {
@@ -168,7 +174,7 @@ std::vector<std::vector<std::uint32_t>> neighbourWelds(const MeshArrays& mesh, c
 
 }  // namespace
 
-void fillUndefinedGroups(const MeshArrays& mesh, const std::vector<std::uint32_t>& weldOf, CornerGroups& cornerGroups) {
+void fillUndefinedGroups(const MeshArrays& mesh, std::span<const std::uint32_t> weldOf, CornerGroups& cornerGroups) {
   std::vector<Group>& groups = cornerGroups.groups;
   // The groups without a frame, in order (few; `flat` has three groups a triangle, and the
   // passes below then read only these instead of every group again).
@@ -290,6 +296,53 @@ void fillUndefinedGroups(const MeshArrays& mesh, const std::vector<std::uint32_t
     }
     group.tangent = fixedPerpendicular(group.normal);
     group.w = group.key->orientation < 0 ? -1.0 : 1.0;
+  }
+}
+
+namespace {
+
+// Every corner of the positions the fallbacks of `undefined` read: each one's own position
+// and those that share a triangle with it (a superset of the 1-ring fillUndefinedGroups
+// gathers; a position more adds groups no answer reads).
+std::vector<std::uint32_t> cornersNearUndefined(const WorkspaceData& ws, const MeshArrays& mesh,
+                                                std::span<const std::uint32_t> weldOf,
+                                                const std::vector<std::uint32_t>& undefined) {
+  enum : std::uint8_t { kFar = 0, kUndefinedHere = 1, kNeighbour = 2 };
+  std::vector<std::uint8_t> near(ws.vertexCount, kFar);
+  for (const std::uint32_t c : undefined) near[weldOf[mesh.indices[c]]] = kUndefinedHere;
+  for (std::size_t t = 0; 3 * t < ws.cornerCount; ++t) {
+    const std::uint32_t welds[3] = {weldOf[mesh.indices[3 * t]], weldOf[mesh.indices[3 * t + 1]],
+                                    weldOf[mesh.indices[3 * t + 2]]};
+    if (near[welds[0]] != kUndefinedHere && near[welds[1]] != kUndefinedHere && near[welds[2]] != kUndefinedHere) continue;
+    for (const std::uint32_t weld : welds) {
+      if (near[weld] == kFar) near[weld] = kNeighbour;
+    }
+  }
+  return collectIf(ws, ws.cornerCount, [&](std::size_t c) { return near[weldOf[mesh.indices[c]]] != kFar; });
+}
+
+}  // namespace
+
+void frameUndefinedCorners(WorkspaceData& ws, const MeshArrays& mesh, std::span<const std::uint32_t> weldOf,
+                           const TriangleData& data, Grouping grouping, Method method, const CornerOutputs& outputs) {
+  const std::vector<std::uint32_t> undefined = collectFlagged(ws, ws.cornerState.data(), kUndefined, ws.cornerCount,
+                                                              [&](std::size_t c) { return (ws.cornerState[c] & kUndefined) != 0; });
+  if (undefined.empty()) return;
+  // The groups of these positions are the full grouping's (a group's corners are all at one
+  // position): the defined ones give the frames they gave, the others are filled in alike.
+  const std::vector<std::uint32_t> near = cornersNearUndefined(ws, mesh, weldOf, undefined);
+  CornerGroups cornerGroups = groupCornersAt(ws, mesh, weldOf, data, grouping, near);
+  sumAndOrthonormalize(ws, data, cornerGroups, method);
+  fillUndefinedGroups(mesh, weldOf, cornerGroups);
+  float* tangents = outputs.tangents.data();
+  for (std::size_t g = 0; g < cornerGroups.groups.size(); ++g) {
+    const Group& group = cornerGroups.groups[g];
+    if (group.defined) continue;  // framed before
+    for (std::uint32_t i = cornerGroups.groupStart[g]; i < cornerGroups.groupStart[g + 1]; ++i) {
+      const std::uint32_t c = cornerGroups.sortedCorners[i];
+      writeCornerFrame(tangents, c, group.tangent, group.w);
+      ws.cornerState[c] = static_cast<std::uint8_t>(static_cast<std::uint8_t>(group.source) | (ws.cornerState[c] & kInvalidNormal));
+    }
   }
 }
 

@@ -15,13 +15,15 @@
 namespace tangent::detail {
 
 // WorkspaceData::cornerState, one byte per corner. Cleared by `triangle` for every corner
-// (lengyel and flat write only kSourceMask, before `output`).
+// (lengyel and flat write only kSourceMask, kUndefined in between and kInvalidNormal, before
+// `output`).
 enum CornerState : std::uint8_t {
   // FrameSource of the corner's frame: set by `group` and `fallback`, read by `fallback`
   // (candidates) and `output` (report counts, CornerOutputs::sources).
   kSourceMask = 3,
   // No frame yet: set by `group` (a group that sums to nothing) and `fallback`'s inheriting,
-  // cleared when a frame is written; `fallback` gives every such corner one.
+  // cleared when a frame is written; `fallback` gives every such corner one. flat: set by
+  // flatFrames, cleared by frameUndefinedCorners (lengyel_groups.cpp) before `output`.
   kUndefined = 4,
   // Corner of an exact duplicate triangle: set by `pair`; its cornerLink names the original,
   // whose frame `output` copies. Read by `orient`, `group`, `fallback` (such corners take no

@@ -28,6 +28,16 @@ struct TriangleTangent {
   TriangleKind kind = TriangleKind::degenerate;
 };
 
+// What the phases after the triangle pass read of a triangle (lengyel.hpp's TriangleData): its
+// directions, UV orientation and kind, kept apart from what only the pass uses (face normal,
+// area, coincident corners) so that the stored array is smaller.
+struct TriangleTerms {
+  Vec3 tangent{0, 0, 0};
+  Vec3 bitangent{0, 0, 0};
+  int orientation = 0;
+  TriangleKind kind = TriangleKind::degenerate;
+};
+
 // Evaluates the triangle starting from a canonical corner (the smallest by bit pattern), so
 // that rotating the corner order never changes a bit of the result.
 TriangleTangent triangleTangent(const std::array<Vec3, 3>& positions, const std::array<Vec2, 3>& uvs);

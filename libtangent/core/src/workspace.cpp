@@ -26,7 +26,10 @@ std::size_t WorkspaceData::bytes() const {
          size(orientation) + size(triangleFlags) + size(cornerLink) + size(cornerState) + size(meshPositions) + size(meshNormals) + size(meshUvs) + size(meshTangents) + size(meshIndices) +
          size(meshRepresentative) + size(meshRepresentativeValues) + size(packedPositions) + size(packedNormals) +
          size(packedUvs) + size(packedIndices) +
-         size(bucketExtra) + size(bucketUniform);
+         size(bucketExtra) + size(bucketUniform) + size(positionRepresentative) + size(positionTable) +
+         size(triangleTerms) + size(cornerNormals) + size(cornerWeights) + size(invalidNormal) +
+         size(vertexUnitNormals) + size(vertexNormalInvalid) + size(edgeStart) + size(edgeNext) + size(edges) +
+         size(onSharedEdge);
 }
 
 void checkArraySizes(const MeshArrays& mesh) {

@@ -22,6 +22,7 @@
 
 #include "tangent/bulk_buffer.hpp"
 #include "state_bits.hpp"
+#include "triangle_tangent.hpp"
 #include "tangent/tangent.hpp"
 
 namespace tangent::detail {
@@ -146,6 +147,20 @@ struct WorkspaceData {
   BulkVector<std::uint32_t> bucketExtra;    // per welded id: extra output vertices, then offsets
   BulkVector<std::uint8_t> bucketUniform;   // per welded id: BucketChain, then BucketUniform
                                              // bits (state_bits.hpp)
+  // lengyel, meshopt and flat: the triangle pass's results (TriangleData, lengyel.hpp) ...
+  BulkVector<TriangleTerms> triangleTerms;
+  BulkVector<Vec3> cornerNormals;
+  BulkVector<double> cornerWeights;
+  BulkVector<std::uint8_t> invalidNormal;
+  BulkVector<Vec3> vertexUnitNormals;         // per vertex, read by each of its corners
+  BulkVector<std::uint8_t> vertexNormalInvalid;
+  // ... and each vertex's position representative (the smallest vertex
+  // with the same position bits) and the open-addressing table that finds it (lengyel.cpp).
+  BulkVector<std::uint32_t> positionRepresentative, positionTable;
+  // ... and the non-manifold count's edges, by their smaller end (lengyel.cpp).
+  BulkVector<std::uint32_t> edgeStart, edgeNext;
+  BulkVector<std::uint64_t> edges;
+  BulkVector<std::uint8_t> onSharedEdge;
   PerThread<BucketScratch> scratch;
   // Strided or 16-bit-indexed input, packed (entry.cpp).
   BulkVector<float> packedPositions, packedNormals, packedUvs;
