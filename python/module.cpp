@@ -106,12 +106,13 @@ std::string optionText(const options::Option& option, const py::handle& value) {
   return text;
 }
 
-// Applies the keyword arguments of `function` (the options of `command` in the table) through
-// `apply(option, text)`, in the table's order (so that, as documented, reference overrides
-// method and orthogonal_tolerance overrides tolerance); None is "not given". An argument the
-// table does not give `function` is a TypeError, as Python's own.
-template <typename Apply>
-void applyKeywords(const py::kwargs& kwargs, unsigned command, const char* function, Apply apply) {
+// Applies the keyword arguments of `function` (the options of `command` in the table) to
+// `options` through the table's `apply` for that struct, in the table's order (so that, as
+// documented, reference overrides method and orthogonal_tolerance overrides tolerance); None is
+// "not given". An argument the table does not give `function` is a TypeError, as Python's own.
+template <typename Options>
+void applyKeywords(const py::kwargs& kwargs, unsigned command, const char* function, Options& options,
+                   bool (*apply)(Options&, const options::Option&, std::string_view)) {
   for (const auto& item : kwargs) {
     std::string name = py::str(item.first).cast<std::string>();
     for (char& c : name) c = c == '_' ? '-' : c;
@@ -122,7 +123,7 @@ void applyKeywords(const py::kwargs& kwargs, unsigned command, const char* funct
     if (!(option.commands & command) || !(option.frontEnds & options::kPython)) continue;
     const std::string name = options::pythonName(option.name);
     if (!kwargs.contains(name) || kwargs[name.c_str()].is_none()) continue;
-    apply(option, optionText(option, kwargs[name.c_str()]));
+    apply(options, option, optionText(option, kwargs[name.c_str()]));
   }
 }
 
@@ -143,11 +144,7 @@ py::list optionTable() {
     row["short"] = option.shortName ? std::string(1, option.shortName) : std::string();
     row["kind"] = kinds[static_cast<int>(option.kind)];
     py::list choices;
-    for (std::string_view rest = option.choices; !rest.empty();) {
-      const std::size_t bar = rest.find('|');
-      choices.append(std::string(rest.substr(0, bar)));
-      rest = bar == std::string_view::npos ? std::string_view() : rest.substr(bar + 1);
-    }
+    for (const std::string_view name : options::choiceNames(option.choices)) choices.append(std::string(name));
     row["choices"] = choices;
     const std::string text(option.defaultValue);
     py::object defaultValue = py::none();
@@ -185,8 +182,7 @@ py::dict computeTangents(const py::handle& positionsIn, const py::handle& normal
   if (static_cast<std::size_t>(uvs.size() / 2) != vertices)
     badArgument("uvs", std::to_string(uvs.size() / 2) + " UVs for " + std::to_string(vertices) + " positions");
   tangent::Options options;
-  applyKeywords(kwargs, options::kArrays, "compute_tangents",
-                [&](const options::Option& option, const std::string& value) { options::applyOption(options, option, value); });
+  applyKeywords(kwargs, options::kArrays, "compute_tangents", options, &options::applyOption);
 
   const std::size_t corners = static_cast<std::size_t>(indices.size());
   py::array_t<float> tangents({static_cast<py::ssize_t>(corners), py::ssize_t(4)});
@@ -258,9 +254,7 @@ The GIL is released while the core runs.)");
       "bake",
       [](const std::filesystem::path& input, const std::filesystem::path& output, const py::kwargs& kwargs) {
         tangent::gltf::BakeOptions options;
-        applyKeywords(kwargs, options::kBake, "bake", [&](const options::Option& option, const std::string& value) {
-          tangent::gltf::applyBakeOption(options, option, value);
-        });
+        applyKeywords(kwargs, options::kBake, "bake", options, &tangent::gltf::applyBakeOption);
         nlohmann::ordered_json entry = {{"input", input.string()}, {"output", output.string()}, {"status", "ok"}};
         {
           py::gil_scoped_release released;
@@ -283,9 +277,7 @@ Raises libtangent.InputError with the CLI's message on a file it refuses.)");
       "bake_tree",
       [](const std::filesystem::path& inputFolder, const std::filesystem::path& outputFolder, const py::kwargs& kwargs) {
         tangent::gltf::BatchOptions options;
-        applyKeywords(kwargs, options::kBakeTree, "bake_tree", [&](const options::Option& option, const std::string& value) {
-          tangent::gltf::applyBatchOption(options, option, value);
-        });
+        applyKeywords(kwargs, options::kBakeTree, "bake_tree", options, &tangent::gltf::applyBatchOption);
         nlohmann::ordered_json entries = nlohmann::ordered_json::array();
         {
           py::gil_scoped_release released;
@@ -309,9 +301,7 @@ and the bake report when baked in this run.)");
       "check_tree",
       [](const std::filesystem::path& folder, const py::kwargs& kwargs) {
         tangent::gltf::CheckOptions options;
-        applyKeywords(kwargs, options::kCheck, "check_tree", [&](const options::Option& option, const std::string& value) {
-          tangent::gltf::applyCheckOption(options, option, value);
-        });
+        applyKeywords(kwargs, options::kCheck, "check_tree", options, &tangent::gltf::applyCheckOption);
         nlohmann::ordered_json files = nlohmann::ordered_json::array();
         {
           py::gil_scoped_release released;
@@ -346,9 +336,7 @@ dicts with "name" (the command line's), "python", "npm", "kind", "choices", "def
       "manifest_options",
       [](const py::kwargs& kwargs) {
         tangent::gltf::BatchOptions options;
-        applyKeywords(kwargs, options::kBakeTree, "manifest_options", [&](const options::Option& option, const std::string& value) {
-          tangent::gltf::applyBatchOption(options, option, value);
-        });
+        applyKeywords(kwargs, options::kBakeTree, "manifest_options", options, &tangent::gltf::applyBatchOption);
         return toPython(tangent::gltf::manifestOptions(options.bake));
       },
       R"(The "options" record bake_tree() keeps in tangent-manifest.json for these keyword arguments (those
@@ -395,9 +383,7 @@ then does other work.)");
       "check",
       [](const std::filesystem::path& input, const py::kwargs& kwargs) {
         tangent::gltf::CheckOptions options;
-        applyKeywords(kwargs, options::kCheck, "check", [&](const options::Option& option, const std::string& value) {
-          tangent::gltf::applyCheckOption(options, option, value);
-        });
+        applyKeywords(kwargs, options::kCheck, "check", options, &tangent::gltf::applyCheckOption);
         tangent::gltf::FileCheck result;
         {
           py::gil_scoped_release released;

@@ -63,12 +63,8 @@ std::vector<std::string> otherValues(const options::Option& option) {
       return {"true"};
     case options::Kind::choice:
     case options::Kind::list: {
-      std::string_view rest = option.choices;
-      while (!rest.empty()) {
-        const std::size_t bar = rest.find('|');
-        if (rest.substr(0, bar) != option.defaultValue) values.emplace_back(rest.substr(0, bar));
-        rest = bar == std::string_view::npos ? std::string_view() : rest.substr(bar + 1);
-      }
+      for (const std::string_view name : options::choiceNames(option.choices))
+        if (name != option.defaultValue) values.emplace_back(name);
       return values;
     }
     case options::Kind::integer:

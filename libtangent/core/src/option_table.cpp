@@ -103,21 +103,10 @@ constexpr Option kTable[] = {
 };
 // clang-format on
 
-// The '|'-separated names of `choices`, one at a time.
-template <typename Visit>
-void forEachChoice(std::string_view choices, Visit visit) {
-  while (!choices.empty()) {
-    const std::size_t bar = choices.find('|');
-    visit(choices.substr(0, bar));
-    if (bar == std::string_view::npos) break;
-    choices.remove_prefix(bar + 1);
-  }
-}
-
 bool isChoice(std::string_view choices, std::string_view value) {
-  bool found = false;
-  forEachChoice(choices, [&](std::string_view name) { found = found || name == value; });
-  return found;
+  for (const std::string_view name : choiceNames(choices))
+    if (name == value) return true;
+  return false;
 }
 
 std::string formatNumber(double value) {
@@ -194,10 +183,10 @@ std::string helpLine(const Option& option) {
   const std::string text(option.help);
   std::string names;
   if (option.kind == Kind::choice || option.kind == Kind::list) {
-    forEachChoice(option.choices, [&](std::string_view name) {
+    for (const std::string_view name : choiceNames(option.choices)) {
       if (!names.empty()) names += option.kind == Kind::choice ? std::string{kKeptSpace, '|', ' '} : " ";
       names += std::string(name) + (name == option.defaultValue ? std::string{kKeptSpace} + "(default)" : "");
-    });
+    }
     return option.kind == Kind::choice ? names + "; " + text : text + ": " + names;
   }
   if ((option.kind == Kind::number || option.kind == Kind::integer) && !option.defaultValue.empty())
@@ -243,9 +232,19 @@ std::string npmName(std::string_view name) {
   return out;
 }
 
-std::string describeChoices(std::string_view choices) {
+std::vector<std::string_view> choiceNames(std::string_view choices) {
   std::vector<std::string_view> names;
-  forEachChoice(choices, [&](std::string_view name) { names.push_back(name); });
+  while (!choices.empty()) {
+    const std::size_t bar = choices.find('|');
+    names.push_back(choices.substr(0, bar));
+    if (bar == std::string_view::npos) break;
+    choices.remove_prefix(bar + 1);
+  }
+  return names;
+}
+
+std::string describeChoices(std::string_view choices) {
+  const std::vector<std::string_view> names = choiceNames(choices);
   std::string out;
   for (std::size_t i = 0; i < names.size(); ++i)
     out += (i == 0 ? "" : i + 1 == names.size() ? " or " : ", ") + std::string(names[i]);

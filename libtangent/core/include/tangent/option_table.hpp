@@ -16,6 +16,7 @@
 #include <span>
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include "tangent/tangent.hpp"
 
@@ -77,6 +78,9 @@ std::string npmName(std::string_view name);     // crease-angle -> creaseAngle
 // Why `value` is not a value of `option` ("'soft' is not flat, smooth or keep"); nullopt when it
 // is one. The caller leads it with the option's name as its front end spells it.
 std::optional<std::string> checkValue(const Option& option, std::string_view value);
+
+// The names of `choices` ("a|b|c": a choice's or a list's, an option's prefixes), in order.
+std::vector<std::string_view> choiceNames(std::string_view choices);
 
 // The names of `choices` for messages: "a, b or c".
 std::string describeChoices(std::string_view choices);
