@@ -4,8 +4,10 @@
 # --tangent-format, which must also check clean) and runs the Khronos glTF validator on each
 # output: 0 errors required. `generated`: every generated test asset and the bundled demo; `shared`: the
 # shared sample assets (../shared/assets), skipped where absent (exit 77; a failure under
-# CI=true, tests/support/skip_or_fail.sh).
-# Usage: run_validator.sh generated|shared TANGENT_CLI TEST_ASSETS_TOOL SOURCE_DIR
+# CI=true, tests/support/skip_or_fail.sh). `materials`: the scenes of `tangent-make-data
+# --materials` (given as the third argument) as written, not baked: they carry their TANGENT, which
+# `tangent check` must pass.
+# Usage: run_validator.sh generated|shared|materials TANGENT_CLI TEST_ASSETS_TOOL|MAKE_DATA SOURCE_DIR
 set -euo pipefail
 mode=$1 tangent=$2 make_assets=$3 source=$4
 node_dir=$source/tests/node
@@ -20,12 +22,21 @@ case "$mode" in
     "$make_assets" "$work/in" > "$work/inputs.txt"
     inputs=($(cat "$work/inputs.txt") "$source/data/demo/demo.gltf")
     ;;
+  materials)
+    "$make_assets" --materials "$work/materials" > /dev/null
+    for scene in "$work/materials"/*.gltf; do
+      "$tangent" check "$scene" > "$work/check.txt" || { cat "$work/check.txt" >&2; exit 1; }
+    done
+    node "$node_dir/validate.mjs" "$work/materials"/*.gltf
+    echo "validated the material scenes as written: 0 errors"
+    exit 0
+    ;;
   shared)
     shared=$source/../shared/assets
     [ -d "$shared" ] || exec "$source/tests/support/skip_or_fail.sh" "$shared is absent: shared sample assets not validated"
     inputs=("$shared"/*.glb)
     ;;
-  *) echo "usage: run_validator.sh generated|shared TANGENT_CLI TEST_ASSETS_TOOL SOURCE_DIR" >&2; exit 2 ;;
+  *) echo "usage: run_validator.sh generated|shared|materials TANGENT_CLI TEST_ASSETS_TOOL|MAKE_DATA SOURCE_DIR" >&2; exit 2 ;;
 esac
 mkdir -p "$work/out"
 outputs=()

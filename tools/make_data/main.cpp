@@ -2,8 +2,9 @@
 // Generates the bundled demo asset in data/demo/: a UV sphere, two quads with a mirrored UV
 // island, and a ground plane without a normal map, plus the bump normal map they use; the
 // viewer's demo scene and primitives. On request (not committed): a skinned and a morphing
-// asset, animated, for the README's images, and a textured sphere for benchmarks.
-// Usage: tangent-make-data OUT_DIR | --animated OUT_DIR | --sphere N OUT_DIR [--one-primitive]
+// asset, animated, for the README's images, a textured sphere for benchmarks, and the material
+// scenes whose features read the tangent frame (anisotropy, clearcoat) or COLOR_0.
+// Usage: tangent-make-data OUT_DIR | --animated OUT_DIR | --materials OUT_DIR | --sphere N OUT_DIR [--one-primitive]
 #include <OpenImageIO/imageio.h>
 
 #include <cmath>
@@ -12,6 +13,7 @@
 #include <fstream>
 #include <iostream>
 #include <nlohmann/json.hpp>
+#include "tangent/tangent.hpp"
 #include <algorithm>
 #include <cstdlib>
 #include <numbers>
@@ -26,6 +28,7 @@ struct MeshData {
   std::vector<float> positions, normals, uvs;
   std::vector<std::uint16_t> indices;
   std::vector<std::uint32_t> indices32;  // used instead of `indices` when not empty (large meshes)
+  std::vector<float> tangents;  // TANGENT (4 per vertex) when not empty
 };
 
 MeshData uvSphere(int slices, int stacks, float radius) {
@@ -300,6 +303,8 @@ class DocumentWriter {
     Json primitive = Json::object();
     primitive["attributes"] = {{"POSITION", first}, {"NORMAL", first + 1}, {"TEXCOORD_0", first + 2}};
     primitive["indices"] = first + 3;
+    if (!mesh.tangents.empty())
+      primitive["attributes"]["TANGENT"] = addAccessor(mesh.tangents.data(), mesh.tangents.size() / 4, 5126, "VEC4", 34962);
     primitive["material"] = material;
     meshes_.push_back({{"name", name}, {"primitives", Json::array({primitive})}});
     Json node = {{"name", name}, {"mesh", meshes_.size() - 1}};
@@ -312,11 +317,11 @@ class DocumentWriter {
   // The primitive of the mesh added last, to give more attributes or morph targets.
   Json& lastPrimitive() { return meshes_.back()["primitives"][0]; }
   Json& lastMesh() { return meshes_.back(); }
-  // An accessor over `count` elements of `type` (SCALAR, VEC3, ...) of float (5126) or unsigned
-  // short (5123) components; its index.
+  // An accessor over `count` elements of `type` (SCALAR, VEC3, ...) of float (5126), unsigned
+  // short (5123) or unsigned byte (5121) components; its index.
   std::size_t addAccessor(const void* data, std::size_t count, int componentType, const std::string& type, int target = 0) {
     const int components = type == "SCALAR" ? 1 : type == "MAT4" ? 16 : type.back() - '0';
-    const std::size_t bytes = count * components * (componentType == 5126 ? 4 : 2);
+    const std::size_t bytes = count * components * (componentType == 5126 ? 4 : componentType == 5121 ? 1 : 2);
     const std::size_t view = target ? addView(data, bytes, target) : addView(data, bytes);
     accessors_.push_back({{"bufferView", view}, {"componentType", componentType}, {"count", count}, {"type", type}});
     if (type == "SCALAR" && componentType == 5126 && count > 0) {  // animation inputs need min and max
@@ -476,6 +481,177 @@ void writeMorphing(const std::filesystem::path& dir) {
   writer.write(dir, "morphing", extra);
 }
 
+
+// anisotropy_direction.png: KHR_materials_anisotropy's direction texture for a disc whose UVs
+// map [-1, 1]^2 onto the image (u = (x + 1) / 2, v = (1 - y) / 2): circular brushing, the
+// direction turning around the centre (RG: the direction in (tangent, bitangent) space mapped
+// from [-1, 1], B: strength, fading to half towards the centre where the circles are tight).
+bool writeCircularDirections(const std::filesystem::path& path, int size) {
+  std::vector<unsigned char> pixels(static_cast<std::size_t>(size) * size * 3);
+  for (int y = 0; y < size; ++y) {
+    for (int x = 0; x < size; ++x) {
+      // Tangent space: T = +u = +x, B = up in the image (-v) = +y.
+      const double px = (x + 0.5) / size * 2 - 1, py = 1 - (y + 0.5) / size * 2;
+      const double r = std::hypot(px, py);
+      const double dx = r > 1e-6 ? -py / r : 1, dy = r > 1e-6 ? px / r : 0;  // counter-clockwise around the centre
+      unsigned char* p = &pixels[(static_cast<std::size_t>(y) * size + x) * 3];
+      p[0] = static_cast<unsigned char>(std::lround((dx * 0.5 + 0.5) * 255));
+      p[1] = static_cast<unsigned char>(std::lround((dy * 0.5 + 0.5) * 255));
+      p[2] = static_cast<unsigned char>(std::lround(std::clamp(0.5 + r, 0.5, 1.0) * 255));
+    }
+  }
+  return writeImage(path, size, size, 3, pixels);
+}
+
+// A disc of `radius` at z = 0 facing +z, in `rings` rings of `segments` quads around a centre
+// fan; UVs map [-radius, radius]^2 to [0, 1]^2 (v down, as glTF's images).
+MeshData disc(int rings, int segments, float radius) {
+  MeshData mesh;
+  auto vertex = [&](double x, double y) {
+    mesh.positions.insert(mesh.positions.end(), {static_cast<float>(x), static_cast<float>(y), 0.0f});
+    mesh.normals.insert(mesh.normals.end(), {0.0f, 0.0f, 1.0f});
+    mesh.uvs.insert(mesh.uvs.end(), {static_cast<float>((x / radius + 1) / 2), static_cast<float>((1 - y / radius) / 2)});
+    // T along +u (+x); B = cross(N, T) * w = +y, towards the image's top (-v): w = +1.
+    mesh.tangents.insert(mesh.tangents.end(), {1.0f, 0.0f, 0.0f, 1.0f});
+  };
+  vertex(0, 0);
+  for (int ring = 1; ring <= rings; ++ring)
+    for (int i = 0; i < segments; ++i) {
+      const double a = 2 * std::numbers::pi * i / segments, r = radius * ring / rings;
+      vertex(r * std::cos(a), r * std::sin(a));
+    }
+  auto at = [&](int ring, int i) { return static_cast<std::uint16_t>(ring == 0 ? 0 : 1 + (ring - 1) * segments + (i % segments)); };
+  for (int i = 0; i < segments; ++i) mesh.indices.insert(mesh.indices.end(), {at(0, 0), at(1, i), at(1, i + 1)});
+  for (int ring = 1; ring < rings; ++ring)
+    for (int i = 0; i < segments; ++i)
+      mesh.indices.insert(mesh.indices.end(), {at(ring, i), at(ring + 1, i), at(ring + 1, i + 1), at(ring, i), at(ring + 1, i + 1), at(ring, i + 1)});
+  return mesh;
+}
+
+// A directional light shining along `direction` (KHR_lights_punctual lights shine along their
+// node's -z; the rotation turns -z onto it: q = normalize(1 + dot(a, b), cross(a, b))).
+Json sunNode(const std::string& name, const double (&direction)[3]) {
+  const double length = std::sqrt(direction[0] * direction[0] + direction[1] * direction[1] + direction[2] * direction[2]);
+  const double d[3] = {direction[0] / length, direction[1] / length, direction[2] / length};
+  double q[4] = {d[1], -d[0], 0.0, 1.0 - d[2]};  // x, y, z, w for a = (0, 0, -1)
+  const double qLength = std::sqrt(q[0] * q[0] + q[1] * q[1] + q[2] * q[2] + q[3] * q[3]);
+  for (double& c : q) c /= qLength;
+  return {{"name", name}, {"rotation", {q[0], q[1], q[2], q[3]}}, {"extensions", {{"KHR_lights_punctual", {{"light", 0}}}}}};
+}
+
+Json oneSun(double intensity) {
+  Json lights = Json::object();
+  lights["lights"] = Json::array({Json{{"name", "Sun"}, {"type", "directional"}, {"color", {1.0, 1.0, 1.0}}, {"intensity", intensity}}});
+  return lights;
+}
+
+// The material scenes (--materials), each lit by one sun from near the front camera so that the
+// highlights face the viewer (tangent-view --camera front):
+// - anisotropy_disc.gltf: a brushed-metal disc (KHR_materials_anisotropy: strength 0.8, rotation
+//   0.5 rad, a circular direction texture), no normal map: anisotropy alone reads the frame.
+// - clearcoat_sphere.gltf: a rough red sphere under a smooth clearcoat (KHR_materials_clearcoat)
+//   whose clearcoatNormalTexture (the bumps) samples TEXCOORD_1 through a rotated
+//   KHR_texture_transform; no normalTexture.
+// - vertex_colors.gltf: a grid whose COLOR_0 (normalized unsigned bytes, RGBA) shades from red
+//   through green to blue across x, over a white base colour.
+// With TANGENT where a consumer of the frame needs it (the validator asks for it): the disc's
+// and the sphere's, written analytically; `tangent check` compares them with MikkTSpace's.
+int writeMaterialScenes(const std::filesystem::path& dir) {
+  std::filesystem::create_directories(dir);
+  if (!writeBumpNormalMap(dir / "bumps_normal.png", 256, 4) || !writeCircularDirections(dir / "anisotropy_direction.png", 64)) {
+    std::cerr << "tangent-make-data: cannot write the material textures: " << OIIO::geterror() << "\n";
+    return 1;
+  }
+  const float origin[3] = {0, 0, 0};
+  const double towardsScene[3] = {-0.2, -0.25, -1.0};  // from above and to the right of the front camera
+  const Json sampler = {{"magFilter", 9729}, {"minFilter", 9987}, {"wrapS", 10497}, {"wrapT", 10497}};
+  {
+    DocumentWriter writer;
+    writer.addMesh(disc(12, 96, 1.0f), "BrushedDisc", 0, origin);
+    writer.addNode(sunNode("Sun", towardsScene));
+    Json anisotropy = {{"anisotropyStrength", 0.8}, {"anisotropyRotation", 0.5}, {"anisotropyTexture", {{"index", 0}}}};
+    Json extra = {
+        {"extensionsUsed", {"KHR_materials_anisotropy", "KHR_lights_punctual"}},
+        {"extensions", {{"KHR_lights_punctual", oneSun(3.0)}}},
+        {"materials", {{{"name", "BrushedMetal"},
+                        {"pbrMetallicRoughness", {{"baseColorFactor", {0.9, 0.9, 0.9, 1}}, {"metallicFactor", 1.0}, {"roughnessFactor", 0.35}}},
+                        {"extensions", {{"KHR_materials_anisotropy", anisotropy}}}}}},
+        {"textures", {{{"source", 0}, {"sampler", 0}}}},
+        {"samplers", {sampler}},
+        {"images", {{{"uri", "anisotropy_direction.png"}, {"mimeType", "image/png"}}}}};
+    writer.write(dir, "anisotropy_disc", extra);
+  }
+  {
+    DocumentWriter writer;
+    MeshData sphere = uvSphere(64, 32, 1.0f);
+    const double rotation = 0.6, scale = 3.0;  // the clearcoat normal texture's transform (uniform scale)
+    // TANGENT as the clearcoat normal texture reads it: MikkTSpace (libtangent's default, what
+    // `tangent bake` writes) on TEXCOORD_1 through its KHR_texture_transform (u' = c s u + s s v + o,
+    // v' = -s s u + c s v, as tangent/primitive.cpp applies it). The sphere's corners of one
+    // vertex share every input, so they get one tangent: the vertex's.
+    {
+      const double c = std::cos(rotation), s = std::sin(rotation);
+      std::vector<float> uvs(sphere.uvs.size());
+      for (std::size_t i = 0; i < uvs.size(); i += 2) {
+        const double u = sphere.uvs[i] / 2, v = sphere.uvs[i + 1];  // TEXCOORD_1 (below)
+        uvs[i] = static_cast<float>(scale * (c * u + s * v) + 0.1);
+        uvs[i + 1] = static_cast<float>(scale * (-s * u + c * v));
+      }
+      const std::vector<std::uint32_t> indices(sphere.indices.begin(), sphere.indices.end());
+      std::vector<float> corners(indices.size() * 4);
+      tangent::computeCornerTangents({sphere.positions, sphere.normals, uvs, indices}, corners);
+      // The pole copies no triangle uses keep any unit frame.
+      for (std::size_t v = 0; v < sphere.positions.size() / 3; ++v) sphere.tangents.insert(sphere.tangents.end(), {1.0f, 0.0f, 0.0f, 1.0f});
+      for (std::size_t corner = 0; corner < indices.size(); ++corner)
+        std::copy_n(&corners[4 * corner], 4, &sphere.tangents[4 * indices[corner]]);
+    }
+    writer.addMesh(sphere, "CoatedSphere", 0, origin);
+    // TEXCOORD_1: the sphere's UVs once around (TEXCOORD_0 goes twice), the transform tiles them.
+    std::vector<float> uv1(sphere.uvs);
+    for (std::size_t i = 0; i < uv1.size(); i += 2) uv1[i] *= 0.5f;
+    writer.lastPrimitive()["attributes"]["TEXCOORD_1"] = writer.addAccessor(uv1.data(), uv1.size() / 2, 5126, "VEC2", 34962);
+    writer.addNode(sunNode("Sun", towardsScene));
+    Json transform = {{"rotation", rotation}, {"scale", {scale, scale}}, {"offset", {0.1, 0.0}}};
+    Json clearcoat = {{"clearcoatFactor", 1.0},
+                      {"clearcoatRoughnessFactor", 0.08},
+                      {"clearcoatNormalTexture", {{"index", 0}, {"texCoord", 1}, {"scale", 0.8}, {"extensions", {{"KHR_texture_transform", transform}}}}}};
+    Json extra = {
+        {"extensionsUsed", {"KHR_materials_clearcoat", "KHR_texture_transform", "KHR_lights_punctual"}},
+        {"extensions", {{"KHR_lights_punctual", oneSun(3.0)}}},
+        {"materials", {{{"name", "CoatedPaint"},
+                        {"pbrMetallicRoughness", {{"baseColorFactor", {0.7, 0.08, 0.05, 1}}, {"metallicFactor", 0.0}, {"roughnessFactor", 0.7}}},
+                        {"extensions", {{"KHR_materials_clearcoat", clearcoat}}}}}},
+        {"textures", {{{"source", 0}, {"sampler", 0}}}},
+        {"samplers", {sampler}},
+        {"images", {{{"uri", "bumps_normal.png"}, {"mimeType", "image/png"}}}}};
+    writer.write(dir, "clearcoat_sphere", extra);
+  }
+  {
+    DocumentWriter writer;
+    const MeshData mesh = grid(16);
+    writer.addMesh(mesh, "ColouredGrid", 0, origin);
+    std::vector<std::uint8_t> colours;
+    for (std::size_t v = 0; v < mesh.positions.size() / 3; ++v) {
+      const double s = (mesh.positions[3 * v] + 1) / 2;  // 0 at x = -1, 1 at x = 1
+      const double rgb[3] = {std::clamp(1 - 2 * s, 0.0, 1.0), 1 - std::abs(2 * s - 1), std::clamp(2 * s - 1, 0.0, 1.0)};
+      for (double c : rgb) colours.push_back(static_cast<std::uint8_t>(std::lround(c * 255)));
+      colours.push_back(255);
+    }
+    const std::size_t colour = writer.addAccessor(colours.data(), colours.size() / 4, 5121, "VEC4", 34962);
+    writer.accessor(colour)["normalized"] = true;
+    writer.lastPrimitive()["attributes"]["COLOR_0"] = colour;
+    writer.addNode(sunNode("Sun", towardsScene));
+    Json extra = {
+        {"extensionsUsed", {"KHR_lights_punctual"}},
+        {"extensions", {{"KHR_lights_punctual", oneSun(3.0)}}},
+        {"materials", {{{"name", "VertexColoured"},
+                        {"pbrMetallicRoughness", {{"baseColorFactor", {1, 1, 1, 1}}, {"metallicFactor", 0.0}, {"roughnessFactor", 0.8}}}}}}};
+    writer.write(dir, "vertex_colors", extra);
+  }
+  std::cout << "wrote " << dir.string() << ": anisotropy_disc.gltf, clearcoat_sphere.gltf, vertex_colors.gltf and their textures\n";
+  return 0;
+}
+
 }  // namespace
 
 // A textured UV sphere of 2 * segments * (segments - 1) triangles, with its textures, for
@@ -537,6 +713,7 @@ int main(int argc, char** argv) {
   namespace fs = std::filesystem;
   if ((argc == 4 || (argc == 5 && std::string(argv[4]) == "--one-primitive")) && std::string(argv[1]) == "--sphere")
     return writeBenchmarkSphere(std::atoi(argv[2]), argv[3], argc == 5);
+  if (argc == 3 && std::string(argv[1]) == "--materials") return writeMaterialScenes(argv[2]);
   if (argc == 3 && std::string(argv[1]) == "--animated") {
     const fs::path dir = argv[2];
     fs::create_directories(dir);
@@ -552,6 +729,8 @@ int main(int argc, char** argv) {
   const char* usage =
       "usage: tangent-make-data OUT_DIR              the bundled demo data\n"
       "       tangent-make-data --animated OUT_DIR   a skinned and a morphing asset with a \"bend\" animation\n"
+      "       tangent-make-data --materials OUT_DIR  an anisotropic brushed disc, a clearcoat sphere (its normal map on\n"
+      "                                              TEXCOORD_1, rotated) and a vertex-coloured grid\n"
       "       tangent-make-data --sphere N OUT_DIR [--one-primitive]\n"
       "                                              a textured N x N UV sphere for benchmarks (split into\n"
       "                                              uint16-indexed meshes, or one uint32-indexed primitive)\n";
