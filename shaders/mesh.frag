@@ -14,6 +14,9 @@ in vec4 v_tangentCompareWorld;
 in vec3 v_bitangentCompareWorld;
 #endif
 in vec2 v_uvNormal;
+#ifdef HAS_VERTEX_COLOR
+in vec4 v_color;
+#endif
 in vec4 v_shadowCoord;
 in float v_tangentError;
 in float v_cornerProblems;
@@ -40,9 +43,11 @@ uniform float u_mirror;        // sign of det(u_model), as mesh.vert has it
 #include "colour.glsl"
 #include "texture_uv.glsl"
 #include "lighting.glsl"
+#include "anisotropy.glsl"
 #include "pbr.glsl"
 #include "shadows.glsl"
 #include "normal_mapping.glsl"
+#include "clearcoat.glsl"
 #include "debug_views.glsl"
 
 #ifdef HAS_BASE_COLOR_MAP
@@ -88,6 +93,9 @@ uniform float u_reflectivity;
 
 void main() {
   vec4 baseColor = u_baseColorFactor;
+#ifdef HAS_VERTEX_COLOR
+  baseColor *= v_color;  // COLOR_0 (glTF 2.0 3.9.2: multiplies the base colour)
+#endif
 #ifdef HAS_BASE_COLOR_MAP
   baseColor *= texture(u_baseColorMap, textureUv(u_baseColorUvSet, u_baseColorUvTransform));
 #endif
@@ -101,7 +109,7 @@ void main() {
   fragColor = gl_FrontFacing ? vec4(0.15, 0.35, 0.95, 1.0) : vec4(0.90, 0.15, 0.10, 1.0);
   return;
 #endif
-#if defined(DEBUG_TANGENT) || defined(DEBUG_BITANGENT) || defined(DEBUG_HANDEDNESS) || defined(DEBUG_HANDEDNESS_WORLD) || defined(DEBUG_TANGENT_ERROR) || defined(DEBUG_COMPARE_ANGLE)
+#if defined(DEBUG_TANGENT) || defined(DEBUG_BITANGENT) || defined(DEBUG_HANDEDNESS) || defined(DEBUG_HANDEDNESS_WORLD) || defined(DEBUG_TANGENT_ERROR) || defined(DEBUG_COMPARE_ANGLE) || defined(DEBUG_ANISOTROPY_DIRECTION)
   if (v_tangentWorld.w == 0.0) { fragColor = vec4(NO_TANGENT, 1.0); return; }  // no frame here: w = gltf::kUndefinedTangentW
 #endif
   vec3 normal = normalize(v_normalWorld);
@@ -116,6 +124,13 @@ void main() {
   vec3 shadingNormal = normal;
 #ifdef HAS_NORMAL_MAP
   if (u_useNormalMap) shadingNormal = perturbedNormal(normal, tangent, bitangent, v_uvNormal);
+#endif
+#if defined(MATERIAL_ANISOTROPY) || (defined(SHADING_PBR) && defined(MATERIAL_CLEARCOAT))
+  // The geometry's frame for the extensions that read it: T made orthogonal to the normal.
+  vec3 frameTangent = normalize(tangent.xyz - normal * dot(normal, tangent.xyz));
+#endif
+#ifdef MATERIAL_ANISOTROPY
+  Anisotropy anisotropy = anisotropyAt(normal, frameTangent, bitangent);
 #endif
 
 #if defined(DEBUG_GEOMETRY_NORMAL)
@@ -150,6 +165,15 @@ void main() {
   vec4 other = gl_FrontFacing ? v_tangentCompareWorld : vec4(-v_tangentCompareWorld.xyz, -v_tangentCompareWorld.w);
   vec3 otherBitangent = frameBitangent(normal, other, gl_FrontFacing ? v_bitangentCompareWorld : -v_bitangentCompareWorld);
   fragColor = vec4(heatmap(frameAngleDegrees(normal, tangent, bitangent, other, otherBitangent)), 1.0);
+  return;
+#elif defined(DEBUG_ANISOTROPY_DIRECTION)
+  // KHR_materials_anisotropy's direction in world space, (x, y, z) * 0.5 + 0.5; the "no tangent"
+  // grey on materials without the extension.
+#ifdef MATERIAL_ANISOTROPY
+  fragColor = vec4(signedColor(anisotropy.direction), 1.0);
+#else
+  fragColor = vec4(NO_TANGENT, 1.0);
+#endif
   return;
 #endif
 
@@ -191,8 +215,16 @@ void main() {
   vec3 toEye = normalize(u_eyeWorld - v_positionWorld);
   vec3 ambient = vec3(0.0);
 #ifdef SHADING_PBR
+#ifdef MATERIAL_ANISOTROPY
+  PbrSurface surface = PbrSurface(baseColor.rgb, metallic, roughness, min(vec3(0.04) * specularColor, vec3(1.0)), specularStrength, anisotropy);
+#else
   PbrSurface surface = PbrSurface(baseColor.rgb, metallic, roughness, min(vec3(0.04) * specularColor, vec3(1.0)), specularStrength);
+#endif
   vec3 color = vec3(0.0);
+#ifdef MATERIAL_CLEARCOAT
+  Clearcoat coat = clearcoatAt(normal, frameTangent, bitangent);
+  vec3 coatColor = vec3(0.0);
+#endif
 #else
   // Without KHR_materials_specular, highlights follow roughness and metallic: shininess from
   // the GGX width, metals tint their highlight and lose their diffuse part.
@@ -224,12 +256,20 @@ void main() {
     float attenuation = lightAt(i, v_positionWorld, toLight);
     ambient += u_lightAmbient[i] * attenuation;
     color += pbrDirect(surface, shadingNormal, toEye, toLight) * u_lightDiffuse[i] * (kLightToIlluminance * attenuation * shadow);
+#ifdef MATERIAL_CLEARCOAT
+    coatColor += clearcoatDirect(coat, toEye, toLight) * u_lightDiffuse[i] * (kLightToIlluminance * attenuation * shadow);
+#endif
 #else
     addLight(i, v_positionWorld, shadingNormal, toEye, shininess, shadow, light);
 #endif
   }
 #ifdef SHADING_PBR
   color += pbrEnvironment(surface, shadingNormal, toEye, ambient) * occlusion;
+#ifdef MATERIAL_CLEARCOAT
+  coatColor += clearcoatEnvironment(coat, toEye, ambient) * occlusion;
+  float coatWeight = coat.factor * clearcoatFresnel(coat, toEye);
+  color = mix(color, coatColor, coatWeight);
+#endif
 #else
   vec3 color = diffuseColor * (light.ambient * occlusion + light.diffuse) + specularColor * specularStrength * light.specular;
 #endif

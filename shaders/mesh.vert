@@ -11,6 +11,7 @@ layout(location = 5) in vec2 a_uv1;             // TEXCOORD_1 as stored
 layout(location = 6) in float a_tangentError;   // degrees from freshly computed tangents
 layout(location = 7) in float a_cornerProblems; // tangent check failures (bit mask)
 layout(location = 8) in vec4 a_tangentCompare;  // the set compared with the file's (split and compare-angle views)
+layout(location = 9) in vec4 a_color;           // COLOR_0 as RGBA (white where the primitive has none)
 
 uniform mat4 u_model;
 uniform mat3 u_normalMatrix;
@@ -29,6 +30,9 @@ out vec4 v_tangentCompareWorld;
 out vec3 v_bitangentCompareWorld;
 #endif
 out vec2 v_uvNormal;
+#ifdef HAS_VERTEX_COLOR
+out vec4 v_color;
+#endif
 out vec2 v_uv0;
 out vec2 v_uv1;
 out vec4 v_shadowCoord;
@@ -54,6 +58,9 @@ void main() {
   v_bitangentCompareWorld = vertexBitangent(v_normalWorld, v_tangentCompareWorld);
 #endif
   v_uvNormal = a_uvNormal * u_uvScale;
+#ifdef HAS_VERTEX_COLOR
+  v_color = a_color;
+#endif
   v_uv0 = a_uv0 * u_uvScale;
   v_uv1 = a_uv1 * u_uvScale;
   v_shadowCoord = u_lightViewProjection * world;

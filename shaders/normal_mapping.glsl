@@ -18,6 +18,8 @@ vec3 frameBitangent(vec3 normal, vec4 tangent, vec3 vertexBitangent) {
 #endif
 }
 
+uniform bool u_flipGreen;  // the normal maps' (the clearcoat's too)
+
 #ifdef HAS_NORMAL_MAP
 // w = tangent::handedness(UV orientation, glTF's top-left origin), passed in by the viewer:
 // counter-clockwise UVs get w = -1, so cross(N, T) * w points to the image's top (+green).
@@ -26,7 +28,6 @@ vec3 frameBitangent(vec3 normal, vec4 tangent, vec3 vertexBitangent) {
 #endif
 uniform sampler2D u_normalMap;
 uniform float u_normalScale;
-uniform bool u_flipGreen;
 
 vec3 perturbedNormal(vec3 normal, vec4 tangent, vec3 bitangent, vec2 uv) {
   vec3 n = normalize(normal);

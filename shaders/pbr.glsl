@@ -10,7 +10,7 @@
 // with the Fresnel of the view angle (Schlick, roughness-limited) standing in for the
 // pre-integrated environment BRDF, from a sky brighter above than below; or, with USE_IBL, the
 // built-in environment by the split-sum approximation (ibl.glsl). Occlusion scales the
-// environment term only.
+// environment term only. KHR_materials_anisotropy's lobe: specularLobe (anisotropy.glsl).
 #ifdef SHADING_PBR
 const float kPi = 3.14159265;
 #include "ibl.glsl"
@@ -21,6 +21,9 @@ struct PbrSurface {
   float roughness;
   vec3 dielectricF0;      // 0.04 (ior 1.5), times KHR_materials_specular's colour
   float specularWeight;   // KHR_materials_specular strength; 0 turns specular off
+#ifdef MATERIAL_ANISOTROPY
+  Anisotropy anisotropy;  // anisotropy.glsl
+#endif
 };
 
 float pow5(float x) {
@@ -44,15 +47,61 @@ float visibilityGgx(float nl, float nv, float alpha) {
 
 float maxComponent(vec3 v) { return max(v.r, max(v.g, v.b)); }
 
+#ifdef MATERIAL_ANISOTROPY
+// Anisotropic GGX (anisotropy.glsl): 1 / (pi at ab (th^2 / at^2 + bh^2 / ab^2 + nh^2)^2), written
+// so that no term divides by a small alpha.
+float distributionGgxAnisotropic(float nh, float th, float bh, float at, float ab) {
+  float a2 = at * ab;
+  vec3 f = vec3(ab * th, at * bh, a2 * nh);
+  float w2 = a2 / dot(f, f);
+  return a2 * w2 * w2 / kPi;
+}
+
+// Smith height-correlated, already divided by 4 |N.L| |N.V|.
+float visibilityGgxAnisotropic(float nl, float nv, float tv, float bv, float tl, float bl, float at, float ab) {
+  float lambdaV = nl * length(vec3(at * tv, ab * bv, nv));
+  float lambdaL = nv * length(vec3(at * tl, ab * bl, nl));
+  return 0.5 / (lambdaV + lambdaL);
+}
+#endif
+
+// The specular lobe V * D for one light: GGX, or with MATERIAL_ANISOTROPY its anisotropic form
+// (alpha_t = mix(alpha, 1, strength^2) along the direction, alpha_b = alpha across it).
+float specularLobe(PbrSurface s, vec3 n, vec3 toEye, vec3 toLight, vec3 h, float nl, float nv, float alpha) {
+#ifdef MATERIAL_ANISOTROPY
+  vec3 t = s.anisotropy.direction, b = s.anisotropy.across;
+  float at = mix(alpha, 1.0, s.anisotropy.strength * s.anisotropy.strength);
+  return visibilityGgxAnisotropic(nl, nv, dot(t, toEye), dot(b, toEye), dot(t, toLight), dot(b, toLight), at, alpha) *
+         distributionGgxAnisotropic(max(dot(n, h), 0.0), dot(t, h), dot(b, h), at, alpha);
+#else
+  return visibilityGgx(nl, nv, alpha) * distributionGgx(max(dot(n, h), 0.0), alpha);
+#endif
+}
+
+// The normal the environment's specular reflection is taken about: n, or with anisotropy bent
+// towards the plane across the direction, as the Sample Viewer's anisotropic IBL bends it.
+vec3 reflectionNormal(PbrSurface s, vec3 n, vec3 toEye) {
+#ifdef MATERIAL_ANISOTROPY
+  vec3 across = cross(s.anisotropy.direction, toEye);
+  vec3 anisotropicNormal = cross(across, s.anisotropy.direction);
+  float bend = 1.0 - s.anisotropy.strength * (1.0 - s.roughness);
+  bend *= bend;
+  bend *= bend;
+  return dot(anisotropicNormal, anisotropicNormal) > 1e-8 ? normalize(mix(anisotropicNormal, n, bend)) : n;
+#else
+  return n;
+#endif
+}
+
 // BRDF times N.L for one light direction.
 vec3 pbrDirect(PbrSurface s, vec3 n, vec3 toEye, vec3 toLight) {
   float nl = dot(n, toLight);
   if (nl <= 0.0) return vec3(0.0);
   vec3 h = normalize(toLight + toEye);
   float nv = max(abs(dot(n, toEye)), 1e-4);
-  float nh = max(dot(n, h), 0.0), vh = max(dot(toEye, h), 0.0);
+  float vh = max(dot(toEye, h), 0.0);
   float alpha = max(s.roughness * s.roughness, 0.0025);  // a mirror would be a single-pixel sparkle
-  float specular = visibilityGgx(nl, nv, alpha) * distributionGgx(nh, alpha);
+  float specular = specularLobe(s, n, toEye, toLight, h, nl, nv, alpha);
   float fresnelWeight = pow5(1.0 - vh);
   vec3 diffuse = s.baseColor / kPi;
   vec3 dielectricF = s.specularWeight * (s.dielectricF0 + (1.0 - s.dielectricF0) * fresnelWeight);
@@ -76,7 +125,7 @@ vec3 pbrEnvironment(PbrSurface s, vec3 n, vec3 toEye, vec3 ambient) {
   vec3 specular = mix(dielectricSpecular, metalSpecular, s.metallic);
   vec3 diffuse = (1.0 - s.metallic) * s.baseColor * (1.0 - maxComponent(dielectricSpecular));
   vec3 level = ambient * u_environmentScale;
-  return level * (diffuse * environmentIrradiance(n) + specular * environmentRadiance(reflect(-toEye, n), s.roughness));
+  return level * (diffuse * environmentIrradiance(n) + specular * environmentRadiance(reflect(-toEye, reflectionNormal(s, n, toEye)), s.roughness));
 #else
   float fresnelWeight = pow5(1.0 - nv);
   vec3 dielectricF0 = s.specularWeight * s.dielectricF0;
@@ -85,7 +134,7 @@ vec3 pbrEnvironment(PbrSurface s, vec3 n, vec3 toEye, vec3 ambient) {
   vec3 specular = f0 + (f90 - f0) * fresnelWeight;
   vec3 diffuse = (1.0 - s.metallic) * s.baseColor * (1.0 - maxComponent(dielectricF0));
   // Rougher surfaces see the sky blurred towards the normal's direction.
-  vec3 reflected = normalize(mix(reflect(-toEye, n), n, s.roughness * s.roughness));
+  vec3 reflected = normalize(mix(reflect(-toEye, reflectionNormal(s, n, toEye)), n, s.roughness * s.roughness));
   return diffuse * skyRadiance(n, ambient) + specular * skyRadiance(reflected, ambient);
 #endif
 }

@@ -69,7 +69,9 @@ const char* kUsage =
     "                           handedness (the file's w) | error | face-orientation (front blue, back red) |\n"
     "                           handedness-world (w after the node's mirroring) | compare-angle (the\n"
     "                           per-pixel angle between the file's tangent frames and the --compare set's:\n"
-    "                           blue 0, green 1 deg, yellow 5 deg, red >= 20 deg) (default lit)\n"
+    "                           blue 0, green 1 deg, yellow 5 deg, red >= 20 deg) | anisotropy-direction\n"
+    "                           (KHR_materials_anisotropy's direction in world space as colour, from the\n"
+    "                           TANGENT frame, rotation and texture; grey where a material has none) (default lit)\n"
     "  --compare SET            split view: left of the divider the file's TANGENT, right of it SET:\n"
     "                           fresh (the --reference generator's tangents computed at load, the default\n"
     "                           set of compare-angle) |\n"
@@ -573,7 +575,8 @@ void drawHandednessLegend() {
 // (mesh.frag).
 bool showsTangentFrame(DebugView view) {
   return view == DebugView::tangent || view == DebugView::bitangent || view == DebugView::handedness ||
-         view == DebugView::handednessWorld || view == DebugView::tangentError || view == DebugView::compareAngle;
+         view == DebugView::handednessWorld || view == DebugView::tangentError || view == DebugView::compareAngle ||
+         view == DebugView::anisotropyDirection;
 }
 
 void drawNoTangentLegend() {
@@ -627,6 +630,9 @@ void drawPanel(Viewer& viewer, GLFWwindow* window, const FrameStats& stats, doub
     }
     if (s.view == DebugView::tangent || s.view == DebugView::bitangent)
       ImGui::TextWrapped("the direction in world space as colour: (x, y, z) * 0.5 + 0.5");
+    if (s.view == DebugView::anisotropyDirection)
+      ImGui::TextWrapped("KHR_materials_anisotropy's direction (rotation and texture in the TANGENT frame) in world space as "
+                         "colour: (x, y, z) * 0.5 + 0.5; grey where the material has no anisotropy");
     if (showsTangentFrame(s.view)) drawNoTangentLegend();
     ImGui::Checkbox("tangent frames (g)", &s.glyphs);
     ImGui::SliderInt("glyph count", &s.maxGlyphs, 100, 50000);

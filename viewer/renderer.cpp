@@ -51,6 +51,10 @@ std::vector<float> packMeshVertices(const gltf::DrawItem& item, const CornerFram
         case VertexSource::tangentError: *out = frame.tangentErrorDegrees[c]; break;
         case VertexSource::cornerProblems: *out = static_cast<float>(item.cornerProblems[c]); break;
         case VertexSource::compareTangent: std::copy_n(&frame.compareTangents[n * c], n, out); break;
+        case VertexSource::color:
+          if (item.colors.empty()) std::fill_n(out, n, 1.0f);
+          else std::copy_n(&item.colors[n * c], n, out);
+          break;
       }
     }
   }
@@ -76,9 +80,10 @@ void setUvUniforms(GLuint program, const std::string& prefix, const gltf::Textur
 }
 
 // Every texture a material may sample.
-std::array<const gltf::TextureRef*, 7> textureRefs(const gltf::MaterialDesc& m) {
-  return {&m.baseColorTexture, &m.normalTexture,     &m.emissiveTexture,     &m.metallicRoughnessTexture,
-          &m.occlusionTexture, &m.specularTexture, &m.specularColorTexture};
+std::array<const gltf::TextureRef*, 11> textureRefs(const gltf::MaterialDesc& m) {
+  return {&m.baseColorTexture,  &m.normalTexture,          &m.emissiveTexture,           &m.metallicRoughnessTexture,
+          &m.occlusionTexture,  &m.specularTexture,        &m.specularColorTexture,      &m.clearcoatTexture,
+          &m.clearcoatRoughnessTexture, &m.clearcoatNormalTexture, &m.anisotropyTexture};
 }
 
 float maxChannel(const glm::vec3& c) { return std::max({c.r, c.g, c.b}); }
@@ -259,6 +264,7 @@ void Renderer::setScene(gltf::Scene scene, std::vector<std::string>& messages) {
   auto upload = [&](const gltf::DrawItem& item, GLenum usage) {
     GpuMesh mesh;
     mesh.material = item.material;
+    mesh.hasColors = !item.colors.empty();
     const std::vector<float> data = packMeshVertices(item, itemFrames(item, compareTangentsOf(static_cast<std::size_t>(&item - scene_.items.data()))));
     mesh.vertexArray = makeVertexArray();
     mesh.vertices = makeBuffer();
@@ -463,13 +469,17 @@ struct UvMappedMap {
   Feature feature;
   gltf::TextureRef gltf::MaterialDesc::*texture;
 };
-constexpr std::array<UvMappedMap, 6> kUvMappedMaps{{
+constexpr std::array<UvMappedMap, 10> kUvMappedMaps{{
     {Feature::baseColorMap, &gltf::MaterialDesc::baseColorTexture},
     {Feature::specularMap, &gltf::MaterialDesc::specularTexture},
     {Feature::specularColorMap, &gltf::MaterialDesc::specularColorTexture},
     {Feature::metallicRoughnessMap, &gltf::MaterialDesc::metallicRoughnessTexture},
     {Feature::emissiveMap, &gltf::MaterialDesc::emissiveTexture},
     {Feature::occlusionMap, &gltf::MaterialDesc::occlusionTexture},
+    {Feature::clearcoatMap, &gltf::MaterialDesc::clearcoatTexture},
+    {Feature::clearcoatRoughnessMap, &gltf::MaterialDesc::clearcoatRoughnessTexture},
+    {Feature::clearcoatNormalMap, &gltf::MaterialDesc::clearcoatNormalTexture},
+    {Feature::anisotropyMap, &gltf::MaterialDesc::anisotropyTexture},
 }};
 
 }  // namespace
@@ -486,6 +496,7 @@ FeatureSet Renderer::featuresFor(const GpuMesh& mesh, const RenderSettings& sett
   if (settings.ibl && settings.shading == Shading::pbr) features |= static_cast<FeatureSet>(Feature::ibl);
   if (has(features, Feature::shadows) && settings.pcfRadius > 0) features |= static_cast<FeatureSet>(Feature::pcf);
   if (settings.bitangent == BitangentMode::perVertex) features |= static_cast<FeatureSet>(Feature::bitangentPerVertex);
+  if (mesh.hasColors) features |= static_cast<FeatureSet>(Feature::vertexColor);
   if (mesh.material < 0 || mesh.material >= static_cast<int>(scene_.materials.size())) return features;
   const auto& material = scene_.materials[mesh.material];
   if (material.unlit) {
@@ -510,6 +521,17 @@ FeatureSet Renderer::featuresFor(const GpuMesh& mesh, const RenderSettings& sett
       sameTexels(material.occlusionTexture, material.metallicRoughnessTexture))
     features = (features & ~static_cast<FeatureSet>(Feature::occlusionMap)) | static_cast<FeatureSet>(Feature::occlusionInMetallicRoughnessMap);
   if (textureOf(material.emissiveTexture)) features |= static_cast<FeatureSet>(Feature::emissiveMap);
+  // The extensions that read the tangent frame, in the PBR mode (and anisotropy in its view).
+  if (!material.unlit && settings.shading == Shading::pbr && material.clearcoat > 0) {
+    features |= static_cast<FeatureSet>(Feature::clearcoat);
+    if (textureOf(material.clearcoatTexture)) features |= static_cast<FeatureSet>(Feature::clearcoatMap);
+    if (textureOf(material.clearcoatRoughnessTexture)) features |= static_cast<FeatureSet>(Feature::clearcoatRoughnessMap);
+    if (textureOf(material.clearcoatNormalTexture)) features |= static_cast<FeatureSet>(Feature::clearcoatNormalMap);
+  }
+  if (!material.unlit && material.hasAnisotropy && (settings.shading == Shading::pbr || settings.view == DebugView::anisotropyDirection)) {
+    features |= static_cast<FeatureSet>(Feature::anisotropy);
+    if (textureOf(material.anisotropyTexture)) features |= static_cast<FeatureSet>(Feature::anisotropyMap);
+  }
   // The textures mesh.frag samples through textureUv() (the normal map's UVs come ready).
   const bool anyUvTransform = std::any_of(kUvMappedMaps.begin(), kUvMappedMaps.end(), [&](const UvMappedMap& map) {
     const gltf::TextureRef& ref = material.*map.texture;
@@ -968,6 +990,18 @@ GLuint Renderer::bindMesh(const GpuMesh& mesh, const CameraMatrices& camera, con
   if (has(features, Feature::metallicRoughnessMap)) bindMap("metallicRoughness", material.metallicRoughnessTexture);
   if (has(features, Feature::emissiveMap)) bindMap("emissive", material.emissiveTexture);
   if (has(features, Feature::occlusionMap)) bindMap("occlusion", material.occlusionTexture);
+  if (has(features, Feature::clearcoat)) {
+    setUniform(program, "u_clearcoat", material.clearcoat);
+    setUniform(program, "u_clearcoatRoughness", material.clearcoatRoughness);
+    setUniform(program, "u_clearcoatNormalScale", material.clearcoatNormalTexture.scale);
+  }
+  if (has(features, Feature::clearcoatMap)) bindMap("clearcoat", material.clearcoatTexture);
+  if (has(features, Feature::clearcoatRoughnessMap)) bindMap("clearcoatRoughness", material.clearcoatRoughnessTexture);
+  if (has(features, Feature::clearcoatNormalMap)) bindMap("clearcoatNormal", material.clearcoatNormalTexture);
+  if (has(features, Feature::anisotropy))
+    setUniform(program, "u_anisotropy",
+               glm::vec3(std::cos(material.anisotropyRotation), std::sin(material.anisotropyRotation), material.anisotropyStrength));
+  if (has(features, Feature::anisotropyMap)) bindMap("anisotropy", material.anisotropyTexture);
   if (has(features, Feature::reflection)) bind("u_sphereMap", sphereMap_.get());
   if (has(features, Feature::ibl) && environment_) {
     glActiveTexture(GL_TEXTURE0 + unit);

@@ -175,6 +175,7 @@ class Renderer {
     Buffer indices;       // welded (vertex_weld.hpp) where the mesh is static; none where a pose rewrites its corners
     GLsizei count = 0;    // corners drawn
     int material = -1;
+    bool hasColors = false;  // COLOR_0: the vertexColor feature
   };
   // One per scene instance: a mesh where a node puts it.
   struct GpuInstance {

@@ -40,6 +40,17 @@ enum class Feature : std::uint32_t {
   // Some texture of the material (the normal map apart, whose UVs the vertices carry ready)
   // reads TEXCOORD_1 or has a KHR_texture_transform; else they all read TEXCOORD_0 as stored.
   uvTransforms = 1u << 24,
+  // PBR: KHR_materials_clearcoat (a factor above 0), its textures: factor (R), roughness (G),
+  // normal map (through textureUv(), with the primitive's TANGENT).
+  clearcoat = 1u << 25,
+  clearcoatMap = 1u << 26,
+  clearcoatRoughnessMap = 1u << 27,
+  clearcoatNormalMap = 1u << 28,
+  // PBR: KHR_materials_anisotropy (the extension's anisotropic GGX) and its direction texture.
+  anisotropy = 1u << 29,
+  anisotropyMap = 1u << 30,
+  // COLOR_0 multiplies the base colour (a primitive with the attribute).
+  vertexColor = 1u << 31,
 };
 
 enum class DebugView : std::uint8_t {
@@ -54,6 +65,7 @@ enum class DebugView : std::uint8_t {
   faceOrientation,
   handednessWorld,  // after faceOrientation: keys 1-9 keep their views
   compareAngle,     // the per-pixel angle between the file's frames and the compare set's
+  anisotropyDirection,  // KHR_materials_anisotropy's direction in world space as colour
 };
 
 struct FeatureDefine {
@@ -83,6 +95,13 @@ inline constexpr FeatureDefine kFeatureDefines[] = {
     {Feature::pcf, "SHADOW_PCF"},
     {Feature::bitangentPerVertex, "BITANGENT_PER_VERTEX"},
     {Feature::uvTransforms, "HAS_UV_TRANSFORMS"},
+    {Feature::clearcoat, "MATERIAL_CLEARCOAT"},
+    {Feature::clearcoatMap, "HAS_CLEARCOAT_MAP"},
+    {Feature::clearcoatRoughnessMap, "HAS_CLEARCOAT_ROUGHNESS_MAP"},
+    {Feature::clearcoatNormalMap, "HAS_CLEARCOAT_NORMAL_MAP"},
+    {Feature::anisotropy, "MATERIAL_ANISOTROPY"},
+    {Feature::anisotropyMap, "HAS_ANISOTROPY_MAP"},
+    {Feature::vertexColor, "HAS_VERTEX_COLOR"},
 };
 
 // The lit view's shading: glTF's metallic-roughness model, or the tutorials' specular-map
@@ -118,6 +137,7 @@ inline constexpr DebugViewInfo kDebugViews[] = {
     {DebugView::faceOrientation, "DEBUG_FACE_ORIENTATION", "face-orientation"},
     {DebugView::handednessWorld, "DEBUG_HANDEDNESS_WORLD", "handedness-world"},
     {DebugView::compareAngle, "DEBUG_COMPARE_ANGLE", "compare-angle"},
+    {DebugView::anisotropyDirection, "DEBUG_ANISOTROPY_DIRECTION", "anisotropy-direction"},
 };
 
 // Tone mapping of the lit views' linear colour before the sRGB encoding, as the Khronos glTF

@@ -11,7 +11,7 @@
 namespace tangent::viewer {
 
 // Where a mesh vertex attribute's values come from in a gltf::DrawItem.
-enum class VertexSource : unsigned char { position, normal, tangent, uvNormal, uv0, uv1, tangentError, cornerProblems, compareTangent };
+enum class VertexSource : unsigned char { position, normal, tangent, uvNormal, uv0, uv1, tangentError, cornerProblems, compareTangent, color };
 
 struct VertexAttribute {
   const char* name;      // the GLSL input
@@ -32,6 +32,7 @@ inline constexpr VertexAttribute kMeshVertexLayout[] = {
     {"a_tangentError", 6, 1, 16, VertexSource::tangentError},
     {"a_cornerProblems", 7, 1, 17, VertexSource::cornerProblems},
     {"a_tangentCompare", 8, 4, 18, VertexSource::compareTangent},  // the set compared with the file's
+    {"a_color", 9, 4, 22, VertexSource::color},  // COLOR_0 as RGBA, white where the primitive has none
 };
 
 // lines.vert: tangent-frame glyphs.
@@ -52,6 +53,6 @@ constexpr int floatsPerVertex(std::span<const VertexAttribute> layout) {
 
 inline constexpr int kMeshFloatsPerVertex = floatsPerVertex(kMeshVertexLayout);
 inline constexpr int kLineFloatsPerVertex = floatsPerVertex(kLineVertexLayout);
-static_assert(kMeshFloatsPerVertex == 22 && kLineFloatsPerVertex == 6, "offsets must follow each other");
+static_assert(kMeshFloatsPerVertex == 26 && kLineFloatsPerVertex == 6, "offsets must follow each other");
 
 }  // namespace tangent::viewer

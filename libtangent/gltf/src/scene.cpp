@@ -216,6 +216,22 @@ std::vector<MaterialDesc> readMaterials(const Json& doc) {
       if (specular.contains("specularTexture")) material.specularTexture = textureRef(doc, specular["specularTexture"]);
       if (specular.contains("specularColorTexture")) material.specularColorTexture = colourTextureRef(doc, specular["specularColorTexture"]);
     }
+    if (m.contains("extensions") && m["extensions"].contains("KHR_materials_clearcoat")) {
+      const Json& clearcoat = m["extensions"]["KHR_materials_clearcoat"];
+      material.clearcoat = floatValue(clearcoat, "clearcoatFactor", 0.0f);
+      material.clearcoatRoughness = floatValue(clearcoat, "clearcoatRoughnessFactor", 0.0f);
+      if (clearcoat.contains("clearcoatTexture")) material.clearcoatTexture = textureRef(doc, clearcoat["clearcoatTexture"]);
+      if (clearcoat.contains("clearcoatRoughnessTexture"))
+        material.clearcoatRoughnessTexture = textureRef(doc, clearcoat["clearcoatRoughnessTexture"]);
+      if (clearcoat.contains("clearcoatNormalTexture")) material.clearcoatNormalTexture = textureRef(doc, clearcoat["clearcoatNormalTexture"]);
+    }
+    if (m.contains("extensions") && m["extensions"].contains("KHR_materials_anisotropy")) {
+      const Json& anisotropy = m["extensions"]["KHR_materials_anisotropy"];
+      material.hasAnisotropy = true;
+      material.anisotropyStrength = floatValue(anisotropy, "anisotropyStrength", 0.0f);
+      material.anisotropyRotation = floatValue(anisotropy, "anisotropyRotation", 0.0f);
+      if (anisotropy.contains("anisotropyTexture")) material.anisotropyTexture = textureRef(doc, anisotropy["anisotropyTexture"]);
+    }
     materials.push_back(material);
   }
   return materials;
@@ -465,6 +481,24 @@ DrawItem makeDrawItem(const detail::Asset& asset, const Json& primitive, Primiti
     if (accessor < 0) continue;
     const std::vector<float> uvs = detail::readVectors(asset.model, accessor, 2, geometry.vertexCount, where + ": TEXCOORD_" + std::to_string(set));
     item.uvSets[set] = perCorner(uvs, 2, corners);
+  }
+
+  // COLOR_0 (glTF 2.0 3.7.2.1: float, or normalized unsigned byte or short; RGB or RGBA), per
+  // corner as RGBA; another form is left out with a message.
+  if (const int colour = detail::accessorOf(primitive["attributes"], "COLOR_0"); colour >= 0) {
+    detail::AccessorData header;
+    const std::vector<float> values = detail::readFloats(asset.model, colour, where + ": COLOR_0", header);
+    const bool form = header.componentType == TINYGLTF_COMPONENT_TYPE_FLOAT ||
+                      (header.normalized && (header.componentType == TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE ||
+                                             header.componentType == TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT));
+    if (!form || (header.components != 3 && header.components != 4) || header.count != geometry.vertexCount) {
+      messages.push_back(where + ": COLOR_0 is not a VEC3 or VEC4 of floats or normalized unsigned bytes or shorts per vertex; not applied");
+    } else {
+      const std::size_t components = header.components;
+      item.colors.assign(cornerCount * 4, 1.0f);
+      for (std::size_t c = 0; c < cornerCount; ++c)
+        std::copy_n(&values[components * corners[c]], components, &item.colors[4 * c]);
+    }
   }
 
   // The file's tangents, and what check says of each corner.

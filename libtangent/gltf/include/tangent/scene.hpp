@@ -62,6 +62,15 @@ struct MaterialDesc {
   std::array<float, 3> specularColor{1, 1, 1};
   TextureRef specularTexture, specularColorTexture;
   bool doubleSided = false;
+  // KHR_materials_clearcoat: a coat layer (factor, roughness; textures' R and G) with a normal map
+  // of its own (its own UV set and transform; `scale` as normalTexture's). Factor 0: no coat.
+  float clearcoat = 0, clearcoatRoughness = 0;
+  TextureRef clearcoatTexture, clearcoatRoughnessTexture, clearcoatNormalTexture;
+  // KHR_materials_anisotropy: strength, rotation (radians, counter-clockwise from the tangent in
+  // the (T, B) plane) and a texture (RG: a direction in (T, B) space, B: strength).
+  bool hasAnisotropy = false;
+  float anisotropyStrength = 0, anisotropyRotation = 0;
+  TextureRef anisotropyTexture;
 };
 
 struct LightDesc {
@@ -109,6 +118,7 @@ struct DrawItem {
   std::vector<float> uvNormal;       // 2, the normal texture's UV set (transform applied)
   std::array<std::vector<float>, 2> uvSets;  // 2 each, TEXCOORD_0 and _1 as stored (zeros when absent)
   std::vector<float> tangents;       // 4, the file's TANGENT, or computed when it has none
+  std::vector<float> colors;         // 4, COLOR_0 as RGBA (A 1 for RGB); empty when absent
   // 4, freshly computed as `tangent check` computes its reference (options.check's method and
   // weighting; without NORMAL, from the flat normals bake and check generate)
   std::vector<float> computedTangents;
