@@ -282,6 +282,9 @@ void main() {
 #ifdef HAS_EMISSIVE_MAP
   emissive *= texture(u_emissiveMap, textureUv(u_emissiveUvSet, u_emissiveUvTransform)).rgb;
 #endif
+#if defined(SHADING_PBR) && defined(MATERIAL_CLEARCOAT)
+  emissive *= 1.0 - coatWeight;  // the coat lies over the emission too (KHR_materials_clearcoat)
+#endif
   fragColor = vec4(linearToSrgb(toneMap((color + emissive) * u_exposure)), alpha);
 #endif
 }
