@@ -497,6 +497,46 @@ std::vector<CheckInput> filesToCheck(const std::vector<std::string>& inputs, boo
   return files;
 }
 
+// Each file checked in turn (an unreadable one an entry with its error), with the start time
+// and duration of each for JUnit.
+std::vector<gltf::FileCheck> checkFiles(const std::vector<CheckInput>& files, const gltf::CheckOptions& options, bool quiet,
+                                        RunTimes& times) {
+  std::vector<gltf::FileCheck> checks;
+  ProgressLine progress(!quiet && files.size() > 1 && ::isatty(STDERR_FILENO));
+  for (std::size_t n = 0; n < files.size(); ++n) {
+    const std::string input = files[n].path.string();
+    progress.show(n, files.size(), files[n].shownAs);
+    times.startedUtc.push_back(isoTimestampUtc(std::chrono::system_clock::now()));
+    const auto started = std::chrono::steady_clock::now();
+    try {
+      checks.push_back(gltf::checkFile(input, options));
+    } catch (const gltf::InputError& e) {
+      // Unreadable: reported in every format as a file with an error (exit code 2).
+      gltf::FileCheck unreadableFile;
+      unreadableFile.file = input;
+      unreadableFile.error = e.what();
+      unreadableFile.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+      checks.push_back(std::move(unreadableFile));
+    }
+  }
+  progress.clear();
+  return checks;
+}
+
+// The report in the format --format names.
+std::string formatReport(const std::string& formatName, const std::vector<gltf::FileCheck>& checks, const gltf::CheckOptions& options,
+                         const RunTimes& times, const std::string& output) {
+  std::ostringstream report;
+  if (formatName == "json") writeJson(report, checks, options);
+  else if (formatName == "junit") writeJunit(report, checks, times);
+  else if (formatName == "github") writeGithub(report, checks);
+  else if (formatName == "sarif") writeSarif(report, checks, options);
+  else if (formatName == "codeclimate") writeCodeClimate(report, checks);
+  else if (formatName == "html") report << htmlReport(checks, options, output);
+  else writeText(report, checks);
+  return report.str();
+}
+
 }  // namespace
 
 int checkCommand(const std::vector<std::string>& args) {
@@ -549,38 +589,14 @@ int checkCommand(const std::vector<std::string>& args) {
       return usageError("-o " + shown(output) + " is an input or a file an input uses; the report is never written over one");
   }
 
-  std::vector<gltf::FileCheck> checks;
   RunTimes times;
+  const std::vector<gltf::FileCheck> checks = checkFiles(files, options, parsed.flag("quiet"), times);
   bool unreadable = false, findings = false;
-  ProgressLine progress(!parsed.flag("quiet") && files.size() > 1 && ::isatty(STDERR_FILENO));
-  for (std::size_t n = 0; n < files.size(); ++n) {
-    const std::string input = files[n].path.string();
-    progress.show(n, files.size(), files[n].shownAs);
-    times.startedUtc.push_back(isoTimestampUtc(std::chrono::system_clock::now()));
-    const auto started = std::chrono::steady_clock::now();
-    try {
-      checks.push_back(gltf::checkFile(input, options));
-    } catch (const gltf::InputError& e) {
-      // Unreadable: reported in every format as a file with an error (exit code 2).
-      gltf::FileCheck unreadableFile;
-      unreadableFile.file = input;
-      unreadableFile.error = e.what();
-      unreadableFile.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
-      checks.push_back(std::move(unreadableFile));
-    }
-    unreadable = unreadable || !checks.back().error.empty();
-    findings = findings || !checks.back().clean();
+  for (const auto& check : checks) {
+    unreadable = unreadable || !check.error.empty();
+    findings = findings || !check.clean();
   }
-  progress.clear();
-  std::ostringstream report;
-  if (formatName == "json") writeJson(report, checks, options);
-  else if (formatName == "junit") writeJunit(report, checks, times);
-  else if (formatName == "github") writeGithub(report, checks);
-  else if (formatName == "sarif") writeSarif(report, checks, options);
-  else if (formatName == "codeclimate") writeCodeClimate(report, checks);
-  else if (formatName == "html") report << htmlReport(checks, options, output);
-  else writeText(report, checks);
-  if (!writeTextOutput(output, report.str(), "check")) return kExitUsage;
+  if (!writeTextOutput(output, formatReport(formatName, checks, options, times, output), "check")) return kExitUsage;
   for (const auto& check : checks) {
     if (!check.error.empty()) std::cerr << "error: " << shown(check.error) << "\n";
   }
