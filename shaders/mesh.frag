@@ -14,7 +14,6 @@ in vec4 v_tangentCompareWorld;
 in vec3 v_bitangentCompareWorld;
 #endif
 in vec2 v_uvNormal;
-in vec4 v_shadowCoord;
 in float v_tangentError;
 in float v_cornerProblems;
 
@@ -213,7 +212,7 @@ void main() {
   {
     vec3 toLight;
     lightAt(0, v_positionWorld, toLight);
-    shadow0 = shadowFactor(v_shadowCoord, normal, toLight);
+    shadow0 = shadowFactor(shadowFaceNormal(normal), normal, toLight);
   }
 #endif
   // The variant's light count: a constant trip count the compiler can unroll.

@@ -63,6 +63,7 @@ void setUniform(GLuint program, const char* name, const glm::mat4& m) {
 void setUniform(GLuint program, const char* name, const glm::mat3& m) {
   glUniformMatrix3fv(glGetUniformLocation(program, name), 1, GL_FALSE, glm::value_ptr(m));
 }
+void setUniform(GLuint program, const char* name, const glm::vec2& v) { glUniform2fv(glGetUniformLocation(program, name), 1, glm::value_ptr(v)); }
 void setUniform(GLuint program, const char* name, const glm::vec3& v) { glUniform3fv(glGetUniformLocation(program, name), 1, glm::value_ptr(v)); }
 void setUniform(GLuint program, const char* name, const glm::vec4& v) { glUniform4fv(glGetUniformLocation(program, name), 1, glm::value_ptr(v)); }
 void setUniform(GLuint program, const char* name, float v) { glUniform1f(glGetUniformLocation(program, name), v); }
@@ -628,6 +629,12 @@ void Renderer::drawDepth(std::span<const GpuInstance* const> instances, const gl
   }
 }
 
+// A spot light's shadow map spans its cone (a little wider, for PCF at the edge), at most 160
+// degrees across.
+namespace {
+float spotShadowHalfAngle(const Light& light) { return std::min(light.spotOuter * 1.05f, glm::radians(80.0f)); }
+}  // namespace
+
 glm::mat4 Renderer::lightViewProjection() const {
   const glm::vec3 center = boundsCenter();
   const float radius = boundsRadius();
@@ -643,12 +650,19 @@ glm::mat4 Renderer::lightViewProjection() const {
   if (pointShadow()) return glm::mat4(1);
   // A spot light: a perspective view along its axis over its cone, at most 160 degrees across,
   // between the nearest and farthest points of the scene's bounding sphere.
-  const float halfAngle = std::min(light.spotOuter * 1.05f, glm::radians(80.0f));
+  const float halfAngle = spotShadowHalfAngle(light);
   const float distance = glm::length(center - light.position);
   const float nearPlane = std::max(distance - radius, 0.01f * radius), farPlane = distance + radius;
   const glm::vec3 direction = glm::normalize(light.direction);
   const glm::mat4 view = glm::lookAt(light.position, light.position + direction, upFor(direction));
   return glm::perspective(2 * halfAngle, 1.0f, nearPlane, farPlane) * view;
+}
+
+glm::vec2 Renderer::shadowTexelWorld() const {
+  const Light& light = lights_[0];
+  if (light.directional) return {2 * boundsRadius() / static_cast<float>(std::max(shadowSize_, 1)), 0.0f};
+  if (pointShadow()) return {0.0f, 2.0f / static_cast<float>(std::max(shadowCubeSize_, 1))};  // 90-degree faces
+  return {0.0f, 2 * std::tan(spotShadowHalfAngle(light)) / static_cast<float>(std::max(shadowSize_, 1))};
 }
 
 bool Renderer::pointShadow() const { return !lights_.empty() && !lights_[0].directional && lights_[0].spotOuter < 0; }
@@ -993,6 +1007,7 @@ GLuint Renderer::bindMesh(const GpuMesh& mesh, const CameraMatrices& camera, con
     setUniform(program, "u_pcfRadius", settings.pcfRadius);
     setUniform(program, "u_shadowBiasConstant", settings.shadowBiasConstant);
     setUniform(program, "u_shadowBiasSlope", settings.shadowBiasSlope);
+    setUniform(program, "u_shadowTexelWorld", shadowTexelWorld());
   }
   glBindVertexArray(mesh.vertexArray.get());
   return program;

@@ -224,6 +224,9 @@ class Renderer {
   void applyCulling(const GpuMesh& mesh, const RenderSettings& settings) const;
   void drawGlyphs(const CameraMatrices& camera, const RenderSettings& settings);
   glm::mat4 lightViewProjection() const;
+  // A shadow-map texel's world size at a fragment: x + y * the fragment's distance from light 0
+  // (shadows.glsl's u_shadowTexelWorld, for the normal offset).
+  glm::vec2 shadowTexelWorld() const;
   // Light 0 is a point light (not a spot): its shadow is the depth cube map.
   bool pointShadow() const;
   // The cube faces' near and far planes: every point of the scene's bounding sphere lies between
