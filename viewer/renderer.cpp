@@ -291,6 +291,9 @@ void Renderer::setScene(gltf::Scene scene, std::vector<std::string>& messages) {
   boundsMax_ = glm::make_vec3(scene_.boundsMax.data());
   lights_ = lightsFrom(scene_, boundsCenter(), boundsRadius(), messages);
   pose_.reset();
+  exposureBoundsMin_ = boundsMin_;  // the rest pose's, once setPose has posed it
+  exposureBoundsMax_ = boundsMax_;
+  restPoseMeasured_ = false;
 }
 
 bool Renderer::deforms(const gltf::DrawInstance& instance) const {
@@ -375,6 +378,9 @@ void Renderer::drawMesh(const GpuMesh& mesh) {
 
 bool Renderer::setPose(PoseTime time) {
   if (scene_.nodes.empty() || (pose_ && *pose_ == time)) return false;
+  // Auto exposure is judged on the rest pose's bounds whatever the first pose asked for, so that
+  // every time of every animation shows the asset at one exposure.
+  if (!restPoseMeasured_ && time != PoseTime{}) setPose(PoseTime{});
   pose_ = time;
   const ScenePose pose = poseScene(scene_, time);
   for (std::size_t i = 0; i < scene_.instances.size(); ++i) {
@@ -433,6 +439,11 @@ bool Renderer::setPose(PoseTime time) {
   }
   ++sceneVersion_;  // the shadow map and the glyphs follow the pose
   glyphsBuiltFor_ = -1;
+  if (!restPoseMeasured_ && time == PoseTime{}) {
+    exposureBoundsMin_ = boundsMin_;
+    exposureBoundsMax_ = boundsMax_;
+    restPoseMeasured_ = true;
+  }
   return true;
 }
 
@@ -537,8 +548,10 @@ float Renderer::exposure(const RenderSettings& settings) const {
 float Renderer::whiteRadiance(const RenderSettings& settings) const {
   if (lights_.empty()) return 0;
   const bool physical = physicalLights(settings);
-  // At the scene's centre; a light inside the scene at a tenth of the scene's radius from it.
-  const glm::vec3 center = boundsCenter();
+  // At the centre of the rest pose's bounds (not the current pose's: the exposure holds still
+  // through an animation); a light inside the scene at a tenth of the scene's radius from it.
+  const glm::vec3 center = (exposureBoundsMin_ + exposureBoundsMax_) * 0.5f;
+  const float radius = glm::max(glm::length(exposureBoundsMax_ - exposureBoundsMin_) * 0.5f, 1e-3f);
   struct Arrival {
     glm::vec3 toLight;
     float direct;   // radiance of a white Lambertian surface facing the light
@@ -546,7 +559,7 @@ float Renderer::whiteRadiance(const RenderSettings& settings) const {
   };
   std::vector<Arrival> arrivals;
   for (const Light& light : lights_) {
-    const glm::vec3 point = pointLitFrom(light, center, boundsRadius());
+    const glm::vec3 point = pointLitFrom(light, center, radius);
     Arrival arrival{};
     const float attenuation = attenuationAt(light, point, physical, arrival.toLight);
     if (physical) {

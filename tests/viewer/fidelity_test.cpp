@@ -1,7 +1,8 @@
 // SPDX-License-Identifier: MIT
 // tangent-view's fidelity fixes of issue 64 (item 3), headless under Xvfb like
-// screenshot_test.cpp: shadows without acne or terminator blotches on a low-poly smooth sphere.
-// Each test writes the glTF it needs (generated geometry) into its own temporary folder.
+// screenshot_test.cpp: shadows without acne or terminator blotches on a low-poly smooth sphere,
+// and auto exposure that holds still across an animation. Each test writes the glTF it needs
+// (generated geometry) into its own temporary folder.
 #include <OpenImageIO/imageio.h>
 #include <gtest/gtest.h>
 
@@ -275,6 +276,45 @@ TEST(Fidelity, LowPolySphereLitSideShadesAsWithoutShadowsAndStillCastsOnTheGroun
   };
   std::printf("ground under the sphere's shadow: luma %.3f with shadows, %.3f without\n", mean(shadowed), mean(plain));
   EXPECT_LT(mean(shadowed), 0.75 * mean(plain));  // the unshadowed environment lights it too
+}
+
+// --- Exposure --------------------------------------------------------------------------------
+
+double exposureOf(const std::string& output) {
+  std::smatch match;
+  const std::regex pattern("exposure ([0-9.eE+-]+)");
+  return std::regex_search(output, match, pattern) ? std::stod(match[1]) : -1;
+}
+
+// A sphere that an animation carries 8 units away from a point light over one second: the
+// scene's bounds (and the light's illuminance at their centre) change with the time.
+fs::path travellingSphere(const TempDir& dir) {
+  AssetWriter asset;
+  const int grey = asset.material({{"pbrMetallicRoughness", {{"baseColorFactor", {0.8, 0.8, 0.8, 1}}, {"metallicFactor", 0}}}});
+  const int node = asset.node({{"mesh", lowPolySphere(asset, 12, 8, {0, 0, 0}, 1, grey)}});
+  addLight(asset, {{"type", "point"}, {"intensity", 40}}, {0.0, 3.0, 0.0});
+  const int times = asset.accessor({0, 1}, 1, true);
+  const int places = asset.accessor({0, 0, 0, 8, 0, 0}, 3);
+  Json sampler = {{"input", times}, {"output", places}, {"interpolation", "LINEAR"}};
+  Json channel = {{"sampler", 0}, {"target", {{"node", node}, {"path", "translation"}}}};
+  Json animation = {{"name", "travel"}, {"samplers", Json::array({sampler})}, {"channels", Json::array({channel})}};
+  asset.doc["animations"] = Json::array({animation});
+  return asset.write(dir, "travelling_sphere");
+}
+
+TEST(Fidelity, AutoExposureIsDecidedOncePerAssetAndHoldsAcrossTheAnimation) {
+  TempDir dir;
+  const fs::path asset = travellingSphere(dir);
+  const std::string common = "'" + asset.string() + "' --size 96x96";
+  const double rest = exposureOf(screenshot(dir, "rest", common).output);
+  const double start = exposureOf(screenshot(dir, "start", common + " --animation travel --time 0").output);
+  const double end = exposureOf(screenshot(dir, "end", common + " --animation travel --time 1").output);
+  std::printf("auto exposure: rest pose %.4g, time 0 %.4g, time 1 %.4g\n", rest, start, end);
+  ASSERT_GT(rest, 0);
+  EXPECT_EQ(start, rest);
+  EXPECT_EQ(end, rest);
+  // --exposure still sets it outright.
+  EXPECT_EQ(exposureOf(screenshot(dir, "fixed", common + " --animation travel --time 1 --exposure 0.25").output), 0.25);
 }
 
 }  // namespace
