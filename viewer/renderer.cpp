@@ -250,7 +250,9 @@ void Renderer::setScene(gltf::Scene scene, std::vector<std::string>& messages) {
     const bool decoded = decodeImage(scene_.images[i], image, error);
     messages.insert(messages.end(), image.notes.begin(), image.notes.end());
     if (!decoded) {
-      messages.push_back(error);
+      // Colour textures show a checker instead, so that the gap is seen; data textures are left out.
+      messages.push_back(error + (usedAsColour[i] ? "; drawn as a magenta checker" : "; left out"));
+      if (usedAsColour[i]) srgbTextures_[i] = uploadTexture(missingImageChecker(), true);
       continue;
     }
     if (std::string note = fitTextureSize(image, maxSize, scene_.images[i].label); !note.empty()) messages.push_back(std::move(note));

@@ -1,8 +1,9 @@
 // SPDX-License-Identifier: MIT
 // tangent-view's fidelity fixes of issue 64 (item 3), headless under Xvfb like
 // screenshot_test.cpp: shadows without acne or terminator blotches on a low-poly smooth sphere,
-// and auto exposure that holds still across an animation. Each test writes the glTF it needs
-// (generated geometry) into its own temporary folder.
+// auto exposure that holds still across an animation, missing or undecodable textures drawn as
+// a checker and named. Each test writes the glTF it needs (generated geometry) into its own
+// temporary folder.
 #include <OpenImageIO/imageio.h>
 #include <gtest/gtest.h>
 
@@ -315,6 +316,53 @@ TEST(Fidelity, AutoExposureIsDecidedOncePerAssetAndHoldsAcrossTheAnimation) {
   EXPECT_EQ(end, rest);
   // --exposure still sets it outright.
   EXPECT_EQ(exposureOf(screenshot(dir, "fixed", common + " --animation travel --time 1 --exposure 0.25").output), 0.25);
+}
+
+// --- Missing textures ------------------------------------------------------------------------
+
+// A ground square seen from the top, its base colour texture `uri` (written by the caller, or
+// not at all).
+fs::path texturedSquare(const TempDir& dir, const std::string& name, const std::string& uri) {
+  AssetWriter asset;
+  asset.doc["images"] = {{{"uri", uri}}};
+  asset.doc["textures"] = {{{"source", 0}}};
+  const int material = asset.material({{"pbrMetallicRoughness", {{"baseColorTexture", {{"index", 0}}}, {"metallicFactor", 0}}}});
+  asset.node({{"mesh", groundSquare(asset, 1, material)}});
+  return asset.write(dir, name);
+}
+
+// Cells of the checker across the middle row of the square (top view, orthographic: the square
+// [-1, 1]^2 fills sqrt 2 / 1.02 of the image's half-width): the number of colour changes
+// between magenta-ish and dark, and whether both colours appear.
+int checkerChanges(const Image& image) {
+  const int y = image.height / 2 + 3;  // off the cells' shared edge
+  const double half = image.width / 2.0 / (std::sqrt(2.0) * 1.02);
+  int changes = 0, last = -1;
+  for (int x = static_cast<int>(image.width / 2.0 - 0.95 * half); x < static_cast<int>(image.width / 2.0 + 0.95 * half); ++x) {
+    const auto c = image.at(x, y);
+    const int kind = (c[0] > 0.3f && c[2] > 0.3f && c[1] < 0.6f * c[0]) ? 1 : (c[0] < 0.2f && c[1] < 0.2f && c[2] < 0.2f) ? 0 : -1;
+    if (kind < 0) continue;
+    if (last >= 0 && kind != last) ++changes;
+    last = kind;
+  }
+  return changes;
+}
+
+TEST(Fidelity, MissingOrUndecodableTextureIsACheckerAndNamed) {
+  TempDir dir;
+  for (const std::string name : {"garbage.png", "garbage.dat"})
+    std::ofstream(dir / name, std::ios::binary) << "this is not an image file, only some bytes that no decoder reads";
+  for (const std::string uri : {"missing.png", "garbage.png", "garbage.dat"}) {
+    const fs::path asset = texturedSquare(dir, "square_" + uri.substr(0, uri.size() - 4), uri);
+    const Shot shot = screenshot(dir, uri, "'" + asset.string() + "' --camera top --ortho --size 300x300 --no-shadows");
+    std::printf("%s: %d colour changes across the square\n", uri.c_str(), checkerChanges(shot.image));
+    // 8 cells across the UV square: 7 changes inside it.
+    EXPECT_GE(checkerChanges(shot.image), 6) << uri;
+    EXPECT_NE(shot.output.find("image 0 '" + uri + "'"), std::string::npos) << shot.output;
+    EXPECT_NE(shot.output.find("drawn as a magenta checker"), std::string::npos) << shot.output;
+    // No message that ends where its reason should be.
+    EXPECT_EQ(std::regex_search(shot.output, std::regex(": *\n")), false) << shot.output;
+  }
 }
 
 }  // namespace
