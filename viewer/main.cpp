@@ -93,7 +93,8 @@ const char* kUsage =
     "  --ibl-intensity F        factor on the environment's radiance (default 1: its mean radiance a fifth\n"
     "                           of the lights' direct level)\n"
     "  --animation N|NAME       pose the scene by this animation (index or name; default: none, the nodes'\n"
-    "                           own transforms, morph weights and skins in the rest pose)\n"
+    "                           own transforms, morph weights and skins in the rest pose); one the file does\n"
+    "                           not have is an error listing those it has\n"
     "  --time SECONDS           the animation's time (default 0; alone, it picks animation 0)\n"
     "  --msaa N                 samples per pixel in the window and screenshots (default 4, or 0 on a\n"
     "                           software rasteriser such as llvmpipe, where 4x costs 3-4 times the frame)\n"
@@ -324,8 +325,8 @@ struct Viewer {
     if (options.animation || options.time) {
       const std::optional<int> animation = findAnimation(scene, options.animation.value_or("0"));
       if (!animation) {
-        const std::string text = "no animation '" + options.animation.value_or("0") + "' in " + loaded.string() + " (it has " +
-                                 std::to_string(scene.animations.size()) + ")";
+        const std::string text = "no animation '" + options.animation.value_or("0") + "' in " + loaded.string() + "; it has " +
+                                 std::to_string(scene.animations.size()) + ": " + animationNames(scene);
         messages.push_back(text);
         printError(text);
         return !options.screenshot;  // a screenshot of another pose would mislead

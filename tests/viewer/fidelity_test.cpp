@@ -2,8 +2,8 @@
 // tangent-view's fidelity fixes of issue 64 (item 3), headless under Xvfb like
 // screenshot_test.cpp: shadows without acne or terminator blotches on a low-poly smooth sphere,
 // auto exposure that holds still across an animation, missing or undecodable textures drawn as
-// a checker and named. Each test writes the glTF it needs (generated geometry) into its own
-// temporary folder.
+// a checker and named, and --animation errors that list the file's animations. Each test writes
+// the glTF it needs (generated geometry) into its own temporary folder.
 #include <OpenImageIO/imageio.h>
 #include <gtest/gtest.h>
 
@@ -363,6 +363,23 @@ TEST(Fidelity, MissingOrUndecodableTextureIsACheckerAndNamed) {
     // No message that ends where its reason should be.
     EXPECT_EQ(std::regex_search(shot.output, std::regex(": *\n")), false) << shot.output;
   }
+}
+
+// --- --animation errors ----------------------------------------------------------------------
+
+TEST(Fidelity, UnknownAnimationErrorListsTheFilesAnimations) {
+  TempDir dir;
+  const fs::path asset = travellingSphere(dir);
+  for (const std::string asked : {"walk", "1"}) {
+    const auto result = view("'" + asset.string() + "' --size 64x64 --animation " + asked + " --screenshot '" + (dir / "x.png").string() + "'");
+    EXPECT_NE(result.exitCode, 0) << result.output;
+    EXPECT_NE(result.output.find("no animation '" + asked + "'"), std::string::npos) << result.output;
+    EXPECT_NE(result.output.find("it has 1: 0 'travel'"), std::string::npos) << result.output;
+  }
+  // A file without animations says so.
+  const fs::path still = shadowScene(dir);
+  const auto result = view("'" + still.string() + "' --size 64x64 --time 1 --screenshot '" + (dir / "y.png").string() + "'");
+  EXPECT_NE(result.output.find("it has 0: none"), std::string::npos) << result.output;
 }
 
 }  // namespace
