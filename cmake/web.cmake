@@ -3,8 +3,8 @@
 # the native build. Debian ships its header-only dependencies for every compiler; they are
 # reached through one folder of links (not /usr/include, whose C library headers would shadow
 # emscripten's). tinygltf, whose Debian package is a compiled library, is compiled from its
-# header (viewer/web/tinygltf.cpp); oneTBB is left out (TANGENT_SERIAL, and a one-line
-# tbb/info.h in viewer/web/include). Draco and meshoptimizer are native libraries only: the
+# header (viewer/web/tinygltf.cpp); oneTBB is left out (TANGENT_SERIAL: each
+# include of it is behind that define). Draco and meshoptimizer are native libraries only: the
 # glTF layer's decoders that need them are swapped for stand-ins that refuse such files
 # (viewer/CMakeLists.txt, viewer/web/native_stand_ins.cpp). The core is arrays-only and OBJ,
 # PLY and OFF are read by our own readers, so every method (lengyel and flat too) and every

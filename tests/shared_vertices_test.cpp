@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// The WebAssembly package's sharing of de-indexed corners (wasm/src/shared_vertices.hpp),
+// The WebAssembly package's sharing of de-indexed corners (tangent/shared_vertices.hpp),
 // natively: against a plain map from a corner's eight values' bits to its first corner, on
 // corners that repeat in random order (the recent table's misses and evictions, +0/-0 and
 // NaN), all at once and in runs of every awkward length (the package's staging buffer), and
@@ -17,7 +17,7 @@
 #include <stdexcept>
 #include <vector>
 
-#include "shared_vertices.hpp"
+#include "tangent/shared_vertices.hpp"
 #include "tangent/tangent.hpp"
 
 namespace {
@@ -84,8 +84,8 @@ Corners randomCorners(std::size_t count, std::size_t pool, unsigned seed) {
 // Shares `corners` in runs of `runLength` (0: all at once) and checks every output.
 void expectSharing(const Corners& corners, std::size_t runLength) {
   const std::size_t n = corners.count();
-  tangent::wasm::SharedVertices shared;
-  tangent::wasm::VertexSharer sharer;
+  tangent::SharedVertices shared;
+  tangent::VertexSharer sharer;
   sharer.begin(n, shared);
   for (std::size_t first = 0; first < n; first += runLength ? runLength : n) {
     const std::size_t count = std::min(n - first, runLength ? runLength : n);
@@ -143,7 +143,7 @@ TEST(SharedVertices, ManyVerticesGrowTheTableAndAreFoundAfter) {
 }
 
 // The shared vertices of `corners` corners as the core's input.
-tangent::MeshArrays meshOf(const tangent::wasm::SharedVertices& shared, std::size_t corners) {
+tangent::MeshArrays meshOf(const tangent::SharedVertices& shared, std::size_t corners) {
   const std::size_t vertices = shared.vertexCount;
   return {{shared.positions.data(), 3 * vertices},
           {shared.normals.data(), 3 * vertices},
@@ -159,8 +159,8 @@ tangent::MeshArrays meshOf(const tangent::wasm::SharedVertices& shared, std::siz
 TEST(SharedVertices, TheCoreWeldingOnlyVerticesWithAZeroGivesTheSameBits) {
   const Corners corners = randomCorners(3 * 20000, 3000, 4);
   const std::size_t n = corners.count();
-  tangent::wasm::SharedVertices shared;
-  tangent::wasm::shareVertices(corners.positions.data(), corners.normals.data(), corners.uvs.data(), n, shared);
+  tangent::SharedVertices shared;
+  tangent::shareVertices(corners.positions.data(), corners.normals.data(), corners.uvs.data(), n, shared);
   ASSERT_GT(shared.zeroVertices.size(), 0u);
   ASSERT_LT(shared.zeroVertices.size(), shared.vertexCount);
   std::vector<std::uint32_t> sequence(n);
@@ -177,16 +177,16 @@ TEST(SharedVertices, TheCoreWeldingOnlyVerticesWithAZeroGivesTheSameBits) {
     tangent::TangentWorkspace workspace;
     const tangent::Report expected = tangent::computeCornerTangents(deindexed, tangent::CornerOutputs{std::span<float>(reference)}, options, workspace);
     tangent::computeCornerTangents(sharedMesh, tangent::CornerOutputs{std::span<float>(full)}, options, workspace);
-    workspace.data().weldOnly = std::span<const std::uint32_t>(shared.zeroVertices);
+    workspace.setWeldOnly(std::span<const std::uint32_t>(shared.zeroVertices));
     const tangent::Report report = tangent::computeCornerTangents(sharedMesh, tangent::CornerOutputs{std::span<float>(only)}, options, workspace);
     if (method == tangent::Method::mikktspace) {
       // The control: welding none of them gives other bits (the pairs that differ in a zero's
       // sign are not merged), so the list above did its work. (Lengyel's sums here come out
       // the same either way.)
       std::vector<float> none(4 * n);
-      workspace.data().weldOnly = std::span<const std::uint32_t>();
+      workspace.setWeldOnly(std::span<const std::uint32_t>());
       tangent::computeCornerTangents(sharedMesh, tangent::CornerOutputs{std::span<float>(none)}, options, workspace);
-      workspace.data().weldOnly.reset();
+      workspace.setWeldOnly(std::nullopt);
       EXPECT_NE(std::memcmp(none.data(), reference.data(), 4 * n * sizeof(float)), 0);
     }
     EXPECT_EQ(std::memcmp(full.data(), reference.data(), 4 * n * sizeof(float)), 0) << tangent::toString(method) << ", " << threads << " threads";
@@ -198,23 +198,23 @@ TEST(SharedVertices, TheCoreWeldingOnlyVerticesWithAZeroGivesTheSameBits) {
 
 TEST(SharedVertices, AWeldListOutOfRangeOrOrderIsRefused) {
   const Corners corners = randomCorners(30, 10, 5);
-  tangent::wasm::SharedVertices shared;
-  tangent::wasm::shareVertices(corners.positions.data(), corners.normals.data(), corners.uvs.data(), 30, shared);
+  tangent::SharedVertices shared;
+  tangent::shareVertices(corners.positions.data(), corners.normals.data(), corners.uvs.data(), 30, shared);
   const std::size_t vertices = shared.vertexCount;
   const tangent::MeshArrays mesh = meshOf(shared, 30);
   std::vector<float> tangents(4 * 30);
   tangent::TangentWorkspace workspace;
   for (const std::vector<std::uint32_t>& list :
        {std::vector<std::uint32_t>{0, static_cast<std::uint32_t>(vertices)}, std::vector<std::uint32_t>{1, 0}}) {
-    workspace.data().weldOnly = std::span<const std::uint32_t>(list);
+    workspace.setWeldOnly(std::span<const std::uint32_t>(list));
     EXPECT_THROW(tangent::computeCornerTangents(mesh, tangent::CornerOutputs{std::span<float>(tangents)}, tangent::Options{}, workspace), std::invalid_argument);
   }
 }
 
 TEST(SharedVertices, AddPastTheCountIsRefused) {
   const Corners corners = randomCorners(10, 4, 3);
-  tangent::wasm::SharedVertices shared;
-  tangent::wasm::VertexSharer sharer;
+  tangent::SharedVertices shared;
+  tangent::VertexSharer sharer;
   sharer.begin(9, shared);
   EXPECT_TRUE(sharer.add(corners.positions.data(), corners.normals.data(), corners.uvs.data(), 5));
   EXPECT_FALSE(sharer.add(&corners.positions[15], &corners.normals[15], &corners.uvs[10], 5));

@@ -26,7 +26,10 @@ rm -rf "$out" && mkdir -p "$objects"
 export NODE_PATH=/usr/share/nodejs${NODE_PATH:+:$NODE_PATH}
 sources=(libtangent/core/src/*.cpp libtangent/core/src/mikktspace/*.cpp wasm/src/bindings.cpp)
 for source in "${sources[@]}"; do
-  em++ -std=c++20 -O3 -msimd128 -msse2 -fexceptions -DTANGENT_SERIAL -DNDEBUG -I libtangent/core/include -I libtangent/core/src \
+  # The core's own sources see its private headers; the bindings only its public ones.
+  private=-Ilibtangent/core/src
+  [[ $source == wasm/* ]] && private=
+  em++ -std=c++20 -O3 -msimd128 -msse2 -fexceptions -DTANGENT_SERIAL -DNDEBUG -I libtangent/core/include $private \
     -c "$source" -o "$objects/$(tr / _ <<<"$source").o"
 done
 link=(em++ -O3 -fexceptions "$objects"/*.o

@@ -15,13 +15,14 @@
 #include <cstdint>
 #include <exception>
 #include <numeric>
+#include <optional>
 #include <span>
 #include <stdexcept>
 #include <string>
 #include <vector>
 
-#include "shared_vertices.hpp"
 #include "tangent/frame_rules.hpp"
+#include "tangent/shared_vertices.hpp"
 #include "tangent/tangent.hpp"
 
 namespace {
@@ -29,8 +30,8 @@ namespace {
 struct State {
   tangent::TangentWorkspace workspace;
   std::vector<std::uint32_t> sequence;  // 0, 1, 2, ... for de-indexed input with the vertex split
-  tangent::wasm::SharedVertices shared;  // de-indexed input, indexed (shared_vertices.hpp)
-  tangent::wasm::VertexSharer sharer;     // fills `shared` from the staging buffer
+  tangent::SharedVertices shared;  // de-indexed input, indexed (tangent/shared_vertices.hpp)
+  tangent::VertexSharer sharer;     // fills `shared` from the staging buffer
   std::vector<float> staging;             // kStageCorners corners: positions, normals, uvs
   std::vector<float> cornerTangents;    // 4 per corner
   std::vector<std::uint32_t> cornerVertex;
@@ -93,9 +94,9 @@ EMSCRIPTEN_KEEPALIVE int tangent_run(const float* positions, const float* normal
   // when the call ends whichever way (so unset when the next one starts): the list lives in
   // `shared`, which the next call refills.
   struct ResetWeldOnly {
-    tangent::detail::WorkspaceData& data;
-    ~ResetWeldOnly() { data.weldOnly.reset(); }
-  } resetWeldOnly{s.workspace.data()};
+    tangent::TangentWorkspace& workspace;
+    ~ResetWeldOnly() { workspace.setWeldOnly(std::nullopt); }
+  } resetWeldOnly{s.workspace};
   try {
     tangent::Options options;
     const auto parsedMethod = tangent::parseMethod(method);
@@ -121,7 +122,7 @@ EMSCRIPTEN_KEEPALIVE int tangent_run(const float* positions, const float* normal
       // the arrays or, where positions is null, as tangent_share_add has done already.
       if (vertexCount != cornerCount) throw std::invalid_argument("indices: null, but the vertex count is not the corner count");
       if (positions) {
-        tangent::wasm::shareVertices(positions, normals, uvs, cornerCount, s.shared);
+        tangent::shareVertices(positions, normals, uvs, cornerCount, s.shared);
       } else if (s.sharer.added() != cornerCount) {
         throw std::invalid_argument("positions: null, but tangent_share_add gave " + std::to_string(s.sharer.added()) + " of " +
                                     std::to_string(cornerCount) + " corners");
@@ -133,7 +134,7 @@ EMSCRIPTEN_KEEPALIVE int tangent_run(const float* positions, const float* normal
       vertexCount = static_cast<std::uint32_t>(s.shared.vertexCount);
       // No two shared vertices have the same bits: the core need weld only those with a zero
       // (the others, nearly all on most meshes, were hashed and probed for no merge).
-      s.workspace.data().weldOnly = std::span<const std::uint32_t>(s.shared.zeroVertices);
+      s.workspace.setWeldOnly(std::span<const std::uint32_t>(s.shared.zeroVertices));
     }
     s.cornerTangents.resize(std::size_t(cornerCount) * 4);
     s.cornerVertex.resize(vertexSplit ? cornerCount : 0);

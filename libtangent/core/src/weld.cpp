@@ -407,7 +407,7 @@ void weldAndBucket(WorkspaceData& ws, const MeshArrays& mesh, unsigned threads, 
     }
   };
   if (ws.weldOnly) {
-    // Only the listed vertices can weld (WorkspaceData::weldOnly): every other is its own.
+    // Only the listed vertices can weld (TangentWorkspace::setWeldOnly): every other is its own.
     const std::span<const std::uint32_t> only = *ws.weldOnly;
     for (std::size_t i = 0; i < only.size(); ++i) {
       if (only[i] >= vertexCount || (i > 0 && only[i] <= only[i - 1])) {

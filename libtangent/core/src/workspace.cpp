@@ -121,6 +121,7 @@ TangentWorkspace::~TangentWorkspace() = default;
 TangentWorkspace::TangentWorkspace(TangentWorkspace&&) noexcept = default;
 TangentWorkspace& TangentWorkspace::operator=(TangentWorkspace&&) noexcept = default;
 std::size_t TangentWorkspace::bytesReserved() const { return data_->bytes(); }
+void TangentWorkspace::setWeldOnly(std::optional<std::span<const std::uint32_t>> vertices) { data_->weldOnly = vertices; }
 
 namespace {
 

@@ -123,14 +123,7 @@ struct WorkspaceData {
                                              // vertex index with the same values
   bool weldMergedNone = false;              // set by the weld: every vertex is its own welded id
                                              // (vertexId[v] == v), so a corner's id is its index
-  // Set by a caller whose vertices are distinct by bits (no two with the same bits in all
-  // eight values), as the WebAssembly package's shared de-indexed corners are
-  // (wasm/src/shared_vertices.hpp): the vertices that may still weld, in increasing order.
-  // Vertices distinct by bits are equal as floats only where they differ in the signs of
-  // zeros alone, so only a vertex with a value of +0 or -0 can weld with another: the weld
-  // then compares the listed vertices only, and every other vertex is its own. Unset (the
-  // default), every vertex is welded. The caller sets it before each call it means it for and
-  // resets it for any other; a list out of range or out of order is refused.
+  // TangentWorkspace::setWeldOnly: the only vertices the weld compares; unset, every vertex.
   std::optional<std::span<const std::uint32_t>> weldOnly;
   BulkVector<std::uint32_t> bucketStart;    // vertexCount + 1: corners of welded id v are
   BulkVector<std::uint32_t> bucketCorners;  // bucketCorners[bucketStart[v] .. bucketStart[v+1])

@@ -193,6 +193,14 @@ class TangentWorkspace {
   TangentWorkspace(const TangentWorkspace&) = delete;
   TangentWorkspace& operator=(const TangentWorkspace&) = delete;
   std::size_t bytesReserved() const;  // scratch memory held now
+  // For a caller whose vertices are distinct by bits (no two with the same bits in all eight
+  // values, as shareVertices makes them; tangent/shared_vertices.hpp): the vertices that may
+  // still weld with another, in increasing order. Such vertices are equal as floats only where
+  // they differ in the signs of zeros, so only one with a value of +0 or -0 can weld: the weld
+  // then compares the listed vertices only. It holds for the calls on this workspace until
+  // reset with std::nullopt (the default: every vertex is welded); a list out of range or out
+  // of order is refused by the call (std::invalid_argument). The same bits as without it.
+  void setWeldOnly(std::optional<std::span<const std::uint32_t>> vertices);
   detail::WorkspaceData& data() { return *data_; }
 
  private:

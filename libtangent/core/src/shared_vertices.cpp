@@ -1,43 +1,18 @@
 // SPDX-License-Identifier: MIT
-// De-indexed input (every corner its own vertex, as generateTangents takes it) made indexed
-// before the core sees it: corners whose position, normal and UV have the same bits share one
-// vertex. The core then welds and buckets a sixth as many vertices on a typical mesh (each
-// vertex of a closed triangle mesh has about six corners), and its per-vertex arrays shrink
-// alike. Each corner keeps exactly its own bits, and the core's results depend on the corners'
-// values only, never on how the vertices are numbered, so its output is the same to the bit:
-// values that are equal but not the same bits (+0 and -0) stay apart here and the core welds
-// them as it would have; a vertex with a NaN is never shared (NaN equals nothing).
-// Header-only and free of emscripten so that a native build can time it against the core.
-#pragma once
+// De-indexed corners made indexed by their bits (tangent/shared_vertices.hpp): one pass, an
+// open-addressing table of (vertex + 1, hash), a small table of recent finds before it.
+#include "tangent/shared_vertices.hpp"
 
 #include <algorithm>
 #include <cstdint>
 #include <cstring>
 #include <vector>
 
-#include "tangent/bulk_buffer.hpp"
 #include "vertex_hash.hpp"
 #include "workspace.hpp"  // bitCast
 
-namespace tangent::wasm {
-
-// Sized for the worst case (every corner its own vertex) but never zero-filled (BulkVector):
-// only the pages the shared vertices use are touched.
-struct SharedVertices {
-  BulkVector<float> positions, normals, uvs;  // 3, 3, 2 per shared vertex
-  BulkVector<std::uint32_t> indices;          // per corner: its shared vertex
-  // Open addressing, (vertex + 1, hash) per slot; the slot is the hash's low bits.
-  std::vector<std::uint32_t> table;
-  // The vertex a hash last found or made, at the hash's top kRecentBits bits: (vertex + 1, hash).
-  std::vector<std::uint32_t> recent;
-  std::size_t vertexCount = 0;
-  // The shared vertices with a value of +0 or -0, in increasing order: the only ones the core
-  // can still weld with another (its WorkspaceData::weldOnly), since they are distinct by bits.
-  std::vector<std::uint32_t> zeroVertices;
-  std::uint32_t probeSink = 0;  // the sum of shareVertices' early loads (kept, so not dropped)
-};
-
-namespace detail {
+namespace tangent {
+namespace {
 
 // A corner's vertex shared again within a few rows of a mesh is found here without a probe of
 // the large table (on the benchmark's sphere 78% of corners): 4096 entries, 32 KiB.
@@ -49,7 +24,7 @@ constexpr std::size_t kBatch = 64;
 
 // Whether `count` floats have the same bits (no call to memcmp: WebAssembly has no inline one).
 inline bool sameBits(const float* a, const float* b, int count) {
-  using tangent::detail::bitCast;
+  using detail::bitCast;
   std::uint32_t differ = 0;
   for (int i = 0; i < count; ++i) differ |= bitCast<std::uint32_t>(a[i]) ^ bitCast<std::uint32_t>(b[i]);
   return differ == 0;
@@ -62,60 +37,40 @@ inline bool hasNaN(const float* p, const float* n, const float* t) {
 
 // Whether any of a corner's eight values is +0 or -0.
 inline bool hasZero(const float* p, const float* n, const float* t) {
-  using tangent::detail::bitCast;
+  using detail::bitCast;
   auto zero = [](float x) { return (bitCast<std::uint32_t>(x) << 1) == 0; };
   return zero(p[0]) | zero(p[1]) | zero(p[2]) | zero(n[0]) | zero(n[1]) | zero(n[2]) | zero(t[0]) | zero(t[1]);
 }
 
 // The core's vertex hash (vertex_hash.hpp), folded to 32 bits: equal bits, equal hashes.
 inline std::uint32_t cornerHash(const float* p, const float* n, const float* t) {
-  return static_cast<std::uint32_t>(tangent::detail::vertexHash(p, n, t));
+  return static_cast<std::uint32_t>(detail::vertexHash(p, n, t));
 }
 
-}  // namespace detail
+}  // namespace
 
-// Shares the corners of one call as they come, a run of corners at a time (the package passes
-// the input through a small staging buffer instead of copying all of it into the module's
-// memory first). The shared vertices are numbered in order of their first corner.
-class VertexSharer {
- public:
-  // Starts a call of `cornerCount` corners; `out` is filled by add() and must outlive the call.
-  void begin(std::size_t cornerCount, SharedVertices& out) {
-    out_ = &out;
-    cornerCount_ = cornerCount;
-    added_ = 0;
-    count_ = 0;
-    // Sized for about a sixth as many vertices as corners, at most half full; grown (rehashed
-    // from the stored hashes) where a mesh shares less.
-    capacity_ = 64;
-    while (capacity_ < cornerCount / 3) capacity_ *= 2;
-    out.table.assign(2 * capacity_, 0u);
-    out.recent.assign(std::size_t(2) << detail::kRecentBits, 0u);
-    if (out.positions.size() < 3 * cornerCount) {
-      out.positions.resize(3 * cornerCount);
-      out.normals.resize(3 * cornerCount);
-      out.uvs.resize(2 * cornerCount);
-    }
-    out.indices.resize(cornerCount);
-    out.vertexCount = 0;
-    out.zeroVertices.clear();
+void VertexSharer::begin(std::size_t cornerCount, SharedVertices& out) {
+  out_ = &out;
+  cornerCount_ = cornerCount;
+  added_ = 0;
+  count_ = 0;
+  // Sized for about a sixth as many vertices as corners, at most half full; grown (rehashed
+  // from the stored hashes) where a mesh shares less.
+  capacity_ = 64;
+  while (capacity_ < cornerCount / 3) capacity_ *= 2;
+  out.table.assign(2 * capacity_, 0u);
+  out.recent.assign(std::size_t(2) << kRecentBits, 0u);
+  if (out.positions.size() < 3 * cornerCount) {
+    out.positions.resize(3 * cornerCount);
+    out.normals.resize(3 * cornerCount);
+    out.uvs.resize(2 * cornerCount);
   }
+  out.indices.resize(cornerCount);
+  out.vertexCount = 0;
+  out.zeroVertices.clear();
+}
 
-  // The next `count` corners (positions 3, normals 3, uvs 2 per corner); false when they would
-  // run past begin()'s count.
-  bool add(const float* positions, const float* normals, const float* uvs, std::size_t count);
-
-  std::size_t added() const { return added_; }
-
- private:
-  void grow();
-
-  SharedVertices* out_ = nullptr;
-  std::size_t cornerCount_ = 0, added_ = 0, count_ = 0, capacity_ = 0;
-};
-
-inline bool VertexSharer::add(const float* positions, const float* normals, const float* uvs, std::size_t count) {
-  using detail::kBatch;
+bool VertexSharer::add(const float* positions, const float* normals, const float* uvs, std::size_t count) {
   if (count > cornerCount_ - added_) return false;
   SharedVertices& out = *out_;
   float* P = out.positions.data();
@@ -124,7 +79,7 @@ inline bool VertexSharer::add(const float* positions, const float* normals, cons
   std::uint32_t* indices = out.indices.data() + added_;
   std::uint32_t* recent = out.recent.data();
   std::uint32_t sink = 0;
-  auto recentEntry = [&](std::uint32_t hash) { return recent + 2 * (hash >> (32 - detail::kRecentBits)); };
+  auto recentEntry = [&](std::uint32_t hash) { return recent + 2 * (hash >> (32 - kRecentBits)); };
   std::uint32_t hashes[kBatch];
   for (std::size_t first = 0; first < count; first += kBatch) {
     const std::size_t last = std::min(count, first + kBatch);
@@ -133,7 +88,7 @@ inline bool VertexSharer::add(const float* positions, const float* normals, cons
     // The batch's hashes, then a load of each large-table slot that the recent table will not
     // answer, in a loop of their own so that they are all in flight at once (their values
     // only summed: the probes below find the slots in cache).
-    for (std::size_t c = first; c < last; ++c) hashes[c - first] = detail::cornerHash(positions + 3 * c, normals + 3 * c, uvs + 2 * c);
+    for (std::size_t c = first; c < last; ++c) hashes[c - first] = cornerHash(positions + 3 * c, normals + 3 * c, uvs + 2 * c);
     for (std::size_t i = 0; i < last - first; ++i) {
       if (recentEntry(hashes[i])[1] != hashes[i]) sink += table[2 * (hashes[i] & mask)];
     }
@@ -142,7 +97,7 @@ inline bool VertexSharer::add(const float* positions, const float* normals, cons
       const float* n = normals + 3 * c;
       const float* t = uvs + 2 * c;
       auto same = [&](std::uint32_t v) {
-        return detail::sameBits(P + 3 * v, p, 3) && detail::sameBits(N + 3 * v, n, 3) && detail::sameBits(T + 2 * v, t, 2);
+        return sameBits(P + 3 * v, p, 3) && sameBits(N + 3 * v, n, 3) && sameBits(T + 2 * v, t, 2);
       };
       // A corner with a NaN is looked up like any other but never stored in either table, so
       // that no vertex there has a NaN and no lookup can match one: its test waits for a miss.
@@ -155,7 +110,7 @@ inline bool VertexSharer::add(const float* positions, const float* normals, cons
         for (std::size_t slot = hash & mask;; slot = (slot + 1) & mask) {
           std::uint32_t* entry = table + 2 * slot;
           if (entry[0] == 0) {
-            if (detail::hasNaN(p, n, t)) break;
+            if (hasNaN(p, n, t)) break;
             entry[0] = vertex + 1;
             entry[1] = hash;
             near[0] = vertex + 1;
@@ -175,7 +130,7 @@ inline bool VertexSharer::add(const float* positions, const float* normals, cons
       std::memcpy(P + 3 * count_, p, 12);
       std::memcpy(N + 3 * count_, n, 12);
       std::memcpy(T + 2 * count_, t, 8);
-      if (detail::hasZero(p, n, t)) out.zeroVertices.push_back(static_cast<std::uint32_t>(count_));
+      if (hasZero(p, n, t)) out.zeroVertices.push_back(static_cast<std::uint32_t>(count_));
       ++count_;
       if (2 * count_ > capacity_) {
         grow();
@@ -191,7 +146,7 @@ inline bool VertexSharer::add(const float* positions, const float* normals, cons
 }
 
 // More than half full: twice the slots, each entry moved to its slot by its stored hash.
-inline void VertexSharer::grow() {
+void VertexSharer::grow() {
   SharedVertices& out = *out_;
   std::vector<std::uint32_t> old(std::move(out.table));
   capacity_ *= 2;
@@ -208,11 +163,11 @@ inline void VertexSharer::grow() {
 }
 
 // All of `cornerCount` corners at once.
-inline void shareVertices(const float* positions, const float* normals, const float* uvs, std::size_t cornerCount,
-                          SharedVertices& out) {
+void shareVertices(const float* positions, const float* normals, const float* uvs, std::size_t cornerCount,
+                   SharedVertices& out) {
   VertexSharer sharer;
   sharer.begin(cornerCount, out);
   sharer.add(positions, normals, uvs, cornerCount);
 }
 
-}  // namespace tangent::wasm
+}  // namespace tangent
