@@ -644,22 +644,56 @@ void Renderer::drawDepth(std::span<const GpuInstance* const> instances, const gl
   }
 }
 
+namespace {
+
 // A spot light's shadow map spans its cone (a little wider, for PCF at the edge), at most 160
 // degrees across.
-namespace {
 float spotShadowHalfAngle(const Light& light) { return std::min(light.spotOuter * 1.05f, glm::radians(80.0f)); }
+
+glm::vec3 shadowUpFor(const glm::vec3& direction) { return std::abs(direction.y) > 0.99f ? glm::vec3(1, 0, 0) : glm::vec3(0, 1, 0); }
+
+// A directional light's orthographic shadow view, fitted to the scene's bounds box as the light
+// sees it (its eight corners in the light's view), not to the box's bounding sphere: a flat or
+// long scene gets texels that much smaller, and the depth range spans the box's depth only.
+struct DirectionalShadowFit {
+  glm::mat4 view{1};
+  glm::vec3 lo{0}, hi{0};  // the corners' light-view extent (x, y across the light, z along it)
+  float nearPlane = 0, farPlane = 1;
+};
+
+DirectionalShadowFit directionalShadowFit(const Light& light, glm::vec3 boundsMin, glm::vec3 boundsMax) {
+  const glm::vec3 center = (boundsMin + boundsMax) * 0.5f;
+  const float radius = std::max(glm::length(boundsMax - boundsMin) * 0.5f, 1e-3f);
+  const glm::vec3 direction = glm::normalize(light.direction);
+  DirectionalShadowFit fit;
+  fit.view = glm::lookAt(center - direction * (2 * radius), center, shadowUpFor(direction));
+  fit.lo = glm::vec3(std::numeric_limits<float>::max());
+  fit.hi = glm::vec3(-std::numeric_limits<float>::max());
+  for (int corner = 0; corner < 8; ++corner) {
+    const glm::vec3 p((corner & 1) ? boundsMax.x : boundsMin.x, (corner & 2) ? boundsMax.y : boundsMin.y, (corner & 4) ? boundsMax.z : boundsMin.z);
+    const glm::vec3 q(fit.view * glm::vec4(p, 1));
+    fit.lo = glm::min(fit.lo, q);
+    fit.hi = glm::max(fit.hi, q);
+  }
+  // A margin of 1% of the radius all round: PCF taps and the normal offset reach past the box,
+  // and a flat scene seen along its plane keeps some width.
+  const float margin = 0.01f * radius;
+  fit.lo -= glm::vec3(margin);
+  fit.hi += glm::vec3(margin);
+  fit.nearPlane = std::max(-fit.hi.z, 0.01f * radius);
+  fit.farPlane = std::max(-fit.lo.z, fit.nearPlane + margin);
+  return fit;
+}
+
 }  // namespace
 
 glm::mat4 Renderer::lightViewProjection() const {
   const glm::vec3 center = boundsCenter();
   const float radius = boundsRadius();
   const Light& light = lights_[0];
-  auto upFor = [](const glm::vec3& direction) { return std::abs(direction.y) > 0.99f ? glm::vec3(1, 0, 0) : glm::vec3(0, 1, 0); };
   if (light.directional) {
-    // Orthographic light view fitted to the scene's bounding sphere.
-    const glm::vec3 direction = glm::normalize(light.direction);
-    const glm::mat4 view = glm::lookAt(center - direction * (2 * radius), center, upFor(direction));
-    return glm::ortho(-radius, radius, -radius, radius, 0.01f * radius, 4 * radius) * view;
+    const DirectionalShadowFit fit = directionalShadowFit(light, boundsMin_, boundsMax_);
+    return glm::ortho(fit.lo.x, fit.hi.x, fit.lo.y, fit.hi.y, fit.nearPlane, fit.farPlane) * fit.view;
   }
   // A point light's shadow is the cube map (shadow_cube.hpp), which this matrix plays no part in.
   if (pointShadow()) return glm::mat4(1);
@@ -669,13 +703,22 @@ glm::mat4 Renderer::lightViewProjection() const {
   const float distance = glm::length(center - light.position);
   const float nearPlane = std::max(distance - radius, 0.01f * radius), farPlane = distance + radius;
   const glm::vec3 direction = glm::normalize(light.direction);
-  const glm::mat4 view = glm::lookAt(light.position, light.position + direction, upFor(direction));
+  const glm::mat4 view = glm::lookAt(light.position, light.position + direction, shadowUpFor(direction));
   return glm::perspective(2 * halfAngle, 1.0f, nearPlane, farPlane) * view;
+}
+
+float Renderer::shadowBiasScale() const {
+  if (lights_.empty() || !lights_[0].directional) return 1.0f;
+  const DirectionalShadowFit fit = directionalShadowFit(lights_[0], boundsMin_, boundsMax_);
+  return 4 * boundsRadius() / (fit.farPlane - fit.nearPlane);
 }
 
 glm::vec2 Renderer::shadowTexelWorld() const {
   const Light& light = lights_[0];
-  if (light.directional) return {2 * boundsRadius() / static_cast<float>(std::max(shadowSize_, 1)), 0.0f};
+  if (light.directional) {
+    const DirectionalShadowFit fit = directionalShadowFit(light, boundsMin_, boundsMax_);
+    return {std::max(fit.hi.x - fit.lo.x, fit.hi.y - fit.lo.y) / static_cast<float>(std::max(shadowSize_, 1)), 0.0f};
+  }
   if (pointShadow()) return {0.0f, 2.0f / static_cast<float>(std::max(shadowCubeSize_, 1))};  // 90-degree faces
   return {0.0f, 2 * std::tan(spotShadowHalfAngle(light)) / static_cast<float>(std::max(shadowSize_, 1))};
 }
@@ -1020,8 +1063,8 @@ GLuint Renderer::bindMesh(const GpuMesh& mesh, const CameraMatrices& camera, con
   }
   if (has(features, Feature::shadows)) {
     setUniform(program, "u_pcfRadius", settings.pcfRadius);
-    setUniform(program, "u_shadowBiasConstant", settings.shadowBiasConstant);
-    setUniform(program, "u_shadowBiasSlope", settings.shadowBiasSlope);
+    setUniform(program, "u_shadowBiasConstant", settings.shadowBiasConstant * shadowBiasScale());
+    setUniform(program, "u_shadowBiasSlope", settings.shadowBiasSlope * shadowBiasScale());
     setUniform(program, "u_shadowTexelWorld", shadowTexelWorld());
   }
   glBindVertexArray(mesh.vertexArray.get());

@@ -228,6 +228,9 @@ class Renderer {
   // A shadow-map texel's world size at a fragment: x + y * the fragment's distance from light 0
   // (shadows.glsl's u_shadowTexelWorld, for the normal offset).
   glm::vec2 shadowTexelWorld() const;
+  // The factor on the depth biases that keeps them fractions of 4 scene radii in world units
+  // (as the cube map's are) whatever depth range the directional map's fit spans; 1 otherwise.
+  float shadowBiasScale() const;
   // Light 0 is a point light (not a spot): its shadow is the depth cube map.
   bool pointShadow() const;
   // The cube faces' near and far planes: every point of the scene's bounding sphere lies between
