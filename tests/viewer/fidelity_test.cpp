@@ -318,6 +318,29 @@ TEST(Fidelity, AutoExposureIsDecidedOncePerAssetAndHoldsAcrossTheAnimation) {
   EXPECT_EQ(exposureOf(screenshot(dir, "fixed", common + " --animation travel --time 1 --exposure 0.25").output), 0.25);
 }
 
+// Debian's assimp-testmodels, where installed: a skinned strip and a morphing cube, each at two
+// times of its animation and at rest, show the same exposure.
+TEST(Fidelity, AutoExposureHoldsAcrossTheAnimationsOfSampleAssets) {
+  const fs::path models = "/usr/share/assimp/models/glTF2";
+  const fs::path assets[] = {models / "simple_skin" / "simple_skin.gltf",
+                             models / "glTF-Sample-Models" / "AnimatedMorphCube-glTF" / "AnimatedMorphCube.gltf"};
+  TempDir dir;
+  int shown = 0;
+  for (const fs::path& asset : assets) {
+    if (!fs::exists(asset)) continue;
+    ++shown;
+    const std::string common = "'" + asset.string() + "' --size 96x96";
+    const double rest = exposureOf(screenshot(dir, "rest", common).output);
+    const double early = exposureOf(screenshot(dir, "early", common + " --animation 0 --time 0.3").output);
+    const double late = exposureOf(screenshot(dir, "late", common + " --animation 0 --time 1.7").output);
+    std::printf("%s: auto exposure at rest %.4g, time 0.3 %.4g, time 1.7 %.4g\n", asset.filename().string().c_str(), rest, early, late);
+    EXPECT_GT(rest, 0);
+    EXPECT_EQ(early, rest) << asset;
+    EXPECT_EQ(late, rest) << asset;
+  }
+  if (shown == 0) GTEST_SKIP() << models << " (assimp-testmodels) is absent";
+}
+
 // --- Missing textures ------------------------------------------------------------------------
 
 // A ground square seen from the top, its base colour texture `uri` (written by the caller, or
