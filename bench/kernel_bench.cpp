@@ -28,9 +28,9 @@
 #include <vector>
 
 #include "analytic_surfaces.hpp"
-#include "asset.hpp"
+#include "read/asset.hpp"
 #include "peers.hpp"
-#include "primitive.hpp"
+#include "read/primitive.hpp"
 #include "tangent/openmesh.hpp"
 
 namespace {

@@ -6,9 +6,9 @@
 # header (viewer/web/tinygltf.cpp); oneTBB is left out (TANGENT_SERIAL: each
 # include of it is behind that define). Draco and meshoptimizer are native libraries only: the
 # glTF layer's decoders that need them are swapped for stand-ins that refuse such files
-# (viewer/CMakeLists.txt, viewer/web/native_stand_ins.cpp). The core is arrays-only and OBJ,
-# PLY and OFF are read by our own readers, so every method (lengyel and flat too) and every
-# input format but compressed glTF links and runs. README.md lists what is left out.
+# (libtangent/CMakeLists.txt, libtangent/gltf/src/read/compression_web.cpp). The core is
+# arrays-only and OBJ, PLY and OFF are read by our own readers, so every method (lengyel and
+# flat too) and every input format but compressed glTF links and runs. README.md lists what is left out.
 set(web_include ${PROJECT_BINARY_DIR}/web-include)
 file(MAKE_DIRECTORY ${web_include}/stb)
 foreach(entry nlohmann glm tiny_gltf.h stb/stb_image.h stb/stb_image_write.h stb/stb_image_resize.h)

@@ -133,7 +133,8 @@ py::list optionTable() {
   using options::Kind;
   py::list rows;
   const std::pair<unsigned, const char*> commands[] = {
-      {options::kArrays, "compute_tangents"}, {options::kBake, "bake"}, {options::kBakeTree, "bake_tree"}, {options::kCheck, "check"}};
+      {options::kArrays, "compute_tangents"}, {options::kBake, "bake"}, {options::kBakeTree, "bake_tree"}, {options::kCheck, "check"},
+      {options::kBench, "bench"}};
   const std::pair<unsigned, const char*> frontEnds[] = {{options::kCommandLine, "cli"}, {options::kPython, "python"}, {options::kNpm, "npm"}};
   const char* kinds[] = {"flag", "choice", "integer", "number", "path", "text", "list"};
   for (const options::Option& option : options::table()) {
@@ -211,15 +212,8 @@ py::dict computeTangents(const py::handle& positionsIn, const py::handle& normal
   return result;
 }
 
-}  // namespace
-
-PYBIND11_MODULE(_libtangent, m) {
-  m.doc() =
-      "libtangent: MikkTSpace-exact tangent frames for glTF and plain arrays.\n\n"
-      "compute_tangents() works on numpy arrays; bake() and check() work on files, with the\n"
-      "options and the JSON reports of the `tangent bake` and `tangent check` commands.";
-  // The project's version (CMakeLists.txt `project(... VERSION ...)`), given by the build.
-  m.attr("__version__") = TANGENT_VERSION;
+// libtangent.Error and libtangent.InputError, and the translation of C++ exceptions into them.
+void registerErrors(py::module_& m) {
   static py::exception<std::runtime_error> error(m, "Error", PyExc_RuntimeError);
   static py::exception<tangent::gltf::InputError> inputError(m, "InputError", error.ptr());
   error.doc() = "Base class of libtangent's errors (I/O failures).";
@@ -235,7 +229,10 @@ PYBIND11_MODULE(_libtangent, m) {
       PyErr_SetString(error.ptr(), e.what());
     }
   });
+}
 
+// The core on numpy arrays.
+void defineArrays(py::module_& m) {
   m.def("compute_tangents", &computeTangents, py::arg("positions"), py::arg("normals"), py::arg("uvs"), py::arg("indices"),
         R"(Tangent frames per corner of an indexed triangle list.
 
@@ -249,7 +246,10 @@ keeps index v; report["splitVertices"] extra vertices follow); "report": what ha
 the `tangents` object of `tangent bake --report`.
 Raises ValueError naming the argument on a bad shape, dtype, option or index.
 The GIL is released while the core runs.)");
+}
 
+// bake(), bake_tree() and check_tree(): the `tangent` command's file work.
+void defineFileCommands(py::module_& m) {
   m.def(
       "bake",
       [](const std::filesystem::path& input, const std::filesystem::path& output, const py::kwargs& kwargs) {
@@ -325,7 +325,10 @@ and the bake report when baked in this run.)");
 Returns the report's "files" list: one entry per file as check() returns it; a file that
 cannot be read is an entry with "status" "error" and its "error", and the others are checked.
 Raises libtangent.InputError where the folder cannot be listed.)");
+}
 
+// The option table and the manifest's options record.
+void defineOptions(py::module_& m) {
   m.def("option_table", &optionTable,
         R"(Every option of compute_tangents(), bake(), bake_tree() and check(), of the `tangent` command and
 of the npm package, from the one table they are all made from (tangent/option_table.hpp): a list of
@@ -342,7 +345,10 @@ dicts with "name" (the command line's), "python", "npm", "kind", "choices", "def
       R"(The "options" record bake_tree() keeps in tangent-manifest.json for these keyword arguments (those
 of bake_tree()): what changes an output besides its input. A run whose record differs bakes
 everything again; a tool that writes the manifest itself (examples/bake_dask.py) records this.)");
+}
 
+// What a scheduler of many calls needs: the workspace cache, inputs, digests.
+void defineBatchSupport(py::module_& m) {
   m.def("release_cached_workspaces", [] { tangent::releaseCachedWorkspaces(); },
         R"(Frees the scratch memory compute_tangents(), bake() and check() keep between calls.
 
@@ -378,7 +384,10 @@ then does other work.)");
       py::arg("verify") = false,
       "(digest, stamps) as the manifest records them: where `previous` (the input's manifest record) has size and\n"
       "modification-time stamps that all still hold, its digest is returned without reading the files (unless verify).");
+}
 
+// check(): `tangent check PATH --format json` on one file.
+void defineCheck(py::module_& m) {
   m.def(
       "check",
       [](const std::filesystem::path& input, const py::kwargs& kwargs) {
@@ -399,4 +408,21 @@ handedness, reference (within `tolerance` degrees of freshly computed `method` t
 
 Returns the file's entry of the JSON report (docs/check-json.md): "status" is "clean" or
 "findings". Raises libtangent.InputError with the CLI's message on an unreadable file.)");
+}
+
+}  // namespace
+
+PYBIND11_MODULE(_libtangent, m) {
+  m.doc() =
+      "libtangent: MikkTSpace-exact tangent frames for glTF and plain arrays.\n\n"
+      "compute_tangents() works on numpy arrays; bake() and check() work on files, with the\n"
+      "options and the JSON reports of the `tangent bake` and `tangent check` commands.";
+  // The project's version (CMakeLists.txt `project(... VERSION ...)`), given by the build.
+  m.attr("__version__") = TANGENT_VERSION;
+  registerErrors(m);
+  defineArrays(m);
+  defineFileCommands(m);
+  defineOptions(m);
+  defineBatchSupport(m);
+  defineCheck(m);
 }

@@ -20,15 +20,15 @@
 #include <string>
 #include <vector>
 
-#include "accessors.hpp"
-#include "asset.hpp"
+#include "read/accessors.hpp"
+#include "read/asset.hpp"
 #include "support/run_command.hpp"
 #include "support/skip_or_fail.hpp"
 #include "support/temp_dir.hpp"
 #include "tangent/check.hpp"
 #include "tangent/gltf.hpp"
 #include "tangent/tangent.hpp"
-#include "uri.hpp"
+#include "read/uri.hpp"
 #ifdef TANGENT_HAVE_REFERENCE_C
 #include "support/mikktspace_c.hpp"
 #endif

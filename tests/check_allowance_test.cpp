@@ -21,10 +21,10 @@
 #include <string>
 #include <vector>
 
-#include "primitive.hpp"
+#include "read/primitive.hpp"
 #include "support/test_assets.hpp"
 #include "tangent/tangent.hpp"
-#include "tangent_rules.hpp"
+#include "check/tangent_rules.hpp"
 
 namespace {
 

@@ -15,9 +15,9 @@
 #include <set>
 #include <tuple>
 
-#include "accessors.hpp"
-#include "asset.hpp"
-#include "primitive.hpp"
+#include "read/accessors.hpp"
+#include "read/asset.hpp"
+#include "read/primitive.hpp"
 #include "support/build_paths.hpp"
 #include "support/run_command.hpp"
 #include "support/skip_or_fail.hpp"
@@ -25,7 +25,7 @@
 #include "support/test_assets.hpp"
 #include "tangent/check.hpp"
 #include "tangent/gltf.hpp"
-#include "tangent_rules.hpp"
+#include "check/tangent_rules.hpp"
 
 namespace {
 

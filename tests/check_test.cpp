@@ -13,9 +13,9 @@
 #include <iterator>
 #include <limits>
 
-#include "accessors.hpp"
-#include "asset.hpp"
-#include "primitive.hpp"
+#include "read/accessors.hpp"
+#include "read/asset.hpp"
+#include "read/primitive.hpp"
 #include "support/run_command.hpp"
 #include "support/skip_or_fail.hpp"
 #include "support/temp_dir.hpp"

@@ -17,10 +17,10 @@
 #include <span>
 #include <string>
 
-#include "accessors.hpp"
-#include "asset.hpp"
-#include "document.hpp"
-#include "primitive.hpp"
+#include "read/accessors.hpp"
+#include "read/asset.hpp"
+#include "write/document.hpp"
+#include "read/primitive.hpp"
 #include "support/reference.hpp"
 #include "support/skip_or_fail.hpp"
 #include "support/temp_dir.hpp"

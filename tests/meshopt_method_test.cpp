@@ -31,9 +31,9 @@
 #include <string>
 #include <vector>
 
-#include "asset.hpp"
+#include "read/asset.hpp"
 #include "peers.hpp"
-#include "primitive.hpp"
+#include "read/primitive.hpp"
 #include "support/random_meshes.hpp"
 #include "support/skip_or_fail.hpp"
 #include "support/temp_dir.hpp"

@@ -13,9 +13,9 @@
 #include <numbers>
 #include <random>
 
-#include "accessors.hpp"
-#include "asset.hpp"
-#include "primitive.hpp"
+#include "read/accessors.hpp"
+#include "read/asset.hpp"
+#include "read/primitive.hpp"
 #include "support/reference.hpp"
 #include "support/skip_or_fail.hpp"
 #include "support/temp_dir.hpp"

@@ -9,14 +9,14 @@
 #include <cstring>
 #include <fstream>
 
-#include "accessors.hpp"
-#include "asset.hpp"
-#include "normals.hpp"
+#include "read/accessors.hpp"
+#include "read/asset.hpp"
+#include "read/normals.hpp"
 #include "support/temp_dir.hpp"
 #include "support/test_assets.hpp"
 #include "tangent/check.hpp"
 #include "tangent/gltf.hpp"
-#include "tangent_rules.hpp"
+#include "check/tangent_rules.hpp"
 
 namespace {
 

@@ -147,10 +147,10 @@ TEST(OptionTable, ChoicesAreTheGltfLayersNames) {
       tangent::gltf::generatorNames().replace(tangent::gltf::generatorNames().rfind(" or "), 4, ", ") + " or lengyel");
 }
 
-// The help of bake and check names every command-line option of theirs, and only those; no
+// The help of bake, check and bench names every command-line option of theirs, and only those; no
 // line is wider than the terminal it was wrapped for.
 TEST(OptionTable, HelpListsEveryCommandLineOption) {
-  for (const unsigned command : {options::kBake | options::kBakeTree, unsigned(options::kCheck)}) {
+  for (const unsigned command : {options::kBake | options::kBakeTree, unsigned(options::kCheck), unsigned(options::kBench)}) {
     const std::string help = options::helpText(command);
     for (const options::Option& option : options::table()) {
       const bool listed = help.find("--" + std::string(option.name) + " ") != std::string::npos ||

@@ -19,8 +19,8 @@
 #include <string>
 #include <vector>
 
-#include "asset.hpp"
-#include "primitive.hpp"
+#include "read/asset.hpp"
+#include "read/primitive.hpp"
 #include "support/random_meshes.hpp"
 #include "support/reference_rule.hpp"
 #include "support/skip_or_fail.hpp"

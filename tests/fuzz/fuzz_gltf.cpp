@@ -9,9 +9,9 @@
 #include <fstream>
 #include <vector>
 
-#include "asset.hpp"
+#include "read/asset.hpp"
 #include "fuzz_support.hpp"
-#include "primitive.hpp"
+#include "read/primitive.hpp"
 #include "tangent/gltf.hpp"
 #include "tangent/tangent.hpp"
 

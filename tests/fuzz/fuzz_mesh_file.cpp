@@ -7,9 +7,9 @@
 #include <fstream>
 #include <vector>
 
-#include "asset.hpp"
+#include "read/asset.hpp"
 #include "fuzz_support.hpp"
-#include "primitive.hpp"
+#include "read/primitive.hpp"
 #include "tangent/gltf.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {

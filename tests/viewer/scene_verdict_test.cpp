@@ -18,7 +18,7 @@
 #include "tangent/gltf.hpp"
 #include "tangent/scene.hpp"
 #include "tangent/verdict.hpp"
-#include "tangent_rules.hpp"
+#include "check/tangent_rules.hpp"
 
 namespace {
 

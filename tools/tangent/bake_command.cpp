@@ -216,36 +216,65 @@ int bakeTrees(const std::vector<std::filesystem::path>& folders, const std::file
   return failed ? kExitInputFailed : written;
 }
 
-}  // namespace
-
-int bakeCommand(const std::vector<std::string>& args) {
-  namespace fs = std::filesystem;
-  const Arguments parsed = parseArguments(args, options::kBake | options::kBakeTree);
-  if (parsed.help) {
-    std::cout << kBakeUsageHead << options::helpText(options::kBake | options::kBakeTree);
-    return kExitOk;
+// One bake's lines: the file's counts, then each primitive with what was done and why.
+void printBakeResult(std::ostream& log, const std::filesystem::path& input, const std::string& targetName,
+                     const gltf::BakeResult& result) {
+  int baked = 0, kept = 0, skipped = 0;
+  std::uint64_t split = 0;
+  for (const auto& p : result.primitives) {
+    baked += p.action == gltf::PrimitiveAction::baked;
+    kept += p.action == gltf::PrimitiveAction::kept;
+    skipped += p.action == gltf::PrimitiveAction::skipped;
+    // Generated normals may leave out vertices no triangle uses: only growth counts.
+    split += p.action == gltf::PrimitiveAction::baked && p.verticesOut > p.verticesIn ? p.verticesOut - p.verticesIn : 0;
   }
-  if (!parsed.error.empty()) return usageError(parsed.error);
-  std::vector<fs::path> inputs(parsed.operands.begin(), parsed.operands.end());
-  const bool operandsOnly = parsed.afterDashes;
-  gltf::BatchOptions batch;
-  for (const auto& [option, value] : parsed.values) gltf::applyBatchOption(batch, *option, value);
-  gltf::BakeOptions& options = batch.bake;
-  fs::path output = parsed.last("output") ? *parsed.last("output") : "";
-  const fs::path outDir = parsed.last("out-dir") ? *parsed.last("out-dir") : "";
-  const fs::path reportPath = parsed.last("report") ? *parsed.last("report") : "";
-  const bool quiet = parsed.flag("quiet"), recursive = parsed.flag("recursive"), force = batch.force, verify = batch.verify;
-  if (!options.assetRoot.empty() && !fs::is_directory(options.assetRoot))
-    return usageError("--asset-root " + shown(options.assetRoot.string()) + " is not a directory");
-  if (inputs.empty()) return usageError("no input files");
-  if (recursive) {
-    if (outDir.empty() || !output.empty()) return usageError("--recursive needs --out-dir DIR (and no -o)");
-    for (const fs::path& input : inputs) {
-      if (!fs::is_directory(input)) return usageError("--recursive: " + input.string() + " is not a folder");
+  log << shown(input.string()) << " -> " << shown(targetName) << ": " << baked << " baked, " << kept << " kept, " << skipped
+      << " skipped; " << split << " vertices added by splits\n";
+  for (const auto& p : result.primitives) {
+    log << "  mesh " << p.mesh << (p.meshName.empty() ? "" : " '" + text::quoted(p.meshName) + "'") << " primitive " << p.primitive
+        << ": " << gltf::toString(p.action) << " - " << shown(p.reason);
+    if (p.action == gltf::PrimitiveAction::baked) {
+      const Report& r = p.tangents;
+      log << " [" << toString(r.method) << (r.weighting ? "/" + std::string(toString(*r.weighting)) : "") << ", " << p.verticesIn
+          << " -> " << p.verticesOut << " vertices, " << r.mirroredCorners << " mirrored corners";
+      if (p.normalsGenerated) log << ", NORMAL generated (" << gltf::toString(*p.normalsGenerated) << ")";
+      if (r.degenerateTriangles) log << ", " << r.degenerateTriangles << " degenerate triangles";
+      if (r.zeroUvAreaTriangles) log << ", " << r.zeroUvAreaTriangles << " zero-UV-area triangles";
+      if (r.nonFiniteTriangles) log << ", " << r.nonFiniteTriangles << " non-finite triangles";
+      if (r.nonManifoldFaces) log << ", " << r.nonManifoldFaces << " non-manifold faces";
+      if (r.invalidNormals) log << ", " << r.invalidNormals << " invalid normals";
+      if (r.inheritedCorners) log << ", " << r.inheritedCorners << " corners inherited a frame";
+      if (r.fallbackFromNeighbours + r.fallbackFixed)
+        log << ", " << r.fallbackFromNeighbours + r.fallbackFixed << " corners with fallback frames";
+      log << "]";
     }
-    return bakeTrees(inputs, outDir, options, force, verify, quiet, reportPath);
+    log << "\n";
   }
-  if (force || verify) return usageError(std::string(force ? "--force" : "--verify") + " goes with --recursive");
+  for (const auto& name : result.extensionsRemoved)
+    log << "  " << name << " removed from extensionsUsed/extensionsRequired: nothing in the output uses it\n";
+  for (const auto& w : result.warnings) std::cerr << "warning: " << shown(w) << "\n";
+}
+
+// A bake of files (not --recursive) as the command line asked for it, after its checks.
+struct FileBake {
+  std::vector<std::filesystem::path> inputs;
+  std::filesystem::path output, outDir;  // one of the two
+  std::filesystem::path reportPath;
+  bool quiet = false;
+  bool toStdout = false;  // -o -
+  // Where input n goes.
+  std::filesystem::path targetOf(const std::filesystem::path& input) const {
+    return output.empty() ? gltf::outputPathFor(input, outDir) : output;
+  }
+};
+
+// Reads the outputs the command line names (-o FILE, --out-dir DIR, or glTF-Transform's
+// `IN OUT`) into `run`; kExitOk, or the exit code of the usage error it printed.
+int planFileBake(const Arguments& parsed, FileBake& run) {
+  namespace fs = std::filesystem;
+  std::vector<fs::path>& inputs = run.inputs;
+  fs::path& output = run.output;
+  const fs::path& outDir = run.outDir;
   // A folder without -o (with --out-dir, or as `bake IN OUT`): the folder form was meant. (With
   // -o, loading refuses the folder as an input, exit 1, as any unreadable input.)
   for (const fs::path& input : inputs) {
@@ -266,57 +295,64 @@ int bakeCommand(const std::vector<std::string>& args) {
     // After "--" every argument is an input, "-o" too: say so where one looks like an option.
     for (const fs::path& input : inputs) {
       const std::string name = input.string();
-      if (operandsOnly && (name == "-o" || name == "--output" || name == "--out-dir"))
+      if (parsed.afterDashes && (name == "-o" || name == "--output" || name == "--out-dir"))
         return usageError("no output: '" + name + "' comes after '--', where every argument is an input; put -o FILE or --out-dir DIR before '--'");
     }
     return usageError("no output: give -o FILE or --out-dir DIR (or two files: IN OUT)");
   }
   if (!output.empty() && inputs.size() > 1) return usageError("-o takes one input; use --out-dir for several");
-  const bool toStdout = output == "-";
-  if (toStdout && ::isatty(STDOUT_FILENO))
+  run.toStdout = output == "-";
+  if (run.toStdout && ::isatty(STDOUT_FILENO))
     return usageError("-o - writes a binary .glb, and standard output is a terminal; redirect it (> out.glb) or pipe it");
-  if (toStdout && reportPath == "-") return usageError("-o - and --report - cannot both write to standard output");
+  if (run.toStdout && run.reportPath == "-") return usageError("-o - and --report - cannot both write to standard output");
   if (!outDir.empty()) {
     std::error_code ec;
     fs::create_directories(outDir, ec);
     if (!fs::is_directory(outDir)) return usageError("--out-dir " + outDir.string() + " is not a directory");
   }
+  return kExitOk;
+}
 
-  if (!outDir.empty()) {
+// What no bake of the run may write over: with several inputs, a file another input uses or an
+// earlier bake's output; --report, an input, a file one uses or an output. kExitOk, or the exit
+// code of the refusal it printed (before anything was baked).
+int protectRunFiles(const FileBake& run, gltf::ProtectedFiles& runFiles, gltf::BakeOptions& options) {
+  namespace fs = std::filesystem;
+  if (!run.outDir.empty()) {
     std::vector<fs::path> targets;
-    for (const fs::path& input : inputs) targets.push_back(gltf::outputPathFor(input, outDir));
-    if (const auto collisions = gltf::outputCollisions(inputs, targets); !collisions.empty()) {
+    for (const fs::path& input : run.inputs) targets.push_back(gltf::outputPathFor(input, run.outDir));
+    if (const auto collisions = gltf::outputCollisions(run.inputs, targets); !collisions.empty()) {
       std::cerr << "error: " << shown(gltf::describeCollisions(collisions)) << "\n";
       return kExitInputFailed;
     }
   }
-
-  // Several inputs: no bake writes over a file another input uses (even one baked later), or
-  // over what an earlier bake of this run wrote (two inputs' same-named images).
-  // --report is never written over an input, a file one uses or an output (before any bake).
-  gltf::ProtectedFiles runFiles;
-  if (inputs.size() > 1 || (!reportPath.empty() && reportPath != "-")) {
-    for (const fs::path& input : inputs) runFiles.addInput(input);
-    if (inputs.size() > 1) options.protectedFiles = &runFiles;
+  if (run.inputs.size() > 1 || (!run.reportPath.empty() && run.reportPath != "-")) {
+    for (const fs::path& input : run.inputs) runFiles.addInput(input);
+    if (run.inputs.size() > 1) options.protectedFiles = &runFiles;
     std::vector<fs::path> outputs;
-    for (const fs::path& input : inputs)
-      outputs.push_back(toStdout ? fs::path() : output.empty() ? gltf::outputPathFor(input, outDir) : output);
-    if (reportWouldReplace(reportPath, runFiles, outputs))
-      return usageError("--report " + shown(reportPath.string()) +
+    for (const fs::path& input : run.inputs) outputs.push_back(run.toStdout ? fs::path() : run.targetOf(input));
+    if (reportWouldReplace(run.reportPath, runFiles, outputs))
+      return usageError("--report " + shown(run.reportPath.string()) +
                         " is an input, a file an input uses or an output of this run; the report is never written over one");
   }
+  return kExitOk;
+}
 
-  ProgressLine progress(!quiet && inputs.size() > 1 && ::isatty(STDERR_FILENO));
-  std::ostream& log = reportPath == "-" || toStdout ? std::cerr : std::cout;
+// Each input baked in turn (until Ctrl-C asks to stop), its lines printed and its report entry
+// kept; then the report written and the exit code.
+int runFileBake(const FileBake& run, const gltf::BakeOptions& options, gltf::ProtectedFiles& runFiles) {
+  namespace fs = std::filesystem;
+  const std::vector<fs::path>& inputs = run.inputs;
+  ProgressLine progress(!run.quiet && inputs.size() > 1 && ::isatty(STDERR_FILENO));
+  std::ostream& log = run.reportPath == "-" || run.toStdout ? std::cerr : std::cout;
   int failed = 0;
   nlohmann::ordered_json report = nlohmann::ordered_json::array();
-  if (inputs.size() > 1)
-    output::stopGracefullyOnSignal(progress.onTerminal() ? kStopNoticeOverProgress : kStopNotice);
+  if (inputs.size() > 1) output::stopGracefullyOnSignal(progress.onTerminal() ? kStopNoticeOverProgress : kStopNotice);
   std::size_t done = 0;
   for (std::size_t n = 0; n < inputs.size() && !output::stopRequested(); ++n, ++done) {
     const fs::path& input = inputs[n];
     std::optional<StdoutTarget> stream;
-    if (toStdout) {
+    if (run.toStdout) {
       try {
         stream.emplace();
       } catch (const std::exception& e) {
@@ -325,7 +361,7 @@ int bakeCommand(const std::vector<std::string>& args) {
         return kExitInputFailed;
       }
     }
-    const fs::path target = stream ? stream->file() : output.empty() ? gltf::outputPathFor(input, outDir) : output;
+    const fs::path target = stream ? stream->file() : run.targetOf(input);
     const std::string targetName = stream ? "-" : target.string();
     progress.show(n, inputs.size(), input);
     nlohmann::ordered_json entry = {{"input", input.string()}, {"output", targetName}};
@@ -334,43 +370,10 @@ int bakeCommand(const std::vector<std::string>& args) {
       for (const fs::path& file : result.filesWritten) runFiles.add(file);
       if (stream) stream->send(input);
       entry["status"] = "ok";
-      if (!reportPath.empty()) entry.update(gltf::toJson(result));  // the per-primitive report: only when asked for
-      if (!quiet) {
+      if (!run.reportPath.empty()) entry.update(gltf::toJson(result));  // the per-primitive report: only when asked for
+      if (!run.quiet) {
         progress.clear();
-        int baked = 0, kept = 0, skipped = 0;
-        std::uint64_t split = 0;
-        for (const auto& p : result.primitives) {
-          baked += p.action == gltf::PrimitiveAction::baked;
-          kept += p.action == gltf::PrimitiveAction::kept;
-          skipped += p.action == gltf::PrimitiveAction::skipped;
-          // Generated normals may leave out vertices no triangle uses: only growth counts.
-          split += p.action == gltf::PrimitiveAction::baked && p.verticesOut > p.verticesIn ? p.verticesOut - p.verticesIn : 0;
-        }
-        log << shown(input.string()) << " -> " << shown(targetName) << ": " << baked << " baked, " << kept << " kept, "
-                  << skipped << " skipped; " << split << " vertices added by splits\n";
-        for (const auto& p : result.primitives) {
-          log << "  mesh " << p.mesh << (p.meshName.empty() ? "" : " '" + text::quoted(p.meshName) + "'") << " primitive "
-                    << p.primitive << ": " << gltf::toString(p.action) << " - " << shown(p.reason);
-          if (p.action == gltf::PrimitiveAction::baked) {
-            const Report& r = p.tangents;
-            log << " [" << toString(r.method) << (r.weighting ? "/" + std::string(toString(*r.weighting)) : "") << ", " << p.verticesIn << " -> "
-                      << p.verticesOut << " vertices, " << r.mirroredCorners << " mirrored corners";
-            if (p.normalsGenerated) log << ", NORMAL generated (" << gltf::toString(*p.normalsGenerated) << ")";
-            if (r.degenerateTriangles) log << ", " << r.degenerateTriangles << " degenerate triangles";
-            if (r.zeroUvAreaTriangles) log << ", " << r.zeroUvAreaTriangles << " zero-UV-area triangles";
-            if (r.nonFiniteTriangles) log << ", " << r.nonFiniteTriangles << " non-finite triangles";
-            if (r.nonManifoldFaces) log << ", " << r.nonManifoldFaces << " non-manifold faces";
-            if (r.invalidNormals) log << ", " << r.invalidNormals << " invalid normals";
-            if (r.inheritedCorners) log << ", " << r.inheritedCorners << " corners inherited a frame";
-            if (r.fallbackFromNeighbours + r.fallbackFixed)
-              log << ", " << r.fallbackFromNeighbours + r.fallbackFixed << " corners with fallback frames";
-            log << "]";
-          }
-          log << "\n";
-        }
-        for (const auto& name : result.extensionsRemoved)
-          log << "  " << name << " removed from extensionsUsed/extensionsRequired: nothing in the output uses it\n";
-        for (const auto& w : result.warnings) std::cerr << "warning: " << shown(w) << "\n";
+        printBakeResult(log, input, targetName, result);
       }
     } catch (const std::exception& e) {
       ++failed;
@@ -379,16 +382,54 @@ int bakeCommand(const std::vector<std::string>& args) {
       entry["status"] = "failed";
       entry["error"] = e.what();
     }
-    if (!reportPath.empty()) report.push_back(std::move(entry));
+    if (!run.reportPath.empty()) report.push_back(std::move(entry));
   }
   progress.clear();
-  if (const int written = writeReport(reportPath, report, &runFiles); written != kExitOk) return written;
+  if (const int written = writeReport(run.reportPath, report, &runFiles); written != kExitOk) return written;
   if (output::stopRequested()) {
     std::cerr << "tangent bake: stopped after " << done << " of " << inputs.size() << " inputs\n";
     return kExitInterrupted;
   }
-  if (failed && !quiet && inputs.size() > 1) std::cerr << failed << " of " << inputs.size() << " inputs failed\n";
+  if (failed && !run.quiet && inputs.size() > 1) std::cerr << failed << " of " << inputs.size() << " inputs failed\n";
   return failed ? kExitInputFailed : kExitOk;
+}
+
+}  // namespace
+
+// The command line read, its options applied, then a folder bake (--recursive) or a file bake:
+// its outputs planned, the run's files protected, each input baked.
+int bakeCommand(const std::vector<std::string>& args) {
+  namespace fs = std::filesystem;
+  const Arguments parsed = parseArguments(args, options::kBake | options::kBakeTree);
+  if (parsed.help) {
+    std::cout << kBakeUsageHead << options::helpText(options::kBake | options::kBakeTree);
+    return kExitOk;
+  }
+  if (!parsed.error.empty()) return usageError(parsed.error);
+  gltf::BatchOptions batch;
+  for (const auto& [option, value] : parsed.values) gltf::applyBatchOption(batch, *option, value);
+  gltf::BakeOptions& options = batch.bake;
+  FileBake run;
+  run.inputs.assign(parsed.operands.begin(), parsed.operands.end());
+  run.output = parsed.last("output") ? *parsed.last("output") : "";
+  run.outDir = parsed.last("out-dir") ? *parsed.last("out-dir") : "";
+  run.reportPath = parsed.last("report") ? *parsed.last("report") : "";
+  run.quiet = parsed.flag("quiet");
+  if (!options.assetRoot.empty() && !fs::is_directory(options.assetRoot))
+    return usageError("--asset-root " + shown(options.assetRoot.string()) + " is not a directory");
+  if (run.inputs.empty()) return usageError("no input files");
+  if (parsed.flag("recursive")) {
+    if (run.outDir.empty() || !run.output.empty()) return usageError("--recursive needs --out-dir DIR (and no -o)");
+    for (const fs::path& input : run.inputs) {
+      if (!fs::is_directory(input)) return usageError("--recursive: " + input.string() + " is not a folder");
+    }
+    return bakeTrees(run.inputs, run.outDir, options, batch.force, batch.verify, run.quiet, run.reportPath);
+  }
+  if (batch.force || batch.verify) return usageError(std::string(batch.force ? "--force" : "--verify") + " goes with --recursive");
+  if (const int planned = planFileBake(parsed, run); planned != kExitOk) return planned;
+  gltf::ProtectedFiles runFiles;
+  if (const int protectedRun = protectRunFiles(run, runFiles, options); protectedRun != kExitOk) return protectedRun;
+  return runFileBake(run, options, runFiles);
 }
 
 }  // namespace tangent::cli

@@ -24,6 +24,7 @@
 #include <thread>
 
 #include "analytic_surfaces.hpp"
+#include "arguments.hpp"
 #include "commands.hpp"
 #include "peers.hpp"
 #include "stress_cases.hpp"
@@ -50,29 +51,16 @@ std::optional<gltf::Scene> loadSceneOrWarn(const fs::path& file) {
   }
 }
 
-const char* kBenchUsage =
+const char* kBenchUsageHead =
     "usage: tangent bench [options]\n"
     "\n"
     "Error against run time of every method on analytic surfaces (exact tangents known) from\n"
     "about 1e2 to --max-triangles triangles, and agreement with mikktspace on real assets. When\n"
     "built with ../shared/peers, the reference MikkTSpace in C and meshoptimizer (compatible and\n"
-    "default modes) are measured on the same arrays and drawn on the same axes.\n"
-    "\n"
-    "options:\n"
-    "  --max-triangles N   largest resolution (default 1000000)\n"
-    "  --repeats N         timed runs per measurement; the median is reported (default 3)\n"
-    "  --out-dir DIR       where bench.csv, bench.json, plot.png and plot.svg go (default bench-results)\n"
-    "  --assets PATH       a glTF file or folder of them (default ../shared/assets when present)\n"
-    "  --no-plot           skip gnuplot\n"
-    "  --stress            run the stress suite instead and print its summary (exit 1 on failure)\n"
-    "  --peers             instead: every --assets file and a generated sphere and torus, each method\n"
-    "                      and meshoptimizer's two modes against the reference MikkTSpace C (max and\n"
-    "                      p99 angle, w mismatches) with each one's time on one thread; a Markdown\n"
-    "                      table, and peers.csv in --out-dir. Needs a build with ../shared/peers\n"
-    "  --triangles N       --peers: triangles of the generated sphere and torus (default 100000)\n"
-    "\n"
-    "The library is timed through computeCornerTangents on plain arrays, each call with its own\n"
-    "workspace (as the peers allocate theirs): the median of --repeats calls.\n";
+    "default modes) are measured on the same arrays and drawn on the same axes. The library is\n"
+    "timed through computeCornerTangents on plain arrays, each call with its own workspace (as the\n"
+    "peers allocate theirs): the median of --repeats calls.\n"
+    "\n";
 
 struct Setting {
   std::string label;
@@ -365,49 +353,21 @@ void writePlot(const fs::path& dir, const std::vector<std::string>& surfaces) {
   if (std::system(command.c_str()) != 0) std::cerr << "warning: gnuplot failed; plot.gp is in " << dir << "\n";
 }
 
-}  // namespace
-
-int benchCommand(const std::vector<std::string>& args) {
-  std::size_t maxTriangles = 1000000;
-  int repeats = 3;
-  fs::path outDir = "bench-results";
-  std::vector<fs::path> assets;
-  bool plot = true, stress = false, peersOnly = false;
-  std::size_t peerTriangles = 100000;
-  for (std::size_t i = 0; i < args.size(); ++i) {
-    const std::string& arg = args[i];
-    try {
-      if (arg == "-h" || arg == "--help") {
-        std::cout << kBenchUsage;
-        return kExitOk;
-      } else if (arg == "--max-triangles" && i + 1 < args.size()) maxTriangles = std::stoul(args[++i]);
-      else if (arg == "--repeats" && i + 1 < args.size()) repeats = std::clamp(std::stoi(args[++i]), 1, 100);
-      else if (arg == "--out-dir" && i + 1 < args.size()) outDir = args[++i];
-      else if (arg == "--assets" && i + 1 < args.size()) assets.emplace_back(args[++i]);
-      else if (arg == "--no-plot") plot = false;
-      else if (arg == "--stress") stress = true;
-      else if (arg == "--peers") peersOnly = true;
-      else if (arg == "--triangles" && i + 1 < args.size()) peerTriangles = std::max<std::size_t>(std::stoul(args[++i]), 8);
-      else throw std::invalid_argument(arg);
-    } catch (const std::exception&) {
-      std::cerr << "tangent bench: bad option '" << shown(arg) << "' (see tangent bench --help)\n";
-      return kExitUsage;
-    }
-  }
-  if (stress) return stressSummary();
-  if (assets.empty() && fs::is_directory("../shared/assets")) assets.emplace_back("../shared/assets");
-  if (peersOnly) return peersTable(assets, peerTriangles, repeats, outDir);
-  if (bench::peers().empty()) std::cerr << "tangent bench: " << bench::peersNote() << "\n";
-  std::error_code ec;
-  fs::create_directories(outDir, ec);
-
-  std::ostringstream csv;  // written with the others at the end, each file atomically
-  csv << "surface,triangles,method,threads,mean_deg,p99_deg,max_deg,w_errors,corners,ms\n";
-  Json results = Json::array();
+// The analytic surfaces' rows: the terminal table as it goes, and the CSV, JSON and plot rows.
+struct AnalyticResults {
+  std::ostringstream csv;
+  Json rows = Json::array();
   // The plot reads a copy sorted by series, so that each series' points are consecutive rows
   // and gnuplot joins them (a filtered-out row in between breaks the line).
   using SeriesKey = std::tuple<std::string, std::string, unsigned, std::size_t>;
   std::vector<std::pair<SeriesKey, std::string>> plotRows;
+};
+
+// Every method and peer on every analytic surface from 1e2 to `maxTriangles` triangles, against
+// the exact tangents.
+void benchAnalytic(std::size_t maxTriangles, int repeats, AnalyticResults& out) {
+  std::ostringstream& csv = out.csv;
+  csv << "surface,triangles,method,threads,mean_deg,p99_deg,max_deg,w_errors,corners,ms\n";
   std::printf("%-12s %9s %-18s %3s %10s %10s %10s %8s %10s\n", "surface", "triangles", "method", "thr", "mean deg", "p99 deg",
               "max deg", "w errors", "ms");
   std::vector<std::size_t> resolutions;
@@ -423,10 +383,10 @@ int benchCommand(const std::vector<std::string>& args) {
         row << surface << "," << mesh.triangles() << "," << label << "," << threads << "," << e.mean << "," << e.p99 << "," << e.max << ","
             << e.wErrors << "," << mesh.indices.size() << "," << ms << "\n";
         csv << row.str();
-        plotRows.push_back({{surface, label, threads, mesh.triangles()}, row.str()});
-        results.push_back({{"surface", surface}, {"triangles", mesh.triangles()}, {"method", label}, {"threads", threads},
-                           {"meanDegrees", e.mean}, {"p99Degrees", e.p99}, {"maxDegrees", e.max}, {"wErrors", e.wErrors},
-                           {"ms", ms}});
+        out.plotRows.push_back({{surface, label, threads, mesh.triangles()}, row.str()});
+        out.rows.push_back({{"surface", surface}, {"triangles", mesh.triangles()}, {"method", label}, {"threads", threads},
+                            {"meanDegrees", e.mean}, {"p99Degrees", e.p99}, {"maxDegrees", e.max}, {"wErrors", e.wErrors},
+                            {"ms", ms}});
       };
       const int runs = target >= 1000000 ? std::min(repeats, 3) : repeats;
       for (const Setting& setting : settings()) {
@@ -443,8 +403,10 @@ int benchCommand(const std::vector<std::string>& args) {
       std::fflush(stdout);
     }
   }
+}
 
-  // Real assets: every normal-mapped primitive, each method against mikktspace.
+// Real assets: every primitive with UVs, each method and peer against mikktspace; the JSON rows.
+Json benchAssets(const std::vector<fs::path>& assets, int repeats) {
   Json assetResults = Json::array();
   const std::vector<fs::path> files = assetFiles(assets);
   if (!files.empty())
@@ -497,14 +459,55 @@ int benchCommand(const std::vector<std::string>& args) {
       }
     }
   }
-  std::sort(plotRows.begin(), plotRows.end());
+  return assetResults;
+}
+
+}  // namespace
+
+int benchCommand(const std::vector<std::string>& args) {
+  const Arguments parsed = parseArguments(args, options::kBench);
+  if (parsed.help) {
+    std::cout << kBenchUsageHead << options::helpText(options::kBench);
+    return kExitOk;
+  }
+  if (parsed.error.empty() && !parsed.operands.empty()) {
+    std::cerr << "tangent bench: takes no input files ('" << shown(parsed.operands.front()) << "'; see --assets)\n";
+    return kExitUsage;
+  }
+  if (!parsed.error.empty()) {
+    std::cerr << "tangent bench: " << shown(parsed.error) << " (see tangent bench --help)\n";
+    return kExitUsage;
+  }
+  auto count = [&](std::string_view name, std::size_t fallback) {
+    const std::string* value = parsed.last(name);
+    return value ? static_cast<std::size_t>(std::stoull(*value)) : fallback;
+  };
+  const std::size_t maxTriangles = count("max-triangles", 1000000);
+  const int repeats = static_cast<int>(count("repeats", 3));
+  const std::size_t peerTriangles = count("triangles", 100000);
+  const fs::path outDir = parsed.last("out-dir") ? fs::path(*parsed.last("out-dir")) : fs::path("bench-results");
+  std::vector<fs::path> assets;
+  for (const auto& [option, value] : parsed.values)
+    if (option->name == "assets") assets.emplace_back(value);
+  const bool plot = !parsed.flag("no-plot"), stress = parsed.flag("stress"), peersOnly = parsed.flag("peers");
+  if (stress) return stressSummary();
+  if (assets.empty() && fs::is_directory("../shared/assets")) assets.emplace_back("../shared/assets");
+  if (peersOnly) return peersTable(assets, peerTriangles, repeats, outDir);
+  if (bench::peers().empty()) std::cerr << "tangent bench: " << bench::peersNote() << "\n";
+  std::error_code ec;
+  fs::create_directories(outDir, ec);
+
+  AnalyticResults analytic;
+  benchAnalytic(maxTriangles, repeats, analytic);
+  const Json assetResults = benchAssets(assets, repeats);
+  std::sort(analytic.plotRows.begin(), analytic.plotRows.end());
   std::ostringstream plotCsv;
-  for (const auto& [key, row] : plotRows) plotCsv << row;
+  for (const auto& [key, row] : analytic.plotRows) plotCsv << row;
   Json report = {{"machine", {{"hardwareThreads", std::thread::hardware_concurrency()}}},
                  {"repeats", repeats},
-                 {"analytic", results},
+                 {"analytic", analytic.rows},
                  {"assetsAgainstMikktspace", assetResults}};
-  if (!writeTextOutput((outDir / "bench.csv").string(), csv.str(), "bench") ||
+  if (!writeTextOutput((outDir / "bench.csv").string(), analytic.csv.str(), "bench") ||
       !writeTextOutput((outDir / "plot.csv").string(), plotCsv.str(), "bench") ||
       !writeTextOutput((outDir / "bench.json").string(), text::dumpJson(report, 2) + "\n", "bench"))
     return kExitInputFailed;

@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: MIT
 // The web build's tinygltf and stb_image: Debian ships tinygltf as a native library and stb as
 // headers, so the web viewer compiles their implementations here, once. The library never lets
-// tinygltf decode images (libtangent/gltf/src/asset.cpp); the viewer's decoder is
+// tinygltf decode images (libtangent/gltf/src/read/asset.cpp); the viewer's decoder is
 // viewer/web/images.cpp.
 #define STB_IMAGE_IMPLEMENTATION
 #define STB_IMAGE_WRITE_IMPLEMENTATION

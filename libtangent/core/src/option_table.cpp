@@ -100,6 +100,24 @@ constexpr Option kTable[] = {
   {"identify", 0, Kind::flag, "", "false", 0, 0, false, kCheck, kCliPython, "",
    "name the generator closest to the stored tangents (one of --reference's names) with its median and max "
    "angle, or none of these (with the nearest)"},
+
+  // tangent bench (the command line only).
+  {"max-triangles", 0, Kind::integer, "", "1000000", 100, 1e9, false, kBench, kCli, "N",
+   "largest resolution of the analytic surfaces"},
+  {"repeats", 0, Kind::integer, "", "3", 1, 100, false, kBench, kCli, "N", "timed runs per measurement; the median is reported"},
+  {"out-dir", 0, Kind::path, "", "", 0, 0, false, kBench, kCli, "DIR",
+   "where bench.csv, bench.json, plot.png and plot.svg (--peers: peers.csv) go (default bench-results)"},
+  {"assets", 0, Kind::path, "", "", 0, 0, false, kBench, kCli, "PATH",
+   "a glTF file or folder of them; may be given more than once (default ../shared/assets when present)"},
+  {"no-plot", 0, Kind::flag, "", "false", 0, 0, false, kBench, kCli, "", "skip gnuplot"},
+  {"stress", 0, Kind::flag, "", "false", 0, 0, false, kBench, kCli, "",
+   "run the stress suite instead and print its summary (exit 1 on failure)"},
+  {"peers", 0, Kind::flag, "", "false", 0, 0, false, kBench, kCli, "",
+   "instead: every --assets file and a generated sphere and torus, each method and meshoptimizer's two "
+   "modes against the reference MikkTSpace C (max and p99 angle, w mismatches) with each one's time on one "
+   "thread; a Markdown table. Needs a build with ../shared/peers"},
+  {"triangles", 0, Kind::integer, "", "100000", 8, 1e9, false, kBench, kCli, "N",
+   "--peers: triangles of the generated sphere and torus"},
 };
 // clang-format on
 

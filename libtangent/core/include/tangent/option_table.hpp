@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: MIT
-// The one table of options every front end takes: `tangent bake` and `tangent check` parse their
-// command lines with it and print their help from it; Python's keyword arguments (bake, bake_tree,
+// The one table of options every front end takes: `tangent bake`, `tangent check` and `tangent
+// bench` parse their command lines with it and print their help from it; Python's keyword arguments (bake, bake_tree,
 // check, compute_tangents) are checked against it and get their signatures from it; the npm
 // package's option objects are compared with it by tests/python/test_option_table.py. An option is
 // spelled `--crease-angle` on the command line, `crease_angle` in Python and `creaseAngle` in npm.
@@ -38,6 +38,7 @@ enum Command : unsigned {
   kBake = 1u << 1,      // tangent bake IN OUT, Python bake()
   kBakeTree = 1u << 2,  // tangent bake --recursive, Python bake_tree()
   kCheck = 1u << 3,     // tangent check, Python check()
+  kBench = 1u << 4,     // tangent bench
 };
 
 // Where an option is taken (a bit each).

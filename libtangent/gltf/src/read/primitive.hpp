@@ -5,9 +5,9 @@
 
 #include <nlohmann/json.hpp>
 
-#include "accessors.hpp"
-#include "asset.hpp"
-#include "normals.hpp"
+#include "read/accessors.hpp"
+#include "read/asset.hpp"
+#include "read/normals.hpp"
 #include <array>
 #include <cstdint>
 #include <string>

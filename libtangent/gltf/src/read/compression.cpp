@@ -1,11 +1,11 @@
 // SPDX-License-Identifier: MIT
 // Which compressions a document and its primitives use, and the bookkeeping of their
 // extension declarations. The decoders are in meshopt_decode.cpp and draco_decode.cpp.
-#include "compression.hpp"
+#include "read/compression.hpp"
 
 #include <algorithm>
 
-#include "primitive.hpp"
+#include "read/primitive.hpp"
 #include "tangent/gltf.hpp"
 
 namespace tangent::gltf::detail {

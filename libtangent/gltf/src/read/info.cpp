@@ -1,10 +1,10 @@
 // SPDX-License-Identifier: MIT
 // `tangent info`: meshes, primitives, attributes, and which primitives need tangents and why.
-#include "asset.hpp"
-#include "accessors.hpp"
-#include "compression.hpp"
+#include "read/asset.hpp"
+#include "read/accessors.hpp"
+#include "read/compression.hpp"
 #include "entry_point.hpp"
-#include "primitive.hpp"
+#include "read/primitive.hpp"
 #include "tangent/gltf.hpp"
 
 namespace tangent::gltf {

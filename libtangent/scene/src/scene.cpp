@@ -13,17 +13,17 @@
 #include <numeric>
 #include <optional>
 
-#include "accessors.hpp"
-#include "animation_rules.hpp"
-#include "asset.hpp"
-#include "check_primitive.hpp"
+#include "read/accessors.hpp"
+#include "read/animation_rules.hpp"
+#include "read/asset.hpp"
+#include "check/check_primitive.hpp"
 #include "entry_point.hpp"
-#include "normals.hpp"
-#include "primitive.hpp"
+#include "read/normals.hpp"
+#include "read/primitive.hpp"
 #include "tangent/gltf.hpp"
 #include "tangent/text.hpp"
-#include "tangent_rules.hpp"
-#include "uri.hpp"
+#include "check/tangent_rules.hpp"
+#include "read/uri.hpp"
 
 namespace tangent::gltf {
 namespace {

@@ -8,13 +8,13 @@
 #include <map>
 #include <set>
 
-#include "asset.hpp"
-#include "document.hpp"
-#include "sha256.hpp"
+#include "read/asset.hpp"
+#include "write/document.hpp"
+#include "bake/sha256.hpp"
 #include "tangent/output.hpp"
 #include "tangent/text.hpp"
-#include "uri.hpp"
-#include "validate.hpp"
+#include "read/uri.hpp"
+#include "read/validate.hpp"
 
 namespace tangent::gltf {
 

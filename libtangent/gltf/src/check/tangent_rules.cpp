@@ -17,7 +17,7 @@
 // compares TANGENT with a frame recomputed from the rounded NORMAL (projection onto a plane tilted
 // by d turns a direction by at most d): tolerance + both angles, plus what rounded positions and
 // UVs do to the recomputed frame (referenceAllowance below).
-#include "tangent_rules.hpp"
+#include "check/tangent_rules.hpp"
 
 #include <algorithm>
 #include <array>
@@ -32,10 +32,10 @@
 #include <tbb/task_arena.h>
 #endif
 
-#include "accessors.hpp"
-#include "compression.hpp"
-#include "asset.hpp"
-#include "primitive.hpp"
+#include "read/accessors.hpp"
+#include "read/compression.hpp"
+#include "read/asset.hpp"
+#include "read/primitive.hpp"
 
 namespace tangent::gltf::detail {
 namespace {

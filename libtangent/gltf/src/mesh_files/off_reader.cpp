@@ -18,7 +18,7 @@
 #include <string>
 #include <vector>
 
-#include "mesh_import.hpp"
+#include "mesh_files/mesh_import.hpp"
 #include "tangent/gltf.hpp"
 
 namespace tangent::gltf::detail {

@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: MIT
 // glTF 2.0 section 3.11 "Animations" and its table of channel paths and accessor formats.
-#include "animation_rules.hpp"
+#include "read/animation_rules.hpp"
 
 namespace tangent::gltf::detail {
 namespace {

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-#include "accessors.hpp"
+#include "read/accessors.hpp"
 
 #include <algorithm>
 #include <cstring>

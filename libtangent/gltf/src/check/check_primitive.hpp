@@ -7,8 +7,8 @@
 #include <string>
 #include <vector>
 
-#include "asset.hpp"
-#include "primitive.hpp"
+#include "read/asset.hpp"
+#include "read/primitive.hpp"
 #include "tangent/check.hpp"
 #include "tangent/verdict.hpp"
 

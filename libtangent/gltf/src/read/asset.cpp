@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-#include "asset.hpp"
+#include "read/asset.hpp"
 
 #include <cctype>
 #include <climits>
@@ -12,11 +12,11 @@
 #include "tangent/gltf.hpp"
 #include "tangent/input_file.hpp"
 #include "tangent/text.hpp"
-#include "compression.hpp"
-#include "document.hpp"
-#include "primitive.hpp"
-#include "uri.hpp"
-#include "validate.hpp"
+#include "read/compression.hpp"
+#include "write/document.hpp"
+#include "read/primitive.hpp"
+#include "read/uri.hpp"
+#include "read/validate.hpp"
 
 namespace tangent::gltf {
 

@@ -2,7 +2,7 @@
 // What a primitive is and needs, and reading the geometry tangents are computed from.
 // glTF 2.0 spec 3.7.2.1: tangents come from the UV set the normal texture uses;
 // KHR_texture_transform on the normal texture may override that set and turns the UVs.
-#include "primitive.hpp"
+#include "read/primitive.hpp"
 
 #include <algorithm>
 #include <cmath>

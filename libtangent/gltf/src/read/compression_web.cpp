@@ -1,11 +1,12 @@
 // SPDX-License-Identifier: MIT
 // The web build's stand-ins for the glTF layer's two decoders that need native libraries
 // (Debian ships Draco and meshoptimizer as native code only): Draco and EXT_meshopt_compression
-// decoding (draco_decode.cpp, meshopt_decode.cpp). viewer/CMakeLists.txt swaps them in for those files;
-// each refuses what it is given with a message naming the file and element, as the library's
-// readers do, and README.md lists them as left out of the web viewer.
-#include "asset.hpp"
-#include "compression.hpp"
+// decoding (draco_decode.cpp, meshopt_decode.cpp). libtangent/CMakeLists.txt compiles this file
+// instead of those two under emscripten; each refuses what it is given with a message naming
+// the file and element, as the library's readers do, and README.md lists them as left out of
+// the web viewer.
+#include "read/asset.hpp"
+#include "read/compression.hpp"
 #include "tangent/gltf.hpp"
 
 namespace tangent::gltf::detail {

@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: MIT
 // SHA-256 as specified in FIPS 180-4 (constants: section 4.2.2, initial hash: 5.3.3,
 // computation: 6.2.2).
-#include "sha256.hpp"
+#include "bake/sha256.hpp"
 
 #include <bit>
 #include <cstdio>

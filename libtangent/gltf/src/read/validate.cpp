@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-#include "validate.hpp"
+#include "read/validate.hpp"
 
 #include <array>
 #include <cstdint>
@@ -9,8 +9,8 @@
 #include <utility>
 #include <vector>
 
-#include "accessors.hpp"
-#include "animation_rules.hpp"
+#include "read/accessors.hpp"
+#include "read/animation_rules.hpp"
 #include "tangent/gltf.hpp"
 
 namespace tangent::gltf::detail {

@@ -16,13 +16,13 @@
 #include <malloc.h>
 #endif
 
-#include "accessors.hpp"
-#include "asset.hpp"
-#include "primitive.hpp"
-#include "check_primitive.hpp"
+#include "read/accessors.hpp"
+#include "read/asset.hpp"
+#include "read/primitive.hpp"
+#include "check/check_primitive.hpp"
 #include "entry_point.hpp"
-#include "tangent_rules.hpp"
-#include "validate.hpp"
+#include "check/tangent_rules.hpp"
+#include "read/validate.hpp"
 #include "tangent/gltf.hpp"
 #include "tangent/text.hpp"
 #include "tangent/verdict.hpp"

@@ -21,8 +21,8 @@
 #include <tuple>
 #include <unordered_map>
 
-#include "asset.hpp"
-#include "mesh_import.hpp"
+#include "read/asset.hpp"
+#include "mesh_files/mesh_import.hpp"
 #include "tangent/gltf.hpp"
 #include "tangent/text.hpp"
 
@@ -134,7 +134,10 @@ void triangulatePolygon(const std::vector<float>& positions, const std::vector<s
 
 }  // namespace
 
-std::vector<std::uint8_t> meshFileToGlb(const std::filesystem::path& path) {
+namespace {
+
+// The file read once into memory and parsed by the reader its extension names.
+ImportedPolygons readPolygons(const std::filesystem::path& path) {
   ImportedPolygons mesh;
   std::error_code ec;
   const std::uintmax_t fileBytes = std::filesystem::file_size(path, ec);
@@ -168,8 +171,17 @@ std::vector<std::uint8_t> meshFileToGlb(const std::filesystem::path& path) {
       throw InputError(path.string() + ": a count in the file is out of range; the file is malformed");
     }
   }
-  std::string().swap(text);  // parsed: its memory is not held while the GLB is built
-  if (mesh.faceCount() == 0) throw InputError(path.string() + ": has no faces");
+  return mesh;  // `text` freed on return: its memory is not held while the GLB is built
+}
+
+// The arrays of the GLB's one primitive: one glTF vertex per distinct (vertex, UV, normal),
+// UVs in glTF's top-left origin, polygons triangulated.
+struct MeshFileArrays {
+  std::vector<float> positions, normals, uvs;  // normals empty: the file gave not every corner one
+  std::vector<std::uint32_t> indices;
+};
+
+MeshFileArrays gltfVertices(const ImportedPolygons& mesh, const std::filesystem::path& path) {
   // NORMAL where the file gave every corner one (its own, or its vertex's); else none (bake
   // generates them as for a glTF without NORMAL), never the values left unset.
   auto hasNormal = [&](std::size_t corner) { return mesh.hasCornerNormal(corner) || mesh.normalSet[mesh.corners[corner]]; };
@@ -180,8 +192,11 @@ std::vector<std::uint8_t> meshFileToGlb(const std::filesystem::path& path) {
 
   // One glTF vertex per distinct (vertex, UV, normal).
   std::map<std::array<std::uint32_t, 6>, std::uint32_t> vertexOf;
-  std::vector<float> positions, normals, uvs;
-  std::vector<std::uint32_t> indices;
+  MeshFileArrays out;
+  std::vector<float>& positions = out.positions;
+  std::vector<float>& normals = out.normals;
+  std::vector<float>& uvs = out.uvs;
+  std::vector<std::uint32_t>& indices = out.indices;
   std::vector<std::uint32_t> polygon;
   for (std::size_t face = 0; face < mesh.faceCount(); ++face) {
     polygon.clear();
@@ -218,6 +233,14 @@ std::vector<std::uint8_t> meshFileToGlb(const std::filesystem::path& path) {
     }
     triangulatePolygon(positions, polygon, indices);
   }
+  return out;
+}
+
+// The GLB: POSITION, NORMAL where there are normals, TEXCOORD_0 and the indices in one buffer.
+std::vector<std::uint8_t> meshGlb(const MeshFileArrays& arrays, const std::filesystem::path& path) {
+  const std::vector<float>& positions = arrays.positions;
+  const std::vector<std::uint32_t>& indices = arrays.indices;
+  const bool haveNormals = !arrays.normals.empty();
   const std::size_t vertexCount = positions.size() / 3;
   float lo[3] = {positions[0], positions[1], positions[2]}, hi[3] = {lo[0], lo[1], lo[2]};
   for (std::size_t i = 0; i < positions.size(); ++i) {
@@ -227,8 +250,8 @@ std::vector<std::uint8_t> meshFileToGlb(const std::filesystem::path& path) {
 
   std::vector<std::uint8_t> bin;
   appendFloats(bin, positions);
-  appendFloats(bin, normals);
-  appendFloats(bin, uvs);
+  appendFloats(bin, arrays.normals);
+  appendFloats(bin, arrays.uvs);
   const std::size_t indexOffset = bin.size();
   bin.resize(indexOffset + indices.size() * 4);
   std::memcpy(&bin[indexOffset], indices.data(), indices.size() * 4);
@@ -265,6 +288,14 @@ std::vector<std::uint8_t> meshFileToGlb(const std::filesystem::path& path) {
       {"bufferViews", bufferViews},
       {"buffers", Json::array({{{"byteLength", bin.size()}}})}};
   return makeGlb(text::dumpJson(doc), bin);
+}
+
+}  // namespace
+
+std::vector<std::uint8_t> meshFileToGlb(const std::filesystem::path& path) {
+  const ImportedPolygons mesh = readPolygons(path);
+  if (mesh.faceCount() == 0) throw InputError(path.string() + ": has no faces");
+  return meshGlb(gltfVertices(mesh, path), path);
 }
 
 }  // namespace tangent::gltf::detail

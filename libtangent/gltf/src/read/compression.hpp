@@ -12,7 +12,7 @@
 #include <string>
 #include <vector>
 
-#include "asset.hpp"
+#include "read/asset.hpp"
 
 namespace tangent::gltf::detail {
 

@@ -12,13 +12,13 @@
 #include <unordered_map>
 #include <utility>
 
-#include "accessors.hpp"
-#include "asset.hpp"
-#include "check_primitive.hpp"
-#include "compression.hpp"
-#include "document.hpp"
+#include "read/accessors.hpp"
+#include "read/asset.hpp"
+#include "check/check_primitive.hpp"
+#include "read/compression.hpp"
+#include "write/document.hpp"
 #include "entry_point.hpp"
-#include "primitive.hpp"
+#include "read/primitive.hpp"
 #include "tangent/bulk_buffer.hpp"
 #include "tangent/frame_rules.hpp"
 #include "tangent/gltf.hpp"

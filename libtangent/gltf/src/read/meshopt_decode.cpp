@@ -8,7 +8,7 @@
 #include <cstring>
 #include <optional>
 
-#include "compression.hpp"
+#include "read/compression.hpp"
 #include "tangent/gltf.hpp"
 
 namespace tangent::gltf::detail {

@@ -14,13 +14,13 @@
 #include <optional>
 #include <set>
 
-#include "compression.hpp"
-#include "document.hpp"
+#include "read/compression.hpp"
+#include "write/document.hpp"
 #include "tangent/gltf.hpp"
 #include "tangent/output.hpp"
 #include "tangent/text.hpp"
-#include "uri.hpp"
-#include "validate.hpp"
+#include "read/uri.hpp"
+#include "read/validate.hpp"
 
 namespace tangent::gltf::detail {
 

@@ -10,9 +10,9 @@
 #include <map>
 #include <new>
 
-#include "accessors.hpp"
-#include "compression.hpp"
-#include "primitive.hpp"
+#include "read/accessors.hpp"
+#include "read/compression.hpp"
+#include "read/primitive.hpp"
 #include "tangent/gltf.hpp"
 
 namespace tangent::gltf::detail {

@@ -14,7 +14,7 @@
 #include <variant>
 #include <vector>
 
-#include "asset.hpp"
+#include "read/asset.hpp"
 #include "tangent/bulk_buffer.hpp"
 #include "tangent/gltf.hpp"
 #include "tangent/output.hpp"

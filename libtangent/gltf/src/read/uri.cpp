@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-#include "uri.hpp"
+#include "read/uri.hpp"
 
 #include <algorithm>
 #include <cctype>

@@ -1,8 +1,8 @@
 // SPDX-License-Identifier: MIT
 // NORMAL as glTF readers treat it (normals.hpp).
-#include "normals.hpp"
+#include "read/normals.hpp"
 
-#include "primitive.hpp"
+#include "read/primitive.hpp"
 
 #include <algorithm>
 #include <array>
