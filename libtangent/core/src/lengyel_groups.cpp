@@ -174,19 +174,28 @@ std::vector<std::vector<std::uint32_t>> neighbourWelds(const MeshArrays& mesh, s
 
 }  // namespace
 
-void fillUndefinedGroups(const MeshArrays& mesh, std::span<const std::uint32_t> weldOf, CornerGroups& cornerGroups) {
-  std::vector<Group>& groups = cornerGroups.groups;
-  // The groups without a frame, in order (few; `flat` has three groups a triangle, and the
-  // passes below then read only these instead of every group again).
-  std::vector<std::uint32_t> undefined;
-  for (std::uint32_t g = 0; g < groups.size(); ++g) {
-    if (!groups[g].defined) undefined.push_back(g);
+namespace {
+
+// The defined groups of each position, listed once: definedGroups[start[v] .. end[v]). Where a
+// position's defined groups all have one normal and one UV (a smooth vertex), every question
+// ranks them alike but for the normal's term, which is then the same for all: only the first
+// of the best (what frameFromCandidates would pick among them) is listed.
+struct DefinedByPosition {
+  std::vector<std::uint32_t> start, end, groups;
+  template <class Each>
+  void forEach(const std::vector<Group>& all, std::uint32_t weld, Each&& each) const {
+    for (std::uint32_t i = start[weld]; i < end[weld]; ++i) each(all[groups[i]]);
   }
-  if (undefined.empty()) return;
+  std::size_t count(std::uint32_t weld) const { return end[weld] - start[weld]; }
+};
+
+DefinedByPosition definedByPosition(const std::vector<Group>& groups, std::size_t vertexCount) {
+  DefinedByPosition out;
+  std::vector<std::uint32_t>& definedStart = out.start;
+  std::vector<std::uint32_t>& definedGroups = out.groups;
   // The groups of one position are adjacent (the key starts with it): its defined ones, listed
   // once (a position with n groups, none defined, is then not read n times).
-  const std::size_t vertexCount = weldOf.size();
-  std::vector<std::uint32_t> definedStart(vertexCount + 1, 0), definedGroups;
+  definedStart.assign(vertexCount + 1, 0);
   for (std::uint32_t g = 0; g < groups.size(); ++g) {
     if (groups[g].defined) ++definedStart[groups[g].key->weld + 1];
   }
@@ -198,10 +207,8 @@ void fillUndefinedGroups(const MeshArrays& mesh, std::span<const std::uint32_t> 
       if (groups[g].defined) definedGroups[next[groups[g].key->weld]++] = g;
     }
   }
-  // Where a position's defined groups all have one normal and one UV (a smooth vertex), every
-  // question ranks them alike but for the normal's term, which is then the same for all: only
-  // the first of the best (what frameFromCandidates would pick among them) need be read.
-  std::vector<std::uint32_t> definedEnd(definedStart.begin() + 1, definedStart.end());
+  out.end.assign(definedStart.begin() + 1, definedStart.end());
+  std::vector<std::uint32_t>& definedEnd = out.end;
   for (std::size_t v = 0; v < vertexCount; ++v) {
     const std::uint32_t first = definedStart[v];
     if (definedEnd[v] - first < 2) continue;
@@ -221,13 +228,41 @@ void fillUndefinedGroups(const MeshArrays& mesh, std::span<const std::uint32_t> 
     definedGroups[first] = best;
     definedEnd[v] = first + 1;
   }
-  auto definedAt = [&](std::uint32_t weld, auto&& each) {
-    for (std::uint32_t i = definedStart[weld]; i < definedEnd[weld]; ++i) each(groups[definedGroups[i]]);
-  };
-  // A group's answer depends only on its position, its normal (and for the first pass its UV)
-  // and the defined groups, which this function does not change. Where a question reads many
-  // groups it is answered once (the n groups of a vertex of valence n would otherwise each
-  // read the others: quadratic); where it reads few, reading them again is cheaper.
+  return out;
+}
+
+// A group's answer depends only on its position, its normal (and for the first pass its UV)
+// and the defined groups, which fillUndefinedGroups does not change. Where a question reads
+// many groups it is answered once (the n groups of a vertex of valence n would otherwise each
+// read the others: quadratic); where it reads few, reading them again is cheaper.
+class FrameQuestions {
+ public:
+  // Question `kind` (0: same normal and UV, 1: same position, 2: the 1-ring) for `group`, whose
+  // candidates `gather` pushes into candidates(); whether a frame was found (then in `group`).
+  template <class Gather>
+  bool ask(std::uint64_t kind, std::size_t reads, Group& group, Gather&& gather) {
+    candidates_.clear();
+    if (reads <= kReadAgainAtMost) {
+      gather();
+      return frameFromCandidates(candidates_, group);
+    }
+    const CornerKey& k = *group.key;  // the normal as it is, -0 apart from +0 (the key does not tell them)
+    const std::array<std::uint64_t, 7> question{kind, k.weld, bitCast<std::uint64_t>(group.normal[0]),
+                                               bitCast<std::uint64_t>(group.normal[1]), bitCast<std::uint64_t>(group.normal[2]),
+                                               kind == 0 ? k.uv[0] : 0, kind == 0 ? k.uv[1] : 0};
+    const auto [at, inserted] = answered_.try_emplace(question);
+    if (!inserted) {
+      if (at->second.found) group.tangent = at->second.tangent, group.w = at->second.w;
+      return at->second.found;
+    }
+    gather();
+    const bool found = frameFromCandidates(candidates_, group);
+    at->second = Answer{found, group.tangent, group.w};
+    return found;
+  }
+  std::vector<const Group*>& candidates() { return candidates_; }
+
+ private:
   struct Answer {
     bool found;
     Vec3 tangent;
@@ -240,29 +275,27 @@ void fillUndefinedGroups(const MeshArrays& mesh, std::span<const std::uint32_t> 
       return static_cast<std::size_t>(h ^ (h >> 29));
     }
   };
-  constexpr std::size_t kReadAgainAtMost = 32;
-  std::unordered_map<std::array<std::uint64_t, 7>, Answer, QuestionHash> answered;
-  std::vector<const Group*> candidates;
-  auto ask = [&](std::uint64_t kind, std::size_t reads, Group& group, auto&& gather) {
-    candidates.clear();
-    if (reads <= kReadAgainAtMost) {
-      gather();
-      return frameFromCandidates(candidates, group);
-    }
-    const CornerKey& k = *group.key;  // the normal as it is, -0 apart from +0 (the key does not tell them)
-    const std::array<std::uint64_t, 7> question{kind, k.weld, bitCast<std::uint64_t>(group.normal[0]),
-                                               bitCast<std::uint64_t>(group.normal[1]), bitCast<std::uint64_t>(group.normal[2]),
-                                               kind == 0 ? k.uv[0] : 0, kind == 0 ? k.uv[1] : 0};
-    const auto [at, inserted] = answered.try_emplace(question);
-    if (!inserted) {
-      if (at->second.found) group.tangent = at->second.tangent, group.w = at->second.w;
-      return at->second.found;
-    }
-    gather();
-    const bool found = frameFromCandidates(candidates, group);
-    at->second = Answer{found, group.tangent, group.w};
-    return found;
-  };
+  static constexpr std::size_t kReadAgainAtMost = 32;
+  std::unordered_map<std::array<std::uint64_t, 7>, Answer, QuestionHash> answered_;
+  std::vector<const Group*> candidates_;
+};
+
+}  // namespace
+
+void fillUndefinedGroups(const MeshArrays& mesh, std::span<const std::uint32_t> weldOf, CornerGroups& cornerGroups) {
+  std::vector<Group>& groups = cornerGroups.groups;
+  // The groups without a frame, in order (few; `flat` has three groups a triangle, and the
+  // passes below then read only these instead of every group again).
+  std::vector<std::uint32_t> undefined;
+  for (std::uint32_t g = 0; g < groups.size(); ++g) {
+    if (!groups[g].defined) undefined.push_back(g);
+  }
+  if (undefined.empty()) return;
+  const std::size_t vertexCount = weldOf.size();
+  const DefinedByPosition defined = definedByPosition(groups, vertexCount);
+  FrameQuestions questions;
+  std::vector<const Group*>& candidates = questions.candidates();
+  auto definedAt = [&](std::uint32_t weld, auto&& each) { defined.forEach(groups, weld, each); };
   std::vector<std::uint8_t> wantsRing(vertexCount, 0);
   for (const std::uint32_t g : undefined) {
     Group& group = groups[g];
@@ -270,7 +303,7 @@ void fillUndefinedGroups(const MeshArrays& mesh, std::span<const std::uint32_t> 
     // Same normal and UV first (a degenerate corner of a smooth vertex), then any.
     const std::uint32_t weld = group.key->weld;
     for (int pass = 0; pass < 2 && !found; ++pass) {
-      found = ask(pass, definedEnd[weld] - definedStart[weld], group, [&] {
+      found = questions.ask(pass, defined.count(weld), group, [&] {
         definedAt(weld, [&](const Group& other) {
           if (pass == 1 || other.key->sameAttributes(*group.key)) candidates.push_back(&other);
         });
@@ -287,7 +320,7 @@ void fillUndefinedGroups(const MeshArrays& mesh, std::span<const std::uint32_t> 
     Group& group = groups[g];
     if (group.source != FrameSource::fixed) continue;
     const std::vector<std::uint32_t>& neighbours = ring[group.key->weld];
-    const bool found = ask(2, neighbours.size(), group, [&] {
+    const bool found = questions.ask(2, neighbours.size(), group, [&] {
       for (std::uint32_t neighbour : neighbours) definedAt(neighbour, [&](const Group& other) { candidates.push_back(&other); });
     });
     if (found) {

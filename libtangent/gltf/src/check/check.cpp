@@ -12,14 +12,11 @@
 #include <iterator>
 #include <unordered_map>
 
-#if defined(__GLIBC__)
-#include <malloc.h>
-#endif
-
 #include "read/accessors.hpp"
 #include "read/asset.hpp"
 #include "read/primitive.hpp"
 #include "check/check_primitive.hpp"
+#include "check/generators.hpp"
 #include "entry_point.hpp"
 #include "check/tangent_rules.hpp"
 #include "read/validate.hpp"
@@ -155,72 +152,6 @@ struct VertexFindings {
   }
   FindingBuilder finite, unit, w;
 };
-
-// Frames of `frames` (one per corner, glTF's w) by one generator, as bake computes them: what
-// `reference` and `--identify` compare the stored tangents with.
-void computeFrames(const PrimitiveGeometry& frames, Method method, Weighting weighting, TangentWorkspace& workspace,
-                   std::vector<float>& computed, std::vector<FrameSource>& sources) {
-  Options core;
-  core.method = method;
-  core.weighting = weighting;
-  core.uvOrigin = kGltfUvOrigin;
-  core.threads = threadsFor(frames.corners.size(), core.threads);
-  computed.assign(frames.corners.size() * 4, 0.0f);
-  sources.assign(frames.corners.size(), FrameSource{});
-  computeCornerTangents({frames.positions, frames.normals, frames.uvs, frames.corners}, CornerOutputs{computed, sources}, core, workspace);
-}
-
-// Memory the heap holds free, given back to the system (glibc; elsewhere nothing). Between
-// identify's generators: each takes 0.5-1 GB of scratch at 10^6 triangles and frees it, and
-// the heap, which the tangent command keeps from returning large blocks (large_pages.cpp), grew
-// by 0.2 GB with every generator over the holes the one before left (1.74 GB at the end, where
-// the largest generator alone takes 1.16 GB).
-void releaseFreeHeap() {
-#if defined(__GLIBC__)
-  malloc_trim(0);
-#endif
-}
-
-// check --identify: the stored tangents against each generator the library has, on the same
-// geometry the reference uses (frames: the part, or its flat-normal split).
-void identifyGenerator(const PrimitiveGeometry& frames, const PrimitiveGeometry& part, const UsedVertices& used,
-                       const std::vector<float>& tangents, TangentWorkspace& workspace, PrimitiveCheck& result) {
-  for (const Generator& candidate : kGenerators) {
-    std::vector<float> computed;
-    std::vector<FrameSource> sources;
-    computeFrames(frames, candidate.method, candidate.weighting, workspace, computed, sources);
-    std::vector<double> angles;
-    std::size_t wAgree = 0;
-    for (std::size_t c = 0; c < frames.corners.size(); ++c) {
-      if (sources[c] == FrameSource::neighbour || sources[c] == FrameSource::fixed) continue;
-      const float* stored = &tangents[4 * used.vertices[part.corners[c]]];
-      if (!finite4(stored)) continue;
-      angles.push_back(angleBetweenDegrees(stored, &computed[4 * c]));
-      wAgree += (stored[3] < 0) == (computed[4 * c + 3] < 0);
-    }
-    GeneratorMatch match;
-    match.name = toString(candidate);
-    if (angles.empty()) {
-      match.medianDegrees = match.maxDegrees = 180;
-    } else {
-      // The median by selection, not a sort: a sort of 6 million angles per generator took 8%
-      // of identify's time at 10^6 triangles.
-      const auto middle = angles.begin() + static_cast<std::ptrdiff_t>(angles.size() / 2);
-      std::nth_element(angles.begin(), middle, angles.end());
-      match.medianDegrees = *middle;
-      match.maxDegrees = *std::max_element(middle, angles.end());
-      match.wAgreement = double(wAgree) / double(angles.size());
-    }
-    result.generators.push_back(std::move(match));
-    releaseFreeHeap();
-  }
-  std::stable_sort(result.generators.begin(), result.generators.end(),
-                   [](const GeneratorMatch& a, const GeneratorMatch& b) { return a.medianDegrees < b.medianDegrees; });
-  const GeneratorMatch& best = result.generators.front();
-  result.generator = best.medianDegrees <= kIdentifyMedianDegrees && best.wAgreement >= kIdentifyWAgreement
-                         ? best.name
-                         : "none of these (nearest: " + best.name + ")";
-}
 
 // A check that compared fewer than options.minCoverage of its elements: a warning (not a
 // finding: a file with 8-bit UVs cannot do better) with the counts and why the rest was left.
@@ -633,21 +564,7 @@ std::vector<PrimitiveCheck> checkPrimitives(const Asset& asset, const std::vecto
   return results;
 }
 
-std::string findingsSummary(const PrimitiveCheck& check) {
-  std::string text;
-  for (const CheckFinding& f : check.findings) {
-    if (!text.empty()) text += "; ";
-    text += f.check + ": " + std::to_string(f.failed) + " of " + std::to_string(f.total) + " " + f.unit;
-  }
-  return text;
-}
-
 }  // namespace detail
-
-bool FileCheck::clean() const {
-  if (!error.empty()) return false;
-  return std::all_of(primitives.begin(), primitives.end(), [](const PrimitiveCheck& p) { return p.findings.empty(); });
-}
 
 namespace {
 
@@ -763,185 +680,6 @@ std::vector<PrimitiveVerdicts> detail::checkCorners(const Asset& asset, const st
 std::vector<PrimitiveVerdicts> checkCorners(const std::filesystem::path& input, const CheckOptions& options) {
   return detail::throwingInputError(
       input, [&] { return detail::checkCorners(detail::loadAsset(input, options.assetRoot), input, options); });
-}
-
-nlohmann::ordered_json toJson(const FileCheck& check) {
-  Json primitives = Json::array();
-  for (const PrimitiveCheck& p : check.primitives) {
-    Json findings = Json::array();
-    for (const CheckFinding& f : p.findings) {
-      Json worst = Json::array();
-      for (const CheckSample& s : f.worst) {
-        Json sample = {{"element", s.element}, {"severity", s.severity}};
-        if (f.check == "reference") sample["wDiffers"] = s.wDiffers;
-        sample["detail"] = s.detail;
-        worst.push_back(std::move(sample));
-      }
-      findings.push_back({{"check", f.check}, {"unit", f.unit}, {"failed", f.failed}, {"total", f.total},
-                          {"message", f.message}, {"severityUnit", f.severityUnit}, {"limit", f.limit}, {"worst", worst}});
-    }
-    Json entry = {{"mesh", p.mesh}, {"meshName", p.meshName}, {"primitive", p.primitive}, {"texCoord", p.texCoord},
-                  {"vertices", p.vertices}, {"triangles", p.triangles}};
-    if (!p.tangentComponent.empty())
-      entry["limits"] = {{"tangentComponent", p.tangentComponent},
-                         {"normalComponent", p.normalComponent},
-                         {"unitDeviation", p.unitLimit},
-                         {"orthogonalDegrees", p.orthogonalLimitDegrees},
-                         {"referenceDegrees", p.referenceLimitDegrees},
-                         {"referenceAllowanceMaxDegrees", p.referenceAllowanceMaxDegrees}};
-    entry["passed"] = p.passed;
-    entry["notRun"] = p.notRun;
-    entry["ignored"] = p.ignored;
-    entry["findings"] = findings;
-    entry["referenceUndefinedCorners"] = p.referenceUndefined;
-    entry["referenceUnresolvedCorners"] = p.referenceUnresolved;
-    entry["referenceWUndecidedCorners"] = p.referenceWUndecided;
-    entry["handednessUndecidedTriangles"] = p.handednessUndecided;
-    entry["normals"] = {{"normalized", p.normalsNormalized}, {"worstLength", p.worstNormalLength}, {"warningLimit", p.normalLengthLimit}};
-    entry["warnings"] = p.warnings;
-    if (!p.generator.empty()) {
-      Json generators = Json::array();
-      for (const GeneratorMatch& g : p.generators)
-        generators.push_back({{"name", g.name}, {"medianDegrees", g.medianDegrees}, {"maxDegrees", g.maxDegrees}, {"wAgreement", g.wAgreement}});
-      entry["generator"] = p.generator;
-      entry["generators"] = generators;
-    }
-    primitives.push_back(std::move(entry));
-  }
-  Json out = {{"file", check.file}, {"status", !check.error.empty() ? "error" : check.clean() ? "clean" : "findings"}};
-  if (!check.error.empty()) out["error"] = check.error;
-  out["primitives"] = primitives;
-  out["skipped"] = check.skipped;
-  return out;
-}
-
-std::optional<CheckId> parseCheck(std::string_view name) {
-  for (std::size_t i = 0; i < kCheckCount; ++i) {
-    if (name == kCheckNames[i]) return static_cast<CheckId>(i);
-  }
-  return std::nullopt;
-}
-
-namespace {
-
-std::bitset<kCheckCount> checkSet(const Json& list, const std::string& where) {
-  if (!list.is_array()) throw std::runtime_error(where + ": must be an array of check names");
-  std::bitset<kCheckCount> set;
-  for (const Json& name : list) {
-    const std::optional<CheckId> id = name.is_string() ? parseCheck(name.get<std::string>()) : std::nullopt;
-    if (!id) throw std::runtime_error(where + ": unknown check " + name.dump());
-    set.set(static_cast<std::size_t>(*id));
-  }
-  return set;
-}
-
-double toleranceValue(const Json& value, const std::string& where) {
-  if (!value.is_number() || !(value.get<double>() > 0) || value.get<double>() > 180)
-    throw std::runtime_error(where + ": must be a number of degrees in (0, 180]");
-  return value.get<double>();
-}
-
-}  // namespace
-
-void applyCheckConfig(const std::filesystem::path& file, CheckOptions& options) {
-  // The limits of a glTF's JSON (size, then nesting before the parser recurses): a config
-  // nested a million deep overflowed the stack.
-  std::error_code ec;
-  // A regular file only: /dev/zero was read without end, a FIFO waited forever.
-  const auto status = std::filesystem::status(file, ec);
-  if (std::filesystem::exists(status) && !std::filesystem::is_regular_file(status))
-    throw std::runtime_error(file.string() + ": the check configuration is not a regular file");
-  const std::uintmax_t size = std::filesystem::file_size(file, ec);
-  if (!ec && size > kMaxJsonBytes)
-    throw std::runtime_error(file.string() + ": the check configuration is " + std::to_string(size) + " bytes; the limit is " +
-                             std::to_string(kMaxJsonBytes));
-  std::ifstream in(file, std::ios::binary);
-  if (!in) throw std::runtime_error(file.string() + ": cannot read the check configuration");
-  const std::string text{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-  checkJsonDepth(text, file.string(), "the check configuration");
-  Json config;
-  try {
-    config = Json::parse(text);
-  } catch (const nlohmann::json::exception& e) {
-    throw std::runtime_error(file.string() + ": not JSON: " + text::quoted(e.what()));
-  }
-  const std::string where = file.string();
-  if (!config.is_object()) throw std::runtime_error(where + ": must be a JSON object");
-  for (const auto& [key, value] : config.items()) {
-    if (key == "only") {
-      options.enabled = checkSet(value, where + ": only");
-    } else if (key == "ignore") {
-      options.enabled &= ~checkSet(value, where + ": ignore");
-    } else if (key == "tolerance") {
-      if (value.is_number()) {
-        options.orthogonalToleranceDegrees = options.referenceToleranceDegrees = toleranceValue(value, where + ": tolerance");
-      } else if (value.is_object()) {
-        for (const auto& [check, degrees] : value.items()) {
-          if (check == "orthogonal") options.orthogonalToleranceDegrees = toleranceValue(degrees, where + ": tolerance.orthogonal");
-          else if (check == "reference") options.referenceToleranceDegrees = toleranceValue(degrees, where + ": tolerance.reference");
-          else throw std::runtime_error(where + ": tolerance." + check + ": only orthogonal and reference have a tolerance");
-        }
-      } else {
-        throw std::runtime_error(where + ": tolerance must be degrees or {\"orthogonal\": DEG, \"reference\": DEG}");
-      }
-    } else if (key == "method") {
-      const std::optional<Method> method = value.is_string() ? parseMethod(value.get<std::string>()) : std::nullopt;
-      if (!method || *method == Method::flat) throw std::runtime_error(where + ": method must be \"mikktspace\" or \"lengyel\"");
-      options.method = *method;
-      options.weighting = Weighting::angle;
-    } else if (key == "reference") {
-      const std::optional<Generator> generator = value.is_string() ? parseGenerator(value.get<std::string>()) : std::nullopt;
-      if (!generator)
-        throw std::runtime_error(where + ": reference must be " + generatorNames());
-      options.method = generator->method;
-      options.weighting = generator->weighting;
-    } else if (key == "minCoverage") {
-      if (!value.is_number() || !(value.get<double>() >= 0) || value.get<double>() > 1)
-        throw std::runtime_error(where + ": minCoverage must be a fraction in [0, 1] (0: no warning)");
-      options.minCoverage = value.get<double>();
-    } else if (key == "allowMissing" || key == "all") {
-      if (!value.is_boolean()) throw std::runtime_error(where + ": " + key + " must be true or false");
-      (key == "all" ? options.all : options.allowMissing) = value.get<bool>();
-    } else {
-      throw std::runtime_error(where + ": unknown setting \"" + key + "\" (only, ignore, tolerance, method, reference, minCoverage, allowMissing, all)");
-    }
-  }
-  options.configFile = file.string();
-}
-
-std::string toString(const Generator& generator) {
-  std::string name(toString(generator.method));
-  if (generator.method == Method::lengyel) name += "/" + std::string(toString(generator.weighting));
-  return name;
-}
-
-std::optional<Generator> parseGenerator(std::string_view name) {
-  if (name == "lengyel") return Generator{Method::lengyel, Weighting::angle};
-  for (const Generator& generator : kGenerators)
-    if (toString(generator) == name) return generator;
-  return std::nullopt;
-}
-
-std::string generatorNames() {
-  std::string names;
-  for (std::size_t i = 0; i < std::size(kGenerators); ++i)
-    names += (i == 0 ? "" : i + 1 == std::size(kGenerators) ? " or " : ", ") + toString(kGenerators[i]);
-  return names;
-}
-
-nlohmann::ordered_json toJson(const CheckOptions& options) {
-  Json checks = Json::array(), ignored = Json::array();
-  for (std::size_t i = 0; i < kCheckCount; ++i) (options.enabled.test(i) ? checks : ignored).push_back(kCheckNames[i]);
-  Json settings = {{"method", std::string(toString(options.method))},
-                   {"reference", toString(Generator{options.method, options.weighting})},
-                   {"tolerance", {{"orthogonal", options.orthogonalToleranceDegrees}, {"reference", options.referenceToleranceDegrees}}},
-                   {"minCoverage", options.minCoverage},
-                   {"checks", checks},
-                   {"ignored", ignored},
-                   {"allowMissing", options.allowMissing},
-                   {"all", options.all}};
-  settings["config"] = options.configFile.empty() ? Json(nullptr) : Json(options.configFile);
-  return settings;
 }
 
 }  // namespace tangent::gltf

@@ -335,6 +335,51 @@ void OutputDocument::dropOrphans() {
   firstNewView_ -= droppedBeforeNew;
 }
 
+namespace {
+
+// doc.buffers after packing: one buffer of `size` bytes (the first buffer's JSON, name and
+// extras kept) and, where views moved there, the meshopt fallback buffer of `fallbackSize` bytes
+// (the first fallback buffer's JSON).
+void setPackedBuffers(Json& doc, std::size_t size, std::size_t fallbackSize) {
+  Json buffer = Json::object(), fallback = Json::object();
+  bool fallbackFound = false;
+  if (doc.contains("buffers")) {
+    for (auto it = doc["buffers"].rbegin(); it != doc["buffers"].rend(); ++it) {
+      if (isMeshoptFallbackBuffer(*it)) {
+        fallback = *it;
+        fallbackFound = true;
+      } else {
+        buffer = *it;
+      }
+    }
+  }
+  buffer.erase("uri");
+  buffer["byteLength"] = size;
+  doc["buffers"] = Json::array({buffer});
+  if (fallbackSize > 0) {
+    fallback.erase("uri");
+    fallback["byteLength"] = fallbackSize;
+    if (!fallbackFound) fallback["extensions"][kMeshoptExtension]["fallback"] = true;
+    doc["buffers"].push_back(std::move(fallback));
+  }
+}
+
+// The bytes of an input buffer view as loaded. validateDocument checked types and declared
+// sizes; the loaded bytes may still be fewer.
+std::span<const std::uint8_t> loadedViewBytes(const Json& view, const std::vector<tinygltf::Buffer>& buffers,
+                                              const std::filesystem::path& path, std::size_t index) {
+  const std::int64_t bufferIndex = view.value("buffer", std::int64_t(-1));
+  const std::int64_t offset = view.value("byteOffset", std::int64_t(0));
+  const std::int64_t viewLength = view.value("byteLength", std::int64_t(0));
+  if (bufferIndex < 0 || bufferIndex >= static_cast<std::int64_t>(buffers.size()) || offset < 0 || viewLength < 0 ||
+      static_cast<std::uint64_t>(offset) > buffers[bufferIndex].data.size() ||
+      static_cast<std::uint64_t>(viewLength) > buffers[bufferIndex].data.size() - static_cast<std::uint64_t>(offset))
+    throw InputError(path.string() + ": /bufferViews/" + std::to_string(index) + ": lies outside the bytes loaded for its buffer");
+  return {buffers[bufferIndex].data.data() + offset, static_cast<std::size_t>(viewLength)};
+}
+
+}  // namespace
+
 std::vector<std::span<const std::uint8_t>> OutputDocument::packBuffers() {
   static constexpr std::uint8_t kZeros[4] = {0, 0, 0, 0};
   Json& doc = asset_.json;
@@ -387,17 +432,10 @@ std::vector<std::span<const std::uint8_t>> OutputDocument::packBuffers() {
       source = bytes.data();
       length = bytes.size();
     } else {
-      // validateDocument checked types and declared sizes; the loaded bytes may still be fewer.
-      const std::int64_t bufferIndex = view.value("buffer", std::int64_t(-1));
-      const std::int64_t offset = view.value("byteOffset", std::int64_t(0));
-      const std::int64_t viewLength = view.value("byteLength", std::int64_t(0));
-      if (bufferIndex < 0 || bufferIndex >= static_cast<std::int64_t>(buffers.size()) || offset < 0 || viewLength < 0 ||
-          static_cast<std::uint64_t>(offset) > buffers[bufferIndex].data.size() ||
-          static_cast<std::uint64_t>(viewLength) > buffers[bufferIndex].data.size() - static_cast<std::uint64_t>(offset))
-        throw InputError(asset_.path.string() + ": /bufferViews/" + std::to_string(i) + ": lies outside the bytes loaded for its buffer");
-      length = static_cast<std::size_t>(viewLength);
-      source = buffers[bufferIndex].data.data() + offset;
-      alignTo = offset % 4;
+      const std::span<const std::uint8_t> bytes = loadedViewBytes(view, buffers, asset_.path, i);
+      source = bytes.data();
+      length = bytes.size();
+      alignTo = static_cast<std::size_t>(view.value("byteOffset", std::int64_t(0)) % 4);
     }
     padTo(alignTo);
     view["buffer"] = 0;
@@ -408,29 +446,7 @@ std::vector<std::span<const std::uint8_t>> OutputDocument::packBuffers() {
   }
   padTo(0);
 
-  // The first buffer's JSON (name, extras) for the packed data, the first fallback buffer's for
-  // the fallback.
-  Json buffer = Json::object(), fallback = Json::object();
-  bool fallbackFound = false;
-  if (doc.contains("buffers")) {
-    for (auto it = doc["buffers"].rbegin(); it != doc["buffers"].rend(); ++it) {
-      if (isMeshoptFallbackBuffer(*it)) {
-        fallback = *it;
-        fallbackFound = true;
-      } else {
-        buffer = *it;
-      }
-    }
-  }
-  buffer.erase("uri");
-  buffer["byteLength"] = size;
-  doc["buffers"] = Json::array({buffer});
-  if (fallbackSize > 0) {
-    fallback.erase("uri");
-    fallback["byteLength"] = fallbackSize;
-    if (!fallbackFound) fallback["extensions"][kMeshoptExtension]["fallback"] = true;
-    doc["buffers"].push_back(std::move(fallback));
-  }
+  setPackedBuffers(doc, size, fallbackSize);
   if (views.empty()) {
     doc.erase("bufferViews");
     doc.erase("buffers");
