@@ -17,7 +17,6 @@ in vec2 v_uvNormal;
 #ifdef HAS_VERTEX_COLOR
 in vec4 v_color;
 #endif
-in vec4 v_shadowCoord;
 in float v_tangentError;
 in float v_cornerProblems;
 
@@ -245,7 +244,7 @@ void main() {
   {
     vec3 toLight;
     lightAt(0, v_positionWorld, toLight);
-    shadow0 = shadowFactor(v_shadowCoord, normal, toLight);
+    shadow0 = shadowFactor(shadowFaceNormal(normal), normal, toLight);
   }
 #endif
   // The variant's light count: a constant trip count the compiler can unroll.

@@ -1,6 +1,7 @@
 #version 330 core
 // SPDX-License-Identifier: MIT
-// Mesh vertex stage: world-space position, normal and tangent frame; shadow-map coordinates.
+// Mesh vertex stage: world-space position, normal and tangent frame (shadows.glsl finds the
+// shadow map's coordinates per fragment, after its normal offset).
 
 layout(location = 0) in vec3 a_position;
 layout(location = 1) in vec3 a_normal;
@@ -16,7 +17,6 @@ layout(location = 9) in vec4 a_color;           // COLOR_0 as RGBA (white where 
 uniform mat4 u_model;
 uniform mat3 u_normalMatrix;
 uniform mat4 u_viewProjection;
-uniform mat4 u_lightViewProjection;
 uniform float u_uvScale;
 uniform float u_mirror;  // sign of det(u_model): a mirroring transform flips the bitangent
 uniform bool u_compareSide;  // shade with a_tangentCompare instead of a_tangent (the split view's right side)
@@ -35,7 +35,6 @@ out vec4 v_color;
 #endif
 out vec2 v_uv0;
 out vec2 v_uv1;
-out vec4 v_shadowCoord;
 out float v_tangentError;
 out float v_cornerProblems;
 invariant gl_Position;  // as in shadow_depth.vert: the depth pre-pass writes the same depths
@@ -63,7 +62,6 @@ void main() {
 #endif
   v_uv0 = a_uv0 * u_uvScale;
   v_uv1 = a_uv1 * u_uvScale;
-  v_shadowCoord = u_lightViewProjection * world;
   v_tangentError = a_tangentError;
   v_cornerProblems = a_cornerProblems;
   gl_Position = u_viewProjection * world;

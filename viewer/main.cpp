@@ -86,16 +86,17 @@ const char* kUsage =
     "  --shading NAME           pbr (glTF metallic-roughness, default) | blinn-phong | phong (specular-map mode)\n"
     "  --tone-map NAME          khr-pbr-neutral (default) | aces | none (values above 1 clip); unlit\n"
     "                           materials and debug views are never tone mapped\n"
-    "  --exposure F|auto        linear factor on the lit colour before tone mapping (default auto: pi\n"
-    "                           over the brightest KHR_lights_punctual illuminance at the scene's centre in\n"
-    "                           pbr, where those lights are in lux and candela; 1 otherwise)\n"
+    "  --exposure F|auto        linear factor on the lit colour before tone mapping (default auto: a white\n"
+    "                           surface facing the brightest light at the centre of the rest pose's bounds\n"
+    "                           shows at 0.76; decided once per asset, the same at every --time and animation)\n"
     "  --depth-prepass          draw opaque depth first, then shade each pixel once\n"
     "  --no-ibl                 pbr without image-based lighting: a plain sky term instead of the built-in\n"
     "                           environment (a sky, a ground and a sun, prefiltered at start-up)\n"
     "  --ibl-intensity F        factor on the environment's radiance (default 1: its mean radiance a fifth\n"
     "                           of the lights' direct level)\n"
     "  --animation N|NAME       pose the scene by this animation (index or name; default: none, the nodes'\n"
-    "                           own transforms, morph weights and skins in the rest pose)\n"
+    "                           own transforms, morph weights and skins in the rest pose); one the file does\n"
+    "                           not have is an error listing those it has\n"
     "  --time SECONDS           the animation's time (default 0; alone, it picks animation 0)\n"
     "  --msaa N                 samples per pixel in the window and screenshots (default 4, or 0 on a\n"
     "                           software rasteriser such as llvmpipe, where 4x costs 3-4 times the frame)\n"
@@ -326,8 +327,8 @@ struct Viewer {
     if (options.animation || options.time) {
       const std::optional<int> animation = findAnimation(scene, options.animation.value_or("0"));
       if (!animation) {
-        const std::string text = "no animation '" + options.animation.value_or("0") + "' in " + loaded.string() + " (it has " +
-                                 std::to_string(scene.animations.size()) + ")";
+        const std::string text = "no animation '" + options.animation.value_or("0") + "' in " + loaded.string() + "; it has " +
+                                 std::to_string(scene.animations.size()) + ": " + animationNames(scene);
         messages.push_back(text);
         printError(text);
         return !options.screenshot;  // a screenshot of another pose would mislead

@@ -12,6 +12,7 @@
 #include <numeric>
 
 #include "tangent/tangent.hpp"
+#include "tangent/text.hpp"
 
 namespace tangent::viewer {
 namespace {
@@ -90,6 +91,16 @@ std::optional<int> findAnimation(const gltf::Scene& scene, const std::string& in
   if (error == std::errc() && end == indexOrName.data() + indexOrName.size() && index >= 0 && index < static_cast<int>(scene.animations.size()))
     return index;
   return std::nullopt;
+}
+
+std::string animationNames(const gltf::Scene& scene) {
+  if (scene.animations.empty()) return "none";
+  std::string names;
+  for (std::size_t a = 0; a < scene.animations.size(); ++a) {
+    const std::string& name = scene.animations[a].name;
+    names += (a ? ", " : "") + std::to_string(a) + (name.empty() ? "" : " '" + text::quoted(name) + "'");
+  }
+  return names;
 }
 
 ScenePose poseScene(const gltf::Scene& scene, PoseTime time) {

@@ -26,6 +26,9 @@ struct PoseTime {
 
 // An animation named by --animation: its index, or its name; nullopt when there is none such.
 std::optional<int> findAnimation(const gltf::Scene& scene, const std::string& indexOrName);
+// The animations --animation can name, for its error: "0 'walk', 1 'die'" (index and name, the
+// name quoted as file text; index alone where unnamed), or "none".
+std::string animationNames(const gltf::Scene& scene);
 
 struct ScenePose {
   std::vector<glm::mat4> world;             // per node (Scene::nodes)

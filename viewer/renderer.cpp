@@ -67,6 +67,7 @@ void setUniform(GLuint program, const char* name, const glm::mat4& m) {
 void setUniform(GLuint program, const char* name, const glm::mat3& m) {
   glUniformMatrix3fv(glGetUniformLocation(program, name), 1, GL_FALSE, glm::value_ptr(m));
 }
+void setUniform(GLuint program, const char* name, const glm::vec2& v) { glUniform2fv(glGetUniformLocation(program, name), 1, glm::value_ptr(v)); }
 void setUniform(GLuint program, const char* name, const glm::vec3& v) { glUniform3fv(glGetUniformLocation(program, name), 1, glm::value_ptr(v)); }
 void setUniform(GLuint program, const char* name, const glm::vec4& v) { glUniform4fv(glGetUniformLocation(program, name), 1, glm::value_ptr(v)); }
 void setUniform(GLuint program, const char* name, float v) { glUniform1f(glGetUniformLocation(program, name), v); }
@@ -254,7 +255,9 @@ void Renderer::setScene(gltf::Scene scene, std::vector<std::string>& messages) {
     const bool decoded = decodeImage(scene_.images[i], image, error);
     messages.insert(messages.end(), image.notes.begin(), image.notes.end());
     if (!decoded) {
-      messages.push_back(error);
+      // Colour textures show a checker instead, so that the gap is seen; data textures are left out.
+      messages.push_back(error + (usedAsColour[i] ? "; drawn as a magenta checker" : "; left out"));
+      if (usedAsColour[i]) srgbTextures_[i] = uploadTexture(missingImageChecker(), true);
       continue;
     }
     if (std::string note = fitTextureSize(image, maxSize, scene_.images[i].label); !note.empty()) messages.push_back(std::move(note));
@@ -296,6 +299,9 @@ void Renderer::setScene(gltf::Scene scene, std::vector<std::string>& messages) {
   boundsMax_ = glm::make_vec3(scene_.boundsMax.data());
   lights_ = lightsFrom(scene_, boundsCenter(), boundsRadius(), messages);
   pose_.reset();
+  exposureBoundsMin_ = boundsMin_;  // the rest pose's, once setPose has posed it
+  exposureBoundsMax_ = boundsMax_;
+  restPoseMeasured_ = false;
 }
 
 bool Renderer::deforms(const gltf::DrawInstance& instance) const {
@@ -380,6 +386,9 @@ void Renderer::drawMesh(const GpuMesh& mesh) {
 
 bool Renderer::setPose(PoseTime time) {
   if (scene_.nodes.empty() || (pose_ && *pose_ == time)) return false;
+  // Auto exposure is judged on the rest pose's bounds whatever the first pose asked for, so that
+  // every time of every animation shows the asset at one exposure.
+  if (!restPoseMeasured_ && time != PoseTime{}) setPose(PoseTime{});
   pose_ = time;
   const ScenePose pose = poseScene(scene_, time);
   for (std::size_t i = 0; i < scene_.instances.size(); ++i) {
@@ -438,6 +447,11 @@ bool Renderer::setPose(PoseTime time) {
   }
   ++sceneVersion_;  // the shadow map and the glyphs follow the pose
   glyphsBuiltFor_ = -1;
+  if (!restPoseMeasured_ && time == PoseTime{}) {
+    exposureBoundsMin_ = boundsMin_;
+    exposureBoundsMax_ = boundsMax_;
+    restPoseMeasured_ = true;
+  }
   return true;
 }
 
@@ -558,8 +572,10 @@ float Renderer::exposure(const RenderSettings& settings) const {
 float Renderer::whiteRadiance(const RenderSettings& settings) const {
   if (lights_.empty()) return 0;
   const bool physical = physicalLights(settings);
-  // At the scene's centre; a light inside the scene at a tenth of the scene's radius from it.
-  const glm::vec3 center = boundsCenter();
+  // At the centre of the rest pose's bounds (not the current pose's: the exposure holds still
+  // through an animation); a light inside the scene at a tenth of the scene's radius from it.
+  const glm::vec3 center = (exposureBoundsMin_ + exposureBoundsMax_) * 0.5f;
+  const float radius = glm::max(glm::length(exposureBoundsMax_ - exposureBoundsMin_) * 0.5f, 1e-3f);
   struct Arrival {
     glm::vec3 toLight;
     float direct;   // radiance of a white Lambertian surface facing the light
@@ -567,7 +583,7 @@ float Renderer::whiteRadiance(const RenderSettings& settings) const {
   };
   std::vector<Arrival> arrivals;
   for (const Light& light : lights_) {
-    const glm::vec3 point = pointLitFrom(light, center, boundsRadius());
+    const glm::vec3 point = pointLitFrom(light, center, radius);
     Arrival arrival{};
     const float attenuation = attenuationAt(light, point, physical, arrival.toLight);
     if (physical) {
@@ -650,27 +666,83 @@ void Renderer::drawDepth(std::span<const GpuInstance* const> instances, const gl
   }
 }
 
+namespace {
+
+// A spot light's shadow map spans its cone (a little wider, for PCF at the edge), at most 160
+// degrees across.
+float spotShadowHalfAngle(const Light& light) { return std::min(light.spotOuter * 1.05f, glm::radians(80.0f)); }
+
+glm::vec3 shadowUpFor(const glm::vec3& direction) { return std::abs(direction.y) > 0.99f ? glm::vec3(1, 0, 0) : glm::vec3(0, 1, 0); }
+
+// A directional light's orthographic shadow view, fitted to the scene's bounds box as the light
+// sees it (its eight corners in the light's view), not to the box's bounding sphere: a flat or
+// long scene gets texels that much smaller, and the depth range spans the box's depth only.
+struct DirectionalShadowFit {
+  glm::mat4 view{1};
+  glm::vec3 lo{0}, hi{0};  // the corners' light-view extent (x, y across the light, z along it)
+  float nearPlane = 0, farPlane = 1;
+};
+
+DirectionalShadowFit directionalShadowFit(const Light& light, glm::vec3 boundsMin, glm::vec3 boundsMax) {
+  const glm::vec3 center = (boundsMin + boundsMax) * 0.5f;
+  const float radius = std::max(glm::length(boundsMax - boundsMin) * 0.5f, 1e-3f);
+  const glm::vec3 direction = glm::normalize(light.direction);
+  DirectionalShadowFit fit;
+  fit.view = glm::lookAt(center - direction * (2 * radius), center, shadowUpFor(direction));
+  fit.lo = glm::vec3(std::numeric_limits<float>::max());
+  fit.hi = glm::vec3(-std::numeric_limits<float>::max());
+  for (int corner = 0; corner < 8; ++corner) {
+    const glm::vec3 p((corner & 1) ? boundsMax.x : boundsMin.x, (corner & 2) ? boundsMax.y : boundsMin.y, (corner & 4) ? boundsMax.z : boundsMin.z);
+    const glm::vec3 q(fit.view * glm::vec4(p, 1));
+    fit.lo = glm::min(fit.lo, q);
+    fit.hi = glm::max(fit.hi, q);
+  }
+  // A margin of 1% of the radius all round: PCF taps and the normal offset reach past the box,
+  // and a flat scene seen along its plane keeps some width.
+  const float margin = 0.01f * radius;
+  fit.lo -= glm::vec3(margin);
+  fit.hi += glm::vec3(margin);
+  fit.nearPlane = std::max(-fit.hi.z, 0.01f * radius);
+  fit.farPlane = std::max(-fit.lo.z, fit.nearPlane + margin);
+  return fit;
+}
+
+}  // namespace
+
 glm::mat4 Renderer::lightViewProjection() const {
   const glm::vec3 center = boundsCenter();
   const float radius = boundsRadius();
   const Light& light = lights_[0];
-  auto upFor = [](const glm::vec3& direction) { return std::abs(direction.y) > 0.99f ? glm::vec3(1, 0, 0) : glm::vec3(0, 1, 0); };
   if (light.directional) {
-    // Orthographic light view fitted to the scene's bounding sphere.
-    const glm::vec3 direction = glm::normalize(light.direction);
-    const glm::mat4 view = glm::lookAt(center - direction * (2 * radius), center, upFor(direction));
-    return glm::ortho(-radius, radius, -radius, radius, 0.01f * radius, 4 * radius) * view;
+    const DirectionalShadowFit fit = directionalShadowFit(light, boundsMin_, boundsMax_);
+    return glm::ortho(fit.lo.x, fit.hi.x, fit.lo.y, fit.hi.y, fit.nearPlane, fit.farPlane) * fit.view;
   }
   // A point light's shadow is the cube map (shadow_cube.hpp), which this matrix plays no part in.
   if (pointShadow()) return glm::mat4(1);
   // A spot light: a perspective view along its axis over its cone, at most 160 degrees across,
   // between the nearest and farthest points of the scene's bounding sphere.
-  const float halfAngle = std::min(light.spotOuter * 1.05f, glm::radians(80.0f));
+  const float halfAngle = spotShadowHalfAngle(light);
   const float distance = glm::length(center - light.position);
   const float nearPlane = std::max(distance - radius, 0.01f * radius), farPlane = distance + radius;
   const glm::vec3 direction = glm::normalize(light.direction);
-  const glm::mat4 view = glm::lookAt(light.position, light.position + direction, upFor(direction));
+  const glm::mat4 view = glm::lookAt(light.position, light.position + direction, shadowUpFor(direction));
   return glm::perspective(2 * halfAngle, 1.0f, nearPlane, farPlane) * view;
+}
+
+float Renderer::shadowBiasScale() const {
+  if (lights_.empty() || !lights_[0].directional) return 1.0f;
+  const DirectionalShadowFit fit = directionalShadowFit(lights_[0], boundsMin_, boundsMax_);
+  return 4 * boundsRadius() / (fit.farPlane - fit.nearPlane);
+}
+
+glm::vec2 Renderer::shadowTexelWorld() const {
+  const Light& light = lights_[0];
+  if (light.directional) {
+    const DirectionalShadowFit fit = directionalShadowFit(light, boundsMin_, boundsMax_);
+    return {std::max(fit.hi.x - fit.lo.x, fit.hi.y - fit.lo.y) / static_cast<float>(std::max(shadowSize_, 1)), 0.0f};
+  }
+  if (pointShadow()) return {0.0f, 2.0f / static_cast<float>(std::max(shadowCubeSize_, 1))};  // 90-degree faces
+  return {0.0f, 2 * std::tan(spotShadowHalfAngle(light)) / static_cast<float>(std::max(shadowSize_, 1))};
 }
 
 bool Renderer::pointShadow() const { return !lights_.empty() && !lights_[0].directional && lights_[0].spotOuter < 0; }
@@ -1025,8 +1097,9 @@ GLuint Renderer::bindMesh(const GpuMesh& mesh, const CameraMatrices& camera, con
   }
   if (has(features, Feature::shadows)) {
     setUniform(program, "u_pcfRadius", settings.pcfRadius);
-    setUniform(program, "u_shadowBiasConstant", settings.shadowBiasConstant);
-    setUniform(program, "u_shadowBiasSlope", settings.shadowBiasSlope);
+    setUniform(program, "u_shadowBiasConstant", settings.shadowBiasConstant * shadowBiasScale());
+    setUniform(program, "u_shadowBiasSlope", settings.shadowBiasSlope * shadowBiasScale());
+    setUniform(program, "u_shadowTexelWorld", shadowTexelWorld());
   }
   glBindVertexArray(mesh.vertexArray.get());
   return program;

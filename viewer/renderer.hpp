@@ -154,9 +154,10 @@ class Renderer {
   int shadowPasses() const { return shadowPasses_; }
   // The lit colour's factor before tone mapping: settings.exposure when > 0; else (auto) the
   // factor that shows a white Lambertian surface facing the brightest light, lit by every light
-  // and the ambient or environment term, at kAutoExposureWhite.
+  // and the ambient or environment term, at kAutoExposureWhite. Decided once per asset: at the
+  // rest pose's bounds, so that it holds still across times and animations.
   float exposure(const RenderSettings& settings) const;
-  // That surface's radiance at the scene's centre before exposure (0 without lights).
+  // That surface's radiance at the rest pose's centre before exposure (0 without lights).
   float whiteRadiance(const RenderSettings& settings) const;
   // PBR mode with the file's KHR_lights_punctual lights: in the extension's units.
   bool physicalLights(const RenderSettings& settings) const;
@@ -225,6 +226,12 @@ class Renderer {
   void applyCulling(const GpuMesh& mesh, const RenderSettings& settings) const;
   void drawGlyphs(const CameraMatrices& camera, const RenderSettings& settings);
   glm::mat4 lightViewProjection() const;
+  // A shadow-map texel's world size at a fragment: x + y * the fragment's distance from light 0
+  // (shadows.glsl's u_shadowTexelWorld, for the normal offset).
+  glm::vec2 shadowTexelWorld() const;
+  // The factor on the depth biases that keeps them fractions of 4 scene radii in world units
+  // (as the cube map's are) whatever depth range the directional map's fit spans; 1 otherwise.
+  float shadowBiasScale() const;
   // Light 0 is a point light (not a spot): its shadow is the depth cube map.
   bool pointShadow() const;
   // The cube faces' near and far planes: every point of the scene's bounding sphere lies between
@@ -267,6 +274,10 @@ class Renderer {
   double environmentMilliseconds_ = 0;
   std::vector<Light> lights_;
   glm::vec3 boundsMin_{-1}, boundsMax_{1};
+  // The rest pose's bounds, which auto exposure is judged at (whiteRadiance); measured by the
+  // first setPose after setScene (which poses the rest first when asked for another pose).
+  glm::vec3 exposureBoundsMin_{-1}, exposureBoundsMax_{1};
+  bool restPoseMeasured_ = false;
   Framebuffer shadowFramebuffer_;
   Texture shadowTexture_;
   int shadowSize_ = 0;

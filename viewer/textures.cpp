@@ -27,7 +27,11 @@
 namespace tangent::viewer {
 
 bool checkImageFile(const gltf::ImageSource& source, std::string& error) {
-  if (!source.bytes.empty() || source.file.empty()) return true;
+  if (!source.bytes.empty()) return true;
+  if (source.file.empty()) {
+    error = source.label + ": no image data" + (source.missing.empty() ? " (no URI and no buffer view in range)" : ": " + source.missing);
+    return false;
+  }
   // The rule's message begins with the file's path; the label names it too (and the glTF image).
   const std::string prefix = source.label == source.file.string() ? "" : source.label + ": ";
   try {
@@ -135,7 +139,8 @@ bool decodePixels(const gltf::ImageSource& source, DecodedImage& image, std::str
     input = OIIO::ImageInput::open(source.file.string(), &config);
   }
   if (!input) {
-    error = source.label + ": cannot be decoded: " + OIIO::geterror();
+    const std::string why = OIIO::geterror();
+    error = source.label + ": cannot be decoded: " + (why.empty() ? "not in an image format OpenImageIO reads" : why);
     return false;
   }
   const OIIO::ImageSpec& spec = input->spec();
@@ -231,6 +236,23 @@ Texture uploadTexture(const DecodedImage& image, bool srgb) {
   glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_REPEAT);
   glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_REPEAT);
   return texture;
+}
+
+DecodedImage missingImageChecker() {
+  DecodedImage image;
+  image.width = image.height = kMissingImageCellTexels * kMissingImageCells;
+  image.rgba.resize(static_cast<std::size_t>(image.width) * image.height * 4);
+  for (int y = 0; y < image.height; ++y) {
+    for (int x = 0; x < image.width; ++x) {
+      const bool magenta = (x / kMissingImageCellTexels + y / kMissingImageCellTexels) % 2 == 0;
+      unsigned char* texel = &image.rgba[(static_cast<std::size_t>(y) * image.width + x) * 4];
+      texel[0] = magenta ? 255 : 16;
+      texel[1] = magenta ? 0 : 16;
+      texel[2] = magenta ? 255 : 16;
+      texel[3] = 255;
+    }
+  }
+  return image;
 }
 
 Texture loadTexture(const gltf::ImageSource& source, bool srgb, std::vector<std::string>& messages) {

@@ -20,8 +20,9 @@ struct DecodedImage {
 };
 
 // An image file (source.file) under the input rule of every reader (tangent/input_file.hpp): a
-// regular file of bounded size, and not empty. False + error naming the image otherwise; true
-// for an embedded image.
+// regular file of bounded size, and not empty. False + error naming the image otherwise, also
+// for an image with neither file nor bytes (ImageSource::missing says why); true for an embedded
+// image.
 bool checkImageFile(const gltf::ImageSource& source, std::string& error);
 
 // The most memory an image may take decoded, as RGBA8: 1 GiB, a 16384 x 16384 texture. The
@@ -40,6 +41,15 @@ bool decodeImage(const gltf::ImageSource& source, DecodedImage& image, std::stri
 bool resizeImage(const DecodedImage& image, int width, int height, std::vector<unsigned char>& rgba);
 
 std::string fitTextureSize(DecodedImage& image, int maxSize, const std::string& label);
+
+// What a colour texture whose image is missing or cannot be decoded shows instead: a checker of
+// kMissingImageCells x kMissingImageCells cells over the UV square, magenta and near-black
+// (kMissingImageCellTexels texels across each, so that bilinear filtering keeps the cells
+// sharp), a pattern no asset means. Data textures (normals, metallic-roughness, occlusion) are
+// left out instead: a checker there would read as relief or metal.
+inline constexpr int kMissingImageCells = 8;
+inline constexpr int kMissingImageCellTexels = 8;
+DecodedImage missingImageChecker();
 
 // GL_MAX_TEXTURE_SIZE of the current context.
 int maxTextureSize();

@@ -17,11 +17,11 @@ bool decodeImage(const gltf::ImageSource& source, DecodedImage& image, std::stri
   std::vector<unsigned char> fileBytes;
   const unsigned char* bytes = nullptr;
   std::size_t size = 0;
+  if (!checkImageFile(source, error)) return false;  // also an image with neither file nor bytes
   if (!source.bytes.empty()) {
     bytes = reinterpret_cast<const unsigned char*>(source.bytes.data());
     size = source.bytes.size();
   } else if (!source.file.empty()) {
-    if (!checkImageFile(source, error)) return false;
     std::FILE* in = std::fopen(source.file.string().c_str(), "rb");
     if (!in) {
       error = source.label + ": cannot be decoded: cannot open " + source.file.string();

@@ -48,10 +48,11 @@ std::vector<ImageSource> readImages(const detail::Asset& asset) {
       } else {
         // loadAsset refused URIs that leave the asset root; a missing file leaves the image empty
         // (loadAsset's warning, among the messages, says so).
+        source.label += " '" + uri + "'";
         try {
           source.file = detail::resolveFileUri(uri, dir, asset.root, asset.path.string(), "/images/" + std::to_string(i));
-          source.label += " '" + uri + "'";
-        } catch (const detail::MissingFileError&) {
+        } catch (const detail::MissingFileError& e) {
+          source.missing = e.what();
         }
       }
     } else if (image.contains("bufferView") && image["bufferView"].is_number_integer()) {

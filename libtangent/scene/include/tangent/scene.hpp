@@ -46,6 +46,7 @@ struct ImageSource {
   std::vector<std::uint8_t> bytes;  // embedded image (bufferView or data URI), or empty
   std::string mimeType;
   std::string label;                // for messages
+  std::string missing;              // why it has neither file nor bytes (a URI naming no file), or ""
 };
 
 struct MaterialDesc {
