@@ -12,6 +12,7 @@
 #include <unordered_map>
 #include <utility>
 
+#include "bake/vertex_split.hpp"
 #include "read/accessors.hpp"
 #include "read/asset.hpp"
 #include "check/check_primitive.hpp"
@@ -23,117 +24,17 @@
 #include "tangent/frame_rules.hpp"
 #include "tangent/gltf.hpp"
 
-#if !defined(TANGENT_SERIAL)  // the web viewer's build has no oneTBB: its passes run here, in order
-#include <tbb/blocked_range.h>
-#include <tbb/parallel_for.h>
-#include <tbb/task_arena.h>
-#endif
 
 namespace tangent::gltf {
 namespace {
 
 using detail::AccessorData;
+using detail::Arena;
+using detail::VertexSplit;
+using detail::kNoCorner;
+using detail::splitVertices;
+using detail::inChunks;
 using Json = nlohmann::ordered_json;
-
-// Output vertices as the core split them: input vertex o stays o, copies follow.
-struct VertexSplit {
-  std::vector<std::uint32_t> source;       // original vertex of each output vertex
-  std::vector<std::uint32_t> firstCorner;  // the first corner of each output vertex, kNoCorner if unused
-  BulkVector<std::uint32_t> cornerVertex;
-  std::vector<float> tangents;             // 4 per output vertex
-};
-constexpr std::uint32_t kNoCorner = 0xffffffffu;
-
-// The input's index of corner c and normal of vertex v, as the core reads them from `mesh`.
-std::uint32_t cornerIndex(const StridedMesh& mesh, std::size_t c) {
-  const auto* bytes = static_cast<const std::uint8_t*>(mesh.indices);
-  if (mesh.indexType == IndexType::uint16) {
-    std::uint16_t index;
-    std::memcpy(&index, bytes + 2 * c, sizeof index);
-    return index;
-  }
-  std::uint32_t index;
-  std::memcpy(&index, bytes + 4 * c, sizeof index);
-  return index;
-}
-std::array<float, 3> vertexNormal(const StridedMesh& mesh, std::size_t v) {
-  std::array<float, 3> normal;
-  std::memcpy(normal.data(), static_cast<const std::uint8_t*>(mesh.normals) + v * mesh.normalStride, sizeof normal);
-  return normal;
-}
-
-#if defined(TANGENT_SERIAL)
-struct Arena {};  // no threads
-#else
-using Arena = tbb::task_arena;
-#endif
-
-// Runs body(begin, end) over [0, n) in chunks of about `grain`, on `arena`'s threads where it
-// has more than one (null: here, in one call). The bodies write disjoint elements, so the
-// result does not depend on the threads. The core's forRange (core/src/parallel.hpp) does the
-// same on a core workspace's threads; it is private to the core (it takes detail::WorkspaceData)
-// and this layer runs on an arena of its own, so the glTF layer keeps this one.
-template <typename Body>
-void inChunks(Arena* arena, std::size_t n, std::size_t grain, const Body& body) {
-#if !defined(TANGENT_SERIAL)
-  if (arena && n > grain) {
-    arena->execute([&] {
-      tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, grain),
-                        [&](const tbb::blocked_range<std::size_t>& range) { body(range.begin(), range.end()); });
-    });
-    return;
-  }
-#endif
-  (void)arena;
-  (void)grain;
-  body(std::size_t(0), n);
-}
-
-// slot = min(slot, value), where other threads may lower it at the same time.
-inline void lowerTo(std::uint32_t& slot, std::uint32_t value) {
-#if defined(TANGENT_SERIAL)
-  slot = std::min(slot, value);
-#else
-  std::atomic_ref<std::uint32_t> shared(slot);
-  std::uint32_t seen = shared.load(std::memory_order_relaxed);
-  while (value < seen && !shared.compare_exchange_weak(seen, value, std::memory_order_relaxed)) {
-  }
-#endif
-}
-
-// Two passes over the core's corner -> output vertex map (CornerOutputs::cornerVertex), each
-// in parallel: the first corner of each output vertex (the smallest, kept by an atomic minimum,
-// whatever order the chunks run in), then each output vertex's source vertex and tangent from
-// it. A vertex no corner uses gets unusedVertexTangent of its normal.
-VertexSplit splitVertices(const StridedMesh& mesh, const BulkVector<float>& cornerTangents, BulkVector<std::uint32_t> cornerVertex,
-                          std::size_t outputVertices, Arena* arena) {
-  VertexSplit split;
-  const std::size_t cornerCount = mesh.indexCount;
-  split.firstCorner.assign(outputVertices, kNoCorner);
-  std::uint32_t* first = split.firstCorner.data();
-  const std::uint32_t* vertexOf = cornerVertex.data();
-  inChunks(arena, cornerCount, 1 << 16, [&](std::size_t begin, std::size_t end) {
-    for (std::size_t c = begin; c < end; ++c) lowerTo(first[vertexOf[c]], static_cast<std::uint32_t>(c));
-  });
-  split.source.resize(outputVertices);
-  split.tangents.resize(outputVertices * 4);
-  inChunks(arena, outputVertices, 1 << 15, [&](std::size_t begin, std::size_t end) {
-    for (std::size_t o = begin; o < end; ++o) {
-      const std::uint32_t c = first[o];
-      float* tangent = &split.tangents[4 * o];
-      if (c == kNoCorner) {  // only an input vertex no triangle uses: every copy has a corner
-        split.source[o] = static_cast<std::uint32_t>(o);
-        const std::array<float, 3> normal = vertexNormal(mesh, o);
-        unusedVertexTangent(std::span<const float, 3>(normal), std::span<float, 4>(tangent, 4));
-        continue;
-      }
-      split.source[o] = cornerIndex(mesh, c);
-      std::memcpy(tangent, &cornerTangents[4 * std::size_t(c)], 4 * sizeof(float));
-    }
-  });
-  split.cornerVertex = std::move(cornerVertex);
-  return split;
-}
 
 // Elements `source` (in that order) of elements of `size` bytes, `stride` apart from `first`.
 std::vector<std::uint8_t> gather(const std::uint8_t* first, std::size_t size, std::size_t stride,
@@ -1041,53 +942,6 @@ void PrimitiveBaker::writeTangents(const PrimitivePlan& plan, ComputedTangents& 
 
 }  // namespace
 
-std::optional<TangentFormat> parseTangentFormat(std::string_view name) {
-  if (name == "float") return TangentFormat::float32;
-  if (name == "short") return TangentFormat::normalizedShort;
-  if (name == "byte") return TangentFormat::normalizedByte;
-  return std::nullopt;
-}
-
-std::optional<NormalsMode> parseNormalsMode(std::string_view name) {
-  if (name == "flat") return NormalsMode::flat;
-  if (name == "smooth") return NormalsMode::smooth;
-  if (name == "keep") return NormalsMode::keep;
-  return std::nullopt;
-}
-
-const char* toString(NormalsMode mode) {
-  switch (mode) {
-    case NormalsMode::flat: return "flat";
-    case NormalsMode::smooth: return "smooth";
-    case NormalsMode::keep: return "keep";
-  }
-  return "?";
-}
-
-const char* toString(PrimitiveAction action) {
-  switch (action) {
-    case PrimitiveAction::baked: return "baked";
-    case PrimitiveAction::kept: return "kept";
-    case PrimitiveAction::skipped: return "skipped";
-  }
-  return "?";
-}
-
-const char* toString(TangentFormat format) {
-  switch (format) {
-    case TangentFormat::float32: return "float";
-    case TangentFormat::normalizedShort: return "short";
-    case TangentFormat::normalizedByte: return "byte";
-  }
-  return "?";
-}
-
-std::filesystem::path outputPathFor(const std::filesystem::path& input, const std::filesystem::path& outputDir) {
-  std::filesystem::path name = input.filename();
-  if (detail::isMeshFile(input)) name.replace_extension(".glb");
-  return outputDir / name;
-}
-
 namespace {
 
 BakeResult bakeChecked(const std::filesystem::path& input, const std::filesystem::path& output, const BakeOptions& options);
@@ -1159,41 +1013,5 @@ BakeResult bakeChecked(const std::filesystem::path& input, const std::filesystem
 }
 
 }  // namespace
-
-nlohmann::ordered_json toJson(const Report& report) {
-  Json json = {{"method", toString(report.method)},
-               {"weighting", report.weighting ? toString(*report.weighting) : std::string_view()}};
-  for (const ReportCount& count : reportCounts(report)) json[std::string(count.name)] = count.value;  // the core's one list
-  return json;
-}
-
-nlohmann::ordered_json toJson(const BakeResult& result) {
-  Json primitives = Json::array();
-  for (const PrimitiveResult& p : result.primitives) {
-    Json entry = {{"mesh", p.mesh}, {"meshName", p.meshName}, {"primitive", p.primitive},
-                  {"action", toString(p.action)}, {"reason", p.reason}};
-    if (p.texCoord >= 0) entry["texCoord"] = p.texCoord;
-    if (!p.failedChecks.empty()) entry["failedChecks"] = p.failedChecks;
-    if (p.action == PrimitiveAction::baked) {
-      entry["tangentFormat"] = toString(p.tangentFormat);
-      entry["verticesIn"] = p.verticesIn;
-      entry["verticesOut"] = p.verticesOut;
-      if (p.normalsGenerated) entry["normalsGenerated"] = toString(*p.normalsGenerated);
-      entry["tangents"] = toJson(p.tangents);
-    }
-    primitives.push_back(std::move(entry));
-  }
-  Json warnings = Json::array();
-  for (const auto& w : result.warnings) warnings.push_back(w);
-  Json out = Json::object();  // members moved in: an initializer list would copy every primitive's entry
-  out["primitives"] = std::move(primitives);
-  out["extensionsRemoved"] = result.extensionsRemoved;
-  out["warnings"] = std::move(warnings);
-  out["bytesWritten"] = result.bytesWritten;
-  Json written = Json::array();
-  for (const auto& file : result.filesWritten) written.push_back(file.generic_string());
-  out["filesWritten"] = std::move(written);
-  return out;
-}
 
 }  // namespace tangent::gltf
