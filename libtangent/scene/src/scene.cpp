@@ -806,6 +806,50 @@ std::vector<PrimitiveVerdicts> judgeCorners(const detail::Asset& asset, const st
   }
 }
 
+// The KHR_lights_punctual lights the document defines (nodes refer to them by index).
+std::vector<Json> lightDefinitionsOf(const Json& doc) {
+  std::vector<Json> lightDefinitions;
+  if (doc.contains("extensions") && doc["extensions"].contains("KHR_lights_punctual") &&
+      doc["extensions"]["KHR_lights_punctual"].contains("lights")) {
+    for (const Json& light : doc["extensions"]["KHR_lights_punctual"]["lights"]) lightDefinitions.push_back(light);
+  }
+  return lightDefinitions;
+}
+
+// Nodes whose own transform is unusable: shown with the identity, each named once.
+std::vector<char> unusableTransforms(const Json& doc, std::size_t nodeCount, const std::string& file, std::vector<std::string>& messages) {
+  std::vector<char> unusableTransform(nodeCount, 0);
+  for (std::size_t n = 0; n < nodeCount; ++n) {
+    if (const std::string problem = transformProblem(doc["nodes"][n]); !problem.empty()) {
+      unusableTransform[n] = 1;
+      messages.push_back(file + ": node " + std::to_string(n) + ": " + problem + "; treated as identity");
+    }
+  }
+  return unusableTransform;
+}
+
+// A node's KHR_lights_punctual reference (`reference`) placed by its world transform into
+// scene.lights, or a message saying why it was left out.
+void addNodeLight(const Json& reference, int nodeIndex, const glm::mat4& world, const std::vector<Json>& lightDefinitions,
+                  const std::string& file, Scene& scene) {
+  const bool hasIndex = reference.contains("light") && reference["light"].is_number_integer();
+  const std::int64_t lightIndex = hasIndex ? reference["light"].get<std::int64_t>() : -1;
+  const std::string where = file + ": node " + std::to_string(nodeIndex) + ": KHR_lights_punctual light ";
+  if (lightIndex < 0 || lightIndex >= static_cast<std::int64_t>(lightDefinitions.size())) {
+    const std::string named = reference.contains("light") ? text::dumpJson(reference["light"]) : std::string("(none)");
+    scene.messages.push_back(where + named + " is not one of the file's " + std::to_string(lightDefinitions.size()) +
+                             " light(s); left out");
+    return;
+  }
+  LightDesc light = lightAt(lightDefinitions[static_cast<std::size_t>(lightIndex)], world);
+  light.definition = static_cast<int>(lightIndex);
+  light.node = nodeIndex;
+  if (const std::string problem = lightProblem(light); !problem.empty())
+    scene.messages.push_back(where + std::to_string(lightIndex) + ": " + problem + "; left out");
+  else
+    scene.lights.push_back(std::move(light));
+}
+
 Scene flattenScene(const std::filesystem::path& input, const SceneOptions& options) {
   const detail::Asset asset = detail::loadAsset(input, options.assetRoot);
   const Json& doc = asset.json;
@@ -816,25 +860,14 @@ Scene flattenScene(const std::filesystem::path& input, const SceneOptions& optio
   const std::vector<PrimitiveVerdicts> verdicts =
       options.judge ? judgeCorners(asset, input, options, scene.messages) : std::vector<PrimitiveVerdicts>{};
 
-  std::vector<Json> lightDefinitions;
-  if (doc.contains("extensions") && doc["extensions"].contains("KHR_lights_punctual") &&
-      doc["extensions"]["KHR_lights_punctual"].contains("lights")) {
-    for (const Json& light : doc["extensions"]["KHR_lights_punctual"]["lights"]) lightDefinitions.push_back(light);
-  }
+  const std::vector<Json> lightDefinitions = lightDefinitionsOf(doc);
 
   // Depth first with a stack of its own, so that a chain of a million nodes needs no call stack.
   // loadAsset's validation leaves each node one parent at most and no cycle; a node that the
   // scene lists twice, or lists beside an ancestor, is shown once, so each node costs one visit.
   const std::size_t nodeCount = doc.contains("nodes") ? doc["nodes"].size() : 0;
   const std::string file = input.string();
-  // Nodes whose own transform is unusable: shown with the identity, each named once.
-  std::vector<char> unusableTransform(nodeCount, 0);
-  for (std::size_t n = 0; n < nodeCount; ++n) {
-    if (const std::string problem = transformProblem(doc["nodes"][n]); !problem.empty()) {
-      unusableTransform[n] = 1;
-      scene.messages.push_back(file + ": node " + std::to_string(n) + ": " + problem + "; treated as identity");
-    }
-  }
+  const std::vector<char> unusableTransform = unusableTransforms(doc, nodeCount, file, scene.messages);
   std::vector<char> visited(nodeCount, 0);
   std::size_t reachedAgain = 0;
   std::vector<std::optional<std::vector<std::int64_t>>> meshItems(doc.contains("meshes") ? doc["meshes"].size() : 0);
@@ -865,25 +898,8 @@ Scene flattenScene(const std::filesystem::path& input, const SceneOptions& optio
       const Json& children = node["children"];
       for (auto it = children.rbegin(); it != children.rend(); ++it) stack.emplace_back(it->get<int>(), world);
     }
-    if (node.contains("extensions") && node["extensions"].contains("KHR_lights_punctual")) {
-      const Json& reference = node["extensions"]["KHR_lights_punctual"];
-      const bool hasIndex = reference.contains("light") && reference["light"].is_number_integer();
-      const std::int64_t lightIndex = hasIndex ? reference["light"].get<std::int64_t>() : -1;
-      const std::string where = file + ": node " + std::to_string(nodeIndex) + ": KHR_lights_punctual light ";
-      if (lightIndex < 0 || lightIndex >= static_cast<std::int64_t>(lightDefinitions.size())) {
-        const std::string named = reference.contains("light") ? text::dumpJson(reference["light"]) : std::string("(none)");
-        scene.messages.push_back(where + named + " is not one of the file's " + std::to_string(lightDefinitions.size()) +
-                                 " light(s); left out");
-      } else {
-        LightDesc light = lightAt(lightDefinitions[static_cast<std::size_t>(lightIndex)], world);
-        light.definition = static_cast<int>(lightIndex);
-        light.node = nodeIndex;
-        if (const std::string problem = lightProblem(light); !problem.empty())
-          scene.messages.push_back(where + std::to_string(lightIndex) + ": " + problem + "; left out");
-        else
-          scene.lights.push_back(std::move(light));
-      }
-    }
+    if (node.contains("extensions") && node["extensions"].contains("KHR_lights_punctual"))
+      addNodeLight(node["extensions"]["KHR_lights_punctual"], nodeIndex, world, lightDefinitions, file, scene);
     if (!node.contains("mesh")) continue;
     const int meshIndex = node["mesh"].get<int>();
     if (meshIndex < 0 || meshIndex >= static_cast<int>(meshItems.size())) continue;
