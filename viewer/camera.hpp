@@ -8,10 +8,14 @@
 #include <algorithm>
 #include <cmath>
 #include <string>
+#include <string_view>
 
 #include "renderer.hpp"
 
 namespace tangent::viewer {
+
+// The sides OrbitCamera::frame looks from, as --camera names them.
+inline constexpr std::string_view kCameraViews = "front|back|left|right|top|bottom|iso";
 
 struct OrbitCamera {
   glm::vec3 target{0};
@@ -42,7 +46,7 @@ struct OrbitCamera {
 
   static constexpr float kFieldOfViewY = 40.0f;  // degrees
 
-  // Frames the bounds from a named side: front, back, left, right, top, bottom, iso. The
+  // Frames the bounds from a named side (kCameraViews). The
   // perspective view backs off just far enough that all eight corners of the box are inside
   // the frame of the given aspect (plus 5%); the orthographic one shows the bounding sphere.
   bool frame(glm::vec3 boundsMin, glm::vec3 boundsMax, const std::string& view, float aspect = 16.0f / 9.0f) {

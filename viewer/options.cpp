@@ -17,6 +17,8 @@
 #include <vector>
 
 #include "app.hpp"
+#include "tangent/arguments.hpp"
+#include "tangent/option_table.hpp"
 #include "debug_colours.hpp"
 #include "pointer.hpp"
 #include "shader_check.hpp"
@@ -32,74 +34,122 @@ void printError(std::string_view text) { std::cerr << "error: " << shown(text) <
 
 namespace {
 
-const char* kUsage =
+const char* kUsageHead =
     "usage: tangent-view [IN] [options]\n"
     "\n"
     "Shows a glTF asset (default: the bundled demo scene) with shadowed normal and specular mapping\n"
     "and views that validate its tangent frames.\n"
-    "\n"
-    "options:\n"
-    "  --screenshot OUT.png     render one frame without a window and exit\n"
-    "  --size WxH               window or screenshot size (default 1280x720)\n"
-    "  --camera NAME            front | back | left | right | top | bottom | iso (default iso)\n"
-    "  --ortho                  orthographic projection\n"
-    "  --frame-box X0,Y0,Z0,X1,Y1,Z1  frame the camera on this world-space box instead of the scene\n"
-    "  --view NAME              lit | geometry-normal | tangent | bitangent | shading-normal | uv |\n"
-    "                           handedness (the file's w) | error | face-orientation (front blue, back red) |\n"
-    "                           handedness-world (w after the node's mirroring) | compare-angle (the\n"
-    "                           per-pixel angle between the file's tangent frames and the --compare set's:\n"
-    "                           blue 0, green 1 deg, yellow 5 deg, red >= 20 deg) | anisotropy-direction\n"
-    "                           (KHR_materials_anisotropy's direction in world space as colour, from the\n"
-    "                           TANGENT frame, rotation and texture; grey where a material has none) (default lit)\n"
-    "  --compare SET            split view: left of the divider the file's TANGENT, right of it SET:\n"
-    "                           fresh (the --reference generator's tangents computed at load, the default\n"
-    "                           set of compare-angle) |\n"
-    "                           file (the file's TANGENT again: both sides alike) | FILE.gltf/.glb (a second\n"
-    "                           file's TANGENT, for the same triangles in the same order, e.g. another bake)\n"
-    "  --split F                the divider's place, a fraction of the width from the left (default 0.5)\n"
-    "  --bitangent MODE         per-fragment (B = cross(N, T) * w from the interpolated N and T, default) |\n"
-    "                           per-vertex (B interpolated from the vertices), to match the baker\n"
-    "  --glyphs                 draw tangent frames (T red, B green, N blue)\n"
-    "  --no-shadows, --pcf N (0 off, 1 = 3x3, 2 = 5x5; default 1, or 0 on a software rasteriser),\n"
-    "                           --shadow-map-size N (1024..4096)\n"
-    "  --shading NAME           pbr (glTF metallic-roughness, default) | blinn-phong | phong (specular-map mode)\n"
-    "  --tone-map NAME          khr-pbr-neutral (default) | aces | none (values above 1 clip); unlit\n"
-    "                           materials and debug views are never tone mapped\n"
-    "  --exposure F|auto        linear factor on the lit colour before tone mapping (default auto: a white\n"
-    "                           surface facing the brightest light at the centre of the rest pose's bounds\n"
-    "                           shows at 0.76; decided once per asset, the same at every --time and animation)\n"
-    "  --depth-prepass          draw opaque depth first, then shade each pixel once\n"
-    "  --no-ibl                 pbr without image-based lighting: a plain sky term instead of the built-in\n"
-    "                           environment (a sky, a ground and a sun, prefiltered at start-up)\n"
-    "  --ibl-intensity F        factor on the environment's radiance (default 1: its mean radiance a fifth\n"
-    "                           of the lights' direct level)\n"
-    "  --animation N|NAME       pose the scene by this animation (index or name; default: none, the nodes'\n"
-    "                           own transforms, morph weights and skins in the rest pose); one the file does\n"
-    "                           not have is an error listing those it has\n"
-    "  --time SECONDS           the animation's time (default 0; alone, it picks animation 0)\n"
-    "  --msaa N                 samples per pixel in the window and screenshots (default 4, or 0 on a\n"
-    "                           software rasteriser such as llvmpipe, where 4x costs 3-4 times the frame)\n"
-    "  --no-normal-map, --no-specular, --phong (= --shading phong), --flip-green, --negate-w\n"
-    "  --reflectivity F, --sphere-map FILE, --uv-scale F\n"
-    "  --frames N               with --screenshot: render N frames and print the median frame time (wall\n"
-    "                           clock, and the CPU time of all the process's threads, a software\n"
-    "                           rasteriser's included) and how many shadow-map passes they drew\n"
-    "  --stats                  print what the file's scene holds (primitives, the instances that draw\n"
-    "                           them, triangles, images, lights); without --screenshot, load the file, print\n"
-    "                           and exit without a window (1 when it cannot be loaded)\n"
-    "  --asset-root DIR         folder buffer and image URIs may not leave (default: the file's folder)\n"
-    "  --reference NAME         what the fresh tangents and the error view's verdicts use, as tangent check\n"
-    "                           --reference: mikktspace (default) | lengyel/angle | lengyel/area |\n"
-    "                           lengyel/uniform | flat | meshopt (the error view is check --all's verdict)\n"
-    "  --shader-dir DIR         where the shaders are (default: the source tree's shaders/)\n"
-    "  --print-state            in the window: print the settings the keys and the mouse change (view,\n"
-    "                           toggles, divider, camera) as a JSON line after each key press, each mouse\n"
-    "                           button release and when it closes, for tests\n"
-    "  --check-shaders          link the programs in a spread of variants, compare their vertex inputs\n"
-    "                           with the layout tables (viewer/vertex_layout.hpp) and exit (1 on a mismatch)\n"
+    "\n";
+const char* kUsageKeys =
     "keys: m normal map, s specular, h shadows, p PCF, f green flip, 1-9 and 0 views, g glyphs,\n"
     "      c split compare view, a compare-angle view, b per-vertex/per-fragment bitangent,\n"
     "      r reload shaders, o open, mouse: left orbit (drag the divider to move it), right/middle pan, wheel zoom\n";
+
+// tangent-view's one command: its rows of the option table.
+constexpr unsigned kView = 1u;
+
+// The names of a table of the viewer's (kDebugViews, kShadings, ...) as the option table's
+// choices: "a|b|c", kept for the life of the program.
+template <class Entries>
+std::string_view choicesOf(const Entries& entries) {
+  static const std::string text = [&] {
+    std::string names;
+    for (const auto& entry : entries) names += (names.empty() ? "" : "|") + std::string(entry.name);
+    return names;
+  }();
+  return text;
+}
+
+// tangent-view's options, parsed and listed in --help by the same parser as tangent's commands
+// (tangent/arguments.hpp); the choices are the viewer's own tables, so a view added there is an
+// option value here.
+std::span<const options::Option> viewerOptions() {
+  using options::Kind;
+  constexpr unsigned kCli = options::kCommandLine;
+  constexpr double kHuge = 3.4e38;
+  static const std::string generators = [] {
+    std::string names;
+    for (const tangent::gltf::Generator& generator : tangent::gltf::kGenerators)
+      names += (names.empty() ? "" : "|") + tangent::gltf::toString(generator);
+    return names;
+  }();
+  static const std::vector<options::Option> table = {
+    {"screenshot", 0, Kind::path, "", "", 0, 0, false, kView, kCli, "OUT.png", "render one frame without a window, write it and exit"},
+    {"size", 0, Kind::text, "", "", 0, 0, false, kView, kCli, "WxH", "window or screenshot size, 16..8192 each (default 1280x720)"},
+    {"camera", 0, Kind::choice, kCameraViews, "iso", 0, 0, false, kView, kCli, "NAME", "the side the camera looks from"},
+    {"ortho", 0, Kind::flag, "", "false", 0, 0, false, kView, kCli, "", "orthographic projection"},
+    {"frame-box", 0, Kind::text, "", "", 0, 0, false, kView, kCli, "X0,Y0,Z0,X1,Y1,Z1",
+     "frame the camera on this world-space box instead of the scene"},
+    {"view", 0, Kind::choice, choicesOf(kDebugViews), "lit", 0, 0, false, kView, kCli, "NAME",
+     "what the pixels show. handedness: the file's w; face-orientation: front blue, back red; handedness-world: w "
+     "after the node's mirroring; compare-angle: the per-pixel angle between the file's tangent frames and the "
+     "--compare set's (blue 0, green 1 deg, yellow 5 deg, red >= 20 deg); anisotropy-direction: "
+     "KHR_materials_anisotropy's direction in world space as colour (grey where a material has none)"},
+    {"compare", 0, Kind::text, "", "", 0, 0, false, kView, kCli, "SET",
+     "split view: left of the divider the file's TANGENT, right of it SET: fresh (the --reference generator's "
+     "tangents computed at load, the default set of compare-angle) | file (the file's TANGENT again) | "
+     "FILE.gltf/.glb (a second file's TANGENT, for the same triangles in the same order, e.g. another bake)"},
+    {"split", 0, Kind::number, "", "0.5", 0, 1, false, kView, kCli, "F", "the divider's place, a fraction of the width from the left"},
+    {"bitangent", 0, Kind::choice, choicesOf(kBitangentModes), "per-fragment", 0, 0, false, kView, kCli, "MODE",
+     "per-fragment: B = cross(N, T) * w from the interpolated N and T; per-vertex: B interpolated from the "
+     "vertices; to match the baker"},
+    {"glyphs", 0, Kind::flag, "", "false", 0, 0, false, kView, kCli, "", "draw tangent frames (T red, B green, N blue)"},
+    {"no-shadows", 0, Kind::flag, "", "false", 0, 0, false, kView, kCli, "", "no shadow map"},
+    {"pcf", 0, Kind::integer, "", "1", 0, 2, false, kView, kCli, "N",
+     "percentage-closer filtering: 0 off, 1 = 3x3, 2 = 5x5 (0 by default on a software rasteriser)"},
+    {"shadow-map-size", 0, Kind::integer, "", "2048", 256, 8192, false, kView, kCli, "N", "the shadow map's width and height"},
+    {"shading", 0, Kind::choice, choicesOf(kShadings), "pbr", 0, 0, false, kView, kCli, "NAME",
+     "pbr: glTF metallic-roughness; blinn-phong and phong: the specular-map mode"},
+    {"phong", 0, Kind::flag, "", "false", 0, 0, false, kView, kCli, "", "the same as --shading phong"},
+    {"tone-map", 0, Kind::choice, choicesOf(kToneMappings), "khr-pbr-neutral", 0, 0, false, kView, kCli, "NAME",
+     "none: values above 1 clip; unlit materials and debug views are never tone mapped"},
+    {"exposure", 0, Kind::text, "", "", 0, 0, false, kView, kCli, "F|auto",
+     "linear factor on the lit colour before tone mapping (default auto: a white surface facing the brightest "
+     "light at the centre of the rest pose's bounds shows at 0.76; decided once per asset, the same at every "
+     "--time and animation)"},
+    {"depth-prepass", 0, Kind::flag, "", "false", 0, 0, false, kView, kCli, "", "draw opaque depth first, then shade each pixel once"},
+    {"no-ibl", 0, Kind::flag, "", "false", 0, 0, false, kView, kCli, "",
+     "pbr without image-based lighting: a plain sky term instead of the built-in environment (a sky, a ground "
+     "and a sun, prefiltered at start-up)"},
+    {"ibl-intensity", 0, Kind::number, "", "1", 0, kHuge, false, kView, kCli, "F",
+     "factor on the environment's radiance (1: its mean radiance a fifth of the lights' direct level)"},
+    {"animation", 0, Kind::text, "", "", 0, 0, false, kView, kCli, "N|NAME",
+     "pose the scene by this animation (index or name; default: none, the nodes' own transforms, morph weights "
+     "and skins in the rest pose); one the file does not have is an error listing those it has"},
+    {"time", 0, Kind::number, "", "0", -kHuge, kHuge, false, kView, kCli, "SECONDS",
+     "the animation's time (alone, it picks animation 0)"},
+    {"msaa", 0, Kind::integer, "", "4", 0, 16, false, kView, kCli, "N",
+     "samples per pixel in the window and screenshots (0 by default on a software rasteriser such as llvmpipe, "
+     "where 4x costs 3-4 times the frame)"},
+    {"no-normal-map", 0, Kind::flag, "", "false", 0, 0, false, kView, kCli, "", "shade with the geometry's normals"},
+    {"no-specular", 0, Kind::flag, "", "false", 0, 0, false, kView, kCli, "", "no specular highlights"},
+    {"flip-green", 0, Kind::flag, "", "false", 0, 0, false, kView, kCli, "", "read the normal map's green channel flipped (DirectX)"},
+    {"negate-w", 0, Kind::flag, "", "false", 0, 0, false, kView, kCli, "", "negate the file's TANGENT w (a baker's other convention)"},
+    {"reflectivity", 0, Kind::number, "", "0", 0, 1, false, kView, kCli, "F", "the sphere-map reflection's share"},
+    {"sphere-map", 0, Kind::path, "", "", 0, 0, false, kView, kCli, "FILE", "the sphere map reflected (default: the demo's)"},
+    {"uv-scale", 0, Kind::number, "", "1", 0, kHuge, true, kView, kCli, "F", "UV tiling factor"},
+    {"frames", 0, Kind::integer, "", "1", 1, 10000, false, kView, kCli, "N",
+     "with --screenshot: render N frames and print the median frame time (wall clock, and the CPU time of all "
+     "the process's threads, a software rasteriser's included) and how many shadow-map passes they drew"},
+    {"stats", 0, Kind::flag, "", "false", 0, 0, false, kView, kCli, "",
+     "print what the file's scene holds (primitives, the instances that draw them, triangles, images, lights); "
+     "without --screenshot, load the file, print and exit without a window (1 when it cannot be loaded)"},
+    {"asset-root", 0, Kind::path, "", "", 0, 0, false, kView, kCli, "DIR",
+     "folder buffer and image URIs may not leave (default: the file's folder)"},
+    {"reference", 0, Kind::choice, generators, "mikktspace", 0, 0, false, kView, kCli, "NAME",
+     "what the fresh tangents and the error view's verdicts use, as tangent check --reference (the error view is "
+     "check --all's verdict)"},
+    {"shader-dir", 0, Kind::path, "", "", 0, 0, false, kView, kCli, "DIR", "where the shaders are (default: the source tree's shaders/)"},
+    {"print-state", 0, Kind::flag, "", "false", 0, 0, false, kView, kCli, "",
+     "in the window: print the settings the keys and the mouse change (view, toggles, divider, camera) as a "
+     "JSON line after each key press, each mouse button release and when it closes, for tests"},
+    {"check-shaders", 0, Kind::flag, "", "false", 0, 0, false, kView, kCli, "",
+     "link the programs in a spread of variants, compare their vertex inputs with the layout tables "
+     "(viewer/vertex_layout.hpp) and exit (1 on a mismatch)"},
+  };
+  return table;
+}
+
 
 // The demo files the panel offers (data/demo/NAME.gltf), and where they are.
 
@@ -111,128 +161,93 @@ const fs::path& demoFolder() {
   return folder;
 }
 
+namespace {
+
+// Where a choice names an entry of one of the viewer's tables: its value.
+template <class Entries, class Member>
+auto valueNamed(const Entries& entries, std::string_view name, Member member) {
+  for (const auto& entry : entries)
+    if (name == entry.name) return entry.*member;
+  return entries[0].*member;  // not reached: the parser checked the name against the same table
+}
+
+// One checked option value into `options`; throws std::invalid_argument for what the table's
+// kinds cannot check (--size, --frame-box, --exposure).
+void applyViewerOption(Options& options, std::string_view name, const std::string& value) {
+  RenderSettings& s = options.settings;
+  const bool on = options::isTrue(value);
+  if (name == "screenshot") options.screenshot = value;
+  else if (name == "size") {
+    if (std::sscanf(value.c_str(), "%dx%d", &options.width, &options.height) != 2 || options.width < 16 || options.height < 16 ||
+        options.width > 8192 || options.height > 8192)
+      throw std::invalid_argument("--size must be WxH, 16..8192");
+  } else if (name == "camera") options.camera = value;
+  else if (name == "ortho") options.orthographic = on;
+  else if (name == "frame-box") {
+    glm::vec3 lo, hi;
+    if (std::sscanf(value.c_str(), "%f,%f,%f,%f,%f,%f", &lo.x, &lo.y, &lo.z, &hi.x, &hi.y, &hi.z) != 6 ||
+        !glm::all(glm::lessThanEqual(lo, hi)) || !std::isfinite(glm::length(hi - lo)))
+      throw std::invalid_argument("--frame-box must be X0,Y0,Z0,X1,Y1,Z1 with X0 <= X1, Y0 <= Y1, Z0 <= Z1");
+    options.frameBox = {lo, hi};
+  } else if (name == "view") s.view = valueNamed(kDebugViews, value, &DebugViewInfo::view);
+  else if (name == "compare") {
+    options.compare = value == "fresh" ? CompareSource::fresh : value == "file" ? CompareSource::file : CompareSource::otherFile;
+    if (options.compare == CompareSource::otherFile) options.compareFile = value;
+    s.split = true;
+  } else if (name == "split") s.splitPosition = std::stof(value);
+  else if (name == "bitangent") s.bitangent = valueNamed(kBitangentModes, value, &BitangentModeInfo::mode);
+  else if (name == "glyphs") s.glyphs = on;
+  else if (name == "no-shadows") s.shadows = !on;
+  else if (name == "pcf") s.pcfRadius = std::stoi(value), options.pcfGiven = true;
+  else if (name == "shadow-map-size") s.shadowMapSize = std::stoi(value);
+  else if (name == "shading") s.shading = valueNamed(kShadings, value, &ShadingInfo::shading);
+  else if (name == "phong") s.shading = on ? Shading::phong : s.shading;
+  else if (name == "tone-map") s.toneMapping = valueNamed(kToneMappings, value, &ToneMappingInfo::toneMapping);
+  else if (name == "exposure") {
+    char* end = nullptr;
+    const float factor = value == "auto" ? 0.0f : std::strtof(value.c_str(), &end);
+    if (value != "auto" && (end != value.c_str() + value.size() || !(factor > 0) || !std::isfinite(factor)))
+      throw std::invalid_argument("--exposure must be > 0 or auto");
+    s.exposure = factor;
+  } else if (name == "depth-prepass") s.depthPrePass = on;
+  else if (name == "no-ibl") s.ibl = !on;
+  else if (name == "ibl-intensity") s.iblIntensity = std::stof(value);
+  else if (name == "animation") options.animation = value;
+  else if (name == "time") options.time = std::stof(value);
+  else if (name == "msaa") options.msaaSamples = std::stoi(value);
+  else if (name == "no-normal-map") s.normalMapping = !on;
+  else if (name == "no-specular") s.specular = !on;
+  else if (name == "flip-green") s.flipGreen = on;
+  else if (name == "negate-w") options.negateW = on;
+  else if (name == "reflectivity") s.reflectivity = std::stof(value);
+  else if (name == "sphere-map") options.sphereMap = value, options.sphereMapGiven = true;
+  else if (name == "uv-scale") s.uvScale = std::stof(value);
+  else if (name == "frames") options.frames = std::stoi(value);
+  else if (name == "stats") options.stats = on;
+  else if (name == "asset-root") options.assetRoot = value;
+  else if (name == "reference") options.reference = *tangent::gltf::parseGenerator(value);
+  else if (name == "shader-dir") options.shaderDir = value;
+  else if (name == "print-state") options.printState = on;
+  else if (name == "check-shaders") options.checkShaders = on;
+  else throw std::logic_error("tangent-view: the option table's --" + std::string(name) + " has no effect here");
+}
+
+}  // namespace
+
 int parseOptions(int argc, char** argv, Options& options) {
-  std::vector<std::string> args(argv + 1, argv + argc);
-  for (std::size_t i = 0; i < args.size(); ++i) {
-    const std::string& arg = args[i];
-    auto value = [&]() -> std::string {
-      if (i + 1 >= args.size()) throw std::invalid_argument(arg + " needs a value");
-      return args[++i];
-    };
-    try {
-      if (arg == "-h" || arg == "--help") {
-        std::cout << kUsage;
-        return 0;
-      } else if (arg == "--screenshot") options.screenshot = value();
-      else if (arg == "--size") {
-        const std::string size = value();
-        if (std::sscanf(size.c_str(), "%dx%d", &options.width, &options.height) != 2 || options.width < 16 || options.height < 16 ||
-            options.width > 8192 || options.height > 8192)
-          throw std::invalid_argument("--size must be WxH, 16..8192");
-      } else if (arg == "--camera") options.camera = value();
-      else if (arg == "--ortho") options.orthographic = true;
-      else if (arg == "--frame-box") {
-        glm::vec3 lo, hi;
-        if (std::sscanf(value().c_str(), "%f,%f,%f,%f,%f,%f", &lo.x, &lo.y, &lo.z, &hi.x, &hi.y, &hi.z) != 6 ||
-            !glm::all(glm::lessThanEqual(lo, hi)) || !std::isfinite(glm::length(hi - lo)))
-          throw std::invalid_argument("--frame-box must be X0,Y0,Z0,X1,Y1,Z1 with X0 <= X1, Y0 <= Y1, Z0 <= Z1");
-        options.frameBox = {lo, hi};
-      }
-      else if (arg == "--view") {
-        const std::string name = value();
-        bool found = false;
-        for (const auto& view : kDebugViews) {
-          if (name == view.name) options.settings.view = view.view, found = true;
-        }
-        if (!found) throw std::invalid_argument("unknown --view " + name);
-      } else if (arg == "--glyphs") options.settings.glyphs = true;
-      else if (arg == "--no-shadows") options.settings.shadows = false;
-      else if (arg == "--pcf") {
-        options.settings.pcfRadius = std::clamp(std::stoi(value()), 0, 2);
-        options.pcfGiven = true;
-      }
-      else if (arg == "--shadow-map-size") options.settings.shadowMapSize = std::clamp(std::stoi(value()), 256, 8192);
-      else if (arg == "--no-normal-map") options.settings.normalMapping = false;
-      else if (arg == "--no-specular") options.settings.specular = false;
-      else if (arg == "--phong") options.settings.shading = Shading::phong;
-      else if (arg == "--shading") {
-        const std::string name = value();
-        bool found = false;
-        for (const auto& shading : kShadings) {
-          if (name == shading.name) options.settings.shading = shading.shading, found = true;
-        }
-        if (!found) throw std::invalid_argument("unknown --shading " + name);
-      } else if (arg == "--msaa") options.msaaSamples = std::clamp(std::stoi(value()), 0, 16);
-      else if (arg == "--flip-green") options.settings.flipGreen = true;
-      else if (arg == "--negate-w") options.negateW = true;
-      else if (arg == "--reference") {
-        const std::string name = value();
-        const std::optional<tangent::gltf::Generator> generator = tangent::gltf::parseGenerator(name);
-        if (!generator) throw std::invalid_argument("--reference must be " + tangent::gltf::generatorNames() + ", not " + name);
-        options.reference = *generator;
-      }
-      else if (arg == "--reflectivity") options.settings.reflectivity = std::clamp(std::stof(value()), 0.0f, 1.0f);
-      else if (arg == "--sphere-map") options.sphereMap = value(), options.sphereMapGiven = true;
-      else if (arg == "--uv-scale") options.settings.uvScale = std::stof(value());
-      else if (arg == "--frames") options.frames = std::clamp(std::stoi(value()), 1, 10000);
-      else if (arg == "--shader-dir") options.shaderDir = value();
-      else if (arg == "--asset-root") options.assetRoot = value();
-      else if (arg == "--check-shaders") options.checkShaders = true;
-      else if (arg == "--stats") options.stats = true;
-      else if (arg == "--print-state") options.printState = true;
-      else if (arg == "--depth-prepass") options.settings.depthPrePass = true;
-      else if (arg == "--no-ibl") options.settings.ibl = false;
-      else if (arg == "--ibl-intensity") {
-        const float intensity = std::stof(value());
-        if (!(intensity >= 0) || !std::isfinite(intensity)) throw std::invalid_argument("--ibl-intensity must be >= 0");
-        options.settings.iblIntensity = intensity;
-      }
-      else if (arg == "--animation") options.animation = value();
-      else if (arg == "--compare") {
-        const std::string source = value();
-        options.compare = source == "fresh" ? CompareSource::fresh : source == "file" ? CompareSource::file : CompareSource::otherFile;
-        if (options.compare == CompareSource::otherFile) options.compareFile = source;
-        options.settings.split = true;
-      } else if (arg == "--split") {
-        const float place = std::stof(value());
-        if (!(place >= 0 && place <= 1)) throw std::invalid_argument("--split must be within 0..1");
-        options.settings.splitPosition = place;
-      } else if (arg == "--bitangent") {
-        const std::string name = value();
-        bool found = false;
-        for (const auto& mode : kBitangentModes) {
-          if (name == mode.name) options.settings.bitangent = mode.mode, found = true;
-        }
-        if (!found) throw std::invalid_argument("unknown --bitangent " + name);
-      }
-      else if (arg == "--time") {
-        const float seconds = std::stof(value());
-        if (!std::isfinite(seconds)) throw std::invalid_argument("--time must be a number of seconds");
-        options.time = seconds;
-      }
-      else if (arg == "--exposure") {
-        const std::string text = value();
-        if (text == "auto") options.settings.exposure = 0;
-        else if (!(std::stof(text) > 0) || !std::isfinite(std::stof(text))) throw std::invalid_argument("--exposure must be > 0 or auto");
-        else options.settings.exposure = std::stof(text);
-      } else if (arg == "--tone-map") {
-        const std::string name = value();
-        bool found = false;
-        for (const auto& entry : kToneMappings) {
-          if (name == entry.name) options.settings.toneMapping = entry.toneMapping, found = true;
-        }
-        if (!found) throw std::invalid_argument("unknown --tone-map " + name);
-      }
-      else if (!arg.empty() && arg[0] == '-') throw std::invalid_argument("unknown option " + arg);
-      else options.input = arg;
-    } catch (const std::exception& e) {
-      std::cerr << "tangent-view: " << shown(e.what()) << "\n\n" << kUsage;
-      return 2;
-    }
+  const options::Arguments parsed = options::parseArguments(std::vector<std::string>(argv + 1, argv + argc), viewerOptions(), kView);
+  if (parsed.help) {
+    std::cout << kUsageHead << options::helpText(viewerOptions(), kView) << kUsageKeys;
+    return 0;
   }
-  OrbitCamera probe;
-  if (!probe.frame(glm::vec3(-1), glm::vec3(1), options.camera)) {
-    std::cerr << "tangent-view: unknown --camera " << shown(options.camera) << "\n";
+  try {
+    if (!parsed.error.empty()) throw std::invalid_argument(parsed.error);
+    if (parsed.operands.size() > 1)
+      throw std::invalid_argument("one file at a time: '" + parsed.operands[0] + "' and '" + parsed.operands[1] + "'");
+    if (!parsed.operands.empty()) options.input = parsed.operands.front();
+    for (const auto& [option, value] : parsed.values) applyViewerOption(options, option->name, value);
+  } catch (const std::exception& e) {
+    std::cerr << "tangent-view: " << shown(e.what()) << " (see tangent-view --help)\n";
     return 2;
   }
   return -1;

@@ -254,7 +254,7 @@ def main():
         # The "options" field: any tangent-view option; a wrong one is answered by the viewer's parser.
         page.evaluate("(e => { e.value = '--no-such-option'; e.dispatchEvent(new Event('change')); })(document.getElementById('extra'))")
         message = page.evaluate("document.getElementById('message').textContent")
-        check("unknown option --no-such-option" in message, f"the options field goes to tangent-view's parser: {message!r}")
+        check("unknown option '--no-such-option'" in message, f"the options field goes to tangent-view's parser: {message!r}")
         page.close()
     shutil.rmtree(site, ignore_errors=True)
     return report(failures, args.broken)

@@ -159,7 +159,7 @@ def main():
         files.append(site / "demo" / "scene.gltf")  # last: check_defaults opens it
     (site / "broken.glb").write_bytes((site / assets[0].name).read_bytes()[:200])
     refusals = [("broken.glb", ["broken.glb"]), ("missing.glb", ["missing.glb"]),
-                (assets[0].name + "&view=no-such-view", ["unknown --view no-such-view"])]
+                (assets[0].name + "&view=no-such-view", ["--view: 'no-such-view' is not lit"])]
     if shutil.which("gltfpack"):  # a meshopt-compressed copy: refused by name, not a crash
         subprocess.run(["gltfpack", "-i", str(assets[0]), "-o", str(site / "meshopt.glb"), "-c"], check=True, capture_output=True)
         refusals.append(("meshopt.glb", ["meshopt.glb", "EXT_meshopt_compression"]))

@@ -14,13 +14,16 @@
 #include <string>
 #include <utility>
 
-#include "arguments.hpp"
+#include "tangent/arguments.hpp"
 #include "commands.hpp"
 #include "tangent/batch.hpp"
 #include "tangent/gltf.hpp"
 #include "tangent/text.hpp"
 
 namespace tangent::cli {
+
+using options::Arguments;
+using options::parseArguments;
 namespace {
 
 const char* kBakeUsageHead =

@@ -24,7 +24,7 @@
 #include <thread>
 
 #include "analytic_surfaces.hpp"
-#include "arguments.hpp"
+#include "tangent/arguments.hpp"
 #include "commands.hpp"
 #include "peers.hpp"
 #include "stress_cases.hpp"
@@ -32,6 +32,9 @@
 #include "tangent/scene.hpp"
 
 namespace tangent::cli {
+
+using options::Arguments;
+using options::parseArguments;
 namespace {
 
 namespace fs = std::filesystem;

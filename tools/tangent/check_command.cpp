@@ -19,7 +19,7 @@
 #include <sstream>
 #include <utility>
 
-#include "arguments.hpp"
+#include "tangent/arguments.hpp"
 #include "check_html.hpp"
 #include "check_names.hpp"
 #include "commands.hpp"
@@ -30,6 +30,9 @@
 #include "tangent/text.hpp"
 
 namespace tangent::cli {
+
+using options::Arguments;
+using options::parseArguments;
 namespace {
 
 const char* kCheckUsageHead =

@@ -218,18 +218,26 @@ std::span<const Option> table() {
   return kTable;
 }
 
-const Option* find(std::string_view name, unsigned commands, unsigned frontEnds) {
-  for (const Option& option : kTable)
+const Option* find(std::span<const Option> table, std::string_view name, unsigned commands, unsigned frontEnds) {
+  for (const Option& option : table)
     if (option.name == name && (option.commands & commands) && (option.frontEnds & frontEnds)) return &option;
   return nullptr;
 }
 
-const Option* findShort(char shortName, unsigned commands, unsigned frontEnds) {
-  for (const Option& option : kTable)
+const Option* findShort(std::span<const Option> table, char shortName, unsigned commands, unsigned frontEnds) {
+  for (const Option& option : table)
     if (shortName != '\0' && option.shortName == shortName && (option.commands & commands) &&
         (option.frontEnds & frontEnds))
       return &option;
   return nullptr;
+}
+
+const Option* find(std::string_view name, unsigned commands, unsigned frontEnds) {
+  return find(kTable, name, commands, frontEnds);
+}
+
+const Option* findShort(char shortName, unsigned commands, unsigned frontEnds) {
+  return findShort(kTable, shortName, commands, frontEnds);
 }
 
 std::string pythonName(std::string_view name) {
@@ -305,9 +313,13 @@ std::optional<std::string> checkValue(const Option& option, std::string_view val
 }
 
 std::string helpText(unsigned commands, std::size_t width) {
+  return helpText(kTable, commands, width);
+}
+
+std::string helpText(std::span<const Option> table, unsigned commands, std::size_t width) {
   constexpr std::size_t kIndent = 25;  // where the help column starts
   std::string out = "options:\n";
-  for (const Option& option : kTable) {
+  for (const Option& option : table) {
     if (!(option.commands & commands) || !(option.frontEnds & kCommandLine)) continue;
     std::string spec = "  ";
     if (option.shortName != '\0') spec += std::string("-") + option.shortName + ", ";

@@ -72,6 +72,9 @@ std::span<const Option> table();
 const Option* find(std::string_view name, unsigned commands, unsigned frontEnds);
 // By the one-letter form (-o, -q).
 const Option* findShort(char shortName, unsigned commands, unsigned frontEnds);
+// The same in another program's table (tangent-view's, whose Command bits are its own).
+const Option* find(std::span<const Option> table, std::string_view name, unsigned commands, unsigned frontEnds);
+const Option* findShort(std::span<const Option> table, char shortName, unsigned commands, unsigned frontEnds);
 
 std::string pythonName(std::string_view name);  // crease-angle -> crease_angle
 std::string npmName(std::string_view name);     // crease-angle -> creaseAngle
@@ -89,6 +92,8 @@ std::string describeChoices(std::string_view choices);
 // The "options:" block of `tangent COMMAND --help`: every command-line option of `command`,
 // with its value name, help, choices and default, wrapped at `width` columns.
 std::string helpText(unsigned commands, std::size_t width = 100);
+// The same for another program's table.
+std::string helpText(std::span<const Option> table, unsigned commands, std::size_t width = 100);
 
 // A checked value of an option of the core on arrays (method, weighting, uv-origin, threads)
 // into `options`; false when `option` is not one of them.

@@ -1,21 +1,25 @@
 // SPDX-License-Identifier: MIT
-#include "arguments.hpp"
+#include "tangent/arguments.hpp"
 
-namespace tangent::cli {
+namespace tangent::options {
 namespace {
 
 // What a missing value's message asks for: "NAME (mikktspace, lengyel, flat or meshopt)".
-std::string wanted(const options::Option& option) {
+std::string wanted(const Option& option) {
   std::string text(option.valueName);
-  if (option.kind == options::Kind::choice || option.kind == options::Kind::list)
-    text += " (" + options::describeChoices(option.choices) + ")";
+  if (option.kind == Kind::choice || option.kind == Kind::list)
+    text += " (" + describeChoices(option.choices) + ")";
   return text;
 }
 
 }  // namespace
 
 Arguments parseArguments(const std::vector<std::string>& args, unsigned commands) {
-  using options::Kind;
+  return parseArguments(args, table(), commands);
+}
+
+Arguments parseArguments(const std::vector<std::string>& args, std::span<const Option> options, unsigned commands) {
+
   Arguments out;
   for (std::size_t i = 0; i < args.size() && out.error.empty(); ++i) {
     const std::string& arg = args[i];
@@ -34,8 +38,8 @@ Arguments parseArguments(const std::vector<std::string>& args, unsigned commands
     const bool isLong = arg[1] == '-';
     const std::size_t equals = isLong ? arg.find('=') : std::string::npos;
     const std::string spelled = arg.substr(0, equals);
-    const options::Option* option = isLong ? options::find(spelled.substr(2), commands, options::kCommandLine)
-                                    : arg.size() == 2 ? options::findShort(arg[1], commands, options::kCommandLine)
+    const Option* option = isLong ? find(options, spelled.substr(2), commands, kCommandLine)
+                                    : arg.size() == 2 ? findShort(options, arg[1], commands, kCommandLine)
                                                       : nullptr;
     if (!option) {
       out.error = "unknown option '" + spelled + "'";
@@ -53,10 +57,10 @@ Arguments parseArguments(const std::vector<std::string>& args, unsigned commands
       out.error = spelled + " needs " + wanted(*option);
     }
     if (out.error.empty())
-      if (const auto why = options::checkValue(*option, value)) out.error = spelled + ": " + *why;
+      if (const auto why = checkValue(*option, value)) out.error = spelled + ": " + *why;
     out.values.emplace_back(option, std::move(value));
   }
   return out;
 }
 
-}  // namespace tangent::cli
+}  // namespace tangent::options
