@@ -209,6 +209,18 @@ class Renderer {
   // Sets the instance's transform (and front face) and draws it.
   void drawInstance(const GpuInstance& instance, BoundMesh& bound);
   void drawShadowMap(const RenderSettings& settings);
+  // render()'s phases: the views' lazily computed data (morphed error and compare tangents, the
+  // environment), the shadow map where its key changed, the draw order, and the scene drawn with
+  // one tangent set (into the scissor box of its side in the split view).
+  void prepareViewData(const RenderSettings& settings);
+  void refreshShadowMap(const RenderSettings& settings, FrameStats& stats);
+  struct DrawOrder {
+    std::vector<const GpuInstance*> opaque;       // the nearest mesh first, its instances front to back
+    std::vector<const GpuInstance*> transparent;  // BLEND, back to front
+  };
+  DrawOrder drawOrder(const CameraMatrices& camera, const RenderSettings& settings) const;
+  void drawScene(const DrawOrder& order, const CameraMatrices& camera, const RenderSettings& settings, TangentSet tangents,
+                 FrameStats& stats);
   // Depth only: each instance through the depth program of its mesh's alpha test (MASK, or BLEND
   // by the shadow rule when `blendCasts`), under `viewProjection`.
   void drawDepth(std::span<const GpuInstance* const> instances, const glm::mat4& viewProjection, const RenderSettings& settings,

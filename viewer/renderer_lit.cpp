@@ -26,8 +26,7 @@ namespace tangent::viewer {
 
 using namespace renderer_detail;
 
-FrameStats Renderer::render(const CameraMatrices& camera, const RenderSettings& settings, int width, int height) {
-  FrameStats stats;
+void Renderer::prepareViewData(const RenderSettings& settings) {
   if (settings.view == DebugView::tangentError) {
     // Morphing instances: their tangents against fresh ones on the morphed mesh, computed when
     // this view first shows a pose (a MikkTSpace run per instance).
@@ -55,26 +54,28 @@ FrameStats Renderer::render(const CameraMatrices& camera, const RenderSettings& 
     environment_ = uploadEnvironment(buildEnvironment());
     environmentMilliseconds_ = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
   }
-  if (shadowsDrawn(settings)) {
-    // The map depends on the scene, light 0's direction and the map size only: a camera that
-    // moves reuses it.
-    const ShadowKey key{glm::normalize(lights_[0].direction), lights_[0].directional ? glm::vec3(0) : lights_[0].position, pointShadow(),
-                        settings.shadowMapSize, sceneVersion_, settings.uvScale};
-    if (!(key == shadowKey_) || !(pointShadow() ? shadowCube_ : shadowTexture_)) {
-      drawShadowMap(settings);
-      shadowKey_ = key;
-      stats.depthPass = true;
-      stats.shadowDrawCalls += static_cast<int>(instances_.size()) * (pointShadow() ? 6 : 1);
-    }
-  }
-  glViewport(0, 0, width, height);
-  glClearColor(0.16f, 0.17f, 0.19f, 1.0f);
+}
 
-  // Opaque and masked meshes front to back (less overdraw): the mesh with the nearest instance
-  // first, its instances front to back, so that each mesh's state is set once. Then blended
-  // instances back to front over them, one by one (the order matters), as the Khronos glTF
-  // Sample Viewer draws them: sorted by the view-space depth of their centre, with depth test
-  // and depth writes on, so that a closed blended mesh hides its own far side.
+void Renderer::refreshShadowMap(const RenderSettings& settings, FrameStats& stats) {
+  if (!shadowsDrawn(settings)) return;
+  // The map depends on the scene, light 0's direction and the map size only: a camera that
+  // moves reuses it.
+  const ShadowKey key{glm::normalize(lights_[0].direction), lights_[0].directional ? glm::vec3(0) : lights_[0].position, pointShadow(),
+                      settings.shadowMapSize, sceneVersion_, settings.uvScale};
+  if (!(key == shadowKey_) || !(pointShadow() ? shadowCube_ : shadowTexture_)) {
+    drawShadowMap(settings);
+    shadowKey_ = key;
+    stats.depthPass = true;
+    stats.shadowDrawCalls += static_cast<int>(instances_.size()) * (pointShadow() ? 6 : 1);
+  }
+}
+
+// Opaque and masked meshes front to back (less overdraw): the mesh with the nearest instance
+// first, its instances front to back, so that each mesh's state is set once. Then blended
+// instances back to front over them, one by one (the order matters), as the Khronos glTF
+// Sample Viewer draws them: sorted by the view-space depth of their centre, with depth test
+// and depth writes on, so that a closed blended mesh hides its own far side.
+Renderer::DrawOrder Renderer::drawOrder(const CameraMatrices& camera, const RenderSettings& settings) const {
   auto blended = [&](const GpuMesh& mesh) {
     return mesh.material >= 0 && mesh.material < static_cast<int>(scene_.materials.size()) &&
            scene_.materials[mesh.material].alphaMode == gltf::MaterialDesc::AlphaMode::blend && settings.view == DebugView::lit;
@@ -102,52 +103,64 @@ FrameStats Renderer::render(const CameraMatrices& camera, const RenderSettings& 
   });
   std::stable_sort(transparentOrder.begin(), transparentOrder.end(),
                    [](const Ordered& a, const Ordered& b) { return a.distance > b.distance; });
-  std::vector<const GpuInstance*> opaque, transparent;
-  opaque.reserve(opaqueOrder.size());
-  for (const Ordered& entry : opaqueOrder) opaque.push_back(entry.instance);
-  for (const Ordered& entry : transparentOrder) transparent.push_back(entry.instance);
-  stats.exposure = exposure(settings);
-  const bool prePass = settings.depthPrePass && settings.view == DebugView::lit && !opaque.empty();
-  // The whole scene with one tangent set, into the framebuffer's scissor box (when enabled).
-  auto drawScene = [&](TangentSet tangents) {
+  DrawOrder order;
+  order.opaque.reserve(opaqueOrder.size());
+  for (const Ordered& entry : opaqueOrder) order.opaque.push_back(entry.instance);
+  for (const Ordered& entry : transparentOrder) order.transparent.push_back(entry.instance);
+  return order;
+}
+
+// The whole scene with one tangent set, into the framebuffer's scissor box (when enabled).
+void Renderer::drawScene(const DrawOrder& order, const CameraMatrices& camera, const RenderSettings& settings, TangentSet tangents,
+                         FrameStats& stats) {
+  const bool prePass = settings.depthPrePass && settings.view == DebugView::lit && !order.opaque.empty();
+  glDepthMask(GL_TRUE);
+  glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+  glEnable(GL_DEPTH_TEST);
+  glDisable(GL_CULL_FACE);
+  if (prePass) {
+    // Depth of the opaque and masked meshes first, so that the shading pass below runs the
+    // fragment shader once per pixel; same culling, same invariant positions, GL_LEQUAL.
+    glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
+    drawDepth(order.opaque, camera.projection * camera.view, settings, false, true);
+    stats.drawCalls += static_cast<int>(order.opaque.size());
+    glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+    glDepthFunc(GL_LEQUAL);
+    glDepthMask(GL_FALSE);
+  }
+  drawInstances(order.opaque, camera, settings, tangents, stats);
+  if (prePass) {
+    glDepthFunc(GL_LESS);
     glDepthMask(GL_TRUE);
-    glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
-    glEnable(GL_DEPTH_TEST);
-    glDisable(GL_CULL_FACE);
-    if (prePass) {
-      // Depth of the opaque and masked meshes first, so that the shading pass below runs the
-      // fragment shader once per pixel; same culling, same invariant positions, GL_LEQUAL.
-      glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
-      drawDepth(opaque, camera.projection * camera.view, settings, false, true);
-      stats.drawCalls += static_cast<int>(opaque.size());
-      glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
-      glDepthFunc(GL_LEQUAL);
-      glDepthMask(GL_FALSE);
-    }
-    drawInstances(opaque, camera, settings, tangents, stats);
-    if (prePass) {
-      glDepthFunc(GL_LESS);
-      glDepthMask(GL_TRUE);
-    }
-    if (!transparent.empty()) {
-      glEnable(GL_BLEND);
-      glBlendFuncSeparate(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA, GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
-      drawInstances(transparent, camera, settings, tangents, stats);
-      glDisable(GL_BLEND);
-    }
-    glFrontFace(GL_CCW);
-    glDisable(GL_CULL_FACE);
-  };
+  }
+  if (!order.transparent.empty()) {
+    glEnable(GL_BLEND);
+    glBlendFuncSeparate(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA, GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
+    drawInstances(order.transparent, camera, settings, tangents, stats);
+    glDisable(GL_BLEND);
+  }
+  glFrontFace(GL_CCW);
+  glDisable(GL_CULL_FACE);
+}
+
+FrameStats Renderer::render(const CameraMatrices& camera, const RenderSettings& settings, int width, int height) {
+  FrameStats stats;
+  prepareViewData(settings);
+  refreshShadowMap(settings, stats);
+  glViewport(0, 0, width, height);
+  glClearColor(0.16f, 0.17f, 0.19f, 1.0f);
+  const DrawOrder order = drawOrder(camera, settings);
+  stats.exposure = exposure(settings);
   // Split view: the same scene twice, each into its side of the divider, then the divider.
   const bool split = dividerShown(settings);
   const int divider = std::clamp(static_cast<int>(std::lround(settings.splitPosition * static_cast<float>(width))), 0, width);
   if (split) {
     glEnable(GL_SCISSOR_TEST);
     glScissor(divider, 0, width - divider, height);
-    drawScene(TangentSet::compare);
+    drawScene(order, camera, settings, TangentSet::compare, stats);
     glScissor(0, 0, divider, height);
   }
-  drawScene(TangentSet::file);
+  drawScene(order, camera, settings, TangentSet::file, stats);
   if (settings.glyphs) {
     drawGlyphs(camera, settings);  // the file's frames, left of the divider in the split view
     ++stats.drawCalls;
