@@ -29,7 +29,7 @@ void Kernel::inheritFrom(std::uint32_t best, std::uint32_t corner, float w, bool
 
 // The rare corners without a frame of their own, after every group is done: one w per
 // coincident triangle, then frames borrowed from the vertex, the triangle or its 1-ring.
-void Kernel::fallbacks() {
+void Kernel::fallbackCoincident() {
   const std::size_t triangleCount = ws_.cornerCount / 3;
   const std::vector<std::uint32_t> coincident =
       coincident_ == 0 ? std::vector<std::uint32_t>{}
@@ -58,7 +58,9 @@ void Kernel::fallbacks() {
       mirroredCorners_ += (tangents_[4 * c + 3] < 0) - static_cast<int>(wasMirrored);
     }
   }
-  if (!anyUndefined_.load(std::memory_order_relaxed)) return;
+}
+
+void Kernel::fallbackUndefined() {
   const std::vector<std::uint32_t> undefined =
       collectFlagged(ws_, ws_.cornerState.data(), kUndefined, ws_.cornerCount, [&](std::size_t c) {
         return (ws_.cornerState[c] & kUndefined) && !(ws_.cornerState[c] & kCopy);
@@ -123,6 +125,12 @@ void Kernel::fallbacks() {
     decisions.push_back({c, tangent, FrameSource::fixed});
   }
   for (const Decision& d : decisions) writeCorner(d.corner, d.tangent, w(d.corner), d.source, 0);
+}
+
+void Kernel::fallbacks() {
+  fallbackCoincident();
+  if (!anyUndefined_.load(std::memory_order_relaxed)) return;
+  fallbackUndefined();
 }
 
 }  // namespace tangent::detail::mikk

@@ -244,6 +244,11 @@ class Kernel {
   std::uint32_t bestComputedInBucket(std::uint32_t bucket, float w, bool anyW) const;
   void inheritFrom(std::uint32_t best, std::uint32_t corner, float w, bool anyW);
   void fallbacks();
+  // fallbacks()'s two phases: a coincident triangle's corners take its majority w (from the
+  // bucket's best frame with that w); then each undefined corner's frame from its bucket, its
+  // triangle, the triangle's other buckets, or a fixed perpendicular.
+  void fallbackCoincident();
+  void fallbackUndefined();
   // The reference's corner angle (EvalTspace): float projections on the raw normal, float
   // cosine clamped to [-1, 1], acos.
   double referenceAngle(std::size_t corner, F3 rawNormal) const {
