@@ -86,56 +86,43 @@ void printState(const Viewer& viewer, GLFWwindow* window) {
   std::fflush(stdout);
 }
 
-int interactive(Viewer& viewer, GLFWwindow* window) {
-  IMGUI_CHECKVERSION();
-  ImGui::CreateContext();
-  // The panel's layout file (Dear ImGui's imgui.ini in the working folder), under the input
-  // rule: where it is there but not a regular file of bounded size (a FIFO would block the
-  // first frame), it is neither read nor written.
-  if (const char* ini = ImGui::GetIO().IniFilename; ini && fs::exists(fs::symlink_status(ini))) {
-    try {
-      tangent::gltf::requireInputFile(ini, "a settings file");
-    } catch (const std::exception& e) {
-      ImGui::GetIO().IniFilename = nullptr;
-      viewer.messages.push_back(std::string(e.what()) + "; the panel's layout is neither read nor saved");
-      printNote(viewer.messages.back());
-    }
+// A key: the panel's first (where it has the keyboard), then the toggles and views the help
+// lists.
+void onKey(GLFWwindow* w, int key, int scancode, int action, int mods) {
+  ImGui_ImplGlfw_KeyCallback(w, key, scancode, action, mods);
+  if (action != GLFW_PRESS || ImGui::GetIO().WantCaptureKeyboard) return;
+  auto& in = inputOf(w);
+  RenderSettings& s = in.viewer->options.settings;
+  switch (key) {
+    case GLFW_KEY_M: s.normalMapping = !s.normalMapping; break;
+    case GLFW_KEY_S: s.specular = !s.specular; break;
+    case GLFW_KEY_H: s.shadows = !s.shadows; break;
+    case GLFW_KEY_P: s.pcfRadius = s.pcfRadius == 0 ? 1 : 0; break;
+    case GLFW_KEY_F: s.flipGreen = !s.flipGreen; break;
+    case GLFW_KEY_G: s.glyphs = !s.glyphs; break;
+    case GLFW_KEY_C: s.split = !s.split; break;
+    case GLFW_KEY_A: s.view = s.view == DebugView::compareAngle ? DebugView::lit : DebugView::compareAngle; break;
+    case GLFW_KEY_B:
+      s.bitangent = s.bitangent == BitangentMode::perFragment ? BitangentMode::perVertex : BitangentMode::perFragment;
+      break;
+    case GLFW_KEY_O: in.focusOpen = true; break;
+    case GLFW_KEY_R:
+      in.viewer->shaders.reload();
+      in.viewer->messages.push_back("shaders reloaded");
+      break;
+    case GLFW_KEY_ESCAPE: glfwSetWindowShouldClose(w, GLFW_TRUE); break;
+    default:
+      if (key >= GLFW_KEY_1 && key <= GLFW_KEY_9 && key - GLFW_KEY_1 < static_cast<int>(std::size(kDebugViews)))
+        s.view = static_cast<DebugView>(key - GLFW_KEY_1);
+      else if (key == GLFW_KEY_0 && std::size(kDebugViews) > 9) s.view = static_cast<DebugView>(9);
   }
-  ImGui_ImplGlfw_InitForOpenGL(window, true);
-  ImGui_ImplOpenGL3_Init("#version 330 core");
-  Input input;
-  input.viewer = &viewer;
+  if (in.viewer->options.printState) printState(*in.viewer, w);
+}
+
+// Pointer and keys: the panel's backend first, then the camera, the divider and the keys.
+void installInputCallbacks(GLFWwindow* window, Input& input) {
   glfwSetWindowUserPointer(window, &input);
-  glfwSetKeyCallback(window, [](GLFWwindow* w, int key, int scancode, int action, int mods) {
-    ImGui_ImplGlfw_KeyCallback(w, key, scancode, action, mods);
-    if (action != GLFW_PRESS || ImGui::GetIO().WantCaptureKeyboard) return;
-    auto& in = inputOf(w);
-    RenderSettings& s = in.viewer->options.settings;
-    switch (key) {
-      case GLFW_KEY_M: s.normalMapping = !s.normalMapping; break;
-      case GLFW_KEY_S: s.specular = !s.specular; break;
-      case GLFW_KEY_H: s.shadows = !s.shadows; break;
-      case GLFW_KEY_P: s.pcfRadius = s.pcfRadius == 0 ? 1 : 0; break;
-      case GLFW_KEY_F: s.flipGreen = !s.flipGreen; break;
-      case GLFW_KEY_G: s.glyphs = !s.glyphs; break;
-      case GLFW_KEY_C: s.split = !s.split; break;
-      case GLFW_KEY_A: s.view = s.view == DebugView::compareAngle ? DebugView::lit : DebugView::compareAngle; break;
-      case GLFW_KEY_B:
-        s.bitangent = s.bitangent == BitangentMode::perFragment ? BitangentMode::perVertex : BitangentMode::perFragment;
-        break;
-      case GLFW_KEY_O: in.focusOpen = true; break;
-      case GLFW_KEY_R:
-        in.viewer->shaders.reload();
-        in.viewer->messages.push_back("shaders reloaded");
-        break;
-      case GLFW_KEY_ESCAPE: glfwSetWindowShouldClose(w, GLFW_TRUE); break;
-      default:
-        if (key >= GLFW_KEY_1 && key <= GLFW_KEY_9 && key - GLFW_KEY_1 < static_cast<int>(std::size(kDebugViews)))
-          s.view = static_cast<DebugView>(key - GLFW_KEY_1);
-        else if (key == GLFW_KEY_0 && std::size(kDebugViews) > 9) s.view = static_cast<DebugView>(9);
-    }
-    if (in.viewer->options.printState) printState(*in.viewer, w);
-  });
+  glfwSetKeyCallback(window, onKey);
   // The mouse by its events, in order (viewer/pointer.hpp says why).
   glfwSetMouseButtonCallback(window, [](GLFWwindow* w, int button, int action, int mods) {
     ImGui_ImplGlfw_MouseButtonCallback(w, button, action, mods);
@@ -161,6 +148,32 @@ int interactive(Viewer& viewer, GLFWwindow* window) {
   glfwSetDropCallback(window, [](GLFWwindow* w, int count, const char** paths) {
     if (count > 0) inputOf(w).viewer->load(paths[0]);
   });
+}
+
+// The panel's context; its layout file (Dear ImGui's imgui.ini in the working folder) under the
+// input rule: where it is there but not a regular file of bounded size (a FIFO would block the
+// first frame), it is neither read nor written.
+void startPanel(Viewer& viewer, GLFWwindow* window) {
+  IMGUI_CHECKVERSION();
+  ImGui::CreateContext();
+  if (const char* ini = ImGui::GetIO().IniFilename; ini && fs::exists(fs::symlink_status(ini))) {
+    try {
+      tangent::gltf::requireInputFile(ini, "a settings file");
+    } catch (const std::exception& e) {
+      ImGui::GetIO().IniFilename = nullptr;
+      viewer.messages.push_back(std::string(e.what()) + "; the panel's layout is neither read nor saved");
+      printNote(viewer.messages.back());
+    }
+  }
+  ImGui_ImplGlfw_InitForOpenGL(window, true);
+  ImGui_ImplOpenGL3_Init("#version 330 core");
+}
+
+int interactive(Viewer& viewer, GLFWwindow* window) {
+  startPanel(viewer, window);
+  Input input;
+  input.viewer = &viewer;
+  installInputCallbacks(window, input);
   double startX = 0, startY = 0;  // where the pointer is before it first moves
   glfwGetCursorPos(window, &startX, &startY);
   input.drags.move(startX, startY, viewer.camera, viewer.options.settings, windowWidth(window));

@@ -205,6 +205,50 @@ void Renderer::drawInstance(const GpuInstance& instance, BoundMesh& bound) {
   drawMesh(meshes_[instance.mesh]);
 }
 
+namespace {
+
+// The material's factors (those its maps scale) and the specular-map mode's settings.
+void setMaterialUniforms(GLuint program, const gltf::MaterialDesc& material, const RenderSettings& settings) {
+  setUniform(program, "u_baseColorFactor", glm::make_vec4(material.baseColor.data()));
+  setUniform(program, "u_emissiveFactor", glm::make_vec3(material.emissive.data()));
+  setUniform(program, "u_roughness", material.roughness);
+  setUniform(program, "u_metallic", material.metallic);
+  setUniform(program, "u_normalScale", material.normalTexture.scale);
+  setUniform(program, "u_occlusionStrength", material.occlusionTexture.scale);
+  setUniform(program, "u_specularColorFactor", material.hasSpecular ? glm::make_vec3(material.specularColor.data()) : glm::vec3(1));
+  setUniform(program, "u_specularStrength", material.hasSpecular ? material.specularFactor : 1.0f);
+  setUniform(program, "u_shininess", material.hasSpecular ? settings.shininess : 0.0f);  // 0: derive from roughness
+  setUniform(program, "u_reflectivity", settings.reflectivity);
+}
+
+// Each light's position or direction, colours (photometric: colour x intensity, lux or
+// candela, and range), attenuation and spot cone.
+void setLightUniforms(GLuint program, const std::vector<Light>& lights, bool physical) {
+  const int lightCount = static_cast<int>(lights.size());  // at most kMaxLights (lightsFrom)
+  for (int i = 0; i < lightCount; ++i) {
+    const Light& light = lights[i];
+    const std::string index = "[" + std::to_string(i) + "]";
+    setUniform(program, ("u_lightPosition" + index).c_str(),
+               light.directional ? glm::vec4(glm::normalize(light.direction), 0) : glm::vec4(light.position, 1));
+    if (physical) {
+      // Illuminance (lux) or intensity (candela) times colour; ambient radiance a share of it.
+      setUniform(program, ("u_lightDiffuse" + index).c_str(), light.color * light.intensity);
+      setUniform(program, ("u_lightAmbient" + index).c_str(), light.color * (light.intensity * kAmbientShare / glm::pi<float>()));
+      setUniform(program, ("u_lightRange" + index).c_str(), light.range);
+    } else {
+      setUniform(program, ("u_lightAmbient" + index).c_str(), light.ambient);
+      setUniform(program, ("u_lightDiffuse" + index).c_str(), light.diffuse);
+    }
+    setUniform(program, ("u_lightSpecular" + index).c_str(), light.specular);
+    setUniform(program, ("u_lightAttenuation" + index).c_str(), light.attenuation);
+    setUniform(program, ("u_lightSpotDirection" + index).c_str(), light.direction);
+    glUniform2f(glGetUniformLocation(program, ("u_lightSpotCos" + index).c_str()),
+                light.spotInner >= 0 ? std::cos(light.spotInner) : 0.0f, light.spotOuter >= 0 ? std::cos(light.spotOuter) : -2.0f);
+  }
+}
+
+}  // namespace
+
 GLuint Renderer::bindMesh(const GpuMesh& mesh, const CameraMatrices& camera, const RenderSettings& settings, TangentSet tangents) {
   gltf::MaterialDesc material;  // without one, glTF's default material (metallic 1, roughness 1, white; glTF 2.0 3.9.1)
   if (const gltf::MaterialDesc* own = materialOf(scene_, mesh.material)) material = *own;
@@ -226,37 +270,8 @@ GLuint Renderer::bindMesh(const GpuMesh& mesh, const CameraMatrices& camera, con
   setUniform(program, "u_alphaCutoff", material.alphaCutoff);
   setUniform(program, "u_exposure", exposure(settings));
 
-  setUniform(program, "u_baseColorFactor", glm::make_vec4(material.baseColor.data()));
-  setUniform(program, "u_emissiveFactor", glm::make_vec3(material.emissive.data()));
-  setUniform(program, "u_roughness", material.roughness);
-  setUniform(program, "u_metallic", material.metallic);
-  setUniform(program, "u_normalScale", material.normalTexture.scale);
-  setUniform(program, "u_occlusionStrength", material.occlusionTexture.scale);
-  setUniform(program, "u_specularColorFactor", material.hasSpecular ? glm::make_vec3(material.specularColor.data()) : glm::vec3(1));
-  setUniform(program, "u_specularStrength", material.hasSpecular ? material.specularFactor : 1.0f);
-  setUniform(program, "u_shininess", material.hasSpecular ? settings.shininess : 0.0f);  // 0: derive from roughness
-  setUniform(program, "u_reflectivity", settings.reflectivity);
-
-  for (int i = 0; i < lightCount; ++i) {
-    const Light& light = lights_[i];
-    const std::string index = "[" + std::to_string(i) + "]";
-    setUniform(program, ("u_lightPosition" + index).c_str(),
-               light.directional ? glm::vec4(glm::normalize(light.direction), 0) : glm::vec4(light.position, 1));
-    if (has(features, Feature::physicalLights)) {
-      // Illuminance (lux) or intensity (candela) times colour; ambient radiance a share of it.
-      setUniform(program, ("u_lightDiffuse" + index).c_str(), light.color * light.intensity);
-      setUniform(program, ("u_lightAmbient" + index).c_str(), light.color * (light.intensity * kAmbientShare / glm::pi<float>()));
-      setUniform(program, ("u_lightRange" + index).c_str(), light.range);
-    } else {
-      setUniform(program, ("u_lightAmbient" + index).c_str(), light.ambient);
-      setUniform(program, ("u_lightDiffuse" + index).c_str(), light.diffuse);
-    }
-    setUniform(program, ("u_lightSpecular" + index).c_str(), light.specular);
-    setUniform(program, ("u_lightAttenuation" + index).c_str(), light.attenuation);
-    setUniform(program, ("u_lightSpotDirection" + index).c_str(), light.direction);
-    glUniform2f(glGetUniformLocation(program, ("u_lightSpotCos" + index).c_str()),
-                light.spotInner >= 0 ? std::cos(light.spotInner) : 0.0f, light.spotOuter >= 0 ? std::cos(light.spotOuter) : -2.0f);
-  }
+  setMaterialUniforms(program, material, settings);
+  setLightUniforms(program, lights_, has(features, Feature::physicalLights));
 
   int unit = 0;
   // `sampler` 0: the texture's own parameters (the viewer's maps); a file's textures sample
