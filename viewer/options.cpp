@@ -67,12 +67,8 @@ std::span<const options::Option> viewerOptions() {
   using options::Kind;
   constexpr unsigned kCli = options::kCommandLine;
   constexpr double kHuge = 3.4e38;
-  static const std::string generators = [] {
-    std::string names;
-    for (const tangent::gltf::Generator& generator : tangent::gltf::kGenerators)
-      names += (names.empty() ? "" : "|") + tangent::gltf::toString(generator);
-    return names;
-  }();
+  // --reference takes what tangent check --reference takes (its row's choices; "lengyel" among them).
+  const std::string_view generators = options::find("reference", options::kCheck, kCli)->choices;
   static const std::vector<options::Option> table = {
     {"screenshot", 0, Kind::path, "", "", 0, 0, false, kView, kCli, "OUT.png", "render one frame without a window, write it and exit"},
     {"size", 0, Kind::text, "", "", 0, 0, false, kView, kCli, "WxH", "window or screenshot size, 16..8192 each (default 1280x720)"},
