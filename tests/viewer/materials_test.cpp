@@ -26,6 +26,7 @@
 
 #include "support/run_command.hpp"
 #include "support/temp_dir.hpp"
+#include "viewer/png_image.hpp"
 
 namespace {
 
@@ -33,11 +34,7 @@ namespace fs = std::filesystem;
 using tangent::testing::TempDir;
 using Json = nlohmann::ordered_json;
 
-struct Image {
-  int width = 0, height = 0;
-  std::vector<float> rgb;  // top-down rows, sRGB-encoded 0..1
-  const float* at(int x, int y) const { return &rgb[(static_cast<std::size_t>(y) * width + x) * 3]; }
-};
+using tangent::testing::Image;
 
 double srgbToLinear(double c) { return c <= 0.04045 ? c / 12.92 : std::pow((c + 0.055) / 1.055, 2.4); }
 double linearLuma(const float* c) {
@@ -53,17 +50,11 @@ Image screenshot(const TempDir& dir, const fs::path& file, const std::string& na
                                                    " --screenshot '" + out.string() + "'");
   EXPECT_EQ(result.exitCode, 0) << arguments << "\n" << result.output;
   EXPECT_EQ(result.output.find("OpenGL errors"), std::string::npos) << result.output;
-  Image image;
-  auto in = OIIO::ImageInput::open(out.string());
-  if (result.exitCode != 0 || !in) {
+  if (result.exitCode != 0) {
     ADD_FAILURE() << "no screenshot " << out;
-    return image;
+    return Image{};
   }
-  image.width = in->spec().width;
-  image.height = in->spec().height;
-  image.rgb.resize(static_cast<std::size_t>(image.width) * image.height * 3);
-  in->read_image(0, 0, 0, 3, OIIO::TypeDesc::FLOAT, image.rgb.data());
-  return image;
+  return tangent::testing::readPng(out);
 }
 
 // tangent-make-data --materials into dir/made; the folder.
@@ -101,7 +92,7 @@ Axis brightAxis(const Image& image) {
   std::vector<double> lumas;
   for (int y = 0; y < image.height; ++y)
     for (int x = 0; x < image.width; ++x)
-      if (!isBackground(image.at(x, y))) lumas.push_back(linearLuma(image.at(x, y)));
+      if (!isBackground(image.pixel(x, y))) lumas.push_back(linearLuma(image.pixel(x, y)));
   Axis axis;
   if (lumas.empty()) return axis;
   std::vector<double> sorted = lumas;
@@ -112,7 +103,7 @@ Axis brightAxis(const Image& image) {
     double sxx = 0, syy = 0, sxy = 0;
     for (int y = 0; y < image.height; ++y)
       for (int x = 0; x < image.width; ++x) {
-        const float* c = image.at(x, y);
+        const float* c = image.pixel(x, y);
         if (isBackground(c)) continue;
         const double weight = linearLuma(c) - threshold;
         if (weight <= 0) continue;
@@ -219,7 +210,7 @@ TEST(Materials, AnisotropyDirectionViewShowsTheDirectionField) {
   for (int k = 0; k < 8; ++k) {
     const double around = k * std::numbers::pi / 4, r = 0.6 * image.width / 2 / 1.02;  // --ortho frames the disc's sphere
     const int x = static_cast<int>(image.width / 2 + r * std::cos(around)), y = static_cast<int>(image.height / 2 - r * std::sin(around));
-    const float* c = image.at(x, y);
+    const float* c = image.pixel(x, y);
     const double shown = std::atan2(2.0 * c[1] - 1, 2.0 * c[0] - 1);
     const double expected = around + std::numbers::pi / 2 + rotation;
     double difference = std::remainder(shown - expected, 2 * std::numbers::pi) * 180 / std::numbers::pi;
@@ -239,9 +230,9 @@ Difference compareImages(const Image& a, const Image& b, double delta) {
   Difference d;
   for (int y = 0; y < a.height; ++y)
     for (int x = 0; x < a.width; ++x) {
-      if (isBackground(a.at(x, y))) continue;
+      if (isBackground(a.pixel(x, y))) continue;
       ++d.object;
-      const double change = linearLuma(a.at(x, y)) - linearLuma(b.at(x, y));
+      const double change = linearLuma(a.pixel(x, y)) - linearLuma(b.pixel(x, y));
       if (change > delta) ++d.brighter;
       if (std::abs(change) > delta) ++d.differing;
     }
@@ -338,7 +329,7 @@ std::array<double, 3> meanColour(const Image& image, double x0 = 0, double x1 = 
   std::size_t n = 0;
   for (int y = 0; y < image.height; ++y)
     for (int x = static_cast<int>(x0 * image.width); x < static_cast<int>(x1 * image.width); ++x) {
-      const float* c = image.at(x, y);
+      const float* c = image.pixel(x, y);
       if (isBackground(c)) continue;
       for (int k = 0; k < 3; ++k) sum[k] += srgbToLinear(c[k]);
       ++n;

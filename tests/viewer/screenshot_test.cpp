@@ -24,38 +24,15 @@
 #include "support/run_command.hpp"
 #include "support/skip_or_fail.hpp"
 #include "support/temp_dir.hpp"
+#include "viewer/png_image.hpp"
 
 namespace {
 
 namespace fs = std::filesystem;
 using tangent::testing::TempDir;
 
-struct Image {
-  int width = 0, height = 0;
-  std::vector<float> rgb;  // top-down rows, 0..1
-  std::array<float, 3> at(int x, int y) const {
-    const float* p = &rgb[(static_cast<std::size_t>(y) * width + x) * 3];
-    return {p[0], p[1], p[2]};
-  }
-  float luma(int x, int y) const {
-    const auto c = at(x, y);
-    return 0.2126f * c[0] + 0.7152f * c[1] + 0.0722f * c[2];
-  }
-};
-
-Image readPng(const fs::path& path) {
-  Image image;
-  auto in = OIIO::ImageInput::open(path.string());
-  if (!in) {
-    ADD_FAILURE() << "cannot read " << path << ": " << OIIO::geterror();
-    return image;
-  }
-  image.width = in->spec().width;
-  image.height = in->spec().height;
-  image.rgb.resize(static_cast<std::size_t>(image.width) * image.height * 3);
-  in->read_image(0, 0, 0, 3, OIIO::TypeDesc::FLOAT, image.rgb.data());
-  return image;
-}
+using tangent::testing::Image;
+using tangent::testing::readPng;
 
 int run(const std::string& arguments, std::string& output) {
   const auto result = tangent::testing::runCommand(std::string(TANGENT_VIEW) + " " + arguments);
