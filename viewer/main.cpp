@@ -102,6 +102,9 @@ void onKey(GLFWwindow* w, int key, int scancode, int action, int mods) {
     case GLFW_KEY_G: s.glyphs = !s.glyphs; break;
     case GLFW_KEY_C: s.split = !s.split; break;
     case GLFW_KEY_A: s.view = s.view == DebugView::compareAngle ? DebugView::lit : DebugView::compareAngle; break;
+    case GLFW_KEY_D:
+      s.view = s.view == DebugView::anisotropyDirection ? DebugView::lit : DebugView::anisotropyDirection;
+      break;
     case GLFW_KEY_B:
       s.bitangent = s.bitangent == BitangentMode::perFragment ? BitangentMode::perVertex : BitangentMode::perFragment;
       break;

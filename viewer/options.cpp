@@ -42,7 +42,8 @@ const char* kUsageHead =
     "\n";
 const char* kUsageKeys =
     "keys: m normal map, s specular, h shadows, p PCF, f green flip, 1-9 and 0 views, g glyphs,\n"
-    "      c split compare view, a compare-angle view, b per-vertex/per-fragment bitangent,\n"
+    "      c split compare view, a compare-angle view, d anisotropy-direction view,\n"
+    "      b per-vertex/per-fragment bitangent,\n"
     "      r reload shaders, o open, mouse: left orbit (drag the divider to move it), right/middle pan, wheel zoom\n";
 
 // tangent-view's one command: its rows of the option table.

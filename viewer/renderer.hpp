@@ -237,6 +237,7 @@ class Renderer {
   bool compareIsFresh(std::size_t item) const;
   void applyCulling(const GpuMesh& mesh, const RenderSettings& settings) const;
   void drawGlyphs(const CameraMatrices& camera, const RenderSettings& settings);
+  std::vector<float> glyphLines(const RenderSettings& settings, bool anisotropy) const;
   glm::mat4 lightViewProjection() const;
   // A shadow-map texel's world size at a fragment: x + y * the fragment's distance from light 0
   // (shadows.glsl's u_shadowTexelWorld, for the normal offset).
@@ -303,6 +304,7 @@ class Renderer {
   Buffer glyphBuffer_;
   GLsizei glyphVertices_ = 0;
   int glyphsBuiltFor_ = -1;
+  bool glyphsShowAnisotropy_ = false;  // what the glyphs were built for: directions, or frames
 };
 
 }  // namespace tangent::viewer

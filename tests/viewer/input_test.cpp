@@ -126,7 +126,8 @@ const char* const kViewKeys[] = {"lit", "geometry-normal", "tangent", "bitangent
 // (x = 803) and ended outside the window (x = 1150) leaves it at the right edge (1.0). Then the
 // keys, each checked in the state it leaves, as the panel and docs/viewer.md name them: m normal
 // mapping, s specular, h shadows, p PCF, f green flip, g glyphs, b bitangent mode, c the split view
-// (twice: off, on), 1-9 and 0 the views in order, a the compare-angle view and back, r reload the
+// (twice: off, on), 1-9 and 0 the views in order, a the compare-angle view and back, d the
+// anisotropy-direction view and back, r reload the
 // shaders (a message), Escape close the window.
 TEST(ViewerInput, DividerFollowsTheDragAndKeysDoWhatTheyAreDocumentedToDo) {
   if (!haveCommand("xdotool") || !haveCommand("xwd"))
@@ -188,13 +189,13 @@ TEST(ViewerInput, DividerFollowsTheDragAndKeysDoWhatTheyAreDocumentedToDo) {
   // 4. The keys, with the pointer in the window (no window manager: the focus follows the pointer).
   xdotool("mousemove --window " + window + " 900 300");
   xdotool("windowfocus " + window);
-  xdotool("key --delay 20 m s h p f g b c c 1 2 3 4 5 6 7 8 9 0 a a r Escape");
+  xdotool("key --delay 20 m s h p f g b c c 1 2 3 4 5 6 7 8 9 0 a a d d r Escape");
   viewer.join();
 
   ASSERT_EQ(viewerExit, 0) << viewerOutput;
   const auto states = stateLines(viewerOutput);
-  // Three drags (a line at each release), 23 keys (a line each), the close.
-  ASSERT_EQ(states.size(), 3u + 23u + 1u) << viewerOutput;
+  // Three drags (a line at each release), 25 keys (a line each), the close.
+  ASSERT_EQ(states.size(), 3u + 25u + 1u) << viewerOutput;
   const auto& afterDrag = states[0];
   EXPECT_NEAR(afterDrag["splitPosition"].get<double>(), 0.8, 1e-6);
   const auto& afterOrbit = states[1];
@@ -234,6 +235,8 @@ TEST(ViewerInput, DividerFollowsTheDragAndKeysDoWhatTheyAreDocumentedToDo) {
   EXPECT_TRUE(states[line - 1]["split"].get<bool>());
   for (const char* view : kViewKeys) EXPECT_EQ(next()["view"], view);
   EXPECT_EQ(next()["view"], "compare-angle");
+  EXPECT_EQ(next()["view"], "lit");
+  EXPECT_EQ(next()["view"], "anisotropy-direction");
   EXPECT_EQ(next()["view"], "lit");
   const auto& reloaded = next();
   ASSERT_FALSE(reloaded["messages"].empty());

@@ -221,6 +221,87 @@ TEST(Materials, AnisotropyDirectionViewShowsTheDirectionField) {
   EXPECT_EQ(checked, 8);
 }
 
+// The axis of short lines drawn over an image: the pixels where `with` differs from `without`,
+// in pieces that touch (8-connected); each piece's principal axis (second moments) as a doubled
+// angle, weighted by its pixels and averaged; the axis in degrees from the image's +x towards its
+// top (-90..90]. Pieces of fewer than 3 pixels have no axis and are left out.
+struct LineAxis {
+  double degrees = 0, coherence = 0;  // coherence: the mean vector's length, 1 when all pieces agree
+  std::size_t pixels = 0;
+};
+LineAxis drawnLinesAxis(const Image& with, const Image& without) {
+  const int w = with.width, h = with.height;
+  std::vector<char> drawn(static_cast<std::size_t>(w) * h, 0);
+  LineAxis axis;
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) {
+      const float *a = with.pixel(x, y), *b = without.pixel(x, y);
+      drawn[static_cast<std::size_t>(y) * w + x] = std::abs(a[0] - b[0]) + std::abs(a[1] - b[1]) + std::abs(a[2] - b[2]) > 0.15f;
+      axis.pixels += drawn[static_cast<std::size_t>(y) * w + x];
+    }
+  double c = 0, s = 0, weight = 0;
+  std::vector<std::pair<int, int>> piece, stack;
+  for (int start = 0; start < w * h; ++start) {
+    if (!drawn[static_cast<std::size_t>(start)]) continue;
+    piece.clear();
+    stack.assign(1, {start % w, start / w});
+    drawn[static_cast<std::size_t>(start)] = 0;
+    while (!stack.empty()) {
+      const auto [x, y] = stack.back();
+      stack.pop_back();
+      piece.push_back({x, y});
+      for (int dy = -1; dy <= 1; ++dy)
+        for (int dx = -1; dx <= 1; ++dx) {
+          const int nx = x + dx, ny = y + dy;
+          if (nx < 0 || ny < 0 || nx >= w || ny >= h || !drawn[static_cast<std::size_t>(ny) * w + nx]) continue;
+          drawn[static_cast<std::size_t>(ny) * w + nx] = 0;
+          stack.push_back({nx, ny});
+        }
+    }
+    if (piece.size() < 3) continue;
+    double mx = 0, my = 0, sxx = 0, syy = 0, sxy = 0;
+    for (const auto& [x, y] : piece) mx += x, my += -y;  // y up
+    mx /= piece.size(), my /= piece.size();
+    for (const auto& [x, y] : piece) sxx += (x - mx) * (x - mx), syy += (-y - my) * (-y - my), sxy += (x - mx) * (-y - my);
+    const double doubled = std::atan2(2 * sxy, sxx - syy), n = static_cast<double>(piece.size());
+    c += n * std::cos(doubled), s += n * std::sin(doubled), weight += n;
+  }
+  if (weight == 0) return axis;
+  axis.degrees = 0.5 * std::atan2(s, c) * 180 / std::numbers::pi;
+  axis.coherence = std::hypot(c, s) / weight;
+  return axis;
+}
+
+// The anisotropy-direction view's glyphs: one line at each glyph corner along the direction (a
+// disc without texture: the rotation from T, +x; with w flipped, mirrored), and nowhere on a
+// material without the extension; in the lit view the glyphs stay the T/B/N frames.
+TEST(Materials, AnisotropyGlyphsLieAlongTheDirection) {
+  TempDir dir;
+  const fs::path made = makeScenes(dir);
+  const std::string view = "--camera front --ortho --size 400x400 --view anisotropy-direction";
+  auto glyphAxis = [&](const fs::path& file, const std::string& name, const std::string& extra) {
+    const Image plain = screenshot(dir, file, name, view + extra);
+    const Image glyphs = screenshot(dir, file, name + "-glyphs", view + extra + " --glyphs");
+    return drawnLinesAxis(glyphs, plain);
+  };
+  const double small = 0.3, large = 1.1;  // radians: 17.2 and 63.0 degrees
+  const LineAxis atSmall = glyphAxis(discVariant(made, "small", small), "small", "");
+  const LineAxis atLarge = glyphAxis(discVariant(made, "large", large), "large", "");
+  const LineAxis flipped = glyphAxis(discVariant(made, "flipped", small), "flipped", " --negate-w");
+  std::printf("glyph axis: rotation %.1f deg -> %.1f deg (coherence %.2f, %zu px); %.1f deg -> %.1f deg (%.2f); w flipped -> %.1f deg\n",
+              small * 180 / std::numbers::pi, atSmall.degrees, atSmall.coherence, atSmall.pixels, large * 180 / std::numbers::pi,
+              atLarge.degrees, atLarge.coherence, flipped.degrees);
+  ASSERT_GT(atSmall.pixels, 300u) << "the glyphs are not drawn";
+  EXPECT_GT(atSmall.coherence, 0.8);
+  EXPECT_NEAR(axisDifference(atSmall.degrees, small * 180 / std::numbers::pi), 0, 3);
+  EXPECT_NEAR(axisDifference(atLarge.degrees, large * 180 / std::numbers::pi), 0, 3);
+  EXPECT_NEAR(axisDifference(flipped.degrees, -small * 180 / std::numbers::pi), 0, 3);
+  // Without the extension there is no direction to draw.
+  Json plainDisc = readJson(discVariant(made, "none", small));
+  plainDisc["materials"][0]["extensions"].erase("KHR_materials_anisotropy");
+  EXPECT_EQ(glyphAxis(writeJson(made / "none.gltf", plainDisc), "none", "").pixels, 0u);
+}
+
 // Pixels of `a` brighter than `b` by more than `delta` in linear luminance, and pixels that
 // differ by more than `delta` either way.
 struct Difference {
