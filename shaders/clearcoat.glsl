@@ -6,7 +6,9 @@
 //   fresnel_coat = 0.04 + 0.96 (1 - |N_coat . V|)^5, clearcoat_brdf = V_GGX D_GGX (alpha = r^2).
 // The coat's factor is clearcoatFactor times its texture's R, its roughness
 // clearcoatRoughnessFactor times its texture's G.
-#if defined(SHADING_PBR) && defined(MATERIAL_CLEARCOAT)
+// The coat's factor, roughness and normal (clearcoatAt) wherever the variant has the coat: in the
+// PBR shading and in the clearcoat-normal view; its lighting in the PBR shading only.
+#ifdef MATERIAL_CLEARCOAT
 uniform float u_clearcoat;
 uniform float u_clearcoatRoughness;
 #ifdef HAS_CLEARCOAT_MAP
@@ -53,6 +55,9 @@ Clearcoat clearcoatAt(vec3 normal, vec3 t, vec3 b) {
   c.roughness = clamp(c.roughness, 0.0, 1.0);
   return c;
 }
+#endif
+
+#if defined(SHADING_PBR) && defined(MATERIAL_CLEARCOAT)
 
 float clearcoatFresnel(Clearcoat c, vec3 toEye) { return 0.04 + 0.96 * pow5(1.0 - clamp(abs(dot(c.normal, toEye)), 0.0, 1.0)); }
 

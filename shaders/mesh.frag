@@ -124,7 +124,7 @@ void main() {
 #ifdef HAS_NORMAL_MAP
   if (u_useNormalMap) shadingNormal = perturbedNormal(normal, tangent, bitangent, v_uvNormal);
 #endif
-#if defined(MATERIAL_ANISOTROPY) || (defined(SHADING_PBR) && defined(MATERIAL_CLEARCOAT))
+#if defined(MATERIAL_ANISOTROPY) || defined(MATERIAL_CLEARCOAT)
   // The geometry's frame for the extensions that read it: T made orthogonal to the normal.
   vec3 frameTangent = normalize(tangent.xyz - normal * dot(normal, tangent.xyz));
 #endif
@@ -170,6 +170,19 @@ void main() {
   // grey on materials without the extension.
 #ifdef MATERIAL_ANISOTROPY
   fragColor = vec4(signedColor(anisotropy.direction), 1.0);
+#else
+  fragColor = vec4(NO_TANGENT, 1.0);
+#endif
+  return;
+#elif defined(DEBUG_CLEARCOAT_NORMAL)
+  // KHR_materials_clearcoat's normal in world space: its normal map through the TANGENT frame
+  // (the geometry's normal where the coat has no map); grey on materials without a coat, and
+  // where the coat's map needs a frame nothing defines.
+#ifdef MATERIAL_CLEARCOAT
+#ifdef HAS_CLEARCOAT_NORMAL_MAP
+  if (v_tangentWorld.w == 0.0) { fragColor = vec4(NO_TANGENT, 1.0); return; }
+#endif
+  fragColor = vec4(signedColor(clearcoatAt(normal, frameTangent, bitangent).normal), 1.0);
 #else
   fragColor = vec4(NO_TANGENT, 1.0);
 #endif

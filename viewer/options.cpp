@@ -81,7 +81,8 @@ std::span<const options::Option> viewerOptions() {
      "what the pixels show. handedness: the file's w; face-orientation: front blue, back red; handedness-world: w "
      "after the node's mirroring; compare-angle: the per-pixel angle between the file's tangent frames and the "
      "--compare set's (blue 0, green 1 deg, yellow 5 deg, red >= 20 deg); anisotropy-direction: "
-     "KHR_materials_anisotropy's direction in world space as colour (grey where a material has none)"},
+     "KHR_materials_anisotropy's direction in world space as colour (grey where a material has none); "
+     "clearcoat-normal: KHR_materials_clearcoat's normal (its normal map through TANGENT) in world space as colour"},
     {"compare", 0, Kind::text, "", "", 0, 0, false, kView, kCli, "SET",
      "split view: left of the divider the file's TANGENT, right of it SET: fresh (the --reference generator's "
      "tangents computed at load, the default set of compare-angle) | file (the file's TANGENT again) | "

@@ -59,7 +59,7 @@ void drawHandednessLegend() {
 bool showsTangentFrame(DebugView view) {
   return view == DebugView::tangent || view == DebugView::bitangent || view == DebugView::handedness ||
          view == DebugView::handednessWorld || view == DebugView::tangentError || view == DebugView::compareAngle ||
-         view == DebugView::anisotropyDirection;
+         view == DebugView::anisotropyDirection || view == DebugView::clearcoatNormal;
 }
 
 void drawNoTangentLegend() {
@@ -105,6 +105,9 @@ void panelView(Viewer& viewer, RenderSettings& s) {
   if (s.view == DebugView::anisotropyDirection)
     ImGui::TextWrapped("KHR_materials_anisotropy's direction (rotation and texture in the TANGENT frame) in world space as "
                        "colour: (x, y, z) * 0.5 + 0.5; grey where the material has no anisotropy");
+  if (s.view == DebugView::clearcoatNormal)
+    ImGui::TextWrapped("KHR_materials_clearcoat's normal (its normal map, on its own UVs, through the TANGENT frame) in world "
+                       "space as colour: (x, y, z) * 0.5 + 0.5; grey where the material has no coat");
   if (showsTangentFrame(s.view)) drawNoTangentLegend();
   ImGui::Checkbox("tangent frames (g)", &s.glyphs);
   ImGui::SliderInt("glyph count", &s.maxGlyphs, 100, 50000);

@@ -92,8 +92,8 @@ FeatureSet Renderer::featuresFor(const GpuMesh& mesh, const RenderSettings& sett
       sameTexels(material.occlusionTexture, material.metallicRoughnessTexture))
     features = (features & ~static_cast<FeatureSet>(Feature::occlusionMap)) | static_cast<FeatureSet>(Feature::occlusionInMetallicRoughnessMap);
   if (textureOf(material.emissiveTexture)) features |= static_cast<FeatureSet>(Feature::emissiveMap);
-  // The extensions that read the tangent frame, in the PBR mode (and anisotropy in its view).
-  if (!material.unlit && settings.shading == Shading::pbr && material.clearcoat > 0) {
+  // The extensions that read the tangent frame, in the PBR mode (and each in its view).
+  if (!material.unlit && (settings.shading == Shading::pbr || settings.view == DebugView::clearcoatNormal) && material.clearcoat > 0) {
     features |= static_cast<FeatureSet>(Feature::clearcoat);
     if (textureOf(material.clearcoatTexture)) features |= static_cast<FeatureSet>(Feature::clearcoatMap);
     if (textureOf(material.clearcoatRoughnessTexture)) features |= static_cast<FeatureSet>(Feature::clearcoatRoughnessMap);

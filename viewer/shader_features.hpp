@@ -66,6 +66,7 @@ enum class DebugView : std::uint8_t {
   handednessWorld,  // after faceOrientation: keys 1-9 keep their views
   compareAngle,     // the per-pixel angle between the file's frames and the compare set's
   anisotropyDirection,  // KHR_materials_anisotropy's direction in world space as colour
+  clearcoatNormal,      // KHR_materials_clearcoat's normal (its own normal map) in world space
 };
 
 struct FeatureDefine {
@@ -138,6 +139,7 @@ inline constexpr DebugViewInfo kDebugViews[] = {
     {DebugView::handednessWorld, "DEBUG_HANDEDNESS_WORLD", "handedness-world"},
     {DebugView::compareAngle, "DEBUG_COMPARE_ANGLE", "compare-angle"},
     {DebugView::anisotropyDirection, "DEBUG_ANISOTROPY_DIRECTION", "anisotropy-direction"},
+    {DebugView::clearcoatNormal, "DEBUG_CLEARCOAT_NORMAL", "clearcoat-normal"},
 };
 
 // Tone mapping of the lit views' linear colour before the sRGB encoding, as the Khronos glTF

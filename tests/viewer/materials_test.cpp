@@ -351,6 +351,62 @@ TEST(Materials, ClearcoatAddsASharpHighlightThatItsNormalMapPerturbs) {
   EXPECT_GT(rotated.differing, highlight.object / 40);
 }
 
+// The clearcoat-normal view: the coat's normal in world space as colour, its normal map read
+// through the TANGENT frame on its own UV set. Without its map it is the geometry's normal; with
+// it the bumps show, and turn over when w is flipped (the map's green along -B); the same in
+// every shading mode; grey where the material has no coat.
+TEST(Materials, ClearcoatNormalViewShowsTheCoatsNormalMap) {
+  TempDir dir;
+  const fs::path made = makeScenes(dir);
+  const std::string view = "--camera front --size 200x200";
+  const Json doc = readJson(made / "clearcoat_sphere.gltf");
+  auto variant = [&](const std::string& name, auto edit) {
+    Json copy = doc;
+    edit(copy["materials"][0]["extensions"]["KHR_materials_clearcoat"]);
+    return writeJson(made / (name + ".gltf"), copy);
+  };
+  const fs::path sphere = made / "clearcoat_sphere.gltf";
+  const Image coat = screenshot(dir, sphere, "coat", view + " --view clearcoat-normal");
+  const Image coatPhong = screenshot(dir, sphere, "coat-phong", view + " --view clearcoat-normal --shading phong");
+  const Image coatFlipped = screenshot(dir, sphere, "coat-flipped", view + " --view clearcoat-normal --negate-w");
+  const Image geometry = screenshot(dir, sphere, "geometry", view + " --view geometry-normal");
+  const Image smooth =
+      screenshot(dir, variant("smooth", [](Json& c) { c.erase("clearcoatNormalTexture"); }), "smooth", view + " --view clearcoat-normal");
+  const Image bare = screenshot(dir, variant("bare", [](Json& c) { c["clearcoatFactor"] = 0.0; }), "bare", view + " --view clearcoat-normal");
+  ASSERT_EQ(coat.width, 200);
+  // Pixels of the object, and how many of them differ by more than `delta` in some channel.
+  auto differing = [&](const Image& a, const Image& b, float delta) {
+    std::size_t count = 0, object = 0;
+    for (int y = 0; y < a.height; ++y)
+      for (int x = 0; x < a.width; ++x) {
+        if (isBackground(a.pixel(x, y))) continue;
+        ++object;
+        const float *p = a.pixel(x, y), *q = b.pixel(x, y);
+        count += std::max({std::abs(p[0] - q[0]), std::abs(p[1] - q[1]), std::abs(p[2] - q[2])}) > delta;
+      }
+    return std::pair{count, object};
+  };
+  const auto [bumps, object] = differing(coat, geometry, 0.05f);
+  const auto [flips, object2] = differing(coat, coatFlipped, 0.05f);
+  std::printf("clearcoat normal: %zu of %zu pixels off the geometry's normal by > 0.05; %zu change when w is flipped\n", bumps, object,
+              flips);
+  ASSERT_GT(object, 5000u);
+  EXPECT_GT(bumps, object / 5);
+  EXPECT_GT(flips, object / 10);
+  EXPECT_EQ(differing(smooth, geometry, 0.01f).first, 0u) << "without its map the coat's normal is the geometry's";
+  EXPECT_EQ(differing(coatPhong, coat, 0.01f).first, 0u) << "the view depends on the shading mode";
+  std::size_t grey = 0, bareObject = 0;
+  for (int y = 0; y < bare.height; ++y)
+    for (int x = 0; x < bare.width; ++x) {
+      const float* c = bare.pixel(x, y);
+      if (isBackground(c)) continue;
+      ++bareObject;
+      grey += std::abs(c[0] - 0.5f) < 0.01f && std::abs(c[1] - 0.5f) < 0.01f && std::abs(c[2] - 0.5f) < 0.01f;
+    }
+  EXPECT_GT(bareObject, 5000u);
+  EXPECT_EQ(grey, bareObject) << "a material without a coat shows grey";
+}
+
 // COLOR_0 accessor forms: a uniform colour in float RGB, normalized unsigned short RGBA and
 // normalized unsigned byte RGB, each added to the made grid's buffer in place of its own COLOR_0.
 struct ColourForm {
