@@ -23,3 +23,8 @@ view "$out/sphere.glb" --negate-w --compare fresh --camera front --size 480x270 
 # The demo scene as scripts/demo.sh bakes and shows it, with a GPU's defaults (MSAA 4x).
 "$bin/tangent" bake data/demo/scene.gltf -o "$out/scene-baked.glb" -q
 view "$out/scene-baked.glb" --size 1280x720 --screenshot docs/demo-scene.png
+# The brushed disc of `tangent-make-data --materials` in the anisotropy-direction view with its
+# glyphs (the lit disc beside the Khronos Sample Viewer's is ctest reference.khronos_sample_viewer's
+# docs/khronos-sample-viewer-disc.png).
+"$bin/tangent-make-data" --materials "$out/materials" >/dev/null
+view "$out/materials/anisotropy_disc.gltf" --camera front --view anisotropy-direction --glyphs --size 240x240 --screenshot docs/anisotropy-direction.png
