@@ -23,8 +23,7 @@ namespace detail {
 std::size_t WorkspaceData::bytes() const {
   auto size = [](const auto& v) { return v.capacity() * sizeof(v[0]); };
   return size(table) + size(weldCounts) + size(vertexId) + size(bucketStart) + size(bucketCorners) + size(bucketNextId) + size(bucketPreviousId) +
-         size(orientation) + size(triangleFlags) + size(cornerLink) + size(cornerState) + size(meshPositions) + size(meshNormals) + size(meshUvs) + size(meshTangents) + size(meshIndices) +
-         size(meshRepresentative) + size(meshRepresentativeValues) + size(packedPositions) + size(packedNormals) +
+         size(orientation) + size(triangleFlags) + size(cornerLink) + size(cornerState) + adapter.bytes() + size(packedPositions) + size(packedNormals) +
          size(packedUvs) + size(packedIndices) +
          size(bucketExtra) + size(bucketUniform) + size(positionRepresentative) + size(positionTable) +
          size(triangleTerms) + size(cornerNormals) + size(cornerWeights) + size(invalidNormal) +
@@ -122,6 +121,12 @@ TangentWorkspace::TangentWorkspace(TangentWorkspace&&) noexcept = default;
 TangentWorkspace& TangentWorkspace::operator=(TangentWorkspace&&) noexcept = default;
 std::size_t TangentWorkspace::bytesReserved() const { return data_->bytes(); }
 void TangentWorkspace::setWeldOnly(std::optional<std::span<const std::uint32_t>> vertices) { data_->weldOnly = vertices; }
+TangentWorkspace::AdapterBuffers& TangentWorkspace::adapterBuffers() { return data_->adapter; }
+std::size_t TangentWorkspace::AdapterBuffers::bytes() const {
+  auto size = [](const auto& v) { return v.capacity() * sizeof(v[0]); };
+  return size(positions) + size(normals) + size(uvs) + size(tangents) + size(indices) + size(vertexCorner) + size(vertexValues) +
+         size(list);
+}
 
 namespace {
 

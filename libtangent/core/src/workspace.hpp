@@ -99,16 +99,6 @@ struct BucketScratch {
   ScratchVector<std::uint32_t> rangeIds;
 };
 
-// A corner's position, normal and UV as the OpenMesh call compares them (float bits).
-struct CornerValues {
-  float position[3], normal[3], uv[2];
-  bool shareable() const {  // no NaN: the weld never joins a NaN vertex with another
-    for (float x : position) if (x != x) return false;
-    for (float x : normal) if (x != x) return false;
-    return uv[0] == uv[0] && uv[1] == uv[1];
-  }
-  bool operator==(const CornerValues& o) const { return std::memcmp(this, &o, sizeof o) == 0; }
-};
 
 struct WorkspaceData {
   unsigned threads = 1;
@@ -159,11 +149,7 @@ struct WorkspaceData {
   BulkVector<float> packedPositions, packedNormals, packedUvs;
   BulkVector<std::uint32_t> packedIndices;
   // The OpenMesh call's corners as arrays (openmesh/src/compute_tangents.cpp).
-  BulkVector<float> meshPositions, meshNormals, meshUvs, meshTangents;
-  BulkVector<std::uint32_t> meshIndices;
-  // The OpenMesh call: each mesh vertex's representative corner (kNone: none) and its values.
-  BulkVector<std::uint32_t> meshRepresentative;
-  BulkVector<CornerValues> meshRepresentativeValues;
+  TangentWorkspace::AdapterBuffers adapter;
 
   std::size_t bytes() const;
 };

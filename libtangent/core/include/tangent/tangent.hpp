@@ -16,6 +16,8 @@
 #include <string>
 #include <string_view>
 
+#include "tangent/bulk_buffer.hpp"
+
 namespace tangent {
 
 // Which algorithm computes the frames.
@@ -201,6 +203,20 @@ class TangentWorkspace {
   // reset with std::nullopt (the default: every vertex is welded); a list out of range or out
   // of order is refused by the call (std::invalid_argument). The same bits as without it.
   void setWeldOnly(std::optional<std::span<const std::uint32_t>> vertices);
+
+  // Scratch arrays kept here for an adapter that gathers its mesh into the array call's inputs
+  // (the OpenMesh computeTangents): grown as needed, never zero-filled, counted in
+  // bytesReserved(), and reused by the next call on this workspace as the core reuses its own.
+  struct AdapterBuffers {
+    BulkVector<float> positions, normals, uvs;  // 3, 3, 2 per array vertex
+    BulkVector<float> tangents;                 // 4 per corner
+    BulkVector<std::uint32_t> indices;          // per corner
+    BulkVector<std::uint32_t> vertexCorner;     // per vertex of the adapter's mesh
+    BulkVector<float> vertexValues;             // 8 per vertex of the adapter's mesh
+    BulkVector<std::uint32_t> list;             // per array vertex
+    std::size_t bytes() const;
+  };
+  AdapterBuffers& adapterBuffers();
   detail::WorkspaceData& data() { return *data_; }
 
  private:
