@@ -37,9 +37,9 @@ mutation() { names+=("$1"); files+=("$2"); tests+=("$3"); olds+=("$4"); news+=("
 mutation w-sign libtangent/core/src/mikktspace/grouping.cpp "$core_tests" \
   'const float w = orientation > 0 ? 1.0f : -1.0f;' \
   'const float w = orientation > 0 ? -1.0f : 1.0f;'
-mutation w-convention-in-bake libtangent/gltf/src/bake/bake.cpp "$gltf_tests" \
-  'coreOptions.uvOrigin = kGltfUvOrigin;' \
-  'coreOptions.uvOrigin = UvOrigin::bottomLeft;'
+mutation w-convention-in-bake libtangent/gltf/src/bake/compute.cpp "$gltf_tests" \
+  'options.uvOrigin = kGltfUvOrigin;' \
+  'options.uvOrigin = UvOrigin::bottomLeft;'
 mutation weighting-mikktspace-area libtangent/core/src/mikktspace/grouping.cpp "$core_tests" \
   'angle = std::max(angle, 1e-12);' \
   'const std::uint32_t c = list[member(scratch.items[i])];
@@ -58,15 +58,15 @@ mutation uv-set libtangent/gltf/src/read/primitive.cpp "$gltf_tests" \
   const int uvAccessor' \
   'const std::string uvName = "TEXCOORD_0";
   const int uvAccessor'
-mutation index-widening libtangent/gltf/src/bake/bake.cpp "$gltf_tests" \
+mutation index-widening libtangent/gltf/src/bake/emit.cpp "$gltf_tests" \
   'if (outCount - 1 >= 65535 && indexComponentType == TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT)' \
   'if (false)'
-mutation attribute-carry libtangent/gltf/src/bake/bake.cpp "$gltf_tests" \
+mutation attribute-carry libtangent/gltf/src/bake/emit.cpp "$gltf_tests" \
   'if (name != "TANGENT") carried.emplace_back(name, accessorRef.get<int>());' \
   "if (name != \"TANGENT\" && name[0] != '_') carried.emplace_back(name, accessorRef.get<int>());  // custom attributes not gathered"
 
 # The classes of issue 42 (tests/boundary_test.cpp), one mutation each.
-mutation index-restart-boundary libtangent/gltf/src/bake/bake.cpp "$gltf_tests" \
+mutation index-restart-boundary libtangent/gltf/src/bake/emit.cpp "$gltf_tests" \
   'if (outCount - 1 >= 65535 && indexComponentType == TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT)' \
   'if (outCount - 1 > 65535 && indexComponentType == TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT)'
 mutation weld-by-bits libtangent/core/src/weld.cpp "$core_tests" \
@@ -82,7 +82,7 @@ mutation containment-string-prefix libtangent/gltf/src/read/uri.cpp "$gltf_tests
   'bool isInside(const fs::path& path, const fs::path& root) {' \
   'bool isInside(const fs::path& path, const fs::path& root) {
   if (const std::string r = root.lexically_normal().string(); true) return path.lexically_normal().string().starts_with(r.ends_with("/") ? r.substr(0, r.size() - 1) : r);'
-mutation morph-delta-sign libtangent/gltf/src/bake/bake.cpp "$gltf_tests" \
+mutation morph-delta-sign libtangent/gltf/src/bake/compute.cpp "$gltf_tests" \
   'deltas[3 * v + i] = morphed[i] - split.tangents[4 * v + i];' \
   'deltas[3 * v + i] = split.tangents[4 * v + i] - morphed[i];'
 

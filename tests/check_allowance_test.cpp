@@ -2,7 +2,7 @@
 // check's rounding allowance is tight, not only loose enough (issue 68). Each bound that
 // `reference` derives from a component type is held between an independent estimate of what
 // the rounding can do and a stated factor of it:
-//  - the input allowance's coarse and fine bounds (tangent_rules.cpp, referenceAllowance) on
+//  - the input allowance's coarse and fine bounds (reference_allowance.cpp, referenceAllowance) on
 //    positions and UVs stored as normalized BYTE / SHORT, on a grid, slivers, a sphere's poles
 //    and mirrored islands: the estimate moves the stored values within half a step (random
 //    and worst-corner moves), recomputes the fresh tangents and keeps each vertex's largest

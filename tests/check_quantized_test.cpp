@@ -909,8 +909,9 @@ TEST(PipelineMatrix, CleanBakesCheckCleanAndTenDegreeTurnsAreCaught) {
 // gives the allowance) and 8-bit UVs (-vt 8: the fine bound). At each, the vertex with the
 // largest allowance the coarse bound gives and the one the fine bound gives. The limit is
 // composed here from docs/check.md (tolerance, each vector's asin(sqrt(3) e)) and the coarse
-// allowance recomputed by its formula, so that a bound changed in tangent_rules.cpp moves the
-// controls' verdicts; the fine bound's size is held by check_allowance_test.cpp. ----
+// allowance recomputed by its formula, so that a bound changed in tangent_rules.cpp or
+// reference_allowance.cpp moves the controls' verdicts; the fine bound's size is held by
+// check_allowance_test.cpp. ----
 
 // Degrees either side of the limit: less than half the smallest bound in play (SHORT's 0.0986
 // deg), so that any bound doubled or halved moves the limit past a control. BYTE's lattice is
@@ -972,7 +973,7 @@ double vectorDegrees(const std::string& component) {
 }
 
 // The coarse input allowance at vertex v by docs/check.md's formula, written out here apart from
-// tangent_rules.cpp: asin(sum a_i 2 sin(theta_i / 2) / |S|) over v's triangles, theta_i =
+// reference_allowance.cpp: asin(sum a_i 2 sin(theta_i / 2) / |S|) over v's triangles, theta_i =
 // asin((2 eu (|e1| + |e2|) + 2 sqrt(3) ep (|dv1| + |dv2|) + 8 sqrt(3) ep eu) / |v|), a_i the
 // corner angle, S the angle-weighted sum of the triangles' tangent directions in v's normal plane.
 double coarseDegreesAt(const detail::PrimitiveGeometry& g, const detail::InputRounding& rounding, std::uint32_t v) {

@@ -280,6 +280,114 @@ class Journal {
   std::ofstream out_;
 };
 
+// What the manifest and an interrupted run's journal know of each file, where the options are
+// the same: the journal's records over the manifest's. A record of the wrong shape (a hand
+// edit, another tool) is forgotten: that file is baked again, as when the whole manifest is
+// unreadable.
+Json previousRecords(const Json& previous, const Json& optionsNow, const Json& interrupted) {
+  Json previousFiles = previous.contains("options") && previous["options"] == optionsNow && previous.contains("files") &&
+                               previous["files"].is_object()
+                           ? previous["files"]
+                           : Json::object();
+  for (const auto& [key, record] : interrupted.items()) previousFiles[key] = record;
+  for (auto it = previousFiles.begin(); it != previousFiles.end();) {
+    const Json& r = *it;
+    const bool wellFormed = r.is_object() && r.contains("digest") && r["digest"].is_string() && r.contains("ok") &&
+                            r["ok"].is_boolean() && (!r.contains("error") || r["error"].is_string()) &&
+                            (!r.contains("output") || r["output"].is_string()) && (!r.contains("stamps") || r["stamps"].is_array());
+    it = wellFormed ? std::next(it) : previousFiles.erase(it);
+  }
+  return previousFiles;
+}
+
+// The files no bake of the tree may write over: every input and what it uses; and, where the
+// output folder lies inside the input folder, the assets already there that no earlier run of
+// this manifest wrote (the user's, kept like inputs).
+ProtectedFiles protectedFilesOfRun(const std::vector<fs::path>& inputs, const fs::path& inputFolder, const fs::path& outputFolder,
+                                   const Json& previousFiles) {
+  std::error_code ec;
+  ProtectedFiles runFiles;
+  for (const fs::path& input : inputs) runFiles.addInput(input);
+  if (const fs::path in = fs::weakly_canonical(inputFolder, ec), out = fs::weakly_canonical(outputFolder, ec);
+      !in.empty() && out != in && detail::isInside(out, in)) {
+    std::set<fs::path> ours;
+    for (const auto& [key, record] : previousFiles.items()) {
+      if (record.is_object() && record.contains("output") && record["output"].is_string())
+        ours.insert((outputFolder / fs::u8path(record["output"].get<std::string>())).lexically_normal());
+    }
+    for (auto it = fs::recursive_directory_iterator(outputFolder, fs::directory_options::skip_permission_denied, ec);
+         it != fs::recursive_directory_iterator(); it.increment(ec)) {
+      if (ec) break;
+      if (it->is_regular_file(ec) && isInput(it->path()) && !ours.contains(it->path().lexically_normal()))
+        runFiles.addInput(it->path());
+    }
+  }
+  return runFiles;
+}
+
+// One input of the tree and its manifest record.
+struct TreeFile {
+  BatchEntry entry;
+  Json record;
+};
+
+// One input: skipped where its record `before` (null: none) still holds (the same digest and,
+// for a successful bake, every file it wrote still there), else baked; the files a bake
+// writes join `runFiles`.
+TreeFile bakeTreeFile(const fs::path& input, const fs::path& output, const Json* before, const fs::path& outputFolder,
+                      const BatchOptions& options, const BakeOptions& bakeOptions, ProtectedFiles& runFiles) {
+  std::error_code ec;
+  TreeFile file;
+  BatchEntry& entry = file.entry;
+  entry.input = input;
+  entry.output = output;
+  InputDigest digest = digestForManifest(input, options.bake.assetRoot, before ? *before : Json(), options.verify);
+  entry.digest = digest.digest;
+  // Every file the last bake wrote is still there (its .bin and image copies too: a .gltf
+  // whose buffer was deleted no longer loads); records before "written" know the output only.
+  auto allWrittenThere = [&] {
+    if (!fs::exists(entry.output, ec)) return false;
+    if (!before->contains("written") || !(*before)["written"].is_array()) return true;
+    for (const Json& written : (*before)["written"]) {
+      if (!written.is_string() || !fs::exists(outputFolder / fs::u8path(written.get<std::string>()), ec)) return false;
+    }
+    return true;
+  };
+  Json written = Json::array();
+  if (!options.force && before && before->value("digest", "") == entry.digest &&
+      (!before->value("ok", false) || allWrittenThere())) {
+    if (before->contains("written")) written = (*before)["written"];
+    entry.skipped = true;
+    entry.ok = before->value("ok", false);
+    entry.error = before->value("error", "");
+    entry.outcome = entry.ok ? FileOutcome::unchanged : FileOutcome::failed;
+  } else {
+    try {
+      const BakeResult result = bakeFile(input, entry.output, bakeOptions);
+      for (const fs::path& path : result.filesWritten) {
+        runFiles.add(path);
+        // Names that are not UTF-8 cannot be written back from JSON: those are not recorded.
+        const std::string relative = path.lexically_relative(outputFolder).generic_string();
+        if (text::utf8Safe(relative) == relative) written.push_back(relative);
+      }
+      entry.report = toJson(result);
+      entry.ok = true;
+      const bool anyBaked = std::any_of(result.primitives.begin(), result.primitives.end(),
+                                        [](const PrimitiveResult& p) { return p.action == PrimitiveAction::baked; });
+      entry.outcome = anyBaked ? FileOutcome::baked : FileOutcome::kept;
+    } catch (const std::exception& e) {
+      entry.error = e.what();
+      entry.outcome = FileOutcome::failed;
+    }
+  }
+  file.record = {{"digest", entry.digest},
+                 {"output", text::utf8Safe(entry.output.lexically_relative(outputFolder).generic_string())},
+                 {"ok", entry.ok}, {"stamps", std::move(digest.stamps)}};
+  if (entry.ok && !written.empty()) file.record["written"] = std::move(written);
+  if (!entry.ok) file.record["error"] = entry.error;
+  return file;
+}
+
 }  // namespace
 
 std::vector<BatchEntry> bakeTree(const fs::path& inputFolder, const fs::path& outputFolder, const BatchOptions& options,
@@ -296,44 +404,14 @@ std::vector<BatchEntry> bakeTree(const fs::path& inputFolder, const fs::path& ou
   const fs::path manifestPath = outputFolder / kManifestName;
   const Json previous = readManifest(manifestPath);
   const Json optionsNow = manifestOptions(options.bake);
-  Json previousFiles = previous.contains("options") && previous["options"] == optionsNow && previous.contains("files") &&
-                               previous["files"].is_object()
-                           ? previous["files"]
-                           : Json::object();
   Journal journal(outputFolder / kJournalName, optionsNow);
   const Json interrupted = journal.read();
-  for (const auto& [key, record] : interrupted.items()) previousFiles[key] = record;
-  // A record of the wrong shape (a hand edit, another tool) is forgotten: that file is baked
-  // again, as when the whole manifest is unreadable.
-  for (auto it = previousFiles.begin(); it != previousFiles.end();) {
-    const Json& r = *it;
-    const bool wellFormed = r.is_object() && r.contains("digest") && r["digest"].is_string() && r.contains("ok") &&
-                            r["ok"].is_boolean() && (!r.contains("error") || r["error"].is_string()) &&
-                            (!r.contains("output") || r["output"].is_string()) && (!r.contains("stamps") || r["stamps"].is_array());
-    it = wellFormed ? std::next(it) : previousFiles.erase(it);
-  }
+  const Json previousFiles = previousRecords(previous, optionsNow, interrupted);
   journal.start(interrupted);
 
   // No bake of the tree writes over a file another input uses, or over what an earlier one
   // wrote (two inputs' same-named images in one output folder).
-  ProtectedFiles runFiles;
-  for (const fs::path& input : inputs) runFiles.addInput(input);
-  // An --out-dir inside the input folder is left out of the inputs; the assets already in it
-  // that no earlier run of this manifest wrote are the user's, and kept like inputs.
-  if (const fs::path in = fs::weakly_canonical(inputFolder, ec), out = fs::weakly_canonical(outputFolder, ec);
-      !in.empty() && out != in && detail::isInside(out, in)) {
-    std::set<fs::path> ours;
-    for (const auto& [key, record] : previousFiles.items()) {
-      if (record.is_object() && record.contains("output") && record["output"].is_string())
-        ours.insert((outputFolder / fs::u8path(record["output"].get<std::string>())).lexically_normal());
-    }
-    for (auto it = fs::recursive_directory_iterator(outputFolder, fs::directory_options::skip_permission_denied, ec);
-         it != fs::recursive_directory_iterator(); it.increment(ec)) {
-      if (ec) break;
-      if (it->is_regular_file(ec) && isInput(it->path()) && !ours.contains(it->path().lexically_normal()))
-        runFiles.addInput(it->path());
-    }
-  }
+  ProtectedFiles runFiles = protectedFilesOfRun(inputs, inputFolder, outputFolder, previousFiles);
   BakeOptions bakeOptions = options.bake;
   bakeOptions.protectedFiles = &runFiles;
 
@@ -347,60 +425,14 @@ std::vector<BatchEntry> bakeTree(const fs::path& inputFolder, const fs::path& ou
     }
     const fs::path& input = inputs[i];
     if (options.onStart) options.onStart(i, inputs.size(), input);
-    BatchEntry entry;
-    entry.input = input;
-    entry.output = outputs[i];
     const std::string key = text::utf8Safe(input.lexically_relative(inputFolder).generic_string());
-    const auto before = previousFiles.find(key);
-    const bool known = before != previousFiles.end() && before->is_object();
-    InputDigest digest = digestForManifest(input, options.bake.assetRoot, known ? *before : Json(), options.verify);
-    entry.digest = digest.digest;
-    // Every file the last bake wrote is still there (its .bin and image copies too: a .gltf
-    // whose buffer was deleted no longer loads); records before "written" know the output only.
-    auto allWrittenThere = [&] {
-      if (!fs::exists(entry.output, ec)) return false;
-      if (!before->contains("written") || !(*before)["written"].is_array()) return true;
-      for (const Json& file : (*before)["written"]) {
-        if (!file.is_string() || !fs::exists(outputFolder / fs::u8path(file.get<std::string>()), ec)) return false;
-      }
-      return true;
-    };
-    Json written = Json::array();
-    if (!options.force && known && before->value("digest", "") == entry.digest &&
-        (!before->value("ok", false) || allWrittenThere())) {
-      if (before->contains("written")) written = (*before)["written"];
-      entry.skipped = true;
-      entry.ok = before->value("ok", false);
-      entry.error = before->value("error", "");
-      entry.outcome = entry.ok ? FileOutcome::unchanged : FileOutcome::failed;
-    } else {
-      try {
-        const BakeResult result = bakeFile(input, entry.output, bakeOptions);
-        for (const fs::path& file : result.filesWritten) {
-          runFiles.add(file);
-          // Names that are not UTF-8 cannot be written back from JSON: those are not recorded.
-          const std::string relative = file.lexically_relative(outputFolder).generic_string();
-          if (text::utf8Safe(relative) == relative) written.push_back(relative);
-        }
-        entry.report = toJson(result);
-        entry.ok = true;
-        const bool anyBaked = std::any_of(result.primitives.begin(), result.primitives.end(),
-                                          [](const PrimitiveResult& p) { return p.action == PrimitiveAction::baked; });
-        entry.outcome = anyBaked ? FileOutcome::baked : FileOutcome::kept;
-      } catch (const std::exception& e) {
-        entry.error = e.what();
-        entry.outcome = FileOutcome::failed;
-      }
-    }
-    Json record = {{"digest", entry.digest},
-                   {"output", text::utf8Safe(entry.output.lexically_relative(outputFolder).generic_string())},
-                   {"ok", entry.ok}, {"stamps", std::move(digest.stamps)}};
-    if (entry.ok && !written.empty()) record["written"] = std::move(written);
-    if (!entry.ok) record["error"] = entry.error;
-    if (!entry.skipped || !known || (*before) != record) journal.append(key, record);
-    files[key] = std::move(record);
-    if (onFile) onFile(entry);
-    entries.push_back(std::move(entry));
+    const auto found = previousFiles.find(key);
+    const Json* before = found != previousFiles.end() && found->is_object() ? &*found : nullptr;
+    TreeFile done = bakeTreeFile(input, outputs[i], before, outputFolder, options, bakeOptions, runFiles);
+    if (!done.entry.skipped || !before || *before != done.record) journal.append(key, done.record);
+    files[key] = std::move(done.record);
+    if (onFile) onFile(done.entry);
+    entries.push_back(std::move(done.entry));
   }
   if (stopped) {
     // What this run did not reach keeps what the manifest knew of it.

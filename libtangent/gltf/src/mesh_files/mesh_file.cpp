@@ -17,6 +17,7 @@
 #include <cctype>
 #include <fstream>
 #include <cstring>
+#include <optional>
 #include <map>
 #include <tuple>
 #include <unordered_map>
@@ -44,16 +45,35 @@ void appendFloats(std::vector<std::uint8_t>& bin, const std::vector<float>& valu
 // those it cannot finish (self-intersecting), are fanned.
 constexpr std::size_t kMaxEarClippedCorners = 256;
 
-void triangulatePolygon(const std::vector<float>& positions, const std::vector<std::uint32_t>& polygon,
-                        std::vector<std::uint32_t>& indices) {
+// `ring`'s triangles fanned from its first corner.
+void fanTriangles(const std::vector<std::uint32_t>& ring, std::vector<std::uint32_t>& indices) {
+  for (std::size_t i = 1; i + 1 < ring.size(); ++i) indices.insert(indices.end(), {ring[0], ring[i], ring[i + 1]});
+}
+
+// A polygon in the plane of its Newell normal, which drops its largest axis and keeps the
+// other two (ua, va) in cyclic order, so that the polygon's signed area there has the sign of
+// that component; `orientation` makes turns that follow the polygon positive.
+struct PolygonPlane {
+  const std::vector<float>& positions;
+  const std::vector<std::uint32_t>& polygon;
+  int ua = 0, va = 0;
+  double orientation = 1;
+
+  double at(std::size_t corner, int axis) const { return static_cast<double>(positions[3 * polygon[corner] + axis]); }
+  // Twice the signed area of (p, q, r) in the plane, positive where the turn follows the polygon.
+  double turn(std::size_t p, std::size_t q, std::size_t r) const {
+    return orientation * ((at(q, ua) - at(p, ua)) * (at(r, va) - at(p, va)) - (at(q, va) - at(p, va)) * (at(r, ua) - at(p, ua)));
+  }
+  // Whether q turns back on the edge p-q (a zero-width spike turns by zero too).
+  bool reverses(std::size_t p, std::size_t q, std::size_t r) const {
+    return (at(q, ua) - at(p, ua)) * (at(r, ua) - at(q, ua)) + (at(q, va) - at(p, va)) * (at(r, va) - at(q, va)) < 0;
+  }
+};
+
+// The polygon's plane; none where its Newell normal is zero or not finite.
+std::optional<PolygonPlane> planeOf(const std::vector<float>& positions, const std::vector<std::uint32_t>& polygon) {
   const std::size_t n = polygon.size();
-  auto fan = [&](const std::vector<std::uint32_t>& ring) {
-    for (std::size_t i = 1; i + 1 < ring.size(); ++i) indices.insert(indices.end(), {ring[0], ring[i], ring[i + 1]});
-  };
-  if (n <= 3 || n > kMaxEarClippedCorners) return fan(polygon);
   auto at = [&](std::size_t corner, int axis) { return static_cast<double>(positions[3 * polygon[corner] + axis]); };
-  // Newell's normal; the plane drops its largest axis, keeping the other two in cyclic order,
-  // so that the polygon's signed area there has the sign of that component.
   double normal[3] = {0, 0, 0};
   for (std::size_t i = 0; i < n; ++i) {
     const std::size_t j = (i + 1) % n;
@@ -66,36 +86,36 @@ void triangulatePolygon(const std::vector<float>& positions, const std::vector<s
   for (int a = 1; a < 3; ++a) {
     if (std::fabs(normal[a]) > std::fabs(normal[drop])) drop = a;
   }
-  if (normal[drop] == 0.0 || !std::isfinite(normal[drop])) return fan(polygon);
-  const int ua = (drop + 1) % 3, va = (drop + 2) % 3;
-  const double orientation = normal[drop] > 0 ? 1.0 : -1.0;
-  // Twice the signed area of (p, q, r) in the plane, positive where the turn follows the polygon.
-  auto turn = [&](std::size_t p, std::size_t q, std::size_t r) {
-    return orientation * ((at(q, ua) - at(p, ua)) * (at(r, va) - at(p, va)) - (at(q, va) - at(p, va)) * (at(r, ua) - at(p, ua)));
-  };
-  // Convex: no corner turns the other way, and none turns back on its edge (a zero-width
-  // spike turns by zero too).
-  auto reverses = [&](std::size_t p, std::size_t q, std::size_t r) {
-    return (at(q, ua) - at(p, ua)) * (at(r, ua) - at(q, ua)) + (at(q, va) - at(p, va)) * (at(r, va) - at(q, va)) < 0;
-  };
+  if (normal[drop] == 0.0 || !std::isfinite(normal[drop])) return std::nullopt;
+  return PolygonPlane{positions, polygon, (drop + 1) % 3, (drop + 2) % 3, normal[drop] > 0 ? 1.0 : -1.0};
+}
+
+// Convex: no corner turns the other way, and none turns back on its edge.
+bool isConvex(const PolygonPlane& plane) {
+  const std::size_t n = plane.polygon.size();
   bool convex = true;
   for (std::size_t i = 0; i < n && convex; ++i) {
     const std::size_t p = (i + n - 1) % n, q = (i + 1) % n;
-    const double t = turn(p, i, q);
-    convex = t > 0 || (t == 0 && !reverses(p, i, q));
+    const double t = plane.turn(p, i, q);
+    convex = t > 0 || (t == 0 && !plane.reverses(p, i, q));
   }
-  if (convex) return fan(polygon);
+  return convex;
+}
 
+// Ear clipping of a concave polygon; what it cannot finish (self-intersecting) is fanned.
+void clipEars(const PolygonPlane& plane, std::vector<std::uint32_t>& indices) {
+  const std::vector<std::uint32_t>& polygon = plane.polygon;
+  const std::size_t n = polygon.size();
   std::vector<std::size_t> previous(n), next(n);
   for (std::size_t i = 0; i < n; ++i) previous[i] = (i + n - 1) % n, next[i] = (i + 1) % n;
   auto isEar = [&](std::size_t i) {
     const std::size_t p = previous[i], q = next[i];
-    if (turn(p, i, q) <= 0) return false;
+    if (plane.turn(p, i, q) <= 0) return false;
     for (std::size_t r = next[q]; r != p; r = next[r]) {
       // A corner on or inside the triangle (other than a copy of one of its corners) blocks it.
-      const auto same = [&](std::size_t a) { return at(r, ua) == at(a, ua) && at(r, va) == at(a, va); };
+      const auto same = [&](std::size_t a) { return plane.at(r, plane.ua) == plane.at(a, plane.ua) && plane.at(r, plane.va) == plane.at(a, plane.va); };
       if (same(p) || same(i) || same(q)) continue;
-      if (turn(p, i, r) >= 0 && turn(i, q, r) >= 0 && turn(q, p, r) >= 0) return false;
+      if (plane.turn(p, i, r) >= 0 && plane.turn(i, q, r) >= 0 && plane.turn(q, p, r) >= 0) return false;
     }
     return true;
   };
@@ -117,7 +137,7 @@ void triangulatePolygon(const std::vector<float>& positions, const std::vector<s
       }
       std::vector<std::uint32_t> ring;
       for (std::size_t k = 0, r = i; k < remaining; ++k, r = next[r]) ring.push_back(polygon[r]);
-      return fan(ring);
+      return fanTriangles(ring, indices);
     }
     const std::size_t p = previous[i], q = next[i];
     indices.insert(indices.end(), {polygon[p], polygon[i], polygon[q]});
@@ -130,6 +150,14 @@ void triangulatePolygon(const std::vector<float>& positions, const std::vector<s
     i = q;
   }
   indices.insert(indices.end(), {polygon[previous[i]], polygon[i], polygon[next[i]]});
+}
+
+void triangulatePolygon(const std::vector<float>& positions, const std::vector<std::uint32_t>& polygon,
+                        std::vector<std::uint32_t>& indices) {
+  if (polygon.size() <= 3 || polygon.size() > kMaxEarClippedCorners) return fanTriangles(polygon, indices);
+  const std::optional<PolygonPlane> plane = planeOf(positions, polygon);
+  if (!plane || isConvex(*plane)) return fanTriangles(polygon, indices);
+  clipEars(*plane, indices);
 }
 
 }  // namespace

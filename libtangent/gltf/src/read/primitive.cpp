@@ -34,7 +34,7 @@ const char* toString(FrameConsumer consumer) {
 
 namespace {
 
-// The primitive's material, or null (validate.cpp has checked the document's types).
+// The primitive's material, or null (validateDocument has checked the document's types).
 const Json* materialOf(const Json& doc, const Json& primitive) {
   if (!primitive.contains("material") || !primitive["material"].is_number_integer() || !doc.contains("materials")) return nullptr;
   const int index = primitive["material"].get<int>();

@@ -50,6 +50,10 @@ std::string percentDecode(const std::string& uri) {
 
 bool isDataUri(const std::string& uri) { return uri.rfind("data:", 0) == 0; }
 
+bool isRelativeFileUri(const std::string& uri) {
+  return !uri.empty() && !isDataUri(uri) && uri.find("://") == std::string::npos && uri.front() != '/';
+}
+
 namespace {
 
 // Where a data: URI's base64 payload starts; throws InputError (naming `what`) for any other.

@@ -17,6 +17,8 @@ namespace tangent::gltf::detail {
 std::string percentDecode(const std::string& uri);
 
 bool isDataUri(const std::string& uri);
+// A URI that names a file relative to the document (not data:, not absolute, no scheme).
+bool isRelativeFileUri(const std::string& uri);
 // Base64 payload of a data: URI; throws InputError (naming `what`) when it is not base64.
 std::vector<std::uint8_t> decodeDataUri(const std::string& uri, const std::string& what);
 // The same checks without decoding (images, which are carried through as they are).

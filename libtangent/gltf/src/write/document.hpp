@@ -1,7 +1,8 @@
 // SPDX-License-Identifier: MIT
 // Editing a glTF document for output: new accessors appended, then on finish the accessors and
 // bufferViews the edit orphaned are dropped, every reference renumbered, and all surviving
-// buffer data packed into one buffer (the GLB BIN chunk or one .bin file).
+// buffer data packed into one buffer (the GLB BIN chunk or one .bin file). The edits are in
+// document.cpp, the packing in pack.cpp, the images in images.cpp, the writers in write.cpp.
 #pragma once
 
 #include <filesystem>
@@ -122,6 +123,11 @@ class OutputDocument {
   // would go where the output writes one of `outputFiles` (itself, its .bin) is refused.
   void placeImages(const std::filesystem::path& outputDir, const std::vector<std::filesystem::path>& outputFiles,
                    CreatedFiles& created);
+  // write()'s two kinds of output, once the buffers are packed into `bin`: a .glb, or a .gltf
+  // with its .bin (under a free name) beside it; each returns the bytes written.
+  std::uint64_t writeGlb(const std::filesystem::path& output, const std::vector<std::span<const std::uint8_t>>& bin,
+                         bool keepExternalImages);
+  std::uint64_t writeGltf(const std::filesystem::path& output, const std::vector<std::span<const std::uint8_t>>& bin);
   // Whether `path` is the input, a file it uses (as loaded) or one of runFiles_.
   bool isProtected(const std::filesystem::path& path) const;
 
