@@ -226,6 +226,60 @@ namespace tangent::viewer {
 
 using namespace renderer_detail;
 
+namespace {
+
+// How the materials use each image: each is uploaded as they use it, sRGB where it holds
+// colour, linear where it holds data, both when used both ways.
+struct ImageUses {
+  std::vector<bool> asColour, asData;
+};
+
+// The uses of each image; a message for each texture on a UV set past TEXCOORD_1.
+ImageUses imageUses(const gltf::Scene& scene, std::vector<std::string>& messages) {
+  const std::size_t imageCount = scene.images.size();
+  ImageUses uses{std::vector<bool>(imageCount), std::vector<bool>(imageCount)};
+  for (const auto& material : scene.materials) {
+    for (const gltf::TextureRef* ref : textureRefs(material)) {
+      if (ref->image < 0 || ref->image >= static_cast<int>(imageCount)) continue;
+      (ref->colour ? uses.asColour : uses.asData)[ref->image] = true;
+      if (ref->texCoord > 1)
+        messages.push_back("material '" + text::quoted(material.name) + "': texCoord " + std::to_string(ref->texCoord) +
+                           " shown with TEXCOORD_0 (the viewer reads sets 0 and 1)");
+    }
+  }
+  return uses;
+}
+
+// Each used image decoded, fitted to the GL's size limit and uploaded into `linear` and `srgb`
+// (one slot per image; empty where unused or left out), its notes and errors in `messages`.
+void uploadImages(const gltf::Scene& scene, const ImageUses& uses, std::vector<Texture>& linear, std::vector<Texture>& srgb,
+                  std::vector<std::string>& messages) {
+  const std::size_t imageCount = scene.images.size();
+  linear.resize(imageCount);
+  srgb.resize(imageCount);
+  const int maxSize = maxTextureSize();
+  for (std::size_t i = 0; i < imageCount; ++i) {
+    if (!uses.asColour[i] && !uses.asData[i]) continue;
+    DecodedImage image;
+    std::string error;
+    const bool decoded = decodeImage(scene.images[i], image, error);
+    messages.insert(messages.end(), image.notes.begin(), image.notes.end());
+    if (!decoded) {
+      // Colour textures show a checker instead, so that the gap is seen; data textures are left out.
+      messages.push_back(error + (uses.asColour[i] ? "; drawn as a magenta checker" : "; left out"));
+      if (uses.asColour[i]) srgb[i] = uploadTexture(missingImageChecker(), true);
+      continue;
+    }
+    if (std::string note = fitTextureSize(image, maxSize, scene.images[i].label); !note.empty()) messages.push_back(std::move(note));
+    if (uses.asColour[i]) srgb[i] = uploadTexture(image, true);
+    if (uses.asData[i]) linear[i] = uploadTexture(image, false);
+  }
+}
+
+}  // namespace
+
+// The scene's images, meshes (a copy of its own for each deformed instance), instances, bounds
+// and lights uploaded in place of the last scene's.
 void Renderer::setScene(gltf::Scene scene, std::vector<std::string>& messages) {
   scene_ = std::move(scene);
   meshes_.clear();
@@ -238,38 +292,7 @@ void Renderer::setScene(gltf::Scene scene, std::vector<std::string>& messages) {
   glyphsBuiltFor_ = -1;
   ++sceneVersion_;
   shadowPasses_ = 0;
-  // Each image is uploaded as the materials use it: sRGB where it holds colour, linear where
-  // it holds data; both when used both ways.
-  const std::size_t imageCount = scene_.images.size();
-  std::vector<bool> usedAsColour(imageCount), usedAsData(imageCount);
-  for (const auto& material : scene_.materials) {
-    for (const gltf::TextureRef* ref : textureRefs(material)) {
-      if (ref->image < 0 || ref->image >= static_cast<int>(imageCount)) continue;
-      (ref->colour ? usedAsColour : usedAsData)[ref->image] = true;
-      if (ref->texCoord > 1)
-        messages.push_back("material '" + text::quoted(material.name) + "': texCoord " + std::to_string(ref->texCoord) +
-                           " shown with TEXCOORD_0 (the viewer reads sets 0 and 1)");
-    }
-  }
-  textures_.resize(imageCount);
-  srgbTextures_.resize(imageCount);
-  const int maxSize = maxTextureSize();
-  for (std::size_t i = 0; i < imageCount; ++i) {
-    if (!usedAsColour[i] && !usedAsData[i]) continue;
-    DecodedImage image;
-    std::string error;
-    const bool decoded = decodeImage(scene_.images[i], image, error);
-    messages.insert(messages.end(), image.notes.begin(), image.notes.end());
-    if (!decoded) {
-      // Colour textures show a checker instead, so that the gap is seen; data textures are left out.
-      messages.push_back(error + (usedAsColour[i] ? "; drawn as a magenta checker" : "; left out"));
-      if (usedAsColour[i]) srgbTextures_[i] = uploadTexture(missingImageChecker(), true);
-      continue;
-    }
-    if (std::string note = fitTextureSize(image, maxSize, scene_.images[i].label); !note.empty()) messages.push_back(std::move(note));
-    if (usedAsColour[i]) srgbTextures_[i] = uploadTexture(image, true);
-    if (usedAsData[i]) textures_[i] = uploadTexture(image, false);
-  }
+  uploadImages(scene_, imageUses(scene_, messages), textures_, srgbTextures_, messages);
   auto upload = [&](const gltf::DrawItem& item, GLenum usage) {
     GpuMesh mesh;
     mesh.material = item.material;

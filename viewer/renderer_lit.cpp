@@ -15,6 +15,7 @@
 #include <limits>
 #include <numeric>
 #include <span>
+#include <utility>
 
 #include "shadow_cube.hpp"
 #include "tangent/text.hpp"
@@ -247,18 +248,31 @@ void setLightUniforms(GLuint program, const std::vector<Light>& lights, bool phy
   }
 }
 
-}  // namespace
+// Texture units handed out in order to one program's samplers.
+class TextureUnits {
+ public:
+  explicit TextureUnits(GLuint program) : program_(program) {}
+  // `sampler` 0: the texture's own parameters (the viewer's maps); a file's textures sample
+  // through their glTF sampler.
+  void bind(const char* name, GLenum target, GLuint texture, GLuint sampler = 0) {
+    glActiveTexture(GL_TEXTURE0 + unit_);
+    glBindTexture(target, texture);
+    glBindSampler(static_cast<GLuint>(unit_), sampler);
+    setUniform(program_, name, unit_);
+    ++unit_;
+  }
 
-GLuint Renderer::bindMesh(const GpuMesh& mesh, const CameraMatrices& camera, const RenderSettings& settings, TangentSet tangents) {
-  gltf::MaterialDesc material;  // without one, glTF's default material (metallic 1, roughness 1, white; glTF 2.0 3.9.1)
-  if (const gltf::MaterialDesc* own = materialOf(scene_, mesh.material)) material = *own;
-  const FeatureSet features = featuresFor(mesh, settings);
-  const int lightCount = static_cast<int>(lights_.size());  // at most kMaxLights (lightsFrom)
-  const GLuint program = shaders_.mesh(features, settings.view, settings.toneMapping, lightCount);
-  glUseProgram(program);
+ private:
+  GLuint program_;
+  int unit_ = 0;
+};
+
+// What every mesh's program reads of the camera and the settings, and the material's blending.
+void setPassUniforms(GLuint program, const CameraMatrices& camera, const RenderSettings& settings, TangentSet tangents,
+                     const gltf::MaterialDesc& material, const glm::mat4& lightViewProjection, float exposure) {
   setUniform(program, "u_viewProjection", camera.projection * camera.view);
   setUniform(program, "u_view", camera.view);
-  setUniform(program, "u_lightViewProjection", has(features, Feature::shadows) ? lightViewProjection() : glm::mat4(1));
+  setUniform(program, "u_lightViewProjection", lightViewProjection);
   setUniform(program, "u_eyeWorld", camera.eye);
   setUniform(program, "u_uvScale", settings.uvScale);
   setUniform(program, "u_useNormalMap", settings.normalMapping ? 1 : 0);
@@ -268,27 +282,23 @@ GLuint Renderer::bindMesh(const GpuMesh& mesh, const CameraMatrices& camera, con
   setUniform(program, "u_specularModel", settings.shading == Shading::phong ? 1 : 0);
   setUniform(program, "u_blend", material.alphaMode == gltf::MaterialDesc::AlphaMode::blend ? 1 : 0);
   setUniform(program, "u_alphaCutoff", material.alphaCutoff);
-  setUniform(program, "u_exposure", exposure(settings));
+  setUniform(program, "u_exposure", exposure);
+}
 
-  setMaterialUniforms(program, material, settings);
-  setLightUniforms(program, lights_, has(features, Feature::physicalLights));
-
-  int unit = 0;
-  // `sampler` 0: the texture's own parameters (the viewer's maps); a file's textures sample
-  // through their glTF sampler.
-  auto bind = [&](const char* name, GLuint texture, GLuint sampler = 0) {
-    glActiveTexture(GL_TEXTURE0 + unit);
-    glBindTexture(GL_TEXTURE_2D, texture);
-    glBindSampler(static_cast<GLuint>(unit), sampler);
-    setUniform(program, name, unit);
-    ++unit;
-  };
+// The material's maps that the program's features read, each with its UV set and transform,
+// and the clearcoat and anisotropy factors. `mapOf`: a texture reference's texture and sampler.
+template <class MapOf>
+void bindMaterialMaps(TextureUnits& units, GLuint program, FeatureSet features, const gltf::MaterialDesc& material, MapOf mapOf) {
   auto bindMap = [&](const char* prefix, const gltf::TextureRef& ref) {
-    bind((std::string("u_") + prefix + "Map").c_str(), textureOf(ref), samplers_.get(ref.sampler));
+    const auto [texture, sampler] = mapOf(ref);
+    units.bind((std::string("u_") + prefix + "Map").c_str(), GL_TEXTURE_2D, texture, sampler);
     setUvUniforms(program, std::string("u_") + prefix, ref);
   };
   if (has(features, Feature::baseColorMap)) bindMap("baseColor", material.baseColorTexture);
-  if (has(features, Feature::normalMap)) bind("u_normalMap", textureOf(material.normalTexture), samplers_.get(material.normalTexture.sampler));
+  if (has(features, Feature::normalMap)) {
+    const auto [texture, sampler] = mapOf(material.normalTexture);
+    units.bind("u_normalMap", GL_TEXTURE_2D, texture, sampler);
+  }
   if (has(features, Feature::specularMap)) bindMap("specular", material.specularTexture);
   if (has(features, Feature::specularColorMap)) bindMap("specularColor", material.specularColorTexture);
   if (has(features, Feature::metallicRoughnessMap)) bindMap("metallicRoughness", material.metallicRoughnessTexture);
@@ -306,26 +316,44 @@ GLuint Renderer::bindMesh(const GpuMesh& mesh, const CameraMatrices& camera, con
     setUniform(program, "u_anisotropy",
                glm::vec3(std::cos(material.anisotropyRotation), std::sin(material.anisotropyRotation), material.anisotropyStrength));
   if (has(features, Feature::anisotropyMap)) bindMap("anisotropy", material.anisotropyTexture);
-  if (has(features, Feature::reflection)) bind("u_sphereMap", sphereMap_.get());
-  if (has(features, Feature::ibl) && environment_) {
-    glActiveTexture(GL_TEXTURE0 + unit);
-    glBindTexture(GL_TEXTURE_CUBE_MAP, environment_->specularCube.get());
-    glBindSampler(static_cast<GLuint>(unit), 0);
-    setUniform(program, "u_environmentMap", unit++);
-    bind("u_brdfLut", environment_->brdfLut.get());
-    setUniform(program, "u_environmentMaxLod", environment_->maxLod);
-    setUniform(program, "u_environmentScale", settings.iblIntensity * kEnvironmentShare / kAmbientShare);
-    glUniform3fv(glGetUniformLocation(program, "u_irradianceSh"), 9, &environment_->irradianceSh[0].x);
-  }
+}
+
+// Image-based lighting: the prefiltered specular cube, the BRDF table, the irradiance as
+// spherical harmonics, and the environment's share of the light.
+void bindEnvironment(TextureUnits& units, GLuint program, const EnvironmentTextures& environment, const RenderSettings& settings) {
+  units.bind("u_environmentMap", GL_TEXTURE_CUBE_MAP, environment.specularCube.get());
+  units.bind("u_brdfLut", GL_TEXTURE_2D, environment.brdfLut.get());
+  setUniform(program, "u_environmentMaxLod", environment.maxLod);
+  setUniform(program, "u_environmentScale", settings.iblIntensity * kEnvironmentShare / kAmbientShare);
+  glUniform3fv(glGetUniformLocation(program, "u_irradianceSh"), 9, &environment.irradianceSh[0].x);
+}
+
+}  // namespace
+
+// The program for the mesh's features, its uniforms and textures, and its vertex array.
+GLuint Renderer::bindMesh(const GpuMesh& mesh, const CameraMatrices& camera, const RenderSettings& settings, TangentSet tangents) {
+  gltf::MaterialDesc material;  // without one, glTF's default material (metallic 1, roughness 1, white; glTF 2.0 3.9.1)
+  if (const gltf::MaterialDesc* own = materialOf(scene_, mesh.material)) material = *own;
+  const FeatureSet features = featuresFor(mesh, settings);
+  const int lightCount = static_cast<int>(lights_.size());  // at most kMaxLights (lightsFrom)
+  const GLuint program = shaders_.mesh(features, settings.view, settings.toneMapping, lightCount);
+  glUseProgram(program);
+  setPassUniforms(program, camera, settings, tangents, material,
+                  has(features, Feature::shadows) ? lightViewProjection() : glm::mat4(1), exposure(settings));
+  setMaterialUniforms(program, material, settings);
+  setLightUniforms(program, lights_, has(features, Feature::physicalLights));
+
+  TextureUnits units(program);
+  bindMaterialMaps(units, program, features, material,
+                   [&](const gltf::TextureRef& ref) { return std::pair<GLuint, GLuint>(textureOf(ref), samplers_.get(ref.sampler)); });
+  if (has(features, Feature::reflection)) units.bind("u_sphereMap", GL_TEXTURE_2D, sphereMap_.get());
+  if (has(features, Feature::ibl) && environment_) bindEnvironment(units, program, *environment_, settings);
   if (has(features, Feature::pointShadows)) {
-    glActiveTexture(GL_TEXTURE0 + unit);
-    glBindTexture(GL_TEXTURE_CUBE_MAP, shadowCube_.get());
-    glBindSampler(static_cast<GLuint>(unit), 0);
-    setUniform(program, "u_shadowCube", unit++);
+    units.bind("u_shadowCube", GL_TEXTURE_CUBE_MAP, shadowCube_.get());
     const glm::vec2 range = shadowCubeDepthRange();
     setUniform(program, "u_shadowCubeDepth", glm::vec3(range, 4 * boundsRadius()));  // biases: fractions of the 2D map's depth range
   } else if (has(features, Feature::shadows)) {
-    bind("u_shadowMap", shadowTexture_.get());
+    units.bind("u_shadowMap", GL_TEXTURE_2D, shadowTexture_.get());
   }
   if (has(features, Feature::shadows)) {
     setUniform(program, "u_pcfRadius", settings.pcfRadius);

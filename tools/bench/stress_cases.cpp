@@ -61,10 +61,9 @@ void scalePositions(StressCase& c, double scale) {
   for (float& p : c.positions) p = static_cast<float>(p * scale);
 }
 
-}  // namespace
-
-std::vector<StressCase> stressCases() {
-  std::vector<StressCase> cases;
+// Degenerate triangles in space and in UV: slivers, UV areas down to 1e-30 and zero,
+// collinear UVs, two vertices at one place.
+void addDegenerateTriangles(std::vector<StressCase>& cases) {
   for (double aspect : {1e3, 1e6, 1e9}) cases.push_back(slivers(aspect));
   for (int exponent : {3, 6, 9, 12, 15}) {
     // UV triangles of area ~ (1e-e)^2 / (2 n^2): 1e-6 ... 1e-30 for the whole sheet
@@ -85,6 +84,10 @@ std::vector<StressCase> stressCases() {
     for (int k = 0; k < 3; ++k) c.positions[3 * 10 + k] = c.positions[3 * 11 + k];  // vertex 10 onto 11
     cases.push_back(std::move(c));
   }
+}
+
+// Float precision: small edges far from the origin, scales of 1e-30 and 1e30, denormals.
+void addPrecisionLimits(std::vector<StressCase>& cases) {
   for (int exponent : {4, 5, 6, 7}) {
     // Edges of 1e-2 at an offset: at 1e6 a few float ulps, at 1e7 below one ulp (collapsed).
     cases.push_back(grid("offset 1e" + std::to_string(exponent) + ", edges 1e-2", 8, 8e-2, std::pow(10.0, exponent), 1.0));
@@ -99,7 +102,11 @@ std::vector<StressCase> stressCases() {
     scalePositions(c, 1e-40);
     cases.push_back(std::move(c));
   }
-  // Broken input on one vertex; the rest must equal the clean run away from it.
+}
+
+// Broken input on one vertex (NaN or Inf in its position, normal or UV); the rest must equal
+// the clean run away from it.
+void addBrokenVertex(std::vector<StressCase>& cases) {
   static const StressCase cleanGrid = grid("clean grid", 8, 1.0, 0.0, 1.0);
   const std::uint32_t broken = 40;  // an interior vertex of the 9 x 9 grid
   for (const char* what : {"NaN position", "Inf position", "NaN normal", "Inf normal", "NaN UV", "Inf UV"}) {
@@ -114,6 +121,10 @@ std::vector<StressCase> stressCases() {
     c.clean = &cleanGrid;
     cases.push_back(std::move(c));
   }
+}
+
+// Normals that are not unit or face away: zero length, lengths 1e-20 and 1e20, opposed.
+void addOddNormals(std::vector<StressCase>& cases) {
   {
     StressCase c = grid("zero-length normals", 8, 1.0, 0.0, 1.0);
     for (std::size_t v = 0; v < c.normals.size() / 3; v += 3)
@@ -130,54 +141,70 @@ std::vector<StressCase> stressCases() {
     for (float& n : c.normals) n = -n;
     cases.push_back(std::move(c));
   }
-  {
-    // A pole: 1000 triangles around one vertex, UVs polar around it.
-    StressCase c;
-    c.name = "pole with 1000 triangles";
-    const int count = 1000;
-    c.positions = {0, 0, 1};
-    c.normals = {0, 0, 1};
-    c.uvs = {0.5f, 0.0f};
-    for (int i = 0; i <= count; ++i) {
-      const double a = 2 * std::numbers::pi * i / count;
-      c.positions.insert(c.positions.end(), {static_cast<float>(0.2 * std::cos(a)), static_cast<float>(0.2 * std::sin(a)), 0.98f});
-      const double l = std::sqrt(0.04 + 0.98 * 0.98);
-      c.normals.insert(c.normals.end(), {static_cast<float>(0.2 * std::cos(a) / l), static_cast<float>(0.2 * std::sin(a) / l), static_cast<float>(0.98 / l)});
-      c.uvs.insert(c.uvs.end(), {static_cast<float>(double(i) / count), 0.1f});
-    }
-    for (std::uint32_t i = 1; i <= static_cast<std::uint32_t>(count); ++i) c.indices.insert(c.indices.end(), {0, i, i + 1});
-    cases.push_back(std::move(c));
+}
+
+// A pole: 1000 triangles around one vertex, UVs polar around it.
+StressCase pole() {
+  StressCase c;
+  c.name = "pole with 1000 triangles";
+  const int count = 1000;
+  c.positions = {0, 0, 1};
+  c.normals = {0, 0, 1};
+  c.uvs = {0.5f, 0.0f};
+  for (int i = 0; i <= count; ++i) {
+    const double a = 2 * std::numbers::pi * i / count;
+    c.positions.insert(c.positions.end(), {static_cast<float>(0.2 * std::cos(a)), static_cast<float>(0.2 * std::sin(a)), 0.98f});
+    const double l = std::sqrt(0.04 + 0.98 * 0.98);
+    c.normals.insert(c.normals.end(), {static_cast<float>(0.2 * std::cos(a) / l), static_cast<float>(0.2 * std::sin(a) / l), static_cast<float>(0.98 / l)});
+    c.uvs.insert(c.uvs.end(), {static_cast<float>(double(i) / count), 0.1f});
   }
-  {
-    // Two mirrored islands meeting at vertex 0 only: a bow tie in 3D and in UV.
-    StressCase c;
-    c.name = "mirrored islands meeting at a vertex";
-    c.positions = {0, 0, 0, 1, -0.5f, 0, 1, 0.5f, 0, -1, -0.5f, 0, -1, 0.5f, 0};
-    c.normals = {0, 0, 1, 0, 0, 1, 0, 0, 1, 0, 0, 1, 0, 0, 1};
-    c.uvs = {0.5f, 0.5f, 1, 0, 1, 1, 1, 0, 1, 1};  // the left triangle maps mirrored onto the right's UVs
-    c.indices = {0, 1, 2, 0, 4, 3};
-    cases.push_back(std::move(c));
+  for (std::uint32_t i = 1; i <= static_cast<std::uint32_t>(count); ++i) c.indices.insert(c.indices.end(), {0, i, i + 1});
+  return c;
+}
+
+// Two mirrored islands meeting at vertex 0 only: a bow tie in 3D and in UV.
+StressCase islandsMeetingAtAVertex() {
+  StressCase c;
+  c.name = "mirrored islands meeting at a vertex";
+  c.positions = {0, 0, 0, 1, -0.5f, 0, 1, 0.5f, 0, -1, -0.5f, 0, -1, 0.5f, 0};
+  c.normals = {0, 0, 1, 0, 0, 1, 0, 0, 1, 0, 0, 1, 0, 0, 1};
+  c.uvs = {0.5f, 0.5f, 1, 0, 1, 1, 1, 0, 1, 1};  // the left triangle maps mirrored onto the right's UVs
+  c.indices = {0, 1, 2, 0, 4, 3};
+  return c;
+}
+
+// Edges shared by three and by five faces.
+StressCase nonManifoldEdges() {
+  StressCase c;
+  c.name = "edges shared by 3 and 5 faces";
+  c.positions = {0, 0, 0, 1, 0, 0};
+  c.normals = {0, 0, 1, 0, 0, 1};
+  c.uvs = {0, 0, 1, 0};
+  for (int i = 0; i < 5; ++i) {
+    const double a = 2 * std::numbers::pi * i / 5 + 0.3;
+    c.positions.insert(c.positions.end(), {0.5f, static_cast<float>(std::cos(a)), static_cast<float>(std::sin(a))});
+    c.normals.insert(c.normals.end(), {0, static_cast<float>(std::cos(a)), static_cast<float>(std::sin(a))});
+    c.uvs.insert(c.uvs.end(), {0.5f, static_cast<float>(0.2 * i + 0.1)});
+    c.indices.insert(c.indices.end(), {0, 1, static_cast<std::uint32_t>(2 + i)});
   }
-  {
-    // Edges shared by three and by five faces.
-    StressCase c;
-    c.name = "edges shared by 3 and 5 faces";
-    c.positions = {0, 0, 0, 1, 0, 0};
-    c.normals = {0, 0, 1, 0, 0, 1};
-    c.uvs = {0, 0, 1, 0};
-    for (int i = 0; i < 5; ++i) {
-      const double a = 2 * std::numbers::pi * i / 5 + 0.3;
-      c.positions.insert(c.positions.end(), {0.5f, static_cast<float>(std::cos(a)), static_cast<float>(std::sin(a))});
-      c.normals.insert(c.normals.end(), {0, static_cast<float>(std::cos(a)), static_cast<float>(std::sin(a))});
-      c.uvs.insert(c.uvs.end(), {0.5f, static_cast<float>(0.2 * i + 0.1)});
-      c.indices.insert(c.indices.end(), {0, 1, static_cast<std::uint32_t>(2 + i)});
-    }
-    c.positions.insert(c.positions.end(), {2, 0, 0});
-    c.normals.insert(c.normals.end(), {0, 0, 1});
-    c.uvs.insert(c.uvs.end(), {2, 0});
-    for (std::uint32_t apex : {2u, 3u, 4u}) c.indices.insert(c.indices.end(), {1, 7, apex});  // edge (1, 7) thrice
-    cases.push_back(std::move(c));
-  }
+  c.positions.insert(c.positions.end(), {2, 0, 0});
+  c.normals.insert(c.normals.end(), {0, 0, 1});
+  c.uvs.insert(c.uvs.end(), {2, 0});
+  for (std::uint32_t apex : {2u, 3u, 4u}) c.indices.insert(c.indices.end(), {1, 7, apex});  // edge (1, 7) thrice
+  return c;
+}
+
+}  // namespace
+
+std::vector<StressCase> stressCases() {
+  std::vector<StressCase> cases;
+  addDegenerateTriangles(cases);
+  addPrecisionLimits(cases);
+  addBrokenVertex(cases);
+  addOddNormals(cases);
+  cases.push_back(pole());
+  cases.push_back(islandsMeetingAtAVertex());
+  cases.push_back(nonManifoldEdges());
   return cases;
 }
 

@@ -120,18 +120,16 @@ constexpr const char* kStopNotice = "tangent: stopping after the current file (p
 constexpr const char* kStopNoticeOverProgress =
     "\r\033[Ktangent: stopping after the current file (press Ctrl-C again to stop at once)\n";
 
-// --recursive: each folder into --out-dir (into --out-dir/NAME when there are several).
-int bakeTrees(const std::vector<std::filesystem::path>& folders, const std::filesystem::path& outDir,
-              const gltf::BakeOptions& options, bool force, bool verify, bool quiet, const std::filesystem::path& reportPath) {
-  gltf::BatchOptions batch;
-  batch.bake = options;
-  batch.force = force;
-  batch.verify = verify;
-  // Every output of the run known before anything is written: two folders of one name, or two
-  // files of one folder that become the same .glb, are refused as a whole.
-  std::vector<std::filesystem::path> allInputs, allOutputs;
-  // Two folders of one name would share OUT/NAME and its manifest (each run replacing the
-  // other's records): refused whatever files they hold.
+// --recursive: where a folder's tree is written: --out-dir itself for one folder, --out-dir/NAME
+// for each of several.
+std::filesystem::path treeTarget(const std::vector<std::filesystem::path>& folders, const std::filesystem::path& folder,
+                                 const std::filesystem::path& outDir) {
+  return folders.size() == 1 ? outDir : outDir / folder.filename();
+}
+
+// Two folders of one name would share OUT/NAME and its manifest (each run replacing the
+// other's records): refused whatever files they hold, with a message.
+bool foldersShareAName(const std::vector<std::filesystem::path>& folders, const std::filesystem::path& outDir) {
   std::map<std::string, std::filesystem::path> byName;
   for (const auto& folder : folders) {
     if (folders.size() < 2) break;
@@ -139,55 +137,69 @@ int bakeTrees(const std::vector<std::filesystem::path>& folders, const std::file
     if (!inserted) {
       std::cerr << "error: " << shown(at->second.string()) << " and " << shown(folder.string()) << " would both be written to "
                 << shown((outDir / folder.filename()).string()) << ", with one manifest (nothing was written; rename one)\n";
-      return kExitInputFailed;
+      return true;
     }
   }
+  return false;
+}
+
+// Every input of the run and its output, known before anything is written.
+struct TreePlan {
+  std::vector<std::filesystem::path> inputs, outputs;
+};
+
+// The run's inputs and outputs; false, with a message, where a folder cannot be listed or two
+// files of one folder would become the same .glb (the run is then refused as a whole).
+bool planTrees(const std::vector<std::filesystem::path>& folders, const std::filesystem::path& outDir, TreePlan& plan) {
   for (const auto& folder : folders) {
-    const std::filesystem::path target = folders.size() == 1 ? outDir : outDir / folder.filename();
+    const std::filesystem::path target = treeTarget(folders, folder, outDir);
     try {
       for (const auto& input : gltf::findInputs(folder, target)) {
-        allInputs.push_back(input);
-        allOutputs.push_back(gltf::outputPathInTree(input, folder, target));
+        plan.inputs.push_back(input);
+        plan.outputs.push_back(gltf::outputPathInTree(input, folder, target));
       }
     } catch (const std::exception& e) {
       std::cerr << "error: " << shown(e.what()) << "\n";
-      return kExitInputFailed;
+      return false;
     }
   }
-  if (const auto collisions = gltf::outputCollisions(allInputs, allOutputs); !collisions.empty()) {
+  if (const auto collisions = gltf::outputCollisions(plan.inputs, plan.outputs); !collisions.empty()) {
     std::cerr << "error: " << shown(gltf::describeCollisions(collisions)) << "\n";
-    return kExitInputFailed;
+    return false;
   }
-  gltf::ProtectedFiles reportKeeps;
-  if (!reportPath.empty() && reportPath != "-") {
-    for (const auto& input : allInputs) reportKeeps.addInput(input);
-    if (reportWouldReplace(reportPath, reportKeeps, allOutputs)) {
-      std::cerr << "tangent bake: --report " << shown(reportPath.string())
-                << " is an input, a file an input uses or an output of this run; the report is never written over one\n";
-      return kExitUsage;
-    }
-  }
+  return true;
+}
+
+// What the bake of the trees gave: the report's entries, the count of each outcome and how many
+// files were done (fewer than planned where Ctrl-C stopped the run).
+struct TreeRun {
   nlohmann::ordered_json report = nlohmann::ordered_json::array();
   std::map<gltf::FileOutcome, std::size_t> counts;
-  std::ostream& log = reportPath == "-" ? std::cerr : std::cout;
-  ProgressLine progress(!quiet && ::isatty(STDERR_FILENO));
   std::size_t done = 0;
+};
+
+// Bakes each folder's tree in turn, a line per file on `log` (failures on stderr), under a
+// progress line; stops after the current file on Ctrl-C.
+TreeRun runTrees(const std::vector<std::filesystem::path>& folders, const std::filesystem::path& outDir, gltf::BatchOptions& batch,
+                 std::size_t total, bool quiet, std::ostream& log) {
+  TreeRun run;
+  ProgressLine progress(!quiet && ::isatty(STDERR_FILENO));
   batch.stopRequested = output::stopRequested;
   // The progress names each file by its path in its tree (led by the folder's name when there
   // are several), as the output tree has it.
   const std::filesystem::path* currentFolder = nullptr;
   batch.onStart = [&](std::size_t, std::size_t, const std::filesystem::path& input) {
-    progress.show(done, allInputs.size(), pathInTree(input, *currentFolder, folders.size() > 1));
+    progress.show(run.done, total, pathInTree(input, *currentFolder, folders.size() > 1));
   };
   output::stopGracefullyOnSignal(progress.onTerminal() ? kStopNoticeOverProgress : kStopNotice);
   for (const auto& folder : folders) {
-    const std::filesystem::path target = folders.size() == 1 ? outDir : outDir / folder.filename();
+    const std::filesystem::path target = treeTarget(folders, folder, outDir);
     currentFolder = &folder;
     if (output::stopRequested()) break;
     try {
       gltf::bakeTree(folder, target, batch, [&](const gltf::BatchEntry& entry) {
-        ++done;
-        ++counts[entry.outcome];
+        ++run.done;
+        ++run.counts[entry.outcome];
         progress.clear();
         // A file that failed last time and has not changed still fails.
         // Named by its input where the message names only an output (a write that failed).
@@ -197,22 +209,48 @@ int bakeTrees(const std::vector<std::filesystem::path>& folders, const std::file
         else if (!quiet)
           log << shown(entry.input.string()) << " -> " << shown(entry.output.string()) << ": " << gltf::toString(entry.outcome)
               << "\n" << std::flush;
-        report.push_back(gltf::toJson(entry));
+        run.report.push_back(gltf::toJson(entry));
       });
     } catch (const std::exception& e) {
-      ++counts[gltf::FileOutcome::failed];
+      ++run.counts[gltf::FileOutcome::failed];
       progress.clear();
       std::cerr << "error: " << shown(e.what()) << "\n";
     }
   }
   progress.clear();
-  const std::size_t failed = counts[gltf::FileOutcome::failed];
+  return run;
+}
+
+// --recursive: each folder into --out-dir (into --out-dir/NAME when there are several). Every
+// output of the run is known before anything is written: two folders of one name, or two files
+// of one folder that become the same .glb, are refused as a whole.
+int bakeTrees(const std::vector<std::filesystem::path>& folders, const std::filesystem::path& outDir,
+              const gltf::BakeOptions& options, bool force, bool verify, bool quiet, const std::filesystem::path& reportPath) {
+  gltf::BatchOptions batch;
+  batch.bake = options;
+  batch.force = force;
+  batch.verify = verify;
+  if (foldersShareAName(folders, outDir)) return kExitInputFailed;
+  TreePlan plan;
+  if (!planTrees(folders, outDir, plan)) return kExitInputFailed;
+  gltf::ProtectedFiles reportKeeps;
+  if (!reportPath.empty() && reportPath != "-") {
+    for (const auto& input : plan.inputs) reportKeeps.addInput(input);
+    if (reportWouldReplace(reportPath, reportKeeps, plan.outputs)) {
+      std::cerr << "tangent bake: --report " << shown(reportPath.string())
+                << " is an input, a file an input uses or an output of this run; the report is never written over one\n";
+      return kExitUsage;
+    }
+  }
+  std::ostream& log = reportPath == "-" ? std::cerr : std::cout;
+  TreeRun run = runTrees(folders, outDir, batch, plan.inputs.size(), quiet, log);
+  const std::size_t failed = run.counts[gltf::FileOutcome::failed];
   if (!quiet)
-    log << counts[gltf::FileOutcome::baked] << " baked, " << counts[gltf::FileOutcome::kept] << " kept, "
-        << counts[gltf::FileOutcome::unchanged] << " unchanged, " << failed << " failed\n";
-  const int written = writeReport(reportPath, report, &reportKeeps);
+    log << run.counts[gltf::FileOutcome::baked] << " baked, " << run.counts[gltf::FileOutcome::kept] << " kept, "
+        << run.counts[gltf::FileOutcome::unchanged] << " unchanged, " << failed << " failed\n";
+  const int written = writeReport(reportPath, run.report, &reportKeeps);
   if (output::stopRequested()) {
-    std::cerr << "tangent bake: stopped after " << done << " of " << allInputs.size()
+    std::cerr << "tangent bake: stopped after " << run.done << " of " << plan.inputs.size()
               << " files; the manifest records them, so the same command continues where this one stopped\n";
     return kExitInterrupted;
   }

@@ -6,16 +6,11 @@
 // Table on the terminal, CSV and JSON files, and a log-log plot of error against run time drawn
 // by gnuplot (PNG and SVG). The library is timed through its plain-array entry point, the call
 // users make.
+// The parts: bench_parts.hpp.
 #include <algorithm>
-#include <array>
-#include <bit>
-#include <chrono>
-#include <cmath>
 #include <cstdio>
 #include <filesystem>
-#include <fstream>
 #include <iostream>
-#include <map>
 #include <nlohmann/json.hpp>
 #include <numeric>
 #include <optional>
@@ -24,10 +19,10 @@
 #include <thread>
 
 #include "analytic_surfaces.hpp"
-#include "tangent/arguments.hpp"
+#include "bench_parts.hpp"
 #include "commands.hpp"
-#include "peers.hpp"
 #include "stress_cases.hpp"
+#include "tangent/arguments.hpp"
 #include "tangent/gltf.hpp"
 #include "tangent/scene.hpp"
 
@@ -38,21 +33,8 @@ using options::parseArguments;
 namespace {
 
 namespace fs = std::filesystem;
-using Clock = std::chrono::steady_clock;
 using Json = nlohmann::ordered_json;
-
-// A file's scene, or a warning naming it and nothing (the bench goes on with the others). Its
-// geometry only: the bench runs no check.
-std::optional<gltf::Scene> loadSceneOrWarn(const fs::path& file) {
-  try {
-    gltf::SceneOptions options;
-    options.judge = false;
-    return gltf::loadScene(file, options);
-  } catch (const std::exception& e) {
-    std::cerr << "warning: " << e.what() << "\n";
-    return std::nullopt;
-  }
-}
+using namespace measure;
 
 const char* kBenchUsageHead =
     "usage: tangent bench [options]\n"
@@ -64,104 +46,6 @@ const char* kBenchUsageHead =
     "timed through computeCornerTangents on plain arrays, each call with its own workspace (as the\n"
     "peers allocate theirs): the median of --repeats calls.\n"
     "\n";
-
-struct Setting {
-  std::string label;
-  Options options;
-};
-
-std::vector<Setting> settings() {
-  std::vector<Setting> out;
-  for (unsigned threads : {1u, 2u}) {
-    auto add = [&](const std::string& label, Method method, Weighting weighting) {
-      Setting s;
-      s.label = label;
-      s.options.method = method;
-      s.options.weighting = weighting;
-      s.options.threads = threads;
-      s.options.uvOrigin = UvOrigin::bottomLeft;
-      out.push_back(s);
-    };
-    add("mikktspace", Method::mikktspace, Weighting::angle);
-    add("lengyel/angle", Method::lengyel, Weighting::angle);
-    add("lengyel/area", Method::lengyel, Weighting::area);
-    add("lengyel/uniform", Method::lengyel, Weighting::uniform);
-    add("flat", Method::flat, Weighting::angle);
-    add("meshopt", Method::meshopt, Weighting::angle);
-  }
-  return out;
-}
-
-double angleDegrees(const float* a, const float* b) {
-  const double cross[3] = {double(a[1]) * b[2] - double(a[2]) * b[1], double(a[2]) * b[0] - double(a[0]) * b[2],
-                           double(a[0]) * b[1] - double(a[1]) * b[0]};
-  const double sine = std::sqrt(cross[0] * cross[0] + cross[1] * cross[1] + cross[2] * cross[2]);
-  return std::atan2(sine, double(a[0]) * b[0] + double(a[1]) * b[1] + double(a[2]) * b[2]) * 180.0 / M_PI;
-}
-
-struct Errors {
-  double mean = 0, p99 = 0, max = 0;
-  std::size_t wErrors = 0;
-};
-
-double median(std::vector<double> values) {
-  std::sort(values.begin(), values.end());
-  return values[values.size() / 2];
-}
-
-double millisecondsSince(Clock::time_point start) { return std::chrono::duration<double, std::milli>(Clock::now() - start).count(); }
-
-// Runs the library the way a caller does: computeCornerTangents on the plain arrays, a
-// workspace of its own per call. Milliseconds, the median of `repeats` calls; `sources` (when
-// given) receives where each corner's frame came from.
-double timedRun(const MeshArrays& mesh, const Options& options, int repeats, std::vector<float>& cornerTangents,
-                std::vector<FrameSource>* sources = nullptr) {
-  std::vector<double> times;
-  cornerTangents.resize(mesh.indices.size() * 4);
-  if (sources) sources->resize(mesh.indices.size());
-  for (int r = 0; r < repeats; ++r) {
-    const auto start = Clock::now();
-    computeCornerTangents(mesh, cornerTangents, options, sources ? std::span<FrameSource>(*sources) : std::span<FrameSource>());
-    times.push_back(millisecondsSince(start));
-  }
-  return median(times);
-}
-
-// A peer (reference MikkTSpace in C, meshoptimizer) on the same arrays: milliseconds, the
-// median of `repeats` calls. Its w is in the bottom-left convention; tangent::handedness turns
-// it into uvOrigin's.
-double timedPeerRun(bench::Peer peer, const MeshArrays& mesh, UvOrigin uvOrigin, int repeats, std::vector<float>& cornerTangents) {
-  std::vector<double> times;
-  cornerTangents.resize(mesh.indices.size() * 4);
-  for (int r = 0; r < repeats; ++r) {
-    const auto start = Clock::now();
-    bench::runPeer(peer, mesh, cornerTangents);
-    times.push_back(millisecondsSince(start));
-  }
-  for (std::size_t c = 0; c < mesh.indices.size(); ++c) cornerTangents[4 * c + 3] = handedness(cornerTangents[4 * c + 3], uvOrigin);
-  return median(times);
-}
-
-// Mean, p99 and max angle and w mismatches of `corners` against `reference` (per vertex through
-// `indices`, or per corner), over every corner or only those `compared` marks.
-Errors compare(const std::vector<float>& corners, const std::vector<std::uint32_t>& indices, const std::vector<float>& reference,
-               bool referencePerVertex, const std::vector<std::uint8_t>* compared = nullptr) {
-  Errors e;
-  std::vector<double> angles;
-  angles.reserve(indices.size());
-  for (std::size_t c = 0; c < indices.size(); ++c) {
-    if (compared && !(*compared)[c]) continue;
-    const float* expected = &reference[4 * (referencePerVertex ? indices[c] : c)];
-    angles.push_back(angleDegrees(&corners[4 * c], expected));
-    if (corners[4 * c + 3] != expected[3]) ++e.wErrors;
-  }
-  if (angles.empty()) return e;
-  e.mean = std::accumulate(angles.begin(), angles.end(), 0.0) / static_cast<double>(angles.size());
-  std::sort(angles.begin(), angles.end());
-  e.p99 = angles[std::min(angles.size() - 1, angles.size() * 99 / 100)];
-  e.max = angles.back();
-  return e;
-}
 
 int stressSummary() {
   int failures = 0;
@@ -180,146 +64,6 @@ int stressSummary() {
   }
   std::printf("%s\n", failures ? "stress suite: FAILURES" : "stress suite: every case keeps the invariants for every method");
   return failures ? kExitInputFailed : kExitOk;
-}
-
-// The files of --assets: each file given, and the .glb/.gltf files of each folder given, sorted.
-std::vector<fs::path> assetFiles(const std::vector<fs::path>& assets) {
-  std::vector<fs::path> files;
-  for (const auto& path : assets) {
-    if (fs::is_directory(path)) {
-      for (const auto& entry : fs::directory_iterator(path))
-        if (entry.path().extension() == ".glb" || entry.path().extension() == ".gltf") files.push_back(entry.path());
-    } else {
-      files.push_back(path);
-    }
-  }
-  std::sort(files.begin(), files.end());
-  return files;
-}
-
-// ---- --peers: every method and peer against the reference C ----
-
-// One input of the table, indexed as a vertex buffer is: corners with the same position,
-// normal and UV bits share a vertex.
-struct PeerInput {
-  std::string name;
-  std::vector<float> positions, normals, uvs;
-  std::vector<std::uint32_t> indices;
-  MeshArrays arrays() const { return {positions, normals, uvs, indices}; }
-};
-
-PeerInput indexByValue(std::string name, const std::vector<float>& positions, const std::vector<float>& normals,
-                       const std::vector<float>& uvs) {
-  PeerInput input{std::move(name), {}, {}, {}, {}};
-  using Key = std::array<std::uint32_t, 8>;
-  std::map<Key, std::uint32_t> vertexOf;
-  const std::size_t corners = positions.size() / 3;
-  input.indices.reserve(corners);
-  for (std::size_t c = 0; c < corners; ++c) {
-    Key key;
-    for (int i = 0; i < 3; ++i) key[i] = std::bit_cast<std::uint32_t>(positions[3 * c + i]);
-    for (int i = 0; i < 3; ++i) key[3 + i] = std::bit_cast<std::uint32_t>(normals[3 * c + i]);
-    for (int i = 0; i < 2; ++i) key[6 + i] = std::bit_cast<std::uint32_t>(uvs[2 * c + i]);
-    const auto [at, added] = vertexOf.try_emplace(key, static_cast<std::uint32_t>(input.positions.size() / 3));
-    if (added) {
-      input.positions.insert(input.positions.end(), &positions[3 * c], &positions[3 * c] + 3);
-      input.normals.insert(input.normals.end(), &normals[3 * c], &normals[3 * c] + 3);
-      input.uvs.insert(input.uvs.end(), &uvs[2 * c], &uvs[2 * c] + 2);
-    }
-    input.indices.push_back(at->second);
-  }
-  return input;
-}
-
-// The generated sphere and torus, then every normal-mapped primitive with UVs of the files.
-std::vector<PeerInput> peerInputs(const std::vector<fs::path>& files, std::size_t triangles) {
-  std::vector<PeerInput> inputs;
-  for (const std::string surface : {"sphere", "torus"}) {
-    bench::AnalyticMesh mesh = bench::makeSurface(surface, triangles);
-    inputs.push_back({surface + " (generated)", std::move(mesh.positions), std::move(mesh.normals), std::move(mesh.uvs), std::move(mesh.indices)});
-  }
-  for (const auto& file : files) {
-    const std::optional<gltf::Scene> loaded = loadSceneOrWarn(file);
-    if (!loaded) continue;
-    const gltf::Scene& scene = *loaded;
-    for (const auto& item : scene.items) {
-      if (!item.hasUvs || item.positions.empty()) continue;
-      std::string name = file.filename().string();
-      if (scene.items.size() > 1) name += " " + item.label;
-      inputs.push_back(indexByValue(std::move(name), item.positions, item.normals, item.uvNormal));
-    }
-  }
-  return inputs;
-}
-
-// tangent bench --peers: the error-against-run-time table with the peers as rows. Every run is
-// on one thread (the peers have no other), w in MikkTSpace's convention (as the reference C
-// writes it); the library's mikktspace at all threads is one more row, for its time.
-int peersTable(const std::vector<fs::path>& assets, std::size_t triangles, int repeats, const fs::path& outDir) {
-  if (bench::peers().empty()) {
-    std::cerr << "tangent bench --peers: the peers are absent, so there is no reference C to compare with: " << bench::peersNote()
-              << "\n";
-    return kExitInputFailed;
-  }
-  const std::vector<PeerInput> inputs = peerInputs(assetFiles(assets), triangles);
-  std::ostringstream csv;
-  csv << "input,triangles,generator,threads,compared_corners,corners,max_deg,p99_deg,w_mismatches,ms\n";
-  std::printf("Against the reference MikkTSpace C (mikktspace.c, genTangSpaceDefault), on the corners whose reference frame comes from\n"
-              "their own triangles; times are medians of %d calls, one thread unless said.\n\n",
-              repeats);
-  std::printf("| input | triangles | generator | max deg | p99 deg | w mismatches | ms |\n|---|---:|---|---:|---:|---:|---:|\n");
-  for (const PeerInput& input : inputs) {
-    const MeshArrays arrays = input.arrays();
-    const std::size_t corners = input.indices.size();
-    std::vector<float> reference;
-    const double referenceMs = timedPeerRun(bench::Peer::referenceMikktspace, arrays, UvOrigin::bottomLeft, repeats, reference);
-    // The corners MikkTSpace gives a frame of their own triangles (a fallback frame is arbitrary).
-    std::vector<float> scratch;
-    std::vector<FrameSource> sources;
-    Options probe;
-    probe.uvOrigin = UvOrigin::bottomLeft;
-    timedRun(arrays, probe, 1, scratch, &sources);
-    std::vector<std::uint8_t> compared(corners);
-    for (std::size_t c = 0; c < corners; ++c)
-      compared[c] = sources[c] == FrameSource::computed || sources[c] == FrameSource::inherited;
-    const std::size_t comparedCount = static_cast<std::size_t>(std::count(compared.begin(), compared.end(), 1));
-    auto row = [&](const std::string& generator, unsigned threads, const std::optional<Errors>& e, double ms) {
-      const std::string label = generator + (threads == 1 ? "" : " (" + std::to_string(threads) + " threads)");
-      if (e) {
-        std::printf("| %s | %zu | %s | %.3g | %.3g | %zu | %.2f |\n", input.name.c_str(), corners / 3, label.c_str(), e->max, e->p99,
-                    e->wErrors, ms);
-      } else {
-        std::printf("| %s | %zu | %s | - | - | - | %.2f |\n", input.name.c_str(), corners / 3, label.c_str(), ms);
-      }
-      csv << '"' << input.name << "\"," << corners / 3 << "," << generator << "," << threads << "," << comparedCount << "," << corners << ","
-          << (e ? e->max : 0.0) << "," << (e ? e->p99 : 0.0) << "," << (e ? e->wErrors : 0) << "," << ms << "\n";
-    };
-    row("mikktspace.c (the reference)", 1, std::nullopt, referenceMs);
-    for (const Setting& setting : settings()) {
-      if (setting.options.threads != 1) continue;
-      Options options = setting.options;  // bottom-left: the reference's w
-      std::vector<float> ours;
-      const double ms = timedRun(arrays, options, repeats, ours);
-      row(setting.label, 1, compare(ours, input.indices, reference, false, &compared), ms);
-    }
-    for (bench::Peer peer : bench::peers()) {
-      if (peer == bench::Peer::referenceMikktspace) continue;
-      std::vector<float> theirs;
-      const double ms = timedPeerRun(peer, arrays, UvOrigin::bottomLeft, repeats, theirs);
-      row(std::string(toString(peer)) + " (peer)", 1, compare(theirs, input.indices, reference, false, &compared), ms);
-    }
-    Options allThreads;
-    allThreads.uvOrigin = UvOrigin::bottomLeft;
-    std::vector<float> ours;
-    const double ms = timedRun(arrays, allThreads, repeats, ours);
-    row("mikktspace", threadCount(allThreads), compare(ours, input.indices, reference, false, &compared), ms);
-    std::fflush(stdout);
-  }
-  std::error_code ec;
-  fs::create_directories(outDir, ec);
-  if (!writeTextOutput((outDir / "peers.csv").string(), csv.str(), "bench")) return kExitInputFailed;
-  std::printf("\nwrote %s/peers.csv\n", outDir.string().c_str());
-  return kExitOk;
 }
 
 void writePlot(const fs::path& dir, const std::vector<std::string>& surfaces) {

@@ -215,6 +215,71 @@ std::string numberList(const Vec3& lo, const Vec3& hi) {
   return text;
 }
 
+// The file's scene judged as check judged it (the flagged triangles are those of its
+// findings), or nothing and why the viewer's loader refuses it.
+std::optional<gltf::Scene> judgedScene(const gltf::FileCheck& file, const gltf::CheckOptions& options, std::string& error) {
+  try {
+    gltf::SceneOptions sceneOptions;
+    sceneOptions.check = options;
+    sceneOptions.assetRoot = options.assetRoot;
+    return gltf::loadScene(file.file, sceneOptions);
+  } catch (const std::exception& e) {
+    error = std::string("the viewer's loader refuses the file: ") + e.what();
+    return std::nullopt;
+  }
+}
+
+// The camera box on a primitive's flagged triangles, as its first instance places them, or
+// nothing and why.
+std::optional<gltf::Framing> framePrimitive(const gltf::Scene& scene, const gltf::PrimitiveCheck& p, std::string& missing) {
+  std::optional<std::size_t> item;
+  for (std::size_t k = 0; k < scene.items.size() && !item; ++k)
+    if (scene.items[k].primitive == gltf::PrimitiveIndex{p.mesh, p.primitive}) item = k;
+  const auto instance = std::find_if(scene.instances.begin(), scene.instances.end(),
+                                     [&](const gltf::DrawInstance& d) { return item && d.item == *item; });
+  if (!item || instance == scene.instances.end()) {
+    missing = "no node of the scene shows this primitive";
+    return std::nullopt;
+  }
+  const gltf::DrawItem& shown = scene.items[*item];
+  std::optional<gltf::Framing> framing = gltf::frameTriangles(shown, instance->world, gltf::flaggedTriangles(shown, std::nullopt));
+  if (!framing) missing = "the primitive has no finite position to frame";
+  return framing;
+}
+
+// tangent-view's error view of the file framed on `framing`, as thumbnail `number` of the
+// scratch folder; without a PNG, why.
+Thumbnail renderThumbnail(const gltf::FileCheck& file, const gltf::CheckOptions& options, const Renderer& renderer,
+                          const ScratchFolder& scratch, const gltf::Framing& framing, std::size_t number) {
+  Thumbnail thumbnail;
+  const fs::path png = scratch.path / ("thumbnail-" + std::to_string(number) + ".png");
+  const fs::path log = scratch.path / ("thumbnail-" + std::to_string(number) + ".log");
+  std::vector<std::string> command = renderer.prefix;
+  for (const std::string& arg :
+       {fs::absolute(file.file).string(), std::string("--screenshot"), png.string(), std::string("--size"),
+        std::to_string(kThumbnailWidth) + "x" + std::to_string(kThumbnailHeight), std::string("--view"),
+        std::string("error"), std::string("--camera"), framing.camera, std::string("--frame-box"),
+        numberList(framing.lo, framing.hi), std::string("--no-shadows"), std::string("--reference"),
+        gltf::toString(gltf::Generator{options.method, options.weighting})})
+    command.push_back(arg);
+  if (!options.assetRoot.empty()) command.insert(command.end(), {"--asset-root", options.assetRoot.string()});
+  const int status = runLogged(command, log);
+  thumbnail.png = status == 0 ? readFile(png) : std::string();
+  const auto size = pngSize(thumbnail.png);
+  if (!size) {
+    thumbnail.png.clear();
+    thumbnail.missing =
+        status < 0 ? "tangent-view could not be started"
+                   : "tangent-view failed (exit status " + std::to_string(status) + "): " + lastLine(readFile(log));
+    return thumbnail;
+  }
+  std::tie(thumbnail.width, thumbnail.height) = *size;
+  thumbnail.caption = "error view, " + framing.camera + " camera, framed on " +
+                      (framing.flaggedTriangles ? std::to_string(framing.flaggedTriangles) + " flagged triangle(s)"
+                                                : "the primitive");
+  return thumbnail;
+}
+
 // Thumbnails of one file's failing primitives, in the order of file.primitives (empty entries
 // for passing ones). `budget` counts down the report's thumbnails.
 std::vector<Thumbnail> renderFile(const gltf::FileCheck& file, const gltf::CheckOptions& options,
@@ -225,17 +290,7 @@ std::vector<Thumbnail> renderFile(const gltf::FileCheck& file, const gltf::Check
   if (!anyFailing) return thumbnails;
   std::optional<gltf::Scene> scene;
   std::string sceneError;
-  if (renderer.unavailable.empty()) {
-    try {
-      // Judged as check judged it: the flagged triangles are those of its findings.
-      gltf::SceneOptions sceneOptions;
-      sceneOptions.check = options;
-      sceneOptions.assetRoot = options.assetRoot;
-      scene = gltf::loadScene(file.file, sceneOptions);
-    } catch (const std::exception& e) {
-      sceneError = std::string("the viewer's loader refuses the file: ") + e.what();
-    }
-  }
+  if (renderer.unavailable.empty()) scene = judgedScene(file, options, sceneError);
   for (std::size_t i = 0; i < file.primitives.size(); ++i) {
     const gltf::PrimitiveCheck& p = file.primitives[i];
     Thumbnail& thumbnail = thumbnails[i];
@@ -253,48 +308,10 @@ std::vector<Thumbnail> renderFile(const gltf::FileCheck& file, const gltf::Check
           "the report has its first " + std::to_string(kMaxThumbnails) + " thumbnails; this one is left out";
       continue;
     }
-    std::optional<std::size_t> item;
-    for (std::size_t k = 0; k < scene->items.size() && !item; ++k)
-      if (scene->items[k].primitive == gltf::PrimitiveIndex{p.mesh, p.primitive}) item = k;
-    const auto instance = std::find_if(scene->instances.begin(), scene->instances.end(),
-                                       [&](const gltf::DrawInstance& d) { return item && d.item == *item; });
-    if (!item || instance == scene->instances.end()) {
-      thumbnail.missing = "no node of the scene shows this primitive";
-      continue;
-    }
-    const gltf::DrawItem& shown = scene->items[*item];
-    const std::optional<gltf::Framing> framing =
-        gltf::frameTriangles(shown, instance->world, gltf::flaggedTriangles(shown, std::nullopt));
-    if (!framing) {
-      thumbnail.missing = "the primitive has no finite position to frame";
-      continue;
-    }
+    const std::optional<gltf::Framing> framing = framePrimitive(*scene, p, thumbnail.missing);
+    if (!framing) continue;
     --budget;
-    const fs::path png = scratch->path / ("thumbnail-" + std::to_string(budget) + ".png");
-    const fs::path log = scratch->path / ("thumbnail-" + std::to_string(budget) + ".log");
-    std::vector<std::string> command = renderer.prefix;
-    for (const std::string& arg :
-         {fs::absolute(file.file).string(), std::string("--screenshot"), png.string(), std::string("--size"),
-          std::to_string(kThumbnailWidth) + "x" + std::to_string(kThumbnailHeight), std::string("--view"),
-          std::string("error"), std::string("--camera"), framing->camera, std::string("--frame-box"),
-          numberList(framing->lo, framing->hi), std::string("--no-shadows"), std::string("--reference"),
-          gltf::toString(gltf::Generator{options.method, options.weighting})})
-      command.push_back(arg);
-    if (!options.assetRoot.empty()) command.insert(command.end(), {"--asset-root", options.assetRoot.string()});
-    const int status = runLogged(command, log);
-    thumbnail.png = status == 0 ? readFile(png) : std::string();
-    const auto size = pngSize(thumbnail.png);
-    if (!size) {
-      thumbnail.png.clear();
-      thumbnail.missing =
-          status < 0 ? "tangent-view could not be started"
-                     : "tangent-view failed (exit status " + std::to_string(status) + "): " + lastLine(readFile(log));
-      continue;
-    }
-    std::tie(thumbnail.width, thumbnail.height) = *size;
-    thumbnail.caption = "error view, " + framing->camera + " camera, framed on " +
-                        (framing->flaggedTriangles ? std::to_string(framing->flaggedTriangles) + " flagged triangle(s)"
-                                                   : "the primitive");
+    thumbnail = renderThumbnail(file, options, renderer, *scratch, *framing, budget);
   }
   return thumbnails;
 }

@@ -9,6 +9,42 @@
 
 namespace tangent::cli {
 
+namespace {
+
+// One file's description (describeFile) as text: the file, each mesh, each primitive with its
+// mode, material, compression, whether it needs tangents and why, its attributes, morph
+// targets and the consumers of its tangent frame.
+void printDescription(const nlohmann::ordered_json& info) {
+  std::cout << shown(info["file"].get<std::string>()) << " (" << info["container"].get<std::string>() << ")\n";
+  for (const auto& mesh : info["meshes"]) {
+    std::cout << "  mesh " << mesh["index"].get<int>();
+    if (mesh.contains("name")) std::cout << " '" << text::quoted(mesh["name"].get<std::string>()) << "'";
+    std::cout << "\n";
+    for (const auto& primitive : mesh["primitives"]) {
+      std::cout << "    primitive " << primitive["index"].get<int>() << ": mode " << primitive["mode"].get<int>();
+      if (primitive.contains("material")) std::cout << ", material " << primitive["material"].dump();
+      for (const auto& name : primitive["compression"]) std::cout << ", " << name.get<std::string>();
+      std::cout << (primitive["needsTangents"].get<bool>() ? ", needs tangents" : ", no tangents needed")
+                << (primitive["hasTangents"].get<bool>() ? ", has TANGENT" : "") << " - "
+                << primitive["why"].get<std::string>() << "\n";
+      for (const auto& [name, description] : primitive["attributes"].items())
+        std::cout << "      " << name << ": " << description.get<std::string>() << "\n";
+      if (primitive.contains("morphTargets"))
+        std::cout << "      morph targets: " << primitive["morphTargets"].dump() << "\n";
+      if (!primitive["frameConsumers"].empty()) {
+        std::cout << "      tangent frame read by:";
+        for (const auto& use : primitive["frameConsumers"])
+          std::cout << " " << use["consumer"].get<std::string>() << " (TEXCOORD_" << use["texCoord"].get<int>() << ")";
+        std::cout << "\n";
+      }
+      if (primitive.contains("frameWarning"))
+        std::cout << "      warning: " << shown(primitive["frameWarning"].get<std::string>()) << "\n";
+    }
+  }
+}
+
+}  // namespace
+
 int infoCommand(const std::vector<std::string>& args) {
   std::vector<std::string> inputs;
   std::filesystem::path assetRoot;
@@ -54,32 +90,7 @@ int infoCommand(const std::vector<std::string>& args) {
         std::cout << text::dumpJson(info, 2) << "\n";
         continue;
       }
-      std::cout << shown(info["file"].get<std::string>()) << " (" << info["container"].get<std::string>() << ")\n";
-      for (const auto& mesh : info["meshes"]) {
-        std::cout << "  mesh " << mesh["index"].get<int>();
-        if (mesh.contains("name")) std::cout << " '" << text::quoted(mesh["name"].get<std::string>()) << "'";
-        std::cout << "\n";
-        for (const auto& primitive : mesh["primitives"]) {
-          std::cout << "    primitive " << primitive["index"].get<int>() << ": mode " << primitive["mode"].get<int>();
-          if (primitive.contains("material")) std::cout << ", material " << primitive["material"].dump();
-          for (const auto& name : primitive["compression"]) std::cout << ", " << name.get<std::string>();
-          std::cout << (primitive["needsTangents"].get<bool>() ? ", needs tangents" : ", no tangents needed")
-                    << (primitive["hasTangents"].get<bool>() ? ", has TANGENT" : "") << " - "
-                    << primitive["why"].get<std::string>() << "\n";
-          for (const auto& [name, description] : primitive["attributes"].items())
-            std::cout << "      " << name << ": " << description.get<std::string>() << "\n";
-          if (primitive.contains("morphTargets"))
-            std::cout << "      morph targets: " << primitive["morphTargets"].dump() << "\n";
-          if (!primitive["frameConsumers"].empty()) {
-            std::cout << "      tangent frame read by:";
-            for (const auto& use : primitive["frameConsumers"])
-              std::cout << " " << use["consumer"].get<std::string>() << " (TEXCOORD_" << use["texCoord"].get<int>() << ")";
-            std::cout << "\n";
-          }
-          if (primitive.contains("frameWarning"))
-            std::cout << "      warning: " << shown(primitive["frameWarning"].get<std::string>()) << "\n";
-        }
-      }
+      printDescription(info);
       for (const auto& w : info["warnings"]) std::cerr << "warning: " << shown(w.get<std::string>()) << "\n";
     } catch (const std::exception& e) {
       ++failed;
