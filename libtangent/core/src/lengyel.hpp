@@ -10,6 +10,7 @@
 #include <tuple>
 #include <vector>
 
+#include "gram_schmidt.hpp"
 #include "triangle_tangent.hpp"
 #include "parallel.hpp"
 
@@ -31,12 +32,19 @@ Report lengyelOnArrays(WorkspaceData& ws, const MeshArrays& mesh, const CornerOu
 inline std::uint64_t bitsOf(double value) { return bitCast<std::uint64_t>(value == 0.0 ? 0.0 : value); }
 
 // Per corner, what the triangle pass found (one entry per corner of `indices`), in the
-// workspace's arrays (triangleTerms, cornerNormals, cornerWeights, invalidNormal).
+// workspace's arrays (triangleTerms, cornerNormals, cornerWeights, invalidNormal, vertexUnitNormals).
 struct TriangleData {
   std::span<TriangleTerms> triangles;
-  std::span<Vec3> cornerNormals;       // unit (see cornerNormal)
+  std::span<Vec3> cornerNormals;       // where invalidNormal only: its replacement (replacedNormal)
   std::span<double> cornerWeights;     // the weighting's term; 0 where the triangle is not usable
   std::span<std::uint8_t> invalidNormal;
+  std::span<const Vec3> vertexUnitNormals;  // per vertex (ws.vertexUnitNormals)
+  std::span<const std::uint32_t> indices;
+  // A corner's unit normal: its vertex's, or where that is invalid its replacement. Read from
+  // the vertex rather than stored per corner (24 bytes a corner written and read again).
+  const Vec3& cornerNormal(std::size_t corner) const {
+    return invalidNormal[corner] ? cornerNormals[corner] : vertexUnitNormals[indices[corner]];
+  }
 };
 
 // The corners' key, sorted: equal keys (all but `corner`) are one group.
@@ -153,8 +161,9 @@ void frameUndefinedCorners(WorkspaceData& ws, const MeshArrays& mesh, std::span<
 bool bucketFrames(WorkspaceData& ws, const MeshArrays& mesh, std::span<const std::uint32_t> weldOf,
                   const TriangleData& data, Method method, const CornerOutputs& outputs);
 
-// Method `flat`'s frames and sources into the outputs and cornerState (flat_frames.cpp): each
-// corner of a usable triangle from its triangle alone; groups only where a fallback is needed.
+// Method `flat`'s links set to kNone (the weld used them, beside the triangle pass that framed
+// the corners) and the frames of the corners that pass left kUndefined (flat_frames.cpp):
+// groups only where a fallback is needed.
 void flatFrames(WorkspaceData& ws, const MeshArrays& mesh, std::span<const std::uint32_t> weldOf,
                 const TriangleData& data, const CornerOutputs& outputs);
 
@@ -162,6 +171,27 @@ void flatFrames(WorkspaceData& ws, const MeshArrays& mesh, std::span<const std::
 inline void writeCornerFrame(float* tangents, std::size_t corner, const Vec3& tangent, double w) {
   for (int i = 0; i < 3; ++i) tangents[4 * corner + i] = static_cast<float>(tangent[i]);
   tangents[4 * corner + 3] = static_cast<float>(w);
+}
+
+// Method `flat`'s frame of one corner from its triangle alone, into its output slot and state
+// (kUndefined where its triangle gives none, kInvalidNormal): sumTerms over
+// the one term, inline for the triangle pass. The sums start at +0 as sumTerms' do (so a -0
+// of a term becomes +0 there too).
+inline void flatCornerFrame(const TriangleTerms& triangle, const Vec3& normal, bool invalidNormal, float* tangents,
+                            std::uint8_t* state, std::size_t corner) {
+  bool framed = false;
+  if (triangle.kind == TriangleKind::usable) {
+    const Vec3 tangentSum = Vec3(0, 0, 0) + triangle.tangent;
+    const Vec3 bitangentSum = Vec3(0, 0, 0) + triangle.bitangent;
+    Vec3 tangent;
+    framed = orthonormalize(tangentSum.data(), normal.data(), tangent.data());
+    if (framed) {
+      const double side = (normal % tangent) | bitangentSum;
+      const double uvSide = triangle.orientation < 0 ? -1.0 : 1.0;
+      writeCornerFrame(tangents, corner, tangent, side > 0 ? 1.0 : side < 0 ? -1.0 : uvSide);
+    }
+  }
+  state[corner] = static_cast<std::uint8_t>((framed ? 0 : kUndefined) | (invalidNormal ? kInvalidNormal : 0));
 }
 
 // A stored normal made unit; `invalid` where it is zero or not finite (the result unused).

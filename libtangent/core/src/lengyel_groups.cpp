@@ -47,7 +47,8 @@ CornerGroups groupListedCorners(const WorkspaceData& ws, const MeshArrays& mesh,
       key.weld = weldOf[vertex];
       key.orientation = triangle.kind == TriangleKind::usable ? triangle.orientation : 0;
       key.tag = grouping == Grouping::perFace ? c / 3 + 1 : 0;
-      for (int axis = 0; axis < 3; ++axis) key.normal[axis] = bitsOf(data.cornerNormals[c][axis]);
+      const Vec3& normal = data.cornerNormal(c);
+      for (int axis = 0; axis < 3; ++axis) key.normal[axis] = bitsOf(normal[axis]);
       key.uv[0] = bitsOf(mesh.uvs[2 * vertex]);
       key.uv[1] = bitsOf(mesh.uvs[2 * vertex + 1]);
       key.corner = static_cast<std::uint32_t>(c);
@@ -79,7 +80,7 @@ CornerGroups groupListedCorners(const WorkspaceData& ws, const MeshArrays& mesh,
       if (first) {
         Group& group = result.groups[g];
         group.key = &key;
-        group.normal = data.cornerNormals[key.corner];
+        group.normal = data.cornerNormal(key.corner);
         group.mayInherit = data.triangles[key.corner / 3].kind != TriangleKind::usable;
         result.groupStart[g] = static_cast<std::uint32_t>(i);
       }
