@@ -2,7 +2,7 @@
 // Method `flat`'s frames without grouping every corner. A usable triangle's three corners are
 // at three positions (a triangle with two at one position is not usable), so each is a group
 // of its own: its frame is its triangle's terms summed as every group's are (sumTerms with one
-// term, flatCornerFrame in lengyel.hpp, which the triangle pass calls). Only the corners left
+// term, flatTriangleFrames in lengyel.hpp, which the triangle pass calls). Only the corners left
 // without a frame need groups (frameUndefinedCorners, here), so every bit is the one the full
 // grouping gives.
 #include "lengyel.hpp"

@@ -130,7 +130,7 @@ void unitNormalsOfVertices(WorkspaceData& ws, const MeshArrays& mesh) {
 
 // Each triangle evaluated at its corners' positions (their representatives') and UVs, each
 // corner given its normal and its weighting's term (meshopt: its own), into the workspace's
-// arrays; counts into the report. `flat` frames each corner here as well (flatCornerFrame):
+// arrays; counts into the report. `flat` frames each corner here as well (flatTriangleFrames):
 // its frame needs its triangle alone, so the pass writes it while the triangle is in registers.
 TriangleData evaluateTriangles(WorkspaceData& ws, const MeshArrays& mesh, std::span<const std::uint32_t> weldOf,
                                const Options& options, const CornerOutputs& outputs, Report& report) {
@@ -164,18 +164,16 @@ TriangleData evaluateTriangles(WorkspaceData& ws, const MeshArrays& mesh, std::s
       const TriangleTangent triangle = triangleTangent(positions, uvs, invalid[0] || invalid[1] || invalid[2]);
       const TriangleTerms terms{triangle.tangent, triangle.bitangent, triangle.orientation, triangle.kind};
       data.triangles[t] = terms;
+      Vec3 normals[3];
       for (int k = 0; k < 3; ++k) {
         const std::size_t corner = 3 * t + k;
         const std::uint32_t vertex = mesh.indices[corner];
-        const Vec3 normal = invalid[k] ? replacedNormal(triangle) : ws.vertexUnitNormals[vertex];
-        if (invalid[k]) data.cornerNormals[corner] = normal;
+        normals[k] = invalid[k] ? replacedNormal(triangle) : ws.vertexUnitNormals[vertex];
+        if (invalid[k]) data.cornerNormals[corner] = normals[k];
         data.invalidNormal[corner] = invalid[k];
-        if (flat) {
-          flatCornerFrame(terms, normal, invalid[k], tangents, state, corner);
-        } else {
-          data.cornerWeights[corner] = cornerWeight(options, positions, k, normal, triangle);
-        }
+        if (!flat) data.cornerWeights[corner] = cornerWeight(options, positions, k, normals[k], triangle);
       }
+      if (flat) flatTriangleFrames(terms, normals, invalid, tangents, state, 3 * t);
     }
   });
   for (const TriangleTerms& triangle : data.triangles) {

@@ -173,25 +173,43 @@ inline void writeCornerFrame(float* tangents, std::size_t corner, const Vec3& ta
   tangents[4 * corner + 3] = static_cast<float>(w);
 }
 
-// Method `flat`'s frame of one corner from its triangle alone, into its output slot and state
-// (kUndefined where its triangle gives none, kInvalidNormal): sumTerms over
-// the one term, inline for the triangle pass. The sums start at +0 as sumTerms' do (so a -0
-// of a term becomes +0 there too).
-inline void flatCornerFrame(const TriangleTerms& triangle, const Vec3& normal, bool invalidNormal, float* tangents,
-                            std::uint8_t* state, std::size_t corner) {
-  bool framed = false;
+// Method `flat`'s frames of one triangle's three corners (firstCorner ..) from the triangle
+// alone, into their output slots and states (kUndefined where the triangle gives none,
+// kInvalidNormal): for each, sumTerms over its one term, inline for the triangle pass. The
+// sums start at +0 as sumTerms' do (so a -0 of a term becomes +0 there too), and
+// orthonormalize's operations follow in its order, the sum's length once for the three (the
+// same sum) and the square roots and divisions of two corners paired.
+inline void flatTriangleFrames(const TriangleTerms& triangle, const Vec3 (&normals)[3], const bool (&invalidNormal)[3],
+                               float* tangents, std::uint8_t* state, std::size_t firstCorner) {
+  bool framed[3] = {false, false, false};
   if (triangle.kind == TriangleKind::usable) {
     const Vec3 tangentSum = Vec3(0, 0, 0) + triangle.tangent;
     const Vec3 bitangentSum = Vec3(0, 0, 0) + triangle.bitangent;
-    Vec3 tangent;
-    framed = orthonormalize(tangentSum.data(), normal.data(), tangent.data());
-    if (framed) {
-      const double side = (normal % tangent) | bitangentSum;
-      const double uvSide = triangle.orientation < 0 ? -1.0 : 1.0;
-      writeCornerFrame(tangents, corner, tangent, side > 0 ? 1.0 : side < 0 ? -1.0 : uvSide);
+    const double* sum = tangentSum.data();
+    const double sumLength = std::sqrt(sum[0] * sum[0] + sum[1] * sum[1] + sum[2] * sum[2]);
+    if (sumLength > 0 && std::isfinite(sumLength)) {
+      Vec3 inPlane[3];
+      double squared[3];
+      for (int k = 0; k < 3; ++k) {
+        const double* n = normals[k].data();
+        const double along = n[0] * sum[0] + n[1] * sum[1] + n[2] * sum[2];
+        inPlane[k] = Vec3(sum[0] - n[0] * along, sum[1] - n[1] * along, sum[2] - n[2] * along);
+        const double* t = inPlane[k].data();
+        squared[k] = t[0] * t[0] + t[1] * t[1] + t[2] * t[2];
+      }
+      for (int k = 0; k < 3; ++k) {
+        const double length = std::sqrt(squared[k]);
+        if (!(length > kInPlaneFloor * sumLength)) continue;
+        framed[k] = true;
+        const Vec3 tangent = inPlane[k] * (1.0 / length);
+        const double side = (normals[k] % tangent) | bitangentSum;
+        const double uvSide = triangle.orientation < 0 ? -1.0 : 1.0;
+        writeCornerFrame(tangents, firstCorner + k, tangent, side > 0 ? 1.0 : side < 0 ? -1.0 : uvSide);
+      }
     }
   }
-  state[corner] = static_cast<std::uint8_t>((framed ? 0 : kUndefined) | (invalidNormal ? kInvalidNormal : 0));
+  for (int k = 0; k < 3; ++k)
+    state[firstCorner + k] = static_cast<std::uint8_t>((framed[k] ? 0 : kUndefined) | (invalidNormal[k] ? kInvalidNormal : 0));
 }
 
 // A stored normal made unit; `invalid` where it is zero or not finite (the result unused).
