@@ -178,7 +178,7 @@ inline void writeCornerFrame(float* tangents, std::size_t corner, const Vec3& ta
 // kInvalidNormal): for each, sumTerms over its one term, inline for the triangle pass. The
 // sums start at +0 as sumTerms' do (so a -0 of a term becomes +0 there too), and
 // orthonormalize's operations follow in its order, the sum's length once for the three (the
-// same sum) and the square roots and divisions of two corners paired.
+// same sum).
 inline void flatTriangleFrames(const TriangleTerms& triangle, const Vec3 (&normals)[3], const bool (&invalidNormal)[3],
                                float* tangents, std::uint8_t* state, std::size_t firstCorner) {
   bool framed[3] = {false, false, false};
