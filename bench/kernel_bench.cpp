@@ -320,7 +320,7 @@ void registerInput(const InputSource& source) {
 }
 
 // --count-instructions, under `valgrind --tool=callgrind --instr-atstart=no`: one warm call of
-// the library on one thread and of each peer on the 10^5 sphere (issue 41's input), each
+// the library on one thread (mikktspace as library/t1, then lengyel/t1, meshopt/t1, flat/t1) and of each peer on the 10^5 sphere (issue 41's input), each
 // between callgrind's start and a dump named after it (library/t1, mikktspace.c, ...), so that
 // every dump holds that one call's instructions and nothing else (the input, the warm-up call
 // and the other calls run with instrumentation off). Prints the triangle count.
@@ -341,6 +341,11 @@ int countInstructions() {
   };
   LibraryCall library(in);
   count("library/t1", [&] { library(in, options(1)); });
+  for (const tangent::Method method : {tangent::Method::lengyel, tangent::Method::meshopt, tangent::Method::flat}) {
+    tangent::Options o = options(1);
+    o.method = method;
+    count(std::string(tangent::toString(method)) + "/t1", [&] { library(in, o); });
+  }
   std::vector<float> tangents(in.indices.size() * 4);
   for (tangent::bench::Peer peer : tangent::bench::peers())
     count(std::string(toString(peer)), [&] { tangent::bench::runPeer(peer, in.arrays(), tangents); });

@@ -276,10 +276,15 @@ if os.environ.get("TANGENT_INSTRUCTIONS"):
     counted = json.loads(os.environ["TANGENT_INSTRUCTIONS"])
     per = counted["perTriangle"]
     mine = per.get("library/t1")
-    others = ", ".join(f"{name} {value:,.0f}" + (f" ({mine / value:.2f}x)" if mine else "") for name, value in per.items() if name != "library/t1")
+    # The library's other methods (lengyel/t1, ...) beside mikktspace; the peers with library ÷ peer.
+    methods = ", ".join(f"{name.removesuffix('/t1')} {value:,.0f}" for name, value in per.items()
+                        if name.endswith("/t1") and name != "library/t1")
+    others = ", ".join(f"{name} {value:,.0f}" + (f" ({mine / value:.2f}x)" if mine else "") for name, value in per.items()
+                       if not name.endswith("/t1"))
     lines += ["", f"Instructions per triangle, one warm call on the {counted['triangles']:,}-triangle sphere (callgrind, "
               "`valgrind --tool=callgrind --instr-atstart=no tangent-kernel-bench --count-instructions`; the library on one thread): "
-              f"**library {mine:,.0f}**" + (f"; {others} (library ÷ peer in brackets)" if others else "") + "."]
+              f"**library {mine:,.0f}**" + (f" (the other methods: {methods})" if methods else "")
+              + (f"; {others} (library ÷ peer in brackets)" if others else "") + "."]
 # The other methods: one thread against all, wall time, with the CPU time that shows the threads in use.
 lines += ["", f"The other methods on the same arrays (`Options::method`), milliseconds per call: 1 thread (CPU time) and all ({threads}) "
           "threads (wall, CPU time in parentheses); the speed-up is wall time on 1 thread over wall time on all.", "",

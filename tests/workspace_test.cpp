@@ -41,20 +41,26 @@ struct Output {
   tangent::Report report;
 };
 
-Output compute(const tangent::MeshArrays& mesh, unsigned threads, tangent::TangentWorkspace& workspace) {
+Output compute(const tangent::MeshArrays& mesh, unsigned threads, tangent::TangentWorkspace& workspace,
+               tangent::Method method = tangent::Method::mikktspace) {
   Output out;
   out.tangents.assign(mesh.indices.size() * 4, std::numeric_limits<float>::quiet_NaN());
   out.cornerVertex.assign(mesh.indices.size(), ~0u);
   tangent::Options options;
   options.threads = threads;
+  options.method = method;
   out.report = tangent::computeCornerTangents(mesh, tangent::CornerOutputs{out.tangents, {}, out.cornerVertex}, options, workspace);
   return out;
 }
 
-Output compute(const tangent::MeshArrays& mesh, unsigned threads) {
+Output compute(const tangent::MeshArrays& mesh, unsigned threads,
+               tangent::Method method = tangent::Method::mikktspace) {
   tangent::TangentWorkspace workspace;
-  return compute(mesh, threads, workspace);
+  return compute(mesh, threads, workspace, method);
 }
+
+constexpr tangent::Method kEveryMethod[] = {tangent::Method::mikktspace, tangent::Method::lengyel, tangent::Method::meshopt,
+                                            tangent::Method::flat};
 
 // A closed fan of four triangles around vertex 0 whose UVs fold: two triangles of each UV
 // orientation, with every dP/du and every dP/dv (signed by the orientation) inside one half
@@ -89,21 +95,24 @@ tangent::MeshArrays arraysOf(const GridMesh& m) { return {m.positions, m.normals
 
 TEST(Workspace, SameBitsForOneTwoThreeAndEightThreadsAndShuffledInput) {
   const GridMesh meshes[] = {hardMesh(), tangent::testing::makeTorus(256, 128)};
-  for (const GridMesh& m : meshes) {
-    const Output one = compute(arraysOf(m), 1);
-    for (unsigned threads : {2u, 3u, 8u, 0u}) {
-      const Output other = compute(arraysOf(m), threads);
-      ASSERT_EQ(0, std::memcmp(one.tangents.data(), other.tangents.data(), one.tangents.size() * sizeof(float))) << threads;
-      ASSERT_EQ(one.cornerVertex, other.cornerVertex) << threads;
-      ASSERT_EQ(one.report.splitVertices, other.report.splitVertices);
-      ASSERT_EQ(one.report.nonManifoldFaces, other.report.nonManifoldFaces);
-    }
-    for (unsigned seed : {3u, 4u, 5u}) {
-      const auto shuffled = tangent::testing::shuffleFacesAndRotateCorners(m, seed);
-      const Output s = compute(arraysOf(shuffled.mesh), 8);
-      for (std::size_t c = 0; c < shuffled.originalCorner.size(); ++c)
-        ASSERT_EQ(0, std::memcmp(&s.tangents[4 * c], &one.tangents[4 * shuffled.originalCorner[c]], 16)) << "corner " << c;
-      EXPECT_EQ(s.report.splitVertices, one.report.splitVertices);
+  for (const tangent::Method method : kEveryMethod) {
+    SCOPED_TRACE(std::string(tangent::toString(method)));
+    for (const GridMesh& m : meshes) {
+      const Output one = compute(arraysOf(m), 1, method);
+      for (unsigned threads : {2u, 3u, 8u, 0u}) {
+        const Output other = compute(arraysOf(m), threads, method);
+        ASSERT_EQ(0, std::memcmp(one.tangents.data(), other.tangents.data(), one.tangents.size() * sizeof(float))) << threads;
+        ASSERT_EQ(one.cornerVertex, other.cornerVertex) << threads;
+        ASSERT_EQ(one.report.splitVertices, other.report.splitVertices);
+        ASSERT_EQ(one.report.nonManifoldFaces, other.report.nonManifoldFaces);
+      }
+      for (unsigned seed : {3u, 4u, 5u}) {
+        const auto shuffled = tangent::testing::shuffleFacesAndRotateCorners(m, seed);
+        const Output s = compute(arraysOf(shuffled.mesh), 8, method);
+        for (std::size_t c = 0; c < shuffled.originalCorner.size(); ++c)
+          ASSERT_EQ(0, std::memcmp(&s.tangents[4 * c], &one.tangents[4 * shuffled.originalCorner[c]], 16)) << "corner " << c;
+        EXPECT_EQ(s.report.splitVertices, one.report.splitVertices);
+      }
     }
   }
 }
@@ -156,31 +165,35 @@ TEST(Workspace, SameBitsForEveryVectorWidth) {
     if (v % 73 == 0) extreme.uvs[2 * v] *= 1e-25f;
   }
   const GridMesh meshes[] = {hardMesh(), tangent::testing::makeTorus(256, 128), extreme};
-  for (const GridMesh& m : meshes) {
-    Output scalar;
-    {
-      const ScopedVectorIsa cap("scalar");
-      ASSERT_EQ(tangent::vectorIsa(), "scalar");
-      scalar = compute(arraysOf(m), 2);
-    }
-    int compared = 0;
-    for (const char* isa : {"sse2", "avx2"}) {
-      const ScopedVectorIsa cap(isa);
-      if (tangent::vectorIsa() != isa) {
-        std::cout << "[ NOTE     ] " << isa << " not compared: this build and processor run " << tangent::vectorIsa()
-                  << " at most\n";
-        continue;
+  for (const tangent::Method method : kEveryMethod) {
+    SCOPED_TRACE(std::string(tangent::toString(method)));
+    for (const GridMesh& m : meshes) {
+      Output scalar;
+      {
+        const ScopedVectorIsa cap("scalar");
+        ASSERT_EQ(tangent::vectorIsa(), "scalar");
+        scalar = compute(arraysOf(m), 2, method);
       }
-      const Output wide = compute(arraysOf(m), 2);
-      const std::size_t bytes = scalar.tangents.size() * sizeof(float);
-      ASSERT_EQ(0, std::memcmp(scalar.tangents.data(), wide.tangents.data(), bytes)) << isa;
-      ASSERT_EQ(scalar.cornerVertex, wide.cornerVertex) << isa;
-      ASSERT_EQ(scalar.report.degenerateTriangles, wide.report.degenerateTriangles) << isa;
-      ASSERT_EQ(scalar.report.zeroUvAreaTriangles, wide.report.zeroUvAreaTriangles) << isa;
-      ASSERT_EQ(scalar.report.nonFiniteTriangles, wide.report.nonFiniteTriangles) << isa;
-      ++compared;
+      int compared = 0;
+      for (const char* isa : {"sse2", "avx2"}) {
+        const ScopedVectorIsa cap(isa);
+        if (tangent::vectorIsa() != isa) {
+          if (method == tangent::Method::mikktspace)
+            std::cout << "[ NOTE     ] " << isa << " not compared: this build and processor run " << tangent::vectorIsa()
+                      << " at most\n";
+          continue;
+        }
+        const Output wide = compute(arraysOf(m), 2, method);
+        const std::size_t bytes = scalar.tangents.size() * sizeof(float);
+        ASSERT_EQ(0, std::memcmp(scalar.tangents.data(), wide.tangents.data(), bytes)) << isa;
+        ASSERT_EQ(scalar.cornerVertex, wide.cornerVertex) << isa;
+        ASSERT_EQ(scalar.report.degenerateTriangles, wide.report.degenerateTriangles) << isa;
+        ASSERT_EQ(scalar.report.zeroUvAreaTriangles, wide.report.zeroUvAreaTriangles) << isa;
+        ASSERT_EQ(scalar.report.nonFiniteTriangles, wide.report.nonFiniteTriangles) << isa;
+        ++compared;
+      }
+      EXPECT_EQ(compared, widest == "avx2" ? 2 : widest == "sse2" ? 1 : 0);
     }
-    EXPECT_EQ(compared, widest == "avx2" ? 2 : widest == "sse2" ? 1 : 0);
   }
   // Lanes that leave to the scalar code: not vacuous.
   const Output hard = compute(arraysOf(meshes[0]), 2), odd = compute(arraysOf(meshes[2]), 2);

@@ -78,7 +78,7 @@ void frameBucket(WorkspaceData& ws, const TriangleData& data, Method method, std
     }
     Vec3 tangentSum(0, 0, 0), tangent;
     double w = 1;
-    const bool framed = sumTerms(terms, data.cornerNormals[first], orientation, method, tangentSum, tangent, w);
+    const bool framed = sumTerms(terms, data.cornerNormal(first), orientation, method, tangentSum, tangent, w);
     for (const std::uint32_t c : corners) {
       if (!one && orientationOf(data, c) != orientation) continue;
       if (framed) writeCornerFrame(tangents, c, tangent, w);

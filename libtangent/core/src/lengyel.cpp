@@ -130,38 +130,50 @@ void unitNormalsOfVertices(WorkspaceData& ws, const MeshArrays& mesh) {
 
 // Each triangle evaluated at its corners' positions (their representatives') and UVs, each
 // corner given its normal and its weighting's term (meshopt: its own), into the workspace's
-// arrays; counts into the report.
+// arrays; counts into the report. `flat` frames each corner here as well (flatTriangleFrames):
+// its frame needs its triangle alone, so the pass writes it while the triangle is in registers.
 TriangleData evaluateTriangles(WorkspaceData& ws, const MeshArrays& mesh, std::span<const std::uint32_t> weldOf,
-                               const Options& options, Report& report) {
+                               const Options& options, const CornerOutputs& outputs, Report& report) {
   const std::size_t triangleCount = ws.cornerCount / 3;
+  const bool flat = options.method == Method::flat;
   ensureSize(ws.triangleTerms, triangleCount);
   ensureSize(ws.cornerNormals, 3 * triangleCount);
-  ensureSize(ws.cornerWeights, 3 * triangleCount);
+  if (!flat) ensureSize(ws.cornerWeights, 3 * triangleCount);  // flat weighs every term alike: none read
   ensureSize(ws.invalidNormal, 3 * triangleCount);
+  unitNormalsOfVertices(ws, mesh);
   const TriangleData data{{ws.triangleTerms.data(), triangleCount},
                           {ws.cornerNormals.data(), 3 * triangleCount},
-                          {ws.cornerWeights.data(), 3 * triangleCount},
-                          {ws.invalidNormal.data(), 3 * triangleCount}};
-  unitNormalsOfVertices(ws, mesh);
+                          {flat ? nullptr : ws.cornerWeights.data(), flat ? 0 : 3 * triangleCount},
+                          {ws.invalidNormal.data(), 3 * triangleCount},
+                          {ws.vertexUnitNormals.data(), ws.vertexCount},
+                          mesh.indices};
+  if (flat) ensureSize(ws.cornerState, ws.cornerCount);
   forRange(ws, triangleCount, 1024, [&](std::size_t begin, std::size_t end) {
+    float* tangents = outputs.tangents.data();
+    std::uint8_t* state = ws.cornerState.data();
     for (std::size_t t = begin; t < end; ++t) {
       std::array<Vec3, 3> positions;
       std::array<Vec2, 3> uvs;
+      bool invalid[3];
       for (int k = 0; k < 3; ++k) {
         const std::uint32_t vertex = mesh.indices[3 * t + k];
         positions[k] = vec3At(mesh.positions, weldOf[vertex]);
         uvs[k] = {mesh.uvs[2 * vertex], mesh.uvs[2 * vertex + 1]};
+        invalid[k] = ws.vertexNormalInvalid[vertex];
       }
-      const TriangleTangent triangle = triangleTangent(positions, uvs);
-      data.triangles[t] = {triangle.tangent, triangle.bitangent, triangle.orientation, triangle.kind};
+      const TriangleTangent triangle = triangleTangent(positions, uvs, invalid[0] || invalid[1] || invalid[2]);
+      const TriangleTerms terms{triangle.tangent, triangle.bitangent, triangle.orientation, triangle.kind};
+      data.triangles[t] = terms;
+      Vec3 normals[3];
       for (int k = 0; k < 3; ++k) {
         const std::size_t corner = 3 * t + k;
         const std::uint32_t vertex = mesh.indices[corner];
-        const bool invalid = ws.vertexNormalInvalid[vertex];
-        data.cornerNormals[corner] = invalid ? replacedNormal(triangle) : ws.vertexUnitNormals[vertex];
-        data.invalidNormal[corner] = invalid;
-        data.cornerWeights[corner] = cornerWeight(options, positions, k, data.cornerNormals[corner], triangle);
+        normals[k] = invalid[k] ? replacedNormal(triangle) : ws.vertexUnitNormals[vertex];
+        if (invalid[k]) data.cornerNormals[corner] = normals[k];
+        data.invalidNormal[corner] = invalid[k];
+        if (!flat) data.cornerWeights[corner] = cornerWeight(options, positions, k, normals[k], triangle);
       }
+      if (flat) flatTriangleFrames(terms, normals, invalid, tangents, state, 3 * t);
     }
   });
   for (const TriangleTerms& triangle : data.triangles) {
@@ -267,11 +279,12 @@ Report lengyelOnArrays(WorkspaceData& ws, const MeshArrays& mesh, const CornerOu
   const unsigned weldThreads = ws.threads < 4 ? 1 : ws.threads;
   invokeBoth(ws, [&] { weldAndBucket(ws, mesh, weldThreads); }, [&] {
     weldOf = positionWeld(ws, mesh);
-    data = evaluateTriangles(ws, mesh, weldOf, options, report);
+    data = evaluateTriangles(ws, mesh, weldOf, options, outputs, report);
     report.nonManifoldFaces = countNonManifoldFaces(ws, mesh, weldOf);
   });
-  // Frames by the shortest way that gives the full grouping's bits: flat's one-corner groups,
-  // the buckets where they are lengyel's groups, else every corner's key sorted.
+  // Frames by the shortest way that gives the full grouping's bits: flat's one-corner groups
+  // (framed by the triangle pass; the corners it left undefined here), the buckets where they
+  // are lengyel's groups, else every corner's key sorted.
   if (grouping == Grouping::perFace) {
     flatFrames(ws, mesh, weldOf, data, outputs);
   } else if (!bucketFrames(ws, mesh, weldOf, data, options.method, outputs)) {

@@ -10,6 +10,7 @@
 #include <tuple>
 #include <vector>
 
+#include "gram_schmidt.hpp"
 #include "triangle_tangent.hpp"
 #include "parallel.hpp"
 
@@ -31,12 +32,19 @@ Report lengyelOnArrays(WorkspaceData& ws, const MeshArrays& mesh, const CornerOu
 inline std::uint64_t bitsOf(double value) { return bitCast<std::uint64_t>(value == 0.0 ? 0.0 : value); }
 
 // Per corner, what the triangle pass found (one entry per corner of `indices`), in the
-// workspace's arrays (triangleTerms, cornerNormals, cornerWeights, invalidNormal).
+// workspace's arrays (triangleTerms, cornerNormals, cornerWeights, invalidNormal, vertexUnitNormals).
 struct TriangleData {
   std::span<TriangleTerms> triangles;
-  std::span<Vec3> cornerNormals;       // unit (see cornerNormal)
+  std::span<Vec3> cornerNormals;       // where invalidNormal only: its replacement (replacedNormal)
   std::span<double> cornerWeights;     // the weighting's term; 0 where the triangle is not usable
   std::span<std::uint8_t> invalidNormal;
+  std::span<const Vec3> vertexUnitNormals;  // per vertex (ws.vertexUnitNormals)
+  std::span<const std::uint32_t> indices;
+  // A corner's unit normal: its vertex's, or where that is invalid its replacement. Read from
+  // the vertex rather than stored per corner (24 bytes a corner written and read again).
+  const Vec3& cornerNormal(std::size_t corner) const {
+    return invalidNormal[corner] ? cornerNormals[corner] : vertexUnitNormals[indices[corner]];
+  }
 };
 
 // The corners' key, sorted: equal keys (all but `corner`) are one group.
@@ -153,8 +161,9 @@ void frameUndefinedCorners(WorkspaceData& ws, const MeshArrays& mesh, std::span<
 bool bucketFrames(WorkspaceData& ws, const MeshArrays& mesh, std::span<const std::uint32_t> weldOf,
                   const TriangleData& data, Method method, const CornerOutputs& outputs);
 
-// Method `flat`'s frames and sources into the outputs and cornerState (flat_frames.cpp): each
-// corner of a usable triangle from its triangle alone; groups only where a fallback is needed.
+// Method `flat`'s links set to kNone (the weld used them, beside the triangle pass that framed
+// the corners) and the frames of the corners that pass left kUndefined (flat_frames.cpp):
+// groups only where a fallback is needed.
 void flatFrames(WorkspaceData& ws, const MeshArrays& mesh, std::span<const std::uint32_t> weldOf,
                 const TriangleData& data, const CornerOutputs& outputs);
 
@@ -162,6 +171,45 @@ void flatFrames(WorkspaceData& ws, const MeshArrays& mesh, std::span<const std::
 inline void writeCornerFrame(float* tangents, std::size_t corner, const Vec3& tangent, double w) {
   for (int i = 0; i < 3; ++i) tangents[4 * corner + i] = static_cast<float>(tangent[i]);
   tangents[4 * corner + 3] = static_cast<float>(w);
+}
+
+// Method `flat`'s frames of one triangle's three corners (firstCorner ..) from the triangle
+// alone, into their output slots and states (kUndefined where the triangle gives none,
+// kInvalidNormal): for each, sumTerms over its one term, inline for the triangle pass. The
+// sums start at +0 as sumTerms' do (so a -0 of a term becomes +0 there too), and
+// orthonormalize's operations follow in its order, the sum's length once for the three (the
+// same sum).
+inline void flatTriangleFrames(const TriangleTerms& triangle, const Vec3 (&normals)[3], const bool (&invalidNormal)[3],
+                               float* tangents, std::uint8_t* state, std::size_t firstCorner) {
+  bool framed[3] = {false, false, false};
+  if (triangle.kind == TriangleKind::usable) {
+    const Vec3 tangentSum = Vec3(0, 0, 0) + triangle.tangent;
+    const Vec3 bitangentSum = Vec3(0, 0, 0) + triangle.bitangent;
+    const double* sum = tangentSum.data();
+    const double sumLength = std::sqrt(sum[0] * sum[0] + sum[1] * sum[1] + sum[2] * sum[2]);
+    if (sumLength > 0 && std::isfinite(sumLength)) {
+      Vec3 inPlane[3];
+      double squared[3];
+      for (int k = 0; k < 3; ++k) {
+        const double* n = normals[k].data();
+        const double along = n[0] * sum[0] + n[1] * sum[1] + n[2] * sum[2];
+        inPlane[k] = Vec3(sum[0] - n[0] * along, sum[1] - n[1] * along, sum[2] - n[2] * along);
+        const double* t = inPlane[k].data();
+        squared[k] = t[0] * t[0] + t[1] * t[1] + t[2] * t[2];
+      }
+      for (int k = 0; k < 3; ++k) {
+        const double length = std::sqrt(squared[k]);
+        if (!(length > kInPlaneFloor * sumLength)) continue;
+        framed[k] = true;
+        const Vec3 tangent = inPlane[k] * (1.0 / length);
+        const double side = (normals[k] % tangent) | bitangentSum;
+        const double uvSide = triangle.orientation < 0 ? -1.0 : 1.0;
+        writeCornerFrame(tangents, firstCorner + k, tangent, side > 0 ? 1.0 : side < 0 ? -1.0 : uvSide);
+      }
+    }
+  }
+  for (int k = 0; k < 3; ++k)
+    state[firstCorner + k] = static_cast<std::uint8_t>((framed[k] ? 0 : kUndefined) | (invalidNormal[k] ? kInvalidNormal : 0));
 }
 
 // A stored normal made unit; `invalid` where it is zero or not finite (the result unused).

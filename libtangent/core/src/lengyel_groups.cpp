@@ -27,13 +27,18 @@ CornerGroups groupListedCorners(const WorkspaceData& ws, const MeshArrays& mesh,
   // The keys in CornerKey order without one sort of them all: each corner's slot is counted
   // out by its weld (the key's first field), corners of one weld in corner order, and then
   // each weld's run (the few corners at one position) is sorted by the whole key. The same
-  // order as sorting every key, in linear time but for the runs.
-  std::vector<std::uint32_t> slot(cornerCount), runStart(ws.vertexCount + 1, 0);
-  for (std::size_t i = 0; i < cornerCount; ++i) ++runStart[weldOf[mesh.indices[cornerAt(i)]] + 1];
-  for (std::size_t v = 0; v < ws.vertexCount; ++v) runStart[v + 1] += runStart[v];
-  {
+  // order as sorting every key, in linear time but for the runs. A few listed corners
+  // (groupCornersAt: the fallbacks' neighbourhoods) are sorted directly instead: the counting
+  // costs arrays of every vertex. The key ends with the corner, so both give one order.
+  const bool countOut = everyCorner || cornerCount >= ws.vertexCount / 8;
+  std::vector<std::uint32_t> slot(cornerCount), runStart(countOut ? ws.vertexCount + 1 : 0, 0);
+  if (countOut) {
+    for (std::size_t i = 0; i < cornerCount; ++i) ++runStart[weldOf[mesh.indices[cornerAt(i)]] + 1];
+    for (std::size_t v = 0; v < ws.vertexCount; ++v) runStart[v + 1] += runStart[v];
     std::vector<std::uint32_t> next(runStart.begin(), runStart.end() - 1);
     for (std::size_t i = 0; i < cornerCount; ++i) slot[i] = next[weldOf[mesh.indices[cornerAt(i)]]]++;
+  } else {
+    for (std::size_t i = 0; i < cornerCount; ++i) slot[i] = static_cast<std::uint32_t>(i);
   }
   CornerGroups result;
   std::vector<CornerKey>& keys = result.keys;
@@ -47,17 +52,22 @@ CornerGroups groupListedCorners(const WorkspaceData& ws, const MeshArrays& mesh,
       key.weld = weldOf[vertex];
       key.orientation = triangle.kind == TriangleKind::usable ? triangle.orientation : 0;
       key.tag = grouping == Grouping::perFace ? c / 3 + 1 : 0;
-      for (int axis = 0; axis < 3; ++axis) key.normal[axis] = bitsOf(data.cornerNormals[c][axis]);
+      const Vec3& normal = data.cornerNormal(c);
+      for (int axis = 0; axis < 3; ++axis) key.normal[axis] = bitsOf(normal[axis]);
       key.uv[0] = bitsOf(mesh.uvs[2 * vertex]);
       key.uv[1] = bitsOf(mesh.uvs[2 * vertex + 1]);
       key.corner = static_cast<std::uint32_t>(c);
     }
   });
-  forRange(ws, ws.vertexCount, 1 << 12, [&](std::size_t begin, std::size_t end) {
-    for (std::size_t v = begin; v < end; ++v) {
-      if (runStart[v + 1] - runStart[v] > 1) std::sort(keys.begin() + runStart[v], keys.begin() + runStart[v + 1]);
-    }
-  });
+  if (countOut) {
+    forRange(ws, ws.vertexCount, 1 << 12, [&](std::size_t begin, std::size_t end) {
+      for (std::size_t v = begin; v < end; ++v) {
+        if (runStart[v + 1] - runStart[v] > 1) std::sort(keys.begin() + runStart[v], keys.begin() + runStart[v + 1]);
+      }
+    });
+  } else {
+    std::sort(keys.begin(), keys.end());
+  }
   // Runs of equal keys are groups: where each starts, numbered by a scan, then filled in
   // parallel. The first corner of a group is its smallest: it gives the group's normal and
   // whether it may inherit, as the corner met first in corner order did before.
@@ -79,7 +89,7 @@ CornerGroups groupListedCorners(const WorkspaceData& ws, const MeshArrays& mesh,
       if (first) {
         Group& group = result.groups[g];
         group.key = &key;
-        group.normal = data.cornerNormals[key.corner];
+        group.normal = data.cornerNormal(key.corner);
         group.mayInherit = data.triangles[key.corner / 3].kind != TriangleKind::usable;
         result.groupStart[g] = static_cast<std::uint32_t>(i);
       }
@@ -156,10 +166,12 @@ bool frameFromCandidates(const std::vector<const Group*>& candidates, Group& gro
   return true;
 }
 
-// The positions (welds) that share a triangle with each weld in `wanted`.
-std::vector<std::vector<std::uint32_t>> neighbourWelds(const MeshArrays& mesh, std::span<const std::uint32_t> weldOf,
-                                                       const std::vector<std::uint8_t>& wanted) {
-  std::vector<std::vector<std::uint32_t>> ring(wanted.size());
+// The positions (welds) that share a triangle with each weld in `wanted`, in triangle order;
+// kept for the wanted welds only (few: a list per vertex cost 24 bytes a vertex a call).
+using NeighbourRing = std::unordered_map<std::uint32_t, std::vector<std::uint32_t>>;
+NeighbourRing neighbourWelds(const MeshArrays& mesh, std::span<const std::uint32_t> weldOf,
+                             const std::vector<std::uint8_t>& wanted) {
+  NeighbourRing ring;
   for (std::size_t t = 0; 3 * t < mesh.indices.size(); ++t) {
     const std::uint32_t welds[3] = {weldOf[mesh.indices[3 * t]], weldOf[mesh.indices[3 * t + 1]], weldOf[mesh.indices[3 * t + 2]]};
     for (int k = 0; k < 3; ++k) {
@@ -176,57 +188,68 @@ std::vector<std::vector<std::uint32_t>> neighbourWelds(const MeshArrays& mesh, s
 
 namespace {
 
-// The defined groups of each position, listed once: definedGroups[start[v] .. end[v]). Where a
-// position's defined groups all have one normal and one UV (a smooth vertex), every question
-// ranks them alike but for the normal's term, which is then the same for all: only the first
-// of the best (what frameFromCandidates would pick among them) is listed.
+// The defined groups of each position, listed once: for the i-th position with any, welds[i],
+// definedGroups[start[i] .. end[i]). Only positions with groups have an entry (the groups are
+// in key order, so by position: a binary search finds one), so that a call with a few
+// undefined groups does not pay arrays of every vertex. Where a position's defined groups all
+// have one normal and one UV (a smooth vertex), every question ranks them alike but for the
+// normal's term, which is then the same for all: only the first of the best (what
+// frameFromCandidates would pick among them) is listed.
 struct DefinedByPosition {
-  std::vector<std::uint32_t> start, end, groups;
+  std::vector<std::uint32_t> welds, start, end, groups;
   template <class Each>
   void forEach(const std::vector<Group>& all, std::uint32_t weld, Each&& each) const {
-    for (std::uint32_t i = start[weld]; i < end[weld]; ++i) each(all[groups[i]]);
+    const std::size_t at = find(weld);
+    if (at == kAbsent) return;
+    for (std::uint32_t i = start[at]; i < end[at]; ++i) each(all[groups[i]]);
   }
-  std::size_t count(std::uint32_t weld) const { return end[weld] - start[weld]; }
+  std::size_t count(std::uint32_t weld) const {
+    const std::size_t at = find(weld);
+    return at == kAbsent ? 0 : end[at] - start[at];
+  }
+
+ private:
+  static constexpr std::size_t kAbsent = ~std::size_t(0);
+  std::size_t find(std::uint32_t weld) const {
+    const auto it = std::lower_bound(welds.begin(), welds.end(), weld);
+    return it != welds.end() && *it == weld ? static_cast<std::size_t>(it - welds.begin()) : kAbsent;
+  }
 };
 
-DefinedByPosition definedByPosition(const std::vector<Group>& groups, std::size_t vertexCount) {
+DefinedByPosition definedByPosition(const std::vector<Group>& groups) {
   DefinedByPosition out;
-  std::vector<std::uint32_t>& definedStart = out.start;
   std::vector<std::uint32_t>& definedGroups = out.groups;
   // The groups of one position are adjacent (the key starts with it): its defined ones, listed
   // once (a position with n groups, none defined, is then not read n times).
-  definedStart.assign(vertexCount + 1, 0);
   for (std::uint32_t g = 0; g < groups.size(); ++g) {
-    if (groups[g].defined) ++definedStart[groups[g].key->weld + 1];
-  }
-  for (std::size_t v = 0; v < vertexCount; ++v) definedStart[v + 1] += definedStart[v];
-  definedGroups.resize(definedStart[vertexCount]);
-  {
-    std::vector<std::uint32_t> next(definedStart.begin(), definedStart.end() - 1);
-    for (std::uint32_t g = 0; g < groups.size(); ++g) {
-      if (groups[g].defined) definedGroups[next[groups[g].key->weld]++] = g;
+    if (!groups[g].defined) continue;
+    const std::uint32_t weld = groups[g].key->weld;
+    if (out.welds.empty() || out.welds.back() != weld) {
+      out.welds.push_back(weld);
+      out.start.push_back(static_cast<std::uint32_t>(definedGroups.size()));
+      out.end.push_back(0);
     }
+    definedGroups.push_back(g);
+    out.end.back() = static_cast<std::uint32_t>(definedGroups.size());
   }
-  out.end.assign(definedStart.begin() + 1, definedStart.end());
-  std::vector<std::uint32_t>& definedEnd = out.end;
-  for (std::size_t v = 0; v < vertexCount; ++v) {
-    const std::uint32_t first = definedStart[v];
-    if (definedEnd[v] - first < 2) continue;
+  for (std::size_t v = 0; v < out.welds.size(); ++v) {
+    const std::uint32_t first = out.start[v];
+    if (out.end[v] - first < 2) continue;
     const Group& head = groups[definedGroups[first]];
     auto alike = [&](std::uint32_t g) {
       return std::memcmp(groups[g].normal.data(), head.normal.data(), 3 * sizeof(double)) == 0 && groups[g].key->sameAttributes(*head.key);
     };
-    if (!std::all_of(&definedGroups[first], &definedGroups[0] + definedEnd[v], alike)) continue;
+    if (!std::all_of(&definedGroups[first], &definedGroups[0] + out.end[v], alike)) continue;
     auto rank = [&](std::uint32_t g) {
       const Group& x = groups[g];
       return std::make_tuple(x.tangentSum.sqrnorm(), x.tangent[0], x.tangent[1], x.tangent[2], x.w);
     };
     std::uint32_t best = definedGroups[first];
-    for (std::uint32_t i = first + 1; i < definedEnd[v]; ++i) {
+    for (std::uint32_t i = first + 1; i < out.end[v]; ++i) {
       if (rank(best) < rank(definedGroups[i])) best = definedGroups[i];
     }
     definedGroups[first] = best;
-    definedEnd[v] = first + 1;
+    out.end[v] = first + 1;
   }
   return out;
 }
@@ -292,7 +315,7 @@ void fillUndefinedGroups(const MeshArrays& mesh, std::span<const std::uint32_t> 
   }
   if (undefined.empty()) return;
   const std::size_t vertexCount = weldOf.size();
-  const DefinedByPosition defined = definedByPosition(groups, vertexCount);
+  const DefinedByPosition defined = definedByPosition(groups);
   FrameQuestions questions;
   std::vector<const Group*>& candidates = questions.candidates();
   auto definedAt = [&](std::uint32_t weld, auto&& each) { defined.forEach(groups, weld, each); };
@@ -315,11 +338,13 @@ void fillUndefinedGroups(const MeshArrays& mesh, std::span<const std::uint32_t> 
       wantsRing[group.key->weld] = 1;
     }
   }
-  const std::vector<std::vector<std::uint32_t>> ring = neighbourWelds(mesh, weldOf, wantsRing);
+  const NeighbourRing ring = neighbourWelds(mesh, weldOf, wantsRing);
+  const std::vector<std::uint32_t> noNeighbours;
   for (const std::uint32_t g : undefined) {
     Group& group = groups[g];
     if (group.source != FrameSource::fixed) continue;
-    const std::vector<std::uint32_t>& neighbours = ring[group.key->weld];
+    const auto listed = ring.find(group.key->weld);
+    const std::vector<std::uint32_t>& neighbours = listed == ring.end() ? noNeighbours : listed->second;
     const bool found = questions.ask(2, neighbours.size(), group, [&] {
       for (std::uint32_t neighbour : neighbours) definedAt(neighbour, [&](const Group& other) { candidates.push_back(&other); });
     });

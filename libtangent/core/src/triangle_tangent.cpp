@@ -23,7 +23,8 @@ bool allFinite(const Vec3& v) { return std::isfinite(v[0]) && std::isfinite(v[1]
 
 }  // namespace
 
-TriangleTangent triangleTangent(const std::array<Vec3, 3>& positions, const std::array<Vec2, 3>& uvs) {
+TriangleTangent triangleTangent(const std::array<Vec3, 3>& positions, const std::array<Vec2, 3>& uvs,
+                                bool wantFaceNormal) {
   TriangleTangent result;
   for (int k = 0; k < 3; ++k) {
     if (!allFinite(positions[k]) || !std::isfinite(uvs[k][0]) || !std::isfinite(uvs[k][1])) {
@@ -49,7 +50,7 @@ TriangleTangent triangleTangent(const std::array<Vec3, 3>& positions, const std:
   const double crossLength = cross.norm();
   const bool flat = !(crossLength > kRelativeZero * e1.norm() * e2.norm());
   if (!flat) {
-    result.faceNormal = cross / crossLength;
+    if (wantFaceNormal) result.faceNormal = cross / crossLength;
     result.area = 0.5 * crossLength;
   }
 

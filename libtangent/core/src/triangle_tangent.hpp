@@ -19,7 +19,7 @@ enum class TriangleKind : std::uint8_t { usable, degenerate, zeroUvArea, nonFini
 struct TriangleTangent {
   Vec3 tangent{0, 0, 0};     // unit dP/du; zero when the UV area is zero
   Vec3 bitangent{0, 0, 0};   // unit dP/dv; zero when the UV area is zero
-  Vec3 faceNormal{0, 0, 0};  // unit geometric normal (zero when degenerate)
+  Vec3 faceNormal{0, 0, 0};  // unit geometric normal (zero when degenerate, or not asked for)
   double area = 0;           // 3D area
   int orientation = 0;       // sign of the UV area; 0 when tangent is zero
   bool coincident = false;   // two corners share a position exactly (MikkTSpace's "degenerate")
@@ -39,8 +39,10 @@ struct TriangleTerms {
 };
 
 // Evaluates the triangle starting from a canonical corner (the smallest by bit pattern), so
-// that rotating the corner order never changes a bit of the result.
-TriangleTangent triangleTangent(const std::array<Vec3, 3>& positions, const std::array<Vec2, 3>& uvs);
+// that rotating the corner order never changes a bit of the result. The face normal (three
+// divisions) only where asked for: only a corner with an invalid normal reads it.
+TriangleTangent triangleTangent(const std::array<Vec3, 3>& positions, const std::array<Vec2, 3>& uvs,
+                                bool wantFaceNormal = true);
 
 // Interior angle at corner `corner` (0..2), in radians; 0 for a zero-length edge.
 double cornerAngle(const std::array<Vec3, 3>& positions, int corner);
