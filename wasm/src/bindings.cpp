@@ -78,6 +78,71 @@ void requireArrays(const float* positions, const float* normals, const float* uv
 
 extern "C" {
 
+namespace {
+
+// tangent_run's options from the names the command line takes; std::invalid_argument naming the
+// argument otherwise.
+tangent::Options runOptions(const char* method, const char* weighting, const char* uvOrigin) {
+  tangent::Options options;
+  const auto parsedMethod = tangent::parseMethod(method);
+  if (!parsedMethod) throw std::invalid_argument(std::string("method: '") + method + "' is not mikktspace, lengyel, flat or meshopt");
+  const auto parsedWeighting = tangent::parseWeighting(weighting);
+  if (!parsedWeighting) throw std::invalid_argument(std::string("weighting: '") + weighting + "' is not angle, area or uniform");
+  const auto parsedOrigin = tangent::parseUvOrigin(uvOrigin);
+  if (!parsedOrigin) throw std::invalid_argument(std::string("uvOrigin: '") + uvOrigin + "' is not top-left or bottom-left");
+  options.method = *parsedMethod;
+  options.weighting = *parsedWeighting;
+  options.uvOrigin = *parsedOrigin;
+  options.threads = 1;
+  return options;
+}
+
+// The arrays tangent_run hands the core.
+struct RunArrays {
+  const float *positions, *normals, *uvs;
+  const std::uint32_t* indices;
+  std::uint32_t vertexCount;
+};
+
+// Per-corner tangents only, without indices: the corners with the same bits share a vertex
+// first (the same output bits, a sixth of the vertices to weld and bucket on a typical mesh),
+// from the arrays or, where positions is null, as tangent_share_add has done already.
+void useSharedVertices(State& s, RunArrays& a, std::uint32_t cornerCount) {
+  if (a.vertexCount != cornerCount) throw std::invalid_argument("indices: null, but the vertex count is not the corner count");
+  if (a.positions) {
+    tangent::shareVertices(a.positions, a.normals, a.uvs, cornerCount, s.shared);
+  } else if (s.sharer.added() != cornerCount) {
+    throw std::invalid_argument("positions: null, but tangent_share_add gave " + std::to_string(s.sharer.added()) + " of " +
+                                std::to_string(cornerCount) + " corners");
+  }
+  a = RunArrays{s.shared.positions.data(), s.shared.normals.data(), s.shared.uvs.data(), s.shared.indices.data(),
+                static_cast<std::uint32_t>(s.shared.vertexCount)};
+  // No two shared vertices have the same bits: the core need weld only those with a zero
+  // (the others, nearly all on most meshes, were hashed and probed for no merge).
+  s.workspace.setWeldOnly(std::span<const std::uint32_t>(s.shared.zeroVertices));
+}
+
+// Per output vertex: the tangent of its corners and the input vertex it copies.
+void writeVertexOutputs(State& s, const tangent::Report& report, const RunArrays& a, std::uint32_t cornerCount) {
+  const std::size_t outputVertices = static_cast<std::size_t>(report.outputVertices);
+  s.vertexTangents.assign(outputVertices * 4, 0.0f);
+  s.vertexSource.resize(outputVertices);
+  std::vector<bool> used(outputVertices, false);
+  for (std::uint32_t c = 0; c < cornerCount; ++c) {
+    const std::uint32_t v = s.cornerVertex[c];
+    std::copy(&s.cornerTangents[4 * std::size_t(c)], &s.cornerTangents[4 * std::size_t(c)] + 4, &s.vertexTangents[4 * std::size_t(v)]);
+    s.vertexSource[v] = a.indices[c];
+    used[v] = true;
+  }
+  for (std::size_t v = 0; v < outputVertices; ++v) {
+    if (used[v]) continue;
+    s.vertexSource[v] = static_cast<std::uint32_t>(v);  // unused input vertices keep their place
+    tangent::unusedVertexTangent(std::span<const float, 3>(&a.normals[3 * v], 3), std::span<float, 4>(&s.vertexTangents[4 * v], 4));
+  }
+}
+
+}  // namespace
+
 // Tangents per corner for `cornerCount` corners (a triangle list) of `vertexCount` vertices;
 // indices may be null (corner i is vertex i). method, weighting, uvOrigin: names as the
 // command line takes them (mikktspace | lengyel | flat | meshopt; angle | area | uniform; top-left, glTF's
@@ -90,78 +155,36 @@ EMSCRIPTEN_KEEPALIVE int tangent_run(const float* positions, const float* normal
                                      const char* weighting, const char* uvOrigin, int vertexSplit) {
   State& s = state();
   s.error.clear();
-  // Set below for the shared corners only (their vertices are distinct by bits), and reset
-  // when the call ends whichever way (so unset when the next one starts): the list lives in
-  // `shared`, which the next call refills.
+  // Set by useSharedVertices for the shared corners only (their vertices are distinct by bits),
+  // and reset when the call ends whichever way (so unset when the next one starts): the list
+  // lives in `shared`, which the next call refills.
   struct ResetWeldOnly {
     tangent::TangentWorkspace& workspace;
     ~ResetWeldOnly() { workspace.setWeldOnly(std::nullopt); }
   } resetWeldOnly{s.workspace};
   try {
-    tangent::Options options;
-    const auto parsedMethod = tangent::parseMethod(method);
-    if (!parsedMethod) throw std::invalid_argument(std::string("method: '") + method + "' is not mikktspace, lengyel, flat or meshopt");
-    const auto parsedWeighting = tangent::parseWeighting(weighting);
-    if (!parsedWeighting) throw std::invalid_argument(std::string("weighting: '") + weighting + "' is not angle, area or uniform");
-    const auto parsedOrigin = tangent::parseUvOrigin(uvOrigin);
-    if (!parsedOrigin) throw std::invalid_argument(std::string("uvOrigin: '") + uvOrigin + "' is not top-left or bottom-left");
-    options.method = *parsedMethod;
-    options.weighting = *parsedWeighting;
-    options.uvOrigin = *parsedOrigin;
-    options.threads = 1;
+    const tangent::Options options = runOptions(method, weighting, uvOrigin);
     requireArrays(positions, normals, uvs, indices, vertexSplit);
+    RunArrays a{positions, normals, uvs, indices, vertexCount};
     if (!indices && vertexSplit) {
       if (s.sequence.size() < cornerCount) {
         s.sequence.resize(cornerCount);
         std::iota(s.sequence.begin(), s.sequence.end(), 0u);
       }
-      indices = s.sequence.data();
+      a.indices = s.sequence.data();
     } else if (!indices) {
-      // Per-corner tangents only: the corners with the same bits share a vertex first (the
-      // same output bits, a sixth of the vertices to weld and bucket on a typical mesh), from
-      // the arrays or, where positions is null, as tangent_share_add has done already.
-      if (vertexCount != cornerCount) throw std::invalid_argument("indices: null, but the vertex count is not the corner count");
-      if (positions) {
-        tangent::shareVertices(positions, normals, uvs, cornerCount, s.shared);
-      } else if (s.sharer.added() != cornerCount) {
-        throw std::invalid_argument("positions: null, but tangent_share_add gave " + std::to_string(s.sharer.added()) + " of " +
-                                    std::to_string(cornerCount) + " corners");
-      }
-      positions = s.shared.positions.data();
-      normals = s.shared.normals.data();
-      uvs = s.shared.uvs.data();
-      indices = s.shared.indices.data();
-      vertexCount = static_cast<std::uint32_t>(s.shared.vertexCount);
-      // No two shared vertices have the same bits: the core need weld only those with a zero
-      // (the others, nearly all on most meshes, were hashed and probed for no merge).
-      s.workspace.setWeldOnly(std::span<const std::uint32_t>(s.shared.zeroVertices));
+      useSharedVertices(s, a, cornerCount);
     }
     s.cornerTangents.resize(std::size_t(cornerCount) * 4);
     s.cornerVertex.resize(vertexSplit ? cornerCount : 0);
-    const tangent::MeshArrays mesh{{positions, std::size_t(vertexCount) * 3},
-                                   {normals, std::size_t(vertexCount) * 3},
-                                   {uvs, std::size_t(vertexCount) * 2},
-                                   {indices, cornerCount}};
+    const tangent::MeshArrays mesh{{a.positions, std::size_t(a.vertexCount) * 3},
+                                   {a.normals, std::size_t(a.vertexCount) * 3},
+                                   {a.uvs, std::size_t(a.vertexCount) * 2},
+                                   {a.indices, cornerCount}};
     const tangent::CornerOutputs outputs{s.cornerTangents, {}, s.cornerVertex};
     const tangent::Report report = tangent::computeCornerTangents(mesh, outputs, options, s.workspace);
     s.report = tangent::reportJson(report);
-    if (!vertexSplit) return 0;
-    // Per output vertex: the tangent of its corners and the input vertex it copies.
-    const std::size_t outputVertices = static_cast<std::size_t>(report.outputVertices);
-    s.vertexTangents.assign(outputVertices * 4, 0.0f);
-    s.vertexSource.resize(outputVertices);
-    std::vector<bool> used(outputVertices, false);
-    for (std::uint32_t c = 0; c < cornerCount; ++c) {
-      const std::uint32_t v = s.cornerVertex[c];
-      std::copy(&s.cornerTangents[4 * std::size_t(c)], &s.cornerTangents[4 * std::size_t(c)] + 4, &s.vertexTangents[4 * std::size_t(v)]);
-      s.vertexSource[v] = indices[c];
-      used[v] = true;
-    }
-    for (std::size_t v = 0; v < outputVertices; ++v) {
-      if (used[v]) continue;
-      s.vertexSource[v] = static_cast<std::uint32_t>(v);  // unused input vertices keep their place
-      tangent::unusedVertexTangent(std::span<const float, 3>(&normals[3 * v], 3), std::span<float, 4>(&s.vertexTangents[4 * v], 4));
-    }
+    if (vertexSplit) writeVertexOutputs(s, report, a, cornerCount);
     return 0;
   } catch (const std::exception& e) {
     s.error = e.what();
