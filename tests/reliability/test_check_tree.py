@@ -128,11 +128,16 @@ def test_folders_and_files_together_each_file_once(tmp_path):
     done, report = json_report(tmp_path, "tree/props", "tree/props/crate.glb")
     checked = [f["file"] for f in report["files"]]
     assert len(checked) == len(set(checked)) == 5, checked
-    # An empty folder: nothing to check, said on stderr; a clean (empty) report.
+    # An empty folder (or one of other files only): nothing to check is an error, exit 2, said
+    # on stderr, no report; with --allow-empty a clean (empty) report.
     (tmp_path / "empty").mkdir()
+    (tmp_path / "empty" / "notes.txt").write_text("not an asset")
     done = check(tmp_path, "empty", "--recursive", "--format", "json")
+    assert done.returncode == 2 and done.stdout == b"", (done.returncode, done.stdout)
+    assert b"error: no .gltf" in done.stderr and b"empty" in done.stderr, done.stderr
+    done = check(tmp_path, "empty", "--recursive", "--format", "json", "--allow-empty")
     assert done.returncode == 0 and json.loads(done.stdout)["summary"]["files"] == 0
-    assert b"no .gltf" in done.stderr and b"empty" in done.stderr, done.stderr
+    assert b"no .gltf" in done.stderr and b"error" not in done.stderr, done.stderr
 
 
 def test_every_format_is_one_valid_report_over_the_tree(tmp_path):

@@ -174,9 +174,14 @@ int checkCommand(const std::vector<std::string>& args) {
     std::cerr << "tangent check: " << shown(e.what()) << "\n";
     return kExitUsage;
   }
-  if (files.empty())
-    std::cerr << "tangent check: no .gltf, .glb, .obj, .ply or .off file under " << shown(inputs.front())
-              << (inputs.size() > 1 ? " or the other folders" : "") << "\n";
+  if (files.empty()) {
+    // As ESLint and pytest do: nothing found is an error unless asked for (a wrong path in CI).
+    const bool allowed = parsed.flag("allow-empty");
+    std::cerr << "tangent check: " << (allowed ? "" : "error: ") << "no .gltf, .glb, .obj, .ply or .off file under "
+              << shown(inputs.front()) << (inputs.size() > 1 ? " or the other folders" : "")
+              << (allowed ? "" : " (--allow-empty: an empty report, exit 0)") << "\n";
+    if (!allowed) return kExitUsage;
+  }
   // The report never goes over an input or a file one uses (refused before anything is read).
   if (output != "-") {
     gltf::ProtectedFiles inputFiles;

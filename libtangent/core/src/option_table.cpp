@@ -68,6 +68,9 @@ constexpr Option kTable[] = {
   {"recursive", 0, Kind::flag, "", "false", 0, 0, false, kCheck, kCli, "",
    "inputs may be folders: check every .gltf/.glb/.obj/.ply/.off under them, the files bake --recursive "
    "would bake; a file given is checked as it is"},
+  {"allow-empty", 0, Kind::flag, "", "false", 0, 0, false, kCheck, kCli, "",
+   "folders with nothing to check give an empty report and exit 0 (without it: an error, exit 2, so that a "
+   "CI pointed at the wrong folder fails)"},
   {"output", 'o', Kind::path, "", "", 0, 0, false, kCheck, kCli, "FILE",
    "write the report to FILE (\"-\": standard output, the default)"},
   {"quiet", 'q', Kind::flag, "", "false", 0, 0, false, kCheck, kCli, "",
