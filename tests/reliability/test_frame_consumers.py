@@ -6,6 +6,7 @@ them (the Khronos validator reports MESH_PRIMITIVE_NO_TANGENT_SPACE otherwise), 
 and KHR_texture_transform of the first (normal, clearcoat normal, anisotropy); where another
 consumer samples another UV set, bake and check warn; info lists every consumer."""
 import json
+import math
 import struct
 
 from test_glb_embed import glb_parts, khronos_valid
@@ -129,3 +130,46 @@ def test_a_malformed_clearcoat_texture_is_named(tmp_path):
     assert done.returncode == 1
     assert b"/materials/0/extensions/KHR_materials_clearcoat/clearcoatNormalTexture/texCoord" in done.stderr, done.stderr
     assert not (tmp_path / "out.glb").exists()
+
+
+def edited_tangents(source, out, edit):
+    """The .glb `source` with each TANGENT (x, y, z, w) replaced by edit(tangent, normal)."""
+    doc, chunk = glb_parts(source)
+    attributes = doc["meshes"][0]["primitives"][0]["attributes"]
+
+    def start_of(accessor):
+        return doc["bufferViews"][accessor["bufferView"]].get("byteOffset", 0) + accessor.get("byteOffset", 0)
+
+    tangents, normals = doc["accessors"][attributes["TANGENT"]], doc["accessors"][attributes["NORMAL"]]
+    count = tangents["count"]
+    t = struct.unpack_from(f"<{4 * count}f", chunk, start_of(tangents))
+    n = struct.unpack_from(f"<{3 * count}f", chunk, start_of(normals))
+    edited = [value for k in range(count) for value in edit(t[4 * k:4 * k + 4], n[3 * k:3 * k + 3])]
+    blob = bytearray(chunk)
+    struct.pack_into(f"<{4 * count}f", blob, start_of(tangents), *edited)
+    return write(out, glb_bytes(doc, bytes(blob)))
+
+
+def test_check_catches_a_flipped_w_and_a_ten_degree_turn_on_an_anisotropy_only_primitive(tmp_path):
+    """A brushed metal without a normal map still reads TANGENT: check judges it as it judges a
+    normal-mapped primitive's (handedness for w, reference for the direction)."""
+    source = asset(tmp_path, {"extensions": {"KHR_materials_anisotropy": {"anisotropyStrength": 0.8}}})
+    bake(source, tmp_path / "baked.glb")
+
+    def findings(path):
+        done = tangent("check", path, "--format", "json")
+        report = json.loads(done.stdout)
+        return done.returncode, {f["check"] for f in report["files"][0]["primitives"][0]["findings"]}
+
+    assert findings(tmp_path / "baked.glb") == (0, set())
+    flipped = edited_tangents(tmp_path / "baked.glb", tmp_path / "flipped.glb", lambda t, n: (t[0], t[1], t[2], -t[3]))
+    code, checks = findings(flipped)
+    assert code == 1 and "handedness" in checks, checks
+
+    def turned(t, n, degrees=10.0):  # about the normal (Rodrigues; t is orthogonal to n)
+        c, s = math.cos(math.radians(degrees)), math.sin(math.radians(degrees))
+        cross = (n[1] * t[2] - n[2] * t[1], n[2] * t[0] - n[0] * t[2], n[0] * t[1] - n[1] * t[0])
+        return (c * t[0] + s * cross[0], c * t[1] + s * cross[1], c * t[2] + s * cross[2], t[3])
+
+    code, checks = findings(edited_tangents(tmp_path / "baked.glb", tmp_path / "turned.glb", turned))
+    assert code == 1 and checks == {"reference"}, checks
