@@ -462,6 +462,57 @@ TEST(SplitOrder, ReorderedTrianglesMoveWhichTangentKeepsTheVertex) {
   for (std::size_t c = 0; c < indices.size(); ++c) EXPECT_EQ(cornerVertex[c], expected[c]) << "corner " << c;
 }
 
+// The same rule for a vertex with few corners and with many (the split groups a bucket of up
+// to 16 corners without a sort, a larger one with it): a fan of triangles that share only
+// vertex 0, triangle k scaled by k + 1 (no two weld) and with the tangent +x, -x or +y in an
+// order where the new ones by first corner (-x, +y) are not in the order of their bits (+y first).
+TEST(SplitOrder, FewAndManyCornersOfAVertexFollowTheSameRule) {
+  for (const std::size_t triangles : {5u, 16u, 17u, 40u}) {
+    std::vector<float> positions, normals, uvs;
+    auto vertex = [&](float x, float y, float u, float v) {
+      positions.insert(positions.end(), {x, y, 0});
+      normals.insert(normals.end(), {0, 0, 1});
+      uvs.insert(uvs.end(), {u, v});
+    };
+    vertex(0, 0, 0, 0);
+    std::vector<std::uint32_t> indices;
+    std::vector<int> direction;  // 0: +x, 1: -x, 2: +y
+    for (std::size_t k = 0; k < triangles; ++k) {
+      const float s = static_cast<float>(k + 1);
+      const int d = static_cast<int>(k % 3);
+      const auto first = static_cast<std::uint32_t>(positions.size() / 3);
+      if (d == 0) vertex(s, 0, s, 0), vertex(0, s, 0, s);         // u = x
+      else if (d == 1) vertex(-s, 0, s, 0), vertex(0, -s, 0, s);  // u = -x
+      else vertex(0, -s, -s, 0), vertex(s, 0, 0, -s);             // u = y
+      indices.insert(indices.end(), {0, first, first + 1});
+      direction.push_back(d);
+    }
+    const auto vertexCount = static_cast<std::uint32_t>(positions.size() / 3);
+    std::vector<float> tangents(indices.size() * 4);
+    std::vector<std::uint32_t> cornerVertex(indices.size(), 0xDEADBEEFu);
+    tangent::TangentWorkspace workspace;
+    const auto report = tangent::computeCornerTangents({positions, normals, uvs, indices}, {tangents, {}, cornerVertex}, {}, workspace);
+    // Vertex 0: its first corner's tangent keeps it, each other new one is numbered from the
+    // vertex count up in order of first corner; every outer vertex has one corner and keeps it.
+    std::array<std::uint32_t, 3> numberOf{~0u, ~0u, ~0u};
+    numberOf[direction[0]] = 0;
+    std::uint32_t next = vertexCount;
+    for (std::size_t k = 0; k < triangles; ++k) {
+      const int d = direction[k];
+      const std::array<float, 3> expectedTangent = d == 0 ? std::array<float, 3>{1, 0, 0}
+                                                   : d == 1 ? std::array<float, 3>{-1, 0, 0}
+                                                            : std::array<float, 3>{0, 1, 0};
+      for (int i = 0; i < 3; ++i) ASSERT_NEAR(tangents[4 * (3 * k) + i], expectedTangent[i], 1e-6) << triangles << " triangle " << k;
+      if (numberOf[d] == ~0u) numberOf[d] = next++;
+      EXPECT_EQ(cornerVertex[3 * k], numberOf[d]) << triangles << " triangles, corner " << 3 * k;
+      EXPECT_EQ(cornerVertex[3 * k + 1], indices[3 * k + 1]);
+      EXPECT_EQ(cornerVertex[3 * k + 2], indices[3 * k + 2]);
+    }
+    EXPECT_EQ(report.splitVertices, next - vertexCount) << triangles;
+    EXPECT_EQ(report.splitVertices, 2u) << triangles;
+  }
+}
+
 
 // ---- (d) each `check` limit, just inside and just outside, per component type ----
 //

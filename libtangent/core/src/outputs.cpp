@@ -123,6 +123,54 @@ struct SplitArrays {
   std::uint32_t* cornerVertex;  // null where not asked for
 };
 
+// A bucket's split without a sort, for buckets of up to kSmallBucket corners (all but a few):
+// each corner is compared with the groups of (input vertex, tangent) found so far. The new
+// vertices' numbers within a bucket need only be distinct (numberExtraVertices renumbers them
+// in order of their first corner), so they follow the groups' order, not the sort's.
+constexpr std::uint32_t kSmallBucket = 16;
+
+std::uint32_t splitSmallBucket(const SplitArrays& arrays, std::uint32_t first, std::uint32_t last) {
+  const std::uint32_t* corners = arrays.corners;
+  const std::uint32_t* indices = arrays.indices;
+  const float* tangents = arrays.tangents;
+  // Each group: its input vertex, tangent bits (-0 as +0), smallest corner; each corner's group.
+  std::uint32_t groupVertex[kSmallBucket], groupBits[kSmallBucket][4], groupFirst[kSmallBucket];
+  std::uint32_t groupOf[kSmallBucket];
+  std::uint32_t groups = 0;
+  for (std::uint32_t i = 0; i < last - first; ++i) {
+    const std::uint32_t c = corners[first + i];
+    const std::uint32_t vertex = indices[c];
+    std::uint32_t bits[4];
+    for (int k = 0; k < 4; ++k) bits[k] = canonicalBits(tangents[4 * c + k]);
+    std::uint32_t g = 0;
+    while (g < groups && !(groupVertex[g] == vertex && groupBits[g][0] == bits[0] && groupBits[g][1] == bits[1] &&
+                           groupBits[g][2] == bits[2] && groupBits[g][3] == bits[3]))
+      ++g;
+    if (g == groups) {
+      groupVertex[g] = vertex;
+      std::memcpy(groupBits[g], bits, sizeof bits);
+      groupFirst[g] = c;
+      ++groups;
+    } else {
+      groupFirst[g] = std::min(groupFirst[g], c);
+    }
+    groupOf[i] = g;
+  }
+  // The group holding an input vertex's first corner keeps the vertex; each other is new.
+  std::uint32_t groupId[kSmallBucket];
+  std::uint32_t extras = 0;
+  for (std::uint32_t g = 0; g < groups; ++g) {
+    bool keepsVertex = true;
+    for (std::uint32_t h = 0; h < groups; ++h)
+      keepsVertex = keepsVertex && !(groupVertex[h] == groupVertex[g] && groupFirst[h] < groupFirst[g]);
+    groupId[g] = keepsVertex ? groupVertex[g] : (kExtraFlag | extras++);
+  }
+  if (std::uint32_t* cornerVertex = arrays.cornerVertex) {
+    for (std::uint32_t i = 0; i < last - first; ++i) cornerVertex[corners[first + i]] = groupId[groupOf[i]];
+  }
+  return extras;
+}
+
 // One bucket's split (corners[first .. last - 1]): its count of new vertices, and cornerVertex
 // for its corners. Out of line, so that the loop over the buckets that need none keeps its
 // values in registers.
@@ -146,6 +194,7 @@ struct SplitArrays {
     }
     return 0;
   }
+  if (last - first <= kSmallBucket) return splitSmallBucket(arrays, first, last);
   entries.clear();
   for (std::uint32_t i = first; i < last; ++i) {
     const std::uint32_t c = corners[i];
