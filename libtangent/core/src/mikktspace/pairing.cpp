@@ -227,69 +227,7 @@ __attribute__((target("avx2"), always_inline)) inline bool closedFanEight(const 
 #endif
 
 #if defined(__wasm_simd128__) && !defined(TANGENT_LANES8)
-// closedFanEight's test in WebAssembly: the same compares of next identities with previous
-// identities rotated by k lanes, eight lanes as two SIMD128 vectors (the rotations are
-// constant shuffles, one per k, where AVX2 has a permute), and the same walk. Then the fan's
-// sum is FanAccumulator's, as pairOneFan makes it. Reads 8 identities from each pointer
-// (kBucketIdPadding).
-using Ids8 = std::int32_t __attribute__((vector_size(32)));
-template <std::uint32_t n, std::uint32_t k, std::size_t... i>
-inline Ids8 rotatedIds(Ids8 ins, std::index_sequence<i...>) {
-  return __builtin_shufflevector(ins, ins, static_cast<int>(i < n ? (i + k) % n : i)...);
-}
-template <std::uint32_t n, std::uint32_t k, std::size_t... i>
-inline Ids8 rotationLanes(std::index_sequence<i...>) {
-  return Ids8{static_cast<std::int32_t>(i < n ? (i + k) % n : i)...};
-}
-template <std::uint32_t n, std::uint32_t... k>
-inline bool closedFanWasmOf(Ids8 outs, Ids8 ins, std::integer_sequence<std::uint32_t, k...>) {
-  Ids8 matches{}, successor{};
-  auto step = [&](auto rotated, Ids8 rotation) {
-    const Ids8 same = outs == rotated;  // all ones where equal
-    matches -= same;
-    successor |= same & rotation;
-  };
-  (step(rotatedIds<n, k>(ins, std::make_index_sequence<8>{}), rotationLanes<n, k>(std::make_index_sequence<8>{})), ...);
-  alignas(32) std::int32_t once[8], next[8];
-  const Ids8 onceMask = matches == 1;
-  std::memcpy(once, &onceMask, sizeof once);
-  std::memcpy(next, &successor, sizeof next);
-  std::int32_t all = -1;
-  for (std::uint32_t i = 0; i < n; ++i) all &= once[i];
-  if (all == 0) return false;
-  // The walk from corner 0 back to it: a cycle of n steps holds n corners, all of them.
-  std::uint32_t at = 0;
-  for (std::uint32_t s = 1; s < n; ++s) {
-    at = static_cast<std::uint32_t>(next[at]);
-    if (at == 0) return false;
-  }
-  return next[at] == 0;
-}
-template <std::uint32_t n>
-inline bool closedFanWasmSum(Ids8 outs, Ids8 ins, const std::uint32_t* list, const float* tangents, FanSum& fan) {
-  if (!closedFanWasmOf<n>(outs, ins, std::make_integer_sequence<std::uint32_t, n>{})) return false;
-  FanAccumulator sum;
-  for (std::uint32_t i = 0; i < n; ++i) sum.add(&tangents[4 * std::size_t(list[i])]);
-  fan = sum.result();
-  return true;
-}
-// closedFanEight for n (2..8) corners, in WebAssembly.
-inline bool closedFanWasm(const std::uint32_t* outId, const std::uint32_t* inId, std::uint32_t n, const std::uint32_t* list,
-                          const float* tangents, FanSum& fan) {
-  Ids8 outs, ins;
-  std::memcpy(&outs, outId, sizeof outs);
-  std::memcpy(&ins, inId, sizeof ins);
-  switch (n) {
-    case 2: return closedFanWasmSum<2>(outs, ins, list, tangents, fan);
-    case 3: return closedFanWasmSum<3>(outs, ins, list, tangents, fan);
-    case 4: return closedFanWasmSum<4>(outs, ins, list, tangents, fan);
-    case 5: return closedFanWasmSum<5>(outs, ins, list, tangents, fan);
-    case 6: return closedFanWasmSum<6>(outs, ins, list, tangents, fan);
-    case 7: return closedFanWasmSum<7>(outs, ins, list, tangents, fan);
-    case 8: return closedFanWasmSum<8>(outs, ins, list, tangents, fan);
-    default: return false;
-  }
-}
+#include "closed_fan_wasm.inc"  // closedFanWasm: closedFanEight in WebAssembly
 #endif
 
 // Each corner has at most one successor and one predecessor here, so the links form paths
