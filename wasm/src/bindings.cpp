@@ -37,6 +37,7 @@ struct State {
   std::vector<std::uint32_t> cornerVertex;
   std::vector<float> vertexTangents;    // 4 per output vertex
   std::vector<std::uint32_t> vertexSource;  // output vertex -> input vertex
+  std::vector<std::uint8_t> used;  // per output vertex: written from a corner yet (writeVertexOutputs)
   std::string report;  // JSON
   std::string error;
 };
@@ -127,12 +128,19 @@ void writeVertexOutputs(State& s, const tangent::Report& report, const RunArrays
   const std::size_t outputVertices = static_cast<std::size_t>(report.outputVertices);
   s.vertexTangents.assign(outputVertices * 4, 0.0f);
   s.vertexSource.resize(outputVertices);
-  std::vector<bool> used(outputVertices, false);
+  // Every corner of an output vertex has its tangent bits and its input vertex (the vertex
+  // split), so each output vertex is written once, from its first corner (about a sixth of the
+  // corners on a typical mesh; a byte per vertex, kept from call to call, says which are).
+  s.used.assign(outputVertices, 0);
+  std::uint8_t* used = s.used.data();
+  const float* cornerTangents = s.cornerTangents.data();
+  float* vertexTangents = s.vertexTangents.data();
   for (std::uint32_t c = 0; c < cornerCount; ++c) {
     const std::uint32_t v = s.cornerVertex[c];
-    std::copy(&s.cornerTangents[4 * std::size_t(c)], &s.cornerTangents[4 * std::size_t(c)] + 4, &s.vertexTangents[4 * std::size_t(v)]);
+    if (used[v]) continue;
+    used[v] = 1;
+    std::copy(cornerTangents + 4 * std::size_t(c), cornerTangents + 4 * std::size_t(c) + 4, vertexTangents + 4 * std::size_t(v));
     s.vertexSource[v] = a.indices[c];
-    used[v] = true;
   }
   for (std::size_t v = 0; v < outputVertices; ++v) {
     if (used[v]) continue;

@@ -10,6 +10,8 @@
 #include <immintrin.h>
 #endif
 #include <bit>
+#include <cstring>
+#include <utility>
 #include <type_traits>
 #include <vector>
 
@@ -224,6 +226,10 @@ __attribute__((target("avx2"), always_inline)) inline bool closedFanEight(const 
 }
 #endif
 
+#if defined(__wasm_simd128__) && !defined(TANGENT_LANES8)
+#include "closed_fan_wasm.inc"  // closedFanWasm: closedFanEight in WebAssembly
+#endif
+
 // Each corner has at most one successor and one predecessor here, so the links form paths
 // and cycles. One chain through every corner: a cycle from corner 0, or the path from the
 // one corner that no link reaches (one head: one path; a walk from it that sees every
@@ -330,7 +336,21 @@ void Kernel::pairAndGroup(std::size_t begin, std::size_t end, BucketScratch& scr
   const bool fast = ws_.fastBuckets;
   for (std::size_t b = begin; b < end; ++b) {
     const auto bucket = static_cast<std::uint32_t>(b);
+#if defined(__wasm_simd128__) && !defined(TANGENT_LANES8)
+    // As pairAndGroupEight: the common closed fan first (closedFanWasm), then pairOneFan.
+    if (fast) {
+      const std::uint32_t first = start_[bucket], count = start_[bucket + 1] - first;
+      const std::uint32_t* list = corners_ + first;
+      FanSum fan;
+      if (count >= 2 && count <= 8 && closedFanWasm(nextIds_ + first, previousIds_ + first, count, list, tangents_, fan)) {
+        if (fan.oneOrientation && fanFrame(bucket, list, count, fan, mirrored)) continue;
+      } else if (pairOneFan(bucket, mirrored)) {
+        continue;
+      }
+    }
+#else
     if (fast && pairOneFan(bucket, mirrored)) continue;
+#endif
     pairBucket(bucket, scratch);
     groupBucket(bucket, scratch, mirrored);
   }
