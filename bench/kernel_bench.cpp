@@ -32,6 +32,7 @@
 #include "peers.hpp"
 #include "read/primitive.hpp"
 #include "tangent/openmesh.hpp"
+#include "tangent/shared_vertices.hpp"
 
 namespace {
 
@@ -236,7 +237,8 @@ void registerFreshMemory(const InputSource& source) {
   }
 }
 
-void registerInput(const InputSource& source) {
+// The library (array call, warm workspace) and the OpenMesh call at 1, 2 and all threads.
+void registerLibrary(const InputSource& source) {
   const std::pair<const char*, unsigned> threadSettings[] = {{"t1", 1u}, {"t2", 2u}, {"tall", 0u}};
   for (const auto& [label, threads] : threadSettings) {
     reportProcessCpuTime(benchmark::RegisterBenchmark(("library/" + std::string(label) + "/" + source.name).c_str(),
@@ -264,8 +266,11 @@ void registerInput(const InputSource& source) {
           counters(state, in, actualThreads(threads));
         }));
   }
-  // The other methods on the same arrays, on one thread and on all of them: what they cost
-  // beside mikktspace, and that they use the threads they are given (wall against CPU time).
+}
+
+// The other methods on the same arrays, on one thread and on all of them: what they cost
+// beside mikktspace, and that they use the threads they are given (wall against CPU time).
+void registerOtherMethods(const InputSource& source) {
   for (const tangent::Method method : {tangent::Method::lengyel, tangent::Method::meshopt, tangent::Method::flat}) {
     for (const auto& [label, threads] : {std::pair<const char*, unsigned>{"t1", 1u}, {"tall", 0u}}) {
       const std::string name = std::string(tangent::toString(method)) + "/" + label + "/" + source.name;
@@ -284,8 +289,47 @@ void registerInput(const InputSource& source) {
       }));
     }
   }
-  // One call with a fresh workspace each time (its allocation and first touch included), as a
-  // single bake pays it.
+}
+
+// The WebAssembly package's default path, natively: de-indexed corners (every corner its own
+// vertex, as glTF-Transform passes them) shared by their bits (tangent/shared_vertices.hpp),
+// then the core welding only the zero vertices; per-corner tangents. The same work as the npm
+// package's generateTangents, so bench/node/wasm_cpu.mjs's times compare with this one's.
+void registerDeindexed(const InputSource& source) {
+  reportProcessCpuTime(benchmark::RegisterBenchmark(("library-deindexed/t1/" + source.name).c_str(), [source](benchmark::State& state) {
+    const Input& in = input(source);
+    const std::size_t corners = in.indices.size();
+    std::vector<float> positions(3 * corners), normals(3 * corners), uvs(2 * corners), tangents(4 * corners);
+    for (std::size_t c = 0; c < corners; ++c) {
+      const std::size_t v = in.indices[c];
+      std::copy_n(&in.positions[3 * v], 3, &positions[3 * c]);
+      std::copy_n(&in.normals[3 * v], 3, &normals[3 * c]);
+      std::copy_n(&in.uvs[2 * v], 2, &uvs[2 * c]);
+    }
+    tangent::SharedVertices shared;
+    tangent::TangentWorkspace workspace;
+    auto call = [&] {
+      tangent::shareVertices(positions.data(), normals.data(), uvs.data(), corners, shared);
+      const std::size_t n = shared.vertexCount;
+      const tangent::MeshArrays mesh{{shared.positions.data(), 3 * n}, {shared.normals.data(), 3 * n}, {shared.uvs.data(), 2 * n},
+                                     {shared.indices.data(), corners}};
+      workspace.setWeldOnly(std::span<const std::uint32_t>(shared.zeroVertices));
+      tangent::computeCornerTangents(mesh, tangent::CornerOutputs{tangents, {}, {}}, options(1), workspace);
+      workspace.setWeldOnly(std::nullopt);
+    };
+    call();  // warm, as the package's second call on
+    for (auto _ : state) {
+      call();
+      benchmark::DoNotOptimize(tangents.data());
+      benchmark::ClobberMemory();
+    }
+    counters(state, in, 1);
+  }));
+}
+
+// One call with a fresh workspace each time (its allocation and first touch included), as a
+// single bake pays it.
+void registerCold(const InputSource& source) {
   reportProcessCpuTime(benchmark::RegisterBenchmark(("library-cold/t1/" + source.name).c_str(), [source](benchmark::State& state) {
     const Input& in = input(source);
     std::vector<float> tangents(in.indices.size() * 4);
@@ -301,7 +345,9 @@ void registerInput(const InputSource& source) {
     state.counters["workspace_bytes_per_triangle"] = double(workspaceBytes) / double(std::max<std::size_t>(1, in.triangles()));
     counters(state, in, 1);
   }));
-  registerFreshMemory(source);
+}
+
+void registerPeers(const InputSource& source) {
   for (tangent::bench::Peer peer : tangent::bench::peers()) {
     std::string name(toString(peer));
     std::replace(name.begin(), name.end(), '/', '-');  // "meshopt-compatible": one name segment
@@ -317,6 +363,15 @@ void registerInput(const InputSource& source) {
           counters(state, in, 1);
         }));
   }
+}
+
+void registerInput(const InputSource& source) {
+  registerLibrary(source);
+  registerOtherMethods(source);
+  registerDeindexed(source);
+  registerCold(source);
+  registerFreshMemory(source);
+  registerPeers(source);
 }
 
 // --count-instructions, under `valgrind --tool=callgrind --instr-atstart=no`: one warm call of
