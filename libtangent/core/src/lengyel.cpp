@@ -148,9 +148,12 @@ TriangleData evaluateTriangles(WorkspaceData& ws, const MeshArrays& mesh, std::s
                           {ws.vertexUnitNormals.data(), ws.vertexCount},
                           mesh.indices};
   if (flat) ensureSize(ws.cornerState, ws.cornerCount);
+  // Triangles of each kind, counted by each piece and summed (integers: any order).
+  Combinable<std::array<std::uint64_t, 4>> kindCounts;
   forRange(ws, triangleCount, 1024, [&](std::size_t begin, std::size_t end) {
     float* tangents = outputs.tangents.data();
     std::uint8_t* state = ws.cornerState.data();
+    std::array<std::uint64_t, 4> kinds{};
     for (std::size_t t = begin; t < end; ++t) {
       std::array<Vec3, 3> positions;
       std::array<Vec2, 3> uvs;
@@ -174,16 +177,16 @@ TriangleData evaluateTriangles(WorkspaceData& ws, const MeshArrays& mesh, std::s
         if (!flat) data.cornerWeights[corner] = cornerWeight(options, positions, k, normals[k], triangle);
       }
       if (flat) flatTriangleFrames(terms, normals, invalid, tangents, state, 3 * t);
+      if (triangle.kind != TriangleKind::usable) ++kinds[static_cast<std::size_t>(triangle.kind)];  // rare
     }
+    std::array<std::uint64_t, 4>& sum = kindCounts.local();
+    for (std::size_t k = 0; k < kinds.size(); ++k) sum[k] += kinds[k];
   });
-  for (const TriangleTerms& triangle : data.triangles) {
-    switch (triangle.kind) {
-      case TriangleKind::usable: break;
-      case TriangleKind::degenerate: ++report.degenerateTriangles; break;
-      case TriangleKind::zeroUvArea: ++report.zeroUvAreaTriangles; break;
-      case TriangleKind::nonFinite: ++report.nonFiniteTriangles; break;
-    }
-  }
+  kindCounts.combine_each([&](const std::array<std::uint64_t, 4>& kinds) {
+    report.degenerateTriangles += kinds[static_cast<std::size_t>(TriangleKind::degenerate)];
+    report.zeroUvAreaTriangles += kinds[static_cast<std::size_t>(TriangleKind::zeroUvArea)];
+    report.nonFiniteTriangles += kinds[static_cast<std::size_t>(TriangleKind::nonFinite)];
+  });
   return data;
 }
 
@@ -279,8 +282,11 @@ Report lengyelOnArrays(WorkspaceData& ws, const MeshArrays& mesh, const CornerOu
   const unsigned weldThreads = ws.threads < 4 ? 1 : ws.threads;
   invokeBoth(ws, [&] { weldAndBucket(ws, mesh, weldThreads); }, [&] {
     weldOf = positionWeld(ws, mesh);
-    data = evaluateTriangles(ws, mesh, weldOf, options, outputs, report);
-    report.nonManifoldFaces = countNonManifoldFaces(ws, mesh, weldOf);
+    // The count (its own arrays) beside the triangle pass, whose pieces the other threads take.
+    std::uint64_t nonManifoldFaces = 0;
+    invokeBoth(ws, [&] { data = evaluateTriangles(ws, mesh, weldOf, options, outputs, report); },
+               [&] { nonManifoldFaces = countNonManifoldFaces(ws, mesh, weldOf); });
+    report.nonManifoldFaces = nonManifoldFaces;
   });
   // Frames by the shortest way that gives the full grouping's bits: flat's one-corner groups
   // (framed by the triangle pass; the corners it left undefined here), the buckets where they
