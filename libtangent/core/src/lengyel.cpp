@@ -372,9 +372,11 @@ Report lengyelOnArrays(WorkspaceData& ws, const MeshArrays& mesh, const CornerOu
   invokeBoth(ws, [&] { weldAndBucket(ws, mesh, weldThreads); }, [&] {
     weldOf = positionWeld(ws, mesh);
     // The count (its own arrays) beside the triangle pass, whose pieces the other threads take.
+    // invokeBoth offers its first to other threads and runs its second here: the triangle
+    // pass here, so that its pieces are there to take at once.
     std::uint64_t nonManifoldFaces = 0;
-    invokeBoth(ws, [&] { data = evaluateTriangles(ws, mesh, weldOf, options, outputs, report); },
-               [&] { nonManifoldFaces = countNonManifoldFaces(ws, mesh, weldOf); });
+    invokeBoth(ws, [&] { nonManifoldFaces = countNonManifoldFaces(ws, mesh, weldOf); },
+               [&] { data = evaluateTriangles(ws, mesh, weldOf, options, outputs, report); });
     report.nonManifoldFaces = nonManifoldFaces;
   });
   // Frames by the shortest way that gives the full grouping's bits: flat's one-corner groups
