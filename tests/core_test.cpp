@@ -9,6 +9,7 @@
 #include <cmath>
 #include <cstring>
 #include <limits>
+#include <map>
 #include <numbers>
 #include <random>
 
@@ -410,6 +411,66 @@ TEST(Core, NonManifoldFacesAreCountedAsEachMethodSeesAnEdge) {
     SCOPED_TRACE(static_cast<int>(method));
     EXPECT_EQ(run(fin, options).report.nonManifoldFaces, 3u);
     EXPECT_EQ(run(soup, options).report.nonManifoldFaces, method == tangent::Method::mikktspace ? 0u : 4u);
+  }
+}
+
+// Faces on an edge that more than two faces share, by positions (+0 and -0 alike), counted
+// the plain way: every edge of a triangle at three distinct positions in a map.
+std::uint64_t nonManifoldFacesByPositions(const GridMesh& m) {
+  std::map<std::array<float, 3>, std::uint32_t> positionId;
+  auto idOf = [&](std::uint32_t v) {
+    std::array<float, 3> p;
+    for (int i = 0; i < 3; ++i) p[i] = m.positions[3 * v + i] == 0 ? 0.0f : m.positions[3 * v + i];
+    return positionId.emplace(p, static_cast<std::uint32_t>(positionId.size())).first->second;
+  };
+  std::map<std::pair<std::uint32_t, std::uint32_t>, std::vector<std::size_t>> facesOfEdge;
+  for (std::size_t t = 0; t < m.indices.size() / 3; ++t) {
+    const std::uint32_t p[3] = {idOf(m.indices[3 * t]), idOf(m.indices[3 * t + 1]), idOf(m.indices[3 * t + 2])};
+    if (p[0] == p[1] || p[1] == p[2] || p[0] == p[2]) continue;
+    for (int k = 0; k < 3; ++k) facesOfEdge[{std::min(p[k], p[(k + 1) % 3]), std::max(p[k], p[(k + 1) % 3])}].push_back(t);
+  }
+  std::vector<bool> onShared(m.indices.size() / 3, false);
+  for (const auto& [edge, faces] : facesOfEdge) {
+    if (faces.size() > 2)
+      for (std::size_t t : faces) onShared[t] = true;
+  }
+  return static_cast<std::uint64_t>(std::count(onShared.begin(), onShared.end(), true));
+}
+
+// A torus with a fin on an edge of every third triangle: the fin's edge vertices are copies
+// (other UVs), so only the position weld joins them, and a fin on every fifth one's next edge
+// too; thousands of non-manifold edges, spread over every thread's share. lengyel, meshopt
+// and flat count them as the plain count does, for any thread count and face order.
+TEST(Core, ManyNonManifoldEdgesCountTheSameForEveryThreadCountAndOrder) {
+  GridMesh m = tangent::testing::makeTorus(128, 64);  // over 2^14 triangles: the threaded way
+  const std::size_t triangles = m.indices.size() / 3;
+  auto copyVertex = [&](std::uint32_t v, float du) {
+    for (int i = 0; i < 3; ++i) m.positions.push_back(m.positions[3 * v + i]);
+    for (int i = 0; i < 3; ++i) m.normals.push_back(m.normals[3 * v + i]);
+    m.uvs.insert(m.uvs.end(), {m.uvs[2 * v] + du, m.uvs[2 * v + 1]});
+    return static_cast<std::uint32_t>(m.positions.size() / 3 - 1);
+  };
+  for (std::size_t t = 0; t < triangles; t += 3) {
+    for (int k : {0, 1}) {
+      if (k == 1 && t % 5 != 0) continue;
+      const std::uint32_t a = m.indices[3 * t + k], b = m.indices[3 * t + (k + 1) % 3], c = m.indices[3 * t + (k + 2) % 3];
+      const std::uint32_t apex = copyVertex(c, 0.25f);
+      for (int i = 0; i < 3; ++i) m.positions[3 * apex + i] += 0.05f * m.normals[3 * c + i];  // off the surface
+      m.indices.insert(m.indices.end(), {copyVertex(b, 0.5f), copyVertex(a, 0.5f), apex});
+    }
+  }
+  const std::uint64_t expected = nonManifoldFacesByPositions(m);
+  ASSERT_GT(expected, 5000u);
+  const auto shuffled = tangent::testing::shuffleFacesAndRotateCorners(m, 7);
+  for (const tangent::Method method : {tangent::Method::lengyel, tangent::Method::meshopt, tangent::Method::flat}) {
+    SCOPED_TRACE(static_cast<int>(method));
+    Options options;
+    options.method = method;
+    for (unsigned threads : {1u, 2u, 3u, 8u}) {
+      options.threads = threads;
+      EXPECT_EQ(run(m, options).report.nonManifoldFaces, expected) << threads;
+      EXPECT_EQ(run(shuffled.mesh, options).report.nonManifoldFaces, expected) << threads;
+    }
   }
 }
 

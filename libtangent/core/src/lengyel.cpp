@@ -17,10 +17,18 @@
 #include <bit>
 #include <cmath>
 #include <cstring>
+#include <functional>
 #include <tuple>
 
 namespace tangent::detail {
 namespace {
+
+// The non-manifold count's threaded way (countNonManifoldFacesInRanges) from this many
+// threads and triangles. On two threads it ran no faster (it adds passes, and the one-thread
+// way already runs beside the triangle pass, whose pieces the other thread takes); on small
+// meshes its setup costs more than it saves.
+constexpr unsigned kThreadedCountThreads = 4;
+constexpr std::size_t kThreadedCountTriangles = 1 << 14;
 
 // The open-addressing probe's hash of a position's canonical bits (+0 and -0 alike).
 std::uint64_t positionHash(const std::uint32_t bits[3]) {
@@ -148,9 +156,12 @@ TriangleData evaluateTriangles(WorkspaceData& ws, const MeshArrays& mesh, std::s
                           {ws.vertexUnitNormals.data(), ws.vertexCount},
                           mesh.indices};
   if (flat) ensureSize(ws.cornerState, ws.cornerCount);
+  // Triangles of each kind, counted by each piece and summed (integers: any order).
+  Combinable<std::array<std::uint64_t, 4>> kindCounts;
   forRange(ws, triangleCount, 1024, [&](std::size_t begin, std::size_t end) {
     float* tangents = outputs.tangents.data();
     std::uint8_t* state = ws.cornerState.data();
+    std::array<std::uint64_t, 4> kinds{};
     for (std::size_t t = begin; t < end; ++t) {
       std::array<Vec3, 3> positions;
       std::array<Vec2, 3> uvs;
@@ -174,73 +185,154 @@ TriangleData evaluateTriangles(WorkspaceData& ws, const MeshArrays& mesh, std::s
         if (!flat) data.cornerWeights[corner] = cornerWeight(options, positions, k, normals[k], triangle);
       }
       if (flat) flatTriangleFrames(terms, normals, invalid, tangents, state, 3 * t);
+      if (triangle.kind != TriangleKind::usable) ++kinds[static_cast<std::size_t>(triangle.kind)];  // rare
     }
+    std::array<std::uint64_t, 4>& sum = kindCounts.local();
+    for (std::size_t k = 0; k < kinds.size(); ++k) sum[k] += kinds[k];
   });
-  for (const TriangleTerms& triangle : data.triangles) {
-    switch (triangle.kind) {
-      case TriangleKind::usable: break;
-      case TriangleKind::degenerate: ++report.degenerateTriangles; break;
-      case TriangleKind::zeroUvArea: ++report.zeroUvAreaTriangles; break;
-      case TriangleKind::nonFinite: ++report.nonFiniteTriangles; break;
-    }
-  }
+  kindCounts.combine_each([&](const std::array<std::uint64_t, 4>& kinds) {
+    report.degenerateTriangles += kinds[static_cast<std::size_t>(TriangleKind::degenerate)];
+    report.zeroUvAreaTriangles += kinds[static_cast<std::size_t>(TriangleKind::zeroUvArea)];
+    report.nonFiniteTriangles += kinds[static_cast<std::size_t>(TriangleKind::nonFinite)];
+  });
   return data;
 }
 
-// Faces on an edge (two distinct positions) that more than two faces share; triangles with two
-// corners at one position are left out, as the OpenMesh call's weld leaves them out. Each edge
-// is counted out to its smaller end (a counting sort), and each end's few edges are sorted by
-// their other end: linear time but for those runs. Into the workspace's edgeStart, edgeNext,
-// edges and onSharedEdge.
+// Calls each(low, high, t) for the three edges of each triangle t in [begin, end) whose
+// corners are at three positions (the ends' representatives, the smaller first); triangles
+// with two corners at one position are left out, as the OpenMesh call's weld leaves them out.
+template <typename Each>
+void forEachEdge(const MeshArrays& mesh, std::span<const std::uint32_t> weldOf, std::size_t begin, std::size_t end,
+                 const Each& each) {
+  for (std::size_t t = begin; t < end; ++t) {
+    std::uint32_t welds[3];
+    for (int k = 0; k < 3; ++k) welds[k] = weldOf[mesh.indices[3 * t + k]];
+    if (welds[0] == welds[1] || welds[1] == welds[2] || welds[0] == welds[2]) continue;
+    for (int k = 0; k < 3; ++k) {
+      const std::uint32_t a = welds[k], b = welds[(k + 1) % 3];
+      each(std::min(a, b), std::max(a, b), t);
+    }
+  }
+}
+
+// One position's edges (other end << 32 | triangle), [first, last): sorted, and mark(t) for
+// the triangles of each other end that more than two share.
+template <typename Mark>
+void markSharedEdges(std::uint64_t* first, std::uint64_t* last, const Mark& mark) {
+  if (last - first < 3) return;
+  std::sort(first, last);
+  for (auto i = first; i != last;) {
+    auto j = i;
+    while (j != last && *j >> 32 == *i >> 32) ++j;
+    if (j - i > 2) {
+      for (auto k = i; k != j; ++k) mark(static_cast<std::uint32_t>(*k & 0xffffffffu));
+    }
+    i = j;
+  }
+}
+
+// From four threads: the edges sorted by ranges of their smaller end (a stable counting sort
+// by chunks of triangles), then each range's edges counted out to their positions and each
+// position's few sorted and marked, ranges in parallel (a triangle's marks may come from two
+// ranges: stores of 1, any order). The same marks as one thread's way, so the same count.
+std::uint64_t countNonManifoldFacesInRanges(WorkspaceData& ws, const MeshArrays& mesh, std::span<const std::uint32_t> weldOf) {
+  const std::size_t triangleCount = ws.cornerCount / 3, vertexCount = ws.vertexCount;
+  const std::size_t threads = std::max(ws.threads, 1u);
+  int rangeBits = 8;  // ranges of 2^8 to 2^12 positions, about four a thread (their ends fit 16 bits)
+  while (rangeBits < 12 && (std::size_t(2) << rangeBits) * 4 * threads <= vertexCount) ++rangeBits;
+  const std::size_t rangeLength = std::size_t(1) << rangeBits;
+  const std::size_t ranges = (vertexCount + rangeLength - 1) / rangeLength;
+  const std::size_t chunkTriangles = std::clamp<std::size_t>(triangleCount / (4 * threads), 1 << 10, 1 << 15);
+  const std::size_t chunks = (triangleCount + chunkTriangles - 1) / chunkTriangles;
+  ensureSize(ws.edgeCounts, chunks * ranges + ranges + 1);
+  ensureSize(ws.edges, 3 * triangleCount);
+  ensureSize(ws.edgeLowInRange, 3 * triangleCount);
+  ensureSize(ws.edgeNext, vertexCount);
+  ensureSize(ws.onSharedEdge, triangleCount);
+  std::uint32_t* rangeStart = ws.edgeCounts.data() + chunks * ranges;
+  std::uint64_t* edges = ws.edges.data();
+  std::uint16_t* lows = ws.edgeLowInRange.data();
+  std::uint8_t* onShared = ws.onSharedEdge.data();
+  countingSortInChunks(
+      ws, 3 * triangleCount, ranges, chunks,
+      [&](std::size_t begin, std::size_t end, std::uint32_t* counter) {
+        forEachEdge(mesh, weldOf, begin / 3, end / 3,
+                    [&](std::uint32_t low, std::uint32_t, std::size_t) { ++counter[low >> rangeBits]; });
+      },
+      ws.edgeCounts.data(), rangeStart,
+      [&](std::size_t begin, std::size_t end, std::uint32_t* next) {
+        std::fill(onShared + begin / 3, onShared + end / 3, std::uint8_t(0));
+        forEachEdge(mesh, weldOf, begin / 3, end / 3, [&](std::uint32_t low, std::uint32_t high, std::size_t t) {
+          const std::uint32_t slot = next[low >> rangeBits]++;
+          edges[slot] = std::uint64_t(high) << 32 | t;
+          lows[slot] = static_cast<std::uint16_t>(low & (rangeLength - 1));
+        });
+      },
+      3);
+  forRange(ws, ranges, 1, [&](std::size_t begin, std::size_t end) {
+    BucketScratch& scratch = ws.scratch.local();
+    for (std::size_t r = begin; r < end; ++r) {
+      const std::size_t first = r << rangeBits, last = std::min(vertexCount, first + rangeLength);
+      const std::uint32_t from = rangeStart[r], n = rangeStart[r + 1] - from;
+      std::uint32_t* next = ws.edgeNext.data() + first;  // this range's counts, then cursors
+      std::fill(next, next + (last - first), 0u);
+      for (std::uint32_t i = from; i < from + n; ++i) ++next[lows[i]];
+      std::uint32_t total = from;
+      for (std::size_t v = 0; v < last - first; ++v) {
+        const std::uint32_t count = next[v];
+        next[v] = total;
+        total += count;
+      }
+      if (n == 0) continue;
+      ensureSize(scratch.rangeEdges, n);  // grown only
+      ensureSize(scratch.rangeLows, n);
+      std::memcpy(scratch.rangeEdges.data(), edges + from, n * sizeof(std::uint64_t));
+      std::memcpy(scratch.rangeLows.data(), lows + from, n * sizeof(std::uint16_t));
+      for (std::uint32_t i = 0; i < n; ++i) edges[next[scratch.rangeLows[i]]++] = scratch.rangeEdges[i];
+      // Each cursor has run to the end of its position's edges, where the next one's start.
+      std::uint32_t positionStart = from;
+      for (std::size_t v = 0; v < last - first; ++v) {
+        markSharedEdges(edges + positionStart, edges + next[v], [&](std::uint32_t t) {
+          AtomicRef<std::uint8_t>(onShared[t]).store(1, std::memory_order_relaxed);
+        });
+        positionStart = next[v];
+      }
+    }
+  });
+  Combinable<std::uint64_t> faces;
+  forRange(ws, triangleCount, 1 << 16, [&](std::size_t begin, std::size_t end) {
+    faces.local() += static_cast<std::uint64_t>(std::count(onShared + begin, onShared + end, std::uint8_t(1)));
+  });
+  return faces.combine(std::plus<>());
+}
+
+// Faces on an edge (two distinct positions) that more than two faces share. Each edge is
+// counted out to its smaller end (a counting sort), and each end's few edges are sorted by
+// their other end: linear time but for those runs. From four threads by ranges of positions
+// (countNonManifoldFacesInRanges), with the same result. Into the workspace's edgeStart,
+// edgeNext, edges and onSharedEdge.
 std::uint64_t countNonManifoldFaces(WorkspaceData& ws, const MeshArrays& mesh, std::span<const std::uint32_t> weldOf) {
   const std::size_t triangleCount = ws.cornerCount / 3;
-  // A triangle's three positions, read once; false where two are one (collapsed).
-  auto weldsOf = [&](std::size_t t, std::uint32_t welds[3]) {
-    for (int k = 0; k < 3; ++k) welds[k] = weldOf[mesh.indices[3 * t + k]];
-    return welds[0] != welds[1] && welds[1] != welds[2] && welds[0] != welds[2];
-  };
-  auto ends = [](const std::uint32_t welds[3], int k) {
-    const std::uint32_t a = welds[k], b = welds[(k + 1) % 3];
-    return std::pair(std::min(a, b), std::max(a, b));
-  };
+  if (ws.threads >= kThreadedCountThreads && triangleCount >= kThreadedCountTriangles) return countNonManifoldFacesInRanges(ws, mesh, weldOf);
   ensureSize(ws.edgeStart, ws.vertexCount + 1);
   ensureSize(ws.edgeNext, ws.vertexCount);
   std::uint32_t* start = ws.edgeStart.data();
   std::fill(start, start + ws.vertexCount + 1, 0u);
-  std::uint32_t welds[3];
-  for (std::size_t t = 0; t < triangleCount; ++t) {
-    if (!weldsOf(t, welds)) continue;
-    for (int k = 0; k < 3; ++k) ++start[ends(welds, k).first + 1];
-  }
+  forEachEdge(mesh, weldOf, 0, triangleCount, [&](std::uint32_t low, std::uint32_t, std::size_t) { ++start[low + 1]; });
   for (std::size_t v = 0; v < ws.vertexCount; ++v) start[v + 1] += start[v];
   // Each edge as its larger end (high half) and its triangle (low half).
   ensureSize(ws.edges, start[ws.vertexCount]);
   std::uint64_t* edges = ws.edges.data();
   std::uint32_t* next = ws.edgeNext.data();
   std::copy(start, start + ws.vertexCount, next);
-  for (std::size_t t = 0; t < triangleCount; ++t) {
-    if (!weldsOf(t, welds)) continue;
-    for (int k = 0; k < 3; ++k) {
-      const auto [low, high] = ends(welds, k);
-      edges[next[low]++] = std::uint64_t(high) << 32 | t;
-    }
-  }
+  forEachEdge(mesh, weldOf, 0, triangleCount, [&](std::uint32_t low, std::uint32_t high, std::size_t t) {
+    edges[next[low]++] = std::uint64_t(high) << 32 | t;
+  });
   ensureSize(ws.onSharedEdge, triangleCount);
   std::uint8_t* onShared = ws.onSharedEdge.data();
   std::fill(onShared, onShared + triangleCount, std::uint8_t(0));
   for (std::size_t v = 0; v < ws.vertexCount; ++v) {
-    std::uint64_t* const first = edges + start[v];
-    std::uint64_t* const last = edges + start[v + 1];
-    if (last - first < 3) continue;
-    std::sort(first, last);
-    for (auto i = first; i != last;) {
-      auto j = i;
-      while (j != last && *j >> 32 == *i >> 32) ++j;
-      if (j - i > 2) {
-        for (auto k = i; k != j; ++k) onShared[*k & 0xffffffffu] = 1;
-      }
-      i = j;
-    }
+    markSharedEdges(edges + start[v], edges + start[v + 1], [&](std::uint32_t t) { onShared[t] = 1; });
   }
   return static_cast<std::uint64_t>(std::count(onShared, onShared + triangleCount, std::uint8_t(1)));
 }
@@ -279,8 +371,13 @@ Report lengyelOnArrays(WorkspaceData& ws, const MeshArrays& mesh, const CornerOu
   const unsigned weldThreads = ws.threads < 4 ? 1 : ws.threads;
   invokeBoth(ws, [&] { weldAndBucket(ws, mesh, weldThreads); }, [&] {
     weldOf = positionWeld(ws, mesh);
-    data = evaluateTriangles(ws, mesh, weldOf, options, outputs, report);
-    report.nonManifoldFaces = countNonManifoldFaces(ws, mesh, weldOf);
+    // The count (its own arrays) beside the triangle pass, whose pieces the other threads take.
+    // invokeBoth offers its first to other threads and runs its second here: the triangle
+    // pass here, so that its pieces are there to take at once.
+    std::uint64_t nonManifoldFaces = 0;
+    invokeBoth(ws, [&] { nonManifoldFaces = countNonManifoldFaces(ws, mesh, weldOf); },
+               [&] { data = evaluateTriangles(ws, mesh, weldOf, options, outputs, report); });
+    report.nonManifoldFaces = nonManifoldFaces;
   });
   // Frames by the shortest way that gives the full grouping's bits: flat's one-corner groups
   // (framed by the triangle pass; the corners it left undefined here), the buckets where they

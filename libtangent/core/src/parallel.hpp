@@ -38,6 +38,17 @@ void invokeBoth(const WorkspaceData& ws, const First& first, const Second& secon
 template <typename Count, typename Total>
 std::vector<Count> blockStarts(const WorkspaceData& ws, std::size_t blocks, const Total& total);
 
+// A stable counting sort in parallel: the items [0, count), cut into `chunks` equal runs, each
+// counted and scattered by one task with its own counters (counters: chunks * keys), so that
+// the items come out grouped by key, each group in item order; groupStart (keys + 1) gets
+// the groups' starts. countChunk(begin, end, counter) adds the items [begin, end) of one
+// chunk to counter[key]; fill(begin, end, next) places them, next[key] being where the next
+// item of that key goes; `align`: chunks start at multiples of it.
+template <typename CountChunk, typename Fill>
+void countingSortInChunks(const WorkspaceData& ws, std::size_t count, std::size_t keys, std::size_t chunks,
+                          const CountChunk& countChunk, std::uint32_t* counters, std::uint32_t* groupStart,
+                          const Fill& fill, std::size_t align = 1);
+
 // Replaces values[i] by the sum of values[0, i), block by block in parallel; returns the sum
 // of all (which the caller checks against its own limit: each value is stored as it comes).
 inline std::uint64_t exclusiveScan(const WorkspaceData& ws, std::uint32_t* values, std::size_t count);
@@ -163,6 +174,53 @@ std::vector<std::uint32_t> collectFlagged(const WorkspaceData& ws, const std::ui
 template <typename Keep>
 std::vector<std::uint32_t> collectIf(const WorkspaceData& ws, std::size_t count, const Keep& keep) {
   return collectFlagged(ws, nullptr, 0, count, keep);
+}
+
+template <typename CountChunk, typename Fill>
+void countingSortInChunks(const WorkspaceData& ws, std::size_t count, std::size_t keys, std::size_t chunks,
+                          const CountChunk& countChunk, std::uint32_t* counters, std::uint32_t* groupStart,
+                          const Fill& fill, std::size_t align) {
+  const std::size_t length = chunks == 0 ? 0 : (count / align + chunks - 1) / chunks * align;
+  forRange(ws, chunks, 1, [&](std::size_t begin, std::size_t end) {
+    for (std::size_t k = begin; k < end; ++k) {
+      std::uint32_t* counter = counters + k * keys;
+      std::fill(counter, counter + keys, 0u);
+      countChunk(std::min(count, k * length), std::min(count, (k + 1) * length), counter);
+    }
+  });
+  // Key-major offsets: each group's items chunk by chunk. In blocks of keys, so that the
+  // scan runs in parallel too (one thread scanning a vertex's worth of keys per corner bucket
+  // was most of the bucketing's serial time): each block's total, the blocks' starts, then
+  // each block's offsets from its start.
+  constexpr std::size_t kKeyBlock = 1 << 14;
+  const std::size_t blocks = (keys + kKeyBlock - 1) / kKeyBlock;
+  const std::vector<std::uint32_t> blockStart = blockStarts<std::uint32_t>(ws, blocks, [&](std::size_t b) {
+    std::uint32_t n = 0;
+    for (std::size_t k = 0; k < chunks; ++k) {
+      const std::uint32_t* counter = counters + k * keys;
+      for (std::size_t g = b * kKeyBlock; g < std::min(keys, (b + 1) * kKeyBlock); ++g) n += counter[g];
+    }
+    return n;
+  });
+  forRange(ws, blocks, 1, [&](std::size_t begin, std::size_t end) {
+    for (std::size_t b = begin; b < end; ++b) {
+      std::uint32_t total = blockStart[b];
+      for (std::size_t g = b * kKeyBlock; g < std::min(keys, (b + 1) * kKeyBlock); ++g) {
+        groupStart[g] = total;
+        for (std::size_t k = 0; k < chunks; ++k) {
+          const std::uint32_t n = counters[k * keys + g];
+          counters[k * keys + g] = total;
+          total += n;
+        }
+      }
+    }
+  });
+  groupStart[keys] = blockStart[blocks];
+  forRange(ws, chunks, 1, [&](std::size_t begin, std::size_t end) {
+    for (std::size_t k = begin; k < end; ++k) {
+      fill(std::min(count, k * length), std::min(count, (k + 1) * length), counters + k * keys);
+    }
+  });
 }
 
 inline std::uint64_t exclusiveScan(const WorkspaceData& ws, std::uint32_t* values, std::size_t count) {

@@ -34,56 +34,16 @@ bool sameVertex(const MeshArrays& mesh, std::size_t a, std::size_t b) {
   return mesh.uvs[2 * a] == mesh.uvs[2 * b] && mesh.uvs[2 * a + 1] == mesh.uvs[2 * b + 1];
 }
 
-// A stable counting sort in parallel: the items [0, count), cut into `chunks` equal runs, each
-// counted and scattered by one task with its own counters (counters: chunks * keys), so that
-// out holds the items grouped by key, each group in item order; groupStart (keys + 1) gets
-// the groups' starts.
-// fill(begin, end, next) places the items [begin, end) of one chunk, next[key] being where
-// the next item of that key goes; `align`: chunks start at multiples of it.
+// countingSortInChunks (parallel.hpp) by key(i) of each item.
 template <typename Key, typename Fill>
 void stableCountingSort(const WorkspaceData& ws, std::size_t count, std::size_t keys, std::size_t chunks, const Key& key,
                         std::uint32_t* counters, std::uint32_t* groupStart, const Fill& fill, std::size_t align = 1) {
-  const std::size_t length = chunks == 0 ? 0 : (count / align + chunks - 1) / chunks * align;
-  forRange(ws, chunks, 1, [&](std::size_t begin, std::size_t end) {
-    for (std::size_t k = begin; k < end; ++k) {
-      std::uint32_t* counter = counters + k * keys;
-      std::fill(counter, counter + keys, 0u);
-      for (std::size_t i = k * length; i < std::min(count, (k + 1) * length); ++i) ++counter[key(i)];
-    }
-  });
-  // Key-major offsets: each group's items chunk by chunk. In blocks of keys, so that the
-  // scan runs in parallel too (one thread scanning a vertex's worth of keys per corner bucket
-  // was most of the bucketing's serial time): each block's total, the blocks' starts, then
-  // each block's offsets from its start.
-  constexpr std::size_t kKeyBlock = 1 << 14;
-  const std::size_t blocks = (keys + kKeyBlock - 1) / kKeyBlock;
-  const std::vector<std::uint32_t> blockStart = blockStarts<std::uint32_t>(ws, blocks, [&](std::size_t b) {
-    std::uint32_t n = 0;
-    for (std::size_t k = 0; k < chunks; ++k) {
-      const std::uint32_t* counter = counters + k * keys;
-      for (std::size_t g = b * kKeyBlock; g < std::min(keys, (b + 1) * kKeyBlock); ++g) n += counter[g];
-    }
-    return n;
-  });
-  forRange(ws, blocks, 1, [&](std::size_t begin, std::size_t end) {
-    for (std::size_t b = begin; b < end; ++b) {
-      std::uint32_t total = blockStart[b];
-      for (std::size_t g = b * kKeyBlock; g < std::min(keys, (b + 1) * kKeyBlock); ++g) {
-        groupStart[g] = total;
-        for (std::size_t k = 0; k < chunks; ++k) {
-          const std::uint32_t n = counters[k * keys + g];
-          counters[k * keys + g] = total;
-          total += n;
-        }
-      }
-    }
-  });
-  groupStart[keys] = blockStart[blocks];
-  forRange(ws, chunks, 1, [&](std::size_t begin, std::size_t end) {
-    for (std::size_t k = begin; k < end; ++k) {
-      fill(std::min(count, k * length), std::min(count, (k + 1) * length), counters + k * keys);
-    }
-  });
+  countingSortInChunks(
+      ws, count, keys, chunks,
+      [&](std::size_t begin, std::size_t end, std::uint32_t* counter) {
+        for (std::size_t i = begin; i < end; ++i) ++counter[key(i)];
+      },
+      counters, groupStart, fill, align);
 }
 template <typename Key>
 void stableCountingSort(const WorkspaceData& ws, std::size_t count, std::size_t keys, std::size_t chunks, const Key& key,

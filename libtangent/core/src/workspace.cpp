@@ -28,7 +28,7 @@ std::size_t WorkspaceData::bytes() const {
          size(bucketExtra) + size(bucketUniform) + size(positionRepresentative) + size(positionTable) +
          size(triangleTerms) + size(cornerNormals) + size(cornerWeights) + size(invalidNormal) +
          size(vertexUnitNormals) + size(vertexNormalInvalid) + size(edgeStart) + size(edgeNext) + size(edges) +
-         size(onSharedEdge);
+         size(onSharedEdge) + size(edgeCounts) + size(edgeLowInRange);
 }
 
 void checkArraySizes(const MeshArrays& mesh) {

@@ -64,6 +64,7 @@ class AtomicRef {
     value_ = desired;
     return true;
   }
+  void store(T desired, std::memory_order) { value_ = desired; }
   T fetch_add(T add, std::memory_order) {
     const T old = value_;
     value_ += add;
@@ -97,6 +98,9 @@ struct BucketScratch {
   ScratchVector<double> values;
   // The bucketing from four threads (weld.cpp, bucketByRanges): one range's ids set aside.
   ScratchVector<std::uint32_t> rangeIds;
+  // The non-manifold count from four threads (lengyel.cpp): one range's edges set aside.
+  ScratchVector<std::uint64_t> rangeEdges;
+  ScratchVector<std::uint16_t> rangeLows;
 };
 
 
@@ -144,6 +148,10 @@ struct WorkspaceData {
   BulkVector<std::uint32_t> edgeStart, edgeNext;
   BulkVector<std::uint64_t> edges;
   BulkVector<std::uint8_t> onSharedEdge;
+  // ... from four threads, first by ranges of smaller ends: per-chunk counters then the
+  // ranges' starts, and each edge's smaller end within its range.
+  BulkVector<std::uint32_t> edgeCounts;
+  BulkVector<std::uint16_t> edgeLowInRange;
   PerThread<BucketScratch> scratch;
   // Strided or 16-bit-indexed input, packed (entry.cpp).
   BulkVector<float> packedPositions, packedNormals, packedUvs;
