@@ -91,7 +91,7 @@ std::span<const options::Option> viewerOptions() {
     {"bitangent", 0, Kind::choice, choicesOf(kBitangentModes), "per-fragment", 0, 0, false, kView, kCli, "MODE",
      "per-fragment: B = cross(N, T) * w from the interpolated N and T; per-vertex: B interpolated from the "
      "vertices; to match the baker"},
-    {"glyphs", 0, Kind::flag, "", "false", 0, 0, false, kView, kCli, "", "draw tangent frames (T red, B green, N blue)"},
+    {"glyphs", 0, Kind::flag, "", "false", 0, 0, false, kView, kCli, "", "draw tangent frames (T red, B green, N blue); in the anisotropy-direction view, the anisotropy's direction (amber)"},
     {"no-shadows", 0, Kind::flag, "", "false", 0, 0, false, kView, kCli, "", "no shadow map"},
     {"pcf", 0, Kind::integer, "", "1", 0, 2, false, kView, kCli, "N",
      "percentage-closer filtering: 0 off, 1 = 3x3, 2 = 5x5 (0 by default on a software rasteriser)"},

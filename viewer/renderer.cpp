@@ -77,10 +77,14 @@ void setUniform(GLuint program, const char* name, float v) { glUniform1f(glGetUn
 void setUniform(GLuint program, const char* name, int v) { glUniform1i(glGetUniformLocation(program, name), v); }
 
 // A texture's UV set and KHR_texture_transform, for textureUv() in mesh.frag.
-void setUvUniforms(GLuint program, const std::string& prefix, const gltf::TextureRef& ref) {
+glm::mat3 uvTransformMatrix(const gltf::TextureRef& ref) {
   const auto& t = ref.uvTransform;
+  return glm::mat3(t[0], t[1], 0, t[2], t[3], 0, t[4], t[5], 1);
+}
+
+void setUvUniforms(GLuint program, const std::string& prefix, const gltf::TextureRef& ref) {
   setUniform(program, (prefix + "UvSet").c_str(), ref.texCoord == 1 ? 1 : 0);
-  setUniform(program, (prefix + "UvTransform").c_str(), glm::mat3(t[0], t[1], 0, t[2], t[3], 0, t[4], t[5], 1));
+  setUniform(program, (prefix + "UvTransform").c_str(), uvTransformMatrix(ref));
 }
 
 // Every texture a material may sample.
@@ -229,16 +233,19 @@ using namespace renderer_detail;
 namespace {
 
 // How the materials use each image: each is uploaded as they use it, sRGB where it holds
-// colour, linear where it holds data, both when used both ways.
+// colour, linear where it holds data, both when used both ways; an anisotropy direction
+// texture's pixels are kept on the CPU as well (the anisotropy-direction view's glyphs read them).
 struct ImageUses {
-  std::vector<bool> asColour, asData;
+  std::vector<bool> asColour, asData, asDirection;
 };
 
 // The uses of each image; a message for each texture on a UV set past TEXCOORD_1.
 ImageUses imageUses(const gltf::Scene& scene, std::vector<std::string>& messages) {
   const std::size_t imageCount = scene.images.size();
-  ImageUses uses{std::vector<bool>(imageCount), std::vector<bool>(imageCount)};
+  ImageUses uses{std::vector<bool>(imageCount), std::vector<bool>(imageCount), std::vector<bool>(imageCount)};
   for (const auto& material : scene.materials) {
+    const int direction = material.anisotropyTexture.image;
+    if (material.hasAnisotropy && direction >= 0 && direction < static_cast<int>(imageCount)) uses.asDirection[direction] = true;
     for (const gltf::TextureRef* ref : textureRefs(material)) {
       if (ref->image < 0 || ref->image >= static_cast<int>(imageCount)) continue;
       (ref->colour ? uses.asColour : uses.asData)[ref->image] = true;
@@ -251,12 +258,14 @@ ImageUses imageUses(const gltf::Scene& scene, std::vector<std::string>& messages
 }
 
 // Each used image decoded, fitted to the GL's size limit and uploaded into `linear` and `srgb`
-// (one slot per image; empty where unused or left out), its notes and errors in `messages`.
+// (one slot per image; empty where unused or left out), the direction images' pixels kept in
+// `kept` (empty elsewhere), its notes and errors in `messages`.
 void uploadImages(const gltf::Scene& scene, const ImageUses& uses, std::vector<Texture>& linear, std::vector<Texture>& srgb,
-                  std::vector<std::string>& messages) {
+                  std::vector<DecodedImage>& kept, std::vector<std::string>& messages) {
   const std::size_t imageCount = scene.images.size();
   linear.resize(imageCount);
   srgb.resize(imageCount);
+  kept.assign(imageCount, DecodedImage{});
   const int maxSize = maxTextureSize();
   for (std::size_t i = 0; i < imageCount; ++i) {
     if (!uses.asColour[i] && !uses.asData[i]) continue;
@@ -273,6 +282,7 @@ void uploadImages(const gltf::Scene& scene, const ImageUses& uses, std::vector<T
     if (std::string note = fitTextureSize(image, maxSize, scene.images[i].label); !note.empty()) messages.push_back(std::move(note));
     if (uses.asColour[i]) srgb[i] = uploadTexture(image, true);
     if (uses.asData[i]) linear[i] = uploadTexture(image, false);
+    if (uses.asDirection[i]) kept[i] = std::move(image);
   }
 }
 
@@ -292,7 +302,7 @@ void Renderer::setScene(gltf::Scene scene, std::vector<std::string>& messages) {
   glyphsBuiltFor_ = -1;
   ++sceneVersion_;
   shadowPasses_ = 0;
-  uploadImages(scene_, imageUses(scene_, messages), textures_, srgbTextures_, messages);
+  uploadImages(scene_, imageUses(scene_, messages), textures_, srgbTextures_, directionImages_, messages);
   auto upload = [&](const gltf::DrawItem& item, GLenum usage) {
     GpuMesh mesh;
     mesh.material = item.material;

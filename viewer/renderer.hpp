@@ -17,6 +17,7 @@
 #include "pose.hpp"
 #include "samplers.hpp"
 #include "shader_library.hpp"
+#include "textures.hpp"
 #include "tangent/scene.hpp"
 
 namespace tangent::viewer {
@@ -305,6 +306,9 @@ class Renderer {
   GLsizei glyphVertices_ = 0;
   int glyphsBuiltFor_ = -1;
   bool glyphsShowAnisotropy_ = false;  // what the glyphs were built for: directions, or frames
+  // Per image, the pixels of those an anisotropy texture uses (empty elsewhere, and where one
+  // could not be decoded), as uploaded: the glyphs sample them where the shader samples the GL's.
+  std::vector<DecodedImage> directionImages_;
 };
 
 }  // namespace tangent::viewer

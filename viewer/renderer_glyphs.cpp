@@ -13,7 +13,6 @@
 #include <chrono>
 #include <cmath>
 #include <limits>
-#include <map>
 #include <numeric>
 #include <span>
 
@@ -31,8 +30,8 @@ namespace {
 
 // A texture's texel at a UV as the GL sampler would wrap it (nearest: a glyph needs no filter).
 glm::vec4 texelAt(const DecodedImage& image, const gltf::TextureRef& ref, float u0, float v0) {
-  const auto& t = ref.uvTransform;
-  const float u = t[0] * u0 + t[2] * v0 + t[4], v = t[1] * u0 + t[3] * v0 + t[5];
+  const glm::vec3 uv = uvTransformMatrix(ref) * glm::vec3(u0, v0, 1);
+  const float u = uv.x, v = uv.y;
   auto wrap = [](float x, int size, gltf::TextureSampler::Wrap mode) {
     if (!std::isfinite(x)) return 0;
     const float scaled = std::floor(x * static_cast<float>(size));
@@ -73,23 +72,6 @@ glm::vec3 anisotropyAt(const gltf::MaterialDesc& material, const DecodedImage* i
   return {c * direction.x - s * direction.y, s * direction.x + c * direction.y, std::clamp(strength, 0.0f, 1.0f)};
 }
 
-// The anisotropy direction textures the glyphs sample, decoded on the CPU once per build (only
-// for the anisotropy-direction view's glyphs), by image index; left out where one cannot be
-// decoded (the direction is then T's, as the shader's without a map; the lit view's load has
-// said why already).
-std::map<int, DecodedImage> anisotropyImages(const gltf::Scene& scene) {
-  std::map<int, DecodedImage> images;
-  for (const auto& material : scene.materials) {
-    const int index = material.anisotropyTexture.image;
-    if (!material.hasAnisotropy || index < 0 || static_cast<std::size_t>(index) >= scene.images.size() || images.count(index)) continue;
-    DecodedImage image;
-    std::string error;
-    if (decodeImage(scene.images[static_cast<std::size_t>(index)], image, error) && image.width > 0 && image.height > 0)
-      images.emplace(index, std::move(image));
-  }
-  return images;
-}
-
 }  // namespace
 
 // The glyph lines (position, colour; two vertices a line): every stride-th corner of all
@@ -101,7 +83,6 @@ std::vector<float> Renderer::glyphLines(const RenderSettings& settings, bool ani
   for (const auto& instance : scene_.instances) corners += scene_.items[instance.item].positions.size() / 3;
   const std::size_t stride = std::max<std::size_t>(1, corners / std::max(settings.maxGlyphs, 1));
   const float length = 0.04f * boundsRadius();
-  const std::map<int, DecodedImage> images = anisotropy ? anisotropyImages(scene_) : std::map<int, DecodedImage>{};
   std::vector<float> lines;
   auto line = [&](const glm::vec3& p, const glm::vec3& axis, float scale, const glm::vec3& colour) {
     if (!std::isfinite(axis.x) || !std::isfinite(axis.y) || !std::isfinite(axis.z)) return;
@@ -121,8 +102,13 @@ std::vector<float> Renderer::glyphLines(const RenderSettings& settings, bool ani
       next -= itemCorners;
       continue;
     }
-    const auto image = material ? images.find(material->anisotropyTexture.image) : images.end();
-    const DecodedImage* directions = image != images.end() ? &image->second : nullptr;
+    // The direction texture's pixels as uploaded (none where it has none or it could not be
+    // decoded: the direction is then T's, as the shader's without a map).
+    const int imageIndex = material ? material->anisotropyTexture.image : -1;
+    const DecodedImage* directions =
+        imageIndex >= 0 && static_cast<std::size_t>(imageIndex) < directionImages_.size() && directionImages_[static_cast<std::size_t>(imageIndex)].width > 0
+            ? &directionImages_[static_cast<std::size_t>(imageIndex)]
+            : nullptr;
     const CornerFrames frame = framesOf(i);
     const glm::mat4 model = instances_[i].model;
     const glm::mat3 normalMatrix = glm::transpose(glm::inverse(glm::mat3(model)));
@@ -132,18 +118,18 @@ std::vector<float> Renderer::glyphLines(const RenderSettings& settings, bool ani
       const glm::vec3 p = glm::vec3(model * glm::vec4(glm::make_vec3(&frame.positions[3 * c]), 1));
       const glm::vec3 n = glm::normalize(normalMatrix * glm::make_vec3(&frame.normals[3 * c]));
       const glm::vec3 t = glm::normalize(glm::mat3(model) * glm::make_vec3(&frame.tangents[4 * c]));
-      const glm::vec3 b = glm::cross(n, t) * (frame.tangents[4 * c + 3] < 0 ? -mirror : mirror);
+      const float handedness = frame.tangents[4 * c + 3] < 0 ? -mirror : mirror;
       if (anisotropy) {
         // In the surface: T made orthogonal to N, as the shader's frame; lifted off it by a tenth
         // of a glyph, or the depth test would hide a line lying in a flat surface.
         const glm::vec3 surfaceT = glm::normalize(t - n * glm::dot(n, t));
-        const glm::vec3 surfaceB = glm::cross(n, surfaceT) * (frame.tangents[4 * c + 3] < 0 ? -mirror : mirror);
+        const glm::vec3 surfaceB = glm::cross(n, surfaceT) * handedness;
         const glm::vec3 a = anisotropyAt(*material, directions, item, c);
         line(p + n * (0.1f * length), glm::normalize(surfaceT * a.x + surfaceB * a.y), std::max(a.z, 0.15f), {1.0f, 0.7f, 0.1f});
         continue;
       }
       line(p, t, 1, {1, 0.2f, 0.2f});
-      line(p, b, 1, {0.2f, 1, 0.2f});
+      line(p, glm::cross(n, t) * handedness, 1, {0.2f, 1, 0.2f});
       line(p, n, 1, {0.3f, 0.5f, 1});
     }
     next -= itemCorners;

@@ -29,6 +29,8 @@ void setUniform(GLuint program, const char* name, float v);
 void setUniform(GLuint program, const char* name, int v);
 // A texture's UV set and KHR_texture_transform, for textureUv() in mesh.frag.
 void setUvUniforms(GLuint program, const std::string& prefix, const gltf::TextureRef& ref);
+// KHR_texture_transform as textureUv() applies it: uv' = M * (u, v, 1).
+glm::mat3 uvTransformMatrix(const gltf::TextureRef& ref);
 
 // Every texture a material may sample.
 std::array<const gltf::TextureRef*, 11> textureRefs(const gltf::MaterialDesc& m);
