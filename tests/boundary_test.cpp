@@ -389,7 +389,18 @@ TEST(WeldIdentity, ReferenceCAgreesWithTheHandComputedWeld) {
 #endif
 
 // ---- (c) the documented vertex split order ----
-//
+
+// Vertices in the z = 0 plane with the normal +z, added one at a time (the split-order tests).
+struct PlaneVertices {
+  std::vector<float> positions, normals, uvs;
+  void add(float x, float y, float u, float v) {
+    positions.insert(positions.end(), {x, y, 0});
+    normals.insert(normals.end(), {0, 0, 1});
+    uvs.insert(uvs.end(), {u, v});
+  }
+  std::uint32_t count() const { return static_cast<std::uint32_t>(positions.size() / 3); }
+};
+
 // tangent.hpp, CornerOutputs::cornerVertex: "Corners of input vertex v that got the same
 // tangent bits as v's first corner (in corner order) keep vertex v; every other distinct
 // tangent of v becomes a new vertex, numbered from the input vertex count up (in order of
@@ -407,27 +418,22 @@ TEST(WeldIdentity, ReferenceCAgreesWithTheHandComputedWeld) {
 // 6 -> 13, 12 -> 14. (Numbered by input vertex instead, vertex 0's copy would come first; by
 // tangent value, +y before -x.)
 TEST(SplitOrder, FirstCornerKeepsTheVertexAndNewOnesFollowInOrderOfFirstCorner) {
-  std::vector<float> positions, normals, uvs;
-  auto vertex = [&](float x, float y, float u, float v) {
-    positions.insert(positions.end(), {x, y, 0});
-    normals.insert(normals.end(), {0, 0, 1});
-    uvs.insert(uvs.end(), {u, v});
-  };
+  PlaneVertices mesh;
   // Star 2 around (10, 0): T3 in the first quadrant (u = x, v = y), T4 in the third (u = -x, v = -y).
-  vertex(10, 0, 0, 0);
-  vertex(11, 0, 1, 0), vertex(10, 1, 0, 1);
-  vertex(9, 0, 1, 0), vertex(10, -1, 0, 1);
+  mesh.add(10, 0, 0, 0);
+  mesh.add(11, 0, 1, 0), mesh.add(10, 1, 0, 1);
+  mesh.add(9, 0, 1, 0), mesh.add(10, -1, 0, 1);
   // Star 1 around the origin: T0 first quadrant (u = x, v = y), T1 third (u = -x, v = -y),
   // T2 fourth (u = y, v = -x: dP/du = +y).
-  vertex(0, 0, 0, 0);
-  vertex(1, 0, 1, 0), vertex(0, 1, 0, 1);
-  vertex(-1, 0, 1, 0), vertex(0, -1, 0, 1);
-  vertex(0, -1, -1, 0), vertex(1, 0, 0, -1);
+  mesh.add(0, 0, 0, 0);
+  mesh.add(1, 0, 1, 0), mesh.add(0, 1, 0, 1);
+  mesh.add(-1, 0, 1, 0), mesh.add(0, -1, 0, 1);
+  mesh.add(0, -1, -1, 0), mesh.add(1, 0, 0, -1);
   const std::vector<std::uint32_t> indices{5, 6, 7, 5, 8, 9, 5, 10, 11, 0, 1, 2, 0, 3, 4};
   std::vector<float> tangents(indices.size() * 4);
   std::vector<std::uint32_t> cornerVertex(indices.size(), 0xDEADBEEFu);  // garbage: untouched output shows
   tangent::TangentWorkspace workspace;
-  const auto report = tangent::computeCornerTangents({positions, normals, uvs, indices}, {tangents, {}, cornerVertex}, {}, workspace);
+  const auto report = tangent::computeCornerTangents({mesh.positions, mesh.normals, mesh.uvs, indices}, {tangents, {}, cornerVertex}, {}, workspace);
   // The frames the order is built on, by hand (each triangle's own dP/du; no two share an edge).
   const std::array<std::array<float, 3>, 5> triangleTangent{{{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {1, 0, 0}, {-1, 0, 0}}};
   for (std::size_t c = 0; c < indices.size(); ++c) {
@@ -443,21 +449,16 @@ TEST(SplitOrder, FirstCornerKeepsTheVertexAndNewOnesFollowInOrderOfFirstCorner) 
 // The same rule inside one input vertex with the triangles in the other order: the first
 // corner is now T2's (+y), so +y keeps vertex 5 and -x, +x follow in order of first corner.
 TEST(SplitOrder, ReorderedTrianglesMoveWhichTangentKeepsTheVertex) {
-  std::vector<float> positions, normals, uvs;
-  auto vertex = [&](float x, float y, float u, float v) {
-    positions.insert(positions.end(), {x, y, 0});
-    normals.insert(normals.end(), {0, 0, 1});
-    uvs.insert(uvs.end(), {u, v});
-  };
-  vertex(0, 0, 0, 0);
-  vertex(1, 0, 1, 0), vertex(0, 1, 0, 1);    // +x
-  vertex(-1, 0, 1, 0), vertex(0, -1, 0, 1);  // -x
-  vertex(0, -1, -1, 0), vertex(1, 0, 0, -1); // +y
+  PlaneVertices mesh;
+  mesh.add(0, 0, 0, 0);
+  mesh.add(1, 0, 1, 0), mesh.add(0, 1, 0, 1);    // +x
+  mesh.add(-1, 0, 1, 0), mesh.add(0, -1, 0, 1);  // -x
+  mesh.add(0, -1, -1, 0), mesh.add(1, 0, 0, -1); // +y
   const std::vector<std::uint32_t> indices{0, 5, 6, 0, 3, 4, 0, 1, 2};  // +y, -x, +x
   std::vector<float> tangents(indices.size() * 4);
   std::vector<std::uint32_t> cornerVertex(indices.size(), 0xDEADBEEFu);
   tangent::TangentWorkspace workspace;
-  tangent::computeCornerTangents({positions, normals, uvs, indices}, {tangents, {}, cornerVertex}, {}, workspace);
+  tangent::computeCornerTangents({mesh.positions, mesh.normals, mesh.uvs, indices}, {tangents, {}, cornerVertex}, {}, workspace);
   const std::vector<std::uint32_t> expected{0, 5, 6, 7, 3, 4, 8, 1, 2};
   for (std::size_t c = 0; c < indices.size(); ++c) EXPECT_EQ(cornerVertex[c], expected[c]) << "corner " << c;
 }
@@ -468,30 +469,25 @@ TEST(SplitOrder, ReorderedTrianglesMoveWhichTangentKeepsTheVertex) {
 // order where the new ones by first corner (-x, +y) are not in the order of their bits (+y first).
 TEST(SplitOrder, FewAndManyCornersOfAVertexFollowTheSameRule) {
   for (const std::size_t triangles : {5u, 16u, 17u, 40u}) {
-    std::vector<float> positions, normals, uvs;
-    auto vertex = [&](float x, float y, float u, float v) {
-      positions.insert(positions.end(), {x, y, 0});
-      normals.insert(normals.end(), {0, 0, 1});
-      uvs.insert(uvs.end(), {u, v});
-    };
-    vertex(0, 0, 0, 0);
+    PlaneVertices mesh;
+    mesh.add(0, 0, 0, 0);
     std::vector<std::uint32_t> indices;
     std::vector<int> direction;  // 0: +x, 1: -x, 2: +y
     for (std::size_t k = 0; k < triangles; ++k) {
       const float s = static_cast<float>(k + 1);
       const int d = static_cast<int>(k % 3);
-      const auto first = static_cast<std::uint32_t>(positions.size() / 3);
-      if (d == 0) vertex(s, 0, s, 0), vertex(0, s, 0, s);         // u = x
-      else if (d == 1) vertex(-s, 0, s, 0), vertex(0, -s, 0, s);  // u = -x
-      else vertex(0, -s, -s, 0), vertex(s, 0, 0, -s);             // u = y
+      const auto first = mesh.count();
+      if (d == 0) mesh.add(s, 0, s, 0), mesh.add(0, s, 0, s);         // u = x
+      else if (d == 1) mesh.add(-s, 0, s, 0), mesh.add(0, -s, 0, s);  // u = -x
+      else mesh.add(0, -s, -s, 0), mesh.add(s, 0, 0, -s);             // u = y
       indices.insert(indices.end(), {0, first, first + 1});
       direction.push_back(d);
     }
-    const auto vertexCount = static_cast<std::uint32_t>(positions.size() / 3);
+    const auto vertexCount = mesh.count();
     std::vector<float> tangents(indices.size() * 4);
     std::vector<std::uint32_t> cornerVertex(indices.size(), 0xDEADBEEFu);
     tangent::TangentWorkspace workspace;
-    const auto report = tangent::computeCornerTangents({positions, normals, uvs, indices}, {tangents, {}, cornerVertex}, {}, workspace);
+    const auto report = tangent::computeCornerTangents({mesh.positions, mesh.normals, mesh.uvs, indices}, {tangents, {}, cornerVertex}, {}, workspace);
     // Vertex 0: its first corner's tangent keeps it, each other new one is numbered from the
     // vertex count up in order of first corner; every outer vertex has one corner and keeps it.
     std::array<std::uint32_t, 3> numberOf{~0u, ~0u, ~0u};

@@ -47,11 +47,15 @@ def bake(path, out, *args):
     return json.loads(out.with_suffix(".json").read_text())[0]["primitives"][0], done
 
 
+def start_of(doc, accessor):
+    """Where a tightly packed accessor's data starts in the BIN chunk."""
+    return doc["bufferViews"][accessor["bufferView"]].get("byteOffset", 0) + accessor.get("byteOffset", 0)
+
+
 def tangents_of(path):
     doc, chunk = glb_parts(path)
     accessor = doc["accessors"][doc["meshes"][0]["primitives"][0]["attributes"]["TANGENT"]]
-    view = doc["bufferViews"][accessor["bufferView"]]
-    start = view.get("byteOffset", 0) + accessor.get("byteOffset", 0)
+    start = start_of(doc, accessor)
     return chunk[start:start + 16 * accessor["count"]]
 
 
@@ -136,17 +140,13 @@ def edited_tangents(source, out, edit):
     """The .glb `source` with each TANGENT (x, y, z, w) replaced by edit(tangent, normal)."""
     doc, chunk = glb_parts(source)
     attributes = doc["meshes"][0]["primitives"][0]["attributes"]
-
-    def start_of(accessor):
-        return doc["bufferViews"][accessor["bufferView"]].get("byteOffset", 0) + accessor.get("byteOffset", 0)
-
     tangents, normals = doc["accessors"][attributes["TANGENT"]], doc["accessors"][attributes["NORMAL"]]
     count = tangents["count"]
-    t = struct.unpack_from(f"<{4 * count}f", chunk, start_of(tangents))
-    n = struct.unpack_from(f"<{3 * count}f", chunk, start_of(normals))
+    t = struct.unpack_from(f"<{4 * count}f", chunk, start_of(doc, tangents))
+    n = struct.unpack_from(f"<{3 * count}f", chunk, start_of(doc, normals))
     edited = [value for k in range(count) for value in edit(t[4 * k:4 * k + 4], n[3 * k:3 * k + 3])]
     blob = bytearray(chunk)
-    struct.pack_into(f"<{4 * count}f", blob, start_of(tangents), *edited)
+    struct.pack_into(f"<{4 * count}f", blob, start_of(doc, tangents), *edited)
     return write(out, glb_bytes(doc, bytes(blob)))
 
 
