@@ -12,6 +12,14 @@
 #   dist/tangent_wasm.browser.mjs  browsers and workers (ES module factory, no Node code)
 #   dist/browser.mjs               index.mjs with its module taken from the browser build:
 #                                  the package's "browser" export (package.json)
+# and the threaded build for Node (the package's "./threads" export): the same sources with the
+# core's own pool of standard threads (TANGENT_STD_THREADS) on emscripten's pthreads, which
+# start as a pool of Node workers when the module loads (one fewer than the machine's cores, at
+# most 15: the calling thread is the other; LIBTANGENT_WASM_THREADS sets the total):
+#   dist/threads.mjs               index.mjs with its module taken from the threaded build
+#   dist/tangent_wasm_threads.cjs  its module, and tangent_wasm_threads.worker.js its workers'
+#                                  script (pthreads need one file of their own in emscripten
+#                                  3.1.6); dist/package.json makes that .js file CommonJS.
 # emscripten 3.1.6's ES module output cannot serve Node (it uses __dirname), hence two links.
 # Usage: wasm/build.sh   (installs emscripten first where it is missing)
 set -euo pipefail
@@ -24,21 +32,35 @@ objects=$out/obj
 rm -rf "$out" && mkdir -p "$objects"
 # emscripten's JS optimizer needs Debian's acorn where node is not Debian's own.
 export NODE_PATH=/usr/share/nodejs${NODE_PATH:+:$NODE_PATH}
+mkdir -p "$objects/serial" "$objects/threads"
 sources=(libtangent/core/src/*.cpp libtangent/core/src/mikktspace/*.cpp wasm/src/bindings.cpp)
-for source in "${sources[@]}"; do
-  # The core's own sources see its private headers; the bindings only its public ones.
-  private=-Ilibtangent/core/src
-  [[ $source == wasm/* ]] && private=
-  em++ -std=c++20 -O3 -msimd128 -msse2 -fexceptions -DTANGENT_SERIAL -DNDEBUG -I libtangent/core/include $private \
-    -c "$source" -o "$objects/$(tr / _ <<<"$source").o"
-done
-link=(em++ -O3 -fexceptions "$objects"/*.o
-  -sMODULARIZE=1 -sEXPORT_NAME=createTangentModule -sSINGLE_FILE=1 -sALLOW_MEMORY_GROWTH=1 -sMAXIMUM_MEMORY=4GB
-  -sFILESYSTEM=0
-  -sEXPORTED_FUNCTIONS=_malloc,_free,_tangent_run,_tangent_share_begin,_tangent_stage_corners,_tangent_share_add,_tangent_error,_tangent_corner_tangents,_tangent_corner_vertices,_tangent_vertex_tangents,_tangent_vertex_sources,_tangent_report
-  -sEXPORTED_RUNTIME_METHODS=UTF8ToString,stringToUTF8,lengthBytesUTF8)
+# compile VARIANT FLAGS...: every source into $objects/VARIANT, two at a time.
+compile() {
+  local variant=$1
+  shift
+  for source in "${sources[@]}"; do
+    # The core's own sources see its private headers; the bindings only its public ones.
+    private=-Ilibtangent/core/src
+    [[ $source == wasm/* ]] && private=
+    em++ -std=c++20 -O3 -msimd128 -msse2 -fexceptions "$@" -DNDEBUG -I libtangent/core/include $private \
+      -c "$source" -o "$objects/$variant/$(tr / _ <<<"$source").o" &
+    while [ "$(jobs -rp | wc -l)" -ge 2 ]; do wait -n; done
+  done
+  wait
+}
+compile serial -DTANGENT_SERIAL
+compile threads -pthread -DTANGENT_STD_THREADS
+exports=_malloc,_free,_tangent_run,_tangent_share_begin,_tangent_stage_corners,_tangent_share_add,_tangent_error,_tangent_corner_tangents,_tangent_corner_vertices,_tangent_vertex_tangents,_tangent_vertex_sources,_tangent_report
+settings=(-sMODULARIZE=1 -sEXPORT_NAME=createTangentModule -sSINGLE_FILE=1 -sALLOW_MEMORY_GROWTH=1 -sMAXIMUM_MEMORY=4GB
+  -sFILESYSTEM=0 -sEXPORTED_FUNCTIONS=$exports -sEXPORTED_RUNTIME_METHODS=UTF8ToString,stringToUTF8,lengthBytesUTF8)
+link=(em++ -O3 -fexceptions "$objects"/serial/*.o "${settings[@]}")
 "${link[@]}" -sENVIRONMENT=node -o "$out/tangent_wasm.cjs"
 "${link[@]}" -sENVIRONMENT=web,worker -sEXPORT_ES6=1 -o "$out/tangent_wasm.browser.mjs"
+# The pool's size is a JavaScript expression, evaluated as the module loads.
+pool='Math.max(1,Math.min(15,(+process.env.LIBTANGENT_WASM_THREADS||require("os").cpus().length)-1))'
+em++ -O3 -fexceptions -pthread "$objects"/threads/*.o "${settings[@]}" -sENVIRONMENT=node,worker \
+  "-sPTHREAD_POOL_SIZE=$pool" -Wno-pthreads-mem-growth -o "$out/tangent_wasm_threads.cjs"
+echo '{ "type": "commonjs" }' >"$out/package.json"
 rm -rf "$objects"
 # The browser entry: index.mjs as it is, its one import of the Node build swapped for the
 # browser build (one API source for both; a second relative import would need mapping here).
@@ -49,7 +71,9 @@ if [ "$(grep -c "^import .* from '\.\{1,2\}/" wasm/package/index.mjs)" != 1 ] ||
 fi
 sed "s|^import createTangentModule from './dist/tangent_wasm.cjs';\$|import createTangentModule from './tangent_wasm.browser.mjs';|" \
   wasm/package/index.mjs >"$out/browser.mjs"
+sed "s|^import createTangentModule from './dist/tangent_wasm.cjs';\$|import createTangentModule from './tangent_wasm_threads.cjs';|" \
+  wasm/package/index.mjs >"$out/threads.mjs"
 cp LICENSE wasm/package/LICENSE
-for file in tangent_wasm.cjs tangent_wasm.browser.mjs browser.mjs; do
+for file in tangent_wasm.cjs tangent_wasm.browser.mjs browser.mjs tangent_wasm_threads.cjs tangent_wasm_threads.worker.js threads.mjs; do
   echo "built $out/$file ($(stat -c %s "$out/$file") bytes)"
 done

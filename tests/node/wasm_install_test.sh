@@ -29,7 +29,8 @@ PY
 tarball=$(ls "$source_dir"/wasm/libtangent-wasm-*.tgz)
 # The tarball: README and LICENSE, both builds, the entry of every export.
 contents=$(tar tzf "$tarball")
-for file in README.md LICENSE package.json index.mjs index.d.ts require.cjs dist/tangent_wasm.cjs dist/tangent_wasm.browser.mjs dist/browser.mjs; do
+for file in README.md LICENSE package.json index.mjs index.d.ts require.cjs dist/tangent_wasm.cjs dist/tangent_wasm.browser.mjs dist/browser.mjs \
+    dist/threads.mjs dist/tangent_wasm_threads.cjs dist/tangent_wasm_threads.worker.js dist/package.json; do
   grep -qx "package/$file" <<<"$contents" || { echo "the tarball lacks $file" >&2; exit 1; }
 done
 cd "$work/project"
@@ -41,6 +42,13 @@ node --input-type=module -e "
   import { generateTangents } from 'libtangent-wasm';
   const t = generateTangents(new Float32Array([0,0,0, 1,0,0, 0,1,0]), new Float32Array([0,0,1, 0,0,1, 0,0,1]), new Float32Array([0,0, 1,0, 0,1]));
   if (t.length !== 12 || t[0] !== 1 || t[3] !== 1) throw new Error('import: unexpected tangents ' + t);"
+# The threaded build's export: its pool as big as asked, the same tangents, and the process
+# ends by itself (timeout: an idle worker would keep it running).
+LIBTANGENT_WASM_THREADS=2 timeout 120 node --input-type=module -e "
+  import { generateTangents, maxThreads } from 'libtangent-wasm/threads';
+  if (maxThreads !== 2) throw new Error('libtangent-wasm/threads: maxThreads ' + maxThreads + ', not 2');
+  const t = generateTangents(new Float32Array([0,0,0, 1,0,0, 0,1,0]), new Float32Array([0,0,1, 0,0,1, 0,0,1]), new Float32Array([0,0, 1,0, 0,1]), { threads: 2 });
+  if (t.length !== 12 || t[0] !== 1 || t[3] !== 1) throw new Error('libtangent-wasm/threads: unexpected tangents ' + t);"
 if message=$(node -e "require('libtangent-wasm')" 2>&1); then echo "require() of the ES module package succeeded silently" >&2; exit 1; fi
 grep -q "libtangent-wasm is an ES module package and cannot be loaded with require(): use .import" <<<"$message" ||
   { echo "require() failed without saying the package is an ES module: $message" >&2; exit 1; }

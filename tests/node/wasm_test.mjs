@@ -5,7 +5,7 @@
 //   ASSET: .gltf/.glb files put through glTF-Transform's tangents() with our generateTangents
 // Every corner: within 0.01 degrees of the C++ library and the same w; every output tangent
 // finite, unit and never zero; every written file free of validator errors. Exits 1 on failure.
-import { execFileSync } from 'node:child_process';
+import { execFileSync, spawnSync } from 'node:child_process';
 import fs from 'node:fs';
 import path from 'node:path';
 import { NodeIO } from '@gltf-transform/core';
@@ -14,6 +14,7 @@ import { tangents, unweld } from '@gltf-transform/functions';
 import validator from 'gltf-validator';
 import { generateGltfTangents, generateTangents, generateTangentsIndexed, optionChoices } from '../../wasm/package/index.mjs';
 import createTangentModule from '../../wasm/package/dist/tangent_wasm.cjs';
+import { deindex, generated, random } from './meshes.mjs';
 
 const [tool, workDir, ...assets] = process.argv.slice(2);
 if (!tool || !workDir) {
@@ -66,68 +67,6 @@ function compare(label, cornerCount, ours, theirs, exact = false) {
   console.log(`${ok ? 'ok  ' : 'FAIL'} ${label}: ${cornerCount} corners, worst ${worst.toExponential(2)} deg, ` +
     `${wrongW} with another w, ${identical} bit-identical`);
   if (!ok) failures++;
-}
-
-// Seeded generator (mulberry32) for the meshes below.
-function random(seed) {
-  return () => {
-    seed = (seed + 0x6d2b79f5) | 0;
-    let t = Math.imul(seed ^ (seed >>> 15), 1 | seed);
-    t = (t + Math.imul(t ^ (t >>> 7), 61 | t)) ^ t;
-    return ((t ^ (t >>> 14)) >>> 0) / 4294967296;
-  };
-}
-
-// A bumpy UV sphere with a seam, one mirrored half (u flipped beyond the equator's half),
-// and slivers: triangles collapsed to a line, to a point, and with all corners at one UV.
-function generated(segments, seed) {
-  const rand = random(seed);
-  const position = [], normal = [], texcoord = [];
-  for (let j = 0; j <= segments; ++j) {
-    for (let i = 0; i <= segments; ++i) {
-      const u = i / segments, v = j / segments, phi = 2 * Math.PI * u, theta = Math.PI * v;
-      const r = 1 + 0.05 * rand();
-      const p = [r * Math.sin(theta) * Math.cos(phi), r * Math.cos(theta), -r * Math.sin(theta) * Math.sin(phi)];
-      position.push(...p);
-      const l = Math.hypot(...p);
-      normal.push(p[0] / l, p[1] / l, p[2] / l);
-      texcoord.push(u < 0.5 ? u : 1 - u, v);  // mirrored half
-    }
-  }
-  const indices = [];
-  for (let j = 0; j < segments; ++j) {
-    for (let i = 0; i < segments; ++i) {
-      const a = j * (segments + 1) + i, b = a + 1, c = a + segments + 1, d = c + 1;
-      indices.push(a, d, b, a, c, d);
-    }
-  }
-  // Slivers: a line (two corners at one vertex), a zero-UV triangle, a point.
-  const n = indices.length / 3;
-  for (let k = 0; k < 6; ++k) {
-    const t = Math.floor(rand() * n);
-    const kind = k % 3;
-    if (kind === 0) indices[3 * t + 2] = indices[3 * t + 1];
-    if (kind === 1) {
-      const v = indices[3 * t];
-      for (const w of [indices[3 * t + 1], indices[3 * t + 2]]) texcoord.splice(2 * w, 2, texcoord[2 * v], texcoord[2 * v + 1]);
-    }
-    if (kind === 2) indices[3 * t + 1] = indices[3 * t + 2] = indices[3 * t];
-  }
-  return {
-    position: new Float32Array(position), normal: new Float32Array(normal), texcoord: new Float32Array(texcoord),
-    indices: new Uint32Array(indices),
-  };
-}
-
-function deindex(mesh) {
-  const n = mesh.indices.length;
-  const out = { position: new Float32Array(3 * n), normal: new Float32Array(3 * n), texcoord: new Float32Array(2 * n) };
-  mesh.indices.forEach((v, c) => {
-    out.position.set(mesh.position.subarray(3 * v, 3 * v + 3), 3 * c);
-    out.normal.set(mesh.normal.subarray(3 * v, 3 * v + 3), 3 * c);
-    out.texcoord.set(mesh.texcoord.subarray(2 * v, 2 * v + 2), 2 * c);
-  });
-  return out;
 }
 
 // 1. Generated meshes, indexed (glTF's w) and de-indexed (MikkTSpace's w, as glTF-Transform
@@ -321,6 +260,16 @@ try {
     if (status === 0 || !expected.test(message)) fail(`tangent_run, ${label}: status ${status}, '${message}'`);
     else console.log(`ok   tangent_run, ${label}: refused: ${message}`);
   }
+}
+
+// 1g. The threaded build (wasm_threads_test.mjs), in a process of its own with a pool of three
+// threads, which must end by itself (an idle worker referenced would keep it running).
+{
+  const script = new URL('./wasm_threads_test.mjs', import.meta.url).pathname;
+  const done = spawnSync(process.execPath, [script], { env: { ...process.env, LIBTANGENT_WASM_THREADS: '3' }, encoding: 'utf8', timeout: 240000 });
+  process.stdout.write(done.stdout ?? '');
+  if (done.status === null) fail(`the threaded build's test did not end by itself in 240 s (${done.signal}): ${done.stderr}`);
+  else if (done.status !== 0) fail(`the threaded build's test exited ${done.status}: ${done.stderr}`);
 }
 
 // 2. Errors surface as exceptions with the core's message.

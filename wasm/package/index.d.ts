@@ -24,7 +24,21 @@ export interface MethodOptions {
   method?: Method;
   /** Lengyel's weighting: 'angle' (default), 'area' or 'uniform'. */
   weighting?: Weighting;
+  /**
+   * Threads the call runs on: 0 (default) for maxThreads; more than maxThreads runs on
+   * maxThreads. Only the threaded build (`libtangent-wasm/threads`) has more than 1. The output
+   * is the same for any count. A number that is not a whole number from 0 is a RangeError.
+   */
+  threads?: number;
 }
+
+/**
+ * The most threads a call runs on: 1 from `libtangent-wasm`; from `libtangent-wasm/threads`
+ * (Node), its pool of workers and the calling thread: one fewer workers than the machine's
+ * cores, at most 15, or LIBTANGENT_WASM_THREADS threads in all where that variable is set as
+ * the module loads.
+ */
+export declare const maxThreads: number;
 
 export interface DeindexedOptions extends MethodOptions {
   /**

@@ -7,6 +7,20 @@ import createTangentModule from './dist/tangent_wasm.cjs';
 
 const wasm = await createTangentModule();
 
+// The threaded build (the "./threads" export, dist/threads.mjs) starts its pool of workers as it
+// loads; the single-threaded build has none. An idle worker would keep Node running after the
+// program's last line: the pool's are unreferenced, so only the program's own work does.
+const workers = wasm.PThread ? [...wasm.PThread.unusedWorkers] : [];
+for (const worker of workers) worker.unref?.();
+
+/**
+ * The most threads a call runs on: 1 in the single-threaded build; in the threaded build its
+ * pool's workers and the calling thread (one fewer workers than the machine's cores, at most
+ * 15; the environment variable LIBTANGENT_WASM_THREADS, read as the module loads, sets the
+ * total instead).
+ */
+export const maxThreads = workers.length + 1;
+
 /** Resolves once the module is ready (it is by the time this module has loaded). */
 export const ready = Promise.resolve();
 
@@ -40,7 +54,7 @@ function run(position, normal, texcoord, indices, vertexCount, cornerCount, name
     const text = pointers.slice(arrays.length);
     strings.forEach((s, i) => wasm.stringToUTF8(s, text[i], sizes[arrays.length + i]));
     const status = wasm._tangent_run(pointers[0], pointers[1], pointers[2], pointers[3],
-      vertexCount, cornerCount, text[0], text[1], text[2], vertexSplit ? 1 : 0);
+      vertexCount, cornerCount, text[0], text[1], text[2], vertexSplit ? 1 : 0, names.threads);
     if (status !== 0) throw new Error(`libtangent: ${wasm.UTF8ToString(wasm._tangent_error())}`);
   } finally {
     pointers.forEach((p) => p !== 0 && wasm._free(p));
@@ -91,14 +105,23 @@ function describe(choices) {
   return choices.length < 2 ? choices.join('') : `${choices.slice(0, -1).join(', ')} or ${choices[choices.length - 1]}`;
 }
 
+// options.threads checked: a whole number from 0 (every thread of maxThreads, the default) up;
+// more than maxThreads runs on maxThreads (the same bits for any count).
+function threadsOf(value) {
+  if (value === undefined || value === 0) return maxThreads;
+  if (!Number.isInteger(value) || value < 0) throw new RangeError(`libtangent: threads: ${value} is not a whole number from 0 (0: all ${maxThreads})`);
+  return Math.min(value, maxThreads);
+}
+
 // The options of a call, checked: an unknown name is a TypeError (a misspelt option would
 // otherwise be ignored), a value not among its choices a RangeError; unset ones take the
-// table's defaults. `taken`: the names this function accepts.
+// table's defaults. `taken`: the names this function accepts besides threads.
 function names(options, taken) {
+  taken = [...taken, 'threads'];
   for (const key of Object.keys(options)) {
     if (!taken.includes(key)) throw new TypeError(`libtangent: unknown option '${key}' (options: ${taken.join(', ')})`);
   }
-  const chosen = {};
+  const chosen = { threads: threadsOf(options.threads) };
   for (const [key, choices] of Object.entries(optionChoices)) {
     const value = options[key] ?? choices[0];
     if (!choices.includes(value)) throw new RangeError(`libtangent: ${key}: '${value}' is not ${describe(choices)}`);

@@ -1,7 +1,8 @@
 // SPDX-License-Identifier: MIT
 // The WebAssembly entry points of the npm package (wasm/package): the core's public array call
-// (every method) on arrays in the module's memory, built without threads (TANGENT_SERIAL),
-// without OpenMesh. Method, weighting and UV origin come as the names the command line takes,
+// (every method) on arrays in the module's memory, built without threads (TANGENT_SERIAL) or
+// on the core's pool of standard threads over emscripten's pthreads (TANGENT_STD_THREADS: the
+// threaded build, wasm/build.sh), without OpenMesh. Method, weighting and UV origin come as the names the command line takes,
 // parsed by the core; the report goes back as the core's JSON (tangent::reportJson). One
 // workspace is reused from call to call, so repeated calls allocate nothing new. The per-vertex
 // outputs (the vertex split) are made only when asked for: generateTangents returns one tangent
@@ -83,7 +84,7 @@ namespace {
 
 // tangent_run's options from the names the command line takes; std::invalid_argument naming the
 // argument otherwise.
-tangent::Options runOptions(const char* method, const char* weighting, const char* uvOrigin) {
+tangent::Options runOptions(const char* method, const char* weighting, const char* uvOrigin, std::uint32_t threads) {
   tangent::Options options;
   const auto parsedMethod = tangent::parseMethod(method);
   if (!parsedMethod) throw std::invalid_argument(std::string("method: '") + method + "' is not mikktspace, lengyel, flat or meshopt");
@@ -94,7 +95,9 @@ tangent::Options runOptions(const char* method, const char* weighting, const cha
   options.method = *parsedMethod;
   options.weighting = *parsedWeighting;
   options.uvOrigin = *parsedOrigin;
-  options.threads = 1;
+  // The package's JavaScript passes 1 to the single-threaded build and at most its pool's
+  // threads to the threaded one; the same bits for any count.
+  options.threads = threads < 1 ? 1 : threads;
   return options;
 }
 
@@ -157,10 +160,11 @@ void writeVertexOutputs(State& s, const tangent::Report& report, const RunArrays
 // UV origin and w, | bottom-left, MikkTSpace's own fSign, as the npm mikktspace package returns).
 // vertexSplit: nonzero to make the per-vertex outputs too (tangent_corner_vertices,
 // tangent_vertex_tangents, tangent_vertex_sources); zero for the per-corner tangents only.
-// positions, normals and uvs are null only after tangent_share_add (requireArrays).
+// positions, normals and uvs are null only after tangent_share_add (requireArrays). threads:
+// the threads the core runs on (1 in the single-threaded build).
 EMSCRIPTEN_KEEPALIVE int tangent_run(const float* positions, const float* normals, const float* uvs, const std::uint32_t* indices,
                                      std::uint32_t vertexCount, std::uint32_t cornerCount, const char* method,
-                                     const char* weighting, const char* uvOrigin, int vertexSplit) {
+                                     const char* weighting, const char* uvOrigin, int vertexSplit, std::uint32_t threads) {
   State& s = state();
   s.error.clear();
   // Set by useSharedVertices for the shared corners only (their vertices are distinct by bits),
@@ -171,7 +175,7 @@ EMSCRIPTEN_KEEPALIVE int tangent_run(const float* positions, const float* normal
     ~ResetWeldOnly() { workspace.setWeldOnly(std::nullopt); }
   } resetWeldOnly{s.workspace};
   try {
-    const tangent::Options options = runOptions(method, weighting, uvOrigin);
+    const tangent::Options options = runOptions(method, weighting, uvOrigin, threads);
     requireArrays(positions, normals, uvs, indices, vertexSplit);
     RunArrays a{positions, normals, uvs, indices, vertexCount};
     if (!indices && vertexSplit) {

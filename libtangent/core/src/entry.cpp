@@ -1,7 +1,8 @@
 // SPDX-License-Identifier: MIT
 // The array entry point: the arrays checked once, the threads resolved once, one switch on
 // the method; every method runs on these arrays and the same workspace.
-#if !defined(TANGENT_SERIAL)
+#include "thread_backend.hpp"
+#if defined(TANGENT_ONETBB)
 #include <tbb/info.h>
 #endif
 
@@ -21,6 +22,8 @@ unsigned threadCount(const Options& options) {
   if (options.threads > 0) return options.threads;
 #if defined(TANGENT_SERIAL)
   return 1;  // built without threads
+#elif defined(TANGENT_STD_THREADS)
+  return detail::poolHardwareThreads();
 #else
   return static_cast<unsigned>(std::max(1, tbb::info::default_concurrency()));
 #endif

@@ -1,7 +1,8 @@
 // SPDX-License-Identifier: MIT
-// The parallel helpers every method shares, on the workspace's threads (oneTBB; one thread,
-// in order, where built without threads: TANGENT_SERIAL). Each gives the same result for any
-// thread count.
+// The parallel helpers every method shares, on the workspace's threads (oneTBB; the core's own
+// pool of standard threads where built with TANGENT_STD_THREADS; one thread, in order, where
+// built without threads: TANGENT_SERIAL; thread_backend.hpp). Each gives the same result for
+// any thread count.
 #pragma once
 
 #include <algorithm>
@@ -66,7 +67,7 @@ std::vector<std::uint32_t> collectFlagged(const WorkspaceData& ws, const std::ui
 
 }  // namespace tangent::detail
 
-#if !defined(TANGENT_SERIAL)
+#if defined(TANGENT_ONETBB)
 #include <tbb/blocked_range.h>
 #include <tbb/global_control.h>
 #include <tbb/parallel_for.h>
@@ -85,6 +86,12 @@ void forRange(const WorkspaceData& ws, std::size_t count, std::size_t grain, con
   }
 #if defined(TANGENT_SERIAL)
   body(std::size_t(0), count);
+#elif defined(TANGENT_STD_THREADS)
+  // Pieces of at least `grain`, four a thread, taken one at a time by the threads free.
+  const std::size_t pieces = std::min((count + grain - 1) / grain, std::size_t(ws.threads) * 4);
+  runOnPool(ws.threads, pieces, [&](std::size_t piece) {
+    body(count * piece / pieces, count * (piece + 1) / pieces);
+  });
 #else
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, count, grain),
                     [&](const tbb::blocked_range<std::size_t>& range) { body(range.begin(), range.end()); });
@@ -93,7 +100,7 @@ void forRange(const WorkspaceData& ws, std::size_t count, std::size_t grain, con
 
 template <typename Iterator, typename Less>
 void sortInParallel(const WorkspaceData& ws, Iterator begin, Iterator end, const Less& less) {
-#if !defined(TANGENT_SERIAL)
+#if defined(TANGENT_ONETBB)
   if (ws.threads > 1) {
     tbb::parallel_sort(begin, end, less);
     return;
@@ -106,9 +113,14 @@ void sortInParallel(const WorkspaceData& ws, Iterator begin, Iterator end, const
 
 template <typename First, typename Second>
 void invokeBoth(const WorkspaceData& ws, const First& first, const Second& second) {
-#if !defined(TANGENT_SERIAL)
+#if defined(TANGENT_ONETBB)
   if (ws.threads > 1) {
     tbb::parallel_invoke(first, second);
+    return;
+  }
+#elif defined(TANGENT_STD_THREADS)
+  if (ws.threads > 1) {
+    runOnPool(ws.threads, 2, [&](std::size_t i) { i == 0 ? first() : second(); });
     return;
   }
 #else
@@ -247,8 +259,8 @@ inline std::uint64_t exclusiveScan(const WorkspaceData& ws, std::uint32_t* value
 
 template <typename Body>
 void onThreads(const WorkspaceData& ws, const Body& body) {
-#if defined(TANGENT_SERIAL)
-  (void)ws;
+#if !defined(TANGENT_ONETBB)
+  (void)ws;  // the pool's calls take ws.threads themselves
   body();
 #else
   if (ws.threads <= 1) {

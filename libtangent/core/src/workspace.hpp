@@ -5,10 +5,13 @@
 // are in parallel.hpp.
 #pragma once
 
-#if !defined(TANGENT_SERIAL)
+#include "thread_backend.hpp"
+#if defined(TANGENT_ONETBB)
 #include <tbb/combinable.h>
 #include <tbb/cache_aligned_allocator.h>
 #include <tbb/enumerable_thread_specific.h>
+#elif defined(TANGENT_STD_THREADS)
+#include "thread_pool.hpp"
 #endif
 
 #include <algorithm>
@@ -74,6 +77,14 @@ class AtomicRef {
  private:
   T& value_;
 };
+#elif defined(TANGENT_STD_THREADS)
+// Built with the standard library's threads (thread_pool.hpp): its types in oneTBB's place.
+template <typename T>
+using AtomicRef = BuiltinAtomicRef<T>;
+template <typename T>
+using PerThread = Combinable<T>;
+template <typename T>
+using ScratchAllocator = CacheAlignedAllocator<T>;
 #else
 template <typename T>
 using AtomicRef = std::atomic_ref<T>;

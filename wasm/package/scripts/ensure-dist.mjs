@@ -9,7 +9,8 @@ import path from 'node:path';
 import { fileURLToPath } from 'node:url';
 
 const packageDir = path.dirname(path.dirname(fileURLToPath(import.meta.url)));
-const builds = ['dist/tangent_wasm.cjs', 'dist/tangent_wasm.browser.mjs', 'dist/browser.mjs'];
+const builds = ['dist/tangent_wasm.cjs', 'dist/tangent_wasm.browser.mjs', 'dist/browser.mjs', 'dist/threads.mjs',
+  'dist/tangent_wasm_threads.cjs', 'dist/tangent_wasm_threads.worker.js', 'dist/package.json'];
 const missing = () => builds.filter((file) => !fs.existsSync(path.join(packageDir, file)));
 
 if (missing().length === 0) process.exit(0);
