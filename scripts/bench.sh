@@ -174,6 +174,11 @@ export TANGENT_WASM_ASSETS="$(printf '%s\n' "${wasm_assets[@]}")"
 TANGENT_WASM_SCALING=""
 [ $quick = 1 ] || TANGENT_WASM_SCALING=$(cd bench/node && node wasm_scaling.mjs 7) || TANGENT_WASM_SCALING=""
 export TANGENT_WASM_SCALING
+# The threaded WebAssembly build (libtangent-wasm/threads) on 1 and 2 threads beside the
+# single-threaded one, wall time (bench/node/wasm_threads.mjs). Not in --quick.
+TANGENT_WASM_THREADS=""
+[ $quick = 1 ] || TANGENT_WASM_THREADS=$(cd bench/node && LIBTANGENT_WASM_THREADS=2 node wasm_threads.mjs 7) || TANGENT_WASM_THREADS=""
+export TANGENT_WASM_THREADS
 export TANGENT_FRESH_PROCESS="$(printf '%s\n' "${fresh_rows[@]}")"
 
 # The report.
@@ -380,6 +385,20 @@ if os.environ.get("TANGENT_WASM_SCALING"):
     lines += ["", f"Time per triangle by size, in µs, the sizes interleaved in one process, {scaling['rounds']} rounds "
               f"(`bench/node/wasm_scaling.mjs`; medians, fastest in brackets; a smaller sphere called several times per "
               f"sample): {sizes}. Slowest median over fastest: **{scaling['spread']:.2f}x**."]
+if os.environ.get("TANGENT_WASM_THREADS"):
+    lines += ["", "## WebAssembly on threads (Node)", "",
+              "`libtangent-wasm/threads` (the core on its own pool of standard threads over emscripten's pthreads) on 1 and "
+              "2 threads beside the single-threaded build, in wall milliseconds (`bench/node/wasm_threads.mjs`; medians, "
+              "fastest in brackets, the calls interleaved round by round): the indexed call on the sphere's shared vertices "
+              "(with its vertex split) and the de-indexed call into a reused `output`. Speed-up: the medians of 1 thread "
+              "over 2; the native library's own two-thread speed-up on this machine is in the first table.", "",
+              "| triangles | indexed, single build | threaded, 1 | threaded, 2 | speed-up | de-indexed, single build | threaded, 1 | threaded, 2 | speed-up |",
+              "|---:|---:|---:|---:|---:|---:|---:|---:|---:|"]
+    for e in json.loads(os.environ["TANGENT_WASM_THREADS"]):
+        cell = lambda k: f"{e[k]['medianMs']:.1f} ({e[k]['fastestMs']:.1f})"
+        lines.append(f"| {e['triangles']:,} | {cell('indexedSingle')} | {cell('indexedT1')} | {cell('indexedT2')} | "
+                     f"**{e['indexedSpeedup']:.2f}x** | {cell('deindexedSingle')} | {cell('deindexedT1')} | {cell('deindexedT2')} | "
+                     f"**{e['deindexedSpeedup']:.2f}x** |")
 lines += ["",
           "", "## Error against run time", "", "![error against run time](bench-plot.png)", "",
           "Mean angular error against the exact tangent on analytic surfaces, per method, one point per resolution, "

@@ -81,15 +81,21 @@ Corners randomCorners(std::size_t count, std::size_t pool, unsigned seed) {
   return out;
 }
 
-// Shares `corners` in runs of `runLength` (0: all at once) and checks every output.
-void expectSharing(const Corners& corners, std::size_t runLength) {
+// Shares `corners` in runs of `runLength` (0: all at once), or all at once on `threads`
+// threads where that is more than 1 (shareVertices), and checks every output.
+void expectSharing(const Corners& corners, std::size_t runLength, unsigned threads = 1) {
   const std::size_t n = corners.count();
   tangent::SharedVertices shared;
-  tangent::VertexSharer sharer;
-  sharer.begin(n, shared);
-  for (std::size_t first = 0; first < n; first += runLength ? runLength : n) {
-    const std::size_t count = std::min(n - first, runLength ? runLength : n);
-    ASSERT_TRUE(sharer.add(&corners.positions[3 * first], &corners.normals[3 * first], &corners.uvs[2 * first], count));
+  if (threads > 1) {
+    tangent::shareVertices(corners.positions.data(), corners.normals.data(), corners.uvs.data(), n, shared, threads);
+    runLength = threads;  // named in the messages below
+  } else {
+    tangent::VertexSharer sharer;
+    sharer.begin(n, shared);
+    for (std::size_t first = 0; first < n; first += runLength ? runLength : n) {
+      const std::size_t count = std::min(n - first, runLength ? runLength : n);
+      ASSERT_TRUE(sharer.add(&corners.positions[3 * first], &corners.normals[3 * first], &corners.uvs[2 * first], count));
+    }
   }
   const Expected expected = expectedSharing(corners);
   ASSERT_EQ(shared.vertexCount, expected.firstCorner.size()) << "run length " << runLength;
@@ -140,6 +146,32 @@ TEST(SharedVertices, ManyVerticesGrowTheTableAndAreFoundAfter) {
   }
   expectSharing(corners, 0);
   expectSharing(corners, 4096);
+}
+
+// On several threads (shareVertices with threads: chunks' recent repeats, the rest grouped by
+// hash, the first corners numbered by a scan) the same vertices, numbers and zero list as one
+// thread's: on corners that repeat at random (most found by the hash groups) and on a
+// triangle strip whose corners repeat a few corners back (most found in each chunk's recent
+// table, some across a chunk's start), each past the size from which it runs in parallel.
+TEST(SharedVertices, SeveralThreadsShareAsOneThreadDoes) {
+  const Corners random = randomCorners(400000, 30000, 6);
+  Corners strip;
+  std::mt19937 rng(7);
+  const std::size_t columns = 700;
+  for (std::size_t t = 0; t < 150000; ++t) {
+    const std::size_t row = t / (2 * columns), column = (t / 2) % columns;
+    const std::size_t a = row * (columns + 1) + column, b = a + 1, c = a + columns + 1, d = c + 1;
+    for (const std::size_t v : (t % 2 ? std::array{a, d, b} : std::array{a, c, d})) {
+      const float x = static_cast<float>(v % (columns + 1)), y = static_cast<float>(v / (columns + 1));
+      strip.positions.insert(strip.positions.end(), {x, y, rng() % 64 == 0 ? -0.0f : 0.0f});
+      strip.normals.insert(strip.normals.end(), {0.0f, 0.0f, 1.0f});
+      strip.uvs.insert(strip.uvs.end(), {x / columns, rng() % 512 == 0 ? std::numeric_limits<float>::quiet_NaN() : y});
+    }
+  }
+  for (unsigned threads : {2u, 3u, 8u}) {
+    expectSharing(random, 0, threads);
+    expectSharing(strip, 0, threads);
+  }
 }
 
 // The shared vertices of `corners` corners as the core's input.

@@ -142,8 +142,14 @@ function deindexed(position, normal, texcoord, output, chosen) {
     requireFloat32('output', output, 4);
     if (output.length !== n * 4) throw new RangeError(`output: expected ${n * 4} floats, got ${output.length}`);
   }
-  shareCorners(position, normal, texcoord, n);
-  run(null, null, null, null, n, n, chosen, false);
+  // On one thread the corners are shared a staging run at a time as they are copied in; on
+  // several, the module shares them in parallel from whole copies (shareVertices' threads).
+  if (chosen.threads > 1) {
+    run(position, normal, texcoord, null, n, n, chosen, false);
+  } else {
+    shareCorners(position, normal, texcoord, n);
+    run(null, null, null, null, n, n, chosen, false);
+  }
   // A new array is memory the process has not touched yet (a page fault per 4 KiB as the copy
   // writes it, on every call); the caller's own array, reused from call to call, is not.
   if (output === undefined) return copyOut(Float32Array, wasm._tangent_corner_tangents(), n * 4);

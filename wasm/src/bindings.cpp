@@ -111,10 +111,11 @@ struct RunArrays {
 // Per-corner tangents only, without indices: the corners with the same bits share a vertex
 // first (the same output bits, a sixth of the vertices to weld and bucket on a typical mesh),
 // from the arrays or, where positions is null, as tangent_share_add has done already.
-void useSharedVertices(State& s, RunArrays& a, std::uint32_t cornerCount) {
+void useSharedVertices(State& s, RunArrays& a, std::uint32_t cornerCount, unsigned threads) {
   if (a.vertexCount != cornerCount) throw std::invalid_argument("indices: null, but the vertex count is not the corner count");
   if (a.positions) {
-    tangent::shareVertices(a.positions, a.normals, a.uvs, cornerCount, s.shared);
+    // On the call's threads (the threaded build's JavaScript passes the arrays whole then).
+    tangent::shareVertices(a.positions, a.normals, a.uvs, cornerCount, s.shared, threads);
   } else if (s.sharer.added() != cornerCount) {
     throw std::invalid_argument("positions: null, but tangent_share_add gave " + std::to_string(s.sharer.added()) + " of " +
                                 std::to_string(cornerCount) + " corners");
@@ -185,7 +186,7 @@ EMSCRIPTEN_KEEPALIVE int tangent_run(const float* positions, const float* normal
       }
       a.indices = s.sequence.data();
     } else if (!indices) {
-      useSharedVertices(s, a, cornerCount);
+      useSharedVertices(s, a, cornerCount, options.threads);
     }
     s.cornerTangents.resize(std::size_t(cornerCount) * 4);
     s.cornerVertex.resize(vertexSplit ? cornerCount : 0);

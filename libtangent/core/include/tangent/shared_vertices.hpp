@@ -33,6 +33,9 @@ struct SharedVertices {
   // can still weld with another (TangentWorkspace::setWeldOnly), since they are distinct by bits.
   std::vector<std::uint32_t> zeroVertices;
   std::uint32_t probeSink = 0;  // the sum of shareVertices' early loads (kept, so not dropped)
+  // shareVertices on several threads: per corner its hash, then its first corner of the same
+  // bits, then its vertex (reused from call to call, never zero-filled).
+  BulkVector<std::uint32_t> cornerHash, firstCorner, cornerVertex;
 };
 
 // Shares the corners of one call as they come, a run of corners at a time (the WebAssembly
@@ -56,8 +59,10 @@ class VertexSharer {
   std::size_t cornerCount_ = 0, added_ = 0, count_ = 0, capacity_ = 0;
 };
 
-// All of `cornerCount` corners at once.
+// All of `cornerCount` corners at once. On `threads` threads (0: every hardware thread) where
+// there are more than one and the build has threads: the same vertices, numbers, indices and
+// zero list as one thread's VertexSharer gives, for any thread count.
 void shareVertices(const float* positions, const float* normals, const float* uvs, std::size_t cornerCount,
-                   SharedVertices& out);
+                   SharedVertices& out, unsigned threads = 1);
 
 }  // namespace tangent
