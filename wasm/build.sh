@@ -12,14 +12,16 @@
 #   dist/tangent_wasm.browser.mjs  browsers and workers (ES module factory, no Node code)
 #   dist/browser.mjs               index.mjs with its module taken from the browser build:
 #                                  the package's "browser" export (package.json)
-# and the threaded build for Node (the package's "./threads" export): the same sources with the
-# core's own pool of standard threads (TANGENT_STD_THREADS) on emscripten's pthreads, which
-# start as a pool of Node workers when the module loads (one fewer than the machine's cores, at
-# most 15: the calling thread is the other; LIBTANGENT_WASM_THREADS sets the total):
-#   dist/threads.mjs               index.mjs with its module taken from the threaded build
+# and the threaded builds (the package's "./threads" export): the same sources with the core's
+# own pool of standard threads (TANGENT_STD_THREADS) on emscripten's pthreads, which start as a
+# pool of workers when the module loads (one fewer than the machine's cores, at most 15: the
+# calling thread is the other; in Node LIBTANGENT_WASM_THREADS sets the total):
+#   dist/threads.mjs               Node: index.mjs with its module taken from the threaded build
 #   dist/tangent_wasm_threads.cjs  its module, and tangent_wasm_threads.worker.js its workers'
 #                                  script (pthreads need one file of their own in emscripten
 #                                  3.1.6); dist/package.json makes that .js file CommonJS.
+#   dist/threads.browser.mjs       pages served cross-origin isolated (COOP/COEP): the same on
+#                                  tangent_wasm_threads.browser.mjs and .browser.worker.js
 # emscripten 3.1.6's ES module output cannot serve Node (it uses __dirname), hence two links.
 # Usage: wasm/build.sh   (installs emscripten first where it is missing)
 set -euo pipefail
@@ -58,8 +60,13 @@ link=(em++ -O3 -fexceptions "$objects"/serial/*.o "${settings[@]}")
 "${link[@]}" -sENVIRONMENT=web,worker -sEXPORT_ES6=1 -o "$out/tangent_wasm.browser.mjs"
 # The pool's size is a JavaScript expression, evaluated as the module loads.
 pool='Math.max(1,Math.min(15,(+process.env.LIBTANGENT_WASM_THREADS||require("os").cpus().length)-1))'
-em++ -O3 -fexceptions -pthread "$objects"/threads/*.o "${settings[@]}" -sENVIRONMENT=node,worker \
-  "-sPTHREAD_POOL_SIZE=$pool" -Wno-pthreads-mem-growth -o "$out/tangent_wasm_threads.cjs"
+threads=(em++ -O3 -fexceptions -pthread "$objects"/threads/*.o "${settings[@]}" -Wno-pthreads-mem-growth)
+"${threads[@]}" -sENVIRONMENT=node,worker "-sPTHREAD_POOL_SIZE=$pool" -o "$out/tangent_wasm_threads.cjs"
+# In a page: workers as the browser reports cores (a cross-origin isolated page only: shared
+# memory needs COOP/COEP); its workers' script loads the module by a dynamic import.
+browser_pool='Math.max(1,Math.min(15,(navigator.hardwareConcurrency||2)-1))'
+"${threads[@]}" -sENVIRONMENT=web,worker -sEXPORT_ES6=1 "-sPTHREAD_POOL_SIZE=$browser_pool" \
+  -o "$out/tangent_wasm_threads.browser.mjs"
 echo '{ "type": "commonjs" }' >"$out/package.json"
 rm -rf "$objects"
 # The browser entry: index.mjs as it is, its one import of the Node build swapped for the
@@ -73,7 +80,10 @@ sed "s|^import createTangentModule from './dist/tangent_wasm.cjs';\$|import crea
   wasm/package/index.mjs >"$out/browser.mjs"
 sed "s|^import createTangentModule from './dist/tangent_wasm.cjs';\$|import createTangentModule from './tangent_wasm_threads.cjs';|" \
   wasm/package/index.mjs >"$out/threads.mjs"
+sed "s|^import createTangentModule from './dist/tangent_wasm.cjs';\$|import createTangentModule from './tangent_wasm_threads.browser.mjs';|" \
+  wasm/package/index.mjs >"$out/threads.browser.mjs"
 cp LICENSE wasm/package/LICENSE
-for file in tangent_wasm.cjs tangent_wasm.browser.mjs browser.mjs tangent_wasm_threads.cjs tangent_wasm_threads.worker.js threads.mjs; do
+for file in tangent_wasm.cjs tangent_wasm.browser.mjs browser.mjs tangent_wasm_threads.cjs tangent_wasm_threads.worker.js threads.mjs \
+    tangent_wasm_threads.browser.mjs tangent_wasm_threads.browser.worker.js threads.browser.mjs; do
   echo "built $out/$file ($(stat -c %s "$out/$file") bytes)"
 done

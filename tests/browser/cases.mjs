@@ -16,9 +16,10 @@ function base64(typedArray) {
 }
 
 // Per corner: the indexed call's tangent of each corner's output vertex (glTF's w), and the
-// de-indexed call's (MikkTSpace's w).
-export async function computeCases({ generateTangents, generateTangentsIndexed }, base) {
-  const names = await (await fetch(`${base}cases.json`)).json();
+// de-indexed call's (MikkTSpace's w). `list`: the JSON file naming the cases; `options`: every
+// call's options.
+export async function computeCases({ generateTangents, generateTangentsIndexed }, base, list = 'cases.json', options = {}) {
+  const names = await (await fetch(`${base}${list}`)).json();
   const result = {};
   for (const name of names) {
     const dir = `${base}cases/${name}/`;
@@ -26,7 +27,7 @@ export async function computeCases({ generateTangents, generateTangentsIndexed }
     const normal = await floats(`${dir}normals.f32`, Float32Array);
     const texcoord = await floats(`${dir}uvs.f32`, Float32Array);
     const indices = await floats(`${dir}indices.u32`, Uint32Array);
-    const ours = generateTangentsIndexed(position, normal, texcoord, indices);
+    const ours = generateTangentsIndexed(position, normal, texcoord, indices, options);
     const indexed = new Float32Array(4 * indices.length);
     ours.indices.forEach((v, c) => indexed.set(ours.tangents.subarray(4 * v, 4 * v + 4), 4 * c));
     const flat = { position: new Float32Array(3 * indices.length), normal: new Float32Array(3 * indices.length),
@@ -36,7 +37,7 @@ export async function computeCases({ generateTangents, generateTangentsIndexed }
       flat.normal.set(normal.subarray(3 * v, 3 * v + 3), 3 * c);
       flat.texcoord.set(texcoord.subarray(2 * v, 2 * v + 2), 2 * c);
     });
-    result[name] = { indexed: base64(indexed), deindexed: base64(generateTangents(flat.position, flat.normal, flat.texcoord)) };
+    result[name] = { indexed: base64(indexed), deindexed: base64(generateTangents(flat.position, flat.normal, flat.texcoord, options)) };
   }
   return result;
 }

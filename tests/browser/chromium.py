@@ -45,10 +45,20 @@ class _Handler(http.server.SimpleHTTPRequestHandler):
         pass
 
 
+class _IsolatedHandler(_Handler):
+    # Cross-origin isolation (COOP/COEP), without which a page has no SharedArrayBuffer and so
+    # no WebAssembly threads.
+    def end_headers(self):
+        self.send_header("Cross-Origin-Opener-Policy", "same-origin")
+        self.send_header("Cross-Origin-Embedder-Policy", "require-corp")
+        super().end_headers()
+
+
 @contextlib.contextmanager
-def serve(root):
-    """Serves `root` on 127.0.0.1; yields the base URL (ending in '/')."""
-    server = http.server.ThreadingHTTPServer(("127.0.0.1", 0), functools.partial(_Handler, directory=str(root)))
+def serve(root, isolated=False):
+    """Serves `root` on 127.0.0.1 (cross-origin isolated where asked); yields the base URL (ending in '/')."""
+    handler = _IsolatedHandler if isolated else _Handler
+    server = http.server.ThreadingHTTPServer(("127.0.0.1", 0), functools.partial(handler, directory=str(root)))
     thread = threading.Thread(target=server.serve_forever, daemon=True)
     thread.start()
     try:

@@ -9,7 +9,12 @@ Usage: package_test.py WORK_DIR TARBALL ARRAYS_TOOL ESBUILD
     condition; a bundle that reaches for Node's fs/path fails to build).
 Both compute the tangents of a quad and of a generated sphere (seam, mirrored half, slivers)
 indexed and de-indexed; every corner must have the bits the C++ library gives on the same arrays
-(tangent-arrays-tool). Exits 0 when all agree, 1 otherwise.
+(tangent-arrays-tool).
+(d) the threaded build (`libtangent-wasm/threads`, its "browser" export) on a page served
+    cross-origin isolated (COOP/COEP): the same cases and a sphere of 51,200 triangles large
+    enough that the core and the de-indexed sharing split their work, on all of maxThreads
+    (at least 2); the same bits.
+Exits 0 when all agree, 1 otherwise.
 """
 import array
 import base64
@@ -119,7 +124,12 @@ def main():
         references[name] = {"indexed": library(tool, work / "library" / name / "indexed", *mesh, "top-left"),
                             "deindexed": library(tool, work / "library" / name / "deindexed", *deindexed(*mesh), "bottom-left")}
     (project / "cases.json").write_text(json.dumps(list(cases)))
-    for name in ("cases.mjs", "package_page.mjs", "package_worker.mjs"):
+    large = sphere(160, 9)
+    write_case(project / "cases" / "large", *large)
+    references["large"] = {"indexed": library(tool, work / "library" / "large" / "indexed", *large, "top-left"),
+                           "deindexed": library(tool, work / "library" / "large" / "deindexed", *deindexed(*large), "bottom-left")}
+    (project / "threads.json").write_text(json.dumps([*cases, "large"]))
+    for name in ("cases.mjs", "package_page.mjs", "package_worker.mjs", "threads_page.mjs"):
         shutil.copy(HERE / name, project / name)
 
     # (b) Native: the import map a user writes, from the installed package's "browser" export.
@@ -146,12 +156,27 @@ def main():
         '<script type="module" src="./bundle/package_page.js"></script></head>'
         '<body data-worker="./bundle/package_worker.js"></body></html>\n')
 
+    # (d) The threaded build on a cross-origin isolated page, by its own import map.
+    threads_entry = json.loads((installed / "package.json").read_text())["exports"]["./threads"]["browser"]
+    threads_path = "./node_modules/libtangent-wasm/" + threads_entry.removeprefix("./")
+    (project / "threads.html").write_text(
+        '<!doctype html><html><head><meta charset="utf-8"><title>threads</title>'
+        f'<script type="importmap">{json.dumps({"imports": {"libtangent-wasm/threads": threads_path}})}</script>'
+        '<script type="module" src="./threads_page.mjs"></script></head><body></body></html>\n')
+
     failures = 0
     with chromium.serve(project) as base, chromium.Browser() as browser:
         for page, label in (("native.html", "native ESM"), ("bundled.html", "esbuild bundle")):
             result = run_page(browser, base + page, label)
-            failures += compare(f"{label}, main thread", result["mainThread"], references)
-            failures += compare(f"{label}, module worker", result["worker"], references)
+            plain = {name: references[name] for name in cases}
+            failures += compare(f"{label}, main thread", result["mainThread"], plain)
+            failures += compare(f"{label}, module worker", result["worker"], plain)
+    with chromium.serve(project, isolated=True) as base, chromium.Browser() as browser:
+        result = run_page(browser, base + "threads.html", "threaded build")
+        ok = result["isolated"] is True and result["maxThreads"] >= 2
+        print(f"{'ok  ' if ok else 'FAIL'} threaded build: crossOriginIsolated {result['isolated']}, maxThreads {result['maxThreads']}")
+        failures += not ok
+        failures += compare(f"threaded build, {result['maxThreads']} threads", result["cases"], references)
     print("all passed" if failures == 0 else f"{failures} failed")
     return 1 if failures else 0
 

@@ -34,9 +34,9 @@ export interface MethodOptions {
 
 /**
  * The most threads a call runs on: 1 from `libtangent-wasm`; from `libtangent-wasm/threads`
- * (Node), its pool of workers and the calling thread: one fewer workers than the machine's
- * cores, at most 15, or LIBTANGENT_WASM_THREADS threads in all where that variable is set as
- * the module loads.
+ * (Node, or a cross-origin isolated page), its pool of workers and the calling thread: one
+ * fewer workers than the machine's cores, at most 15, or in Node LIBTANGENT_WASM_THREADS
+ * threads in all where that variable is set as the module loads.
  */
 export declare const maxThreads: number;
 

@@ -10,7 +10,8 @@ import { fileURLToPath } from 'node:url';
 
 const packageDir = path.dirname(path.dirname(fileURLToPath(import.meta.url)));
 const builds = ['dist/tangent_wasm.cjs', 'dist/tangent_wasm.browser.mjs', 'dist/browser.mjs', 'dist/threads.mjs',
-  'dist/tangent_wasm_threads.cjs', 'dist/tangent_wasm_threads.worker.js', 'dist/package.json'];
+  'dist/tangent_wasm_threads.cjs', 'dist/tangent_wasm_threads.worker.js', 'dist/package.json', 'dist/threads.browser.mjs',
+  'dist/tangent_wasm_threads.browser.mjs', 'dist/tangent_wasm_threads.browser.worker.js'];
 const missing = () => builds.filter((file) => !fs.existsSync(path.join(packageDir, file)));
 
 if (missing().length === 0) process.exit(0);
