@@ -27,38 +27,13 @@
 namespace {
 
 using tangent::testing::GridMesh;
+using tangent::testing::hardMesh;
 
-struct Output {
-  std::vector<float> tangents;
-  std::vector<std::uint32_t> cornerVertex;
-  tangent::Report report;
-};
+using Output = tangent::testing::CornerRun;
 
 Output compute(const GridMesh& m, unsigned threads, tangent::Method method) {
-  const tangent::MeshArrays mesh{m.positions, m.normals, m.uvs, m.indices};
-  Output out;
-  out.tangents.assign(m.indices.size() * 4, std::numeric_limits<float>::quiet_NaN());
-  out.cornerVertex.assign(m.indices.size(), ~0u);
-  tangent::Options options;
-  options.threads = threads;
-  options.method = method;
   tangent::TangentWorkspace workspace;
-  out.report = tangent::computeCornerTangents(mesh, tangent::CornerOutputs{out.tangents, {}, out.cornerVertex}, options, workspace);
-  return out;
-}
-
-// Every hard case of the differential test's generator, large enough that each phase splits.
-GridMesh hardMesh(std::size_t triangles) {
-  GridMesh m;
-  for (std::uint64_t seed = 1; m.indices.size() < 3 * triangles; ++seed) {
-    const tangent::testing::RandomMesh part = tangent::testing::randomMesh(seed);
-    const auto base = static_cast<std::uint32_t>(m.positions.size() / 3);
-    m.positions.insert(m.positions.end(), part.positions.begin(), part.positions.end());
-    m.normals.insert(m.normals.end(), part.normals.begin(), part.normals.end());
-    m.uvs.insert(m.uvs.end(), part.uvs.begin(), part.uvs.end());
-    for (std::uint32_t i : part.indices) m.indices.push_back(base + i);
-  }
-  return m;
+  return tangent::testing::runCorners({m.positions, m.normals, m.uvs, m.indices}, threads, workspace, method);
 }
 
 void expectSameBits(const Output& one, const Output& other, const std::string& what) {

@@ -34,23 +34,13 @@
 namespace {
 
 using tangent::testing::GridMesh;
+using tangent::testing::hardMesh;
 
-struct Output {
-  std::vector<float> tangents;
-  std::vector<std::uint32_t> cornerVertex;
-  tangent::Report report;
-};
+using Output = tangent::testing::CornerRun;
 
 Output compute(const tangent::MeshArrays& mesh, unsigned threads, tangent::TangentWorkspace& workspace,
                tangent::Method method = tangent::Method::mikktspace) {
-  Output out;
-  out.tangents.assign(mesh.indices.size() * 4, std::numeric_limits<float>::quiet_NaN());
-  out.cornerVertex.assign(mesh.indices.size(), ~0u);
-  tangent::Options options;
-  options.threads = threads;
-  options.method = method;
-  out.report = tangent::computeCornerTangents(mesh, tangent::CornerOutputs{out.tangents, {}, out.cornerVertex}, options, workspace);
-  return out;
+  return tangent::testing::runCorners(mesh, threads, workspace, method);
 }
 
 Output compute(const tangent::MeshArrays& mesh, unsigned threads,
@@ -72,22 +62,6 @@ GridMesh foldedFan() {
   m.normals = {0, 0, 1, 0, 0, 1, 0, 0, 1, 0, 0, 1, 0, 0, 1};
   m.uvs = {0.5f, 0.5f, 0.85f, 1.43f, 0.0f, 0.41f, 0.69f, 0.14f, 0.23f, 0.13f};
   m.indices = {0, 1, 2, 0, 2, 3, 0, 3, 4, 0, 4, 1};
-  return m;
-}
-
-// A mesh with every hard case (non-manifold edges and vertices, duplicates, zero-UV and
-// degenerate triangles, mirrored islands) from the differential test's generator, made large
-// enough that several threads really split every phase.
-GridMesh hardMesh(std::size_t triangles = 60000) {
-  GridMesh m;
-  for (std::uint64_t seed = 1; m.indices.size() < 3 * triangles; ++seed) {
-    const tangent::testing::RandomMesh part = tangent::testing::randomMesh(seed);
-    const auto base = static_cast<std::uint32_t>(m.positions.size() / 3);
-    m.positions.insert(m.positions.end(), part.positions.begin(), part.positions.end());
-    m.normals.insert(m.normals.end(), part.normals.begin(), part.normals.end());
-    m.uvs.insert(m.uvs.end(), part.uvs.begin(), part.uvs.end());
-    for (std::uint32_t i : part.indices) m.indices.push_back(base + i);
-  }
   return m;
 }
 

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <limits>
 #include <numbers>
 #include <random>
 
@@ -527,4 +528,29 @@ RandomMesh randomMesh(std::uint64_t seed, std::optional<MeshFeature> only) {
   return b.finish();
 }
 
+CornerRun runCorners(const MeshArrays& mesh, unsigned threads, TangentWorkspace& workspace, Method method) {
+  CornerRun out;
+  out.tangents.assign(mesh.indices.size() * 4, std::numeric_limits<float>::quiet_NaN());
+  out.cornerVertex.assign(mesh.indices.size(), ~0u);
+  Options options;
+  options.threads = threads;
+  options.method = method;
+  out.report = computeCornerTangents(mesh, CornerOutputs{out.tangents, {}, out.cornerVertex}, options, workspace);
+  return out;
+}
+
+GridMesh hardMesh(std::size_t triangles) {
+  GridMesh m;
+  for (std::uint64_t seed = 1; m.indices.size() < 3 * triangles; ++seed) {
+    const RandomMesh part = randomMesh(seed);
+    const auto base = static_cast<std::uint32_t>(m.positions.size() / 3);
+    m.positions.insert(m.positions.end(), part.positions.begin(), part.positions.end());
+    m.normals.insert(m.normals.end(), part.normals.begin(), part.normals.end());
+    m.uvs.insert(m.uvs.end(), part.uvs.begin(), part.uvs.end());
+    for (std::uint32_t i : part.indices) m.indices.push_back(base + i);
+  }
+  return m;
+}
+
 }  // namespace tangent::testing
+

@@ -11,6 +11,7 @@
 #include <string_view>
 #include <vector>
 
+#include "support/test_assets.hpp"
 #include "tangent/tangent.hpp"
 
 namespace tangent::testing {
@@ -51,5 +52,19 @@ struct RandomMesh {
 // attribute failures to one case.
 RandomMesh randomMesh(std::uint64_t seed, std::optional<MeshFeature> only = std::nullopt);
 std::optional<MeshFeature> parseMeshFeature(std::string_view name);
+
+// One call's outputs: a tangent per corner (NaN where unwritten), each corner's output vertex,
+// the report.
+struct CornerRun {
+  std::vector<float> tangents;
+  std::vector<std::uint32_t> cornerVertex;
+  Report report;
+};
+// computeCornerTangents with the vertex split on `threads` threads with `method`.
+CornerRun runCorners(const MeshArrays& mesh, unsigned threads, TangentWorkspace& workspace, Method method = Method::mikktspace);
+
+// Random meshes (randomMesh, seeds 1, 2, ...) side by side until there are `triangles`: every
+// hard case at once, large enough that several threads really split every phase of the core.
+GridMesh hardMesh(std::size_t triangles = 60000);
 
 }  // namespace tangent::testing
