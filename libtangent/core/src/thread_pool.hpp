@@ -4,7 +4,8 @@
 // pool of std::threads that parallel.hpp and workspace.hpp use in oneTBB's place. A call's
 // tasks are taken one at a time from a shared counter by the calling thread and by the pool's
 // idle threads, so a call nested in a task runs even when every worker is busy (its caller
-// does all of it then). The core gives the same bits for any split of its work, so this pool
+// does all of it then); a caller whose own tasks are all taken helps other calls until its
+// helpers are done. The core gives the same bits for any split of its work, so this pool
 // gives oneTBB's bits.
 #pragma once
 
