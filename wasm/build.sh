@@ -52,7 +52,7 @@ compile() {
 }
 compile serial -DTANGENT_SERIAL
 compile threads -pthread -DTANGENT_STD_THREADS
-exports=_malloc,_free,_tangent_run,_tangent_share_begin,_tangent_stage_corners,_tangent_share_add,_tangent_error,_tangent_corner_tangents,_tangent_corner_vertices,_tangent_vertex_tangents,_tangent_vertex_sources,_tangent_report
+exports=_malloc,_free,_tangent_run,_tangent_share_begin,_tangent_stage_corners,_tangent_shares_on_threads,_tangent_share_add,_tangent_error,_tangent_corner_tangents,_tangent_corner_vertices,_tangent_vertex_tangents,_tangent_vertex_sources,_tangent_report
 settings=(-sMODULARIZE=1 -sEXPORT_NAME=createTangentModule -sSINGLE_FILE=1 -sALLOW_MEMORY_GROWTH=1 -sMAXIMUM_MEMORY=4GB
   -sFILESYSTEM=0 -sEXPORTED_FUNCTIONS=$exports -sEXPORTED_RUNTIME_METHODS=UTF8ToString,stringToUTF8,lengthBytesUTF8)
 link=(em++ -O3 -fexceptions "$objects"/serial/*.o "${settings[@]}")

@@ -142,9 +142,9 @@ function deindexed(position, normal, texcoord, output, chosen) {
     requireFloat32('output', output, 4);
     if (output.length !== n * 4) throw new RangeError(`output: expected ${n * 4} floats, got ${output.length}`);
   }
-  // On one thread the corners are shared a staging run at a time as they are copied in; on
-  // several, the module shares them in parallel from whole copies (shareVertices' threads).
-  if (chosen.threads > 1) {
+  // The corners are shared a staging run at a time as they are copied in, unless the module
+  // shares this many on several threads (shareVertices' threads): from whole copies then.
+  if (chosen.threads > 1 && wasm._tangent_shares_on_threads(n, chosen.threads)) {
     run(position, normal, texcoord, null, n, n, chosen, false);
   } else {
     shareCorners(position, normal, texcoord, n);

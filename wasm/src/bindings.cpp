@@ -224,6 +224,11 @@ EMSCRIPTEN_KEEPALIVE float* tangent_share_begin(std::uint32_t cornerCount) {
   return nullptr;
 }
 EMSCRIPTEN_KEEPALIVE std::uint32_t tangent_stage_corners() { return kStageCorners; }
+// Whether tangent_run shares `cornerCount` de-indexed corners on several threads when given
+// them whole (1), or as well staged (0: one thread's sharing either way).
+EMSCRIPTEN_KEEPALIVE int tangent_shares_on_threads(std::uint32_t cornerCount, std::uint32_t threads) {
+  return tangent::threadsToShareOn(cornerCount, threads) > 1 ? 1 : 0;
+}
 EMSCRIPTEN_KEEPALIVE int tangent_share_add(std::uint32_t count) {
   State& s = state();
   const float* staged = s.staging.data();

@@ -49,6 +49,19 @@ inline std::uint32_t cornerHash(const float* p, const float* n, const float* t) 
   return static_cast<std::uint32_t>(detail::vertexHash(p, n, t));
 }
 
+// The output arrays sized for `cornerCount` corners (grown only) and emptied: what both ways
+// of sharing start from.
+void sizeOutputs(SharedVertices& out, std::size_t cornerCount) {
+  if (out.positions.size() < 3 * cornerCount) {
+    out.positions.resize(3 * cornerCount);
+    out.normals.resize(3 * cornerCount);
+    out.uvs.resize(2 * cornerCount);
+  }
+  out.indices.resize(cornerCount);
+  out.vertexCount = 0;
+  out.zeroVertices.clear();
+}
+
 }  // namespace
 
 void VertexSharer::begin(std::size_t cornerCount, SharedVertices& out) {
@@ -62,14 +75,7 @@ void VertexSharer::begin(std::size_t cornerCount, SharedVertices& out) {
   while (capacity_ < cornerCount / 3) capacity_ *= 2;
   out.table.assign(2 * capacity_, 0u);
   out.recent.assign(std::size_t(2) << kRecentBits, 0u);
-  if (out.positions.size() < 3 * cornerCount) {
-    out.positions.resize(3 * cornerCount);
-    out.normals.resize(3 * cornerCount);
-    out.uvs.resize(2 * cornerCount);
-  }
-  out.indices.resize(cornerCount);
-  out.vertexCount = 0;
-  out.zeroVertices.clear();
+  sizeOutputs(out, cornerCount);
 }
 
 bool VertexSharer::add(const float* positions, const float* normals, const float* uvs, std::size_t count) {
@@ -186,12 +192,7 @@ class ParallelSharer {
     out_.cornerHash.resize(count_);
     out_.firstCorner.resize(count_);
     out_.cornerVertex.resize(count_);
-    if (out_.positions.size() < 3 * count_) {
-      out_.positions.resize(3 * count_);
-      out_.normals.resize(3 * count_);
-      out_.uvs.resize(2 * count_);
-    }
-    out_.indices.resize(count_);
+    sizeOutputs(out_, count_);  // table and recent are VertexSharer's only: left as they are
     detail::onThreads(ws_, [&] {
       findRecentRepeats();
       groupTheRest();
@@ -339,12 +340,17 @@ class ParallelSharer {
 // left for the groups, nearly all first corners), on this project's 2-core machine: VertexSharer
 // 80 ms, two threads 65-75 ms; the passes are bound by memory, and the groups' pass reads the
 // corners it is left at random. Below 2 chunks, one thread's VertexSharer.
-void shareVertices(const float* positions, const float* normals, const float* uvs, std::size_t cornerCount,
-                   SharedVertices& out, unsigned threads) {
+unsigned threadsToShareOn(std::size_t cornerCount, unsigned threads) {
   Options options;
   options.threads = threads;
-  if (threadCount(options) > 1 && cornerCount > 2 * (std::size_t(1) << 16)) {
-    ParallelSharer(positions, normals, uvs, cornerCount, out, threadCount(options)).run();
+  const unsigned count = threadCount(options);
+  return count > 1 && cornerCount > 2 * (std::size_t(1) << 16) ? count : 1;
+}
+
+void shareVertices(const float* positions, const float* normals, const float* uvs, std::size_t cornerCount,
+                   SharedVertices& out, unsigned threads) {
+  if (const unsigned count = threadsToShareOn(cornerCount, threads); count > 1) {
+    ParallelSharer(positions, normals, uvs, cornerCount, out, count).run();
     return;
   }
   VertexSharer sharer;
