@@ -10,32 +10,80 @@
 namespace tangent::detail {
 namespace {
 
-// Below this fraction of the operands' magnitude a result is rounding noise (~64 ulps).
-constexpr double kRelativeZero = 1e-14;
+constexpr double kRelativeZero = kTriangleRelativeZero;
 
 std::uint64_t orderBits(double value) { return bitCast<std::uint64_t>(value == 0.0 ? 0.0 : value); }
 
-auto cornerKey(const Vec3& p, const Vec2& uv) {
-  return std::make_tuple(orderBits(p[0]), orderBits(p[1]), orderBits(p[2]), orderBits(uv[0]), orderBits(uv[1]));
-}
-
 bool allFinite(const Vec3& v) { return std::isfinite(v[0]) && std::isfinite(v[1]) && std::isfinite(v[2]); }
 
+bool finiteTriangle(const std::array<Vec3, 3>& positions, const std::array<Vec2, 3>& uvs) {
+  for (int k = 0; k < 3; ++k) {
+    if (!allFinite(positions[k]) || !std::isfinite(uvs[k][0]) || !std::isfinite(uvs[k][1])) return false;
+  }
+  return true;
+}
+
+// The corner the triangle is evaluated from: the smallest by its position's and then its UV's
+// bit patterns (+0 and -0 alike), compared up to the first that differs (nearly always x).
+int canonicalCorner(const std::array<Vec3, 3>& positions, const std::array<Vec2, 3>& uvs) {
+  std::uint64_t key[3][5];
+  for (int k = 0; k < 3; ++k) {
+    for (int a = 0; a < 3; ++a) key[k][a] = orderBits(positions[k][a]);
+    for (int a = 0; a < 2; ++a) key[k][3 + a] = orderBits(uvs[k][a]);
+  }
+  auto less = [&](int x, int y) {
+    for (int i = 0; i < 5; ++i) {
+      if (key[x][i] != key[y][i]) return key[x][i] < key[y][i];
+    }
+    return false;
+  };
+  int start = less(1, 0) ? 1 : 0;
+  if (less(2, start)) start = 2;
+  return start;
+}
+
 }  // namespace
+
+void triangleTangents(const std::array<Vec3, 3>* positions, const std::array<Vec2, 3>* uvs, const bool* wantFaceNormal,
+                      int count, int lanes, TriangleTangent* out) {
+  if (lanes == 1) {
+    for (int i = 0; i < count; ++i) out[i] = triangleTangent(positions[i], uvs[i], wantFaceNormal[i]);
+    return;
+  }
+  TriangleLanes values{};
+  for (int i = 0; i < count; ++i) {
+    out[i] = TriangleTangent{};
+    values.wantFaceNormal[i] = wantFaceNormal[i];
+    values.active[i] = finiteTriangle(positions[i], uvs[i]);
+    if (!values.active[i]) {
+      out[i].kind = TriangleKind::nonFinite;
+      continue;  // its lane holds zeros: evaluated, never read
+    }
+    const int start = canonicalCorner(positions[i], uvs[i]);
+    for (int c = 0; c < 3; ++c) {
+      const int k = (start + c) % 3;
+      for (int a = 0; a < 3; ++a) values.p[c][a][i] = positions[i][k][a];
+      for (int a = 0; a < 2; ++a) values.t[c][a][i] = uvs[i][k][a];
+    }
+  }
+#if defined(TANGENT_DOUBLE_LANES4)
+  if (lanes == 4) {
+    evaluateTriangleLanes4(values, out);
+    return;
+  }
+#endif
+  evaluateTriangleLanes2(values, 0, out);
+  if (count > 2) evaluateTriangleLanes2(values, 2, out);
+}
 
 TriangleTangent triangleTangent(const std::array<Vec3, 3>& positions, const std::array<Vec2, 3>& uvs,
                                 bool wantFaceNormal) {
   TriangleTangent result;
-  for (int k = 0; k < 3; ++k) {
-    if (!allFinite(positions[k]) || !std::isfinite(uvs[k][0]) || !std::isfinite(uvs[k][1])) {
-      result.kind = TriangleKind::nonFinite;
-      return result;
-    }
+  if (!finiteTriangle(positions, uvs)) {
+    result.kind = TriangleKind::nonFinite;
+    return result;
   }
-  int start = 0;
-  for (int k = 1; k < 3; ++k) {
-    if (cornerKey(positions[k], uvs[k]) < cornerKey(positions[start], uvs[start])) start = k;
-  }
+  const int start = canonicalCorner(positions, uvs);
   const Vec3& p0 = positions[start];
   const Vec3& p1 = positions[(start + 1) % 3];
   const Vec3& p2 = positions[(start + 2) % 3];

@@ -44,6 +44,32 @@ struct TriangleTerms {
 TriangleTangent triangleTangent(const std::array<Vec3, 3>& positions, const std::array<Vec2, 3>& uvs,
                                 bool wantFaceNormal = true);
 
+// Below this fraction of the operands' magnitude a result is rounding noise (~64 ulps).
+constexpr double kTriangleRelativeZero = 1e-14;
+
+// triangleTangent of `count` (up to 4) triangles, the same bits: the arithmetic `lanes`
+// triangles at a time in vector registers (4: AVX2, where TANGENT_DOUBLE_LANES4 is defined;
+// 2: SSE2 or SIMD128; 1: one triangleTangent each), the corner order and the finite test per
+// triangle. wantFaceNormal as triangleTangent's, per triangle.
+void triangleTangents(const std::array<Vec3, 3>* positions, const std::array<Vec2, 3>* uvs, const bool* wantFaceNormal,
+                      int count, int lanes, TriangleTangent* out);
+
+// Up to four triangles as the lanes read them: each turned to start at its canonical corner,
+// values by corner, axis and lane (triangle_tangent_lanes.cpp).
+struct TriangleLanes {
+  double p[3][3][4];
+  double t[3][2][4];
+  bool active[4];          // finite: the lanes write its result (the others are written before)
+  bool wantFaceNormal[4];
+};
+// Lanes first and first + 1 into out[first], out[first + 1].
+void evaluateTriangleLanes2(const TriangleLanes& lanes, int first, TriangleTangent* out);
+#if defined(__SSE2__) && defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
+#define TANGENT_DOUBLE_LANES4 1
+// The four lanes in AVX2 registers, where the processor has it.
+void evaluateTriangleLanes4(const TriangleLanes& lanes, TriangleTangent* out);
+#endif
+
 // Interior angle at corner `corner` (0..2), in radians; 0 for a zero-length edge.
 double cornerAngle(const std::array<Vec3, 3>& positions, int corner);
 

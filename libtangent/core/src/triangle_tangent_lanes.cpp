@@ -1,0 +1,66 @@
+// SPDX-License-Identifier: MIT
+// triangleTangent's arithmetic several triangles at a time (triangle_lanes.inc): two in SSE2
+// or SIMD128 registers (and, where neither is there, two lanes of plain doubles), four in AVX2
+// registers where GCC builds for x86-64 and the processor has it (chosen per call by
+// triangleTangents, triangle_tangent.cpp).
+#include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <type_traits>
+
+#include "triangle_tangent.hpp"
+
+#if defined(__SSE2__)
+#include <emmintrin.h>  // in WebAssembly emscripten's SSE2 on SIMD128 (wasm/build.sh: -msse2)
+#endif
+#if defined(TANGENT_DOUBLE_LANES4)
+#include <immintrin.h>
+#endif
+
+namespace tangent::detail {
+namespace {
+
+constexpr double kRelativeZero = kTriangleRelativeZero;
+
+namespace lanes2 {
+constexpr int kLanes = 2;
+using V = double __attribute__((vector_size(16)));
+using M = std::int64_t __attribute__((vector_size(16)));
+inline V root(V x) {
+#if defined(__SSE2__)
+  return reinterpret_cast<V>(_mm_sqrt_pd(reinterpret_cast<__m128d>(x)));
+#else
+  return V{std::sqrt(x[0]), std::sqrt(x[1])};
+#endif
+}
+#include "triangle_lanes.inc"
+}  // namespace lanes2
+
+}  // namespace
+
+void evaluateTriangleLanes2(const TriangleLanes& lanes, int first, TriangleTangent* out) {
+  lanes2::evaluate(lanes, first, out);
+}
+
+#if defined(TANGENT_DOUBLE_LANES4)
+// Compiled for AVX2 (no FMA: no operation is fused) and run where the processor has it.
+#pragma GCC push_options
+#pragma GCC target("avx2")
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wpsabi"  // the vectors passed here are all inlined in this file
+namespace {
+namespace lanes4 {
+constexpr int kLanes = 4;
+using V = double __attribute__((vector_size(32)));
+using M = std::int64_t __attribute__((vector_size(32)));
+inline V root(V x) { return reinterpret_cast<V>(_mm256_sqrt_pd(reinterpret_cast<__m256d>(x))); }
+#include "triangle_lanes.inc"
+}  // namespace lanes4
+}  // namespace
+
+void evaluateTriangleLanes4(const TriangleLanes& lanes, TriangleTangent* out) { lanes4::evaluate(lanes, 0, out); }
+#pragma GCC diagnostic pop
+#pragma GCC pop_options
+#endif
+
+}  // namespace tangent::detail
