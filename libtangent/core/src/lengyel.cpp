@@ -171,41 +171,64 @@ TriangleData evaluateTriangles(WorkspaceData& ws, const MeshArrays& mesh, std::s
     std::uint8_t* state = ws.cornerState.data();
     std::array<std::uint64_t, 4> kinds{};
     constexpr int kBlock = 4;
-    std::array<Vec3, 3> blockPositions[kBlock];
-    std::array<Vec2, 3> blockUvs[kBlock];
     bool blockInvalid[kBlock][3], wantFaceNormal[kBlock];
     TriangleTangent blockTriangles[kBlock];
+    TriangleLanes values{};
+    FlatLanes flatLanes{};  // flat on lanes: its lanes past a short block's count stay not usable
+    const TriangleSource source{mesh.positions.data(), mesh.uvs.data(), mesh.indices.data(), weldOf.data()};
     for (std::size_t block = begin; block < end; block += kBlock) {
       const int count = static_cast<int>(std::min<std::size_t>(kBlock, end - block));
       for (int i = 0; i < count; ++i) {
-        for (int k = 0; k < 3; ++k) {
-          const std::uint32_t vertex = mesh.indices[3 * (block + i) + k];
-          blockPositions[i][k] = vec3At(mesh.positions, weldOf[vertex]);
-          blockUvs[i][k] = {mesh.uvs[2 * vertex], mesh.uvs[2 * vertex + 1]};
-          blockInvalid[i][k] = ws.vertexNormalInvalid[vertex];
-        }
+        for (int k = 0; k < 3; ++k) blockInvalid[i][k] = ws.vertexNormalInvalid[mesh.indices[3 * (block + i) + k]];
         wantFaceNormal[i] = blockInvalid[i][0] || blockInvalid[i][1] || blockInvalid[i][2];
       }
-      triangleTangents(blockPositions, blockUvs, wantFaceNormal, count, lanes, blockTriangles);
-    for (int i = 0; i < count; ++i) {
-      const std::size_t t = block + i;
-      const std::array<Vec3, 3>& positions = blockPositions[i];
-      const bool(&invalid)[3] = blockInvalid[i];
-      const TriangleTangent& triangle = blockTriangles[i];
-      const TriangleTerms terms{triangle.tangent, triangle.bitangent, triangle.orientation, triangle.kind};
-      data.triangles[t] = terms;
-      Vec3 normals[3];
-      for (int k = 0; k < 3; ++k) {
-        const std::size_t corner = 3 * t + k;
-        const std::uint32_t vertex = mesh.indices[corner];
-        normals[k] = invalid[k] ? replacedNormal(triangle) : ws.vertexUnitNormals[vertex];
-        if (invalid[k]) data.cornerNormals[corner] = normals[k];
-        data.invalidNormal[corner] = invalid[k];
-        if (!flat) data.cornerWeights[corner] = cornerWeight(options, positions, k, normals[k], triangle);
+      triangleTangentsAt(source, block, count, wantFaceNormal, lanes, values, blockTriangles);
+      for (int i = 0; i < count; ++i) {
+        const std::size_t t = block + i;
+        const bool(&invalid)[3] = blockInvalid[i];
+        const TriangleTangent& triangle = blockTriangles[i];
+        std::array<Vec3, 3> positions;  // for the weights of a usable triangle only
+        if (!flat && triangle.kind == TriangleKind::usable) {
+          for (int k = 0; k < 3; ++k) positions[k] = values.position(i, k);
+        }
+        const TriangleTerms terms{triangle.tangent, triangle.bitangent, triangle.orientation, triangle.kind};
+        data.triangles[t] = terms;
+        Vec3 normals[3];
+        for (int k = 0; k < 3; ++k) {
+          const std::size_t corner = 3 * t + k;
+          const std::uint32_t vertex = mesh.indices[corner];
+          normals[k] = invalid[k] ? replacedNormal(triangle) : ws.vertexUnitNormals[vertex];
+          if (invalid[k]) data.cornerNormals[corner] = normals[k];
+          data.invalidNormal[corner] = invalid[k];
+          if (!flat) data.cornerWeights[corner] = cornerWeight(options, positions, k, normals[k], triangle);
+        }
+        if (flat && lanes == 1) flatTriangleFrames(terms, normals, invalid, tangents, state, 3 * t);
+        if (flat && lanes > 1) {
+          for (int a = 0; a < 3; ++a) {
+            flatLanes.tangent[a][i] = terms.tangent[a];
+            flatLanes.bitangent[a][i] = terms.bitangent[a];
+            for (int k = 0; k < 3; ++k) flatLanes.normal[k][a][i] = normals[k][a];
+          }
+          flatLanes.usable[i] = terms.kind == TriangleKind::usable;
+          flatLanes.uvSide[i] = terms.orientation < 0 ? -1.0 : 1.0;
+        }
+        if (triangle.kind != TriangleKind::usable) ++kinds[static_cast<std::size_t>(triangle.kind)];  // rare
       }
-      if (flat) flatTriangleFrames(terms, normals, invalid, tangents, state, 3 * t);
-      if (triangle.kind != TriangleKind::usable) ++kinds[static_cast<std::size_t>(triangle.kind)];  // rare
-    }
+      if (flat && lanes > 1) {
+        for (int i = count; i < kBlock; ++i) flatLanes.usable[i] = false;
+        flatFrameLanes(flatLanes, lanes);
+        for (int i = 0; i < count; ++i) {
+          for (int k = 0; k < 3; ++k) {
+            const std::size_t corner = 3 * (block + i) + k;
+            if (flatLanes.framed[k][i]) {
+              writeCornerFrame(tangents, corner, Vec3(flatLanes.frame[k][0][i], flatLanes.frame[k][1][i], flatLanes.frame[k][2][i]),
+                               flatLanes.w[k][i]);
+            }
+            state[corner] = static_cast<std::uint8_t>((flatLanes.framed[k][i] ? 0 : kUndefined) |
+                                                      (blockInvalid[i][k] ? kInvalidNormal : 0));
+          }
+        }
+      }
     }
     std::array<std::uint64_t, 4>& sum = kindCounts.local();
     for (std::size_t k = 0; k < kinds.size(); ++k) sum[k] += kinds[k];

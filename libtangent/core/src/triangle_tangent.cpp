@@ -44,28 +44,66 @@ int canonicalCorner(const std::array<Vec3, 3>& positions, const std::array<Vec2,
 
 }  // namespace
 
-void triangleTangents(const std::array<Vec3, 3>* positions, const std::array<Vec2, 3>* uvs, const bool* wantFaceNormal,
-                      int count, int lanes, TriangleTangent* out) {
+void triangleTangentsAt(const TriangleSource& source, std::size_t first, int count, const bool* wantFaceNormal, int lanes,
+                        TriangleLanes& values, TriangleTangent* out) {
   if (lanes == 1) {
-    for (int i = 0; i < count; ++i) out[i] = triangleTangent(positions[i], uvs[i], wantFaceNormal[i]);
+    for (int i = 0; i < count; ++i) {
+      std::array<Vec3, 3> positions;
+      std::array<Vec2, 3> uvs;
+      for (int k = 0; k < 3; ++k) {
+        const std::uint32_t vertex = source.indices[3 * (first + i) + k];
+        const float* p = source.positions + 3 * std::size_t(source.weldOf[vertex]);
+        const float* t = source.uvs + 2 * std::size_t(vertex);
+        positions[k] = {p[0], p[1], p[2]};
+        uvs[k] = {t[0], t[1]};
+        for (int a = 0; a < 3; ++a) values.p[k][a][i] = positions[k][a];
+      }
+      values.start[i] = 0;
+      out[i] = triangleTangent(positions, uvs, wantFaceNormal[i]);
+    }
     return;
   }
-  TriangleLanes values{};
   for (int i = 0; i < count; ++i) {
     out[i] = TriangleTangent{};
-    values.wantFaceNormal[i] = wantFaceNormal[i];
-    values.active[i] = finiteTriangle(positions[i], uvs[i]);
-    if (!values.active[i]) {
-      out[i].kind = TriangleKind::nonFinite;
-      continue;  // its lane holds zeros: evaluated, never read
+    const float* p[3];
+    const float* t[3];
+    bool finite = true;
+    for (int k = 0; k < 3; ++k) {
+      const std::uint32_t vertex = source.indices[3 * (first + i) + k];
+      p[k] = source.positions + 3 * std::size_t(source.weldOf[vertex]);
+      t[k] = source.uvs + 2 * std::size_t(vertex);
+      finite = finite && std::isfinite(p[k][0]) && std::isfinite(p[k][1]) && std::isfinite(p[k][2]) &&
+               std::isfinite(t[k][0]) && std::isfinite(t[k][1]);
     }
-    const int start = canonicalCorner(positions[i], uvs[i]);
+    values.wantFaceNormal[i] = wantFaceNormal[i];
+    values.active[i] = finite;
+    values.start[i] = 0;
+    if (!finite) {
+      out[i].kind = TriangleKind::nonFinite;
+      continue;  // its lane's values are evaluated, never read
+    }
+    // canonicalCorner's order on the floats: a float's bits (+0 and -0 alike) order as its
+    // double's do, so the same corner.
+    auto key = [](float x) { return x == 0.0f ? 0u : bitCast<std::uint32_t>(x); };
+    auto less = [&](int x, int y) {
+      for (int a = 0; a < 3; ++a) {
+        if (key(p[x][a]) != key(p[y][a])) return key(p[x][a]) < key(p[y][a]);
+      }
+      for (int a = 0; a < 2; ++a) {
+        if (key(t[x][a]) != key(t[y][a])) return key(t[x][a]) < key(t[y][a]);
+      }
+      return false;
+    };
+    int start = less(1, 0) ? 1 : 0;
+    if (less(2, start)) start = 2;
+    values.start[i] = start;
     for (int c = 0; c < 3; ++c) {
       const int k = (start + c) % 3;
-      for (int a = 0; a < 3; ++a) values.p[c][a][i] = positions[i][k][a];
-      for (int a = 0; a < 2; ++a) values.t[c][a][i] = uvs[i][k][a];
+      for (int a = 0; a < 3; ++a) values.p[c][a][i] = p[k][a];
+      for (int a = 0; a < 2; ++a) values.t[c][a][i] = t[k][a];
     }
   }
+  for (int i = count; i < 4; ++i) values.active[i] = false;
 #if defined(TANGENT_DOUBLE_LANES4)
   if (lanes == 4) {
     evaluateTriangleLanes4(values, out);

@@ -6,8 +6,10 @@
 #include <cmath>
 #include <cstdint>
 #include <cstring>
+#include <limits>
 #include <type_traits>
 
+#include "gram_schmidt.hpp"
 #include "triangle_tangent.hpp"
 
 #if defined(__SSE2__)
@@ -41,6 +43,7 @@ inline V root(V x) {
 void evaluateTriangleLanes2(const TriangleLanes& lanes, int first, TriangleTangent* out) {
   lanes2::evaluate(lanes, first, out);
 }
+void flatFrameLanes2(FlatLanes& lanes, int first) { lanes2::flatFrames(lanes, first); }
 
 #if defined(TANGENT_DOUBLE_LANES4)
 // Compiled for AVX2 (no FMA: no operation is fused) and run where the processor has it.
@@ -59,8 +62,24 @@ inline V root(V x) { return reinterpret_cast<V>(_mm256_sqrt_pd(reinterpret_cast<
 }  // namespace
 
 void evaluateTriangleLanes4(const TriangleLanes& lanes, TriangleTangent* out) { lanes4::evaluate(lanes, 0, out); }
+void flatFrameLanes4(FlatLanes& lanes) { lanes4::flatFrames(lanes, 0); }
 #pragma GCC diagnostic pop
 #pragma GCC pop_options
 #endif
+
+}  // namespace tangent::detail
+
+namespace tangent::detail {
+
+void flatFrameLanes(FlatLanes& lanes, int width) {
+#if defined(TANGENT_DOUBLE_LANES4)
+  if (width == 4) {
+    flatFrameLanes4(lanes);
+    return;
+  }
+#endif
+  flatFrameLanes2(lanes, 0);
+  flatFrameLanes2(lanes, 2);
+}
 
 }  // namespace tangent::detail
