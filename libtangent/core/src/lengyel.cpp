@@ -159,7 +159,7 @@ TriangleData evaluateTriangles(WorkspaceData& ws, const MeshArrays& mesh, std::s
   // Triangles of each kind, counted by each piece and summed (integers: any order).
   Combinable<std::array<std::uint64_t, 4>> kindCounts;
   // The triangles' arithmetic four at a time in vector registers where the processor has them
-  // (triangleTangents: the same bits as one at a time).
+  // (triangleTangentsAt: the same bits as one at a time).
   const VectorIsa isa = activeVectorIsa();
 #if defined(TANGENT_DOUBLE_LANES4)
   const int lanes = isa == VectorIsa::scalar ? 1 : isa == VectorIsa::avx2 ? 4 : 2;

@@ -100,7 +100,8 @@ struct FlatLanes {
   double w[3][4];
   bool framed[3][4];
 };
-// `lanes` as triangleTangents' (2 or 4): every lane of `flat` evaluated.
+// `width` as triangleTangentsAt's lanes (2 or 4): all four lanes evaluated (a lane past the
+// block's triangles is not usable: never framed).
 void flatFrameLanes(FlatLanes& lanes, int width);
 void flatFrameLanes2(FlatLanes& lanes, int first);
 #if defined(TANGENT_DOUBLE_LANES4)

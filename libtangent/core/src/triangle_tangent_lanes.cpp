@@ -2,7 +2,7 @@
 // triangleTangent's arithmetic several triangles at a time (triangle_lanes.inc): two in SSE2
 // or SIMD128 registers (and, where neither is there, two lanes of plain doubles), four in AVX2
 // registers where GCC builds for x86-64 and the processor has it (chosen per call by
-// triangleTangents, triangle_tangent.cpp).
+// triangleTangentsAt, triangle_tangent.cpp); flat's frames (flatFrameLanes) likewise.
 #include <cmath>
 #include <cstdint>
 #include <cstring>
