@@ -103,19 +103,21 @@ double projectedEdgeWeight(const std::array<Vec3, 3>& positions, int k, const Ve
   const double tangentInPlane = inPlane(tangent).norm();
   const double edgeProduct = first.norm() * second.norm();
   if (!(tangentInPlane > 0) || !(edgeProduct > 0)) return 0;
-  const double angle = std::atan2((first % second).norm(), first | second);
+  const double angle = angleOf((first % second).norm(), first | second);
   const double weight = angle * edgeProduct / tangentInPlane;
   return std::isfinite(weight) ? weight : 0;
 }
 
 // A corner's term's weight: its weighting's (meshopt: its own), 0 where the triangle is not
 // usable or the method weighs all alike (flat).
+// `angle`: cornerAngle(positions, k), where the triangle pass's lanes made it already (else
+// negative: made here).
 double cornerWeight(const Options& options, const std::array<Vec3, 3>& positions, int k, const Vec3& normal,
-                    const TriangleTangent& triangle) {
+                    const TriangleTangent& triangle, double angle) {
   if (triangle.kind != TriangleKind::usable || options.method == Method::flat) return 0;
   if (options.method == Method::meshopt) return projectedEdgeWeight(positions, k, normal, triangle.tangent);
   switch (options.weighting) {
-    case Weighting::angle: return cornerAngle(positions, k);
+    case Weighting::angle: return angle >= 0 ? angle : cornerAngle(positions, k);
     case Weighting::area: return triangle.area;
     case Weighting::uniform: return 1.0;
   }
@@ -176,6 +178,7 @@ TriangleData evaluateTriangles(WorkspaceData& ws, const MeshArrays& mesh, std::s
     TriangleLanes values{};
     FlatLanes flatLanes{};  // flat on lanes: its lanes past a short block's count stay not usable
     const TriangleSource source{mesh.positions.data(), mesh.uvs.data(), mesh.indices.data(), weldOf.data()};
+    values.wantAngles = lanes > 1 && options.method == Method::lengyel && options.weighting == Weighting::angle;
     for (std::size_t block = begin; block < end; block += kBlock) {
       const int count = static_cast<int>(std::min<std::size_t>(kBlock, end - block));
       for (int i = 0; i < count; ++i) {
@@ -200,7 +203,10 @@ TriangleData evaluateTriangles(WorkspaceData& ws, const MeshArrays& mesh, std::s
           normals[k] = invalid[k] ? replacedNormal(triangle) : ws.vertexUnitNormals[vertex];
           if (invalid[k]) data.cornerNormals[corner] = normals[k];
           data.invalidNormal[corner] = invalid[k];
-          if (!flat) data.cornerWeights[corner] = cornerWeight(options, positions, k, normals[k], triangle);
+          if (!flat) {
+            const double angle = values.wantAngles ? values.cornerAngle(i, k) : -1.0;
+            data.cornerWeights[corner] = cornerWeight(options, positions, k, normals[k], triangle, angle);
+          }
         }
         if (flat && lanes == 1) flatTriangleFrames(terms, normals, invalid, tangents, state, 3 * t);
         if (flat && lanes > 1) {

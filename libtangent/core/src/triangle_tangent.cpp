@@ -168,7 +168,7 @@ double cornerAngle(const std::array<Vec3, 3>& positions, int corner) {
   const double sine = (a % b).norm();
   const double cosine = a | b;
   if (sine == 0 && cosine == 0) return 0;
-  const double angle = std::atan2(sine, cosine);
+  const double angle = angleOf(sine, cosine);
   return std::isfinite(angle) ? angle : 0;
 }
 

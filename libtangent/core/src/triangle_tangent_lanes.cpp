@@ -3,6 +3,12 @@
 // or SIMD128 registers (and, where neither is there, two lanes of plain doubles), four in AVX2
 // registers where GCC builds for x86-64 and the processor has it (chosen per call by
 // triangleTangentsAt, triangle_tangent.cpp); flat's frames (flatFrameLanes) likewise.
+// The AVX2 lanes pass 32-byte vectors only to functions inlined into them (atanSeries from
+// triangle_tangent.hpp among them, whose template GCC reports at its own line): no call
+// crosses the ABI the note is about.
+#if defined(__GNUC__) && !defined(__clang__)
+#pragma GCC diagnostic ignored "-Wpsabi"
+#endif
 #include <cmath>
 #include <cstdint>
 #include <cstring>
@@ -40,7 +46,7 @@ inline V root(V x) {
 
 }  // namespace
 
-void evaluateTriangleLanes2(const TriangleLanes& lanes, int first, TriangleTangent* out) {
+void evaluateTriangleLanes2(TriangleLanes& lanes, int first, TriangleTangent* out) {
   lanes2::evaluate(lanes, first, out);
 }
 void flatFrameLanes2(FlatLanes& lanes, int first) { lanes2::flatFrames(lanes, first); }
@@ -49,8 +55,6 @@ void flatFrameLanes2(FlatLanes& lanes, int first) { lanes2::flatFrames(lanes, fi
 // Compiled for AVX2 (no FMA: no operation is fused) and run where the processor has it.
 #pragma GCC push_options
 #pragma GCC target("avx2")
-#pragma GCC diagnostic push
-#pragma GCC diagnostic ignored "-Wpsabi"  // the vectors passed here are all inlined in this file
 namespace {
 namespace lanes4 {
 constexpr int kLanes = 4;
@@ -61,9 +65,8 @@ inline V root(V x) { return reinterpret_cast<V>(_mm256_sqrt_pd(reinterpret_cast<
 }  // namespace lanes4
 }  // namespace
 
-void evaluateTriangleLanes4(const TriangleLanes& lanes, TriangleTangent* out) { lanes4::evaluate(lanes, 0, out); }
+void evaluateTriangleLanes4(TriangleLanes& lanes, TriangleTangent* out) { lanes4::evaluate(lanes, 0, out); }
 void flatFrameLanes4(FlatLanes& lanes) { lanes4::flatFrames(lanes, 0); }
-#pragma GCC diagnostic pop
 #pragma GCC pop_options
 #endif
 
