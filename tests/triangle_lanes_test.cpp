@@ -1,7 +1,8 @@
 // SPDX-License-Identifier: MIT
 // White-box tests of the double triangle pass of lengyel, meshopt and flat in vector lanes
 // (triangle_tangent_lanes.cpp): every field, corner angle and flat frame of every lane has the
-// bits of the scalar functions (triangleTangent, cornerAngle, flatTriangleFrames) on random and
+// bits of the scalar functions (triangleTangent, cornerAngle, flatTriangleFrames,
+// projectedEdgeWeight) on random and
 // extreme triangles; and angleOf, the deterministic atan2 the weights use, against libm's.
 // The whole-call tests (Workspace.SameBitsForEveryVectorWidth) compare only the float outputs,
 // which a one-ulp change of a weight almost never moves: these compare the doubles.
@@ -190,6 +191,49 @@ TEST(TriangleLanes, FlatFramesHaveTheScalarBits) {
       }
     }
     EXPECT_GT(framed, triangleCount);
+  }
+}
+
+TEST(TriangleLanes, MeshoptWeightsHaveTheScalarBits) {
+  const Soup soup = randomSoup(8000, 13);
+  const TriangleSource source{soup.positions.data(), soup.uvs.data(), soup.indices.data(), soup.weld.data()};
+  const std::size_t triangleCount = soup.indices.size() / 3;
+  std::mt19937 random(4);
+  std::uniform_real_distribution<double> unit(-1.0, 1.0);
+  for (const int width : laneWidths()) {
+    SCOPED_TRACE("lanes " + std::to_string(width));
+    TriangleLanes values{};
+    tangent::detail::MeshoptLanes lanes{};
+    TriangleTangent triangles[4];
+    std::size_t weighted = 0;
+    for (std::size_t first = 0; first < triangleCount; first += 4) {
+      const int count = static_cast<int>(std::min<std::size_t>(4, triangleCount - first));
+      const bool wantFaceNormal[4] = {false, false, false, false};
+      tangent::detail::triangleTangentsAt(source, first, count, wantFaceNormal, width, values, triangles);
+      Vec3 normals[4][3];
+      for (int i = 0; i < count; ++i) {
+        for (int k = 0; k < 3; ++k) {  // unit normals, one in eight along an edge (a zero projection)
+          Vec3 n(unit(random), unit(random), unit(random));
+          if ((first + i + k) % 8 == 0) n = values.position(i, (k + 1) % 3) - values.position(i, k);
+          normals[i][k] = n / n.norm();
+          for (int a = 0; a < 3; ++a) lanes.normal[(k - values.start[i] + 3) % 3][a][i] = normals[i][k][a];
+        }
+        for (int a = 0; a < 3; ++a) lanes.tangent[a][i] = triangles[i].tangent[a];
+      }
+      tangent::detail::meshoptWeightLanes(values, lanes, width);
+      for (int i = 0; i < count; ++i) {
+        if (triangles[i].kind != TriangleKind::usable) continue;  // weighted 0 without the lanes
+        std::array<Vec3, 3> positions;
+        for (int k = 0; k < 3; ++k) positions[k] = values.position(i, k);
+        for (int k = 0; k < 3; ++k) {
+          const double scalar = tangent::detail::projectedEdgeWeight(positions, k, normals[i][k], triangles[i].tangent);
+          EXPECT_EQ(bits(lanes.weight[(k - values.start[i] + 3) % 3][i]), bits(scalar))
+              << "corner " << k << " of triangle " << first + i;
+          weighted += scalar > 0;
+        }
+      }
+    }
+    EXPECT_GT(weighted, triangleCount);
   }
 }
 

@@ -90,23 +90,6 @@ Vec3 vec3At(std::span<const float> values, std::uint32_t vertex) {
   return {values[3 * vertex], values[3 * vertex + 1], values[3 * vertex + 2]};
 }
 
-// meshoptimizer's default corner weight (meshoptimizer 1.x, src/tangentspace.cpp:
-// meshopt_generateTangents without meshopt_TangentCompatible): the angle between corner k's
-// two edges projected onto the plane of its unit normal, times the product of the projected
-// edge lengths. meshoptimizer adds the triangle's tangent projected onto that plane and made
-// unit; this pipeline adds the unit tangent and projects the group's sum (its corners share one
-// normal), which is the same sum when the weight is divided by the projection's length.
-double projectedEdgeWeight(const std::array<Vec3, 3>& positions, int k, const Vec3& normal, const Vec3& tangent) {
-  auto inPlane = [&](const Vec3& v) { return v - normal * (normal | v); };
-  const Vec3 first = inPlane(positions[(k + 1) % 3] - positions[k]);
-  const Vec3 second = inPlane(positions[(k + 2) % 3] - positions[k]);
-  const double tangentInPlane = inPlane(tangent).norm();
-  const double edgeProduct = first.norm() * second.norm();
-  if (!(tangentInPlane > 0) || !(edgeProduct > 0)) return 0;
-  const double angle = angleOf((first % second).norm(), first | second);
-  const double weight = angle * edgeProduct / tangentInPlane;
-  return std::isfinite(weight) ? weight : 0;
-}
 
 // A corner's term's weight: its weighting's (meshopt: its own), 0 where the triangle is not
 // usable or the method weighs all alike (flat).
@@ -179,6 +162,8 @@ TriangleData evaluateTriangles(WorkspaceData& ws, const MeshArrays& mesh, std::s
     FlatLanes flatLanes{};  // flat on lanes: its lanes past a short block's count stay not usable
     const TriangleSource source{mesh.positions.data(), mesh.uvs.data(), mesh.indices.data(), weldOf.data()};
     values.wantAngles = lanes > 1 && options.method == Method::lengyel && options.weighting == Weighting::angle;
+    const bool meshoptLanes = lanes > 1 && options.method == Method::meshopt;
+    MeshoptLanes meshoptWeights{};
     for (std::size_t block = begin; block < end; block += kBlock) {
       const int count = static_cast<int>(std::min<std::size_t>(kBlock, end - block));
       for (int i = 0; i < count; ++i) {
@@ -191,7 +176,7 @@ TriangleData evaluateTriangles(WorkspaceData& ws, const MeshArrays& mesh, std::s
         const bool(&invalid)[3] = blockInvalid[i];
         const TriangleTangent& triangle = blockTriangles[i];
         std::array<Vec3, 3> positions;  // for the weights of a usable triangle only
-        if (!flat && triangle.kind == TriangleKind::usable) {
+        if (!flat && !meshoptLanes && triangle.kind == TriangleKind::usable) {
           for (int k = 0; k < 3; ++k) positions[k] = values.position(i, k);
         }
         const TriangleTerms terms{triangle.tangent, triangle.bitangent, triangle.orientation, triangle.kind};
@@ -203,10 +188,15 @@ TriangleData evaluateTriangles(WorkspaceData& ws, const MeshArrays& mesh, std::s
           normals[k] = invalid[k] ? replacedNormal(triangle) : ws.vertexUnitNormals[vertex];
           if (invalid[k]) data.cornerNormals[corner] = normals[k];
           data.invalidNormal[corner] = invalid[k];
-          if (!flat) {
+          if (meshoptLanes) {
+            for (int a = 0; a < 3; ++a) meshoptWeights.normal[(k - values.start[i] + 3) % 3][a][i] = normals[k][a];
+          } else if (!flat) {
             const double angle = values.wantAngles ? values.cornerAngle(i, k) : -1.0;
             data.cornerWeights[corner] = cornerWeight(options, positions, k, normals[k], triangle, angle);
           }
+        }
+        if (meshoptLanes) {
+          for (int a = 0; a < 3; ++a) meshoptWeights.tangent[a][i] = triangle.tangent[a];
         }
         if (flat && lanes == 1) flatTriangleFrames(terms, normals, invalid, tangents, state, 3 * t);
         if (flat && lanes > 1) {
@@ -219,6 +209,15 @@ TriangleData evaluateTriangles(WorkspaceData& ws, const MeshArrays& mesh, std::s
           flatLanes.uvSide[i] = terms.orientation < 0 ? -1.0 : 1.0;
         }
         if (triangle.kind != TriangleKind::usable) ++kinds[static_cast<std::size_t>(triangle.kind)];  // rare
+      }
+      if (meshoptLanes) {  // cornerWeight's: 0 where the triangle is not usable
+        meshoptWeightLanes(values, meshoptWeights, lanes);
+        for (int i = 0; i < count; ++i) {
+          const bool usable = blockTriangles[i].kind == TriangleKind::usable;
+          for (int k = 0; k < 3; ++k) {
+            data.cornerWeights[3 * (block + i) + k] = usable ? meshoptWeights.weight[(k - values.start[i] + 3) % 3][i] : 0.0;
+          }
+        }
       }
       if (flat && lanes > 1) {
         for (int i = count; i < kBlock; ++i) flatLanes.usable[i] = false;

@@ -172,6 +172,24 @@ double cornerAngle(const std::array<Vec3, 3>& positions, int corner) {
   return std::isfinite(angle) ? angle : 0;
 }
 
+// meshoptimizer's default corner weight (meshoptimizer 1.x, src/tangentspace.cpp:
+// meshopt_generateTangents without meshopt_TangentCompatible): the angle between corner k's
+// two edges projected onto the plane of its unit normal, times the product of the projected
+// edge lengths. meshoptimizer adds the triangle's tangent projected onto that plane and made
+// unit; this pipeline adds the unit tangent and projects the group's sum (its corners share one
+// normal), which is the same sum when the weight is divided by the projection's length.
+double projectedEdgeWeight(const std::array<Vec3, 3>& positions, int k, const Vec3& normal, const Vec3& tangent) {
+  auto inPlane = [&](const Vec3& v) { return v - normal * (normal | v); };
+  const Vec3 first = inPlane(positions[(k + 1) % 3] - positions[k]);
+  const Vec3 second = inPlane(positions[(k + 2) % 3] - positions[k]);
+  const double tangentInPlane = inPlane(tangent).norm();
+  const double edgeProduct = first.norm() * second.norm();
+  if (!(tangentInPlane > 0) || !(edgeProduct > 0)) return 0;
+  const double angle = angleOf((first % second).norm(), first | second);
+  const double weight = angle * edgeProduct / tangentInPlane;
+  return std::isfinite(weight) ? weight : 0;
+}
+
 Vec3 fixedPerpendicular(const Vec3& n) {
   Vec3 t;
   axisPerpendicular(n.data(), t.data());  // the one rule (workspace.hpp), mikktspace's too

@@ -104,6 +104,21 @@ struct FlatLanes {
   double w[3][4];
   bool framed[3][4];
 };
+// Method `meshopt`'s corner weights (projectedEdgeWeight, below) of up to four
+// triangles in lanes, by lane corner (TriangleLanes' order: lane corner c is the triangle's
+// corner (start + c) % 3): in, each corner's unit normal and the triangle's dP/du; out, the
+// weight (the same bits as projectedEdgeWeight; 0 where it gives 0).
+struct MeshoptLanes {
+  double normal[3][3][4];  // lane corner, axis, lane
+  double tangent[3][4];
+  double weight[3][4];     // lane corner, lane
+};
+void meshoptWeightLanes(const TriangleLanes& values, MeshoptLanes& lanes, int width);
+void meshoptWeightLanes2(const TriangleLanes& values, MeshoptLanes& lanes, int first);
+#if defined(TANGENT_DOUBLE_LANES4)
+void meshoptWeightLanes4(const TriangleLanes& values, MeshoptLanes& lanes);
+#endif
+
 // `width` as triangleTangentsAt's lanes (2 or 4): all four lanes evaluated (a lane past the
 // block's triangles is not usable: never framed).
 void flatFrameLanes(FlatLanes& lanes, int width);
@@ -153,6 +168,11 @@ inline double angleOf(double y, double x) {
 
 // Interior angle at corner `corner` (0..2), in radians; 0 for a zero-length edge.
 double cornerAngle(const std::array<Vec3, 3>& positions, int corner);
+
+// Method `meshopt`'s corner weight (triangle_tangent.cpp): the angle between corner k's edges
+// projected onto the plane of its unit normal, times their projected lengths, over the length
+// of the triangle's unit dP/du projected there; 0 where either length is 0 or it is not finite.
+double projectedEdgeWeight(const std::array<Vec3, 3>& positions, int k, const Vec3& normal, const Vec3& tangent);
 
 // A unit vector perpendicular to the unit vector n, fixed for a given n.
 Vec3 fixedPerpendicular(const Vec3& n);

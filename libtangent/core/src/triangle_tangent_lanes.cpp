@@ -50,6 +50,9 @@ void evaluateTriangleLanes2(TriangleLanes& lanes, int first, TriangleTangent* ou
   lanes2::evaluate(lanes, first, out);
 }
 void flatFrameLanes2(FlatLanes& lanes, int first) { lanes2::flatFrames(lanes, first); }
+void meshoptWeightLanes2(const TriangleLanes& values, MeshoptLanes& lanes, int first) {
+  lanes2::meshoptWeights(values, lanes, first);
+}
 
 #if defined(TANGENT_DOUBLE_LANES4)
 // Compiled for AVX2 (no FMA: no operation is fused) and run where the processor has it.
@@ -67,6 +70,7 @@ inline V root(V x) { return reinterpret_cast<V>(_mm256_sqrt_pd(reinterpret_cast<
 
 void evaluateTriangleLanes4(TriangleLanes& lanes, TriangleTangent* out) { lanes4::evaluate(lanes, 0, out); }
 void flatFrameLanes4(FlatLanes& lanes) { lanes4::flatFrames(lanes, 0); }
+void meshoptWeightLanes4(const TriangleLanes& values, MeshoptLanes& lanes) { lanes4::meshoptWeights(values, lanes, 0); }
 #pragma GCC pop_options
 #endif
 
@@ -83,6 +87,17 @@ void flatFrameLanes(FlatLanes& lanes, int width) {
 #endif
   flatFrameLanes2(lanes, 0);
   flatFrameLanes2(lanes, 2);
+}
+
+void meshoptWeightLanes(const TriangleLanes& values, MeshoptLanes& lanes, int width) {
+#if defined(TANGENT_DOUBLE_LANES4)
+  if (width == 4) {
+    meshoptWeightLanes4(values, lanes);
+    return;
+  }
+#endif
+  meshoptWeightLanes2(values, lanes, 0);
+  meshoptWeightLanes2(values, lanes, 2);
 }
 
 }  // namespace tangent::detail
