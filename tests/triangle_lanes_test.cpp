@@ -8,6 +8,7 @@
 // which a one-ulp change of a weight almost never moves: these compare the doubles.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <array>
 #include <bit>
 #include <cmath>
@@ -34,7 +35,7 @@ std::uint64_t bits(double x) { return std::bit_cast<std::uint64_t>(x); }
 
 // The widths this build and processor run.
 std::vector<int> laneWidths() {
-  std::vector<int> widths{2};
+  std::vector<int> widths{1, 2};  // 1: triangleTangentsAt's scalar way
 #if defined(TANGENT_DOUBLE_LANES4)
   __builtin_cpu_init();
   if (__builtin_cpu_supports("avx2")) widths.push_back(4);
@@ -83,7 +84,27 @@ Soup randomSoup(std::size_t triangles, unsigned seed) {
       soup.weld.push_back(vertex);
     }
   }
+  // Corners in shuffled vertex order, and one vertex in five read at another's position (its
+  // weld representative), so that a read of the position at the vertex or of the UV at the
+  // representative gives other values.
+  std::vector<std::uint32_t> order(soup.weld.size());
+  for (std::size_t v = 0; v < order.size(); ++v) order[v] = static_cast<std::uint32_t>(v);
+  std::shuffle(order.begin(), order.end(), random);
+  for (std::uint32_t& index : soup.indices) index = order[index];
+  std::uniform_int_distribution<std::uint32_t> anyVertex(0, static_cast<std::uint32_t>(soup.weld.size() - 1));
+  for (std::size_t v = 0; v < soup.weld.size(); v += 5) soup.weld[v] = anyVertex(random);
   return soup;
+}
+
+// Triangle t's positions (at its vertices' representatives) and UVs (at its vertices), as the
+// lanes must read them.
+void trianglesCorners(const Soup& soup, std::size_t t, std::array<Vec3, 3>& positions, std::array<Vec2, 3>& uvs) {
+  for (int k = 0; k < 3; ++k) {
+    const std::uint32_t vertex = soup.indices[3 * t + k];
+    const float* p = &soup.positions[3 * std::size_t(soup.weld[vertex])];
+    positions[k] = {p[0], p[1], p[2]};
+    uvs[k] = {soup.uvs[2 * std::size_t(vertex)], soup.uvs[2 * std::size_t(vertex) + 1]};
+  }
 }
 
 void expectSameBits(const Vec3& a, const Vec3& b, const char* what, std::size_t t) {
@@ -91,7 +112,7 @@ void expectSameBits(const Vec3& a, const Vec3& b, const char* what, std::size_t 
 }
 
 TEST(TriangleLanes, EveryLaneHasTheScalarBits) {
-  const Soup soup = randomSoup(20000, 7);
+  const Soup soup = randomSoup(20003, 7);  // not a multiple of 4: a short last block
   const TriangleSource source{soup.positions.data(), soup.uvs.data(), soup.indices.data(), soup.weld.data()};
   const std::size_t triangleCount = soup.indices.size() / 3;
   std::size_t usable = 0, compared = 0;
@@ -108,11 +129,7 @@ TEST(TriangleLanes, EveryLaneHasTheScalarBits) {
         const std::size_t t = first + i;
         std::array<Vec3, 3> positions;
         std::array<Vec2, 3> uvs;
-        for (int k = 0; k < 3; ++k) {
-          const float* p = &soup.positions[3 * (3 * t + k)];
-          positions[k] = {p[0], p[1], p[2]};
-          uvs[k] = {soup.uvs[2 * (3 * t + k)], soup.uvs[2 * (3 * t + k) + 1]};
-        }
+        trianglesCorners(soup, t, positions, uvs);
         const TriangleTangent scalar = tangent::detail::triangleTangent(positions, uvs, wantFaceNormal[i]);
         ASSERT_EQ(lanes[i].kind, scalar.kind) << "triangle " << t;
         EXPECT_EQ(lanes[i].orientation, scalar.orientation) << "triangle " << t;
@@ -125,8 +142,10 @@ TEST(TriangleLanes, EveryLaneHasTheScalarBits) {
         if (scalar.kind != TriangleKind::usable) continue;
         ++usable;
         for (int k = 0; k < 3; ++k) {
-          EXPECT_EQ(bits(values.cornerAngle(i, k)), bits(tangent::detail::cornerAngle(positions, k)))
-              << "angle at corner " << k << " of triangle " << t;
+          if (width > 1) {  // the scalar way leaves the angles to cornerAngle
+            EXPECT_EQ(bits(values.cornerAngle(i, k)), bits(tangent::detail::cornerAngle(positions, k)))
+                << "angle at corner " << k << " of triangle " << t;
+          }
           expectSameBits(values.position(i, k), positions[k], "position", t);
         }
       }
@@ -137,7 +156,7 @@ TEST(TriangleLanes, EveryLaneHasTheScalarBits) {
 }
 
 TEST(TriangleLanes, FlatFramesHaveTheScalarBits) {
-  const Soup soup = randomSoup(8000, 11);
+  const Soup soup = randomSoup(8001, 11);
   const TriangleSource source{soup.positions.data(), soup.uvs.data(), soup.indices.data(), soup.weld.data()};
   const std::size_t triangleCount = soup.indices.size() / 3;
   std::mt19937 random(3);
@@ -195,7 +214,7 @@ TEST(TriangleLanes, FlatFramesHaveTheScalarBits) {
 }
 
 TEST(TriangleLanes, MeshoptWeightsHaveTheScalarBits) {
-  const Soup soup = randomSoup(8000, 13);
+  const Soup soup = randomSoup(8002, 13);
   const TriangleSource source{soup.positions.data(), soup.uvs.data(), soup.indices.data(), soup.weld.data()};
   const std::size_t triangleCount = soup.indices.size() / 3;
   std::mt19937 random(4);

@@ -90,7 +90,6 @@ Vec3 vec3At(std::span<const float> values, std::uint32_t vertex) {
   return {values[3 * vertex], values[3 * vertex + 1], values[3 * vertex + 2]};
 }
 
-
 // A corner's term's weight: its weighting's (meshopt: its own), 0 where the triangle is not
 // usable or the method weighs all alike (flat).
 // `angle`: cornerAngle(positions, k), where the triangle pass's lanes made it already (else
@@ -189,7 +188,7 @@ TriangleData evaluateTriangles(WorkspaceData& ws, const MeshArrays& mesh, std::s
           if (invalid[k]) data.cornerNormals[corner] = normals[k];
           data.invalidNormal[corner] = invalid[k];
           if (meshoptLanes) {
-            for (int a = 0; a < 3; ++a) meshoptWeights.normal[(k - values.start[i] + 3) % 3][a][i] = normals[k][a];
+            for (int a = 0; a < 3; ++a) meshoptWeights.normal[values.laneCorner(i, k)][a][i] = normals[k][a];
           } else if (!flat) {
             const double angle = values.wantAngles ? values.cornerAngle(i, k) : -1.0;
             data.cornerWeights[corner] = cornerWeight(options, positions, k, normals[k], triangle, angle);
@@ -215,7 +214,7 @@ TriangleData evaluateTriangles(WorkspaceData& ws, const MeshArrays& mesh, std::s
         for (int i = 0; i < count; ++i) {
           const bool usable = blockTriangles[i].kind == TriangleKind::usable;
           for (int k = 0; k < 3; ++k) {
-            data.cornerWeights[3 * (block + i) + k] = usable ? meshoptWeights.weight[(k - values.start[i] + 3) % 3][i] : 0.0;
+            data.cornerWeights[3 * (block + i) + k] = usable ? meshoptWeights.weight[values.laneCorner(i, k)][i] : 0.0;
           }
         }
       }

@@ -3,9 +3,7 @@
 
 #include "workspace.hpp"
 
-#include <bit>
 #include <cmath>
-#include <tuple>
 
 namespace tangent::detail {
 namespace {

@@ -58,10 +58,12 @@ struct TriangleLanes {
   int start[4];            // the canonical corner: lane corner c is the triangle's corner (start + c) % 3
   bool wantAngles = false; // in: whether the lanes write `angle` (lengyel's angle weighting)
   double angle[3][4];      // out: cornerAngle of lane corner c (the same bits)
-  // The triangle's corner k's position (for its weight) where it is finite.
-  double cornerAngle(int lane, int k) const { return angle[(k - start[lane] + 3) % 3][lane]; }
+  // The lane corner of the triangle's corner k.
+  int laneCorner(int lane, int k) const { return (k - start[lane] + 3) % 3; }
+  double cornerAngle(int lane, int k) const { return angle[laneCorner(lane, k)][lane]; }
+  // The triangle's corner k's position (for its weight), where the triangle is finite.
   Vec3 position(int lane, int k) const {
-    const int c = (k - start[lane] + 3) % 3;
+    const int c = laneCorner(lane, k);
     return {p[c][0][lane], p[c][1][lane], p[c][2][lane]};
   }
 };
@@ -138,17 +140,21 @@ inline constexpr double kAtanTanEighthPi = 0.41421356237309503, kAtanQuarterPi =
 // The series' coefficients: (-1)^k / (2k + 1).
 constexpr double atanCoefficient(int k) { return (k % 2 ? -1.0 : 1.0) / (2 * k + 1); }
 // t + t z P(z), z = t^2, P = sum of atanCoefficient(k) z^(k-1) for k = 1..19, in Estrin's form:
-// one statement for the scalar and the lane code (T: double or a vector of them).
-// Always inlined: the lanes' copy is then compiled for their instruction set (AVX2 inside
-// triangle_tangent_lanes.cpp's target region), not called across it.
+// one statement for the scalar and the lane code (T: double or a vector of them). Always
+// inlined and with no call inside: the lanes' copy is then compiled for their instruction set
+// (AVX2 inside triangle_tangent_lanes.cpp's target region) even at -O0, never called across it.
 template <class T>
 [[gnu::always_inline]] inline T atanSeries(T t) {
+  constexpr double c1 = atanCoefficient(1), c2 = atanCoefficient(2), c3 = atanCoefficient(3), c4 = atanCoefficient(4),
+                   c5 = atanCoefficient(5), c6 = atanCoefficient(6), c7 = atanCoefficient(7), c8 = atanCoefficient(8),
+                   c9 = atanCoefficient(9), c10 = atanCoefficient(10), c11 = atanCoefficient(11), c12 = atanCoefficient(12),
+                   c13 = atanCoefficient(13), c14 = atanCoefficient(14), c15 = atanCoefficient(15), c16 = atanCoefficient(16),
+                   c17 = atanCoefficient(17), c18 = atanCoefficient(18), c19 = atanCoefficient(19);
   const T z = t * t;
-  auto pair = [&](int k) { return atanCoefficient(k) + atanCoefficient(k + 1) * z; };
-  const T a0 = pair(1), a1 = pair(3), a2 = pair(5), a3 = pair(7), a4 = pair(9), a5 = pair(11), a6 = pair(13), a7 = pair(15),
-          a8 = pair(17);
+  const T a0 = c1 + c2 * z, a1 = c3 + c4 * z, a2 = c5 + c6 * z, a3 = c7 + c8 * z, a4 = c9 + c10 * z, a5 = c11 + c12 * z,
+          a6 = c13 + c14 * z, a7 = c15 + c16 * z, a8 = c17 + c18 * z;
   const T z2 = z * z;
-  const T b0 = a0 + a1 * z2, b1 = a2 + a3 * z2, b2 = a4 + a5 * z2, b3 = a6 + a7 * z2, b4 = a8 + atanCoefficient(19) * z2;
+  const T b0 = a0 + a1 * z2, b1 = a2 + a3 * z2, b2 = a4 + a5 * z2, b3 = a6 + a7 * z2, b4 = a8 + c19 * z2;
   const T z4 = z2 * z2;
   const T d0 = b0 + b1 * z4, d1 = b2 + b3 * z4;
   const T z8 = z4 * z4;

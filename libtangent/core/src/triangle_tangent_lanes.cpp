@@ -1,8 +1,10 @@
 // SPDX-License-Identifier: MIT
-// triangleTangent's arithmetic several triangles at a time (triangle_lanes.inc): two in SSE2
-// or SIMD128 registers (and, where neither is there, two lanes of plain doubles), four in AVX2
-// registers where GCC builds for x86-64 and the processor has it (chosen per call by
-// triangleTangentsAt, triangle_tangent.cpp); flat's frames (flatFrameLanes) likewise.
+// The double triangle pass several triangles at a time (triangle_lanes.inc): triangleTangent's
+// arithmetic and lengyel's corner angles (triangleTangentsAt, triangle_tangent.cpp), flat's
+// frames (flatFrameLanes) and meshopt's corner weights (meshoptWeightLanes). Two in SSE2 or
+// SIMD128 registers (and, where neither is there, two lanes of plain doubles), four in AVX2
+// registers where GCC builds for x86-64 and the processor has it (evaluateTriangles in
+// lengyel.cpp picks the width per call from activeVectorIsa).
 // The AVX2 lanes pass 32-byte vectors only to functions inlined into them (atanSeries from
 // triangle_tangent.hpp among them, whose template GCC reports at its own line): no call
 // crosses the ABI the note is about.

@@ -262,9 +262,9 @@ void weldAndBucket(WorkspaceData& ws, const MeshArrays& mesh, unsigned threads, 
 // triangle pass, groups, output pass (finishOutputs), on the calling thread's arena.
 Report mikktspaceOnArrays(WorkspaceData& ws, const MeshArrays& mesh, const CornerOutputs& outputs, const Options& options);
 
-// The vector width of mikktspace's triangle pass: scalar, four lanes (SSE2 on x86,
-// SIMD128 in WebAssembly; never both in one build) or eight (AVX2). Every width gives the same
-// bits.
+// The vector width of the triangle passes: mikktspace's floats scalar, four lanes (SSE2 on x86,
+// SIMD128 in WebAssembly; never both in one build) or eight (AVX2); lengyel's, meshopt's and
+// flat's doubles scalar, two lanes or four (AVX2). Every width gives the same bits.
 enum class VectorIsa : std::uint8_t { scalar, sse2, simd128, avx2 };
 // The widest this build and this processor have, capped by the environment variable
 // TANGENT_MAX_CPU_ISA where it names one of them (scalar, sse2, simd128, avx2). Read at each

@@ -66,7 +66,7 @@ void shareVertices(const float* positions, const float* normals, const float* uv
                    SharedVertices& out, unsigned threads = 1);
 
 // The threads shareVertices shares `cornerCount` corners on, given `threads`: 1 (one thread's
-// VertexSharer) below 131,072 corners, in a build without threads, or where `threads` is 1.
+// VertexSharer) up to 131,072 corners, in a build without threads, or where `threads` is 1.
 // A caller that has the corners in pieces copies them whole only where this is above 1.
 unsigned threadsToShareOn(std::size_t cornerCount, unsigned threads = 1);
 
