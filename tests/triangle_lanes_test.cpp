@@ -107,6 +107,21 @@ void trianglesCorners(const Soup& soup, std::size_t t, std::array<Vec3, 3>& posi
   }
 }
 
+// Every triangle of `soup` through triangleTangentsAt on `width` lanes, four at a time (no face
+// normals): each(first, count, triangles) per block, with `values` as the lanes left them.
+template <class Each>
+void forEachBlock(const Soup& soup, int width, TriangleLanes& values, const Each& each) {
+  const TriangleSource source{soup.positions.data(), soup.uvs.data(), soup.indices.data(), soup.weld.data()};
+  const std::size_t triangleCount = soup.indices.size() / 3;
+  TriangleTangent triangles[4];
+  const bool wantFaceNormal[4] = {false, false, false, false};
+  for (std::size_t first = 0; first < triangleCount; first += 4) {
+    const int count = static_cast<int>(std::min<std::size_t>(4, triangleCount - first));
+    tangent::detail::triangleTangentsAt(source, first, count, wantFaceNormal, width, values, triangles);
+    each(first, count, triangles);
+  }
+}
+
 void expectSameBits(const Vec3& a, const Vec3& b, const char* what, std::size_t t) {
   for (int i = 0; i < 3; ++i) EXPECT_EQ(bits(a[i]), bits(b[i])) << what << " of triangle " << t << ", axis " << i;
 }
@@ -157,7 +172,6 @@ TEST(TriangleLanes, EveryLaneHasTheScalarBits) {
 
 TEST(TriangleLanes, FlatFramesHaveTheScalarBits) {
   const Soup soup = randomSoup(8001, 11);
-  const TriangleSource source{soup.positions.data(), soup.uvs.data(), soup.indices.data(), soup.weld.data()};
   const std::size_t triangleCount = soup.indices.size() / 3;
   std::mt19937 random(3);
   std::uniform_real_distribution<double> unit(-1.0, 1.0);
@@ -165,12 +179,8 @@ TEST(TriangleLanes, FlatFramesHaveTheScalarBits) {
     SCOPED_TRACE("lanes " + std::to_string(width));
     TriangleLanes values{};
     FlatLanes flat{};
-    TriangleTangent triangles[4];
     std::size_t framed = 0;
-    for (std::size_t first = 0; first < triangleCount; first += 4) {
-      const int count = static_cast<int>(std::min<std::size_t>(4, triangleCount - first));
-      const bool wantFaceNormal[4] = {false, false, false, false};
-      tangent::detail::triangleTangentsAt(source, first, count, wantFaceNormal, width, values, triangles);
+    forEachBlock(soup, width, values, [&](std::size_t first, int count, const TriangleTangent* triangles) {
       Vec3 normals[4][3];
       for (int i = 0; i < 4; ++i) {
         flat.usable[i] = i < count && triangles[i].kind == TriangleKind::usable;
@@ -208,14 +218,13 @@ TEST(TriangleLanes, FlatFramesHaveTheScalarBits) {
           EXPECT_EQ(static_cast<float>(flat.w[k][i]), scalar[4 * k + 3]) << "w, corner " << k << " of triangle " << first + i;
         }
       }
-    }
+    });
     EXPECT_GT(framed, triangleCount);
   }
 }
 
 TEST(TriangleLanes, MeshoptWeightsHaveTheScalarBits) {
   const Soup soup = randomSoup(8002, 13);
-  const TriangleSource source{soup.positions.data(), soup.uvs.data(), soup.indices.data(), soup.weld.data()};
   const std::size_t triangleCount = soup.indices.size() / 3;
   std::mt19937 random(4);
   std::uniform_real_distribution<double> unit(-1.0, 1.0);
@@ -223,12 +232,8 @@ TEST(TriangleLanes, MeshoptWeightsHaveTheScalarBits) {
     SCOPED_TRACE("lanes " + std::to_string(width));
     TriangleLanes values{};
     tangent::detail::MeshoptLanes lanes{};
-    TriangleTangent triangles[4];
     std::size_t weighted = 0;
-    for (std::size_t first = 0; first < triangleCount; first += 4) {
-      const int count = static_cast<int>(std::min<std::size_t>(4, triangleCount - first));
-      const bool wantFaceNormal[4] = {false, false, false, false};
-      tangent::detail::triangleTangentsAt(source, first, count, wantFaceNormal, width, values, triangles);
+    forEachBlock(soup, width, values, [&](std::size_t first, int count, const TriangleTangent* triangles) {
       Vec3 normals[4][3];
       for (int i = 0; i < count; ++i) {
         for (int k = 0; k < 3; ++k) {  // unit normals, one in eight along an edge (a zero projection)
@@ -251,7 +256,7 @@ TEST(TriangleLanes, MeshoptWeightsHaveTheScalarBits) {
           weighted += scalar > 0;
         }
       }
-    }
+    });
     EXPECT_GT(weighted, triangleCount);
   }
 }

@@ -15,7 +15,6 @@
 #include <cstdint>
 #include <cstring>
 #include <limits>
-#include <type_traits>
 
 #include "gram_schmidt.hpp"
 #include "triangle_tangent.hpp"
