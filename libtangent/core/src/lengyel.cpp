@@ -162,6 +162,7 @@ TriangleData evaluateTriangles(WorkspaceData& ws, const MeshArrays& mesh, std::s
     const TriangleSource source{mesh.positions.data(), mesh.uvs.data(), mesh.indices.data(), weldOf.data()};
     values.wantAngles = lanes > 1 && options.method == Method::lengyel && options.weighting == Weighting::angle;
     const bool meshoptLanes = lanes > 1 && options.method == Method::meshopt;
+    const bool readsNormals = options.method != Method::lengyel;
     MeshoptLanes meshoptWeights{};
     for (std::size_t block = begin; block < end; block += kBlock) {
       const int count = static_cast<int>(std::min<std::size_t>(kBlock, end - block));
@@ -178,13 +179,21 @@ TriangleData evaluateTriangles(WorkspaceData& ws, const MeshArrays& mesh, std::s
         if (!flat && !meshoptLanes && triangle.kind == TriangleKind::usable) {
           for (int k = 0; k < 3; ++k) positions[k] = values.position(i, k);
         }
-        const TriangleTerms terms{triangle.tangent, triangle.bitangent, triangle.orientation, triangle.kind};
-        data.triangles[t] = terms;
+        // Stored field by field: a TriangleTerms built on the stack and copied was read back in
+        // 16-byte pieces its 8-byte stores could not forward to (a stall per triangle).
+        TriangleTerms& terms = data.triangles[t];
+        terms.tangent = triangle.tangent;
+        terms.bitangent = triangle.bitangent;
+        terms.orientation = triangle.orientation;
+        terms.kind = triangle.kind;
         Vec3 normals[3];
         for (int k = 0; k < 3; ++k) {
           const std::size_t corner = 3 * t + k;
           const std::uint32_t vertex = mesh.indices[corner];
-          normals[k] = invalid[k] ? replacedNormal(triangle) : ws.vertexUnitNormals[vertex];
+          // lengyel's weights read no normal: a valid one (a vertex's, a cache miss) is loaded
+          // for flat's frames and meshopt's weights only.
+          if (invalid[k]) normals[k] = replacedNormal(triangle);
+          else if (readsNormals) normals[k] = ws.vertexUnitNormals[vertex];
           if (invalid[k]) data.cornerNormals[corner] = normals[k];
           data.invalidNormal[corner] = invalid[k];
           if (meshoptLanes) {

@@ -116,20 +116,20 @@ struct Contribution {
   }
 };
 
-// The corner's terms, where its triangle is usable and its weight positive (`flat` weighs
-// every corner alike); false where it has none.
-inline bool termOf(const TriangleData& data, std::uint32_t corner, Method method, Contribution& term) {
-  const TriangleTerms& triangle = data.triangles[corner / 3];
-  if (triangle.kind != TriangleKind::usable) return false;
-  const double weight = method == Method::flat ? 1.0 : data.cornerWeights[corner];
-  if (!(weight > 0)) return false;
-  term = {triangle.tangent * weight, triangle.bitangent * weight};
-  return true;
-}
-
+// The corner's weighted terms, where its triangle is usable and its weight positive (`flat`
+// weighs every corner alike), appended to `terms`; nothing where it has none.
+// Written in place: a Contribution made on the stack and pushed was read back in 16-byte
+// pieces its 8-byte stores could not forward to (a stall per corner of the bucket pass).
 inline void addTerm(const TriangleData& data, std::uint32_t corner, Method method, std::vector<Contribution>& terms) {
-  Contribution term;
-  if (termOf(data, corner, method, term)) terms.push_back(term);
+  const TriangleTerms& triangle = data.triangles[corner / 3];
+  if (triangle.kind != TriangleKind::usable) return;
+  const double weight = method == Method::flat ? 1.0 : data.cornerWeights[corner];
+  if (!(weight > 0)) return;
+  Contribution& term = terms.emplace_back();
+  for (int i = 0; i < 3; ++i) {
+    term.tangent[i] = triangle.tangent[i] * weight;
+    term.bitangent[i] = triangle.bitangent[i] * weight;
+  }
 }
 
 // One group's frame from its terms, the one statement of it: summed in value order (`terms`

@@ -113,9 +113,35 @@ CornerGroups groupCornersAt(const WorkspaceData& ws, const MeshArrays& mesh, std
   return groupListedCorners(ws, mesh, weldOf, data, grouping, corners.size(), [&](std::size_t i) { return corners[i]; });
 }
 
+namespace {
+
+// Value order (Contribution::operator<). A group is mostly one vertex's fan, a few terms: an
+// insertion sort, whose comparisons inline (std::sort's did not: a call per comparison). Terms
+// that compare equal differ at most in the sign of a zero, which no sum from +0 tells apart,
+// so any sort gives the same sums.
+void sortTerms(std::span<Contribution> terms) {
+  constexpr std::size_t kInsertionAtMost = 16;
+  if (terms.size() > kInsertionAtMost) {
+    std::sort(terms.begin(), terms.end());
+    return;
+  }
+  for (std::size_t i = 1; i < terms.size(); ++i) {
+    if (!(terms[i] < terms[i - 1])) continue;
+    const Contribution moving = terms[i];
+    std::size_t j = i;
+    do {
+      terms[j] = terms[j - 1];
+      --j;
+    } while (j > 0 && moving < terms[j - 1]);
+    terms[j] = moving;
+  }
+}
+
+}  // namespace
+
 bool sumTerms(std::span<Contribution> terms, const Vec3& normal, int orientation, Method method, Vec3& tangentSum,
               Vec3& tangent, double& w) {
-  if (terms.size() > 1) std::sort(terms.begin(), terms.end());
+  sortTerms(terms);
   Vec3 bitangentSum(0, 0, 0);
   for (const Contribution& term : terms) {
     tangentSum += term.tangent;
