@@ -192,9 +192,12 @@ TriangleData evaluateTriangles(WorkspaceData& ws, const MeshArrays& mesh, std::s
           const std::uint32_t vertex = mesh.indices[corner];
           // lengyel's weights read no normal: a valid one (a vertex's, a cache miss) is loaded
           // for flat's frames and meshopt's weights only.
-          if (invalid[k]) normals[k] = replacedNormal(triangle);
-          else if (readsNormals) normals[k] = ws.vertexUnitNormals[vertex];
-          if (invalid[k]) data.cornerNormals[corner] = normals[k];
+          if (invalid[k]) {
+            normals[k] = replacedNormal(triangle);
+            data.cornerNormals[corner] = normals[k];
+          } else if (readsNormals) {
+            normals[k] = ws.vertexUnitNormals[vertex];
+          }
           data.invalidNormal[corner] = invalid[k];
           if (meshoptLanes) {
             for (int a = 0; a < 3; ++a) meshoptWeights.normal[values.laneCorner(i, k)][a][i] = normals[k][a];

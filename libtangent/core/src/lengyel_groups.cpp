@@ -117,8 +117,9 @@ namespace {
 
 // Value order (Contribution::operator<). A group is mostly one vertex's fan, a few terms: an
 // insertion sort, whose comparisons inline (std::sort's did not: a call per comparison). Terms
+// are finite (a usable triangle's unit directions times a positive finite weight), so terms
 // that compare equal differ at most in the sign of a zero, which no sum from +0 tells apart,
-// so any sort gives the same sums.
+// and any sort gives the same sums.
 void sortTerms(std::span<Contribution> terms) {
   constexpr std::size_t kInsertionAtMost = 16;
   if (terms.size() > kInsertionAtMost) {
