@@ -8,6 +8,7 @@
 // users make.
 // The parts: bench_parts.hpp.
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
@@ -44,7 +45,9 @@ const char* kBenchUsageHead =
     "built with ../shared/peers, the reference MikkTSpace in C and meshoptimizer (compatible and\n"
     "default modes) are measured on the same arrays and drawn on the same axes. The library is\n"
     "timed through computeCornerTangents on plain arrays, each call with its own workspace (as the\n"
-    "peers allocate theirs): the median of --repeats calls.\n"
+    "peers allocate theirs): the median of --repeats calls. Each row also gives the resident\n"
+    "memory one more call adds at its peak, per triangle, beyond its input and output arrays\n"
+    "(peak B/tri; Linux, '-' elsewhere).\n"
     "\n";
 
 int stressSummary() {
@@ -114,38 +117,41 @@ struct AnalyticResults {
 // the exact tangents.
 void benchAnalytic(std::size_t maxTriangles, int repeats, AnalyticResults& out) {
   std::ostringstream& csv = out.csv;
-  csv << "surface,triangles,method,threads,mean_deg,p99_deg,max_deg,w_errors,corners,ms\n";
-  std::printf("%-12s %9s %-18s %3s %10s %10s %10s %8s %10s\n", "surface", "triangles", "method", "thr", "mean deg", "p99 deg",
-              "max deg", "w errors", "ms");
+  csv << "surface,triangles,method,threads,mean_deg,p99_deg,max_deg,w_errors,corners,ms,peak_bytes_per_triangle\n";
+  std::printf("%-12s %9s %-18s %3s %10s %10s %10s %8s %10s %10s\n", "surface", "triangles", "method", "thr", "mean deg", "p99 deg",
+              "max deg", "w errors", "ms", "peak B/tri");
   std::vector<std::size_t> resolutions;
   for (std::size_t r = 100; r <= maxTriangles; r *= 10) resolutions.push_back(r);
   for (const auto& surface : bench::surfaceNames()) {
     for (std::size_t target : resolutions) {
       const bench::AnalyticMesh mesh = bench::makeSurface(surface, target);
       // One row per method: terminal, CSV, JSON, and the plot's rows (kept for sorting).
-      auto record = [&](const std::string& label, unsigned threads, double ms, const Errors& e) {
-        std::printf("%-12s %9zu %-18s %3u %10.5f %10.5f %10.5f %8zu %10.2f\n", surface.c_str(), mesh.triangles(), label.c_str(), threads,
-                    e.mean, e.p99, e.max, e.wErrors, ms);
+      auto record = [&](const std::string& label, unsigned threads, double ms, const Errors& e, std::optional<double> bytes) {
+        std::printf("%-12s %9zu %-18s %3u %10.5f %10.5f %10.5f %8zu %10.2f %10s\n", surface.c_str(), mesh.triangles(), label.c_str(),
+                    threads, e.mean, e.p99, e.max, e.wErrors, ms, bytes ? std::to_string(std::lround(*bytes)).c_str() : "-");
         std::ostringstream row;
         row << surface << "," << mesh.triangles() << "," << label << "," << threads << "," << e.mean << "," << e.p99 << "," << e.max << ","
-            << e.wErrors << "," << mesh.indices.size() << "," << ms << "\n";
+            << e.wErrors << "," << mesh.indices.size() << "," << ms << "," << (bytes ? std::to_string(*bytes) : "") << "\n";
         csv << row.str();
         out.plotRows.push_back({{surface, label, threads, mesh.triangles()}, row.str()});
         out.rows.push_back({{"surface", surface}, {"triangles", mesh.triangles()}, {"method", label}, {"threads", threads},
                             {"meanDegrees", e.mean}, {"p99Degrees", e.p99}, {"maxDegrees", e.max}, {"wErrors", e.wErrors},
-                            {"ms", ms}});
+                            {"ms", ms}, {"peakBytesPerTriangle", bytes ? Json(*bytes) : Json(nullptr)}});
       };
       const int runs = target >= 1000000 ? std::min(repeats, 3) : repeats;
+      std::vector<float> scratch;  // the memory runs' output
       for (const Setting& setting : settings()) {
         std::vector<float> corners;
         const double ms = timedRun(mesh.arrays(), setting.options, runs, corners);
-        record(setting.label, setting.options.threads, ms, compare(corners, mesh.indices, mesh.exactTangents, true));
+        record(setting.label, setting.options.threads, ms, compare(corners, mesh.indices, mesh.exactTangents, true),
+               peakBytesPerTriangle(mesh.arrays(), setting.options, scratch));
       }
       // The peers: one call, its time counted as compute.
       for (bench::Peer peer : bench::peers()) {
         std::vector<float> corners;
         const double ms = timedPeerRun(peer, mesh.arrays(), UvOrigin::bottomLeft, runs, corners);
-        record(std::string(toString(peer)), 1, ms, compare(corners, mesh.indices, mesh.exactTangents, true));
+        record(std::string(toString(peer)), 1, ms, compare(corners, mesh.indices, mesh.exactTangents, true),
+               peerPeakBytesPerTriangle(peer, mesh.arrays(), scratch));
       }
       std::fflush(stdout);
     }

@@ -6,6 +6,7 @@
 #include <numeric>
 
 #include "bench_parts.hpp"
+#include "peak_memory.hpp"
 
 namespace tangent::cli::measure {
 
@@ -20,7 +21,28 @@ double median(std::vector<double> values) {
 
 double millisecondsSince(Clock::time_point start) { return std::chrono::duration<double, std::milli>(Clock::now() - start).count(); }
 
+std::optional<double> perTriangle(std::optional<std::size_t> bytes, const MeshArrays& mesh) {
+  const std::size_t triangles = mesh.indices.size() / 3;
+  if (!bytes || triangles == 0) return std::nullopt;
+  return static_cast<double>(*bytes) / static_cast<double>(triangles);
+}
+
 }  // namespace
+
+std::optional<double> peakBytesPerTriangle(const MeshArrays& mesh, const Options& options, std::vector<float>& cornerTangents) {
+  if (threadCount(options) != 1) return std::nullopt;
+  cornerTangents.resize(mesh.indices.size() * 4);
+  return perTriangle(bench::peakResidentGrowth([&] {
+                       TangentWorkspace workspace;  // the call's own, as a first call in a process has
+                       computeCornerTangents(mesh, CornerOutputs{cornerTangents}, options, workspace);
+                     }),
+                     mesh);
+}
+
+std::optional<double> peerPeakBytesPerTriangle(bench::Peer peer, const MeshArrays& mesh, std::vector<float>& cornerTangents) {
+  cornerTangents.resize(mesh.indices.size() * 4);
+  return perTriangle(bench::peakResidentGrowth([&] { bench::runPeer(peer, mesh, cornerTangents); }), mesh);
+}
 
 std::optional<gltf::Scene> loadSceneOrWarn(const fs::path& file) {
   try {

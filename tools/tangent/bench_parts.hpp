@@ -48,6 +48,17 @@ double timedRun(const MeshArrays& mesh, const Options& options, int repeats, std
 // it into uvOrigin's.
 double timedPeerRun(bench::Peer peer, const MeshArrays& mesh, UvOrigin uvOrigin, int repeats, std::vector<float>& cornerTangents);
 
+// The resident memory one call adds to the process at its peak, per triangle of `mesh`: its
+// scratch beyond the caller's input and output arrays, as fresh memory (the heap's free pages
+// given back first, then the kernel's high-water mark reset: Linux's /proc/self/clear_refs), as
+// in a new process. The library's call gets a workspace of its own, made inside it. nullopt
+// where the system does not say (not Linux, or /proc not writable), and for calls on more than
+// one thread: after other inputs those read a fraction of a one-thread call (6-16 against
+// 58-72 bytes a triangle for mikktspace), pages kept between calls on the workers' side that
+// the measure cannot give back first.
+std::optional<double> peakBytesPerTriangle(const MeshArrays& mesh, const Options& options, std::vector<float>& cornerTangents);
+std::optional<double> peerPeakBytesPerTriangle(bench::Peer peer, const MeshArrays& mesh, std::vector<float>& cornerTangents);
+
 // Mean, p99 and max angle and w mismatches of `corners` against `reference` (per vertex through
 // `indices`, or per corner), over every corner or only those `compared` marks.
 Errors compare(const std::vector<float>& corners, const std::vector<std::uint32_t>& indices, const std::vector<float>& reference,

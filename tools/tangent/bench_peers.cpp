@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <bit>
+#include <cmath>
 #include <cstdio>
 #include <iostream>
 #include <map>
@@ -94,36 +95,44 @@ void peerRows(const PeerInput& input, int repeats, std::ostringstream& csv) {
   const double referenceMs = timedPeerRun(bench::Peer::referenceMikktspace, arrays, UvOrigin::bottomLeft, repeats, reference);
   const std::vector<std::uint8_t> compared = cornersToCompare(arrays);
   const std::size_t comparedCount = static_cast<std::size_t>(std::count(compared.begin(), compared.end(), 1));
-  auto row = [&](const std::string& generator, unsigned threads, const std::optional<Errors>& e, double ms) {
+  auto row = [&](const std::string& generator, unsigned threads, const std::optional<Errors>& e, double ms,
+                 std::optional<double> bytes) {
     const std::string label = generator + (threads == 1 ? "" : " (" + std::to_string(threads) + " threads)");
+    const std::string memory = bytes ? std::to_string(static_cast<long long>(std::lround(*bytes))) : "-";
     if (e) {
-      std::printf("| %s | %zu | %s | %.3g | %.3g | %zu | %.2f |\n", input.name.c_str(), corners / 3, label.c_str(), e->max, e->p99,
-                  e->wErrors, ms);
+      std::printf("| %s | %zu | %s | %.3g | %.3g | %zu | %.2f | %s |\n", input.name.c_str(), corners / 3, label.c_str(), e->max, e->p99,
+                  e->wErrors, ms, memory.c_str());
     } else {
-      std::printf("| %s | %zu | %s | - | - | - | %.2f |\n", input.name.c_str(), corners / 3, label.c_str(), ms);
+      std::printf("| %s | %zu | %s | - | - | - | %.2f | %s |\n", input.name.c_str(), corners / 3, label.c_str(), ms, memory.c_str());
     }
     csv << '"' << input.name << "\"," << corners / 3 << "," << generator << "," << threads << "," << comparedCount << "," << corners << ","
-        << (e ? e->max : 0.0) << "," << (e ? e->p99 : 0.0) << "," << (e ? e->wErrors : 0) << "," << ms << "\n";
+        << (e ? e->max : 0.0) << "," << (e ? e->p99 : 0.0) << "," << (e ? e->wErrors : 0) << "," << ms << ","
+        << (bytes ? std::to_string(*bytes) : "") << "\n";
   };
-  row("mikktspace.c (the reference)", 1, std::nullopt, referenceMs);
+  std::vector<float> scratch;  // the memory runs' output (the timed runs' is compared)
+  row("mikktspace.c (the reference)", 1, std::nullopt, referenceMs,
+      peerPeakBytesPerTriangle(bench::Peer::referenceMikktspace, arrays, scratch));
   for (const Setting& setting : settings()) {
     if (setting.options.threads != 1) continue;
     Options options = setting.options;  // bottom-left: the reference's w
     std::vector<float> ours;
     const double ms = timedRun(arrays, options, repeats, ours);
-    row(setting.label, 1, compare(ours, input.indices, reference, false, &compared), ms);
+    const Errors e = compare(ours, input.indices, reference, false, &compared);
+    row(setting.label, 1, e, ms, peakBytesPerTriangle(arrays, options, scratch));
   }
   for (bench::Peer peer : bench::peers()) {
     if (peer == bench::Peer::referenceMikktspace) continue;
     std::vector<float> theirs;
     const double ms = timedPeerRun(peer, arrays, UvOrigin::bottomLeft, repeats, theirs);
-    row(std::string(toString(peer)) + " (peer)", 1, compare(theirs, input.indices, reference, false, &compared), ms);
+    row(std::string(toString(peer)) + " (peer)", 1, compare(theirs, input.indices, reference, false, &compared), ms,
+        peerPeakBytesPerTriangle(peer, arrays, scratch));
   }
   Options allThreads;
   allThreads.uvOrigin = UvOrigin::bottomLeft;
   std::vector<float> ours;
   const double ms = timedRun(arrays, allThreads, repeats, ours);
-  row("mikktspace", threadCount(allThreads), compare(ours, input.indices, reference, false, &compared), ms);
+  const Errors e = compare(ours, input.indices, reference, false, &compared);
+  row("mikktspace", threadCount(allThreads), e, ms, peakBytesPerTriangle(arrays, allThreads, scratch));
 }
 
 }  // namespace
@@ -136,11 +145,13 @@ int peersTable(const std::vector<fs::path>& assets, std::size_t triangles, int r
   }
   const std::vector<PeerInput> inputs = peerInputs(assetFiles(assets), triangles);
   std::ostringstream csv;
-  csv << "input,triangles,generator,threads,compared_corners,corners,max_deg,p99_deg,w_mismatches,ms\n";
+  csv << "input,triangles,generator,threads,compared_corners,corners,max_deg,p99_deg,w_mismatches,ms,peak_bytes_per_triangle\n";
   std::printf("Against the reference MikkTSpace C (mikktspace.c, genTangSpaceDefault), on the corners whose reference frame comes from\n"
-              "their own triangles; times are medians of %d calls, one thread unless said.\n\n",
+              "their own triangles; times are medians of %d calls, one thread unless said. Peak B/tri: the resident memory one\n"
+              "more call adds at its peak (fresh scratch, beyond the input and the 16 bytes a corner of output), per triangle.\n\n",
               repeats);
-  std::printf("| input | triangles | generator | max deg | p99 deg | w mismatches | ms |\n|---|---:|---|---:|---:|---:|---:|\n");
+  std::printf("| input | triangles | generator | max deg | p99 deg | w mismatches | ms | peak B/tri |\n"
+              "|---|---:|---|---:|---:|---:|---:|---:|\n");
   for (const PeerInput& input : inputs) {
     peerRows(input, repeats, csv);
     std::fflush(stdout);
