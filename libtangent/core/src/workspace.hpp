@@ -15,6 +15,7 @@
 #endif
 
 #include <algorithm>
+#include <array>
 #include <atomic>
 #include <cmath>
 #include <cstdint>
@@ -147,7 +148,9 @@ struct WorkspaceData {
                                              // bits (state_bits.hpp)
   // lengyel, meshopt and flat: the triangle pass's results (TriangleData, lengyel.hpp) ...
   BulkVector<TriangleTerms> triangleTerms;
-  BulkVector<Vec3> cornerNormals;
+  // Written only where a corner's normal is invalid, so plain doubles: a Vec3 zero-fills on
+  // construction, which made all of it resident (72 bytes a triangle) for a few corners.
+  BulkVector<std::array<double, 3>> cornerNormals;
   BulkVector<double> cornerWeights;
   BulkVector<std::uint8_t> invalidNormal;
   BulkVector<Vec3> vertexUnitNormals;         // per vertex, read by each of its corners
