@@ -194,7 +194,7 @@ TriangleData evaluateTriangles(WorkspaceData& ws, const MeshArrays& mesh, std::s
           // for flat's frames and meshopt's weights only.
           if (invalid[k]) {
             normals[k] = replacedNormal(triangle);
-            data.cornerNormals[corner] = {normals[k][0], normals[k][1], normals[k][2]};
+            data.cornerNormals[corner] = normals[k];
           } else if (readsNormals) {
             normals[k] = ws.vertexUnitNormals[vertex];
           }

@@ -35,17 +35,15 @@ inline std::uint64_t bitsOf(double value) { return bitCast<std::uint64_t>(value 
 // workspace's arrays (triangleTerms, cornerNormals, cornerWeights, invalidNormal, vertexUnitNormals).
 struct TriangleData {
   std::span<TriangleTerms> triangles;
-  std::span<std::array<double, 3>> cornerNormals;  // where invalidNormal only: its replacement (replacedNormal)
+  std::span<Vec3> cornerNormals;       // where invalidNormal only: its replacement (replacedNormal)
   std::span<double> cornerWeights;     // the weighting's term; 0 where the triangle is not usable
   std::span<std::uint8_t> invalidNormal;
   std::span<const Vec3> vertexUnitNormals;  // per vertex (ws.vertexUnitNormals)
   std::span<const std::uint32_t> indices;
   // A corner's unit normal: its vertex's, or where that is invalid its replacement. Read from
   // the vertex rather than stored per corner (24 bytes a corner written and read again).
-  Vec3 cornerNormal(std::size_t corner) const {
-    if (!invalidNormal[corner]) return vertexUnitNormals[indices[corner]];
-    const std::array<double, 3>& n = cornerNormals[corner];
-    return Vec3(n[0], n[1], n[2]);
+  const Vec3& cornerNormal(std::size_t corner) const {
+    return invalidNormal[corner] ? cornerNormals[corner] : vertexUnitNormals[indices[corner]];
   }
 };
 

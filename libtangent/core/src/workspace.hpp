@@ -15,11 +15,11 @@
 #endif
 
 #include <algorithm>
-#include <array>
 #include <atomic>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
+#include <type_traits>
 #include <optional>
 #include <span>
 #include <vector>
@@ -116,6 +116,29 @@ struct BucketScratch {
 };
 
 
+// BulkAllocator for arrays of small value classes (Vec3, TriangleTerms) that every pass writes
+// before it reads: resize() leaves new elements unwritten, as BulkVector leaves numbers. Their
+// member initializers (zeros) would write every byte of a resized array, which in a new
+// process costs a page fault per page, and makes resident the whole of an array written in a
+// few places (the invalid normals' replacements: 72 bytes a triangle, for lengyel, meshopt
+// and flat). Only for types whose objects need no construction (trivially copyable and
+// destructible: the allocation itself creates them).
+template <typename T>
+struct UnwrittenAllocator : BulkAllocator<T> {
+  static_assert(std::is_trivially_copyable_v<T> && std::is_trivially_destructible_v<T>);
+  UnwrittenAllocator() noexcept = default;
+  template <typename U>
+  UnwrittenAllocator(const UnwrittenAllocator<U>&) noexcept {}
+  template <typename U>
+  void construct(U*) noexcept {}
+  template <typename U, typename... Args>
+  void construct(U* p, Args&&... args) {
+    ::new (static_cast<void*>(p)) U(std::forward<Args>(args)...);
+  }
+};
+template <typename T>
+using UnwrittenVector = std::vector<T, UnwrittenAllocator<T>>;
+
 struct WorkspaceData {
   unsigned threads = 1;
   // The mikktspace kernel's shortcut for a plain fan (fastBucket); off, every bucket takes the
@@ -147,13 +170,11 @@ struct WorkspaceData {
   BulkVector<std::uint8_t> bucketUniform;   // per welded id: BucketChain, then BucketUniform
                                              // bits (state_bits.hpp)
   // lengyel, meshopt and flat: the triangle pass's results (TriangleData, lengyel.hpp) ...
-  BulkVector<TriangleTerms> triangleTerms;
-  // Written only where a corner's normal is invalid, so plain doubles: a Vec3 zero-fills on
-  // construction, which made all of it resident (72 bytes a triangle) for a few corners.
-  BulkVector<std::array<double, 3>> cornerNormals;
+  UnwrittenVector<TriangleTerms> triangleTerms;
+  UnwrittenVector<Vec3> cornerNormals;  // written where a normal is invalid only: mostly never touched
   BulkVector<double> cornerWeights;
   BulkVector<std::uint8_t> invalidNormal;
-  BulkVector<Vec3> vertexUnitNormals;         // per vertex, read by each of its corners
+  UnwrittenVector<Vec3> vertexUnitNormals;    // per vertex, read by each of its corners
   BulkVector<std::uint8_t> vertexNormalInvalid;
   // ... and each vertex's position representative (the smallest vertex
   // with the same position bits) and the open-addressing table that finds it (lengyel.cpp).
