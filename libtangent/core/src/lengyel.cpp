@@ -365,11 +365,13 @@ std::uint64_t countNonManifoldFacesInRanges(WorkspaceData& ws, const MeshArrays&
   return faces.combine(std::plus<>());
 }
 
-// Faces on an edge (two distinct positions) that more than two faces share. Each edge is
-// counted out to its smaller end (a counting sort), and each end's few edges are sorted by
-// their other end: linear time but for those runs. From four threads by ranges of positions
+// Faces on an edge (two distinct positions) that more than two faces share. Each edge's other
+// end is counted out to its smaller end (a counting sort, 4 bytes an edge), and each end's few
+// other ends are sorted to find one that three or more share: linear time but for those runs.
+// Only where such edges exist (none on most meshes) are they listed and the faces on them
+// marked, in one more pass over the triangles. From four threads by ranges of positions
 // (countNonManifoldFacesInRanges), with the same result. Into the workspace's edgeStart,
-// edgeNext, edges and onSharedEdge.
+// edgeNext, edgeEnds and onSharedEdge.
 std::uint64_t countNonManifoldFaces(WorkspaceData& ws, const MeshArrays& mesh, std::span<const std::uint32_t> weldOf) {
   const std::size_t triangleCount = ws.cornerCount / 3;
   if (ws.threads >= kThreadedCountThreads && triangleCount >= kThreadedCountTriangles) return countNonManifoldFacesInRanges(ws, mesh, weldOf);
@@ -379,20 +381,32 @@ std::uint64_t countNonManifoldFaces(WorkspaceData& ws, const MeshArrays& mesh, s
   std::fill(start, start + ws.vertexCount + 1, 0u);
   forEachEdge(mesh, weldOf, 0, triangleCount, [&](std::uint32_t low, std::uint32_t, std::size_t) { ++start[low + 1]; });
   for (std::size_t v = 0; v < ws.vertexCount; ++v) start[v + 1] += start[v];
-  // Each edge as its larger end (high half) and its triangle (low half).
-  ensureSize(ws.edges, start[ws.vertexCount]);
-  std::uint64_t* edges = ws.edges.data();
+  ensureSize(ws.edgeEnds, start[ws.vertexCount]);
+  std::uint32_t* ends = ws.edgeEnds.data();
   std::uint32_t* next = ws.edgeNext.data();
   std::copy(start, start + ws.vertexCount, next);
-  forEachEdge(mesh, weldOf, 0, triangleCount, [&](std::uint32_t low, std::uint32_t high, std::size_t t) {
-    edges[next[low]++] = std::uint64_t(high) << 32 | t;
-  });
+  forEachEdge(mesh, weldOf, 0, triangleCount, [&](std::uint32_t low, std::uint32_t high, std::size_t) { ends[next[low]++] = high; });
+  // Each edge that more than two faces share, as low << 32 | high.
+  std::vector<std::uint64_t> shared;
+  for (std::size_t v = 0; v < ws.vertexCount; ++v) {
+    std::uint32_t* first = ends + start[v];
+    std::uint32_t* last = ends + start[v + 1];
+    if (last - first < 3) continue;
+    std::sort(first, last);
+    for (std::uint32_t* i = first; i + 2 < last; ++i) {
+      if (i[2] != i[0]) continue;
+      shared.push_back(std::uint64_t(v) << 32 | i[0]);
+      while (i + 1 < last && i[1] == i[0]) ++i;
+    }
+  }
+  if (shared.empty()) return 0;
+  // Listed in order of their smaller end, then of their other: sorted already.
   ensureSize(ws.onSharedEdge, triangleCount);
   std::uint8_t* onShared = ws.onSharedEdge.data();
   std::fill(onShared, onShared + triangleCount, std::uint8_t(0));
-  for (std::size_t v = 0; v < ws.vertexCount; ++v) {
-    markSharedEdges(edges + start[v], edges + start[v + 1], [&](std::uint32_t t) { onShared[t] = 1; });
-  }
+  forEachEdge(mesh, weldOf, 0, triangleCount, [&](std::uint32_t low, std::uint32_t high, std::size_t t) {
+    if (std::binary_search(shared.begin(), shared.end(), std::uint64_t(low) << 32 | high)) onShared[t] = 1;
+  });
   return static_cast<std::uint64_t>(std::count(onShared, onShared + triangleCount, std::uint8_t(1)));
 }
 

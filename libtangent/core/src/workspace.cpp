@@ -27,7 +27,7 @@ std::size_t WorkspaceData::bytes() const {
          size(packedUvs) + size(packedIndices) +
          size(bucketExtra) + size(bucketUniform) + size(positionRepresentative) + size(positionTable) +
          size(triangleTerms) + size(cornerNormals) + size(cornerWeights) + size(invalidNormal) +
-         size(vertexUnitNormals) + size(vertexNormalInvalid) + size(edgeStart) + size(edgeNext) + size(edges) +
+         size(vertexUnitNormals) + size(vertexNormalInvalid) + size(edgeStart) + size(edgeNext) + size(edgeEnds) + size(edges) +
          size(onSharedEdge) + size(edgeCounts) + size(edgeLowInRange);
 }
 

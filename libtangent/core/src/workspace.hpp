@@ -179,8 +179,9 @@ struct WorkspaceData {
   // ... and each vertex's position representative (the smallest vertex
   // with the same position bits) and the open-addressing table that finds it (lengyel.cpp).
   BulkVector<std::uint32_t> positionRepresentative, positionTable;
-  // ... and the non-manifold count's edges, by their smaller end (lengyel.cpp).
-  BulkVector<std::uint32_t> edgeStart, edgeNext;
+  // ... and the non-manifold count's edges, by their smaller end (lengyel.cpp): on one or two
+  // threads each edge's other end (edgeEnds), from four each edge's other end and triangle.
+  BulkVector<std::uint32_t> edgeStart, edgeNext, edgeEnds;
   BulkVector<std::uint64_t> edges;
   BulkVector<std::uint8_t> onSharedEdge;
   // ... from four threads, first by ranges of smaller ends: per-chunk counters then the
