@@ -9,7 +9,8 @@
 #     single-primitive UV spheres of 1e5, 1e6 and 4e6 triangles and ../shared/assets/*.glb
 #   - the reference MikkTSpace kernel (npm mikktspace, WebAssembly) on the same spheres
 #   - whole-process runs on generated single-primitive UV spheres of ~1e5, 1e6 and 4e6
-#     triangles: tangent bake, gltf-transform tangents (npm @gltf-transform/cli) and assimp
+#     triangles: tangent bake (and tangent bake --method lengyel), gltf-transform tangents (npm
+#     @gltf-transform/cli) and assimp
 #     export -cts (Debian assimp-utils), median wall time (monotonic clock, ms resolution; runs of
 #     a few hundred ms repeated until 2 s were spent) and peak memory (wait4)
 # Writes docs/benchmarks.md, docs/bench-plot.png and .svg, docs/bench.csv, and the tables
@@ -149,7 +150,9 @@ for size in "${sizes[@]}"; do
   read -r ours ours_kb ours_user ours_sys ours_faults <<<"$(measure bake "$bin/tangent" bake "$input" -o "$out/ours.glb" -q)"
   read -r gt gt_kb _ <<<"$(measure gltf-transform node bench/node/node_modules/@gltf-transform/cli/bin/cli.js tangents "$input" "$out/gt.glb")"
   read -r as as_kb _ <<<"$(measure assimp assimp export "$input" "$out/assimp.assbin" -fassbin -cts)"
-  fresh_rows+=("$triangles $ours $ours_user $ours_sys $ours_faults $(stat -c %s "$out/spheres/sphere-$n.bin") $(stat -c %s "$out/ours.glb")")
+  # The same bake with --method lengyel (its own pipeline, not the mikktspace kernel).
+  read -r lengyel lengyel_kb _ <<<"$(measure bake-lengyel "$bin/tangent" bake "$input" -o "$out/ours-lengyel.glb" -q --method lengyel)"
+  fresh_rows+=("$triangles $ours $ours_user $ours_sys $ours_faults $(stat -c %s "$out/spheres/sphere-$n.bin") $(stat -c %s "$out/ours.glb") $lengyel $lengyel_kb $(stat -c %s "$out/ours-lengyel.glb")")
   kernel_runs=$runs; [ "$target" -gt 2000000 ] && kernel_runs=1  # the npm reference needs minutes there
   # The same analytic sphere as the kernel benchmark's sphere-$name (tools/bench/analytic_surfaces.cpp).
   wasm_json=$(cd bench/node && node mikktspace_kernel.mjs "$target" "$kernel_runs")
@@ -349,15 +352,17 @@ if fresh:
                           for i in fresh) + " faults."]
 lines += ["", "Whole process, `tangent bake` of one primitive (the spheres of the next table) in a fresh process: "
           "every byte it uses is fresh memory, which the kernel maps and zeroes (the system time).", "",
-          "| triangles | wall s | user s | system s | system share of CPU | minor faults | peak ÷ (input + output) bytes |",
-          "|---:|---:|---:|---:|---:|---:|---:|"]
+          "| triangles | wall s | user s | system s | system share of CPU | minor faults | peak ÷ (input + output) bytes | "
+          "`--method lengyel`: wall s | its peak ÷ (input + output) |",
+          "|---:|---:|---:|---:|---:|---:|---:|---:|---:|"]
 for line in os.environ.get("TANGENT_FRESH_PROCESS", "").splitlines():
     f = line.split()
-    if len(f) != 7: continue
+    if len(f) != 10: continue
     t, wall, user, system, faults, bin_bytes, out_bytes = int(f[0]), float(f[1]), float(f[2]), float(f[3]), float(f[4]), int(f[5]), int(f[6])
+    lengyel_wall, lengyel_peak, lengyel_out = float(f[7]), float(f[8]) * 1024, int(f[9])
     peak = next((int(r[2]) * 1024 for r in rows if int(r[0]) == t), 0)
     lines.append(f"| {t:,} | {wall:.3f} | {user:.3f} | {system:.3f} | {100 * system / max(1e-9, user + system):.0f}% | {faults:,.0f} | "
-                 f"{peak / max(1, bin_bytes + out_bytes):.2f}x |")
+                 f"{peak / max(1, bin_bytes + out_bytes):.2f}x | {lengyel_wall:.3f} | {lengyel_peak / max(1, bin_bytes + lengyel_out):.2f}x |")
 lines += ["", "## Whole process on generated UV spheres (glTF, one primitive, normal-mapped material)", "",
           "| triangles | tangent bake s | peak MB | gltf-transform tangents s | peak MB | assimp export -cts s | peak MB | bake speed-up vs gltf-transform | bake memory vs gltf-transform | bake time ÷ assimp time |",
           "|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|"]
