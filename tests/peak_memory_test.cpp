@@ -83,10 +83,11 @@ TEST(PeakMemory, LibraryCallAgreesWithItsWorkspacesOwnCount) {
   // mikktspace writes every array it reserves. The peak holds a little more: arrays of 2 MiB
   // and more are mapped in whole 2 MiB pages where transparent huge pages are on
   // (tangent/bulk_buffer.hpp), and the count leaves out the per-thread bucket scratch;
-  // measured 1.14-1.17 times the count on this sphere (Linux 6.18, glibc 2.36).
+  // measured 1.14-1.17 times the count on this sphere (Linux 6.18, glibc 2.36, transparent
+  // huge pages on request). Twice the count, or none of it, would mean a broken measure.
   const double ratio = static_cast<double>(*growth) / static_cast<double>(reserved);
   EXPECT_GT(ratio, 0.9) << *growth << " bytes at the peak, " << reserved << " reserved";
-  EXPECT_LT(ratio, 1.3) << *growth << " bytes at the peak, " << reserved << " reserved";
+  EXPECT_LT(ratio, 1.5) << *growth << " bytes at the peak, " << reserved << " reserved";
 }
 
 }  // namespace

@@ -47,7 +47,7 @@ const char* kBenchUsageHead =
     "timed through computeCornerTangents on plain arrays, each call with its own workspace (as the\n"
     "peers allocate theirs): the median of --repeats calls. Each row also gives the resident\n"
     "memory one more call adds at its peak, per triangle, beyond its input and output arrays\n"
-    "(peak B/tri; Linux, '-' elsewhere).\n"
+    "(peak B/tri; Linux, one-thread rows; '-' elsewhere).\n"
     "\n";
 
 int stressSummary() {
