@@ -33,7 +33,7 @@ std::optional<std::size_t> peakResidentGrowth(const std::function<void()>& work)
   // resident set says nothing about what the work itself needs.
   work();
   return std::nullopt;
-#endif
+#else
 #if defined(__GLIBC__)
   malloc_trim(0);
 #endif
@@ -47,6 +47,7 @@ std::optional<std::size_t> peakResidentGrowth(const std::function<void()>& work)
   const std::optional<std::size_t> peak = statusBytes("VmHWM");
   if (!reset || !before || !peak) return std::nullopt;
   return *peak > *before ? *peak - *before : 0;
+#endif
 }
 
 }  // namespace tangent::bench

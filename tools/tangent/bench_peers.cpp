@@ -117,8 +117,7 @@ void peerRows(const PeerInput& input, int repeats, std::ostringstream& csv) {
     Options options = setting.options;  // bottom-left: the reference's w
     std::vector<float> ours;
     const double ms = timedRun(arrays, options, repeats, ours);
-    const Errors e = compare(ours, input.indices, reference, false, &compared);
-    row(setting.label, 1, e, ms, peakBytesPerTriangle(arrays, options, scratch));
+    row(setting.label, 1, compare(ours, input.indices, reference, false, &compared), ms, peakBytesPerTriangle(arrays, options, scratch));
   }
   for (bench::Peer peer : bench::peers()) {
     if (peer == bench::Peer::referenceMikktspace) continue;
@@ -131,8 +130,8 @@ void peerRows(const PeerInput& input, int repeats, std::ostringstream& csv) {
   allThreads.uvOrigin = UvOrigin::bottomLeft;
   std::vector<float> ours;
   const double ms = timedRun(arrays, allThreads, repeats, ours);
-  const Errors e = compare(ours, input.indices, reference, false, &compared);
-  row("mikktspace", threadCount(allThreads), e, ms, peakBytesPerTriangle(arrays, allThreads, scratch));
+  row("mikktspace", threadCount(allThreads), compare(ours, input.indices, reference, false, &compared), ms,
+      peakBytesPerTriangle(arrays, allThreads, scratch));
 }
 
 }  // namespace

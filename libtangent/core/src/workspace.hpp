@@ -129,12 +129,9 @@ struct UnwrittenAllocator : BulkAllocator<T> {
   UnwrittenAllocator() noexcept = default;
   template <typename U>
   UnwrittenAllocator(const UnwrittenAllocator<U>&) noexcept {}
+  using BulkAllocator<T>::construct;  // copies and other constructions as BulkAllocator does them
   template <typename U>
-  void construct(U*) noexcept {}
-  template <typename U, typename... Args>
-  void construct(U* p, Args&&... args) {
-    ::new (static_cast<void*>(p)) U(std::forward<Args>(args)...);
-  }
+  void construct(U*) noexcept {}  // hides BulkAllocator's default construction
 };
 template <typename T>
 using UnwrittenVector = std::vector<T, UnwrittenAllocator<T>>;
