@@ -12,7 +12,11 @@
 #     triangles: tangent bake (and tangent bake --method lengyel), gltf-transform tangents (npm
 #     @gltf-transform/cli) and assimp
 #     export -cts (Debian assimp-utils), median wall time (monotonic clock, ms resolution; runs of
-#     a few hundred ms repeated until 2 s were spent) and peak memory (wait4)
+#     a few hundred ms repeated until 2 s were spent) and peak memory (wait4); tangent bake (both
+#     methods) also on a ~2e7-triangle sphere, generated and removed again (not in --quick)
+#   - the viewer's lit default view at 1280x720 under Xvfb (scripts/viewer-bench.sh
+#     --defaults-only) on a generated 100k-triangle sphere and ../shared/assets
+#   - a summary of issue 65's targets against what this run measured
 # Writes docs/benchmarks.md, docs/bench-plot.png and .svg, docs/bench.csv, and the tables
 # between the bench markers of README.md.
 # Usage: scripts/bench.sh [--quick]   (--quick: 1e5 only, one run each, report in build/bench/
@@ -31,7 +35,7 @@ dpkg-query -W -f='${Status}' assimp-utils 2>/dev/null | grep -q "install ok inst
 wasm/build.sh >/dev/null  # libtangent's WebAssembly package, timed beside npm mikktspace
 # Only what the benchmarks run; configured as scripts/build.sh does when the folder is new.
 [ -f "$build/build.ninja" ] || cmake -S . -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo >/dev/null
-cmake --build "$build" --parallel "$(nproc)" --target tangent tangent-make-data tangent-kernel-bench >/dev/null
+cmake --build "$build" --parallel "$(nproc)" --target tangent tangent-make-data tangent-kernel-bench tangent-view >/dev/null
 bin=$build/bin
 out=$build/bench
 mkdir -p "$out"
@@ -152,7 +156,7 @@ for size in "${sizes[@]}"; do
   read -r as as_kb _ <<<"$(measure assimp assimp export "$input" "$out/assimp.assbin" -fassbin -cts)"
   # The same bake with --method lengyel (its own pipeline, not the mikktspace kernel).
   read -r lengyel lengyel_kb _ <<<"$(measure bake-lengyel "$bin/tangent" bake "$input" -o "$out/ours-lengyel.glb" -q --method lengyel)"
-  fresh_rows+=("$triangles $ours $ours_user $ours_sys $ours_faults $(stat -c %s "$out/spheres/sphere-$n.bin") $(stat -c %s "$out/ours.glb") $lengyel $lengyel_kb $(stat -c %s "$out/ours-lengyel.glb")")
+  fresh_rows+=("$triangles $ours $ours_user $ours_sys $ours_faults $(stat -c %s "$out/spheres/sphere-$n.bin") $(stat -c %s "$out/ours.glb") $lengyel $lengyel_kb $(stat -c %s "$out/ours-lengyel.glb") $ours_kb")
   kernel_runs=$runs; [ "$target" -gt 2000000 ] && kernel_runs=1  # the npm reference needs minutes there
   # The same analytic sphere as the kernel benchmark's sphere-$name (tools/bench/analytic_surfaces.cpp).
   wasm_json=$(cd bench/node && node mikktspace_kernel.mjs "$target" "$kernel_runs")
@@ -163,6 +167,20 @@ for size in "${sizes[@]}"; do
   rows+=("$triangles $ours $ours_kb $gt $gt_kb $as $as_kb sphere-$name $npm_ms ${ours_wasm_ms:-nan} $wasm_triangles ${ours_wasm_first:-nan}")
   echo "sphere $n: $triangles triangles, bake ${ours}s (${ours_kb} kB), gltf-transform ${gt}s (${gt_kb} kB), assimp ${as}s (${as_kb} kB); WebAssembly kernels on sphere-$name: npm mikktspace ${npm_ms} ms, libtangent-wasm ${ours_wasm_ms:-–} ms"
 done
+# A huge primitive: the bake (both methods) at ~2e7 triangles, the size issue 65 bounds memory
+# at, in the whole-process table beside the spheres above. Its files (~0.56 GB in, ~0.72 GB out
+# and as much again for lengyel) are removed afterwards. Not in --quick.
+if [ $quick = 0 ]; then
+  n=3162
+  echo "== huge primitive: tangent bake of a $((2 * n * (n - 1)))-triangle sphere"
+  "$bin/tangent-make-data" --sphere "$n" "$out/huge" --one-primitive >/dev/null
+  input="$out/huge/sphere-$n.gltf"
+  read -r ours ours_kb ours_user ours_sys ours_faults <<<"$(measure bake "$bin/tangent" bake "$input" -o "$out/huge/ours.glb" -q)"
+  read -r lengyel lengyel_kb _ <<<"$(measure bake-lengyel "$bin/tangent" bake "$input" -o "$out/huge/ours-lengyel.glb" -q --method lengyel)"
+  fresh_rows+=("$((2 * n * (n - 1))) $ours $ours_user $ours_sys $ours_faults $(stat -c %s "$out/huge/sphere-$n.bin") $(stat -c %s "$out/huge/ours.glb") $lengyel $lengyel_kb $(stat -c %s "$out/huge/ours-lengyel.glb") $ours_kb")
+  echo "bake ${ours}s (${ours_kb} kB), --method lengyel ${lengyel}s (${lengyel_kb} kB)"
+  rm -rf "$out/huge"
+fi
 # The WebAssembly kernels on the shared assets too (5 runs each, alternating).
 wasm_assets=()
 for glb in ../shared/assets/*.glb; do
@@ -183,6 +201,13 @@ TANGENT_WASM_THREADS=""
 [ $quick = 1 ] || TANGENT_WASM_THREADS=$(cd bench/node && LIBTANGENT_WASM_THREADS=2 node wasm_threads.mjs 7) || TANGENT_WASM_THREADS=""
 export TANGENT_WASM_THREADS
 export TANGENT_FRESH_PROCESS="$(printf '%s\n' "${fresh_rows[@]}")"
+# The viewer's lit default view (PBR, image-based lighting, shadows), median frame time at
+# 1280x720: "asset wall_ms cpu_ms" per line ("failed -" where the viewer did not run).
+echo "== viewer frame time (lit default view, 1280x720, Xvfb)"
+viewer_frames=15; [ $quick = 1 ] && viewer_frames=2
+TANGENT_VIEWER=$(scripts/viewer-bench.sh --defaults-only --frames $viewer_frames | awk 'NR > 1 {print $1, $(NF-1), $NF}') || TANGENT_VIEWER=""
+echo "$TANGENT_VIEWER"
+export TANGENT_VIEWER
 
 # The report.
 KERNEL_REPS=$kernel_reps python3 - "$out" $quick "${rows[@]}" <<'PY'
@@ -296,14 +321,15 @@ if os.environ.get("TANGENT_INSTRUCTIONS"):
 # The other methods: one thread against all, wall time, with the CPU time that shows the threads in use.
 lines += ["", f"The other methods on the same arrays (`Options::method`), milliseconds per call: 1 thread (CPU time) and all ({threads}) "
           "threads (wall, CPU time in parentheses); the speed-up is wall time on 1 thread over wall time on all.", "",
-          "| input | method | 1 thread | all threads | speed-up (wall) | ÷ mikktspace, 1 thread |", "|---|---|---:|---:|---:|---:|"]
+          "| input | method | 1 thread | all threads | speed-up (wall) | ÷ mikktspace, 1 thread | ÷ meshopt default, 1 thread |", "|---|---|---:|---:|---:|---:|---:|"]
 for i in inputs:
     for method in ("lengyel", "meshopt", "flat"):
         one = ms(f"{method}/t1/{i}")
         if one != one: continue
         every, every_cpu = ms(f"{method}/tall/{i}", "real_time"), ms(f"{method}/tall/{i}")
         lines.append(f"| {i} | {method} | {fmt(one)} | {fmt(every)} ({fmt(every_cpu)}) | "
-                     f"{ratio(ms(f'{method}/t1/{i}', 'real_time'), every)} | {ratio(one, ms(f'library/t1/{i}'))} |")
+                     f"{ratio(ms(f'{method}/t1/{i}', 'real_time'), every)} | {ratio(one, ms(f'library/t1/{i}'))} | "
+                     f"{ratio(one, ms(f'meshopt-default/{i}'))} |")
 # How time per triangle grows with size: the log-log slope from 1e5 to 4e6 (0: linear in triangles).
 slopes = []
 if "sphere-1e5" in inputs and "sphere-4e6" in inputs:
@@ -350,19 +376,24 @@ if fresh:
               "- One fault per 64 KiB of the call's peak working set (its workspace) would be: "
               + ", ".join(f"{i} {triangles[i] * (entry(f'library-cold/t1/{i}') or {}).get('workspace_bytes_per_triangle', 0) / 65536:,.0f}"
                           for i in fresh) + " faults."]
-lines += ["", "Whole process, `tangent bake` of one primitive (the spheres of the next table) in a fresh process: "
-          "every byte it uses is fresh memory, which the kernel maps and zeroes (the system time).", "",
-          "| triangles | wall s | user s | system s | system share of CPU | minor faults | peak ÷ (input + output) bytes | "
-          "`--method lengyel`: wall s | its peak ÷ (input + output) |",
-          "|---:|---:|---:|---:|---:|---:|---:|---:|---:|"]
+lines += ["", "Whole process, `tangent bake` of one primitive (the spheres of the next table, and one of ~2e7 triangles "
+          "generated for this table alone) in a fresh process: every byte it uses is fresh memory, which the kernel maps "
+          "and zeroes (the system time). Input: the `.gltf` and its `.bin`'s bytes; output: the `.glb`'s; peak: the "
+          "process's peak resident set (`wait4`).", "",
+          "| triangles | input + output MB | wall s | ns per triangle | user s | system s | system share of CPU | minor faults | "
+          "peak MB | peak ÷ (input + output) | `--method lengyel`: wall s | its peak MB | its peak ÷ (input + output) |",
+          "|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|"]
+bake_rows = []  # (triangles, peak ÷ (input + output), lengyel's, ns per triangle)
 for line in os.environ.get("TANGENT_FRESH_PROCESS", "").splitlines():
     f = line.split()
-    if len(f) != 10: continue
+    if len(f) != 11: continue
     t, wall, user, system, faults, bin_bytes, out_bytes = int(f[0]), float(f[1]), float(f[2]), float(f[3]), float(f[4]), int(f[5]), int(f[6])
-    lengyel_wall, lengyel_peak, lengyel_out = float(f[7]), float(f[8]) * 1024, int(f[9])
-    peak = next((int(r[2]) * 1024 for r in rows if int(r[0]) == t), 0)
-    lines.append(f"| {t:,} | {wall:.3f} | {user:.3f} | {system:.3f} | {100 * system / max(1e-9, user + system):.0f}% | {faults:,.0f} | "
-                 f"{peak / max(1, bin_bytes + out_bytes):.2f}x | {lengyel_wall:.3f} | {lengyel_peak / max(1, bin_bytes + lengyel_out):.2f}x |")
+    lengyel_wall, lengyel_peak, lengyel_out, peak = float(f[7]), float(f[8]) * 1024, int(f[9]), float(f[10]) * 1024
+    share, lengyel_share = peak / max(1, bin_bytes + out_bytes), lengyel_peak / max(1, bin_bytes + lengyel_out)
+    bake_rows.append((t, share, lengyel_share, 1e9 * wall / t))
+    lines.append(f"| {t:,} | {(bin_bytes + out_bytes) / 1e6:,.0f} | {wall:.3f} | {1e9 * wall / t:.0f} | {user:.3f} | {system:.3f} | "
+                 f"{100 * system / max(1e-9, user + system):.0f}% | {faults:,.0f} | {peak / 1e6:,.0f} | {share:.2f}x | "
+                 f"{lengyel_wall:.3f} | {lengyel_peak / 1e6:,.0f} | {lengyel_share:.2f}x |")
 lines += ["", "## Whole process on generated UV spheres (glTF, one primitive, normal-mapped material)", "",
           "| triangles | tangent bake s | peak MB | gltf-transform tangents s | peak MB | assimp export -cts s | peak MB | bake speed-up vs gltf-transform | bake memory vs gltf-transform | bake time ÷ assimp time |",
           "|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|"]
@@ -404,6 +435,58 @@ if os.environ.get("TANGENT_WASM_THREADS"):
         lines.append(f"| {e['triangles']:,} | {cell('indexedSingle')} | {cell('indexedT1')} | {cell('indexedT2')} | "
                      f"**{e['indexedSpeedup']:.2f}x** | {cell('deindexedSingle')} | {cell('deindexedT1')} | {cell('deindexedT2')} | "
                      f"**{e['deindexedSpeedup']:.2f}x** |")
+# The viewer's lit default view.
+viewer_rows = [l.split() for l in os.environ.get("TANGENT_VIEWER", "").splitlines() if len(l.split()) == 3]
+def number(text):
+    try: return float(text)
+    except ValueError: return float("nan")
+if viewer_rows:
+    lines += ["", "## Viewer frame time", "",
+              "`tangent-view ASSET --size 1280x720 --camera front --screenshot F --frames N` under Xvfb (Mesa llvmpipe where the "
+              "machine has no GPU), the lit default view (PBR, image-based lighting, shadows with PCF 3x3); median of the frames, "
+              "wall clock and the CPU time of all the viewer's threads (`scripts/viewer-bench.sh --defaults-only`; "
+              "`sphere-224.gltf` is the generated 100k-triangle textured sphere).", "",
+              "| asset | median frame ms (wall) | CPU ms |", "|---|---:|---:|"]
+    lines += [f"| {name} | {fmt(number(wall))} | {fmt(number(cpu))} |" for name, wall, cpu in viewer_rows]
+# Issue 65's targets against this run's figures ("–": not measured in this run).
+def worst(values):
+    values = [v for v in values if v == v]
+    return max(values) if values else float("nan")
+def verdict(value, bound, at_most=True):
+    if value != value: return "not measured"
+    return "met" if (value <= bound if at_most else value >= bound) else "not met"
+targets = []
+for method, bound in (("lengyel", 0.5), ("meshopt", 0.5), ("flat", 0.25)):
+    per = [ms(f"{method}/t1/{i}") / ms(f"meshopt-default/{i}") for i in inputs]
+    value = worst(per)
+    where = ", ".join(f"{i} {v:.2f}x" for i, v in zip(inputs, per) if v == v)
+    targets.append(f"- `{method}`, 1 thread, at most {bound}x meshoptimizer default's time: worst {value:.2f}x ({where}): **{verdict(value, bound)}**.")
+    speedups = [ms(f"{method}/t1/{i}", "real_time") / ms(f"{method}/tall/{i}", "real_time") for i in inputs if i.startswith("sphere-")]
+    low = min([v for v in speedups if v == v], default=float("nan"))
+    if threads == 2:
+        targets.append(f"- `{method}`, two threads at least 1.8x one (spheres): lowest {low:.2f}x: **{verdict(low, 1.8, False)}**.")
+for t, share, lengyel_share, _ in bake_rows:
+    if t >= 3000000:
+        targets.append(f"- bake peak at most 1.3x (input + output) at {t:,} triangles: {share:.2f}x (`--method lengyel` "
+                       f"{lengyel_share:.2f}x): **{verdict(share, 1.3)}**.")
+if len(bake_rows) >= 2:
+    first, last = bake_rows[0], bake_rows[-1]
+    targets.append(f"- bake time linear in size: {last[3]:.0f} ns per triangle at {last[0]:,} against {first[3]:.0f} at {first[0]:,} "
+                   f"({last[3] / first[3]:.2f}x).")
+if os.environ.get("TANGENT_WASM_THREADS"):
+    for e in json.loads(os.environ["TANGENT_WASM_THREADS"]):
+        native = next((i for i in inputs if triangles[i] == e["triangles"]), None)
+        if native is None: continue
+        over = e["indexedSingle"]["medianMs"] / ms(f"library/t1/{native}", "real_time")
+        targets.append(f"- WebAssembly within 2x native, 1 thread, indexed call on {native}: {over:.2f}x "
+                       f"({e['indexedSingle']['medianMs']:.1f} ms against {ms(f'library/t1/{native}', 'real_time'):.1f}): **{verdict(over, 2.0)}**; "
+                       f"threaded build on 2 workers {e['indexedSpeedup']:.2f}x of 1: **{verdict(e['indexedSpeedup'], 1.7, False)}**.")
+for name, wall, _ in viewer_rows:
+    bound = 25 if name.startswith("sphere-") else 20
+    targets.append(f"- viewer, lit default view, {name}: at most {bound} ms: {fmt(number(wall))} ms: **{verdict(number(wall), bound)}**.")
+lines += ["", "## Issue 65's targets in this run", "",
+          "Each target of issue 65 against this run's medians (one machine, one run; the kernel's ratios are against "
+          "meshoptimizer measured in the same process, interleaved):", ""] + targets
 lines += ["",
           "", "## Error against run time", "", "![error against run time](bench-plot.png)", "",
           "Mean angular error against the exact tangent on analytic surfaces, per method, one point per resolution, "

@@ -5,16 +5,22 @@
 # threads, which a loaded machine disturbs less), with the defaults (PBR, image-based lighting, the
 # two-light default rig, shadows with PCF 3x3 and MSAA 4x, both off on a software rasteriser)
 # and with each feature turned off or changed in turn.
-# Usage: scripts/viewer-bench.sh [--frames N] [ASSET...]   (after scripts/build.sh)
+# Usage: scripts/viewer-bench.sh [--frames N] [--defaults-only] [ASSET...]   (after scripts/build.sh)
+# --defaults-only: the lit default view alone (what scripts/bench.sh reports).
 # Without assets: a generated ~100k-triangle textured sphere, plus ../shared/assets' glTF files
 # when that folder exists (said on stderr when it does not).
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 frames=15
-if [ "${1:-}" = "--frames" ]; then
-  frames=$2
-  shift 2
-fi
+defaults_only=0
+while [ $# -gt 0 ]; do
+  case "$1" in
+    --frames) frames=${2:?"viewer-bench: --frames needs a count"}; shift 2 ;;
+    --defaults-only) defaults_only=1; shift ;;
+    --*) echo "viewer-bench: unknown option $1 (usage: scripts/viewer-bench.sh [--frames N] [--defaults-only] [ASSET...])" >&2; exit 2 ;;
+    *) break ;;
+  esac
+done
 viewer=$root/build/bin/tangent-view
 [ -x "$viewer" ] || { echo "viewer-bench: $viewer is missing: run scripts/build.sh first" >&2; exit 2; }
 work=$(mktemp -d /tmp/viewer-bench-XXXXXX)
@@ -53,6 +59,7 @@ configs=(
   "no tone mapping|--tone-map none"
   "no image-based lighting|--no-ibl"
 )
+[ $defaults_only = 1 ] && configs=("${configs[0]}")
 printf "%-34s %-40s %10s %10s\n" "asset" "configuration" "median ms" "CPU ms"
 for asset in "${assets[@]}"; do
   for config in "${configs[@]}"; do
