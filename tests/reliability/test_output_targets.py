@@ -3,7 +3,7 @@
 
 One rule for every path `tangent` writes (tangent::output::writeTargetOf): a regular file or a
 name not yet there is replaced atomically; a symbolic link is followed and its target written,
-the link kept; a character device, a FIFO with a reader, or a name for a descriptor
+the link kept, where the target's name ends in the name's own extension (else refused); a character device, a FIFO with a reader, or a name for a descriptor
 (/dev/stdout, /proc/self/fd/N) is written in place and stays what it was; a block device, a
 socket, a FIFO nobody reads and a folder are refused, naming the path. The device nodes are
 made on a tmpfs mounted in a private mount namespace (never on the machine's own /dev).
@@ -89,13 +89,54 @@ def test_a_fifo_nobody_reads_is_refused_at_once(tmp_path, writer):
 
 @pytest.mark.parametrize("writer", WRITERS)
 def test_a_link_to_a_regular_file_writes_its_target_and_stays_a_link(tmp_path, writer):
-    command = WRITERS[writer].format('"$N/link"')
-    script = (f'mkdir real && echo old > real/target && ln -s real/target link && {command}; echo "exit=$?"; '
-              'readlink link; echo "---"; cat real/target')
+    command = WRITERS[writer].format('"$N/link.json"')
+    script = (f'mkdir real && echo old > real/target.json && ln -s real/target.json link.json && {command}; echo "exit=$?"; '
+              'readlink link.json; echo "---"; cat real/target.json')
     status, out, err = in_namespace(tmp_path, script)
     head, target = out.split("---\n", 1)
-    assert "exit=0" in head and "real/target" in head, (out, err)
+    assert "exit=0" in head and "real/target.json" in head, (out, err)
     assert json.loads(target), target
+
+
+# A link whose target is not a file of the kind the name asks for (out.glb -> /etc/passwd, run as
+# root in a pipeline) is refused: the target keeps its bytes, nothing is created beside it, the
+# link stays. So is a link to a name not there yet of another kind, and a name without an
+# extension through a link.
+LINKED = {**WRITERS, "bake -o": '"$T" bake "$A" -o {} --overwrite -q'}
+
+
+@pytest.mark.parametrize("link, target", [("link.json", "passwd"), ("link.glb", "passwd"), ("link", "passwd"),
+                                          ("link.json", "report.txt")])
+@pytest.mark.parametrize("writer", LINKED)
+def test_a_link_to_a_file_of_another_kind_is_refused_and_the_file_kept(tmp_path, writer, link, target):
+    if writer == "bake -o" and link != "link.glb":
+        pytest.skip("bake refuses an output not ending in .glb or .gltf before it looks at the path")
+    command = LINKED[writer].format(f'"$N/{link}"')
+    script = (f'mkdir etc && printf "root:x:0:0::/root:/bin/sh\\n" > etc/{target} && ln -s etc/{target} {link} && '
+              f'{command}; echo "exit=$?"; echo ---; readlink {link}; ls etc; cat etc/{target}')
+    status, out, err = in_namespace(tmp_path, script)
+    head, kept = out.split("---\n", 1)
+    assert "exit=0" not in head, (out, err)
+    assert f"/{link}: is a symbolic link to " in err and f"/etc/{target}, which does not end in " in err, err
+    assert kept.split("\n") == [f"etc/{target}", target, "root:x:0:0::/root:/bin/sh", ""], out
+
+
+@pytest.mark.parametrize("writer", LINKED)
+def test_a_dangling_link_to_a_name_of_another_kind_creates_nothing(tmp_path, writer):
+    link = "link.glb" if writer == "bake -o" else "link.json"
+    command = LINKED[writer].format(f'"$N/{link}"')
+    script = f'mkdir etc && ln -s etc/cron-job {link} && {command}; echo "exit=$?"; echo ---; ls etc | wc -l'
+    status, out, err = in_namespace(tmp_path, script)
+    head, count = out.split("---\n", 1)
+    assert "exit=0" not in head and count == "0\n", (out, err)
+    assert f"/{link}: is a symbolic link to " in err and "/etc/cron-job, which does not end in " in err, err
+
+
+def test_a_glb_output_through_a_link_to_a_glb_replaces_the_target_with_a_glb(tmp_path):
+    status, out, err = in_namespace(tmp_path, 'mkdir store && echo old > store/v1.glb && ln -s store/v1.glb o.glb && '
+                                              '"$T" bake "$A" -o o.glb --overwrite -q; echo "exit=$?"; readlink o.glb; '
+                                              'head -c 4 store/v1.glb; echo; ls store')
+    assert out.split("\n")[:4] == ["exit=0", "store/v1.glb", "glTF", "v1.glb"], (out, err)
 
 
 @pytest.mark.parametrize("name", ["link-to-stdout", "/dev/stdout", "/proc/self/fd/1"])

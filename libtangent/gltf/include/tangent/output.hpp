@@ -7,7 +7,8 @@
 //
 // Only regular files are replaced (writeTargetOf is the rule): a name not yet there or a
 // regular file is written as above; a symbolic link is followed and its target written so
-// (beside the target; the link stays); a character device, a FIFO with a reader, or a name
+// (beside the target; the link stays) where that target's name ends in the extension of the
+// name given (a link out.glb -> /etc/passwd is refused, not followed); a character device, a FIFO with a reader, or a name
 // for a descriptor (/dev/stdout, /proc/self/fd/N) is opened and written in place, never
 // renamed over; a block device, a socket, a FIFO without a reader or a folder is refused.
 #pragma once
@@ -40,7 +41,8 @@ struct WriteTarget {
 };
 // The rule above, for `path`: links followed (at most 40), every name under /proc written in
 // place. Throws std::runtime_error naming `path` for what is refused (block device, socket,
-// folder, a loop of links).
+// folder, a loop of links, a link to a file, or to a name not there yet, whose extension is not
+// the non-empty one of `path`).
 WriteTarget writeTargetOf(const std::filesystem::path& path);
 
 // Temporaries of processes that no longer run (killed, or the machine went down) in

@@ -269,6 +269,16 @@ void writeInPlace(const WriteTarget& target, const fs::path& path, const std::ve
 
 WriteTarget writeTargetOf(const fs::path& path) {
   fs::path at = path;
+  // A file replaced or created through links must be of the kind named: `out.glb` -> /etc/passwd
+  // (run as root) would otherwise replace the system's file with a glTF.
+  auto replaced = [&path](const fs::path& file, int links) -> WriteTarget {
+    if (links > 0 && (path.extension().empty() || file.extension() != path.extension()))
+      throw std::runtime_error(path.string() + ": is a symbolic link to " + file.string() + ", which does not end in " +
+                               (path.extension().empty() ? std::string("an extension") : path.extension().string()) +
+                               " as the name given does; not written (a link is followed only to a file of the same kind: "
+                               "remove the link or choose another name)");
+    return {WriteTarget::Kind::replace, file, -1};
+  };
   for (int links = 0;; ++links) {
     if (links > 40) throw std::runtime_error(path.string() + ": more than 40 symbolic links to follow (a loop?); not written");
     const fs::path real = withRealFolder(at);
@@ -278,7 +288,7 @@ WriteTarget writeTargetOf(const fs::path& path) {
     if (real.string().rfind("/proc/", 0) == 0) return {WriteTarget::Kind::inPlace, real, -1};
     struct stat status {};
     if (::lstat(at.c_str(), &status) != 0) {
-      if (errno == ENOENT) return {WriteTarget::Kind::replace, at, -1};  // not there yet: created
+      if (errno == ENOENT) return replaced(at, links);  // not there yet: created
       throw std::runtime_error(path.string() + ": cannot be examined: " + reason(errno));
     }
     if (S_ISLNK(status.st_mode)) {
@@ -288,7 +298,7 @@ WriteTarget writeTargetOf(const fs::path& path) {
       at = next.is_absolute() ? next : at.parent_path() / next;
       continue;
     }
-    if (S_ISREG(status.st_mode)) return {WriteTarget::Kind::replace, at, -1};
+    if (S_ISREG(status.st_mode)) return replaced(at, links);
     if (S_ISDIR(status.st_mode)) throw std::runtime_error(path.string() + ": is a folder; not written");
     if (S_ISBLK(status.st_mode)) throw std::runtime_error(path.string() + ": is a block device; not written (give a file name)");
     if (S_ISSOCK(status.st_mode)) throw std::runtime_error(path.string() + ": is a socket; a socket cannot be written as a file");

@@ -203,7 +203,7 @@ std::uint64_t OutputDocument::write(const std::filesystem::path& requested, cons
                      "writes over one (choose another output name or folder)");
   dropOrphans();
   extensionsRemoved_ = dropUnusedCompressionExtensions(asset_.json);
-  const bool glb = output.extension() == ".glb";
+  const bool glb = requested.extension() == ".glb";  // the kind asked for (writeTargetOf: a link's target has it too)
   if (glb && !keepExternalImages) embedImages();  // new views: before the buffers are packed
   const std::vector<std::span<const std::uint8_t>> bin = packBuffers();
   return glb ? writeGlb(output, bin, keepExternalImages) : writeGltf(output, bin);
