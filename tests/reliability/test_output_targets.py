@@ -105,12 +105,12 @@ def test_a_link_to_a_regular_file_writes_its_target_and_stays_a_link(tmp_path, w
 LINKED = {**WRITERS, "bake -o": '"$T" bake "$A" -o {} --overwrite -q'}
 
 
-@pytest.mark.parametrize("link, target", [("link.json", "passwd"), ("link.glb", "passwd"), ("link", "passwd"),
-                                          ("link.json", "report.txt")])
-@pytest.mark.parametrize("writer", LINKED)
+# (bake -o takes .glb and .gltf names only, so it meets the link to another kind as link.glb)
+LINKS = [("link.json", "passwd"), ("link.glb", "passwd"), ("link", "passwd"), ("link.json", "report.txt")]
+
+
+@pytest.mark.parametrize("writer, link, target", [(w, l, t) for w in WRITERS for l, t in LINKS] + [("bake -o", "link.glb", "passwd")])
 def test_a_link_to_a_file_of_another_kind_is_refused_and_the_file_kept(tmp_path, writer, link, target):
-    if writer == "bake -o" and link != "link.glb":
-        pytest.skip("bake refuses an output not ending in .glb or .gltf before it looks at the path")
     command = LINKED[writer].format(f'"$N/{link}"')
     script = (f'mkdir etc && printf "root:x:0:0::/root:/bin/sh\\n" > etc/{target} && ln -s etc/{target} {link} && '
               f'{command}; echo "exit=$?"; echo ---; readlink {link}; ls etc; cat etc/{target}')
@@ -288,3 +288,28 @@ def test_a_gltf_output_through_a_link_puts_its_bin_beside_the_target(tmp_path):
     assert link.is_symlink() and os.readlink(link) == str(tmp_path / "real" / "o.gltf")
     assert_gltf_pair_loads(tmp_path / "real" / "o.gltf")  # its .bin beside it
     assert sorted(p.name for p in (tmp_path / "links").iterdir()) == ["o.gltf"]
+
+
+# The batch's journal (tangent-manifest.journal in the output folder) is appended to in place:
+# a link there was followed and its target truncated and rewritten, a FIFO there hung the run.
+# Anything but a regular file stops the run before anything is baked, named; the link's target
+# keeps its bytes.
+@pytest.mark.parametrize("kind", ["link", "fifo", "folder"])
+def test_a_batch_journal_that_is_not_a_regular_file_stops_the_run_naming_it(tmp_path, kind):
+    doc, blob = grid(4)
+    write(tmp_path / "tree" / "a.glb", glb_bytes(doc, blob))
+    (tmp_path / "o").mkdir()
+    victim = write(tmp_path / "victim.txt", b"precious\n")
+    journal = tmp_path / "o" / "tangent-manifest.journal"
+    if kind == "link":
+        journal.symlink_to(victim)
+    elif kind == "fifo":
+        os.mkfifo(journal)
+    else:
+        journal.mkdir()
+    done = tangent("bake", tmp_path / "tree", "--out-dir", tmp_path / "o", "--recursive", "-q", timeout=60)
+    err = done.stderr.decode(errors="replace")
+    assert done.returncode != 0, err
+    assert f"{journal}: is a" in err and "nothing baked" in err, err
+    assert victim.read_bytes() == b"precious\n"
+    assert sorted(p.name for p in (tmp_path / "o").iterdir()) == ["tangent-manifest.journal"]

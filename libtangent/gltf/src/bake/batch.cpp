@@ -1,7 +1,12 @@
 // SPDX-License-Identifier: MIT
 #include "tangent/batch.hpp"
 
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
 #include <algorithm>
+#include <cerrno>
 #include <chrono>
 #include <fstream>
 #include <iterator>
@@ -223,13 +228,22 @@ namespace {
 
 // The journal beside the manifest: one line per finished file, appended as the run goes, so
 // that a run that is interrupted (Ctrl-C, kill -9, a full disk) is resumed by the next one.
-// Its first line holds the options; the manifest replaces it when the run ends.
+// Its first line holds the options; the manifest replaces it when the run ends. Appended to in
+// place, so it is never written through a link, to a FIFO or a device: only a regular file (or
+// none yet) is read, truncated and written; anything else there stops the run before it starts,
+// named (a link tangent-manifest.journal -> /etc/passwd was truncated and rewritten).
 class Journal {
  public:
   Journal(const fs::path& path, const Json& options) : path_(path), options_(options) {}
+  ~Journal() {
+    if (fd_ >= 0) ::close(fd_);
+  }
+  Journal(const Journal&) = delete;
+  Journal& operator=(const Journal&) = delete;
 
   // Records of a journal left by an earlier run with the same options.
   Json read() const {
+    refuseUnlessRegularOrAbsent();
     Json records = Json::object();
     std::ifstream in(path_, std::ios::binary);
     std::string line;
@@ -255,29 +269,70 @@ class Journal {
     return records;
   }
 
-  // Starts a new journal with the records carried over from an interrupted run.
+  // Starts a new journal with the records carried over from an interrupted run. The name is
+  // opened without following a link and without waiting on a FIFO, and checked to be a
+  // regular file before it is truncated.
   void start(const Json& carried) {
-    out_.open(path_, std::ios::binary | std::ios::trunc);
-    out_ << text::dumpJson(Json{{"options", options_}}) << "\n";
+    fd_ = ::open(path_.c_str(), O_WRONLY | O_CREAT | O_NOFOLLOW | O_NONBLOCK | O_CLOEXEC, 0666);
+    if (fd_ < 0) {
+      refuseUnlessRegularOrAbsent();
+      return;  // a read-only folder: the run goes on without a journal, each output failing on its own
+    }
+    struct stat status {};
+    if (::fstat(fd_, &status) != 0 || !S_ISREG(status.st_mode)) {
+      ::close(fd_);
+      fd_ = -1;
+      refuseUnlessRegularOrAbsent();
+      throw std::runtime_error(path_.string() + ": is not a regular file; the batch's journal goes there (remove it)");
+    }
+    (void)::ftruncate(fd_, 0);  // best effort, as every write below: the journal only speeds up a resumed run
+    writeLine(text::dumpJson(Json{{"options", options_}}));
     for (const auto& [key, record] : carried.items()) append(key, record);
-    out_.flush();
   }
 
-  void append(const std::string& key, const Json& record) {
-    out_ << text::dumpJson(Json{{"file", key}, {"record", record}}) << "\n";
-    out_.flush();
-  }
+  void append(const std::string& key, const Json& record) { writeLine(text::dumpJson(Json{{"file", key}, {"record", record}})); }
 
   void remove() {
-    out_.close();
+    if (fd_ >= 0) ::close(fd_);
+    fd_ = -1;
     std::error_code ec;
     fs::remove(path_, ec);
   }
 
  private:
+  // Throws naming the journal's path where something other than a regular file is there.
+  void refuseUnlessRegularOrAbsent() const {
+    std::error_code ec;
+    const fs::file_status status = fs::symlink_status(path_, ec);
+    if (ec || status.type() == fs::file_type::not_found || status.type() == fs::file_type::regular) return;
+    const char* kind = status.type() == fs::file_type::symlink     ? "a symbolic link"
+                       : status.type() == fs::file_type::directory ? "a folder"
+                       : status.type() == fs::file_type::fifo      ? "a FIFO"
+                       : status.type() == fs::file_type::socket    ? "a socket"
+                       : status.type() == fs::file_type::character || status.type() == fs::file_type::block ? "a device"
+                                                                                                            : "not a regular file";
+    throw std::runtime_error(path_.string() + ": is " + kind +
+                             "; the batch keeps its journal under this name and writes only a regular file there: "
+                             "nothing baked (remove it)");
+  }
+
+  void writeLine(std::string line) {
+    if (fd_ < 0) return;
+    line += '\n';
+    const char* at = line.data();
+    std::size_t left = line.size();
+    while (left > 0) {
+      const ssize_t written = ::write(fd_, at, left);
+      if (written < 0 && errno == EINTR) continue;
+      if (written <= 0) return;  // a full disk: the run goes on without its journal
+      at += written;
+      left -= static_cast<std::size_t>(written);
+    }
+  }
+
   fs::path path_;
   Json options_;
-  std::ofstream out_;
+  int fd_ = -1;
 };
 
 // What the manifest and an interrupted run's journal know of each file, where the options are
