@@ -6,13 +6,14 @@
 #include <algorithm>
 #include <cstdint>
 #include <filesystem>
-#include <fstream>
 #include <nlohmann/json.hpp>
+#include <span>
 #include <string>
 #include <utility>
 #include <vector>
 
 #include "shapes.hpp"
+#include "tangent/output.hpp"
 
 namespace make_data {
 
@@ -101,8 +102,10 @@ class DocumentWriter {
     doc["accessors"] = accessors_;
     doc["bufferViews"] = views_;
     doc["buffers"] = {{{"uri", stem + ".bin"}, {"byteLength", bin.size()}}};
-    std::ofstream(dir / (stem + ".bin"), std::ios::binary).write(reinterpret_cast<const char*>(bin.data()), static_cast<std::streamsize>(bin.size()));
-    std::ofstream(dir / (stem + ".gltf")) << doc.dump(2) << "\n";
+    // As every output of the project (tangent/output.hpp): atomically, a failure (a full disk)
+    // thrown naming the file; the .bin first, so that the .gltf never names a missing one.
+    tangent::output::writeFileAtomic(dir / (stem + ".bin"), {std::span<const std::uint8_t>(bin.data(), bin.size())});
+    tangent::output::writeFileAtomic(dir / (stem + ".gltf"), doc.dump(2) + "\n");
   }
 
  private:

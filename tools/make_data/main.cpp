@@ -7,12 +7,15 @@
 // Usage: tangent-make-data OUT_DIR | --animated OUT_DIR | --materials OUT_DIR | --sphere N OUT_DIR [--one-primitive]
 // One file per family of data (families.hpp); shapes, textures and the glTF writer beneath them.
 #include <cstdlib>
+#include <exception>
 #include <iostream>
 #include <string>
 
 #include "families.hpp"
 
-int main(int argc, char** argv) {
+namespace {
+
+int run(int argc, char** argv) {
   if ((argc == 4 || (argc == 5 && std::string(argv[4]) == "--one-primitive")) && std::string(argv[1]) == "--sphere")
     return make_data::writeBenchmarkSphere(std::atoi(argv[2]), argv[3], argc == 5);
   if (argc == 3 && std::string(argv[1]) == "--materials") return make_data::writeMaterialScenes(argv[2]);
@@ -39,4 +42,15 @@ int main(int argc, char** argv) {
     return 2;
   }
   return make_data::writeDemoData(argv[1]);
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  try {
+    return run(argc, argv);
+  } catch (const std::exception& e) {  // a file that could not be written, named
+    std::cerr << "tangent-make-data: " << e.what() << "\n";
+    return 1;
+  }
 }

@@ -1,20 +1,43 @@
 // SPDX-License-Identifier: MIT
 #include "textures.hpp"
 
+#include <OpenImageIO/filesystem.h>
 #include <OpenImageIO/imageio.h>
 
 #include <algorithm>
 #include <cmath>
+#include <exception>
+#include <iostream>
+#include <span>
+
+#include "tangent/output.hpp"
 
 namespace make_data {
 
+// Encoded in memory (the format from the name's extension), then written as every output of
+// the project is (tangent/output.hpp): atomically, never through a link to another kind of
+// file. False, said on stderr naming the file, where either fails.
 bool writeImage(const std::filesystem::path& path, int width, int height, int channels, const std::vector<unsigned char>& pixels) {
   auto out = OIIO::ImageOutput::create(path.string());
-  if (!out) return false;
+  std::vector<unsigned char> encoded;
+  OIIO::Filesystem::IOVecOutput memory(encoded);
+  OIIO::Filesystem::IOProxy* proxy = &memory;
   OIIO::ImageSpec spec(width, height, channels, OIIO::TypeDesc::UINT8);
-  if (!out->open(path.string(), spec)) return false;
-  const bool ok = out->write_image(OIIO::TypeDesc::UINT8, pixels.data());
-  return out->close() && ok;
+  spec.attribute("oiio:ioproxy", OIIO::TypeDesc::PTR, &proxy);
+  const bool encodedOk = out && out->supports("ioproxy") && out->open(path.string(), spec) &&
+                         out->write_image(OIIO::TypeDesc::UINT8, pixels.data()) && out->close();
+  if (!encodedOk) {
+    std::cerr << "tangent-make-data: " << path.string() << ": cannot encode the image: " << (out ? out->geterror() : OIIO::geterror())
+              << "\n";
+    return false;
+  }
+  try {
+    tangent::output::writeFileAtomic(path, {std::span<const std::uint8_t>(encoded.data(), encoded.size())});
+  } catch (const std::exception& e) {
+    std::cerr << "tangent-make-data: " << e.what() << "\n";
+    return false;
+  }
+  return true;
 }
 
 bool writeBumpNormalMap(const std::filesystem::path& path, int size, int bumpsPerSide) {
@@ -39,12 +62,7 @@ bool writeBumpNormalMap(const std::filesystem::path& path, int size, int bumpsPe
         pixels[(static_cast<std::size_t>(y) * size + x) * 3 + k] = static_cast<unsigned char>(std::lround((n[k] * 0.5 + 0.5) * 255));
     }
   }
-  auto out = OIIO::ImageOutput::create(path.string());
-  if (!out) return false;
-  OIIO::ImageSpec spec(size, size, 3, OIIO::TypeDesc::UINT8);
-  if (!out->open(path.string(), spec)) return false;
-  const bool ok = out->write_image(OIIO::TypeDesc::UINT8, pixels.data());
-  return out->close() && ok;
+  return writeImage(path, size, size, 3, pixels);
 }
 
 bool writeSpecularRegions(const std::filesystem::path& path, int size) {
