@@ -21,7 +21,8 @@ import threading
 import pytest
 
 from conftest import skip_or_fail
-from test_outputs import CLI, assert_gltf_pair_loads, assert_valid_glb, glb_bytes, grid, snapshot, tangent, temporaries, write
+from test_outputs import (CLI, PNG, assert_gltf_pair_loads, assert_valid_glb, glb_bytes, gltf_bytes, grid, keeping_images, snapshot,
+                          tangent, temporaries, with_external_image, write)
 
 
 def in_namespace(tmp_path, script, timeout=120):
@@ -313,3 +314,22 @@ def test_a_batch_journal_that_is_not_a_regular_file_stops_the_run_naming_it(tmp_
     assert f"{journal}: is a" in err and "nothing baked" in err, err
     assert victim.read_bytes() == b"precious\n"
     assert sorted(p.name for p in (tmp_path / "o").iterdir()) == ["tangent-manifest.journal"]
+
+
+# The image copies bake puts beside its output go through the same rule: a link where a copy
+# goes, to a file of another kind, was overwritten with the PNG; now the bake is refused naming
+# it and writes nothing.
+@pytest.mark.parametrize("suffix", [".glb", ".gltf"])
+def test_an_image_copy_onto_a_link_to_another_kind_of_file_is_refused(tmp_path, suffix):
+    doc, blob = grid(4)
+    asset = write(tmp_path / "in" / "in.gltf", gltf_bytes(with_external_image(doc, uri="n.png"), blob))
+    write(tmp_path / "in" / "n.png", PNG)
+    victim = write(tmp_path / "victim.txt", b"precious\n")
+    (tmp_path / "out").mkdir()
+    (tmp_path / "out" / "n.png").symlink_to(victim)
+    done = tangent("bake", asset, "-o", tmp_path / "out" / f"o{suffix}", *keeping_images(suffix))
+    err = done.stderr.decode(errors="replace")
+    assert done.returncode != 0, err
+    assert "/out/n.png: is a symbolic link to " in err and "victim.txt, which does not end in .png" in err, err
+    assert victim.read_bytes() == b"precious\n"
+    assert sorted(p.name for p in (tmp_path / "out").iterdir()) == ["n.png"]
