@@ -146,17 +146,23 @@ PY
 
 rows=()
 fresh_rows=()
+# Our two bakes of one generated sphere (the default and --method lengyel), each in fresh
+# processes: sets ours, ours_kb, lengyel and lengyel_kb, and adds the sphere's row of the
+# whole-process table (fresh_rows).
+bake_both() {  # bake_both GLTF OUT_DIR TRIANGLES
+  local input=$1 dir=$2 triangles=$3 ours_user ours_sys ours_faults
+  read -r ours ours_kb ours_user ours_sys ours_faults <<<"$(measure bake "$bin/tangent" bake "$input" -o "$dir/ours.glb" -q)"
+  read -r lengyel lengyel_kb _ <<<"$(measure bake-lengyel "$bin/tangent" bake "$input" -o "$dir/ours-lengyel.glb" -q --method lengyel)"
+  fresh_rows+=("$triangles $ours $ours_user $ours_sys $ours_faults $(stat -c %s "${input%.gltf}.bin") $(stat -c %s "$dir/ours.glb") $lengyel $lengyel_kb $(stat -c %s "$dir/ours-lengyel.glb") $ours_kb")
+}
 for size in "${sizes[@]}"; do
   read -r n name target <<<"$size"
   "$bin/tangent-make-data" --sphere "$n" "$out/spheres" --one-primitive >/dev/null
   input="$out/spheres/sphere-$n.gltf"
   triangles=$((2 * n * (n - 1)))
-  read -r ours ours_kb ours_user ours_sys ours_faults <<<"$(measure bake "$bin/tangent" bake "$input" -o "$out/ours.glb" -q)"
+  bake_both "$input" "$out" "$triangles"
   read -r gt gt_kb _ <<<"$(measure gltf-transform node bench/node/node_modules/@gltf-transform/cli/bin/cli.js tangents "$input" "$out/gt.glb")"
   read -r as as_kb _ <<<"$(measure assimp assimp export "$input" "$out/assimp.assbin" -fassbin -cts)"
-  # The same bake with --method lengyel (its own pipeline, not the mikktspace kernel).
-  read -r lengyel lengyel_kb _ <<<"$(measure bake-lengyel "$bin/tangent" bake "$input" -o "$out/ours-lengyel.glb" -q --method lengyel)"
-  fresh_rows+=("$triangles $ours $ours_user $ours_sys $ours_faults $(stat -c %s "$out/spheres/sphere-$n.bin") $(stat -c %s "$out/ours.glb") $lengyel $lengyel_kb $(stat -c %s "$out/ours-lengyel.glb") $ours_kb")
   kernel_runs=$runs; [ "$target" -gt 2000000 ] && kernel_runs=1  # the npm reference needs minutes there
   # The same analytic sphere as the kernel benchmark's sphere-$name (tools/bench/analytic_surfaces.cpp).
   wasm_json=$(cd bench/node && node mikktspace_kernel.mjs "$target" "$kernel_runs")
@@ -174,10 +180,7 @@ if [ $quick = 0 ]; then
   n=3162
   echo "== huge primitive: tangent bake of a $((2 * n * (n - 1)))-triangle sphere"
   "$bin/tangent-make-data" --sphere "$n" "$out/huge" --one-primitive >/dev/null
-  input="$out/huge/sphere-$n.gltf"
-  read -r ours ours_kb ours_user ours_sys ours_faults <<<"$(measure bake "$bin/tangent" bake "$input" -o "$out/huge/ours.glb" -q)"
-  read -r lengyel lengyel_kb _ <<<"$(measure bake-lengyel "$bin/tangent" bake "$input" -o "$out/huge/ours-lengyel.glb" -q --method lengyel)"
-  fresh_rows+=("$((2 * n * (n - 1))) $ours $ours_user $ours_sys $ours_faults $(stat -c %s "$out/huge/sphere-$n.bin") $(stat -c %s "$out/huge/ours.glb") $lengyel $lengyel_kb $(stat -c %s "$out/huge/ours-lengyel.glb") $ours_kb")
+  bake_both "$out/huge/sphere-$n.gltf" "$out/huge" "$((2 * n * (n - 1)))"
   echo "bake ${ours}s (${ours_kb} kB), --method lengyel ${lengyel}s (${lengyel_kb} kB)"
   rm -rf "$out/huge"
 fi
@@ -448,7 +451,7 @@ if viewer_rows:
               "`sphere-224.gltf` is the generated 100k-triangle textured sphere).", "",
               "| asset | median frame ms (wall) | CPU ms |", "|---|---:|---:|"]
     lines += [f"| {name} | {fmt(number(wall))} | {fmt(number(cpu))} |" for name, wall, cpu in viewer_rows]
-# Issue 65's targets against this run's figures ("–": not measured in this run).
+# Issue 65's targets against this run's figures ("not measured" where this run has none).
 def worst(values):
     values = [v for v in values if v == v]
     return max(values) if values else float("nan")

@@ -8,9 +8,10 @@
 // Only regular files are replaced (writeTargetOf is the rule): a name not yet there or a
 // regular file is written as above; a symbolic link is followed and its target written so
 // (beside the target; the link stays) where that target's name ends in the extension of the
-// name given (a link out.glb -> /etc/passwd is refused, not followed); a character device, a FIFO with a reader, or a name
-// for a descriptor (/dev/stdout, /proc/self/fd/N) is opened and written in place, never
-// renamed over; a block device, a socket, a FIFO without a reader or a folder is refused.
+// name given (a link out.glb -> /etc/passwd is refused, not followed); a character device, a
+// FIFO with a reader, or a name for a descriptor (/dev/stdout, /proc/self/fd/N) is opened and
+// written in place, never renamed over; a block device, a socket, a FIFO without a reader or a
+// folder is refused.
 #pragma once
 
 #include <cstdint>
