@@ -90,7 +90,7 @@ def main(argv=None):
     manifest_options = libtangent.manifest_options(**options)
     manifest_path = output_folder / MANIFEST
     previous = {}
-    if manifest_path.exists():
+    if manifest_path.is_file():  # a FIFO or a folder there is not read (libtangent.write_file refuses it below)
         try:
             old = json.loads(manifest_path.read_text())
             if old.get("schema") == "libtangent-manifest/1" and old.get("options") == manifest_options:
@@ -128,11 +128,15 @@ def main(argv=None):
             record["error"] = entry.get("error", "")
         files[key] = record
     manifest = {"schema": "libtangent-manifest/1", "options": manifest_options, "files": files}
-    temporary = manifest_path.with_name("." + MANIFEST + ".tmp")
-    temporary.write_text(json.dumps(manifest, indent=2) + "\n")
-    os.replace(temporary, manifest_path)
-    if args.report:
-        pathlib.Path(args.report).write_text(json.dumps(entries, indent=2) + "\n")
+    # Both written as the CLI writes them (whole or not at all, never through a link to another
+    # kind of file, nor over a FIFO or a device): libtangent.write_file.
+    try:
+        libtangent.write_file(manifest_path, (json.dumps(manifest, indent=2) + "\n").encode())
+        if args.report:
+            libtangent.write_file(args.report, (json.dumps(entries, indent=2) + "\n").encode())
+    except libtangent.Error as error:
+        print("error:", error, file=sys.stderr)
+        return 1
     baked = sum(e["status"] == "ok" and not e["unchanged"] for e in entries)
     unchanged = sum(e["unchanged"] for e in entries)
     failed = [e for e in entries if e["status"] != "ok"]

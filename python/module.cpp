@@ -16,6 +16,7 @@
 #include "tangent/check.hpp"
 #include "tangent/gltf.hpp"
 #include "tangent/option_table.hpp"
+#include "tangent/output.hpp"
 #include "tangent/tangent.hpp"
 #include "tangent/text.hpp"
 
@@ -363,6 +364,16 @@ then does other work.)");
         for (const auto& path : tangent::gltf::findInputs(folder)) names.push_back(path.string());
         return names;
       }, py::arg("folder"), "The bakeable files under a folder, recursively and sorted, as bake_tree() finds them.");
+
+  m.def("write_file", [](const std::filesystem::path& path, const py::bytes& data) {
+        const std::string bytes = data;
+        py::gil_scoped_release released;
+        tangent::output::writeFileAtomic(path, std::string_view(bytes));
+      }, py::arg("path"), py::arg("data"),
+      R"(Writes `data` (bytes) to `path` by the rule every libtangent writer follows (docs/security.md):
+a temporary file beside it, written, synced, renamed into place (whole or not at all); only a regular
+file or a new name is replaced; a symbolic link is followed only to a name of the same extension; a
+character device or a FIFO with a reader is written in place. Raises libtangent.Error naming the path.)");
 
   m.def("input_digest", [](const std::filesystem::path& input, std::optional<std::filesystem::path> assetRoot) {
         py::gil_scoped_release released;

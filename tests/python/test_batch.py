@@ -5,6 +5,7 @@ import json
 import os
 import pathlib
 import shutil
+import stat
 import subprocess
 import sys
 
@@ -88,3 +89,64 @@ def test_dask_example_on_a_local_cluster(tmp_path):
     # The manifest makes a second run skip everything.
     done = subprocess.run(run, capture_output=True, text=True, env=env, timeout=300)
     assert "0 baked, 40 unchanged, 4 failed" in done.stdout, done.stdout + done.stderr
+
+
+def test_write_file_writes_as_every_libtangent_writer(tmp_path):
+    """libtangent.write_file, which the Dask example writes its manifest and report with: whole
+    files, a link followed only to a name of its extension, no FIFO, folder or victim replaced."""
+    out = tmp_path / "a.json"
+    libtangent.write_file(out, b'{"x": 1}\n')
+    assert out.read_bytes() == b'{"x": 1}\n'
+    libtangent.write_file(str(out), b"{}\n")  # a str path too; replaced whole
+    assert out.read_bytes() == b"{}\n"
+    victim = tmp_path / "victim.txt"
+    victim.write_text("victim")
+    (tmp_path / "link.json").symlink_to(victim)
+    with pytest.raises(libtangent.Error, match=r"link.json: is a symbolic link to .*victim.txt, which does not end in .json"):
+        libtangent.write_file(tmp_path / "link.json", b"{}")
+    assert victim.read_text() == "victim" and (tmp_path / "link.json").is_symlink()
+    (tmp_path / "store.json").write_text("old")
+    (tmp_path / "same.json").symlink_to("store.json")
+    libtangent.write_file(tmp_path / "same.json", b"new")
+    assert (tmp_path / "store.json").read_text() == "new" and (tmp_path / "same.json").is_symlink()
+    os.mkfifo(tmp_path / "fifo.json")
+    with pytest.raises(libtangent.Error, match=r"fifo.json: a FIFO that nobody reads; not written"):
+        libtangent.write_file(tmp_path / "fifo.json", b"{}")
+    assert stat.S_ISFIFO(os.lstat(tmp_path / "fifo.json").st_mode)
+    (tmp_path / "folder.json").mkdir()
+    with pytest.raises(libtangent.Error, match=r"folder.json: is a folder; not written"):
+        libtangent.write_file(tmp_path / "folder.json", b"{}")
+    with pytest.raises(libtangent.Error, match=r"missing/b.json"):
+        libtangent.write_file(tmp_path / "missing" / "b.json", b"{}")
+    assert not [p for p in tmp_path.iterdir() if ".tmp-" in p.name]
+
+
+def test_dask_example_writes_its_manifest_and_report_as_the_cli_does(tmp_path):
+    """The example wrote its report with Path.write_text (through any link, into a FIFO, not
+    atomically) and its manifest through a fixed temporary name: now both by write_file."""
+    try:
+        import distributed  # noqa: F401
+    except ImportError:
+        skip_or_fail("Debian's python3-distributed is not installed")
+    tree = tmp_path / "in"
+    tree.mkdir()
+    shutil.copy(DEMO / "cube.gltf", tree)
+    shutil.copy(DEMO / "cube.bin", tree)
+    victim = tmp_path / "victim.txt"
+    victim.write_text("victim")
+    (tmp_path / "report.json").symlink_to(victim)
+    example = SOURCE / "examples" / "bake_dask.py"
+    run = [sys.executable, str(example), str(tree), str(tmp_path / "out"), "--workers", "1",
+           "--report", str(tmp_path / "report.json")]
+    done = subprocess.run(run, capture_output=True, text=True, timeout=300)
+    assert done.returncode == 1, done.stdout + done.stderr
+    assert "report.json: is a symbolic link to" in done.stderr, done.stderr
+    assert victim.read_text() == "victim"
+    assert json.loads((tmp_path / "out" / "tangent-manifest.json").read_text())["files"]["cube.gltf"]["ok"]
+    # The manifest's name a FIFO: not read (the run does not hang), not replaced, said.
+    (tmp_path / "out" / "tangent-manifest.json").unlink()
+    os.mkfifo(tmp_path / "out" / "tangent-manifest.json")
+    done = subprocess.run(run[:-2], capture_output=True, text=True, timeout=300)
+    assert done.returncode == 1, done.stdout + done.stderr
+    assert "tangent-manifest.json: a FIFO that nobody reads" in done.stderr, done.stderr
+    assert stat.S_ISFIFO(os.lstat(tmp_path / "out" / "tangent-manifest.json").st_mode)
