@@ -37,30 +37,32 @@ void setVertexLayout(std::span<const VertexAttribute> layout) {
 
 // A draw item's corners packed as kMeshVertexLayout says; positions, normals and tangents from
 // `frame` (the item's own, or deformed ones).
+void packMeshCorner(const gltf::DrawItem& item, const CornerFrames& frame, std::size_t c, float* corner) {
+  for (const VertexAttribute& attribute : kMeshVertexLayout) {
+    float* out = corner + attribute.offset;
+    const auto n = static_cast<std::size_t>(attribute.components);
+    switch (attribute.source) {
+      case VertexSource::position: std::copy_n(&frame.positions[n * c], n, out); break;
+      case VertexSource::normal: std::copy_n(&frame.normals[n * c], n, out); break;
+      case VertexSource::tangent: std::copy_n(&frame.tangents[n * c], n, out); break;
+      case VertexSource::uvNormal: std::copy_n(&item.uvNormal[n * c], n, out); break;
+      case VertexSource::uv0: std::copy_n(&item.uvSets[0][n * c], n, out); break;
+      case VertexSource::uv1: std::copy_n(&item.uvSets[1][n * c], n, out); break;
+      case VertexSource::tangentError: *out = frame.tangentErrorDegrees[c]; break;
+      case VertexSource::cornerProblems: *out = static_cast<float>(item.cornerProblems[c]); break;
+      case VertexSource::compareTangent: std::copy_n(&frame.compareTangents[n * c], n, out); break;
+      case VertexSource::color:
+        if (item.colors.empty()) std::fill_n(out, n, 1.0f);
+        else std::copy_n(&item.colors[n * c], n, out);
+        break;
+    }
+  }
+}
+
 std::vector<float> packMeshVertices(const gltf::DrawItem& item, const CornerFrames& frame) {
   const std::size_t corners = item.positions.size() / 3;
   std::vector<float> data(corners * kMeshFloatsPerVertex);
-  for (const VertexAttribute& attribute : kMeshVertexLayout) {
-    for (std::size_t c = 0; c < corners; ++c) {
-      float* out = &data[c * kMeshFloatsPerVertex + attribute.offset];
-      const auto n = static_cast<std::size_t>(attribute.components);
-      switch (attribute.source) {
-        case VertexSource::position: std::copy_n(&frame.positions[n * c], n, out); break;
-        case VertexSource::normal: std::copy_n(&frame.normals[n * c], n, out); break;
-        case VertexSource::tangent: std::copy_n(&frame.tangents[n * c], n, out); break;
-        case VertexSource::uvNormal: std::copy_n(&item.uvNormal[n * c], n, out); break;
-        case VertexSource::uv0: std::copy_n(&item.uvSets[0][n * c], n, out); break;
-        case VertexSource::uv1: std::copy_n(&item.uvSets[1][n * c], n, out); break;
-        case VertexSource::tangentError: *out = frame.tangentErrorDegrees[c]; break;
-        case VertexSource::cornerProblems: *out = static_cast<float>(item.cornerProblems[c]); break;
-        case VertexSource::compareTangent: std::copy_n(&frame.compareTangents[n * c], n, out); break;
-        case VertexSource::color:
-          if (item.colors.empty()) std::fill_n(out, n, 1.0f);
-          else std::copy_n(&item.colors[n * c], n, out);
-          break;
-      }
-    }
-  }
+  for (std::size_t c = 0; c < corners; ++c) packMeshCorner(item, frame, c, &data[c * kMeshFloatsPerVertex]);
   return data;
 }
 
@@ -302,19 +304,19 @@ void Renderer::setScene(gltf::Scene scene, std::vector<std::string>& messages) {
   glyphsBuiltFor_ = -1;
   ++sceneVersion_;
   shadowPasses_ = 0;
+  meshUploads_ = 0;
   uploadImages(scene_, imageUses(scene_, messages), textures_, srgbTextures_, directionImages_, messages);
   auto upload = [&](const gltf::DrawItem& item, GLenum usage) {
     GpuMesh mesh;
     mesh.material = item.material;
     mesh.hasColors = !item.colors.empty();
-    const std::vector<float> data = packMeshVertices(item, itemFrames(item, compareTangentsOf(static_cast<std::size_t>(&item - scene_.items.data()))));
     mesh.vertexArray = makeVertexArray();
     mesh.vertices = makeBuffer();
     if (usage == GL_STATIC_DRAW) mesh.indices = makeBuffer();
     glBindVertexArray(mesh.vertexArray.get());
     glBindBuffer(GL_ARRAY_BUFFER, mesh.vertices.get());
     setVertexLayout(kMeshVertexLayout);
-    fillMeshBuffers(mesh, data);
+    fillMeshBuffers(mesh, item, itemFrames(item, compareTangentsOf(static_cast<std::size_t>(&item - scene_.items.data()))));
     meshes_.push_back(std::move(mesh));
   };
   for (const auto& item : scene_.items) upload(item, GL_STATIC_DRAW);
@@ -382,11 +384,13 @@ std::span<const float> Renderer::compareTangentsOf(std::size_t item) const {
 }
 
 void Renderer::setCompareTangents(std::vector<std::vector<float>> perItem) {
+  // No sets for none: what setScene uploaded already (10^7 triangles: 8 s and 1 GB again).
+  if (perItem.empty() && compareTangents_.empty()) return;
   compareTangents_ = std::move(perItem);
   // Every mesh's vertices again (each deforming instance's own buffer starts from its item's),
   // then the pose again, which deforms the new set along.
   auto upload = [&](std::size_t item, std::size_t mesh) {
-    fillMeshBuffers(meshes_[mesh], packMeshVertices(scene_.items[item], itemFrames(scene_.items[item], compareTangentsOf(item))));
+    fillMeshBuffers(meshes_[mesh], scene_.items[item], itemFrames(scene_.items[item], compareTangentsOf(item)));
   };
   for (std::size_t item = 0; item < scene_.items.size(); ++item) upload(item, item);  // setScene uploads items first
   for (const DeformedInstance& deformed : deformed_) upload(scene_.instances[deformed.instance].item, instances_[deformed.instance].mesh);
@@ -397,19 +401,24 @@ void Renderer::setCompareTangents(std::vector<std::vector<float>> perItem) {
 }
 
 void Renderer::uploadDeformed(const DeformedInstance& deformed) {
-  fillMeshBuffers(meshes_[instances_[deformed.instance].mesh],
-                  packMeshVertices(scene_.items[scene_.instances[deformed.instance].item], framesOf(deformed.instance)));
+  fillMeshBuffers(meshes_[instances_[deformed.instance].mesh], scene_.items[scene_.instances[deformed.instance].item],
+                  framesOf(deformed.instance));
 }
 
-void Renderer::fillMeshBuffers(GpuMesh& mesh, std::span<const float> corners) {
-  mesh.count = static_cast<GLsizei>(corners.size() / kMeshFloatsPerVertex);
+void Renderer::fillMeshBuffers(GpuMesh& mesh, const gltf::DrawItem& item, const CornerFrames& frame) {
+  const std::size_t corners = item.positions.size() / 3;
+  mesh.count = static_cast<GLsizei>(corners);
+  ++meshUploads_;
   glBindVertexArray(mesh.vertexArray.get());  // the element buffer binding is the vertex array's
   glBindBuffer(GL_ARRAY_BUFFER, mesh.vertices.get());
   if (!mesh.indices) {
     // Rewritten at every pose: as many floats each time (GL_DYNAMIC_DRAW).
-    glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(corners.size() * sizeof(float)), corners.data(), GL_DYNAMIC_DRAW);
+    const std::vector<float> data = packMeshVertices(item, frame);
+    glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(data.size() * sizeof(float)), data.data(), GL_DYNAMIC_DRAW);
   } else {
-    const WeldedVertices welded = weldVertices(corners, kMeshFloatsPerVertex);
+    // Welded as the corners are packed: the packed corners are never all in memory at once.
+    const WeldedVertices welded = weldPackedCorners(corners, kMeshFloatsPerVertex,
+                                                    [&](std::size_t c, float* out) { packMeshCorner(item, frame, c, out); });
     glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(welded.vertices.size() * sizeof(float)), welded.vertices.data(), GL_STATIC_DRAW);
     glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, mesh.indices.get());
     glBufferData(GL_ELEMENT_ARRAY_BUFFER, static_cast<GLsizeiptr>(welded.indices.size() * sizeof(std::uint32_t)), welded.indices.data(),

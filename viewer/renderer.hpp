@@ -153,6 +153,8 @@ class Renderer {
   // Shadow-map depth passes drawn since the scene was set: one per change of scene, light 0's
   // direction or map size, not one per frame.
   int shadowPasses() const { return shadowPasses_; }
+  // Meshes packed and uploaded since the scene was set (its own upload of each included).
+  int meshUploads() const { return meshUploads_; }
   // The lit colour's factor before tone mapping: settings.exposure when > 0; else (auto) the
   // factor that shows a white Lambertian surface facing the brightest light, lit by every light
   // and the ambient or environment term, at kAutoExposureWhite. Decided once per asset: at the
@@ -273,8 +275,9 @@ class Renderer {
   };
   // Packs a deformed instance's corners into its vertex buffer.
   void uploadDeformed(const DeformedInstance& deformed);
-  // A mesh's packed corners (kMeshVertexLayout) into its buffers, welded where it has indices.
-  static void fillMeshBuffers(GpuMesh& mesh, std::span<const float> corners);
+  // An item's corners, packed (kMeshVertexLayout) with `frame`'s positions, normals and tangents,
+  // into a mesh's buffers: welded as they are packed where it has indices, else all at once.
+  void fillMeshBuffers(GpuMesh& mesh, const gltf::DrawItem& item, const CornerFrames& frame);
   // Its triangles, with the vertex array bound.
   static void drawMesh(const GpuMesh& mesh);
   std::vector<DeformedInstance> deformed_;
@@ -301,6 +304,7 @@ class Renderer {
   ShadowKey shadowKey_;
   int sceneVersion_ = 0;
   int shadowPasses_ = 0;
+  int meshUploads_ = 0;
   VertexArray glyphArray_;
   Buffer glyphBuffer_;
   GLsizei glyphVertices_ = 0;

@@ -17,8 +17,10 @@ namespace tangent::viewer::renderer_detail {
 void setVertexLayout(std::span<const VertexAttribute> layout);
 
 // A draw item's corners packed as kMeshVertexLayout says; positions, normals and tangents from
-// `frame` (the item's own, or deformed ones).
+// `frame` (the item's own, or deformed ones): all of them, or corner c alone into
+// kMeshFloatsPerVertex floats at `corner`.
 std::vector<float> packMeshVertices(const gltf::DrawItem& item, const CornerFrames& frame);
+void packMeshCorner(const gltf::DrawItem& item, const CornerFrames& frame, std::size_t c, float* corner);
 
 void setUniform(GLuint program, const char* name, const glm::mat4& m);
 void setUniform(GLuint program, const char* name, const glm::mat3& m);

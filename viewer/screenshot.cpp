@@ -116,9 +116,10 @@ int screenshot(Viewer& viewer) {
   // Draw calls and triangles of the last frame's view; the shadow map's draws, made in the first
   // frame (and again only when something moves), are counted apart.
   std::printf("wrote %s (%dx%d, %d samples): %zu triangles, %d draw calls, %zu shader variants, %d shadow pass(es) of %d draw "
-              "call(s), exposure %.4g, median frame %.2f ms (CPU %.2f ms) over %d frame(s)\n",
+              "call(s), %d mesh upload(s), exposure %.4g, median frame %.2f ms (CPU %.2f ms) over %d frame(s)\n",
               shown(o.screenshot->string()).c_str(), o.width, o.height, std::max(samples, 1), stats.triangles, stats.drawCalls,
-              viewer.shaders.variantsCompiled(), viewer.renderer.shadowPasses(), shadowDrawCalls, stats.exposure, milliseconds[milliseconds.size() / 2],
+              viewer.shaders.variantsCompiled(), viewer.renderer.shadowPasses(), shadowDrawCalls, viewer.renderer.meshUploads(), stats.exposure,
+              milliseconds[milliseconds.size() / 2],
               cpuMilliseconds[cpuMilliseconds.size() / 2], o.frames);
   if (viewer.renderer.environmentMilliseconds() > 0)
     std::printf("image-based lighting prepared in %.1f ms\n", viewer.renderer.environmentMilliseconds());

@@ -3,6 +3,7 @@
 // first use, and the indices give back every corner exactly.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <vector>
@@ -45,6 +46,36 @@ TEST(VertexWeld, IndicesGiveBackEveryCorner) {
   ASSERT_EQ(welded.indices.size(), 30000u);
   for (std::size_t c = 0; c < welded.indices.size(); ++c)
     ASSERT_EQ(std::memcmp(&welded.vertices[welded.indices[c] * kStride], &corners[c * kStride], kStride * sizeof(float)), 0) << c;
+}
+
+// Welding while packing (weldPackedCorners, what the viewer uploads with) gives what welding
+// the packed corners gives, in blocks or not: repeats inside one block of 16, across blocks and
+// in a last short block; pack called once per corner, in order.
+TEST(VertexWeld, WeldingWhilePackingIsWeldingThePackedCorners) {
+  constexpr int kStride = 3;
+  std::vector<float> corners;
+  const int pattern[] = {0, 1, 0, 2, 2, 3, 1, 4, 5, 0, 6, 7, 7, 8, 9, 3, /* block 2 */ 3, 10, 0, 11, 11, 11, 12, 4, 13, 14, 15, 15, 16, 1, 17, 2, 18};
+  for (const int vertex : pattern)
+    for (int k = 0; k < kStride; ++k) corners.push_back(static_cast<float>(vertex) + 0.25f * static_cast<float>(k));
+  const std::size_t count = corners.size() / kStride;
+  std::vector<std::size_t> calls;
+  const auto packed = tangent::viewer::weldPackedCorners(count, kStride, [&](std::size_t c, float* out) {
+    calls.push_back(c);
+    std::memcpy(out, &corners[c * kStride], kStride * sizeof(float));
+  });
+  // The expected indices: each pattern value's rank in order of first use, counted here.
+  std::vector<int> firstUse;
+  std::vector<std::uint32_t> expected;
+  for (const int vertex : pattern) {
+    auto at = std::find(firstUse.begin(), firstUse.end(), vertex);
+    if (at == firstUse.end()) at = firstUse.insert(firstUse.end(), vertex);
+    expected.push_back(static_cast<std::uint32_t>(at - firstUse.begin()));
+  }
+  EXPECT_EQ(packed.indices, expected);
+  EXPECT_EQ(packed.vertices, weldVertices(corners, kStride).vertices);
+  EXPECT_EQ(packed.vertices.size(), 19u * kStride);  // vertices 0..18, in order of first use
+  ASSERT_EQ(calls.size(), count);
+  for (std::size_t c = 0; c < count; ++c) EXPECT_EQ(calls[c], c);
 }
 
 }  // namespace
