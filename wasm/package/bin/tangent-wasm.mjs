@@ -136,7 +136,11 @@ function targetOf(file) {
       stat = null;
     }
     if (stat && stat.isSymbolicLink()) {
-      at = path.resolve(path.dirname(at), fs.readlinkSync(at));
+      try {
+        at = path.resolve(path.dirname(at), fs.readlinkSync(at));
+      } catch (e) {
+        fail(`${file}: cannot read the link ${at}: ${e.message}`);
+      }
       continue;
     }
     if (links > 0 && extensionOf(at) !== extensionOf(file)) {
