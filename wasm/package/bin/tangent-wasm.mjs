@@ -49,6 +49,16 @@ function kindOf(stat) {
   return 'not a regular file';
 }
 const reason = (error) => error.code === 'ENOENT' ? 'no such file' : error.message;
+// The file a glTF URI names relative to `folder`, or null where it is not a relative path that
+// stays inside the folder (a scheme, an absolute path, `..` out of it). Throws URIError on a
+// malformed percent-encoding.
+function fileInFolder(folder, uri) {
+  const relative = decodeURIComponent(uri);
+  const file = path.resolve(folder, relative);
+  const inside = path.relative(folder, file);
+  if (/^[a-z][a-z0-9+.-]*:/i.test(uri) || path.isAbsolute(relative) || inside.startsWith('..') || path.isAbsolute(inside)) return null;
+  return file;
+}
 const identity = (stat) => `${stat.dev}:${stat.ino}`;
 
 // The input and every file it names (buffers, images): regular files inside its folder. Their
@@ -98,17 +108,13 @@ const inputs = new Set();
     (Array.isArray(list) ? list : []).forEach((item, i) => {
       const uri = item && typeof item.uri === 'string' ? item.uri : undefined;
       if (uri === undefined || uri.startsWith('data:')) return;
-      let relative;
+      let file;
       try {
-        relative = decodeURIComponent(uri);
+        file = fileInFolder(folder, uri);
       } catch {
         fail(`${input}: ${name}[${i}].uri "${uri}" is not a valid URI`);
       }
-      const file = path.resolve(folder, relative);
-      const inside = path.relative(folder, file);
-      if (/^[a-z][a-z0-9+.-]*:/i.test(uri) || path.isAbsolute(relative) || inside.startsWith('..') || path.isAbsolute(inside)) {
-        fail(`${input}: ${name}[${i}].uri "${uri}" is not a file in the asset's folder; not read`);
-      }
+      if (file === null) fail(`${input}: ${name}[${i}].uri "${uri}" is not a file in the asset's folder; not read`);
       let stat;
       try {
         stat = fs.statSync(file);
@@ -162,9 +168,8 @@ function plan(name, bytes) {
   }
   return { name, file, bytes };
 }
-const outputTarget = targetOf(output);
-if (outputTarget.stat && inputs.has(identity(outputTarget.stat))) fail(`${output}: is the input; choose another output`);
-if (outputTarget.stat && !force) fail(`${output}: exists (pass --force to replace it)`);
+// Checked before the bake too, so that a refusal comes before the work.
+const outputTarget = plan(output, null);
 
 let gltf;
 try {
@@ -198,12 +203,8 @@ try {
     const basename = path.basename(outputTarget.file, path.extname(outputTarget.file));
     const { json, resources } = await io.writeJSON(document, { format: gltf.core.Format.GLTF, basename });
     for (const [uri, bytes] of Object.entries(resources)) {
-      const relative = decodeURIComponent(uri);
-      const file = path.resolve(folder, relative);
-      const inside = path.relative(folder, file);
-      if (/^[a-z][a-z0-9+.-]*:/i.test(uri) || inside.startsWith('..') || path.isAbsolute(inside)) {
-        fail(`${output}: would write "${uri}" outside its folder; not written`);
-      }
+      const file = fileInFolder(folder, uri);
+      if (file === null) fail(`${output}: would write "${uri}" outside its folder; not written`);
       // An image the input has there already, byte for byte (an output beside its input): kept.
       const { stat } = targetOf(file);
       if (stat && stat.size === bytes.byteLength && Buffer.from(bytes).equals(fs.readFileSync(file))) continue;
