@@ -9,7 +9,6 @@
 #include <algorithm>
 #include <cstdint>
 #include <cstring>
-#include <span>
 #include <vector>
 
 namespace tangent::viewer {
@@ -73,14 +72,6 @@ WeldedVertices weldPackedCorners(std::size_t count, int floatsPerVertex, const P
     }
   }
   return welded;
-}
-
-// The same over corners already packed: `corners` holds floatsPerVertex floats per corner.
-inline WeldedVertices weldVertices(std::span<const float> corners, int floatsPerVertex) {
-  const auto stride = static_cast<std::size_t>(floatsPerVertex);
-  const std::size_t count = stride > 0 ? corners.size() / stride : 0;
-  return weldPackedCorners(count, floatsPerVertex,
-                           [&](std::size_t c, float* out) { std::memcpy(out, corners.data() + c * stride, stride * sizeof(float)); });
 }
 
 }  // namespace tangent::viewer

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// weldVertices (viewer/vertex_weld.hpp): corners equal bit for bit share one vertex, in order of
+// weldPackedCorners (viewer/vertex_weld.hpp): corners equal bit for bit share one vertex, in order of
 // first use, and the indices give back every corner exactly.
 #include <gtest/gtest.h>
 
@@ -12,7 +12,12 @@
 
 namespace {
 
-using tangent::viewer::weldVertices;
+// Corners already packed (stride floats each), welded as the viewer welds them while packing.
+tangent::viewer::WeldedVertices weldVertices(const std::vector<float>& corners, int stride) {
+  return tangent::viewer::weldPackedCorners(corners.size() / stride, stride, [&](std::size_t c, float* out) {
+    std::memcpy(out, &corners[c * stride], stride * sizeof(float));
+  });
+}
 
 // Two triangles of a quad, as corners of 3 floats: the diagonal's two corners appear twice.
 TEST(VertexWeld, SharedCornersBecomeOneVertexInOrderOfFirstUse) {
@@ -48,9 +53,8 @@ TEST(VertexWeld, IndicesGiveBackEveryCorner) {
     ASSERT_EQ(std::memcmp(&welded.vertices[welded.indices[c] * kStride], &corners[c * kStride], kStride * sizeof(float)), 0) << c;
 }
 
-// Welding while packing (weldPackedCorners, what the viewer uploads with) gives what welding
-// the packed corners gives, in blocks or not: repeats inside one block of 16, across blocks and
-// in a last short block; pack called once per corner, in order.
+// Welding while packing, a block of 16 at a time: repeats inside one block, across blocks and in
+// a last short block weld to their first use; pack is called once per corner, in order.
 TEST(VertexWeld, WeldingWhilePackingIsWeldingThePackedCorners) {
   constexpr int kStride = 3;
   std::vector<float> corners;
@@ -72,7 +76,10 @@ TEST(VertexWeld, WeldingWhilePackingIsWeldingThePackedCorners) {
     expected.push_back(static_cast<std::uint32_t>(at - firstUse.begin()));
   }
   EXPECT_EQ(packed.indices, expected);
-  EXPECT_EQ(packed.vertices, weldVertices(corners, kStride).vertices);
+  std::vector<float> expectedVertices;  // each distinct vertex's floats, in order of first use
+  for (const int vertex : firstUse)
+    for (int k = 0; k < kStride; ++k) expectedVertices.push_back(static_cast<float>(vertex) + 0.25f * static_cast<float>(k));
+  EXPECT_EQ(packed.vertices, expectedVertices);
   EXPECT_EQ(packed.vertices.size(), 19u * kStride);  // vertices 0..18, in order of first use
   ASSERT_EQ(calls.size(), count);
   for (std::size_t c = 0; c < count; ++c) EXPECT_EQ(calls[c], c);
