@@ -336,6 +336,38 @@ bool sameBits(const std::vector<float>& a, const std::vector<float>& b) {
   return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(float)) == 0;
 }
 
+// TangentWorkspace::setReleaseAsItGoes frees each large array (2 MiB and more) once the call
+// has read it for the last time: the same tangents, vertex split and counts for every method on
+// one and two threads, a workspace that holds less after the call, and a next call on it (its
+// arrays taken again) that gives the same bits again.
+TEST(Workspace, ReleasingAsItGoesGivesTheSameBitsAndHoldsLess) {
+  const GridMesh big = hardMesh(200000);  // every hard case; per-corner arrays of 2.4 MB
+  const std::size_t corners = big.indices.size();
+  for (const tangent::Method method : kEveryMethod) {
+    for (const unsigned threads : {1u, 2u}) {
+      SCOPED_TRACE(std::string(tangent::toString(method)) + " on " + std::to_string(threads) + " thread(s)");
+      tangent::TangentWorkspace keeping, releasing;
+      releasing.setReleaseAsItGoes(true);
+      EXPECT_FALSE(keeping.releasesAsItGoes());
+      EXPECT_TRUE(releasing.releasesAsItGoes());
+      const Output kept = compute(arraysOf(big), threads, keeping, method);
+      const Output released = compute(arraysOf(big), threads, releasing, method);
+      EXPECT_TRUE(sameBits(kept.tangents, released.tangents));
+      EXPECT_EQ(kept.cornerVertex, released.cornerVertex);
+      EXPECT_EQ(kept.report.outputVertices, released.report.outputVertices);
+      EXPECT_EQ(kept.report.nonManifoldFaces, released.report.nonManifoldFaces);
+      EXPECT_EQ(kept.report.mirroredCorners, released.report.mirroredCorners);
+      EXPECT_EQ(kept.report.fallbackFromNeighbours, released.report.fallbackFromNeighbours);
+      EXPECT_EQ(kept.report.fallbackFixed, released.report.fallbackFixed);
+      // At least two per-corner arrays of 4 bytes fewer (mikktspace: the pairing's two id
+      // arrays and the corner links; the others: the triangle pass's results as well).
+      EXPECT_LE(releasing.bytesReserved() + 8 * corners, keeping.bytesReserved())
+          << releasing.bytesReserved() << " bytes held against " << keeping.bytesReserved();
+      EXPECT_TRUE(sameBits(compute(arraysOf(big), threads, releasing, method).tangents, kept.tangents));
+    }
+  }
+}
+
 TEST(CachedWorkspace, PlainCallsGiveTheBitsOfAFreshWorkspaceForEveryMethodThreadCountAndOrder) {
   tangent::releaseCachedWorkspaces();
   ASSERT_EQ(tangent::cachedWorkspaceBytes(), 0u);

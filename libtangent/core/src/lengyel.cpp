@@ -452,6 +452,9 @@ Report lengyelOnArrays(WorkspaceData& ws, const MeshArrays& mesh, const CornerOu
                [&] { data = evaluateTriangles(ws, mesh, weldOf, options, outputs, report); });
     report.nonManifoldFaces = nonManifoldFaces;
   });
+  // Read for the last time (setReleaseAsItGoes): the weld's and the count's arrays.
+  releaseWhenDone(ws, ws.table, ws.weldCounts, ws.positionTable, ws.edgeStart, ws.edgeNext, ws.edgeEnds, ws.edgeCounts, ws.edges,
+                  ws.onSharedEdge, ws.edgeLowInRange);
   // Frames by the shortest way that gives the full grouping's bits: flat's one-corner groups
   // (framed by the triangle pass; the corners it left undefined here), the buckets where they
   // are lengyel's groups, else every corner's key sorted.
@@ -463,6 +466,9 @@ Report lengyelOnArrays(WorkspaceData& ws, const MeshArrays& mesh, const CornerOu
     fillUndefinedGroups(mesh, weldOf, cornerGroups);
     writeCorners(ws, data, cornerGroups, outputs);
   }
+  // The triangle pass's results, read for the last time by the frames (setReleaseAsItGoes).
+  releaseWhenDone(ws, ws.triangleTerms, ws.cornerNormals, ws.cornerWeights, ws.vertexUnitNormals, ws.invalidNormal,
+                  ws.vertexNormalInvalid, ws.positionRepresentative);
   finishOutputs(ws, mesh, outputs, options, report);
   return report;
 }

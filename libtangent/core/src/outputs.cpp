@@ -313,6 +313,8 @@ void numberExtraVertices(WorkspaceData& ws, const MeshArrays& mesh, const Corner
 void finishOutputs(WorkspaceData& ws, const MeshArrays& mesh, const CornerOutputs& outputs, const Options& options,
                    Report& report, const KernelOutcome& kernel) {
   copyAndCount(ws, outputs, options, kernel, report);
+  // Read last by the copies and counts (setReleaseAsItGoes), before the split writes cornerVertex.
+  releaseWhenDone(ws, ws.cornerLink, ws.cornerState, ws.triangleFlags, ws.orientation);
   splitBuckets(ws, mesh, outputs, kernel.bucketUniform, kernel.bucketUniform && kernel.uniformVerticesWritten);
   numberExtraVertices(ws, mesh, outputs, report);
 }

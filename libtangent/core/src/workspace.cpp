@@ -121,6 +121,8 @@ TangentWorkspace::TangentWorkspace(TangentWorkspace&&) noexcept = default;
 TangentWorkspace& TangentWorkspace::operator=(TangentWorkspace&&) noexcept = default;
 std::size_t TangentWorkspace::bytesReserved() const { return data_->bytes(); }
 void TangentWorkspace::setWeldOnly(std::optional<std::span<const std::uint32_t>> vertices) { data_->weldOnly = vertices; }
+void TangentWorkspace::setReleaseAsItGoes(bool release) { data_->releaseAsItGoes = release; }
+bool TangentWorkspace::releasesAsItGoes() const { return data_->releaseAsItGoes; }
 TangentWorkspace::AdapterBuffers& TangentWorkspace::adapterBuffers() { return data_->adapter; }
 std::size_t TangentWorkspace::AdapterBuffers::bytes() const {
   auto size = [](const auto& v) { return v.capacity() * sizeof(v[0]); };

@@ -142,6 +142,8 @@ struct WorkspaceData {
   // full grouping. Only tests turn it off, to check that both agree (to the last bits of a
   // frame: the shortcut's sums are rounded to a grid, the full grouping's are not).
   bool fastBuckets = true;
+  // TangentWorkspace::setReleaseAsItGoes: each large array freed once the call is done with it.
+  bool releaseAsItGoes = false;
   std::size_t vertexCount = 0, cornerCount = 0;
   BulkVector<std::uint32_t> table;          // open-addressing weld table(s) (vertex + 1, 0 empty)
   BulkVector<std::uint32_t> weldCounts;     // threaded weld: per-chunk counts, partition starts
@@ -254,6 +256,20 @@ void sortSmall(T* begin, T* end) {
 template <typename Vector>
 void ensureSize(Vector& v, std::size_t n) {
   if (v.size() < n) v.resize(n);
+}
+
+// Frees each of `arrays` where the workspace gives memory back as the call goes
+// (releaseAsItGoes) and the array is a large one (2 MiB and more: mapped on its own, so freeing
+// it lowers the process's resident memory at once). Called where a phase has read them for the
+// last time in this call; a later phase or call allocates them again (ensureSize).
+template <typename... Vectors>
+void releaseWhenDone(WorkspaceData& ws, Vectors&... arrays) {
+  if (!ws.releaseAsItGoes) return;
+  auto release = [](auto& v) {
+    using Vector = std::remove_reference_t<decltype(v)>;
+    if (v.capacity() * sizeof(typename Vector::value_type) >= kHugePage) Vector().swap(v);
+  };
+  (release(arrays), ...);
 }
 
 // Checks the input arrays' sizes; throws std::invalid_argument naming the array (the one

@@ -71,6 +71,7 @@ KernelOutcome Kernel::run(Report& report) {
   // the weld alone would take longer than the triangle pass on the other threads.
   const unsigned weldThreads = ws_.threads < 4 ? 1 : ws_.threads;
   invokeBoth(ws_, [&] { weldAndBucket(ws_, mesh_, weldThreads, true); }, [&] { evaluateTriangles(report); });
+  releaseWhenDone(ws_, ws_.table, ws_.weldCounts);  // the weld's (setReleaseAsItGoes)
   vertexId_ = ws_.vertexId.data();
   identity_ = ws_.weldMergedNone;
   start_ = ws_.bucketStart.data();
@@ -115,6 +116,7 @@ KernelOutcome Kernel::run(Report& report) {
     });
   }
   mirroredCorners_ = mirrored.combine(std::plus<>());
+  releaseWhenDone(ws_, ws_.bucketNextId, ws_.bucketPreviousId);  // the pairing's
   fallbacks();
   return KernelOutcome{true, mirroredCorners_, anyCopy_.load(std::memory_order_relaxed), ws_.bucketUniform.data(), true};
 }
