@@ -276,3 +276,33 @@ def test_code_review_reports_point_at_the_primitives_line_in_a_gltf(tmp_path):
                for r in sarif["runs"][0]["results"]]
     assert regions == [("scene.gltf", {"startLine": starts[0]}), ("scene.gltf", {"startLine": expected}),
                        ("scene.glb", None), ("scene.glb", None)], regions
+
+
+def test_entries_named_like_assets_that_are_not_files_are_said_and_left_out(tmp_path):
+    """A FIFO, a link to a device, a dangling link and a link that loops, each named like an
+    asset: check and bake --recursive read none of them (a FIFO would block, /dev/zero never
+    ends) and say each on stderr, naming it and what it is; the report and the exit code are
+    those of the tree's files alone."""
+    tree, expected = make_tree(tmp_path, broken=False)
+    os.mkfifo(tree / "levels" / "pipe.glb")
+    os.symlink(tmp_path / "nowhere.glb", tree / "props" / "dangling.gltf")
+    os.symlink("/dev/zero", tree / "props" / "zero.glb")
+    os.symlink(tree / "props" / "loop.glb", tree / "props" / "loop.glb")
+    os.mkfifo(tree / "levels" / "pipe.txt")  # not named like an asset: nothing to say
+    said = ["tree/levels/pipe.glb: left out (a FIFO)", "tree/props/dangling.gltf: left out (a link to nothing)",
+            "tree/props/loop.glb: left out (a link that loops)", "tree/props/zero.glb: left out (a link to a device)"]
+
+    def warnings(stderr):
+        return [line[len("warning: "):].split(";")[0] for line in stderr.decode().splitlines()
+                if line.startswith("warning: ") and "left out" in line]
+
+    done, report = json_report(tmp_path)
+    assert done.returncode == 1, done.stderr  # the findings of missing.glb and flipped.glb only
+    assert [os.path.relpath(f["file"], "tree") for f in report["files"]] == sorted(expected)
+    assert warnings(done.stderr) == said, done.stderr
+    baked = tangent("bake", tree, "--recursive", "--out-dir", tmp_path / "baked", "--report", tmp_path / "bake.json")
+    assert baked.returncode == 0, baked.stderr
+    assert [line.replace(os.fsdecode(tmp_path) + "/", "") for line in warnings(baked.stderr)] == said, baked.stderr
+    assert sorted(os.path.relpath(entry["input"], tree) for entry in json.loads((tmp_path / "bake.json").read_text())) == \
+        sorted(expected)
+    assert not (tmp_path / "baked" / "levels" / "pipe.glb").exists()

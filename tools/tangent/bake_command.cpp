@@ -154,10 +154,12 @@ bool planTrees(const std::vector<std::filesystem::path>& folders, const std::fil
   for (const auto& folder : folders) {
     const std::filesystem::path target = treeTarget(folders, folder, outDir);
     try {
-      for (const auto& input : gltf::findInputs(folder, target)) {
+      std::vector<gltf::LeftOutEntry> leftOut;
+      for (const auto& input : gltf::findInputs(folder, target, &leftOut)) {
         plan.inputs.push_back(input);
         plan.outputs.push_back(gltf::outputPathInTree(input, folder, target));
       }
+      warnLeftOut(leftOut);
     } catch (const std::exception& e) {
       std::cerr << "error: " << shown(e.what()) << "\n";
       return false;

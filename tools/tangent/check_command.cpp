@@ -85,10 +85,13 @@ std::vector<CheckInput> filesToCheck(const std::vector<std::string>& inputs, boo
       add(input, {});
       continue;
     }
-    for (const fs::path& found : gltf::findInputs(input)) {
+    std::vector<gltf::LeftOutEntry> leftOut;
+    for (const fs::path& found : gltf::findInputs(input, {}, &leftOut)) {
       const fs::path path = found.lexically_normal();
       add(path, pathInTree(path, input, folders > 1));
     }
+    for (gltf::LeftOutEntry& entry : leftOut) entry.path = entry.path.lexically_normal();
+    warnLeftOut(leftOut);
   }
   return files;
 }

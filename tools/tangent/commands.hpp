@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "tangent/batch.hpp"
 #include "tangent/gltf.hpp"
 #include "tangent/output.hpp"
 #include "tangent/text.hpp"
@@ -58,6 +59,14 @@ inline std::filesystem::path pathInTree(const std::filesystem::path& file, const
   std::filesystem::path root = folder.lexically_normal();
   if (!root.has_filename()) root = root.parent_path();  // "dir/" names dir
   return file.lexically_relative(severalFolders ? root.parent_path() : root);
+}
+
+// Each entry of a walked tree named like an input but not a file (gltf::findInputs' leftOut),
+// on stderr: a FIFO, a device or a dangling link named like an asset is read by no command,
+// and should not drop out of a run without a word.
+inline void warnLeftOut(const std::vector<gltf::LeftOutEntry>& leftOut) {
+  for (const auto& entry : leftOut)
+    std::cerr << "warning: " << shown(entry.path.string()) << ": left out (" << entry.why << "); only files are read\n";
 }
 
 // One line on a terminal (stderr) while a batch runs (bake's inputs, check's files): files done

@@ -54,9 +54,18 @@ struct BatchEntry {
   nlohmann::ordered_json report;  // toJson(BakeResult) when baked in this run
 };
 
+// An entry under a folder that has an input's name (.gltf, .glb, .obj, .ply, .off) but is not
+// a regular file, nor a link to one: findInputs leaves it out, and says why here.
+struct LeftOutEntry {
+  std::filesystem::path path;
+  std::string why;  // "a FIFO", "a link to nothing", "a link to a device", ...
+};
+
 // The bakeable files under `folder` (recursively, sorted; symbolic links to folders are not
 // followed), leaving out everything under `skip` (the output folder when it lies inside).
-std::vector<std::filesystem::path> findInputs(const std::filesystem::path& folder, const std::filesystem::path& skip = {});
+// `leftOut`, where given, gets the entries named as inputs that are not files (sorted).
+std::vector<std::filesystem::path> findInputs(const std::filesystem::path& folder, const std::filesystem::path& skip = {},
+                                              std::vector<LeftOutEntry>* leftOut = nullptr);
 
 // SHA-256 over the input's bytes and those of every buffer and image it names inside its
 // asset root (hex). The manifest also records each such file's size and modification time: a

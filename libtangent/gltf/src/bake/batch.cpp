@@ -39,6 +39,27 @@ bool isInput(const fs::path& path) {
   return ext == ".gltf" || ext == ".glb" || detail::isMeshFile(path);
 }
 
+// What an entry that is not a regular file is, in a few words ("" for a folder: walked, not
+// left out).
+std::string notAFile(const fs::path& path) {
+  auto kind = [](fs::file_type type) -> std::string {
+    switch (type) {
+      case fs::file_type::directory: return "";
+      case fs::file_type::fifo: return "a FIFO";
+      case fs::file_type::block:
+      case fs::file_type::character: return "a device";
+      case fs::file_type::socket: return "a socket";
+      default: return "something other than a file";
+    }
+  };
+  std::error_code ec;
+  if (!fs::is_symlink(fs::symlink_status(path, ec))) return kind(fs::status(path, ec).type());
+  const fs::file_status target = fs::status(path, ec);
+  if (ec) return ec == std::errc::too_many_symbolic_link_levels ? "a link that loops" : "a link to nothing";
+  if (fs::is_directory(target)) return "";  // a link to a folder: not followed, as a folder is not an input
+  return "a link to " + kind(target.type());
+}
+
 }  // namespace
 
 Json manifestOptions(const BakeOptions& options) {
@@ -72,7 +93,7 @@ Json readManifest(const fs::path& path) {
 
 }  // namespace
 
-std::vector<fs::path> findInputs(const fs::path& folder, const fs::path& skip) {
+std::vector<fs::path> findInputs(const fs::path& folder, const fs::path& skip, std::vector<LeftOutEntry>* leftOut) {
   std::error_code ec;
   if (!fs::is_directory(folder, ec)) throw InputError(folder.string() + ": is not a folder");
   const fs::path skipCanonical = skip.empty() ? fs::path() : fs::weakly_canonical(skip, ec);
@@ -84,9 +105,16 @@ std::vector<fs::path> findInputs(const fs::path& folder, const fs::path& skip) {
       it.disable_recursion_pending();
       continue;
     }
-    if (it->is_regular_file(ec) && isInput(it->path())) inputs.push_back(it->path());
+    if (!isInput(it->path())) continue;
+    if (it->is_regular_file(ec)) {
+      inputs.push_back(it->path());
+    } else if (leftOut) {
+      if (std::string why = notAFile(it->path()); !why.empty()) leftOut->push_back({it->path(), std::move(why)});
+    }
   }
   std::sort(inputs.begin(), inputs.end());
+  if (leftOut)
+    std::sort(leftOut->begin(), leftOut->end(), [](const LeftOutEntry& a, const LeftOutEntry& b) { return a.path < b.path; });
   return inputs;
 }
 
